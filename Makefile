@@ -1,0 +1,75 @@
+# wrenchd -- build, test, run.  `make help` lists the targets.
+CC      ?= cc
+CFLAGS  ?= -O2 -g
+WARN     = -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L
+SAN      = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+BUILD    = build
+
+LIB_SRC  = $(wildcard lib/*.c)
+LIB_HDR  = $(wildcard lib/*.h)
+UNIT_SRC = $(wildcard tests/unit/test_*.c)
+UNIT_BIN = $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRC))
+ASAN_BIN = $(patsubst tests/unit/%.c,$(BUILD)/asan/tests/%,$(UNIT_SRC))
+LIBS     = -lglpk -lm
+TEST_LIBS = -lcmocka -lpthread
+
+.PHONY: all check unit unit-asan deps clean help
+
+all: $(BUILD)/libwrench.a
+
+help:
+	@echo "make            build build/libwrench.a"
+	@echo "make check      build and run every test (plain and ASan+UBSan builds)"
+	@echo "make deps       install the Debian packages the project needs"
+	@echo "make clean      remove build/"
+
+# ---- the library ----------------------------------------------------------
+$(BUILD)/lib/%.o: lib/%.c $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/libwrench.a: $(patsubst lib/%.c,$(BUILD)/lib/%.o,$(LIB_SRC))
+	ar rcs $@ $^
+
+$(BUILD)/asan/lib/%.o: lib/%.c $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) -O1 -g $(SAN) -c $< -o $@
+
+$(BUILD)/asan/libwrench.a: $(patsubst lib/%.c,$(BUILD)/asan/lib/%.o,$(LIB_SRC))
+	ar rcs $@ $^
+
+# ---- unit tests (cmocka) -------------------------------------------------
+TEST_HDR = $(wildcard tests/unit/*.h)
+
+$(BUILD)/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/libwrench.a
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) -Ilib $< $(BUILD)/libwrench.a $(LIBS) $(TEST_LIBS) -o $@
+
+$(BUILD)/asan/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/asan/libwrench.a
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) -O1 -g $(SAN) -Ilib $< $(BUILD)/asan/libwrench.a $(LIBS) $(TEST_LIBS) -o $@
+
+unit: $(UNIT_BIN)
+	@tests/run-unit $(UNIT_BIN)
+
+unit-asan: $(ASAN_BIN)
+	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	    tests/run-unit $(ASAN_BIN)
+
+check: unit unit-asan
+	@echo "make check: all tests passed"
+
+# ---- dependencies --------------------------------------------------------
+DEB_PACKAGES = build-essential pkg-config libglpk-dev libcmocka-dev
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	    echo "installing:$$missing"; \
+	    if [ "$$(id -u)" -eq 0 ]; then apt-get install -y $$missing; else sudo apt-get install -y $$missing; fi; \
+	else echo "make deps: all Debian packages present"; fi
+
+clean:
+	rm -rf $(BUILD)

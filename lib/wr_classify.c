@@ -1,0 +1,257 @@
+/* wr_classify.c -- the analysis of a fixture and the answers of SPEC
+ * section 5: verdict, margin, blocking cone, witness. */
+#include "wr_classify.h"
+#include "wr_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static bool build_cones(const wr_fixture *fixture, const wr_constraint *constraints, int count,
+                        wr_cone **cones)
+{
+    *cones = calloc((size_t)(count > 0 ? count : 1), sizeof **cones);
+    if (!*cones)
+        return false;
+    for (int i = 0; i < count; i++)
+        if (!wr_cone_build(&(*cones)[i], fixture, &constraints[i]))
+            return false;
+    return true;
+}
+
+static void release_cones(wr_cone *cones, int count)
+{
+    if (!cones)
+        return;
+    for (int i = 0; i < count; i++)
+        wr_cone_release(&cones[i]);
+    free(cones);
+}
+
+wr_analysis *wr_analysis_new(const wr_fixture *fixture)
+{
+    wr_analysis *a = calloc(1, sizeof *a);
+    if (!a)
+        return NULL;
+    a->fixture = fixture;
+    a->plan = wr_plan_new(fixture->fixel_count);
+    if (!a->plan)
+        goto fail;
+    if (!build_cones(fixture, a->plan->kept, a->plan->kept_count, &a->goal_cones))
+        goto fail;
+    a->mode_count = wr_modes_find(fixture, &a->modes, &a->pinned);
+    if (a->mode_count < 0) {
+        a->mode_count = 0;
+        goto fail;
+    }
+    if (!build_cones(fixture, a->modes, a->mode_count, &a->mode_cones))
+        goto fail;
+    return a;
+fail:
+    wr_analysis_free(a);
+    return NULL;
+}
+
+void wr_analysis_free(wr_analysis *analysis)
+{
+    if (!analysis)
+        return;
+    release_cones(analysis->goal_cones, analysis->plan ? analysis->plan->kept_count : 0);
+    release_cones(analysis->mode_cones, analysis->mode_count);
+    free(analysis->modes);
+    wr_plan_free(analysis->plan);
+    free(analysis);
+}
+
+int wr_analysis_cone_count(const wr_analysis *analysis, wr_set set)
+{
+    return set == WR_SET_GOAL ? analysis->plan->kept_count : analysis->mode_count;
+}
+
+const wr_cone *wr_analysis_cone(const wr_analysis *analysis, wr_set set, int index)
+{
+    return set == WR_SET_GOAL ? &analysis->goal_cones[index] : &analysis->mode_cones[index];
+}
+
+/* A lower bound on the distance from x to the cone's closure: the largest
+ * violation of a facet or equality.  <= 0 means x is in the closure. */
+static double distance_bound(const wr_cone *cone, const double x[3])
+{
+    double bound = -INFINITY;
+    for (int i = 0; i < cone->facet_count; i++)
+        bound = fmax(bound, wr_dot3(cone->facets[i], x));
+    for (int i = 0; i < cone->equality_count; i++)
+        bound = fmax(bound, fabs(wr_dot3(cone->equalities[i], x)));
+    return bound;
+}
+
+/* Margin of unit x for one set: minus the largest depth when x is in some
+ * excluded cone, else the smallest distance; 1 with no cone at all. */
+static double set_margin(const wr_analysis *a, wr_set set, const double x[3], int *blocking)
+{
+    int count = wr_analysis_cone_count(a, set);
+    double deepest = -1;
+    int deepest_index = -1;
+    for (int i = 0; i < count; i++) {
+        const wr_cone *cone = wr_analysis_cone(a, set, i);
+        if (cone->empty || distance_bound(cone, x) > 0)
+            continue;
+        /* Inside: for a full cone the depth is the smallest facet distance
+         * (the whole space: |x| = 1); a thinner cone has no interior. */
+        double depth = cone->dimension < 3 ? 0
+                       : cone->facet_count == 0 ? 1
+                                                : -distance_bound(cone, x);
+        if (depth > deepest) {
+            deepest = depth;
+            deepest_index = i;
+        }
+    }
+    if (deepest_index >= 0) {
+        *blocking = deepest_index;
+        return -fmin(deepest, 1);
+    }
+    double nearest = INFINITY;
+    int nearest_index = -1;
+    for (int i = 0; i < count; i++) {
+        const wr_cone *cone = wr_analysis_cone(a, set, i);
+        if (cone->empty || distance_bound(cone, x) >= nearest)
+            continue;
+        double d = wr_cone_signed_distance(cone, x, NULL);
+        if (d < nearest) {
+            nearest = d;
+            nearest_index = i;
+        }
+    }
+    *blocking = nearest_index;
+    return nearest_index < 0 ? 1 : fmin(nearest, 1);
+}
+
+static wr_verdict verdict_of(double margin, double tolerance)
+{
+    if (margin > tolerance)
+        return WR_VERDICT_INSIDE;
+    if (margin < -tolerance)
+        return WR_VERDICT_OUTSIDE;
+    return WR_VERDICT_BOUNDARY;
+}
+
+static bool finite3(const double v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+/* SPEC section 5: the zero wrench seats nothing, and is held unless some
+ * moving mode admits it.  Its margin is 0 either way. */
+static void classify_zero(const wr_analysis *a, wr_set set, wr_answer *answer)
+{
+    answer->has_margin = true;
+    answer->margin = 0;
+    if (set != WR_SET_STRONG) {
+        answer->verdict = WR_VERDICT_OUTSIDE;
+        answer->blocking_set = WR_SET_GOAL;
+        answer->blocking = a->plan->kept_count > 0 ? 0 : -1;
+        return;
+    }
+    answer->blocking_set = WR_SET_STRONG;
+    answer->verdict = WR_VERDICT_INSIDE;
+    answer->blocking = -1;
+    for (int i = 0; i < a->mode_count; i++)
+        if (a->mode_cones[i].zero_admitted) {
+            answer->verdict = WR_VERDICT_OUTSIDE;
+            answer->blocking = i;
+            return;
+        }
+}
+
+int wr_classify(const wr_analysis *a, const double wrench[3], wr_set set, double tolerance,
+                wr_answer *answer)
+{
+    memset(answer, 0, sizeof *answer);
+    answer->blocking = -1;
+    if (!finite3(wrench) || !(tolerance >= 0))
+        return -1;
+    double h[3];
+    double scale = wr_fixture_scale_wrench(a->fixture, wrench, h);
+    if (!(scale > 0)) {
+        classify_zero(a, set, answer);
+        return 0;
+    }
+    double x[3] = {h[0] / scale, h[1] / scale, h[2] / scale};
+
+    int goal_blocking = -1, strong_blocking = -1;
+    double goal_margin = 1, strong_margin = 1;
+    if (set != WR_SET_STRONG)
+        goal_margin = set_margin(a, WR_SET_GOAL, x, &goal_blocking);
+    if (set != WR_SET_GOAL)
+        strong_margin = set_margin(a, WR_SET_STRONG, x, &strong_blocking);
+    bool goal_decides = set == WR_SET_GOAL || (set == WR_SET_BOTH && goal_margin <= strong_margin);
+    answer->has_margin = true;
+    answer->margin = goal_decides ? goal_margin : strong_margin;
+    answer->blocking_set = goal_decides ? WR_SET_GOAL : WR_SET_STRONG;
+    answer->verdict = verdict_of(answer->margin, tolerance);
+    if (answer->verdict == WR_VERDICT_INSIDE)
+        return 0;
+    answer->blocking = goal_decides ? goal_blocking : strong_blocking;
+    if (answer->blocking >= 0) {
+        const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
+        double projection[3];
+        wr_cone_signed_distance(cone, x, projection);
+        for (int k = 0; k < 3; k++)
+            projection[k] *= scale;
+        wr_cone_witness(cone, a->fixture, projection, &answer->witness);
+    }
+    return 0;
+}
+
+int wr_analysis_lp_sets(const wr_analysis *a, wr_lp_env *env, wr_lp_set **goal,
+                        wr_lp_set **strong)
+{
+    *goal = wr_lp_set_new(env, a->fixture, a->plan->kept, a->plan->kept_count);
+    *strong = wr_lp_set_new(env, a->fixture, a->modes, a->mode_count);
+    if (!*goal || !*strong) {
+        wr_lp_set_free(*goal);
+        wr_lp_set_free(*strong);
+        *goal = *strong = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+/* The first excluded cone holding g, by LP; -1 if none. */
+static int first_member(wr_lp_set *lp, int count, const double wrench[3], wr_witness *witness,
+                        int *status)
+{
+    for (int i = 0; i < count; i++) {
+        bool member = false;
+        *status = wr_lp_member(lp, i, wrench, &member, witness);
+        if (*status != WR_LP_OK)
+            return -1;
+        if (member)
+            return i;
+    }
+    return -1;
+}
+
+int wr_classify_lp(const wr_analysis *a, wr_lp_set *goal, wr_lp_set *strong,
+                   const double wrench[3], wr_set set, wr_answer *answer)
+{
+    memset(answer, 0, sizeof *answer);
+    answer->blocking = -1;
+    if (!finite3(wrench))
+        return -1;
+    int status = WR_LP_OK;
+    if (set != WR_SET_STRONG) {
+        answer->blocking_set = WR_SET_GOAL;
+        answer->blocking = first_member(goal, a->plan->kept_count, wrench, &answer->witness,
+                                        &status);
+    }
+    if (status == WR_LP_OK && answer->blocking < 0 && set != WR_SET_GOAL) {
+        answer->blocking_set = WR_SET_STRONG;
+        answer->blocking = first_member(strong, a->mode_count, wrench, &answer->witness, &status);
+    }
+    if (status != WR_LP_OK)
+        return status;
+    answer->verdict = answer->blocking < 0 ? WR_VERDICT_INSIDE : WR_VERDICT_OUTSIDE;
+    if (answer->blocking < 0)
+        memset(&answer->witness, 0, sizeof answer->witness);
+    return 0;
+}

@@ -1,0 +1,583 @@
+/* wr_fixture.c -- validation of a fixture spec and the derived quantities
+ * (centroid, uniform inertia, inward normals, scaled contact wrenches). */
+#include "wr_fixture.h"
+#include "wr_internal.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Geometric tolerances are relative to the body's size (SPEC section 8:
+ * "within 1e-9 of the body's size"). */
+#define BOUNDARY_TOLERANCE 1e-9
+#define DEGENERATE_TOLERANCE 1e-12
+
+void wr_error_set(wr_error *error, const char *field, const char *format, ...)
+{
+    if (!error)
+        return;
+    snprintf(error->field, sizeof error->field, "%s", field ? field : "");
+    va_list args;
+    va_start(args, format);
+    vsnprintf(error->reason, sizeof error->reason, format, args);
+    va_end(args);
+}
+
+static bool finite2(const double v[2]) { return isfinite(v[0]) && isfinite(v[1]); }
+
+/* Report the first non-finite component of a 2-vector as "path[i]". */
+static bool check_finite2(const double v[2], const char *path, wr_error *error)
+{
+    for (int i = 0; i < 2; i++) {
+        if (!isfinite(v[i])) {
+            char field[128];
+            snprintf(field, sizeof field, "%s[%d]", path, i);
+            wr_error_set(error, field, "must be a finite number");
+            return false;
+        }
+    }
+    return true;
+}
+
+static bool check_friction(const wr_friction_spec *friction, const char *path,
+                           wr_error *error)
+{
+    char field[128];
+    if (!friction->given)
+        return true;
+    snprintf(field, sizeof field, "%s.static", path);
+    if (!isfinite(friction->static_mu)) {
+        wr_error_set(error, field, "must be a finite number");
+        return false;
+    }
+    if (friction->static_mu < 0) {
+        wr_error_set(error, field, "friction coefficient %g is negative", friction->static_mu);
+        return false;
+    }
+    if (!friction->kinetic_given)
+        return true;
+    snprintf(field, sizeof field, "%s.kinetic", path);
+    if (!isfinite(friction->kinetic_mu)) {
+        wr_error_set(error, field, "must be a finite number");
+        return false;
+    }
+    if (friction->kinetic_mu < 0) {
+        wr_error_set(error, field, "friction coefficient %g is negative", friction->kinetic_mu);
+        return false;
+    }
+    if (friction->kinetic_mu > friction->static_mu) {
+        wr_error_set(error, field, "kinetic friction %g exceeds static friction %g",
+                     friction->kinetic_mu, friction->static_mu);
+        return false;
+    }
+    return true;
+}
+
+/* ---- polygon geometry --------------------------------------------------- */
+
+static double cross2(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
+
+/* Orientation of c relative to the directed line a->b: >0 left, <0 right. */
+static double orient(const double a[2], const double b[2], const double c[2])
+{
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+static bool on_segment(const double a[2], const double b[2], const double c[2])
+{
+    return fmin(a[0], b[0]) <= c[0] && c[0] <= fmax(a[0], b[0]) &&
+           fmin(a[1], b[1]) <= c[1] && c[1] <= fmax(a[1], b[1]);
+}
+
+/* Closed segments ab and cd share a point. */
+static bool segments_meet(const double a[2], const double b[2], const double c[2],
+                          const double d[2])
+{
+    double o1 = orient(a, b, c), o2 = orient(a, b, d);
+    double o3 = orient(c, d, a), o4 = orient(c, d, b);
+    if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) &&
+        ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+        return true;
+    return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+           (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+}
+
+/* Distance from p to segment ab; *fraction receives the parameter of the
+ * nearest point (0 at a, 1 at b). */
+static double segment_distance(const double a[2], const double b[2], const double p[2],
+                               double *fraction)
+{
+    double d[2] = {b[0] - a[0], b[1] - a[1]};
+    double w[2] = {p[0] - a[0], p[1] - a[1]};
+    double length2 = d[0] * d[0] + d[1] * d[1];
+    double t = length2 > 0 ? (w[0] * d[0] + w[1] * d[1]) / length2 : 0;
+    t = fmax(0.0, fmin(1.0, t));
+    if (fraction)
+        *fraction = t;
+    return hypot(p[0] - (a[0] + t * d[0]), p[1] - (a[1] + t * d[1]));
+}
+
+static bool check_polygon(const wr_fixture_spec *spec, double size, wr_error *error)
+{
+    size_t n = spec->vertex_count;
+    const double (*v)[2] = spec->vertices;
+    char field[96];
+    if (n < 3 || !v) {
+        wr_error_set(error, "body.shape.vertices",
+                     "a polygon needs at least 3 vertices, %zu given", n);
+        return false;
+    }
+    if (n > WR_MAX_VERTICES) {
+        wr_error_set(error, "body.shape.vertices",
+                     "at most %d vertices are accepted, %zu given", WR_MAX_VERTICES, n);
+        return false;
+    }
+    for (size_t i = 0; i < n; i++) {
+        snprintf(field, sizeof field, "body.shape.vertices[%zu]", i);
+        if (!check_finite2(v[i], field, error))
+            return false;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const double *a = v[i], *b = v[(i + 1) % n];
+        if (hypot(b[0] - a[0], b[1] - a[1]) <= DEGENERATE_TOLERANCE * size) {
+            snprintf(field, sizeof field, "body.shape.vertices[%zu]", (i + 1) % n);
+            wr_error_set(error, field, "repeats vertex %zu: the edge between them has no length", i);
+            return false;
+        }
+    }
+    double area2 = 0;
+    for (size_t i = 0; i < n; i++)
+        area2 += cross2(v[i], v[(i + 1) % n]);
+    if (fabs(area2) / 2 <= DEGENERATE_TOLERANCE * size * size) {
+        wr_error_set(error, "body.shape.vertices", "the polygon encloses no area");
+        return false;
+    }
+    /* Simple: no two edges meet except neighbours at their shared vertex,
+     * and neighbours do not fold back onto each other. */
+    for (size_t i = 0; i < n; i++) {
+        const double *a = v[i], *b = v[(i + 1) % n], *c = v[(i + 2) % n];
+        double d1[2] = {b[0] - a[0], b[1] - a[1]}, d2[2] = {c[0] - b[0], c[1] - b[1]};
+        if (cross2(d1, d2) == 0 && d1[0] * d2[0] + d1[1] * d2[1] < 0) {
+            snprintf(field, sizeof field, "body.shape.vertices[%zu]", (i + 1) % n);
+            wr_error_set(error, field,
+                         "the polygon is not simple: the edges at this vertex fold back onto each other");
+            return false;
+        }
+        for (size_t j = i + 2; j < n; j++) {
+            if (i == 0 && j == n - 1)
+                continue; /* neighbours through vertex 0 */
+            if (segments_meet(a, b, v[j], v[(j + 1) % n])) {
+                wr_error_set(error, "body.shape.vertices",
+                             "the polygon is not simple: edge %zu crosses edge %zu", i, j);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/* Area, centroid and polar second moment about the centroid, for a uniform
+ * polygon of unit density.  Computed about vertex 0 for accuracy. */
+static void polygon_moments(const double (*v)[2], size_t n, double *area, double centroid[2],
+                            double *polar_moment)
+{
+    double a = 0, cx = 0, cy = 0, j = 0;
+    const double *o = v[0];
+    for (size_t i = 0; i < n; i++) {
+        double x0 = v[i][0] - o[0], y0 = v[i][1] - o[1];
+        double x1 = v[(i + 1) % n][0] - o[0], y1 = v[(i + 1) % n][1] - o[1];
+        double c = x0 * y1 - x1 * y0;
+        a += c;
+        cx += (x0 + x1) * c;
+        cy += (y0 + y1) * c;
+        j += c * (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1);
+    }
+    a /= 2;
+    cx /= 6 * a;
+    cy /= 6 * a;
+    j /= 12;
+    /* Signed a and j carry the orientation; their ratio does not. */
+    *area = fabs(a);
+    centroid[0] = cx + o[0];
+    centroid[1] = cy + o[1];
+    *polar_moment = fabs(j) - fabs(a) * (cx * cx + cy * cy);
+}
+
+/* ---- boundary queries --------------------------------------------------- */
+
+/* Distance from p to the shape's boundary.  For a polygon, *edge and *fraction
+ * receive the nearest edge and the parameter along it. */
+static double boundary_distance(const wr_fixture *f, const double p[2], size_t *edge,
+                                double *fraction)
+{
+    if (f->shape == WR_SHAPE_CIRCLE)
+        return fabs(hypot(p[0] - f->center[0], p[1] - f->center[1]) - f->radius);
+    double best = INFINITY;
+    for (size_t i = 0; i < f->vertex_count; i++) {
+        double t;
+        double d = segment_distance(f->vertices[i], f->vertices[(i + 1) % f->vertex_count], p, &t);
+        if (d < best) {
+            best = d;
+            *edge = i;
+            *fraction = t;
+        }
+    }
+    return best;
+}
+
+/* Inward unit normal of polygon edge i. */
+static void edge_inward_normal(const wr_fixture *f, size_t i, double normal[2])
+{
+    const double *a = f->vertices[i], *b = f->vertices[(i + 1) % f->vertex_count];
+    double d[2] = {b[0] - a[0], b[1] - a[1]};
+    double length = hypot(d[0], d[1]);
+    /* Counter-clockwise: the interior lies to the left of each edge. */
+    normal[0] = -d[1] / length * f->orientation;
+    normal[1] = d[0] / length * f->orientation;
+}
+
+/* Is p within tolerance of a polygon vertex?  Returns its index or -1. */
+static long near_vertex(const wr_fixture *f, const double p[2])
+{
+    for (size_t i = 0; i < f->vertex_count; i++)
+        if (hypot(p[0] - f->vertices[i][0], p[1] - f->vertices[i][1]) <=
+            BOUNDARY_TOLERANCE * f->size)
+            return (long)i;
+    return -1;
+}
+
+/* Fill in one fixel's normal and friction, checking them against the shape. */
+static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index,
+                        wr_error *error)
+{
+    const wr_fixel_spec *in = &spec->fixels[index];
+    wr_fixel *out = &f->fixels[index];
+    char field[96];
+    snprintf(field, sizeof field, "fixels[%zu].at", index);
+    if (!check_finite2(in->at, field, error))
+        return false;
+    out->at[0] = in->at[0];
+    out->at[1] = in->at[1];
+
+    /* The shape's inward normal at `at`, when defined. */
+    double inward[2] = {0, 0};
+    bool inward_known = false;
+    long vertex = -1;
+    if (f->shape != WR_SHAPE_NONE) {
+        size_t edge = 0;
+        double fraction = 0;
+        double distance = boundary_distance(f, in->at, &edge, &fraction);
+        if (distance > BOUNDARY_TOLERANCE * f->size) {
+            wr_error_set(error, field,
+                         "(%g, %g) is not on the workpiece boundary: %.3g away from it",
+                         in->at[0], in->at[1], distance);
+            return false;
+        }
+        if (f->shape == WR_SHAPE_CIRCLE) {
+            double d[2] = {f->center[0] - in->at[0], f->center[1] - in->at[1]};
+            double length = hypot(d[0], d[1]);
+            inward[0] = d[0] / length;
+            inward[1] = d[1] / length;
+            inward_known = true;
+        } else {
+            vertex = near_vertex(f, in->at);
+            if (vertex < 0) {
+                edge_inward_normal(f, edge, inward);
+                inward_known = true;
+            }
+        }
+    }
+
+    snprintf(field, sizeof field, "fixels[%zu].normal", index);
+    if (in->normal_given) {
+        if (!check_finite2(in->normal, field, error))
+            return false;
+        double length = hypot(in->normal[0], in->normal[1]);
+        if (!(length > 0)) {
+            wr_error_set(error, field, "must not be the zero vector");
+            return false;
+        }
+        out->normal[0] = in->normal[0] / length;
+        out->normal[1] = in->normal[1] / length;
+        bool points_in = true;
+        if (inward_known)
+            points_in = out->normal[0] * inward[0] + out->normal[1] * inward[1] > 0;
+        else if (vertex >= 0) {
+            /* At a vertex, the normal must point into the body across at
+             * least one of the two edges that meet there. */
+            double a[2], b[2];
+            size_t n = f->vertex_count;
+            edge_inward_normal(f, (size_t)vertex, a);
+            edge_inward_normal(f, ((size_t)vertex + n - 1) % n, b);
+            points_in = out->normal[0] * a[0] + out->normal[1] * a[1] > 0 ||
+                        out->normal[0] * b[0] + out->normal[1] * b[1] > 0;
+        }
+        if (!points_in) {
+            wr_error_set(error, field,
+                         "(%g, %g) points out of the workpiece; a fixel's normal points from the fixel into the workpiece",
+                         in->normal[0], in->normal[1]);
+            return false;
+        }
+    } else if (inward_known) {
+        out->normal[0] = inward[0];
+        out->normal[1] = inward[1];
+    } else if (vertex >= 0) {
+        wr_error_set(error, field,
+                     "required: (%g, %g) is vertex %ld of the polygon, where the inward normal is not defined",
+                     in->at[0], in->at[1], vertex);
+        return false;
+    } else {
+        wr_error_set(error, field, "required when the body has no shape");
+        return false;
+    }
+    out->tangent[0] = -out->normal[1];
+    out->tangent[1] = out->normal[0];
+
+    snprintf(field, sizeof field, "fixels[%zu].friction", index);
+    const wr_friction_spec *friction = in->friction.given ? &in->friction : &spec->friction;
+    if (!friction->given) {
+        wr_error_set(error, field,
+                     "required: no friction is given for this fixel nor for the fixture");
+        return false;
+    }
+    if (in->friction.given && !check_friction(&in->friction, field, error))
+        return false;
+    out->mu_static = friction->static_mu;
+    out->mu_kinetic = friction->kinetic_given ? friction->kinetic_mu : friction->static_mu;
+    return true;
+}
+
+/* Scaled contact wrenches: (n, (r x n) / rho), (t, (r x t) / rho). */
+static void fixel_wrenches(const wr_fixture *f, wr_fixel *fixel)
+{
+    double r[2] = {fixel->at[0] - f->com[0], fixel->at[1] - f->com[1]};
+    fixel->normal_wrench[0] = fixel->normal[0];
+    fixel->normal_wrench[1] = fixel->normal[1];
+    fixel->normal_wrench[2] = cross2(r, fixel->normal) / f->gyration_radius;
+    fixel->tangent_wrench[0] = fixel->tangent[0];
+    fixel->tangent_wrench[1] = fixel->tangent[1];
+    fixel->tangent_wrench[2] = cross2(r, fixel->tangent) / f->gyration_radius;
+}
+
+static double shape_size(const wr_fixture_spec *spec)
+{
+    if (spec->shape == WR_SHAPE_CIRCLE)
+        return 2 * spec->radius;
+    if (spec->shape == WR_SHAPE_POLYGON) {
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (size_t i = 0; i < spec->vertex_count; i++)
+            for (int k = 0; k < 2; k++) {
+                lo[k] = fmin(lo[k], spec->vertices[i][k]);
+                hi[k] = fmax(hi[k], spec->vertices[i][k]);
+            }
+        return hypot(hi[0] - lo[0], hi[1] - lo[1]);
+    }
+    double size = 0;
+    for (size_t i = 0; i < spec->fixel_count; i++)
+        for (size_t j = 0; j < i; j++)
+            size = fmax(size, hypot(spec->fixels[i].at[0] - spec->fixels[j].at[0],
+                                    spec->fixels[i].at[1] - spec->fixels[j].at[1]));
+    return size > 0 ? size : 1;
+}
+
+static bool check_body(const wr_fixture_spec *spec, wr_error *error)
+{
+    if (!isfinite(spec->mass)) {
+        wr_error_set(error, "body.mass", "must be a finite number");
+        return false;
+    }
+    if (!(spec->mass > 0)) {
+        wr_error_set(error, "body.mass", "must be positive, got %g", spec->mass);
+        return false;
+    }
+    if (spec->inertia_given) {
+        if (!isfinite(spec->inertia)) {
+            wr_error_set(error, "body.inertia", "must be a finite number");
+            return false;
+        }
+        if (!(spec->inertia > 0)) {
+            wr_error_set(error, "body.inertia", "must be positive, got %g", spec->inertia);
+            return false;
+        }
+    }
+    if (spec->com_given && !check_finite2(spec->com, "body.com", error))
+        return false;
+    if (spec->shape == WR_SHAPE_CIRCLE) {
+        if (!check_finite2(spec->center, "body.shape.center", error))
+            return false;
+        if (!isfinite(spec->radius)) {
+            wr_error_set(error, "body.shape.radius", "must be a finite number");
+            return false;
+        }
+        if (!(spec->radius > 0)) {
+            wr_error_set(error, "body.shape.radius", "must be positive, got %g", spec->radius);
+            return false;
+        }
+    } else if (spec->shape == WR_SHAPE_POLYGON) {
+        if (!check_polygon(spec, shape_size(spec), error))
+            return false;
+    } else {
+        if (!spec->com_given) {
+            wr_error_set(error, "body.com", "required when the body has no shape");
+            return false;
+        }
+        if (!spec->inertia_given) {
+            wr_error_set(error, "body.inertia", "required when the body has no shape");
+            return false;
+        }
+    }
+    return check_friction(&spec->friction, "friction", error);
+}
+
+wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
+{
+    if (!check_body(spec, error))
+        return NULL;
+    if (spec->fixel_count == 0 || !spec->fixels) {
+        wr_error_set(error, "fixels", "at least one fixel is required");
+        return NULL;
+    }
+    if (spec->fixel_count > WR_MAX_FIXELS) {
+        wr_error_set(error, "fixels",
+                     "%zu fixels given, at most %d are supported: G_goal has k*2^(k-1) cones, "
+                     "1024 at k = 8 and doubling with every fixel",
+                     spec->fixel_count, WR_MAX_FIXELS);
+        return NULL;
+    }
+    for (size_t i = 0; i < spec->fixel_count; i++) {
+        char field[96];
+        snprintf(field, sizeof field, "fixels[%zu].at", i);
+        if (!finite2(spec->fixels[i].at)) {
+            check_finite2(spec->fixels[i].at, field, error);
+            return NULL;
+        }
+    }
+
+    wr_fixture *f = calloc(1, sizeof *f);
+    if (!f) {
+        wr_error_set(error, "", "out of memory");
+        return NULL;
+    }
+    f->shape = spec->shape;
+    f->size = shape_size(spec);
+    f->mass = spec->mass;
+    double area = 0, centroid[2] = {0, 0}, polar_moment = 0;
+    if (spec->shape == WR_SHAPE_CIRCLE) {
+        f->center[0] = spec->center[0];
+        f->center[1] = spec->center[1];
+        f->radius = spec->radius;
+        centroid[0] = f->center[0];
+        centroid[1] = f->center[1];
+        /* Uniform disc: I = m r^2 / 2 about its centre. */
+        area = WR_PI * f->radius * f->radius;
+        polar_moment = area * f->radius * f->radius / 2;
+    } else if (spec->shape == WR_SHAPE_POLYGON) {
+        f->vertex_count = spec->vertex_count;
+        f->vertices = malloc(spec->vertex_count * sizeof *f->vertices);
+        if (!f->vertices) {
+            free(f);
+            wr_error_set(error, "", "out of memory");
+            return NULL;
+        }
+        memcpy(f->vertices, spec->vertices, spec->vertex_count * sizeof *f->vertices);
+        double area2 = 0;
+        for (size_t i = 0; i < f->vertex_count; i++)
+            area2 += cross2(f->vertices[i], f->vertices[(i + 1) % f->vertex_count]);
+        f->orientation = area2 > 0 ? 1 : -1;
+        polygon_moments(spec->vertices, spec->vertex_count, &area, centroid, &polar_moment);
+    }
+    if (spec->com_given) {
+        f->com[0] = spec->com[0];
+        f->com[1] = spec->com[1];
+    } else {
+        f->com[0] = centroid[0];
+        f->com[1] = centroid[1];
+    }
+    if (spec->inertia_given) {
+        f->inertia = spec->inertia;
+    } else {
+        /* Uniform density about the centroid, moved to com by parallel axes. */
+        double offset2 = (f->com[0] - centroid[0]) * (f->com[0] - centroid[0]) +
+                         (f->com[1] - centroid[1]) * (f->com[1] - centroid[1]);
+        f->inertia = f->mass * (polar_moment / area + offset2);
+    }
+    if (!(f->inertia > 0) || !isfinite(f->inertia)) {
+        wr_error_set(error, "body.inertia", "the uniform inertia of this shape is not positive");
+        wr_fixture_free(f);
+        return NULL;
+    }
+    f->gyration_radius = sqrt(f->inertia / f->mass);
+    if (!(f->gyration_radius > 0) || !isfinite(f->gyration_radius)) {
+        wr_error_set(error, "body.inertia", "inertia / mass must be a positive finite number");
+        wr_fixture_free(f);
+        return NULL;
+    }
+
+    f->fixel_count = (int)spec->fixel_count;
+    for (size_t i = 0; i < spec->fixel_count; i++) {
+        if (!build_fixel(f, spec, i, error)) {
+            wr_fixture_free(f);
+            return NULL;
+        }
+        fixel_wrenches(f, &f->fixels[i]);
+    }
+    for (int i = 0; i < f->fixel_count; i++)
+        for (int j = 0; j < i; j++) {
+            const wr_fixel *a = &f->fixels[j], *b = &f->fixels[i];
+            if (hypot(a->at[0] - b->at[0], a->at[1] - b->at[1]) <= BOUNDARY_TOLERANCE * f->size &&
+                hypot(a->normal[0] - b->normal[0], a->normal[1] - b->normal[1]) <= BOUNDARY_TOLERANCE) {
+                char field[96];
+                snprintf(field, sizeof field, "fixels[%d]", i);
+                wr_error_set(error, field, "duplicates fixels[%d]: same point and same normal", j);
+                wr_fixture_free(f);
+                return NULL;
+            }
+        }
+    return f;
+}
+
+void wr_fixture_free(wr_fixture *fixture)
+{
+    if (!fixture)
+        return;
+    free(fixture->vertices);
+    free(fixture);
+}
+
+double wr_fixture_scale_wrench(const wr_fixture *fixture, const double wrench[3],
+                               double scaled[3])
+{
+    scaled[0] = wrench[0];
+    scaled[1] = wrench[1];
+    scaled[2] = wrench[2] / fixture->gyration_radius;
+    return wr_norm3(scaled);
+}
+
+void wr_fixture_unscale_wrench(const wr_fixture *fixture, const double scaled[3],
+                               double wrench[3])
+{
+    wrench[0] = scaled[0];
+    wrench[1] = scaled[1];
+    wrench[2] = scaled[2] * fixture->gyration_radius;
+}
+
+void wr_fixture_unscale_row(const wr_fixture *fixture, const double scaled_row[3],
+                            double row[3])
+{
+    /* f . S g <= 0 with S = diag(1, 1, 1/rho): the physical row is S f. */
+    row[0] = scaled_row[0];
+    row[1] = scaled_row[1];
+    row[2] = scaled_row[2] / fixture->gyration_radius;
+    wr_normalize3(row);
+}
+
+void wr_fixture_force_wrench(const wr_fixture *fixture, const double force[2],
+                             const double at[2], double wrench[3])
+{
+    double r[2] = {at[0] - fixture->com[0], at[1] - fixture->com[1]};
+    wrench[0] = force[0];
+    wrench[1] = force[1];
+    wrench[2] = cross2(r, force);
+}

@@ -1,0 +1,119 @@
+/* wr_fixture.h -- the fixture model of SPEC section 1: a planar workpiece, its
+ * shape and the point contacts ("fixels") that seat it.
+ *
+ * A caller describes a fixture with a wr_fixture_spec (borrowed memory,
+ * optional fields flagged), and wr_fixture_new() validates it into a
+ * wr_fixture (owned, every optional value filled in).  Field paths in errors
+ * mirror the JSON of SPEC section 8 ("fixels[2].normal", "body.mass"), so the
+ * protocol layer only has to prefix them.
+ *
+ * Units: any consistent set.  Angles nowhere.  The frame is the fixture's. */
+#ifndef WR_FIXTURE_H
+#define WR_FIXTURE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* At most 8 fixels: G_goal has k * 2^(k-1) cones (1024 at k = 8). */
+#define WR_MAX_FIXELS 8
+/* A polygon outline has at most this many vertices (the simplicity check is
+ * quadratic in it). */
+#define WR_MAX_VERTICES 4096
+
+/* An error: which field, and why.  Both NUL-terminated, possibly truncated. */
+typedef struct wr_error {
+    char field[96];   /* "fixels[2].normal"; empty when no field is to blame */
+    char reason[192]; /* a sentence for a person */
+} wr_error;
+
+typedef enum wr_shape_type {
+    WR_SHAPE_NONE = 0, /* no outline: com and inertia are then required */
+    WR_SHAPE_CIRCLE,
+    WR_SHAPE_POLYGON
+} wr_shape_type;
+
+/* Friction as given: static, optional kinetic (equals static when absent). */
+typedef struct wr_friction_spec {
+    bool given;            /* false: not given here */
+    double static_mu;      /* mu_s >= 0 */
+    bool kinetic_given;
+    double kinetic_mu;     /* 0 <= mu_k <= mu_s */
+} wr_friction_spec;
+
+typedef struct wr_fixel_spec {
+    double at[2];              /* contact point, on the workpiece boundary */
+    bool normal_given;
+    double normal[2];          /* into the workpiece; normalised on validation */
+    wr_friction_spec friction; /* overrides the fixture's */
+} wr_fixel_spec;
+
+typedef struct wr_fixture_spec {
+    double mass;                    /* m > 0 */
+    bool inertia_given;
+    double inertia;                 /* I > 0, about the centre of mass */
+    bool com_given;
+    double com[2];                  /* centre of mass */
+    wr_shape_type shape;
+    double center[2];               /* circle */
+    double radius;                  /* circle */
+    size_t vertex_count;            /* polygon */
+    const double (*vertices)[2];    /* polygon, either orientation; borrowed */
+    wr_friction_spec friction;      /* global friction */
+    size_t fixel_count;
+    const wr_fixel_spec *fixels;    /* borrowed */
+} wr_fixture_spec;
+
+/* A validated fixel.  t = n turned +90 degrees: (-n_y, n_x). */
+typedef struct wr_fixel {
+    double at[2];
+    double normal[2];   /* unit, into the workpiece */
+    double tangent[2];  /* unit */
+    double mu_static;
+    double mu_kinetic;
+    /* Scaled contact wrenches (SPEC section 5 metric): for a unit normal
+     * force, (n_x, n_y, (r x n) / rho); likewise for the tangent. */
+    double normal_wrench[3];
+    double tangent_wrench[3];
+} wr_fixel;
+
+/* A validated fixture; every field is filled in.  Read-only for callers. */
+typedef struct wr_fixture {
+    double mass;
+    double inertia;
+    double com[2];
+    double gyration_radius;       /* rho = sqrt(I / m): scales torque to force */
+    double size;                  /* circle: diameter; polygon: bounding-box
+                                     diagonal; none: spread of the fixels */
+    wr_shape_type shape;
+    double center[2];             /* circle */
+    double radius;                /* circle */
+    size_t vertex_count;          /* polygon, as given (same order) */
+    double (*vertices)[2];        /* owned */
+    int orientation;              /* polygon: +1 counter-clockwise, -1 not */
+    int fixel_count;
+    wr_fixel fixels[WR_MAX_FIXELS];
+} wr_fixture;
+
+/* Validate `spec` and build a fixture.  Returns NULL and fills `error` (which
+ * may be NULL) when anything is invalid; the first problem found is reported.
+ * Out of memory also returns NULL, with field "" and a reason saying so. */
+wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error);
+void wr_fixture_free(wr_fixture *fixture);
+
+/* Scale a physical wrench g = (f_x, f_y, tau) to (f_x, f_y, tau / rho).
+ * Returns the length of the scaled wrench. */
+double wr_fixture_scale_wrench(const wr_fixture *fixture, const double wrench[3],
+                               double scaled[3]);
+/* Inverse: a scaled wrench back to physical units. */
+void wr_fixture_unscale_wrench(const wr_fixture *fixture, const double scaled[3],
+                               double wrench[3]);
+/* A row f of a half-space f . h <= 0 in scaled space, as a unit row in
+ * physical units (f_1, f_2, f_3 / rho), normalised. */
+void wr_fixture_unscale_row(const wr_fixture *fixture, const double scaled_row[3],
+                            double row[3]);
+
+/* The wrench (f_x, f_y, (at - com) x force) of a force applied at a point. */
+void wr_fixture_force_wrench(const wr_fixture *fixture, const double force[2],
+                             const double at[2], double wrench[3]);
+
+#endif

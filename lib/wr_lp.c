@@ -1,0 +1,289 @@
+/* wr_lp.c -- GLPK membership LPs (SPEC section 2).
+ *
+ * Variables, in the scaled space of wr_cone.c: q' = m (a_x, a_y, rho alpha)
+ * (columns 1..3, free), then (c_in, c_it) per fixel, then the slack t in
+ * [0, 1].  Rows: the three wrench rows q' - sum(Wn_i c_in + Wt_i c_it) = h
+ * (h the unit scaled wrench; only their bounds change between wrenches), then
+ * each letter's rows.  Maximise t: strict rows hold with margin t, so the
+ * wrench is in G_X iff the LP is feasible with t above the threshold. */
+#include "wr_lp.h"
+#include "wr_internal.h"
+
+#include <glpk.h>
+#include <setjmp.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct wr_lp_env {
+    jmp_buf jump;          /* where a fatal GLPK error resumes */
+    unsigned generation;   /* bumped whenever GLPK's environment was freed */
+    int inject_after;      /* test hook: fail after this many solves; <0 off */
+};
+
+struct wr_lp_set {
+    wr_lp_env *env;
+    const wr_fixture *fixture;
+    const wr_constraint *constraints;
+    int count;
+    glp_prob **problems;     /* NULL until first use */
+    unsigned *generations;   /* env->generation when each was built */
+};
+
+static int swallow_output(void *info, const char *text)
+{
+    (void)info;
+    (void)text;
+    return 1; /* nonzero: GLPK prints nothing */
+}
+
+static void on_fatal_error(void *info)
+{
+    /* GLPK must not return from here, or it aborts the process. */
+    longjmp(((wr_lp_env *)info)->jump, 1);
+}
+
+static void configure_thread(wr_lp_env *env)
+{
+    glp_term_out(GLP_OFF);
+    glp_term_hook(swallow_output, NULL);
+    glp_error_hook(on_fatal_error, env);
+}
+
+wr_lp_env *wr_lp_env_new(void)
+{
+    wr_lp_env *env = calloc(1, sizeof *env);
+    if (!env)
+        return NULL;
+    env->inject_after = -1;
+    configure_thread(env);
+    return env;
+}
+
+void wr_lp_env_free(wr_lp_env *env)
+{
+    if (!env)
+        return;
+    glp_free_env();
+    free(env);
+}
+
+void wr_lp_env_inject_failure(wr_lp_env *env, int calls) { env->inject_after = calls; }
+
+wr_lp_set *wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
+                         const wr_constraint *constraints, int count)
+{
+    wr_lp_set *set = calloc(1, sizeof *set);
+    if (!set)
+        return NULL;
+    set->env = env;
+    set->fixture = fixture;
+    set->constraints = constraints;
+    set->count = count;
+    set->problems = calloc((size_t)(count > 0 ? count : 1), sizeof *set->problems);
+    set->generations = calloc((size_t)(count > 0 ? count : 1), sizeof *set->generations);
+    if (!set->problems || !set->generations) {
+        wr_lp_set_free(set);
+        return NULL;
+    }
+    return set;
+}
+
+void wr_lp_set_free(wr_lp_set *set)
+{
+    if (!set)
+        return;
+    if (set->problems)
+        for (int i = 0; i < set->count; i++)
+            /* Problems of an older generation died with GLPK's environment. */
+            if (set->problems[i] && set->generations[i] == set->env->generation)
+                glp_delete_prob(set->problems[i]);
+    free(set->problems);
+    free(set->generations);
+    free(set);
+}
+
+/* Triplets for glp_load_matrix (1-based). */
+typedef struct triplets {
+    int count;
+    int row[1 + 16 * (WR_MAX_FIXELS + 2) * 8];
+    int column[1 + 16 * (WR_MAX_FIXELS + 2) * 8];
+    double value[1 + 16 * (WR_MAX_FIXELS + 2) * 8];
+} triplets;
+
+static void put(triplets *t, int row, int column, double value)
+{
+    if (value == 0)
+        return;
+    t->count++;
+    t->row[t->count] = row;
+    t->column[t->count] = column;
+    t->value[t->count] = value;
+}
+
+/* A row over q' with coefficients `v` (normalised) plus `slack` times t. */
+static int add_row(glp_prob *p, triplets *t, const double v[3], double sign, double slack,
+                   int type, int t_column)
+{
+    int row = glp_add_rows(p, 1);
+    double length = wr_norm3(v);
+    for (int k = 0; k < 3; k++)
+        put(t, row, 1 + k, sign * v[k] / length);
+    put(t, row, t_column, slack);
+    glp_set_row_bnds(p, row, type, 0, 0);
+    return row;
+}
+
+static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c)
+{
+    int k = f->fixel_count;
+    int t_column = 4 + 2 * k;
+    glp_prob *p = glp_create_prob();
+    glp_set_obj_dir(p, GLP_MAX);
+    glp_add_cols(p, t_column);
+    for (int j = 1; j <= 3; j++)
+        glp_set_col_bnds(p, j, GLP_FR, 0, 0);
+    glp_set_col_bnds(p, t_column, GLP_DB, 0, 1);
+    glp_set_obj_coef(p, t_column, 1);
+
+    /* On the stack: a fatal GLPK error longjmps out of here, and GLPK's own
+     * memory is then freed with its environment; nothing else may leak. */
+    triplets storage;
+    triplets *t = &storage;
+    t->count = 0;
+    /* Wrench rows: q'_j - sum_i (Wn_i[j] c_in + Wt_i[j] c_it) = h_j. */
+    glp_add_rows(p, 3);
+    for (int j = 0; j < 3; j++) {
+        put(t, 1 + j, 1 + j, 1);
+        for (int i = 0; i < k; i++) {
+            put(t, 1 + j, 4 + 2 * i, -f->fixels[i].normal_wrench[j]);
+            put(t, 1 + j, 5 + 2 * i, -f->fixels[i].tangent_wrench[j]);
+        }
+        glp_set_row_bnds(p, 1 + j, GLP_FX, 0, 0);
+    }
+    for (int i = 0; i < k; i++) {
+        const wr_fixel *fixel = &f->fixels[i];
+        const double *wn = fixel->normal_wrench, *wt = fixel->tangent_wrench;
+        int cn = 4 + 2 * i, ct = 5 + 2 * i;
+        char letter = c->letters[i];
+        bool touching = strchr("lrnm", letter) != NULL;
+        glp_set_col_bnds(p, cn, touching ? GLP_LO : GLP_FX, 0, 0);
+        glp_set_col_bnds(p, ct, touching ? GLP_FR : GLP_FX, 0, 0);
+        int row;
+        switch (letter) {
+        case 's': /* a_n >= 0, or a_n >= t strictly separating */
+            add_row(p, t, wn, 1, c->strict_separation ? -1 : 0, GLP_LO, t_column);
+            break;
+        case 'a': /* a_n <= -t */
+            add_row(p, t, wn, 1, 1, GLP_UP, t_column);
+            break;
+        case 'l': /* a_n = 0, a_t >= t, c_t = -mu_k c_n */
+        case 'r': /* a_n = 0, a_t <= -t, c_t = +mu_k c_n */
+            add_row(p, t, wn, 1, 0, GLP_FX, t_column);
+            add_row(p, t, wt, letter == 'l' ? 1 : -1, -1, GLP_LO, t_column);
+            row = glp_add_rows(p, 1);
+            put(t, row, ct, 1);
+            put(t, row, cn, letter == 'l' ? fixel->mu_kinetic : -fixel->mu_kinetic);
+            glp_set_row_bnds(p, row, GLP_FX, 0, 0);
+            break;
+        case 'n': /* a_n = 0, a_t = 0, |c_t| <= mu_s c_n */
+        case 'm': /* a_n = 0, |c_t| <= mu_s c_n */
+            add_row(p, t, wn, 1, 0, GLP_FX, t_column);
+            if (letter == 'n')
+                add_row(p, t, wt, 1, 0, GLP_FX, t_column);
+            row = glp_add_rows(p, 1);
+            put(t, row, ct, 1);
+            put(t, row, cn, -fixel->mu_static);
+            glp_set_row_bnds(p, row, GLP_UP, 0, 0);
+            row = glp_add_rows(p, 1);
+            put(t, row, ct, 1);
+            put(t, row, cn, fixel->mu_static);
+            glp_set_row_bnds(p, row, GLP_LO, 0, 0);
+            break;
+        default: /* u */
+            break;
+        }
+    }
+    if (c->pivot) {
+        double e[3] = {0, 0, 1}; /* pivot * alpha >= t */
+        add_row(p, t, e, c->pivot, -1, GLP_LO, t_column);
+    }
+    glp_load_matrix(p, t->count, t->row, t->column, t->value);
+    return p;
+}
+
+/* Solve after the bounds changed.  Returns GLP_OPT, GLP_NOFEAS, or -1 when
+ * GLPK could not decide. */
+static int solve(glp_prob *p)
+{
+    glp_smcp parm;
+    glp_init_smcp(&parm);
+    parm.msg_lev = GLP_MSG_OFF;
+    parm.presolve = GLP_OFF; /* keeps the basis for the next wrench */
+    parm.meth = GLP_DUALP;   /* new row bounds keep the basis dual feasible */
+    for (int attempt = 0; attempt < 2; attempt++) {
+        int rc = glp_simplex(p, &parm);
+        if (rc == 0) {
+            int status = glp_get_status(p);
+            if (status == GLP_OPT || status == GLP_NOFEAS)
+                return status;
+        }
+        /* A singular or stale basis: start again from scratch. */
+        glp_std_basis(p);
+        parm.meth = GLP_PRIMAL;
+    }
+    return -1;
+}
+
+int wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
+                 wr_witness *witness)
+{
+    wr_lp_env *env = set->env;
+    const wr_fixture *f = set->fixture;
+    if (setjmp(env->jump)) {
+        /* A fatal GLPK error: every problem of this thread is invalid now. */
+        glp_free_env();
+        env->generation++;
+        configure_thread(env);
+        return WR_LP_FAILED;
+    }
+    glp_prob *p = set->problems[index];
+    if (!p || set->generations[index] != env->generation) {
+        p = build_problem(f, &set->constraints[index]);
+        set->problems[index] = p;
+        set->generations[index] = env->generation;
+    }
+    double h[3];
+    double scale = wr_fixture_scale_wrench(f, wrench, h);
+    if (scale > 0)
+        for (int j = 0; j < 3; j++)
+            h[j] /= scale;
+    if (env->inject_after == 0) {
+        env->inject_after = -1;
+        glp_set_row_bnds(p, 0, GLP_FX, 0, 0); /* row 0 does not exist: fatal */
+    } else if (env->inject_after > 0) {
+        env->inject_after--;
+    }
+    for (int j = 0; j < 3; j++)
+        glp_set_row_bnds(p, 1 + j, GLP_FX, h[j], h[j]);
+    int status = solve(p);
+    if (status < 0)
+        return WR_LP_FAILED;
+    *member = status == GLP_OPT && glp_get_obj_val(p) > WR_LP_SLACK_THRESHOLD;
+    if (*member && witness) {
+        memset(witness, 0, sizeof *witness);
+        double unit = scale > 0 ? scale : 1;
+        double q[3];
+        for (int j = 0; j < 3; j++)
+            q[j] = glp_get_col_prim(p, 1 + j) * unit;
+        witness->acceleration[0] = q[0] / f->mass;
+        witness->acceleration[1] = q[1] / f->mass;
+        witness->acceleration[2] = q[2] / (f->mass * f->gyration_radius);
+        for (int i = 0; i < f->fixel_count; i++) {
+            witness->force[i][0] = glp_get_col_prim(p, 4 + 2 * i) * unit;
+            witness->force[i][1] = glp_get_col_prim(p, 5 + 2 * i) * unit;
+        }
+        wr_newton_euler_wrench(f, witness->acceleration, (const double (*)[2])witness->force,
+                               witness->wrench);
+    }
+    return WR_LP_OK;
+}

@@ -1,0 +1,53 @@
+/* wr_lp.h -- cone membership as an LP feasibility problem, solved with GLPK
+ * (SPEC section 2): the method of the seed, and the cross-check of the
+ * explicit cones.
+ *
+ * Threads.  GLPK keeps one environment per thread.  A thread that solves
+ * creates one wr_lp_env and uses it, and every wr_lp_set made from it, only
+ * in that thread; wr_lp_env_free() (in the same thread) releases GLPK's
+ * environment.  Nothing is shared between threads, so any number of threads
+ * may solve at once, each with its own env.
+ *
+ * Failures.  GLPK never aborts the process nor prints: a fatal GLPK error is
+ * caught (error hook and longjmp), the thread's GLPK environment is rebuilt,
+ * every problem of the thread is rebuilt on its next use, and the call that
+ * met the error returns WR_LP_FAILED. */
+#ifndef WR_LP_H
+#define WR_LP_H
+
+#include "wr_cone.h"
+
+#define WR_LP_OK 0
+#define WR_LP_FAILED (-1)  /* GLPK failed; the answer is unknown */
+
+/* Strictly feasible means an optimal slack above this (SPEC section 2). */
+#define WR_LP_SLACK_THRESHOLD 1e-9
+
+typedef struct wr_lp_env wr_lp_env;
+typedef struct wr_lp_set wr_lp_set;
+
+/* Start using GLPK in the calling thread: terminal output off, fatal errors
+ * caught.  NULL when out of memory. */
+wr_lp_env *wr_lp_env_new(void);
+/* Free the env and the calling thread's GLPK environment.  Every wr_lp_set
+ * of this env must be freed first. */
+void wr_lp_env_free(wr_lp_env *env);
+/* Test hook: make the GLPK call after `calls` more solves fail fatally
+ * (a negative value disarms it). */
+void wr_lp_env_inject_failure(wr_lp_env *env, int calls);
+
+/* Membership problems for `count` constraints of one fixture, each built on
+ * first use and then reused with new wrench bounds (warm start).  The fixture
+ * and the constraints array must outlive the set.  NULL when out of memory. */
+wr_lp_set *wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
+                         const wr_constraint *constraints, int count);
+void wr_lp_set_free(wr_lp_set *set);
+
+/* Is the physical wrench in G_X for constraint `index`?  Decided on the
+ * scaled, normalised problem.  On membership `witness` (may be NULL) receives
+ * an acceleration and forces that make the wrench.  Returns WR_LP_OK or
+ * WR_LP_FAILED. */
+int wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
+                 wr_witness *witness);
+
+#endif

@@ -1,0 +1,24 @@
+/* wrench.h -- libwrench: sensorless insertion of rigid planar parts
+ * (Balkcom and Trinkle), as made exact by SPEC.md.
+ *
+ *   wr_fixture.h   the fixture model and its validation
+ *   wr_cone.h      constraint strings and explicit wrench cones G_X
+ *   wr_plan.h      contact states, the strings G_goal excludes, contact modes
+ *   wr_lp.h        GLPK membership LPs (per-thread environments)
+ *   wr_classify.h  G_goal, G_strong: verdicts, margins, blocking cones
+ *
+ * Pure computation: no I/O, no global state; every function is re-entrant.
+ * Objects are created by *_new and released by *_free; an object passed by
+ * const pointer is borrowed. */
+#ifndef WRENCH_H
+#define WRENCH_H
+
+#define WR_VERSION "0.1.0"
+
+#include "wr_classify.h"
+#include "wr_cone.h"
+#include "wr_fixture.h"
+#include "wr_lp.h"
+#include "wr_plan.h"
+
+#endif

@@ -1,0 +1,298 @@
+/* test_crosscheck.c -- the explicit cones against GLPK, on random fixtures.
+ *
+ * Two methods that share no code beyond the fixture model must agree: the
+ * explicit cones (3-D geometry) and the seed's LP feasibility problems.
+ * Witnesses are checked against the constraint rows by a checker written
+ * here from SPEC section 2's table. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+
+#include "test_util.h"
+
+#define FIXTURES 24
+#define WRENCHES 1000
+
+/* A random physical wrench: a uniform direction in the scaled metric, a
+ * random magnitude. */
+static void random_wrench(test_rng *rng, const wr_fixture *f, double g[3])
+{
+    double x[3];
+    test_sphere(rng, x);
+    wr_fixture_unscale_wrench(f, x, g);
+    double magnitude = pow(10, test_range(rng, -3, 3));
+    for (int k = 0; k < 3; k++)
+        g[k] *= magnitude;
+}
+
+/* Does (q, c) satisfy the closure of the constraint's rows (SPEC section 2),
+ * and make the wrench g by Newton-Euler?  Tolerance relative to |g|.
+ * Returns NULL, or which row fails. */
+static const char *witness_violation(const wr_fixture *f, const wr_constraint *c,
+                                     const wr_witness *w, const double g[3], double relative)
+{
+    double scaled[3];
+    double size = wr_fixture_scale_wrench(f, g, scaled);
+    double tol = relative * (size > 0 ? size : 1);
+    const double *q = w->acceleration;
+    /* Newton-Euler, computed here: M q - sum(W_n c_n + W_t c_t) = g. */
+    double made[3] = {f->mass * q[0], f->mass * q[1], f->inertia * q[2]};
+    for (int i = 0; i < f->fixel_count; i++) {
+        const wr_fixel *x = &f->fixels[i];
+        double r[2] = {x->at[0] - f->com[0], x->at[1] - f->com[1]};
+        double force[2] = {x->normal[0] * w->force[i][0] + x->tangent[0] * w->force[i][1],
+                           x->normal[1] * w->force[i][0] + x->tangent[1] * w->force[i][1]};
+        made[0] -= force[0];
+        made[1] -= force[1];
+        made[2] -= r[0] * force[1] - r[1] * force[0];
+    }
+    double made_scaled[3];
+    wr_fixture_scale_wrench(f, made, made_scaled);
+    for (int k = 0; k < 3; k++)
+        if (fabs(made_scaled[k] - scaled[k]) > tol)
+            return "Newton-Euler: (q, c) does not make g";
+    /* Contact accelerations: relative to |q| and to |g| / m (q may be 0). */
+    double qsize = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) * f->gyration_radius;
+    double atol = relative * (qsize + size / f->mass);
+    for (int i = 0; i < f->fixel_count; i++) {
+        const wr_fixel *x = &f->fixels[i];
+        double r[2] = {x->at[0] - f->com[0], x->at[1] - f->com[1]};
+        /* Acceleration of the contact point: a_c + alpha z x r. */
+        double a[2] = {q[0] - q[2] * r[1], q[1] + q[2] * r[0]};
+        double an = a[0] * x->normal[0] + a[1] * x->normal[1];
+        double at = a[0] * x->tangent[0] + a[1] * x->tangent[1];
+        double cn = w->force[i][0], ct = w->force[i][1];
+        double ftol = relative * (fabs(cn) + fabs(ct) + size);
+        switch (c->letters[i]) {
+        case 's':
+            if (an < -atol || fabs(cn) > ftol || fabs(ct) > ftol)
+                return "s: a_n < 0 or a force";
+            break;
+        case 'u':
+            if (fabs(cn) > ftol || fabs(ct) > ftol)
+                return "u: a force";
+            break;
+        case 'l':
+        case 'r':
+            if (fabs(an) > atol || cn < -ftol)
+                return "l/r: a_n != 0 or c_n < 0";
+            if (c->letters[i] == 'l' ? at < -atol : at > atol)
+                return "l/r: a_t of the wrong sign";
+            if (fabs(ct - (c->letters[i] == 'l' ? -1 : 1) * x->mu_kinetic * cn) > ftol)
+                return "l/r: c_t off the friction-cone edge";
+            break;
+        case 'n':
+        case 'm':
+            if (fabs(an) > atol || cn < -ftol || fabs(ct) > x->mu_static * cn + ftol)
+                return "n/m: a_n != 0, c_n < 0 or outside the friction cone";
+            if (c->letters[i] == 'n' && fabs(at) > atol)
+                return "n: a_t != 0";
+            break;
+        default:
+            return "unknown letter";
+        }
+    }
+    if (c->pivot && c->pivot * q[2] < -atol)
+        return "pivot: alpha of the wrong sign";
+    return NULL;
+}
+
+typedef struct totals {
+    long compared, inside, near_boundary, witnesses;
+} totals;
+
+static void compare_sets(const wr_analysis *a, wr_lp_set *goal, wr_lp_set *strong,
+                         const double g[3], totals *t)
+{
+    for (int s = 0; s < 2; s++) {
+        wr_set set = s == 0 ? WR_SET_GOAL : WR_SET_STRONG;
+        wr_answer by_cones, by_lp;
+        assert_int_equal(wr_classify(a, g, set, 1e-9, &by_cones), 0);
+        assert_int_equal(wr_classify_lp(a, goal, strong, g, set, &by_lp), 0);
+        assert_true(by_cones.margin >= -1 && by_cones.margin <= 1);
+        if (fabs(by_cones.margin) <= 1e-6) {
+            t->near_boundary++;
+            continue;
+        }
+        t->compared++;
+        t->inside += by_cones.verdict == WR_VERDICT_INSIDE;
+        if ((by_cones.verdict == WR_VERDICT_INSIDE) != (by_lp.verdict == WR_VERDICT_INSIDE)) {
+            char text[WR_CONSTRAINT_TEXT] = "";
+            if (by_cones.blocking >= 0)
+                wr_constraint_format(&wr_analysis_cone(a, set, by_cones.blocking)->constraint,
+                                     text);
+            fail_msg("set %d: cones say %d (margin %.3g, blocking %s), LP says %d for "
+                     "g = (%.17g, %.17g, %.17g)",
+                     s, by_cones.verdict, by_cones.margin, text, by_lp.verdict, g[0], g[1], g[2]);
+        }
+        if (by_cones.verdict == WR_VERDICT_OUTSIDE) {
+            /* g is inside the blocking cone: both witnesses make g itself. */
+            const wr_constraint *c =
+                &wr_analysis_cone(a, by_cones.blocking_set, by_cones.blocking)->constraint;
+            const wr_constraint *lc =
+                &wr_analysis_cone(a, by_lp.blocking_set, by_lp.blocking)->constraint;
+            /* GLPK's feasibility tolerance is 1e-7 on the normalised rows. */
+            const char *why = witness_violation(a->fixture, c, &by_cones.witness, g, 1e-9);
+            const char *lp_why = witness_violation(a->fixture, lc, &by_lp.witness, g, 1e-6);
+            if (why || lp_why) {
+                char text[WR_CONSTRAINT_TEXT], lp_text[WR_CONSTRAINT_TEXT];
+                wr_constraint_format(c, text);
+                wr_constraint_format(lc, lp_text);
+                fail_msg("witness for g = (%.17g, %.17g, %.17g): cones %s: %s; LP %s: %s", g[0],
+                         g[1], g[2], text, why ? why : "ok", lp_text, lp_why ? lp_why : "ok");
+            }
+            t->witnesses += 2;
+        }
+    }
+}
+
+static void auto_and_lp_agree_on_random_fixtures(void **state)
+{
+    (void)state;
+    test_rng rng = {20261122};
+    wr_lp_env *env = wr_lp_env_new();
+    totals t = {0, 0, 0, 0};
+    int discs = 0, polygons = 0;
+    for (int i = 0; i < FIXTURES; i++) {
+        int k = 2 + i % 3;
+        bool disc = (i / 3) % 2 == 0;
+        wr_fixture *f = test_random_fixture(&rng, k, disc);
+        assert_non_null(f);
+        discs += disc;
+        polygons += !disc;
+        wr_analysis *a = wr_analysis_new(f);
+        assert_non_null(a);
+        wr_lp_set *goal, *strong;
+        assert_int_equal(wr_analysis_lp_sets(a, env, &goal, &strong), 0);
+        for (int w = 0; w < WRENCHES; w++) {
+            double g[3];
+            random_wrench(&rng, f, g);
+            compare_sets(a, goal, strong, g, &t);
+        }
+        wr_lp_set_free(goal);
+        wr_lp_set_free(strong);
+        wr_analysis_free(a);
+        wr_fixture_free(f);
+    }
+    wr_lp_env_free(env);
+    print_message("crosscheck: %d discs + %d polygons x %d wrenches x 2 sets: %ld verdicts "
+                  "agree (%ld inside), %ld within 1e-6 of a boundary (not compared), %ld "
+                  "witnesses checked\n",
+                  discs, polygons, WRENCHES, t.compared, t.inside, t.near_boundary, t.witnesses);
+    assert_true(t.compared > 40000);
+    assert_true(t.inside > 1000 && t.compared - t.inside > 1000);
+}
+
+/* Every explicit cone, against LP membership of points on both sides. */
+static void every_cone_agrees_with_lp_membership(void **state)
+{
+    (void)state;
+    test_rng rng = {777};
+    wr_lp_env *env = wr_lp_env_new();
+    long inside = 0, outside = 0, relative_interior = 0, cones = 0, near = 0;
+    for (int i = 0; i < FIXTURES; i++) {
+        int k = 2 + i % 3;
+        wr_fixture *f = test_random_fixture(&rng, k, i % 2 == 0);
+        assert_non_null(f);
+        wr_analysis *a = wr_analysis_new(f);
+        for (int s = 0; s < 2; s++) {
+            wr_set set = s == 0 ? WR_SET_GOAL : WR_SET_STRONG;
+            int count = wr_analysis_cone_count(a, set);
+            const wr_constraint *constraints = s == 0 ? a->plan->kept : a->modes;
+            wr_lp_set *lp = wr_lp_set_new(env, f, constraints, count);
+            for (int c = 0; c < count; c++) {
+                const wr_cone *cone = wr_analysis_cone(a, set, c);
+                assert_false(cone->empty); /* feasible by construction */
+                cones++;
+                for (int p = 0; p < 80; p++) {
+                    double x[3], g[3];
+                    if (p >= 60 && cone->facet_count > 0) {
+                        /* 1e-4 to either side of a facet, near its middle:
+                         * the projection of a random interior-ish point. */
+                        const double *facet = cone->facets[p % cone->facet_count];
+                        double y[3];
+                        test_sphere(&rng, y);
+                        double along = y[0] * facet[0] + y[1] * facet[1] + y[2] * facet[2];
+                        double offset = p % 2 ? 1e-4 : -1e-4;
+                        for (int j = 0; j < 3; j++)
+                            x[j] = y[j] - along * facet[j] + offset * facet[j];
+                        for (int e = 0; e < cone->equality_count; e++) {
+                            double off = 0;
+                            for (int j = 0; j < 3; j++)
+                                off += cone->equalities[e][j] * x[j];
+                            for (int j = 0; j < 3; j++)
+                                x[j] -= off * cone->equalities[e][j];
+                        }
+                        double length = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+                        for (int j = 0; j < 3; j++)
+                            x[j] /= length;
+                    } else if (p < 10 && cone->ray_count > 0) {
+                        /* A point of the relative interior. */
+                        x[0] = x[1] = x[2] = 0;
+                        for (int r = 0; r < cone->ray_count; r++) {
+                            double coefficient = test_range(&rng, 0.1, 1);
+                            for (int j = 0; j < 3; j++)
+                                x[j] += coefficient * cone->rays[r][j];
+                        }
+                        double length = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+                        if (length < 1e-9)
+                            continue;
+                        for (int j = 0; j < 3; j++)
+                            x[j] /= length;
+                    } else {
+                        test_sphere(&rng, x);
+                    }
+                    double d = wr_cone_signed_distance(cone, x, NULL);
+                    wr_fixture_unscale_wrench(f, x, g);
+                    bool member;
+                    assert_int_equal(wr_lp_member(lp, c, g, &member, NULL), WR_LP_OK);
+                    if (p < 10) {
+                        /* Relative interior: in G_X even with strict rows. */
+                        if (d > 1e-9) {
+                            char text[WR_CONSTRAINT_TEXT];
+                            wr_constraint_format(&cone->constraint, text);
+                            fail_msg("relative interior point of %s (dim %d, %d facets, %d "
+                                     "rays) is %.3g outside", text, cone->dimension,
+                                     cone->facet_count, cone->ray_count, d);
+                        }
+                        if (!member) {
+                            char text[WR_CONSTRAINT_TEXT];
+                            wr_constraint_format(&cone->constraint, text);
+                            fail_msg("relative interior point of %s (dim %d) not a member", text,
+                                     cone->dimension);
+                        }
+                        relative_interior++;
+                    } else if (d < -1e-6) {
+                        assert_true(member);
+                        inside++;
+                        near += p >= 60;
+                    } else if (d > 1e-6) {
+                        assert_false(member);
+                        outside++;
+                        near += p >= 60;
+                    }
+                }
+            }
+            wr_lp_set_free(lp);
+        }
+        wr_analysis_free(a);
+        wr_fixture_free(f);
+    }
+    wr_lp_env_free(env);
+    print_message("crosscheck: %ld cones; LP agrees on %ld interior, %ld exterior (%ld of "
+                  "them 1e-4 from a facet) and %ld relative-interior points\n",
+                  cones, inside, outside, near, relative_interior);
+    assert_true(near > 5000);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(auto_and_lp_agree_on_random_fixtures),
+        cmocka_unit_test(every_cone_agrees_with_lp_membership),
+    };
+    return cmocka_run_group_tests_name("crosscheck", tests, NULL, NULL);
+}

@@ -1,0 +1,142 @@
+/* test_util.h -- deterministic random numbers and random fixtures for the
+ * unit tests.  Header-only; every function is static. */
+#ifndef TEST_UTIL_H
+#define TEST_UTIL_H
+
+#include "wrench.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TEST_PI 3.14159265358979323846
+
+/* xorshift64*: a fixed seed gives the same sequence on every machine. */
+typedef struct test_rng {
+    uint64_t state;
+} test_rng;
+
+static inline double test_uniform(test_rng *rng)
+{
+    rng->state ^= rng->state >> 12;
+    rng->state ^= rng->state << 25;
+    rng->state ^= rng->state >> 27;
+    return (double)((rng->state * 2685821657736338717ULL) >> 11) / 9007199254740992.0;
+}
+
+static inline double test_range(test_rng *rng, double lo, double hi)
+{
+    return lo + (hi - lo) * test_uniform(rng);
+}
+
+/* A direction uniform on the unit sphere. */
+static inline void test_sphere(test_rng *rng, double v[3])
+{
+    double z = test_range(rng, -1, 1), phi = test_range(rng, 0, 2 * TEST_PI);
+    double r = sqrt(1 - z * z);
+    v[0] = r * cos(phi);
+    v[1] = r * sin(phi);
+    v[2] = z;
+}
+
+/* A random fixture: even seeds give a disc, odd seeds a convex polygon (in
+ * either orientation); k fixels on the boundary with the normal left out
+ * (so the library's inward normal is used), fixels at least 12 degrees
+ * apart on a disc and off the polygon's vertices; friction mu_s in [0, 1.2],
+ * mu_k <= mu_s, sometimes per fixel.  Caller frees with wr_fixture_free(). */
+static inline wr_fixture *test_random_fixture(test_rng *rng, int k, bool disc)
+{
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    wr_fixel_spec fixels[WR_MAX_FIXELS];
+    memset(fixels, 0, sizeof fixels);
+    double vertices[8][2];
+    spec.mass = test_range(rng, 0.5, 3);
+    spec.friction.given = true;
+    spec.friction.static_mu = test_range(rng, 0, 1.2);
+    spec.friction.kinetic_given = true;
+    spec.friction.kinetic_mu = spec.friction.static_mu * test_range(rng, 0.5, 1);
+    if (disc) {
+        spec.shape = WR_SHAPE_CIRCLE;
+        spec.radius = test_range(rng, 0.5, 2);
+        spec.center[0] = test_range(rng, -1, 1);
+        spec.center[1] = test_range(rng, -1, 1);
+        double angles[WR_MAX_FIXELS];
+        for (int i = 0; i < k; i++) {
+            bool spaced;
+            do {
+                angles[i] = test_range(rng, 0, 2 * TEST_PI);
+                spaced = true;
+                for (int j = 0; j < i; j++) {
+                    double d = fabs(angles[i] - angles[j]);
+                    d = fmin(d, 2 * TEST_PI - d);
+                    spaced &= d > 12 * TEST_PI / 180 && fabs(d - TEST_PI) > 12 * TEST_PI / 180;
+                }
+            } while (!spaced);
+            fixels[i].at[0] = spec.center[0] + spec.radius * cos(angles[i]);
+            fixels[i].at[1] = spec.center[1] + spec.radius * sin(angles[i]);
+        }
+        /* Sometimes the centre of mass is off the centre. */
+        if (test_uniform(rng) < 0.5) {
+            spec.com_given = true;
+            spec.com[0] = spec.center[0] + test_range(rng, -0.3, 0.3) * spec.radius;
+            spec.com[1] = spec.center[1] + test_range(rng, -0.3, 0.3) * spec.radius;
+        }
+    } else {
+        int n = 4 + (int)(test_uniform(rng) * 5); /* 4..8 vertices */
+        bool clockwise = test_uniform(rng) < 0.5;
+        for (int i = 0; i < n; i++) {
+            double angle = 2 * TEST_PI * (i + test_range(rng, 0.1, 0.9)) / n;
+            double radius = test_range(rng, 0.7, 1.5);
+            int at = clockwise ? n - 1 - i : i;
+            vertices[at][0] = radius * cos(angle);
+            vertices[at][1] = radius * sin(angle);
+        }
+        spec.shape = WR_SHAPE_POLYGON;
+        spec.vertex_count = (size_t)n;
+        spec.vertices = (const double (*)[2])vertices;
+        /* Distinct edges when there are enough, so fixels are not all
+         * parallel; a polygon this random is convex only by chance, which
+         * does not matter here. */
+        for (int i = 0; i < k; i++) {
+            int edge = (int)(test_uniform(rng) * n);
+            double t = test_range(rng, 0.15, 0.85);
+            const double *a = vertices[edge], *b = vertices[(edge + 1) % n];
+            fixels[i].at[0] = a[0] + t * (b[0] - a[0]);
+            fixels[i].at[1] = a[1] + t * (b[1] - a[1]);
+        }
+    }
+    for (int i = 0; i < k; i++)
+        if (test_uniform(rng) < 0.2) {
+            fixels[i].friction.given = true;
+            fixels[i].friction.static_mu = test_range(rng, 0, 1);
+        }
+    spec.fixel_count = (size_t)k;
+    spec.fixels = fixels;
+    wr_error error;
+    return wr_fixture_new(&spec, &error);
+}
+
+/* The disc in a corner of SPEC section 7. */
+static inline wr_fixture *test_disc_corner(double mu)
+{
+    wr_fixel_spec fixels[2];
+    memset(fixels, 0, sizeof fixels);
+    fixels[0].at[0] = -1;
+    fixels[1].at[1] = -1;
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = 1;
+    spec.inertia_given = true;
+    spec.inertia = 0.5;
+    spec.shape = WR_SHAPE_CIRCLE;
+    spec.radius = 1;
+    spec.friction.given = true;
+    spec.friction.static_mu = mu;
+    spec.fixel_count = 2;
+    spec.fixels = fixels;
+    return wr_fixture_new(&spec, NULL);
+}
+
+#endif
