@@ -1,0 +1,185 @@
+/* test_fixture.c -- every validation branch of wr_fixture_new names its
+ * field: one mutation of a valid fixture per row of a table. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+
+#include "test_util.h"
+
+/* A valid polygon fixture the mutations start from: a 4 x 2 rectangle with
+ * fixels on its bottom edge and its left edge. */
+typedef struct base {
+    wr_fixture_spec spec;
+    wr_fixel_spec fixels[WR_MAX_FIXELS + 1];
+    double vertices[8][2];
+} base;
+
+static void make_base(base *b)
+{
+    memset(b, 0, sizeof *b);
+    const double v[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
+    memcpy(b->vertices, v, sizeof v);
+    b->fixels[0].at[0] = 1;
+    b->fixels[1].at[0] = 3;
+    b->fixels[2].at[1] = 1;
+    b->spec.mass = 2;
+    b->spec.shape = WR_SHAPE_POLYGON;
+    b->spec.vertex_count = 4;
+    b->spec.vertices = (const double (*)[2])b->vertices;
+    b->spec.friction.given = true;
+    b->spec.friction.static_mu = 0.3;
+    b->spec.fixel_count = 3;
+    b->spec.fixels = b->fixels;
+}
+
+typedef struct mutation {
+    const char *name;
+    void (*apply)(base *);
+    const char *field;  /* expected error field, exactly */
+} mutation;
+
+#define MUTATION(id, body)                                                                     \
+    static void id(base *b) { body; }
+
+MUTATION(nan_mass, b->spec.mass = NAN)
+MUTATION(negative_mass, b->spec.mass = -1)
+MUTATION(infinite_inertia, (b->spec.inertia_given = true, b->spec.inertia = INFINITY))
+MUTATION(zero_inertia, (b->spec.inertia_given = true, b->spec.inertia = 0))
+MUTATION(nan_com, (b->spec.com_given = true, b->spec.com[1] = NAN))
+MUTATION(nan_vertex, b->vertices[2][0] = NAN)
+MUTATION(repeated_vertex, (b->vertices[2][0] = 4, b->vertices[2][1] = 0))
+MUTATION(two_vertices, b->spec.vertex_count = 2)
+MUTATION(bow_tie, (b->vertices[2][0] = 0, b->vertices[3][0] = 4))
+MUTATION(nan_radius, (b->spec.shape = WR_SHAPE_CIRCLE, b->spec.radius = NAN))
+MUTATION(zero_radius, (b->spec.shape = WR_SHAPE_CIRCLE, b->spec.radius = 0))
+MUTATION(infinite_center, (b->spec.shape = WR_SHAPE_CIRCLE, b->spec.radius = 1,
+                           b->spec.center[0] = -INFINITY))
+MUTATION(nan_static, b->spec.friction.static_mu = NAN)
+MUTATION(negative_static, b->spec.friction.static_mu = -0.1)
+MUTATION(nan_kinetic, (b->spec.friction.kinetic_given = true, b->spec.friction.kinetic_mu = NAN))
+MUTATION(kinetic_above_static,
+         (b->spec.friction.kinetic_given = true, b->spec.friction.kinetic_mu = 0.4))
+MUTATION(fixel_friction_above,
+         (b->fixels[2].friction.given = true, b->fixels[2].friction.static_mu = 0.2,
+          b->fixels[2].friction.kinetic_given = true, b->fixels[2].friction.kinetic_mu = 0.5))
+MUTATION(no_friction, b->spec.friction.given = false)
+MUTATION(nan_at, b->fixels[1].at[1] = NAN)
+MUTATION(off_boundary, b->fixels[1].at[1] = 0.5)
+MUTATION(inside_point, (b->fixels[0].at[0] = 2, b->fixels[0].at[1] = 1))
+MUTATION(vertex_without_normal, b->fixels[1].at[0] = 4)
+MUTATION(nan_normal, (b->fixels[2].normal_given = true, b->fixels[2].normal[0] = NAN))
+MUTATION(zero_normal, b->fixels[2].normal_given = true)
+MUTATION(outward_normal,
+         (b->fixels[2].normal_given = true, b->fixels[2].normal[0] = -1))
+MUTATION(duplicate, (b->fixels[2].at[0] = 1, b->fixels[2].at[1] = 0))
+MUTATION(no_fixels, b->spec.fixel_count = 0)
+static void nine_fixels(base *b)
+{
+    b->spec.fixel_count = 9;
+    for (int i = 0; i < 9; i++) {
+        b->fixels[i].at[0] = 0.4 * (i + 1);
+        b->fixels[i].at[1] = 0;
+    }
+}
+MUTATION(no_shape_no_com, b->spec.shape = WR_SHAPE_NONE)
+MUTATION(no_shape_no_inertia,
+         (b->spec.shape = WR_SHAPE_NONE, b->spec.com_given = true))
+MUTATION(no_shape_no_normal, (b->spec.shape = WR_SHAPE_NONE, b->spec.com_given = true,
+                              b->spec.inertia_given = true, b->spec.inertia = 1))
+
+static const mutation mutations[] = {
+    {"nan mass", nan_mass, "body.mass"},
+    {"negative mass", negative_mass, "body.mass"},
+    {"infinite inertia", infinite_inertia, "body.inertia"},
+    {"zero inertia", zero_inertia, "body.inertia"},
+    {"nan com", nan_com, "body.com[1]"},
+    {"nan vertex", nan_vertex, "body.shape.vertices[2][0]"},
+    {"repeated vertex", repeated_vertex, "body.shape.vertices[2]"},
+    {"two vertices", two_vertices, "body.shape.vertices"},
+    {"bow tie", bow_tie, "body.shape.vertices"},
+    {"nan radius", nan_radius, "body.shape.radius"},
+    {"zero radius", zero_radius, "body.shape.radius"},
+    {"infinite centre", infinite_center, "body.shape.center[0]"},
+    {"nan static friction", nan_static, "friction.static"},
+    {"negative static friction", negative_static, "friction.static"},
+    {"nan kinetic friction", nan_kinetic, "friction.kinetic"},
+    {"kinetic above static", kinetic_above_static, "friction.kinetic"},
+    {"a fixel's kinetic above its static", fixel_friction_above, "fixels[2].friction.kinetic"},
+    {"no friction anywhere", no_friction, "fixels[0].friction"},
+    {"nan at", nan_at, "fixels[1].at[1]"},
+    {"off the boundary", off_boundary, "fixels[1].at"},
+    {"inside the body", inside_point, "fixels[0].at"},
+    {"vertex without a normal", vertex_without_normal, "fixels[1].normal"},
+    {"nan normal", nan_normal, "fixels[2].normal[0]"},
+    {"zero normal", zero_normal, "fixels[2].normal"},
+    {"outward normal", outward_normal, "fixels[2].normal"},
+    {"duplicate fixel", duplicate, "fixels[2]"},
+    {"no fixels", no_fixels, "fixels"},
+    {"nine fixels", nine_fixels, "fixels"},
+    {"no shape, no com", no_shape_no_com, "body.com"},
+    {"no shape, no inertia", no_shape_no_inertia, "body.inertia"},
+    {"no shape, no normal", no_shape_no_normal, "fixels[0].normal"},
+};
+
+static void every_invalid_field_is_named(void **state)
+{
+    (void)state;
+    base b;
+    make_base(&b);
+    wr_error error;
+    wr_fixture *f = wr_fixture_new(&b.spec, &error);
+    assert_non_null(f); /* the base is valid */
+    wr_fixture_free(f);
+    for (size_t i = 0; i < sizeof mutations / sizeof mutations[0]; i++) {
+        make_base(&b);
+        mutations[i].apply(&b);
+        memset(&error, 0, sizeof error);
+        f = wr_fixture_new(&b.spec, &error);
+        if (f) {
+            wr_fixture_free(f);
+            fail_msg("%s: accepted", mutations[i].name);
+        }
+        if (strcmp(error.field, mutations[i].field) != 0)
+            fail_msg("%s: field \"%s\", expected \"%s\" (%s)", mutations[i].name, error.field,
+                     mutations[i].field, error.reason);
+        assert_true(strlen(error.reason) > 10);
+    }
+    print_message("fixture: %zu invalid fixtures, each refused with its field\n",
+                  sizeof mutations / sizeof mutations[0]);
+}
+
+/* A fixture without a shape is accepted when com, inertia and normals are
+ * given, and a null error pointer is allowed. */
+static void shapeless_fixture_is_accepted(void **state)
+{
+    (void)state;
+    base b;
+    make_base(&b);
+    b.spec.shape = WR_SHAPE_NONE;
+    b.spec.com_given = true;
+    b.spec.inertia_given = true;
+    b.spec.inertia = 1;
+    for (int i = 0; i < 3; i++)
+        b.fixels[i].normal_given = true;
+    b.fixels[0].normal[1] = b.fixels[1].normal[1] = 2; /* normalised */
+    b.fixels[2].normal[0] = 1;
+    wr_fixture *f = wr_fixture_new(&b.spec, NULL);
+    assert_non_null(f);
+    assert_true(fabs(f->fixels[0].normal[1] - 1) < 1e-15);
+    assert_true(fabs(f->gyration_radius - sqrt(0.5)) < 1e-15);
+    wr_fixture_free(f);
+    b.spec.mass = 0;
+    assert_null(wr_fixture_new(&b.spec, NULL));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(every_invalid_field_is_named),
+        cmocka_unit_test(shapeless_fixture_is_accepted),
+    };
+    return cmocka_run_group_tests_name("fixture", tests, NULL, NULL);
+}
