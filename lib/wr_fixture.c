@@ -25,8 +25,6 @@ void wr_error_set(wr_error *error, const char *field, const char *format, ...)
     va_end(args);
 }
 
-static bool finite2(const double v[2]) { return isfinite(v[0]) && isfinite(v[1]); }
-
 /* Report the first non-finite component of a 2-vector as "path[i]". */
 static bool check_finite2(const double v[2], const char *path, wr_error *error)
 {
@@ -256,8 +254,6 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
     wr_fixel *out = &f->fixels[index];
     char field[96];
     snprintf(field, sizeof field, "fixels[%zu].at", index);
-    if (!check_finite2(in->at, field, error))
-        return false;
     out->at[0] = in->at[0];
     out->at[1] = in->at[1];
 
@@ -446,13 +442,12 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
                      spec->fixel_count, WR_MAX_FIXELS);
         return NULL;
     }
+    /* Before anything is derived from them (a shapeless body's size). */
     for (size_t i = 0; i < spec->fixel_count; i++) {
         char field[96];
         snprintf(field, sizeof field, "fixels[%zu].at", i);
-        if (!finite2(spec->fixels[i].at)) {
-            check_finite2(spec->fixels[i].at, field, error);
+        if (!check_finite2(spec->fixels[i].at, field, error))
             return NULL;
-        }
     }
 
     wr_fixture *f = calloc(1, sizeof *f);

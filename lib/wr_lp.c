@@ -102,12 +102,16 @@ void wr_lp_set_free(wr_lp_set *set)
     free(set);
 }
 
+/* Non-zeros: 3 wrench rows of 1 + 2k; per fixel at most two acceleration rows
+ * of 4 (q' and t) and two friction rows of 2; the pivot row's 2. */
+#define TRIPLETS_MAX (3 * (1 + 2 * WR_MAX_FIXELS) + 12 * WR_MAX_FIXELS + 2)
+
 /* Triplets for glp_load_matrix (1-based). */
 typedef struct triplets {
     int count;
-    int row[1 + 16 * (WR_MAX_FIXELS + 2) * 8];
-    int column[1 + 16 * (WR_MAX_FIXELS + 2) * 8];
-    double value[1 + 16 * (WR_MAX_FIXELS + 2) * 8];
+    int row[1 + TRIPLETS_MAX];
+    int column[1 + TRIPLETS_MAX];
+    double value[1 + TRIPLETS_MAX];
 } triplets;
 
 static void put(triplets *t, int row, int column, double value)
