@@ -7,18 +7,26 @@ BUILD    = build
 
 LIB_SRC  = $(wildcard lib/*.c)
 LIB_HDR  = $(wildcard lib/*.h)
+PROTO_SRC = $(wildcard proto/*.c)
+PROTO_HDR = $(wildcard proto/*.h)
+DAEMON_SRC = $(filter-out daemon/wd_main.c,$(wildcard daemon/*.c))
+DAEMON_HDR = $(wildcard daemon/*.h)
+INCLUDES = -Ilib -Iproto -Idaemon
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 UNIT_BIN = $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRC))
 ASAN_BIN = $(patsubst tests/unit/%.c,$(BUILD)/asan/tests/%,$(UNIT_SRC))
 LIBS     = -lglpk -lm
+SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
-.PHONY: all check unit unit-asan deps clean help
+.PHONY: all check unit unit-asan deps clean help run demo
 
-all: $(BUILD)/libwrench.a $(BUILD)/libwrench-example
+all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/libwrench-example
 
 help:
 	@echo "make            build build/libwrench.a"
+	@echo "make demo       build, start wrenchd, put the examples, classify, stop"
+	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
 	@echo "make check      build and run every test (plain and ASan+UBSan builds)"
 	@echo "make deps       install the Debian packages the project needs"
 	@echo "make clean      remove build/"
@@ -38,19 +46,49 @@ $(BUILD)/asan/lib/%.o: lib/%.c $(LIB_HDR)
 $(BUILD)/asan/libwrench.a: $(patsubst lib/%.c,$(BUILD)/asan/lib/%.o,$(LIB_SRC))
 	ar rcs $@ $^
 
+# ---- the protocol layer and the daemon --------------------------------------
+$(BUILD)/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
+
+$(BUILD)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
+
+# Everything of the daemon but main(): tests and fuzzers link it too.
+$(BUILD)/libwrenchd.a: $(patsubst %.c,$(BUILD)/%.o,$(PROTO_SRC) $(DAEMON_SRC))
+	ar rcs $@ $^
+
+$(BUILD)/wrenchd: $(BUILD)/daemon/wd_main.o $(BUILD)/libwrenchd.a $(BUILD)/libwrench.a
+	$(CC) $(CFLAGS) $^ $(SERVER_LIBS) -o $@
+
+$(BUILD)/asan/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
+
+$(BUILD)/asan/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
+
+$(BUILD)/asan/libwrenchd.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(PROTO_SRC) $(DAEMON_SRC))
+	ar rcs $@ $^
+
+$(BUILD)/asan/wrenchd: $(BUILD)/asan/daemon/wd_main.o $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrench.a
+	$(CC) $(SAN) $^ $(SERVER_LIBS) -o $@
+
 $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
 	$(CC) $(WARN) $(CFLAGS) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
 
 # ---- unit tests (cmocka) -------------------------------------------------
 TEST_HDR = $(wildcard tests/unit/*.h)
 
-$(BUILD)/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/libwrench.a
+$(BUILD)/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/libwrenchd.a $(BUILD)/libwrench.a
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) -Ilib $< $(BUILD)/libwrench.a $(LIBS) $(TEST_LIBS) -o $@
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $< $(BUILD)/libwrenchd.a $(BUILD)/libwrench.a $(SERVER_LIBS) $(TEST_LIBS) -o $@
 
-$(BUILD)/asan/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/asan/libwrench.a
+$(BUILD)/asan/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrench.a
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) -Ilib $< $(BUILD)/asan/libwrench.a $(LIBS) $(TEST_LIBS) -o $@
+	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) $< $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrench.a $(SERVER_LIBS) $(TEST_LIBS) -o $@
 
 unit: $(UNIT_BIN)
 	@tests/run-unit $(UNIT_BIN)
@@ -62,8 +100,19 @@ unit-asan: $(ASAN_BIN)
 # The last line printed is the test runner's closing line (CI reads it).
 check: unit unit-asan
 
+# ---- running it ------------------------------------------------------------
+PYTHON = /usr/bin/python3
+
+demo: all
+	@$(PYTHON) examples/demo.py
+
+run: all
+	$(BUILD)/wrenchd --socket ./run/wrenchd.sock --state-dir ./run \
+	    $(addprefix --load ,$(wildcard examples/*.json))
+
 # ---- dependencies --------------------------------------------------------
-DEB_PACKAGES = build-essential pkg-config libglpk-dev libcmocka-dev
+DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \
+               libcmocka-dev python3 python3-pytest
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \

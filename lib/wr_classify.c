@@ -62,6 +62,28 @@ void wr_analysis_free(wr_analysis *analysis)
     free(analysis);
 }
 
+static size_t cones_bytes(const wr_cone *cones, int count)
+{
+    size_t bytes = (size_t)count * sizeof *cones;
+    for (int i = 0; i < count; i++) {
+        const wr_cone *c = &cones[i];
+        bytes += (size_t)(c->facet_count + c->ray_count + c->generator_count) * sizeof(double[3]) +
+                 (size_t)c->generator_count * sizeof(wr_generator_origin) +
+                 (size_t)c->facet_count * sizeof(bool);
+    }
+    return bytes;
+}
+
+size_t wr_analysis_bytes(const wr_analysis *a)
+{
+    const wr_plan *p = a->plan;
+    return sizeof *a + sizeof *p + (size_t)p->state_count * sizeof *p->states +
+           (size_t)p->excluded_total * sizeof *p->excluded +
+           (size_t)p->kept_count * (sizeof *p->kept + sizeof *p->origins) +
+           (size_t)a->mode_count * sizeof *a->modes + cones_bytes(a->goal_cones, p->kept_count) +
+           cones_bytes(a->mode_cones, a->mode_count);
+}
+
 int wr_analysis_cone_count(const wr_analysis *analysis, wr_set set)
 {
     return set == WR_SET_GOAL ? analysis->plan->kept_count : analysis->mode_count;

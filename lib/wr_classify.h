@@ -39,6 +39,9 @@ typedef struct wr_analysis {
 wr_analysis *wr_analysis_new(const wr_fixture *fixture);
 void wr_analysis_free(wr_analysis *analysis);
 
+/* Bytes the analysis holds (for a cache's memory bound). */
+size_t wr_analysis_bytes(const wr_analysis *analysis);
+
 /* The excluded cones of a set (WR_SET_GOAL or WR_SET_STRONG). */
 int wr_analysis_cone_count(const wr_analysis *analysis, wr_set set);
 const wr_cone *wr_analysis_cone(const wr_analysis *analysis, wr_set set, int index);

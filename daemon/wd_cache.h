@@ -1,0 +1,42 @@
+/* wd_cache.h -- the fixture cache: content-addressed fixtures, stored (on
+ * disk when there is a state directory, listed) or only cached (inline in
+ * a query), each with its derived data (the wr_analysis), which is built on
+ * demand and evicted least-recently-used beyond a memory bound.  Stored
+ * fixtures themselves are never evicted.  Thread-safe. */
+#ifndef WD_CACHE_H
+#define WD_CACHE_H
+
+#include "wp_rpc.h"
+
+#include <stdint.h>
+
+typedef struct wd_cache wd_cache;
+
+/* Create the cache; with a state directory, load every stored fixture from
+ * DIR/fixtures (a file that does not read back is logged and skipped).
+ * NULL with a message in `why` when the directory cannot be used. */
+wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, char *why, size_t why_size);
+void wd_cache_free(wd_cache *cache);
+
+/* The wp_host fixture functions (docs in wp_rpc.h), on the shared cache. */
+bool wd_cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
+                    wp_error *error);
+bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use, wp_error *error);
+void wd_cache_release(wd_cache *cache, wp_fixture_use *use);
+bool wd_cache_delete(wd_cache *cache, const char *id, wp_error *error);
+cJSON *wd_cache_list(wd_cache *cache);
+
+/* A number naming the derived data of a fixture in use: it changes whenever
+ * that data is rebuilt, so per-thread state derived from it (warm LPs) can
+ * tell it is stale. */
+uint64_t wd_cache_serial(const wp_fixture_use *use);
+
+typedef struct wd_cache_stats {
+    size_t stored;         /* fixtures stored */
+    size_t cached;         /* fixtures with derived data in memory */
+    size_t derived_bytes;  /* memory held by derived data */
+    size_t derived_limit;
+} wd_cache_stats;
+void wd_cache_stats_get(wd_cache *cache, wd_cache_stats *stats);
+
+#endif

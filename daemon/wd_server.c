@@ -1,0 +1,581 @@
+/* wd_server.c -- the event loop: listening socket, connections, answers in
+ * order, limits, signals.
+ *
+ * Threads: everything here runs in the loop thread except job_done, which
+ * workers call; it only appends to the `done` list under its lock and wakes
+ * the loop.  Connections are owned by the loop thread.
+ *
+ * Order: each line read becomes a slot at the tail of its connection's
+ * queue; answers are written from the head as soon as the head is done, so
+ * a pipelining client reads its answers in the order it asked. */
+#include "wd_server.h"
+#include "wd_log.h"
+#include "wd_worker.h"
+
+#include <errno.h>
+#include <event2/buffer.h>
+#include <event2/bufferevent.h>
+#include <event2/event.h>
+#include <event2/listener.h>
+#include <event2/thread.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+/* A connection stops reading while this many answers are pending. */
+#define MAX_PENDING 1024
+/* After SIGTERM, answers in flight get this long before the daemon exits. */
+#define SHUTDOWN_GRACE_SECONDS 30
+
+typedef struct wd_server wd_server;
+typedef struct connection connection;
+
+typedef struct slot {
+    struct slot *next;
+    connection *connection;
+    bool done;
+    char *response;       /* NULL: nothing to write (notifications) */
+} slot;
+
+struct connection {
+    connection *prev, *next;   /* the server's list */
+    wd_server *server;
+    struct bufferevent *bev;   /* NULL once the socket is closed */
+    slot *head, *tail;
+    size_t pending;            /* slots not yet written (or dropped) */
+    bool discarding;           /* skipping the rest of an over-long line */
+    bool paused;               /* not reading: too many answers pending */
+    bool input_closed;         /* end of input, or shutting down */
+    unsigned long number;      /* for the log */
+};
+
+struct wd_server {
+    const wd_config *config;
+    struct event_base *base;
+    struct evconnlistener *listener;
+    struct event *done_event, *signal_events[2], *grace_timer;
+    wd_pool *pool;
+    wd_cache *cache;
+    wd_stats stats;
+    wp_limits limits;
+    pthread_mutex_t done_lock;
+    wd_job *done_head, *done_tail;  /* answered by workers, not yet written */
+    connection *connections;
+    unsigned long connection_count, numbers;
+    bool stopping;
+};
+
+static void process_input(connection *c);
+
+/* ---- connections ------------------------------------------------------------ */
+
+static void free_connection(connection *c)
+{
+    wd_server *s = c->server;
+    if (c->prev)
+        c->prev->next = c->next;
+    else
+        s->connections = c->next;
+    if (c->next)
+        c->next->prev = c->prev;
+    s->connection_count--;
+    for (slot *x = c->head, *next; x; x = next) {
+        next = x->next;
+        free(x->response);
+        free(x);
+    }
+    free(c);
+    if (s->stopping && !s->connections)
+        event_base_loopexit(s->base, NULL);
+}
+
+static void close_socket(connection *c)
+{
+    if (!c->bev)
+        return;
+    bufferevent_free(c->bev);
+    c->bev = NULL;
+    atomic_fetch_sub(&c->server->stats.clients, 1);
+}
+
+/* Free the connection once nothing more will be read or written: its input
+ * ended (or the socket is gone) and every answer has been written out. */
+static void maybe_finish(connection *c)
+{
+    if (c->bev && !c->input_closed)
+        return;
+    if (c->pending > 0)
+        return; /* answers still to come (or to drop) */
+    if (c->bev && evbuffer_get_length(bufferevent_get_output(c->bev)) > 0)
+        return; /* the write callback comes back here */
+    close_socket(c);
+    free_connection(c);
+}
+
+/* Write the answers at the head of the queue that are ready. */
+static void flush(connection *c)
+{
+    while (c->head && c->head->done) {
+        slot *x = c->head;
+        if (c->bev && x->response)
+            bufferevent_write(c->bev, x->response, strlen(x->response));
+        c->head = x->next;
+        if (!c->head)
+            c->tail = NULL;
+        c->pending--;
+        free(x->response);
+        free(x);
+    }
+    if (c->bev) {
+        size_t unread = evbuffer_get_length(bufferevent_get_output(c->bev));
+        if (unread > c->server->config->max_output) {
+            wd_log(WD_LOG_WARN, "client %lu: dropped, %zu bytes of answers unread (--max-output)",
+                   c->number, unread);
+            close_socket(c);
+        } else if (c->paused && c->pending < MAX_PENDING / 2) {
+            c->paused = false;
+            if (!c->input_closed)
+                bufferevent_enable(c->bev, EV_READ);
+            process_input(c); /* lines already buffered */
+        }
+    }
+    maybe_finish(c);
+}
+
+static slot *add_slot(connection *c)
+{
+    slot *x = calloc(1, sizeof *x);
+    if (!x)
+        return NULL;
+    x->connection = c;
+    if (c->tail)
+        c->tail->next = x;
+    else
+        c->head = x;
+    c->tail = x;
+    c->pending++;
+    return x;
+}
+
+/* An answer known without a worker (a refused line), in its place. */
+static void answer_now(connection *c, int code, const char *reason)
+{
+    slot *x = add_slot(c);
+    if (!x)
+        return;
+    x->response = wp_error_line(code, "", reason);
+    x->done = true;
+    flush(c);
+}
+
+static void submit(connection *c, char *line, size_t length)
+{
+    slot *x = add_slot(c);
+    wd_job *job = x ? calloc(1, sizeof *job) : NULL;
+    if (!job) {
+        free(line);
+        if (x) {
+            x->response = wp_error_line(WP_INTERNAL, "", "out of memory");
+            x->done = true;
+            flush(c);
+        }
+        return;
+    }
+    job->owner = x;
+    job->line = line;
+    job->length = length;
+    wd_log(WD_LOG_DEBUG, "client %lu: request of %zu bytes", c->number, length);
+    wd_pool_submit(c->server->pool, job);
+}
+
+/* Cut complete lines out of the input and submit them. */
+static void process_input(connection *c)
+{
+    if (!c->bev)
+        return;
+    struct evbuffer *input = bufferevent_get_input(c->bev);
+    size_t max_line = c->server->config->max_line;
+    while (!c->paused && c->bev) {
+        struct evbuffer_ptr eol = evbuffer_search(input, "\n", 1, NULL);
+        if (c->discarding) {
+            if (eol.pos < 0) {
+                evbuffer_drain(input, evbuffer_get_length(input));
+                return;
+            }
+            evbuffer_drain(input, (size_t)eol.pos + 1);
+            c->discarding = false;
+            continue;
+        }
+        size_t length = eol.pos < 0 ? evbuffer_get_length(input) : (size_t)eol.pos;
+        if (length > max_line) {
+            char reason[128];
+            snprintf(reason, sizeof reason, "the line is longer than %zu bytes (--max-line)",
+                     max_line);
+            answer_now(c, WP_INVALID_REQUEST, reason);
+            c->discarding = true;
+            continue;
+        }
+        if (eol.pos < 0) {
+            if (!c->input_closed || length == 0)
+                return;
+            /* The last line, without its "\n": answer it all the same. */
+        }
+        char *line = malloc(length + 1);
+        if (!line) {
+            answer_now(c, WP_INTERNAL, "out of memory");
+            evbuffer_drain(input, length + (eol.pos >= 0));
+            continue;
+        }
+        evbuffer_remove(input, line, length);
+        if (eol.pos >= 0)
+            evbuffer_drain(input, 1);
+        line[length] = 0;
+        submit(c, line, length);
+        if (c->pending >= MAX_PENDING && !c->input_closed) {
+            c->paused = true;
+            bufferevent_disable(c->bev, EV_READ);
+        }
+    }
+}
+
+static void on_read(struct bufferevent *bev, void *argument)
+{
+    (void)bev;
+    process_input(argument);
+}
+
+static void on_write(struct bufferevent *bev, void *argument)
+{
+    (void)bev;
+    maybe_finish(argument);
+}
+
+static void on_event(struct bufferevent *bev, short events, void *argument)
+{
+    (void)bev;
+    connection *c = argument;
+    if (events & BEV_EVENT_EOF) {
+        /* The client is done sending; it may still read. */
+        c->input_closed = true;
+        process_input(c);
+        maybe_finish(c);
+    } else if (events & BEV_EVENT_ERROR) {
+        wd_log(WD_LOG_DEBUG, "client %lu: %s", c->number, strerror(errno));
+        c->input_closed = true;
+        close_socket(c);
+        maybe_finish(c);
+    }
+}
+
+static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struct sockaddr *address,
+                      int length, void *argument)
+{
+    (void)listener;
+    (void)address;
+    (void)length;
+    wd_server *s = argument;
+    if (atomic_load(&s->stats.clients) >= s->config->max_clients) {
+        char *line = wp_error_line(WP_LIMIT, "", "too many clients (--max-clients); try again later");
+        if (line) {
+            ssize_t sent = send(fd, line, strlen(line), MSG_DONTWAIT | MSG_NOSIGNAL);
+            (void)sent;
+            free(line);
+        }
+        close(fd);
+        atomic_fetch_add(&s->stats.refused, 1);
+        wd_log(WD_LOG_WARN, "refused a client: %lu already connected (--max-clients)",
+               (unsigned long)atomic_load(&s->stats.clients));
+        return;
+    }
+    connection *c = calloc(1, sizeof *c);
+    struct bufferevent *bev = c ? bufferevent_socket_new(s->base, fd, BEV_OPT_CLOSE_ON_FREE) : NULL;
+    if (!bev) {
+        free(c);
+        close(fd);
+        wd_log(WD_LOG_ERROR, "out of memory accepting a client");
+        return;
+    }
+    c->server = s;
+    c->bev = bev;
+    c->number = ++s->numbers;
+    c->next = s->connections;
+    if (s->connections)
+        s->connections->prev = c;
+    s->connections = c;
+    s->connection_count++;
+    atomic_fetch_add(&s->stats.clients, 1);
+    bufferevent_setcb(bev, on_read, on_write, on_event, c);
+    bufferevent_enable(bev, EV_READ | EV_WRITE);
+    wd_log(WD_LOG_DEBUG, "client %lu: connected", c->number);
+}
+
+/* ---- answers from the workers -------------------------------------------- */
+
+static void job_done(void *argument, wd_job *job)
+{
+    wd_server *s = argument;
+    pthread_mutex_lock(&s->done_lock);
+    job->next = NULL;
+    if (s->done_tail)
+        s->done_tail->next = job;
+    else
+        s->done_head = job;
+    s->done_tail = job;
+    pthread_mutex_unlock(&s->done_lock);
+    event_active(s->done_event, EV_READ, 0);
+}
+
+static void on_done(evutil_socket_t fd, short events, void *argument)
+{
+    (void)fd;
+    (void)events;
+    wd_server *s = argument;
+    pthread_mutex_lock(&s->done_lock);
+    wd_job *job = s->done_head;
+    s->done_head = s->done_tail = NULL;
+    pthread_mutex_unlock(&s->done_lock);
+    while (job) {
+        wd_job *next = job->next;
+        slot *x = job->owner;
+        x->response = job->response;
+        x->done = true;
+        free(job);
+        flush(x->connection);
+        job = next;
+    }
+}
+
+/* ---- start and stop ---------------------------------------------------------- */
+
+static void on_grace_over(evutil_socket_t fd, short events, void *argument)
+{
+    (void)fd;
+    (void)events;
+    wd_server *s = argument;
+    wd_log(WD_LOG_WARN, "answers still in flight after %d s; exiting anyway",
+           SHUTDOWN_GRACE_SECONDS);
+    event_base_loopexit(s->base, NULL);
+}
+
+static void on_signal(evutil_socket_t signal_number, short events, void *argument)
+{
+    (void)events;
+    wd_server *s = argument;
+    if (s->stopping)
+        return;
+    s->stopping = true;
+    wd_log(WD_LOG_INFO, "%s: no new clients; answering what is in flight",
+           signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+    evconnlistener_free(s->listener);
+    s->listener = NULL;
+    unlink(s->config->socket_path);
+    struct timeval grace = {SHUTDOWN_GRACE_SECONDS, 0};
+    event_add(s->grace_timer, &grace);
+    for (connection *c = s->connections, *next; c; c = next) {
+        next = c->next;
+        process_input(c); /* complete lines already received are in flight */
+        c->input_closed = true;
+        if (c->bev)
+            bufferevent_disable(c->bev, EV_READ);
+        maybe_finish(c);
+    }
+    if (!s->connections)
+        event_base_loopexit(s->base, NULL);
+}
+
+static bool make_parent_directories(const char *path)
+{
+    char partial[4096];
+    snprintf(partial, sizeof partial, "%s", path);
+    char *slash = strrchr(partial, '/');
+    if (!slash || slash == partial)
+        return true;
+    *slash = 0;
+    for (char *p = partial + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(partial, 0755) != 0 && errno != EEXIST)
+                return false;
+            *p = '/';
+        }
+    return mkdir(partial, 0755) == 0 || errno == EEXIST;
+}
+
+/* Bind the listening socket, mode 0660: refuse when a live daemon answers
+ * there, replace a stale socket file.  Returns the fd or -1 with `why`. */
+static int open_socket(const char *path, char *why, size_t why_size)
+{
+    struct sockaddr_un address = {.sun_family = AF_UNIX};
+    if (strlen(path) >= sizeof address.sun_path) {
+        snprintf(why, why_size, "the socket path %s is longer than %zu bytes", path,
+                 sizeof address.sun_path - 1);
+        return -1;
+    }
+    strcpy(address.sun_path, path);
+    if (!make_parent_directories(path)) {
+        snprintf(why, why_size, "cannot create the directory of %s: %s", path, strerror(errno));
+        return -1;
+    }
+    struct stat st;
+    if (lstat(path, &st) == 0) {
+        if (!S_ISSOCK(st.st_mode)) {
+            snprintf(why, why_size, "%s exists and is not a socket", path);
+            return -1;
+        }
+        int probe = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        if (probe >= 0 && connect(probe, (struct sockaddr *)&address, sizeof address) == 0) {
+            close(probe);
+            snprintf(why, why_size, "a wrenchd is already answering on %s", path);
+            return -1;
+        }
+        if (probe >= 0)
+            close(probe);
+        wd_log(WD_LOG_INFO, "replacing the stale socket %s", path);
+        unlink(path);
+    }
+    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+    if (fd < 0) {
+        snprintf(why, why_size, "socket: %s", strerror(errno));
+        return -1;
+    }
+    mode_t old = umask(0117);
+    int bound = bind(fd, (struct sockaddr *)&address, sizeof address);
+    umask(old);
+    if (bound != 0 || chmod(path, 0660) != 0 || listen(fd, 256) != 0) {
+        snprintf(why, why_size, "cannot listen on %s: %s", path, strerror(errno));
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+/* Put the fixtures of --load files, as fixture.put would. */
+static bool load_files(wd_server *s)
+{
+    for (int i = 0; i < s->config->load_count; i++) {
+        const char *path = s->config->load_files[i];
+        FILE *file = fopen(path, "rb");
+        char *text = NULL;
+        size_t length = 0;
+        if (file) {
+            text = malloc(s->config->max_line + 1);
+            length = text ? fread(text, 1, s->config->max_line, file) : 0;
+            fclose(file);
+        }
+        if (!text) {
+            wd_log(WD_LOG_ERROR, "--load %s: %s", path, strerror(errno));
+            return false;
+        }
+        text[length] = 0;
+        cJSON *json = cJSON_Parse(text);
+        free(text);
+        wp_fixture_doc doc;
+        wp_fixture_use use;
+        wp_error error = {0};
+        bool ok = json && wp_fixture_read(json, "", &doc, &error) &&
+                  wd_cache_adopt(s->cache, &doc, true, &use, &error);
+        cJSON_Delete(json);
+        if (!ok) {
+            wd_log(WD_LOG_ERROR, "--load %s: %s%s%s", path, error.field,
+                   error.field[0] ? ": " : "", json ? error.reason : "not a JSON text");
+            return false;
+        }
+        wd_log(WD_LOG_INFO, "loaded %s as %s (%s)", path, use.id, use.name);
+        wd_cache_release(s->cache, &use);
+    }
+    return true;
+}
+
+int wd_server_run(const wd_config *config)
+{
+    wd_server server;
+    memset(&server, 0, sizeof server);
+    wd_server *s = &server;
+    s->config = config;
+    s->limits = (wp_limits){config->max_depth, config->max_wrenches};
+    s->stats.started = time(NULL);
+    s->stats.threads = config->threads;
+    pthread_mutex_init(&s->done_lock, NULL);
+    signal(SIGPIPE, SIG_IGN);
+    evthread_use_pthreads();
+
+    int status = WD_EXIT_START;
+    char why[512];
+    int fd = -1;
+    s->cache = wd_cache_new(config->state_dir, config->cache_bytes, why, sizeof why);
+    if (!s->cache) {
+        wd_log(WD_LOG_ERROR, "%s", why);
+        goto out;
+    }
+    if (!load_files(s))
+        goto out;
+    fd = open_socket(config->socket_path, why, sizeof why);
+    if (fd < 0) {
+        wd_log(WD_LOG_ERROR, "%s", why);
+        goto out;
+    }
+    s->base = event_base_new();
+    if (!s->base)
+        goto out;
+    s->listener = evconnlistener_new(s->base, on_accept, s, LEV_OPT_CLOSE_ON_FREE, -1, fd);
+    if (!s->listener) {
+        close(fd);
+        unlink(config->socket_path);
+        goto out;
+    }
+    s->done_event = event_new(s->base, -1, 0, on_done, s);
+    s->signal_events[0] = evsignal_new(s->base, SIGTERM, on_signal, s);
+    s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
+    s->grace_timer = evtimer_new(s->base, on_grace_over, s);
+    s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, job_done, s);
+    if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
+        !s->pool) {
+        wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
+        unlink(config->socket_path);
+        goto out;
+    }
+    event_add(s->signal_events[0], NULL);
+    event_add(s->signal_events[1], NULL);
+    wd_log(WD_LOG_INFO, "wrenchd %s listening on %s (%d threads, state %s, cache %zu MiB)",
+           WR_VERSION, config->socket_path, config->threads,
+           config->state_dir ? config->state_dir : "in memory only", config->cache_bytes >> 20);
+    event_base_dispatch(s->base);
+    status = WD_EXIT_OK;
+    wd_log(WD_LOG_INFO, "stopped");
+
+out:
+    wd_pool_free(s->pool); /* answers what was queued; those answers are dropped */
+    for (wd_job *job = s->done_head, *next; job; job = next) {
+        next = job->next;
+        free(job->response);
+        free(job);
+    }
+    while (s->connections) {
+        close_socket(s->connections);
+        free_connection(s->connections);
+    }
+    if (s->listener) {
+        evconnlistener_free(s->listener);
+        unlink(config->socket_path);
+    }
+    for (int i = 0; i < 2; i++)
+        if (s->signal_events[i])
+            event_free(s->signal_events[i]);
+    if (s->done_event)
+        event_free(s->done_event);
+    if (s->grace_timer)
+        event_free(s->grace_timer);
+    if (s->base)
+        event_base_free(s->base);
+    wd_cache_free(s->cache);
+    pthread_mutex_destroy(&s->done_lock);
+    libevent_global_shutdown();
+    return status;
+}

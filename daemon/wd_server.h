@@ -1,0 +1,29 @@
+/* wd_server.h -- the daemon: a libevent loop on a Unix stream socket, worker
+ * threads, the fixture cache. */
+#ifndef WD_SERVER_H
+#define WD_SERVER_H
+
+#include <stddef.h>
+
+typedef struct wd_config {
+    const char *socket_path;    /* listening socket */
+    const char *state_dir;      /* NULL: fixtures kept in memory only */
+    const char **load_files;    /* fixtures to put at start */
+    int load_count;
+    int threads;                /* worker threads */
+    size_t cache_bytes;         /* bound on derived data */
+    size_t max_line;            /* longest request line, bytes */
+    int max_depth;              /* deepest JSON nesting */
+    size_t max_wrenches;        /* most wrenches in one request */
+    size_t max_output;          /* most unread output per client, bytes */
+    unsigned long max_clients;  /* most concurrent clients */
+} wd_config;
+
+/* Exit statuses of wrenchd. */
+enum { WD_EXIT_OK = 0, WD_EXIT_START = 1, WD_EXIT_USAGE = 2 };
+
+/* Serve until SIGTERM or SIGINT: then stop accepting, answer what is in
+ * flight, remove the socket file.  Returns the exit status. */
+int wd_server_run(const wd_config *config);
+
+#endif

@@ -1,0 +1,250 @@
+/* wd_worker.c -- worker threads and the per-thread wp_host. */
+#include "wd_worker.h"
+#include "wd_log.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Warm LP sets of one fixture's derived data, in one thread. */
+typedef struct lp_slot {
+    uint64_t serial;       /* wd_cache_serial of the analysis they were built on */
+    uint64_t last_used;
+    wr_lp_set *goal, *strong;
+} lp_slot;
+
+/* A thread keeps warm LPs for this many fixtures, least recently used out. */
+#define LP_SLOTS 16
+
+struct wd_context {
+    wp_host host;
+    wd_cache *cache;
+    wd_stats *stats;
+    wr_lp_env *solver;
+    lp_slot slots[LP_SLOTS];
+    uint64_t clock;
+};
+
+static bool host_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
+                       wp_error *error)
+{
+    return wd_cache_adopt(((wd_context *)self)->cache, doc, store, use, error);
+}
+
+static bool host_use(void *self, const char *id, wp_fixture_use *use, wp_error *error)
+{
+    return wd_cache_use(((wd_context *)self)->cache, id, use, error);
+}
+
+static void host_release(void *self, wp_fixture_use *use)
+{
+    wd_cache_release(((wd_context *)self)->cache, use);
+}
+
+static bool host_delete(void *self, const char *id, wp_error *error)
+{
+    return wd_cache_delete(((wd_context *)self)->cache, id, error);
+}
+
+static cJSON *host_list(void *self) { return wd_cache_list(((wd_context *)self)->cache); }
+
+static cJSON *host_status(void *self)
+{
+    wd_context *context = self;
+    wd_cache_stats cache;
+    wd_cache_stats_get(context->cache, &cache);
+    const wd_stats *s = context->stats;
+    cJSON *result = cJSON_CreateObject();
+    if (!result)
+        return NULL;
+    cJSON_AddStringToObject(result, "version", WR_VERSION);
+    cJSON_AddNumberToObject(result, "uptime_s", (double)(time(NULL) - s->started));
+    cJSON_AddNumberToObject(result, "fixtures", (double)cache.stored);
+    cJSON_AddNumberToObject(result, "cached", (double)cache.cached);
+    cJSON_AddNumberToObject(result, "cache_bytes", (double)cache.derived_bytes);
+    cJSON_AddNumberToObject(result, "cache_limit_bytes", (double)cache.derived_limit);
+    cJSON_AddNumberToObject(result, "threads", s->threads);
+    cJSON_AddNumberToObject(result, "clients", (double)atomic_load(&s->clients));
+    cJSON_AddNumberToObject(result, "refused", (double)atomic_load(&s->refused));
+    cJSON_AddNumberToObject(result, "requests", (double)atomic_load(&s->requests));
+    cJSON *errors = cJSON_AddNumberToObject(result, "errors", (double)atomic_load(&s->errors));
+    if (!errors) {
+        cJSON_Delete(result);
+        return NULL;
+    }
+    return result;
+}
+
+static void slot_clear(lp_slot *slot)
+{
+    wr_lp_set_free(slot->goal);
+    wr_lp_set_free(slot->strong);
+    memset(slot, 0, sizeof *slot);
+}
+
+static bool host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
+                         wp_error *error)
+{
+    wd_context *context = self;
+    uint64_t serial = wd_cache_serial(use);
+    lp_slot *slot = &context->slots[0];
+    for (int i = 0; i < LP_SLOTS; i++) {
+        if (context->slots[i].serial == serial && context->slots[i].goal) {
+            slot = &context->slots[i];
+            break;
+        }
+        if (context->slots[i].last_used < slot->last_used)
+            slot = &context->slots[i];
+    }
+    if (slot->serial != serial || !slot->goal) {
+        /* A slot of stale derived data only ever gets freed: its sets are
+         * never used again. */
+        slot_clear(slot);
+        if (wr_analysis_lp_sets(use->analysis, context->solver, &slot->goal, &slot->strong) != 0) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        slot->serial = serial;
+    }
+    slot->last_used = ++context->clock;
+    *goal = slot->goal;
+    *strong = slot->strong;
+    return true;
+}
+
+wd_context *wd_context_new(wd_cache *cache, wd_stats *stats)
+{
+    wd_context *context = calloc(1, sizeof *context);
+    if (!context)
+        return NULL;
+    context->solver = wr_lp_env_new();
+    if (!context->solver) {
+        free(context);
+        return NULL;
+    }
+    context->cache = cache;
+    context->stats = stats;
+    context->host = (wp_host){context,     host_adopt,  host_use,    host_release,
+                              host_delete, host_list,   host_status, host_lp_sets};
+    return context;
+}
+
+const wp_host *wd_context_host(wd_context *context) { return &context->host; }
+
+void wd_context_free(wd_context *context)
+{
+    if (!context)
+        return;
+    for (int i = 0; i < LP_SLOTS; i++)
+        slot_clear(&context->slots[i]);
+    wr_lp_env_free(context->solver);
+    free(context);
+}
+
+/* ---- the pool ------------------------------------------------------------- */
+
+struct wd_pool {
+    pthread_mutex_t lock;
+    pthread_cond_t ready;      /* a job was queued, or stop was set */
+    wd_job *head, *tail;
+    bool stop;
+    int thread_count;
+    pthread_t *threads;
+    wd_cache *cache;
+    wp_limits limits;
+    wd_stats *stats;
+    wd_job_done done;
+    void *context;
+};
+
+static void *worker_main(void *argument)
+{
+    wd_pool *pool = argument;
+    wd_context *context = wd_context_new(pool->cache, pool->stats);
+    if (!context)
+        wd_log(WD_LOG_ERROR, "a worker could not start: out of memory");
+    for (;;) {
+        pthread_mutex_lock(&pool->lock);
+        while (!pool->head && !pool->stop)
+            pthread_cond_wait(&pool->ready, &pool->lock);
+        wd_job *job = pool->head;
+        if (job) {
+            pool->head = job->next;
+            if (!pool->head)
+                pool->tail = NULL;
+        }
+        pthread_mutex_unlock(&pool->lock);
+        if (!job)
+            break; /* stopping, and nothing left to answer */
+        wp_counts counts = {0, 0};
+        if (context)
+            job->response = wp_answer_line(wd_context_host(context), &pool->limits, job->line,
+                                           job->length, &counts);
+        else
+            job->response = wp_error_line(WP_INTERNAL, "", "out of memory");
+        atomic_fetch_add(&pool->stats->requests, counts.requests);
+        atomic_fetch_add(&pool->stats->errors, counts.errors);
+        free(job->line);
+        job->line = NULL;
+        pool->done(pool->context, job);
+    }
+    wd_context_free(context);
+    return NULL;
+}
+
+wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_stats *stats,
+                     wd_job_done done, void *context)
+{
+    wd_pool *pool = calloc(1, sizeof *pool);
+    if (!pool)
+        return NULL;
+    pthread_mutex_init(&pool->lock, NULL);
+    pthread_cond_init(&pool->ready, NULL);
+    pool->cache = cache;
+    pool->limits = *limits;
+    pool->stats = stats;
+    pool->done = done;
+    pool->context = context;
+    pool->threads = calloc((size_t)threads, sizeof *pool->threads);
+    if (!pool->threads) {
+        wd_pool_free(pool);
+        return NULL;
+    }
+    for (int i = 0; i < threads; i++) {
+        if (pthread_create(&pool->threads[i], NULL, worker_main, pool) != 0) {
+            wd_pool_free(pool);
+            return NULL;
+        }
+        pool->thread_count++;
+    }
+    return pool;
+}
+
+void wd_pool_submit(wd_pool *pool, wd_job *job)
+{
+    job->next = NULL;
+    pthread_mutex_lock(&pool->lock);
+    if (pool->tail)
+        pool->tail->next = job;
+    else
+        pool->head = job;
+    pool->tail = job;
+    pthread_cond_signal(&pool->ready);
+    pthread_mutex_unlock(&pool->lock);
+}
+
+void wd_pool_free(wd_pool *pool)
+{
+    if (!pool)
+        return;
+    pthread_mutex_lock(&pool->lock);
+    pool->stop = true;
+    pthread_cond_broadcast(&pool->ready);
+    pthread_mutex_unlock(&pool->lock);
+    for (int i = 0; i < pool->thread_count; i++)
+        pthread_join(pool->threads[i], NULL);
+    free(pool->threads);
+    pthread_mutex_destroy(&pool->lock);
+    pthread_cond_destroy(&pool->ready);
+    free(pool);
+}

@@ -1,0 +1,286 @@
+/* wp_fixture.c -- JSON to wr_fixture_spec, validation, content ids. */
+#include "wp_fixture.h"
+#include "wp_sha256.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const FIXTURE_FIELDS[] = {"name", "body", "friction", "fixels", NULL};
+static const char *const BODY_FIELDS[] = {"mass", "inertia", "com", "shape", NULL};
+static const char *const CIRCLE_FIELDS[] = {"type", "center", "radius", NULL};
+static const char *const POLYGON_FIELDS[] = {"type", "vertices", NULL};
+static const char *const FRICTION_FIELDS[] = {"static", "kinetic", NULL};
+static const char *const FIXEL_FIELDS[] = {"at", "normal", "friction", NULL};
+
+static bool read_friction(const cJSON *json, const char *path, wr_friction_spec *out,
+                          wp_error *error)
+{
+    if (!json)
+        return true;
+    if (!wp_check_object(json, path, FRICTION_FIELDS, error))
+        return false;
+    out->given = true;
+    return wp_member_number(json, path, "static", true, &out->static_mu, NULL, error) &&
+           wp_member_number(json, path, "kinetic", false, &out->kinetic_mu, &out->kinetic_given,
+                            error);
+}
+
+static bool read_shape(const cJSON *json, const char *path, wr_fixture_spec *spec,
+                       double (**vertices)[2], wp_error *error)
+{
+    if (!cJSON_IsObject(json)) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "must be an object, not %s",
+                     wp_type_name(json));
+        return false;
+    }
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, "type");
+    const cJSON *type = cJSON_GetObjectItemCaseSensitive(json, "type");
+    if (!type) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "required: \"circle\" or \"polygon\"");
+        return false;
+    }
+    if (!cJSON_IsString(type) ||
+        (strcmp(type->valuestring, "circle") != 0 && strcmp(type->valuestring, "polygon") != 0)) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "must be \"circle\" or \"polygon\"");
+        return false;
+    }
+    if (strcmp(type->valuestring, "circle") == 0) {
+        spec->shape = WR_SHAPE_CIRCLE;
+        return wp_check_object(json, path, CIRCLE_FIELDS, error) &&
+               wp_member_vector2(json, path, "center", true, spec->center, NULL, error) &&
+               wp_member_number(json, path, "radius", true, &spec->radius, NULL, error);
+    }
+    spec->shape = WR_SHAPE_POLYGON;
+    if (!wp_check_object(json, path, POLYGON_FIELDS, error))
+        return false;
+    wp_path_key(field, path, "vertices");
+    const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "vertices");
+    if (!list) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "required");
+        return false;
+    }
+    if (!cJSON_IsArray(list)) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "must be an array of [x, y], not %s",
+                     wp_type_name(list));
+        return false;
+    }
+    size_t count = (size_t)cJSON_GetArraySize(list);
+    if (count > WR_MAX_VERTICES) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "at most %d vertices, %zu given",
+                     WR_MAX_VERTICES, count);
+        return false;
+    }
+    *vertices = malloc((count ? count : 1) * sizeof **vertices);
+    if (!*vertices) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *v = list->child; v; v = v->next, i++) {
+        char item[WP_FIELD_MAX];
+        wp_path_index(item, field, i);
+        if (!wp_vector2(v, item, (*vertices)[i], error))
+            return false;
+    }
+    spec->vertex_count = count;
+    spec->vertices = (const double (*)[2]) * vertices;
+    return true;
+}
+
+static bool read_body(const cJSON *json, const char *path, wr_fixture_spec *spec,
+                      double (**vertices)[2], wp_error *error)
+{
+    if (!wp_check_object(json, path, BODY_FIELDS, error) ||
+        !wp_member_number(json, path, "mass", true, &spec->mass, NULL, error) ||
+        !wp_member_number(json, path, "inertia", false, &spec->inertia, &spec->inertia_given,
+                          error) ||
+        !wp_member_vector2(json, path, "com", false, spec->com, &spec->com_given, error))
+        return false;
+    const cJSON *shape = cJSON_GetObjectItemCaseSensitive(json, "shape");
+    if (!shape)
+        return true;
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, "shape");
+    return read_shape(shape, field, spec, vertices, error);
+}
+
+static bool read_fixels(const cJSON *json, const char *path, wr_fixel_spec **fixels,
+                        size_t *count, wp_error *error)
+{
+    if (!cJSON_IsArray(json)) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "must be an array of fixels, not %s",
+                     wp_type_name(json));
+        return false;
+    }
+    /* Any number is read (the line length bounds it); wr_fixture_new says
+     * why more than WR_MAX_FIXELS are refused. */
+    size_t n = (size_t)cJSON_GetArraySize(json);
+    *fixels = calloc(n ? n : 1, sizeof **fixels);
+    if (!*fixels) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *item = json->child; item; item = item->next, i++) {
+        char field[WP_FIELD_MAX], friction[WP_FIELD_MAX];
+        wp_path_index(field, path, i);
+        wr_fixel_spec *fixel = &(*fixels)[i];
+        if (!wp_check_object(item, field, FIXEL_FIELDS, error) ||
+            !wp_member_vector2(item, field, "at", true, fixel->at, NULL, error) ||
+            !wp_member_vector2(item, field, "normal", false, fixel->normal, &fixel->normal_given,
+                               error))
+            return false;
+        wp_path_key(friction, field, "friction");
+        if (!read_friction(cJSON_GetObjectItemCaseSensitive(item, "friction"), friction,
+                           &fixel->friction, error))
+            return false;
+    }
+    *count = n;
+    return true;
+}
+
+static void hex_id(const char *canonical, char id[WP_ID_LENGTH + 1])
+{
+    wp_sha256 hash;
+    unsigned char digest[32];
+    wp_sha256_init(&hash);
+    wp_sha256_update(&hash, canonical, strlen(canonical));
+    wp_sha256_final(&hash, digest);
+    for (int i = 0; i < WP_ID_LENGTH / 2; i++)
+        snprintf(id + 2 * i, 3, "%02x", digest[i]);
+}
+
+bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error)
+{
+    memset(out, 0, sizeof *out);
+    if (!wp_check_object(json, path, FIXTURE_FIELDS, error))
+        return false;
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    double (*vertices)[2] = NULL;
+    wr_fixel_spec *fixels = NULL;
+    const char *name = NULL;
+    char field[WP_FIELD_MAX];
+    bool ok = wp_member_string(json, path, "name", false, &name, error);
+    if (ok) {
+        const cJSON *body = cJSON_GetObjectItemCaseSensitive(json, "body");
+        wp_path_key(field, path, "body");
+        if (!body) {
+            wp_error_set(error, WP_INVALID_PARAMS, field, "required");
+            ok = false;
+        } else {
+            ok = read_body(body, field, &spec, &vertices, error);
+        }
+    }
+    if (ok) {
+        wp_path_key(field, path, "friction");
+        ok = read_friction(cJSON_GetObjectItemCaseSensitive(json, "friction"), field,
+                           &spec.friction, error);
+    }
+    if (ok) {
+        const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "fixels");
+        wp_path_key(field, path, "fixels");
+        if (!list) {
+            wp_error_set(error, WP_INVALID_PARAMS, field, "required");
+            ok = false;
+        } else {
+            ok = read_fixels(list, field, &fixels, &spec.fixel_count, error);
+            spec.fixels = fixels;
+        }
+    }
+    if (ok) {
+        wr_error invalid;
+        out->fixture = wr_fixture_new(&spec, &invalid);
+        if (!out->fixture) {
+            wp_path_key(field, path, invalid.field);
+            wp_error_set(error, invalid.field[0] ? WP_INVALID_PARAMS : WP_INTERNAL,
+                         invalid.field[0] ? field : path, "%s", invalid.reason);
+            ok = false;
+        }
+    }
+    free(vertices);
+    free(fixels);
+    if (!ok)
+        return false;
+    char *content = wp_canonical(json, "name");
+    out->canonical = wp_canonical(json, NULL);
+    out->name = strdup(name ? name : "");
+    if (!content || !out->canonical || !out->name) {
+        free(content);
+        wp_fixture_doc_release(out);
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    hex_id(content, out->id);
+    free(content);
+    return true;
+}
+
+void wp_fixture_doc_release(wp_fixture_doc *doc)
+{
+    if (!doc)
+        return;
+    free(doc->name);
+    free(doc->canonical);
+    wr_fixture_free(doc->fixture);
+    memset(doc, 0, sizeof *doc);
+}
+
+void wp_fixture_doc_move(wp_fixture_doc *to, wp_fixture_doc *from)
+{
+    *to = *from;
+    memset(from, 0, sizeof *from);
+}
+
+bool wp_fixture_id_valid(const char *text)
+{
+    if (strlen(text) != WP_ID_LENGTH)
+        return false;
+    for (const char *c = text; *c; c++)
+        if (!((*c >= '0' && *c <= '9') || (*c >= 'a' && *c <= 'f')))
+            return false;
+    return true;
+}
+
+static const char *const WRENCH_FIELDS[] = {"force", "at", NULL};
+
+bool wp_wrench_read(const cJSON *json, const char *path, const wr_fixture *fixture,
+                    double wrench[3], wp_error *error)
+{
+    if (cJSON_IsArray(json)) {
+        if (cJSON_GetArraySize(json) != 3) {
+            wp_error_set(error, WP_INVALID_PARAMS, path,
+                         "a wrench is [f_x, f_y, tau]: 3 numbers, not %d", cJSON_GetArraySize(json));
+            return false;
+        }
+        const cJSON *item = json->child;
+        for (int i = 0; i < 3; i++, item = item->next) {
+            char field[WP_FIELD_MAX];
+            wp_path_index(field, path, (size_t)i);
+            if (!wp_number(item, field, &wrench[i], error))
+                return false;
+        }
+        return true;
+    }
+    if (!cJSON_IsObject(json)) {
+        wp_error_set(error, WP_INVALID_PARAMS, path,
+                     "a wrench is [f_x, f_y, tau] or {\"force\": [f_x, f_y], \"at\": [x, y]}, "
+                     "not %s",
+                     wp_type_name(json));
+        return false;
+    }
+    double force[2], at[2];
+    if (!wp_check_object(json, path, WRENCH_FIELDS, error) ||
+        !wp_member_vector2(json, path, "force", true, force, NULL, error) ||
+        !wp_member_vector2(json, path, "at", true, at, NULL, error))
+        return false;
+    wr_fixture_force_wrench(fixture, force, at, wrench);
+    if (!isfinite(wrench[2])) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "its torque overflows");
+        return false;
+    }
+    return true;
+}

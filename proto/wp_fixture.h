@@ -1,0 +1,36 @@
+/* wp_fixture.h -- fixtures and wrenches as JSON (SPEC section 8). */
+#ifndef WP_FIXTURE_H
+#define WP_FIXTURE_H
+
+#include "wp_json.h"
+#include "wrench.h"
+
+#define WP_ID_LENGTH 32 /* hex digits of a fixture id */
+
+/* A fixture read from JSON: validated, with its content id and canonical
+ * text.  Owns everything it points to. */
+typedef struct wp_fixture_doc {
+    char id[WP_ID_LENGTH + 1];  /* SHA-256 of the canonical form without name */
+    char *name;                 /* "" when not given */
+    char *canonical;            /* canonical JSON with the name: what is stored */
+    wr_fixture *fixture;
+} wp_fixture_doc;
+
+/* Read a fixture object at `path` ("params.fixture").  Unknown fields, wrong
+ * types, non-finite numbers and everything wr_fixture_new refuses are
+ * -32602 errors naming the field.  Returns false on error, with nothing
+ * allocated. */
+bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error);
+void wp_fixture_doc_release(wp_fixture_doc *doc);
+/* Move: `to` takes what `from` owned; `from` is left empty. */
+void wp_fixture_doc_move(wp_fixture_doc *to, wp_fixture_doc *from);
+
+/* Is `text` shaped like a fixture id (32 lowercase hex digits)? */
+bool wp_fixture_id_valid(const char *text);
+
+/* A wrench at `path`: [f_x, f_y, tau], or {"force": [f_x, f_y], "at": [x, y]}
+ * whose torque about the fixture's centre of mass is (at - com) x force. */
+bool wp_wrench_read(const cJSON *json, const char *path, const wr_fixture *fixture,
+                    double wrench[3], wp_error *error);
+
+#endif

@@ -1,0 +1,372 @@
+/* wp_json.c -- JSON helpers: field-path errors, strict access, canonical text. */
+#include "wp_json.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void wp_error_set(wp_error *error, int code, const char *field, const char *format, ...)
+{
+    if (!error)
+        return;
+    error->code = code;
+    snprintf(error->field, sizeof error->field, "%s", field ? field : "");
+    va_list args;
+    va_start(args, format);
+    vsnprintf(error->reason, sizeof error->reason, format, args);
+    va_end(args);
+}
+
+void wp_path_key(char out[WP_FIELD_MAX], const char *prefix, const char *key)
+{
+    if (!prefix || !*prefix)
+        snprintf(out, WP_FIELD_MAX, "%s", key);
+    else
+        snprintf(out, WP_FIELD_MAX, "%.*s.%s", WP_FIELD_MAX / 2, prefix, key);
+}
+
+void wp_path_index(char out[WP_FIELD_MAX], const char *prefix, size_t index)
+{
+    snprintf(out, WP_FIELD_MAX, "%.*s[%zu]", WP_FIELD_MAX - 24, prefix, index);
+}
+
+const char *wp_type_name(const cJSON *value)
+{
+    if (!value)
+        return "nothing";
+    if (cJSON_IsNumber(value))
+        return "a number";
+    if (cJSON_IsString(value))
+        return "a string";
+    if (cJSON_IsBool(value))
+        return "a boolean";
+    if (cJSON_IsNull(value))
+        return "null";
+    if (cJSON_IsArray(value))
+        return "an array";
+    if (cJSON_IsObject(value))
+        return "an object";
+    return "an unknown value";
+}
+
+bool wp_check_object(const cJSON *value, const char *path, const char *const *allowed,
+                     wp_error *error)
+{
+    if (!cJSON_IsObject(value)) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "must be an object, not %s",
+                     wp_type_name(value));
+        return false;
+    }
+    char field[WP_FIELD_MAX];
+    for (const cJSON *member = value->child; member; member = member->next) {
+        bool known = false;
+        for (const char *const *name = allowed; *name && !known; name++)
+            known = strcmp(*name, member->string) == 0;
+        wp_path_key(field, path, member->string);
+        if (!known) {
+            wp_error_set(error, WP_INVALID_PARAMS, field, "unknown field");
+            return false;
+        }
+        for (const cJSON *other = member->next; other; other = other->next)
+            if (strcmp(other->string, member->string) == 0) {
+                wp_error_set(error, WP_INVALID_PARAMS, field, "appears more than once");
+                return false;
+            }
+    }
+    return true;
+}
+
+bool wp_number(const cJSON *value, const char *path, double *out, wp_error *error)
+{
+    if (!cJSON_IsNumber(value)) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "must be a number, not %s",
+                     wp_type_name(value));
+        return false;
+    }
+    if (!isfinite(value->valuedouble)) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "must be a finite number");
+        return false;
+    }
+    *out = value->valuedouble;
+    return true;
+}
+
+bool wp_vector2(const cJSON *value, const char *path, double out[2], wp_error *error)
+{
+    if (!cJSON_IsArray(value) || cJSON_GetArraySize(value) != 2) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "must be an array of 2 numbers, not %s",
+                     cJSON_IsArray(value) ? "an array of another length" : wp_type_name(value));
+        return false;
+    }
+    char field[WP_FIELD_MAX];
+    const cJSON *item = value->child;
+    for (int i = 0; i < 2; i++, item = item->next) {
+        wp_path_index(field, path, (size_t)i);
+        if (!wp_number(item, field, &out[i], error))
+            return false;
+    }
+    return true;
+}
+
+/* The member, or NULL with an error when it is missing and required. */
+static const cJSON *member(const cJSON *object, const char *path, const char *key, bool required,
+                           bool *present, wp_error *error, bool *ok)
+{
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(object, key);
+    if (present)
+        *present = value != NULL;
+    *ok = value != NULL || !required;
+    if (!value && required) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, path, key);
+        wp_error_set(error, WP_INVALID_PARAMS, field, "required");
+    }
+    return value;
+}
+
+bool wp_member_number(const cJSON *object, const char *path, const char *key, bool required,
+                      double *out, bool *present, wp_error *error)
+{
+    bool ok;
+    const cJSON *value = member(object, path, key, required, present, error, &ok);
+    if (!value)
+        return ok;
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, key);
+    return wp_number(value, field, out, error);
+}
+
+bool wp_member_vector2(const cJSON *object, const char *path, const char *key, bool required,
+                       double out[2], bool *present, wp_error *error)
+{
+    bool ok;
+    const cJSON *value = member(object, path, key, required, present, error, &ok);
+    if (!value)
+        return ok;
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, key);
+    return wp_vector2(value, field, out, error);
+}
+
+bool wp_member_string(const cJSON *object, const char *path, const char *key, bool required,
+                      const char **out, wp_error *error)
+{
+    bool ok;
+    const cJSON *value = member(object, path, key, required, NULL, error, &ok);
+    *out = NULL;
+    if (!value)
+        return ok;
+    if (!cJSON_IsString(value)) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, path, key);
+        wp_error_set(error, WP_INVALID_PARAMS, field, "must be a string, not %s",
+                     wp_type_name(value));
+        return false;
+    }
+    *out = value->valuestring;
+    return true;
+}
+
+/* ---- buffer ------------------------------------------------------------- */
+
+void wp_buffer_append(wp_buffer *b, const char *text, size_t length)
+{
+    if (b->failed)
+        return;
+    if (b->length + length + 1 > b->capacity) {
+        size_t capacity = b->capacity ? b->capacity : 256;
+        while (capacity < b->length + length + 1)
+            capacity *= 2;
+        char *grown = realloc(b->data, capacity);
+        if (!grown) {
+            b->failed = true;
+            return;
+        }
+        b->data = grown;
+        b->capacity = capacity;
+    }
+    memcpy(b->data + b->length, text, length);
+    b->length += length;
+    b->data[b->length] = 0;
+}
+
+void wp_buffer_puts(wp_buffer *b, const char *text) { wp_buffer_append(b, text, strlen(text)); }
+
+void wp_buffer_number(wp_buffer *b, double value)
+{
+    char text[32];
+    wp_format_number(value, text);
+    wp_buffer_puts(b, text);
+}
+
+void wp_buffer_string(wp_buffer *b, const char *text)
+{
+    wp_buffer_append(b, "\"", 1);
+    const unsigned char *p = (const unsigned char *)text;
+    const unsigned char *run = p;
+    for (; *p; p++) {
+        if (*p >= 0x20 && *p != '"' && *p != '\\')
+            continue;
+        wp_buffer_append(b, (const char *)run, (size_t)(p - run));
+        char escape[8];
+        switch (*p) {
+        case '"': strcpy(escape, "\\\""); break;
+        case '\\': strcpy(escape, "\\\\"); break;
+        case '\n': strcpy(escape, "\\n"); break;
+        case '\r': strcpy(escape, "\\r"); break;
+        case '\t': strcpy(escape, "\\t"); break;
+        case '\b': strcpy(escape, "\\b"); break;
+        case '\f': strcpy(escape, "\\f"); break;
+        default: snprintf(escape, sizeof escape, "\\u%04x", *p); break;
+        }
+        wp_buffer_puts(b, escape);
+        run = p + 1;
+    }
+    wp_buffer_append(b, (const char *)run, (size_t)(p - run));
+    wp_buffer_append(b, "\"", 1);
+}
+
+char *wp_buffer_take(wp_buffer *b)
+{
+    if (!b->failed && !b->data)
+        wp_buffer_append(b, "", 0); /* nothing appended: the empty string */
+    char *data = b->failed ? NULL : b->data;
+    if (b->failed)
+        free(b->data);
+    b->data = NULL;
+    b->length = b->capacity = 0;
+    return data;
+}
+
+/* ---- numbers and canonical text ---------------------------------------- */
+
+/* Significant digits in a %g text. */
+static int significant_digits(const char *text)
+{
+    int digits = 0;
+    bool leading = true;
+    for (const char *c = text; *c && *c != 'e'; c++) {
+        if (*c < '0' || *c > '9')
+            continue;
+        if (*c == '0' && leading)
+            continue;
+        leading = false;
+        digits++;
+    }
+    return digits;
+}
+
+void wp_format_number(double value, char text[32])
+{
+    if (value == 0) { /* also -0 */
+        strcpy(text, "0");
+        return;
+    }
+    /* 17 digits always read back; find the fewest that do.  Most numbers
+     * people write need few, and %.15g then already strips the rest. */
+    int precision = 15;
+    snprintf(text, 32, "%.15g", value);
+    if (strtod(text, NULL) != value) {
+        snprintf(text, 32, "%.16g", value);
+        if (strtod(text, NULL) != value)
+            snprintf(text, 32, "%.17g", value);
+        return;
+    }
+    if (significant_digits(text) < precision)
+        return;
+    char shorter[32];
+    for (precision = 14; precision >= 1; precision--) {
+        snprintf(shorter, sizeof shorter, "%.*g", precision, value);
+        if (strtod(shorter, NULL) != value)
+            return;
+        strcpy(text, shorter);
+    }
+}
+
+static int compare_members(const void *a, const void *b)
+{
+    const cJSON *x = *(const cJSON *const *)a, *y = *(const cJSON *const *)b;
+    return strcmp(x->string, y->string);
+}
+
+static void write_canonical(wp_buffer *b, const cJSON *value, const char *skip)
+{
+    if (cJSON_IsObject(value)) {
+        size_t count = 0;
+        for (const cJSON *m = value->child; m; m = m->next)
+            count++;
+        const cJSON **members = malloc((count ? count : 1) * sizeof *members);
+        if (!members) {
+            b->failed = true;
+            return;
+        }
+        count = 0;
+        for (const cJSON *m = value->child; m; m = m->next)
+            if (!skip || strcmp(m->string, skip) != 0)
+                members[count++] = m;
+        qsort(members, count, sizeof *members, compare_members);
+        wp_buffer_append(b, "{", 1);
+        for (size_t i = 0; i < count; i++) {
+            if (i)
+                wp_buffer_append(b, ",", 1);
+            wp_buffer_string(b, members[i]->string);
+            wp_buffer_append(b, ":", 1);
+            write_canonical(b, members[i], NULL);
+        }
+        wp_buffer_append(b, "}", 1);
+        free(members);
+    } else if (cJSON_IsArray(value)) {
+        wp_buffer_append(b, "[", 1);
+        for (const cJSON *m = value->child; m; m = m->next) {
+            if (m != value->child)
+                wp_buffer_append(b, ",", 1);
+            write_canonical(b, m, NULL);
+        }
+        wp_buffer_append(b, "]", 1);
+    } else if (cJSON_IsNumber(value)) {
+        wp_buffer_number(b, value->valuedouble);
+    } else if (cJSON_IsString(value)) {
+        wp_buffer_string(b, value->valuestring);
+    } else if (cJSON_IsTrue(value)) {
+        wp_buffer_puts(b, "true");
+    } else if (cJSON_IsFalse(value)) {
+        wp_buffer_puts(b, "false");
+    } else {
+        wp_buffer_puts(b, "null");
+    }
+}
+
+char *wp_canonical(const cJSON *value, const char *skip)
+{
+    wp_buffer b = {0};
+    write_canonical(&b, value, skip);
+    return wp_buffer_take(&b);
+}
+
+int wp_json_depth(const char *text, size_t length, int limit)
+{
+    int depth = 0, deepest = 0;
+    bool in_string = false;
+    for (size_t i = 0; i < length; i++) {
+        char c = text[i];
+        if (in_string) {
+            if (c == '\\')
+                i++;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > deepest) {
+                deepest = depth;
+                if (deepest > limit)
+                    return deepest;
+            }
+        } else if (c == ']' || c == '}') {
+            depth--;
+        }
+    }
+    return deepest;
+}

@@ -1,0 +1,87 @@
+/* wp_json.h -- JSON helpers of the protocol layer: errors that name a field,
+ * strict typed access to request members, canonical text, a string buffer. */
+#ifndef WP_JSON_H
+#define WP_JSON_H
+
+#include <cjson/cJSON.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+/* JSON-RPC error codes (docs/PROTOCOL.md). */
+#define WP_PARSE_ERROR (-32700)
+#define WP_INVALID_REQUEST (-32600)
+#define WP_NO_METHOD (-32601)
+#define WP_INVALID_PARAMS (-32602)
+#define WP_INTERNAL (-32603)
+#define WP_NO_FIXTURE (-32001)
+#define WP_STORAGE (-32002)
+#define WP_LIMIT (-32003)
+#define WP_SOLVER (-32004)
+
+/* Longest field path kept; longer ones are cut. */
+#define WP_FIELD_MAX 192
+
+typedef struct wp_error {
+    int code;                   /* one of the codes above */
+    char field[WP_FIELD_MAX];   /* path from the request's root, "" if none */
+    char reason[256];
+} wp_error;
+
+void wp_error_set(wp_error *error, int code, const char *field, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* "prefix.key" and "prefix[index]" into a WP_FIELD_MAX buffer. */
+void wp_path_key(char out[WP_FIELD_MAX], const char *prefix, const char *key);
+void wp_path_index(char out[WP_FIELD_MAX], const char *prefix, size_t index);
+
+/* The type of a JSON value in words, for error reasons ("a string"). */
+const char *wp_type_name(const cJSON *value);
+
+/* `value` must be an object whose members are all in `allowed` (NULL-ended)
+ * and appear once.  Errors are -32602 at `path` or `path.member`. */
+bool wp_check_object(const cJSON *value, const char *path, const char *const *allowed,
+                     wp_error *error);
+
+/* Typed members of an object already checked with wp_check_object.  Each
+ * returns false with an error at `path.key` when the member is of the wrong
+ * type, or is missing and `required`; *present (may be NULL) says whether it
+ * was there. */
+bool wp_member_number(const cJSON *object, const char *path, const char *key, bool required,
+                      double *out, bool *present, wp_error *error);
+bool wp_member_vector2(const cJSON *object, const char *path, const char *key, bool required,
+                       double out[2], bool *present, wp_error *error);
+bool wp_member_string(const cJSON *object, const char *path, const char *key, bool required,
+                      const char **out, wp_error *error);
+/* A finite number, or an array of exactly two finite numbers, at `path`. */
+bool wp_number(const cJSON *value, const char *path, double *out, wp_error *error);
+bool wp_vector2(const cJSON *value, const char *path, double out[2], wp_error *error);
+
+/* A growable string.  Out of memory is sticky: `failed` is set, appends stop
+ * and wp_buffer_take returns NULL. */
+typedef struct wp_buffer {
+    char *data;
+    size_t length, capacity;
+    bool failed;
+} wp_buffer;
+
+void wp_buffer_append(wp_buffer *buffer, const char *text, size_t length);
+void wp_buffer_puts(wp_buffer *buffer, const char *text);
+void wp_buffer_number(wp_buffer *buffer, double value);
+void wp_buffer_string(wp_buffer *buffer, const char *text); /* quoted, escaped */
+/* The NUL-terminated text (malloc'd, the caller frees), or NULL. */
+char *wp_buffer_take(wp_buffer *buffer);
+
+/* Shortest decimal text that reads back as the same double ("1", "0.5",
+ * "1e+21"); -0 is written "0".  Needs 32 bytes. */
+void wp_format_number(double value, char text[32]);
+
+/* Canonical JSON: object members sorted by key, numbers as
+ * wp_format_number, no white space; a top-level member named `skip` (may be
+ * NULL) is left out.  Malloc'd, or NULL when out of memory. */
+char *wp_canonical(const cJSON *value, const char *skip);
+
+/* The deepest nesting of arrays and objects in a JSON text, found without
+ * parsing it (strings are skipped), stopping once `limit` is passed. */
+int wp_json_depth(const char *text, size_t length, int limit);
+
+#endif

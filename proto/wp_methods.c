@@ -1,0 +1,498 @@
+/* wp_methods.c -- the methods of docs/PROTOCOL.md: one table of names,
+ * handlers and parameters, and the handlers, which read params, call
+ * libwrench and write results. */
+#include "wp_rpc.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- shared readers ------------------------------------------------------ */
+
+/* params.fixture: a stored id, or an inline fixture object. */
+static bool use_fixture(const wp_host *host, const cJSON *params, wp_fixture_use *use,
+                        wp_error *error)
+{
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(params, "fixture");
+    bool ok;
+    if (cJSON_IsString(value)) {
+        if (!wp_fixture_id_valid(value->valuestring)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
+                         "not a fixture id (32 hexadecimal digits) nor a fixture object");
+            return false;
+        }
+        ok = host->fixture_use(host->self, value->valuestring, use, error);
+    } else if (cJSON_IsObject(value)) {
+        wp_fixture_doc doc;
+        if (!wp_fixture_read(value, "params.fixture", &doc, error))
+            return false;
+        ok = host->fixture_adopt(host->self, &doc, false, use, error);
+    } else {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
+                     "must be a fixture id or a fixture object, not %s", wp_type_name(value));
+        return false;
+    }
+    if (!ok && !error->field[0])
+        snprintf(error->field, sizeof error->field, "params.fixture");
+    return ok;
+}
+
+/* params.id: a well-formed fixture id. */
+static const char *read_id(const cJSON *params, wp_error *error)
+{
+    const char *id;
+    if (!wp_member_string(params, "params", "id", true, &id, error))
+        return NULL;
+    if (!wp_fixture_id_valid(id)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.id",
+                     "not a fixture id: 32 hexadecimal digits, as fixture.put returns");
+        return NULL;
+    }
+    return id;
+}
+
+static cJSON *out_of_memory(cJSON *partial, wp_error *error)
+{
+    cJSON_Delete(partial);
+    wp_error_set(error, WP_INTERNAL, "", "out of memory");
+    return NULL;
+}
+
+static cJSON *vector3(const double v[3])
+{
+    /* + 0.0 turns -0 into 0, which cJSON would print as "-0". */
+    const double w[3] = {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0};
+    return cJSON_CreateDoubleArray(w, 3);
+}
+
+/* ---- fixtures ------------------------------------------------------------ */
+
+static cJSON *fixture_put(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                          wp_error *error)
+{
+    (void)limits;
+    wp_fixture_doc doc;
+    if (!wp_fixture_read(cJSON_GetObjectItemCaseSensitive(params, "fixture"), "params.fixture",
+                         &doc, error))
+        return NULL;
+    wp_fixture_use use;
+    if (!host->fixture_adopt(host->self, &doc, true, &use, error))
+        return NULL;
+    cJSON *result = cJSON_CreateObject();
+    if (result) {
+        cJSON_AddStringToObject(result, "id", use.id);
+        cJSON_AddStringToObject(result, "name", use.name);
+        cJSON_AddNumberToObject(result, "fixels", use.fixture->fixel_count);
+        cJSON_AddNumberToObject(result, "goal_cones", use.analysis->plan->kept_count);
+        cJSON_AddNumberToObject(result, "strong_cones", use.analysis->mode_count);
+        cJSON_AddBoolToObject(result, "pinned", use.analysis->pinned);
+    }
+    host->fixture_release(host->self, &use);
+    return result ? result : out_of_memory(NULL, error);
+}
+
+static cJSON *fixture_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                          wp_error *error)
+{
+    (void)limits;
+    const char *id = read_id(params, error);
+    wp_fixture_use use;
+    if (!id || !host->fixture_use(host->self, id, &use, error)) {
+        if (id && !error->field[0])
+            snprintf(error->field, sizeof error->field, "params.id");
+        return NULL;
+    }
+    cJSON *result = cJSON_CreateRaw(use.canonical);
+    host->fixture_release(host->self, &use);
+    return result ? result : out_of_memory(NULL, error);
+}
+
+static cJSON *fixture_delete(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                             wp_error *error)
+{
+    (void)limits;
+    const char *id = read_id(params, error);
+    if (!id || !host->fixture_delete(host->self, id, error)) {
+        if (id && !error->field[0])
+            snprintf(error->field, sizeof error->field, "params.id");
+        return NULL;
+    }
+    cJSON *result = cJSON_CreateObject();
+    if (!result || !cJSON_AddTrueToObject(result, "deleted"))
+        return out_of_memory(result, error);
+    return result;
+}
+
+static cJSON *fixture_list(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                           wp_error *error)
+{
+    (void)limits;
+    (void)params;
+    cJSON *result = host->fixture_list(host->self);
+    return result ? result : out_of_memory(NULL, error);
+}
+
+static cJSON *server_status(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                            wp_error *error)
+{
+    (void)limits;
+    (void)params;
+    cJSON *result = host->status(host->self);
+    return result ? result : out_of_memory(NULL, error);
+}
+
+/* ---- wrench.classify ------------------------------------------------------ */
+
+static const char *const SET_NAMES[] = {"goal", "strong", "both"};
+static const char *const VERDICT_NAMES[] = {"inside", "boundary", "outside"};
+
+typedef struct classify_request {
+    wr_set sets[3];
+    int set_count;
+    bool lp;
+    double tolerance;
+    size_t wrench_count;
+    double (*wrenches)[3];
+} classify_request;
+
+static bool read_sets(const cJSON *params, classify_request *r, wp_error *error)
+{
+    const cJSON *sets = cJSON_GetObjectItemCaseSensitive(params, "sets");
+    if (!sets) {
+        r->sets[0] = WR_SET_GOAL;
+        r->sets[1] = WR_SET_STRONG;
+        r->set_count = 2;
+        return true;
+    }
+    if (!cJSON_IsArray(sets) || !sets->child) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.sets",
+                     "must be a non-empty array of \"goal\", \"strong\", \"both\"");
+        return false;
+    }
+    size_t index = 0;
+    for (const cJSON *item = sets->child; item; item = item->next, index++) {
+        char field[WP_FIELD_MAX];
+        wp_path_index(field, "params.sets", index);
+        int set = -1;
+        for (int s = 0; s < 3 && cJSON_IsString(item); s++)
+            if (strcmp(item->valuestring, SET_NAMES[s]) == 0)
+                set = s;
+        if (set < 0) {
+            wp_error_set(error, WP_INVALID_PARAMS, field, "must be \"goal\", \"strong\" or \"both\"");
+            return false;
+        }
+        for (int s = 0; s < r->set_count; s++)
+            if (r->sets[s] == (wr_set)set) {
+                wp_error_set(error, WP_INVALID_PARAMS, field, "\"%s\" is asked twice",
+                             SET_NAMES[set]);
+                return false;
+            }
+        r->sets[r->set_count++] = (wr_set)set;
+    }
+    return true;
+}
+
+static bool read_classify(const wp_limits *limits, const cJSON *params,
+                          const wr_fixture *fixture, classify_request *r, wp_error *error)
+{
+    memset(r, 0, sizeof *r);
+    r->tolerance = WR_DEFAULT_TOLERANCE;
+    const char *method;
+    bool tolerance_given;
+    if (!read_sets(params, r, error) ||
+        !wp_member_string(params, "params", "method", false, &method, error) ||
+        !wp_member_number(params, "params", "tolerance", false, &r->tolerance, &tolerance_given,
+                          error))
+        return false;
+    if (method && strcmp(method, "auto") != 0 && strcmp(method, "lp") != 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.method", "must be \"auto\" or \"lp\"");
+        return false;
+    }
+    r->lp = method && strcmp(method, "lp") == 0;
+    if (r->tolerance < 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance", "must not be negative");
+        return false;
+    }
+    const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
+    if (!cJSON_IsArray(wrenches)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.wrenches",
+                     "must be an array of wrenches, not %s", wp_type_name(wrenches));
+        return false;
+    }
+    size_t count = (size_t)cJSON_GetArraySize(wrenches);
+    if (count > limits->max_wrenches) {
+        wp_error_set(error, WP_LIMIT, "params.wrenches",
+                     "%zu wrenches in one request, the limit is %zu (--max-wrenches)", count,
+                     limits->max_wrenches);
+        return false;
+    }
+    r->wrenches = malloc((count ? count : 1) * sizeof *r->wrenches);
+    if (!r->wrenches) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *w = wrenches->child; w; w = w->next, i++) {
+        char field[WP_FIELD_MAX];
+        wp_path_index(field, "params.wrenches", i);
+        if (!wp_wrench_read(w, field, fixture, r->wrenches[i], error))
+            return false;
+    }
+    r->wrench_count = count;
+    return true;
+}
+
+static void write_vector(wp_buffer *b, const double *v, int n)
+{
+    wp_buffer_puts(b, "[");
+    for (int i = 0; i < n; i++) {
+        if (i)
+            wp_buffer_puts(b, ",");
+        wp_buffer_number(b, v[i]);
+    }
+    wp_buffer_puts(b, "]");
+}
+
+/* One set's answer V (docs/PROTOCOL.md). */
+static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+{
+    wp_buffer_puts(b, "{\"verdict\":\"");
+    wp_buffer_puts(b, VERDICT_NAMES[answer->verdict]);
+    wp_buffer_puts(b, answer->verdict == WR_VERDICT_INSIDE ? "\",\"inside\":true,\"margin\":"
+                                                           : "\",\"inside\":false,\"margin\":");
+    if (answer->has_margin)
+        wp_buffer_number(b, answer->margin);
+    else
+        wp_buffer_puts(b, "null");
+    if (answer->blocking < 0) {
+        wp_buffer_puts(b, ",\"blocking\":null,\"states\":[],\"witness\":null}");
+        return;
+    }
+    const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
+    char text[WR_CONSTRAINT_TEXT];
+    wr_constraint_format(&cone->constraint, text);
+    wp_buffer_puts(b, ",\"blocking\":\"");
+    wp_buffer_puts(b, text);
+    wp_buffer_puts(b, "\",\"states\":[");
+    if (answer->blocking_set == WR_SET_GOAL) {
+        const wr_plan_origins *origins = &a->plan->origins[answer->blocking];
+        for (int i = 0; i < origins->count; i++) {
+            char state[WR_STATE_TEXT];
+            wr_state_format(origins->states[i], a->fixture->fixel_count, state);
+            wp_buffer_puts(b, i ? ",\"" : "\"");
+            wp_buffer_puts(b, state);
+            wp_buffer_puts(b, "\"");
+        }
+    }
+    const wr_witness *w = &answer->witness;
+    wp_buffer_puts(b, "],\"witness\":{\"acceleration\":");
+    write_vector(b, w->acceleration, 3);
+    wp_buffer_puts(b, ",\"forces\":[");
+    for (int i = 0; i < a->fixture->fixel_count; i++) {
+        if (i)
+            wp_buffer_puts(b, ",");
+        write_vector(b, w->force[i], 2);
+    }
+    wp_buffer_puts(b, "],\"wrench\":");
+    write_vector(b, w->wrench, 3);
+    wp_buffer_puts(b, "}}");
+}
+
+static cJSON *wrench_classify(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                              wp_error *error)
+{
+    wp_fixture_use use;
+    if (!use_fixture(host, params, &use, error))
+        return NULL;
+    const wr_analysis *a = use.analysis;
+    classify_request r;
+    wr_lp_set *goal = NULL, *strong = NULL;
+    wp_buffer b = {0};
+    cJSON *result = NULL;
+    if (!read_classify(limits, params, use.fixture, &r, error) ||
+        (r.lp && !host->lp_sets(host->self, &use, &goal, &strong, error)))
+        goto done;
+    wp_buffer_puts(&b, "[");
+    for (size_t i = 0; i < r.wrench_count && !b.failed; i++) {
+        wp_buffer_puts(&b, i ? ",{" : "{");
+        for (int s = 0; s < r.set_count; s++) {
+            wr_answer answer;
+            int status = r.lp ? wr_classify_lp(a, goal, strong, r.wrenches[i], r.sets[s], &answer)
+                              : wr_classify(a, r.wrenches[i], r.sets[s], r.tolerance, &answer);
+            if (status != 0) {
+                wp_error_set(error, WP_SOLVER, "params.wrenches",
+                             "GLPK failed on wrench %zu; nothing was answered", i);
+                goto done;
+            }
+            wp_buffer_puts(&b, s ? ",\"" : "\"");
+            wp_buffer_puts(&b, SET_NAMES[r.sets[s]]);
+            wp_buffer_puts(&b, "\":");
+            write_answer(&b, a, &answer);
+        }
+        wp_buffer_puts(&b, "}");
+    }
+    wp_buffer_puts(&b, "]");
+    char *results = wp_buffer_take(&b);
+    result = cJSON_CreateObject();
+    if (!results || !result || !cJSON_AddRawToObject(result, "results", results)) {
+        cJSON_Delete(result);
+        result = out_of_memory(NULL, error);
+    }
+    free(results);
+done:
+    free(b.data);
+    free(r.wrenches);
+    host->fixture_release(host->self, &use);
+    return result;
+}
+
+/* ---- cone.get, plan.get, modes.get --------------------------------------- */
+
+static cJSON *cone_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                       wp_error *error)
+{
+    (void)limits;
+    const char *text;
+    if (!wp_member_string(params, "params", "constraints", true, &text, error))
+        return NULL;
+    wp_fixture_use use;
+    if (!use_fixture(host, params, &use, error))
+        return NULL;
+    const wr_fixture *f = use.fixture;
+    wr_constraint constraint;
+    wr_error invalid;
+    wr_cone cone;
+    cJSON *result = NULL;
+    if (!wr_constraint_parse(text, f->fixel_count, &constraint, &invalid)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.constraints", "%s", invalid.reason);
+        goto done;
+    }
+    if (!wr_cone_build(&cone, f, &constraint)) {
+        wr_cone_release(&cone);
+        out_of_memory(NULL, error);
+        goto done;
+    }
+    result = cJSON_CreateObject();
+    cJSON_AddStringToObject(result, "constraints", text);
+    cJSON_AddBoolToObject(result, "empty", cone.empty);
+    cJSON_AddNumberToObject(result, "dimension", cone.dimension);
+    cJSON *halfspaces = cJSON_AddArrayToObject(result, "halfspaces");
+    cJSON *strict = cJSON_AddArrayToObject(result, "strict");
+    cJSON *equalities = cJSON_AddArrayToObject(result, "equalities");
+    cJSON *generators = cJSON_AddArrayToObject(result, "generators");
+    if (!result || !halfspaces || !strict || !equalities || !generators) {
+        wr_cone_release(&cone);
+        result = out_of_memory(result, error);
+        goto done;
+    }
+    double row[3];
+    for (int i = 0; i < cone.facet_count; i++) {
+        wr_fixture_unscale_row(f, cone.facets[i], row);
+        cJSON_AddItemToArray(halfspaces, vector3(row));
+        cJSON_AddItemToArray(strict, cJSON_CreateBool(cone.facet_open[i]));
+    }
+    for (int i = 0; i < cone.equality_count && !cone.empty; i++) {
+        wr_fixture_unscale_row(f, cone.equalities[i], row);
+        cJSON_AddItemToArray(equalities, vector3(row));
+    }
+    for (int i = 0; i < cone.ray_count; i++) {
+        wr_fixture_unscale_wrench(f, cone.rays[i], row);
+        double length = sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
+        for (int k = 0; k < 3; k++)
+            row[k] /= length;
+        cJSON_AddItemToArray(generators, vector3(row));
+    }
+    wr_cone_release(&cone);
+done:
+    host->fixture_release(host->self, &use);
+    return result;
+}
+
+static cJSON *plan_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                       wp_error *error)
+{
+    (void)limits;
+    wp_fixture_use use;
+    if (!use_fixture(host, params, &use, error))
+        return NULL;
+    const wr_plan *plan = use.analysis->plan;
+    int k = plan->fixel_count;
+    cJSON *result = cJSON_CreateObject();
+    cJSON *states = cJSON_AddArrayToObject(result, "states");
+    cJSON *cones = cJSON_AddArrayToObject(result, "cones");
+    for (int s = 0; states && s < plan->state_count; s++) {
+        const wr_plan_state *ps = &plan->states[s];
+        char text[WR_STATE_TEXT];
+        wr_state_format(ps->state, k, text);
+        cJSON *state = cJSON_CreateObject();
+        cJSON_AddStringToObject(state, "state", text);
+        cJSON *excluded = cJSON_AddArrayToObject(state, "excluded");
+        for (int e = 0; excluded && e < ps->excluded_count; e++)
+            cJSON_AddItemToArray(excluded,
+                                 cJSON_CreateString(plan->excluded[ps->excluded_first + e].letters));
+        cJSON_AddItemToArray(states, state);
+    }
+    for (int i = 0; cones && i < plan->kept_count; i++)
+        cJSON_AddItemToArray(cones, cJSON_CreateString(plan->kept[i].letters));
+    host->fixture_release(host->self, &use);
+    if (!states || !cones)
+        return out_of_memory(result, error);
+    return result;
+}
+
+static cJSON *modes_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                        wp_error *error)
+{
+    (void)limits;
+    wp_fixture_use use;
+    if (!use_fixture(host, params, &use, error))
+        return NULL;
+    const wr_analysis *a = use.analysis;
+    cJSON *result = cJSON_CreateObject();
+    cJSON *feasible = cJSON_AddArrayToObject(result, "feasible");
+    for (int i = 0; feasible && i < a->mode_count; i++) {
+        char text[WR_CONSTRAINT_TEXT];
+        wr_constraint_format(&a->modes[i], text);
+        cJSON_AddItemToArray(feasible, cJSON_CreateString(text));
+    }
+    cJSON_AddBoolToObject(result, "pinned", a->pinned);
+    host->fixture_release(host->self, &use);
+    if (!feasible)
+        return out_of_memory(result, error);
+    return result;
+}
+
+/* ---- the table ------------------------------------------------------------ */
+
+static const char *const NONE[] = {NULL};
+static const char *const FIXTURE[] = {"fixture", NULL};
+static const char *const ID[] = {"id", NULL};
+static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance", NULL};
+static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
+static const char *const CONE[] = {"fixture", "constraints", NULL};
+
+const wp_method wp_methods[] = {
+    {"fixture.put", fixture_put, FIXTURE, FIXTURE, "store a fixture; its id depends on its content"},
+    {"fixture.get", fixture_get, ID, ID, "the stored fixture"},
+    {"fixture.delete", fixture_delete, ID, ID, "forget a stored fixture"},
+    {"fixture.list", fixture_list, NONE, NONE, "the stored fixtures"},
+    {"wrench.classify", wrench_classify, CLASSIFY, CLASSIFY_REQUIRED,
+     "verdicts, margins and blocking transitions of wrenches"},
+    {"cone.get", cone_get, CONE, CONE, "the explicit cone of a constraint string"},
+    {"plan.get", plan_get, FIXTURE, FIXTURE, "contact states, their excluded strings, G_goal's cones"},
+    {"modes.get", modes_get, FIXTURE, FIXTURE, "the feasible moving contact modes"},
+    {"server.status", server_status, NONE, NONE, "version, uptime, counts"},
+    {"push.regions", NULL, NONE, NONE, "where a frictionless finger seats the part (not yet)"},
+    {"gravity.sweep", NULL, NONE, NONE, "tilts under which gravity seats the part (not yet)"},
+    {"stability.margin", NULL, NONE, NONE, "disturbance a biasing wrench tolerates (not yet)"},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+const wp_method *wp_method_find(const char *name)
+{
+    for (const wp_method *m = wp_methods; m->name; m++)
+        if (strcmp(m->name, name) == 0)
+            return m;
+    return NULL;
+}

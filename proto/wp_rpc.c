@@ -1,0 +1,213 @@
+/* wp_rpc.c -- the JSON-RPC 2.0 envelope: one line in, one line out. */
+#include "wp_rpc.h"
+
+#include <ctype.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *message_of(int code)
+{
+    switch (code) {
+    case WP_PARSE_ERROR: return "Parse error";
+    case WP_INVALID_REQUEST: return "Invalid Request";
+    case WP_NO_METHOD: return "Method not found";
+    case WP_INVALID_PARAMS: return "Invalid params";
+    case WP_NO_FIXTURE: return "No such fixture";
+    case WP_STORAGE: return "Storage failure";
+    case WP_LIMIT: return "Limit exceeded";
+    case WP_SOLVER: return "Solver failure";
+    default: return "Internal error";
+    }
+}
+
+/* {"jsonrpc":"2.0","error":{...},"id":<id>} with id text (e.g. "null"). */
+static void write_error(wp_buffer *b, const wp_error *error, const char *id)
+{
+    wp_buffer_puts(b, "{\"jsonrpc\":\"2.0\",\"error\":{\"code\":");
+    wp_buffer_number(b, error->code);
+    wp_buffer_puts(b, ",\"message\":");
+    wp_buffer_string(b, message_of(error->code));
+    wp_buffer_puts(b, ",\"data\":{\"field\":");
+    wp_buffer_string(b, error->field);
+    wp_buffer_puts(b, ",\"reason\":");
+    wp_buffer_string(b, error->reason);
+    wp_buffer_puts(b, "}},\"id\":");
+    wp_buffer_puts(b, id);
+    wp_buffer_puts(b, "}");
+}
+
+char *wp_error_line(int code, const char *field, const char *reason)
+{
+    wp_error error;
+    wp_error_set(&error, code, field, "%s", reason);
+    wp_buffer b = {0};
+    write_error(&b, &error, "null");
+    wp_buffer_puts(&b, "\n");
+    return wp_buffer_take(&b);
+}
+
+static const char *const ENVELOPE_FIELDS[] = {"jsonrpc", "method", "params", "id", NULL};
+
+/* Check the params against the method's table entry, then run it. */
+static cJSON *call(const wp_host *host, const wp_limits *limits, const cJSON *request,
+                   wp_error *error)
+{
+    const cJSON *method = cJSON_GetObjectItemCaseSensitive(request, "method");
+    const wp_method *m = wp_method_find(method->valuestring);
+    if (!m) {
+        wp_error_set(error, WP_NO_METHOD, "method", "no method named \"%.64s\"",
+                     method->valuestring);
+        return NULL;
+    }
+    if (!m->handler) {
+        wp_error_set(error, WP_NO_METHOD, "method", "%s is not served yet", m->name);
+        return NULL;
+    }
+    const cJSON *params = cJSON_GetObjectItemCaseSensitive(request, "params");
+    cJSON *empty = NULL;
+    if (!params) {
+        params = empty = cJSON_CreateObject();
+        if (!empty) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return NULL;
+        }
+    }
+    cJSON *result = NULL;
+    if (wp_check_object(params, "params", m->fields, error)) {
+        bool complete = true;
+        for (const char *const *name = m->required; *name && complete; name++)
+            if (!cJSON_GetObjectItemCaseSensitive(params, *name)) {
+                char field[WP_FIELD_MAX];
+                wp_path_key(field, "params", *name);
+                wp_error_set(error, WP_INVALID_PARAMS, field, "required");
+                complete = false;
+            }
+        if (complete)
+            result = m->handler(host, limits, params, error);
+    }
+    cJSON_Delete(empty);
+    return result;
+}
+
+/* Answer one request object into `b`; nothing for a notification.  The id
+ * is echoed as the client wrote it (canonical text of the parsed value). */
+static void answer_request(const wp_host *host, const wp_limits *limits, const cJSON *request,
+                           wp_buffer *b, wp_counts *counts)
+{
+    counts->requests++;
+    wp_error error = {0};
+    const char *id_text = "null";
+    char *id_owned = NULL;
+    bool notification = false;
+    const cJSON *id = cJSON_IsObject(request) ? cJSON_GetObjectItemCaseSensitive(request, "id")
+                                             : NULL;
+    bool valid = false;
+    if (!cJSON_IsObject(request)) {
+        wp_error_set(&error, WP_INVALID_REQUEST, "", "a request is an object, not %s",
+                     wp_type_name(request));
+    } else if (id && !cJSON_IsString(id) && !cJSON_IsNumber(id) && !cJSON_IsNull(id)) {
+        wp_error_set(&error, WP_INVALID_REQUEST, "id", "must be a string, a number or null");
+    } else {
+        if (id && !cJSON_IsNull(id))
+            id_text = id_owned = wp_canonical(id, NULL);
+        const cJSON *version = cJSON_GetObjectItemCaseSensitive(request, "jsonrpc");
+        const cJSON *method = cJSON_GetObjectItemCaseSensitive(request, "method");
+        wp_error envelope;
+        if (!wp_check_object(request, "", ENVELOPE_FIELDS, &envelope))
+            wp_error_set(&error, WP_INVALID_REQUEST, envelope.field, "%s", envelope.reason);
+        else if (!cJSON_IsString(version) || strcmp(version->valuestring, "2.0") != 0)
+            wp_error_set(&error, WP_INVALID_REQUEST, "jsonrpc", "must be \"2.0\"");
+        else if (!cJSON_IsString(method))
+            wp_error_set(&error, WP_INVALID_REQUEST, "method", "must be a string, not %s",
+                         wp_type_name(method));
+        else
+            valid = true;
+        /* Only a valid request without an id is a notification: an
+         * invalid one is answered (with id null if it has none). */
+        notification = valid && id == NULL;
+    }
+    cJSON *result = valid ? call(host, limits, request, &error) : NULL;
+    if (!result)
+        counts->errors++;
+    if (!notification) {
+        if (b->length > 1) /* after "[" and an earlier answer */
+            wp_buffer_puts(b, ",");
+        if (result) {
+            char *text = cJSON_PrintUnformatted(result);
+            if (!text) {
+                wp_error_set(&error, WP_INTERNAL, "", "out of memory");
+                write_error(b, &error, id_owned ? id_owned : "null");
+            } else {
+                wp_buffer_puts(b, "{\"jsonrpc\":\"2.0\",\"result\":");
+                wp_buffer_puts(b, text);
+                wp_buffer_puts(b, ",\"id\":");
+                wp_buffer_puts(b, id_text);
+                wp_buffer_puts(b, "}");
+                free(text);
+            }
+        } else {
+            write_error(b, &error, id_text);
+        }
+    }
+    cJSON_Delete(result);
+    free(id_owned);
+}
+
+char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
+                     size_t length, wp_counts *counts)
+{
+    while (length > 0 && isspace((unsigned char)line[length - 1]))
+        length--;
+    size_t start = 0;
+    while (start < length && isspace((unsigned char)line[start]))
+        start++;
+    if (start == length) {
+        counts->requests++;
+        counts->errors++;
+        return wp_error_line(WP_PARSE_ERROR, "", "an empty line is not a JSON text");
+    }
+    if (wp_json_depth(line, length, limits->max_depth) > limits->max_depth) {
+        counts->requests++;
+        counts->errors++;
+        char reason[96];
+        snprintf(reason, sizeof reason, "JSON nested deeper than %d levels", limits->max_depth);
+        return wp_error_line(WP_INVALID_REQUEST, "", reason);
+    }
+    const char *end = NULL;
+    cJSON *json = cJSON_ParseWithLengthOpts(line + start, length - start, &end, false);
+    if (!json || end != line + length) {
+        cJSON_Delete(json);
+        counts->requests++;
+        counts->errors++;
+        return wp_error_line(WP_PARSE_ERROR, "", json ? "text after the JSON value"
+                                                      : "the line is not valid JSON");
+    }
+    wp_buffer b = {0};
+    if (cJSON_IsArray(json)) {
+        if (!json->child) {
+            cJSON_Delete(json);
+            counts->requests++;
+            counts->errors++;
+            return wp_error_line(WP_INVALID_REQUEST, "", "an empty batch");
+        }
+        wp_buffer_puts(&b, "[");
+        for (const cJSON *request = json->child; request; request = request->next)
+            answer_request(host, limits, request, &b, counts);
+        if (b.length == 1) { /* notifications only */
+            free(b.data);
+            cJSON_Delete(json);
+            return NULL;
+        }
+        wp_buffer_puts(&b, "]");
+    } else {
+        answer_request(host, limits, json, &b, counts);
+        if (b.length == 0) {
+            cJSON_Delete(json);
+            return NULL;
+        }
+    }
+    cJSON_Delete(json);
+    wp_buffer_puts(&b, "\n");
+    return wp_buffer_take(&b);
+}

@@ -1,0 +1,310 @@
+/* test_proto.c -- the protocol layer without sockets: SHA-256, numbers,
+ * canonical ids, and the envelope, against the daemon's real cache. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+
+#include "test_util.h"
+#include "wd_worker.h"
+#include "wp_rpc.h"
+#include "wp_sha256.h"
+
+static void hex(const unsigned char digest[32], char out[65])
+{
+    for (int i = 0; i < 32; i++)
+        snprintf(out + 2 * i, 3, "%02x", digest[i]);
+}
+
+/* FIPS 180-4 examples (NIST CSRC "SHA256.pdf", "SHA2_Additional.pdf"). */
+static void sha256_matches_nist_vectors(void **state)
+{
+    (void)state;
+    struct {
+        const char *text;
+        size_t repeat;
+        const char *digest;
+    } vectors[] = {
+        {"abc", 1, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"},
+        {"", 1, "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"},
+        {"abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq", 1,
+         "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1"},
+        {"a", 1000000, "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0"},
+    };
+    for (size_t v = 0; v < sizeof vectors / sizeof vectors[0]; v++) {
+        wp_sha256 hash;
+        wp_sha256_init(&hash);
+        for (size_t r = 0; r < vectors[v].repeat; r++)
+            wp_sha256_update(&hash, vectors[v].text, strlen(vectors[v].text));
+        unsigned char digest[32];
+        char text[65];
+        wp_sha256_final(&hash, digest);
+        hex(digest, text);
+        assert_string_equal(text, vectors[v].digest);
+    }
+}
+
+/* Shortest round-trip text: reads back exactly, and no shorter %g text
+ * does (checked on random bit patterns, so every exponent range). */
+static void numbers_round_trip_shortest(void **state)
+{
+    (void)state;
+    test_rng rng = {31337};
+    int checked = 0;
+    for (int i = 0; i < 200000; i++) {
+        uint64_t bits = (uint64_t)(test_uniform(&rng) * 4294967296.0) << 32 |
+                        (uint64_t)(test_uniform(&rng) * 4294967296.0);
+        double value;
+        memcpy(&value, &bits, sizeof value);
+        if (!isfinite(value))
+            continue;
+        char text[32], shorter[400];
+        wp_format_number(value, text);
+        assert_true(strtod(text, NULL) == value);
+        int digits = 0;
+        for (const char *c = text; *c && *c != 'e'; c++)
+            digits += *c >= '0' && *c <= '9';
+        if (digits > 1 && value != 0) {
+            snprintf(shorter, sizeof shorter, "%.*g", digits - 1, value);
+            assert_true(strtod(shorter, NULL) != value || strlen(shorter) >= strlen(text));
+        }
+        checked++;
+    }
+    char text[32];
+    wp_format_number(-0.0, text);
+    assert_string_equal(text, "0");
+    wp_format_number(1.0, text);
+    assert_string_equal(text, "1");
+    wp_format_number(0.1, text);
+    assert_string_equal(text, "0.1");
+    print_message("proto: %d random doubles round-trip through their shortest text\n", checked);
+}
+
+static const char DISC[] =
+    "{\"name\":\"a\",\"body\":{\"mass\":1,\"inertia\":0.5,\"com\":[0,0],"
+    "\"shape\":{\"type\":\"circle\",\"center\":[0,0],\"radius\":1}},"
+    "\"friction\":{\"static\":0.5},\"fixels\":[{\"at\":[-1,0],\"normal\":[1,0]},"
+    "{\"at\":[0,-1],\"normal\":[0,1]}]}";
+/* The same content: other key order, other number spellings, other name. */
+static const char DISC_AGAIN[] =
+    "{\"fixels\":[{\"normal\":[1.0,0e3],\"at\":[-1.0,0.0]},{\"at\":[0,-1E0],\"normal\":[0,1]}],"
+    "\"friction\":{\"static\":5e-1},\"body\":{\"shape\":{\"radius\":1.0,\"center\":[-0,0],"
+    "\"type\":\"circle\"},\"com\":[0,0],\"inertia\":0.50,\"mass\":1.0},\"name\":\"b\"}";
+
+static void fixture_id_ignores_order_spelling_and_name(void **state)
+{
+    (void)state;
+    cJSON *a = cJSON_Parse(DISC), *b = cJSON_Parse(DISC_AGAIN);
+    wp_fixture_doc x, y;
+    wp_error error;
+    assert_true(wp_fixture_read(a, "params.fixture", &x, &error));
+    assert_true(wp_fixture_read(b, "params.fixture", &y, &error));
+    assert_string_equal(x.id, y.id);
+    assert_true(wp_fixture_id_valid(x.id));
+    assert_string_equal(x.name, "a");
+    assert_string_equal(y.name, "b");
+    /* Another friction is another fixture. */
+    cJSON_SetNumberValue(cJSON_GetObjectItem(cJSON_GetObjectItem(a, "friction"), "static"), 0.6);
+    wp_fixture_doc z;
+    assert_true(wp_fixture_read(a, "params.fixture", &z, &error));
+    assert_string_not_equal(x.id, z.id);
+    wp_fixture_doc_release(&x);
+    wp_fixture_doc_release(&y);
+    wp_fixture_doc_release(&z);
+    cJSON_Delete(a);
+    cJSON_Delete(b);
+}
+
+/* ---- the envelope, against the real cache -------------------------------- */
+
+typedef struct harness {
+    wd_cache *cache;
+    wd_stats stats;
+    wd_context *context;
+    wp_limits limits;
+} harness;
+
+static int setup(void **state)
+{
+    harness *h = calloc(1, sizeof *h);
+    char why[128];
+    h->cache = wd_cache_new(NULL, 1 << 20, why, sizeof why);
+    h->context = wd_context_new(h->cache, &h->stats);
+    h->limits = (wp_limits){16, 100};
+    *state = h;
+    return h->cache && h->context ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    harness *h = *state;
+    wd_context_free(h->context);
+    wd_cache_free(h->cache);
+    free(h);
+    return 0;
+}
+
+/* The answer to `line`, parsed (the caller deletes it); NULL for none. */
+static cJSON *ask(harness *h, const char *line)
+{
+    wp_counts counts = {0, 0};
+    char *text = wp_answer_line(wd_context_host(h->context), &h->limits, line, strlen(line),
+                                &counts);
+    if (!text)
+        return NULL;
+    assert_true(strlen(text) > 0 && text[strlen(text) - 1] == '\n');
+    cJSON *json = cJSON_Parse(text);
+    assert_non_null(json);
+    free(text);
+    return json;
+}
+
+static void expect_error(harness *h, const char *line, int code, const char *field)
+{
+    cJSON *answer = ask(h, line);
+    assert_non_null(answer);
+    cJSON *error = cJSON_GetObjectItem(answer, "error");
+    if (!error)
+        fail_msg("no error for %s", line);
+    int got = cJSON_GetObjectItem(error, "code")->valueint;
+    const char *got_field =
+        cJSON_GetObjectItem(cJSON_GetObjectItem(error, "data"), "field")->valuestring;
+    if (got != code || strcmp(got_field, field) != 0)
+        fail_msg("%s: got %d at \"%s\", expected %d at \"%s\"", line, got, got_field, code, field);
+    cJSON_Delete(answer);
+}
+
+static void envelope_errors_name_the_field(void **state)
+{
+    harness *h = *state;
+    expect_error(h, "", WP_PARSE_ERROR, "");
+    expect_error(h, "  \t ", WP_PARSE_ERROR, "");
+    expect_error(h, "{\"jsonrpc\":", WP_PARSE_ERROR, "");
+    expect_error(h, "{} {}", WP_PARSE_ERROR, "");
+    expect_error(h, "[]", WP_INVALID_REQUEST, "");
+    expect_error(h, "42", WP_INVALID_REQUEST, "");
+    expect_error(h, "{\"jsonrpc\":\"1.0\",\"method\":\"fixture.list\",\"id\":1}",
+                 WP_INVALID_REQUEST, "jsonrpc");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":7,\"id\":1}", WP_INVALID_REQUEST, "method");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"x\",\"id\":{}}", WP_INVALID_REQUEST, "id");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"x\",\"id\":1,\"extra\":0}",
+                 WP_INVALID_REQUEST, "extra");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"nope\",\"id\":1}", WP_NO_METHOD, "method");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"gravity.sweep\",\"id\":1}", WP_NO_METHOD,
+                 "method");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"params\":[],\"id\":1}",
+                 WP_INVALID_PARAMS, "params");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"params\":{\"x\":1},\"id\":1}",
+                 WP_INVALID_PARAMS, "params.x");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"id\":1}", WP_INVALID_PARAMS,
+                 "params.id");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"params\":{\"id\":\"zz\"},\"id\":1}",
+                 WP_INVALID_PARAMS, "params.id");
+    expect_error(h,
+                 "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"params\":{\"id\":"
+                 "\"0123456789abcdef0123456789abcdef\"},\"id\":1}",
+                 WP_NO_FIXTURE, "params.id");
+    /* Nesting beyond the limit (16 here) is refused before parsing. */
+    char deep[64] = "";
+    for (int i = 0; i < 20; i++)
+        strcat(deep, "[");
+    expect_error(h, deep, WP_INVALID_REQUEST, "");
+}
+
+static void notifications_and_batches(void **state)
+{
+    harness *h = *state;
+    /* A notification, even a failing one, gets nothing. */
+    assert_null(ask(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\"}"));
+    assert_null(ask(h, "{\"jsonrpc\":\"2.0\",\"method\":\"nope\"}"));
+    assert_null(ask(h, "[{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\"}]"));
+    /* An invalid request without an id is not a notification. */
+    cJSON *answer = ask(h, "{\"method\":\"fixture.list\"}");
+    assert_non_null(cJSON_GetObjectItem(answer, "error"));
+    assert_true(cJSON_IsNull(cJSON_GetObjectItem(answer, "id")));
+    cJSON_Delete(answer);
+    /* A batch answers its requests with ids, in order. */
+    answer = ask(h, "[{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"id\":\"one\"},"
+                    "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\"},"
+                    "1,"
+                    "{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"id\":3.5}]");
+    assert_true(cJSON_IsArray(answer));
+    assert_int_equal(cJSON_GetArraySize(answer), 3);
+    assert_string_equal(cJSON_GetObjectItem(cJSON_GetArrayItem(answer, 0), "id")->valuestring,
+                        "one");
+    assert_true(cJSON_IsNull(cJSON_GetObjectItem(cJSON_GetArrayItem(answer, 1), "id")));
+    assert_true(cJSON_GetObjectItem(cJSON_GetArrayItem(answer, 2), "id")->valuedouble == 3.5);
+    cJSON_Delete(answer);
+}
+
+static void put_get_classify_delete(void **state)
+{
+    harness *h = *state;
+    char line[2048];
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
+             DISC);
+    cJSON *answer = ask(h, line);
+    cJSON *result = cJSON_GetObjectItem(answer, "result");
+    assert_non_null(result);
+    char id[WP_ID_LENGTH + 1];
+    snprintf(id, sizeof id, "%s", cJSON_GetObjectItem(result, "id")->valuestring);
+    assert_int_equal(cJSON_GetObjectItem(result, "goal_cones")->valueint, 4);
+    assert_int_equal(cJSON_GetObjectItem(result, "strong_cones")->valueint, 9);
+    cJSON_Delete(answer);
+    /* The same content put again: the same id, and the new name wins. */
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":2}",
+             DISC_AGAIN);
+    answer = ask(h, line);
+    result = cJSON_GetObjectItem(answer, "result");
+    assert_string_equal(cJSON_GetObjectItem(result, "id")->valuestring, id);
+    assert_string_equal(cJSON_GetObjectItem(result, "name")->valuestring, "b");
+    cJSON_Delete(answer);
+    /* Classify by id: SPEC section 7's margin. */
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
+             "\"wrenches\":[[-1,-1,0]],\"sets\":[\"goal\"]},\"id\":3}",
+             id);
+    answer = ask(h, line);
+    cJSON *goal = cJSON_GetObjectItem(
+        cJSON_GetArrayItem(cJSON_GetObjectItem(cJSON_GetObjectItem(answer, "result"), "results"), 0),
+        "goal");
+    assert_true(fabs(cJSON_GetObjectItem(goal, "margin")->valuedouble -
+                     0.5 / sqrt(2 * 1.25)) < 1e-12);
+    cJSON_Delete(answer);
+    /* Too many wrenches: the limit's own code. */
+    char *big = malloc(8192);
+    int n = snprintf(big, 8192,
+                     "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":"
+                     "\"%s\",\"wrenches\":[",
+                     id);
+    for (int i = 0; i < 101; i++)
+        n += snprintf(big + n, 8192 - (size_t)n, "%s[1,2,3]", i ? "," : "");
+    snprintf(big + n, 8192 - (size_t)n, "]},\"id\":4}");
+    expect_error(h, big, WP_LIMIT, "params.wrenches");
+    free(big);
+    /* Delete, then it is gone. */
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.delete\",\"params\":{\"id\":\"%s\"},\"id\":5}",
+             id);
+    answer = ask(h, line);
+    assert_true(cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetObjectItem(answer, "result"), "deleted")));
+    cJSON_Delete(answer);
+    expect_error(h, line, WP_NO_FIXTURE, "params.id");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(sha256_matches_nist_vectors),
+        cmocka_unit_test(numbers_round_trip_shortest),
+        cmocka_unit_test(fixture_id_ignores_order_spelling_and_name),
+        cmocka_unit_test_setup_teardown(envelope_errors_name_the_field, setup, teardown),
+        cmocka_unit_test_setup_teardown(notifications_and_batches, setup, teardown),
+        cmocka_unit_test_setup_teardown(put_get_classify_delete, setup, teardown),
+    };
+    return cmocka_run_group_tests_name("proto", tests, NULL, NULL);
+}
