@@ -6,8 +6,10 @@
  * the loop.  Connections are owned by the loop thread.
  *
  * Order: each line read becomes a slot at the tail of its connection's
- * queue; answers are written from the head as soon as the head is done, so
- * a pipelining client reads its answers in the order it asked. */
+ * queue.  A connection has at most one request with the workers at a time,
+ * taken in queue order, so its requests run as if sent one by one (a put
+ * followed by a query of its id works when pipelined); answers are written
+ * from the head, in the order asked.  Connections run in parallel. */
 #include "wd_server.h"
 #include "wd_log.h"
 #include "wd_worker.h"
@@ -40,6 +42,8 @@ typedef struct connection connection;
 typedef struct slot {
     struct slot *next;
     connection *connection;
+    char *line;           /* the request, until handed to a worker */
+    size_t length;
     bool done;
     char *response;       /* NULL: nothing to write (notifications) */
 } slot;
@@ -50,9 +54,11 @@ struct connection {
     struct bufferevent *bev;   /* NULL once the socket is closed */
     slot *head, *tail;
     size_t pending;            /* slots not yet written (or dropped) */
+    slot *running;             /* the slot with the workers, or NULL */
     bool discarding;           /* skipping the rest of an over-long line */
     bool paused;               /* not reading: too many answers pending */
     bool input_closed;         /* end of input, or shutting down */
+    int busy;                  /* callbacks running on it: not freed meanwhile */
     unsigned long number;      /* for the log */
 };
 
@@ -88,6 +94,7 @@ static void free_connection(connection *c)
     s->connection_count--;
     for (slot *x = c->head, *next; x; x = next) {
         next = x->next;
+        free(x->line);
         free(x->response);
         free(x);
     }
@@ -109,6 +116,8 @@ static void close_socket(connection *c)
  * ended (or the socket is gone) and every answer has been written out. */
 static void maybe_finish(connection *c)
 {
+    if (c->busy)
+        return; /* the outermost callback comes back here */
     if (c->bev && !c->input_closed)
         return;
     if (c->pending > 0)
@@ -175,24 +184,45 @@ static void answer_now(connection *c, int code, const char *reason)
     flush(c);
 }
 
-static void submit(connection *c, char *line, size_t length)
+/* Hand the connection's next waiting request to the workers, unless one
+ * of its requests is there already. */
+static void dispatch(connection *c)
 {
-    slot *x = add_slot(c);
-    wd_job *job = x ? calloc(1, sizeof *job) : NULL;
+    if (c->running)
+        return;
+    slot *x = c->head;
+    while (x && (x->done || !x->line))
+        x = x->next;
+    if (!x)
+        return;
+    wd_job *job = calloc(1, sizeof *job);
     if (!job) {
-        free(line);
-        if (x) {
-            x->response = wp_error_line(WP_INTERNAL, "", "out of memory");
-            x->done = true;
-            flush(c);
-        }
+        free(x->line);
+        x->line = NULL;
+        x->response = wp_error_line(WP_INTERNAL, "", "out of memory");
+        x->done = true;
+        flush(c);
         return;
     }
     job->owner = x;
-    job->line = line;
-    job->length = length;
-    wd_log(WD_LOG_DEBUG, "client %lu: request of %zu bytes", c->number, length);
+    job->line = x->line;
+    job->length = x->length;
+    x->line = NULL;
+    c->running = x;
+    wd_log(WD_LOG_DEBUG, "client %lu: request of %zu bytes", c->number, job->length);
     wd_pool_submit(c->server->pool, job);
+}
+
+static void submit(connection *c, char *line, size_t length)
+{
+    slot *x = add_slot(c);
+    if (!x) {
+        free(line);
+        return;
+    }
+    x->line = line;
+    x->length = length;
+    dispatch(c);
 }
 
 /* Cut complete lines out of the input and submit them. */
@@ -245,10 +275,16 @@ static void process_input(connection *c)
     }
 }
 
+/* Callbacks hold the connection busy so that nothing they call frees it;
+ * the last thing each does is to see whether it is finished. */
 static void on_read(struct bufferevent *bev, void *argument)
 {
     (void)bev;
-    process_input(argument);
+    connection *c = argument;
+    c->busy++;
+    process_input(c);
+    c->busy--;
+    maybe_finish(c);
 }
 
 static void on_write(struct bufferevent *bev, void *argument)
@@ -261,17 +297,18 @@ static void on_event(struct bufferevent *bev, short events, void *argument)
 {
     (void)bev;
     connection *c = argument;
+    c->busy++;
     if (events & BEV_EVENT_EOF) {
         /* The client is done sending; it may still read. */
         c->input_closed = true;
         process_input(c);
-        maybe_finish(c);
     } else if (events & BEV_EVENT_ERROR) {
         wd_log(WD_LOG_DEBUG, "client %lu: %s", c->number, strerror(errno));
         c->input_closed = true;
         close_socket(c);
-        maybe_finish(c);
     }
+    c->busy--;
+    maybe_finish(c);
 }
 
 static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struct sockaddr *address,
@@ -344,10 +381,16 @@ static void on_done(evutil_socket_t fd, short events, void *argument)
     while (job) {
         wd_job *next = job->next;
         slot *x = job->owner;
+        connection *c = x->connection;
         x->response = job->response;
         x->done = true;
         free(job);
-        flush(x->connection);
+        c->running = NULL;
+        c->busy++;
+        dispatch(c);
+        flush(c);
+        c->busy--;
+        maybe_finish(c);
         job = next;
     }
 }
@@ -380,10 +423,12 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
     event_add(s->grace_timer, &grace);
     for (connection *c = s->connections, *next; c; c = next) {
         next = c->next;
+        c->busy++;
         process_input(c); /* complete lines already received are in flight */
         c->input_closed = true;
         if (c->bev)
             bufferevent_disable(c->bev, EV_READ);
+        c->busy--;
         maybe_finish(c);
     }
     if (!s->connections)
