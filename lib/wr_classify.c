@@ -191,13 +191,12 @@ int wr_classify(const wr_analysis *a, const double wrench[3], wr_set set, double
     answer->blocking = -1;
     if (!finite3(wrench) || !(tolerance >= 0))
         return -1;
-    double h[3];
-    double scale = wr_fixture_scale_wrench(a->fixture, wrench, h);
+    double x[3];
+    double scale = wr_fixture_unit_wrench(a->fixture, wrench, x);
     if (!(scale > 0)) {
         classify_zero(a, set, answer);
         return 0;
     }
-    double x[3] = {h[0] / scale, h[1] / scale, h[2] / scale};
 
     int goal_blocking = -1, strong_blocking = -1;
     double goal_margin = 1, strong_margin = 1;
@@ -215,11 +214,20 @@ int wr_classify(const wr_analysis *a, const double wrench[3], wr_set set, double
     answer->blocking = goal_decides ? goal_blocking : strong_blocking;
     if (answer->blocking >= 0) {
         const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
+        /* The witness of the unit wrench, scaled back: the same numbers as
+         * for g itself (cones are cones), and overflow only ever reaches
+         * the results, never the decomposition. */
         double projection[3];
         wr_cone_signed_distance(cone, x, projection);
-        for (int k = 0; k < 3; k++)
-            projection[k] *= scale;
-        wr_cone_witness(cone, a->fixture, projection, &answer->witness);
+        wr_witness *w = &answer->witness;
+        wr_cone_witness(cone, a->fixture, projection, w);
+        for (int k = 0; k < 3; k++) {
+            w->acceleration[k] *= scale;
+            w->wrench[k] *= scale;
+        }
+        for (int i = 0; i < a->fixture->fixel_count; i++)
+            for (int k = 0; k < 2; k++)
+                w->force[i][k] *= scale;
     }
     return 0;
 }

@@ -550,6 +550,26 @@ double wr_fixture_scale_wrench(const wr_fixture *fixture, const double wrench[3]
     return wr_norm3(scaled);
 }
 
+double wr_fixture_unit_wrench(const wr_fixture *fixture, const double wrench[3], double unit[3])
+{
+    double largest = fmax(fabs(wrench[0]), fmax(fabs(wrench[1]), fabs(wrench[2])));
+    if (!(largest > 0)) {
+        unit[0] = unit[1] = unit[2] = 0;
+        return 0;
+    }
+    /* Components at most 1 before torque meets 1/rho, at most 1 again before
+     * squaring: nothing overflows, and the smallest wrenches do not vanish. */
+    double h[3] = {wrench[0] / largest, wrench[1] / largest,
+                   wrench[2] / largest / fixture->gyration_radius};
+    double scaled_largest = fmax(fabs(h[0]), fmax(fabs(h[1]), fabs(h[2])));
+    for (int k = 0; k < 3; k++)
+        h[k] /= scaled_largest;
+    double length = wr_norm3(h);
+    for (int k = 0; k < 3; k++)
+        unit[k] = h[k] / length;
+    return largest * scaled_largest * length;
+}
+
 void wr_fixture_unscale_wrench(const wr_fixture *fixture, const double scaled[3],
                                double wrench[3])
 {

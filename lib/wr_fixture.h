@@ -100,6 +100,13 @@ typedef struct wr_fixture {
 wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error);
 void wr_fixture_free(wr_fixture *fixture);
 
+/* The unit direction, in the scaled metric, of a physical wrench, and the
+ * length of its scaled form (SPEC section 5).  Exact for any finite wrench,
+ * however large or small: it divides by the largest component first.  The
+ * length may be +inf for wrenches near the largest double; for the zero
+ * wrench it is 0 and `unit` is zero. */
+double wr_fixture_unit_wrench(const wr_fixture *fixture, const double wrench[3], double unit[3]);
+
 /* Scale a physical wrench g = (f_x, f_y, tau) to (f_x, f_y, tau / rho).
  * Returns the length of the scaled wrench. */
 double wr_fixture_scale_wrench(const wr_fixture *fixture, const double wrench[3],

@@ -257,10 +257,7 @@ int wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member
         set->generations[index] = env->generation;
     }
     double h[3];
-    double scale = wr_fixture_scale_wrench(f, wrench, h);
-    if (scale > 0)
-        for (int j = 0; j < 3; j++)
-            h[j] /= scale;
+    double scale = wr_fixture_unit_wrench(f, wrench, h);
     if (env->inject_after == 0) {
         env->inject_after = -1;
         glp_set_row_bnds(p, 0, GLP_FX, 0, 0); /* row 0 does not exist: fatal */

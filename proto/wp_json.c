@@ -260,6 +260,10 @@ static int significant_digits(const char *text)
 
 void wp_format_number(double value, char text[32])
 {
+    if (!isfinite(value)) { /* JSON has no infinities: an overflowed result */
+        strcpy(text, "null");
+        return;
+    }
     if (value == 0) { /* also -0 */
         strcpy(text, "0");
         return;
@@ -343,6 +347,41 @@ char *wp_canonical(const cJSON *value, const char *skip)
     wp_buffer b = {0};
     write_canonical(&b, value, skip);
     return wp_buffer_take(&b);
+}
+
+bool wp_utf8_valid(const char *text, size_t length)
+{
+    const unsigned char *p = (const unsigned char *)text, *end = p + length;
+    while (p < end) {
+        unsigned char c = *p;
+        if (c < 0x80) {
+            p++;
+            continue;
+        }
+        int more;
+        unsigned min;
+        unsigned code;
+        if (c >= 0xc2 && c <= 0xdf) {
+            more = 1, min = 0x80, code = c & 0x1f;
+        } else if (c >= 0xe0 && c <= 0xef) {
+            more = 2, min = 0x800, code = c & 0x0f;
+        } else if (c >= 0xf0 && c <= 0xf4) {
+            more = 3, min = 0x10000, code = c & 0x07;
+        } else {
+            return false; /* a continuation byte, an overlong lead, or beyond */
+        }
+        if (end - p <= more)
+            return false;
+        for (int i = 1; i <= more; i++) {
+            if ((p[i] & 0xc0) != 0x80)
+                return false;
+            code = code << 6 | (p[i] & 0x3f);
+        }
+        if (code < min || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff))
+            return false;
+        p += more + 1;
+    }
+    return true;
 }
 
 int wp_json_depth(const char *text, size_t length, int limit)

@@ -72,13 +72,18 @@ void wp_buffer_string(wp_buffer *buffer, const char *text); /* quoted, escaped *
 char *wp_buffer_take(wp_buffer *buffer);
 
 /* Shortest decimal text that reads back as the same double ("1", "0.5",
- * "1e+21"); -0 is written "0".  Needs 32 bytes. */
+ * "1e+21"); -0 is written "0", and a non-finite value (which JSON cannot
+ * hold) "null".  Needs 32 bytes. */
 void wp_format_number(double value, char text[32]);
 
 /* Canonical JSON: object members sorted by key, numbers as
  * wp_format_number, no white space; a top-level member named `skip` (may be
  * NULL) is left out.  Malloc'd, or NULL when out of memory. */
 char *wp_canonical(const cJSON *value, const char *skip);
+
+/* Is the text well-formed UTF-8 (RFC 3629: no overlong forms, no
+ * surrogates, nothing above U+10FFFF)?  JSON text must be. */
+bool wp_utf8_valid(const char *text, size_t length);
 
 /* The deepest nesting of arrays and objects in a JSON text, found without
  * parsing it (strings are skipped), stopping once `limit` is passed. */

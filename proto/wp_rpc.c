@@ -2,6 +2,7 @@
 #include "wp_rpc.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -108,6 +109,9 @@ static void answer_request(const wp_host *host, const wp_limits *limits, const c
                      wp_type_name(request));
     } else if (id && !cJSON_IsString(id) && !cJSON_IsNumber(id) && !cJSON_IsNull(id)) {
         wp_error_set(&error, WP_INVALID_REQUEST, "id", "must be a string, a number or null");
+    } else if (cJSON_IsNumber(id) && !isfinite(id->valuedouble)) {
+        /* It could not be echoed: JSON has no infinities. */
+        wp_error_set(&error, WP_INVALID_REQUEST, "id", "must be a finite number");
     } else {
         if (id && !cJSON_IsNull(id))
             id_text = id_owned = wp_canonical(id, NULL);
@@ -166,6 +170,11 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
         counts->requests++;
         counts->errors++;
         return wp_error_line(WP_PARSE_ERROR, "", "an empty line is not a JSON text");
+    }
+    if (!wp_utf8_valid(line, length)) {
+        counts->requests++;
+        counts->errors++;
+        return wp_error_line(WP_PARSE_ERROR, "", "the line is not valid UTF-8");
     }
     if (wp_json_depth(line, length, limits->max_depth) > limits->max_depth) {
         counts->requests++;
