@@ -4,6 +4,7 @@ CFLAGS  ?= -O2 -g
 WARN     = -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L
 SAN      = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 BUILD    = build
+PYTHON   = /usr/bin/python3
 
 LIB_SRC  = $(wildcard lib/*.c)
 LIB_HDR  = $(wildcard lib/*.h)
@@ -19,7 +20,7 @@ LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
-.PHONY: all check unit unit-asan deps clean help run demo
+.PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/libwrench-example
 
@@ -27,7 +28,8 @@ help:
 	@echo "make            build build/libwrench.a"
 	@echo "make demo       build, start wrenchd, put the examples, classify, stop"
 	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
-	@echo "make check      build and run every test (plain and ASan+UBSan builds)"
+	@echo "make check      build and run every test: unit and end-to-end, plain and ASan+UBSan"
+	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
 	@echo "make deps       install the Debian packages the project needs"
 	@echo "make clean      remove build/"
 
@@ -97,11 +99,25 @@ unit-asan: $(ASAN_BIN)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	    tests/run-unit $(ASAN_BIN)
 
+# ---- end-to-end tests (pytest; each test starts its own daemon) ----------
+PYTEST = $(PYTHON) -m pytest -q -p no:cacheprovider
+
+e2e: $(BUILD)/wrenchd
+	$(PYTEST) tests/e2e
+
+e2e-asan: $(BUILD)/asan/wrenchd
+	ASAN_OPTIONS=detect_leaks=1 WRENCHD=$(CURDIR)/$(BUILD)/asan/wrenchd $(PYTEST) tests/e2e
+
+# The end-to-end tests with the daemon under valgrind memcheck: zero errors,
+# zero leaks (minutes; not part of make check).
+check-valgrind: $(BUILD)/wrenchd
+	WRENCHD_WRAPPER="valgrind --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect" \
+	    $(PYTEST) tests/e2e
+
 # The last line printed is the test runner's closing line (CI reads it).
-check: unit unit-asan
+check: unit unit-asan e2e-asan e2e
 
 # ---- running it ------------------------------------------------------------
-PYTHON = /usr/bin/python3
 
 demo: all
 	@$(PYTHON) examples/demo.py

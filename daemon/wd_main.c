@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <getopt.h>
+#include <stdbool.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,9 +62,10 @@ static const struct option OPTIONS[] = {
     {NULL, 0, NULL, 0},
 };
 
-/* A whole number in [low, high], or exit 2 naming the option. */
-static unsigned long long number(const char *option, const char *text, unsigned long long low,
-                                 unsigned long long high)
+/* A whole number in [low, high] into *out; false (with a message naming the
+ * option) if it is not one. */
+static bool number(const char *option, const char *text, unsigned long long low,
+                   unsigned long long high, unsigned long long *out)
 {
     char *end;
     errno = 0;
@@ -71,9 +73,10 @@ static unsigned long long number(const char *option, const char *text, unsigned 
     if (errno || end == text || *end || text[0] == '-' || value < low || value > high) {
         fprintf(stderr, "wrenchd: --%s wants a whole number from %llu to %llu, not '%s'\n",
                 option, low, high, text);
-        exit(WD_EXIT_USAGE);
+        return false;
     }
-    return value;
+    *out = value;
+    return true;
 }
 
 int main(int argc, char **argv)
@@ -93,57 +96,76 @@ int main(int argc, char **argv)
     if (!loads)
         return WD_EXIT_START;
     config.load_files = loads;
-    int option;
-    while ((option = getopt_long(argc, argv, "", OPTIONS, NULL)) != -1) {
+    int option, exit_now = -1;
+    unsigned long long value;
+    while (exit_now < 0 && (option = getopt_long(argc, argv, "", OPTIONS, NULL)) != -1) {
+        bool ok = true;
         switch (option) {
         case OPT_SOCKET: config.socket_path = optarg; break;
         case OPT_STATE_DIR: config.state_dir = optarg; break;
         case OPT_LOAD: loads[config.load_count++] = optarg; break;
-        case OPT_THREADS: config.threads = (int)number("threads", optarg, 1, 1024); break;
+        case OPT_THREADS:
+            if ((ok = number("threads", optarg, 1, 1024, &value)))
+                config.threads = (int)value;
+            break;
         case OPT_CACHE_MB:
-            config.cache_bytes = (size_t)number("cache-mb", optarg, 1, 1 << 20) << 20;
+            if ((ok = number("cache-mb", optarg, 1, 1 << 20, &value)))
+                config.cache_bytes = (size_t)value << 20;
             break;
         case OPT_MAX_LINE:
-            config.max_line = (size_t)number("max-line", optarg, 64, (size_t)1 << 34);
+            if ((ok = number("max-line", optarg, 64, (size_t)1 << 34, &value)))
+                config.max_line = (size_t)value;
             break;
-        case OPT_MAX_DEPTH: config.max_depth = (int)number("max-depth", optarg, 4, 10000); break;
+        case OPT_MAX_DEPTH:
+            if ((ok = number("max-depth", optarg, 4, 10000, &value)))
+                config.max_depth = (int)value;
+            break;
         case OPT_MAX_WRENCHES:
-            config.max_wrenches = (size_t)number("max-wrenches", optarg, 1, 100000000);
+            if ((ok = number("max-wrenches", optarg, 1, 100000000, &value)))
+                config.max_wrenches = (size_t)value;
             break;
         case OPT_MAX_OUTPUT:
-            config.max_output = (size_t)number("max-output", optarg, 4096, (size_t)1 << 40);
+            if ((ok = number("max-output", optarg, 4096, (size_t)1 << 40, &value)))
+                config.max_output = (size_t)value;
             break;
         case OPT_MAX_CLIENTS:
-            config.max_clients = (unsigned long)number("max-clients", optarg, 1, 1000000);
+            if ((ok = number("max-clients", optarg, 1, 1000000, &value)))
+                config.max_clients = (unsigned long)value;
             break;
         case OPT_LOG_LEVEL: {
             int level = wd_log_level_named(optarg);
             if (level < 0) {
                 fprintf(stderr, "wrenchd: --log-level is error, warn, info or debug, not '%s'\n",
                         optarg);
-                return WD_EXIT_USAGE;
+                ok = false;
+            } else {
+                wd_log_set_level(level);
             }
-            wd_log_set_level(level);
             break;
         }
         case OPT_HELP:
             fputs(USAGE, stdout);
-            free(loads);
-            return WD_EXIT_OK;
+            exit_now = WD_EXIT_OK;
+            break;
         case OPT_VERSION:
             printf("wrenchd %s\n", WR_VERSION);
-            free(loads);
-            return WD_EXIT_OK;
+            exit_now = WD_EXIT_OK;
+            break;
         default:
             fputs("Try 'wrenchd --help'.\n", stderr);
-            free(loads);
-            return WD_EXIT_USAGE;
+            ok = false;
+            break;
         }
+        if (!ok)
+            exit_now = WD_EXIT_USAGE;
     }
-    if (optind < argc) {
+    if (exit_now < 0 && optind < argc) {
         fprintf(stderr, "wrenchd: unexpected argument '%s'; try 'wrenchd --help'\n", argv[optind]);
+        exit_now = WD_EXIT_USAGE;
+    }
+    if (exit_now >= 0) {
         free(loads);
-        return WD_EXIT_USAGE;
+        return exit_now;
     }
     int status = wd_server_run(&config);
     free(loads);

@@ -26,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -107,6 +108,12 @@ static void close_socket(connection *c)
 {
     if (!c->bev)
         return;
+    /* Unread input at close makes the kernel reset the connection, which
+     * can destroy answers not yet delivered: read it away first. */
+    evutil_socket_t fd = bufferevent_getfd(c->bev);
+    char sink[4096];
+    while (recv(fd, sink, sizeof sink, MSG_DONTWAIT) > 0)
+        ;
     bufferevent_free(c->bev);
     c->bev = NULL;
     atomic_fetch_sub(&c->server->stats.clients, 1);
@@ -131,8 +138,16 @@ static void maybe_finish(connection *c)
 /* Write the answers at the head of the queue that are ready. */
 static void flush(connection *c)
 {
+    size_t max_output = c->server->config->max_output;
     while (c->head && c->head->done) {
         slot *x = c->head;
+        /* The limit is on answers left unread: one big answer to a client
+         * that reads is fine; a backlog beyond it means it does not read. */
+        if (c->bev && evbuffer_get_length(bufferevent_get_output(c->bev)) > max_output) {
+            wd_log(WD_LOG_WARN, "client %lu: dropped, %zu bytes of answers unread (--max-output)",
+                   c->number, evbuffer_get_length(bufferevent_get_output(c->bev)));
+            close_socket(c);
+        }
         if (c->bev && x->response)
             bufferevent_write(c->bev, x->response, strlen(x->response));
         c->head = x->next;
@@ -143,12 +158,7 @@ static void flush(connection *c)
         free(x);
     }
     if (c->bev) {
-        size_t unread = evbuffer_get_length(bufferevent_get_output(c->bev));
-        if (unread > c->server->config->max_output) {
-            wd_log(WD_LOG_WARN, "client %lu: dropped, %zu bytes of answers unread (--max-output)",
-                   c->number, unread);
-            close_socket(c);
-        } else if (c->paused && c->pending < MAX_PENDING / 2) {
+        if (c->paused && c->pending < MAX_PENDING / 2) {
             c->paused = false;
             if (!c->input_closed)
                 bufferevent_enable(c->bev, EV_READ);
@@ -176,6 +186,8 @@ static slot *add_slot(connection *c)
 /* An answer known without a worker (a refused line), in its place. */
 static void answer_now(connection *c, int code, const char *reason)
 {
+    atomic_fetch_add(&c->server->stats.requests, 1);
+    atomic_fetch_add(&c->server->stats.errors, 1);
     slot *x = add_slot(c);
     if (!x)
         return;
@@ -424,7 +436,12 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
     for (connection *c = s->connections, *next; c; c = next) {
         next = c->next;
         c->busy++;
-        process_input(c); /* complete lines already received are in flight */
+        /* Complete lines that have arrived are in flight, even those still
+         * in the kernel's buffer: read exactly what is there now. */
+        int queued = 0;
+        if (c->bev && ioctl(bufferevent_getfd(c->bev), FIONREAD, &queued) == 0 && queued > 0)
+            evbuffer_read(bufferevent_get_input(c->bev), bufferevent_getfd(c->bev), queued);
+        process_input(c);
         c->input_closed = true;
         if (c->bev)
             bufferevent_disable(c->bev, EV_READ);

@@ -384,28 +384,32 @@ bool wp_utf8_valid(const char *text, size_t length)
     return true;
 }
 
-int wp_json_depth(const char *text, size_t length, int limit)
+wp_json_shape wp_json_scan(const char *text, size_t length, int limit)
 {
-    int depth = 0, deepest = 0;
+    wp_json_shape shape = {0, false};
+    int depth = 0;
     bool in_string = false;
     for (size_t i = 0; i < length; i++) {
         char c = text[i];
         if (in_string) {
-            if (c == '\\')
+            if (c == '\\') {
+                if (i + 5 < length && text[i + 1] == 'u' && memcmp(text + i + 2, "0000", 4) == 0)
+                    shape.nul_escape = true;
                 i++;
-            else if (c == '"')
+            } else if (c == '"') {
                 in_string = false;
+            }
         } else if (c == '"') {
             in_string = true;
         } else if (c == '[' || c == '{') {
-            if (++depth > deepest) {
-                deepest = depth;
-                if (deepest > limit)
-                    return deepest;
+            if (++depth > shape.depth) {
+                shape.depth = depth;
+                if (shape.depth > limit)
+                    return shape;
             }
         } else if (c == ']' || c == '}') {
             depth--;
         }
     }
-    return deepest;
+    return shape;
 }

@@ -85,8 +85,13 @@ char *wp_canonical(const cJSON *value, const char *skip);
  * surrogates, nothing above U+10FFFF)?  JSON text must be. */
 bool wp_utf8_valid(const char *text, size_t length);
 
-/* The deepest nesting of arrays and objects in a JSON text, found without
- * parsing it (strings are skipped), stopping once `limit` is passed. */
-int wp_json_depth(const char *text, size_t length, int limit);
+/* What a scan of a JSON text finds without parsing it: the deepest nesting
+ * of arrays and objects (stopping once past `limit`), and whether a string
+ * holds the escape \u0000, which cJSON would silently cut the string at. */
+typedef struct wp_json_shape {
+    int depth;
+    bool nul_escape;
+} wp_json_shape;
+wp_json_shape wp_json_scan(const char *text, size_t length, int limit);
 
 #endif

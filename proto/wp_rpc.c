@@ -176,12 +176,21 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
         counts->errors++;
         return wp_error_line(WP_PARSE_ERROR, "", "the line is not valid UTF-8");
     }
-    if (wp_json_depth(line, length, limits->max_depth) > limits->max_depth) {
+    wp_json_shape shape = wp_json_scan(line, length, limits->max_depth);
+    if (shape.depth > limits->max_depth) {
         counts->requests++;
         counts->errors++;
         char reason[96];
         snprintf(reason, sizeof reason, "JSON nested deeper than %d levels", limits->max_depth);
         return wp_error_line(WP_INVALID_REQUEST, "", reason);
+    }
+    if (shape.nul_escape) {
+        /* cJSON would cut the string at the NUL and answer for another
+         * request ("fixture.list\u0000x" as "fixture.list"): refuse it. */
+        counts->requests++;
+        counts->errors++;
+        return wp_error_line(WP_INVALID_REQUEST, "",
+                             "a string holds \\u0000 (U+0000), which wrenchd does not accept");
     }
     const char *end = NULL;
     cJSON *json = cJSON_ParseWithLengthOpts(line + start, length - start, &end, false);
