@@ -22,7 +22,8 @@ TEST_LIBS = -lcmocka -lpthread
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo
 
-all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/libwrench-example
+all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
+     $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
 
 help:
 	@echo "make            build build/libwrench.a"
@@ -57,12 +58,36 @@ $(BUILD)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
 
-# Everything of the daemon but main(): tests and fuzzers link it too.
-$(BUILD)/libwrenchd.a: $(patsubst %.c,$(BUILD)/%.o,$(PROTO_SRC) $(DAEMON_SRC))
+$(BUILD)/libwrenchproto.a: $(patsubst %.c,$(BUILD)/%.o,$(PROTO_SRC))
 	ar rcs $@ $^
 
-$(BUILD)/wrenchd: $(BUILD)/daemon/wd_main.o $(BUILD)/libwrenchd.a $(BUILD)/libwrench.a
+# Everything of the daemon but main(): tests and fuzzers link it too.
+$(BUILD)/libwrenchd.a: $(patsubst %.c,$(BUILD)/%.o,$(DAEMON_SRC))
+	ar rcs $@ $^
+
+$(BUILD)/wrenchd: $(BUILD)/daemon/wd_main.o $(BUILD)/libwrenchd.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 	$(CC) $(CFLAGS) $^ $(SERVER_LIBS) -o $@
+
+# ---- clients -----------------------------------------------------------------
+$(BUILD)/clients/%.o: clients/c/%.c clients/c/wrenchclient.h
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) -Iclients/c -c $< -o $@
+
+$(BUILD)/libwrenchclient.a: $(BUILD)/clients/wrenchclient.o
+	ar rcs $@ $^
+
+$(BUILD)/clients/wrenchctl.o: clients/wrenchctl/wrenchctl.c clients/c/wrenchclient.h $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -Iclients/c -c $< -o $@
+
+$(BUILD)/wrenchctl: $(BUILD)/clients/wrenchctl.o $(BUILD)/libwrenchclient.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+	$(CC) $(CFLAGS) $^ -lcjson -lglpk -lm -o $@
+
+$(BUILD)/wrenchclient-example: clients/c/example.c $(BUILD)/libwrenchclient.a
+	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
+
+$(BUILD)/wrenchclient-bench: clients/c/bench.c $(BUILD)/libwrenchclient.a
+	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
 
 $(BUILD)/asan/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
@@ -72,10 +97,13 @@ $(BUILD)/asan/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
 
-$(BUILD)/asan/libwrenchd.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(PROTO_SRC) $(DAEMON_SRC))
+$(BUILD)/asan/libwrenchproto.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(PROTO_SRC))
 	ar rcs $@ $^
 
-$(BUILD)/asan/wrenchd: $(BUILD)/asan/daemon/wd_main.o $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrench.a
+$(BUILD)/asan/libwrenchd.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(DAEMON_SRC))
+	ar rcs $@ $^
+
+$(BUILD)/asan/wrenchd: $(BUILD)/asan/daemon/wd_main.o $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrenchproto.a $(BUILD)/asan/libwrench.a
 	$(CC) $(SAN) $^ $(SERVER_LIBS) -o $@
 
 $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
@@ -84,13 +112,31 @@ $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
 # ---- unit tests (cmocka) -------------------------------------------------
 TEST_HDR = $(wildcard tests/unit/*.h)
 
-$(BUILD)/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/libwrenchd.a $(BUILD)/libwrench.a
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $< $(BUILD)/libwrenchd.a $(BUILD)/libwrench.a $(SERVER_LIBS) $(TEST_LIBS) -o $@
+TEST_LINK = libwrenchd.a libwrenchproto.a libwrench.a
 
-$(BUILD)/asan/tests/%: tests/unit/%.c $(TEST_HDR) $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrench.a
+$(BUILD)/tests/%: tests/unit/%.c $(TEST_HDR) $(addprefix $(BUILD)/,$(TEST_LINK))
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) $< $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrench.a $(SERVER_LIBS) $(TEST_LIBS) -o $@
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $< $(addprefix $(BUILD)/,$(TEST_LINK)) $(SERVER_LIBS) $(TEST_LIBS) -o $@
+
+$(BUILD)/asan/tests/%: tests/unit/%.c $(TEST_HDR) $(addprefix $(BUILD)/asan/,$(TEST_LINK))
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) $< $(addprefix $(BUILD)/asan/,$(TEST_LINK)) $(SERVER_LIBS) $(TEST_LIBS) -o $@
+
+# The client's tests count heap allocations by wrapping malloc at link time.
+WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc
+
+$(BUILD)/tests/test_client: tests/unit/test_client.c $(BUILD)/libwrenchclient.a
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) -Iclients/c $< $(BUILD)/libwrenchclient.a $(WRAP_ALLOC) -lcmocka -lpthread -lm -o $@
+
+$(BUILD)/asan/libwrenchclient.a: clients/c/wrenchclient.c clients/c/wrenchclient.h
+	@mkdir -p $(BUILD)/asan/clients
+	$(CC) $(WARN) -O1 -g $(SAN) -Iclients/c -c $< -o $(BUILD)/asan/clients/wrenchclient.o
+	ar rcs $@ $(BUILD)/asan/clients/wrenchclient.o
+
+$(BUILD)/asan/tests/test_client: tests/unit/test_client.c $(BUILD)/asan/libwrenchclient.a
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) -O1 -g $(SAN) -Iclients/c $< $(BUILD)/asan/libwrenchclient.a $(WRAP_ALLOC) -lcmocka -lpthread -lm -o $@
 
 unit: $(UNIT_BIN)
 	@tests/run-unit $(UNIT_BIN)

@@ -1,0 +1,411 @@
+/* wrenchclient.c -- libwrenchclient (see wrenchclient.h). */
+#include "wrenchclient.h"
+
+#include <errno.h>
+#include <math.h>
+#include <poll.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <time.h>
+#include <unistd.h>
+
+struct wrc_client {
+    int fd;                       /* -1 while disconnected */
+    char path[sizeof(((struct sockaddr_un *)0)->sun_path)];
+    int timeout_ms;               /* 0: no limit */
+    char *request;                /* wrc_classify's request line */
+    char *answer;                 /* wrc_classify's answer line */
+    size_t buffer_bytes;          /* size of each */
+    unsigned long next_id;
+    int server_code;
+    char server_field[192];
+    char server_reason[256];
+    char last_error[256];
+};
+
+const char *wrc_strerror(int error)
+{
+    switch (error) {
+    case WRC_OK: return "success";
+    case WRC_ECONNECT: return "cannot connect to wrenchd";
+    case WRC_ETIMEOUT: return "wrenchd did not answer in time";
+    case WRC_EIO: return "the connection to wrenchd broke";
+    case WRC_EPROTO: return "wrenchd's answer does not follow the protocol";
+    case WRC_ESERVER: return "wrenchd answered with an error";
+    case WRC_ETOOBIG: return "the request or answer is too big for the client's buffer";
+    case WRC_EINVAL: return "invalid argument";
+    case WRC_ENOMEM: return "out of memory";
+    default: return "unknown error";
+    }
+}
+
+static int fail(wrc_client *c, int code, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vsnprintf(c->last_error, sizeof c->last_error, format, args);
+    va_end(args);
+    return code;
+}
+
+const char *wrc_last_error(const wrc_client *client) { return client->last_error; }
+
+void wrc_server_error(const wrc_client *c, int *code, const char **field, const char **reason)
+{
+    if (code)
+        *code = c->server_code;
+    if (field)
+        *field = c->server_field;
+    if (reason)
+        *reason = c->server_reason;
+}
+
+static long long now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (long long)t.tv_sec * 1000 + t.tv_nsec / 1000000;
+}
+
+/* Wait for `events` on the socket until the deadline (-1: none). */
+static int wait_for(wrc_client *c, short events, long long deadline)
+{
+    for (;;) {
+        int wait = -1;
+        if (deadline >= 0) {
+            long long left = deadline - now_ms();
+            if (left <= 0)
+                return fail(c, WRC_ETIMEOUT, "no answer within %d ms", c->timeout_ms);
+            wait = left > 0x7fffffff ? 0x7fffffff : (int)left;
+        }
+        struct pollfd p = {c->fd, events, 0};
+        int n = poll(&p, 1, wait);
+        if (n > 0)
+            return WRC_OK;
+        if (n < 0 && errno != EINTR)
+            return fail(c, WRC_EIO, "poll: %s", strerror(errno));
+        if (n == 0)
+            return fail(c, WRC_ETIMEOUT, "no answer within %d ms", c->timeout_ms);
+    }
+}
+
+static void disconnect(wrc_client *c)
+{
+    if (c->fd >= 0)
+        close(c->fd);
+    c->fd = -1;
+}
+
+static int open_connection(wrc_client *c)
+{
+    struct sockaddr_un address = {.sun_family = AF_UNIX};
+    memcpy(address.sun_path, c->path, sizeof address.sun_path);
+    c->fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    if (c->fd < 0)
+        return fail(c, WRC_ECONNECT, "socket: %s", strerror(errno));
+    long long deadline = c->timeout_ms > 0 ? now_ms() + c->timeout_ms : -1;
+    while (connect(c->fd, (struct sockaddr *)&address, sizeof address) != 0) {
+        if (errno == EINTR)
+            continue;
+        if (errno == EAGAIN || errno == EINPROGRESS) {
+            /* A full backlog: wait for the daemon to accept. */
+            if (wait_for(c, POLLOUT, deadline) != WRC_OK) {
+                disconnect(c);
+                return fail(c, WRC_ECONNECT, "%s: the daemon does not accept in time", c->path);
+            }
+            continue;
+        }
+        int saved = errno;
+        disconnect(c);
+        return fail(c, WRC_ECONNECT, "%s: %s", c->path, strerror(saved));
+    }
+    return WRC_OK;
+}
+
+wrc_client *wrc_connect(const char *socket_path, int timeout_ms, size_t buffer_bytes, int *error)
+{
+    int scratch;
+    if (!error)
+        error = &scratch;
+    if (!socket_path || timeout_ms < 0 ||
+        strlen(socket_path) >= sizeof(((struct sockaddr_un *)0)->sun_path)) {
+        *error = WRC_EINVAL;
+        return NULL;
+    }
+    wrc_client *c = calloc(1, sizeof *c);
+    if (!c) {
+        *error = WRC_ENOMEM;
+        return NULL;
+    }
+    c->buffer_bytes = buffer_bytes ? buffer_bytes : 64 * 1024;
+    if (c->buffer_bytes < 512)
+        c->buffer_bytes = 512;
+    c->request = malloc(c->buffer_bytes);
+    c->answer = malloc(c->buffer_bytes);
+    if (!c->request || !c->answer) {
+        wrc_close(c);
+        *error = WRC_ENOMEM;
+        return NULL;
+    }
+    strcpy(c->path, socket_path);
+    c->timeout_ms = timeout_ms;
+    c->fd = -1;
+    *error = open_connection(c);
+    if (*error != WRC_OK) {
+        wrc_close(c);
+        return NULL;
+    }
+    return c;
+}
+
+void wrc_close(wrc_client *c)
+{
+    if (!c)
+        return;
+    disconnect(c);
+    free(c->request);
+    free(c->answer);
+    free(c);
+}
+
+/* Send the whole line.  *untouched stays true while no byte went out, so
+ * a failure then may be retried on a new connection. */
+static int send_all(wrc_client *c, const char *data, size_t length, long long deadline,
+                    bool *untouched)
+{
+    size_t done = 0;
+    while (done < length) {
+        ssize_t n = send(c->fd, data + done, length - done, MSG_NOSIGNAL);
+        if (n > 0) {
+            done += (size_t)n;
+            *untouched = false;
+            continue;
+        }
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+            int status = wait_for(c, POLLOUT, deadline);
+            if (status != WRC_OK)
+                return status;
+            continue;
+        }
+        return fail(c, WRC_EIO, "send: %s", strerror(errno));
+    }
+    return WRC_OK;
+}
+
+/* Read one answer line into buffer[0..capacity); with `grow`, *buffer is
+ * malloc'd and grows.  The line ends with "\n", replaced by NUL. */
+static int read_line(wrc_client *c, char **buffer, size_t *capacity, bool grow, long long deadline)
+{
+    size_t length = 0;
+    for (;;) {
+        if (length + 1 >= *capacity) {
+            if (!grow)
+                return fail(c, WRC_ETOOBIG, "the answer is longer than %zu bytes", *capacity);
+            size_t bigger = *capacity * 2;
+            char *grown = realloc(*buffer, bigger);
+            if (!grown)
+                return fail(c, WRC_ENOMEM, "out of memory reading an answer");
+            *buffer = grown;
+            *capacity = bigger;
+        }
+        ssize_t n = recv(c->fd, *buffer + length, *capacity - 1 - length, 0);
+        if (n > 0) {
+            char *end = memchr(*buffer + length, '\n', (size_t)n);
+            length += (size_t)n;
+            if (end) {
+                /* One request at a time: nothing may follow the line. */
+                if (end != *buffer + length - 1)
+                    return fail(c, WRC_EPROTO, "more than one answer line arrived");
+                *end = 0;
+                return WRC_OK;
+            }
+            continue;
+        }
+        if (n == 0)
+            return fail(c, WRC_EIO, "the daemon closed the connection");
+        if (errno == EINTR)
+            continue;
+        if (errno == EAGAIN || errno == EWOULDBLOCK) {
+            int status = wait_for(c, POLLIN, deadline);
+            if (status != WRC_OK)
+                return status;
+            continue;
+        }
+        return fail(c, WRC_EIO, "recv: %s", strerror(errno));
+    }
+}
+
+/* Send `line` (ending in "\n") and read the answer; reconnect once if the
+ * old connection turns out dead before anything was sent. */
+static int exchange(wrc_client *c, const char *line, size_t length, char **answer,
+                    size_t *capacity, bool grow)
+{
+    for (int attempt = 0; attempt < 2; attempt++) {
+        bool reconnected = false;
+        if (c->fd < 0) {
+            int status = open_connection(c);
+            if (status != WRC_OK)
+                return status;
+            reconnected = true;
+        }
+        long long deadline = c->timeout_ms > 0 ? now_ms() + c->timeout_ms : -1;
+        bool untouched = true;
+        int status = send_all(c, line, length, deadline, &untouched);
+        if (status == WRC_EIO && untouched && !reconnected) {
+            disconnect(c); /* the daemon went away meanwhile: try a new connection */
+            continue;
+        }
+        if (status == WRC_OK)
+            status = read_line(c, answer, capacity, grow, deadline);
+        if (status != WRC_OK && status != WRC_ETOOBIG)
+            disconnect(c); /* a late answer would be read as the next one's */
+        if (status == WRC_ETOOBIG)
+            disconnect(c);
+        return status;
+    }
+    return WRC_EIO;
+}
+
+/* ---- reading answers without allocating ---------------------------------- */
+
+/* Copy a JSON string starting after its opening quote, unescaped (\uXXXX
+ * beyond ASCII becomes '?'), into out[0..size). */
+static const char *copy_string(const char *p, char *out, size_t size)
+{
+    size_t n = 0;
+    while (*p && *p != '"') {
+        char ch = *p++;
+        if (ch == '\\' && *p) {
+            char e = *p++;
+            ch = e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e == 'b' ? '\b'
+                 : e == 'f' ? '\f' : e;
+            if (e == 'u') {
+                unsigned code = 0;
+                for (int i = 0; i < 4 && *p; i++, p++)
+                    code = code * 16 + (unsigned)(*p <= '9' ? *p - '0' : (*p | 32) - 'a' + 10);
+                ch = code < 128 ? (char)code : '?';
+            }
+        }
+        if (n + 1 < size)
+            out[n++] = ch;
+    }
+    if (size)
+        out[n] = 0;
+    return *p == '"' ? p + 1 : p;
+}
+
+/* The value after "key": in text, or NULL. */
+static const char *value_of(const char *text, const char *key)
+{
+    char pattern[40];
+    snprintf(pattern, sizeof pattern, "\"%s\":", key);
+    const char *p = strstr(text, pattern);
+    return p ? p + strlen(pattern) : NULL;
+}
+
+/* An error answer: remember its code, field and reason. */
+static bool read_server_error(wrc_client *c, const char *answer)
+{
+    const char *error = value_of(answer, "error");
+    if (!error || *error != '{')
+        return false;
+    const char *code = value_of(error, "code");
+    const char *field = value_of(error, "field");
+    const char *reason = value_of(error, "reason");
+    c->server_code = code ? (int)strtol(code, NULL, 10) : 0;
+    c->server_field[0] = c->server_reason[0] = 0;
+    if (field && *field == '"')
+        copy_string(field + 1, c->server_field, sizeof c->server_field);
+    if (reason && *reason == '"')
+        copy_string(reason + 1, c->server_reason, sizeof c->server_reason);
+    return true;
+}
+
+int wrc_classify(wrc_client *c, const char *fixture_id, const double wrench[3], const char *set,
+                 wrc_answer *answer)
+{
+    if (!c || !fixture_id || !wrench || !set || !answer)
+        return WRC_EINVAL;
+    if (strcmp(set, "goal") != 0 && strcmp(set, "strong") != 0 && strcmp(set, "both") != 0)
+        return fail(c, WRC_EINVAL, "set is \"goal\", \"strong\" or \"both\", not \"%.20s\"", set);
+    for (const char *p = fixture_id; *p; p++)
+        if (*p == '"' || *p == '\\' || (unsigned char)*p < 32)
+            return fail(c, WRC_EINVAL, "a fixture id has no quotes, backslashes or controls");
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(wrench[k]))
+            return fail(c, WRC_EINVAL, "wrench component %d is not finite", k);
+    unsigned long id = ++c->next_id;
+    int length = snprintf(c->request, c->buffer_bytes,
+                          "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{"
+                          "\"fixture\":\"%s\",\"wrenches\":[[%.17g,%.17g,%.17g]],"
+                          "\"sets\":[\"%s\"]},\"id\":%lu}\n",
+                          fixture_id, wrench[0], wrench[1], wrench[2], set, id);
+    if (length < 0 || (size_t)length >= c->buffer_bytes)
+        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
+    size_t capacity = c->buffer_bytes;
+    int status = exchange(c, c->request, (size_t)length, &c->answer, &capacity, false);
+    if (status != WRC_OK)
+        return status;
+    const char *text = c->answer;
+    const char *answer_id = value_of(text, "id");
+    if (!answer_id || strtoul(answer_id, NULL, 10) != id)
+        return fail(c, WRC_EPROTO, "the answer's id is not the request's");
+    if (read_server_error(c, text))
+        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
+    const char *verdict = value_of(text, "verdict");
+    const char *margin = value_of(text, "margin");
+    const char *blocking = value_of(text, "blocking");
+    if (!verdict || !margin || !blocking || *verdict != '"')
+        return fail(c, WRC_EPROTO, "the answer has no verdict, margin or blocking");
+    if (strncmp(verdict, "\"inside\"", 8) == 0)
+        answer->verdict = WRC_INSIDE;
+    else if (strncmp(verdict, "\"boundary\"", 10) == 0)
+        answer->verdict = WRC_BOUNDARY;
+    else if (strncmp(verdict, "\"outside\"", 9) == 0)
+        answer->verdict = WRC_OUTSIDE;
+    else
+        return fail(c, WRC_EPROTO, "an unknown verdict");
+    answer->margin = strncmp(margin, "null", 4) == 0 ? NAN : strtod(margin, NULL);
+    answer->blocking[0] = 0;
+    if (*blocking == '"')
+        copy_string(blocking + 1, answer->blocking, sizeof answer->blocking);
+    return WRC_OK;
+}
+
+int wrc_call(wrc_client *c, const char *request, char **answer)
+{
+    if (!c || !request || !answer)
+        return WRC_EINVAL;
+    *answer = NULL;
+    size_t length = strlen(request);
+    if (memchr(request, '\n', length))
+        return fail(c, WRC_EINVAL, "a request is one line: it has no newline");
+    char *line = malloc(length + 2);
+    size_t capacity = 4096;
+    char *buffer = malloc(capacity);
+    if (!line || !buffer) {
+        free(line);
+        free(buffer);
+        return fail(c, WRC_ENOMEM, "out of memory");
+    }
+    memcpy(line, request, length);
+    line[length] = '\n';
+    line[length + 1] = 0;
+    int status = exchange(c, line, length + 1, &buffer, &capacity, true);
+    free(line);
+    if (status != WRC_OK) {
+        free(buffer);
+        return status;
+    }
+    *answer = buffer;
+    if (buffer[0] == '{' && read_server_error(c, buffer))
+        return WRC_ESERVER;
+    return WRC_OK;
+}

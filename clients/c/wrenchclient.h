@@ -1,0 +1,82 @@
+/* wrenchclient.h -- libwrenchclient: a small blocking client of wrenchd for
+ * cell controllers.
+ *
+ * One wrc_client is one connection to the daemon's Unix socket.  Calls block
+ * until the answer arrives or the client's timeout passes.  After a broken
+ * connection or a timeout the connection is closed, and the next call opens
+ * it again (once) before giving up.
+ *
+ * Memory: wrc_connect allocates the client and its buffers; wrc_classify
+ * then allocates nothing, whatever it is asked.  wrc_call allocates its
+ * answer.
+ *
+ * Threads: a client belongs to one thread at a time (calls on one client
+ * must not overlap); different clients are independent.  Nothing is global.
+ *
+ * Errors: every function that can fail returns WRC_OK or one of the negative
+ * codes below; wrc_strerror names it, wrc_last_error says more. */
+#ifndef WRENCHCLIENT_H
+#define WRENCHCLIENT_H
+
+#include <stddef.h>
+
+enum {
+    WRC_OK = 0,
+    WRC_ECONNECT = -1, /* cannot connect: no daemon on the socket, or no permission */
+    WRC_ETIMEOUT = -2, /* no answer within the timeout; the connection was closed */
+    WRC_EIO = -3,      /* the connection broke; it was closed */
+    WRC_EPROTO = -4,   /* the daemon answered something the protocol does not allow */
+    WRC_ESERVER = -5,  /* the daemon answered with an error: see wrc_server_error */
+    WRC_ETOOBIG = -6,  /* the request or answer does not fit the client's buffer */
+    WRC_EINVAL = -7,   /* an argument is invalid (NULL, not finite, too long) */
+    WRC_ENOMEM = -8    /* out of memory */
+};
+
+typedef struct wrc_client wrc_client;
+
+/* Connect to the daemon at `socket_path`.  `timeout_ms` bounds connecting
+ * and every later call (0: wait forever).  `buffer_bytes` sizes the
+ * request and answer buffers of wrc_classify (0: 64 KiB).  Returns NULL
+ * with *error set when it cannot connect. */
+wrc_client *wrc_connect(const char *socket_path, int timeout_ms, size_t buffer_bytes,
+                        int *error);
+
+/* Close the connection and free the client (NULL is allowed). */
+void wrc_close(wrc_client *client);
+
+typedef enum wrc_verdict {
+    WRC_INSIDE = 0,   /* margin > tolerance */
+    WRC_BOUNDARY = 1, /* floating point cannot tell */
+    WRC_OUTSIDE = 2   /* margin < -tolerance */
+} wrc_verdict;
+
+typedef struct wrc_answer {
+    wrc_verdict verdict;
+    double margin;        /* in [-1, 1]; SPEC section 5 */
+    char blocking[16];    /* the blocking string ("ms", "ll", "nn+"), "" when inside */
+} wrc_answer;
+
+/* Classify one wrench (f_x, f_y, tau) for the stored fixture `fixture_id`
+ * and one set, "goal", "strong" or "both".  Allocates nothing.
+ * Returns WRC_OK, or an error code (WRC_ESERVER for an unknown fixture). */
+int wrc_classify(wrc_client *client, const char *fixture_id, const double wrench[3],
+                 const char *set, wrc_answer *answer);
+
+/* Send one JSON-RPC request (a JSON text without "\n") and return its
+ * answer line, malloc'd (the caller frees it).  For notifications nothing
+ * comes back: do not send them here. */
+int wrc_call(wrc_client *client, const char *request, char **answer);
+
+/* After WRC_ESERVER: the JSON-RPC error code, the field it names and why.
+ * The strings live until the next call on the client. */
+void wrc_server_error(const wrc_client *client, int *code, const char **field,
+                      const char **reason);
+
+/* A constant text naming an error code. */
+const char *wrc_strerror(int error);
+
+/* A sentence about the client's last failure (which system call, which
+ * errno); constant until the next call on the client. */
+const char *wrc_last_error(const wrc_client *client);
+
+#endif

@@ -1,0 +1,900 @@
+"""wrenchd.py -- a Python client of wrenchd (standard library only, Python >= 3.8).
+
+wrenchd answers JSON-RPC 2.0 over a Unix socket (docs/PROTOCOL.md).  This
+module gives one method per RPC, with dataclasses for the answers:
+
+    import wrenchd
+
+    with wrenchd.Client("run/wrenchd.sock", timeout=10) as client:
+        put = client.put_fixture(fixture)                  # -> PutResult
+        (r,) = client.classify(put.id, [(-1, -1, 0)])      # -> [{"goal": Verdict, ...}]
+        if not r["goal"].inside:
+            print(wrenchd.explain(r["goal"], "goal"))
+
+Methods of Client (and of Batch, see below):
+
+    put_fixture(fixture)                   -> PutResult   fixture.put
+    get_fixture(fixture_id)                -> dict        fixture.get (the canonical fixture)
+    delete_fixture(fixture_id, missing_ok=False) -> bool  fixture.delete
+    list_fixtures()                        -> [FixtureInfo]  fixture.list
+    classify(fixture, wrenches, sets=("goal", "strong"), method="auto",
+             tolerance=None)               -> [{set name: Verdict}]  wrench.classify
+    cone(fixture, constraints)             -> Cone        cone.get
+    plan(fixture)                          -> Plan        plan.get
+    modes(fixture)                         -> Modes       modes.get
+    status()                               -> Status      server.status
+    call(method, params=None, readonly=False) -> the raw "result" (any method)
+
+A `fixture` argument is a fixture id (a string), a PutResult / FixtureInfo,
+or a fixture dict (SPEC section 8; sent inline, not stored).  A wrench is
+(f_x, f_y, tau), tau about the centre of mass, or {"force": (f_x, f_y),
+"at": (x, y)}.  Every method also takes `timeout=` (seconds, None: wait
+forever) to override the client's timeout for that call.  Field names of the
+dataclasses are those of PROTOCOL.md, and dataclasses.asdict() of a result
+gives back its wire form.
+
+Errors
+    WrenchdError            the daemon answered with a JSON-RPC error: .code
+                            (-32602, -32001, ...; constants below), .message,
+                            .field (path into the request, e.g.
+                            "params.fixture.body.mass"), .reason (a sentence).
+    WrenchdUnavailable      (a ConnectionError) the daemon cannot be reached,
+                            or the connection broke.  .maybe_executed tells
+                            whether the request may have reached the daemon.
+    WrenchdTimeout          (WrenchdUnavailable and TimeoutError) no answer
+                            within the timeout.
+    WrenchdProtocolError    (WrenchdUnavailable) the answer breaks the protocol.
+    ValueError / TypeError  raised before anything is sent (a NaN, a wrong type).
+
+Connections, reconnecting, retries
+    A Client holds one connection, opened at the first call (or by
+    connect()).  Before a request goes out on a connection that was used
+    before, the client checks that the daemon has not closed it (it does when
+    it stops or restarts); if it has, the request goes out on a new
+    connection: a daemon restarted on the same socket is reconnected to
+    transparently, whatever the method.  If the connection breaks *after* a
+    request went out (no answer, or a reset), the request is sent again on a
+    new connection, once, only when it is read-only (classify, get, list,
+    cone, plan, modes, status; a batch only when all its requests are).
+    fixture.put and fixture.delete then raise WrenchdUnavailable with
+    maybe_executed=True: the daemon may or may not have done them.  A
+    timeout is never retried (the daemon is alive but slow): the connection
+    is closed (a late answer must not be read as the next one's) and
+    WrenchdTimeout is raised.  A daemon that is not running gives
+    WrenchdUnavailable at once; the next call tries again.
+
+Batches
+    with client.batch() as b:
+        v = b.classify(fid, [(-1, -1, 0)])
+        s = b.status()
+    v.result()      # the value client.classify would return, or raises its error
+
+    Each method of a Batch returns a Pending at once; the block's end sends
+    every request as one JSON array line and reads the one answer line.  An
+    error answer to one request raises only when that Pending's result() is
+    read; a transport failure raises at the end of the block (and from every
+    result()).  The daemon may run the requests of a batch in any order:
+    do not classify in a batch a fixture you put in the same batch.  A batch
+    with no request sends nothing; an exception inside the block sends
+    nothing.  client.batch(timeout=...) bounds the whole exchange.
+
+Threads
+    Clients share nothing: several Client objects in one process are
+    independent (no module-level state).  One Client may be used from
+    several threads: a lock makes its calls take turns on its one connection
+    (a Batch object itself belongs to one thread).  For calls that run in
+    parallel, use one Client per thread: the daemon serves connections in
+    parallel.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import os
+import socket
+import threading
+import time
+from dataclasses import dataclass, fields
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+
+__all__ = [
+    "Client", "Batch", "Pending",
+    "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
+    "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
+    "FixtureInfo", "explain", "default_socket_path",
+    "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
+    "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
+]
+
+__version__ = "0.1.0"
+
+DEFAULT_TIMEOUT = 30.0
+READ_ONLY_METHODS = frozenset(("wrench.classify", "fixture.get", "fixture.list", "cone.get",
+                               "plan.get", "modes.get", "server.status"))
+
+# JSON-RPC error codes (docs/PROTOCOL.md)
+PARSE_ERROR = -32700
+INVALID_REQUEST = -32600
+METHOD_NOT_FOUND = -32601
+INVALID_PARAMS = -32602
+INTERNAL_ERROR = -32603
+NO_SUCH_FIXTURE = -32001
+STORAGE_FAILURE = -32002
+LIMIT_EXCEEDED = -32003
+SOLVER_FAILURE = -32004
+
+_DEFAULT = object()     # "the client's timeout"
+
+
+def default_socket_path() -> str:
+    """$WRENCHD_SOCKET, else ./run/wrenchd.sock (the daemon's default)."""
+    return os.environ.get("WRENCHD_SOCKET") or os.path.join(".", "run", "wrenchd.sock")
+
+
+# ---- errors -------------------------------------------------------------------------
+
+class WrenchdError(Exception):
+    """A JSON-RPC error answer: code, message, field, reason (and data, method)."""
+
+    def __init__(self, code: int, message: str, field: str = "", reason: str = "",
+                 data: Any = None, method: Optional[str] = None):
+        self.code = code
+        self.message = message
+        self.field = field
+        self.reason = reason
+        self.data = data
+        self.method = method
+        text = "%s (%s)" % (message, code)
+        if field:
+            text += " at %s" % field
+        if reason:
+            text += ": %s" % reason
+        if method:
+            text = "%s: %s" % (method, text)
+        super().__init__(text)
+
+    @classmethod
+    def from_wire(cls, error: Any, method: Optional[str] = None) -> "WrenchdError":
+        if not isinstance(error, dict) or not isinstance(error.get("code"), int):
+            raise WrenchdProtocolError("an error answer without an integer code: %r"
+                                       % (error,))
+        data = error.get("data")
+        field = reason = ""
+        if isinstance(data, dict):
+            field = data.get("field") or ""
+            reason = data.get("reason") or ""
+        return cls(error["code"], str(error.get("message", "")), field, reason, data, method)
+
+
+class WrenchdUnavailable(ConnectionError):
+    """The daemon cannot be reached, or the connection broke.  maybe_executed:
+    the request may have reached the daemon (then it was not retried unless
+    read-only)."""
+
+    def __init__(self, message: str, socket_path: Optional[str] = None,
+                 maybe_executed: bool = False):
+        super().__init__(message)
+        self.socket_path = socket_path
+        self.maybe_executed = maybe_executed
+
+    def __str__(self) -> str:
+        return self.args[0] if self.args else ""
+
+
+class WrenchdTimeout(WrenchdUnavailable, TimeoutError):
+    """No answer within the timeout; the connection was closed."""
+
+
+class WrenchdProtocolError(WrenchdUnavailable):
+    """The daemon answered something the protocol does not allow; the
+    connection was closed."""
+
+
+# ---- results ------------------------------------------------------------------------
+
+def _build(cls, obj: Any, what: str):
+    if not isinstance(obj, dict):
+        raise WrenchdProtocolError("%s: expected an object, got %r" % (what, obj))
+    names = [f.name for f in fields(cls)]
+    missing = [n for n in names if n not in obj]
+    if missing:
+        raise WrenchdProtocolError("%s: the answer lacks %s" % (what, ", ".join(missing)))
+    return cls(**{n: obj[n] for n in names})     # members added later are ignored
+
+
+@dataclass
+class Witness:
+    """A body acceleration [a_x, a_y, alpha], contact forces [[c_n, c_t], ...]
+    (one per fixel) and the wrench [f_x, f_y, tau] they make."""
+    acceleration: List[float]
+    forces: List[List[float]]
+    wrench: List[float]
+
+
+@dataclass
+class Verdict:
+    """One wrench against one set (goal, strong or both)."""
+    verdict: str                       # "inside" | "boundary" | "outside"
+    inside: bool                       # verdict == "inside"
+    margin: Optional[float]            # in [-1, 1]; None for method "lp"
+    blocking: Optional[str]            # the excluded cone ("ms", "ll", "nn+"); None when inside
+    states: List[str]                  # goal: contact states the blocking string comes from
+    witness: Optional[Witness]         # None when inside
+
+    @classmethod
+    def from_wire(cls, obj: Any) -> "Verdict":
+        v = _build(cls, obj, "verdict")
+        if v.witness is not None:
+            v.witness = _build(Witness, v.witness, "witness")
+        return v
+
+    def explain(self, set_name: Optional[str] = None) -> str:
+        """The verdict in words: see explain()."""
+        return explain(self, set_name)
+
+
+@dataclass
+class PutResult:
+    id: str
+    name: str
+    fixels: int
+    goal_cones: int
+    strong_cones: int
+    pinned: bool
+
+
+@dataclass
+class FixtureInfo:
+    id: str
+    name: str
+    fixels: int
+
+
+@dataclass
+class Cone:
+    constraints: str
+    empty: bool
+    dimension: int                     # 0..3, -1 when empty
+    halfspaces: List[List[float]]      # unit rows F: F g <= 0 on the closure
+    equalities: List[List[float]]      # unit rows E: E g = 0
+    generators: List[List[float]]
+    strict: List[bool]                 # one per half-space: that face is open
+
+
+@dataclass
+class PlanState:
+    state: str                         # "010": fixel 2 touched
+    excluded: List[str]                # the transitions that must be impossible from it
+
+
+@dataclass
+class Plan:
+    states: List[PlanState]
+    cones: List[str]                   # the kept strings: the cones G_goal excludes
+
+
+@dataclass
+class Modes:
+    feasible: List[str]                # moving modes; "n...n+" / "n...n-" when not pinned
+    pinned: bool
+
+
+@dataclass
+class Status:
+    version: str
+    uptime_s: float
+    fixtures: int
+    cached: int
+    cache_bytes: int
+    cache_limit_bytes: int
+    threads: int
+    clients: int
+    refused: int
+    requests: int
+    errors: int
+
+
+def _classify_result(result: Any) -> List[Dict[str, Verdict]]:
+    rows = result.get("results") if isinstance(result, dict) else None
+    if not isinstance(rows, list):
+        raise WrenchdProtocolError("wrench.classify: no results array in %r" % (result,))
+    out = []
+    for row in rows:
+        if not isinstance(row, dict):
+            raise WrenchdProtocolError("wrench.classify: a result is not an object: %r" % (row,))
+        out.append({name: Verdict.from_wire(v) for name, v in row.items()})
+    return out
+
+
+def _plan_result(result: Any) -> Plan:
+    plan = _build(Plan, result, "plan.get")
+    plan.states = [_build(PlanState, s, "plan.get state") for s in plan.states]
+    return plan
+
+
+def _list_result(result: Any) -> List[FixtureInfo]:
+    items = result.get("fixtures") if isinstance(result, dict) else None
+    if not isinstance(items, list):
+        raise WrenchdProtocolError("fixture.list: no fixtures array in %r" % (result,))
+    return [_build(FixtureInfo, f, "fixture.list") for f in items]
+
+
+def _object_result(result: Any) -> Dict[str, Any]:
+    if not isinstance(result, dict):
+        raise WrenchdProtocolError("fixture.get: not an object: %r" % (result,))
+    return result
+
+
+def _deleted_result(result: Any) -> bool:
+    if not isinstance(result, dict) or not isinstance(result.get("deleted"), bool):
+        raise WrenchdProtocolError("fixture.delete: no deleted flag in %r" % (result,))
+    return result["deleted"]
+
+
+def _missing_is_false(error: WrenchdError) -> bool:
+    if error.code == NO_SUCH_FIXTURE:
+        return False
+    raise error
+
+
+def _same(result: Any) -> Any:
+    return result
+
+
+# ---- explanations (the words of examples/demo.py) -----------------------------------
+
+MOTION = {"s": "separates", "l": "slides left", "r": "slides right", "n": "rolls"}
+
+
+def _fixels_named(indices: Sequence[int]) -> str:
+    names = ["fixel %d" % (i + 1) for i in indices]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def _verb(indices: Sequence[int], one: str, many: str) -> str:
+    return one if len(indices) == 1 else many
+
+
+def explain_goal(blocking: str, states: Sequence[str]) -> str:
+    """Why a wrench does not seat the part: from each contact state, the
+    transition the blocking string allows."""
+    reasons = []
+    for state in states:
+        touched = [i for i, c in enumerate(state) if c == "1"]
+        separating = [i for i in touched if i < len(blocking) and blocking[i] == "s"]
+        holding = [i for i in touched if i < len(blocking) and blocking[i] == "m"]
+        if not separating:
+            apart = [i for i, c in enumerate(state) if c == "0"]
+            parts = []
+            if holding:
+                parts.append("%s %s" % (_fixels_named(holding), _verb(holding, "holds", "hold")))
+            if apart:
+                parts.append("%s %s never reached" % (_fixels_named(apart),
+                                                      _verb(apart, "is", "are")))
+            reasons.append("from contact state %s it can stay as it is: %s"
+                           % (state, " and ".join(parts)))
+        else:
+            text = "from contact state %s %s may break away" % (state, _fixels_named(separating))
+            if holding:
+                text += " while %s %s" % (_fixels_named(holding), _verb(holding, "holds", "hold"))
+            reasons.append(text)
+    return "; ".join(reasons)
+
+
+def explain_strong(blocking: str) -> str:
+    """The motion a strong-set blocking mode allows."""
+    if blocking[-1:] in ("+", "-"):
+        return "it may pivot %s about its contact point" % (
+            "counter-clockwise" if blocking[-1] == "+" else "clockwise")
+    if any(c not in MOTION for c in blocking):
+        return "it may move in mode %s" % blocking
+    return "it may start to move: " + ", ".join(
+        "fixel %d %s" % (i + 1, MOTION[c]) for i, c in enumerate(blocking))
+
+
+def explain(verdict: Union[Verdict, Mapping[str, Any]], set_name: Optional[str] = None) -> str:
+    """The verdict for one set in words, in the language of `make demo`:
+
+    * inside, goal:   "seats the part from every contact state"
+    * inside, strong: "once seated, it does not move"
+    * otherwise, a goal blocking string: the transition from each of its
+      contact states ("from contact state 10 it can stay as it is: fixel 1
+      holds and fixel 2 is never reached; from contact state 11 fixel 2 may
+      break away while fixel 1 holds");
+    * a strong blocking mode: "it may start to move: fixel 1 slides left,
+      fixel 2 slides left", or "it may pivot counter-clockwise about its
+      contact point" for n...n+ (clockwise for n...n-).
+
+    set_name is "goal", "strong" or "both"; for "both" (or None) a blocking
+    string with contact states is a goal string, one without a mode.
+    `verdict` may be a Verdict or its wire form (a dict)."""
+    if not isinstance(verdict, Verdict):
+        verdict = Verdict.from_wire(dict(verdict))
+    if verdict.inside or not verdict.blocking:
+        if set_name == "goal":
+            return "seats the part from every contact state"
+        if set_name == "strong":
+            return "once seated, it does not move"
+        return "seats the part from every contact state and, once seated, it does not move"
+    if set_name == "goal" or (set_name != "strong" and verdict.states):
+        return explain_goal(verdict.blocking, verdict.states)
+    return explain_strong(verdict.blocking)
+
+
+# ---- encoding -----------------------------------------------------------------------
+
+def _json_default(obj: Any) -> Any:
+    tolist = getattr(obj, "tolist", None)        # numpy arrays and scalars
+    if callable(tolist):
+        return tolist()
+    if isinstance(obj, (set, frozenset)):
+        return sorted(obj)
+    raise TypeError("cannot send a %s to wrenchd" % type(obj).__name__)
+
+
+def _encode(obj: Any) -> bytes:
+    try:
+        text = json.dumps(obj, separators=(",", ":"), allow_nan=False, default=_json_default)
+    except ValueError as e:
+        raise ValueError("wrenchd takes finite numbers only (%s)" % e) from None
+    return text.encode("utf-8") + b"\n"
+
+
+def _fixture_ref(fixture: Any) -> Any:
+    if isinstance(fixture, str):
+        return fixture
+    if isinstance(fixture, (PutResult, FixtureInfo)):
+        return fixture.id
+    if isinstance(fixture, Mapping):
+        return dict(fixture)
+    raise TypeError("a fixture is an id string, a PutResult or a fixture dict, not %s"
+                    % type(fixture).__name__)
+
+
+def _fixture_id(fixture_id: Any) -> str:
+    if isinstance(fixture_id, (PutResult, FixtureInfo)):
+        return fixture_id.id
+    if not isinstance(fixture_id, str):
+        raise TypeError("a fixture id is a string (or a PutResult), not %s"
+                        % type(fixture_id).__name__)
+    return fixture_id
+
+
+def _wrench(w: Any) -> Any:
+    if isinstance(w, Mapping):
+        return dict(w)
+    if isinstance(w, (str, bytes)):
+        raise TypeError("a wrench is (f_x, f_y, tau) or {'force': ..., 'at': ...}, not %r" % (w,))
+    try:
+        return list(w)
+    except TypeError:
+        return w          # the daemon names what is wrong with it
+
+
+# ---- the methods, shared by Client and Batch -----------------------------------------
+
+class _Methods:
+    def _invoke(self, method: str, params: Optional[Dict[str, Any]], convert: Callable,
+                readonly: bool, timeout: Any, on_error: Optional[Callable] = None):
+        raise NotImplementedError
+
+    def put_fixture(self, fixture: Mapping[str, Any], *, timeout: Any = _DEFAULT):
+        """fixture.put: store a fixture (idempotent: same content, same id)."""
+        if not isinstance(fixture, Mapping):
+            raise TypeError("put_fixture takes a fixture dict")
+        return self._invoke("fixture.put", {"fixture": dict(fixture)},
+                            lambda r: _build(PutResult, r, "fixture.put"), False, timeout)
+
+    def get_fixture(self, fixture_id: str, *, timeout: Any = _DEFAULT):
+        """fixture.get: the stored fixture in canonical form, with its name."""
+        return self._invoke("fixture.get", {"id": _fixture_id(fixture_id)}, _object_result,
+                            True, timeout)
+
+    def delete_fixture(self, fixture_id: str, *, missing_ok: bool = False,
+                       timeout: Any = _DEFAULT):
+        """fixture.delete: True when deleted.  An unknown id raises
+        WrenchdError (-32001), or gives False with missing_ok=True."""
+        return self._invoke("fixture.delete", {"id": _fixture_id(fixture_id)}, _deleted_result,
+                            False, timeout, _missing_is_false if missing_ok else None)
+
+    def list_fixtures(self, *, timeout: Any = _DEFAULT):
+        """fixture.list: [FixtureInfo], sorted by id."""
+        return self._invoke("fixture.list", {}, _list_result, True, timeout)
+
+    def classify(self, fixture: Any, wrenches: Iterable[Any],
+                 sets: Union[str, Sequence[str]] = ("goal", "strong"), method: str = "auto",
+                 tolerance: Optional[float] = None, *, timeout: Any = _DEFAULT):
+        """wrench.classify: one {set name: Verdict} per wrench, in order."""
+        params = {"fixture": _fixture_ref(fixture), "wrenches": [_wrench(w) for w in wrenches],
+                  "sets": [sets] if isinstance(sets, str) else list(sets), "method": method}
+        if tolerance is not None:
+            params["tolerance"] = tolerance
+        return self._invoke("wrench.classify", params, _classify_result, True, timeout)
+
+    def cone(self, fixture: Any, constraints: str, *, timeout: Any = _DEFAULT):
+        """cone.get: the explicit cone G_X of a constraint string ("smu")."""
+        return self._invoke("cone.get", {"fixture": _fixture_ref(fixture),
+                                         "constraints": constraints},
+                            lambda r: _build(Cone, r, "cone.get"), True, timeout)
+
+    def plan(self, fixture: Any, *, timeout: Any = _DEFAULT):
+        """plan.get: every contact state with its excluded strings; the kept strings."""
+        return self._invoke("plan.get", {"fixture": _fixture_ref(fixture)}, _plan_result,
+                            True, timeout)
+
+    def modes(self, fixture: Any, *, timeout: Any = _DEFAULT):
+        """modes.get: the feasible moving contact modes, and whether the body is pinned."""
+        return self._invoke("modes.get", {"fixture": _fixture_ref(fixture)},
+                            lambda r: _build(Modes, r, "modes.get"), True, timeout)
+
+    def status(self, *, timeout: Any = _DEFAULT):
+        """server.status."""
+        return self._invoke("server.status", {}, lambda r: _build(Status, r, "server.status"),
+                            True, timeout)
+
+    def call(self, method: str, params: Optional[Dict[str, Any]] = None, *,
+             readonly: bool = False, timeout: Any = _DEFAULT):
+        """Any method; returns its raw "result".  readonly=True allows one
+        retry on a new connection when the connection breaks."""
+        return self._invoke(method, params, _same, readonly, timeout)
+
+
+# ---- the connection -----------------------------------------------------------------
+
+class _Broken(Exception):
+    """The connection broke; maybe_executed: some of the request went out."""
+
+    def __init__(self, why: str, maybe_executed: bool):
+        super().__init__(why)
+        self.why = why
+        self.maybe_executed = maybe_executed
+
+
+_NOSIGNAL = getattr(socket, "MSG_NOSIGNAL", 0)
+
+
+class Client(_Methods):
+    """One connection to wrenchd at socket_path (default: $WRENCHD_SOCKET or
+    ./run/wrenchd.sock).  timeout: seconds for each call (connecting,
+    sending, answering); None waits forever.  See the module's docstring."""
+
+    def __init__(self, socket_path: Optional[Union[str, "os.PathLike[str]"]] = None,
+                 timeout: Optional[float] = DEFAULT_TIMEOUT):
+        self.socket_path = os.fspath(socket_path) if socket_path is not None \
+            else default_socket_path()
+        self.timeout = timeout
+        self._sock: Optional[socket.socket] = None
+        self._buf = bytearray()
+        self._scanned = 0
+        self._lock = threading.Lock()
+        self._ids = itertools.count(1)
+
+    def __repr__(self) -> str:
+        return "<wrenchd.Client %s%s>" % (self.socket_path,
+                                          "" if self._sock else " (not connected)")
+
+    def __enter__(self) -> "Client":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    @property
+    def connected(self) -> bool:
+        return self._sock is not None
+
+    def connect(self, timeout: Any = _DEFAULT) -> "Client":
+        """Open the connection now (otherwise the first call does)."""
+        deadline = self._deadline(timeout)
+        with self._lock:
+            if self._sock is None:
+                self._connect(deadline)
+        return self
+
+    def close(self) -> None:
+        """Close the connection; a later call opens a new one."""
+        with self._lock:
+            self._close()
+
+    def batch(self, timeout: Any = _DEFAULT) -> "Batch":
+        """A batch of requests sent as one line at the end of a with block."""
+        return Batch(self, timeout)
+
+    # ---- internals ----
+    def _deadline(self, timeout: Any) -> Optional[float]:
+        if timeout is _DEFAULT:
+            timeout = self.timeout
+        return None if timeout is None else time.monotonic() + float(timeout)
+
+    def _left(self, deadline: Optional[float], doing: str, maybe_executed: bool) -> Optional[float]:
+        if deadline is None:
+            return None
+        left = deadline - time.monotonic()
+        if left <= 0:
+            self._close()
+            raise WrenchdTimeout("wrenchd at %s: timed out %s" % (self.socket_path, doing),
+                                 self.socket_path, maybe_executed)
+        return left
+
+    def _close(self) -> None:
+        if self._sock is not None:
+            try:
+                self._sock.close()
+            except OSError:
+                pass
+        self._sock = None
+        self._buf = bytearray()
+        self._scanned = 0
+
+    def _connect(self, deadline: Optional[float]) -> None:
+        self._close()
+        left = self._left(deadline, "connecting", False)
+        sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        try:
+            sock.settimeout(left)
+            sock.connect(self.socket_path)
+        except socket.timeout:
+            sock.close()
+            raise WrenchdTimeout("wrenchd at %s: timed out connecting" % self.socket_path,
+                                 self.socket_path, False) from None
+        except OSError as e:
+            sock.close()
+            raise WrenchdUnavailable("cannot connect to wrenchd at %s: %s"
+                                     % (self.socket_path, e.strerror or e),
+                                     self.socket_path, False) from None
+        except BaseException:
+            sock.close()
+            raise
+        self._sock = sock
+
+    def _stale(self) -> bool:
+        """The daemon closed this connection (or sent something unasked)."""
+        sock = self._sock
+        previous = sock.gettimeout()
+        try:
+            sock.settimeout(0.0)
+            sock.recv(1, socket.MSG_PEEK)
+        except (BlockingIOError, InterruptedError):
+            return False          # nothing to read: alive
+        except OSError:
+            return True
+        finally:
+            try:
+                sock.settimeout(previous)
+            except OSError:
+                pass
+        return True               # EOF, or an answer nobody asked for
+
+    def _send(self, data: bytes, deadline: Optional[float]) -> None:
+        view = memoryview(data)
+        sent = 0
+        while sent < len(data):
+            self._sock.settimeout(self._left(deadline, "sending", sent > 0))
+            try:
+                sent += self._sock.send(view[sent:], _NOSIGNAL)
+            except socket.timeout:
+                self._close()
+                raise WrenchdTimeout("wrenchd at %s: timed out sending (it does not read)"
+                                     % self.socket_path, self.socket_path, sent > 0) from None
+            except InterruptedError:
+                continue
+            except OSError as e:
+                raise _Broken("sending: %s" % (e.strerror or e), sent > 0) from None
+
+    def _read_line(self, deadline: Optional[float]) -> bytes:
+        while True:
+            end = self._buf.find(b"\n", self._scanned)
+            if end >= 0:
+                line = bytes(self._buf[:end])
+                del self._buf[:end + 1]
+                self._scanned = 0
+                return line
+            self._scanned = len(self._buf)
+            self._sock.settimeout(self._left(deadline, "waiting for the answer", True))
+            try:
+                chunk = self._sock.recv(1 << 18)
+            except socket.timeout:
+                self._close()
+                raise WrenchdTimeout("wrenchd at %s: no answer within the timeout"
+                                     % self.socket_path, self.socket_path, True) from None
+            except InterruptedError:
+                continue
+            except OSError as e:
+                raise _Broken("reading: %s" % (e.strerror or e), True) from None
+            if not chunk:
+                raise _Broken("the daemon closed the connection before answering", True)
+            self._buf += chunk
+
+    def _exchange(self, data: bytes, readonly: bool, timeout: Any, what: str) -> Any:
+        """Send one line and return the parsed answer line, reconnecting as
+        the module's docstring says."""
+        deadline = self._deadline(timeout)
+        with self._lock:
+            for attempt in (1, 2):
+                if self._sock is not None and self._stale():
+                    self._close()
+                if self._sock is None:
+                    self._connect(deadline)
+                try:
+                    self._send(data, deadline)
+                    line = self._read_line(deadline)
+                except _Broken as e:
+                    self._close()
+                    if e.maybe_executed and not readonly:
+                        raise WrenchdUnavailable(
+                            "wrenchd at %s: %s; %s was not sent again: it changes state, and "
+                            "may or may not have been done" % (self.socket_path, e.why, what),
+                            self.socket_path, True) from None
+                    if attempt == 2:
+                        raise WrenchdUnavailable("wrenchd at %s: %s (on a new connection too)"
+                                                 % (self.socket_path, e.why), self.socket_path,
+                                                 e.maybe_executed) from None
+                    continue
+                try:
+                    return json.loads(line)
+                except ValueError:
+                    self._close()
+                    raise WrenchdProtocolError("wrenchd at %s answered a line that is not "
+                                               "JSON: %r" % (self.socket_path, line[:200]),
+                                               self.socket_path, True) from None
+        raise AssertionError("unreachable")
+
+    def _connection_error(self, answer: Any, method: str) -> None:
+        """An answer that is not to our id: an error the daemon sends with
+        id null (e.g. too many clients) or a protocol violation."""
+        self.close()
+        if isinstance(answer, dict) and answer.get("id") is None and "error" in answer:
+            raise WrenchdError.from_wire(answer["error"], method)
+        raise WrenchdProtocolError("wrenchd at %s: an answer that does not match the request: "
+                                   "%.200r" % (self.socket_path, answer), self.socket_path, True)
+
+    def _invoke(self, method, params, convert, readonly, timeout, on_error=None):
+        rid = next(self._ids)
+        request = {"jsonrpc": "2.0", "method": method, "id": rid}
+        if params is not None:
+            request["params"] = params
+        answer = self._exchange(_encode(request), readonly, timeout, method)
+        if not isinstance(answer, dict) or answer.get("id") != rid \
+                or isinstance(answer.get("id"), bool):
+            self._connection_error(answer, method)
+        return _settle(answer, method, convert, on_error)
+
+
+def _settle(answer: Dict[str, Any], method: str, convert: Callable,
+            on_error: Optional[Callable]) -> Any:
+    if "error" in answer:
+        error = WrenchdError.from_wire(answer["error"], method)
+        if on_error is not None:
+            return on_error(error)
+        raise error
+    if "result" not in answer:
+        raise WrenchdProtocolError("%s: an answer with neither result nor error: %.200r"
+                                   % (method, answer))
+    return convert(answer["result"])
+
+
+# ---- batches ------------------------------------------------------------------------
+
+class Pending:
+    """The answer to one request of a Batch, known once the batch is sent."""
+
+    def __init__(self, method: str, convert: Callable, on_error: Optional[Callable]):
+        self.method = method
+        self._convert = convert
+        self._on_error = on_error
+        self._answer: Optional[Dict[str, Any]] = None
+        self._failure: Optional[BaseException] = None
+        self._done = False
+
+    def __repr__(self) -> str:
+        return "<wrenchd.Pending %s%s>" % (self.method, " done" if self._done else "")
+
+    def done(self) -> bool:
+        """True once the batch was sent and answered (or failed)."""
+        return self._done
+
+    def result(self) -> Any:
+        """What the Client method would have returned, or its exception."""
+        if not self._done:
+            raise RuntimeError("the batch has not been sent yet: read results after the "
+                               "with block")
+        if self._failure is not None:
+            raise self._failure
+        return _settle(self._answer, self.method, self._convert, self._on_error)
+
+    def exception(self) -> Optional[BaseException]:
+        """The exception result() would raise, or None."""
+        try:
+            self.result()
+        except (WrenchdError, WrenchdUnavailable) as e:
+            return e
+        return None
+
+
+class Batch(_Methods):
+    """Requests collected in a with block and sent as one JSON array line.
+    Its methods are those of Client, each returning a Pending."""
+
+    def __init__(self, client: Client, timeout: Any = _DEFAULT):
+        self.client = client
+        self.timeout = timeout
+        self._items: List[tuple] = []    # (id, method, encoded request, pending, readonly)
+        self._sent = False
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __enter__(self) -> "Batch":
+        return self
+
+    def __exit__(self, exc_type: Any, exc: Any, tb: Any) -> None:
+        if exc_type is None:
+            self.send()
+        else:
+            self._fail(RuntimeError("the batch was not sent: its with block raised"))
+            self._sent = True
+
+    def _invoke(self, method, params, convert, readonly, timeout, on_error=None):
+        if timeout is not _DEFAULT:
+            raise TypeError("give the timeout to client.batch(timeout=...), not to one request")
+        if self._sent:
+            raise RuntimeError("this batch was sent already")
+        request = {"jsonrpc": "2.0", "method": method, "id": next(self.client._ids)}
+        if params is not None:
+            request["params"] = params
+        line = _encode(request)          # a NaN raises here, at its call
+        pending = Pending(method, convert, on_error)
+        self._items.append((request["id"], method, line[:-1], pending, readonly))
+        return pending
+
+    def _fail(self, failure: BaseException) -> None:
+        for item in self._items:
+            pending = item[3]
+            pending._failure = failure
+            pending._done = True
+
+    def send(self) -> None:
+        """Send the batch now (the with block's end does it).  Raises
+        WrenchdUnavailable when the daemon cannot be reached or the
+        connection breaks; errors of single requests wait in their Pending."""
+        if self._sent:
+            raise RuntimeError("this batch was sent already")
+        self._sent = True
+        if not self._items:
+            return
+        try:
+            data = b"[" + b",".join(item[2] for item in self._items) + b"]\n"
+            readonly = all(item[4] for item in self._items)
+            answer = self.client._exchange(data, readonly, self.timeout, "the batch")
+        except BaseException as e:
+            self._fail(e)
+            raise
+        if isinstance(answer, dict) and answer.get("id") is None and "error" in answer:
+            # the line was refused as a whole (too long, too many clients)
+            error = WrenchdError.from_wire(answer["error"])
+            for item in self._items:
+                item[3]._answer = {"error": answer["error"]}
+                item[3]._done = True
+            if error.code == LIMIT_EXCEEDED and error.field == "":
+                self.client.close()
+            return
+        if not isinstance(answer, list):
+            self.client.close()
+            failure = WrenchdProtocolError("wrenchd answered a batch with %.200r" % (answer,),
+                                           self.client.socket_path, True)
+            self._fail(failure)
+            raise failure
+        by_id = {}
+        for item in answer:
+            if isinstance(item, dict) and "id" in item and not isinstance(item["id"], bool):
+                by_id[item["id"]] = item
+        for rid, method, _, pending, _ in self._items:
+            item = by_id.get(rid)
+            if item is None:
+                pending._failure = WrenchdProtocolError(
+                    "%s: the batch's answer has no answer for id %s" % (method, rid),
+                    self.client.socket_path, True)
+            else:
+                pending._answer = item
+            pending._done = True

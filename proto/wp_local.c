@@ -1,0 +1,123 @@
+/* wp_local.c -- an in-process wp_host: each request's inline fixture is
+ * validated, analysed, used and freed; nothing is kept between requests. */
+#include "wp_local.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+struct wp_local {
+    wp_host host;
+    wr_lp_env *solver;
+};
+
+/* What one request holds: the fixture, its analysis, its LPs. */
+typedef struct held {
+    wp_fixture_doc doc;
+    wr_analysis *analysis;
+    wr_lp_set *goal, *strong;
+} held;
+
+static bool no_store(wp_error *error)
+{
+    wp_error_set(error, WP_NO_FIXTURE, "",
+                 "there are no stored fixtures in process: give the fixture inline, or ask "
+                 "the daemon");
+    return false;
+}
+
+static bool local_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
+                        wp_error *error)
+{
+    (void)self;
+    if (store) {
+        wp_fixture_doc_release(doc);
+        wp_error_set(error, WP_STORAGE, "", "storing fixtures needs the daemon");
+        return false;
+    }
+    held *h = calloc(1, sizeof *h);
+    if (h)
+        h->analysis = wr_analysis_new(doc->fixture);
+    if (!h || !h->analysis) {
+        free(h);
+        wp_fixture_doc_release(doc);
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    wp_fixture_doc_move(&h->doc, doc);
+    /* The analysis borrows the fixture: both live in `h` until release. */
+    *use = (wp_fixture_use){h->doc.id,       h->doc.name, h->doc.canonical, h->doc.fixture,
+                            h->analysis,     {h, NULL}};
+    return true;
+}
+
+static bool local_use(void *self, const char *id, wp_fixture_use *use, wp_error *error)
+{
+    (void)self;
+    (void)id;
+    (void)use;
+    return no_store(error);
+}
+
+static void local_release(void *self, wp_fixture_use *use)
+{
+    (void)self;
+    held *h = use->handle[0];
+    wr_lp_set_free(h->goal);
+    wr_lp_set_free(h->strong);
+    wr_analysis_free(h->analysis);
+    wp_fixture_doc_release(&h->doc);
+    free(h);
+    memset(use, 0, sizeof *use);
+}
+
+static bool local_delete(void *self, const char *id, wp_error *error)
+{
+    (void)self;
+    (void)id;
+    return no_store(error);
+}
+
+static cJSON *local_nothing(void *self)
+{
+    (void)self;
+    return NULL; /* answered as an internal error; wrenchctl never asks */
+}
+
+static bool local_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
+                          wp_error *error)
+{
+    wp_local *local = self;
+    held *h = use->handle[0];
+    if (!h->goal && wr_analysis_lp_sets(h->analysis, local->solver, &h->goal, &h->strong) != 0) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    *goal = h->goal;
+    *strong = h->strong;
+    return true;
+}
+
+wp_local *wp_local_new(void)
+{
+    wp_local *local = calloc(1, sizeof *local);
+    if (!local)
+        return NULL;
+    local->solver = wr_lp_env_new();
+    if (!local->solver) {
+        free(local);
+        return NULL;
+    }
+    local->host = (wp_host){local,         local_adopt,   local_use,     local_release,
+                            local_delete,  local_nothing, local_nothing, local_lp_sets};
+    return local;
+}
+
+const wp_host *wp_local_host(wp_local *local) { return &local->host; }
+
+void wp_local_free(wp_local *local)
+{
+    if (!local)
+        return;
+    wr_lp_env_free(local->solver);
+    free(local);
+}

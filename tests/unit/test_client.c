@@ -1,0 +1,301 @@
+/* test_client.c -- libwrenchclient against a fake daemon in a thread, which
+ * answers each request line with the next canned line (or stays silent, or
+ * hangs up), so every path of the client is reached without wrenchd.
+ * Linked with -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc to count heap
+ * allocations. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "wrenchclient.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+/* ---- counting allocations --------------------------------------------------- */
+
+void *__real_malloc(size_t size);
+void *__real_realloc(void *p, size_t size);
+void *__real_calloc(size_t n, size_t size);
+static atomic_long allocations;
+void *__wrap_malloc(size_t size)
+{
+    atomic_fetch_add(&allocations, 1);
+    return __real_malloc(size);
+}
+void *__wrap_realloc(void *p, size_t size)
+{
+    atomic_fetch_add(&allocations, 1);
+    return __real_realloc(p, size);
+}
+void *__wrap_calloc(size_t n, size_t size)
+{
+    atomic_fetch_add(&allocations, 1);
+    return __real_calloc(n, size);
+}
+
+/* ---- the fake daemon ---------------------------------------------------------- */
+
+#define SILENT "<silent>"  /* read the request, answer nothing */
+#define HANG_UP "<hang up>" /* read the request, close the connection */
+
+typedef struct fake {
+    char path[108];
+    int listener;
+    const char *const *answers; /* one per request, NULL-ended */
+    char last_request[4096];
+    int requests, connections;
+    pthread_t thread;
+} fake;
+
+/* Answer a request with the id it carried: "%ID%" in a canned line. */
+static void answer(int fd, const char *request, const char *canned)
+{
+    const char *id = strstr(request, "\"id\":");
+    long number = id ? strtol(id + 5, NULL, 10) : 0;
+    char line[4096];
+    const char *mark = strstr(canned, "%ID%");
+    if (mark)
+        snprintf(line, sizeof line, "%.*s%ld%s\n", (int)(mark - canned), canned, number,
+                 mark + 4);
+    else
+        snprintf(line, sizeof line, "%s\n", canned);
+    ssize_t sent = send(fd, line, strlen(line), MSG_NOSIGNAL);
+    (void)sent;
+}
+
+static void *serve(void *argument)
+{
+    fake *f = argument;
+    int next = 0;
+    while (f->answers[next]) {
+        int fd = accept(f->listener, NULL, NULL);
+        if (fd < 0)
+            break;
+        f->connections++;
+        char buffer[4096];
+        size_t length = 0;
+        bool open = true;
+        while (open && f->answers[next]) {
+            ssize_t n = recv(fd, buffer + length, sizeof buffer - 1 - length, 0);
+            if (n <= 0)
+                break;
+            length += (size_t)n;
+            buffer[length] = 0;
+            char *end;
+            while (open && (end = strchr(buffer, '\n')) && f->answers[next]) {
+                *end = 0;
+                snprintf(f->last_request, sizeof f->last_request, "%s", buffer);
+                f->requests++;
+                const char *canned = f->answers[next++];
+                if (strcmp(canned, HANG_UP) == 0)
+                    open = false;
+                else if (strcmp(canned, SILENT) != 0)
+                    answer(fd, buffer, canned);
+                length -= (size_t)(end + 1 - buffer);
+                memmove(buffer, end + 1, length + 1);
+            }
+        }
+        close(fd);
+    }
+    return NULL;
+}
+
+static void start(fake *f, const char *const *answers)
+{
+    memset(f, 0, sizeof *f);
+    snprintf(f->path, sizeof f->path, "/tmp/wrc-test-%d.sock", (int)getpid());
+    unlink(f->path);
+    f->answers = answers;
+    f->listener = socket(AF_UNIX, SOCK_STREAM, 0);
+    struct sockaddr_un address = {.sun_family = AF_UNIX};
+    strcpy(address.sun_path, f->path);
+    assert_int_equal(bind(f->listener, (struct sockaddr *)&address, sizeof address), 0);
+    assert_int_equal(listen(f->listener, 4), 0);
+    pthread_create(&f->thread, NULL, serve, f);
+}
+
+static void stop(fake *f)
+{
+    shutdown(f->listener, SHUT_RDWR);
+    close(f->listener);
+    pthread_join(f->thread, NULL);
+    unlink(f->path);
+}
+
+static const char INSIDE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"goal\":{\"verdict\":\"inside\",\"inside\":"
+    "true,\"margin\":0.3162277660168377,\"blocking\":null,\"states\":[],\"witness\":null}}]},"
+    "\"id\":%ID%}";
+static const char OUTSIDE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"strong\":{\"verdict\":\"outside\",\"inside\":"
+    "false,\"margin\":-0.003162,\"blocking\":\"ll\",\"states\":[],\"witness\":{\"acceleration\":"
+    "[0,0,1],\"forces\":[[1,0],[1,0]],\"wrench\":[1,2,3]}}}]},\"id\":%ID%}";
+static const char NO_FIXTURE[] =
+    "{\"jsonrpc\":\"2.0\",\"error\":{\"code\":-32001,\"message\":\"No such fixture\",\"data\":"
+    "{\"field\":\"params.fixture\",\"reason\":\"no stored fixture has the id \\\"x\\\"\"}},"
+    "\"id\":%ID%}";
+static const char WRONG_ID[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"goal\":{\"verdict\":\"inside\",\"inside\":"
+    "true,\"margin\":0.5,\"blocking\":null}}]},\"id\":999999}";
+
+static const double G[3] = {-1, -1, 0};
+static const char ID[] = "f770c1ac339af2c273789c5cce0a8d35";
+
+static void classify_reads_verdicts_without_allocating(void **state)
+{
+    (void)state;
+    const char *const answers[] = {INSIDE, OUTSIDE, INSIDE, OUTSIDE, NULL};
+    fake f;
+    start(&f, answers);
+    int error;
+    long at_start = atomic_load(&allocations);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, &error);
+    assert_non_null(c);
+    /* The wrapping counts: connecting allocates the client and buffers. */
+    assert_true(atomic_load(&allocations) - at_start >= 3);
+    wrc_answer a;
+    long before = atomic_load(&allocations);
+    for (int i = 0; i < 2; i++) {
+        assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_OK);
+        assert_int_equal(a.verdict, WRC_INSIDE);
+        assert_true(fabs(a.margin - 0.3162277660168377) < 1e-16);
+        assert_string_equal(a.blocking, "");
+        assert_int_equal(wrc_classify(c, ID, G, "strong", &a), WRC_OK);
+        assert_int_equal(a.verdict, WRC_OUTSIDE);
+        assert_true(fabs(a.margin + 0.003162) < 1e-16);
+        assert_string_equal(a.blocking, "ll");
+    }
+    assert_int_equal(atomic_load(&allocations) - before, 0);
+    /* The request carried the fixture, the wrench and the set. */
+    assert_non_null(strstr(f.last_request, ID));
+    assert_non_null(strstr(f.last_request, "[[-1,-1,0]]"));
+    assert_non_null(strstr(f.last_request, "\"sets\":[\"strong\"]"));
+    assert_int_equal(f.connections, 1);
+    wrc_close(c);
+    stop(&f);
+}
+
+static void server_errors_carry_code_field_and_reason(void **state)
+{
+    (void)state;
+    const char *const answers[] = {NO_FIXTURE, NO_FIXTURE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    wrc_answer a;
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_ESERVER);
+    int code;
+    const char *field, *reason;
+    wrc_server_error(c, &code, &field, &reason);
+    assert_int_equal(code, -32001);
+    assert_string_equal(field, "params.fixture");
+    assert_string_equal(reason, "no stored fixture has the id \"x\"");
+    char *text = NULL;
+    assert_int_equal(wrc_call(c, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"id\":2}", &text),
+                     WRC_ESERVER);
+    assert_non_null(text); /* the whole answer is given back too */
+    free(text);
+    wrc_close(c);
+    stop(&f);
+}
+
+static void bad_arguments_and_bad_answers(void **state)
+{
+    (void)state;
+    const char *const answers[] = {WRONG_ID, "not json at all", NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    wrc_answer a;
+    double bad[3] = {0, NAN, 0};
+    assert_int_equal(wrc_classify(c, ID, bad, "goal", &a), WRC_EINVAL);
+    assert_int_equal(wrc_classify(c, ID, G, "nope", &a), WRC_EINVAL);
+    assert_int_equal(wrc_classify(c, "a\"b", G, "goal", &a), WRC_EINVAL);
+    assert_int_equal(f.requests, 0); /* refused before sending */
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_EPROTO);
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_EPROTO);
+    char *text;
+    assert_int_equal(wrc_call(c, "two\nlines", &text), WRC_EINVAL);
+    wrc_close(c);
+    stop(&f);
+    int error;
+    assert_null(wrc_connect("/nonexistent/wrenchd.sock", 100, 0, &error));
+    assert_int_equal(error, WRC_ECONNECT);
+    assert_string_equal(wrc_strerror(WRC_ETIMEOUT), "wrenchd did not answer in time");
+}
+
+static void a_silent_daemon_times_out(void **state)
+{
+    (void)state;
+    const char *const answers[] = {SILENT, INSIDE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 200, 0, NULL);
+    wrc_answer a;
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_ETIMEOUT);
+    /* The timed-out connection is closed; the next call opens a new one. */
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_OK);
+    assert_int_equal(f.connections, 2);
+    wrc_close(c);
+    stop(&f);
+}
+
+static void a_dropped_connection_is_reopened(void **state)
+{
+    (void)state;
+    const char *const answers[] = {HANG_UP, INSIDE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    wrc_answer a;
+    /* The request was read, then the daemon hung up: the client cannot tell
+     * whether it ran, so it reports the break rather than sending it twice. */
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_EIO);
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_OK);
+    assert_int_equal(a.verdict, WRC_INSIDE);
+    assert_int_equal(f.connections, 2);
+    wrc_close(c);
+    stop(&f);
+}
+
+static void a_small_buffer_refuses_a_big_answer(void **state)
+{
+    (void)state;
+    const char *const answers[] = {OUTSIDE, INSIDE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 512, NULL); /* the smallest buffer */
+    wrc_answer a;
+    /* The answer (about 300 bytes) fits; a request of 700 does not. */
+    assert_int_equal(wrc_classify(c, ID, G, "strong", &a), WRC_OK);
+    char long_id[700];
+    memset(long_id, 'a', sizeof long_id - 1);
+    long_id[sizeof long_id - 1] = 0;
+    assert_int_equal(wrc_classify(c, long_id, G, "goal", &a), WRC_ETOOBIG);
+    wrc_close(c);
+    stop(&f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(classify_reads_verdicts_without_allocating),
+        cmocka_unit_test(server_errors_carry_code_field_and_reason),
+        cmocka_unit_test(bad_arguments_and_bad_answers),
+        cmocka_unit_test(a_silent_daemon_times_out),
+        cmocka_unit_test(a_dropped_connection_is_reopened),
+        cmocka_unit_test(a_small_buffer_refuses_a_big_answer),
+    };
+    return cmocka_run_group_tests_name("client", tests, NULL, NULL);
+}
