@@ -102,7 +102,7 @@ __all__ = [
     "Client", "Batch", "Pending",
     "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
     "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
-    "FixtureInfo", "explain", "default_socket_path",
+    "FixtureInfo", "explain", "explain_goal", "explain_strong", "default_socket_path",
     "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
     "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
 ]
@@ -666,6 +666,30 @@ class Client(_Methods):
                 pass
         return True               # EOF, or an answer nobody asked for
 
+    def _refusal(self) -> Optional[Dict[str, Any]]:
+        """After the connection broke: an error line with id null that the
+        daemon sent before closing it (too many clients), or None."""
+        try:
+            self._sock.settimeout(0.0)
+            while True:
+                chunk = self._sock.recv(1 << 16)
+                if not chunk:
+                    break
+                self._buf += chunk
+        except OSError:
+            pass
+        end = self._buf.find(b"\n")
+        if end < 0:
+            return None
+        try:
+            answer = json.loads(bytes(self._buf[:end]))
+        except ValueError:
+            return None
+        if isinstance(answer, dict) and answer.get("id") is None \
+                and isinstance(answer.get("error"), dict):
+            return answer
+        return None
+
     def _send(self, data: bytes, deadline: Optional[float]) -> None:
         view = memoryview(data)
         sent = 0
@@ -720,7 +744,10 @@ class Client(_Methods):
                     self._send(data, deadline)
                     line = self._read_line(deadline)
                 except _Broken as e:
+                    refusal = self._refusal()
                     self._close()
+                    if refusal is not None:
+                        return refusal          # e.g. too many clients: a WrenchdError
                     if e.maybe_executed and not readonly:
                         raise WrenchdUnavailable(
                             "wrenchd at %s: %s; %s was not sent again: it changes state, and "

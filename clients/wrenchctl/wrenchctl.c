@@ -220,12 +220,18 @@ static void explain_goal(const char *blocking, const cJSON *states, char *out, s
         if (n > 0 && n < size)
             n += (size_t)snprintf(out + n, size - n, "; ");
         if (ns == 0) {
+            /* Nothing breaks: the self transition.  From the no-contact
+             * state nothing holds either. */
             fixels_named(holding, nh, a, sizeof a);
             fixels_named(apart, na, b, sizeof b);
             n += (size_t)snprintf(out + n, n < size ? size - n : 0,
-                                  "from contact state %s it can stay as it is: %s %s and %s %s "
-                                  "never reached",
-                                  s, a, nh == 1 ? "holds" : "hold", b, na == 1 ? "is" : "are");
+                                  "from contact state %s it can stay as it is: ", s);
+            if (nh > 0)
+                n += (size_t)snprintf(out + n, n < size ? size - n : 0, "%s %s%s", a,
+                                      nh == 1 ? "holds" : "hold", na > 0 ? " and " : "");
+            if (na > 0)
+                n += (size_t)snprintf(out + n, n < size ? size - n : 0, "%s %s never reached",
+                                      b, na == 1 ? "is" : "are");
         } else {
             fixels_named(separating, ns, a, sizeof a);
             n += (size_t)snprintf(out + n, n < size ? size - n : 0,
