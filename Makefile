@@ -148,15 +148,15 @@ unit-asan: $(ASAN_BIN)
 # ---- end-to-end tests (pytest; each test starts its own daemon) ----------
 PYTEST = $(PYTHON) -m pytest -q -p no:cacheprovider
 
-e2e: $(BUILD)/wrenchd
+e2e: all
 	$(PYTEST) tests/e2e
 
-e2e-asan: $(BUILD)/asan/wrenchd
+e2e-asan: all $(BUILD)/asan/wrenchd
 	ASAN_OPTIONS=detect_leaks=1 WRENCHD=$(CURDIR)/$(BUILD)/asan/wrenchd $(PYTEST) tests/e2e
 
 # The end-to-end tests with the daemon under valgrind memcheck: zero errors,
 # zero leaks (minutes; not part of make check).
-check-valgrind: $(BUILD)/wrenchd
+check-valgrind: all
 	WRENCHD_WRAPPER="valgrind --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect" \
 	    $(PYTEST) tests/e2e
 
