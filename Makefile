@@ -40,14 +40,14 @@ $(BUILD)/lib/%.o: lib/%.c $(LIB_HDR)
 	$(CC) $(WARN) $(CFLAGS) -c $< -o $@
 
 $(BUILD)/libwrench.a: $(patsubst lib/%.c,$(BUILD)/lib/%.o,$(LIB_SRC))
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/asan/lib/%.o: lib/%.c $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) -O1 -g $(SAN) -c $< -o $@
 
 $(BUILD)/asan/libwrench.a: $(patsubst lib/%.c,$(BUILD)/asan/lib/%.o,$(LIB_SRC))
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 # ---- the protocol layer and the daemon --------------------------------------
 $(BUILD)/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
@@ -59,11 +59,11 @@ $(BUILD)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
 
 $(BUILD)/libwrenchproto.a: $(patsubst %.c,$(BUILD)/%.o,$(PROTO_SRC))
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 # Everything of the daemon but main(): tests and fuzzers link it too.
 $(BUILD)/libwrenchd.a: $(patsubst %.c,$(BUILD)/%.o,$(DAEMON_SRC))
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/wrenchd: $(BUILD)/daemon/wd_main.o $(BUILD)/libwrenchd.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 	$(CC) $(CFLAGS) $^ $(SERVER_LIBS) -o $@
@@ -74,7 +74,7 @@ $(BUILD)/clients/%.o: clients/c/%.c clients/c/wrenchclient.h
 	$(CC) $(WARN) $(CFLAGS) -Iclients/c -c $< -o $@
 
 $(BUILD)/libwrenchclient.a: $(BUILD)/clients/wrenchclient.o
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/clients/wrenchctl.o: clients/wrenchctl/wrenchctl.c clients/c/wrenchclient.h $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
@@ -98,10 +98,10 @@ $(BUILD)/asan/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
 	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
 
 $(BUILD)/asan/libwrenchproto.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(PROTO_SRC))
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/asan/libwrenchd.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(DAEMON_SRC))
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/asan/wrenchd: $(BUILD)/asan/daemon/wd_main.o $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrenchproto.a $(BUILD)/asan/libwrench.a
 	$(CC) $(SAN) $^ $(SERVER_LIBS) -o $@

@@ -108,13 +108,13 @@ static double distance_bound(const wr_cone *cone, const double x[3])
 
 /* Margin of unit x for one set: minus the largest depth when x is in some
  * excluded cone, else the smallest distance; 1 with no cone at all. */
-static double set_margin(const wr_analysis *a, wr_set set, const double x[3], int *blocking)
+double wr_set_margin(const wr_analysis *a, int set, const double x[3], int *blocking)
 {
-    int count = wr_analysis_cone_count(a, set);
+    int count = wr_analysis_cone_count(a, (wr_set)set);
     double deepest = -1;
     int deepest_index = -1;
     for (int i = 0; i < count; i++) {
-        const wr_cone *cone = wr_analysis_cone(a, set, i);
+        const wr_cone *cone = wr_analysis_cone(a, (wr_set)set, i);
         if (cone->empty || distance_bound(cone, x) > 0)
             continue;
         /* Inside: for a full cone the depth is the smallest facet distance
@@ -134,7 +134,7 @@ static double set_margin(const wr_analysis *a, wr_set set, const double x[3], in
     double nearest = INFINITY;
     int nearest_index = -1;
     for (int i = 0; i < count; i++) {
-        const wr_cone *cone = wr_analysis_cone(a, set, i);
+        const wr_cone *cone = wr_analysis_cone(a, (wr_set)set, i);
         if (cone->empty || distance_bound(cone, x) >= nearest)
             continue;
         double d = wr_cone_signed_distance(cone, x, NULL);
@@ -201,9 +201,9 @@ int wr_classify(const wr_analysis *a, const double wrench[3], wr_set set, double
     int goal_blocking = -1, strong_blocking = -1;
     double goal_margin = 1, strong_margin = 1;
     if (set != WR_SET_STRONG)
-        goal_margin = set_margin(a, WR_SET_GOAL, x, &goal_blocking);
+        goal_margin = wr_set_margin(a, WR_SET_GOAL, x, &goal_blocking);
     if (set != WR_SET_GOAL)
-        strong_margin = set_margin(a, WR_SET_STRONG, x, &strong_blocking);
+        strong_margin = wr_set_margin(a, WR_SET_STRONG, x, &strong_blocking);
     bool goal_decides = set == WR_SET_GOAL || (set == WR_SET_BOTH && goal_margin <= strong_margin);
     answer->has_margin = true;
     answer->margin = goal_decides ? goal_margin : strong_margin;

@@ -588,6 +588,11 @@ void wr_fixture_unscale_row(const wr_fixture *fixture, const double scaled_row[3
     wr_normalize3(row);
 }
 
+void wr_fixture_edge_normal(const wr_fixture *fixture, size_t edge, double normal[2])
+{
+    edge_inward_normal(fixture, edge, normal);
+}
+
 void wr_fixture_force_wrench(const wr_fixture *fixture, const double force[2],
                              const double at[2], double wrench[3])
 {

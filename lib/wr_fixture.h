@@ -119,6 +119,9 @@ void wr_fixture_unscale_wrench(const wr_fixture *fixture, const double scaled[3]
 void wr_fixture_unscale_row(const wr_fixture *fixture, const double scaled_row[3],
                             double row[3]);
 
+/* The inward unit normal of polygon edge i (vertex i to vertex i+1). */
+void wr_fixture_edge_normal(const wr_fixture *fixture, size_t edge, double normal[2]);
+
 /* The wrench (f_x, f_y, (at - com) x force) of a force applied at a point. */
 void wr_fixture_force_wrench(const wr_fixture *fixture, const double force[2],
                              const double at[2], double wrench[3]);

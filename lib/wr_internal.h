@@ -104,6 +104,12 @@ double wr_hull_depth(const wr_hull_view *cone, const double x[3]);
 double wr_nnls3(const double (*columns)[3], int count, const double y[3], double *lambda);
 
 struct wr_constraint;
+struct wr_analysis;
+/* The margin of the unit scaled wrench x for one set (WR_SET_GOAL or
+ * WR_SET_STRONG): minus the largest depth in an excluded cone, else the
+ * smallest distance; 1 with no cone.  *blocking: the cone's index or -1. */
+double wr_set_margin(const struct wr_analysis *analysis, int set, const double x[3],
+                     int *blocking);
 /* Is there an acceleration satisfying the constraint's acceleration rows,
  * strict rows strictly (kinematic feasibility, SPEC section 4)? */
 bool wr_constraint_kinematically_feasible(const wr_fixture *fixture,

@@ -6,6 +6,7 @@
  *   wr_plan.h      contact states, the strings G_goal excludes, contact modes
  *   wr_lp.h        GLPK membership LPs (per-thread environments)
  *   wr_classify.h  G_goal, G_strong: verdicts, margins, blocking cones
+ *   wr_regions.h   push regions, gravity arcs, disturbance margins
  *
  * Pure computation: no I/O, no global state; every function is re-entrant.
  * Objects are created by *_new and released by *_free; an object passed by
@@ -20,5 +21,6 @@
 #include "wr_fixture.h"
 #include "wr_lp.h"
 #include "wr_plan.h"
+#include "wr_regions.h"
 
 #endif

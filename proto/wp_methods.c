@@ -463,6 +463,151 @@ static cJSON *modes_get(const wp_host *host, const wp_limits *limits, const cJSO
     return result;
 }
 
+/* ---- push.regions, gravity.sweep, stability.margin ----------------------- */
+
+/* params.set: one of goal, strong, both (default goal). */
+static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
+{
+    const char *name;
+    if (!wp_member_string(params, "params", "set", false, &name, error))
+        return false;
+    *set = WR_SET_GOAL;
+    if (!name)
+        return true;
+    for (int s = 0; s < 3; s++)
+        if (strcmp(name, SET_NAMES[s]) == 0) {
+            *set = (wr_set)s;
+            return true;
+        }
+    wp_error_set(error, WP_INVALID_PARAMS, "params.set", "must be \"goal\", \"strong\" or \"both\"");
+    return false;
+}
+
+static cJSON *point(const double p[2])
+{
+    const double q[2] = {p[0] + 0.0, p[1] + 0.0};
+    return cJSON_CreateDoubleArray(q, 2);
+}
+
+static cJSON *push_regions(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                           wp_error *error)
+{
+    (void)limits;
+    wr_set set;
+    double friction = 0;
+    if (!read_set(params, &set, error) ||
+        !wp_member_number(params, "params", "finger_friction", false, &friction, NULL, error))
+        return NULL;
+    if (friction < 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction", "must not be negative");
+        return NULL;
+    }
+    wp_fixture_use use;
+    if (!use_fixture(host, params, &use, error))
+        return NULL;
+    const wr_fixture *f = use.fixture;
+    cJSON *result = NULL;
+    wr_regions regions;
+    int status = f->shape == WR_SHAPE_NONE ? -1
+                                           : wr_push_regions(use.analysis, set, friction, &regions);
+    if (status == -1) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                     "push regions need the part's outline: the fixture has no shape");
+    } else if (status != 0) {
+        out_of_memory(NULL, error);
+    } else {
+        result = cJSON_CreateObject();
+        cJSON *list = cJSON_AddArrayToObject(result, "regions");
+        double total = 0;
+        for (int i = 0; list && i < regions.count; i++) {
+            const wr_region *r = &regions.items[i];
+            double from[2], to[2], normal[2];
+            wr_boundary_point(f, r->edge, r->t0, from, normal);
+            wr_boundary_point(f, r->edge, r->t1, to, normal);
+            double length = wr_region_length(f, r);
+            total += length;
+            cJSON *item = cJSON_CreateObject();
+            cJSON_AddNumberToObject(item, "edge", r->edge);
+            cJSON_AddItemToObject(item, "from", point(from));
+            cJSON_AddItemToObject(item, "to", point(to));
+            cJSON_AddNumberToObject(item, "t0", r->t0);
+            cJSON_AddNumberToObject(item, "t1", r->t1);
+            cJSON_AddNumberToObject(item, "length", length);
+            cJSON_AddItemToArray(list, item);
+        }
+        cJSON_AddNumberToObject(result, "total_length", total);
+        cJSON_AddNumberToObject(result, "fraction", total / wr_perimeter(f));
+        cJSON_AddBoolToObject(result, "exact", regions.resolution == 0);
+        if (!cJSON_AddNumberToObject(result, "resolution", regions.resolution))
+            result = out_of_memory(result, error);
+        wr_regions_release(&regions);
+    }
+    host->fixture_release(host->self, &use);
+    return result;
+}
+
+static cJSON *gravity_sweep(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                            wp_error *error)
+{
+    (void)limits;
+    wr_set set;
+    if (!read_set(params, &set, error))
+        return NULL;
+    wp_fixture_use use;
+    if (!use_fixture(host, params, &use, error))
+        return NULL;
+    cJSON *result = NULL;
+    wr_regions arcs;
+    if (wr_gravity_sweep(use.analysis, set, &arcs) != 0) {
+        out_of_memory(NULL, error);
+    } else {
+        result = cJSON_CreateObject();
+        cJSON *list = cJSON_AddArrayToObject(result, "intervals_deg");
+        for (int i = 0; list && i < arcs.count; i++) {
+            const double arc[2] = {arcs.items[i].t0 + 0.0, arcs.items[i].t1 + 0.0};
+            cJSON_AddItemToArray(list, cJSON_CreateDoubleArray(arc, 2));
+        }
+        if (!list)
+            result = out_of_memory(result, error);
+        wr_regions_release(&arcs);
+    }
+    host->fixture_release(host->self, &use);
+    return result;
+}
+
+static cJSON *stability_margin(const wp_host *host, const wp_limits *limits, const cJSON *params,
+                               wp_error *error)
+{
+    (void)limits;
+    wp_fixture_use use;
+    if (!use_fixture(host, params, &use, error))
+        return NULL;
+    double bias[3];
+    cJSON *result = NULL;
+    wr_disturbance d;
+    if (wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias", use.fixture,
+                       bias, error) &&
+        wr_disturbance_margin(use.analysis, bias, &d) == 0) {
+        result = cJSON_CreateObject();
+        if (d.bounded) {
+            char text[WR_CONSTRAINT_TEXT];
+            wr_constraint_format(&use.analysis->modes[d.blocking], text);
+            cJSON_AddNumberToObject(result, "margin", d.margin + 0.0);
+            cJSON_AddStringToObject(result, "blocking", text);
+            cJSON_AddItemToObject(result, "worst_direction", vector3(d.worst_direction));
+        } else {
+            /* No moving mode at all: no disturbance moves the part. */
+            cJSON_AddNullToObject(result, "margin");
+            cJSON_AddNullToObject(result, "blocking");
+            cJSON_AddNullToObject(result, "worst_direction");
+        }
+        if (!cJSON_GetObjectItem(result, "worst_direction"))
+            result = out_of_memory(result, error);
+    }
+    host->fixture_release(host->self, &use);
+    return result;
+}
+
 /* ---- the table ------------------------------------------------------------ */
 
 static const char *const NONE[] = {NULL};
@@ -471,6 +616,9 @@ static const char *const ID[] = {"id", NULL};
 static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
+static const char *const PUSH[] = {"fixture", "set", "finger_friction", NULL};
+static const char *const SWEEP[] = {"fixture", "set", NULL};
+static const char *const MARGIN[] = {"fixture", "bias", NULL};
 
 const wp_method wp_methods[] = {
     {"fixture.put", fixture_put, FIXTURE, FIXTURE, "store a fixture; its id depends on its content"},
@@ -483,9 +631,11 @@ const wp_method wp_methods[] = {
     {"plan.get", plan_get, FIXTURE, FIXTURE, "contact states, their excluded strings, G_goal's cones"},
     {"modes.get", modes_get, FIXTURE, FIXTURE, "the feasible moving contact modes"},
     {"server.status", server_status, NONE, NONE, "version, uptime, counts"},
-    {"push.regions", NULL, NONE, NONE, "where a frictionless finger seats the part (not yet)"},
-    {"gravity.sweep", NULL, NONE, NONE, "tilts under which gravity seats the part (not yet)"},
-    {"stability.margin", NULL, NONE, NONE, "disturbance a biasing wrench tolerates (not yet)"},
+    {"push.regions", push_regions, PUSH, FIXTURE,
+     "the boundary intervals where a finger's push is in a set"},
+    {"gravity.sweep", gravity_sweep, SWEEP, FIXTURE, "the tilts under which gravity is in a set"},
+    {"stability.margin", stability_margin, MARGIN, MARGIN,
+     "how large a disturbance a biasing wrench tolerates"},
     {NULL, NULL, NULL, NULL, NULL},
 };
 

@@ -96,8 +96,8 @@ ROWS = [
     # U+0000 would be cut off by the JSON library: the line is refused whole
     # (docs/PROTOCOL.md), never answered as another request.
     ("method-with-nul", line("fixture.list\u0000x", {}), -32600, "", None),
-    ("not-yet-served", line("push.regions", {"fixture": DC, "set": "goal"}), -32601, "method",
-     RID),
+    ("push-regions-bad-set", line("push.regions", {"fixture": DC, "set": "gaol"}), -32602,
+     "params.set", RID),
     # ---- -32602: params of the methods ----
     ("params-array", line("fixture.list", [1]), -32602, "params", RID),
     ("list-unknown-param", line("fixture.list", {"verbose": True}), -32602, "params.verbose", RID),

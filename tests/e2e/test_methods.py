@@ -664,13 +664,13 @@ def test_server_status(harness):
 
 
 @pytest.mark.parametrize("method", ["push.regions", "gravity.sweep", "stability.margin"])
-def test_not_yet_served(client, method):
+def test_section_6_methods_served(client, method):
+    """Once announced with -32601, now served: each answers the SPEC 7 disc."""
     params = {"fixture": FX.disc_corner(0.5), "set": "goal"}
     if method == "stability.margin":
         params = {"fixture": FX.disc_corner(0.5), "bias": [-1, -1, 0]}
-    e = client.error(method, params)
-    assert e["code"] == -32601, e
-    assert e["data"]["field"] == "method", e
+    r = client.result(method, params)
+    assert isinstance(r, dict) and r, r
 
 
 def test_examples_loaded(harness):

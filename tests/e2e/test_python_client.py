@@ -327,7 +327,9 @@ def test_errors_carry_code_and_field(pyclient):
         (lambda: c.classify(fid, [(1, 0, 0)], tolerance=-1), -32602, "params.tolerance"),
         (lambda: c.cone(fid, "smu"), -32602, "params.constraints"),
         (lambda: c.get_fixture("xyz"), -32602, "params.id"),
-        (lambda: c.call("push.regions", {"fixture": fid, "set": "goal"}), -32601, None),
+        (lambda: c.call("push.regions", {"fixture": fid, "set": "goal", "x": 1}), -32602,
+         "params.x"),
+        (lambda: c.call("push.regionz", {"fixture": fid}), -32601, "method"),
     ]
     for fn, code, field in cases:
         with pytest.raises(wrenchd.WrenchdError) as e:

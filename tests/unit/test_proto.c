@@ -192,8 +192,8 @@ static void envelope_errors_name_the_field(void **state)
     expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"x\",\"id\":1,\"extra\":0}",
                  WP_INVALID_REQUEST, "extra");
     expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"nope\",\"id\":1}", WP_NO_METHOD, "method");
-    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"gravity.sweep\",\"id\":1}", WP_NO_METHOD,
-                 "method");
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"gravity.sweep\",\"id\":1}",
+                 WP_INVALID_PARAMS, "params.fixture");
     expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"params\":[],\"id\":1}",
                  WP_INVALID_PARAMS, "params");
     expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"params\":{\"x\":1},\"id\":1}",

@@ -1,0 +1,477 @@
+/* wr_regions.c -- push regions, gravity arcs, disturbance margins (SPEC 6).
+ *
+ * Everything here is in the scaled space of wr_cone.c, where the excluded
+ * cones live: a wrench g is scaled to h = (f_x, f_y, tau / rho).  A point is
+ * in a region when h is outside the closure of every excluded cone of the
+ * set; membership of a closed cone {F h <= 0, E h = 0} along an affine or
+ * trigonometric curve reduces to one linear condition per row. */
+#include "wr_regions.h"
+#include "wr_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- closed spans: the excluded parts of one edge or of the circle ---------- */
+
+typedef struct span {
+    double lo, hi;
+} span;
+
+typedef struct spans {
+    int count, capacity;
+    span *items;
+    bool failed; /* out of memory */
+} spans;
+
+static void add_span(spans *s, double lo, double hi)
+{
+    if (s->failed || lo > hi)
+        return;
+    if (s->count == s->capacity) {
+        int capacity = s->capacity ? 2 * s->capacity : 32;
+        span *grown = realloc(s->items, (size_t)capacity * sizeof *grown);
+        if (!grown) {
+            s->failed = true;
+            return;
+        }
+        s->items = grown;
+        s->capacity = capacity;
+    }
+    s->items[s->count++] = (span){lo, hi};
+}
+
+static int compare_spans(const void *a, const void *b)
+{
+    double x = ((const span *)a)->lo, y = ((const span *)b)->lo;
+    return (x > y) - (x < y);
+}
+
+static bool add_region(wr_regions *r, int edge, double t0, double t1)
+{
+    if (!(t1 > t0))
+        return true;
+    if (r->count == r->capacity) {
+        int capacity = r->capacity ? 2 * r->capacity : 32;
+        wr_region *grown = realloc(r->items, (size_t)capacity * sizeof *grown);
+        if (!grown)
+            return false;
+        r->items = grown;
+        r->capacity = capacity;
+    }
+    r->items[r->count++] = (wr_region){edge, t0, t1};
+    return true;
+}
+
+/* Gaps narrower than this fraction of the range, between excluded spans
+ * that meet in exact arithmetic, are rounding: no region. */
+#define SLIVER 1e-9
+
+/* The open complement of the closed spans within (low, high), as regions. */
+static bool complement(spans *bad, double low, double high, int edge, wr_regions *out)
+{
+    qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_spans);
+    double sliver = SLIVER * (high - low);
+    double from = low;
+    for (int i = 0; i < bad->count; i++) {
+        if (bad->items[i].hi < low || bad->items[i].lo > high)
+            continue;
+        if (bad->items[i].lo > from + sliver && !add_region(out, edge, from, bad->items[i].lo))
+            return false;
+        if (bad->items[i].hi > from)
+            from = bad->items[i].hi;
+    }
+    return high > from + sliver ? add_region(out, edge, from, high) : true;
+}
+
+void wr_regions_release(wr_regions *regions)
+{
+    free(regions->items);
+    memset(regions, 0, sizeof *regions);
+}
+
+/* The excluded cones of a set: the goal cones, the mode cones, or both. */
+static int set_cones(const wr_analysis *a, wr_set set, const wr_cone ***cones)
+{
+    int goal = set == WR_SET_STRONG ? 0 : a->plan->kept_count;
+    int strong = set == WR_SET_GOAL ? 0 : a->mode_count;
+    *cones = malloc((size_t)(goal + strong + 1) * sizeof **cones);
+    if (!*cones)
+        return -1;
+    int n = 0;
+    for (int i = 0; i < goal; i++)
+        (*cones)[n++] = &a->goal_cones[i];
+    for (int i = 0; i < strong; i++)
+        (*cones)[n++] = &a->mode_cones[i];
+    return n;
+}
+
+/* ---- the boundary ---------------------------------------------------------------- */
+
+void wr_boundary_point(const wr_fixture *f, int edge, double t, double point[2], double normal[2])
+{
+    if (f->shape == WR_SHAPE_CIRCLE) {
+        double angle = t * WR_PI / 180;
+        double u[2] = {cos(angle), sin(angle)};
+        point[0] = f->center[0] + f->radius * u[0];
+        point[1] = f->center[1] + f->radius * u[1];
+        normal[0] = -u[0];
+        normal[1] = -u[1];
+        return;
+    }
+    const double *a = f->vertices[edge], *b = f->vertices[((size_t)edge + 1) % f->vertex_count];
+    point[0] = a[0] + t * (b[0] - a[0]);
+    point[1] = a[1] + t * (b[1] - a[1]);
+    wr_fixture_edge_normal(f, (size_t)edge, normal);
+}
+
+void wr_push_wrench(const wr_fixture *f, int edge, double t, double wrench[3])
+{
+    double p[2], nu[2];
+    wr_boundary_point(f, edge, t, p, nu);
+    wr_fixture_force_wrench(f, nu, p, wrench);
+}
+
+double wr_region_length(const wr_fixture *f, const wr_region *r)
+{
+    if (f->shape == WR_SHAPE_CIRCLE)
+        return f->radius * (r->t1 - r->t0) * WR_PI / 180;
+    const double *a = f->vertices[r->edge], *b = f->vertices[((size_t)r->edge + 1) % f->vertex_count];
+    return (r->t1 - r->t0) * hypot(b[0] - a[0], b[1] - a[1]);
+}
+
+double wr_perimeter(const wr_fixture *f)
+{
+    if (f->shape == WR_SHAPE_CIRCLE)
+        return 2 * WR_PI * f->radius;
+    double length = 0;
+    for (size_t i = 0; i < f->vertex_count; i++) {
+        const double *a = f->vertices[i], *b = f->vertices[(i + 1) % f->vertex_count];
+        length += hypot(b[0] - a[0], b[1] - a[1]);
+    }
+    return length;
+}
+
+/* ---- exact: a line h0 + t h1 against each cone ----------------------------------- */
+
+/* The closed t-interval where h0 + t h1 is in the cone's closure (lo > hi
+ * when never).  A row that does not change along the line holds throughout
+ * or never; `scale` sizes what counts as zero. */
+static span line_in_cone(const wr_cone *cone, const double h0[3], const double h1[3], double scale)
+{
+    span s = {-INFINITY, INFINITY};
+    double zero = 1e-12 * scale;
+    for (int i = 0; i < cone->facet_count && s.lo <= s.hi; i++) {
+        double alpha = wr_dot3(cone->facets[i], h0), beta = wr_dot3(cone->facets[i], h1);
+        if (fabs(beta) <= zero) {
+            if (alpha > zero)
+                s.lo = INFINITY;
+        } else if (beta > 0) {
+            s.hi = fmin(s.hi, -alpha / beta);
+        } else {
+            s.lo = fmax(s.lo, -alpha / beta);
+        }
+    }
+    for (int i = 0; i < cone->equality_count && s.lo <= s.hi; i++) {
+        double alpha = wr_dot3(cone->equalities[i], h0), beta = wr_dot3(cone->equalities[i], h1);
+        if (fabs(beta) <= zero) {
+            if (fabs(alpha) > zero)
+                s.lo = INFINITY;
+        } else {
+            /* One point; rows met at the same point may differ in the last
+             * bits, so they are allowed to agree within 1e-12. */
+            double t = -alpha / beta;
+            if (t > s.hi + 1e-12 || t < s.lo - 1e-12)
+                s.lo = INFINITY;
+            else
+                s.lo = s.hi = fmin(fmax(t, s.lo), s.hi);
+        }
+    }
+    return s;
+}
+
+static void scale_wrench(const wr_fixture *f, const double w[3], double h[3])
+{
+    h[0] = w[0];
+    h[1] = w[1];
+    h[2] = w[2] / f->gyration_radius;
+}
+
+static bool polygon_exact(const wr_fixture *f, const wr_cone **cones, int count, wr_regions *out)
+{
+    for (size_t e = 0; e < f->vertex_count; e++) {
+        double w0[3], w1[3], h0[3], h1[3];
+        wr_push_wrench(f, (int)e, 0, w0);
+        wr_push_wrench(f, (int)e, 1, w1);
+        for (int k = 0; k < 3; k++)
+            w1[k] -= w0[k]; /* affine: w(t) = w0 + t w1 */
+        scale_wrench(f, w0, h0);
+        scale_wrench(f, w1, h1);
+        double scale = wr_norm3(h0) + wr_norm3(h1);
+        spans bad = {0, 0, NULL, false};
+        for (int c = 0; c < count; c++) {
+            if (cones[c]->empty)
+                continue;
+            span s = line_in_cone(cones[c], h0, h1, scale);
+            add_span(&bad, s.lo, s.hi);
+        }
+        bool ok = !bad.failed && complement(&bad, 0, 1, (int)e, out);
+        free(bad.items);
+        if (!ok)
+            return false;
+    }
+    return true;
+}
+
+/* ---- exact: a circle of directions u(theta) against each cone -------------------- */
+
+/* Closed arcs in degrees within [0, 360]; wrapping arcs are stored split. */
+static void add_arc(spans *s, double from, double length)
+{
+    from = fmod(from, 360);
+    if (from < 0)
+        from += 360;
+    if (from + length <= 360) {
+        add_span(s, from, from + length);
+    } else {
+        add_span(s, from, 360);
+        add_span(s, 0, from + length - 360);
+    }
+}
+
+/* Intersection of two sets of closed spans. */
+static spans intersect(const spans *x, const spans *y)
+{
+    spans out = {0, 0, NULL, x->failed || y->failed};
+    for (int i = 0; i < x->count; i++)
+        for (int j = 0; j < y->count; j++)
+            add_span(&out, fmax(x->items[i].lo, y->items[j].lo),
+                     fmin(x->items[i].hi, y->items[j].hi));
+    return out;
+}
+
+/* The angles theta where A u(theta), u = (cos, sin), lies in the cone's
+ * closure: each facet row r = A^T f asks r . u <= 0, a closed half circle;
+ * each equality a pair of opposite points.  A is 3 x 2 (scaled space). */
+static spans circle_in_cone(const wr_cone *cone, const double a[3][2])
+{
+    spans set = {0, 0, NULL, false};
+    add_span(&set, 0, 360);
+    for (int i = 0; i < cone->facet_count + cone->equality_count && set.count > 0; i++) {
+        bool equality = i >= cone->facet_count;
+        const double *row = equality ? cone->equalities[i - cone->facet_count] : cone->facets[i];
+        double r[2] = {0, 0};
+        for (int k = 0; k < 3; k++) {
+            r[0] += row[k] * a[k][0];
+            r[1] += row[k] * a[k][1];
+        }
+        if (hypot(r[0], r[1]) <= 1e-12)
+            continue; /* the row is 0 . u: it holds everywhere */
+        double phi = atan2(r[1], r[0]) * 180 / WR_PI;
+        spans half = {0, 0, NULL, false};
+        if (equality) {
+            add_arc(&half, phi + 90, 0);
+            add_arc(&half, phi + 270, 0);
+        } else {
+            add_arc(&half, phi + 90, 180); /* cos(theta - phi) <= 0 */
+        }
+        spans next = intersect(&set, &half);
+        free(half.items);
+        free(set.items);
+        set = next;
+    }
+    return set;
+}
+
+/* The open arcs of [0, 360) where A u(theta) is outside every cone's
+ * closure, split at 0 degrees. */
+static bool circle_exact(const double a[3][2], const wr_cone **cones, int count, wr_regions *out)
+{
+    spans bad = {0, 0, NULL, false};
+    for (int c = 0; c < count && !bad.failed; c++) {
+        if (cones[c]->empty)
+            continue;
+        spans arcs = circle_in_cone(cones[c], a);
+        for (int i = 0; i < arcs.count; i++)
+            add_span(&bad, arcs.items[i].lo, arcs.items[i].hi);
+        bad.failed |= arcs.failed;
+        free(arcs.items);
+    }
+    bool ok = !bad.failed && complement(&bad, 0, 360, 0, out);
+    free(bad.items);
+    return ok;
+}
+
+/* ---- sampled: a finger with friction --------------------------------------------- */
+
+/* Does the segment between scaled wrenches p and q meet the cone's closure? */
+static bool segment_meets(const wr_cone *cone, const double p[3], const double q[3])
+{
+    double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    span s = line_in_cone(cone, p, d, wr_norm3(p) + wr_norm3(q));
+    return s.lo <= s.hi && s.hi >= 0 && s.lo <= 1;
+}
+
+/* Is every force of the finger's friction cone at (edge, t) in the set? */
+static bool finger_good(const wr_fixture *f, const wr_cone **cones, int count, int edge, double t,
+                        double mu)
+{
+    double p[2], nu[2];
+    wr_boundary_point(f, edge, t, p, nu);
+    double tangent[2] = {-nu[1], nu[0]};
+    double edges[2][3];
+    for (int side = 0; side < 2; side++) {
+        double sign = side ? 1 : -1;
+        double force[2] = {nu[0] + sign * mu * tangent[0], nu[1] + sign * mu * tangent[1]};
+        double w[3];
+        wr_fixture_force_wrench(f, force, p, w);
+        scale_wrench(f, w, edges[side]);
+    }
+    for (int c = 0; c < count; c++)
+        if (!cones[c]->empty && segment_meets(cones[c], edges[0], edges[1]))
+            return false;
+    return true;
+}
+
+/* Samples per edge (or per turn of a circle), and bisection steps. */
+#define SAMPLES 2048
+#define BISECTIONS 60
+
+static bool sampled(const wr_fixture *f, const wr_cone **cones, int count, double mu, int edge,
+                    double low, double high, wr_regions *out)
+{
+    double step = (high - low) / SAMPLES;
+    bool inside = false;
+    double start = low;
+    bool previous = false;
+    for (int k = 0; k <= SAMPLES; k++) {
+        /* The ends of a polygon edge are vertices, in no region: sample
+         * just inside them. */
+        double t = k == 0 ? low + step * 1e-6 : k == SAMPLES ? high - step * 1e-6 : low + k * step;
+        bool good = finger_good(f, cones, count, edge, t, mu);
+        if (k > 0 && good != previous) {
+            double a = t - step, b = t; /* bisect the change */
+            for (int i = 0; i < BISECTIONS; i++) {
+                double m = (a + b) / 2;
+                if (finger_good(f, cones, count, edge, m, mu) == previous)
+                    a = m;
+                else
+                    b = m;
+            }
+            double change = (a + b) / 2;
+            if (good) {
+                start = change;
+            } else if (!add_region(out, edge, start, change)) {
+                return false;
+            }
+            inside = good;
+        } else if (k == 0) {
+            inside = good;
+            start = low;
+        }
+        previous = good;
+    }
+    return !inside || add_region(out, edge, start, high);
+}
+
+/* ---- the public functions ------------------------------------------------------- */
+
+int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, wr_regions *out)
+{
+    memset(out, 0, sizeof *out);
+    const wr_fixture *f = a->fixture;
+    if (f->shape == WR_SHAPE_NONE || !(finger_friction >= 0) || !isfinite(finger_friction))
+        return -1;
+    const wr_cone **cones;
+    int count = set_cones(a, set, &cones);
+    if (count < 0)
+        return -2;
+    bool ok;
+    if (finger_friction > 0) {
+        out->resolution = f->shape == WR_SHAPE_CIRCLE ? 360.0 / SAMPLES : 1.0 / SAMPLES;
+        ok = true;
+        if (f->shape == WR_SHAPE_CIRCLE)
+            ok = sampled(f, cones, count, finger_friction, 0, 0, 360, out);
+        else
+            for (size_t e = 0; e < f->vertex_count && ok; e++)
+                ok = sampled(f, cones, count, finger_friction, (int)e, 0, 1, out);
+    } else if (f->shape == WR_SHAPE_CIRCLE) {
+        /* w = (-u, -(d x u)) with d = centre - com: linear in u. */
+        double d[2] = {f->center[0] - f->com[0], f->center[1] - f->com[1]};
+        double rho = f->gyration_radius;
+        const double matrix[3][2] = {{-1, 0}, {0, -1}, {d[1] / rho, -d[0] / rho}};
+        ok = circle_exact(matrix, cones, count, out);
+    } else {
+        ok = polygon_exact(f, cones, count, out);
+    }
+    free(cones);
+    if (!ok) {
+        wr_regions_release(out);
+        return -2;
+    }
+    return 0;
+}
+
+int wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)
+{
+    memset(out, 0, sizeof *out);
+    const wr_cone **cones;
+    int count = set_cones(a, set, &cones);
+    if (count < 0)
+        return -2;
+    /* m g0 (cos phi, sin phi, 0): gravity acts at the centre of mass. */
+    const double matrix[3][2] = {{1, 0}, {0, 1}, {0, 0}};
+    bool ok = circle_exact(matrix, cones, count, out);
+    free(cones);
+    if (!ok) {
+        wr_regions_release(out);
+        return -2;
+    }
+    return 0;
+}
+
+int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturbance *out)
+{
+    memset(out, 0, sizeof *out);
+    out->blocking = -1;
+    if (!isfinite(bias[0]) || !isfinite(bias[1]) || !isfinite(bias[2]))
+        return -1;
+    if (a->mode_count == 0)
+        return 0; /* nothing moves the part */
+    out->bounded = true;
+    const wr_fixture *f = a->fixture;
+    double x[3];
+    double length = wr_fixture_unit_wrench(f, bias, x);
+    double direction[3] = {0, 0, 0};
+    if (!(length > 0)) {
+        /* The zero bias: any disturbance along an excluded cone moves it. */
+        out->blocking = 0;
+        const wr_cone *cone = &a->mode_cones[0];
+        if (cone->ray_count > 0)
+            wr_copy3(cone->rays[0], direction);
+    } else {
+        double unit_margin = wr_set_margin(a, WR_SET_STRONG, x, &out->blocking);
+        out->margin = unit_margin * length; /* distances in a cone scale with |h| */
+        const wr_cone *cone = &a->mode_cones[out->blocking];
+        if (unit_margin > 0) {
+            double projection[3];
+            wr_cone_signed_distance(cone, x, projection);
+            for (int k = 0; k < 3; k++)
+                direction[k] = projection[k] - x[k];
+        } else if (cone->dimension == 3 && cone->facet_count > 0) {
+            /* Out of the deepest cone through its nearest facet. */
+            int nearest = 0;
+            for (int i = 1; i < cone->facet_count; i++)
+                if (wr_dot3(cone->facets[i], x) > wr_dot3(cone->facets[nearest], x))
+                    nearest = i;
+            wr_copy3(cone->facets[nearest], direction);
+        } else if (cone->equality_count > 0) {
+            wr_copy3(cone->equalities[0], direction); /* off a thin cone */
+        } else {
+            for (int k = 0; k < 3; k++) /* the whole space: only less bias helps */
+                direction[k] = -x[k];
+        }
+    }
+    wr_normalize3(direction);
+    wr_fixture_unscale_wrench(f, direction, out->worst_direction);
+    return 0;
+}

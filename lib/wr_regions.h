@@ -1,0 +1,85 @@
+/* wr_regions.h -- where to push, which tilt, how much disturbance (SPEC
+ * section 6).
+ *
+ * A frictionless finger at boundary point p with inward normal nu applies
+ * w(p) = (nu, (p - x_c) x nu) times a positive magnitude.  The push region of
+ * a set is the open set of boundary points where the margin of w(p) is
+ * positive: outside the closure of every excluded cone.
+ *
+ * Exact, not sampled: along a polygon edge w is affine in the edge
+ * parameter t, so each cone's facets cut the edge at roots of linear
+ * equations; on a circle w is linear in (cos theta, sin theta), so each cone
+ * is met along an arc.  With a finger with friction the wrenches at a point
+ * form a wedge that varies bilinearly; that case is sampled and bisected,
+ * and the answer says its resolution.
+ *
+ * A gap narrower than 1e-9 of the range (of t, or of 360 degrees) between
+ * two excluded intervals is taken for rounding where they meet, and is no
+ * region. */
+#ifndef WR_REGIONS_H
+#define WR_REGIONS_H
+
+#include "wr_classify.h"
+
+/* An open interval of the boundary.  On a polygon, edge i runs from vertex
+ * i to vertex i+1 and t is the fraction along it, in (0, 1).  On a circle
+ * (edge 0), and for gravity, t is an angle in degrees, counter-clockwise
+ * from +x, in [0, 360]; an interval through 0 degrees is split in two. */
+typedef struct wr_region {
+    int edge;
+    double t0, t1;
+} wr_region;
+
+typedef struct wr_regions {
+    int count;
+    int capacity;
+    wr_region *items;    /* by edge, then t0 */
+    double resolution;   /* 0: exact; else the sampling step (in t, or in
+                            degrees) below which a region may be missed */
+} wr_regions;
+
+void wr_regions_release(wr_regions *regions);
+
+/* The push region of a set on the fixture's outline.  finger_friction is
+ * the finger's Coulomb coefficient (0: frictionless); with friction a point
+ * counts only if every force of the finger's friction cone is in the set.
+ * Returns 0, -1 for a fixture without a shape or a bad coefficient, -2 when
+ * out of memory. */
+int wr_push_regions(const wr_analysis *analysis, wr_set set, double finger_friction,
+                    wr_regions *regions);
+
+/* The tilts phi (degrees, the direction gravity pulls) under which the
+ * gravity wrench m g (cos phi, sin phi, 0) is in the set: exact arcs.
+ * Returns 0, or -2 when out of memory. */
+int wr_gravity_sweep(const wr_analysis *analysis, wr_set set, wr_regions *arcs);
+
+/* The boundary point at (edge, t) and its inward unit normal. */
+void wr_boundary_point(const wr_fixture *fixture, int edge, double t, double point[2],
+                       double normal[2]);
+/* The push wrench (nu, (p - x_c) x nu) at (edge, t). */
+void wr_push_wrench(const wr_fixture *fixture, int edge, double t, double wrench[3]);
+/* Length of the boundary covered by a region, and of the whole outline. */
+double wr_region_length(const wr_fixture *fixture, const wr_region *region);
+double wr_perimeter(const wr_fixture *fixture);
+
+/* The disturbance margin of a biasing wrench (SPEC section 6): in the
+ * scaled metric but not normalised (force units), the distance from the
+ * bias to the union of G_strong's excluded cones, or minus its depth in the
+ * deepest one. */
+typedef struct wr_disturbance {
+    bool bounded;          /* false: no excluded cone at all (nothing moves
+                              the part); the rest is then zero */
+    double margin;
+    int blocking;          /* the nearest (or deepest) mode, index into
+                              analysis->modes */
+    double worst_direction[3]; /* a physical wrench of unit scaled length:
+                              with margin > 0, bias + margin * it lies on the
+                              nearest cone; with margin < 0, adding |margin|
+                              of it leaves the deepest cone */
+} wr_disturbance;
+
+/* Returns 0, or -1 when the bias is not finite. */
+int wr_disturbance_margin(const wr_analysis *analysis, const double bias[3],
+                          wr_disturbance *out);
+
+#endif
