@@ -20,7 +20,7 @@ LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
-.PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo
+.PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -29,6 +29,7 @@ help:
 	@echo "make            build build/libwrench.a"
 	@echo "make demo       build, start wrenchd, put the examples, classify, stop"
 	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
+	@echo "make pictures   redraw docs/pictures (the README's figures)"
 	@echo "make check      build and run every test: unit and end-to-end, plain and ASan+UBSan"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
 	@echo "make deps       install the Debian packages the project needs"
@@ -76,11 +77,14 @@ $(BUILD)/clients/%.o: clients/c/%.c clients/c/wrenchclient.h
 $(BUILD)/libwrenchclient.a: $(BUILD)/clients/wrenchclient.o
 	rm -f $@ && ar rcs $@ $^
 
-$(BUILD)/clients/wrenchctl.o: clients/wrenchctl/wrenchctl.c clients/c/wrenchclient.h $(PROTO_HDR) $(LIB_HDR)
+WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
+WRENCHCTL_HDR = $(wildcard clients/wrenchctl/*.h)
+
+$(BUILD)/clients/wrenchctl/%.o: clients/wrenchctl/%.c $(WRENCHCTL_HDR) clients/c/wrenchclient.h $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -Iclients/c -c $< -o $@
 
-$(BUILD)/wrenchctl: $(BUILD)/clients/wrenchctl.o $(BUILD)/libwrenchclient.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BUILD)/wrenchctl: $(patsubst clients/%.c,$(BUILD)/clients/%.o,$(WRENCHCTL_SRC)) $(BUILD)/libwrenchclient.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 	$(CC) $(CFLAGS) $^ -lcjson -lglpk -lm -o $@
 
 $(BUILD)/wrenchclient-example: clients/c/example.c $(BUILD)/libwrenchclient.a
@@ -171,6 +175,14 @@ demo: all
 run: all
 	$(BUILD)/wrenchd --socket ./run/wrenchd.sock --state-dir ./run \
 	    $(addprefix --load ,$(wildcard examples/*.json))
+
+# The README's pictures, drawn by wrenchctl (tests/e2e/test_pictures.py
+# checks they are current).
+pictures: $(BUILD)/wrenchctl
+	@mkdir -p docs/pictures
+	$(BUILD)/wrenchctl --local push examples/plate-3-2-1.json --set strong --svg docs/pictures/plate-3-2-1-push-strong.svg >/dev/null
+	$(BUILD)/wrenchctl --local push examples/plate-chamfered.json --set both --svg docs/pictures/plate-chamfered-push-both.svg >/dev/null
+	$(BUILD)/wrenchctl --local push examples/disc-corner.json --set goal --svg docs/pictures/disc-corner-push-goal.svg >/dev/null
 
 # ---- dependencies --------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \

@@ -75,6 +75,42 @@ def main():
     show(client, ids["plate-chamfered"], "the same push lower on the chamfer, at (3.75, 1.25)",
          {"force": [-0.7071067811865476, -0.7071067811865476], "at": [3.75, 1.25]})
 
+    print("\nWhere to push, which tilt, how much disturbance:")
+    for name, set_name in (("disc-corner", "goal"), ("plate-3-2-1", "goal"),
+                           ("plate-3-2-1", "strong"), ("plate-chamfered", "both")):
+        regions = client.push_regions(ids[name], set_name)
+        where = ", ".join("edge %d t in (%.4g, %.4g)" % (r.edge, r.t0, r.t1)
+                          for r in regions.regions) or "nowhere"
+        print("  %-16s push.regions %-6s -> %s (%.1f%% of the outline)"
+              % (name, set_name, where, 100 * regions.fraction))
+    arcs = client.gravity_sweep(ids["disc-corner"], "goal")
+    print("  %-16s gravity.sweep goal  -> tilts %s degrees"
+          % ("disc-corner", ", ".join("(%.4g, %.4g)" % (a, b) for a, b in arcs)))
+    held = client.stability_margin(ids["plate-chamfered"],
+                                   {"force": [-0.7071067811865476, -0.7071067811865476],
+                                    "at": [3.25, 1.75]})
+    print("  %-16s stability.margin of the chamfer push -> %.4g, the worst disturbance "
+          "starts %s" % ("plate-chamfered", held.margin, held.blocking))
+
+    # Pictures, drawn by wrenchctl from the daemon's answers.
+    out = os.path.join(ROOT, "out")
+    os.makedirs(out, exist_ok=True)
+    wrenchctl = [os.path.join(ROOT, "build", "wrenchctl"), "--socket", SOCKET]
+    pictures = [
+        ("disc-corner-push-goal.svg", ["push", ids["disc-corner"], "--set", "goal"]),
+        ("disc-corner-gravity-goal.svg", ["gravity", ids["disc-corner"], "--set", "goal"]),
+        ("plate-3-2-1-push-goal.svg", ["push", ids["plate-3-2-1"], "--set", "goal"]),
+        ("plate-3-2-1-push-strong.svg", ["push", ids["plate-3-2-1"], "--set", "strong"]),
+        ("plate-chamfered-push-both.svg", ["push", ids["plate-chamfered"], "--set", "both"]),
+        ("plate-chamfered-gravity-both.svg", ["gravity", ids["plate-chamfered"], "--set", "both"]),
+        ("plate-chamfered-margin.svg", ["margin", ids["plate-chamfered"],
+                                        "-0.7071067811865476,-0.7071067811865476@3.25,1.75"]),
+    ]
+    for filename, command in pictures:
+        subprocess.run(wrenchctl + command + ["--svg", os.path.join(out, filename)],
+                       stdout=subprocess.DEVNULL, check=False)
+    print("\npictures: %s" % ", ".join("out/" + f for f, _ in pictures))
+
     client.close()
     daemon.send_signal(signal.SIGTERM)
     status = daemon.wait(timeout=10)

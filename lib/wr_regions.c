@@ -69,7 +69,8 @@ static bool add_region(wr_regions *r, int edge, double t0, double t1)
 /* The open complement of the closed spans within (low, high), as regions. */
 static bool complement(spans *bad, double low, double high, int edge, wr_regions *out)
 {
-    qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_spans);
+    if (bad->count > 0) /* an empty list has no array */
+        qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_spans);
     double sliver = SLIVER * (high - low);
     double from = low;
     for (int i = 0; i < bad->count; i++) {

@@ -295,6 +295,58 @@ class Status:
     errors: int
 
 
+@dataclass
+class Region:
+    """An open interval of the outline: on a polygon, edge i runs from vertex
+    i to vertex i+1 and t is the fraction along it; on a circle (edge 0) t is
+    the boundary angle in degrees."""
+    edge: int
+    t0: float
+    t1: float
+    length: float
+    from_point: List[float]            # "from" on the wire
+    to_point: List[float]              # "to"
+
+
+@dataclass
+class PushRegions:
+    regions: List[Region]
+    total_length: float
+    fraction: float                    # of the perimeter
+    exact: bool                        # False: sampled (a finger with friction)
+    resolution: float                  # the sampling step (t, or degrees); 0 when exact
+
+
+@dataclass
+class Disturbance:
+    """stability.margin: how large a disturbance (scaled metric, force units)
+    the seated part holds under a biasing wrench; all None when no contact
+    mode moves the part at all."""
+    margin: Optional[float]            # < 0: the bias itself moves the part
+    blocking: Optional[str]            # the mode the worst disturbance starts
+    worst_direction: Optional[List[float]]  # a wrench of unit scaled length
+
+
+def _push_result(result: Any) -> PushRegions:
+    if not isinstance(result, dict) or not isinstance(result.get("regions"), list):
+        raise WrenchdProtocolError("push.regions: the answer has no regions")
+    regions = []
+    for r in result["regions"]:
+        if not isinstance(r, dict) or "from" not in r or "to" not in r:
+            raise WrenchdProtocolError("push.regions: a region lacks from or to")
+        w = dict(r, from_point=r["from"], to_point=r["to"])
+        regions.append(_build(Region, w, "push.regions region"))
+    rest = dict(result, regions=regions)
+    return _build(PushRegions, rest, "push.regions")
+
+
+def _sweep_result(result: Any) -> List[List[float]]:
+    arcs = result.get("intervals_deg") if isinstance(result, dict) else None
+    if not isinstance(arcs, list):
+        raise WrenchdProtocolError("gravity.sweep: the answer has no intervals_deg")
+    return arcs
+
+
 def _classify_result(result: Any) -> List[Dict[str, Verdict]]:
     rows = result.get("results") if isinstance(result, dict) else None
     if not isinstance(rows, list):
@@ -527,6 +579,29 @@ class _Methods:
         """modes.get: the feasible moving contact modes, and whether the body is pinned."""
         return self._invoke("modes.get", {"fixture": _fixture_ref(fixture)},
                             lambda r: _build(Modes, r, "modes.get"), True, timeout)
+
+    def push_regions(self, fixture: Any, set: str = "goal", finger_friction: float = 0.0, *,
+                     timeout: Any = _DEFAULT):
+        """push.regions: where a finger pushing along the inward normal gives
+        a wrench in the set (PushRegions).  finger_friction > 0: every force
+        of the finger's friction cone must be in it (sampled)."""
+        params = {"fixture": _fixture_ref(fixture), "set": set}
+        if finger_friction:
+            params["finger_friction"] = finger_friction
+        return self._invoke("push.regions", params, _push_result, True, timeout)
+
+    def gravity_sweep(self, fixture: Any, set: str = "goal", *, timeout: Any = _DEFAULT):
+        """gravity.sweep: the arcs [a, b] of tilt (degrees, the direction
+        gravity pulls) under which gravity alone gives a wrench in the set."""
+        return self._invoke("gravity.sweep", {"fixture": _fixture_ref(fixture), "set": set},
+                            _sweep_result, True, timeout)
+
+    def stability_margin(self, fixture: Any, bias: Any, *, timeout: Any = _DEFAULT):
+        """stability.margin: the disturbance a biasing wrench tolerates
+        (Disturbance)."""
+        return self._invoke("stability.margin", {"fixture": _fixture_ref(fixture),
+                                                 "bias": _wrench(bias)},
+                            lambda r: _build(Disturbance, r, "stability.margin"), True, timeout)
 
     def status(self, *, timeout: Any = _DEFAULT):
         """server.status."""

@@ -4,6 +4,7 @@
  * --local, answers it in process with the daemon's own request code), and
  * prints the result as a table, or raw with --json.  Exit statuses are for
  * scripts: see EXIT_* below and wrenchctl(1). */
+#include "wc_svg.h"
 #include "wp_local.h"
 #include "wrenchclient.h"
 
@@ -806,6 +807,298 @@ static int cmd_modes(options *o, int argc, char **argv)
     return EXIT_INSIDE;
 }
 
+/* ---- push, gravity, margin ------------------------------------------------------------ */
+
+typedef struct section6_options {
+    const char *set;     /* NULL: goal */
+    const char *svg;     /* NULL: no picture */
+    double finger_friction;
+    bool friction_given;
+} section6_options;
+
+static int take_section6_option(int key, const char *value, void *state)
+{
+    section6_options *s = state;
+    char *end;
+    switch (key) {
+    case 's':
+        if (strcmp(value, "goal") != 0 && strcmp(value, "strong") != 0 &&
+            strcmp(value, "both") != 0)
+            return usage_error("--set is goal, strong or both, not '%s'", value);
+        s->set = value;
+        return 0;
+    case 'f':
+        s->finger_friction = strtod(value, &end);
+        if (*end || end == value || !(s->finger_friction >= 0) || !isfinite(s->finger_friction))
+            return usage_error("--finger-friction wants a number >= 0, not '%s'", value);
+        s->friction_given = true;
+        return 0;
+    case 'v':
+        s->svg = value;
+        return 0;
+    default:
+        return 1;
+    }
+}
+
+/* The fixture's geometry for a picture: the file, or the stored fixture.
+ * NULL after saying why. */
+static wr_fixture *fixture_geometry(options *o, const cJSON *fixture, char *name, size_t size)
+{
+    cJSON *json = NULL;
+    if (cJSON_IsString(fixture)) {
+        int status;
+        cJSON *params = cJSON_CreateObject();
+        cJSON_AddStringToObject(params, "id", fixture->valuestring);
+        json = call(o, "fixture.get", params, &status);
+        if (!json)
+            return NULL;
+    } else {
+        json = cJSON_Duplicate(fixture, true);
+    }
+    wp_fixture_doc doc;
+    wp_error error;
+    bool ok = wp_fixture_read(json, "fixture", &doc, &error);
+    cJSON_Delete(json);
+    if (!ok) {
+        usage_error("%s: %s", error.field, error.reason);
+        return NULL;
+    }
+    snprintf(name, size, "%s", doc.name[0] ? doc.name : "fixture");
+    wr_fixture *geometry = doc.fixture;
+    doc.fixture = NULL;
+    wp_fixture_doc_release(&doc);
+    return geometry;
+}
+
+static FILE *open_svg(const char *path)
+{
+    FILE *out = fopen(path, "w");
+    if (!out)
+        usage_error("--svg %s: %s", path, strerror(errno));
+    return out;
+}
+
+static int cmd_push(options *o, int argc, char **argv)
+{
+    static const command_option extra[] = {
+        {"set", 's'}, {"finger-friction", 'f'}, {"svg", 'v'}, {NULL, 0}};
+    section6_options s = {NULL, NULL, 0, false};
+    arguments a;
+    int status = parse_command(o, argc, argv, "push", extra, take_section6_option, &s, &a, 1, 1);
+    cJSON *fixture = status < 0 ? fixture_argument(o, a.items[0]) : NULL;
+    if (status >= 0 || !fixture)
+        return status >= 0 ? status : EXIT_USAGE;
+    cJSON *params = cJSON_CreateObject();
+    cJSON_AddItemToObject(params, "fixture", cJSON_Duplicate(fixture, true));
+    if (s.set)
+        cJSON_AddStringToObject(params, "set", s.set);
+    if (s.friction_given)
+        cJSON_AddNumberToObject(params, "finger_friction", s.finger_friction);
+    cJSON *result = call(o, "push.regions", params, &status);
+    if (!result) {
+        cJSON_Delete(fixture);
+        return status;
+    }
+    cJSON *regions = cJSON_GetObjectItem(result, "regions");
+    int count = cJSON_GetArraySize(regions);
+    double fraction = cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction"));
+    if (o->json) {
+        print_json(result);
+    } else {
+        printf("%4s  %-24s  %-24s  %10s  %10s  %9s\n", "edge", "from", "to", "t0", "t1",
+               "length");
+        const cJSON *r;
+        cJSON_ArrayForEach(r, regions)
+        {
+            const cJSON *from = cJSON_GetObjectItem(r, "from"), *to = cJSON_GetObjectItem(r, "to");
+            char a_text[64], b_text[64];
+            snprintf(a_text, sizeof a_text, "(%.6g, %.6g)", cJSON_GetArrayItem(from, 0)->valuedouble,
+                     cJSON_GetArrayItem(from, 1)->valuedouble);
+            snprintf(b_text, sizeof b_text, "(%.6g, %.6g)", cJSON_GetArrayItem(to, 0)->valuedouble,
+                     cJSON_GetArrayItem(to, 1)->valuedouble);
+            printf("%4d  %-24s  %-24s  %10.6f  %10.6f  %9.6f\n",
+                   (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge")), a_text, b_text,
+                   cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0")),
+                   cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1")),
+                   cJSON_GetNumberValue(cJSON_GetObjectItem(r, "length")));
+        }
+        printf("set %s: %d region%s, length %.6g, %.2f%% of the outline", s.set ? s.set : "goal",
+               count, count == 1 ? "" : "s",
+               cJSON_GetNumberValue(cJSON_GetObjectItem(result, "total_length")), 100 * fraction);
+        if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
+            printf(" (sampled: resolution %g)",
+                   cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+        printf("\n");
+    }
+    if (s.svg) {
+        char name[128];
+        wr_fixture *geometry = fixture_geometry(o, fixture, name, sizeof name);
+        FILE *out = geometry ? open_svg(s.svg) : NULL;
+        if (out) {
+            wr_region *items = calloc((size_t)(count ? count : 1), sizeof *items);
+            int i = 0;
+            const cJSON *r;
+            cJSON_ArrayForEach(r, regions)
+            {
+                items[i].edge = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge"));
+                items[i].t0 = cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0"));
+                items[i].t1 = cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1"));
+                i++;
+            }
+            wc_svg_push(out, geometry, name, s.set ? s.set : "goal", items, count, fraction,
+                        s.finger_friction);
+            free(items);
+            fclose(out);
+        }
+        wr_fixture_free(geometry);
+        if (!out)
+            status = EXIT_USAGE;
+    }
+    cJSON_Delete(fixture);
+    cJSON_Delete(result);
+    if (status != EXIT_INSIDE)
+        return status;
+    return count > 0 ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
+
+static int cmd_gravity(options *o, int argc, char **argv)
+{
+    static const command_option extra[] = {{"set", 's'}, {"svg", 'v'}, {NULL, 0}};
+    section6_options s = {NULL, NULL, 0, false};
+    arguments a;
+    int status = parse_command(o, argc, argv, "gravity", extra, take_section6_option, &s, &a, 1, 1);
+    cJSON *fixture = status < 0 ? fixture_argument(o, a.items[0]) : NULL;
+    if (status >= 0 || !fixture)
+        return status >= 0 ? status : EXIT_USAGE;
+    cJSON *params = cJSON_CreateObject();
+    cJSON_AddItemToObject(params, "fixture", cJSON_Duplicate(fixture, true));
+    if (s.set)
+        cJSON_AddStringToObject(params, "set", s.set);
+    cJSON *result = call(o, "gravity.sweep", params, &status);
+    if (!result) {
+        cJSON_Delete(fixture);
+        return status;
+    }
+    cJSON *arcs = cJSON_GetObjectItem(result, "intervals_deg");
+    int count = cJSON_GetArraySize(arcs);
+    if (o->json) {
+        print_json(result);
+    } else {
+        printf("set %s: tilts (degrees, the direction gravity pulls in the part's frame)\n",
+               s.set ? s.set : "goal");
+        const cJSON *arc;
+        cJSON_ArrayForEach(arc, arcs)
+        printf("  from %10.6f to %10.6f  (%.6g degrees)\n", cJSON_GetArrayItem(arc, 0)->valuedouble,
+               cJSON_GetArrayItem(arc, 1)->valuedouble,
+               cJSON_GetArrayItem(arc, 1)->valuedouble - cJSON_GetArrayItem(arc, 0)->valuedouble);
+        if (count == 0)
+            printf("  none: gravity alone never does it\n");
+    }
+    if (s.svg) {
+        char name[128];
+        wr_fixture *geometry = fixture_geometry(o, fixture, name, sizeof name);
+        FILE *out = geometry ? open_svg(s.svg) : NULL;
+        if (out) {
+            wr_region *items = calloc((size_t)(count ? count : 1), sizeof *items);
+            for (int i = 0; i < count; i++) {
+                items[i].t0 = cJSON_GetArrayItem(cJSON_GetArrayItem(arcs, i), 0)->valuedouble;
+                items[i].t1 = cJSON_GetArrayItem(cJSON_GetArrayItem(arcs, i), 1)->valuedouble;
+            }
+            wc_svg_gravity(out, geometry, name, s.set ? s.set : "goal", items, count);
+            free(items);
+            fclose(out);
+        }
+        wr_fixture_free(geometry);
+        if (!out)
+            status = EXIT_USAGE;
+    }
+    cJSON_Delete(fixture);
+    cJSON_Delete(result);
+    if (status != EXIT_INSIDE)
+        return status;
+    return count > 0 ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
+
+static int cmd_margin(options *o, int argc, char **argv)
+{
+    static const command_option extra[] = {{"svg", 'v'}, {NULL, 0}};
+    section6_options s = {NULL, NULL, 0, false};
+    arguments a;
+    int status = parse_command(o, argc, argv, "margin", extra, take_section6_option, &s, &a, 2, 2);
+    cJSON *fixture = status < 0 ? fixture_argument(o, a.items[0]) : NULL;
+    if (status >= 0 || !fixture)
+        return status >= 0 ? status : EXIT_USAGE;
+    cJSON *bias = wrench_argument(a.items[1]);
+    if (!bias) {
+        cJSON_Delete(fixture);
+        return usage_error("'%s' is not a wrench: fx,fy,tau or fx,fy@x,y", a.items[1]);
+    }
+    cJSON *params = cJSON_CreateObject(); /* call() takes it */
+    cJSON_AddItemToObject(params, "fixture", cJSON_Duplicate(fixture, true));
+    cJSON_AddItemToObject(params, "bias", cJSON_Duplicate(bias, true));
+    cJSON *result = call(o, "stability.margin", params, &status);
+    if (!result) {
+        cJSON_Delete(fixture);
+        cJSON_Delete(bias);
+        return status;
+    }
+    const cJSON *margin = cJSON_GetObjectItem(result, "margin");
+    const char *blocking = cJSON_GetStringValue(cJSON_GetObjectItem(result, "blocking"));
+    const cJSON *worst = cJSON_GetObjectItem(result, "worst_direction");
+    bool held = !cJSON_IsNumber(margin) || margin->valuedouble > 0;
+    if (o->json) {
+        print_json(result);
+    } else if (!blocking) {
+        printf("no contact mode moves the part: it holds against any disturbance\n");
+    } else {
+        char why[512];
+        explain_strong(blocking, why, sizeof why);
+        printf("margin    %+.9g  (%s)\n", margin->valuedouble,
+               held ? "any smaller disturbance is held, in the scaled metric"
+                    : "not held: the bias itself is inside G_strong's excluded cones");
+        printf("blocking  %s: %s\n", blocking, why);
+        printf("worst     (%.6g, %.6g, %.6g)\n", cJSON_GetArrayItem(worst, 0)->valuedouble,
+               cJSON_GetArrayItem(worst, 1)->valuedouble, cJSON_GetArrayItem(worst, 2)->valuedouble);
+    }
+    if (s.svg) {
+        char name[128];
+        wr_fixture *geometry = fixture_geometry(o, fixture, name, sizeof name);
+        FILE *out = geometry ? open_svg(s.svg) : NULL;
+        double g[3] = {0, 0, 0}, w[3] = {0, 0, 0};
+        if (out) {
+            /* The bias as the daemon read it: [fx, fy, tau] or a force at a point. */
+            const cJSON *sent = bias;
+            if (cJSON_IsArray(sent)) {
+                for (int k = 0; k < 3; k++)
+                    g[k] = cJSON_GetArrayItem(sent, k)->valuedouble;
+            } else {
+                const cJSON *force = cJSON_GetObjectItem(sent, "force");
+                const cJSON *at = cJSON_GetObjectItem(sent, "at");
+                double f2[2] = {cJSON_GetArrayItem(force, 0)->valuedouble,
+                                cJSON_GetArrayItem(force, 1)->valuedouble};
+                double p2[2] = {cJSON_GetArrayItem(at, 0)->valuedouble,
+                                cJSON_GetArrayItem(at, 1)->valuedouble};
+                wr_fixture_force_wrench(geometry, f2, p2, g);
+            }
+            for (int k = 0; k < 3 && worst && cJSON_IsArray(worst); k++)
+                w[k] = cJSON_GetArrayItem(worst, k)->valuedouble;
+            wc_svg_margin(out, geometry, name, g, cJSON_IsNumber(margin) ? margin->valuedouble : 0,
+                          w, blocking);
+            fclose(out);
+        }
+        wr_fixture_free(geometry);
+        if (!out)
+            status = EXIT_USAGE;
+    }
+    cJSON_Delete(fixture);
+    cJSON_Delete(bias);
+    cJSON_Delete(result);
+    if (status != EXIT_INSIDE)
+        return status;
+    return held ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
+
 /* ---- the table of commands ---------------------------------------------------------- */
 
 static int cmd_help(options *o, int argc, char **argv);
@@ -834,6 +1127,30 @@ static const command COMMANDS[] = {
      "Every contact state, the transitions it must rule out, and the cones G_goal excludes."},
     {"modes", cmd_modes, "FIXTURE", "the feasible moving contact modes",
      "The kinematically feasible moving contact modes, and whether the fixels pin the part."},
+    {"push", cmd_push, "FIXTURE [--set SET] [--finger-friction MU] [--svg FILE]",
+     "where a finger's push seats the part",
+     "The push region of a set: the open intervals of the outline where a finger pushing along\n"
+     "the inward normal gives a wrench in the set, exact (a polygon edge i runs from vertex i to\n"
+     "vertex i+1, t is the fraction along it; on a circle t is the angle in degrees).\n"
+     "  --set SET              goal (default), strong or both\n"
+     "  --finger-friction MU   a finger with friction: every force of its friction cone must be\n"
+     "                         in the set (sampled and bisected; the resolution is printed)\n"
+     "  --svg FILE             also draw the part, its fixels and the region\n"
+     "Exit status 0 when there is a region, 1 when there is none."},
+    {"gravity", cmd_gravity, "FIXTURE [--set SET] [--svg FILE]",
+     "the tilts under which gravity seats the part",
+     "The arcs of tilt (the direction gravity pulls, degrees, in the part's frame) under which\n"
+     "gravity alone gives a wrench in the set.\n"
+     "  --set SET   goal (default), strong or both\n"
+     "  --svg FILE  also draw the sweep as a dial around the part\n"
+     "Exit status 0 when there is an arc, 1 when there is none."},
+    {"margin", cmd_margin, "FIXTURE BIAS [--svg FILE]",
+     "how large a disturbance a biasing wrench tolerates",
+     "The disturbance margin of a biasing wrench (fx,fy,tau or fx,fy@x,y): how large a\n"
+     "disturbance, in the scaled metric (f_x, f_y, tau/rho), the seated part holds under it,\n"
+     "the contact mode the worst one starts, and that worst direction.\n"
+     "  --svg FILE  also draw the bias and the worst disturbance on the part\n"
+     "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
     {"status", cmd_status, "", "the daemon's version, uptime and counts",
      "The daemon's version, uptime and counts."},
     {"help", cmd_help, "[COMMAND]", "help on wrenchctl or on one command",
@@ -855,8 +1172,9 @@ static const char GENERAL[] =
     "Commands:\n";
 
 static const char EXIT_TEXT[] =
-    "\nExit status: 0 done (classify: every wrench inside); 1 classify: some wrench not\n"
-    "inside; 2 usage error; 3 the daemon is unreachable; 4 the daemon answered an error.\n";
+    "\nExit status: 0 done (classify: every wrench inside; push, gravity: a region; margin:\n"
+    "the bias holds); 1 not so; 2 usage error; 3 the daemon is unreachable; 4 the daemon\n"
+    "answered an error.\n";
 
 static int print_command_help(const char *name)
 {

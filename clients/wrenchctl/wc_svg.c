@@ -1,0 +1,355 @@
+/* wc_svg.c -- SVG pictures of push regions, gravity sweeps and disturbance
+ * margins (see wc_svg.h). */
+#include "wc_svg.h"
+
+#include <math.h>
+#include <string.h>
+
+#define WIDTH 640.0
+#define PI 3.14159265358979323846
+
+/* Fixture coordinates to the page: uniform scale, y up. */
+typedef struct frame {
+    double x0, y1;   /* the fixture point at the page's top left */
+    double scale;    /* pixels per unit length */
+    double size;     /* the part's size, fixture units */
+    double height;   /* page height, pixels */
+    double top;      /* pixels above the drawing, for the legend */
+} frame;
+
+static double page_x(const frame *f, double x) { return (x - f->x0) * f->scale; }
+static double page_y(const frame *f, double y) { return f->top + (f->y1 - y) * f->scale; }
+
+static void bounds(const wr_fixture *fx, double lo[2], double hi[2])
+{
+    lo[0] = lo[1] = INFINITY;
+    hi[0] = hi[1] = -INFINITY;
+    if (fx->shape == WR_SHAPE_CIRCLE) {
+        for (int k = 0; k < 2; k++) {
+            lo[k] = fx->center[k] - fx->radius;
+            hi[k] = fx->center[k] + fx->radius;
+        }
+    }
+    for (size_t i = 0; i < fx->vertex_count; i++)
+        for (int k = 0; k < 2; k++) {
+            lo[k] = fmin(lo[k], fx->vertices[i][k]);
+            hi[k] = fmax(hi[k], fx->vertices[i][k]);
+        }
+    for (int i = 0; i < fx->fixel_count; i++)
+        for (int k = 0; k < 2; k++) {
+            lo[k] = fmin(lo[k], fx->fixels[i].at[k]);
+            hi[k] = fmax(hi[k], fx->fixels[i].at[k]);
+        }
+    for (int k = 0; k < 2; k++) {
+        lo[k] = fmin(lo[k], fx->com[k]);
+        hi[k] = fmax(hi[k], fx->com[k]);
+    }
+}
+
+/* A frame around the part with `pad` (a fraction of its size) on each side
+ * and `legend_lines` of text above. */
+static frame frame_for(const wr_fixture *fx, double pad, int legend_lines)
+{
+    double lo[2], hi[2];
+    bounds(fx, lo, hi);
+    double size = fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    if (!(size > 0))
+        size = 1;
+    frame f;
+    f.size = size;
+    f.x0 = lo[0] - pad * size;
+    f.y1 = hi[1] + pad * size;
+    f.scale = WIDTH / (hi[0] - lo[0] + 2 * pad * size);
+    f.top = 20 + 18 * legend_lines;
+    f.height = f.top + (hi[1] - lo[1] + 2 * pad * size) * f.scale;
+    return f;
+}
+
+static void text_escaped(FILE *out, const char *text)
+{
+    for (; *text; text++) {
+        switch (*text) {
+        case '<': fputs("&lt;", out); break;
+        case '>': fputs("&gt;", out); break;
+        case '&': fputs("&amp;", out); break;
+        case '"': fputs("&quot;", out); break;
+        default: fputc(*text, out);
+        }
+    }
+}
+
+static void begin(FILE *out, const frame *f, const char *title)
+{
+    fprintf(out,
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+            "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"14\">\n<title>",
+            WIDTH, f->height, WIDTH, f->height);
+    text_escaped(out, title);
+    fputs("</title>\n<defs>", out);
+    /* One arrowhead per colour: markers do not take the line's colour. */
+    static const char *const colours[] = {"1f4e9c", "c0392b"};
+    for (int i = 0; i < 2; i++)
+        fprintf(out,
+                "<marker id=\"arrow-%s\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
+                "markerWidth=\"6\" markerHeight=\"6\" orient=\"auto-start-reverse\">"
+                "<path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#%s\"/></marker>",
+                colours[i], colours[i]);
+    fputs("</defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", out);
+}
+
+static void legend(FILE *out, int line, const char *text)
+{
+    fprintf(out, "<text x=\"12\" y=\"%d\">", 22 + 18 * line);
+    text_escaped(out, text);
+    fputs("</text>\n", out);
+}
+
+/* The outline, filled light and stroked grey: the boundary outside any
+ * region. */
+static void outline(FILE *out, const frame *f, const wr_fixture *fx)
+{
+    if (fx->shape == WR_SHAPE_CIRCLE) {
+        fprintf(out,
+                "<circle class=\"outline\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#f2f2f2\" "
+                "stroke=\"#a0a0a0\" stroke-width=\"3\"/>\n",
+                page_x(f, fx->center[0]), page_y(f, fx->center[1]), fx->radius * f->scale);
+        return;
+    }
+    fputs("<polygon class=\"outline\" points=\"", out);
+    for (size_t i = 0; i < fx->vertex_count; i++)
+        fprintf(out, "%s%.2f,%.2f", i ? " " : "", page_x(f, fx->vertices[i][0]),
+                page_y(f, fx->vertices[i][1]));
+    fputs("\" fill=\"#f2f2f2\" stroke=\"#a0a0a0\" stroke-width=\"3\" "
+          "stroke-linejoin=\"round\"/>\n",
+          out);
+}
+
+/* Each fixel: a dark wedge outside the part, its apex at the contact, and
+ * its friction cone opening into the part. */
+static void fixels(FILE *out, const frame *f, const wr_fixture *fx)
+{
+    double wedge = 0.06 * f->size, cone = 0.16 * f->size;
+    for (int i = 0; i < fx->fixel_count; i++) {
+        const wr_fixel *x = &fx->fixels[i];
+        const double *p = x->at, *n = x->normal, *t = x->tangent;
+        fprintf(out,
+                "<polygon class=\"fixel\" points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" "
+                "fill=\"#444\"/>\n",
+                page_x(f, p[0]), page_y(f, p[1]),
+                page_x(f, p[0] - wedge * (n[0] + 0.6 * t[0])),
+                page_y(f, p[1] - wedge * (n[1] + 0.6 * t[1])),
+                page_x(f, p[0] - wedge * (n[0] - 0.6 * t[0])),
+                page_y(f, p[1] - wedge * (n[1] - 0.6 * t[1])));
+        double mu = x->mu_static;
+        double length = cone / sqrt(1 + mu * mu);
+        double a[2] = {p[0] + length * (n[0] + mu * t[0]), p[1] + length * (n[1] + mu * t[1])};
+        double b[2] = {p[0] + length * (n[0] - mu * t[0]), p[1] + length * (n[1] - mu * t[1])};
+        fprintf(out,
+                "<polygon class=\"friction-cone\" points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" "
+                "fill=\"#c0392b\" fill-opacity=\"0.18\" stroke=\"#c0392b\" stroke-width=\"1.2\"/>\n",
+                page_x(f, p[0]), page_y(f, p[1]), page_x(f, a[0]), page_y(f, a[1]),
+                page_x(f, b[0]), page_y(f, b[1]));
+        fprintf(out, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" text-anchor=\"middle\">%d</text>\n",
+                page_x(f, p[0] - 0.12 * f->size * n[0]),
+                page_y(f, p[1] - 0.12 * f->size * n[1]) + 5, i + 1);
+    }
+}
+
+static void centre_of_mass(FILE *out, const frame *f, const wr_fixture *fx)
+{
+    double x = page_x(f, fx->com[0]), y = page_y(f, fx->com[1]);
+    fprintf(out,
+            "<g class=\"com\"><circle cx=\"%.2f\" cy=\"%.2f\" r=\"6\" fill=\"white\" "
+            "stroke=\"black\" stroke-width=\"1.5\"/><path d=\"M %.2f %.2f A 6 6 0 0 1 %.2f %.2f "
+            "L %.2f %.2f z M %.2f %.2f A 6 6 0 0 1 %.2f %.2f L %.2f %.2f z\" fill=\"black\"/></g>\n",
+            x, y, x, y - 6, x + 6, y, x, y, x, y + 6, x - 6, y, x, y);
+}
+
+/* "mu = 0.5", or "mu per fixel". */
+static void friction_text(const wr_fixture *fx, char *out, size_t size)
+{
+    bool same = true;
+    for (int i = 1; i < fx->fixel_count; i++)
+        same &= fx->fixels[i].mu_static == fx->fixels[0].mu_static &&
+                fx->fixels[i].mu_kinetic == fx->fixels[0].mu_kinetic;
+    if (!same)
+        snprintf(out, size, "\xce\xbc per fixel");
+    else if (fx->fixels[0].mu_kinetic != fx->fixels[0].mu_static)
+        snprintf(out, size, "\xce\xbc_s = %g, \xce\xbc_k = %g", fx->fixels[0].mu_static,
+                 fx->fixels[0].mu_kinetic);
+    else
+        snprintf(out, size, "\xce\xbc = %g", fx->fixels[0].mu_static);
+}
+
+static void end(FILE *out) { fputs("</svg>\n", out); }
+
+/* An arc of a circle on the page from angle a to b (degrees, counter-
+ * clockwise in the fixture's frame), as path data. */
+static void arc_path(FILE *out, const frame *f, const double centre[2], double radius, double a,
+                     double b)
+{
+    double ra = a * PI / 180, rb = b * PI / 180;
+    double r = radius * f->scale;
+    /* With y flipped, counter-clockwise in the fixture is sweep-flag 0. */
+    fprintf(out, "M %.2f %.2f A %.2f %.2f 0 %d 0 %.2f %.2f",
+            page_x(f, centre[0] + radius * cos(ra)), page_y(f, centre[1] + radius * sin(ra)), r, r,
+            b - a > 180 ? 1 : 0, page_x(f, centre[0] + radius * cos(rb)),
+            page_y(f, centre[1] + radius * sin(rb)));
+}
+
+void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *set,
+                 const wr_region *regions, int count, double fraction, double finger_friction)
+{
+    frame f = frame_for(fx, 0.2, 3);
+    char text[256], mu[64];
+    snprintf(text, sizeof text, "%s: push region of G_%s", name, set);
+    begin(out, &f, text);
+    outline(out, &f, fx);
+    for (int i = 0; i < count; i++) {
+        const wr_region *r = &regions[i];
+        fputs("<path class=\"region\" d=\"", out);
+        if (fx->shape == WR_SHAPE_CIRCLE) {
+            arc_path(out, &f, fx->center, fx->radius, r->t0, r->t1);
+        } else {
+            double a[2], b[2], n[2];
+            wr_boundary_point(fx, r->edge, r->t0, a, n);
+            wr_boundary_point(fx, r->edge, r->t1, b, n);
+            fprintf(out, "M %.2f %.2f L %.2f %.2f", page_x(&f, a[0]), page_y(&f, a[1]),
+                    page_x(&f, b[0]), page_y(&f, b[1]));
+        }
+        fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"7\"/>\n", out);
+    }
+    fixels(out, &f, fx);
+    centre_of_mass(out, &f, fx);
+    friction_text(fx, mu, sizeof mu);
+    snprintf(text, sizeof text, "%s, set %s: push here (thick black) with a %s finger", name, set,
+             finger_friction > 0 ? "frictional" : "frictionless");
+    legend(out, 0, text);
+    if (finger_friction > 0)
+        snprintf(text, sizeof text, "fixel friction %s; finger friction %g", mu, finger_friction);
+    else
+        snprintf(text, sizeof text, "fixel friction %s", mu);
+    legend(out, 1, text);
+    if (count)
+        snprintf(text, sizeof text, "%d region%s, %.1f%% of the outline", count,
+                 count == 1 ? "" : "s", fraction * 100);
+    else
+        snprintf(text, sizeof text, "no push region: no point of the outline will do");
+    legend(out, 2, text);
+    end(out);
+}
+
+void wc_svg_gravity(FILE *out, const wr_fixture *fx, const char *name, const char *set,
+                    const wr_region *arcs, int count)
+{
+    /* The part in the middle, the dial around it. */
+    frame f = frame_for(fx, 0.8, 3);
+    double lo[2], hi[2];
+    bounds(fx, lo, hi);
+    double centre[2] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2};
+    double radius = 0.5 * hypot(hi[0] - lo[0], hi[1] - lo[1]) + 0.2 * f.size;
+    char text[256], mu[64];
+    snprintf(text, sizeof text, "%s: gravity sweep of G_%s", name, set);
+    begin(out, &f, text);
+    fprintf(out,
+            "<circle class=\"dial\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"none\" "
+            "stroke=\"#a0a0a0\" stroke-width=\"3\"/>\n",
+            page_x(&f, centre[0]), page_y(&f, centre[1]), radius * f.scale);
+    for (int degrees = 0; degrees < 360; degrees += 30) {
+        double a = degrees * PI / 180, u[2] = {cos(a), sin(a)};
+        fprintf(out,
+                "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#a0a0a0\"/>\n",
+                page_x(&f, centre[0] + 0.95 * radius * u[0]),
+                page_y(&f, centre[1] + 0.95 * radius * u[1]),
+                page_x(&f, centre[0] + 1.05 * radius * u[0]),
+                page_y(&f, centre[1] + 1.05 * radius * u[1]));
+        fprintf(out,
+                "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" fill=\"#666\" "
+                "text-anchor=\"middle\">%d\xc2\xb0</text>\n",
+                page_x(&f, centre[0] + 1.15 * radius * u[0]),
+                page_y(&f, centre[1] + 1.15 * radius * u[1]) + 4, degrees);
+    }
+    for (int i = 0; i < count; i++) {
+        fputs("<path class=\"region\" d=\"", out);
+        arc_path(out, &f, centre, radius, arcs[i].t0, arcs[i].t1);
+        fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"9\"/>\n", out);
+    }
+    outline(out, &f, fx);
+    fixels(out, &f, fx);
+    centre_of_mass(out, &f, fx);
+    friction_text(fx, mu, sizeof mu);
+    snprintf(text, sizeof text, "%s, set %s, %s", name, set, mu);
+    legend(out, 0, text);
+    legend(out, 1, "thick black: the directions gravity may pull in (the part's frame)");
+    if (count == 0) {
+        legend(out, 2, "no tilt: gravity alone never does it");
+    } else {
+        double total = 0;
+        for (int i = 0; i < count; i++)
+            total += arcs[i].t1 - arcs[i].t0;
+        snprintf(text, sizeof text, "%d arc%s, %.1f\xc2\xb0 in all", count, count == 1 ? "" : "s",
+                 total);
+        legend(out, 2, text);
+    }
+    end(out);
+}
+
+/* A wrench as an arrow on its line of action: the point of that line
+ * nearest the centre of mass is (tau / |f|^2) (f_y, -f_x) from it. */
+static void wrench_arrow(FILE *out, const frame *f, const wr_fixture *fx, const double w[3],
+                         const char *colour, const char *dash)
+{
+    double force = hypot(w[0], w[1]);
+    double length = 0.35 * f->size;
+    if (force < 1e-12 * (fabs(w[2]) + 1)) {
+        /* A pure torque: a curved arrow around the centre of mass. */
+        double r = 0.15 * f->size, c[2] = {fx->com[0], fx->com[1]};
+        double a = w[2] > 0 ? 30 : 150, b = w[2] > 0 ? 150 : 30;
+        fprintf(out, "<path d=\"");
+        arc_path(out, f, c, r, fmin(a, b), fmax(a, b));
+        fprintf(out, "\" fill=\"none\" stroke=\"#%s\" stroke-width=\"3\" %s %s=\"url(#arrow-%s)\"/>\n",
+                colour, dash, w[2] > 0 ? "marker-end" : "marker-start", colour);
+        return;
+    }
+    double k = w[2] / (force * force);
+    double tip[2] = {fx->com[0] + k * w[1], fx->com[1] - k * w[0]};
+    double tail[2] = {tip[0] - length * w[0] / force, tip[1] - length * w[1] / force};
+    fprintf(out,
+            "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#%s\" "
+            "stroke-width=\"3\" %s marker-end=\"url(#arrow-%s)\"/>\n",
+            page_x(f, tail[0]), page_y(f, tail[1]), page_x(f, tip[0]), page_y(f, tip[1]), colour,
+            dash, colour);
+}
+
+void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const double bias[3],
+                   double margin, const double worst[3], const char *blocking)
+{
+    frame f = frame_for(fx, 0.5, 3);
+    char text[256], mu[64];
+    snprintf(text, sizeof text, "%s: disturbance margin", name);
+    begin(out, &f, text);
+    outline(out, &f, fx);
+    fixels(out, &f, fx);
+    centre_of_mass(out, &f, fx);
+    wrench_arrow(out, &f, fx, bias, "1f4e9c", "");
+    if (blocking)
+        wrench_arrow(out, &f, fx, worst, "c0392b", "stroke-dasharray=\"8 5\"");
+    friction_text(fx, mu, sizeof mu);
+    snprintf(text, sizeof text, "%s, %s: the biasing wrench (blue) on its line of action", name,
+             mu);
+    legend(out, 0, text);
+    if (!blocking) {
+        legend(out, 1, "no contact mode moves the part: any disturbance is held");
+    } else {
+        snprintf(text, sizeof text,
+                 margin > 0 ? "held against any disturbance smaller than %.4g (scaled metric)"
+                            : "not held: %.4g inside G_strong's excluded cones",
+                 fabs(margin));
+        legend(out, 1, text);
+        snprintf(text, sizeof text, "dashed red: the worst disturbance, which starts mode %s",
+                 blocking);
+        legend(out, 2, text);
+    }
+    end(out);
+}
