@@ -451,7 +451,17 @@ int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturb
             wr_copy3(cone->rays[0], direction);
     } else {
         double unit_margin = wr_set_margin(a, WR_SET_STRONG, x, &out->blocking);
-        out->margin = unit_margin * length; /* distances in a cone scale with |h| */
+        /* Distances in a cone scale with |h|.  |h| itself may overflow for
+         * a bias near the largest double while the margin does not: scale
+         * by the largest component last. */
+        double largest = fmax(fabs(bias[0]), fmax(fabs(bias[1]), fabs(bias[2])));
+        double reduced[3] = {bias[0] / largest, bias[1] / largest, bias[2] / largest}, unused[3];
+        out->margin = unit_margin * wr_fixture_unit_wrench(f, reduced, unused) * largest;
+        if (!isfinite(out->margin)) {
+            memset(out, 0, sizeof *out);
+            out->blocking = -1;
+            return -1;
+        }
         const wr_cone *cone = &a->mode_cones[out->blocking];
         if (unit_margin > 0) {
             double projection[3];

@@ -78,7 +78,8 @@ typedef struct wr_disturbance {
                               of it leaves the deepest cone */
 } wr_disturbance;
 
-/* Returns 0, or -1 when the bias is not finite. */
+/* Returns 0, or -1 when the bias is not finite or so large that its margin
+ * is beyond the largest double. */
 int wr_disturbance_margin(const wr_analysis *analysis, const double bias[3],
                           wr_disturbance *out);
 

@@ -585,9 +585,12 @@ static cJSON *stability_margin(const wp_host *host, const wp_limits *limits, con
     double bias[3];
     cJSON *result = NULL;
     wr_disturbance d;
-    if (wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias", use.fixture,
-                       bias, error) &&
-        wr_disturbance_margin(use.analysis, bias, &d) == 0) {
+    bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",
+                               use.fixture, bias, error);
+    if (read && wr_disturbance_margin(use.analysis, bias, &d) != 0)
+        wp_error_set(error, WP_INVALID_PARAMS, "params.bias",
+                     "so large that its margin is beyond the largest number");
+    else if (read) {
         result = cJSON_CreateObject();
         if (d.bounded) {
             char text[WR_CONSTRAINT_TEXT];

@@ -599,3 +599,67 @@ class Classifier:
         if abs(a.margin - b.margin) <= 1e-7:
             return Answer(min(a.margin, b.margin), a.blocking, a.candidates + b.candidates, a.states)
         return a if a.margin < b.margin else b
+
+
+# ---- the outline and the push wrench (SPEC 6) ---------------------------------
+#
+# Independent of the daemon: a polygon's edge i runs from vertex i to vertex
+# i + 1, t the fraction along it; a circle is edge 0, t the boundary angle in
+# degrees counter-clockwise from +x about the centre.  The inward normal of a
+# polygon edge is its direction turned +90 degrees for a counter-clockwise
+# outline (the interior is on the left), -90 degrees for a clockwise one.
+
+def edge_count(model):
+    return 1 if model.shape["type"] == "circle" else len(model.vertices)
+
+
+def edge_range(model):
+    """The range of the parameter t on an edge: 360 degrees or 1."""
+    return 360.0 if model.shape["type"] == "circle" else 1.0
+
+
+def boundary_point(model, edge, t):
+    """(point, inward unit normal) at parameter t of edge `edge`."""
+    if model.shape["type"] == "circle":
+        c = tuple(map(float, model.shape["center"]))
+        r = float(model.shape["radius"])
+        a = math.radians(t)
+        u = (math.cos(a), math.sin(a))
+        return (c[0] + r * u[0], c[1] + r * u[1]), (-u[0], -u[1])
+    n = len(model.vertices)
+    a, b = model.vertices[edge], model.vertices[(edge + 1) % n]
+    d = sub(b, a)
+    p = (a[0] + t * d[0], a[1] + t * d[1])
+    L = norm(d)
+    o = model.orientation
+    return p, (-d[1] * o / L, d[0] * o / L)
+
+
+def edge_length(model, edge):
+    if model.shape["type"] == "circle":
+        return 2 * math.pi * float(model.shape["radius"])
+    n = len(model.vertices)
+    return norm(sub(model.vertices[(edge + 1) % n], model.vertices[edge]))
+
+
+def perimeter(model):
+    return sum(edge_length(model, e) for e in range(edge_count(model)))
+
+
+def region_length(model, edge, t0, t1):
+    """Boundary length between parameters t0 < t1 of one edge."""
+    return edge_length(model, edge) * (t1 - t0) / edge_range(model)
+
+
+def push_wrench(model, edge, t, finger=0.0):
+    """The wrench of a unit normal push at (edge, t): (nu, (p - x_c) x nu);
+    with `finger` != 0, of the force nu + finger * tangent instead (a friction
+    cone edge of a finger with coefficient |finger|)."""
+    p, nu = boundary_point(model, edge, t)
+    f = (nu[0] - finger * nu[1], nu[1] + finger * nu[0])
+    return model.force_wrench(f, p)
+
+
+def gravity_wrench(model, phi_deg, g0=9.81):
+    a = math.radians(phi_deg)
+    return (model.mass * g0 * math.cos(a), model.mass * g0 * math.sin(a), 0.0)
