@@ -428,9 +428,11 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
     s->stopping = true;
     wd_log(WD_LOG_INFO, "%s: no new clients; answering what is in flight",
            signal_number == SIGINT ? "SIGINT" : "SIGTERM");
-    evconnlistener_free(s->listener);
-    s->listener = NULL;
-    unlink(s->config->socket_path);
+    if (s->listener) {
+        evconnlistener_free(s->listener);
+        s->listener = NULL;
+        unlink(s->config->socket_path);
+    }
     struct timeval grace = {SHUTDOWN_GRACE_SECONDS, 0};
     event_add(s->grace_timer, &grace);
     for (connection *c = s->connections, *next; c; c = next) {
@@ -578,20 +580,11 @@ int wd_server_run(const wd_config *config)
     }
     if (!load_files(s))
         goto out;
-    fd = open_socket(config->socket_path, why, sizeof why);
-    if (fd < 0) {
-        wd_log(WD_LOG_ERROR, "%s", why);
-        goto out;
-    }
+    /* Signals are caught and workers run before the socket listens: a
+     * client (or a supervisor's SIGTERM) may come the moment it does. */
     s->base = event_base_new();
     if (!s->base)
         goto out;
-    s->listener = evconnlistener_new(s->base, on_accept, s, LEV_OPT_CLOSE_ON_FREE, -1, fd);
-    if (!s->listener) {
-        close(fd);
-        unlink(config->socket_path);
-        goto out;
-    }
     s->done_event = event_new(s->base, -1, 0, on_done, s);
     s->signal_events[0] = evsignal_new(s->base, SIGTERM, on_signal, s);
     s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
@@ -600,11 +593,22 @@ int wd_server_run(const wd_config *config)
     if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
         !s->pool) {
         wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
-        unlink(config->socket_path);
         goto out;
     }
     event_add(s->signal_events[0], NULL);
     event_add(s->signal_events[1], NULL);
+    fd = open_socket(config->socket_path, why, sizeof why);
+    if (fd < 0) {
+        wd_log(WD_LOG_ERROR, "%s", why);
+        goto out;
+    }
+    s->listener = evconnlistener_new(s->base, on_accept, s, LEV_OPT_CLOSE_ON_FREE, -1, fd);
+    if (!s->listener) {
+        close(fd);
+        unlink(config->socket_path);
+        wd_log(WD_LOG_ERROR, "cannot listen on %s: out of memory", config->socket_path);
+        goto out;
+    }
     wd_log(WD_LOG_INFO, "wrenchd %s listening on %s (%d threads, state %s, cache %zu MiB)",
            WR_VERSION, config->socket_path, config->threads,
            config->state_dir ? config->state_dir : "in memory only", config->cache_bytes >> 20);

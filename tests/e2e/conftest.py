@@ -373,3 +373,14 @@ def daemon(harness):
 @pytest.fixture
 def client(daemon):
     return daemon.client()
+
+
+# Figures tests report (how many points, endpoints ...), printed once at the
+# end of the run, before pytest's closing line.
+FIGURES = {}
+
+
+def pytest_terminal_summary(terminalreporter):
+    if FIGURES:
+        terminalreporter.write_line("figures: " + ", ".join(
+            "%s %d" % (k, v) for k, v in sorted(FIGURES.items())))

@@ -25,6 +25,7 @@ import pytest
 import fixtures as FX
 import helpers as H
 import model as M
+from conftest import FIGURES
 
 SETS = ("goal", "strong", "both")
 ENDPOINT_TOL = 1e-9      # |margin| at a region's endpoint
@@ -34,11 +35,9 @@ CLASSIFY_TOL = 1e-9      # classify's default tolerance: "not inside" is margin 
 PER_EDGE = 200           # dense points per polygon edge (or per circle)
 CHUNK = 4000             # wrenches per classify request
 
-STATS = {}
-
-
 def count(key, n=1):
-    STATS[key] = STATS.get(key, 0) + n
+    """Add to the figures conftest prints at the end of the run."""
+    FIGURES[key] = FIGURES.get(key, 0) + n
 
 
 # ---- plumbing -----------------------------------------------------------------
@@ -1061,8 +1060,3 @@ def test_errors(client):
     assert error_of(client, "stability.margin", {"bias": [0, 0, 0]}) == "params.fixture"
     # the daemon is still fine
     assert regions(client, f, "goal")["regions"]
-
-
-def test_report_counts(client):
-    """Not a check: prints what the suite counted (run with -s)."""
-    print("\ncounts so far:", sorted(STATS.items()))
