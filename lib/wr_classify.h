@@ -11,6 +11,10 @@
 #include "wr_lp.h"
 #include "wr_plan.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum wr_set {
     WR_SET_GOAL,   /* seats the part from any contact state */
     WR_SET_STRONG, /* the seated part cannot move */
@@ -74,5 +78,9 @@ int wr_classify_lp(const wr_analysis *analysis, wr_lp_set *goal, wr_lp_set *stro
  * memory, nothing allocated). */
 int wr_analysis_lp_sets(const wr_analysis *analysis, wr_lp_env *env, wr_lp_set **goal,
                         wr_lp_set **strong);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

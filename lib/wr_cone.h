@@ -13,6 +13,10 @@
 
 #include <stdbool.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A constraint string: one letter per fixel, in fixel order, over "saulrnm"
  * (SPEC section 2).  As a contact mode (SPEC section 4) `s` is strictly
  * separating, and an unpinned body's pivots are n...n with a sign. */
@@ -95,5 +99,9 @@ void wr_cone_witness(const wr_cone *cone, const wr_fixture *fixture, const doubl
 /* The physical wrench M q - sum_i (W_in c_in + W_it c_it). */
 void wr_newton_euler_wrench(const wr_fixture *fixture, const double acceleration[3],
                             const double (*force)[2], double wrench[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -14,6 +14,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* At most 8 fixels: G_goal has k * 2^(k-1) cones (1024 at k = 8). */
 #define WR_MAX_FIXELS 8
 /* A polygon outline has at most this many vertices (the simplicity check is
@@ -125,5 +129,9 @@ void wr_fixture_edge_normal(const wr_fixture *fixture, size_t edge, double norma
 /* The wrench (f_x, f_y, (at - com) x force) of a force applied at a point. */
 void wr_fixture_force_wrench(const wr_fixture *fixture, const double force[2],
                              const double at[2], double wrench[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

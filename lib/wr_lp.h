@@ -17,6 +17,10 @@
 
 #include "wr_cone.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define WR_LP_OK 0
 #define WR_LP_FAILED (-1)  /* GLPK failed; the answer is unknown */
 
@@ -49,5 +53,9 @@ void wr_lp_set_free(wr_lp_set *set);
  * WR_LP_FAILED. */
 int wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
                  wr_witness *witness);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -6,6 +6,10 @@
 
 #include "wr_cone.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A contact state is a set of touched fixels: bit i set = fixel i touched.
  * Its text is one '0'/'1' per fixel, fixel 1 first ("010": only fixel 2). */
 typedef unsigned wr_state;
@@ -51,5 +55,9 @@ void wr_plan_free(wr_plan *plan);
  * malloc'd array in *modes (free() it), or -1 when out of memory.  *pinned
  * says whether rolling at every fixel forces q = 0. */
 int wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, bool *pinned);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,6 +21,10 @@
 
 #include "wr_classify.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* An open interval of the boundary.  On a polygon, edge i runs from vertex
  * i to vertex i+1 and t is the fraction along it, in (0, 1).  On a circle
  * (edge 0), and for gravity, t is an angle in degrees, counter-clockwise
@@ -82,5 +86,9 @@ typedef struct wr_disturbance {
  * is beyond the largest double. */
 int wr_disturbance_margin(const wr_analysis *analysis, const double bias[3],
                           wr_disturbance *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

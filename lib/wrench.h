@@ -23,4 +23,12 @@
 #include "wr_plan.h"
 #include "wr_regions.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
 #endif

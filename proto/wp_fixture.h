@@ -5,6 +5,10 @@
 #include "wp_json.h"
 #include "wrench.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define WP_ID_LENGTH 32 /* hex digits of a fixture id */
 
 /* A fixture read from JSON: validated, with its content id and canonical
@@ -32,5 +36,9 @@ bool wp_fixture_id_valid(const char *text);
  * whose torque about the fixture's centre of mass is (at - com) x force. */
 bool wp_wrench_read(const cJSON *json, const char *path, const wr_fixture *fixture,
                     double wrench[3], wp_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -7,6 +7,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* JSON-RPC error codes (docs/PROTOCOL.md). */
 #define WP_PARSE_ERROR (-32700)
 #define WP_INVALID_REQUEST (-32600)
@@ -93,5 +97,9 @@ typedef struct wp_json_shape {
     bool nul_escape;
 } wp_json_shape;
 wp_json_shape wp_json_scan(const char *text, size_t length, int limit);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -7,11 +7,19 @@
 
 #include "wp_rpc.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct wp_local wp_local;
 
 /* Create, use and free in one thread (it holds that thread's GLPK env). */
 wp_local *wp_local_new(void);
 const wp_host *wp_local_host(wp_local *local);
 void wp_local_free(wp_local *local);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -9,6 +9,10 @@
 
 #include "wp_fixture.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A fixture held for the length of one request. */
 typedef struct wp_fixture_use {
     const char *id;
@@ -73,5 +77,9 @@ typedef struct wp_method {
 
 extern const wp_method wp_methods[];   /* ends with a zeroed entry */
 const wp_method *wp_method_find(const char *name);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -5,6 +5,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct wp_sha256 {
     uint32_t state[8];
     uint64_t length;          /* bytes hashed so far */
@@ -15,5 +19,9 @@ typedef struct wp_sha256 {
 void wp_sha256_init(wp_sha256 *hash);
 void wp_sha256_update(wp_sha256 *hash, const void *data, size_t size);
 void wp_sha256_final(wp_sha256 *hash, unsigned char digest[32]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -20,6 +20,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     WRC_OK = 0,
     WRC_ECONNECT = -1, /* cannot connect: no daemon on the socket, or no permission */
@@ -78,5 +82,9 @@ const char *wrc_strerror(int error);
 /* A sentence about the client's last failure (which system call, which
  * errno); constant until the next call on the client. */
 const char *wrc_last_error(const wrc_client *client);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
