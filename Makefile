@@ -20,7 +20,8 @@ LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
-.PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures
+.PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
+        install uninstall
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -32,6 +33,8 @@ help:
 	@echo "make pictures   redraw docs/pictures (the README's figures)"
 	@echo "make check      build and run every test: unit and end-to-end, plain and ASan+UBSan"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
+	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR"
+	@echo "make uninstall  remove what make install installed"
 	@echo "make deps       install the Debian packages the project needs"
 	@echo "make clean      remove build/"
 
@@ -184,9 +187,62 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/plate-chamfered.json --set both --svg docs/pictures/plate-chamfered-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/disc-corner.json --set goal --svg docs/pictures/disc-corner-push-goal.svg >/dev/null
 
+# ---- install -------------------------------------------------------------------
+PREFIX    ?= /usr/local
+SYSCONFDIR ?= /etc
+DESTDIR   ?=
+VERSION    = $(shell sed -n 's/^\#define WR_VERSION "\(.*\)"/\1/p' lib/wrench.h)
+PYVERSION  = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+# Where Debian's python3 looks: /usr/lib/python3/dist-packages for /usr,
+# /usr/local/lib/python3.X/dist-packages for /usr/local.
+PYTHONDIR ?= $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$(PREFIX)/lib/python$(PYVERSION)/dist-packages)
+PUBLIC_HEADERS = lib/wrench.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h lib/wr_lp.h \
+                 lib/wr_classify.h lib/wr_regions.h clients/c/wrenchclient.h
+INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
+    $(PREFIX)/lib/libwrench.a $(PREFIX)/lib/libwrenchclient.a \
+    $(addprefix $(PREFIX)/include/wrench/,$(notdir $(PUBLIC_HEADERS))) \
+    $(PREFIX)/lib/pkgconfig/wrench.pc $(PREFIX)/lib/pkgconfig/wrenchclient.pc \
+    $(PREFIX)/lib/systemd/system/wrenchd.service $(PREFIX)/lib/systemd/system/wrenchd.socket \
+    $(PREFIX)/lib/sysusers.d/wrenchd.conf \
+    $(PREFIX)/share/man/man1/wrenchctl.1 $(PREFIX)/share/man/man8/wrenchd.8 \
+    $(PYTHONDIR)/wrenchd.py \
+    $(addprefix $(PREFIX)/share/wrenchd/examples/,$(notdir $(wildcard examples/*.json)))
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/sbin $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
+	    $(DESTDIR)$(PREFIX)/include/wrench $(DESTDIR)$(PREFIX)/lib/systemd/system \
+	    $(DESTDIR)$(PREFIX)/lib/sysusers.d $(DESTDIR)$(PREFIX)/share/man/man1 \
+	    $(DESTDIR)$(PREFIX)/share/man/man8 $(DESTDIR)$(PYTHONDIR) \
+	    $(DESTDIR)$(PREFIX)/share/wrenchd/examples $(DESTDIR)$(SYSCONFDIR)/wrenchd
+	install -m 0755 $(BUILD)/wrenchd $(DESTDIR)$(PREFIX)/sbin/wrenchd
+	install -m 0755 $(BUILD)/wrenchctl $(DESTDIR)$(PREFIX)/bin/wrenchctl
+	install -m 0644 $(BUILD)/libwrench.a $(BUILD)/libwrenchclient.a $(DESTDIR)$(PREFIX)/lib/
+	install -m 0644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/wrench/
+	for pc in lib/wrench.pc.in clients/c/wrenchclient.pc.in; do \
+	    sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' $$pc \
+	        > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$(basename $$pc .in); done
+	sed 's|@SBINDIR@|$(PREFIX)/sbin|' systemd/wrenchd.service > $(DESTDIR)$(PREFIX)/lib/systemd/system/wrenchd.service
+	install -m 0644 systemd/wrenchd.socket $(DESTDIR)$(PREFIX)/lib/systemd/system/
+	install -m 0644 systemd/wrenchd.sysusers $(DESTDIR)$(PREFIX)/lib/sysusers.d/wrenchd.conf
+	install -m 0644 clients/wrenchctl/wrenchctl.1 $(DESTDIR)$(PREFIX)/share/man/man1/
+	install -m 0644 daemon/wrenchd.8 $(DESTDIR)$(PREFIX)/share/man/man8/
+	install -m 0644 clients/python/wrenchd.py $(DESTDIR)$(PYTHONDIR)/
+	install -m 0644 examples/*.json $(DESTDIR)$(PREFIX)/share/wrenchd/examples/
+	@# The configuration is the administrator's: never overwritten.
+	test -e $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf || \
+	    install -m 0644 systemd/wrenchd.conf $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf
+
+uninstall:
+	rm -f $(addprefix $(DESTDIR),$(INSTALLED))
+	-rmdir $(DESTDIR)$(PREFIX)/include/wrench $(DESTDIR)$(PREFIX)/share/wrenchd/examples \
+	    $(DESTDIR)$(PREFIX)/share/wrenchd 2>/dev/null
+	@# The configuration goes only if it is still the one shipped.
+	-cmp -s systemd/wrenchd.conf $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf && \
+	    rm -f $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf && rmdir $(DESTDIR)$(SYSCONFDIR)/wrenchd
+
 # ---- dependencies --------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \
-               libcmocka-dev python3 python3-pytest
+               libcmocka-dev python3 python3-pytest systemd
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \

@@ -1,88 +1,331 @@
-/* wd_main.c -- wrenchd's command line. */
+/* wd_main.c -- wrenchd's command line and configuration file.
+ *
+ * One table of options serves both: each has a name (the long option, and
+ * the key in the file), a value description, help text and a setter.  The
+ * file is read first; options on the command line override it (for the
+ * list-valued ones, --load and --allow-*, a command-line list replaces the
+ * file's). */
 #include "wd_log.h"
 #include "wd_server.h"
+#include "wd_systemd.h"
 #include "wrench.h"
 
 #include <errno.h>
 #include <getopt.h>
+#include <grp.h>
+#include <pwd.h>
+#include <stdarg.h>
 #include <stdbool.h>
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-static const char USAGE[] =
-    "Usage: wrenchd [OPTION]...\n"
-    "Serve wrench cones of planar fixtures (SPEC.md) as JSON-RPC 2.0 over a Unix socket.\n"
-    "\n"
-    "  --socket PATH        listening socket (default ./run/wrenchd.sock); its directory\n"
-    "                       is created; mode 0660\n"
-    "  --state-dir DIR      keep stored fixtures in DIR/fixtures (default: memory only)\n"
-    "  --load FILE          put the fixture in FILE at start; may be repeated\n"
-    "  --threads N          worker threads (default: the number of cores)\n"
-    "  --cache-mb N         memory for derived data, least recently used evicted\n"
-    "                       (default 256)\n"
-    "  --max-line BYTES     longest request line (default 1048576)\n"
-    "  --max-depth N        deepest JSON nesting of a request (default 64)\n"
-    "  --max-wrenches N     most wrenches in one request (default 100000)\n"
-    "  --max-output BYTES   most unread answers per client before it is dropped\n"
-    "                       (default 16777216)\n"
-    "  --max-clients N      most clients connected at once (default 256)\n"
-    "  --log-level LEVEL    error, warn, info or debug (default info); logs go to stderr,\n"
-    "                       one line per event, none per request below debug\n"
-    "  --help               this text\n"
-    "  --version            the version\n"
-    "\n"
-    "Exit status: 0 after SIGTERM or SIGINT (in-flight requests answered, socket\n"
-    "removed); 1 cannot start (a live daemon answers on the socket, the socket or the\n"
-    "state directory cannot be used, a --load file is invalid); 2 bad command line.\n"
-    "The protocol: docs/PROTOCOL.md.\n";
+#define DEFAULT_CONFIG "/etc/wrenchd/wrenchd.conf"
 
-enum {
-    OPT_SOCKET = 256, OPT_STATE_DIR, OPT_LOAD, OPT_THREADS, OPT_CACHE_MB, OPT_MAX_LINE,
-    OPT_MAX_DEPTH, OPT_MAX_WRENCHES, OPT_MAX_OUTPUT, OPT_MAX_CLIENTS, OPT_LOG_LEVEL,
-    OPT_HELP, OPT_VERSION
-};
+/* Where a setting comes from, for error messages and list replacement. */
+typedef enum { FROM_FILE, FROM_COMMAND_LINE } origin;
 
-static const struct option OPTIONS[] = {
-    {"socket", required_argument, NULL, OPT_SOCKET},
-    {"state-dir", required_argument, NULL, OPT_STATE_DIR},
-    {"load", required_argument, NULL, OPT_LOAD},
-    {"threads", required_argument, NULL, OPT_THREADS},
-    {"cache-mb", required_argument, NULL, OPT_CACHE_MB},
-    {"max-line", required_argument, NULL, OPT_MAX_LINE},
-    {"max-depth", required_argument, NULL, OPT_MAX_DEPTH},
-    {"max-wrenches", required_argument, NULL, OPT_MAX_WRENCHES},
-    {"max-output", required_argument, NULL, OPT_MAX_OUTPUT},
-    {"max-clients", required_argument, NULL, OPT_MAX_CLIENTS},
-    {"log-level", required_argument, NULL, OPT_LOG_LEVEL},
-    {"help", no_argument, NULL, OPT_HELP},
-    {"version", no_argument, NULL, OPT_VERSION},
-    {NULL, 0, NULL, 0},
-};
+typedef struct settings {
+    wd_config config;
+    const char **loads;       /* room for every argument and file line */
+    int loads_capacity;
+    int loads_from;           /* origin of the current --load list */
+    unsigned uids[WD_MAX_ALLOWED], gids[WD_MAX_ALLOWED];
+    int uids_from, gids_from;
+    char *file_text;          /* the configuration file, kept: values point into it */
+} settings;
 
-/* A whole number in [low, high] into *out; false (with a message naming the
- * option) if it is not one. */
-static bool number(const char *option, const char *text, unsigned long long low,
-                   unsigned long long high, unsigned long long *out)
+typedef bool (*setter)(settings *s, const char *value, origin from, char *why, size_t size);
+
+typedef struct option_spec {
+    const char *name;
+    const char *value;        /* NULL: takes no value */
+    const char *help;
+    setter set;
+} option_spec;
+
+/* ---- setters ---------------------------------------------------------------- */
+
+static bool whole(const char *text, unsigned long long low, unsigned long long high,
+                  unsigned long long *out, char *why, size_t size)
 {
     char *end;
     errno = 0;
     unsigned long long value = strtoull(text, &end, 10);
     if (errno || end == text || *end || text[0] == '-' || value < low || value > high) {
-        fprintf(stderr, "wrenchd: --%s wants a whole number from %llu to %llu, not '%s'\n",
-                option, low, high, text);
+        snprintf(why, size, "wants a whole number from %llu to %llu, not '%s'", low, high, text);
         return false;
     }
     *out = value;
     return true;
 }
 
+#define NUMBER_SETTER(function, field, type, low, high, multiplier)                             \
+    static bool function(settings *s, const char *value, origin from, char *why, size_t size)  \
+    {                                                                                           \
+        (void)from;                                                                             \
+        unsigned long long n;                                                                   \
+        if (!whole(value, low, high, &n, why, size))                                            \
+            return false;                                                                       \
+        s->config.field = (type)(n * (multiplier));                                             \
+        return true;                                                                            \
+    }
+
+NUMBER_SETTER(set_threads, threads, int, 1, 1024, 1)
+NUMBER_SETTER(set_cache_mb, cache_bytes, size_t, 1, 1 << 20, 1 << 20)
+NUMBER_SETTER(set_max_line, max_line, size_t, 64, 1ULL << 34, 1)
+NUMBER_SETTER(set_max_depth, max_depth, int, 4, 10000, 1)
+NUMBER_SETTER(set_max_wrenches, max_wrenches, size_t, 1, 100000000, 1)
+NUMBER_SETTER(set_max_output, max_output, size_t, 4096, 1ULL << 40, 1)
+NUMBER_SETTER(set_max_clients, max_clients, unsigned long, 1, 1000000, 1)
+
+static bool set_socket(settings *s, const char *value, origin from, char *why, size_t size)
+{
+    (void)from, (void)why, (void)size;
+    s->config.socket_path = value;
+    return true;
+}
+
+static bool set_state_dir(settings *s, const char *value, origin from, char *why, size_t size)
+{
+    (void)from, (void)why, (void)size;
+    s->config.state_dir = value;
+    return true;
+}
+
+static bool set_load(settings *s, const char *value, origin from, char *why, size_t size)
+{
+    if ((int)from != s->loads_from) /* a command-line list replaces the file's */
+        s->config.load_count = 0;
+    s->loads_from = (int)from;
+    if (s->config.load_count == s->loads_capacity) {
+        snprintf(why, size, "is given more than %d times", s->loads_capacity);
+        return false;
+    }
+    s->loads[s->config.load_count++] = value;
+    return true;
+}
+
+static bool set_log_level(settings *s, const char *value, origin from, char *why, size_t size)
+{
+    (void)s, (void)from;
+    int level = wd_log_level_named(value);
+    if (level < 0) {
+        snprintf(why, size, "is error, warn, info or debug, not '%s'", value);
+        return false;
+    }
+    wd_log_set_level(level);
+    return true;
+}
+
+/* A comma-separated list of users (or groups): names or numbers. */
+static bool set_ids(unsigned *ids, int *count, int *list_from, origin from, const char *value,
+                    bool groups, char *why, size_t size)
+{
+    if ((int)from != *list_from)
+        *count = 0;
+    *list_from = (int)from;
+    char *copy = strdup(value);
+    if (!copy) {
+        snprintf(why, size, "out of memory");
+        return false;
+    }
+    bool ok = true;
+    char *saved;
+    for (char *item = strtok_r(copy, ", ", &saved); item && ok;
+         item = strtok_r(NULL, ", ", &saved)) {
+        unsigned long long number;
+        char *end;
+        errno = 0;
+        number = strtoull(item, &end, 10);
+        unsigned id;
+        if (!errno && end != item && !*end && number < 0xffffffffULL) {
+            id = (unsigned)number;
+        } else if (groups) {
+            struct group *g = getgrnam(item);
+            if (!g) {
+                snprintf(why, size, "no group named '%s'", item);
+                ok = false;
+                break;
+            }
+            id = (unsigned)g->gr_gid;
+        } else {
+            struct passwd *p = getpwnam(item);
+            if (!p) {
+                snprintf(why, size, "no user named '%s'", item);
+                ok = false;
+                break;
+            }
+            id = (unsigned)p->pw_uid;
+        }
+        if (*count == WD_MAX_ALLOWED) {
+            snprintf(why, size, "at most %d entries", WD_MAX_ALLOWED);
+            ok = false;
+            break;
+        }
+        ids[(*count)++] = id;
+    }
+    free(copy);
+    return ok;
+}
+
+static bool set_allow_uid(settings *s, const char *value, origin from, char *why, size_t size)
+{
+    return set_ids(s->uids, &s->config.allow_uid_count, &s->uids_from, from, value, false, why,
+                   size);
+}
+
+static bool set_allow_gid(settings *s, const char *value, origin from, char *why, size_t size)
+{
+    return set_ids(s->gids, &s->config.allow_gid_count, &s->gids_from, from, value, true, why,
+                   size);
+}
+
+/* ---- the table ---------------------------------------------------------------- */
+
+static const option_spec OPTIONS[] = {
+    {"socket", "PATH", "listening socket (default ./run/wrenchd.sock); its directory is\n"
+                       "created; mode 0660.  Ignored when systemd passes the socket", set_socket},
+    {"state-dir", "DIR", "keep stored fixtures in DIR/fixtures (default: memory only)",
+     set_state_dir},
+    {"load", "FILE", "put the fixture in FILE at start; may be repeated", set_load},
+    {"threads", "N", "worker threads (default: the number of cores)", set_threads},
+    {"cache-mb", "N", "memory for derived data, least recently used evicted (default 256)",
+     set_cache_mb},
+    {"max-line", "BYTES", "longest request line (default 1048576)", set_max_line},
+    {"max-depth", "N", "deepest JSON nesting of a request (default 64)", set_max_depth},
+    {"max-wrenches", "N", "most wrenches in one request (default 100000)", set_max_wrenches},
+    {"max-output", "BYTES", "most unread answers per client before it is dropped\n"
+                            "(default 16777216)", set_max_output},
+    {"max-clients", "N", "most clients connected at once (default 256)", set_max_clients},
+    {"allow-uid", "LIST", "only these users (names or numbers, comma-separated) may connect;\n"
+                          "with allow-gid, either list admits (default: anyone who can open\n"
+                          "the socket)", set_allow_uid},
+    {"allow-gid", "LIST", "only members of these groups (primary or supplementary) may\n"
+                          "connect", set_allow_gid},
+    {"log-level", "LEVEL", "error, warn, info or debug (default info); logs go to stderr,\n"
+                           "one line per event, none per request below debug", set_log_level},
+    {NULL, NULL, NULL, NULL},
+};
+
+static const option_spec *find_option(const char *name)
+{
+    for (const option_spec *o = OPTIONS; o->name; o++)
+        if (strcmp(o->name, name) == 0)
+            return o;
+    return NULL;
+}
+
+static void usage(FILE *out)
+{
+    fputs("Usage: wrenchd [OPTION]...\n"
+          "Serve wrench cones of planar fixtures (SPEC.md) as JSON-RPC 2.0 over a Unix socket.\n"
+          "\n"
+          "  --config FILE        read settings from FILE, 'option = value' per line (default\n"
+          "                       " DEFAULT_CONFIG " when it exists); options given here\n"
+          "                       override it\n",
+          out);
+    for (const option_spec *o = OPTIONS; o->name; o++) {
+        char head[64];
+        snprintf(head, sizeof head, "--%s %s", o->name, o->value);
+        fprintf(out, "  %-20s ", head);
+        for (const char *c = o->help; *c; c++) {
+            fputc(*c, out);
+            if (*c == '\n')
+                fputs("                       ", out);
+        }
+        fputc('\n', out);
+    }
+    fputs("  --help               this text\n"
+          "  --version            the version\n"
+          "\n"
+          "Under systemd it takes its socket by socket activation and reports with sd_notify\n"
+          "(READY, STATUS, STOPPING).  SIGTERM or SIGINT: stop accepting, answer what is in\n"
+          "flight, remove the socket file, exit 0.\n"
+          "Exit status: 0 after SIGTERM or SIGINT; 1 cannot start (a live daemon answers on\n"
+          "the socket, the socket or the state directory cannot be used, a --load file is\n"
+          "invalid); 2 bad command line or configuration file.  See wrenchd(8) and\n"
+          "docs/PROTOCOL.md.\n",
+          out);
+}
+
+/* ---- the configuration file ------------------------------------------------------ */
+
+/* Read `path`: one "option = value" per line, '#' starts a comment.
+ * Missing and not required: nothing to do.  Returns false after saying why. */
+static bool read_file(settings *s, const char *path, bool required)
+{
+    FILE *file = fopen(path, "r");
+    if (!file) {
+        if (!required && errno == ENOENT)
+            return true;
+        fprintf(stderr, "wrenchd: --config %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    size_t capacity = 4096, length = 0;
+    char *text = malloc(capacity);
+    while (text) {
+        length += fread(text + length, 1, capacity - length - 1, file);
+        if (length + 1 < capacity)
+            break;
+        char *grown = realloc(text, capacity *= 2);
+        if (!grown)
+            free(text);
+        text = grown;
+    }
+    fclose(file);
+    if (!text) {
+        fprintf(stderr, "wrenchd: %s: out of memory\n", path);
+        return false;
+    }
+    text[length] = 0;
+    s->file_text = text;
+    int number = 0;
+    for (char *line = text, *next; line; line = next) {
+        /* Line by line, empty ones counted: errors name the right line. */
+        next = strchr(line, '\n');
+        if (next)
+            *next++ = 0;
+        number++;
+        char *hash = strchr(line, '#');
+        if (hash)
+            *hash = 0;
+        char *key = line + strspn(line, " \t\r");
+        if (!*key)
+            continue;
+        char *equals = strchr(key, '=');
+        char *value = equals ? equals + 1 : NULL;
+        char *end = equals ? equals : key + strlen(key);
+        while (end > key && strchr(" \t\r", end[-1]))
+            *--end = 0;
+        *end = 0;
+        const option_spec *o = find_option(key);
+        if (!o || !equals) {
+            fprintf(stderr, "wrenchd: %s:%d: %s\n", path, number,
+                    !o ? "no such option (the keys are the long options without --)"
+                       : "wants 'option = value'");
+            return false;
+        }
+        value += strspn(value, " \t");
+        char *value_end = value + strlen(value);
+        while (value_end > value && strchr(" \t\r", value_end[-1]))
+            *--value_end = 0;
+        char why[256];
+        if (!o->set(s, value, FROM_FILE, why, sizeof why)) {
+            fprintf(stderr, "wrenchd: %s:%d: %s %s\n", path, number, o->name, why);
+            return false;
+        }
+    }
+    return true;
+}
+
 int main(int argc, char **argv)
 {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    wd_config config = {
+    settings s;
+    memset(&s, 0, sizeof s);
+    s.config = (wd_config){
         .socket_path = "./run/wrenchd.sock",
         .threads = cores > 0 ? (int)cores : 1,
         .cache_bytes = (size_t)256 << 20,
@@ -91,83 +334,75 @@ int main(int argc, char **argv)
         .max_wrenches = 100000,
         .max_output = (size_t)16 << 20,
         .max_clients = 256,
+        .listen_fd = -1,
     };
-    const char **loads = calloc((size_t)argc, sizeof *loads);
-    if (!loads)
+    s.config.allow_uids = s.uids;
+    s.config.allow_gids = s.gids;
+    /* Every argument and file line could be a --load. */
+    s.loads_capacity = argc + 4096;
+    s.loads = calloc((size_t)s.loads_capacity, sizeof *s.loads);
+    if (!s.loads)
         return WD_EXIT_START;
-    config.load_files = loads;
-    int option, exit_now = -1;
-    unsigned long long value;
-    while (exit_now < 0 && (option = getopt_long(argc, argv, "", OPTIONS, NULL)) != -1) {
-        bool ok = true;
-        switch (option) {
-        case OPT_SOCKET: config.socket_path = optarg; break;
-        case OPT_STATE_DIR: config.state_dir = optarg; break;
-        case OPT_LOAD: loads[config.load_count++] = optarg; break;
-        case OPT_THREADS:
-            if ((ok = number("threads", optarg, 1, 1024, &value)))
-                config.threads = (int)value;
-            break;
-        case OPT_CACHE_MB:
-            if ((ok = number("cache-mb", optarg, 1, 1 << 20, &value)))
-                config.cache_bytes = (size_t)value << 20;
-            break;
-        case OPT_MAX_LINE:
-            if ((ok = number("max-line", optarg, 64, (size_t)1 << 34, &value)))
-                config.max_line = (size_t)value;
-            break;
-        case OPT_MAX_DEPTH:
-            if ((ok = number("max-depth", optarg, 4, 10000, &value)))
-                config.max_depth = (int)value;
-            break;
-        case OPT_MAX_WRENCHES:
-            if ((ok = number("max-wrenches", optarg, 1, 100000000, &value)))
-                config.max_wrenches = (size_t)value;
-            break;
-        case OPT_MAX_OUTPUT:
-            if ((ok = number("max-output", optarg, 4096, (size_t)1 << 40, &value)))
-                config.max_output = (size_t)value;
-            break;
-        case OPT_MAX_CLIENTS:
-            if ((ok = number("max-clients", optarg, 1, 1000000, &value)))
-                config.max_clients = (unsigned long)value;
-            break;
-        case OPT_LOG_LEVEL: {
-            int level = wd_log_level_named(optarg);
-            if (level < 0) {
-                fprintf(stderr, "wrenchd: --log-level is error, warn, info or debug, not '%s'\n",
-                        optarg);
-                ok = false;
-            } else {
-                wd_log_set_level(level);
-            }
-            break;
-        }
-        case OPT_HELP:
-            fputs(USAGE, stdout);
+    s.config.load_files = s.loads;
+    s.loads_from = s.uids_from = s.gids_from = -1;
+
+    /* getopt's table from ours, plus --config, --help, --version. */
+    struct option long_options[sizeof OPTIONS / sizeof OPTIONS[0] + 3];
+    int n = 0;
+    for (const option_spec *o = OPTIONS; o->name; o++, n++)
+        long_options[n] = (struct option){o->name, required_argument, NULL, 256 + n};
+    long_options[n++] = (struct option){"config", required_argument, NULL, 'c'};
+    long_options[n++] = (struct option){"help", no_argument, NULL, 'h'};
+    long_options[n++] = (struct option){"version", no_argument, NULL, 'V'};
+    long_options[n] = (struct option){NULL, 0, NULL, 0};
+
+    /* First pass: --config, --help, --version, and errors; second pass
+     * (after the file): the rest, which override it. */
+    const char *config_path = NULL;
+    int exit_now = -1, option;
+    opterr = 1;
+    while (exit_now < 0 && (option = getopt_long(argc, argv, "", long_options, NULL)) != -1) {
+        if (option == 'c')
+            config_path = optarg;
+        else if (option == 'h') {
+            usage(stdout);
             exit_now = WD_EXIT_OK;
-            break;
-        case OPT_VERSION:
+        } else if (option == 'V') {
             printf("wrenchd %s\n", WR_VERSION);
             exit_now = WD_EXIT_OK;
-            break;
-        default:
+        } else if (option == '?') {
             fputs("Try 'wrenchd --help'.\n", stderr);
-            ok = false;
-            break;
-        }
-        if (!ok)
             exit_now = WD_EXIT_USAGE;
+        }
     }
     if (exit_now < 0 && optind < argc) {
         fprintf(stderr, "wrenchd: unexpected argument '%s'; try 'wrenchd --help'\n", argv[optind]);
         exit_now = WD_EXIT_USAGE;
     }
-    if (exit_now >= 0) {
-        free(loads);
-        return exit_now;
+    if (exit_now < 0 && !read_file(&s, config_path ? config_path : DEFAULT_CONFIG,
+                                   config_path != NULL))
+        exit_now = WD_EXIT_USAGE;
+    optind = 1;
+    while (exit_now < 0 && (option = getopt_long(argc, argv, "", long_options, NULL)) != -1) {
+        if (option < 256)
+            continue; /* --config and friends: done */
+        const option_spec *o = &OPTIONS[option - 256];
+        char why[256];
+        if (!o->set(&s, optarg, FROM_COMMAND_LINE, why, sizeof why)) {
+            fprintf(stderr, "wrenchd: --%s %s\n", o->name, why);
+            exit_now = WD_EXIT_USAGE;
+        }
     }
-    int status = wd_server_run(&config);
-    free(loads);
+    if (exit_now < 0) {
+        char why[256];
+        s.config.listen_fd = wd_systemd_listen_fd(why, sizeof why);
+        if (s.config.listen_fd == -2) {
+            wd_log(WD_LOG_ERROR, "%s", why);
+            exit_now = WD_EXIT_START;
+        }
+    }
+    int status = exit_now >= 0 ? exit_now : wd_server_run(&s.config);
+    free(s.loads);
+    free(s.file_text);
     return status;
 }

@@ -10,8 +10,11 @@
  * taken in queue order, so its requests run as if sent one by one (a put
  * followed by a query of its id works when pipelined); answers are written
  * from the head, in the order asked.  Connections run in parallel. */
+/* SO_PEERCRED, SO_PEERGROUPS and struct ucred are Linux's. */
+#define _GNU_SOURCE
 #include "wd_server.h"
 #include "wd_log.h"
+#include "wd_systemd.h"
 #include "wd_worker.h"
 
 #include <errno.h>
@@ -27,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
+#include <sys/types.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -59,6 +63,9 @@ struct connection {
     bool discarding;           /* skipping the rest of an over-long line */
     bool paused;               /* not reading: too many answers pending */
     bool input_closed;         /* end of input, or shutting down */
+    bool refusing;             /* turned away: one error line, then a lingering
+                                  close (its input is read and dropped) */
+    bool write_shut;           /* refusing: shutdown(SHUT_WR) done */
     int busy;                  /* callbacks running on it: not freed meanwhile */
     unsigned long number;      /* for the log */
 };
@@ -76,6 +83,7 @@ struct wd_server {
     wd_job *done_head, *done_tail;  /* answered by workers, not yet written */
     connection *connections;
     unsigned long connection_count, numbers;
+    unsigned long refusing;         /* of the connections, those being turned away */
     bool stopping;
 };
 
@@ -93,6 +101,8 @@ static void free_connection(connection *c)
     if (c->next)
         c->next->prev = c->prev;
     s->connection_count--;
+    if (c->refusing)
+        s->refusing--;
     for (slot *x = c->head, *next; x; x = next) {
         next = x->next;
         free(x->line);
@@ -183,17 +193,23 @@ static slot *add_slot(connection *c)
     return x;
 }
 
-/* An answer known without a worker (a refused line), in its place. */
-static void answer_now(connection *c, int code, const char *reason)
+/* An error answer known without a worker, in its place. */
+static void queue_error(connection *c, int code, const char *reason)
 {
-    atomic_fetch_add(&c->server->stats.requests, 1);
-    atomic_fetch_add(&c->server->stats.errors, 1);
     slot *x = add_slot(c);
     if (!x)
         return;
     x->response = wp_error_line(code, "", reason);
     x->done = true;
     flush(c);
+}
+
+/* A refused line: counted like any request that failed. */
+static void answer_now(connection *c, int code, const char *reason)
+{
+    atomic_fetch_add(&c->server->stats.requests, 1);
+    atomic_fetch_add(&c->server->stats.errors, 1);
+    queue_error(c, code, reason);
 }
 
 /* Hand the connection's next waiting request to the workers, unless one
@@ -243,6 +259,10 @@ static void process_input(connection *c)
     if (!c->bev)
         return;
     struct evbuffer *input = bufferevent_get_input(c->bev);
+    if (c->refusing) { /* read and dropped: closing now would reset the line sent */
+        evbuffer_drain(input, evbuffer_get_length(input));
+        return;
+    }
     size_t max_line = c->server->config->max_line;
     while (!c->paused && c->bev) {
         struct evbuffer_ptr eol = evbuffer_search(input, "\n", 1, NULL);
@@ -301,8 +321,13 @@ static void on_read(struct bufferevent *bev, void *argument)
 
 static void on_write(struct bufferevent *bev, void *argument)
 {
-    (void)bev;
-    maybe_finish(argument);
+    connection *c = argument;
+    if (c->refusing && !c->write_shut) {
+        /* The error line is out: say so, then wait for the peer's EOF. */
+        shutdown(bufferevent_getfd(bev), SHUT_WR);
+        c->write_shut = true;
+    }
+    maybe_finish(c);
 }
 
 static void on_event(struct bufferevent *bev, short events, void *argument)
@@ -314,14 +339,49 @@ static void on_event(struct bufferevent *bev, short events, void *argument)
         /* The client is done sending; it may still read. */
         c->input_closed = true;
         process_input(c);
-    } else if (events & BEV_EVENT_ERROR) {
-        wd_log(WD_LOG_DEBUG, "client %lu: %s", c->number, strerror(errno));
+    } else if (events & (BEV_EVENT_ERROR | BEV_EVENT_TIMEOUT)) {
+        wd_log(WD_LOG_DEBUG, "client %lu: %s", c->number,
+               events & BEV_EVENT_TIMEOUT ? "timed out" : strerror(errno));
         c->input_closed = true;
         close_socket(c);
     }
     c->busy--;
     maybe_finish(c);
 }
+
+/* Is the peer admitted by the allow lists?  Its user id (SO_PEERCRED), or
+ * its primary or a supplementary group (SO_PEERGROUPS), must be listed; with
+ * no list everyone who can open the socket is.  `who` receives its uid. */
+static bool peer_allowed(const wd_config *config, int fd, char *who, size_t who_size)
+{
+    if (config->allow_uid_count == 0 && config->allow_gid_count == 0)
+        return true;
+    struct ucred credentials;
+    socklen_t length = sizeof credentials;
+    if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &credentials, &length) != 0) {
+        snprintf(who, who_size, "a peer of unknown identity");
+        return false;
+    }
+    snprintf(who, who_size, "uid %u (gid %u)", (unsigned)credentials.uid,
+             (unsigned)credentials.gid);
+    for (int i = 0; i < config->allow_uid_count; i++)
+        if (config->allow_uids[i] == credentials.uid)
+            return true;
+    gid_t groups[256];
+    int group_count = 0;
+    socklen_t groups_length = sizeof groups;
+    groups[group_count++] = credentials.gid;
+    if (getsockopt(fd, SOL_SOCKET, SO_PEERGROUPS, groups + 1, &groups_length) == 0)
+        group_count += (int)(groups_length / sizeof groups[0]);
+    for (int i = 0; i < config->allow_gid_count; i++)
+        for (int j = 0; j < group_count && j < 256; j++)
+            if (config->allow_gids[i] == groups[j])
+                return true;
+    return false;
+}
+
+/* A refused client gets this long to read its error line and hang up. */
+#define LINGER_SECONDS 2
 
 static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struct sockaddr *address,
                       int length, void *argument)
@@ -330,18 +390,19 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     (void)address;
     (void)length;
     wd_server *s = argument;
-    if (atomic_load(&s->stats.clients) >= s->config->max_clients) {
-        char *line = wp_error_line(WP_LIMIT, "", "too many clients (--max-clients); try again later");
-        if (line) {
-            ssize_t sent = send(fd, line, strlen(line), MSG_DONTWAIT | MSG_NOSIGNAL);
-            (void)sent;
-            free(line);
-        }
-        close(fd);
+    char who[64], reason[128];
+    int refusal = 0;
+    if (!peer_allowed(s->config, fd, who, sizeof who)) {
+        refusal = WP_ACCESS;
+        snprintf(reason, sizeof reason, "%s may not use this daemon (allow-uid, allow-gid)", who);
+        atomic_fetch_add(&s->stats.denied, 1);
+        wd_log(WD_LOG_WARN, "denied %s: not in the allow lists", who);
+    } else if (atomic_load(&s->stats.clients) - s->refusing >= s->config->max_clients) {
+        refusal = WP_LIMIT;
+        snprintf(reason, sizeof reason, "too many clients (--max-clients); try again later");
         atomic_fetch_add(&s->stats.refused, 1);
         wd_log(WD_LOG_WARN, "refused a client: %lu already connected (--max-clients)",
-               (unsigned long)atomic_load(&s->stats.clients));
-        return;
+               (unsigned long)(atomic_load(&s->stats.clients) - s->refusing));
     }
     connection *c = calloc(1, sizeof *c);
     struct bufferevent *bev = c ? bufferevent_socket_new(s->base, fd, BEV_OPT_CLOSE_ON_FREE) : NULL;
@@ -362,6 +423,17 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     atomic_fetch_add(&s->stats.clients, 1);
     bufferevent_setcb(bev, on_read, on_write, on_event, c);
     bufferevent_enable(bev, EV_READ | EV_WRITE);
+    if (refusal) {
+        c->refusing = true;
+        s->refusing++;
+        struct timeval linger = {LINGER_SECONDS, 0};
+        bufferevent_set_timeouts(bev, &linger, &linger);
+        c->busy++;
+        queue_error(c, refusal, reason);
+        c->busy--;
+        maybe_finish(c);
+        return;
+    }
     wd_log(WD_LOG_DEBUG, "client %lu: connected", c->number);
 }
 
@@ -426,12 +498,14 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
     if (s->stopping)
         return;
     s->stopping = true;
+    wd_systemd_notify("STOPPING=1\nSTATUS=stopping: answering what is in flight");
     wd_log(WD_LOG_INFO, "%s: no new clients; answering what is in flight",
            signal_number == SIGINT ? "SIGINT" : "SIGTERM");
     if (s->listener) {
         evconnlistener_free(s->listener);
         s->listener = NULL;
-        unlink(s->config->socket_path);
+        if (s->config->listen_fd < 0) /* systemd's socket is systemd's to remove */
+            unlink(s->config->socket_path);
     }
     struct timeval grace = {SHUTDOWN_GRACE_SECONDS, 0};
     event_add(s->grace_timer, &grace);
@@ -597,7 +671,7 @@ int wd_server_run(const wd_config *config)
     }
     event_add(s->signal_events[0], NULL);
     event_add(s->signal_events[1], NULL);
-    fd = open_socket(config->socket_path, why, sizeof why);
+    fd = config->listen_fd >= 0 ? config->listen_fd : open_socket(config->socket_path, why, sizeof why);
     if (fd < 0) {
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;
@@ -605,13 +679,23 @@ int wd_server_run(const wd_config *config)
     s->listener = evconnlistener_new(s->base, on_accept, s, LEV_OPT_CLOSE_ON_FREE, -1, fd);
     if (!s->listener) {
         close(fd);
-        unlink(config->socket_path);
+        if (config->listen_fd < 0)
+            unlink(config->socket_path);
         wd_log(WD_LOG_ERROR, "cannot listen on %s: out of memory", config->socket_path);
         goto out;
     }
     wd_log(WD_LOG_INFO, "wrenchd %s listening on %s (%d threads, state %s, cache %zu MiB)",
-           WR_VERSION, config->socket_path, config->threads,
-           config->state_dir ? config->state_dir : "in memory only", config->cache_bytes >> 20);
+           WR_VERSION, config->listen_fd >= 0 ? "the socket systemd passed" : config->socket_path,
+           config->threads, config->state_dir ? config->state_dir : "in memory only",
+           config->cache_bytes >> 20);
+    {
+        wd_cache_stats held;
+        wd_cache_stats_get(s->cache, &held);
+        char state[256];
+        snprintf(state, sizeof state, "READY=1\nSTATUS=serving %zu stored fixtures, %d threads",
+                 held.stored, config->threads);
+        wd_systemd_notify(state);
+    }
     event_base_dispatch(s->base);
     status = WD_EXIT_OK;
     wd_log(WD_LOG_INFO, "stopped");
@@ -629,7 +713,8 @@ out:
     }
     if (s->listener) {
         evconnlistener_free(s->listener);
-        unlink(config->socket_path);
+        if (config->listen_fd < 0)
+            unlink(config->socket_path);
     }
     for (int i = 0; i < 2; i++)
         if (s->signal_events[i])

@@ -17,7 +17,15 @@ typedef struct wd_config {
     size_t max_wrenches;        /* most wrenches in one request */
     size_t max_output;          /* most unread output per client, bytes */
     unsigned long max_clients;  /* most concurrent clients */
+    const unsigned *allow_uids; /* peers admitted by user id; none: no check */
+    int allow_uid_count;
+    const unsigned *allow_gids; /* ... or by primary or supplementary group */
+    int allow_gid_count;
+    int listen_fd;              /* a socket systemd passed, or -1 to bind socket_path */
 } wd_config;
+
+/* Most entries in each allow list. */
+#define WD_MAX_ALLOWED 64
 
 /* Exit statuses of wrenchd. */
 enum { WD_EXIT_OK = 0, WD_EXIT_START = 1, WD_EXIT_USAGE = 2 };

@@ -66,6 +66,7 @@ static cJSON *host_status(void *self)
     cJSON_AddNumberToObject(result, "threads", s->threads);
     cJSON_AddNumberToObject(result, "clients", (double)atomic_load(&s->clients));
     cJSON_AddNumberToObject(result, "refused", (double)atomic_load(&s->refused));
+    cJSON_AddNumberToObject(result, "denied", (double)atomic_load(&s->denied));
     cJSON_AddNumberToObject(result, "requests", (double)atomic_load(&s->requests));
     cJSON *errors = cJSON_AddNumberToObject(result, "errors", (double)atomic_load(&s->errors));
     if (!errors) {

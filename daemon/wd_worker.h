@@ -15,6 +15,7 @@ typedef struct wd_stats {
     atomic_ulong errors;        /* of them, errors */
     atomic_ulong clients;       /* connections open now */
     atomic_ulong refused;       /* connections refused (over --max-clients) */
+    atomic_ulong denied;        /* connections denied (peer not in the allow lists) */
     time_t started;
     int threads;
 } wd_stats;

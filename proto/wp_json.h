@@ -21,6 +21,7 @@ extern "C" {
 #define WP_STORAGE (-32002)
 #define WP_LIMIT (-32003)
 #define WP_SOLVER (-32004)
+#define WP_ACCESS (-32005)
 
 /* Longest field path kept; longer ones are cut. */
 #define WP_FIELD_MAX 192

@@ -18,6 +18,7 @@ static const char *message_of(int code)
     case WP_STORAGE: return "Storage failure";
     case WP_LIMIT: return "Limit exceeded";
     case WP_SOLVER: return "Solver failure";
+    case WP_ACCESS: return "Access denied";
     default: return "Internal error";
     }
 }
