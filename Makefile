@@ -145,6 +145,11 @@ $(BUILD)/asan/tests/test_client: tests/unit/test_client.c $(BUILD)/asan/libwrenc
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) -O1 -g $(SAN) -Iclients/c $< $(BUILD)/asan/libwrenchclient.a $(WRAP_ALLOC) -lcmocka -lpthread -lm -o $@
 
+# An LD_PRELOAD library the fault tests use to fail writes to a directory.
+$(BUILD)/tests/libfail_storage.so: tests/faults/fail_storage.c
+	@mkdir -p $(dir $@)
+	$(CC) -std=c11 -Wall -Wextra -Werror -O2 -fPIC -shared $< -ldl -o $@
+
 unit: $(UNIT_BIN)
 	@tests/run-unit $(UNIT_BIN)
 
@@ -155,15 +160,15 @@ unit-asan: $(ASAN_BIN)
 # ---- end-to-end tests (pytest; each test starts its own daemon) ----------
 PYTEST = $(PYTHON) -m pytest -q -p no:cacheprovider
 
-e2e: all
+e2e: all $(BUILD)/tests/libfail_storage.so
 	$(PYTEST) tests/e2e
 
-e2e-asan: all $(BUILD)/asan/wrenchd
+e2e-asan: all $(BUILD)/asan/wrenchd $(BUILD)/tests/libfail_storage.so
 	ASAN_OPTIONS=detect_leaks=1 WRENCHD=$(CURDIR)/$(BUILD)/asan/wrenchd $(PYTEST) tests/e2e
 
 # The end-to-end tests with the daemon under valgrind memcheck: zero errors,
 # zero leaks (minutes; not part of make check).
-check-valgrind: all
+check-valgrind: all $(BUILD)/tests/libfail_storage.so
 	WRENCHD_WRAPPER="valgrind --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect" \
 	    $(PYTEST) tests/e2e
 

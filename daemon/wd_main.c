@@ -79,6 +79,8 @@ NUMBER_SETTER(set_max_depth, max_depth, int, 4, 10000, 1)
 NUMBER_SETTER(set_max_wrenches, max_wrenches, size_t, 1, 100000000, 1)
 NUMBER_SETTER(set_max_output, max_output, size_t, 4096, 1ULL << 40, 1)
 NUMBER_SETTER(set_max_clients, max_clients, unsigned long, 1, 1000000, 1)
+NUMBER_SETTER(set_max_batch, max_batch, size_t, 1, 1000000, 1)
+NUMBER_SETTER(set_idle_timeout, idle_timeout, unsigned, 0, 86400 * 7, 1)
 
 static bool set_socket(settings *s, const char *value, origin from, char *why, size_t size)
 {
@@ -185,27 +187,35 @@ static bool set_allow_gid(settings *s, const char *value, origin from, char *why
 /* ---- the table ---------------------------------------------------------------- */
 
 static const option_spec OPTIONS[] = {
-    {"socket", "PATH", "listening socket (default ./run/wrenchd.sock); its directory is\n"
-                       "created; mode 0660.  Ignored when systemd passes the socket", set_socket},
-    {"state-dir", "DIR", "keep stored fixtures in DIR/fixtures (default: memory only)",
-     set_state_dir},
-    {"load", "FILE", "put the fixture in FILE at start; may be repeated", set_load},
+    {"socket", "PATH", "listening socket (default ./run/wrenchd.sock);\n"
+                       "its directory is created; mode 0660; ignored\n"
+                       "when systemd passes the socket", set_socket},
+    {"state-dir", "DIR", "keep stored fixtures in DIR/fixtures\n"
+                         "(default: memory only)", set_state_dir},
+    {"load", "FILE", "put the fixture in FILE at start; repeatable", set_load},
     {"threads", "N", "worker threads (default: the number of cores)", set_threads},
-    {"cache-mb", "N", "memory for derived data, least recently used evicted (default 256)",
-     set_cache_mb},
+    {"cache-mb", "N", "memory for derived data, least recently used\n"
+                      "evicted (default 256)", set_cache_mb},
     {"max-line", "BYTES", "longest request line (default 1048576)", set_max_line},
     {"max-depth", "N", "deepest JSON nesting of a request (default 64)", set_max_depth},
-    {"max-wrenches", "N", "most wrenches in one request (default 100000)", set_max_wrenches},
-    {"max-output", "BYTES", "most unread answers per client before it is dropped\n"
-                            "(default 16777216)", set_max_output},
+    {"max-wrenches", "N", "most wrenches in one request (default 100000)",
+     set_max_wrenches},
+    {"max-output", "BYTES", "most unread answers per client before it is\n"
+                            "dropped (default 16777216)", set_max_output},
     {"max-clients", "N", "most clients connected at once (default 256)", set_max_clients},
-    {"allow-uid", "LIST", "only these users (names or numbers, comma-separated) may connect;\n"
-                          "with allow-gid, either list admits (default: anyone who can open\n"
-                          "the socket)", set_allow_uid},
-    {"allow-gid", "LIST", "only members of these groups (primary or supplementary) may\n"
-                          "connect", set_allow_gid},
-    {"log-level", "LEVEL", "error, warn, info or debug (default info); logs go to stderr,\n"
-                           "one line per event, none per request below debug", set_log_level},
+    {"max-batch", "N", "most requests in one batch (default 1000)", set_max_batch},
+    {"idle-timeout", "SECONDS", "close a connection with nothing in flight\n"
+                                "after this long without a request (default\n"
+                                "300; 0: never)", set_idle_timeout},
+    {"allow-uid", "LIST", "only these users (names or numbers, comma-\n"
+                          "separated) may connect; with allow-gid,\n"
+                          "either list admits (default: anyone who can\n"
+                          "open the socket)", set_allow_uid},
+    {"allow-gid", "LIST", "only members of these groups (primary or\n"
+                          "supplementary) may connect", set_allow_gid},
+    {"log-level", "LEVEL", "error, warn, info or debug (default info);\n"
+                           "logs go to stderr, one line per event, none\n"
+                           "per request below debug", set_log_level},
     {NULL, NULL, NULL, NULL},
 };
 
@@ -220,29 +230,29 @@ static const option_spec *find_option(const char *name)
 static void usage(FILE *out)
 {
     fputs("Usage: wrenchd [OPTION]...\n"
-          "Serve wrench cones of planar fixtures (SPEC.md) as JSON-RPC 2.0 over a Unix socket.\n"
+          "Serve wrench cones of planar fixtures (SPEC.md): JSON-RPC 2.0, Unix socket.\n"
           "\n"
-          "  --config FILE        read settings from FILE, 'option = value' per line (default\n"
-          "                       " DEFAULT_CONFIG " when it exists); options given here\n"
-          "                       override it\n",
+          "  --config FILE            read settings from FILE, 'option = value' per line\n"
+          "                           (default " DEFAULT_CONFIG " when it exists);\n"
+          "                           options given here override it\n",
           out);
     for (const option_spec *o = OPTIONS; o->name; o++) {
         char head[64];
         snprintf(head, sizeof head, "--%s %s", o->name, o->value);
-        fprintf(out, "  %-20s ", head);
+        fprintf(out, "  %-24s ", head);
         for (const char *c = o->help; *c; c++) {
             fputc(*c, out);
             if (*c == '\n')
-                fputs("                       ", out);
+                fputs("                           ", out);
         }
         fputc('\n', out);
     }
-    fputs("  --help               this text\n"
-          "  --version            the version\n"
+    fputs("  --help                   this text\n"
+          "  --version                the version\n"
           "\n"
-          "Under systemd it takes its socket by socket activation and reports with sd_notify\n"
-          "(READY, STATUS, STOPPING).  SIGTERM or SIGINT: stop accepting, answer what is in\n"
-          "flight, remove the socket file, exit 0.\n"
+          "Under systemd it takes its socket by socket activation and reports with\n"
+          "sd_notify (READY, STATUS, STOPPING).  SIGTERM or SIGINT: stop accepting,\n"
+          "answer what is in flight, remove the socket file, exit 0.\n"
           "Exit status: 0 after SIGTERM or SIGINT; 1 cannot start (a live daemon answers on\n"
           "the socket, the socket or the state directory cannot be used, a --load file is\n"
           "invalid); 2 bad command line or configuration file.  See wrenchd(8) and\n"
@@ -334,6 +344,8 @@ int main(int argc, char **argv)
         .max_wrenches = 100000,
         .max_output = (size_t)16 << 20,
         .max_clients = 256,
+        .max_batch = 1000,
+        .idle_timeout = 300,
         .listen_fd = -1,
     };
     s.config.allow_uids = s.uids;

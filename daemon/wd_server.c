@@ -326,6 +326,11 @@ static void on_write(struct bufferevent *bev, void *argument)
         /* The error line is out: say so, then wait for the peer's EOF. */
         shutdown(bufferevent_getfd(bev), SHUT_WR);
         c->write_shut = true;
+    } else if (!c->refusing && c->pending == 0 && c->server->config->idle_timeout > 0) {
+        /* Every answer is out: the idle clock starts now, not at the last
+         * request (the time it took to answer was not the client's). */
+        struct timeval idle = {(time_t)c->server->config->idle_timeout, 0};
+        bufferevent_set_timeouts(bev, &idle, NULL);
     }
     maybe_finish(c);
 }
@@ -339,9 +344,17 @@ static void on_event(struct bufferevent *bev, short events, void *argument)
         /* The client is done sending; it may still read. */
         c->input_closed = true;
         process_input(c);
+    } else if ((events & BEV_EVENT_TIMEOUT) && !c->refusing &&
+               (c->pending > 0 || evbuffer_get_length(bufferevent_get_output(c->bev)) > 0)) {
+        /* Not idle: a request is in flight or an answer is still going out. */
+        bufferevent_enable(c->bev, EV_READ);
     } else if (events & (BEV_EVENT_ERROR | BEV_EVENT_TIMEOUT)) {
-        wd_log(WD_LOG_DEBUG, "client %lu: %s", c->number,
-               events & BEV_EVENT_TIMEOUT ? "timed out" : strerror(errno));
+        if (events & BEV_EVENT_TIMEOUT)
+            wd_log(c->refusing ? WD_LOG_DEBUG : WD_LOG_INFO, "client %lu: %s", c->number,
+                   c->refusing ? "gone silent after being turned away"
+                               : "idle for --idle-timeout: closed");
+        else
+            wd_log(WD_LOG_DEBUG, "client %lu: %s", c->number, strerror(errno));
         c->input_closed = true;
         close_socket(c);
     }
@@ -433,6 +446,10 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
         c->busy--;
         maybe_finish(c);
         return;
+    }
+    if (s->config->idle_timeout > 0) {
+        struct timeval idle = {(time_t)s->config->idle_timeout, 0};
+        bufferevent_set_timeouts(bev, &idle, NULL);
     }
     wd_log(WD_LOG_DEBUG, "client %lu: connected", c->number);
 }
@@ -637,7 +654,7 @@ int wd_server_run(const wd_config *config)
     memset(&server, 0, sizeof server);
     wd_server *s = &server;
     s->config = config;
-    s->limits = (wp_limits){config->max_depth, config->max_wrenches};
+    s->limits = (wp_limits){config->max_depth, config->max_wrenches, config->max_batch};
     s->stats.started = time(NULL);
     s->stats.threads = config->threads;
     pthread_mutex_init(&s->done_lock, NULL);

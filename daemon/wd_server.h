@@ -17,6 +17,9 @@ typedef struct wd_config {
     size_t max_wrenches;        /* most wrenches in one request */
     size_t max_output;          /* most unread output per client, bytes */
     unsigned long max_clients;  /* most concurrent clients */
+    size_t max_batch;           /* most requests in one batch */
+    unsigned idle_timeout;      /* seconds without a request in flight before a
+                                   connection is closed; 0: never */
     const unsigned *allow_uids; /* peers admitted by user id; none: no check */
     int allow_uid_count;
     const unsigned *allow_gids; /* ... or by primary or supplementary group */

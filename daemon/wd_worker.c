@@ -123,6 +123,11 @@ wd_context *wd_context_new(wd_cache *cache, wd_stats *stats)
         free(context);
         return NULL;
     }
+    /* A test hook (wrenchd(8), ENVIRONMENT): make this thread's GLPK fail
+     * fatally after N solves, to see the failure answered, not fatal. */
+    const char *failure = getenv("WRENCHD_TEST_GLPK_FAILURE");
+    if (failure && *failure)
+        wr_lp_env_inject_failure(context->solver, atoi(failure));
     context->cache = cache;
     context->stats = stats;
     context->host = (wp_host){context,     host_adopt,  host_use,    host_release,

@@ -210,6 +210,16 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
             counts->errors++;
             return wp_error_line(WP_INVALID_REQUEST, "", "an empty batch");
         }
+        size_t members = (size_t)cJSON_GetArraySize(json);
+        if (members > limits->max_batch) {
+            cJSON_Delete(json);
+            counts->requests++;
+            counts->errors++;
+            char reason[128];
+            snprintf(reason, sizeof reason, "a batch of %zu requests; the limit is %zu (--max-batch)",
+                     members, limits->max_batch);
+            return wp_error_line(WP_INVALID_REQUEST, "", reason);
+        }
         wp_buffer_puts(&b, "[");
         for (const cJSON *request = json->child; request; request = request->next)
             answer_request(host, limits, request, &b, counts);

@@ -46,6 +46,7 @@ typedef struct wp_host {
 typedef struct wp_limits {
     int max_depth;        /* deepest nesting of arrays and objects */
     size_t max_wrenches;  /* most wrenches in one wrench.classify */
+    size_t max_batch;     /* most requests in one batch */
 } wp_limits;
 
 typedef struct wp_counts {

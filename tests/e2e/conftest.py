@@ -33,6 +33,10 @@ BINARY = os.environ.get("WRENCHD", os.path.join(REPO, "build", "wrenchd"))
 WRAPPER = shlex.split(os.environ.get("WRENCHD_WRAPPER", ""))
 SLOW = float(os.environ.get("WRENCHD_SLOW", "20" if WRAPPER else "1"))
 
+# A sanitizer's allocator keeps freed memory (ASan's quarantine): resident
+# memory is then no measure of what the daemon holds.
+SANITIZED = "asan" in BINARY or "valgrind" in " ".join(WRAPPER)
+
 START_TIMEOUT = 10.0 * SLOW
 IO_TIMEOUT = 30.0 * SLOW
 STOP_TIMEOUT = 20.0 * SLOW

@@ -132,7 +132,7 @@ static int setup(void **state)
     char why[128];
     h->cache = wd_cache_new(NULL, 1 << 20, why, sizeof why);
     h->context = wd_context_new(h->cache, &h->stats);
-    h->limits = (wp_limits){16, 100};
+    h->limits = (wp_limits){16, 100, 8};
     *state = h;
     return h->cache && h->context ? 0 : -1;
 }
