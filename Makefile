@@ -21,7 +21,7 @@ SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
-        install uninstall
+        physics-check validate install uninstall
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -173,7 +173,7 @@ check-valgrind: all $(BUILD)/tests/libfail_storage.so
 	    $(PYTEST) tests/e2e
 
 # The last line printed is the test runner's closing line (CI reads it).
-check: unit unit-asan e2e-asan e2e
+check: unit unit-asan physics-check e2e-asan e2e
 
 # ---- running it ------------------------------------------------------------
 
@@ -245,9 +245,27 @@ uninstall:
 	-cmp -s systemd/wrenchd.conf $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf && \
 	    rm -f $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf && rmdir $(DESTDIR)$(SYSCONFDIR)/wrenchd
 
+# ---- physics validation (tests/physics) ----
+# wrenchd's answers against Box2D (docs/VALIDATION.md).  physics-check is the
+# quick run make check includes; validate is the full one, with the table.
+PHYSICS_FIXTURES = $(wildcard examples/*.json) $(wildcard tests/physics/fixtures/*.json)
+PHYSICS_CXXFLAGS = -std=c++17 -Wall -Wextra -Werror -O2 -g
+
+$(BUILD)/physics-validate: tests/physics/validate.cpp $(LIB_HDR) $(PROTO_HDR) $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(PHYSICS_CXXFLAGS) $(INCLUDES) $$(pkg-config --cflags box2d) $< \
+	    $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $$(pkg-config --libs box2d) -lcjson -lglpk -lm -o $@
+
+physics-check: $(BUILD)/physics-validate
+	$(BUILD)/physics-validate --quick $(PHYSICS_FIXTURES)
+
+validate: $(BUILD)/physics-validate
+	$(BUILD)/physics-validate --full $(PHYSICS_FIXTURES)
+# ---- end of physics validation ----
+
 # ---- dependencies --------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \
-               libcmocka-dev python3 python3-pytest systemd
+               libcmocka-dev python3 python3-pytest libbox2d-dev systemd
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \

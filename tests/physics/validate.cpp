@@ -1,0 +1,1779 @@
+// validate.cpp -- wrenchd's answers checked against Box2D, a rigid-body
+// simulator that shares no line with libwrench.
+//
+//   build/physics-validate [--quick | --full] [--verbose] FIXTURE.json ...
+//
+// For each fixture: pushes with a frictionless finger at points of the
+// G_goal push region (and outside it), gravity at tilts of the G_goal arc
+// (and outside it), for discs a seated disc spinning under pushes, and on
+// the seated part pushes and wrenches inside and outside G_strong; then a
+// friction calibration per coefficient pair.  Prints one line per (fixture,
+// set) and a table; exits 1 when a criterion fails, 2 on a usage or input
+// error.  docs/VALIDATION.md explains the design, the tolerances and every
+// disagreement found; these options reproduce its investigations:
+//
+//   --friction-factor X   Box2D's friction X times the fixture's (a negative
+//                         control: the criteria must then fail)
+//   --static-as-kinetic   Box2D's static coefficient set to the kinetic one
+//   --sweep N             seating rate along the whole outline, tilts all
+//                         round, G_strong margin bins (no criteria)
+//     --spin W            ... with the start spinning at +-W rad/s (and, for
+//                         a disc, which fixel breaks when spun while seated)
+//     --slide V           ... and from each partial contact state, launched
+//                         at +-V m/s along the touched fixels
+//   --hold-at EDGE T      one holding trial at (EDGE, T), traced
+//   PHYSICS_TRACE=T       (environment) trace the --sweep trials at T
+//
+// Everything random comes from a counter-based generator keyed by (fixture
+// name, set, point, trial): a run is reproducible, and does not depend on
+// the order in which trials run.
+
+#include <box2d/box2d.h>
+#include <box2d/b2_distance.h>
+
+#include "wp_fixture.h" // libwrench's headers carry their own extern "C" guards
+#include "wrench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+// ---- the parameters of every trial (canonical units: metres, seconds) ----
+// The fixture is scaled uniformly so that its size (SPEC: a circle's
+// diameter, a polygon's bounding-box diagonal) is SIZE metres.  Box2D's
+// tolerances are absolute (linear slop 0.005 m, polygon skin 0.01 m), so a
+// fixed size makes every run see them in the same proportion.
+constexpr double SIZE = 4.0;
+constexpr double HZ = 240.0;              // time step 1/240 s
+constexpr int VELOCITY_ITERATIONS = 20;
+constexpr int POSITION_ITERATIONS = 10;
+constexpr double ACCEL = 10.0;            // finger force = mass * ACCEL; |gravity| = ACCEL
+constexpr double FIXEL_RADIUS = 0.02 * SIZE;
+constexpr double GAP_MAX = 0.02 * SIZE;   // start: gap at a fixel up to 2% of the size
+constexpr double TOUCH_PROBABILITY = 0.25; // start: a fixel touches already
+constexpr double V0_MAX = 0.1;            // start: |v| <= 0.1 m/s (2.5% of the size per s)
+constexpr double W0_MAX = 0.1;            // start: |omega| <= 0.1 rad/s
+constexpr double TIME_LIMIT = 10.0;       // s
+constexpr double REST_TIME = 0.5;         // s of rest with every fixel touching
+constexpr double REST_SPEED = 1e-3 * SIZE; // m/s at the centre of mass
+constexpr double REST_SPIN = 1e-3;        // rad/s
+constexpr double POSE_TOLERANCE = 0.01 * SIZE;  // m: 1% of the size
+constexpr double ANGLE_TOLERANCE = 1.0;   // degrees (polygons: a disc may turn freely)
+constexpr double HOLD_TIME = 3.0;         // s under a constant wrench
+constexpr double MOVE_TOLERANCE = 2 * b2_linearSlop; // m: 0.01 m = 0.25% of the size
+constexpr double SLIP_SPEED = 0.005;      // m/s: faster tangential speed = sliding (mu_k)
+constexpr double STRONG_MARGIN = 0.05;    // wrenches "clearly" inside / outside G_strong
+constexpr double PI = 3.14159265358979323846;
+constexpr double DEG = 180.0 / PI;
+
+// A negative control: Box2D's friction is the fixture's times this factor
+// (the model keeps the fixture's).  1 for every real run.
+double friction_factor = 1.0;
+// An investigation: Box2D's static coefficient set to the kinetic one.
+bool static_as_kinetic = false;
+
+// ---- a counter-based random generator (splitmix64) ----
+struct Rng {
+    uint64_t state;
+    explicit Rng(uint64_t seed) : state(seed) {}
+    uint64_t next()
+    {
+        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return (double)(next() >> 11) * (1.0 / 9007199254740992.0); } // [0, 1)
+    double uniform(double a, double b) { return a + (b - a) * uniform(); }
+};
+
+uint64_t fnv1a(const std::string &text)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+uint64_t seed_of(const std::string &fixture, const char *set, int point, int trial)
+{
+    Rng r(fnv1a(fixture) ^ (fnv1a(set) * 31));
+    r.state ^= (uint64_t)point * 0x632BE59BD9B4E019ull + (uint64_t)trial * 0x8CB92BA72F3D8DD7ull;
+    r.next();
+    return r.next();
+}
+
+// ---- small vector helpers (double precision, the model's side) ----
+struct V2 {
+    double x, y;
+};
+V2 operator+(V2 a, V2 b) { return {a.x + b.x, a.y + b.y}; }
+V2 operator-(V2 a, V2 b) { return {a.x - b.x, a.y - b.y}; }
+V2 operator*(double s, V2 a) { return {s * a.x, s * a.y}; }
+double dot(V2 a, V2 b) { return a.x * b.x + a.y * b.y; }
+double cross(V2 a, V2 b) { return a.x * b.y - a.y * b.x; }
+double norm(V2 a) { return std::hypot(a.x, a.y); }
+V2 rotate(V2 a, double th) { return {std::cos(th) * a.x - std::sin(th) * a.y, std::sin(th) * a.x + std::cos(th) * a.y}; }
+b2Vec2 b2(V2 a) { return b2Vec2((float)a.x, (float)a.y); }
+V2 v2(b2Vec2 a) { return {a.x, a.y}; }
+
+// ---- a fixture, read by wrenchd's own reader, and its Box2D geometry ----
+struct Prepared {
+    std::string file, name;
+    wp_fixture_doc doc{};
+    const wr_fixture *f = nullptr;
+    wr_analysis *an = nullptr;
+    std::string unsupported;  // non-empty: cannot be simulated, and why
+    double scale = 1;         // fixture units -> metres
+    bool circle = false;
+    V2 com{};                 // seated centre of mass, world (metres)
+    double mass = 0, inertia = 0, rho = 0;
+    // Body frame: origin at the centre of mass, axes as the fixture's.
+    std::vector<V2> outline;  // polygon as given, CCW, body frame
+    std::vector<V2> out_normal; // outward unit normal of edge i (CCW)
+    std::vector<V2> core;     // outline inset by the skin: what Box2D is given
+    V2 center{};              // circle centre, body frame
+    double radius = 0;
+    // Fixels (world).
+    int k = 0;
+    std::vector<V2> fixel_at, fixel_normal, fixel_center;
+    std::vector<double> mu_s, mu_k;
+};
+
+bool read_text(const std::string &path, std::string *text)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return false;
+    std::ostringstream s;
+    s << in.rdbuf();
+    *text = s.str();
+    return true;
+}
+
+// Intersection of the lines a + s u and b + t v.
+V2 intersect(V2 a, V2 u, V2 b, V2 v)
+{
+    double s = cross(b - a, v) / cross(u, v);
+    return a + s * u;
+}
+
+bool prepare(const std::string &path, Prepared *p, std::string *error)
+{
+    p->file = path;
+    std::string text;
+    if (!read_text(path, &text)) {
+        *error = path + ": cannot read";
+        return false;
+    }
+    cJSON *json = cJSON_Parse(text.c_str());
+    if (!json) {
+        *error = path + ": not JSON";
+        return false;
+    }
+    wp_error werr{};
+    bool ok = wp_fixture_read(json, "fixture", &p->doc, &werr);
+    cJSON_Delete(json);
+    if (!ok) {
+        *error = path + ": " + werr.field + ": " + werr.reason;
+        return false;
+    }
+    p->f = p->doc.fixture;
+    p->name = p->doc.name && *p->doc.name ? p->doc.name : path;
+    p->an = wr_analysis_new(p->f);
+    if (!p->an) {
+        *error = path + ": wr_analysis_new failed";
+        return false;
+    }
+    const wr_fixture *f = p->f;
+    p->k = f->fixel_count;
+    if (f->shape == WR_SHAPE_NONE) {
+        p->unsupported = "no shape: nothing to simulate";
+        return true;
+    }
+    double s = p->scale = SIZE / f->size;
+    p->com = {s * f->com[0], s * f->com[1]};
+    p->mass = f->mass;
+    p->inertia = f->inertia * s * s;
+    p->rho = std::sqrt(p->inertia / p->mass);
+    p->circle = f->shape == WR_SHAPE_CIRCLE;
+    auto body = [&](const double a[2]) { return V2{s * a[0], s * a[1]} - p->com; };
+    if (p->circle) {
+        p->center = body(f->center);
+        p->radius = s * f->radius;
+    } else {
+        size_t n = f->vertex_count;
+        if (n > (size_t)b2_maxPolygonVertices) {
+            p->unsupported = "polygon of " + std::to_string(n) + " vertices: Box2D takes at most " +
+                             std::to_string(b2_maxPolygonVertices) + " in one convex shape";
+            return true;
+        }
+        for (size_t i = 0; i < n; i++) {
+            size_t j = f->orientation > 0 ? i : n - 1 - i;
+            p->outline.push_back(body(f->vertices[j]));
+        }
+        for (size_t i = 0; i < n; i++) {
+            V2 a = p->outline[i], b = p->outline[(i + 1) % n], c = p->outline[(i + 2) % n];
+            if (cross(b - a, c - b) <= 1e-12 * SIZE * SIZE) {
+                p->unsupported = "polygon not strictly convex: Box2D shapes are convex "
+                                 "(a decomposition would add internal skins)";
+                return true;
+            }
+            V2 e = b - a;
+            p->out_normal.push_back((1.0 / norm(e)) * V2{e.y, -e.x});
+        }
+        // Box2D rounds every polygon by a skin of b2_polygonRadius: give it the
+        // outline inset by the skin, so that its surface is the outline itself
+        // along every edge (corners become arcs of radius 0.01 m).
+        double d = b2_polygonRadius;
+        for (size_t i = 0; i < n; i++) {
+            size_t h = (i + n - 1) % n;
+            V2 a = p->outline[h] - d * p->out_normal[h], u = p->outline[i] - p->outline[h];
+            V2 b = p->outline[i] - d * p->out_normal[i], v = p->outline[(i + 1) % n] - p->outline[i];
+            p->core.push_back(intersect(a, u, b, v));
+        }
+        std::vector<b2Vec2> vs;
+        for (V2 c : p->core)
+            vs.push_back(b2(c));
+        b2PolygonShape poly;
+        poly.Set(vs.data(), (int32)vs.size());
+        bool same = poly.m_count == (int32)n;
+        for (int32 i = 0; same && i < poly.m_count; i++) {
+            bool found = false;
+            for (b2Vec2 c : vs)
+                found = found || (c - poly.m_vertices[i]).Length() == 0;
+            same = found;
+        }
+        if (!same) {
+            p->unsupported = "Box2D's b2PolygonShape::Set welded or dropped vertices";
+            return true;
+        }
+    }
+    for (int i = 0; i < p->k; i++) {
+        const wr_fixel &x = f->fixels[i];
+        V2 at{s * x.at[0], s * x.at[1]}, nrm{x.normal[0], x.normal[1]};
+        // Box2D's contact normal at a small circle is the body's surface
+        // normal; the model's is the fixel's.  They must agree.
+        V2 geometric{};
+        V2 local = at - p->com;
+        if (p->circle) {
+            geometric = (1.0 / norm(p->center - local)) * (p->center - local);
+        } else {
+            double best = 1e300;
+            size_t n = p->outline.size();
+            for (size_t e = 0; e < n; e++) {
+                V2 a = p->outline[e], b = p->outline[(e + 1) % n];
+                double t = dot(local - a, b - a) / dot(b - a, b - a);
+                double dist = std::fabs(dot(local - a, p->out_normal[e]));
+                if (t > 1e-6 && t < 1 - 1e-6 && dist < best) {
+                    best = dist;
+                    geometric = -1.0 * p->out_normal[e];
+                }
+            }
+            if (best > 1e-6 * SIZE) {
+                p->unsupported = "fixel " + std::to_string(i + 1) +
+                                 " at a vertex: a circle fixel would see the vertex's rounded skin";
+                return true;
+            }
+        }
+        if (norm(geometric - nrm) > 1e-9) {
+            p->unsupported = "fixel " + std::to_string(i + 1) +
+                             ": its normal is not the surface normal, which Box2D would use";
+            return true;
+        }
+        p->fixel_at.push_back(at);
+        p->fixel_normal.push_back(nrm);
+        p->fixel_center.push_back(at - FIXEL_RADIUS * nrm);
+        p->mu_s.push_back(friction_factor * (static_as_kinetic ? x.mu_kinetic : x.mu_static));
+        p->mu_k.push_back(friction_factor * x.mu_kinetic);
+    }
+    if (p->k > 3) {
+        p->unsupported = "more than 3 fixels: the start sampler sets one gap per fixel";
+        return true;
+    }
+    return true;
+}
+
+// ---- poses, gaps, start sampling (the model's geometry, double precision) ----
+struct Pose {
+    V2 x;      // centre of mass, world
+    double th; // angle
+};
+
+// Signed distance from a body-frame point to the outline, positive outside
+// (polygon: the largest distance to an edge's line, exact near an edge's
+// interior, which is where the fixels are).
+double signed_distance(const Prepared &p, V2 local)
+{
+    if (p.circle)
+        return norm(local - p.center) - p.radius;
+    double best = -1e300;
+    for (size_t e = 0; e < p.outline.size(); e++)
+        best = std::max(best, dot(local - p.outline[e], p.out_normal[e]));
+    return best;
+}
+
+// Gap between fixel i's circle and the body at `pose` (negative: overlap).
+double gap(const Prepared &p, const Pose &pose, int i)
+{
+    V2 local = rotate(p.fixel_center[i] - pose.x, -pose.th);
+    return signed_distance(p, local) - FIXEL_RADIUS;
+}
+
+// Solve the k x k system A z = b (k <= 3), Gaussian elimination with pivots.
+bool solve(int k, double A[3][3], double b[3], double z[3])
+{
+    int idx[3] = {0, 1, 2};
+    for (int c = 0; c < k; c++) {
+        int piv = c;
+        for (int r = c + 1; r < k; r++)
+            if (std::fabs(A[r][c]) > std::fabs(A[piv][c]))
+                piv = r;
+        if (std::fabs(A[piv][c]) < 1e-14)
+            return false;
+        std::swap(A[c], A[piv]);
+        std::swap(b[c], b[piv]);
+        for (int r = c + 1; r < k; r++) {
+            double m = A[r][c] / A[c][c];
+            for (int j = c; j < k; j++)
+                A[r][j] -= m * A[c][j];
+            b[r] -= m * b[c];
+        }
+    }
+    for (int c = k - 1; c >= 0; c--) {
+        double v = b[c];
+        for (int j = c + 1; j < k; j++)
+            v -= A[c][j] * z[j];
+        z[c] = v / A[c][c];
+    }
+    (void)idx;
+    return true;
+}
+
+// Least-norm step in the scaled metric q = (dx, dy, rho dth) with J q = r.
+bool least_norm(const Prepared &p, const double J[3][3], const double r[3], double q[3])
+{
+    int k = p.k;
+    double A[3][3] = {}, b[3] = {}, z[3] = {};
+    for (int i = 0; i < k; i++) {
+        b[i] = r[i];
+        for (int j = 0; j < k; j++)
+            for (int c = 0; c < 3; c++)
+                A[i][j] += J[i][c] * J[j][c];
+    }
+    if (!solve(k, A, b, z))
+        return false;
+    for (int c = 0; c < 3; c++) {
+        q[c] = 0;
+        for (int i = 0; i < k; i++)
+            q[c] += J[i][c] * z[i];
+    }
+    return true;
+}
+
+Pose apply(const Prepared &p, const Pose &base, const double q[3])
+{
+    return {base.x + V2{q[0], q[1]}, base.th + q[2] / p.rho};
+}
+
+// Jacobian of the gaps in the scaled metric, by central differences.
+void gap_jacobian(const Prepared &p, const Pose &pose, double J[3][3])
+{
+    const double h = 1e-6 * SIZE;
+    for (int c = 0; c < 3; c++) {
+        double dq[3] = {0, 0, 0};
+        dq[c] = h;
+        Pose a = apply(p, pose, dq);
+        dq[c] = -h;
+        Pose b = apply(p, pose, dq);
+        for (int i = 0; i < p.k; i++)
+            J[i][c] = (gap(p, a, i) - gap(p, b, i)) / (2 * h);
+    }
+}
+
+struct Start {
+    Pose pose;
+    V2 v;
+    double w;
+    int touching; // fixels touching at the start
+};
+
+// A start displaced from the seated pose away from the fixels: a target gap
+// per fixel (0 with probability TOUCH_PROBABILITY, else up to GAP_MAX, never
+// all 0), the least-norm rigid motion that makes them (plus a random motion
+// the fixels do not see, for k < 3), refined by Newton on the exact gaps.
+bool sample_start(const Prepared &p, Rng &rng, Start *out)
+{
+    Pose seated{p.com, 0};
+    double target[3] = {0, 0, 0};
+    int touching = 0;
+    for (;;) {
+        touching = 0;
+        for (int i = 0; i < p.k; i++) {
+            if (rng.uniform() < TOUCH_PROBABILITY) {
+                target[i] = 0;
+                touching++;
+            } else {
+                target[i] = GAP_MAX * rng.uniform(0.05, 1.0);
+            }
+        }
+        if (touching < p.k)
+            break;
+    }
+    double J[3][3];
+    gap_jacobian(p, seated, J);
+    double q[3];
+    if (!least_norm(p, J, target, q))
+        return false;
+    if (p.k < 3) {
+        // Add a random motion in the null space of J: z - J^+ J z.
+        double z[3], Jz[3] = {0, 0, 0}, back[3];
+        double len;
+        do {
+            for (double &c : z)
+                c = rng.uniform(-1, 1);
+            len = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
+        } while (len > 1 || len < 1e-3);
+        for (double &c : z)
+            c *= GAP_MAX;
+        for (int i = 0; i < p.k; i++)
+            for (int c = 0; c < 3; c++)
+                Jz[i] += J[i][c] * z[c];
+        if (!least_norm(p, J, Jz, back))
+            return false;
+        for (int c = 0; c < 3; c++)
+            q[c] += z[c] - back[c];
+    }
+    Pose pose = apply(p, seated, q);
+    for (int it = 0; it < 20; it++) {
+        double r[3] = {0, 0, 0}, worst = 0;
+        for (int i = 0; i < p.k; i++) {
+            r[i] = target[i] - gap(p, pose, i);
+            worst = std::max(worst, std::fabs(r[i]));
+        }
+        if (worst < 1e-12 * SIZE)
+            break;
+        gap_jacobian(p, pose, J);
+        double dq[3];
+        if (!least_norm(p, J, r, dq))
+            return false;
+        pose = apply(p, pose, dq);
+    }
+    for (int i = 0; i < p.k; i++)
+        if (std::fabs(gap(p, pose, i) - target[i]) > 1e-9 * SIZE)
+            return false;
+    double speed = V0_MAX * std::sqrt(rng.uniform()), dir = rng.uniform(0, 2 * PI);
+    out->pose = pose;
+    out->v = {speed * std::cos(dir), speed * std::sin(dir)};
+    out->w = rng.uniform(-W0_MAX, W0_MAX);
+    out->touching = touching;
+    return true;
+}
+
+// The seated pose pressed PRELOAD into every fixel.  Box2D creates a
+// contact point only when the shapes overlap or touch, and at exactly zero
+// distance float rounding decides: started at the exact seated pose, some
+// contacts appear one step late, the part falls freely for that step and
+// the impulses that catch it set it rocking.  A preload well inside
+// Box2D's allowed penetration (b2_linearSlop, 0.005 m) makes every contact
+// exist from the first step and is not pushed out by the position solver.
+constexpr double PRELOAD = 0.25 * b2_linearSlop;
+
+Pose preloaded(const Prepared &p)
+{
+    Pose pose{p.com, 0};
+    double target[3] = {-PRELOAD, -PRELOAD, -PRELOAD}, J[3][3];
+    for (int it = 0; it < 20; it++) {
+        double r[3] = {0, 0, 0}, worst = 0, dq[3];
+        for (int i = 0; i < p.k; i++) {
+            r[i] = target[i] - gap(p, pose, i);
+            worst = std::max(worst, std::fabs(r[i]));
+        }
+        if (worst < 1e-12 * SIZE)
+            break;
+        gap_jacobian(p, pose, J);
+        if (!least_norm(p, J, r, dq))
+            break;
+        pose = apply(p, pose, dq);
+    }
+    return pose;
+}
+
+// ---- the Box2D world ----
+// Friction: Box2D mixes two fixtures' coefficients as sqrt(f_a f_b).  The
+// part's fixture has friction 1 and fixel i's has mu_s(i)^2, so the mix is
+// mu_s(i); on top of that this listener sets every contact's coefficient
+// before each solve: mu_k(i) when the contact point slides faster than
+// SLIP_SPEED, mu_s(i) otherwise (Box2D itself has one coefficient).
+struct Friction : b2ContactListener {
+    const Prepared *p = nullptr;
+    long long set_static = 0, set_kinetic = 0;
+    void PreSolve(b2Contact *contact, const b2Manifold *) override
+    {
+        b2Fixture *a = contact->GetFixtureA(), *b = contact->GetFixtureB();
+        uintptr_t ia = a->GetUserData().pointer, ib = b->GetUserData().pointer;
+        int i = (int)(ia ? ia : ib) - 1;
+        b2Body *body = ia ? b->GetBody() : a->GetBody();
+        if (i < 0 || i >= p->k)
+            return;
+        b2WorldManifold wm;
+        contact->GetWorldManifold(&wm);
+        double slip = 0;
+        for (int c = 0; c < contact->GetManifold()->pointCount; c++) {
+            b2Vec2 v = body->GetLinearVelocityFromWorldPoint(wm.points[c]);
+            slip = std::max(slip, (double)std::fabs(b2Cross(wm.normal, v)));
+        }
+        bool sliding = slip > SLIP_SPEED;
+        contact->SetFriction((float)(sliding ? p->mu_k[i] : p->mu_s[i]));
+        (sliding ? set_kinetic : set_static)++;
+    }
+    // The last step's impulses at each fixel (normal, tangent), for traces.
+    double impulse[WR_MAX_FIXELS][2] = {};
+    void PostSolve(b2Contact *contact, const b2ContactImpulse *imp) override
+    {
+        uintptr_t ia = contact->GetFixtureA()->GetUserData().pointer;
+        uintptr_t ib = contact->GetFixtureB()->GetUserData().pointer;
+        int i = (int)(ia ? ia : ib) - 1;
+        if (i < 0 || i >= p->k)
+            return;
+        impulse[i][0] = imp->normalImpulses[0];
+        impulse[i][1] = imp->tangentImpulses[0];
+    }
+};
+
+struct Sim {
+    b2World world;
+    b2Body *part = nullptr;
+    b2Fixture *part_fixture = nullptr;
+    std::vector<b2Fixture *> fixel_fixtures;
+    Friction friction;
+    Sim(const Prepared &p, const Pose &pose, V2 v, double w, V2 gravity)
+        : world(b2(gravity))
+    {
+        friction.p = &p;
+        world.SetContactListener(&friction);
+        b2BodyDef fixed;
+        b2Body *fixels = world.CreateBody(&fixed);
+        for (int i = 0; i < p.k; i++) {
+            b2CircleShape c;
+            c.m_p = b2(p.fixel_center[i]);
+            c.m_radius = (float)FIXEL_RADIUS;
+            b2FixtureDef fd;
+            fd.shape = &c;
+            fd.friction = (float)(p.mu_s[i] * p.mu_s[i]);
+            fd.restitution = 0;
+            fd.userData.pointer = (uintptr_t)(i + 1);
+            fixel_fixtures.push_back(fixels->CreateFixture(&fd));
+        }
+        b2BodyDef bd;
+        bd.type = b2_dynamicBody;
+        bd.position = b2(pose.x);
+        bd.angle = (float)pose.th;
+        bd.linearVelocity = b2(v);
+        bd.angularVelocity = (float)w;
+        bd.allowSleep = false;
+        part = world.CreateBody(&bd);
+        b2FixtureDef fd;
+        b2PolygonShape poly;
+        b2CircleShape disc;
+        if (p.circle) {
+            disc.m_p = b2(p.center);
+            disc.m_radius = (float)p.radius;
+            fd.shape = &disc;
+        } else {
+            std::vector<b2Vec2> vs;
+            for (V2 c : p.core)
+                vs.push_back(b2(c));
+            poly.Set(vs.data(), (int32)vs.size());
+            fd.shape = &poly;
+        }
+        fd.density = 1;
+        fd.friction = 1;
+        fd.restitution = 0;
+        part_fixture = part->CreateFixture(&fd);
+        b2MassData md;
+        md.mass = (float)p.mass;
+        md.center = b2Vec2(0, 0);
+        md.I = (float)p.inertia;
+        part->SetMassData(&md);
+    }
+    Pose pose() const { return {v2(part->GetPosition()), part->GetAngle()}; }
+    // Bit i: fixel i's contact is touching (Box2D's manifold has points).
+    unsigned touching()
+    {
+        unsigned bits = 0;
+        for (b2ContactEdge *e = part->GetContactList(); e; e = e->next) {
+            b2Contact *c = e->contact;
+            if (!c->IsTouching())
+                continue;
+            uintptr_t ia = c->GetFixtureA()->GetUserData().pointer;
+            uintptr_t ib = c->GetFixtureB()->GetUserData().pointer;
+            int i = (int)(ia ? ia : ib) - 1;
+            if (i >= 0)
+                bits |= 1u << i;
+        }
+        return bits;
+    }
+    void step() { world.Step((float)(1.0 / HZ), VELOCITY_ITERATIONS, POSITION_ITERATIONS); }
+    // Box2D's own distance (b2Distance, with the skins) between fixel i and
+    // the part: 0 when they touch, negative never (it reports overlap as 0).
+    double distance(int i)
+    {
+        b2DistanceInput in;
+        in.proxyA.Set(fixel_fixtures[i]->GetShape(), 0);
+        in.proxyB.Set(part_fixture->GetShape(), 0);
+        in.transformA = fixel_fixtures[i]->GetBody()->GetTransform();
+        in.transformB = part->GetTransform();
+        in.useRadii = true;
+        b2SimplexCache cache;
+        cache.count = 0;
+        b2DistanceOutput out;
+        b2Distance(&out, &cache, &in);
+        return out.distance;
+    }
+};
+
+// Largest displacement of the body's boundary between two poses.
+double boundary_displacement(const Prepared &p, const Pose &a, const Pose &b)
+{
+    if (p.circle)
+        return norm((a.x + rotate(p.center, a.th)) - (b.x + rotate(p.center, b.th))) +
+               p.radius * std::fabs(a.th - b.th);
+    double worst = 0;
+    for (V2 c : p.outline)
+        worst = std::max(worst, norm((a.x + rotate(c, a.th)) - (b.x + rotate(c, b.th))));
+    return worst;
+}
+
+// ---- seating trials ----
+bool trace = false; // PHYSICS_TRACE=t: print the trials of --sweep at t
+struct Load {
+    bool gravity = false;
+    V2 g{};           // gravity (world)
+    V2 at{}, dir{};   // finger: body-frame point and inward normal
+    bool world_fixed = false; // disc only: the finger stays put while the
+                              // disc turns under it (frictionless)
+};
+
+void push(b2Body *part, const Prepared &p, const Load &load)
+{
+    const float force = (float)(p.mass * ACCEL);
+    if (load.world_fixed) {
+        b2Vec2 c = part->GetWorldPoint(b2(p.center));
+        part->ApplyForce(force * b2(load.dir), c + b2(load.at - p.center), true);
+    } else {
+        part->ApplyForce(force * part->GetWorldVector(b2(load.dir)), part->GetWorldPoint(b2(load.at)), true);
+    }
+}
+
+struct Seat {
+    bool seated = false;
+    double time = 0;       // s to the start of the final rest
+    double pos_err = 0, ang_err = 0, penetration = 0;
+    unsigned touching = 0; // at the end
+    bool rest = false;     // came to rest (possibly not seated)
+    double moved = 0;      // distance of the com from the seated pose at the end
+};
+
+Seat run_seat(const Prepared &p, const Start &st, const Load &load)
+{
+    Sim sim(p, st.pose, st.v, st.w, load.gravity ? load.g : V2{0, 0});
+    const unsigned all = (1u << p.k) - 1;
+    const int rest_steps = (int)std::lround(REST_TIME * HZ);
+    const int limit = (int)std::lround(TIME_LIMIT * HZ);
+    int calm = 0;
+    Seat out;
+    for (int n = 1; n <= limit; n++) {
+        if (!load.gravity)
+            push(sim.part, p, load);
+        sim.step();
+        unsigned t = sim.touching();
+        double v = sim.part->GetLinearVelocity().Length(), w = std::fabs(sim.part->GetAngularVelocity());
+        bool slow = v < REST_SPEED && w < REST_SPIN;
+        if (slow && t == all)
+            calm++;
+        else
+            calm = 0;
+        out.touching = t;
+        if (trace && n % 24 == 0) {
+            Pose q = sim.pose();
+            std::fprintf(stderr, "t %.2f x %.4f %.4f th %.2f v %.4f w %.4f touching %u\n", n / HZ, q.x.x - p.com.x,
+                         q.x.y - p.com.y, q.th * DEG, v, sim.part->GetAngularVelocity(), t);
+        }
+        if (calm >= rest_steps) {
+            out.rest = true;
+            out.time = (n - rest_steps) / HZ;
+            break;
+        }
+    }
+    Pose end = sim.pose();
+    out.pos_err = p.circle ? norm((end.x + rotate(p.center, end.th)) - (p.com + p.center))
+                           : norm(end.x - p.com);
+    out.ang_err = p.circle ? 0 : std::fabs(end.th) * DEG;
+    out.moved = norm(end.x - p.com);
+    for (int i = 0; i < p.k; i++)
+        out.penetration = std::max(out.penetration, -gap(p, end, i));
+    out.seated = out.rest && out.pos_err < POSE_TOLERANCE && out.ang_err < ANGLE_TOLERANCE;
+    return out;
+}
+
+// ---- holding trials: the part seated (preloaded), at rest, under a wrench ----
+struct Hold {
+    double moved = 0; // largest boundary displacement over HOLD_TIME
+};
+
+bool hold_trace = std::getenv("PHYSICS_HOLD_TRACE") != nullptr;
+
+// wrench: world force (N) and torque (N m) about the com, constant; or a finger.
+Hold run_hold(const Prepared &p, V2 force, double torque, const Load *finger)
+{
+    Pose seated = preloaded(p);
+    Sim sim(p, seated, {0, 0}, 0, {0, 0});
+    const int steps = (int)std::lround(HOLD_TIME * HZ);
+    Hold out;
+    for (int n = 0; n < steps; n++) {
+        if (finger) {
+            push(sim.part, p, *finger);
+        } else {
+            sim.part->ApplyForceToCenter(b2(force), true);
+            sim.part->ApplyTorque((float)torque, true);
+        }
+        sim.step();
+        out.moved = std::max(out.moved, boundary_displacement(p, seated, sim.pose()));
+        if (hold_trace && n % 48 == 0) {
+            Pose q = sim.pose();
+            std::fprintf(stderr, "t %.2f dx %.6f %.6f th %.6f deg N", (n + 1) / HZ, q.x.x - p.com.x, q.x.y - p.com.y,
+                         q.th * DEG);
+            for (int i = 0; i < p.k; i++)
+                std::fprintf(stderr, " %.4f/%.4f", sim.friction.impulse[i][0] * HZ, sim.friction.impulse[i][1] * HZ);
+            std::fprintf(stderr, " touching %u\n", sim.touching());
+        }
+        if (out.moved > 100 * MOVE_TOLERANCE)
+            break; // it moves: no need to watch it fly
+    }
+    return out;
+}
+
+// ---- the model's side: regions, arcs, margins ----
+double margin_of(const Prepared &p, const double w[3], wr_set set)
+{
+    wr_answer a;
+    if (wr_classify(p.an, w, set, WR_DEFAULT_TOLERANCE, &a) != 0)
+        return NAN;
+    return a.margin;
+}
+
+std::string blocking_of(const Prepared &p, const double w[3], wr_set set)
+{
+    wr_answer a;
+    if (wr_classify(p.an, w, set, WR_DEFAULT_TOLERANCE, &a) != 0 || a.blocking < 0)
+        return "-";
+    char text[WR_CONSTRAINT_TEXT];
+    wr_constraint_format(&wr_analysis_cone(p.an, a.blocking_set, a.blocking)->constraint, text);
+    return text;
+}
+
+struct Interval {
+    int edge;
+    double t0, t1;
+};
+
+std::vector<Interval> regions(const Prepared &p, wr_set set)
+{
+    wr_regions r{};
+    std::vector<Interval> out;
+    if (wr_push_regions(p.an, set, 0, &r) == 0)
+        for (int i = 0; i < r.count; i++)
+            out.push_back({r.items[i].edge, r.items[i].t0, r.items[i].t1});
+    wr_regions_release(&r);
+    return out;
+}
+
+std::vector<Interval> arcs(const Prepared &p, wr_set set)
+{
+    wr_regions r{};
+    std::vector<Interval> out;
+    if (wr_gravity_sweep(p.an, set, &r) == 0)
+        for (int i = 0; i < r.count; i++)
+            out.push_back({-1, r.items[i].t0, r.items[i].t1});
+    wr_regions_release(&r);
+    return out;
+}
+
+// The finger at (edge, t): its body-frame point and inward normal, and the
+// push wrench in fixture units.
+Load finger_at(const Prepared &p, int edge, double t, double wrench[3])
+{
+    double at[2], nu[2];
+    wr_boundary_point(p.f, edge, t, at, nu);
+    wr_push_wrench(p.f, edge, t, wrench);
+    Load l;
+    l.at = V2{p.scale * at[0], p.scale * at[1]} - p.com;
+    l.dir = {nu[0], nu[1]};
+    return l;
+}
+
+int edge_count(const Prepared &p) { return p.circle ? 1 : (int)p.f->vertex_count; }
+double edge_range(const Prepared &p) { return p.circle ? 360.0 : 1.0; }
+double edge_length(const Prepared &p, int e)
+{
+    if (p.circle)
+        return 2 * PI * p.f->radius;
+    const double *a = p.f->vertices[e], *b = p.f->vertices[(e + 1) % p.f->vertex_count];
+    return std::hypot(b[0] - a[0], b[1] - a[1]);
+}
+
+bool in_intervals(const std::vector<Interval> &iv, int edge, double t)
+{
+    for (const Interval &r : iv)
+        if (r.edge == edge && t >= r.t0 && t <= r.t1)
+            return true;
+    return false;
+}
+
+// Point j of n, stratified along the intervals' total length (each point
+// uniform in its stratum, strictly inside an interval).
+bool point_in(const std::vector<Interval> &iv, int j, int n, Rng &rng, int *edge, double *t)
+{
+    double total = 0;
+    for (const Interval &r : iv)
+        total += r.t1 - r.t0;
+    if (total <= 0)
+        return false;
+    for (int tries = 0; tries < 100; tries++) {
+        double u = (j + rng.uniform()) / n * total;
+        for (const Interval &r : iv) {
+            double len = r.t1 - r.t0;
+            if (u <= len) {
+                *edge = r.edge;
+                *t = r.t0 + u;
+                if (*t > r.t0 && *t < r.t1)
+                    return true;
+                break;
+            }
+            u -= len;
+        }
+    }
+    return false;
+}
+
+// A boundary point outside the intervals, uniform by arc length, away from
+// vertices (where no normal is defined).
+void point_outside(const Prepared &p, const std::vector<Interval> &iv, Rng &rng, int *edge, double *t)
+{
+    double total = 0;
+    for (int e = 0; e < edge_count(p); e++)
+        total += edge_length(p, e);
+    for (;;) {
+        double u = rng.uniform() * total;
+        int e = 0;
+        while (e + 1 < edge_count(p) && u > edge_length(p, e)) {
+            u -= edge_length(p, e);
+            e++;
+        }
+        double tt = std::min(u / edge_length(p, e), 1.0) * edge_range(p);
+        if (!p.circle && (tt < 1e-6 || tt > 1 - 1e-6))
+            continue;
+        if (in_intervals(iv, e, tt))
+            continue;
+        *edge = e;
+        *t = tt;
+        return;
+    }
+}
+
+// ---- the report ----
+enum Criterion { AT_LEAST_99, REPORT, NONE_MOVES, SOME_MOVE, NOT_APPLICABLE, ALL, NO_BREAK };
+
+struct Row {
+    std::string fixture, set, note;
+    int points = 0, trials = 0, successes = 0;
+    Criterion criterion = REPORT;
+    bool pass = true;
+    double seconds = 0;
+};
+
+const char *criterion_text(Criterion c)
+{
+    switch (c) {
+    case AT_LEAST_99: return ">= 99% seated";
+    case REPORT: return "reported";
+    case NONE_MOVES: return "100% hold";
+    case SOME_MOVE: return "some move";
+    case NOT_APPLICABLE: return "n/a";
+    case ALL: return "100% as expected";
+    case NO_BREAK: return "100% no fixel breaks";
+    }
+    return "?";
+}
+
+struct Config {
+    bool quick = true, verbose = false;
+    int goal_points, goal_trials;   // per point
+    int out_points, out_trials;
+    int hold_points;                // pushes in the G_strong region, seated
+    int wrenches_in, wrenches_out;  // random wrenches
+    int tilt_points, tilt_trials;
+    int tilt_out_points, tilt_out_trials;
+    int spin_points;                // discs: spinning, seated
+};
+
+void finish(Row &row)
+{
+    switch (row.criterion) {
+    case AT_LEAST_99:
+        row.pass = row.trials >= 200 && row.successes * 100 >= 99 * row.trials;
+        break;
+    case NONE_MOVES:
+    case NO_BREAK:
+    case ALL:
+        row.pass = row.successes == row.trials;
+        break;
+    case SOME_MOVE:
+        row.pass = row.successes > 0;
+        break;
+    default:
+        row.pass = true;
+    }
+}
+
+void print_row(const Row &r)
+{
+    std::printf("%-18s %-26s %6d %7d %7d  %6.2f%%  %-20s %-4s %s\n", r.fixture.c_str(), r.set.c_str(),
+                r.points, r.trials, r.successes, r.trials ? 100.0 * r.successes / r.trials : 0.0,
+                criterion_text(r.criterion), r.pass ? "ok" : "FAIL", r.note.c_str());
+    std::fflush(stdout);
+}
+
+std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
+std::string fmt(const char *format, ...)
+{
+    char buf[512];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(buf, sizeof buf, format, args);
+    va_end(args);
+    return buf;
+}
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Seating trials at the points of `where` (push) or tilts (gravity).
+Row seat_trials(const Prepared &p, const Config &cfg, const char *set, bool gravity, bool inside,
+                const std::vector<Interval> &iv, int points, int trials)
+{
+    auto t0 = Clock::now();
+    Row row;
+    row.fixture = p.name;
+    row.set = set;
+    row.criterion = inside ? AT_LEAST_99 : REPORT;
+    if (inside && iv.empty()) {
+        row.criterion = NOT_APPLICABLE;
+        row.note = gravity ? "no G_goal arc" : "no G_goal push region";
+        return row;
+    }
+    double worst_time = 0, worst_pos = 0, worst_ang = 0, worst_pen = 0, least_margin = 1;
+    int failures_shown = 0, starts_touching = 0, starts = 0;
+    for (int j = 0; j < points; j++) {
+        Rng prng(seed_of(p.name, set, j, -1));
+        int edge = -1;
+        double t = 0, w[3];
+        Load load;
+        if (gravity) {
+            if (inside) {
+                if (!point_in(iv, j, points, prng, &edge, &t))
+                    continue;
+            } else {
+                do
+                    t = prng.uniform(0, 360);
+                while (in_intervals(iv, -1, t));
+            }
+            load.gravity = true;
+            load.g = {ACCEL * std::cos(t / DEG), ACCEL * std::sin(t / DEG)};
+            w[0] = p.mass * std::cos(t / DEG);
+            w[1] = p.mass * std::sin(t / DEG);
+            w[2] = 0;
+        } else {
+            if (inside) {
+                if (!point_in(iv, j, points, prng, &edge, &t))
+                    continue;
+            } else {
+                point_outside(p, iv, prng, &edge, &t);
+            }
+            load = finger_at(p, edge, t, w);
+        }
+        double mg = margin_of(p, w, WR_SET_GOAL);
+        if (inside)
+            least_margin = std::min(least_margin, mg);
+        row.points++;
+        for (int r = 0; r < trials; r++) {
+            Rng rng(seed_of(p.name, set, j, r));
+            Start st;
+            if (!sample_start(p, rng, &st)) {
+                std::fprintf(stderr, "%s: no start for trial %d of point %d\n", p.name.c_str(), r, j);
+                continue;
+            }
+            starts++;
+            starts_touching += st.touching > 0;
+            Seat s = run_seat(p, st, load);
+            row.trials++;
+            if (s.seated) {
+                row.successes++;
+                worst_time = std::max(worst_time, s.time);
+                worst_pos = std::max(worst_pos, s.pos_err);
+                worst_ang = std::max(worst_ang, s.ang_err);
+                worst_pen = std::max(worst_pen, s.penetration);
+            } else if (inside && (cfg.verbose || failures_shown < 10)) {
+                failures_shown++;
+                char bits[WR_MAX_FIXELS + 1] = {};
+                for (int i = 0; i < p.k; i++)
+                    bits[i] = (s.touching >> i & 1) ? '1' : '0';
+                std::fprintf(stderr,
+                             "  not seated: %s %s %s %.6f (margin %+.4f) trial %d: rest %d, "
+                             "touching %s, pose error %.4f m %.3f deg\n",
+                             p.name.c_str(), set, gravity ? "tilt" : "edge/t",
+                             gravity ? t : edge + t, mg, r, (int)s.rest, bits, s.pos_err, s.ang_err);
+            }
+        }
+    }
+    if (row.successes)
+        row.note = fmt("seated within %.2f s; pose error <= %.4f m, %.3f deg; penetration <= %.4f m",
+                       worst_time, worst_pos, worst_ang, worst_pen);
+    if (inside)
+        row.note += fmt("; least margin %.4f", least_margin);
+    row.note += fmt("; %d/%d starts touching", starts_touching, starts);
+    finish(row);
+    row.seconds = since(t0);
+    return row;
+}
+
+// The seated part under pushes at points of the G_strong region.
+Row hold_pushes(const Prepared &p, const Config &cfg, const char *set, bool inside,
+                const std::vector<Interval> &iv, int points)
+{
+    auto t0 = Clock::now();
+    Row row;
+    row.fixture = p.name;
+    row.set = set;
+    row.criterion = inside ? NONE_MOVES : SOME_MOVE;
+    if (iv.empty()) {
+        row.criterion = NOT_APPLICABLE;
+        row.note = "no G_strong push region";
+        return row;
+    }
+    double worst = 0;
+    for (int j = 0; j < points; j++) {
+        Rng prng(seed_of(p.name, set, j, -1));
+        int edge;
+        double t, w[3];
+        if (inside) {
+            if (!point_in(iv, j, points, prng, &edge, &t))
+                continue;
+        } else {
+            point_outside(p, iv, prng, &edge, &t);
+        }
+        Load finger = finger_at(p, edge, t, w);
+        double ms = margin_of(p, w, WR_SET_STRONG);
+        Hold h = run_hold(p, {0, 0}, 0, &finger);
+        row.points++;
+        row.trials++;
+        bool moved = h.moved > MOVE_TOLERANCE;
+        if (inside) {
+            row.successes += !moved;
+            worst = std::max(worst, h.moved);
+            if (moved && (cfg.verbose || row.trials - row.successes <= 10))
+                std::fprintf(stderr, "  moved: %s %s edge %d t %.6f (strong margin %+.4f): %.4f m\n",
+                             p.name.c_str(), set, edge, t, ms, h.moved);
+        } else {
+            row.successes += moved;
+            if (!moved && cfg.verbose)
+                std::fprintf(stderr, "  held: %s %s edge %d t %.6f (strong margin %+.4f, by %s): %.2e m\n",
+                             p.name.c_str(), set, edge, t, ms, blocking_of(p, w, WR_SET_STRONG).c_str(), h.moved);
+        }
+    }
+    row.note = inside ? fmt("largest displacement %.2e m", worst)
+                      : fmt("success = moved more than %.3f m", MOVE_TOLERANCE);
+    finish(row);
+    row.seconds = since(t0);
+    return row;
+}
+
+// The seated part under random wrenches clearly inside (margin > 0.05) or
+// outside (margin < -0.05) G_strong, of magnitude mass * ACCEL in the
+// scaled metric.
+Row hold_wrenches(const Prepared &p, const Config &cfg, const char *set, bool inside, int count)
+{
+    auto t0 = Clock::now();
+    Row row;
+    row.fixture = p.name;
+    row.set = set;
+    row.criterion = inside ? NONE_MOVES : SOME_MOVE;
+    double worst = 0;
+    int drawn = 0;
+    Rng rng(seed_of(p.name, set, 0, 0));
+    std::vector<std::string> modes;
+    while (row.trials < count && drawn < 200000) {
+        drawn++;
+        double u[3], len;
+        do {
+            for (double &c : u)
+                c = rng.uniform(-1, 1);
+            len = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        } while (len > 1 || len < 1e-3);
+        for (double &c : u)
+            c /= len;
+        double w[3] = {u[0], u[1], u[2] * p.f->gyration_radius}; // fixture units
+        double ms = margin_of(p, w, WR_SET_STRONG);
+        if (inside ? !(ms > STRONG_MARGIN) : !(ms < -STRONG_MARGIN))
+            continue;
+        double F = p.mass * ACCEL;
+        Hold h = run_hold(p, {F * u[0], F * u[1]}, F * u[2] * p.rho, nullptr);
+        row.points++;
+        row.trials++;
+        bool moved = h.moved > MOVE_TOLERANCE;
+        if (inside) {
+            row.successes += !moved;
+            worst = std::max(worst, h.moved);
+            if (moved && (cfg.verbose || row.trials - row.successes <= 10))
+                std::fprintf(stderr, "  moved: %s %s w (%.4f, %.4f, %.4f) strong margin %+.4f: %.4f m\n",
+                             p.name.c_str(), set, w[0], w[1], w[2], ms, h.moved);
+        } else {
+            row.successes += moved;
+            if (!moved && cfg.verbose)
+                std::fprintf(stderr, "  held: %s w (%.4f, %.4f, %.4f) strong margin %+.4f by %s: %.2e m\n",
+                             p.name.c_str(), w[0], w[1], w[2], ms, blocking_of(p, w, WR_SET_STRONG).c_str(),
+                             h.moved);
+        }
+    }
+    if (row.trials == 0) {
+        row.criterion = NOT_APPLICABLE;
+        row.note = inside ? "no wrench with margin > 0.05" : "no wrench with margin < -0.05";
+        return row;
+    }
+    row.note = inside ? fmt("largest displacement %.2e m", worst)
+                      : fmt("success = moved more than %.3f m", MOVE_TOLERANCE);
+    finish(row);
+    row.seconds = since(t0);
+    return row;
+}
+
+std::string region_text(const Prepared &p, const std::vector<Interval> &iv)
+{
+    std::string s;
+    for (const Interval &r : iv)
+        s += (s.empty() ? "" : ", ") +
+             (p.circle || r.edge < 0 ? fmt("(%.4f, %.4f) deg", r.t0, r.t1)
+                                     : fmt("edge %d t (%.4f, %.4f)", r.edge, r.t0, r.t1));
+    return s.empty() ? "none" : s;
+}
+
+// Box2D's distance between each fixel and the part at the seated pose: the
+// geometry given to Box2D must touch exactly there.
+double seated_distance(const Prepared &p)
+{
+    Sim sim(p, {p.com, 0}, {0, 0}, 0, {0, 0});
+    double worst = 0;
+    for (int i = 0; i < p.k; i++)
+        worst = std::max(worst, sim.distance(i));
+    return worst;
+}
+
+// Friction calibration: a 4 m x 1 m block (same skin, same fixel circles,
+// same listener) on two fixels 2 m apart under its bottom edge, under
+// gravity tilted so that the tangential load over the normal load is
+// `ratio`, starting with tangential speed v0.  Over CALIBRATION_TIME (or
+// until it has slid 0.8 m) it returns the distance slid and the friction coefficient that explains its
+// mean acceleration from 0.05 s after it first slid faster than SLIP_SPEED
+// (when the listener turns to mu_k): ratio - a / (g cos alpha).
+constexpr double CALIBRATION_TIME = 2.0;
+
+void slide(double mu_s, double mu_k, double ratio, double v0, double *distance, double *mu_seen,
+           double *speed)
+{
+    Prepared p;
+    p.name = "calibration";
+    p.k = 2;
+    p.mass = 1;
+    p.inertia = (16.0 + 1.0) / 12.0;
+    p.rho = std::sqrt(p.inertia);
+    p.com = {0, 0.5};
+    p.outline = {{-2, -0.5}, {2, -0.5}, {2, 0.5}, {-2, 0.5}};
+    p.out_normal = {{0, -1}, {1, 0}, {0, 1}, {-1, 0}};
+    double d = b2_polygonRadius;
+    p.core = {{-2 + d, -0.5 + d}, {2 - d, -0.5 + d}, {2 - d, 0.5 - d}, {-2 + d, 0.5 - d}};
+    for (double x : {-1.0, 1.0}) {
+        p.fixel_at.push_back({x, 0});
+        p.fixel_normal.push_back({0, 1});
+        p.fixel_center.push_back({x, -FIXEL_RADIUS});
+        p.mu_s.push_back(mu_s);
+        p.mu_k.push_back(mu_k);
+    }
+    double a = std::atan(ratio);
+    Sim sim(p, preloaded(p), {v0, 0}, 0, {ACCEL * std::sin(a), -ACCEL * std::cos(a)});
+    const int steps = (int)std::lround(CALIBRATION_TIME * HZ), settle = (int)std::lround(0.05 * HZ);
+    int slipped = -1, from = -1, n = 1;
+    double v1 = 0;
+    for (; n <= steps; n++) {
+        sim.step();
+        double v = sim.part->GetLinearVelocity().x;
+        if (slipped < 0 && std::fabs(v) > SLIP_SPEED)
+            slipped = n;
+        if (slipped >= 0 && n == slipped + settle) {
+            from = n;
+            v1 = v;
+        }
+        // The block stays on both fixels for 1 m either way: stop at 0.8 m.
+        if (std::fabs(sim.part->GetPosition().x - p.com.x) > 0.8)
+            break;
+    }
+    n = std::min(n, steps);
+    *distance = sim.part->GetPosition().x - p.com.x;
+    *speed = sim.part->GetLinearVelocity().x;
+    *mu_seen = NAN;
+    if (from >= 0 && from < n) {
+        double accel = (*speed - v1) / ((n - from) / HZ);
+        *mu_seen = ratio - accel / (ACCEL * std::cos(a));
+    }
+}
+
+// Checks that the coefficient Box2D applies is the fixture's: at rest the
+// block holds under a load of 0.95 mu_s; under max(1.05 mu_s, mu_s + 0.01)
+// it slides, and
+// while it slides (from rest, or launched at 0.5 m/s under loads between
+// mu_k and mu_s and below mu_k) the coefficient its acceleration shows is
+// mu_k within 1%.
+Row calibrate(double mu_s, double mu_k)
+{
+    auto t0 = Clock::now();
+    Row row;
+    row.fixture = "(calibration)";
+    row.set = fmt("friction %g/%g", mu_s, mu_k);
+    row.criterion = ALL;
+    double dist, seen, speed;
+    std::string notes;
+    auto check = [&](bool ok, const std::string &what) {
+        row.points++;
+        row.trials++;
+        row.successes += ok;
+        notes += (notes.empty() ? "" : "; ") + what + (ok ? "" : " FAILED");
+    };
+    auto close = [&](double mu) { return std::fabs(mu - mu_k) <= 0.01 * std::max(mu_k, 0.01); };
+    if (mu_s > 0) {
+        slide(mu_s, mu_k, 0.95 * mu_s, 0, &dist, &seen, &speed);
+        check(std::fabs(dist) < MOVE_TOLERANCE, fmt("rest, 0.95 mu_s: held (%.1e m)", dist));
+    }
+    double over = std::max(1.05 * mu_s, mu_s + 0.01);
+    slide(mu_s, mu_k, over, 0, &dist, &seen, &speed);
+    check(dist > MOVE_TOLERANCE && close(seen), fmt("rest, max(1.05 mu_s, mu_s + 0.01): slid, mu %.4f", seen));
+    if (mu_k < mu_s) {
+        slide(mu_s, mu_k, 0.5 * (mu_s + mu_k), 0.5, &dist, &seen, &speed);
+        check(speed > 0.5 && close(seen), fmt("sliding, (mu_s+mu_k)/2: kept sliding, mu %.4f", seen));
+    }
+    if (mu_k > 0) {
+        slide(mu_s, mu_k, 0.9 * mu_k, 0.5, &dist, &seen, &speed);
+        check(speed < 0.5 && (speed < REST_SPEED || close(seen)),
+              speed < REST_SPEED ? fmt("sliding, 0.9 mu_k: stopped") : fmt("sliding, 0.9 mu_k: slowed, mu %.4f", seen));
+    }
+    row.note = notes;
+    finish(row);
+    row.seconds = since(t0);
+    return row;
+}
+
+// ---- investigations (--sweep): not criteria, the numbers behind the
+// "where Box2D and the model disagree" section of docs/VALIDATION.md ----
+
+// Seating rate and mean time at n points of every edge (or n angles of a
+// circle), `reps` trials each; `spin` > 0 replaces the start's angular
+// velocity by +-spin rad/s (random sign).
+void sweep_pushes(const Prepared &p, int n, int reps, double spin)
+{
+    std::printf("\n%s: pushes along the outline, %d trials a point%s\n", p.name.c_str(), reps,
+                spin > 0 ? fmt(", spinning at +-%g rad/s (half each way)%s", spin,
+                               p.circle ? ", the finger fixed in the world" : "").c_str() : "");
+    std::printf("%4s %10s %9s %9s %-6s %7s %8s\n", "edge", "t", "goal", "strong", "block", "seated", "time");
+    for (int e = 0; e < edge_count(p); e++) {
+        for (int j = 0; j < n; j++) {
+            double t = (j + 0.5) / n * edge_range(p), w[3];
+            Load load = finger_at(p, e, t, w);
+            load.world_fixed = spin > 0 && p.circle;
+            const char *tr = std::getenv("PHYSICS_TRACE");
+            trace = tr && std::fabs(std::atof(tr) - t) < 1e-6;
+            int ok = 0;
+            double time = 0;
+            for (int r = 0; r < reps; r++) {
+                Rng rng(seed_of(p.name, "sweep", e * n + j, r));
+                Start st;
+                if (!sample_start(p, rng, &st))
+                    continue;
+                if (spin > 0)
+                    st.w = (r % 2 ? -spin : spin);
+                if (trace)
+                    std::fprintf(stderr, "trial %d: start x %.4f %.4f th %.3f v %.4f %.4f w %.3f\n", r,
+                                 st.pose.x.x - p.com.x, st.pose.x.y - p.com.y, st.pose.th * DEG, st.v.x, st.v.y, st.w);
+                Seat sres = run_seat(p, st, load);
+                ok += sres.seated;
+                time += sres.seated ? sres.time : 0;
+            }
+            trace = false;
+            std::printf("%4d %10.4f %+9.4f %+9.4f %-6s %6.0f%% %7.2fs\n", e, t, margin_of(p, w, WR_SET_GOAL),
+                        margin_of(p, w, WR_SET_STRONG), blocking_of(p, w, WR_SET_GOAL).c_str(),
+                        100.0 * ok / reps, ok ? time / ok : 0.0);
+        }
+    }
+}
+
+// A seated disc spinning at +-spin rad/s under a world-fixed frictionless
+// finger: which fixels open a gap wider than MOVE_TOLERANCE within
+// HOLD_TIME.  From state "all touching" with every contact sliding, this is
+// the seed's figure 5: a contact breaks exactly where the model puts a
+// backward transition (ms / sm for the disc in a corner).
+// The seated disc spinning at `spin` rad/s under a world-fixed finger at
+// (0, t): the fixels (bits) whose gap opened wider than MOVE_TOLERANCE
+// within HOLD_TIME.
+unsigned spin_breaks(const Prepared &p, double t, double spin)
+{
+    double w[3];
+    Load load = finger_at(p, 0, t, w);
+    load.world_fixed = true;
+    Sim sim(p, preloaded(p), {0, 0}, spin, {0, 0});
+    unsigned bits = 0;
+    for (int k = 0; k < (int)std::lround(HOLD_TIME * HZ); k++) {
+        push(sim.part, p, load);
+        sim.step();
+        for (int i = 0; i < p.k; i++)
+            if (gap(p, sim.pose(), i) > MOVE_TOLERANCE)
+                bits |= 1u << i;
+    }
+    return bits;
+}
+
+std::string bit_text(const Prepared &p, unsigned bits)
+{
+    std::string s;
+    for (int i = 0; i < p.k; i++)
+        s += (bits >> i & 1) ? '1' : '0';
+    return s;
+}
+
+// A seated disc spinning at +-spin rad/s under a world-fixed frictionless
+// finger: which fixels open a gap.  With every contact sliding, this is the
+// seed's figure 5: a contact breaks where the model puts a backward
+// transition (ms / sm for the disc in a corner).
+void sweep_spin_seated(const Prepared &p, int n, double spin)
+{
+    std::printf("\n%s: the seated disc spinning at +-%g rad/s, finger fixed in the world\n", p.name.c_str(), spin);
+    std::printf("%10s %9s %-6s %12s %12s\n", "t", "goal", "block", "broke (+)", "broke (-)");
+    for (int j = 0; j < n; j++) {
+        double t = (j + 0.5) / n * 360.0, w[3];
+        wr_push_wrench(p.f, 0, t, w);
+        std::printf("%10.4f %+9.4f %-6s %12s %12s\n", t, margin_of(p, w, WR_SET_GOAL),
+                    blocking_of(p, w, WR_SET_GOAL).c_str(), bit_text(p, spin_breaks(p, t, spin)).c_str(),
+                    bit_text(p, spin_breaks(p, t, -spin)).c_str());
+    }
+}
+
+// From contact state `state` (those fixels touching, the others GAP_MAX
+// away), the part launched at `speed` m/s along the motion that keeps the
+// touched fixels touching (both ways), pushed at n points of every edge:
+// which touched fixels open a gap wider than MOVE_TOLERANCE during the
+// launch (until the velocity along the launch turns, an untouched fixel is
+// reached, or the part has gone 10% of its size).  It probes the m letters
+// (sliding either way) of G_goal's backward transitions; the start's gap
+// and the slide itself displace the part, which moves the boundary (see
+// docs/VALIDATION.md).
+void sweep_slide(const Prepared &p, unsigned state, int n, double speed)
+{
+    Pose seated{p.com, 0};
+    double J[3][3], target[3] = {0, 0, 0}, q[3];
+    for (int i = 0; i < p.k; i++)
+        target[i] = (state >> i & 1) ? 0 : GAP_MAX;
+    gap_jacobian(p, seated, J);
+    if (!least_norm(p, J, target, q))
+        return;
+    Pose start = apply(p, seated, q);
+    // A translation d with n_i . d = 0 for every touched fixel.
+    V2 d{0, 0};
+    for (int i = 0; i < p.k; i++)
+        if (state >> i & 1)
+            d = {-p.fixel_normal[i].y, p.fixel_normal[i].x};
+    for (int i = 0; i < p.k; i++)
+        if ((state >> i & 1) && std::fabs(dot(d, p.fixel_normal[i])) > 1e-9) {
+            std::printf("\n%s: state %x: no translation keeps every touched fixel\n", p.name.c_str(), state);
+            return;
+        }
+    char bits[WR_MAX_FIXELS + 1] = {};
+    for (int i = 0; i < p.k; i++)
+        bits[i] = (state >> i & 1) ? '1' : '0';
+    std::printf("\n%s: from state %s sliding at +-%g m/s along (%.3f, %.3f): touched fixels that broke\n",
+                p.name.c_str(), bits, speed, d.x, d.y);
+    std::printf("%4s %10s %9s %-6s %10s %10s\n", "edge", "t", "goal", "block", "broke (+)", "broke (-)");
+    for (int e = 0; e < edge_count(p); e++) {
+        for (int j = 0; j < n; j++) {
+            double t = (j + 0.5) / n * edge_range(p), w[3];
+            Load load = finger_at(p, e, t, w);
+            std::string broke[2];
+            for (int sign = 0; sign < 2; sign++) {
+                V2 v0 = (sign ? -speed : speed) * d;
+                Sim sim(p, start, v0, 0, {0, 0});
+                unsigned b = 0;
+                for (int k = 0; k < (int)std::lround(HOLD_TIME * HZ); k++) {
+                    push(sim.part, p, load);
+                    sim.step();
+                    // Only while the launch lasts, near the seated pose.
+                    if (dot(v2(sim.part->GetLinearVelocity()), v0) <= 0 ||
+                        norm(sim.pose().x - start.x) > 0.1 * SIZE || (sim.touching() & ~state))
+                        break;
+                    for (int i = 0; i < p.k; i++)
+                        if ((state >> i & 1) && gap(p, sim.pose(), i) > MOVE_TOLERANCE)
+                            b |= 1u << i;
+                    const char *tr = std::getenv("PHYSICS_TRACE");
+                    if (tr && p.k == 3 && std::fabs(std::atof(tr) - t) < 1e-6 && k % 6 == 0 && k < 60)
+                        std::fprintf(stderr, "state %x edge %d sign %c k %d N %.5f %.5f T %.5f %.5f v %.4f %.4f w %.5f th %.5f gaps %.5f %.5f %.5f touching %u\n", state, e,
+                                     sign ? '-' : '+', k, sim.friction.impulse[0][0] * HZ, sim.friction.impulse[1][0] * HZ,
+                                     sim.friction.impulse[0][1] * HZ, sim.friction.impulse[1][1] * HZ,
+                                     sim.part->GetLinearVelocity().x, sim.part->GetLinearVelocity().y,
+                                     sim.part->GetAngularVelocity(), sim.pose().th, gap(p, sim.pose(), 0),
+                                     gap(p, sim.pose(), 1), gap(p, sim.pose(), 2), sim.touching());
+                }
+                for (int i = 0; i < p.k; i++)
+                    broke[sign] += (b >> i & 1) ? '1' : '0';
+            }
+            std::printf("%4d %10.4f %+9.4f %-6s %10s %10s\n", e, t, margin_of(p, w, WR_SET_GOAL),
+                        blocking_of(p, w, WR_SET_GOAL).c_str(), broke[0].c_str(), broke[1].c_str());
+        }
+    }
+}
+
+void sweep_tilts(const Prepared &p, int n, int reps)
+{
+    std::printf("\n%s: gravity tilts, %d trials a tilt\n", p.name.c_str(), reps);
+    std::printf("%8s %9s %-6s %7s %8s\n", "phi", "goal", "block", "seated", "time");
+    for (int j = 0; j < n; j++) {
+        double phi = (j + 0.5) / n * 360.0;
+        Load load;
+        load.gravity = true;
+        load.g = {ACCEL * std::cos(phi / DEG), ACCEL * std::sin(phi / DEG)};
+        double w[3] = {p.f->mass * std::cos(phi / DEG), p.f->mass * std::sin(phi / DEG), 0};
+        int ok = 0;
+        double time = 0;
+        for (int r = 0; r < reps; r++) {
+            Rng rng(seed_of(p.name, "sweep-tilt", j, r));
+            Start st;
+            if (!sample_start(p, rng, &st))
+                continue;
+            Seat sres = run_seat(p, st, load);
+            ok += sres.seated;
+            time += sres.seated ? sres.time : 0;
+        }
+        std::printf("%8.2f %+9.4f %-6s %6.0f%% %7.2fs\n", phi, margin_of(p, w, WR_SET_GOAL),
+                    blocking_of(p, w, WR_SET_GOAL).c_str(), 100.0 * ok / reps, ok ? time / ok : 0.0);
+    }
+}
+
+// Random unit wrenches on the seated part, binned by G_strong margin: the
+// fraction that moved more than MOVE_TOLERANCE in HOLD_TIME.
+void sweep_strong(const Prepared &p, int count)
+{
+    const double edges[] = {-1, -0.2, -0.05, -0.01, 0, 0.01, 0.05, 0.2, 1.0000001};
+    const int bins = 8;
+    int total[bins] = {}, moved[bins] = {};
+    double largest_held[bins] = {};
+    Rng rng(seed_of(p.name, "sweep-strong", 0, 0));
+    for (int c = 0; c < count; c++) {
+        double u[3], len;
+        do {
+            for (double &x : u)
+                x = rng.uniform(-1, 1);
+            len = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        } while (len > 1 || len < 1e-3);
+        for (double &x : u)
+            x /= len;
+        double w[3] = {u[0], u[1], u[2] * p.f->gyration_radius};
+        double ms = margin_of(p, w, WR_SET_STRONG);
+        int b = 0;
+        while (b + 1 < bins && ms >= edges[b + 1])
+            b++;
+        double F = p.mass * ACCEL;
+        Hold h = run_hold(p, {F * u[0], F * u[1]}, F * u[2] * p.rho, nullptr);
+        total[b]++;
+        if (h.moved > MOVE_TOLERANCE)
+            moved[b]++;
+        else
+            largest_held[b] = std::max(largest_held[b], h.moved);
+    }
+    std::printf("\n%s: %d random unit wrenches on the seated part, by G_strong margin\n", p.name.c_str(), count);
+    std::printf("%-16s %7s %7s %8s %12s\n", "margin", "wrenches", "moved", "rate", "largest held");
+    for (int b = 0; b < bins; b++)
+        std::printf("[%+.2f, %+.2f)  %7d %7d %7.1f%% %10.2e m\n", edges[b], std::min(edges[b + 1], 1.0), total[b],
+                    moved[b], total[b] ? 100.0 * moved[b] / total[b] : 0.0, largest_held[b]);
+}
+
+// Discs only: the seated disc spinning at +-SPIN rad/s (both ways at every
+// point) under a world-fixed finger at points inside G_goal (no fixel may
+// break: G_goal excludes every backward transition whatever the sliding
+// direction, and a disc spinning about its centre of mass has no
+// velocity-product terms) or inside G_strong but outside G_goal (reported:
+// the rate at which some fixel broke).
+constexpr double SPIN = 5.0;
+
+Row spin_trials(const Prepared &p, const char *set, bool inside, const std::vector<Interval> &goal,
+                const std::vector<Interval> &strong, int points)
+{
+    auto t0 = Clock::now();
+    Row row;
+    row.fixture = p.name;
+    row.set = set;
+    row.criterion = inside ? NO_BREAK : REPORT;
+    std::vector<Interval> iv;
+    if (inside) {
+        iv = goal;
+    } else {
+        // G_strong minus G_goal, on the circle.
+        for (const Interval &r : strong) {
+            double a = r.t0;
+            for (const Interval &g : goal)
+                if (g.t0 >= a && g.t1 <= r.t1) {
+                    if (g.t0 > a)
+                        iv.push_back({0, a, g.t0});
+                    a = g.t1;
+                }
+            if (a < r.t1)
+                iv.push_back({0, a, r.t1});
+        }
+    }
+    if (iv.empty()) {
+        row.criterion = NOT_APPLICABLE;
+        row.note = "no such arc";
+        return row;
+    }
+    double least = 1;
+    for (int j = 0; j < points; j++) {
+        Rng prng(seed_of(p.name, set, j, -1));
+        int edge;
+        double t, w[3];
+        if (!point_in(iv, j, points, prng, &edge, &t))
+            continue;
+        wr_push_wrench(p.f, 0, t, w);
+        least = std::min(least, std::fabs(margin_of(p, w, WR_SET_GOAL)));
+        row.points++;
+        for (double sp : {SPIN, -SPIN}) {
+            unsigned broke = spin_breaks(p, t, sp);
+            row.trials++;
+            if (inside) {
+                row.successes += broke == 0;
+                if (broke)
+                    std::fprintf(stderr, "  broke: %s %s at %.4f deg, spin %+g: fixels %s\n", p.name.c_str(), set, t,
+                                 sp, bit_text(p, broke).c_str());
+            } else {
+                row.successes += broke != 0;
+            }
+        }
+    }
+    row.note = inside ? fmt("success = no fixel opens %.3f m; least |goal margin| %.4f", MOVE_TOLERANCE, least)
+                      : fmt("success = a fixel opened %.3f m; least |goal margin| %.4f", MOVE_TOLERANCE, least);
+    finish(row);
+    row.seconds = since(t0);
+    return row;
+}
+
+void usage()
+{
+    std::fprintf(stderr, "usage: physics-validate [--quick | --full] [--verbose] FIXTURE.json ...\n"
+                 "investigations (docs/VALIDATION.md): [--friction-factor X] [--static-as-kinetic]\n"
+                 "    [--sweep N [--spin W] [--slide V]] [--hold-at EDGE T]\n");
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    Config cfg{};
+    std::vector<std::string> files;
+    int sweep = 0;
+    double spin = 0, slide_speed = 0;
+    int hold_edge = -1;
+    double hold_t = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!std::strcmp(argv[i], "--quick"))
+            cfg.quick = true;
+        else if (!std::strcmp(argv[i], "--full"))
+            cfg.quick = false;
+        else if (!std::strcmp(argv[i], "--verbose"))
+            cfg.verbose = true;
+        else if (!std::strcmp(argv[i], "--sweep") && i + 1 < argc)
+            sweep = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--hold-at") && i + 2 < argc) {
+            hold_edge = std::atoi(argv[++i]);
+            hold_t = std::atof(argv[++i]);
+        } else if (!std::strcmp(argv[i], "--slide") && i + 1 < argc)
+            slide_speed = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--spin") && i + 1 < argc)
+            spin = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--static-as-kinetic"))
+            static_as_kinetic = true;
+        else if (!std::strcmp(argv[i], "--friction-factor") && i + 1 < argc)
+            friction_factor = std::atof(argv[++i]);
+        else if (argv[i][0] == '-') {
+            usage();
+            return 2;
+        } else
+            files.push_back(argv[i]);
+    }
+    if (files.empty()) {
+        usage();
+        return 2;
+    }
+    if (cfg.quick) {
+        cfg.goal_points = 50, cfg.goal_trials = 4;
+        cfg.out_points = 25, cfg.out_trials = 2;
+        cfg.hold_points = 50;
+        cfg.wrenches_in = 100, cfg.wrenches_out = 100;
+        cfg.tilt_points = 50, cfg.tilt_trials = 4;
+        cfg.tilt_out_points = 25, cfg.tilt_out_trials = 2;
+        cfg.spin_points = 50;
+    } else {
+        cfg.goal_points = 200, cfg.goal_trials = 5;
+        cfg.out_points = 100, cfg.out_trials = 5;
+        cfg.hold_points = 300;
+        cfg.wrenches_in = 1000, cfg.wrenches_out = 1000;
+        cfg.tilt_points = 200, cfg.tilt_trials = 5;
+        cfg.tilt_out_points = 100, cfg.tilt_out_trials = 5;
+        cfg.spin_points = 200;
+    }
+    auto start = Clock::now();
+    if (friction_factor != 1.0)
+        std::printf("NEGATIVE CONTROL: Box2D's friction is %g times the fixture's\n", friction_factor);
+    if (static_as_kinetic)
+        std::printf("INVESTIGATION: Box2D's static friction is the fixture's kinetic friction\n");
+    std::printf("physics validation (%s): Box2D %d.%d.%d, %g Hz, %d velocity / %d position iterations\n",
+                cfg.quick ? "quick" : "full", b2_version.major, b2_version.minor, b2_version.revision, HZ,
+                VELOCITY_ITERATIONS, POSITION_ITERATIONS);
+    std::vector<Row> rows;
+    std::vector<std::pair<double, double>> frictions;
+    bool input_error = false;
+    for (const std::string &file : files) {
+        Prepared p;
+        std::string error;
+        if (!prepare(file, &p, &error)) {
+            std::fprintf(stderr, "%s\n", error.c_str());
+            input_error = true;
+            continue;
+        }
+        if (!p.unsupported.empty()) {
+            Row row;
+            row.fixture = p.name;
+            row.set = "(not simulated)";
+            row.criterion = NOT_APPLICABLE;
+            row.note = p.unsupported;
+            print_row(row);
+            rows.push_back(row);
+            if (p.an)
+                wr_analysis_free(p.an);
+            wp_fixture_doc_release(&p.doc);
+            continue;
+        }
+        double touch = seated_distance(p);
+        if (touch > 1e-5) {
+            std::fprintf(stderr, "%s: harness error: Box2D sees a gap of %g m at the seated pose\n",
+                         p.name.c_str(), touch);
+            return 2;
+        }
+        for (int i = 0; i < p.k; i++)
+            frictions.push_back({p.mu_s[i], p.mu_k[i]});
+        if (hold_edge >= 0) {
+            double w[3];
+            Load finger = finger_at(p, hold_edge, hold_t, w);
+            hold_trace = true;
+            Hold h = run_hold(p, {0, 0}, 0, &finger);
+            std::printf("%s: push at edge %d t %.9g, strong margin %+.6f (%s): moved %.3e m\n", p.name.c_str(),
+                        hold_edge, hold_t, margin_of(p, w, WR_SET_STRONG), blocking_of(p, w, WR_SET_STRONG).c_str(),
+                        h.moved);
+            wr_analysis_free(p.an);
+            wp_fixture_doc_release(&p.doc);
+            continue;
+        }
+        if (sweep > 0) {
+            sweep_pushes(p, sweep, 10, spin);
+            if (p.circle && spin > 0)
+                sweep_spin_seated(p, sweep, spin);
+            if (slide_speed > 0)
+                for (unsigned st = 1; st + 1 < (1u << p.k); st++)
+                    sweep_slide(p, st, sweep, slide_speed);
+            sweep_tilts(p, 4 * sweep, 10);
+            sweep_strong(p, 50 * sweep);
+            wr_analysis_free(p.an);
+            wp_fixture_doc_release(&p.doc);
+            continue;
+        }
+        auto goal = regions(p, WR_SET_GOAL), strong = regions(p, WR_SET_STRONG);
+        auto tilt = arcs(p, WR_SET_GOAL);
+        std::printf("%s (%s): scale %.6g m per unit, %d fixels, mu_s/mu_k", p.name.c_str(), file.c_str(),
+                    p.scale, p.k);
+        for (int i = 0; i < p.k; i++)
+            std::printf(" %g/%g", p.mu_s[i], p.mu_k[i]);
+        std::printf("\n  G_goal push region: %s\n  G_strong push region: %s\n  G_goal tilts: %s\n",
+                    region_text(p, goal).c_str(), region_text(p, strong).c_str(), region_text(p, tilt).c_str());
+        std::vector<Row> mine;
+        mine.push_back(seat_trials(p, cfg, "push in G_goal", false, true, goal, cfg.goal_points, cfg.goal_trials));
+        print_row(mine.back());
+        mine.push_back(seat_trials(p, cfg, "push outside G_goal", false, false, goal, cfg.out_points, cfg.out_trials));
+        print_row(mine.back());
+        mine.push_back(seat_trials(p, cfg, "tilt in G_goal", true, true, tilt, cfg.tilt_points, cfg.tilt_trials));
+        print_row(mine.back());
+        mine.push_back(seat_trials(p, cfg, "tilt outside G_goal", true, false, tilt, cfg.tilt_out_points,
+                                   cfg.tilt_out_trials));
+        print_row(mine.back());
+        if (p.circle) {
+            mine.push_back(spin_trials(p, "spin: push in G_goal", true, goal, strong, cfg.spin_points));
+            print_row(mine.back());
+            mine.push_back(spin_trials(p, "spin: G_strong - G_goal", false, goal, strong, cfg.spin_points));
+            print_row(mine.back());
+        }
+        mine.push_back(hold_pushes(p, cfg, "hold: push in G_strong", true, strong, cfg.hold_points));
+        print_row(mine.back());
+        mine.push_back(hold_pushes(p, cfg, "move: push outside G_strong", false, strong, cfg.hold_points));
+        print_row(mine.back());
+        mine.push_back(hold_wrenches(p, cfg, "hold: margin > 0.05", true, cfg.wrenches_in));
+        print_row(mine.back());
+        mine.push_back(hold_wrenches(p, cfg, "move: margin < -0.05", false, cfg.wrenches_out));
+        print_row(mine.back());
+        rows.insert(rows.end(), mine.begin(), mine.end());
+        wr_analysis_free(p.an);
+        wp_fixture_doc_release(&p.doc);
+    }
+    std::sort(frictions.begin(), frictions.end());
+    frictions.erase(std::unique(frictions.begin(), frictions.end()), frictions.end());
+    for (auto mu : frictions) {
+        rows.push_back(calibrate(mu.first, mu.second));
+        print_row(rows.back());
+    }
+    int failed = 0;
+    std::printf("\n| fixture | set | points | trials | success | rate | criterion | |\n");
+    std::printf("|---|---|---:|---:|---:|---:|---|---|\n");
+    for (const Row &r : rows) {
+        std::printf("| %s | %s | %d | %d | %d | %s | %s | %s |\n", r.fixture.c_str(), r.set.c_str(), r.points,
+                    r.trials, r.successes,
+                    r.trials ? fmt("%.2f%%", 100.0 * r.successes / r.trials).c_str() : "-",
+                    criterion_text(r.criterion), r.pass ? "ok" : "**FAIL**");
+        failed += !r.pass;
+    }
+    std::printf("\nphysics: %zu rows, %d failed, %.1f s\n", rows.size(), failed, since(start));
+    if (input_error)
+        return 2;
+    return failed ? 1 : 0;
+}
