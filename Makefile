@@ -21,7 +21,7 @@ SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
-        physics-check validate install uninstall
+        physics-check validate load-check soak install uninstall
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -173,7 +173,7 @@ check-valgrind: all $(BUILD)/tests/libfail_storage.so
 	    $(PYTEST) tests/e2e
 
 # The last line printed is the test runner's closing line (CI reads it).
-check: unit unit-asan physics-check e2e-asan e2e
+check: unit unit-asan physics-check load-check e2e-asan e2e
 
 # ---- running it ------------------------------------------------------------
 
@@ -191,6 +191,26 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/plate-3-2-1.json --set strong --svg docs/pictures/plate-3-2-1-push-strong.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/plate-chamfered.json --set both --svg docs/pictures/plate-chamfered-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/disc-corner.json --set goal --svg docs/pictures/disc-corner-push-goal.svg >/dev/null
+
+# ---- load and soak (bench) ----
+# bench/README.md says what these measure and how to read their output.
+BENCH_LOAD = $(BUILD)/bench/load
+
+$(BENCH_LOAD): bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
+	    -lcjson -lglpk -lpthread -lm -o $@
+
+# A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
+# nothing wrong, exit status 0 on SIGTERM.  The last lines are the summary.
+load-check: $(BUILD)/wrenchd $(BENCH_LOAD)
+	@bench/load-check $(BUILD)/wrenchd $(BENCH_LOAD)
+
+# A benchmark, not a test: SOAK_SECONDS (default 600) of mixed load on an
+# 8 MiB cache; resident memory at start, peak and end.
+soak: $(BUILD)/wrenchd $(BENCH_LOAD)
+	@$(PYTHON) bench/soak --wrenchd $(BUILD)/wrenchd --load $(BENCH_LOAD)
+# ---- end of load and soak ----
 
 # ---- install -------------------------------------------------------------------
 PREFIX    ?= /usr/local

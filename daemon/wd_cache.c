@@ -170,27 +170,33 @@ static void evict_locked(wd_cache *c)
     }
 }
 
-static void fill_use(entry *e, wp_fixture_use *use)
+/* Hold e for a request; `t` is the texts to answer with (e's own when
+ * NULL; a put passes those it stored, which a later rename may replace). */
+static void fill_use(entry *e, texts *t, wp_fixture_use *use)
 {
-    e->texts->refs++;
+    if (!t)
+        t = e->texts;
+    t->refs++;
     use->id = e->id;
-    use->name = e->texts->name;
-    use->canonical = e->texts->canonical;
+    use->name = t->name;
+    use->canonical = t->canonical;
     use->fixture = e->fixture;
     use->analysis = e->analysis;
     use->handle[0] = e;
-    use->handle[1] = e->texts;
+    use->handle[1] = t;
 }
 
-/* With e held (refs counted), make sure its analysis exists and fill `use`.
- * The analysis is built without the lock; if two threads race, one keeps
- * its result and the other's is freed. */
-static bool ready(wd_cache *c, entry *e, wp_fixture_use *use, wp_error *error)
+/* With e held (refs counted), make sure its analysis exists and fill `use`
+ * (with the texts `t`, see fill_use; a reference to them is passed in and
+ * consumed).  The analysis is built without the lock; if two threads race,
+ * one keeps its result and the other's is freed. */
+static bool ready(wd_cache *c, entry *e, texts *t, wp_fixture_use *use, wp_error *error)
 {
     pthread_mutex_lock(&c->lock);
     e->last_used = ++c->clock;
     if (e->analysis) {
-        fill_use(e, use);
+        fill_use(e, t, use);
+        texts_drop(t);
         pthread_mutex_unlock(&c->lock);
         return true;
     }
@@ -199,6 +205,7 @@ static bool ready(wd_cache *c, entry *e, wp_fixture_use *use, wp_error *error)
     pthread_mutex_lock(&c->lock);
     if (!a) {
         e->refs--;
+        texts_drop(t);
         pthread_mutex_unlock(&c->lock);
         wp_error_set(error, WP_INTERNAL, "", "out of memory deriving the fixture's cones");
         return false;
@@ -212,7 +219,8 @@ static bool ready(wd_cache *c, entry *e, wp_fixture_use *use, wp_error *error)
     } else {
         wr_analysis_free(a);
     }
-    fill_use(e, use);
+    fill_use(e, t, use);
+    texts_drop(t);
     pthread_mutex_unlock(&c->lock);
     return true;
 }
@@ -505,10 +513,16 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
         }
         pthread_mutex_unlock(&c->lock);
     }
+    /* The texts this request answers with: those it stored, taken while no
+     * other put can rename the fixture. */
+    pthread_mutex_lock(&c->lock);
+    texts *answered = e->texts;
+    answered->refs++;
+    pthread_mutex_unlock(&c->lock);
     if (store)
         pthread_mutex_unlock(&c->store_lock);
     wp_fixture_doc_release(doc);
-    return ready(c, e, use, error);
+    return ready(c, e, answered, use, error);
 }
 
 bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *error)
@@ -522,7 +536,7 @@ bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *er
     }
     e->refs++;
     pthread_mutex_unlock(&c->lock);
-    return ready(c, e, use, error);
+    return ready(c, e, NULL, use, error);
 }
 
 void wd_cache_release(wd_cache *c, wp_fixture_use *use)

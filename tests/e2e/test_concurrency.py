@@ -206,3 +206,30 @@ def test_same_fixture_put_concurrently_with_state_dir(harness):
     got = c.result("fixture.get", {"id": fid})
     assert got["name"] == listed[0]["name"]
     assert c.result("fixture.put", {"fixture": got})["id"] == fid
+
+
+def test_concurrent_renames_answer_with_their_own_name(daemon):
+    """Two clients put the same fixture under different names, over and over:
+    each put's answer carries the name that put stored, never the other's
+    (a put once read the name after releasing the store's lock)."""
+    import threading
+    wrong = []
+
+    def put_as(name):
+        c = daemon.client()
+        fixture = FX.disc_corner(0.5, name=name)
+        for i in range(3000):
+            c.send({"jsonrpc": "2.0", "method": "fixture.put", "params": {"fixture": fixture},
+                    "id": i})
+            if i % 50 == 49:  # pipeline 50 at a time
+                for _ in range(50):
+                    r = c.read_json()
+                    if r["result"]["name"] != name:
+                        wrong.append(r)
+
+    threads = [threading.Thread(target=put_as, args=("name-%d" % k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not wrong, "%d answers carried the other client's name" % len(wrong)
