@@ -21,7 +21,7 @@ SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
-        physics-check validate load-check soak install uninstall
+        physics-check validate load-check soak install uninstall fuzz fuzz-smoke fuzz-build
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -173,7 +173,7 @@ check-valgrind: all $(BUILD)/tests/libfail_storage.so
 	    $(PYTEST) tests/e2e
 
 # The last line printed is the test runner's closing line (CI reads it).
-check: unit unit-asan physics-check load-check e2e-asan e2e
+check: unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
 
 # ---- running it ------------------------------------------------------------
 
@@ -201,6 +201,13 @@ $(BENCH_LOAD): bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PRO
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
 	    -lcjson -lglpk -lpthread -lm -o $@
 
+BENCH_MICRO = $(BUILD)/bench/micro
+
+$(BENCH_MICRO): bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
+	    -lcjson -lglpk -lm -o $@
+
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
 # nothing wrong, exit status 0 on SIGTERM.  The last lines are the summary.
 load-check: $(BUILD)/wrenchd $(BENCH_LOAD)
@@ -211,6 +218,51 @@ load-check: $(BUILD)/wrenchd $(BENCH_LOAD)
 soak: $(BUILD)/wrenchd $(BENCH_LOAD)
 	@$(PYTHON) bench/soak --wrenchd $(BUILD)/wrenchd --load $(BENCH_LOAD)
 # ---- end of load and soak ----
+
+# ---- fuzzing (tests/fuzz) ----
+# libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined) over the
+# sources of lib/, proto/ and daemon/ (but main) rebuilt with coverage
+# instrumentation in build/fuzz/.  tests/fuzz/README.md says what each
+# target checks.  make fuzz: each target for FUZZ_SECONDS on a copy of the
+# corpus (build/fuzz/corpus-work); make fuzz-smoke: the committed corpus and
+# regressions, then FUZZ_SMOKE_RUNS mutations of each, seed 1.
+FUZZ_CC       = clang
+FUZZ_SAN      = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_CFLAGS   = -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -g -O1 $(INCLUDES) \
+                -fsanitize=fuzzer-no-link $(FUZZ_SAN)
+FUZZ_DIR      = $(BUILD)/fuzz
+FUZZ_TARGETS  = request fixture parse
+FUZZ_BIN      = $(addprefix $(FUZZ_DIR)/fuzz_,$(FUZZ_TARGETS))
+FUZZ_OBJ      = $(patsubst %.c,$(FUZZ_DIR)/%.o,$(LIB_SRC) $(PROTO_SRC) $(DAEMON_SRC))
+FUZZ_SECONDS ?= 60
+FUZZ_SMOKE_RUNS ?= 10000
+
+$(FUZZ_DIR)/lib/%.o: lib/%.c $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
+
+$(FUZZ_DIR)/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
+
+$(FUZZ_DIR)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
+
+$(FUZZ_DIR)/libwrench-fuzz.a: $(FUZZ_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_DIR)/libwrench-fuzz.a
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer $< $(FUZZ_DIR)/libwrench-fuzz.a $(SERVER_LIBS) -o $@
+
+fuzz-build: $(FUZZ_BIN)
+
+fuzz: $(FUZZ_BIN)
+	@FUZZ_DIR=$(FUZZ_DIR) tests/fuzz/run-fuzz fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+fuzz-smoke: $(FUZZ_BIN)
+	@FUZZ_DIR=$(FUZZ_DIR) tests/fuzz/run-fuzz smoke $(FUZZ_SMOKE_RUNS) $(FUZZ_TARGETS)
+# ---- end of fuzzing ----
 
 # ---- install -------------------------------------------------------------------
 PREFIX    ?= /usr/local
@@ -285,7 +337,7 @@ validate: $(BUILD)/physics-validate
 
 # ---- dependencies --------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \
-               libcmocka-dev python3 python3-pytest libbox2d-dev systemd
+               libcmocka-dev python3 python3-pytest libbox2d-dev systemd clang libclang-rt-14-dev
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \

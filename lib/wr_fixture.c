@@ -54,6 +54,13 @@ static bool check_friction(const wr_friction_spec *friction, const char *path,
         wr_error_set(error, field, "friction coefficient %g is negative", friction->static_mu);
         return false;
     }
+    if (friction->static_mu > WR_MAX_FRICTION) {
+        wr_error_set(error, field,
+                     "friction coefficient %g is above %g: no contact has it, and the cones "
+                     "would lose precision",
+                     friction->static_mu, WR_MAX_FRICTION);
+        return false;
+    }
     if (!friction->kinetic_given)
         return true;
     snprintf(field, sizeof field, "%s.kinetic", path);
@@ -357,6 +364,57 @@ static void fixel_wrenches(const wr_fixture *f, wr_fixel *fixel)
     fixel->tangent_wrench[2] = cross2(r, fixel->tangent) / f->gyration_radius;
 }
 
+/* The centre of mass near the part and a radius of gyration of its order
+ * (WR_GYRATION_RANGE): what double precision needs, and what a rigid body
+ * has.  A fixel's torque column is (r x n) / rho, so a lever arm r far
+ * beyond rho swamps the forces, and one far below it flattens the cone.
+ * Without a shape nothing says where the part is, so only the lever arms
+ * (and the fixels' spread) are compared with rho. */
+static bool check_scales(const wr_fixture *f, const wr_fixture_spec *spec, wr_error *error)
+{
+    double scale = f->size;
+    if (spec->shape == WR_SHAPE_NONE) {
+        scale = 0;
+        for (size_t i = 0; i < spec->fixel_count; i++)
+            scale = fmax(scale, hypot(spec->fixels[i].at[0] - f->com[0],
+                                      spec->fixels[i].at[1] - f->com[1]));
+        if (spec->fixel_count > 1)
+            scale = fmax(scale, f->size);
+        if (scale == 0)
+            return true; /* every fixel at the centre of mass: no torque at all */
+    } else {
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (int k = 0; k < 2; k++) {
+            if (spec->shape == WR_SHAPE_CIRCLE) {
+                lo[k] = f->center[k] - f->radius;
+                hi[k] = f->center[k] + f->radius;
+            }
+            for (size_t i = 0; i < f->vertex_count; i++) {
+                lo[k] = fmin(lo[k], f->vertices[i][k]);
+                hi[k] = fmax(hi[k], f->vertices[i][k]);
+            }
+        }
+        double dx = fmax(0, fmax(lo[0] - f->com[0], f->com[0] - hi[0]));
+        double dy = fmax(0, fmax(lo[1] - f->com[1], f->com[1] - hi[1]));
+        if (hypot(dx, dy) > f->size) {
+            wr_error_set(error, "body.com",
+                         "(%g, %g) lies %.3g away from the shape, whose size is %.3g: a centre "
+                         "of mass lies within the part",
+                         f->com[0], f->com[1], hypot(dx, dy), f->size);
+            return false;
+        }
+    }
+    if (f->gyration_radius > WR_GYRATION_RANGE * scale ||
+        f->gyration_radius < scale / WR_GYRATION_RANGE) {
+        wr_error_set(error, "body.inertia",
+                     "gives a radius of gyration sqrt(I/m) = %.3g for a part of size %.3g; "
+                     "it must be within a factor %g of the size",
+                     f->gyration_radius, scale, WR_GYRATION_RANGE);
+        return false;
+    }
+    return true;
+}
+
 static double shape_size(const wr_fixture_spec *spec)
 {
     if (spec->shape == WR_SHAPE_CIRCLE)
@@ -388,6 +446,10 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
         wr_error_set(error, "body.mass", "must be positive, got %g", spec->mass);
         return false;
     }
+    if (!isnormal(spec->mass)) { /* subnormal: accelerations and forces overflow */
+        wr_error_set(error, "body.mass", "%g is too small to compute with", spec->mass);
+        return false;
+    }
     if (spec->inertia_given) {
         if (!isfinite(spec->inertia)) {
             wr_error_set(error, "body.inertia", "must be a finite number");
@@ -395,6 +457,10 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
         }
         if (!(spec->inertia > 0)) {
             wr_error_set(error, "body.inertia", "must be positive, got %g", spec->inertia);
+            return false;
+        }
+        if (!isnormal(spec->inertia)) {
+            wr_error_set(error, "body.inertia", "%g is too small to compute with", spec->inertia);
             return false;
         }
     }
@@ -407,7 +473,7 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
             wr_error_set(error, "body.shape.radius", "must be a finite number");
             return false;
         }
-        if (!(spec->radius > 0)) {
+        if (!(spec->radius > 0) || !isnormal(spec->radius)) {
             wr_error_set(error, "body.shape.radius", "must be positive, got %g", spec->radius);
             return false;
         }
@@ -506,6 +572,10 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
     f->gyration_radius = sqrt(f->inertia / f->mass);
     if (!(f->gyration_radius > 0) || !isfinite(f->gyration_radius)) {
         wr_error_set(error, "body.inertia", "inertia / mass must be a positive finite number");
+        wr_fixture_free(f);
+        return NULL;
+    }
+    if (!check_scales(f, spec, error)) {
         wr_fixture_free(f);
         return NULL;
     }

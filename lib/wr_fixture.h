@@ -23,6 +23,16 @@ extern "C" {
 /* A polygon outline has at most this many vertices (the simplicity check is
  * quadratic in it). */
 #define WR_MAX_VERTICES 4096
+/* Larger friction coefficients are refused: no contact has them, and beyond
+ * about 1e8 the friction-cone edges come within the rank tolerance of the
+ * tangent, so the cones would lose a dimension. */
+#define WR_MAX_FRICTION 1000.0
+/* The radius of gyration sqrt(I/m) must lie within this factor of the
+ * part's size (without a shape: of the fixels' lever arms about the centre
+ * of mass), and a given shape's centre of mass within one size of its
+ * bounding box: beyond them torques, scaled by 1/rho, swamp the forces in
+ * double precision (and no rigid body has its centre of mass outside it). */
+#define WR_GYRATION_RANGE 1e4
 
 /* An error: which field, and why.  Both NUL-terminated, possibly truncated. */
 typedef struct wr_error {

@@ -347,39 +347,34 @@ double wr_hull_depth(const wr_hull_view *h, const double x[3])
     return depth > 0 ? depth : 0;
 }
 
-/* Least squares over the passive columns (at most 3, independent). */
+/* Least squares over the passive columns (at most 3, independent), by QR:
+ * modified Gram-Schmidt, orthogonalised twice.  The normal equations would
+ * square the columns' condition number, and nearly parallel generators
+ * (a normal tilted by 1e-7) then give witnesses 10% off. */
 static bool solve_passive(const double (*columns)[3], const int *passive, int count,
                           const double y[3], double *z)
 {
-    /* Normal equations, solved by Gaussian elimination with pivoting. */
-    double a[3][4];
-    for (int i = 0; i < count; i++) {
-        for (int j = 0; j < count; j++)
-            a[i][j] = wr_dot3(columns[passive[i]], columns[passive[j]]);
-        a[i][count] = wr_dot3(columns[passive[i]], y);
+    double q[3][3], r[3][3] = {{0}};
+    for (int j = 0; j < count; j++) {
+        wr_copy3(columns[passive[j]], q[j]);
+        for (int pass = 0; pass < 2; pass++)
+            for (int i = 0; i < j; i++) {
+                double d = wr_dot3(q[i], q[j]);
+                r[i][j] += d;
+                for (int k = 0; k < 3; k++)
+                    q[j][k] -= d * q[i][k];
+            }
+        r[j][j] = wr_normalize3(q[j]);
+        if (r[j][j] < 1e-14 * wr_norm3(columns[passive[j]]))
+            return false; /* dependent on the others */
     }
-    for (int c = 0; c < count; c++) {
-        int pivot = c;
-        for (int r = c + 1; r < count; r++)
-            if (fabs(a[r][c]) > fabs(a[pivot][c]))
-                pivot = r;
-        if (fabs(a[pivot][c]) < 1e-14)
-            return false;
-        for (int k = 0; k <= count; k++) {
-            double t = a[c][k];
-            a[c][k] = a[pivot][k];
-            a[pivot][k] = t;
-        }
-        for (int r = 0; r < count; r++) {
-            if (r == c)
-                continue;
-            double factor = a[r][c] / a[c][c];
-            for (int k = c; k <= count; k++)
-                a[r][k] -= factor * a[c][k];
-        }
+    /* R z = Q^T y, by back substitution. */
+    for (int i = count - 1; i >= 0; i--) {
+        double sum = wr_dot3(q[i], y);
+        for (int j = i + 1; j < count; j++)
+            sum -= r[i][j] * z[j];
+        z[i] = sum / r[i][i];
     }
-    for (int i = 0; i < count; i++)
-        z[i] = a[i][count] / a[i][i];
     return true;
 }
 

@@ -386,11 +386,13 @@ bool wp_utf8_valid(const char *text, size_t length)
 
 wp_json_shape wp_json_scan(const char *text, size_t length, int limit)
 {
-    wp_json_shape shape = {0, false};
+    wp_json_shape shape = {0, false, false};
     int depth = 0;
     bool in_string = false;
     for (size_t i = 0; i < length; i++) {
         char c = text[i];
+        if ((unsigned char)c < 0x20 && (in_string || (c != '\t' && c != '\r' && c != '\n')))
+            shape.control = true;
         if (in_string) {
             if (c == '\\') {
                 if (i + 5 < length && text[i + 1] == 'u' && memcmp(text + i + 2, "0000", 4) == 0)

@@ -91,11 +91,16 @@ char *wp_canonical(const cJSON *value, const char *skip);
 bool wp_utf8_valid(const char *text, size_t length);
 
 /* What a scan of a JSON text finds without parsing it: the deepest nesting
- * of arrays and objects (stopping once past `limit`), and whether a string
- * holds the escape \u0000, which cJSON would silently cut the string at. */
+ * of arrays and objects (stopping once past `limit`); whether a string
+ * holds the escape \u0000, which cJSON would silently cut the string at;
+ * and whether a control character stands where JSON allows none -- raw in
+ * a string (RFC 8259 wants it escaped; a raw NUL would cut the string too),
+ * or outside strings other than tab, CR and LF (cJSON takes any byte up to
+ * space for white space). */
 typedef struct wp_json_shape {
     int depth;
     bool nul_escape;
+    bool control;
 } wp_json_shape;
 wp_json_shape wp_json_scan(const char *text, size_t length, int limit);
 

@@ -185,6 +185,13 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
         snprintf(reason, sizeof reason, "JSON nested deeper than %d levels", limits->max_depth);
         return wp_error_line(WP_INVALID_REQUEST, "", reason);
     }
+    if (shape.control) {
+        counts->requests++;
+        counts->errors++;
+        return wp_error_line(WP_PARSE_ERROR, "",
+                             "a control character where JSON allows none (raw in a string, or "
+                             "as white space)");
+    }
     if (shape.nul_escape) {
         /* cJSON would cut the string at the NUL and answer for another
          * request ("fixture.list\u0000x" as "fixture.list"): refuse it. */

@@ -314,8 +314,14 @@ def test_boundary_tolerance(daemon):
     for f in big["fixels"]:
         f["at"] = [x * 1e6 for x in f["at"]]
     big["body"]["shape"]["radius"] = 1e6
+    big["body"]["inertia"] = 0.5e12  # the uniform disc's, rho = 0.707e6
     big["fixels"][1]["at"] = [0, -1e6 - 1e-4]  # 1e-10 of the size
     c.result("fixture.put", {"fixture": big})
+    # The unit disc's inertia on the big disc: rho = 0.707 against a size of
+    # 2e6, beyond the factor 1e4 docs/PROTOCOL.md allows.
+    big["body"]["inertia"] = 0.5
+    e = c.error("fixture.put", {"fixture": big})
+    assert e["code"] == -32602 and e["data"]["field"] == "params.fixture.body.inertia", e
     for off in (1e-7, 1e-3):
         bad = FX.variant(DC, ["fixels", 1, "at"], [0, -1 + off])
         e = c.error("fixture.put", {"fixture": bad})

@@ -87,6 +87,21 @@ static void nine_fixels(base *b)
 MUTATION(no_shape_no_com, b->spec.shape = WR_SHAPE_NONE)
 MUTATION(no_shape_no_inertia,
          (b->spec.shape = WR_SHAPE_NONE, b->spec.com_given = true))
+MUTATION(friction_too_large, b->spec.friction.static_mu = WR_MAX_FRICTION * 1.001)
+MUTATION(subnormal_mass, b->spec.mass = 1e-310)
+MUTATION(subnormal_inertia, (b->spec.inertia_given = true, b->spec.inertia = 1e-310))
+MUTATION(subnormal_radius, (b->spec.shape = WR_SHAPE_CIRCLE, b->spec.radius = 1e-310))
+/* The rectangle's size is hypot(4, 2) = 4.47; its bounding box ends at x = 4. */
+MUTATION(com_beyond_the_part, (b->spec.com_given = true, b->spec.com[0] = 4 + 4.48))
+/* rho = sqrt(I / 2) against the size 4.47: 1e4 times larger, 1e4 times smaller. */
+MUTATION(gyration_too_large, (b->spec.inertia_given = true, b->spec.inertia = 2 * 4.48e4 * 4.48e4))
+MUTATION(gyration_too_small,
+         (b->spec.inertia_given = true, b->spec.inertia = 2 * 4.46e-4 * 4.46e-4))
+/* Without a shape the lever arms decide: a fixel 2e4 from the com, rho = 1. */
+MUTATION(shapeless_lever_too_long,
+         (b->spec.shape = WR_SHAPE_NONE, b->spec.com_given = true, b->spec.inertia_given = true,
+          b->spec.inertia = 2, b->spec.fixel_count = 1, b->fixels[0].normal_given = true,
+          b->fixels[0].normal[1] = 1, b->fixels[0].at[0] = 2e4))
 MUTATION(no_shape_no_normal, (b->spec.shape = WR_SHAPE_NONE, b->spec.com_given = true,
                               b->spec.inertia_given = true, b->spec.inertia = 1))
 
@@ -122,6 +137,14 @@ static const mutation mutations[] = {
     {"no shape, no com", no_shape_no_com, "body.com"},
     {"no shape, no inertia", no_shape_no_inertia, "body.inertia"},
     {"no shape, no normal", no_shape_no_normal, "fixels[0].normal"},
+    {"friction above the limit", friction_too_large, "friction.static"},
+    {"subnormal mass", subnormal_mass, "body.mass"},
+    {"subnormal inertia", subnormal_inertia, "body.inertia"},
+    {"subnormal radius", subnormal_radius, "body.shape.radius"},
+    {"centre of mass beyond the part", com_beyond_the_part, "body.com"},
+    {"radius of gyration too large", gyration_too_large, "body.inertia"},
+    {"radius of gyration too small", gyration_too_small, "body.inertia"},
+    {"shapeless, lever arm too long", shapeless_lever_too_long, "body.inertia"},
 };
 
 static void every_invalid_field_is_named(void **state)
@@ -170,6 +193,29 @@ static void shapeless_fixture_is_accepted(void **state)
     assert_non_null(f);
     assert_true(fabs(f->fixels[0].normal[1] - 1) < 1e-15);
     assert_true(fabs(f->gyration_radius - sqrt(0.5)) < 1e-15);
+    wr_fixture_free(f);
+    /* One fixel far from the centre of mass, and then two close together
+     * at one end of a long part: nothing says where a shapeless part is,
+     * so neither is refused for its centre of mass. */
+    b.spec.inertia = 2; /* rho = 1 */
+    b.spec.fixel_count = 1;
+    b.fixels[0].at[0] = 500;
+    b.fixels[0].at[1] = 300;
+    f = wr_fixture_new(&b.spec, NULL);
+    assert_non_null(f);
+    wr_fixture_free(f);
+    b.spec.fixel_count = 2;
+    b.fixels[1].at[0] = 500.001;
+    b.fixels[1].at[1] = 300;
+    f = wr_fixture_new(&b.spec, NULL);
+    assert_non_null(f);
+    wr_fixture_free(f);
+    /* The limits on the lever arm are inclusive of a factor just under 1e4. */
+    b.fixels[0].at[0] = b.fixels[1].at[0] = 0.99e4;
+    b.fixels[0].at[1] = 0;
+    b.fixels[1].at[1] = 0.001;
+    f = wr_fixture_new(&b.spec, NULL);
+    assert_non_null(f);
     wr_fixture_free(f);
     b.spec.mass = 0;
     assert_null(wr_fixture_new(&b.spec, NULL));

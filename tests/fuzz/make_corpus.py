@@ -1,0 +1,277 @@
+#!/usr/bin/python3
+"""Write the seed corpus of the libFuzzer targets: tests/fuzz/corpus/
+{request,fixture,parse}/, one input per file.  Run once from the top of the
+repository (python3 tests/fuzz/make_corpus.py); it rewrites the files it
+makes and leaves hand-written ones (named hand-*) alone.
+
+Seeds come from:
+  - examples/*.json: each fixture, and requests of every method on it;
+  - the README's example requests (and a session of them on one line each);
+  - tests/e2e/test_malformed.py: every row of its malformed-input table
+    (the raw line; its inline fixture, constraint string or wrench too),
+    and the junk lines of test_garbage_bytes_do_not_hurt;
+  - tests/e2e/fixtures.py: every fixture builder.
+The over-long-line row (2 MiB) is left out: it is far past -max_len, and
+tests/e2e/test_framing.py covers line limits."""
+
+import glob
+import hashlib
+import json
+import os
+import random
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+OUT = os.path.join(ROOT, "tests", "fuzz", "corpus")
+sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
+
+try:
+    import pytest  # noqa: F401  (test_malformed decorates with it)
+except ImportError:  # only its decorators are needed: identity stand-ins
+    import types
+    _mark = types.SimpleNamespace(parametrize=lambda *a, **k: (lambda f: f))
+    sys.modules["pytest"] = types.SimpleNamespace(mark=_mark, fixture=lambda *a, **k: (
+        a[0] if a and callable(a[0]) else (lambda f: f)))
+
+import fixtures as FX  # noqa: E402
+import test_malformed as TM  # noqa: E402
+
+MAX_LEN = 4096  # the targets' -max_len (tests/fuzz/run-fuzz)
+
+
+# ---- fixture ids, as proto/wp_fixture.c computes them ----------------------------
+
+def number(v):
+    """proto/wp_json.c wp_format_number: the shortest %g that reads back."""
+    v = float(v)
+    if v == 0:
+        return "0"
+    text = "%.15g" % v
+    if float(text) != v:
+        text = "%.16g" % v
+        return text if float(text) == v else "%.17g" % v
+    if len(re.sub(r"[^0-9]", "", text.split("e")[0]).lstrip("0")) < 15:
+        return text
+    for p in range(14, 0, -1):
+        shorter = "%.*g" % (p, v)
+        if float(shorter) != v:
+            break
+        text = shorter
+    return text
+
+
+def string(s):
+    out = ['"']
+    for ch in s:
+        o = ord(ch)
+        if ch == '"':
+            out.append('\\"')
+        elif ch == "\\":
+            out.append("\\\\")
+        elif o < 0x20:
+            out.append({"\n": "\\n", "\r": "\\r", "\t": "\\t", "\b": "\\b",
+                        "\f": "\\f"}.get(ch, "\\u%04x" % o))
+        else:
+            out.append(ch)
+    out.append('"')
+    return "".join(out)
+
+
+def canonical(v, skip=None):
+    if isinstance(v, dict):
+        keys = sorted(k for k in v if k != skip)
+        return "{" + ",".join(string(k) + ":" + canonical(v[k]) for k in keys) + "}"
+    if isinstance(v, list):
+        return "[" + ",".join(canonical(x) for x in v) + "]"
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return number(v)
+    if isinstance(v, str):
+        return string(v)
+    return "null"
+
+
+def fixture_id(f):
+    return hashlib.sha256(canonical(f, "name").encode()).hexdigest()[:32]
+
+
+# ---- requests --------------------------------------------------------------------
+
+def request(method, params=None, rid=1):
+    r = {"jsonrpc": "2.0", "method": method}
+    if params is not None:
+        r["params"] = params
+    if rid is not None:
+        r["id"] = rid
+    return json.dumps(r, separators=(",", ":"))
+
+
+def kept_like(k):
+    """Some constraint strings of k letters (valid ones and a few others)."""
+    return ["s" * k, "m" * k, "u" * k, "n" * k, ("sm" * k)[:k], ("ms" * k)[:k],
+            ("lrn" * k)[:k], ("au" * k)[:k]]
+
+
+written = {"request": 0, "fixture": 0, "parse": 0}
+names = set()
+
+
+def emit(target, name, data):
+    if isinstance(data, str):
+        data = data.encode()
+    if len(data) > MAX_LEN:
+        return
+    name = re.sub(r"[^A-Za-z0-9_.-]", "_", name)
+    path = os.path.join(OUT, target, name)
+    assert path not in names, path
+    names.add(path)
+    with open(path, "wb") as f:
+        f.write(data)
+    written[target] += 1
+
+
+def clear():
+    for target in written:
+        d = os.path.join(OUT, target)
+        os.makedirs(d, exist_ok=True)
+        for p in glob.glob(os.path.join(d, "*")):
+            if not os.path.basename(p).startswith("hand-"):
+                os.remove(p)
+
+
+def requests_for(name, f):
+    k = len(f["fixels"])
+    fid = fixture_id(f)
+    small = k <= 3
+    lines = {
+        "put": request("fixture.put", {"fixture": f}),
+        "classify": request("wrench.classify", {"fixture": f, "wrenches": [
+            [-1, -1, 0], [0, -9.81, 0], {"force": [0, 1], "at": [0, 0]}, [0, 0, 0]]}),
+        "classify-both-tolerance": request("wrench.classify", {
+            "fixture": f, "wrenches": [[-1, -0.2, 0]], "sets": ["both", "goal"],
+            "tolerance": 0.01}),
+        "classify-lp": request("wrench.classify", {
+            "fixture": f, "wrenches": [[-1, -1, 0], [1, 1, 1]], "method": "lp",
+            "sets": ["goal", "strong", "both"]}),
+        "cone": request("cone.get", {"fixture": f, "constraints": ("sm" * k)[:k]}),
+        "plan": request("plan.get", {"fixture": f}),
+        "modes": request("modes.get", {"fixture": f}),
+        "push-goal": request("push.regions", {"fixture": f, "set": "goal"}),
+        "push-both": request("push.regions", {"fixture": f, "set": "both"}),
+        "gravity-strong": request("gravity.sweep", {"fixture": f, "set": "strong"}),
+        "margin": request("stability.margin", {"fixture": f, "bias": [0, -9.81, 0]}),
+        "margin-force": request("stability.margin", {
+            "fixture": f, "bias": {"force": [-1, -1], "at": [0.1, 0.2]}}),
+    }
+    if small:
+        lines["push-friction"] = request("push.regions", {
+            "fixture": f, "set": "strong", "finger_friction": 0.2})
+    for what, line in lines.items():
+        emit("request", "%s-%s" % (name, what), line)
+    # A session: put, then everything by id, one request a line.
+    session = [request("fixture.put", {"fixture": f}, 1),
+               request("wrench.classify", {"fixture": fid, "wrenches": [[-1, -1, 0]]}, 2),
+               request("cone.get", {"fixture": fid, "constraints": "m" * k}, 3),
+               request("gravity.sweep", {"fixture": fid, "set": "both"}, 4),
+               request("push.regions", {"fixture": fid}, 5),
+               request("stability.margin", {"fixture": fid, "bias": [1, 0, 0]}, 6),
+               request("fixture.get", {"id": fid}, 7),
+               request("fixture.list", None, 8),
+               request("fixture.delete", {"id": fid}, 9),
+               request("fixture.get", {"id": fid}, 10)]
+    emit("request", "%s-session" % name, "\n".join(session) + "\n")
+
+
+def main():
+    clear()
+    examples = {}
+    for path in sorted(glob.glob(os.path.join(ROOT, "examples", "*.json"))):
+        name = "example-" + os.path.basename(path)[:-5]
+        with open(path, "rb") as f:
+            raw = f.read()
+        examples[name] = json.loads(raw)
+        emit("fixture", name, raw)
+
+    # The README's requests, one file each, and all of them as a session.
+    with open(os.path.join(ROOT, "README.md")) as f:
+        readme = [l.strip() for l in f if l.startswith('{"jsonrpc"') and '"method"' in l]
+    for i, line in enumerate(readme):
+        emit("request", "readme-%02d" % i, line)
+    emit("request", "readme-session", "\n".join(readme) + "\n")
+    disc = examples["example-disc-corner"]
+    assert fixture_id(disc) in "\n".join(readme), "fixture ids are not computed as wrenchd does"
+
+    builders = {
+        "disc-corner": FX.disc_corner(), "rectangle-321": FX.rectangle_321(),
+        "rectangle-321-cw": FX.rectangle_321(clockwise=True), "chamfered": FX.chamfered_plate(),
+        "disc-one": FX.disc_one_fixel(), "offset-disc": FX.offset_disc(),
+        "triangle": FX.triangle(), "corner-fixel": FX.corner_fixel_plate(),
+        "scaled-disc": FX.scaled_disc_corner(length=1000.0, mass=0.001),
+        "square-form-closure": FX.square_form_closure(),
+        "disc-8": FX.disc_at_angles([180 + 11 * i for i in range(8)], mu=0.3),
+        "disc-5-offset": FX.disc_at_angles([190, 230, 260, 300, 350], com=[0.1, 0.2],
+                                           inertia=0.4),
+        "moved-plate": FX.moved(FX.rectangle_321(), degrees=30, shift=(5, -2), scale=0.01),
+    }
+    rnd = random.Random(1)
+    for i in range(4):
+        builders["random-polygon-%d" % i] = FX.random_polygon(rnd, convex=i % 2 == 0,
+                                                              corner=i >= 2)
+        builders["random-disc-%d" % i] = FX.random_disc(rnd, corner=i % 2 == 1)
+    for name, f in builders.items():
+        emit("fixture", "builder-" + name, json.dumps(f))
+    for name, f in list(examples.items()) + [("builder-" + n, f) for n, f in builders.items()
+                                             if n in ("offset-disc", "triangle", "disc-one",
+                                                      "square-form-closure", "disc-8")]:
+        requests_for(name, f)
+
+    # The malformed-input table: raw lines, and the parts each target reads.
+    for name, raw, code, field, rid in TM.ROWS:
+        if name == "over-long-line":
+            continue
+        emit("request", "malformed-" + name, raw)
+        text = raw.decode("latin-1") if isinstance(raw, bytes) else raw
+        try:
+            r = json.loads(text)
+        except ValueError:
+            continue
+        params = r.get("params") if isinstance(r, dict) else None
+        if not isinstance(params, dict):
+            continue
+        if isinstance(params.get("fixture"), dict):
+            doc = json.dumps(params["fixture"], ensure_ascii=False)
+            emit("fixture", "malformed-" + name,
+                 doc.encode("latin-1") if isinstance(raw, bytes) else doc.encode())
+        if isinstance(params.get("constraints"), str):
+            k = len(params["fixture"]["fixels"]) if isinstance(params.get("fixture"), dict) else 2
+            which = 1 if k == 3 else 0
+            emit("parse", "malformed-" + name, bytes([which]) + params["constraints"].encode() +
+                 b"\n[-1,-1,0]")
+        if "wrenches" in params and isinstance(params["wrenches"], list):
+            for i, w in enumerate(params["wrenches"]):
+                emit("parse", "malformed-%s-%d" % (name, i),
+                     b"\x00ms\n" + json.dumps(w).encode())
+    for i, junk in enumerate([b"\x00\x01\x02", b"\xff\xfe\xfd{", b"\r", b"{" * 5000, b"]" * 100]):
+        emit("request", "garbage-%d" % i, junk)
+
+    # parse: each fixed fixture with constraint strings and wrenches.
+    fixels = [2, 3, 3, 1]  # of the fixtures in tests/fuzz/fuzz_parse.c
+    wrenches = ["[-1,-1,0]", "[-1,-0.2,0]", "[0,-9.81,0]", "[0,0,0]", "[1,2,3]",
+                '{"force":[0,1],"at":[0,0]}', '{"force":[-1,-1],"at":[1,1]}',
+                "[1e308,1e308,-1e308]", "[5e-324,0,0]", "[1,2]", '[1,2,"3"]',
+                '{"force":[1,0]}', "[1e999,0,0]", "{}", "null"]
+    for which, k in enumerate(fixels):
+        for i, c in enumerate(kept_like(k) + ["", "x" * k, "S" * k, "s" * (k + 1), "n" * k + "+"]):
+            w = wrenches[(i + which) % len(wrenches)]
+            emit("parse", "fixture%d-constraint%02d" % (which, i),
+                 bytes([which]) + c.encode() + b"\n" + w.encode())
+        for i, w in enumerate(wrenches):
+            emit("parse", "fixture%d-wrench%02d" % (which, i), bytes([which]) + b"\n" + w.encode())
+    print("corpus: %d request, %d fixture, %d parse seeds written to %s" % (
+        written["request"], written["fixture"], written["parse"], os.path.relpath(OUT, ROOT)))
+
+
+if __name__ == "__main__":
+    main()
