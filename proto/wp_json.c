@@ -192,13 +192,28 @@ void wp_buffer_append(wp_buffer *b, const char *text, size_t length)
     b->data[b->length] = 0;
 }
 
+void wp_buffer_reserve(wp_buffer *b, size_t bytes)
+{
+    if (b->failed || b->capacity >= bytes + 1)
+        return;
+    char *grown = realloc(b->data, bytes + 1);
+    if (!grown) {
+        b->failed = true;
+        return;
+    }
+    if (!b->data)
+        grown[0] = 0;
+    b->data = grown;
+    b->capacity = bytes + 1;
+}
+
 void wp_buffer_puts(wp_buffer *b, const char *text) { wp_buffer_append(b, text, strlen(text)); }
 
 void wp_buffer_number(wp_buffer *b, double value)
 {
     char text[32];
-    wp_format_number(value, text);
-    wp_buffer_puts(b, text);
+    int length = wp_format_number(value, text);
+    wp_buffer_append(b, text, (size_t)length);
 }
 
 void wp_buffer_string(wp_buffer *b, const char *text)
@@ -242,60 +257,16 @@ char *wp_buffer_take(wp_buffer *b)
 
 /* ---- numbers and canonical text ---------------------------------------- */
 
-/* Significant digits in a %g text. */
-static int significant_digits(const char *text)
-{
-    int digits = 0;
-    bool leading = true;
-    for (const char *c = text; *c && *c != 'e'; c++) {
-        if (*c < '0' || *c > '9')
-            continue;
-        if (*c == '0' && leading)
-            continue;
-        leading = false;
-        digits++;
-    }
-    return digits;
-}
-
-void wp_format_number(double value, char text[32])
-{
-    if (!isfinite(value)) { /* JSON has no infinities: an overflowed result */
-        strcpy(text, "null");
-        return;
-    }
-    if (value == 0) { /* also -0 */
-        strcpy(text, "0");
-        return;
-    }
-    /* 17 digits always read back; find the fewest that do.  Most numbers
-     * people write need few, and %.15g then already strips the rest. */
-    int precision = 15;
-    snprintf(text, 32, "%.15g", value);
-    if (strtod(text, NULL) != value) {
-        snprintf(text, 32, "%.16g", value);
-        if (strtod(text, NULL) != value)
-            snprintf(text, 32, "%.17g", value);
-        return;
-    }
-    if (significant_digits(text) < precision)
-        return;
-    char shorter[32];
-    for (precision = 14; precision >= 1; precision--) {
-        snprintf(shorter, sizeof shorter, "%.*g", precision, value);
-        if (strtod(shorter, NULL) != value)
-            return;
-        strcpy(text, shorter);
-    }
-}
-
 static int compare_members(const void *a, const void *b)
 {
     const cJSON *x = *(const cJSON *const *)a, *y = *(const cJSON *const *)b;
     return strcmp(x->string, y->string);
 }
 
-static void write_canonical(wp_buffer *b, const cJSON *value, const char *skip)
+/* JSON text of `value`; `sorted`: members by key (the canonical form), else
+ * in their order.  A raw item is copied as it is (a handler's pre-written
+ * text). */
+static void write_value(wp_buffer *b, const cJSON *value, const char *skip, bool sorted)
 {
     if (cJSON_IsObject(value)) {
         size_t count = 0;
@@ -310,14 +281,15 @@ static void write_canonical(wp_buffer *b, const cJSON *value, const char *skip)
         for (const cJSON *m = value->child; m; m = m->next)
             if (!skip || strcmp(m->string, skip) != 0)
                 members[count++] = m;
-        qsort(members, count, sizeof *members, compare_members);
+        if (sorted)
+            qsort(members, count, sizeof *members, compare_members);
         wp_buffer_append(b, "{", 1);
         for (size_t i = 0; i < count; i++) {
             if (i)
                 wp_buffer_append(b, ",", 1);
             wp_buffer_string(b, members[i]->string);
             wp_buffer_append(b, ":", 1);
-            write_canonical(b, members[i], NULL);
+            write_value(b, members[i], NULL, sorted);
         }
         wp_buffer_append(b, "}", 1);
         free(members);
@@ -326,13 +298,15 @@ static void write_canonical(wp_buffer *b, const cJSON *value, const char *skip)
         for (const cJSON *m = value->child; m; m = m->next) {
             if (m != value->child)
                 wp_buffer_append(b, ",", 1);
-            write_canonical(b, m, NULL);
+            write_value(b, m, NULL, sorted);
         }
         wp_buffer_append(b, "]", 1);
     } else if (cJSON_IsNumber(value)) {
         wp_buffer_number(b, value->valuedouble);
     } else if (cJSON_IsString(value)) {
         wp_buffer_string(b, value->valuestring);
+    } else if (cJSON_IsRaw(value)) {
+        wp_buffer_puts(b, value->valuestring);
     } else if (cJSON_IsTrue(value)) {
         wp_buffer_puts(b, "true");
     } else if (cJSON_IsFalse(value)) {
@@ -345,8 +319,13 @@ static void write_canonical(wp_buffer *b, const cJSON *value, const char *skip)
 char *wp_canonical(const cJSON *value, const char *skip)
 {
     wp_buffer b = {0};
-    write_canonical(&b, value, skip);
+    write_value(&b, value, skip, true);
     return wp_buffer_take(&b);
+}
+
+void wp_buffer_json(wp_buffer *buffer, const cJSON *value)
+{
+    write_value(buffer, value, NULL, false);
 }
 
 bool wp_utf8_valid(const char *text, size_t length)

@@ -3,6 +3,8 @@
 #ifndef WP_JSON_H
 #define WP_JSON_H
 
+#include "wp_number.h" /* wp_format_number */
+
 #include <cjson/cJSON.h>
 #include <stdbool.h>
 #include <stddef.h>
@@ -71,15 +73,16 @@ typedef struct wp_buffer {
 
 void wp_buffer_append(wp_buffer *buffer, const char *text, size_t length);
 void wp_buffer_puts(wp_buffer *buffer, const char *text);
+/* Room for `bytes` more than nothing, at once: a large answer whose size
+ * is known roughly is not regrown (and recopied) a dozen times. */
+void wp_buffer_reserve(wp_buffer *buffer, size_t bytes);
 void wp_buffer_number(wp_buffer *buffer, double value);
 void wp_buffer_string(wp_buffer *buffer, const char *text); /* quoted, escaped */
+/* `value` as JSON text, members in their order, numbers as
+ * wp_format_number; a raw item (cJSON_Raw) is copied verbatim. */
+void wp_buffer_json(wp_buffer *buffer, const cJSON *value);
 /* The NUL-terminated text (malloc'd, the caller frees), or NULL. */
 char *wp_buffer_take(wp_buffer *buffer);
-
-/* Shortest decimal text that reads back as the same double ("1", "0.5",
- * "1e+21"); -0 is written "0", and a non-finite value (which JSON cannot
- * hold) "null".  Needs 32 bytes. */
-void wp_format_number(double value, char text[32]);
 
 /* Canonical JSON: object members sorted by key, numbers as
  * wp_format_number, no white space; a top-level member named `skip` (may be

@@ -43,7 +43,7 @@ MAX_LEN = 4096  # the targets' -max_len (tests/fuzz/run-fuzz)
 # ---- fixture ids, as proto/wp_fixture.c computes them ----------------------------
 
 def number(v):
-    """proto/wp_json.c wp_format_number: the shortest %g that reads back."""
+    """proto/wp_number.c wp_format_number: the shortest %g that reads back."""
     v = float(v)
     if v == 0:
         return "0"
