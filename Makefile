@@ -21,7 +21,8 @@ SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
-        physics-check validate load-check soak install uninstall fuzz fuzz-smoke fuzz-build
+        physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
+        fuzz-build
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -33,6 +34,7 @@ help:
 	@echo "make pictures   redraw docs/pictures (the README's figures)"
 	@echo "make check      build and run every test: unit and end-to-end, plain and ASan+UBSan"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
+	@echo "make bench      the benchmarks, one table (docs/PERFORMANCE.md)"
 	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR"
 	@echo "make uninstall  remove what make install installed"
 	@echo "make deps       install the Debian packages the project needs"
@@ -201,12 +203,31 @@ $(BENCH_LOAD): bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PRO
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
 	    -lcjson -lglpk -lpthread -lm -o $@
 
+# The cost of writing a number, old (snprintf + strtod) against new
+# (proto/wp_number.c): prints figures, asserts nothing.
+BENCH_NUMBER = $(BUILD)/bench/number
+
+$(BENCH_NUMBER): bench/number.c $(BUILD)/libwrenchproto.a $(PROTO_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/number.c $(BUILD)/libwrenchproto.a -lm -o $@
+
 BENCH_MICRO = $(BUILD)/bench/micro
 
 $(BENCH_MICRO): bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
 	    -lcjson -lglpk -lm -o $@
+
+BENCH_SOCKET = $(BUILD)/bench/socket
+
+$(BENCH_SOCKET): bench/socket.c
+	@mkdir -p $(dir $@)
+	$(CC) $(WARN) $(CFLAGS) bench/socket.c -lm -o $@
+
+# Issue 9's benchmarks, one table (docs/PERFORMANCE.md); figures, never a
+# test.  Run it on a quiet machine.
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BUILD)/bench/number
+	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
 # nothing wrong, exit status 0 on SIGTERM.  The last lines are the summary.
@@ -337,7 +358,7 @@ validate: $(BUILD)/physics-validate
 
 # ---- dependencies --------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \
-               libcmocka-dev python3 python3-pytest libbox2d-dev systemd clang libclang-rt-14-dev
+               libcmocka-dev python3 python3-pytest libbox2d-dev systemd clang libclang-rt-14-dev python3-scipy
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \

@@ -539,6 +539,15 @@ bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *er
     return ready(c, e, NULL, use, error);
 }
 
+bool wd_cache_ready(wd_cache *c, const char *id)
+{
+    pthread_mutex_lock(&c->lock);
+    const entry *e = find(c, id);
+    bool ready = e && e->stored && e->analysis;
+    pthread_mutex_unlock(&c->lock);
+    return ready;
+}
+
 void wd_cache_release(wd_cache *c, wp_fixture_use *use)
 {
     entry *e = use->handle[0];

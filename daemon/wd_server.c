@@ -38,6 +38,12 @@
 
 /* A connection stops reading while this many answers are pending. */
 #define MAX_PENDING 1024
+/* A client's light requests answered in the loop per read, at most: one
+ * that pipelines thousands gets the rest answered by the workers, in turn
+ * with everyone else, rather than holding the loop. */
+#define LIGHT_BURST 32
+/* Answers from this size on are handed to libevent rather than copied. */
+#define ZERO_COPY_BYTES 65536
 /* After SIGTERM, answers in flight get this long before the daemon exits. */
 #define SHUTDOWN_GRACE_SECONDS 30
 
@@ -51,6 +57,7 @@ typedef struct slot {
     size_t length;
     bool done;
     char *response;       /* NULL: nothing to write (notifications) */
+    size_t response_length; /* 0: not counted yet */
 } slot;
 
 struct connection {
@@ -61,6 +68,11 @@ struct connection {
     size_t pending;            /* slots not yet written (or dropped) */
     slot *running;             /* the slot with the workers, or NULL */
     bool discarding;           /* skipping the rest of an over-long line */
+    int light_answered;        /* light requests answered in the loop since
+                                  the last read (at most LIGHT_BURST) */
+    size_t scanned;            /* the first bytes of the input, known to hold no
+                                  "\n": a long line is searched once, not once
+                                  per read */
     bool paused;               /* not reading: too many answers pending */
     bool input_closed;         /* end of input, or shutting down */
     bool refusing;             /* turned away: one error line, then a lingering
@@ -76,6 +88,7 @@ struct wd_server {
     struct evconnlistener *listener;
     struct event *done_event, *signal_events[2], *grace_timer;
     wd_pool *pool;
+    wd_context *light;              /* the loop's own host, for light requests */
     wd_cache *cache;
     wd_stats stats;
     wp_limits limits;
@@ -145,10 +158,66 @@ static void maybe_finish(connection *c)
     free_connection(c);
 }
 
+static void free_response(const void *data, size_t length, void *block)
+{
+    (void)data;
+    (void)length;
+    free(block);
+}
+
+/* Write a slot's answer.  With nothing queued before it, straight to the
+ * socket: a small answer then costs one send(2), not the two epoll_ctl and
+ * the extra epoll_wait of a deferred write.  What the socket does not take
+ * is queued; a large remainder is handed over, not copied (the output
+ * buffer frees the block once it is written).  Returns whether the answer
+ * went out whole, directly. */
+static bool write_response(connection *c, slot *x)
+{
+    size_t length = x->response_length ? x->response_length : strlen(x->response);
+    struct evbuffer *output = bufferevent_get_output(c->bev);
+    size_t sent = 0;
+    /* Not while more requests wait in the input: their answers go out
+     * together, in one writev, once the loop is done with them. */
+    if (!c->refusing && evbuffer_get_length(output) == 0 &&
+        evbuffer_get_length(bufferevent_get_input(c->bev)) == 0) {
+        ssize_t n = send(bufferevent_getfd(c->bev), x->response, length,
+                         MSG_DONTWAIT | MSG_NOSIGNAL);
+        if (n > 0)
+            sent = (size_t)n; /* else EAGAIN or an error the buffered write meets again */
+    }
+    if (sent == length)
+        return true;
+    if (length - sent >= ZERO_COPY_BYTES &&
+        evbuffer_add_reference(output, x->response + sent, length - sent, free_response,
+                               x->response) == 0) {
+        x->response = NULL;
+        return false;
+    }
+    bufferevent_write(c->bev, x->response + sent, length - sent);
+    return false;
+}
+
+/* Every answer written: what the write callback does once the output
+ * drains (answers sent directly never pass through it). */
+static void answers_out(connection *c)
+{
+    if (c->refusing && !c->write_shut) {
+        /* The error line is out: say so, then wait for the peer's EOF. */
+        shutdown(bufferevent_getfd(c->bev), SHUT_WR);
+        c->write_shut = true;
+    } else if (!c->refusing && c->pending == 0 && c->server->config->idle_timeout > 0) {
+        /* Every answer is out: the idle clock starts now, not at the last
+         * request (the time it took to answer was not the client's). */
+        struct timeval idle = {(time_t)c->server->config->idle_timeout, 0};
+        bufferevent_set_timeouts(c->bev, &idle, NULL);
+    }
+}
+
 /* Write the answers at the head of the queue that are ready. */
 static void flush(connection *c)
 {
     size_t max_output = c->server->config->max_output;
+    bool wrote_directly = false;
     while (c->head && c->head->done) {
         slot *x = c->head;
         /* The limit is on answers left unread: one big answer to a client
@@ -159,7 +228,7 @@ static void flush(connection *c)
             close_socket(c);
         }
         if (c->bev && x->response)
-            bufferevent_write(c->bev, x->response, strlen(x->response));
+            wrote_directly |= write_response(c, x);
         c->head = x->next;
         if (!c->head)
             c->tail = NULL;
@@ -167,6 +236,8 @@ static void flush(connection *c)
         free(x->response);
         free(x);
     }
+    if (c->bev && wrote_directly && evbuffer_get_length(bufferevent_get_output(c->bev)) == 0)
+        answers_out(c);
     if (c->bev) {
         if (c->paused && c->pending < MAX_PENDING / 2) {
             c->paused = false;
@@ -212,17 +283,47 @@ static void answer_now(connection *c, int code, const char *reason)
     queue_error(c, code, reason);
 }
 
+/* Answer a light request (wp_line_is_light) in the loop itself: a single
+ * wrench's answer takes microseconds, and handing it to a worker and back
+ * costs two thread wake-ups, more than the work.  Only when no request of
+ * the connection is before it, so that answers keep their order. */
+static bool answer_light(connection *c, slot *x)
+{
+    wd_server *s = c->server;
+    if (!s->light || x != c->head || x->length > WP_LIGHT_LINE ||
+        c->light_answered >= LIGHT_BURST ||
+        !wp_line_is_light(wd_context_host(s->light), x->line, x->length))
+        return false;
+    wp_counts counts = {0, 0};
+    x->response = wp_answer_line(wd_context_host(s->light), &s->limits, x->line, x->length, &counts);
+    atomic_fetch_add(&s->stats.requests, counts.requests);
+    atomic_fetch_add(&s->stats.errors, counts.errors);
+    free(x->line);
+    x->line = NULL;
+    x->done = true;
+    c->light_answered++;
+    return true;
+}
+
 /* Hand the connection's next waiting request to the workers, unless one
- * of its requests is there already. */
+ * of its requests is there already; light ones are answered on the way. */
 static void dispatch(connection *c)
 {
-    if (c->running)
-        return;
-    slot *x = c->head;
-    while (x && (x->done || !x->line))
-        x = x->next;
-    if (!x)
-        return;
+    slot *x;
+    for (;;) {
+        if (c->running)
+            return;
+        x = c->head;
+        while (x && (x->done || !x->line))
+            x = x->next;
+        if (!x)
+            return;
+        if (!answer_light(c, x))
+            break;
+        flush(c);
+        if (!c->bev)
+            return; /* closed while writing */
+    }
     wd_job *job = calloc(1, sizeof *job);
     if (!job) {
         free(x->line);
@@ -261,14 +362,22 @@ static void process_input(connection *c)
     struct evbuffer *input = bufferevent_get_input(c->bev);
     if (c->refusing) { /* read and dropped: closing now would reset the line sent */
         evbuffer_drain(input, evbuffer_get_length(input));
+        c->scanned = 0;
         return;
     }
     size_t max_line = c->server->config->max_line;
     while (!c->paused && c->bev) {
-        struct evbuffer_ptr eol = evbuffer_search(input, "\n", 1, NULL);
+        struct evbuffer_ptr from;
+        bool resume = c->scanned > 0 &&
+                      evbuffer_ptr_set(input, &from, c->scanned, EVBUFFER_PTR_SET) == 0;
+        struct evbuffer_ptr eol = evbuffer_search(input, "\n", 1, resume ? &from : NULL);
+        /* Whatever happens below, a line found is consumed, or the input
+         * up to its end holds no "\n". */
+        c->scanned = eol.pos < 0 ? evbuffer_get_length(input) : 0;
         if (c->discarding) {
             if (eol.pos < 0) {
                 evbuffer_drain(input, evbuffer_get_length(input));
+                c->scanned = 0;
                 return;
             }
             evbuffer_drain(input, (size_t)eol.pos + 1);
@@ -293,11 +402,14 @@ static void process_input(connection *c)
         if (!line) {
             answer_now(c, WP_INTERNAL, "out of memory");
             evbuffer_drain(input, length + (eol.pos >= 0));
+            c->scanned = 0;
             continue;
         }
         evbuffer_remove(input, line, length);
         if (eol.pos >= 0)
             evbuffer_drain(input, 1);
+        else
+            c->scanned = 0; /* the last line, all of the input */
         line[length] = 0;
         submit(c, line, length);
         if (c->pending >= MAX_PENDING && !c->input_closed) {
@@ -314,6 +426,7 @@ static void on_read(struct bufferevent *bev, void *argument)
     (void)bev;
     connection *c = argument;
     c->busy++;
+    c->light_answered = 0;
     process_input(c);
     c->busy--;
     maybe_finish(c);
@@ -322,16 +435,8 @@ static void on_read(struct bufferevent *bev, void *argument)
 static void on_write(struct bufferevent *bev, void *argument)
 {
     connection *c = argument;
-    if (c->refusing && !c->write_shut) {
-        /* The error line is out: say so, then wait for the peer's EOF. */
-        shutdown(bufferevent_getfd(bev), SHUT_WR);
-        c->write_shut = true;
-    } else if (!c->refusing && c->pending == 0 && c->server->config->idle_timeout > 0) {
-        /* Every answer is out: the idle clock starts now, not at the last
-         * request (the time it took to answer was not the client's). */
-        struct timeval idle = {(time_t)c->server->config->idle_timeout, 0};
-        bufferevent_set_timeouts(bev, &idle, NULL);
-    }
+    (void)bev;
+    answers_out(c);
     maybe_finish(c);
 }
 
@@ -484,6 +589,7 @@ static void on_done(evutil_socket_t fd, short events, void *argument)
         slot *x = job->owner;
         connection *c = x->connection;
         x->response = job->response;
+        x->response_length = job->response_length;
         x->done = true;
         free(job);
         c->running = NULL;
@@ -681,8 +787,9 @@ int wd_server_run(const wd_config *config)
     s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
     s->grace_timer = evtimer_new(s->base, on_grace_over, s);
     s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, job_done, s);
+    s->light = wd_context_new(s->cache, &s->stats);
     if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
-        !s->pool) {
+        !s->pool || !s->light) {
         wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
         goto out;
     }
@@ -719,6 +826,7 @@ int wd_server_run(const wd_config *config)
 
 out:
     wd_pool_free(s->pool); /* answers what was queued; those answers are dropped */
+    wd_context_free(s->light);
     for (wd_job *job = s->done_head, *next; job; job = next) {
         next = job->next;
         free(job->response);

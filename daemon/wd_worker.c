@@ -46,6 +46,11 @@ static bool host_delete(void *self, const char *id, wp_error *error)
     return wd_cache_delete(((wd_context *)self)->cache, id, error);
 }
 
+static bool host_ready(void *self, const char *id)
+{
+    return wd_cache_ready(((wd_context *)self)->cache, id);
+}
+
 static cJSON *host_list(void *self) { return wd_cache_list(((wd_context *)self)->cache); }
 
 static cJSON *host_status(void *self)
@@ -131,7 +136,8 @@ wd_context *wd_context_new(wd_cache *cache, wd_stats *stats)
     context->cache = cache;
     context->stats = stats;
     context->host = (wp_host){context,     host_adopt,  host_use,    host_release,
-                              host_delete, host_list,   host_status, host_lp_sets};
+                              host_delete, host_list,   host_status, host_lp_sets,
+                              host_ready};
     return context;
 }
 
@@ -188,6 +194,7 @@ static void *worker_main(void *argument)
                                            job->length, &counts);
         else
             job->response = wp_error_line(WP_INTERNAL, "", "out of memory");
+        job->response_length = job->response ? strlen(job->response) : 0;
         atomic_fetch_add(&pool->stats->requests, counts.requests);
         atomic_fetch_add(&pool->stats->errors, counts.errors);
         free(job->line);

@@ -27,6 +27,7 @@ typedef struct wd_job {
     char *line;           /* malloc'd, without its "\n" */
     size_t length;
     char *response;       /* malloc'd by the worker; NULL: nothing to send */
+    size_t response_length; /* strlen(response), counted in the worker */
 } wd_job;
 
 /* Called in a worker thread once `job->response` is set; must be

@@ -108,7 +108,8 @@ wp_local *wp_local_new(void)
         return NULL;
     }
     local->host = (wp_host){local,         local_adopt,   local_use,     local_release,
-                            local_delete,  local_nothing, local_nothing, local_lp_sets};
+                            local_delete,  local_nothing, local_nothing, local_lp_sets,
+                            NULL};
     return local;
 }
 

@@ -313,6 +313,8 @@ static cJSON *wrench_classify(const wp_host *host, const wp_limits *limits, cons
     if (!read_classify(limits, params, use.fixture, &r, error) ||
         (r.lp && !host->lp_sets(host->self, &use, &goal, &strong, error)))
         goto done;
+    /* About 300 bytes per set for an outside wrench with its witness. */
+    wp_buffer_reserve(&b, 64 + r.wrench_count * (size_t)r.set_count * 320);
     wp_buffer_puts(&b, "[");
     for (size_t i = 0; i < r.wrench_count && !b.failed; i++) {
         wp_buffer_puts(&b, i ? ",{" : "{");
@@ -333,13 +335,25 @@ static cJSON *wrench_classify(const wp_host *host, const wp_limits *limits, cons
         wp_buffer_puts(&b, "}");
     }
     wp_buffer_puts(&b, "]");
-    char *results = wp_buffer_take(&b);
+    /* The text moves into a raw item, uncopied (cJSON frees it with free:
+     * no hooks are installed). */
+    cJSON *raw = cJSON_CreateRaw("");
     result = cJSON_CreateObject();
-    if (!results || !result || !cJSON_AddRawToObject(result, "results", results)) {
+    char *results = wp_buffer_take(&b);
+    if (!results || !raw || !result) {
+        free(results);
+        cJSON_Delete(raw);
+        cJSON_Delete(result);
+        result = out_of_memory(NULL, error);
+        goto done;
+    }
+    free(raw->valuestring);
+    raw->valuestring = results;
+    if (!cJSON_AddItemToObject(result, "results", raw)) {
+        cJSON_Delete(raw);
         cJSON_Delete(result);
         result = out_of_memory(NULL, error);
     }
-    free(results);
 done:
     free(b.data);
     free(r.wrenches);

@@ -139,18 +139,13 @@ static void answer_request(const wp_host *host, const wp_limits *limits, const c
         if (b->length > 1) /* after "[" and an earlier answer */
             wp_buffer_puts(b, ",");
         if (result) {
-            char *text = cJSON_PrintUnformatted(result);
-            if (!text) {
-                wp_error_set(&error, WP_INTERNAL, "", "out of memory");
-                write_error(b, &error, id_owned ? id_owned : "null");
-            } else {
-                wp_buffer_puts(b, "{\"jsonrpc\":\"2.0\",\"result\":");
-                wp_buffer_puts(b, text);
-                wp_buffer_puts(b, ",\"id\":");
-                wp_buffer_puts(b, id_text);
-                wp_buffer_puts(b, "}");
-                free(text);
-            }
+            /* Straight into the answer: a batch of wrenches makes tens of
+             * megabytes, not to be copied twice more. */
+            wp_buffer_puts(b, "{\"jsonrpc\":\"2.0\",\"result\":");
+            wp_buffer_json(b, result);
+            wp_buffer_puts(b, ",\"id\":");
+            wp_buffer_puts(b, id_text);
+            wp_buffer_puts(b, "}");
         } else {
             write_error(b, &error, id_text);
         }
@@ -245,5 +240,36 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
     }
     cJSON_Delete(json);
     wp_buffer_puts(&b, "\n");
-    return wp_buffer_take(&b);
+    char *answer = wp_buffer_take(&b);
+    if (!answer) /* the answer did not fit in memory: say so, lose nothing silently */
+        answer = wp_error_line(WP_INTERNAL, "", "out of memory while writing the answer");
+    return answer;
+}
+
+bool wp_line_is_light(const wp_host *host, const char *line, size_t length)
+{
+    if (length > WP_LIGHT_LINE)
+        return false;
+    cJSON *json = cJSON_ParseWithLength(line, length);
+    if (!json)
+        return true; /* a parse error is answered at once */
+    bool light = false;
+    const cJSON *method = cJSON_GetObjectItemCaseSensitive(json, "method");
+    const cJSON *params = cJSON_GetObjectItemCaseSensitive(json, "params");
+    if (!cJSON_IsObject(json) || !cJSON_IsString(method)) {
+        light = !cJSON_IsArray(json); /* an invalid request, but a batch may be work */
+    } else if (strcmp(method->valuestring, "server.status") == 0) {
+        light = true;
+    } else if (strcmp(method->valuestring, "wrench.classify") == 0 && cJSON_IsObject(params)) {
+        const cJSON *how = cJSON_GetObjectItemCaseSensitive(params, "method");
+        const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
+        const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
+        light = (!how || (cJSON_IsString(how) && strcmp(how->valuestring, "auto") == 0)) &&
+                cJSON_IsString(id) && cJSON_IsArray(wrenches) &&
+                cJSON_GetArraySize(wrenches) <= 16 && host->fixture_ready &&
+                wp_fixture_id_valid(id->valuestring) &&
+                host->fixture_ready(host->self, id->valuestring);
+    }
+    cJSON_Delete(json);
+    return light;
 }

@@ -41,6 +41,9 @@ typedef struct wp_host {
     /* This thread's warm LP sets for a fixture in use. */
     bool (*lp_sets)(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
                     wp_error *error);
+    /* Is the stored fixture `id` there with its derived data, so that using
+     * it costs no derivation?  May be NULL: never. */
+    bool (*fixture_ready)(void *self, const char *id);
 } wp_host;
 
 typedef struct wp_limits {
@@ -59,6 +62,17 @@ typedef struct wp_counts {
  * notifications only.  Adds to *counts. */
 char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
                      size_t length, wp_counts *counts);
+
+/* Lines up to this long may be light (wp_line_is_light). */
+#define WP_LIGHT_LINE 2048
+/* Is answering `line` light work -- microseconds, no GLPK, no derivation,
+ * no disk -- so that an event loop may answer it itself rather than pay two
+ * thread hand-offs?  True for what is not JSON (an error answer), for
+ * server.status, and for wrench.classify by the "auto" method of at most
+ * 16 wrenches against a stored fixture whose derived data is ready
+ * (host->fixture_ready).  Conservative: false for everything else,
+ * batches included. */
+bool wp_line_is_light(const wp_host *host, const char *line, size_t length);
 
 /* A response line for an error found before the line was read (a line over
  * the length limit, too many clients): id null.  Malloc'd, or NULL. */

@@ -363,6 +363,44 @@ def test_clients_vanishing_mid_request(daemon):
     assert len(r["results"]) == 1
 
 
+def test_light_requests_in_a_long_pipeline(client):
+    """Single-wrench classifies of a stored fixture are answered by the
+    event loop itself, at most 32 per read, the rest by the workers
+    (PERFORMANCE.md): 300 of them in one write, mixed with server.status
+    and a request that is not JSON, come back in order, each right, and
+    server.status counts every one."""
+    f = FX.disc_corner(0.5)
+    cl = M.Classifier(M.Model(f))
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    before = client.result("server.status", {})["requests"]
+    ws = H.random_wrenches(seed=7, n=300, scale=(1, 1, 2))
+    lines = []
+    for i, w in enumerate(ws):
+        if i % 50 == 49:
+            lines.append("{not json")
+        elif i % 50 == 25:
+            lines.append(json.dumps(req("server.status", {}, id=i)))
+        else:
+            lines.append(json.dumps(req("wrench.classify", {"fixture": fid, "wrenches": [w],
+                                                            "sets": ["goal"]}, id=i)))
+    client.send_raw("".join(line + "\n" for line in lines))
+    for i, w in enumerate(ws):
+        a = client.read_json()
+        if i % 50 == 49:
+            assert a["id"] is None and a["error"]["code"] == -32700, a
+            continue
+        assert a["id"] == i, (i, a)
+        if i % 50 == 25:
+            assert a["result"]["requests"] >= before + i, a
+            continue
+        want = cl.classify(w, "goal").verdict(1e-7)
+        got = a["result"]["results"][0]["goal"]
+        if want != "boundary":
+            assert got["verdict"] == want, (i, w, got, want)
+    after = client.result("server.status", {})["requests"]
+    assert after == before + 301, (before, after)
+
+
 def test_default_max_wrenches(client):
     """--max-wrenches defaults to 100000."""
     f = FX.disc_corner(0.5)

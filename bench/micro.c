@@ -1,0 +1,255 @@
+/* micro.c -- in-process costs of classifying one wrench (issue 9, part 1)
+ * and of deriving a fixture (part 5).  Prints figures; asserts nothing.
+ *
+ *   micro [FIXTURE.json] [--wrenches N] [--lp-wrenches N] [--json]
+ *
+ * Rows:
+ *   auto     wr_classify for goal and then strong, with witnesses, as the
+ *            daemon answers (explicit cones);
+ *   lp       wr_classify_lp for goal and strong (GLPK, warm problems);
+ *   warm LP  one wr_lp_member on an already built problem, averaged over
+ *            every excluded cone of both sets;
+ *   cone     one wr_cone_signed_distance, averaged over the same cones;
+ *   derive   wr_fixture_new + wr_analysis_new for a disc with k = 2..8
+ *            fixels, and the bytes the analysis holds.
+ * Wrenches are uniform in [-1, 1]^3 from a fixed seed, so runs compare. */
+#include "wp_fixture.h"
+#include "wrench.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
+}
+
+/* xorshift64*: deterministic, the same wrenches on every machine. */
+static double uniform(uint64_t *state)
+{
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    uint64_t bits = (*state * 2685821657736338717ULL) >> 11;
+    return (double)bits / 9007199254740992.0 * 2 - 1;
+}
+
+static wr_fixture *read_fixture(const char *path)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file) {
+        perror(path);
+        return NULL;
+    }
+    static char text[1 << 20];
+    size_t length = fread(text, 1, sizeof text - 1, file);
+    fclose(file);
+    text[length] = 0;
+    cJSON *json = cJSON_Parse(text);
+    wp_fixture_doc doc;
+    wp_error error;
+    if (!json || !wp_fixture_read(json, "fixture", &doc, &error)) {
+        fprintf(stderr, "%s: not a valid fixture\n", path);
+        cJSON_Delete(json);
+        return NULL;
+    }
+    cJSON_Delete(json);
+    wr_fixture *fixture = doc.fixture;
+    doc.fixture = NULL;
+    wp_fixture_doc_release(&doc);
+    return fixture;
+}
+
+/* A unit disc with k fixels spread over 300 degrees, friction 0.3: the
+ * fixture registration is timed on (k = 2..8). */
+static wr_fixture *disc_fixture(int k, double radius_jitter)
+{
+    wr_fixel_spec fixels[WR_MAX_FIXELS];
+    memset(fixels, 0, sizeof fixels);
+    double radius = 1 + radius_jitter;
+    for (int i = 0; i < k; i++) {
+        double angle = (200 + 300.0 * i / k) * 3.14159265358979323846 / 180;
+        fixels[i].at[0] = radius * cos(angle);
+        fixels[i].at[1] = radius * sin(angle);
+    }
+    wr_fixture_spec spec = {
+        .mass = 1,
+        .shape = WR_SHAPE_CIRCLE,
+        .radius = radius,
+        .friction = {.given = true, .static_mu = 0.3},
+        .fixel_count = (size_t)k,
+        .fixels = fixels,
+    };
+    return wr_fixture_new(&spec, NULL);
+}
+
+int main(int argc, char **argv)
+{
+    const char *path = "examples/plate-3-2-1.json";
+    long wrench_count = 200000, lp_wrench_count = 2000;
+    int json = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--wrenches") == 0 && i + 1 < argc)
+            wrench_count = atol(argv[++i]);
+        else if (strcmp(argv[i], "--lp-wrenches") == 0 && i + 1 < argc)
+            lp_wrench_count = atol(argv[++i]);
+        else if (strcmp(argv[i], "--json") == 0)
+            json = 1;
+        else if (argv[i][0] == '-') {
+            fprintf(stderr, "usage: %s [FIXTURE.json] [--wrenches N] [--lp-wrenches N] [--json]\n",
+                    argv[0]);
+            return 2;
+        } else
+            path = argv[i];
+    }
+    if (wrench_count < 1 || lp_wrench_count < 1)
+        return 2;
+    wr_fixture *fixture = read_fixture(path);
+    if (!fixture)
+        return 1;
+    wr_analysis *analysis = wr_analysis_new(fixture);
+    wr_lp_env *env = wr_lp_env_new();
+    wr_lp_set *goal = NULL, *strong = NULL;
+    if (!analysis || !env || wr_analysis_lp_sets(analysis, env, &goal, &strong) != 0) {
+        fprintf(stderr, "out of memory\n");
+        return 1;
+    }
+    int goal_cones = wr_analysis_cone_count(analysis, WR_SET_GOAL);
+    int strong_cones = wr_analysis_cone_count(analysis, WR_SET_STRONG);
+    int cones = goal_cones + strong_cones;
+
+    double (*wrenches)[3] = malloc((size_t)wrench_count * sizeof *wrenches);
+    uint64_t seed = 0x9e3779b97f4a7c15ULL;
+    for (long i = 0; i < wrench_count; i++)
+        for (int k = 0; k < 3; k++)
+            wrenches[i][k] = uniform(&seed);
+
+    /* auto: goal and strong, with witnesses, as the daemon answers. */
+    long inside[2] = {0, 0};
+    double start = now_seconds();
+    for (long i = 0; i < wrench_count; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
+            wr_answer answer;
+            wr_classify(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE, &answer);
+            inside[set] += answer.verdict == WR_VERDICT_INSIDE;
+        }
+    double auto_us = (now_seconds() - start) * 1e6 / (double)wrench_count;
+
+    /* lp: the same with GLPK (warm problems: every one solved once first). */
+    wr_answer answer;
+    wr_classify_lp(analysis, goal, strong, wrenches[0], WR_SET_GOAL, &answer);
+    wr_classify_lp(analysis, goal, strong, wrenches[0], WR_SET_STRONG, &answer);
+    for (int c = 0; c < goal_cones; c++) {
+        bool member;
+        wr_lp_member(goal, c, wrenches[0], &member, NULL);
+    }
+    for (int c = 0; c < strong_cones; c++) {
+        bool member;
+        wr_lp_member(strong, c, wrenches[0], &member, NULL);
+    }
+    long agree = 0;
+    start = now_seconds();
+    for (long i = 0; i < lp_wrench_count; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++)
+            wr_classify_lp(analysis, goal, strong, wrenches[i], (wr_set)set, &answer);
+    double lp_us = (now_seconds() - start) * 1e6 / (double)lp_wrench_count;
+    for (long i = 0; i < lp_wrench_count; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
+            wr_answer by_cones;
+            wr_classify_lp(analysis, goal, strong, wrenches[i], (wr_set)set, &answer);
+            wr_classify(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE, &by_cones);
+            agree += by_cones.verdict == WR_VERDICT_BOUNDARY ||
+                     (answer.verdict == WR_VERDICT_INSIDE) ==
+                         (by_cones.verdict == WR_VERDICT_INSIDE);
+        }
+
+    /* One warm LP, and one explicit-cone check, per cone of both sets. */
+    long lp_solves = 0, cone_checks = 0;
+    start = now_seconds();
+    for (long i = 0; i < lp_wrench_count; i++)
+        for (int c = 0; c < cones; c++) {
+            bool member;
+            wr_lp_member(c < goal_cones ? goal : strong, c < goal_cones ? c : c - goal_cones,
+                         wrenches[i], &member, NULL);
+            lp_solves++;
+        }
+    double warm_us = (now_seconds() - start) * 1e6 / (double)lp_solves;
+    double checksum = 0;
+    start = now_seconds();
+    for (long i = 0; i < wrench_count; i++) {
+        double x[3];
+        double norm = sqrt(wrenches[i][0] * wrenches[i][0] + wrenches[i][1] * wrenches[i][1] +
+                           wrenches[i][2] * wrenches[i][2]);
+        for (int k = 0; k < 3; k++)
+            x[k] = wrenches[i][k] / norm;
+        for (int c = 0; c < cones; c++) {
+            const wr_cone *cone = wr_analysis_cone(
+                analysis, c < goal_cones ? WR_SET_GOAL : WR_SET_STRONG,
+                c < goal_cones ? c : c - goal_cones);
+            checksum += wr_cone_signed_distance(cone, x, NULL);
+            cone_checks++;
+        }
+    }
+    double cone_us = (now_seconds() - start) * 1e6 / (double)cone_checks;
+
+    /* Registration in process: fixture and analysis, k = 2..8. */
+    double derive_ms[WR_MAX_FIXELS + 1] = {0};
+    size_t derive_bytes[WR_MAX_FIXELS + 1] = {0};
+    for (int k = 2; k <= WR_MAX_FIXELS; k++) {
+        int repeats = k < 6 ? 50 : k < 8 ? 10 : 5;
+        start = now_seconds();
+        for (int r = 0; r < repeats; r++) {
+            wr_fixture *disc = disc_fixture(k, 1e-3 * r);
+            wr_analysis *disc_analysis = disc ? wr_analysis_new(disc) : NULL;
+            if (!disc_analysis) {
+                fprintf(stderr, "k = %d: no analysis\n", k);
+                return 1;
+            }
+            derive_bytes[k] = wr_analysis_bytes(disc_analysis) + sizeof *disc;
+            wr_analysis_free(disc_analysis);
+            wr_fixture_free(disc);
+        }
+        derive_ms[k] = (now_seconds() - start) * 1e3 / repeats;
+    }
+
+    if (json) {
+        printf("{\"fixture\": \"%s\", \"goal_cones\": %d, \"strong_cones\": %d, "
+               "\"wrenches\": %ld, \"lp_wrenches\": %ld, \"auto_us\": %.4f, \"lp_us\": %.3f, "
+               "\"warm_lp_us\": %.4f, \"cone_us\": %.5f, \"lp_agree\": %ld, \"lp_compared\": %ld, "
+               "\"derive_ms\": {",
+               path, goal_cones, strong_cones, wrench_count, lp_wrench_count, auto_us, lp_us,
+               warm_us, cone_us, agree, 2 * lp_wrench_count);
+        for (int k = 2; k <= WR_MAX_FIXELS; k++)
+            printf("%s\"%d\": %.3f", k > 2 ? ", " : "", k, derive_ms[k]);
+        printf("}, \"derive_bytes\": {");
+        for (int k = 2; k <= WR_MAX_FIXELS; k++)
+            printf("%s\"%d\": %zu", k > 2 ? ", " : "", k, derive_bytes[k]);
+        printf("}}\n");
+    } else {
+        printf("%s: %d goal cones, %d strong cones; %ld wrenches (%ld goal inside, %ld strong "
+               "inside)\n",
+               path, goal_cones, strong_cones, wrench_count, inside[0], inside[1]);
+        printf("auto (goal + strong, witnesses)  %9.3f us/wrench   target <= 1\n", auto_us);
+        printf("lp (goal + strong)               %9.3f us/wrench   target <= %.1f "
+               "(2 x %d cones x warm LP); agrees on %ld of %ld verdicts\n",
+               lp_us, 2 * cones * warm_us, cones, agree, 2 * lp_wrench_count);
+        printf("one warm GLPK LP                 %9.3f us\n", warm_us);
+        printf("one explicit-cone distance       %9.4f us   (checksum %.6g)\n", cone_us, checksum);
+        for (int k = 2; k <= WR_MAX_FIXELS; k++)
+            printf("derive k = %d                     %9.3f ms   %zu bytes\n", k, derive_ms[k],
+                   derive_bytes[k]);
+    }
+    free(wrenches);
+    wr_lp_set_free(goal);
+    wr_lp_set_free(strong);
+    wr_lp_env_free(env);
+    wr_analysis_free(analysis);
+    wr_fixture_free(fixture);
+    return 0;
+}

@@ -1,0 +1,393 @@
+/* socket.c -- wrenchd through its socket, one connection (issue 9, parts 2,
+ * 3 and 5).  Prints figures; asserts nothing but that answers are answers.
+ *
+ *   socket --socket PATH [--fixture FILE] [--sequential N] [--pipelined N]
+ *          [--depth D] [--batch N] [--json]
+ *
+ *   sequential  N single-wrench wrench.classify requests, each sent when the
+ *               previous answer is read: latency p50 / p99 / p999;
+ *   pipelined   N such requests with D (default 64) in flight: latency from
+ *               a request's write to its answer's end, and throughput;
+ *   batch       one request of N wrenches (goal and strong, the default
+ *               sets), from the first byte written to the answer's last byte
+ *               read: wrenches per second end to end.  The request text is
+ *               made before the clock starts; the answer is checked for N
+ *               results but not parsed;
+ *   register    cold fixture.put of a disc with k = 2..8 fixels (a new id
+ *               each time), median of 5, and the growth of server.status's
+ *               cache_bytes per fixture.
+ * Wrenches are uniform in [-1, 1]^3, 6 decimals, from a fixed seed. */
+#define _GNU_SOURCE /* memmem */
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <time.h>
+#include <unistd.h>
+
+static double now_us(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e6 + (double)t.tv_nsec / 1e3;
+}
+
+static double uniform(uint64_t *state)
+{
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    uint64_t bits = (*state * 2685821657736338717ULL) >> 11;
+    return (double)bits / 9007199254740992.0 * 2 - 1;
+}
+
+static void fail(const char *what)
+{
+    fprintf(stderr, "socket bench: %s%s%s\n", what, errno ? ": " : "", errno ? strerror(errno) : "");
+    exit(1);
+}
+
+/* ---- a blocking connection with a line reader ----------------------------- */
+
+typedef struct connection {
+    int fd;
+    char *buffer;    /* bytes read, not yet returned */
+    size_t start, end, capacity;
+} connection;
+
+static void connect_to(connection *c, const char *path)
+{
+    memset(c, 0, sizeof *c);
+    c->fd = socket(AF_UNIX, SOCK_STREAM, 0);
+    struct sockaddr_un address = {.sun_family = AF_UNIX};
+    if (c->fd < 0 || strlen(path) >= sizeof address.sun_path)
+        fail("socket");
+    strcpy(address.sun_path, path);
+    if (connect(c->fd, (struct sockaddr *)&address, sizeof address) != 0)
+        fail(path);
+    c->capacity = 1 << 16;
+    c->buffer = malloc(c->capacity);
+}
+
+static void send_all(connection *c, const char *text, size_t length)
+{
+    while (length > 0) {
+        ssize_t n = write(c->fd, text, length);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            fail("write");
+        text += n;
+        length -= (size_t)n;
+    }
+}
+
+/* The next line (NUL-terminated, without "\n"), valid until the next call;
+ * its length in *length. */
+static char *read_line(connection *c, size_t *length)
+{
+    size_t searched = c->start;
+    for (;;) {
+        char *eol = memchr(c->buffer + searched, '\n', c->end - searched);
+        if (eol) {
+            char *line = c->buffer + c->start;
+            *eol = 0;
+            *length = (size_t)(eol - line);
+            c->start = (size_t)(eol - c->buffer) + 1;
+            return line;
+        }
+        searched = c->end;
+        if (c->start > 0 && c->end == c->capacity) { /* move the partial line down */
+            memmove(c->buffer, c->buffer + c->start, c->end - c->start);
+            c->end -= c->start;
+            searched -= c->start;
+            c->start = 0;
+        }
+        if (c->end == c->capacity) {
+            c->capacity *= 2;
+            c->buffer = realloc(c->buffer, c->capacity);
+            if (!c->buffer)
+                fail("out of memory");
+        }
+        ssize_t n = read(c->fd, c->buffer + c->end, c->capacity - c->end);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            fail("read (did the daemon close the connection?)");
+        c->end += (size_t)n;
+    }
+}
+
+static char *call(connection *c, const char *request, size_t *length)
+{
+    send_all(c, request, strlen(request));
+    return read_line(c, length);
+}
+
+static void expect_result(const char *answer, const char *what)
+{
+    if (!strstr(answer, "\"result\"")) {
+        fprintf(stderr, "socket bench: %s answered %.300s\n", what, answer);
+        exit(1);
+    }
+}
+
+/* ---- figures ------------------------------------------------------------ */
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double percentile(double *sorted, long count, double p)
+{
+    long index = (long)ceil(p * (double)count) - 1;
+    return sorted[index < 0 ? 0 : index >= count ? count - 1 : index];
+}
+
+static char *read_file(const char *path)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        fail(path);
+    static char text[1 << 20];
+    size_t length = fread(text, 1, sizeof text - 1, file);
+    fclose(file);
+    text[length] = 0;
+    for (char *p = text; *p; p++) /* one line */
+        if (*p == '\n' || *p == '\r')
+            *p = ' ';
+    return text;
+}
+
+/* The fixture id out of a fixture.put answer. */
+static void id_of(const char *answer, char id[33])
+{
+    const char *p = strstr(answer, "\"id\":\"");
+    if (!p || strlen(p) < 6 + 32)
+        fail("no id in the fixture.put answer");
+    memcpy(id, p + 6, 32);
+    id[32] = 0;
+}
+
+static double cache_bytes(connection *c)
+{
+    size_t length;
+    char *answer = call(c, "{\"jsonrpc\":\"2.0\",\"id\":0,\"method\":\"server.status\"}\n", &length);
+    const char *p = strstr(answer, "\"cache_bytes\":");
+    return p ? atof(p + 14) : NAN;
+}
+
+int main(int argc, char **argv)
+{
+    const char *path = NULL, *fixture_path = "examples/plate-3-2-1.json";
+    long sequential = 20000, pipelined = 20000, depth = 64, batch = 100000;
+    int json = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--json") == 0) {
+            json = 1;
+            continue;
+        }
+        if (!value) {
+            fprintf(stderr, "usage: %s --socket PATH [--fixture FILE] [--sequential N] "
+                            "[--pipelined N] [--depth D] [--batch N] [--json]\n",
+                    argv[0]);
+            return 2;
+        }
+        i++;
+        if (strcmp(a, "--socket") == 0)
+            path = value;
+        else if (strcmp(a, "--fixture") == 0)
+            fixture_path = value;
+        else if (strcmp(a, "--sequential") == 0)
+            sequential = atol(value);
+        else if (strcmp(a, "--pipelined") == 0)
+            pipelined = atol(value);
+        else if (strcmp(a, "--depth") == 0)
+            depth = atol(value);
+        else if (strcmp(a, "--batch") == 0)
+            batch = atol(value);
+        else {
+            fprintf(stderr, "%s: unknown option %s\n", argv[0], a);
+            return 2;
+        }
+    }
+    if (!path || sequential < 1 || pipelined < 1 || depth < 1 || batch < 1) {
+        fprintf(stderr, "%s: --socket is required; counts are positive\n", argv[0]);
+        return 2;
+    }
+    connection c;
+    connect_to(&c, path);
+
+    /* The fixture, stored once. */
+    const char *fixture = read_file(fixture_path);
+    size_t request_size = strlen(fixture) + 128;
+    char *request = malloc(request_size);
+    snprintf(request, request_size,
+             "{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"fixture.put\",\"params\":{\"fixture\":%s}}\n",
+             fixture);
+    size_t length;
+    char *answer = call(&c, request, &length);
+    expect_result(answer, "fixture.put");
+    char id[33];
+    id_of(answer, id);
+
+    /* Single-wrench requests, made in advance. */
+    long singles = sequential > pipelined ? sequential : pipelined;
+    char (*lines)[192] = malloc((size_t)singles * sizeof *lines);
+    uint64_t seed = 0x9e3779b97f4a7c15ULL;
+    for (long i = 0; i < singles; i++) {
+        double x = uniform(&seed), y = uniform(&seed), z = uniform(&seed);
+        snprintf(lines[i], sizeof lines[i],
+                 "{\"jsonrpc\":\"2.0\",\"id\":%ld,\"method\":\"wrench.classify\",\"params\":"
+                 "{\"fixture\":\"%s\",\"wrenches\":[[%.6f,%.6f,%.6f]]}}\n",
+                 i, id, x, y, z);
+    }
+    /* Warm up: the worker's first answers, page faults, caches. */
+    for (long i = 0; i < 200 && i < singles; i++)
+        expect_result(call(&c, lines[i], &length), "wrench.classify");
+
+    double *latency = malloc((size_t)singles * sizeof *latency);
+    for (long i = 0; i < sequential; i++) {
+        double start = now_us();
+        answer = call(&c, lines[i], &length);
+        latency[i] = now_us() - start;
+        if (i == 0)
+            expect_result(answer, "wrench.classify");
+    }
+    qsort(latency, (size_t)sequential, sizeof *latency, compare_doubles);
+    double sequential_p50 = percentile(latency, sequential, 0.5),
+           sequential_p99 = percentile(latency, sequential, 0.99),
+           sequential_p999 = percentile(latency, sequential, 0.999);
+
+    /* Pipelined: `depth` in flight; answers come in request order. */
+    double *sent = malloc((size_t)pipelined * sizeof *sent);
+    long next = 0;
+    double start = now_us();
+    for (; next < depth && next < pipelined; next++) {
+        sent[next] = now_us();
+        send_all(&c, lines[next], strlen(lines[next]));
+    }
+    for (long done = 0; done < pipelined; done++) {
+        answer = read_line(&c, &length);
+        latency[done] = now_us() - sent[done];
+        if (done == 0)
+            expect_result(answer, "wrench.classify (pipelined)");
+        if (next < pipelined) {
+            sent[next] = now_us();
+            send_all(&c, lines[next], strlen(lines[next]));
+            next++;
+        }
+    }
+    double pipelined_seconds = (now_us() - start) / 1e6;
+    qsort(latency, (size_t)pipelined, sizeof *latency, compare_doubles);
+    double pipelined_p50 = percentile(latency, pipelined, 0.5),
+           pipelined_p99 = percentile(latency, pipelined, 0.99);
+
+    /* One batch of `batch` wrenches. */
+    size_t batch_size = (size_t)batch * 40 + 256;
+    char *batch_line = malloc(batch_size);
+    size_t used = (size_t)snprintf(batch_line, batch_size,
+                                   "{\"jsonrpc\":\"2.0\",\"id\":\"batch\",\"method\":\"wrench."
+                                   "classify\",\"params\":{\"fixture\":\"%s\",\"wrenches\":[",
+                                   id);
+    seed = 0x2545f4914f6cdd1dULL;
+    for (long i = 0; i < batch; i++) {
+        double x = uniform(&seed), y = uniform(&seed), z = uniform(&seed);
+        used += (size_t)snprintf(batch_line + used, batch_size - used, "%s[%.6f,%.6f,%.6f]",
+                                 i ? "," : "", x, y, z);
+    }
+    used += (size_t)snprintf(batch_line + used, batch_size - used, "]}}\n");
+    start = now_us();
+    send_all(&c, batch_line, used);
+    answer = read_line(&c, &length);
+    double batch_seconds = (now_us() - start) / 1e6;
+    expect_result(answer, "the batch");
+    long results = 0;
+    for (const char *p = answer; (p = memmem(p, (size_t)(answer + length - p), "{\"goal\":", 8));
+         p += 8)
+        results++;
+    if (results != batch) {
+        fprintf(stderr, "socket bench: the batch answered %ld results for %ld wrenches\n", results,
+                batch);
+        return 1;
+    }
+    size_t batch_answer_bytes = length;
+
+    /* Registration: a new disc each time (the radius moves the id). */
+    double put_ms[9] = {0}, bytes_per_fixture[9] = {0};
+    int serial = 0;
+    for (int k = 2; k <= 8; k++) {
+        double times[5];
+        double before = cache_bytes(&c);
+        for (int r = 0; r < 5; r++) {
+            double radius = 1 + 1e-6 * ++serial;
+            char text[2048];
+            int n = snprintf(text, sizeof text,
+                             "{\"jsonrpc\":\"2.0\",\"id\":2,\"method\":\"fixture.put\",\"params\":"
+                             "{\"fixture\":{\"body\":{\"mass\":1,\"shape\":{\"type\":\"circle\","
+                             "\"center\":[0,0],\"radius\":%.9f}},\"friction\":{\"static\":0.3},"
+                             "\"fixels\":[",
+                             radius);
+            for (int i = 0; i < k; i++) {
+                double angle = (200 + 300.0 * i / k) * 3.14159265358979323846 / 180;
+                n += snprintf(text + n, sizeof text - (size_t)n, "%s{\"at\":[%.17g,%.17g]}",
+                              i ? "," : "", radius * cos(angle), radius * sin(angle));
+            }
+            snprintf(text + n, sizeof text - (size_t)n, "]}}}\n");
+            double t = now_us();
+            answer = call(&c, text, &length);
+            times[r] = (now_us() - t) / 1e3;
+            expect_result(answer, "fixture.put (registration)");
+        }
+        double after = cache_bytes(&c);
+        qsort(times, 5, sizeof *times, compare_doubles);
+        put_ms[k] = times[2];
+        bytes_per_fixture[k] = (after - before) / 5;
+    }
+
+    if (json) {
+        printf("{\"sequential\": %ld, \"sequential_p50_us\": %.1f, \"sequential_p99_us\": %.1f, "
+               "\"sequential_p999_us\": %.1f, \"pipelined\": %ld, \"depth\": %ld, "
+               "\"pipelined_p50_us\": %.1f, \"pipelined_p99_us\": %.1f, "
+               "\"pipelined_per_s\": %.0f, \"batch\": %ld, \"batch_s\": %.4f, "
+               "\"batch_per_s\": %.0f, \"batch_request_bytes\": %zu, \"batch_answer_bytes\": %zu, "
+               "\"put_ms\": {",
+               sequential, sequential_p50, sequential_p99, sequential_p999, pipelined, depth,
+               pipelined_p50, pipelined_p99, (double)pipelined / pipelined_seconds, batch,
+               batch_seconds, (double)batch / batch_seconds, used, batch_answer_bytes);
+        for (int k = 2; k <= 8; k++)
+            printf("%s\"%d\": %.3f", k > 2 ? ", " : "", k, put_ms[k]);
+        printf("}, \"cache_bytes_per_fixture\": {");
+        for (int k = 2; k <= 8; k++)
+            printf("%s\"%d\": %.0f", k > 2 ? ", " : "", k, bytes_per_fixture[k]);
+        printf("}}\n");
+    } else {
+        printf("sequential, %ld requests     p50 %7.1f us  p99 %7.1f us  p999 %7.1f us   target "
+               "p50 <= 30\n",
+               sequential, sequential_p50, sequential_p99, sequential_p999);
+        printf("pipelined %ld deep, %ld      p50 %7.1f us  p99 %7.1f us  %.0f requests/s\n", depth,
+               pipelined, pipelined_p50, pipelined_p99, (double)pipelined / pipelined_seconds);
+        printf("batch of %ld wrenches        %.3f s, %.0f wrenches/s (%zu bytes in, %zu out)   "
+               "target >= 1000000\n",
+               batch, batch_seconds, (double)batch / batch_seconds, used, batch_answer_bytes);
+        for (int k = 2; k <= 8; k++)
+            printf("fixture.put k = %d           %8.3f ms   %.0f cache bytes per fixture%s\n", k,
+                   put_ms[k], bytes_per_fixture[k], k == 8 ? "   target < 100 ms" : "");
+    }
+    free(batch_line);
+    free(sent);
+    free(latency);
+    free(lines);
+    free(request);
+    free(c.buffer);
+    close(c.fd);
+    return 0;
+}
