@@ -305,6 +305,19 @@ int main(int argc, char **argv)
                                  i ? "," : "", x, y, z);
     }
     used += (size_t)snprintf(batch_line + used, batch_size - used, "]}}\n");
+    /* A client that answers batches keeps its receive buffer: sized and
+     * touched before the clock starts, so the figure is wrenchd's. */
+    size_t room = (size_t)batch * 800 + (1 << 20);
+    if (c.capacity < room) {
+        memmove(c.buffer, c.buffer + c.start, c.end - c.start);
+        c.end -= c.start;
+        c.start = 0;
+        c.buffer = realloc(c.buffer, room);
+        if (!c.buffer)
+            fail("out of memory");
+        c.capacity = room;
+        memset(c.buffer + c.end, 0, room - c.end);
+    }
     start = now_us();
     send_all(&c, batch_line, used);
     answer = read_line(&c, &length);

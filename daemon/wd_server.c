@@ -283,19 +283,19 @@ static void answer_now(connection *c, int code, const char *reason)
     queue_error(c, code, reason);
 }
 
-/* Answer a light request (wp_line_is_light) in the loop itself: a single
+/* Answer a light request (wp_answer_light) in the loop itself: a single
  * wrench's answer takes microseconds, and handing it to a worker and back
  * costs two thread wake-ups, more than the work.  Only when no request of
  * the connection is before it, so that answers keep their order. */
 static bool answer_light(connection *c, slot *x)
 {
     wd_server *s = c->server;
-    if (!s->light || x != c->head || x->length > WP_LIGHT_LINE ||
-        c->light_answered >= LIGHT_BURST ||
-        !wp_line_is_light(wd_context_host(s->light), x->line, x->length))
+    if (!s->light || x != c->head || c->light_answered >= LIGHT_BURST)
         return false;
     wp_counts counts = {0, 0};
-    x->response = wp_answer_line(wd_context_host(s->light), &s->limits, x->line, x->length, &counts);
+    if (!wp_answer_light(wd_context_host(s->light), &s->limits, x->line, x->length, &counts,
+                         &x->response))
+        return false;
     atomic_fetch_add(&s->stats.requests, counts.requests);
     atomic_fetch_add(&s->stats.errors, counts.errors);
     free(x->line);

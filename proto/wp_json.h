@@ -73,14 +73,26 @@ typedef struct wp_buffer {
 
 void wp_buffer_append(wp_buffer *buffer, const char *text, size_t length);
 void wp_buffer_puts(wp_buffer *buffer, const char *text);
+/* A string literal, its length known at compile time (hot loops). */
+#define WP_BUFFER_LITERAL(buffer, literal) wp_buffer_append(buffer, literal, sizeof literal - 1)
 /* Room for `bytes` more than nothing, at once: a large answer whose size
  * is known roughly is not regrown (and recopied) a dozen times. */
 void wp_buffer_reserve(wp_buffer *buffer, size_t bytes);
 void wp_buffer_number(wp_buffer *buffer, double value);
 void wp_buffer_string(wp_buffer *buffer, const char *text); /* quoted, escaped */
 /* `value` as JSON text, members in their order, numbers as
- * wp_format_number; a raw item (cJSON_Raw) is copied verbatim. */
+ * wp_format_number; a raw item (cJSON_Raw) is copied verbatim but for
+ * leading spaces. */
 void wp_buffer_json(wp_buffer *buffer, const cJSON *value);
+/* Make the malloc'd, NUL-terminated `text` the contents of an empty buffer
+ * (which then owns it). */
+void wp_buffer_adopt(wp_buffer *buffer, char *text);
+
+/* The opening of a single answer whose result is {"results": RAW}.  A
+ * handler writing tens of megabytes of results (wrench.classify) starts its
+ * raw text with as many spaces, so that the envelope's opening is written
+ * into them in place, rather than the results being copied behind it. */
+#define WP_RESULTS_OPENING "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":"
 /* The NUL-terminated text (malloc'd, the caller frees), or NULL. */
 char *wp_buffer_take(wp_buffer *buffer);
 

@@ -245,36 +245,36 @@ static bool read_classify(const wp_limits *limits, const cJSON *params,
 
 static void write_vector(wp_buffer *b, const double *v, int n)
 {
-    wp_buffer_puts(b, "[");
+    WP_BUFFER_LITERAL(b, "[");
     for (int i = 0; i < n; i++) {
         if (i)
-            wp_buffer_puts(b, ",");
+            WP_BUFFER_LITERAL(b, ",");
         wp_buffer_number(b, v[i]);
     }
-    wp_buffer_puts(b, "]");
+    WP_BUFFER_LITERAL(b, "]");
 }
 
 /* One set's answer V (docs/PROTOCOL.md). */
 static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
 {
-    wp_buffer_puts(b, "{\"verdict\":\"");
+    WP_BUFFER_LITERAL(b, "{\"verdict\":\"");
     wp_buffer_puts(b, VERDICT_NAMES[answer->verdict]);
     wp_buffer_puts(b, answer->verdict == WR_VERDICT_INSIDE ? "\",\"inside\":true,\"margin\":"
                                                            : "\",\"inside\":false,\"margin\":");
     if (answer->has_margin)
         wp_buffer_number(b, answer->margin);
     else
-        wp_buffer_puts(b, "null");
+        WP_BUFFER_LITERAL(b, "null");
     if (answer->blocking < 0) {
-        wp_buffer_puts(b, ",\"blocking\":null,\"states\":[],\"witness\":null}");
+        WP_BUFFER_LITERAL(b, ",\"blocking\":null,\"states\":[],\"witness\":null}");
         return;
     }
     const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
     char text[WR_CONSTRAINT_TEXT];
     wr_constraint_format(&cone->constraint, text);
-    wp_buffer_puts(b, ",\"blocking\":\"");
+    WP_BUFFER_LITERAL(b, ",\"blocking\":\"");
     wp_buffer_puts(b, text);
-    wp_buffer_puts(b, "\",\"states\":[");
+    WP_BUFFER_LITERAL(b, "\",\"states\":[");
     if (answer->blocking_set == WR_SET_GOAL) {
         const wr_plan_origins *origins = &a->plan->origins[answer->blocking];
         for (int i = 0; i < origins->count; i++) {
@@ -282,21 +282,21 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
             wr_state_format(origins->states[i], a->fixture->fixel_count, state);
             wp_buffer_puts(b, i ? ",\"" : "\"");
             wp_buffer_puts(b, state);
-            wp_buffer_puts(b, "\"");
+            WP_BUFFER_LITERAL(b, "\"");
         }
     }
     const wr_witness *w = &answer->witness;
-    wp_buffer_puts(b, "],\"witness\":{\"acceleration\":");
+    WP_BUFFER_LITERAL(b, "],\"witness\":{\"acceleration\":");
     write_vector(b, w->acceleration, 3);
-    wp_buffer_puts(b, ",\"forces\":[");
+    WP_BUFFER_LITERAL(b, ",\"forces\":[");
     for (int i = 0; i < a->fixture->fixel_count; i++) {
         if (i)
-            wp_buffer_puts(b, ",");
+            WP_BUFFER_LITERAL(b, ",");
         write_vector(b, w->force[i], 2);
     }
-    wp_buffer_puts(b, "],\"wrench\":");
+    WP_BUFFER_LITERAL(b, "],\"wrench\":");
     write_vector(b, w->wrench, 3);
-    wp_buffer_puts(b, "}}");
+    WP_BUFFER_LITERAL(b, "}}");
 }
 
 static cJSON *wrench_classify(const wp_host *host, const wp_limits *limits, const cJSON *params,
@@ -313,9 +313,12 @@ static cJSON *wrench_classify(const wp_host *host, const wp_limits *limits, cons
     if (!read_classify(limits, params, use.fixture, &r, error) ||
         (r.lp && !host->lp_sets(host->self, &use, &goal, &strong, error)))
         goto done;
-    /* About 300 bytes per set for an outside wrench with its witness. */
+    /* About 300 bytes per set for an outside wrench with its witness, and
+     * room for the envelope's opening (WP_RESULTS_OPENING). */
     wp_buffer_reserve(&b, 64 + r.wrench_count * (size_t)r.set_count * 320);
-    wp_buffer_puts(&b, "[");
+    for (size_t i = 0; i < sizeof WP_RESULTS_OPENING - 1; i++)
+        wp_buffer_append(&b, " ", 1);
+    WP_BUFFER_LITERAL(&b, "[");
     for (size_t i = 0; i < r.wrench_count && !b.failed; i++) {
         wp_buffer_puts(&b, i ? ",{" : "{");
         for (int s = 0; s < r.set_count; s++) {
@@ -329,12 +332,12 @@ static cJSON *wrench_classify(const wp_host *host, const wp_limits *limits, cons
             }
             wp_buffer_puts(&b, s ? ",\"" : "\"");
             wp_buffer_puts(&b, SET_NAMES[r.sets[s]]);
-            wp_buffer_puts(&b, "\":");
+            WP_BUFFER_LITERAL(&b, "\":");
             write_answer(&b, a, &answer);
         }
-        wp_buffer_puts(&b, "}");
+        WP_BUFFER_LITERAL(&b, "}");
     }
-    wp_buffer_puts(&b, "]");
+    WP_BUFFER_LITERAL(&b, "]");
     /* The text moves into a raw item, uncopied (cJSON frees it with free:
      * no hooks are installed). */
     cJSON *raw = cJSON_CreateRaw("");

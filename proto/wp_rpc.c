@@ -138,7 +138,20 @@ static void answer_request(const wp_host *host, const wp_limits *limits, const c
     if (!notification) {
         if (b->length > 1) /* after "[" and an earlier answer */
             wp_buffer_puts(b, ",");
-        if (result) {
+        cJSON *raw = result ? result->child : NULL;
+        size_t room = sizeof WP_RESULTS_OPENING - 1;
+        if (b->length == 0 && raw && !raw->next && cJSON_IsRaw(raw) &&
+            strcmp(raw->string, "results") == 0 && strspn(raw->valuestring, " ") == room) {
+            /* The results take the envelope's opening in their room and
+             * become the answer: tens of megabytes are not copied. */
+            memcpy(raw->valuestring, WP_RESULTS_OPENING, room);
+            wp_buffer_adopt(b, raw->valuestring);
+            raw->valuestring = NULL; /* cJSON_Delete skips it */
+            wp_buffer_reserve(b, b->length + 16 + strlen(id_text));
+            wp_buffer_puts(b, "},\"id\":");
+            wp_buffer_puts(b, id_text);
+            wp_buffer_puts(b, "}");
+        } else if (result) {
             /* Straight into the answer: a batch of wrenches makes tens of
              * megabytes, not to be copied twice more. */
             wp_buffer_puts(b, "{\"jsonrpc\":\"2.0\",\"result\":");
@@ -154,8 +167,17 @@ static void answer_request(const wp_host *host, const wp_limits *limits, const c
     free(id_owned);
 }
 
-char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
-                     size_t length, wp_counts *counts)
+/* parse_line's refusal: the answer in *refusal, no JSON. */
+static cJSON *refuse(char **refusal, int code, const char *reason)
+{
+    *refusal = wp_error_line(code, "", reason);
+    return NULL;
+}
+
+/* The JSON of a request line, or NULL with *refusal set to the answer
+ * (malloc'd) when the line is refused before any request in it is read. */
+static cJSON *parse_line(const wp_limits *limits, const char *line, size_t length,
+                         wp_counts *counts, char **refusal)
 {
     while (length > 0 && isspace((unsigned char)line[length - 1]))
         length--;
@@ -165,12 +187,12 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
     if (start == length) {
         counts->requests++;
         counts->errors++;
-        return wp_error_line(WP_PARSE_ERROR, "", "an empty line is not a JSON text");
+        return refuse(refusal, WP_PARSE_ERROR, "an empty line is not a JSON text");
     }
     if (!wp_utf8_valid(line, length)) {
         counts->requests++;
         counts->errors++;
-        return wp_error_line(WP_PARSE_ERROR, "", "the line is not valid UTF-8");
+        return refuse(refusal, WP_PARSE_ERROR, "the line is not valid UTF-8");
     }
     wp_json_shape shape = wp_json_scan(line, length, limits->max_depth);
     if (shape.depth > limits->max_depth) {
@@ -178,13 +200,13 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
         counts->errors++;
         char reason[96];
         snprintf(reason, sizeof reason, "JSON nested deeper than %d levels", limits->max_depth);
-        return wp_error_line(WP_INVALID_REQUEST, "", reason);
+        return refuse(refusal, WP_INVALID_REQUEST, reason);
     }
     if (shape.control) {
         counts->requests++;
         counts->errors++;
-        return wp_error_line(WP_PARSE_ERROR, "",
-                             "a control character where JSON allows none (raw in a string, or "
+        return refuse(refusal, WP_PARSE_ERROR,
+                      "a control character where JSON allows none (raw in a string, or "
                              "as white space)");
     }
     if (shape.nul_escape) {
@@ -192,8 +214,8 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
          * request ("fixture.list\u0000x" as "fixture.list"): refuse it. */
         counts->requests++;
         counts->errors++;
-        return wp_error_line(WP_INVALID_REQUEST, "",
-                             "a string holds \\u0000 (U+0000), which wrenchd does not accept");
+        return refuse(refusal, WP_INVALID_REQUEST,
+                      "a string holds \\u0000 (U+0000), which wrenchd does not accept");
     }
     const char *end = NULL;
     cJSON *json = cJSON_ParseWithLengthOpts(line + start, length - start, &end, false);
@@ -201,9 +223,16 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
         cJSON_Delete(json);
         counts->requests++;
         counts->errors++;
-        return wp_error_line(WP_PARSE_ERROR, "", json ? "text after the JSON value"
+        return refuse(refusal, WP_PARSE_ERROR, json ? "text after the JSON value"
                                                       : "the line is not valid JSON");
     }
+    return json;
+}
+
+/* Answer the parsed line (takes `json`). */
+static char *answer_json(const wp_host *host, const wp_limits *limits, cJSON *json,
+                         wp_counts *counts)
+{
     wp_buffer b = {0};
     if (cJSON_IsArray(json)) {
         if (!json->child) {
@@ -246,30 +275,50 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
     return answer;
 }
 
-bool wp_line_is_light(const wp_host *host, const char *line, size_t length)
+char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
+                     size_t length, wp_counts *counts)
+{
+    char *refusal = NULL;
+    cJSON *json = parse_line(limits, line, length, counts, &refusal);
+    return json ? answer_json(host, limits, json, counts) : refusal;
+}
+
+/* Light work (wp_answer_light): server.status, or an auto classify of a
+ * few wrenches against a stored fixture whose cones are ready. */
+static bool json_is_light(const wp_host *host, const cJSON *json)
+{
+    const cJSON *method = cJSON_GetObjectItemCaseSensitive(json, "method");
+    const cJSON *params = cJSON_GetObjectItemCaseSensitive(json, "params");
+    if (!cJSON_IsObject(json) || !cJSON_IsString(method))
+        return !cJSON_IsArray(json); /* an invalid request, but a batch may be work */
+    if (strcmp(method->valuestring, "server.status") == 0)
+        return true;
+    if (strcmp(method->valuestring, "wrench.classify") != 0 || !cJSON_IsObject(params))
+        return false;
+    const cJSON *how = cJSON_GetObjectItemCaseSensitive(params, "method");
+    const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
+    const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
+    return (!how || (cJSON_IsString(how) && strcmp(how->valuestring, "auto") == 0)) &&
+           cJSON_IsString(id) && cJSON_IsArray(wrenches) &&
+           cJSON_GetArraySize(wrenches) <= WP_LIGHT_WRENCHES && host->fixture_ready &&
+           wp_fixture_id_valid(id->valuestring) && host->fixture_ready(host->self, id->valuestring);
+}
+
+bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *line,
+                     size_t length, wp_counts *counts, char **answer)
 {
     if (length > WP_LIGHT_LINE)
         return false;
-    cJSON *json = cJSON_ParseWithLength(line, length);
-    if (!json)
-        return true; /* a parse error is answered at once */
-    bool light = false;
-    const cJSON *method = cJSON_GetObjectItemCaseSensitive(json, "method");
-    const cJSON *params = cJSON_GetObjectItemCaseSensitive(json, "params");
-    if (!cJSON_IsObject(json) || !cJSON_IsString(method)) {
-        light = !cJSON_IsArray(json); /* an invalid request, but a batch may be work */
-    } else if (strcmp(method->valuestring, "server.status") == 0) {
-        light = true;
-    } else if (strcmp(method->valuestring, "wrench.classify") == 0 && cJSON_IsObject(params)) {
-        const cJSON *how = cJSON_GetObjectItemCaseSensitive(params, "method");
-        const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
-        const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
-        light = (!how || (cJSON_IsString(how) && strcmp(how->valuestring, "auto") == 0)) &&
-                cJSON_IsString(id) && cJSON_IsArray(wrenches) &&
-                cJSON_GetArraySize(wrenches) <= 16 && host->fixture_ready &&
-                wp_fixture_id_valid(id->valuestring) &&
-                host->fixture_ready(host->self, id->valuestring);
+    char *refusal = NULL;
+    cJSON *json = parse_line(limits, line, length, counts, &refusal);
+    if (!json) {
+        *answer = refusal; /* refusing a line is light */
+        return true;
     }
-    cJSON_Delete(json);
-    return light;
+    if (!json_is_light(host, json)) {
+        cJSON_Delete(json); /* nothing counted yet: the worker will */
+        return false;
+    }
+    *answer = answer_json(host, limits, json, counts);
+    return true;
 }

@@ -63,16 +63,21 @@ typedef struct wp_counts {
 char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
                      size_t length, wp_counts *counts);
 
-/* Lines up to this long may be light (wp_line_is_light). */
+/* Lines up to this long, with at most this many wrenches, may be light. */
 #define WP_LIGHT_LINE 2048
-/* Is answering `line` light work -- microseconds, no GLPK, no derivation,
- * no disk -- so that an event loop may answer it itself rather than pay two
- * thread hand-offs?  True for what is not JSON (an error answer), for
- * server.status, and for wrench.classify by the "auto" method of at most
- * 16 wrenches against a stored fixture whose derived data is ready
- * (host->fixture_ready).  Conservative: false for everything else,
- * batches included. */
-bool wp_line_is_light(const wp_host *host, const char *line, size_t length);
+#define WP_LIGHT_WRENCHES 16
+/* Answer `line` as wp_answer_line does -- but only if that is light work:
+ * microseconds, no GLPK, no derivation, no disk -- so that an event loop
+ * may answer it itself rather than pay two thread hand-offs.  Light: a line
+ * refused before any request is read (not JSON, too deep), an invalid
+ * request object, server.status, and wrench.classify by the "auto" method
+ * of at most WP_LIGHT_WRENCHES wrenches against a stored fixture whose
+ * derived data is ready (host->fixture_ready).  Conservative: anything else,
+ * batches included, is not.  Returns true with *answer set (NULL for a
+ * notification) and counts added, or false with nothing counted: answer it
+ * with wp_answer_line elsewhere. */
+bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *line,
+                     size_t length, wp_counts *counts, char **answer);
 
 /* A response line for an error found before the line was read (a line over
  * the length limit, too many clients): id null.  Malloc'd, or NULL. */

@@ -296,6 +296,68 @@ static void put_get_classify_delete(void **state)
     expect_error(h, line, WP_NO_FIXTURE, "params.id");
 }
 
+/* wp_answer_light answers exactly what wp_answer_line would, but only
+ * light work; heavy lines are left alone, nothing counted. */
+static void light_lines_answer_as_any_other(void **state)
+{
+    harness *h = *state;
+    const wp_host *host = wd_context_host(h->context);
+    char line[4096];
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
+             DISC);
+    cJSON *answer = ask(h, line);
+    char id[WP_ID_LENGTH + 1];
+    snprintf(id, sizeof id, "%s",
+             cJSON_GetObjectItem(cJSON_GetObjectItem(answer, "result"), "id")->valuestring);
+    cJSON_Delete(answer);
+    struct {
+        const char *format; /* %s: the id */
+        bool light;
+    } cases[] = {
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
+         "\"wrenches\":[[-1,-1,0],[0,0,1]]},\"id\":2}", true},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
+         "\"wrenches\":[[-1,-1,0]],\"method\":\"lp\"},\"id\":3}", false},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
+         "\"wrenches\":[[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],"
+         "[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1]]},\"id\":4}", false},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":"
+         "\"00000000000000000000000000000000\",\"wrenches\":[[1,1,1]]},\"id\":5}%.0s", false},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"modes.get\",\"params\":{\"fixture\":\"%s\"},\"id\":6}",
+         false},
+        {"[{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"id\":7}]%.0s", false},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"id\":8}%.0s", true},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"server.status\"}%.0s", true}, /* a notification */
+        {"{not json%.0s", true},
+        {"{\"jsonrpc\":\"1.0\",\"method\":3,\"id\":9}%.0s", true},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(line, sizeof line, cases[i].format, id);
+        wp_counts counts = {0, 0};
+        char *light = NULL;
+        bool answered = wp_answer_light(host, &h->limits, line, strlen(line), &counts, &light);
+        if (answered != cases[i].light)
+            fail_msg("case %zu: light %d, expected %d: %s", i, answered, cases[i].light, line);
+        if (!answered) {
+            assert_int_equal(counts.requests, 0);
+            assert_null(light);
+            continue;
+        }
+        assert_int_equal(counts.requests, 1);
+        wp_counts again = {0, 0};
+        char *full = wp_answer_line(host, &h->limits, line, strlen(line), &again);
+        if (strstr(line, "server.status")) { /* the counts in it moved on */
+            assert_true((light == NULL) == (full == NULL));
+        } else if (!light || !full || strcmp(light, full) != 0) {
+            fail_msg("case %zu: \"%s\" against \"%s\"", i, light ? light : "(none)",
+                     full ? full : "(none)");
+        }
+        free(light);
+        free(full);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -305,6 +367,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(envelope_errors_name_the_field, setup, teardown),
         cmocka_unit_test_setup_teardown(notifications_and_batches, setup, teardown),
         cmocka_unit_test_setup_teardown(put_get_classify_delete, setup, teardown),
+        cmocka_unit_test_setup_teardown(light_lines_answer_as_any_other, setup, teardown),
     };
     return cmocka_run_group_tests_name("proto", tests, NULL, NULL);
 }
