@@ -222,7 +222,7 @@ BENCH_SOCKET = $(BUILD)/bench/socket
 
 $(BENCH_SOCKET): bench/socket.c
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) bench/socket.c -lm -o $@
+	$(CC) $(WARN) $(CFLAGS) bench/socket.c -lpthread -lm -o $@
 
 # Issue 9's benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.

@@ -15,10 +15,15 @@
  *               results but not parsed;
  *   register    cold fixture.put of a disc with k = 2..8 fixels (a new id
  *               each time), median of 5, and the growth of server.status's
- *               cache_bytes per fixture.
+ *               cache_bytes per fixture;
+ *   floor       the same sequential exchange (a 190-byte line out, the
+ *               size of a single-wrench answer back) with a thread of this
+ *               program that only echoes, over a socketpair: what the
+ *               machine's kernel costs before wrenchd does anything.
  * Wrenches are uniform in [-1, 1]^3, 6 decimals, from a fixed seed. */
 #define _GNU_SOURCE /* memmem */
 #include <errno.h>
+#include <pthread.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -183,6 +188,67 @@ static double cache_bytes(connection *c)
     return p ? atof(p + 14) : NAN;
 }
 
+/* ---- the floor: a ping-pong with a thread that does nothing --------------- */
+
+typedef struct echo {
+    int fd;
+    size_t answer_bytes;
+} echo;
+
+static void *echo_main(void *argument)
+{
+    echo *e = argument;
+    char request[4096];
+    char *answer = malloc(e->answer_bytes);
+    memset(answer, 'x', e->answer_bytes);
+    answer[e->answer_bytes - 1] = '\n';
+    for (;;) {
+        ssize_t n = read(e->fd, request, sizeof request);
+        if (n <= 0)
+            break;
+        if (write(e->fd, answer, e->answer_bytes) != (ssize_t)e->answer_bytes)
+            break;
+    }
+    free(answer);
+    return NULL;
+}
+
+/* p50 of `count` exchanges of a `request_bytes` line for an answer of
+ * `answer_bytes`, in microseconds. */
+static double floor_p50(long count, size_t request_bytes, size_t answer_bytes)
+{
+    int pair[2];
+    if (socketpair(AF_UNIX, SOCK_STREAM, 0, pair) != 0)
+        fail("socketpair");
+    echo e = {pair[1], answer_bytes};
+    pthread_t thread;
+    if (pthread_create(&thread, NULL, echo_main, &e) != 0)
+        fail("pthread_create");
+    connection c = {.fd = pair[0], .capacity = 1 << 16};
+    c.buffer = malloc(c.capacity);
+    char *request = malloc(request_bytes);
+    memset(request, 'r', request_bytes);
+    request[request_bytes - 1] = '\n';
+    double *latency = malloc((size_t)count * sizeof *latency);
+    size_t length;
+    for (long i = 0; i < count; i++) {
+        double start = now_us();
+        send_all(&c, request, request_bytes);
+        read_line(&c, &length);
+        latency[i] = now_us() - start;
+    }
+    shutdown(pair[0], SHUT_RDWR);
+    pthread_join(thread, NULL);
+    close(pair[0]);
+    close(pair[1]);
+    qsort(latency, (size_t)count, sizeof *latency, compare_doubles);
+    double p50 = percentile(latency, count, 0.5);
+    free(latency);
+    free(request);
+    free(c.buffer);
+    return p50;
+}
+
 int main(int argc, char **argv)
 {
     const char *path = NULL, *fixture_path = "examples/plate-3-2-1.json";
@@ -255,17 +321,22 @@ int main(int argc, char **argv)
         expect_result(call(&c, lines[i], &length), "wrench.classify");
 
     double *latency = malloc((size_t)singles * sizeof *latency);
+    size_t answer_bytes = 0;
     for (long i = 0; i < sequential; i++) {
         double start = now_us();
         answer = call(&c, lines[i], &length);
         latency[i] = now_us() - start;
+        answer_bytes += length + 1;
         if (i == 0)
             expect_result(answer, "wrench.classify");
     }
+    answer_bytes /= (size_t)sequential;
     qsort(latency, (size_t)sequential, sizeof *latency, compare_doubles);
     double sequential_p50 = percentile(latency, sequential, 0.5),
            sequential_p99 = percentile(latency, sequential, 0.99),
            sequential_p999 = percentile(latency, sequential, 0.999);
+
+    double floor_us = floor_p50(sequential, strlen(lines[0]), answer_bytes);
 
     /* Pipelined: `depth` in flight; answers come in request order. */
     double *sent = malloc((size_t)pipelined * sizeof *sent);
@@ -368,12 +439,14 @@ int main(int argc, char **argv)
 
     if (json) {
         printf("{\"sequential\": %ld, \"sequential_p50_us\": %.1f, \"sequential_p99_us\": %.1f, "
-               "\"sequential_p999_us\": %.1f, \"pipelined\": %ld, \"depth\": %ld, "
+               "\"sequential_p999_us\": %.1f, \"floor_p50_us\": %.1f, \"answer_bytes\": %zu, "
+               "\"pipelined\": %ld, \"depth\": %ld, "
                "\"pipelined_p50_us\": %.1f, \"pipelined_p99_us\": %.1f, "
                "\"pipelined_per_s\": %.0f, \"batch\": %ld, \"batch_s\": %.4f, "
                "\"batch_per_s\": %.0f, \"batch_request_bytes\": %zu, \"batch_answer_bytes\": %zu, "
                "\"put_ms\": {",
-               sequential, sequential_p50, sequential_p99, sequential_p999, pipelined, depth,
+               sequential, sequential_p50, sequential_p99, sequential_p999, floor_us, answer_bytes,
+               pipelined, depth,
                pipelined_p50, pipelined_p99, (double)pipelined / pipelined_seconds, batch,
                batch_seconds, (double)batch / batch_seconds, used, batch_answer_bytes);
         for (int k = 2; k <= 8; k++)
@@ -386,6 +459,9 @@ int main(int argc, char **argv)
         printf("sequential, %ld requests     p50 %7.1f us  p99 %7.1f us  p999 %7.1f us   target "
                "p50 <= 30\n",
                sequential, sequential_p50, sequential_p99, sequential_p999);
+        printf("floor: socketpair ping-pong  p50 %7.1f us  (%zu bytes back, a thread that only "
+               "echoes)\n",
+               floor_us, answer_bytes);
         printf("pipelined %ld deep, %ld      p50 %7.1f us  p99 %7.1f us  %.0f requests/s\n", depth,
                pipelined, pipelined_p50, pipelined_p99, (double)pipelined / pipelined_seconds);
         printf("batch of %ld wrenches        %.3f s, %.0f wrenches/s (%zu bytes in, %zu out)   "
