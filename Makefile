@@ -207,20 +207,20 @@ $(BENCH_LOAD): bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PRO
 # (proto/wp_number.c): prints figures, asserts nothing.
 BENCH_NUMBER = $(BUILD)/bench/number
 
-$(BENCH_NUMBER): bench/number.c $(BUILD)/libwrenchproto.a $(PROTO_HDR)
+$(BENCH_NUMBER): bench/number.c bench/bench_util.h $(BUILD)/libwrenchproto.a $(PROTO_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/number.c $(BUILD)/libwrenchproto.a -lm -o $@
 
 BENCH_MICRO = $(BUILD)/bench/micro
 
-$(BENCH_MICRO): bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
+$(BENCH_MICRO): bench/micro.c bench/bench_util.h $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
 	    -lcjson -lglpk -lm -o $@
 
 BENCH_SOCKET = $(BUILD)/bench/socket
 
-$(BENCH_SOCKET): bench/socket.c
+$(BENCH_SOCKET): bench/socket.c bench/bench_util.h
 	@mkdir -p $(dir $@)
 	$(CC) $(WARN) $(CFLAGS) bench/socket.c -lpthread -lm -o $@
 

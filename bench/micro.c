@@ -16,6 +16,7 @@
 #include "wp_fixture.h"
 #include "wp_local.h"
 #include "wrench.h"
+#include "bench_util.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -23,23 +24,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-
-static double now_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
-}
-
-/* xorshift64*: deterministic, the same wrenches on every machine. */
-static double uniform(uint64_t *state)
-{
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    uint64_t bits = (*state * 2685821657736338717ULL) >> 11;
-    return (double)bits / 9007199254740992.0 * 2 - 1;
-}
 
 static char fixture_text[1 << 20];
 
@@ -134,18 +118,18 @@ int main(int argc, char **argv)
     uint64_t seed = 0x9e3779b97f4a7c15ULL;
     for (long i = 0; i < wrench_count; i++)
         for (int k = 0; k < 3; k++)
-            wrenches[i][k] = uniform(&seed);
+            wrenches[i][k] = bench_uniform(&seed);
 
     /* auto: goal and strong, with witnesses, as the daemon answers. */
     long inside[2] = {0, 0};
-    double start = now_seconds();
+    double start = bench_seconds();
     for (long i = 0; i < wrench_count; i++)
         for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
             wr_answer answer;
             wr_classify(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE, &answer);
             inside[set] += answer.verdict == WR_VERDICT_INSIDE;
         }
-    double auto_us = (now_seconds() - start) * 1e6 / (double)wrench_count;
+    double auto_us = (bench_seconds() - start) * 1e6 / (double)wrench_count;
 
     /* lp: the same with GLPK (warm problems: every one solved once first). */
     wr_answer answer;
@@ -160,11 +144,11 @@ int main(int argc, char **argv)
         wr_lp_member(strong, c, wrenches[0], &member, NULL);
     }
     long agree = 0;
-    start = now_seconds();
+    start = bench_seconds();
     for (long i = 0; i < lp_wrench_count; i++)
         for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++)
             wr_classify_lp(analysis, goal, strong, wrenches[i], (wr_set)set, &answer);
-    double lp_us = (now_seconds() - start) * 1e6 / (double)lp_wrench_count;
+    double lp_us = (bench_seconds() - start) * 1e6 / (double)lp_wrench_count;
     for (long i = 0; i < lp_wrench_count; i++)
         for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
             wr_answer by_cones;
@@ -177,7 +161,7 @@ int main(int argc, char **argv)
 
     /* One warm LP, and one explicit-cone check, per cone of both sets. */
     long lp_solves = 0, cone_checks = 0;
-    start = now_seconds();
+    start = bench_seconds();
     for (long i = 0; i < lp_wrench_count; i++)
         for (int c = 0; c < cones; c++) {
             bool member;
@@ -185,9 +169,9 @@ int main(int argc, char **argv)
                          wrenches[i], &member, NULL);
             lp_solves++;
         }
-    double warm_us = (now_seconds() - start) * 1e6 / (double)lp_solves;
+    double warm_us = (bench_seconds() - start) * 1e6 / (double)lp_solves;
     double checksum = 0;
-    start = now_seconds();
+    start = bench_seconds();
     for (long i = 0; i < wrench_count; i++) {
         double x[3];
         double norm = sqrt(wrenches[i][0] * wrenches[i][0] + wrenches[i][1] * wrenches[i][1] +
@@ -202,7 +186,7 @@ int main(int argc, char **argv)
             cone_checks++;
         }
     }
-    double cone_us = (now_seconds() - start) * 1e6 / (double)cone_checks;
+    double cone_us = (bench_seconds() - start) * 1e6 / (double)cone_checks;
 
     /* GLPK has one environment per thread: this one goes before wp_local
      * makes its own. */
@@ -229,9 +213,9 @@ int main(int argc, char **argv)
     size_t batch_answer = 0;
     for (int run = 0; run < 4 && local; run++) {
         wp_counts counts = {0, 0};
-        start = now_seconds();
+        start = bench_seconds();
         char *answer = wp_answer_line(wp_local_host(local), &limits, batch_line, used, &counts);
-        double us = (now_seconds() - start) * 1e6 / (double)wrench_count;
+        double us = (bench_seconds() - start) * 1e6 / (double)wrench_count;
         if (run > 0 && us < batch_us) /* the best of three, after a first run */
             batch_us = us;
         batch_answer = answer ? strlen(answer) : 0;
@@ -249,7 +233,7 @@ int main(int argc, char **argv)
     size_t derive_bytes[WR_MAX_FIXELS + 1] = {0};
     for (int k = 2; k <= WR_MAX_FIXELS; k++) {
         int repeats = k < 6 ? 50 : k < 8 ? 10 : 5;
-        start = now_seconds();
+        start = bench_seconds();
         for (int r = 0; r < repeats; r++) {
             wr_fixture *disc = disc_fixture(k, 1e-3 * r);
             wr_analysis *disc_analysis = disc ? wr_analysis_new(disc) : NULL;
@@ -261,7 +245,7 @@ int main(int argc, char **argv)
             wr_analysis_free(disc_analysis);
             wr_fixture_free(disc);
         }
-        derive_ms[k] = (now_seconds() - start) * 1e3 / repeats;
+        derive_ms[k] = (bench_seconds() - start) * 1e3 / repeats;
     }
 
     if (json) {

@@ -15,6 +15,7 @@
  * 3 and of 15 passes over the mix), the speed-up, and the share of the
  * numbers the new one sent to the exact path. */
 #include "wp_number.h"
+#include "bench_util.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -23,26 +24,9 @@
 #include <string.h>
 #include <time.h>
 
-static double now_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
-}
-
-/* xorshift64*: deterministic, the same numbers on every machine. */
-static double uniform(uint64_t *state)
-{
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    uint64_t bits = (*state * 2685821657736338717ULL) >> 11;
-    return (double)bits / 9007199254740992.0; /* [0, 1) */
-}
-
 static double range(uint64_t *state, double low, double high)
 {
-    return low + (high - low) * uniform(state);
+    return low + (high - low) * bench_uniform01(state);
 }
 
 static void fill_uniform(double *values, size_t count, uint64_t *state)
@@ -55,12 +39,12 @@ static void fill_short(double *values, size_t count, uint64_t *state)
 {
     static const double common[] = {0.25, 1.5, 3, -0.125, 0.5, 1, 2, 10, 0.1, -1, 100, 0.75};
     for (size_t i = 0; i < count; i++) {
-        double pick = uniform(state);
+        double pick = bench_uniform01(state);
         if (pick < 0.3) {
-            values[i] = common[(size_t)(uniform(state) * (sizeof common / sizeof common[0]))];
+            values[i] = common[(size_t)(bench_uniform01(state) * (sizeof common / sizeof common[0]))];
         } else if (pick < 0.8) {
             /* 1 to 4 decimals, as typed: the double nearest that decimal. */
-            int decimals = 1 + (int)(uniform(state) * 4);
+            int decimals = 1 + (int)(bench_uniform01(state) * 4);
             char text[64];
             snprintf(text, sizeof text, "%.*f", decimals, range(state, -100, 100));
             values[i] = strtod(text, NULL);
@@ -74,7 +58,7 @@ static void fill_witness(double *values, size_t count, uint64_t *state)
 {
     for (size_t i = 0; i < count; i++) {
         double a = range(state, -2, 2), b = range(state, -2, 2);
-        switch ((int)(uniform(state) * 5)) {
+        switch ((int)(bench_uniform01(state) * 5)) {
         case 0: values[i] = a + b; break;
         case 1: values[i] = a * b; break;
         case 2: values[i] = a / (fabs(b) + 0.1); break;
@@ -94,10 +78,10 @@ static double time_formatter(formatter format, const double *values, size_t coun
     char text[32];
     double best = INFINITY;
     for (int pass = 0; pass < passes; pass++) {
-        double start = now_seconds();
+        double start = bench_seconds();
         for (size_t i = 0; i < count; i++)
             *checksum += (unsigned long)format(values[i], text) + (unsigned char)text[0];
-        double seconds = now_seconds() - start;
+        double seconds = bench_seconds() - start;
         if (seconds < best)
             best = seconds;
     }

@@ -34,21 +34,9 @@
 #include <time.h>
 #include <unistd.h>
 
-static double now_us(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e6 + (double)t.tv_nsec / 1e3;
-}
+#include "bench_util.h"
 
-static double uniform(uint64_t *state)
-{
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    uint64_t bits = (*state * 2685821657736338717ULL) >> 11;
-    return (double)bits / 9007199254740992.0 * 2 - 1;
-}
+static double now_us(void) { return bench_seconds() * 1e6; }
 
 static void fail(const char *what)
 {
@@ -310,7 +298,7 @@ int main(int argc, char **argv)
     char (*lines)[192] = malloc((size_t)singles * sizeof *lines);
     uint64_t seed = 0x9e3779b97f4a7c15ULL;
     for (long i = 0; i < singles; i++) {
-        double x = uniform(&seed), y = uniform(&seed), z = uniform(&seed);
+        double x = bench_uniform(&seed), y = bench_uniform(&seed), z = bench_uniform(&seed);
         snprintf(lines[i], sizeof lines[i],
                  "{\"jsonrpc\":\"2.0\",\"id\":%ld,\"method\":\"wrench.classify\",\"params\":"
                  "{\"fixture\":\"%s\",\"wrenches\":[[%.6f,%.6f,%.6f]]}}\n",
@@ -371,7 +359,7 @@ int main(int argc, char **argv)
                                    id);
     seed = 0x2545f4914f6cdd1dULL;
     for (long i = 0; i < batch; i++) {
-        double x = uniform(&seed), y = uniform(&seed), z = uniform(&seed);
+        double x = bench_uniform(&seed), y = bench_uniform(&seed), z = bench_uniform(&seed);
         used += (size_t)snprintf(batch_line + used, batch_size - used, "%s[%.6f,%.6f,%.6f]",
                                  i ? "," : "", x, y, z);
     }
