@@ -539,13 +539,16 @@ bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *er
     return ready(c, e, NULL, use, error);
 }
 
-bool wd_cache_ready(wd_cache *c, const char *id)
+int wd_cache_ready(wd_cache *c, const char *id)
 {
     pthread_mutex_lock(&c->lock);
     const entry *e = find(c, id);
-    bool ready = e && e->stored && e->analysis;
+    int cones = e && e->stored && e->analysis
+                    ? wr_analysis_cone_count(e->analysis, WR_SET_GOAL) +
+                          wr_analysis_cone_count(e->analysis, WR_SET_STRONG)
+                    : -1;
     pthread_mutex_unlock(&c->lock);
-    return ready;
+    return cones;
 }
 
 void wd_cache_release(wd_cache *c, wp_fixture_use *use)

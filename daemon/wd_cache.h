@@ -22,7 +22,9 @@ void wd_cache_free(wd_cache *cache);
 bool wd_cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                     wp_error *error);
 bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use, wp_error *error);
-bool wd_cache_ready(wd_cache *cache, const char *id);
+/* Is the stored fixture `id` there with its derived data (so that using it
+ * derives nothing)?  Its number of cones (goal + strong), or -1. */
+int wd_cache_ready(wd_cache *cache, const char *id);
 void wd_cache_release(wd_cache *cache, wp_fixture_use *use);
 bool wd_cache_delete(wd_cache *cache, const char *id, wp_error *error);
 cJSON *wd_cache_list(wd_cache *cache);

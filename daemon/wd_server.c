@@ -176,8 +176,8 @@ static bool write_response(connection *c, slot *x)
     size_t length = x->response_length ? x->response_length : strlen(x->response);
     struct evbuffer *output = bufferevent_get_output(c->bev);
     size_t sent = 0;
-    /* Not while more requests wait in the input: their answers go out
-     * together, in one writev, once the loop is done with them. */
+    /* Not while more input waits (more requests, or part of one): the
+     * answers go out together, in one writev, once the loop is done. */
     if (!c->refusing && evbuffer_get_length(output) == 0 &&
         evbuffer_get_length(bufferevent_get_input(c->bev)) == 0) {
         ssize_t n = send(bufferevent_getfd(c->bev), x->response, length,
@@ -283,14 +283,17 @@ static void answer_now(connection *c, int code, const char *reason)
     queue_error(c, code, reason);
 }
 
-/* Answer a light request (wp_answer_light) in the loop itself: a single
- * wrench's answer takes microseconds, and handing it to a worker and back
- * costs two thread wake-ups, more than the work.  Only when no request of
- * the connection is before it, so that answers keep their order. */
+/* Answer a light request (wp_answer_light) in the loop itself: a few
+ * wrenches' answer takes microseconds, and handing it to a worker and back
+ * costs two thread wake-ups, more than the work.  dispatch only calls it
+ * when no earlier request of the connection is still running, and flush
+ * writes answers in queue order, so order is kept.  (Should a worker evict
+ * the fixture's derived data between wp_answer_light's check and its use,
+ * the loop derives it once: milliseconds, rarely.) */
 static bool answer_light(connection *c, slot *x)
 {
     wd_server *s = c->server;
-    if (!s->light || x != c->head || c->light_answered >= LIGHT_BURST)
+    if (!s->light || c->light_answered >= LIGHT_BURST)
         return false;
     wp_counts counts = {0, 0};
     if (!wp_answer_light(wd_context_host(s->light), &s->limits, x->line, x->length, &counts,
@@ -320,9 +323,8 @@ static void dispatch(connection *c)
             return;
         if (!answer_light(c, x))
             break;
-        flush(c);
-        if (!c->bev)
-            return; /* closed while writing */
+        flush(c); /* closed meanwhile (--max-output): the answers are dropped, and the
+                     rest still run, so that nothing stays pending */
     }
     wd_job *job = calloc(1, sizeof *job);
     if (!job) {
@@ -594,8 +596,8 @@ static void on_done(evutil_socket_t fd, short events, void *argument)
         free(job);
         c->running = NULL;
         c->busy++;
+        flush(c); /* the answered head leaves the queue, then the next runs */
         dispatch(c);
-        flush(c);
         c->busy--;
         maybe_finish(c);
         job = next;

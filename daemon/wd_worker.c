@@ -46,7 +46,7 @@ static bool host_delete(void *self, const char *id, wp_error *error)
     return wd_cache_delete(((wd_context *)self)->cache, id, error);
 }
 
-static bool host_ready(void *self, const char *id)
+static int host_ready(void *self, const char *id)
 {
     return wd_cache_ready(((wd_context *)self)->cache, id);
 }

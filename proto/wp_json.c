@@ -200,10 +200,8 @@ void wp_buffer_reserve(wp_buffer *b, size_t bytes)
     if (b->failed || b->capacity >= bytes + 1)
         return;
     char *grown = realloc(b->data, bytes + 1);
-    if (!grown) {
-        b->failed = true;
-        return;
-    }
+    if (!grown)
+        return; /* only a hint: appends grow the buffer as they need */
     if (!b->data)
         grown[0] = 0;
     b->data = grown;

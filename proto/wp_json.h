@@ -74,9 +74,11 @@ typedef struct wp_buffer {
 void wp_buffer_append(wp_buffer *buffer, const char *text, size_t length);
 void wp_buffer_puts(wp_buffer *buffer, const char *text);
 /* A string literal, its length known at compile time (hot loops). */
-#define WP_BUFFER_LITERAL(buffer, literal) wp_buffer_append(buffer, literal, sizeof literal - 1)
-/* Room for `bytes` more than nothing, at once: a large answer whose size
- * is known roughly is not regrown (and recopied) a dozen times. */
+#define WP_BUFFER_LITERAL(buffer, literal)                                                     \
+    wp_buffer_append(buffer, "" literal, sizeof("" literal) - 1) /* "": literals only */
+/* Capacity for `bytes` bytes of text in all, at once: a large answer whose
+ * size is known roughly is not regrown (and recopied) a dozen times.  A
+ * hint: on failure nothing changes. */
 void wp_buffer_reserve(wp_buffer *buffer, size_t bytes);
 void wp_buffer_number(wp_buffer *buffer, double value);
 void wp_buffer_string(wp_buffer *buffer, const char *text); /* quoted, escaped */

@@ -114,12 +114,17 @@ static void answer_request(const wp_host *host, const wp_limits *limits, const c
         /* It could not be echoed: JSON has no infinities. */
         wp_error_set(&error, WP_INVALID_REQUEST, "id", "must be a finite number");
     } else {
-        if (id && !cJSON_IsNull(id))
+        if (id && !cJSON_IsNull(id)) {
             id_text = id_owned = wp_canonical(id, NULL);
+            if (!id_owned)
+                id_text = "null";
+        }
         const cJSON *version = cJSON_GetObjectItemCaseSensitive(request, "jsonrpc");
         const cJSON *method = cJSON_GetObjectItemCaseSensitive(request, "method");
         wp_error envelope;
-        if (!wp_check_object(request, "", ENVELOPE_FIELDS, &envelope))
+        if (id && !cJSON_IsNull(id) && !id_owned) /* out of memory: answered under id null */
+            wp_error_set(&error, WP_INTERNAL, "", "out of memory");
+        else if (!wp_check_object(request, "", ENVELOPE_FIELDS, &envelope))
             wp_error_set(&error, WP_INVALID_REQUEST, envelope.field, "%s", envelope.reason);
         else if (!cJSON_IsString(version) || strcmp(version->valuestring, "2.0") != 0)
             wp_error_set(&error, WP_INVALID_REQUEST, "jsonrpc", "must be \"2.0\"");
@@ -140,7 +145,7 @@ static void answer_request(const wp_host *host, const wp_limits *limits, const c
             wp_buffer_puts(b, ",");
         cJSON *raw = result ? result->child : NULL;
         size_t room = sizeof WP_RESULTS_OPENING - 1;
-        if (b->length == 0 && raw && !raw->next && cJSON_IsRaw(raw) &&
+        if (b->length == 0 && !b->failed && raw && !raw->next && cJSON_IsRaw(raw) &&
             strcmp(raw->string, "results") == 0 && strspn(raw->valuestring, " ") == room) {
             /* The results take the envelope's opening in their room and
              * become the answer: tens of megabytes are not copied. */
@@ -270,8 +275,10 @@ static char *answer_json(const wp_host *host, const wp_limits *limits, cJSON *js
     cJSON_Delete(json);
     wp_buffer_puts(&b, "\n");
     char *answer = wp_buffer_take(&b);
-    if (!answer) /* the answer did not fit in memory: say so, lose nothing silently */
+    if (!answer) { /* the answer did not fit in memory: say so, lose nothing silently */
+        counts->errors++;
         answer = wp_error_line(WP_INTERNAL, "", "out of memory while writing the answer");
+    }
     return answer;
 }
 
@@ -298,10 +305,15 @@ static bool json_is_light(const wp_host *host, const cJSON *json)
     const cJSON *how = cJSON_GetObjectItemCaseSensitive(params, "method");
     const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
     const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
-    return (!how || (cJSON_IsString(how) && strcmp(how->valuestring, "auto") == 0)) &&
-           cJSON_IsString(id) && cJSON_IsArray(wrenches) &&
-           cJSON_GetArraySize(wrenches) <= WP_LIGHT_WRENCHES && host->fixture_ready &&
-           wp_fixture_id_valid(id->valuestring) && host->fixture_ready(host->self, id->valuestring);
+    if ((how && !(cJSON_IsString(how) && strcmp(how->valuestring, "auto") == 0)) ||
+        !cJSON_IsString(id) || !cJSON_IsArray(wrenches) || !host->fixture_ready ||
+        !wp_fixture_id_valid(id->valuestring))
+        return false;
+    long count = cJSON_GetArraySize(wrenches);
+    if (count > WP_LIGHT_CONE_CHECKS)
+        return false;
+    int cones = host->fixture_ready(host->self, id->valuestring);
+    return cones >= 0 && count * (cones > 0 ? cones : 1) <= WP_LIGHT_CONE_CHECKS;
 }
 
 bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *line,

@@ -42,8 +42,9 @@ typedef struct wp_host {
     bool (*lp_sets)(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
                     wp_error *error);
     /* Is the stored fixture `id` there with its derived data, so that using
-     * it costs no derivation?  May be NULL: never. */
-    bool (*fixture_ready)(void *self, const char *id);
+     * it costs no derivation?  Its number of cones (goal + strong), or -1.
+     * May be NULL: never. */
+    int (*fixture_ready)(void *self, const char *id);
 } wp_host;
 
 typedef struct wp_limits {
@@ -63,16 +64,19 @@ typedef struct wp_counts {
 char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
                      size_t length, wp_counts *counts);
 
-/* Lines up to this long, with at most this many wrenches, may be light. */
+/* Lines up to this long may be light; a classify, when its wrenches times
+ * its fixture's cones are at most WP_LIGHT_CONE_CHECKS (tens of
+ * microseconds). */
 #define WP_LIGHT_LINE 2048
-#define WP_LIGHT_WRENCHES 16
+#define WP_LIGHT_CONE_CHECKS 1024
 /* Answer `line` as wp_answer_line does -- but only if that is light work:
  * microseconds, no GLPK, no derivation, no disk -- so that an event loop
  * may answer it itself rather than pay two thread hand-offs.  Light: a line
  * refused before any request is read (not JSON, too deep), an invalid
  * request object, server.status, and wrench.classify by the "auto" method
- * of at most WP_LIGHT_WRENCHES wrenches against a stored fixture whose
- * derived data is ready (host->fixture_ready).  Conservative: anything else,
+ * against a stored fixture whose derived data is ready
+ * (host->fixture_ready), of so few wrenches that wrenches x cones <=
+ * WP_LIGHT_CONE_CHECKS.  Conservative: anything else,
  * batches included, is not.  Returns true with *answer set (NULL for a
  * notification) and counts added, or false with nothing counted: answer it
  * with wp_answer_line elsewhere. */

@@ -321,7 +321,10 @@ static void light_lines_answer_as_any_other(void **state)
          "\"wrenches\":[[-1,-1,0]],\"method\":\"lp\"},\"id\":3}", false},
         {"{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
          "\"wrenches\":[[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],"
-         "[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1]]},\"id\":4}", false},
+         "[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1]]},\"id\":4}", true},
+        /* The disc has 4 + 9 cones: 80 wrenches are 1040 cone checks, over the
+         * WP_LIGHT_CONE_CHECKS of a light request (filled in below). */
+        {NULL, false},
         {"{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":"
          "\"00000000000000000000000000000000\",\"wrenches\":[[1,1,1]]},\"id\":5}%.0s", false},
         {"{\"jsonrpc\":\"2.0\",\"method\":\"modes.get\",\"params\":{\"fixture\":\"%s\"},\"id\":6}",
@@ -333,7 +336,17 @@ static void light_lines_answer_as_any_other(void **state)
         {"{\"jsonrpc\":\"1.0\",\"method\":3,\"id\":9}%.0s", true},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        snprintf(line, sizeof line, cases[i].format, id);
+        if (cases[i].format) {
+            snprintf(line, sizeof line, cases[i].format, id);
+        } else {
+            int n = snprintf(line, sizeof line,
+                             "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":"
+                             "{\"fixture\":\"%s\",\"wrenches\":[",
+                             id);
+            for (int w = 0; w < 80; w++)
+                n += snprintf(line + n, sizeof line - (size_t)n, "%s[1,1,1]", w ? "," : "");
+            snprintf(line + n, sizeof line - (size_t)n, "]},\"id\":10}");
+        }
         wp_counts counts = {0, 0};
         char *light = NULL;
         bool answered = wp_answer_light(host, &h->limits, line, strlen(line), &counts, &light);
