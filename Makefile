@@ -273,7 +273,7 @@ $(FUZZ_DIR)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
 $(FUZZ_DIR)/libwrench-fuzz.a: $(FUZZ_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
-$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_DIR)/libwrench-fuzz.a
+$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h tests/unit/test_util.h $(FUZZ_DIR)/libwrench-fuzz.a
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer $< $(FUZZ_DIR)/libwrench-fuzz.a $(SERVER_LIBS) -o $@
 
 fuzz-build: $(FUZZ_BIN)

@@ -139,4 +139,82 @@ static inline wr_fixture *test_disc_corner(double mu)
     return wr_fixture_new(&spec, NULL);
 }
 
+/* Does (q, c) of a witness satisfy the closure of the constraint's rows
+ * (SPEC section 2's table) and make the wrench g by Newton-Euler, within
+ * `relative` of |g|?  NULL, or which row fails.  Written from the SPEC, not
+ * from lib/; the acceleration tolerance scales with the longest lever arm
+ * (far fixels cancel digits), and a NaN fails every comparison.  Used by
+ * test_crosscheck and by the fuzz targets. */
+static inline const char *test_witness_violation(const wr_fixture *f, const wr_constraint *c,
+                                                 const wr_witness *w, const double g[3],
+                                                 double relative)
+{
+    double scaled[3];
+    double size = wr_fixture_scale_wrench(f, g, scaled);
+    double tol = relative * (size > 0 ? size : 1);
+    const double *q = w->acceleration;
+    double made[3] = {f->mass * q[0], f->mass * q[1], f->inertia * q[2]};
+    for (int i = 0; i < f->fixel_count; i++) {
+        const wr_fixel *x = &f->fixels[i];
+        double r[2] = {x->at[0] - f->com[0], x->at[1] - f->com[1]};
+        double force[2] = {x->normal[0] * w->force[i][0] + x->tangent[0] * w->force[i][1],
+                           x->normal[1] * w->force[i][0] + x->tangent[1] * w->force[i][1]};
+        made[0] -= force[0];
+        made[1] -= force[1];
+        made[2] -= r[0] * force[1] - r[1] * force[0];
+    }
+    double made_scaled[3];
+    wr_fixture_scale_wrench(f, made, made_scaled);
+    for (int k = 0; k < 3; k++)
+        if (!(fabs(made_scaled[k] - scaled[k]) <= tol))
+            return "Newton-Euler: (q, c) does not make g";
+    /* Contact accelerations a_c + alpha z x r: relative to |q|, to |g| / m
+     * (q may be 0), and to |alpha| |r| (far fixels cancel digits). */
+    double lever = f->gyration_radius;
+    for (int i = 0; i < f->fixel_count; i++)
+        lever = fmax(lever, hypot(f->fixels[i].at[0] - f->com[0], f->fixels[i].at[1] - f->com[1]));
+    double qsize = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) * lever;
+    double atol = relative * (qsize + size / f->mass);
+    for (int i = 0; i < f->fixel_count; i++) {
+        const wr_fixel *x = &f->fixels[i];
+        double r[2] = {x->at[0] - f->com[0], x->at[1] - f->com[1]};
+        double a[2] = {q[0] - q[2] * r[1], q[1] + q[2] * r[0]};
+        double an = a[0] * x->normal[0] + a[1] * x->normal[1];
+        double at = a[0] * x->tangent[0] + a[1] * x->tangent[1];
+        double cn = w->force[i][0], ct = w->force[i][1];
+        double ftol = relative * (fabs(cn) + fabs(ct) + size);
+        switch (c->letters[i]) {
+        case 's':
+            if (an < -atol || fabs(cn) > ftol || fabs(ct) > ftol)
+                return "s: a_n < 0 or a force";
+            break;
+        case 'u':
+            if (fabs(cn) > ftol || fabs(ct) > ftol)
+                return "u: a force";
+            break;
+        case 'l':
+        case 'r':
+            if (fabs(an) > atol || cn < -ftol)
+                return "l/r: a_n != 0 or c_n < 0";
+            if (c->letters[i] == 'l' ? at < -atol : at > atol)
+                return "l/r: a_t of the wrong sign";
+            if (fabs(ct - (c->letters[i] == 'l' ? -1 : 1) * x->mu_kinetic * cn) > ftol)
+                return "l/r: c_t off the friction-cone edge";
+            break;
+        case 'n':
+        case 'm':
+            if (fabs(an) > atol || cn < -ftol || fabs(ct) > x->mu_static * cn + ftol)
+                return "n/m: a_n != 0, c_n < 0 or outside the friction cone";
+            if (c->letters[i] == 'n' && fabs(at) > atol)
+                return "n: a_t != 0";
+            break;
+        default:
+            return "unknown letter";
+        }
+    }
+    if (c->pivot && c->pivot * q[2] < -atol)
+        return "pivot: alpha of the wrong sign";
+    return NULL;
+}
+
 #endif
