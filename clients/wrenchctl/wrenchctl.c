@@ -871,12 +871,27 @@ static wr_fixture *fixture_geometry(options *o, const cJSON *fixture, char *name
     return geometry;
 }
 
-static FILE *open_svg(const char *path)
+/* A picture for --svg: the fixture's geometry (file or stored) and the
+ * open file.  NULL after saying why (nothing left to release). */
+static FILE *svg_begin(options *o, const cJSON *fixture, const char *path, char name[128],
+                       wr_fixture **geometry)
 {
+    *geometry = fixture_geometry(o, fixture, name, 128);
+    if (!*geometry)
+        return NULL;
     FILE *out = fopen(path, "w");
-    if (!out)
+    if (!out) {
         usage_error("--svg %s: %s", path, strerror(errno));
+        wr_fixture_free(*geometry);
+        *geometry = NULL;
+    }
     return out;
+}
+
+static void svg_end(FILE *out, wr_fixture *geometry)
+{
+    fclose(out);
+    wr_fixture_free(geometry);
 }
 
 static int cmd_push(options *o, int argc, char **argv)
@@ -933,8 +948,8 @@ static int cmd_push(options *o, int argc, char **argv)
     }
     if (s.svg) {
         char name[128];
-        wr_fixture *geometry = fixture_geometry(o, fixture, name, sizeof name);
-        FILE *out = geometry ? open_svg(s.svg) : NULL;
+        wr_fixture *geometry;
+        FILE *out = svg_begin(o, fixture, s.svg, name, &geometry);
         if (out) {
             wr_region *items = calloc((size_t)(count ? count : 1), sizeof *items);
             int i = 0;
@@ -949,11 +964,10 @@ static int cmd_push(options *o, int argc, char **argv)
             wc_svg_push(out, geometry, name, s.set ? s.set : "goal", items, count, fraction,
                         s.finger_friction);
             free(items);
-            fclose(out);
-        }
-        wr_fixture_free(geometry);
-        if (!out)
+            svg_end(out, geometry);
+        } else {
             status = EXIT_USAGE;
+        }
     }
     cJSON_Delete(fixture);
     cJSON_Delete(result);
@@ -997,8 +1011,8 @@ static int cmd_gravity(options *o, int argc, char **argv)
     }
     if (s.svg) {
         char name[128];
-        wr_fixture *geometry = fixture_geometry(o, fixture, name, sizeof name);
-        FILE *out = geometry ? open_svg(s.svg) : NULL;
+        wr_fixture *geometry;
+        FILE *out = svg_begin(o, fixture, s.svg, name, &geometry);
         if (out) {
             wr_region *items = calloc((size_t)(count ? count : 1), sizeof *items);
             for (int i = 0; i < count; i++) {
@@ -1007,11 +1021,10 @@ static int cmd_gravity(options *o, int argc, char **argv)
             }
             wc_svg_gravity(out, geometry, name, s.set ? s.set : "goal", items, count);
             free(items);
-            fclose(out);
-        }
-        wr_fixture_free(geometry);
-        if (!out)
+            svg_end(out, geometry);
+        } else {
             status = EXIT_USAGE;
+        }
     }
     cJSON_Delete(fixture);
     cJSON_Delete(result);
@@ -1063,33 +1076,25 @@ static int cmd_margin(options *o, int argc, char **argv)
     }
     if (s.svg) {
         char name[128];
-        wr_fixture *geometry = fixture_geometry(o, fixture, name, sizeof name);
-        FILE *out = geometry ? open_svg(s.svg) : NULL;
+        wr_fixture *geometry;
+        FILE *out = svg_begin(o, fixture, s.svg, name, &geometry);
         double g[3] = {0, 0, 0}, w[3] = {0, 0, 0};
-        if (out) {
-            /* The bias as the daemon read it: [fx, fy, tau] or a force at a point. */
-            const cJSON *sent = bias;
-            if (cJSON_IsArray(sent)) {
-                for (int k = 0; k < 3; k++)
-                    g[k] = cJSON_GetArrayItem(sent, k)->valuedouble;
-            } else {
-                const cJSON *force = cJSON_GetObjectItem(sent, "force");
-                const cJSON *at = cJSON_GetObjectItem(sent, "at");
-                double f2[2] = {cJSON_GetArrayItem(force, 0)->valuedouble,
-                                cJSON_GetArrayItem(force, 1)->valuedouble};
-                double p2[2] = {cJSON_GetArrayItem(at, 0)->valuedouble,
-                                cJSON_GetArrayItem(at, 1)->valuedouble};
-                wr_fixture_force_wrench(geometry, f2, p2, g);
-            }
+        wp_error error;
+        /* The bias as the daemon read it ([fx, fy, tau] or a force at a
+         * point): the protocol layer's reader, which the daemon accepted. */
+        if (out && wp_wrench_read(bias, "bias", geometry, g, &error)) {
             for (int k = 0; k < 3 && worst && cJSON_IsArray(worst); k++)
                 w[k] = cJSON_GetArrayItem(worst, k)->valuedouble;
             wc_svg_margin(out, geometry, name, g, cJSON_IsNumber(margin) ? margin->valuedouble : 0,
                           w, blocking);
-            fclose(out);
-        }
-        wr_fixture_free(geometry);
-        if (!out)
+            svg_end(out, geometry);
+        } else {
+            if (out) {
+                usage_error("%s: %s", error.field, error.reason);
+                svg_end(out, geometry);
+            }
             status = EXIT_USAGE;
+        }
     }
     cJSON_Delete(fixture);
     cJSON_Delete(bias);
