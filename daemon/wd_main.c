@@ -81,6 +81,7 @@ NUMBER_SETTER(set_max_output, max_output, size_t, 4096, 1ULL << 40, 1)
 NUMBER_SETTER(set_max_clients, max_clients, unsigned long, 1, 1000000, 1)
 NUMBER_SETTER(set_max_batch, max_batch, size_t, 1, 1000000, 1)
 NUMBER_SETTER(set_idle_timeout, idle_timeout, unsigned, 0, 86400 * 7, 1)
+NUMBER_SETTER(set_request_timeout, request_timeout, unsigned, 0, 86400, 1)
 
 static bool set_socket(settings *s, const char *value, origin from, char *why, size_t size)
 {
@@ -196,17 +197,24 @@ static const option_spec OPTIONS[] = {
     {"threads", "N", "worker threads (default: the number of cores)", set_threads},
     {"cache-mb", "N", "memory for derived data, least recently used\n"
                       "evicted (default 256)", set_cache_mb},
-    {"max-line", "BYTES", "longest request line (default 1048576)", set_max_line},
+    {"max-line", "BYTES", "longest request line (default 16777216: room\n"
+                          "for --max-wrenches wrenches however written)", set_max_line},
     {"max-depth", "N", "deepest JSON nesting of a request (default 64)", set_max_depth},
     {"max-wrenches", "N", "most wrenches in one request (default 100000)",
      set_max_wrenches},
-    {"max-output", "BYTES", "most unread answers per client before it is\n"
-                            "dropped (default 16777216)", set_max_output},
+    {"max-output", "BYTES", "most unsent answer bytes per client: its\n"
+                            "work pauses above it until it reads\n"
+                            "(default 16777216)", set_max_output},
     {"max-clients", "N", "most clients connected at once (default 256)", set_max_clients},
     {"max-batch", "N", "most requests in one batch (default 1000)", set_max_batch},
     {"idle-timeout", "SECONDS", "close a connection with nothing in flight\n"
-                                "after this long without a request (default\n"
-                                "300; 0: never)", set_idle_timeout},
+                                "after this long without a request, or one\n"
+                                "that leaves answers unread this long\n"
+                                "(default 300; 0: never)", set_idle_timeout},
+    {"request-timeout", "SECONDS", "a request must arrive whole within this\n"
+                                   "long of its first byte, else it is refused\n"
+                                   "and the connection closed (default 30;\n"
+                                   "0: no limit)", set_request_timeout},
     {"allow-uid", "LIST", "only these users (names or numbers, comma-\n"
                           "separated) may connect; with allow-gid,\n"
                           "either list admits (default: anyone who can\n"
@@ -339,13 +347,16 @@ int main(int argc, char **argv)
         .socket_path = "./run/wrenchd.sock",
         .threads = cores > 0 ? (int)cores : 1,
         .cache_bytes = (size_t)256 << 20,
-        .max_line = 1 << 20,
+        /* 100000 wrenches written {"force": [x, y], "at": [x, y]} with
+         * 17-digit numbers take about 12 MB. */
+        .max_line = (size_t)16 << 20,
         .max_depth = 64,
         .max_wrenches = 100000,
         .max_output = (size_t)16 << 20,
         .max_clients = 256,
         .max_batch = 1000,
         .idle_timeout = 300,
+        .request_timeout = 30,
         .listen_fd = -1,
     };
     s.config.allow_uids = s.uids;

@@ -9,7 +9,24 @@
  * queue.  A connection has at most one request with the workers at a time,
  * taken in queue order, so its requests run as if sent one by one (a put
  * followed by a query of its id works when pipelined); answers are written
- * from the head, in the order asked.  Connections run in parallel. */
+ * from the head, in the order asked.  Connections run in parallel.
+ *
+ * Memory: a request's answer is made a piece at a time (wd_task), each
+ * piece sent as it comes; the next piece is made only while the
+ * connection's unsent output (and what its request holds) is under
+ * --max-output, so a client that does not read holds at most that much
+ * and one piece.  Unread output for --idle-timeout closes the connection.
+ * Waiting request lines are held up to --max-line bytes; beyond that the
+ * connection is not read.
+ *
+ * Fairness: the workers take tasks first come first served and each task
+ * goes back to the tail of the queue after each piece, so connections
+ * share the workers round-robin, a piece each.
+ *
+ * Cancellation: a client that is gone (its socket closed, or hung up
+ * while answers were still to come) has its waiting requests dropped and
+ * its running one stopped at the next poll (wr_stop: between wrenches,
+ * edges, samples). */
 /* SO_PEERCRED, SO_PEERGROUPS and struct ucred are Linux's. */
 #define _GNU_SOURCE
 #include "wd_server.h"
@@ -23,7 +40,9 @@
 #include <event2/event.h>
 #include <event2/listener.h>
 #include <event2/thread.h>
+#include <assert.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
@@ -55,9 +74,12 @@ typedef struct slot {
     connection *connection;
     char *line;           /* the request, until handed to a worker */
     size_t length;
-    bool done;
-    char *response;       /* NULL: nothing to write (notifications) */
+    bool done;            /* answered (or dropped): flush may remove it */
+    char *response;       /* an answer made whole in the loop; NULL: nothing
+                             to write (notifications, or an answer whose
+                             pieces the workers made and were sent) */
     size_t response_length; /* 0: not counted yet */
+    wd_task *task;        /* the request with the workers, or parked */
 } slot;
 
 struct connection {
@@ -66,14 +88,19 @@ struct connection {
     struct bufferevent *bev;   /* NULL once the socket is closed */
     slot *head, *tail;
     size_t pending;            /* slots not yet written (or dropped) */
-    slot *running;             /* the slot with the workers, or NULL */
+    slot *running;             /* the slot being answered by the workers (its
+                                  task with them, or parked), or NULL */
+    bool parked;               /* running's task waits for the client to read */
+    size_t held;               /* bytes running's answer holds between pieces */
+    size_t queued_bytes;       /* bytes of request lines waiting in slots */
+    struct event *request_timer; /* a request begun must arrive whole in time */
     bool discarding;           /* skipping the rest of an over-long line */
     int light_answered;        /* light requests answered in the loop since
                                   the last read (at most LIGHT_BURST) */
     size_t scanned;            /* the first bytes of the input, known to hold no
                                   "\n": a long line is searched once, not once
                                   per read */
-    bool paused;               /* not reading: too many answers pending */
+    bool paused;               /* not reading: too many requests waiting */
     bool input_closed;         /* end of input, or shutting down */
     bool refusing;             /* turned away: one error line, then a lingering
                                   close (its input is read and dropped) */
@@ -84,6 +111,7 @@ struct connection {
 
 struct wd_server {
     const wd_config *config;
+    const wp_host *loop_host;       /* the loop's own (s->light): frees tasks */
     struct event_base *base;
     struct evconnlistener *listener;
     struct event *done_event, *signal_events[2], *grace_timer;
@@ -93,7 +121,7 @@ struct wd_server {
     wd_stats stats;
     wp_limits limits;
     pthread_mutex_t done_lock;
-    wd_job *done_head, *done_tail;  /* answered by workers, not yet written */
+    wd_task *done_head, *done_tail; /* pieces made by workers, not yet sent */
     connection *connections;
     unsigned long connection_count, numbers;
     unsigned long refusing;         /* of the connections, those being turned away */
@@ -101,6 +129,7 @@ struct wd_server {
 };
 
 static void process_input(connection *c);
+static void dispatch(connection *c);
 
 /* ---- connections ------------------------------------------------------------ */
 
@@ -118,19 +147,52 @@ static void free_connection(connection *c)
         s->refusing--;
     for (slot *x = c->head, *next; x; x = next) {
         next = x->next;
+        assert(!x->task || c->parked || s->stopping); /* none with the workers */
+        wd_task_free(x->task, s->loop_host);
         free(x->line);
         free(x->response);
         free(x);
     }
+    if (c->request_timer)
+        event_free(c->request_timer);
     free(c);
     if (s->stopping && !s->connections)
         event_base_loopexit(s->base, NULL);
+}
+
+/* The client is gone: drop the requests waiting, free a parked task, and
+ * ask the workers to stop the one they have. */
+static void cancel_work(connection *c)
+{
+    for (slot *x = c->head; x; x = x->next) {
+        if (x->done)
+            continue;
+        if (x->task) {
+            if (c->parked) {
+                wd_task_free(x->task, c->server->loop_host);
+                x->task = NULL;
+                c->parked = false;
+                c->running = NULL;
+                x->done = true;
+            } else {
+                atomic_store(&x->task->cancelled, true); /* on_done drops it */
+            }
+        } else if (x->line) {
+            c->queued_bytes -= x->length;
+            free(x->line);
+            x->line = NULL;
+            x->done = true;
+        }
+    }
+    assert(c->queued_bytes == 0);
 }
 
 static void close_socket(connection *c)
 {
     if (!c->bev)
         return;
+    if (c->request_timer)
+        event_del(c->request_timer);
     /* Unread input at close makes the kernel reset the connection, which
      * can destroy answers not yet delivered: read it away first. */
     evutil_socket_t fd = bufferevent_getfd(c->bev);
@@ -140,6 +202,7 @@ static void close_socket(connection *c)
     bufferevent_free(c->bev);
     c->bev = NULL;
     atomic_fetch_sub(&c->server->stats.clients, 1);
+    cancel_work(c);
 }
 
 /* Free the connection once nothing more will be read or written: its input
@@ -148,6 +211,16 @@ static void maybe_finish(connection *c)
 {
     if (c->busy)
         return; /* the outermost callback comes back here */
+    while (!c->bev && c->head && c->head->done) {
+        /* Gone: answered and cancelled requests leave without a word. */
+        slot *x = c->head;
+        c->head = x->next;
+        if (!c->head)
+            c->tail = NULL;
+        c->pending--;
+        free(x->response);
+        free(x);
+    }
     if (c->bev && !c->input_closed)
         return;
     if (c->pending > 0)
@@ -201,6 +274,8 @@ static bool write_response(connection *c, slot *x)
  * drains (answers sent directly never pass through it). */
 static void answers_out(connection *c)
 {
+    if (evbuffer_get_length(bufferevent_get_output(c->bev)) > 0)
+        return; /* drained to the low-water mark, not out */
     if (c->refusing && !c->write_shut) {
         /* The error line is out: say so, then wait for the peer's EOF. */
         shutdown(bufferevent_getfd(c->bev), SHUT_WR);
@@ -209,24 +284,17 @@ static void answers_out(connection *c)
         /* Every answer is out: the idle clock starts now, not at the last
          * request (the time it took to answer was not the client's). */
         struct timeval idle = {(time_t)c->server->config->idle_timeout, 0};
-        bufferevent_set_timeouts(c->bev, &idle, NULL);
+        bufferevent_set_timeouts(c->bev, &idle, &idle);
     }
 }
 
 /* Write the answers at the head of the queue that are ready. */
 static void flush(connection *c)
 {
-    size_t max_output = c->server->config->max_output;
     bool wrote_directly = false;
     while (c->head && c->head->done) {
         slot *x = c->head;
-        /* The limit is on answers left unread: one big answer to a client
-         * that reads is fine; a backlog beyond it means it does not read. */
-        if (c->bev && evbuffer_get_length(bufferevent_get_output(c->bev)) > max_output) {
-            wd_log(WD_LOG_WARN, "client %lu: dropped, %zu bytes of answers unread (--max-output)",
-                   c->number, evbuffer_get_length(bufferevent_get_output(c->bev)));
-            close_socket(c);
-        }
+        assert(!x->task);
         if (c->bev && x->response)
             wrote_directly |= write_response(c, x);
         c->head = x->next;
@@ -238,15 +306,27 @@ static void flush(connection *c)
     }
     if (c->bev && wrote_directly && evbuffer_get_length(bufferevent_get_output(c->bev)) == 0)
         answers_out(c);
-    if (c->bev) {
-        if (c->paused && c->pending < MAX_PENDING / 2) {
-            c->paused = false;
-            if (!c->input_closed)
-                bufferevent_enable(c->bev, EV_READ);
-            process_input(c); /* lines already buffered */
-        }
+    if (c->bev && c->paused && c->pending < MAX_PENDING / 2 &&
+        c->queued_bytes < c->server->config->max_line) {
+        c->paused = false;
+        if (!c->input_closed)
+            bufferevent_enable(c->bev, EV_READ);
+        process_input(c); /* lines already buffered */
     }
     maybe_finish(c);
+}
+
+/* May the connection's next piece of work be made?  Only while its unsent
+ * output and what its request holds are under --max-output -- but always
+ * when nothing is unsent, so that a request larger than the bound still
+ * makes progress, a piece at a time. */
+static bool output_room(connection *c)
+{
+    if (!c->bev)
+        return false;
+    size_t unsent = evbuffer_get_length(bufferevent_get_output(c->bev));
+    size_t limit = c->server->config->max_output;
+    return unsent == 0 || unsent + c->held < limit;
 }
 
 static slot *add_slot(connection *c)
@@ -309,25 +389,26 @@ static bool answer_light(connection *c, slot *x)
 }
 
 /* Hand the connection's next waiting request to the workers, unless one
- * of its requests is there already; light ones are answered on the way. */
+ * of its requests is there already or its client is not reading what it
+ * has been sent; light ones are answered on the way. */
 static void dispatch(connection *c)
 {
     slot *x;
     for (;;) {
-        if (c->running)
+        if (c->running || !output_room(c))
             return;
         x = c->head;
         while (x && (x->done || !x->line))
             x = x->next;
         if (!x)
             return;
+        c->queued_bytes -= x->length;
         if (!answer_light(c, x))
             break;
-        flush(c); /* closed meanwhile (--max-output): the answers are dropped, and the
-                     rest still run, so that nothing stays pending */
+        flush(c); /* the rest still run while the client reads */
     }
-    wd_job *job = calloc(1, sizeof *job);
-    if (!job) {
+    wd_task *task = calloc(1, sizeof *task);
+    if (!task) {
         free(x->line);
         x->line = NULL;
         x->response = wp_error_line(WP_INTERNAL, "", "out of memory");
@@ -335,13 +416,22 @@ static void dispatch(connection *c)
         flush(c);
         return;
     }
-    job->owner = x;
-    job->line = x->line;
-    job->length = x->length;
+    atomic_init(&task->cancelled, false);
+    task->owner = x;
+    task->line = x->line;
+    task->length = x->length;
     x->line = NULL;
+    x->task = task;
     c->running = x;
-    wd_log(WD_LOG_DEBUG, "client %lu: request of %zu bytes", c->number, job->length);
-    wd_pool_submit(c->server->pool, job);
+    c->held = x->length; /* until its first piece says what it holds */
+    wd_log(WD_LOG_DEBUG, "client %lu: request of %zu bytes", c->number, task->length);
+    wd_pool_submit(c->server->pool, task);
+}
+
+/* Reading stops while too many requests wait, in number or in bytes. */
+static bool too_much_waiting(const connection *c)
+{
+    return c->pending >= MAX_PENDING || c->queued_bytes >= c->server->config->max_line;
 }
 
 static void submit(connection *c, char *line, size_t length)
@@ -353,7 +443,48 @@ static void submit(connection *c, char *line, size_t length)
     }
     x->line = line;
     x->length = length;
+    c->queued_bytes += length;
     dispatch(c);
+}
+
+/* A request begun must arrive whole within --request-timeout of its first
+ * byte: a client dripping a byte at a time holds no slot for ever. */
+static void watch_partial_request(connection *c, bool line_taken)
+{
+    if (!c->bev || !c->request_timer)
+        return;
+    bool partial = c->discarding ||
+                   (!c->input_closed && evbuffer_get_length(bufferevent_get_input(c->bev)) > 0);
+    if (line_taken || !partial || c->paused)
+        event_del(c->request_timer); /* a new request's clock, or none */
+    if (partial && !c->paused && !evtimer_pending(c->request_timer, NULL)) {
+        struct timeval limit = {(time_t)c->server->config->request_timeout, 0};
+        evtimer_add(c->request_timer, &limit);
+    }
+}
+
+static void on_request_timeout(evutil_socket_t fd, short events, void *argument)
+{
+    (void)fd;
+    (void)events;
+    connection *c = argument;
+    if (!c->bev)
+        return;
+    c->busy++;
+    wd_log(WD_LOG_INFO, "client %lu: a request not whole after %u s (--request-timeout): closed",
+           c->number, c->server->config->request_timeout);
+    char reason[128];
+    snprintf(reason, sizeof reason, "the request did not arrive whole within %u s (--request-timeout)",
+             c->server->config->request_timeout);
+    struct evbuffer *input = bufferevent_get_input(c->bev);
+    evbuffer_drain(input, evbuffer_get_length(input));
+    c->scanned = 0;
+    c->discarding = false;
+    c->input_closed = true;
+    bufferevent_disable(c->bev, EV_READ);
+    answer_now(c, WP_INVALID_REQUEST, reason);
+    c->busy--;
+    maybe_finish(c);
 }
 
 /* Cut complete lines out of the input and submit them. */
@@ -368,6 +499,7 @@ static void process_input(connection *c)
         return;
     }
     size_t max_line = c->server->config->max_line;
+    bool line_taken = false;
     while (!c->paused && c->bev) {
         struct evbuffer_ptr from;
         bool resume = c->scanned > 0 &&
@@ -380,10 +512,11 @@ static void process_input(connection *c)
             if (eol.pos < 0) {
                 evbuffer_drain(input, evbuffer_get_length(input));
                 c->scanned = 0;
-                return;
+                break;
             }
             evbuffer_drain(input, (size_t)eol.pos + 1);
             c->discarding = false;
+            line_taken = true;
             continue;
         }
         size_t length = eol.pos < 0 ? evbuffer_get_length(input) : (size_t)eol.pos;
@@ -397,7 +530,7 @@ static void process_input(connection *c)
         }
         if (eol.pos < 0) {
             if (!c->input_closed || length == 0)
-                return;
+                break;
             /* The last line, without its "\n": answer it all the same. */
         }
         char *line = malloc(length + 1);
@@ -413,12 +546,14 @@ static void process_input(connection *c)
         else
             c->scanned = 0; /* the last line, all of the input */
         line[length] = 0;
+        line_taken = true;
         submit(c, line, length);
-        if (c->pending >= MAX_PENDING && !c->input_closed) {
+        if (c->bev && too_much_waiting(c) && !c->input_closed) {
             c->paused = true;
             bufferevent_disable(c->bev, EV_READ);
         }
     }
+    watch_partial_request(c, line_taken);
 }
 
 /* Callbacks hold the connection busy so that nothing they call frees it;
@@ -434,12 +569,30 @@ static void on_read(struct bufferevent *bev, void *argument)
     maybe_finish(c);
 }
 
+/* The output drained to its low-water mark (half of --max-output), or out. */
 static void on_write(struct bufferevent *bev, void *argument)
 {
     connection *c = argument;
     (void)bev;
-    answers_out(c);
+    c->busy++;
+    if (c->parked && output_room(c)) {
+        c->parked = false;
+        wd_pool_submit(c->server->pool, c->running->task);
+    } else if (!c->running) {
+        dispatch(c); /* requests held back while the client was not reading */
+    }
+    if (c->bev)
+        answers_out(c);
+    c->busy--;
     maybe_finish(c);
+}
+
+/* Has the peer closed its socket entirely (not only its sending side)?
+ * Then nobody reads what would be answered. */
+static bool peer_gone(connection *c)
+{
+    struct pollfd p = {.fd = bufferevent_getfd(c->bev), .events = POLLOUT};
+    return poll(&p, 1, 0) == 1 && (p.revents & (POLLHUP | POLLERR));
 }
 
 static void on_event(struct bufferevent *bev, short events, void *argument)
@@ -447,10 +600,20 @@ static void on_event(struct bufferevent *bev, short events, void *argument)
     (void)bev;
     connection *c = argument;
     c->busy++;
-    if (events & BEV_EVENT_EOF) {
+    if ((events & BEV_EVENT_EOF) && !c->refusing && peer_gone(c)) {
+        /* Hung up entirely: what it asked is dropped, not computed. */
+        wd_log(WD_LOG_DEBUG, "client %lu: hung up; its requests are cancelled", c->number);
+        c->input_closed = true;
+        close_socket(c);
+    } else if (events & BEV_EVENT_EOF) {
         /* The client is done sending; it may still read. */
         c->input_closed = true;
         process_input(c);
+    } else if ((events & BEV_EVENT_TIMEOUT) && (events & BEV_EVENT_WRITING) && !c->refusing) {
+        wd_log(WD_LOG_WARN, "client %lu: %zu bytes of answers unread for --idle-timeout: closed",
+               c->number, evbuffer_get_length(bufferevent_get_output(c->bev)));
+        c->input_closed = true;
+        close_socket(c);
     } else if ((events & BEV_EVENT_TIMEOUT) && !c->refusing &&
                (c->pending > 0 || evbuffer_get_length(bufferevent_get_output(c->bev)) > 0)) {
         /* Not idle: a request is in flight or an answer is still going out. */
@@ -554,27 +717,84 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
         maybe_finish(c);
         return;
     }
+    c->request_timer = s->config->request_timeout > 0 ? evtimer_new(s->base, on_request_timeout, c)
+                                                      : NULL;
+    /* on_write comes when the output is down to half the bound: the next
+     * piece is then made while the rest is still being sent. */
+    bufferevent_setwatermark(bev, EV_WRITE, s->config->max_output / 2, 0);
     if (s->config->idle_timeout > 0) {
+        /* Silence for so long closes it; so does output left unread. */
         struct timeval idle = {(time_t)s->config->idle_timeout, 0};
-        bufferevent_set_timeouts(bev, &idle, NULL);
+        bufferevent_set_timeouts(bev, &idle, &idle);
     }
     wd_log(WD_LOG_DEBUG, "client %lu: connected", c->number);
 }
 
 /* ---- answers from the workers -------------------------------------------- */
 
-static void job_done(void *argument, wd_job *job)
+static void task_done(void *argument, wd_task *task)
 {
     wd_server *s = argument;
     pthread_mutex_lock(&s->done_lock);
-    job->next = NULL;
+    task->next = NULL;
     if (s->done_tail)
-        s->done_tail->next = job;
+        s->done_tail->next = task;
     else
-        s->done_head = job;
-    s->done_tail = job;
+        s->done_head = task;
+    s->done_tail = task;
     pthread_mutex_unlock(&s->done_lock);
     event_active(s->done_event, EV_READ, 0);
+}
+
+/* Send a piece the workers made (taking it): the running slot is at the
+ * head of the queue, every answer before it written, so the piece goes
+ * straight out in order. */
+static void send_piece(connection *c, wd_task *task)
+{
+    if (!task->piece)
+        return;
+    slot piece = {.response = task->piece, .response_length = task->piece_length};
+    task->piece = NULL;
+    if (write_response(c, &piece) && evbuffer_get_length(bufferevent_get_output(c->bev)) == 0 &&
+        task->step == WP_STEP_DONE)
+        answers_out(c);
+    free(piece.response); /* NULL when the output buffer took it by reference */
+}
+
+/* A piece is back from the workers. */
+static void piece_done(wd_server *s, wd_task *task)
+{
+    slot *x = task->owner;
+    connection *c = x->connection;
+    assert(c->running == x && x->task == task && !c->parked);
+    assert(c->head == x); /* every earlier answer written */
+    c->busy++;
+    if (c->bev && !atomic_load(&task->cancelled))
+        send_piece(c, task);
+    if (task->step == WP_STEP_FAILED && c->bev) {
+        wd_log(WD_LOG_ERROR, "client %lu: an answer could not be completed after %s; closed",
+               c->number, "part of it was sent");
+        c->input_closed = true;
+        close_socket(c);
+    }
+    if (task->step == WP_STEP_MORE && c->bev && !atomic_load(&task->cancelled)) {
+        c->held = task->held;
+        if (output_room(c))
+            wd_pool_submit(s->pool, task); /* at the tail: everyone gets a turn */
+        else
+            c->parked = true; /* on_write submits it once the client reads */
+    } else {
+        wd_task_free(task, s->loop_host);
+        x->task = NULL;
+        x->done = true;
+        c->running = NULL;
+        c->held = 0;
+        flush(c); /* the answered head leaves the queue, then the next runs */
+        if (c->bev)
+            dispatch(c);
+    }
+    c->busy--;
+    maybe_finish(c);
 }
 
 static void on_done(evutil_socket_t fd, short events, void *argument)
@@ -583,24 +803,13 @@ static void on_done(evutil_socket_t fd, short events, void *argument)
     (void)events;
     wd_server *s = argument;
     pthread_mutex_lock(&s->done_lock);
-    wd_job *job = s->done_head;
+    wd_task *task = s->done_head;
     s->done_head = s->done_tail = NULL;
     pthread_mutex_unlock(&s->done_lock);
-    while (job) {
-        wd_job *next = job->next;
-        slot *x = job->owner;
-        connection *c = x->connection;
-        x->response = job->response;
-        x->response_length = job->response_length;
-        x->done = true;
-        free(job);
-        c->running = NULL;
-        c->busy++;
-        flush(c); /* the answered head leaves the queue, then the next runs */
-        dispatch(c);
-        c->busy--;
-        maybe_finish(c);
-        job = next;
+    while (task) {
+        wd_task *next = task->next;
+        piece_done(s, task);
+        task = next;
     }
 }
 
@@ -788,8 +997,9 @@ int wd_server_run(const wd_config *config)
     s->signal_events[0] = evsignal_new(s->base, SIGTERM, on_signal, s);
     s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
     s->grace_timer = evtimer_new(s->base, on_grace_over, s);
-    s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, job_done, s);
+    s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, task_done, s);
     s->light = wd_context_new(s->cache, &s->stats);
+    s->loop_host = s->light ? wd_context_host(s->light) : NULL;
     if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
         !s->pool || !s->light) {
         wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
@@ -827,17 +1037,19 @@ int wd_server_run(const wd_config *config)
     wd_log(WD_LOG_INFO, "stopped");
 
 out:
-    wd_pool_free(s->pool); /* answers what was queued; those answers are dropped */
-    wd_context_free(s->light);
-    for (wd_job *job = s->done_head, *next; job; job = next) {
-        next = job->next;
-        free(job->response);
-        free(job);
+    wd_pool_free(s->pool); /* every task handed back; their pieces are dropped */
+    for (wd_task *task = s->done_head, *next; task; task = next) {
+        next = task->next;
+        slot *x = task->owner;
+        x->task = NULL;
+        wd_task_free(task, s->loop_host);
     }
     while (s->connections) {
+        s->connections->parked = true; /* its slots' tasks are the loop's now */
         close_socket(s->connections);
         free_connection(s->connections);
     }
+    wd_context_free(s->light);
     if (s->listener) {
         evconnlistener_free(s->listener);
         if (config->listen_fd < 0)

@@ -15,11 +15,15 @@ typedef struct wd_config {
     size_t max_line;            /* longest request line, bytes */
     int max_depth;              /* deepest JSON nesting */
     size_t max_wrenches;        /* most wrenches in one request */
-    size_t max_output;          /* most unread output per client, bytes */
+    size_t max_output;          /* most unsent output per client, bytes: its
+                                   work pauses above it */
     unsigned long max_clients;  /* most concurrent clients */
     size_t max_batch;           /* most requests in one batch */
-    unsigned idle_timeout;      /* seconds without a request in flight before a
-                                   connection is closed; 0: never */
+    unsigned idle_timeout;      /* seconds without a request in flight, or with
+                                   answers left unread, before a connection is
+                                   closed; 0: never */
+    unsigned request_timeout;   /* seconds from a request's first byte to its
+                                   last; 0: no limit */
     const unsigned *allow_uids; /* peers admitted by user id; none: no check */
     int allow_uid_count;
     const unsigned *allow_gids; /* ... or by primary or supplementary group */

@@ -23,6 +23,7 @@ struct wd_context {
     wr_lp_env *solver;
     lp_slot slots[LP_SLOTS];
     uint64_t clock;
+    wr_stop stop;         /* the task in hand's: host.stop points here */
 };
 
 static bool host_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
@@ -137,7 +138,7 @@ wd_context *wd_context_new(wd_cache *cache, wd_stats *stats)
     context->stats = stats;
     context->host = (wp_host){context,     host_adopt,  host_use,    host_release,
                               host_delete, host_list,   host_status, host_lp_sets,
-                              host_ready};
+                              host_ready,  NULL};
     return context;
 }
 
@@ -157,17 +158,76 @@ void wd_context_free(wd_context *context)
 
 struct wd_pool {
     pthread_mutex_t lock;
-    pthread_cond_t ready;      /* a job was queued, or stop was set */
-    wd_job *head, *tail;
+    pthread_cond_t ready;      /* a task was queued, or stop was set */
+    wd_task *head, *tail;      /* FIFO: every task runs one piece, then queues
+                                  again at the tail (round-robin) */
     bool stop;
     int thread_count;
     pthread_t *threads;
     wd_cache *cache;
     wp_limits limits;
     wd_stats *stats;
-    wd_job_done done;
+    wd_task_done done;
     void *context;
 };
+
+static bool task_cancelled(void *argument)
+{
+    return atomic_load_explicit(&((wd_task *)argument)->cancelled, memory_order_relaxed);
+}
+
+/* One piece of the task's answer, into task->piece. */
+static void run_piece(wd_pool *pool, wd_context *context, wd_task *task)
+{
+    task->piece = NULL;
+    task->piece_length = 0;
+    if (atomic_load(&task->cancelled)) {
+        task->step = WP_STEP_DONE; /* handed back unworked: the loop drops it */
+        return;
+    }
+    wp_counts counts = {0, 0};
+    if (!context) {
+        task->piece = wp_error_line(WP_INTERNAL, "", "out of memory");
+        task->step = WP_STEP_DONE;
+        counts.requests = counts.errors = 1;
+    } else {
+        context->stop = (wr_stop){task_cancelled, task};
+        context->host.stop = &context->stop;
+        if (!task->answer) {
+            task->answer = wp_answer_begin(&pool->limits, task->line, task->length);
+            free(task->line); /* parsed: the line is not needed again */
+            task->line = NULL;
+        }
+        if (!task->answer) {
+            task->piece = wp_error_line(WP_INTERNAL, "", "out of memory");
+            task->step = WP_STEP_DONE;
+            counts.requests = counts.errors = 1;
+        } else {
+            wp_buffer piece = {0};
+            task->step = wp_answer_step(task->answer, &context->host, &piece, &counts);
+            if (piece.failed) {
+                /* The piece did not fit in memory: the answer cannot go on
+                 * (what was sent of it cannot be taken back). */
+                free(piece.data);
+                task->step = WP_STEP_FAILED;
+            } else {
+                task->piece_length = piece.length;
+                if (piece.length)
+                    task->piece = wp_buffer_take(&piece);
+                else
+                    free(piece.data);
+            }
+        }
+        if (task->step != WP_STEP_MORE) {
+            wp_answer_free(task->answer, &context->host);
+            task->answer = NULL;
+        }
+        context->host.stop = NULL;
+    }
+    task->held = wp_answer_bytes(task->answer);
+    atomic_fetch_add(&pool->stats->requests, counts.requests);
+    atomic_fetch_add(&pool->stats->errors, counts.errors);
+}
 
 static void *worker_main(void *argument)
 {
@@ -179,34 +239,26 @@ static void *worker_main(void *argument)
         pthread_mutex_lock(&pool->lock);
         while (!pool->head && !pool->stop)
             pthread_cond_wait(&pool->ready, &pool->lock);
-        wd_job *job = pool->head;
-        if (job) {
-            pool->head = job->next;
+        wd_task *task = pool->head;
+        if (task) {
+            pool->head = task->next;
             if (!pool->head)
                 pool->tail = NULL;
         }
         pthread_mutex_unlock(&pool->lock);
-        if (!job)
-            break; /* stopping, and nothing left to answer */
-        wp_counts counts = {0, 0};
-        if (context)
-            job->response = wp_answer_line(wd_context_host(context), &pool->limits, job->line,
-                                           job->length, &counts);
-        else
-            job->response = wp_error_line(WP_INTERNAL, "", "out of memory");
-        job->response_length = job->response ? strlen(job->response) : 0;
-        atomic_fetch_add(&pool->stats->requests, counts.requests);
-        atomic_fetch_add(&pool->stats->errors, counts.errors);
-        free(job->line);
-        job->line = NULL;
-        pool->done(pool->context, job);
+        if (!task)
+            break; /* stopping, and nothing left */
+        if (pool->stop)
+            atomic_store(&task->cancelled, true); /* handed back unworked */
+        run_piece(pool, context, task);
+        pool->done(pool->context, task);
     }
     wd_context_free(context);
     return NULL;
 }
 
 wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_stats *stats,
-                     wd_job_done done, void *context)
+                     wd_task_done done, void *context)
 {
     wd_pool *pool = calloc(1, sizeof *pool);
     if (!pool)
@@ -233,15 +285,15 @@ wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_s
     return pool;
 }
 
-void wd_pool_submit(wd_pool *pool, wd_job *job)
+void wd_pool_submit(wd_pool *pool, wd_task *task)
 {
-    job->next = NULL;
+    task->next = NULL;
     pthread_mutex_lock(&pool->lock);
     if (pool->tail)
-        pool->tail->next = job;
+        pool->tail->next = task;
     else
-        pool->head = job;
-    pool->tail = job;
+        pool->head = task;
+    pool->tail = task;
     pthread_cond_signal(&pool->ready);
     pthread_mutex_unlock(&pool->lock);
 }
@@ -260,4 +312,14 @@ void wd_pool_free(wd_pool *pool)
     pthread_mutex_destroy(&pool->lock);
     pthread_cond_destroy(&pool->ready);
     free(pool);
+}
+
+void wd_task_free(wd_task *task, const wp_host *host)
+{
+    if (!task)
+        return;
+    wp_answer_free(task->answer, host);
+    free(task->line);
+    free(task->piece);
+    free(task);
 }

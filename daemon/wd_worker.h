@@ -7,6 +7,7 @@
 #include "wd_cache.h"
 
 #include <stdatomic.h>
+#include <stdbool.h>
 #include <time.h>
 
 /* Counters shared by the event loop and the workers. */
@@ -20,29 +21,48 @@ typedef struct wd_stats {
     int threads;
 } wd_stats;
 
-/* One request line and, once answered, its response. */
-typedef struct wd_job {
-    struct wd_job *next;  /* queue link */
-    void *owner;          /* the connection's slot; opaque to workers */
-    char *line;           /* malloc'd, without its "\n" */
+/* One request line being answered, a piece at a time.  The loop submits
+ * it; a worker takes it, writes one piece of its answer (a bounded amount
+ * of work: wp_answer_step) and hands it back; the loop sends the piece and,
+ * when more follow and the client keeps reading, submits it again, at the
+ * tail of the queue.  So the workers take connections' work round-robin,
+ * a piece each, and a request never runs ahead of its client's reading.
+ *
+ * Ownership: the loop's while it is not submitted; a worker's from its
+ * submission until `done` is called with it. */
+typedef struct wd_task {
+    struct wd_task *next;   /* queue link */
+    void *owner;            /* the connection's slot; opaque to workers */
+    char *line;             /* malloc'd, without its "\n"; freed once parsed */
     size_t length;
-    char *response;       /* malloc'd by the worker; NULL: nothing to send */
-    size_t response_length; /* strlen(response), counted in the worker */
-} wd_job;
+    wp_answer *answer;      /* NULL until the first piece */
+    atomic_bool cancelled;  /* the client is gone: stop at the next poll */
+    /* Set by the worker for the loop: */
+    char *piece;            /* malloc'd text to send, or NULL */
+    size_t piece_length;
+    wp_step step;           /* what wp_answer_step said */
+    size_t held;            /* bytes the answer holds between pieces */
+} wd_task;
 
-/* Called in a worker thread once `job->response` is set; must be
- * thread-safe.  The callee owns the job from then on. */
-typedef void (*wd_job_done)(void *context, wd_job *job);
+/* Called in a worker thread once a piece is made; must be thread-safe.
+ * The callee owns the task from then on. */
+typedef void (*wd_task_done)(void *context, wd_task *task);
 
 typedef struct wd_pool wd_pool;
 
 /* Start `threads` workers.  NULL when a thread cannot be started. */
 wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_stats *stats,
-                     wd_job_done done, void *context);
-/* Queue a job (takes it). */
-void wd_pool_submit(wd_pool *pool, wd_job *job);
-/* Answer everything queued, stop and join the workers, free the pool. */
+                     wd_task_done done, void *context);
+/* Queue a task for its next piece (takes it).  A cancelled task is handed
+ * back without work. */
+void wd_pool_submit(wd_pool *pool, wd_task *task);
+/* Stop and join the workers (each hands back the piece it is making; the
+ * tasks still queued are handed back unworked), free the pool. */
 void wd_pool_free(wd_pool *pool);
+
+/* Free a task that is not with the workers, and whatever its answer holds
+ * (a fixture, released through `host`). */
+void wd_task_free(wd_task *task, const wp_host *host);
 
 /* What one thread needs to answer requests: a wp_host on the shared cache,
  * with that thread's GLPK environment and warm LPs.  Workers make one each;

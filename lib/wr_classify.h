@@ -29,6 +29,21 @@ typedef enum wr_verdict {
 
 #define WR_DEFAULT_TOLERANCE 1e-9
 
+/* A caller's way to end long work early (a client that hung up).  Long
+ * functions that take one poll `requested` between bounded units of work
+ * (an edge, a cone, a sample run) and give up when it returns true.  NULL:
+ * never stop.  The callback must be cheap and thread-safe. */
+typedef struct wr_stop {
+    bool (*requested)(void *context);
+    void *context;
+} wr_stop;
+
+/* Has the caller asked to stop?  False for a NULL stop. */
+static inline bool wr_stop_requested(const wr_stop *stop)
+{
+    return stop && stop->requested(stop->context);
+}
+
 typedef struct wr_analysis {
     const wr_fixture *fixture;  /* borrowed: must outlive the analysis */
     wr_plan *plan;

@@ -197,9 +197,14 @@ static void scale_wrench(const wr_fixture *f, const double w[3], double h[3])
     h[2] = w[2] / f->gyration_radius;
 }
 
-static bool polygon_exact(const wr_fixture *f, const wr_cone **cones, int count, wr_regions *out)
+static bool polygon_exact(const wr_fixture *f, const wr_cone **cones, int count,
+                          const wr_stop *stop, bool *stopped, wr_regions *out)
 {
     for (size_t e = 0; e < f->vertex_count; e++) {
+        if (wr_stop_requested(stop)) {
+            *stopped = true;
+            return false;
+        }
         double w0[3], w1[3], h0[3], h1[3];
         wr_push_wrench(f, (int)e, 0, w0);
         wr_push_wrench(f, (int)e, 1, w1);
@@ -285,10 +290,16 @@ static spans circle_in_cone(const wr_cone *cone, const double a[3][2])
 
 /* The open arcs of [0, 360) where A u(theta) is outside every cone's
  * closure, split at 0 degrees. */
-static bool circle_exact(const double a[3][2], const wr_cone **cones, int count, wr_regions *out)
+static bool circle_exact(const double a[3][2], const wr_cone **cones, int count,
+                         const wr_stop *stop, bool *stopped, wr_regions *out)
 {
     spans bad = {0, 0, NULL, false};
     for (int c = 0; c < count && !bad.failed; c++) {
+        if (wr_stop_requested(stop)) {
+            *stopped = true;
+            free(bad.items);
+            return false;
+        }
         if (cones[c]->empty)
             continue;
         spans arcs = circle_in_cone(cones[c], a);
@@ -337,14 +348,22 @@ static bool finger_good(const wr_fixture *f, const wr_cone **cones, int count, i
 #define SAMPLES 2048
 #define BISECTIONS 60
 
+/* Samples between two polls of the caller's stop. */
+#define SAMPLES_PER_POLL 256
+
 static bool sampled(const wr_fixture *f, const wr_cone **cones, int count, double mu, int edge,
-                    double low, double high, wr_regions *out)
+                    double low, double high, const wr_stop *stop, bool *stopped,
+                    wr_regions *out)
 {
     double step = (high - low) / SAMPLES;
     bool inside = false;
     double start = low;
     bool previous = false;
     for (int k = 0; k <= SAMPLES; k++) {
+        if (k % SAMPLES_PER_POLL == 0 && wr_stop_requested(stop)) {
+            *stopped = true;
+            return false;
+        }
         /* The ends of a polygon edge are vertices, in no region: sample
          * just inside them. */
         double t = k == 0 ? low + step * 1e-6 : k == SAMPLES ? high - step * 1e-6 : low + k * step;
@@ -376,7 +395,8 @@ static bool sampled(const wr_fixture *f, const wr_cone **cones, int count, doubl
 
 /* ---- the public functions ------------------------------------------------------- */
 
-int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, wr_regions *out)
+int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, const wr_stop *stop,
+                    wr_regions *out)
 {
     memset(out, 0, sizeof *out);
     const wr_fixture *f = a->fixture;
@@ -387,27 +407,28 @@ int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, wr
     if (count < 0)
         return -2;
     bool ok;
+    bool stopped = false;
     if (finger_friction > 0) {
         out->resolution = f->shape == WR_SHAPE_CIRCLE ? 360.0 / SAMPLES : 1.0 / SAMPLES;
         ok = true;
         if (f->shape == WR_SHAPE_CIRCLE)
-            ok = sampled(f, cones, count, finger_friction, 0, 0, 360, out);
+            ok = sampled(f, cones, count, finger_friction, 0, 0, 360, stop, &stopped, out);
         else
             for (size_t e = 0; e < f->vertex_count && ok; e++)
-                ok = sampled(f, cones, count, finger_friction, (int)e, 0, 1, out);
+                ok = sampled(f, cones, count, finger_friction, (int)e, 0, 1, stop, &stopped, out);
     } else if (f->shape == WR_SHAPE_CIRCLE) {
         /* w = (-u, -(d x u)) with d = centre - com: linear in u. */
         double d[2] = {f->center[0] - f->com[0], f->center[1] - f->com[1]};
         double rho = f->gyration_radius;
         const double matrix[3][2] = {{-1, 0}, {0, -1}, {d[1] / rho, -d[0] / rho}};
-        ok = circle_exact(matrix, cones, count, out);
+        ok = circle_exact(matrix, cones, count, stop, &stopped, out);
     } else {
-        ok = polygon_exact(f, cones, count, out);
+        ok = polygon_exact(f, cones, count, stop, &stopped, out);
     }
     free(cones);
     if (!ok) {
         wr_regions_release(out);
-        return -2;
+        return stopped ? -3 : -2;
     }
     return 0;
 }
@@ -421,7 +442,7 @@ int wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)
         return -2;
     /* m g0 (cos phi, sin phi, 0): gravity acts at the centre of mass. */
     const double matrix[3][2] = {{1, 0}, {0, 1}, {0, 0}};
-    bool ok = circle_exact(matrix, cones, count, out);
+    bool ok = circle_exact(matrix, cones, count, NULL, &(bool){false}, out);
     free(cones);
     if (!ok) {
         wr_regions_release(out);

@@ -47,10 +47,11 @@ void wr_regions_release(wr_regions *regions);
 /* The push region of a set on the fixture's outline.  finger_friction is
  * the finger's Coulomb coefficient (0: frictionless); with friction a point
  * counts only if every force of the finger's friction cone is in the set.
+ * `stop` (may be NULL) is polled between edges and between runs of samples.
  * Returns 0, -1 for a fixture without a shape or a bad coefficient, -2 when
- * out of memory. */
+ * out of memory, -3 when stopped (nothing is returned then). */
 int wr_push_regions(const wr_analysis *analysis, wr_set set, double finger_friction,
-                    wr_regions *regions);
+                    const wr_stop *stop, wr_regions *regions);
 
 /* The tilts phi (degrees, the direction gravity pulls) under which the
  * gravity wrench m g (cos phi, sin phi, 0) is in the set: exact arcs.

@@ -420,3 +420,158 @@ wp_json_shape wp_json_scan(const char *text, size_t length, int limit)
     }
     return shape;
 }
+
+/* ---- reading spans of a text without a tree ------------------------------ */
+
+static size_t skip_space(const char *text, size_t length, size_t i)
+{
+    while (i < length && (text[i] == ' ' || text[i] == '\t' || text[i] == '\n' || text[i] == '\r'))
+        i++;
+    return i;
+}
+
+/* The end of the string whose opening quote is at i, past its closing
+ * quote; 0 when it does not end. */
+static size_t skip_string(const char *text, size_t length, size_t i)
+{
+    for (i++; i < length; i++) {
+        if (text[i] == '\\')
+            i++;
+        else if (text[i] == '"')
+            return i + 1;
+    }
+    return 0;
+}
+
+/* The end of the value that starts at i; 0 when the text is cut short. */
+static size_t skip_value(const char *text, size_t length, size_t i)
+{
+    if (i >= length)
+        return 0;
+    if (text[i] == '"')
+        return skip_string(text, length, i);
+    if (text[i] != '[' && text[i] != '{') {
+        while (i < length && strchr("+-.0123456789eEtruefalsn", text[i]) && text[i])
+            i++;
+        return i;
+    }
+    int depth = 0;
+    for (; i < length; i++) {
+        char c = text[i];
+        if (c == '"') {
+            i = skip_string(text, length, i);
+            if (!i)
+                return 0;
+            i--;
+        } else if (c == '[' || c == '{') {
+            depth++;
+        } else if ((c == ']' || c == '}') && --depth == 0) {
+            return i + 1;
+        }
+    }
+    return 0;
+}
+
+bool wp_json_member(const char *text, size_t length, size_t object, const char *key,
+                    size_t *start, size_t *end)
+{
+    size_t i = skip_space(text, length, object);
+    if (i >= length || text[i] != '{')
+        return false;
+    size_t key_length = strlen(key);
+    i = skip_space(text, length, i + 1);
+    while (i < length && text[i] == '"') {
+        size_t after = skip_string(text, length, i);
+        if (!after)
+            return false;
+        /* Compared as written: a key spelt with escapes is not found, and
+         * the caller falls back to the full parse. */
+        bool match = after - i - 2 == key_length && memcmp(text + i + 1, key, key_length) == 0;
+        i = skip_space(text, length, after);
+        if (i >= length || text[i] != ':')
+            return false;
+        i = skip_space(text, length, i + 1);
+        size_t value_end = skip_value(text, length, i);
+        if (!value_end)
+            return false;
+        if (match) {
+            *start = i;
+            *end = value_end;
+            return true;
+        }
+        i = skip_space(text, length, value_end);
+        if (i >= length || text[i] != ',')
+            return false;
+        i = skip_space(text, length, i + 1);
+    }
+    return false;
+}
+
+/* A number token as cJSON reads it (its characters, then strtod); false
+ * unless the whole token is one finite number. */
+static bool read_number(const char *text, size_t length, size_t *i, double *out)
+{
+    char token[64];
+    size_t n = 0;
+    while (*i + n < length && n < sizeof token - 1 && strchr("+-.0123456789eE", text[*i + n]) &&
+           text[*i + n])
+        n++;
+    if (n == 0 || n == sizeof token - 1)
+        return false;
+    memcpy(token, text + *i, n);
+    token[n] = 0;
+    char *after;
+    *out = strtod(token, &after);
+    if (after != token + n || !isfinite(*out))
+        return false;
+    *i += n;
+    return true;
+}
+
+long wp_json_triples(const char *text, size_t length, double (**out)[3])
+{
+    *out = NULL;
+    size_t i = skip_space(text, length, 0);
+    if (i >= length || text[i] != '[')
+        return -1;
+    size_t count = 0, capacity = 0;
+    double (*items)[3] = NULL;
+    i = skip_space(text, length, i + 1);
+    if (i < length && text[i] == ']') {
+        *out = malloc(sizeof *items);
+        return *out ? 0 : -1;
+    }
+    for (;;) {
+        if (count == capacity) {
+            capacity = capacity ? capacity * 2 : 1024;
+            double (*grown)[3] = realloc(items, capacity * sizeof *items);
+            if (!grown)
+                goto refuse;
+            items = grown;
+        }
+        if (i >= length || text[i] != '[')
+            goto refuse;
+        for (int k = 0; k < 3; k++) {
+            i = skip_space(text, length, i + 1);
+            if (!read_number(text, length, &i, &items[count][k]))
+                goto refuse;
+            i = skip_space(text, length, i);
+            if (i >= length || text[i] != (k < 2 ? ',' : ']'))
+                goto refuse;
+        }
+        count++;
+        i = skip_space(text, length, i + 1);
+        if (i < length && text[i] == ']')
+            break;
+        if (i >= length || text[i] != ',')
+            goto refuse;
+        i = skip_space(text, length, i + 1);
+    }
+    if (skip_space(text, length, i + 1) != length)
+        goto refuse;
+    *out = items;
+    return (long)count;
+refuse:
+    free(items);
+    return -1;
+}

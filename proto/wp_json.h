@@ -90,11 +90,6 @@ void wp_buffer_json(wp_buffer *buffer, const cJSON *value);
  * (which then owns it). */
 void wp_buffer_adopt(wp_buffer *buffer, char *text);
 
-/* The opening of a single answer whose result is {"results": RAW}.  A
- * handler writing tens of megabytes of results (wrench.classify) starts its
- * raw text with as many spaces, so that the envelope's opening is written
- * into them in place, rather than the results being copied behind it. */
-#define WP_RESULTS_OPENING "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":"
 /* The NUL-terminated text (malloc'd, the caller frees), or NULL. */
 char *wp_buffer_take(wp_buffer *buffer);
 
@@ -120,6 +115,19 @@ typedef struct wp_json_shape {
     bool control;
 } wp_json_shape;
 wp_json_shape wp_json_scan(const char *text, size_t length, int limit);
+
+/* Spans of a JSON text read without building a tree (a hundred thousand
+ * wrenches make millions of tree nodes).  The text must have passed
+ * wp_json_scan.  The value of member `key` of the object at `object`
+ * (white space may precede it): true with its byte span [*start, *end);
+ * false when it is not there as written (a key spelt with escapes is not
+ * found) or the text is not such an object. */
+bool wp_json_member(const char *text, size_t length, size_t object, const char *key,
+                    size_t *start, size_t *end);
+/* An array of arrays of three finite numbers, each read as cJSON reads a
+ * number: their count and *out (malloc'd), or -1 when the text is anything
+ * else (the caller then reads it the ordinary way, and says what is wrong). */
+long wp_json_triples(const char *text, size_t length, double (**out)[3]);
 
 #ifdef __cplusplus
 }

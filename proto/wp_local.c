@@ -109,7 +109,7 @@ wp_local *wp_local_new(void)
     }
     local->host = (wp_host){local,         local_adopt,   local_use,     local_release,
                             local_delete,  local_nothing, local_nothing, local_lp_sets,
-                            NULL};
+                            NULL, NULL};
     return local;
 }
 

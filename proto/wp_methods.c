@@ -194,7 +194,8 @@ static bool read_sets(const cJSON *params, classify_request *r, wp_error *error)
 }
 
 static bool read_classify(const wp_limits *limits, const cJSON *params,
-                          const wr_fixture *fixture, classify_request *r, wp_error *error)
+                          const wr_fixture *fixture, wp_prepared *prepared, classify_request *r,
+                          wp_error *error)
 {
     memset(r, 0, sizeof *r);
     r->tolerance = WR_DEFAULT_TOLERANCE;
@@ -210,8 +211,16 @@ static bool read_classify(const wp_limits *limits, const cJSON *params,
         return false;
     }
     r->lp = method && strcmp(method, "lp") == 0;
-    if (r->tolerance < 0) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance", "must not be negative");
+    /* A margin is in [-1, 1]: a band of 1 or more would call every wrench
+     * a boundary case. */
+    if (!(r->tolerance >= 0 && r->tolerance < 1)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance", "must be in [0, 1)");
+        return false;
+    }
+    if (r->lp && tolerance_given) {
+        /* The LP method finds no margin, so it has no band to widen. */
+        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance",
+                     "the \"lp\" method computes no margin, so it takes no tolerance");
         return false;
     }
     const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
@@ -220,12 +229,21 @@ static bool read_classify(const wp_limits *limits, const cJSON *params,
                      "must be an array of wrenches, not %s", wp_type_name(wrenches));
         return false;
     }
-    size_t count = (size_t)cJSON_GetArraySize(wrenches);
+    size_t count = prepared && prepared->wrenches ? prepared->count
+                                                  : (size_t)cJSON_GetArraySize(wrenches);
     if (count > limits->max_wrenches) {
         wp_error_set(error, WP_LIMIT, "params.wrenches",
                      "%zu wrenches in one request, the limit is %zu (--max-wrenches)", count,
                      limits->max_wrenches);
         return false;
+    }
+    if (prepared && prepared->wrenches) {
+        /* Read already, each three finite numbers: what wp_wrench_read
+         * would have made of them. */
+        r->wrenches = prepared->wrenches;
+        prepared->wrenches = NULL;
+        r->wrench_count = count;
+        return true;
     }
     r->wrenches = malloc((count ? count : 1) * sizeof *r->wrenches);
     if (!r->wrenches) {
@@ -299,69 +317,119 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
     WP_BUFFER_LITERAL(b, "}}");
 }
 
-static cJSON *wrench_classify(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                              wp_error *error)
-{
+/* wrench.classify, written in pieces (wp_stream, wp_rpc.h): the wrenches
+ * are read once, up front, so that a bad one is refused before any answer
+ * is written; then each step answers the next few. */
+struct wp_stream {
     wp_fixture_use use;
-    if (!use_fixture(host, params, &use, error))
+    classify_request request;
+    size_t next;        /* the next wrench to answer */
+};
+
+static void classify_free(wp_stream *stream, const wp_host *host)
+{
+    if (!stream)
+        return;
+    free(stream->request.wrenches);
+    host->fixture_release(host->self, &stream->use);
+    free(stream);
+}
+
+static wp_stream *classify_begin(const wp_host *host, const wp_limits *limits, cJSON *params,
+                                 wp_prepared *prepared, wp_error *error)
+{
+    wp_stream *stream = calloc(1, sizeof *stream);
+    if (!stream) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return NULL;
-    const wr_analysis *a = use.analysis;
-    classify_request r;
+    }
+    if (!use_fixture(host, params, &stream->use, error)) {
+        free(stream);
+        return NULL;
+    }
+    if (!read_classify(limits, params, stream->use.fixture, prepared, &stream->request, error)) {
+        classify_free(stream, host);
+        return NULL;
+    }
+    /* Read: the tree of a hundred thousand wrenches (tens of megabytes of
+     * nodes) need not live as long as the answer does. */
+    cJSON_DeleteItemFromObjectCaseSensitive(params, "wrenches");
+    return stream;
+}
+
+/* Bytes of results after which a step ends its piece: the daemon's bound
+ * on a connection's unsent output is checked between pieces. */
+#define CLASSIFY_PIECE_BYTES (256 * 1024)
+
+static wp_step classify_step(wp_stream *stream, const wp_host *host, wp_buffer *out,
+                             unsigned long budget, unsigned long *used, wp_error *error)
+{
+    classify_request *r = &stream->request;
+    const wr_analysis *a = stream->use.analysis;
     wr_lp_set *goal = NULL, *strong = NULL;
-    wp_buffer b = {0};
-    cJSON *result = NULL;
-    if (!read_classify(limits, params, use.fixture, &r, error) ||
-        (r.lp && !host->lp_sets(host->self, &use, &goal, &strong, error)))
-        goto done;
-    /* About 300 bytes per set for an outside wrench with its witness, and
-     * room for the envelope's opening (WP_RESULTS_OPENING). */
-    wp_buffer_reserve(&b, 64 + r.wrench_count * (size_t)r.set_count * 320);
-    for (size_t i = 0; i < sizeof WP_RESULTS_OPENING - 1; i++)
-        wp_buffer_append(&b, " ", 1);
-    WP_BUFFER_LITERAL(&b, "[");
-    for (size_t i = 0; i < r.wrench_count && !b.failed; i++) {
-        wp_buffer_puts(&b, i ? ",{" : "{");
-        for (int s = 0; s < r.set_count; s++) {
+    if (r->lp && !host->lp_sets(host->self, &stream->use, &goal, &strong, error))
+        return WP_STEP_FAILED;
+    unsigned long cost = 1;
+    for (int s = 0; s < r->set_count; s++)
+        cost += (unsigned long)(r->sets[s] == WR_SET_BOTH
+                                    ? wr_analysis_cone_count(a, WR_SET_GOAL) +
+                                          wr_analysis_cone_count(a, WR_SET_STRONG)
+                                    : wr_analysis_cone_count(a, r->sets[s]));
+    if (r->lp)
+        cost *= 64; /* an LP per cone, not a few dot products */
+    size_t start = out->length;
+    if (stream->next == 0) {
+        wp_buffer_reserve(out, out->length + 64 +
+                                   (r->wrench_count < 1024 ? r->wrench_count : 1024) *
+                                       (size_t)r->set_count * 320);
+        WP_BUFFER_LITERAL(out, "[");
+    }
+    while (stream->next < r->wrench_count && !out->failed) {
+        if (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES ||
+            wr_stop_requested(host->stop))
+            return WP_STEP_MORE;
+        size_t i = stream->next++;
+        *used += cost;
+        wp_buffer_puts(out, i ? ",{" : "{");
+        for (int s = 0; s < r->set_count; s++) {
             wr_answer answer;
-            int status = r.lp ? wr_classify_lp(a, goal, strong, r.wrenches[i], r.sets[s], &answer)
-                              : wr_classify(a, r.wrenches[i], r.sets[s], r.tolerance, &answer);
+            int status = r->lp ? wr_classify_lp(a, goal, strong, r->wrenches[i], r->sets[s], &answer)
+                               : wr_classify(a, r->wrenches[i], r->sets[s], r->tolerance, &answer);
             if (status != 0) {
                 wp_error_set(error, WP_SOLVER, "params.wrenches",
                              "GLPK failed on wrench %zu; nothing was answered", i);
-                goto done;
+                return WP_STEP_FAILED;
             }
-            wp_buffer_puts(&b, s ? ",\"" : "\"");
-            wp_buffer_puts(&b, SET_NAMES[r.sets[s]]);
-            WP_BUFFER_LITERAL(&b, "\":");
-            write_answer(&b, a, &answer);
+            wp_buffer_puts(out, s ? ",\"" : "\"");
+            wp_buffer_puts(out, SET_NAMES[r->sets[s]]);
+            WP_BUFFER_LITERAL(out, "\":");
+            write_answer(out, a, &answer);
         }
-        WP_BUFFER_LITERAL(&b, "}");
+        WP_BUFFER_LITERAL(out, "}");
     }
-    WP_BUFFER_LITERAL(&b, "]");
-    /* The text moves into a raw item, uncopied (cJSON frees it with free:
-     * no hooks are installed). */
-    cJSON *raw = cJSON_CreateRaw("");
-    result = cJSON_CreateObject();
-    char *results = wp_buffer_take(&b);
-    if (!results || !raw || !result) {
-        free(results);
-        cJSON_Delete(raw);
-        cJSON_Delete(result);
-        result = out_of_memory(NULL, error);
-        goto done;
-    }
-    free(raw->valuestring);
-    raw->valuestring = results;
-    if (!cJSON_AddItemToObject(result, "results", raw)) {
-        cJSON_Delete(raw);
-        cJSON_Delete(result);
-        result = out_of_memory(NULL, error);
-    }
-done:
-    free(b.data);
-    free(r.wrenches);
-    host->fixture_release(host->self, &use);
-    return result;
+    WP_BUFFER_LITERAL(out, "]");
+    return WP_STEP_DONE;
+}
+
+static size_t classify_bytes(const wp_stream *stream)
+{
+    return sizeof *stream + stream->request.wrench_count * sizeof *stream->request.wrenches;
+}
+
+static const wp_streamer CLASSIFY_STREAM = {classify_begin, classify_step, classify_free,
+                                            classify_bytes};
+
+/* Light enough for an event loop: the explicit cones (no GLPK), and few
+ * wrenches against few cones. */
+static bool classify_light(const cJSON *params, int cones)
+{
+    const cJSON *how = cJSON_GetObjectItemCaseSensitive(params, "method");
+    const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
+    if ((how && !(cJSON_IsString(how) && strcmp(how->valuestring, "auto") == 0)) ||
+        !cJSON_IsArray(wrenches))
+        return false;
+    long count = cJSON_GetArraySize(wrenches);
+    return count <= WP_LIGHT_CONE_CHECKS && count * (cones > 0 ? cones : 1) <= WP_LIGHT_CONE_CHECKS;
 }
 
 /* ---- cone.get, plan.get, modes.get --------------------------------------- */
@@ -525,9 +593,12 @@ static cJSON *push_regions(const wp_host *host, const wp_limits *limits, const c
     const wr_fixture *f = use.fixture;
     cJSON *result = NULL;
     wr_regions regions;
-    int status = f->shape == WR_SHAPE_NONE ? -1
-                                           : wr_push_regions(use.analysis, set, friction, &regions);
-    if (status == -1) {
+    int status = f->shape == WR_SHAPE_NONE
+                     ? -1
+                     : wr_push_regions(use.analysis, set, friction, host->stop, &regions);
+    if (status == -3) {
+        wp_error_set(error, WP_INTERNAL, "", "stopped: the client is gone");
+    } else if (status == -1) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
                      "push regions need the part's outline: the fixture has no shape");
     } else if (status != 0) {
@@ -640,23 +711,38 @@ static const char *const PUSH[] = {"fixture", "set", "finger_friction", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 
+/* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
+ * one piece, and the event loop may answer it.  The rest end their piece
+ * (wp_answer_step); WP_READY ones are light on a ready stored fixture
+ * (wp_answer_light).  push.regions is not (a finger with friction samples
+ * every edge), nor are cone.get (a cone derived) and stability.margin. */
 const wp_method wp_methods[] = {
-    {"fixture.put", fixture_put, FIXTURE, FIXTURE, "store a fixture; its id depends on its content"},
-    {"fixture.get", fixture_get, ID, ID, "the stored fixture"},
-    {"fixture.delete", fixture_delete, ID, ID, "forget a stored fixture"},
-    {"fixture.list", fixture_list, NONE, NONE, "the stored fixtures"},
-    {"wrench.classify", wrench_classify, CLASSIFY, CLASSIFY_REQUIRED,
-     "verdicts, margins and blocking transitions of wrenches"},
-    {"cone.get", cone_get, CONE, CONE, "the explicit cone of a constraint string"},
-    {"plan.get", plan_get, FIXTURE, FIXTURE, "contact states, their excluded strings, G_goal's cones"},
-    {"modes.get", modes_get, FIXTURE, FIXTURE, "the feasible moving contact modes"},
-    {"server.status", server_status, NONE, NONE, "version, uptime, counts"},
-    {"push.regions", push_regions, PUSH, FIXTURE,
-     "the boundary intervals where a finger's push is in a set"},
-    {"gravity.sweep", gravity_sweep, SWEEP, FIXTURE, "the tilts under which gravity is in a set"},
-    {"stability.margin", stability_margin, MARGIN, MARGIN,
-     "how large a disturbance a biasing wrench tolerates"},
-    {NULL, NULL, NULL, NULL, NULL},
+    {.name = "fixture.put", .handler = fixture_put, .fields = FIXTURE, .required = FIXTURE,
+     .summary = "store a fixture; its id depends on its content"},
+    {.name = "fixture.get", .handler = fixture_get, .fields = ID, .required = ID,
+     .flags = WP_CHEAP, .summary = "the stored fixture"},
+    {.name = "fixture.delete", .handler = fixture_delete, .fields = ID, .required = ID,
+     .summary = "forget a stored fixture"},
+    {.name = "fixture.list", .handler = fixture_list, .fields = NONE, .required = NONE,
+     .flags = WP_CHEAP, .summary = "the stored fixtures"},
+    {.name = "wrench.classify", .stream = &CLASSIFY_STREAM, .fields = CLASSIFY,
+     .required = CLASSIFY_REQUIRED, .flags = WP_READY, .light = classify_light,
+     .summary = "verdicts, margins and blocking transitions of wrenches"},
+    {.name = "cone.get", .handler = cone_get, .fields = CONE, .required = CONE,
+     .summary = "the explicit cone of a constraint string"},
+    {.name = "plan.get", .handler = plan_get, .fields = FIXTURE, .required = FIXTURE,
+     .flags = WP_READY, .summary = "contact states, their excluded strings, G_goal's cones"},
+    {.name = "modes.get", .handler = modes_get, .fields = FIXTURE, .required = FIXTURE,
+     .flags = WP_READY, .summary = "the feasible moving contact modes"},
+    {.name = "server.status", .handler = server_status, .fields = NONE, .required = NONE,
+     .flags = WP_CHEAP, .summary = "version, uptime, counts"},
+    {.name = "push.regions", .handler = push_regions, .fields = PUSH, .required = FIXTURE,
+     .summary = "the boundary intervals where a finger's push is in a set"},
+    {.name = "gravity.sweep", .handler = gravity_sweep, .fields = SWEEP, .required = FIXTURE,
+     .flags = WP_READY, .summary = "the tilts under which gravity is in a set"},
+    {.name = "stability.margin", .handler = stability_margin, .fields = MARGIN,
+     .required = MARGIN, .summary = "how large a disturbance a biasing wrench tolerates"},
+    {0},
 };
 
 const wp_method *wp_method_find(const char *name)

@@ -1,6 +1,7 @@
 /* wp_rpc.c -- the JSON-RPC 2.0 envelope: one line in, one line out. */
 #include "wp_rpc.h"
 
+#include <assert.h>
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -51,9 +52,82 @@ char *wp_error_line(int code, const char *field, const char *reason)
 
 static const char *const ENVELOPE_FIELDS[] = {"jsonrpc", "method", "params", "id", NULL};
 
-/* Check the params against the method's table entry, then run it. */
-static cJSON *call(const wp_host *host, const wp_limits *limits, const cJSON *request,
-                   wp_error *error)
+/* Bytes of answer after which a step ends its piece between requests of a
+ * batch. */
+#define PIECE_BYTES (256 * 1024)
+
+struct wp_answer {
+    wp_limits limits;
+    cJSON *json;             /* the parsed line; NULL when refused */
+    char *refusal;           /* the whole answer of a refused line */
+    bool batch;
+    bool whole;              /* no pieces: one step writes all (wp_answer_line) */
+    cJSON *next;             /* the next request to start, or NULL */
+    bool opened;             /* a batch's "[" is written */
+    bool done;
+    wp_prepared prepared;    /* a long classify's wrenches, read from the text */
+    /* The request in progress, when its result is written in pieces. */
+    const wp_streamer *streamer;
+    wp_stream *stream;
+    char *id_text;           /* its id as answered (malloc'd) */
+    size_t bytes;            /* wp_answer_bytes */
+};
+
+/* What the envelope of one request says: an error found in it, its id as
+ * the answer echoes it, and whether it is a notification.  Returns whether
+ * it is valid. */
+static bool read_envelope(const cJSON *request, wp_error *error, char **id_text,
+                          bool *notification)
+{
+    *id_text = NULL;
+    *notification = false;
+    const cJSON *id = cJSON_IsObject(request) ? cJSON_GetObjectItemCaseSensitive(request, "id")
+                                             : NULL;
+    if (!cJSON_IsObject(request)) {
+        wp_error_set(error, WP_INVALID_REQUEST, "", "a request is an object, not %s",
+                     wp_type_name(request));
+        return false;
+    }
+    if (id && !cJSON_IsString(id) && !cJSON_IsNumber(id) && !cJSON_IsNull(id)) {
+        wp_error_set(error, WP_INVALID_REQUEST, "id", "must be a string, a number or null");
+        return false;
+    }
+    if (cJSON_IsNumber(id) && !isfinite(id->valuedouble)) {
+        /* It could not be echoed: JSON has no infinities. */
+        wp_error_set(error, WP_INVALID_REQUEST, "id", "must be a finite number");
+        return false;
+    }
+    if (id && !cJSON_IsNull(id)) {
+        /* The id is echoed as the client wrote it (canonical text of the
+         * parsed value); out of memory: answered under id null. */
+        *id_text = wp_canonical(id, NULL);
+        if (!*id_text) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+    }
+    const cJSON *version = cJSON_GetObjectItemCaseSensitive(request, "jsonrpc");
+    const cJSON *method = cJSON_GetObjectItemCaseSensitive(request, "method");
+    wp_error envelope;
+    bool valid = false;
+    if (!wp_check_object(request, "", ENVELOPE_FIELDS, &envelope))
+        wp_error_set(error, WP_INVALID_REQUEST, envelope.field, "%s", envelope.reason);
+    else if (!cJSON_IsString(version) || strcmp(version->valuestring, "2.0") != 0)
+        wp_error_set(error, WP_INVALID_REQUEST, "jsonrpc", "must be \"2.0\"");
+    else if (!cJSON_IsString(method))
+        wp_error_set(error, WP_INVALID_REQUEST, "method", "must be a string, not %s",
+                     wp_type_name(method));
+    else
+        valid = true;
+    /* Only a valid request without an id is a notification: an invalid one
+     * is answered (with id null if it has none). */
+    *notification = valid && id == NULL;
+    return valid;
+}
+
+/* The method a valid request names, its params checked against the table:
+ * NULL with `error` set when there is none or the params do not fit. */
+static const wp_method *find_method(const cJSON *request, const cJSON *params, wp_error *error)
 {
     const cJSON *method = cJSON_GetObjectItemCaseSensitive(request, "method");
     const wp_method *m = wp_method_find(method->valuestring);
@@ -62,114 +136,159 @@ static cJSON *call(const wp_host *host, const wp_limits *limits, const cJSON *re
                      method->valuestring);
         return NULL;
     }
-    if (!m->handler) {
+    if (!m->handler && !m->stream) {
         wp_error_set(error, WP_NO_METHOD, "method", "%s is not served yet", m->name);
         return NULL;
     }
-    const cJSON *params = cJSON_GetObjectItemCaseSensitive(request, "params");
-    cJSON *empty = NULL;
-    if (!params) {
-        params = empty = cJSON_CreateObject();
-        if (!empty) {
-            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+    if (!wp_check_object(params, "params", m->fields, error))
+        return NULL;
+    for (const char *const *name = m->required; *name; name++)
+        if (!cJSON_GetObjectItemCaseSensitive(params, *name)) {
+            char field[WP_FIELD_MAX];
+            wp_path_key(field, "params", *name);
+            wp_error_set(error, WP_INVALID_PARAMS, field, "required");
             return NULL;
         }
-    }
-    cJSON *result = NULL;
-    if (wp_check_object(params, "params", m->fields, error)) {
-        bool complete = true;
-        for (const char *const *name = m->required; *name && complete; name++)
-            if (!cJSON_GetObjectItemCaseSensitive(params, *name)) {
-                char field[WP_FIELD_MAX];
-                wp_path_key(field, "params", *name);
-                wp_error_set(error, WP_INVALID_PARAMS, field, "required");
-                complete = false;
-            }
-        if (complete)
-            result = m->handler(host, limits, params, error);
-    }
-    cJSON_Delete(empty);
-    return result;
+    return m;
 }
 
-/* Answer one request object into `b`; nothing for a notification.  The id
- * is echoed as the client wrote it (canonical text of the parsed value). */
-static void answer_request(const wp_host *host, const wp_limits *limits, const cJSON *request,
-                           wp_buffer *b, wp_counts *counts)
+/* Before a request's answer in a batch: "[" or ",". */
+static void separate(wp_answer *answer, wp_buffer *out)
 {
-    counts->requests++;
+    if (!answer->batch)
+        return;
+    wp_buffer_puts(out, answer->opened ? "," : "[");
+    answer->opened = true;
+}
+
+static void write_result(wp_answer *answer, wp_buffer *out, const cJSON *result,
+                         const char *id_text)
+{
+    separate(answer, out);
+    wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
+    wp_buffer_json(out, result);
+    wp_buffer_puts(out, ",\"id\":");
+    wp_buffer_puts(out, id_text ? id_text : "null");
+    wp_buffer_puts(out, "}");
+}
+
+static void write_error_answer(wp_answer *answer, wp_buffer *out, const wp_error *error,
+                               const char *id_text)
+{
+    separate(answer, out);
+    write_error(out, error, id_text ? id_text : "null");
+}
+
+static void end_stream(wp_answer *answer, const wp_host *host)
+{
+    if (answer->stream)
+        answer->streamer->free(answer->stream, host);
+    answer->stream = NULL;
+    answer->streamer = NULL;
+    free(answer->id_text);
+    answer->id_text = NULL;
+}
+
+/* Go on with the request whose result is written in pieces.  `mine` says
+ * whether its text began in this piece (so that a failure can still take
+ * it back and answer the error in its place). */
+static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer *out,
+                               size_t start, bool mine, unsigned long *used, wp_counts *counts)
+{
     wp_error error = {0};
-    const char *id_text = "null";
-    char *id_owned = NULL;
+    unsigned long budget = answer->whole ? (unsigned long)-1 : WP_PIECE_BUDGET;
+    wp_step step = answer->streamer->step(answer->stream, host, out, budget, used, &error);
+    if (step == WP_STEP_MORE && answer->whole) {
+        while (step == WP_STEP_MORE) {
+            *used = 0;
+            step = answer->streamer->step(answer->stream, host, out, budget, used, &error);
+        }
+    }
+    if (step == WP_STEP_MORE)
+        return WP_STEP_MORE;
+    if (step == WP_STEP_DONE) {
+        wp_buffer_puts(out, "},\"id\":");
+        wp_buffer_puts(out, answer->id_text ? answer->id_text : "null");
+        wp_buffer_puts(out, "}");
+        end_stream(answer, host);
+        return WP_STEP_DONE;
+    }
+    counts->errors++;
+    if (!mine) {
+        end_stream(answer, host);
+        return WP_STEP_FAILED;
+    }
+    /* Its text is all in this piece: answer the error in its place. */
+    out->length = start;
+    bool was_opened = answer->opened && start > 0 && out->data[start - 1] == '[';
+    if (answer->batch)
+        answer->opened = answer->opened && !was_opened;
+    write_error_answer(answer, out, &error, answer->id_text);
+    end_stream(answer, host);
+    return WP_STEP_DONE;
+}
+
+/* Start the next request of the line and answer it, or begin writing its
+ * result in pieces.  Returns whether it was cheap. */
+static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out,
+                          unsigned long *used, wp_counts *counts, wp_step *stream_step)
+{
+    cJSON *request = answer->next;
+    answer->next = answer->batch ? request->next : NULL;
+    counts->requests++;
+    *stream_step = WP_STEP_DONE;
+    wp_error error = {0};
+    char *id_text = NULL;
     bool notification = false;
-    const cJSON *id = cJSON_IsObject(request) ? cJSON_GetObjectItemCaseSensitive(request, "id")
-                                             : NULL;
-    bool valid = false;
-    if (!cJSON_IsObject(request)) {
-        wp_error_set(&error, WP_INVALID_REQUEST, "", "a request is an object, not %s",
-                     wp_type_name(request));
-    } else if (id && !cJSON_IsString(id) && !cJSON_IsNumber(id) && !cJSON_IsNull(id)) {
-        wp_error_set(&error, WP_INVALID_REQUEST, "id", "must be a string, a number or null");
-    } else if (cJSON_IsNumber(id) && !isfinite(id->valuedouble)) {
-        /* It could not be echoed: JSON has no infinities. */
-        wp_error_set(&error, WP_INVALID_REQUEST, "id", "must be a finite number");
-    } else {
-        if (id && !cJSON_IsNull(id)) {
-            id_text = id_owned = wp_canonical(id, NULL);
-            if (!id_owned)
-                id_text = "null";
-        }
-        const cJSON *version = cJSON_GetObjectItemCaseSensitive(request, "jsonrpc");
-        const cJSON *method = cJSON_GetObjectItemCaseSensitive(request, "method");
-        wp_error envelope;
-        if (id && !cJSON_IsNull(id) && !id_owned) /* out of memory: answered under id null */
+    const wp_method *m = NULL;
+    cJSON *params = NULL, *empty = NULL;
+    if (read_envelope(request, &error, &id_text, &notification)) {
+        params = cJSON_GetObjectItemCaseSensitive(request, "params");
+        if (!params)
+            params = empty = cJSON_CreateObject();
+        if (!params)
             wp_error_set(&error, WP_INTERNAL, "", "out of memory");
-        else if (!wp_check_object(request, "", ENVELOPE_FIELDS, &envelope))
-            wp_error_set(&error, WP_INVALID_REQUEST, envelope.field, "%s", envelope.reason);
-        else if (!cJSON_IsString(version) || strcmp(version->valuestring, "2.0") != 0)
-            wp_error_set(&error, WP_INVALID_REQUEST, "jsonrpc", "must be \"2.0\"");
-        else if (!cJSON_IsString(method))
-            wp_error_set(&error, WP_INVALID_REQUEST, "method", "must be a string, not %s",
-                         wp_type_name(method));
         else
-            valid = true;
-        /* Only a valid request without an id is a notification: an
-         * invalid one is answered (with id null if it has none). */
-        notification = valid && id == NULL;
+            m = find_method(request, params, &error);
     }
-    cJSON *result = valid ? call(host, limits, request, &error) : NULL;
-    if (!result)
-        counts->errors++;
-    if (!notification) {
-        if (b->length > 1) /* after "[" and an earlier answer */
-            wp_buffer_puts(b, ",");
-        cJSON *raw = result ? result->child : NULL;
-        size_t room = sizeof WP_RESULTS_OPENING - 1;
-        if (b->length == 0 && !b->failed && raw && !raw->next && cJSON_IsRaw(raw) &&
-            strcmp(raw->string, "results") == 0 && strspn(raw->valuestring, " ") == room) {
-            /* The results take the envelope's opening in their room and
-             * become the answer: tens of megabytes are not copied. */
-            memcpy(raw->valuestring, WP_RESULTS_OPENING, room);
-            wp_buffer_adopt(b, raw->valuestring);
-            raw->valuestring = NULL; /* cJSON_Delete skips it */
-            wp_buffer_reserve(b, b->length + 16 + strlen(id_text));
-            wp_buffer_puts(b, "},\"id\":");
-            wp_buffer_puts(b, id_text);
-            wp_buffer_puts(b, "}");
-        } else if (result) {
-            /* Straight into the answer: a batch of wrenches makes tens of
-             * megabytes, not to be copied twice more. */
-            wp_buffer_puts(b, "{\"jsonrpc\":\"2.0\",\"result\":");
-            wp_buffer_json(b, result);
-            wp_buffer_puts(b, ",\"id\":");
-            wp_buffer_puts(b, id_text);
-            wp_buffer_puts(b, "}");
+    bool cheap = !m || (m->flags & WP_CHEAP);
+    if (m && m->stream) {
+        wp_stream *stream = m->stream->begin(host, &answer->limits, params,
+                                             answer->batch ? NULL : &answer->prepared, &error);
+        if (stream && notification) {
+            /* Nobody will read it: nothing to compute. */
+            m->stream->free(stream, host);
+        } else if (stream) {
+            size_t start = out->length;
+            separate(answer, out);
+            answer->streamer = m->stream;
+            answer->stream = stream;
+            answer->id_text = id_text;
+            id_text = NULL;
+            answer->bytes = 4096 + (m->stream->bytes ? m->stream->bytes(stream) : 0);
+            wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":");
+            /* `start` is before the "," or "[": a failure takes it all back. */
+            *stream_step = continue_stream(answer, host, out, start, true, used, counts);
         } else {
-            write_error(b, &error, id_text);
+            counts->errors++;
+            if (!notification)
+                write_error_answer(answer, out, &error, id_text);
         }
+    } else {
+        cJSON *result = m ? m->handler(host, &answer->limits, params, &error) : NULL;
+        if (!result)
+            counts->errors++;
+        if (!notification) {
+            if (result)
+                write_result(answer, out, result, id_text);
+            else
+                write_error_answer(answer, out, &error, id_text);
+        }
+        cJSON_Delete(result);
     }
-    cJSON_Delete(result);
-    free(id_owned);
+    cJSON_Delete(empty);
+    free(id_text);
+    return cheap;
 }
 
 /* parse_line's refusal: the answer in *refusal, no JSON. */
@@ -234,62 +353,6 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
     return json;
 }
 
-/* Answer the parsed line (takes `json`). */
-static char *answer_json(const wp_host *host, const wp_limits *limits, cJSON *json,
-                         wp_counts *counts)
-{
-    wp_buffer b = {0};
-    if (cJSON_IsArray(json)) {
-        if (!json->child) {
-            cJSON_Delete(json);
-            counts->requests++;
-            counts->errors++;
-            return wp_error_line(WP_INVALID_REQUEST, "", "an empty batch");
-        }
-        size_t members = (size_t)cJSON_GetArraySize(json);
-        if (members > limits->max_batch) {
-            cJSON_Delete(json);
-            counts->requests++;
-            counts->errors++;
-            char reason[128];
-            snprintf(reason, sizeof reason, "a batch of %zu requests; the limit is %zu (--max-batch)",
-                     members, limits->max_batch);
-            return wp_error_line(WP_INVALID_REQUEST, "", reason);
-        }
-        wp_buffer_puts(&b, "[");
-        for (const cJSON *request = json->child; request; request = request->next)
-            answer_request(host, limits, request, &b, counts);
-        if (b.length == 1) { /* notifications only */
-            free(b.data);
-            cJSON_Delete(json);
-            return NULL;
-        }
-        wp_buffer_puts(&b, "]");
-    } else {
-        answer_request(host, limits, json, &b, counts);
-        if (b.length == 0) {
-            cJSON_Delete(json);
-            return NULL;
-        }
-    }
-    cJSON_Delete(json);
-    wp_buffer_puts(&b, "\n");
-    char *answer = wp_buffer_take(&b);
-    if (!answer) { /* the answer did not fit in memory: say so, lose nothing silently */
-        counts->errors++;
-        answer = wp_error_line(WP_INTERNAL, "", "out of memory while writing the answer");
-    }
-    return answer;
-}
-
-char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
-                     size_t length, wp_counts *counts)
-{
-    char *refusal = NULL;
-    cJSON *json = parse_line(limits, line, length, counts, &refusal);
-    return json ? answer_json(host, limits, json, counts) : refusal;
-}
-
 /* Light work (wp_answer_light): server.status, or an auto classify of a
  * few wrenches against a stored fixture whose cones are ready. */
 static bool json_is_light(const wp_host *host, const cJSON *json)
@@ -298,39 +361,211 @@ static bool json_is_light(const wp_host *host, const cJSON *json)
     const cJSON *params = cJSON_GetObjectItemCaseSensitive(json, "params");
     if (!cJSON_IsObject(json) || !cJSON_IsString(method))
         return !cJSON_IsArray(json); /* an invalid request, but a batch may be work */
-    if (strcmp(method->valuestring, "server.status") == 0)
-        return true;
-    if (strcmp(method->valuestring, "wrench.classify") != 0 || !cJSON_IsObject(params))
+    const wp_method *m = wp_method_find(method->valuestring);
+    if (!m || (m->flags & WP_CHEAP))
+        return true; /* no such method: an error answer */
+    if (!(m->flags & WP_READY) || !cJSON_IsObject(params) || !host->fixture_ready)
         return false;
-    const cJSON *how = cJSON_GetObjectItemCaseSensitive(params, "method");
     const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
-    const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
-    if ((how && !(cJSON_IsString(how) && strcmp(how->valuestring, "auto") == 0)) ||
-        !cJSON_IsString(id) || !cJSON_IsArray(wrenches) || !host->fixture_ready ||
-        !wp_fixture_id_valid(id->valuestring))
-        return false;
-    long count = cJSON_GetArraySize(wrenches);
-    if (count > WP_LIGHT_CONE_CHECKS)
+    if (!cJSON_IsString(id) || !wp_fixture_id_valid(id->valuestring))
         return false;
     int cones = host->fixture_ready(host->self, id->valuestring);
-    return cones >= 0 && count * (cones > 0 ? cones : 1) <= WP_LIGHT_CONE_CHECKS;
+    return cones >= 0 && (!m->light || m->light(params, cones));
+}
+
+
+/* Lines from this long on are worth reading without a tree node per number. */
+#define PREPARE_BYTES 65536
+
+/* A long wrench.classify: read params.wrenches straight from the text when
+ * it is the common shape (arrays of three numbers), and return a copy of
+ * the line with [] in its place for the tree; NULL for the ordinary way. */
+static char *prepare_wrenches(const char *line, size_t length, wp_prepared *prepared,
+                              size_t *copy_length)
+{
+    size_t method_start, method_end, params_start, params_end, start, end;
+    static const char CLASSIFY[] = "\"wrench.classify\"";
+    if (length < PREPARE_BYTES || !wp_json_member(line, length, 0, "method", &method_start, &method_end) ||
+        method_end - method_start != sizeof CLASSIFY - 1 ||
+        memcmp(line + method_start, CLASSIFY, sizeof CLASSIFY - 1) != 0 ||
+        !wp_json_member(line, length, 0, "params", &params_start, &params_end) ||
+        !wp_json_member(line, params_end, params_start, "wrenches", &start, &end))
+        return NULL;
+    double (*wrenches)[3];
+    long count = wp_json_triples(line + start, end - start, &wrenches);
+    if (count < 0)
+        return NULL;
+    char *copy = malloc(length - (end - start) + 3);
+    if (!copy) {
+        free(wrenches);
+        return NULL;
+    }
+    memcpy(copy, line, start);
+    memcpy(copy + start, "[]", 2);
+    memcpy(copy + start + 2, line + end, length - end);
+    *copy_length = length - (end - start) + 2;
+    copy[*copy_length] = 0;
+    prepared->wrenches = wrenches;
+    prepared->count = (size_t)count;
+    return copy;
+}
+
+wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t length)
+{
+    wp_answer *answer = calloc(1, sizeof *answer);
+    if (!answer)
+        return NULL;
+    answer->limits = *limits;
+    wp_counts counted = {0, 0}; /* a refusal counts when its step writes it */
+    size_t short_length = 0;
+    char *short_line = NULL;
+    /* Only a text the scan passes (UTF-8, depth, controls) is read so. */
+    if (length >= PREPARE_BYTES && wp_utf8_valid(line, length)) {
+        wp_json_shape shape = wp_json_scan(line, length, limits->max_depth);
+        if (shape.depth <= limits->max_depth && !shape.control && !shape.nul_escape)
+            short_line = prepare_wrenches(line, length, &answer->prepared, &short_length);
+    }
+    cJSON *json = short_line ? parse_line(limits, short_line, short_length, &counted, &answer->refusal)
+                             : parse_line(limits, line, length, &counted, &answer->refusal);
+    free(short_line);
+    if (!json) {
+        if (!answer->refusal) {
+            free(answer);
+            return NULL;
+        }
+        answer->bytes = strlen(answer->refusal);
+        return answer;
+    }
+    answer->json = json;
+    answer->bytes = length * 4; /* a rough figure for the tree */
+    if (cJSON_IsArray(json)) {
+        size_t members = (size_t)cJSON_GetArraySize(json);
+        char reason[128];
+        if (!json->child || members > limits->max_batch) {
+            if (!json->child)
+                snprintf(reason, sizeof reason, "an empty batch");
+            else
+                snprintf(reason, sizeof reason,
+                         "a batch of %zu requests; the limit is %zu (--max-batch)", members,
+                         limits->max_batch);
+            cJSON_Delete(json);
+            answer->json = NULL;
+            answer->refusal = wp_error_line(WP_INVALID_REQUEST, "", reason);
+            if (!answer->refusal) {
+                free(answer);
+                return NULL;
+            }
+            answer->bytes = strlen(answer->refusal);
+            return answer;
+        }
+        answer->batch = true;
+        answer->next = json->child;
+    } else {
+        answer->next = json;
+    }
+    return answer;
+}
+
+wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
+                       wp_counts *counts)
+{
+    assert(!answer->done);
+    if (answer->refusal) {
+        counts->requests++;
+        counts->errors++;
+        wp_buffer_puts(out, answer->refusal);
+        answer->done = true;
+        return WP_STEP_DONE;
+    }
+    size_t start = out->length;
+    unsigned long used = 0;
+    if (answer->stream) {
+        /* Its text began in an earlier piece, already handed out. */
+        wp_step step = continue_stream(answer, host, out, start, false, &used, counts);
+        if (step != WP_STEP_DONE) {
+            answer->done = step == WP_STEP_FAILED;
+            return step;
+        }
+    }
+    while (answer->next) {
+        if (!answer->whole && out->length > start &&
+            (used >= WP_PIECE_BUDGET || out->length - start >= PIECE_BYTES))
+            return WP_STEP_MORE;
+        wp_step step;
+        bool cheap = start_request(answer, host, out, &used, counts, &step);
+        if (step == WP_STEP_MORE)
+            return WP_STEP_MORE;
+        assert(step == WP_STEP_DONE); /* a failure in its first piece is answered */
+        if (!cheap)
+            used = used > WP_PIECE_BUDGET ? used : WP_PIECE_BUDGET;
+    }
+    if (answer->opened)
+        wp_buffer_puts(out, "]");
+    if (out->length > start || answer->opened)
+        wp_buffer_puts(out, "\n");
+    answer->done = true;
+    return WP_STEP_DONE;
+}
+
+size_t wp_answer_bytes(const wp_answer *answer) { return answer ? answer->bytes : 0; }
+
+void wp_answer_free(wp_answer *answer, const wp_host *host)
+{
+    if (!answer)
+        return;
+    end_stream(answer, host);
+    cJSON_Delete(answer->json);
+    free(answer->refusal);
+    free(answer->prepared.wrenches);
+    free(answer);
+}
+
+/* All of an answer in one buffer: the line, or NULL for none, or the error
+ * saying the answer did not fit in memory. */
+static char *answer_whole(wp_answer *answer, const wp_host *host, wp_counts *counts)
+{
+    answer->whole = true;
+    wp_buffer b = {0};
+    while (wp_answer_step(answer, host, &b, counts) == WP_STEP_MORE)
+        ;
+    wp_answer_free(answer, host);
+    if (b.length == 0 && !b.failed) {
+        free(b.data);
+        return NULL; /* notifications only */
+    }
+    char *line = wp_buffer_take(&b);
+    if (!line) { /* the answer did not fit in memory: say so, lose nothing silently */
+        counts->errors++;
+        line = wp_error_line(WP_INTERNAL, "", "out of memory while writing the answer");
+    }
+    return line;
+}
+
+char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
+                     size_t length, wp_counts *counts)
+{
+    wp_answer *answer = wp_answer_begin(limits, line, length);
+    if (!answer) {
+        counts->requests++;
+        counts->errors++;
+        return wp_error_line(WP_INTERNAL, "", "out of memory");
+    }
+    return answer_whole(answer, host, counts);
 }
 
 bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *line,
-                     size_t length, wp_counts *counts, char **answer)
+                     size_t length, wp_counts *counts, char **out)
 {
     if (length > WP_LIGHT_LINE)
         return false;
-    char *refusal = NULL;
-    cJSON *json = parse_line(limits, line, length, counts, &refusal);
-    if (!json) {
-        *answer = refusal; /* refusing a line is light */
-        return true;
-    }
-    if (!json_is_light(host, json)) {
-        cJSON_Delete(json); /* nothing counted yet: the worker will */
+    wp_answer *answer = wp_answer_begin(limits, line, length);
+    if (!answer)
+        return false;
+    /* A refused line is light; so is a request json_is_light says is. */
+    if (!answer->refusal && (answer->batch || !json_is_light(host, answer->json))) {
+        wp_answer_free(answer, host); /* nothing counted yet: the worker will */
         return false;
     }
-    *answer = answer_json(host, limits, json, counts);
+    *out = answer_whole(answer, host, counts);
     return true;
 }

@@ -45,6 +45,10 @@ typedef struct wp_host {
      * it costs no derivation?  Its number of cones (goal + strong), or -1.
      * May be NULL: never. */
     int (*fixture_ready)(void *self, const char *id);
+    /* Polled by long work between bounded units (wrenches, edges): set by
+     * the host to the request's own stop before each piece of work, so that
+     * work for a client that hung up ends.  NULL: never stops. */
+    const wr_stop *stop;
 } wp_host;
 
 typedef struct wp_limits {
@@ -66,18 +70,18 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
 
 /* Lines up to this long may be light; a classify, when its wrenches times
  * its fixture's cones are at most WP_LIGHT_CONE_CHECKS (tens of
- * microseconds). */
+ * microseconds); other methods by their flags in the table. */
 #define WP_LIGHT_LINE 2048
 #define WP_LIGHT_CONE_CHECKS 1024
 /* Answer `line` as wp_answer_line does -- but only if that is light work:
  * microseconds, no GLPK, no derivation, no disk -- so that an event loop
  * may answer it itself rather than pay two thread hand-offs.  Light: a line
  * refused before any request is read (not JSON, too deep), an invalid
- * request object, server.status, and wrench.classify by the "auto" method
- * against a stored fixture whose derived data is ready
- * (host->fixture_ready), of so few wrenches that wrenches x cones <=
- * WP_LIGHT_CONE_CHECKS.  Conservative: anything else,
- * batches included, is not.  Returns true with *answer set (NULL for a
+ * request object, an unknown method, the methods flagged WP_CHEAP, and
+ * those flagged WP_READY against a stored fixture whose derived data is
+ * ready (host->fixture_ready) -- for wrench.classify, by the "auto" method
+ * and of so few wrenches that wrenches x cones <= WP_LIGHT_CONE_CHECKS.
+ * Conservative: anything else, batches included, is not.  Returns true with *answer set (NULL for a
  * notification) and counts added, or false with nothing counted: answer it
  * with wp_answer_line elsewhere. */
 bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *line,
@@ -87,15 +91,84 @@ bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *l
  * the length limit, too many clients): id null.  Malloc'd, or NULL. */
 char *wp_error_line(int code, const char *field, const char *reason);
 
+/* ---- answering a line in pieces ------------------------------------------ */
+
+/* A line's answer in the making.  wp_answer_begin parses the line; each
+ * wp_answer_step then writes the next piece of the answer, doing a bounded
+ * amount of work, so that the caller can send pieces as they are made,
+ * pause while the client does not read, share its threads fairly among
+ * clients, and give up on a client that is gone.  The pieces, joined, are
+ * byte for byte the line wp_answer_line answers.  Successive steps may run
+ * in different threads (each with its own host), one at a time. */
+typedef struct wp_answer wp_answer;
+
+typedef enum wp_step {
+    WP_STEP_MORE,   /* a piece written; more follow */
+    WP_STEP_DONE,   /* the last piece written (it ends in "\n", or the answer
+                       is empty: notifications only) */
+    WP_STEP_FAILED  /* the answer cannot be completed after pieces already
+                       handed out (a solver failure midway through a long
+                       classify): the caller closes the connection, as the
+                       only honest end of a line it cannot finish */
+} wp_step;
+
+/* Work units per piece: a unit is about one wrench against one cone (tens
+ * of nanoseconds); other methods count as a whole piece each, but for the
+ * cheap ones (WP_CHEAP). */
+#define WP_PIECE_BUDGET 200000UL
+
+/* Parse a line (without its "\n").  The line is not kept.  NULL only when
+ * out of memory. */
+wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t length);
+/* Append the next piece to `out`, counting what it answers in *counts. */
+wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
+                       wp_counts *counts);
+/* Bytes the answer holds between steps (its parsed request, wrenches). */
+size_t wp_answer_bytes(const wp_answer *answer);
+/* Free it, finished or not (a fixture it holds is released through `host`). */
+void wp_answer_free(wp_answer *answer, const wp_host *host);
+
+/* A method whose result is written in pieces: begin reads the params (and
+ * may take out of them what it has read, to free it early), step appends
+ * the next part of the result's JSON text, spending at most about `budget`
+ * units (added to *used), free ends it.  Step returns WP_STEP_FAILED with
+ * `error` set when it cannot go on. */
+typedef struct wp_stream wp_stream;
+/* params.wrenches of a long line, read by the envelope straight from the
+ * text as numbers (their place in params holds []): begin takes the array
+ * (sets `wrenches` NULL) when it uses it. */
+typedef struct wp_prepared {
+    double (*wrenches)[3];
+    size_t count;
+} wp_prepared;
+typedef struct wp_streamer {
+    wp_stream *(*begin)(const wp_host *host, const wp_limits *limits, cJSON *params,
+                        wp_prepared *prepared, wp_error *error);
+    wp_step (*step)(wp_stream *stream, const wp_host *host, wp_buffer *out,
+                    unsigned long budget, unsigned long *used, wp_error *error);
+    void (*free)(wp_stream *stream, const wp_host *host);
+    size_t (*bytes)(const wp_stream *stream); /* what it holds */
+} wp_streamer;
+
+/* Method flags: what the envelope needs to know of a method. */
+#define WP_CHEAP 1u /* no derivation, no solver, no disk: microseconds, always */
+#define WP_READY 2u /* as cheap when its fixture is a stored one whose derived
+                       data is ready (and `light` agrees, if set) */
+
 /* The method table: every method name, served or announced. */
 typedef struct wp_method {
     const char *name;
-    /* Returns the result, or NULL with `error` set.  NULL handler: the method
-     * is announced but not served yet (answered -32601). */
+    /* Returns the result, or NULL with `error` set.  A method with neither
+     * handler nor stream is announced but not served yet (-32601). */
     cJSON *(*handler)(const wp_host *host, const wp_limits *limits, const cJSON *params,
                       wp_error *error);
+    const wp_streamer *stream;    /* or a result written in pieces: {"results": ...} */
     const char *const *fields;    /* params it accepts, NULL-ended */
     const char *const *required;  /* of those, the ones it needs */
+    unsigned flags;               /* WP_CHEAP, WP_READY */
+    /* With WP_READY: is this call light, given the fixture's number of
+     * cones?  NULL: yes. */
+    bool (*light)(const cJSON *params, int cones);
     const char *summary;          /* one line, for --help and the README */
 } wp_method;
 

@@ -11,6 +11,7 @@ import pytest
 
 import fixtures as FX
 import helpers as H
+from conftest import SLOW
 import model as M
 
 
@@ -281,9 +282,10 @@ def test_max_clients(harness):
 
 
 def test_slow_reader_is_dropped(harness):
-    """A client that sends but never reads is dropped once its unread output
-    passes --max-output; other clients are served all along."""
-    d = harness.start("--max-output", "65536")
+    """A client that sends but never reads gets no more work done once its
+    unsent output passes --max-output, and is dropped once answers have lain
+    unread for --idle-timeout; other clients are served all along."""
+    d = harness.start("--max-output", "65536", "--idle-timeout", "2")
     slow, other = d.client(), d.client()
     f = FX.disc_corner(0.5)
     fid = other.result("fixture.put", {"fixture": f})["id"]
@@ -306,6 +308,11 @@ def test_slow_reader_is_dropped(harness):
     t.start()
     t.join(10)
     time.sleep(0.5)
+    assert other.result("fixture.list", {})["fixtures"][0]["id"] == fid
+    # Unread for longer than --idle-timeout: what the kernel holds is all
+    # it will get.
+    time.sleep(2 + 1.5 * SLOW)
+    other = d.client()  # the first one was idle for as long, and is closed too
     assert other.result("fixture.list", {})["fixtures"][0]["id"] == fid
     answers = 0
     dropped = False

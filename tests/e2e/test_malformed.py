@@ -54,7 +54,7 @@ def nine_fixels():
 
 
 DEEP = "[" * 200 + "]" * 200
-LONG = '{"jsonrpc":"2.0","method":"fixture.list","id":77,"pad":"%s"}' % ("x" * (2 << 20))
+LONG = '{"jsonrpc":"2.0","method":"fixture.list","id":77,"pad":"%s"}' % ("x" * (17 << 20))
 
 # (name, raw line, code, data.field, answer id)
 ROWS = [

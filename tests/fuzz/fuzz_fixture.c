@@ -248,12 +248,12 @@ static void check_regions(const wr_analysis *a)
         check_gravity_semantics(a, set, &r);
         wr_regions_release(&r);
         if (f->shape == WR_SHAPE_NONE) {
-            FUZZ_CHECK(wr_push_regions(a, set, 0, &r) == -1, "push regions without a shape");
+            FUZZ_CHECK(wr_push_regions(a, set, 0, NULL, &r) == -1, "push regions without a shape");
             continue;
         }
         int edges = f->shape == WR_SHAPE_CIRCLE ? 1 : (int)f->vertex_count;
         double high = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
-        FUZZ_CHECK(wr_push_regions(a, set, 0, &r) == 0, "wr_push_regions failed");
+        FUZZ_CHECK(wr_push_regions(a, set, 0, NULL, &r) == 0, "wr_push_regions failed");
         fuzz_check_regions(&r, edges, 0, high, "push");
         FUZZ_CHECK(r.resolution == 0, "frictionless push regions not exact");
         check_push_semantics(a, set, &r);
@@ -261,7 +261,7 @@ static void check_regions(const wr_analysis *a)
         double cones = (set != WR_SET_STRONG ? a->plan->kept_count : 0) +
                        (set != WR_SET_GOAL ? a->mode_count : 0);
         if (edges * 2049.0 * cones <= FRICTION_BUDGET) {
-            FUZZ_CHECK(wr_push_regions(a, set, 0.3, &r) == 0, "wr_push_regions with friction");
+            FUZZ_CHECK(wr_push_regions(a, set, 0.3, NULL, &r) == 0, "wr_push_regions with friction");
             fuzz_check_regions(&r, edges, 0, high, "push with friction");
             FUZZ_CHECK(r.resolution > 0, "sampled push regions claim exactness");
             wr_regions_release(&r);

@@ -795,7 +795,7 @@ std::vector<Interval> regions(const Prepared &p, wr_set set)
 {
     wr_regions r{};
     std::vector<Interval> out;
-    if (wr_push_regions(p.an, set, 0, &r) == 0)
+    if (wr_push_regions(p.an, set, 0, NULL, &r) == 0)
         for (int i = 0; i < r.count; i++)
             out.push_back({r.items[i].edge, r.items[i].t0, r.items[i].t1});
     wr_regions_release(&r);

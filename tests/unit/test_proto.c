@@ -327,8 +327,15 @@ static void light_lines_answer_as_any_other(void **state)
         {NULL, false},
         {"{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":"
          "\"00000000000000000000000000000000\",\"wrenches\":[[1,1,1]]},\"id\":5}%.0s", false},
+        /* Flagged WP_READY: light on a ready stored fixture; not so
+         * cone.get (a cone to derive) nor push.regions. */
         {"{\"jsonrpc\":\"2.0\",\"method\":\"modes.get\",\"params\":{\"fixture\":\"%s\"},\"id\":6}",
+         true},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"cone.get\",\"params\":{\"fixture\":\"%s\","
+         "\"constraints\":\"ss\"},\"id\":11}", false},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"push.regions\",\"params\":{\"fixture\":\"%s\"},\"id\":12}",
          false},
+        {"{\"jsonrpc\":\"2.0\",\"method\":\"no.such\",\"id\":13}%.0s", true},
         {"[{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"id\":7}]%.0s", false},
         {"{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"id\":8}%.0s", true},
         {"{\"jsonrpc\":\"2.0\",\"method\":\"server.status\"}%.0s", true}, /* a notification */

@@ -30,7 +30,7 @@ static void disc_corner_closed_forms(void **state)
         wr_analysis *an = wr_analysis_new(f);
         for (int set = WR_SET_GOAL; set <= WR_SET_BOTH; set += 2) { /* goal and both agree here */
             wr_regions r;
-            assert_int_equal(wr_push_regions(an, (wr_set)set, 0, &r), 0);
+            assert_int_equal(wr_push_regions(an, (wr_set)set, 0, NULL, &r), 0);
             assert_true(r.resolution == 0);
             if (mu >= 1) {
                 assert_int_equal(r.count, 0);
@@ -55,7 +55,7 @@ static void disc_corner_closed_forms(void **state)
         if (mu < 0.9) {
             wr_regions r;
             double mu_f = 0.05, b = atan(mu_f) * DEG;
-            assert_int_equal(wr_push_regions(an, WR_SET_GOAL, mu_f, &r), 0);
+            assert_int_equal(wr_push_regions(an, WR_SET_GOAL, mu_f, NULL, &r), 0);
             assert_true(r.resolution > 0);
             assert_int_equal(r.count, 1);
             assert_true(fabs(r.items[0].t0 - (a + b)) < 1e-9);
@@ -82,7 +82,7 @@ static void regions_agree_with_classification(void **state)
         double span = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
         for (int set = WR_SET_GOAL; set <= WR_SET_BOTH; set++) {
             wr_regions r;
-            assert_int_equal(wr_push_regions(a, (wr_set)set, 0, &r), 0);
+            assert_int_equal(wr_push_regions(a, (wr_set)set, 0, NULL, &r), 0);
             for (int k = 0; k < r.count; k++) {
                 const wr_region *x = &r.items[k];
                 assert_true(x->t1 > x->t0);
@@ -244,13 +244,13 @@ static void no_shape_and_bad_friction_are_refused(void **state)
     wr_fixture *f = wr_fixture_new(&spec, NULL);
     wr_analysis *a = wr_analysis_new(f);
     wr_regions r;
-    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, 0, &r), -1);
+    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, 0, NULL, &r), -1);
     wr_analysis_free(a);
     wr_fixture_free(f);
     f = test_disc_corner(0.5);
     a = wr_analysis_new(f);
-    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, -0.1, &r), -1);
-    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, NAN, &r), -1);
+    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, -0.1, NULL, &r), -1);
+    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, NAN, NULL, &r), -1);
     wr_analysis_free(a);
     wr_fixture_free(f);
 }
