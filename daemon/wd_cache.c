@@ -8,7 +8,20 @@
  *
  * Durability: a stored fixture is written to a temporary file, synced,
  * renamed over DIR/fixtures/<id>.json, and the directory is synced, before
- * the put is acknowledged; a delete unlinks and syncs the directory. */
+ * the put is acknowledged; a delete unlinks and syncs the directory.
+ *
+ * The state directory: one daemon at a time holds DIR/lock (flock, for the
+ * daemon's life; the file holds its pid).  Invariant: every stored fixture
+ * has exactly one file, DIR/fixtures/<id>.json with <id> its id, and no
+ * other file there is loaded -- so a delete, which unlinks that file,
+ * leaves nothing to come back at the next start.  Files named by an older
+ * id rule are re-keyed at load (wd_cache_new); a file whose name matches
+ * neither rule is refused and left where it is, for its owner to look at.
+ *
+ * Memory: stored fixtures are at most `max_stored`; a fixture that is only
+ * cached (inline in a query) is charged to the derived-data bound with its
+ * own texts and outline, so evicting it frees what it was charged. */
+#define _DEFAULT_SOURCE /* flock */
 #include "wd_cache.h"
 #include "wd_log.h"
 
@@ -19,6 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -36,7 +50,8 @@ typedef struct entry {
     texts *texts;
     wr_fixture *fixture;      /* immutable */
     wr_analysis *analysis;    /* derived; NULL until built or once evicted */
-    size_t analysis_bytes;
+    size_t analysis_bytes;    /* charged to derived_bytes: the analysis, and for a
+                                 cached-only entry its own memory too (entry_bytes) */
     uint64_t serial;          /* names the current analysis */
     uint64_t last_used;       /* LRU clock */
     int refs;                 /* requests holding it */
@@ -50,9 +65,12 @@ struct wd_cache {
     entry **buckets;
     size_t bucket_count;      /* a power of two */
     size_t count;
+    size_t stored_count;      /* entries with `stored`; changes under store_lock */
+    size_t max_stored;        /* --max-fixtures */
     size_t derived_bytes, derived_limit;
     uint64_t clock, serial;
     char *dir;                /* DIR/fixtures, or NULL for memory only */
+    int lock_fd;              /* DIR/lock, held while the cache lives; -1 without DIR */
 };
 
 /* ---- texts and entries --------------------------------------------------- */
@@ -84,6 +102,14 @@ static void entry_free(entry *e)
     wr_analysis_free(e->analysis);
     wr_fixture_free(e->fixture);
     free(e);
+}
+
+/* What an entry holds besides its analysis, freed with it. */
+static size_t entry_bytes(const entry *e)
+{
+    return sizeof *e + sizeof *e->texts + strlen(e->texts->name) + 1 +
+           strlen(e->texts->canonical) + 1 + sizeof *e->fixture +
+           e->fixture->vertex_count * sizeof *e->fixture->vertices;
 }
 
 static size_t bucket_of(const wd_cache *c, const char *id)
@@ -212,7 +238,11 @@ static bool ready(wd_cache *c, entry *e, texts *t, wp_fixture_use *use, wp_error
     }
     if (!e->analysis) {
         e->analysis = a;
-        e->analysis_bytes = wr_analysis_bytes(a);
+        /* A cached-only entry goes when its analysis is evicted: charge its
+         * own memory too, so that inline fixtures, however large, stay
+         * within the bound.  The charge is fixed here; a later put or
+         * delete of the entry does not change it. */
+        e->analysis_bytes = wr_analysis_bytes(a) + (e->stored ? 0 : entry_bytes(e));
         e->serial = ++c->serial;
         c->derived_bytes += e->analysis_bytes;
         evict_locked(c);
@@ -329,14 +359,66 @@ static char *read_file(const char *path, size_t limit)
     return text;
 }
 
+static bool add_loaded(wd_cache *c, wp_fixture_doc *doc)
+{
+    entry *e = calloc(1, sizeof *e);
+    texts *t = e ? texts_from(doc) : NULL;
+    if (!t) {
+        free(e);
+        wp_fixture_doc_release(doc);
+        return false;
+    }
+    memcpy(e->id, doc->id, sizeof e->id);
+    e->texts = t;
+    e->fixture = doc->fixture;
+    doc->fixture = NULL;
+    e->stored = true;
+    if (!insert(c, e)) {
+        entry_free(e);
+        return false;
+    }
+    c->stored_count++;
+    return true;
+}
+
+/* A file DIR/fixtures/<old>.json whose name is the fixture's id by the
+ * older rule (the hash of the fixture as written): write it under its id
+ * and remove the old name, durably, so that one file is left.  When the
+ * fixture is already loaded (another spelling of it, or the new file of a
+ * re-keying cut short) the old file only goes.  False, with the old file
+ * left in place and nothing loaded, when the directory cannot be changed. */
+static bool rekey(wd_cache *c, const char *path, const char *old_id, wp_fixture_doc *doc,
+                  bool *loaded)
+{
+    wp_error error = {0};
+    *loaded = false;
+    if (find(c, doc->id)) {
+        wd_log(WD_LOG_INFO, "%s is stored already as %s (another spelling of it); removing %s",
+               old_id, doc->id, path);
+    } else {
+        if (!write_fixture_file(c, doc->id, doc->canonical, &error))
+            return false; /* logged */
+        wd_log(WD_LOG_INFO, "re-keyed the fixture %s to %s (ids now hash the explicit fixture)",
+               old_id, doc->id);
+        *loaded = true;
+    }
+    if (unlink(path) != 0 || !sync_directory(c->dir)) {
+        wd_log(WD_LOG_ERROR, "could not remove %s after re-keying it: %s", path, strerror(errno));
+        return false;
+    }
+    return true;
+}
+
 /* Read every DIR/fixtures/<id>.json.  What does not read back is logged and
- * skipped; leftover temporary files of an interrupted put are removed. */
+ * skipped; a file named by the fixture's id by the older rule is re-keyed;
+ * a file whose name is not its fixture's id is refused, left in place;
+ * leftover temporary files of an interrupted put are removed. */
 static void load_directory(wd_cache *c)
 {
     DIR *dir = opendir(c->dir);
     if (!dir)
         return;
-    size_t loaded = 0, skipped = 0;
+    size_t loaded = 0, skipped = 0, rekeyed = 0;
     struct dirent *d;
     while ((d = readdir(dir))) {
         char path[4096];
@@ -349,13 +431,24 @@ static void load_directory(wd_cache *c)
         }
         if (n < 6 || strcmp(d->d_name + n - 5, ".json") != 0)
             continue;
+        char named[WP_ID_LENGTH + 1] = ""; /* the id its name says, if it says one */
+        if (n == WP_ID_LENGTH + 5) {
+            memcpy(named, d->d_name, WP_ID_LENGTH);
+            named[WP_ID_LENGTH] = 0;
+        }
         char *text = read_file(path, 256u << 20);
         cJSON *json = text ? cJSON_Parse(text) : NULL;
+        free(text);
         wp_fixture_doc doc;
         wp_error error = {0};
+        char legacy[WP_ID_LENGTH + 1] = "";
         bool ok = json && wp_fixture_read(json, "", &doc, &error);
+        if (ok && strcmp(named, doc.id) != 0 && !wp_fixture_legacy_id(json, legacy)) {
+            wp_fixture_doc_release(&doc);
+            ok = false;
+            snprintf(error.reason, sizeof error.reason, "out of memory");
+        }
         cJSON_Delete(json);
-        free(text);
         if (!ok) {
             wd_log(WD_LOG_WARN, "skipping %s: %s%s%s", path,
                    json ? error.field : "", json && error.field[0] ? ": " : "",
@@ -363,30 +456,82 @@ static void load_directory(wd_cache *c)
             skipped++;
             continue;
         }
-        if (strncmp(d->d_name, doc.id, WP_ID_LENGTH) != 0 || n != WP_ID_LENGTH + 5)
-            wd_log(WD_LOG_WARN, "%s holds the fixture %s; loading it under that id", path, doc.id);
-        entry *e = calloc(1, sizeof *e);
-        texts *t = e ? texts_from(&doc) : NULL;
-        if (!e || !t || find(c, doc.id)) {
-            free(e);
-            texts_drop(t);
+        if (strcmp(named, doc.id) == 0) {
+            /* Named by its id: the usual case.  A second file of the same
+             * fixture cannot have this name. */
+            if (!find(c, doc.id) && add_loaded(c, &doc))
+                loaded++;
+            else
+                wp_fixture_doc_release(&doc);
+        } else if (strcmp(named, legacy) == 0) {
+            bool load = false;
+            if (rekey(c, path, legacy, &doc, &load)) {
+                rekeyed++;
+                if (load && add_loaded(c, &doc))
+                    loaded++;
+            } else {
+                skipped++;
+            }
             wp_fixture_doc_release(&doc);
-            continue;
+        } else {
+            /* Loading it under the content's id would let a delete of that
+             * id leave this file to come back at the next start; removing
+             * it would destroy what may be someone's only copy. */
+            wd_log(WD_LOG_WARN,
+                   "refusing %s: it holds the fixture %s, not the one its name says; "
+                   "left in place, not loaded",
+                   path, doc.id);
+            wp_fixture_doc_release(&doc);
+            skipped++;
         }
-        memcpy(e->id, doc.id, sizeof e->id);
-        e->texts = t;
-        e->fixture = doc.fixture;
-        e->stored = true;
-        if (!insert(c, e)) {
-            doc.fixture = NULL;
-            entry_free(e);
-            continue;
-        }
-        loaded++;
     }
     closedir(dir);
-    wd_log(WD_LOG_INFO, "loaded %zu stored fixtures from %s%s", loaded, c->dir,
+    wd_log(WD_LOG_INFO, "loaded %zu stored fixtures from %s%s%s", loaded, c->dir,
+           rekeyed ? " (some re-keyed, see above)" : "",
            skipped ? " (some files skipped, see above)" : "");
+    if (c->stored_count > c->max_stored)
+        wd_log(WD_LOG_WARN,
+               "%zu fixtures are stored, more than --max-fixtures %zu: all are kept, and "
+               "new ones are refused until some are deleted",
+               c->stored_count, c->max_stored);
+}
+
+/* Take DIR/lock for the daemon's life: a second daemon on the same state
+ * directory would serve fixtures the first one deletes, and the two would
+ * overwrite each other's files.  flock, not fcntl: it is released only when
+ * the descriptor is closed (or the process dies), never by an unrelated
+ * close of the same file. */
+static int lock_state_directory(const char *state_dir, char *why, size_t why_size)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/lock", state_dir);
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0640);
+    if (fd < 0) {
+        snprintf(why, why_size, "cannot use the state directory %s: cannot open %s: %s",
+                 state_dir, path, strerror(errno));
+        return -1;
+    }
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        int saved = errno;
+        char holder[32] = "";
+        ssize_t n = pread(fd, holder, sizeof holder - 1, 0);
+        holder[n > 0 ? n : 0] = 0;
+        holder[strcspn(holder, "\n")] = 0;
+        close(fd);
+        if (saved == EWOULDBLOCK)
+            snprintf(why, why_size,
+                     "the state directory %s is in use by another wrenchd (pid %s, holding %s)",
+                     state_dir, holder[0] ? holder : "unknown", path);
+        else
+            snprintf(why, why_size, "cannot lock the state directory %s (%s): %s", state_dir,
+                     path, strerror(saved));
+        return -1;
+    }
+    char pid[32];
+    int length = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)length, 0) != length)
+        wd_log(WD_LOG_WARN, "could not write the pid into %s: %s", path, strerror(errno));
+    return fd;
 }
 
 static bool make_directories(const char *path)
@@ -405,7 +550,8 @@ static bool make_directories(const char *path)
 
 /* ---- the public functions -------------------------------------------------- */
 
-wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, char *why, size_t why_size)
+wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_stored, char *why,
+                       size_t why_size)
 {
     wd_cache *c = calloc(1, sizeof *c);
     if (!c) {
@@ -417,6 +563,8 @@ wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, char *why, s
     c->bucket_count = 64;
     c->buckets = calloc(c->bucket_count, sizeof *c->buckets);
     c->derived_limit = derived_limit;
+    c->max_stored = max_stored;
+    c->lock_fd = -1;
     if (!c->buckets) {
         snprintf(why, why_size, "out of memory");
         wd_cache_free(c);
@@ -437,6 +585,11 @@ wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, char *why, s
             wd_cache_free(c);
             return NULL;
         }
+        c->lock_fd = lock_state_directory(state_dir, why, why_size);
+        if (c->lock_fd < 0) {
+            wd_cache_free(c);
+            return NULL;
+        }
         load_directory(c);
     }
     return c;
@@ -453,6 +606,8 @@ void wd_cache_free(wd_cache *c)
         }
     free(c->buckets);
     free(c->dir);
+    if (c->lock_fd >= 0)
+        close(c->lock_fd); /* releases the lock; the file stays, harmless */
     pthread_mutex_destroy(&c->lock);
     pthread_mutex_destroy(&c->store_lock);
     free(c);
@@ -492,9 +647,22 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
     /* A new entry has taken the doc's texts; an existing one may be renamed. */
     bool renamed = doc->name && strcmp(doc->name, e->texts->name) != 0;
     bool write = store && (!e->stored || renamed);
+    bool over_limit = store && !e->stored && c->stored_count >= c->max_stored;
     /* Texts change only under store_lock, which a storing put holds. */
     const char *text = renamed ? doc->canonical : e->texts->canonical;
     pthread_mutex_unlock(&c->lock);
+
+    if (over_limit) {
+        /* stored_count changes only under store_lock, held here. */
+        wp_error_set(error, WP_LIMIT, "params.fixture",
+                     "%zu fixtures are stored, the most --max-fixtures allows; delete one first",
+                     c->stored_count);
+        pthread_mutex_unlock(&c->store_lock);
+        wp_fixture_use refused = {.handle = {e, NULL}};
+        wd_cache_release(c, &refused);
+        wp_fixture_doc_release(doc);
+        return false;
+    }
 
     if (write) {
         if (c->dir && !write_fixture_file(c, e->id, text, error)) {
@@ -505,6 +673,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
             return false;
         }
         pthread_mutex_lock(&c->lock);
+        c->stored_count += !e->stored;
         e->stored = true;
         texts *t = renamed ? texts_from(doc) : NULL;
         if (t) {
@@ -581,6 +750,7 @@ bool wd_cache_delete(wd_cache *c, const char *id, wp_error *error)
         /* It stays as a cached fixture until its derived data is evicted. */
         pthread_mutex_lock(&c->lock);
         e->stored = false;
+        c->stored_count--;
         if (e->refs == 0 && !e->analysis) {
             unlink_entry(c, e);
             entry_free(e);

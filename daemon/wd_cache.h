@@ -12,10 +12,15 @@
 
 typedef struct wd_cache wd_cache;
 
-/* Create the cache; with a state directory, load every stored fixture from
- * DIR/fixtures (a file that does not read back is logged and skipped).
- * NULL with a message in `why` when the directory cannot be used. */
-wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, char *why, size_t why_size);
+/* Create the cache; with a state directory, lock it (DIR/lock, held until
+ * wd_cache_free) and load every stored fixture from DIR/fixtures: a file
+ * that does not read back, or whose name is not its fixture's id, is logged
+ * and skipped; one named by the older id rule is re-keyed.  At most
+ * `max_stored` fixtures are stored by puts (all files are loaded, though).
+ * NULL with a message in `why` when the directory cannot be used or
+ * another daemon holds it. */
+wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_stored, char *why,
+                       size_t why_size);
 void wd_cache_free(wd_cache *cache);
 
 /* The wp_host fixture functions (docs in wp_rpc.h), on the shared cache. */

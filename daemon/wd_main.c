@@ -74,6 +74,7 @@ static bool whole(const char *text, unsigned long long low, unsigned long long h
 
 NUMBER_SETTER(set_threads, threads, int, 1, 1024, 1)
 NUMBER_SETTER(set_cache_mb, cache_bytes, size_t, 1, 1 << 20, 1 << 20)
+NUMBER_SETTER(set_max_fixtures, max_fixtures, size_t, 1, 100000000, 1)
 NUMBER_SETTER(set_max_line, max_line, size_t, 64, 1ULL << 34, 1)
 NUMBER_SETTER(set_max_depth, max_depth, int, 4, 10000, 1)
 NUMBER_SETTER(set_max_wrenches, max_wrenches, size_t, 1, 100000000, 1)
@@ -197,6 +198,8 @@ static const option_spec OPTIONS[] = {
     {"threads", "N", "worker threads (default: the number of cores)", set_threads},
     {"cache-mb", "N", "memory for derived data, least recently used\n"
                       "evicted (default 256)", set_cache_mb},
+    {"max-fixtures", "N", "most stored fixtures; a put of another one is\n"
+                          "refused (default 10000)", set_max_fixtures},
     {"max-line", "BYTES", "longest request line (default 16777216: room\n"
                           "for --max-wrenches wrenches however written)", set_max_line},
     {"max-depth", "N", "deepest JSON nesting of a request (default 64)", set_max_depth},
@@ -347,6 +350,7 @@ int main(int argc, char **argv)
         .socket_path = "./run/wrenchd.sock",
         .threads = cores > 0 ? (int)cores : 1,
         .cache_bytes = (size_t)256 << 20,
+        .max_fixtures = 10000,
         /* 100000 wrenches written {"force": [x, y], "at": [x, y]} with
          * 17-digit numbers take about 12 MB. */
         .max_line = (size_t)16 << 20,

@@ -981,7 +981,8 @@ int wd_server_run(const wd_config *config)
     int status = WD_EXIT_START;
     char why[512];
     int fd = -1;
-    s->cache = wd_cache_new(config->state_dir, config->cache_bytes, why, sizeof why);
+    s->cache = wd_cache_new(config->state_dir, config->cache_bytes, config->max_fixtures, why,
+                            sizeof why);
     if (!s->cache) {
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;

@@ -12,6 +12,7 @@ typedef struct wd_config {
     int load_count;
     int threads;                /* worker threads */
     size_t cache_bytes;         /* bound on derived data */
+    size_t max_fixtures;        /* most stored fixtures */
     size_t max_line;            /* longest request line, bytes */
     int max_depth;              /* deepest JSON nesting */
     size_t max_wrenches;        /* most wrenches in one request */

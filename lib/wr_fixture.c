@@ -3,6 +3,7 @@
 #include "wr_fixture.h"
 #include "wr_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -13,6 +14,11 @@
  * "within 1e-9 of the body's size"). */
 #define BOUNDARY_TOLERANCE 1e-9
 #define DEGENERATE_TOLERANCE 1e-12
+/* A given normal whose length is within this of 1 is used as given.  A
+ * vector divided by its hypot() has a length within 3 ulp of 1 (hypot and
+ * each division round once), so every normal this file computes, and every
+ * normalised one, passes: normalising is then idempotent, bit for bit. */
+#define UNIT_LENGTH_TOLERANCE (8 * DBL_EPSILON)
 
 void wr_error_set(wr_error *error, const char *field, const char *format, ...)
 {
@@ -261,8 +267,8 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
     wr_fixel *out = &f->fixels[index];
     char field[96];
     snprintf(field, sizeof field, "fixels[%zu].at", index);
-    out->at[0] = in->at[0];
-    out->at[1] = in->at[1];
+    out->at[0] = in->at[0] + 0.0;
+    out->at[1] = in->at[1] + 0.0;
 
     /* The shape's inward normal at `at`, when defined. */
     double inward[2] = {0, 0};
@@ -302,8 +308,16 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
             wr_error_set(error, field, "must not be the zero vector");
             return false;
         }
-        out->normal[0] = in->normal[0] / length;
-        out->normal[1] = in->normal[1] / length;
+        if (fabs(length - 1) <= UNIT_LENGTH_TOLERANCE) {
+            /* Already unit: taken as it is, so that a normal written out by
+             * the protocol layer (canonical text) reads back to the same
+             * bits; dividing by a length an ulp off 1 would move them. */
+            out->normal[0] = in->normal[0] + 0.0;
+            out->normal[1] = in->normal[1] + 0.0;
+        } else {
+            out->normal[0] = in->normal[0] / length + 0.0;
+            out->normal[1] = in->normal[1] / length + 0.0;
+        }
         bool points_in = true;
         if (inward_known)
             points_in = out->normal[0] * inward[0] + out->normal[1] * inward[1] > 0;
@@ -324,8 +338,8 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
             return false;
         }
     } else if (inward_known) {
-        out->normal[0] = inward[0];
-        out->normal[1] = inward[1];
+        out->normal[0] = inward[0] + 0.0;
+        out->normal[1] = inward[1] + 0.0;
     } else if (vertex >= 0) {
         wr_error_set(error, field,
                      "required: (%g, %g) is vertex %ld of the polygon, where the inward normal is not defined",
@@ -347,8 +361,8 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
     }
     if (in->friction.given && !check_friction(&in->friction, field, error))
         return false;
-    out->mu_static = friction->static_mu;
-    out->mu_kinetic = friction->kinetic_given ? friction->kinetic_mu : friction->static_mu;
+    out->mu_static = friction->static_mu + 0.0;
+    out->mu_kinetic = (friction->kinetic_given ? friction->kinetic_mu : friction->static_mu) + 0.0;
     return true;
 }
 
@@ -526,8 +540,8 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
     f->mass = spec->mass;
     double area = 0, centroid[2] = {0, 0}, polar_moment = 0;
     if (spec->shape == WR_SHAPE_CIRCLE) {
-        f->center[0] = spec->center[0];
-        f->center[1] = spec->center[1];
+        f->center[0] = spec->center[0] + 0.0;
+        f->center[1] = spec->center[1] + 0.0;
         f->radius = spec->radius;
         centroid[0] = f->center[0];
         centroid[1] = f->center[1];
@@ -542,7 +556,9 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
             wr_error_set(error, "", "out of memory");
             return NULL;
         }
-        memcpy(f->vertices, spec->vertices, spec->vertex_count * sizeof *f->vertices);
+        for (size_t i = 0; i < spec->vertex_count; i++)
+            for (int k = 0; k < 2; k++)
+                f->vertices[i][k] = spec->vertices[i][k] + 0.0;
         double area2 = 0;
         for (size_t i = 0; i < f->vertex_count; i++)
             area2 += cross2(f->vertices[i], f->vertices[(i + 1) % f->vertex_count]);
@@ -550,11 +566,11 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
         polygon_moments(spec->vertices, spec->vertex_count, &area, centroid, &polar_moment);
     }
     if (spec->com_given) {
-        f->com[0] = spec->com[0];
-        f->com[1] = spec->com[1];
+        f->com[0] = spec->com[0] + 0.0;
+        f->com[1] = spec->com[1] + 0.0;
     } else {
-        f->com[0] = centroid[0];
-        f->com[1] = centroid[1];
+        f->com[0] = centroid[0] + 0.0;
+        f->com[1] = centroid[1] + 0.0;
     }
     if (spec->inertia_given) {
         f->inertia = spec->inertia;

@@ -57,7 +57,8 @@ typedef struct wr_friction_spec {
 typedef struct wr_fixel_spec {
     double at[2];              /* contact point, on the workpiece boundary */
     bool normal_given;
-    double normal[2];          /* into the workpiece; normalised on validation */
+    double normal[2];          /* into the workpiece; normalised on validation
+                                  unless already of unit length */
     wr_friction_spec friction; /* overrides the fixture's */
 } wr_fixel_spec;
 
@@ -90,7 +91,14 @@ typedef struct wr_fixel {
     double tangent_wrench[3];
 } wr_fixel;
 
-/* A validated fixture; every field is filled in.  Read-only for callers. */
+/* A validated fixture; every field is filled in.  Read-only for callers.
+ *
+ * Invariant: writing the fixture's values back into a spec with every
+ * optional field given (mass, inertia, com, shape as stored, each fixel's
+ * at, normal, static and kinetic friction) and validating it gives the same
+ * fixture, bit for bit.  Hence no field holds -0 (a -0 of the spec is +0:
+ * text writes both as 0), and a given normal already of unit length (within
+ * a few ulp, as every normalised or computed one is) is kept as given. */
 typedef struct wr_fixture {
     double mass;
     double inertia;

@@ -153,6 +153,133 @@ static void hex_id(const char *canonical, char id[WP_ID_LENGTH + 1])
         snprintf(id + 2 * i, 3, "%02x", digest[i]);
 }
 
+/* ---- the explicit form ------------------------------------------------------
+ *
+ * A fixture's explicit form is what the validated wr_fixture holds, every
+ * default written out: the body's mass, inertia and com (computed from the
+ * shape when not given), the shape as given, and for each fixel its point,
+ * its unit normal (computed when not given) and its own friction with both
+ * coefficients (the fixture's friction is copied into every fixel that does
+ * not override it, so the explicit form has no top-level "friction").
+ * Numbers are the doubles the fixture computes with, written by
+ * wp_format_number: reading the text back gives the same doubles, hence
+ * the same fixture (wr_fixture.h states that invariant) and the same text. */
+
+static cJSON *vector2(const double v[2])
+{
+    return cJSON_CreateDoubleArray(v, 2);
+}
+
+static bool add(cJSON *object, const char *key, cJSON *item)
+{
+    if (!item)
+        return false;
+    cJSON_AddItemToObject(object, key, item);
+    return true;
+}
+
+static cJSON *explicit_shape(const wr_fixture *f)
+{
+    cJSON *shape = cJSON_CreateObject();
+    bool ok = shape != NULL;
+    if (ok && f->shape == WR_SHAPE_CIRCLE) {
+        ok = add(shape, "type", cJSON_CreateString("circle")) &&
+             add(shape, "center", vector2(f->center)) &&
+             add(shape, "radius", cJSON_CreateNumber(f->radius));
+    } else if (ok) {
+        cJSON *vertices = cJSON_CreateArray();
+        ok = add(shape, "type", cJSON_CreateString("polygon")) &&
+             add(shape, "vertices", vertices);
+        for (size_t i = 0; ok && i < f->vertex_count; i++) {
+            cJSON *vertex = vector2(f->vertices[i]);
+            ok = vertex != NULL;
+            if (ok)
+                cJSON_AddItemToArray(vertices, vertex);
+        }
+    }
+    if (!ok) {
+        cJSON_Delete(shape);
+        return NULL;
+    }
+    return shape;
+}
+
+static cJSON *explicit_fixel(const wr_fixel *fixel)
+{
+    cJSON *item = cJSON_CreateObject(), *friction = cJSON_CreateObject();
+    bool ok = item && friction && add(item, "friction", friction);
+    if (!ok)
+        cJSON_Delete(friction);
+    ok = ok && add(friction, "static", cJSON_CreateNumber(fixel->mu_static)) &&
+         add(friction, "kinetic", cJSON_CreateNumber(fixel->mu_kinetic)) &&
+         add(item, "at", vector2(fixel->at)) && add(item, "normal", vector2(fixel->normal));
+    if (!ok) {
+        cJSON_Delete(item);
+        return NULL;
+    }
+    return item;
+}
+
+/* The explicit form without the name, as a JSON tree; NULL out of memory. */
+static cJSON *explicit_fixture(const wr_fixture *f)
+{
+    cJSON *root = cJSON_CreateObject(), *body = cJSON_CreateObject();
+    cJSON *fixels = cJSON_CreateArray();
+    bool ok = root && body && fixels && add(root, "body", body);
+    if (!ok)
+        cJSON_Delete(body);
+    if (ok && !add(root, "fixels", fixels))
+        ok = false;
+    else if (!ok)
+        cJSON_Delete(fixels);
+    ok = ok && add(body, "mass", cJSON_CreateNumber(f->mass)) &&
+         add(body, "inertia", cJSON_CreateNumber(f->inertia)) &&
+         add(body, "com", vector2(f->com)) &&
+         (f->shape == WR_SHAPE_NONE || add(body, "shape", explicit_shape(f)));
+    for (int i = 0; ok && i < f->fixel_count; i++) {
+        cJSON *fixel = explicit_fixel(&f->fixels[i]);
+        ok = fixel != NULL;
+        if (ok)
+            cJSON_AddItemToArray(fixels, fixel);
+    }
+    if (!ok) {
+        cJSON_Delete(root);
+        return NULL;
+    }
+    return root;
+}
+
+/* Fill the doc's id, canonical text and name from its fixture. */
+static bool describe(wp_fixture_doc *doc, const char *name)
+{
+    cJSON *tree = explicit_fixture(doc->fixture);
+    char *content = tree ? wp_canonical(tree, NULL) : NULL;
+    if (content && name && !add(tree, "name", cJSON_CreateString(name))) {
+        free(content);
+        content = NULL;
+    }
+    doc->canonical = content ? wp_canonical(tree, NULL) : NULL;
+    doc->name = strdup(name ? name : "");
+    cJSON_Delete(tree);
+    if (!content || !doc->canonical || !doc->name) {
+        free(content);
+        return false;
+    }
+    hex_id(content, doc->id);
+    free(content);
+    return true;
+}
+
+bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1])
+{
+    char *content = wp_canonical(json, "name");
+    if (!content)
+        return false;
+    hex_id(content, id);
+    free(content);
+    return true;
+}
+
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);
@@ -205,17 +332,12 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     free(fixels);
     if (!ok)
         return false;
-    char *content = wp_canonical(json, "name");
-    out->canonical = wp_canonical(json, NULL);
-    out->name = strdup(name ? name : "");
-    if (!content || !out->canonical || !out->name) {
-        free(content);
+    /* The name is borrowed from `json`, which outlives this call. */
+    if (!describe(out, name)) {
         wp_fixture_doc_release(out);
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
     }
-    hex_id(content, out->id);
-    free(content);
     return true;
 }
 

@@ -14,11 +14,20 @@ extern "C" {
 /* A fixture read from JSON: validated, with its content id and canonical
  * text.  Owns everything it points to. */
 typedef struct wp_fixture_doc {
-    char id[WP_ID_LENGTH + 1];  /* SHA-256 of the canonical form without name */
+    char id[WP_ID_LENGTH + 1];  /* SHA-256 of the canonical text without name */
     char *name;                 /* "" when not given */
-    char *canonical;            /* canonical JSON with the name: what is stored */
+    char *canonical;            /* canonical text of the explicit form, with the
+                                   name when one was given: what is stored */
     wr_fixture *fixture;
 } wp_fixture_doc;
+
+/* The explicit form of a fixture (docs/PROTOCOL.md, "Fixture id"): the
+ * validated fixture with every default written out -- mass, inertia and com
+ * of the body, the shape as given, each fixel's at, unit normal and own
+ * friction {static, kinetic}; no top-level friction.  Its canonical text
+ * (keys sorted, numbers by wp_format_number) reads back to the same fixture
+ * and the same text, so any two spellings of one fixture share an id, and
+ * putting what fixture.get returns gives the id back. */
 
 /* Read a fixture object at `path` ("params.fixture").  Unknown fields, wrong
  * types, non-finite numbers and everything wr_fixture_new refuses are
@@ -26,6 +35,12 @@ typedef struct wp_fixture_doc {
  * allocated. */
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error);
 void wp_fixture_doc_release(wp_fixture_doc *doc);
+
+/* The id a fixture had before ids hashed the explicit form: the canonical
+ * text of the JSON as written, without its name.  Only for recognising
+ * files stored under such ids (the daemon re-keys them).  False out of
+ * memory. */
+bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1]);
 /* Move: `to` takes what `from` owned; `from` is left empty. */
 void wp_fixture_doc_move(wp_fixture_doc *to, wp_fixture_doc *from);
 

@@ -14,7 +14,7 @@ module gives one method per RPC, with dataclasses for the answers:
 Methods of Client (and of Batch, see below):
 
     put_fixture(fixture)                   -> PutResult   fixture.put
-    get_fixture(fixture_id)                -> dict        fixture.get (the canonical fixture)
+    get_fixture(fixture_id)                -> dict        fixture.get (the explicit form)
     delete_fixture(fixture_id, missing_ok=False) -> bool  fixture.delete
     list_fixtures()                        -> [FixtureInfo]  fixture.list
     classify(fixture, wrenches, sets=("goal", "strong"), method="auto",
@@ -539,7 +539,7 @@ class _Methods:
                             lambda r: _build(PutResult, r, "fixture.put"), False, timeout)
 
     def get_fixture(self, fixture_id: str, *, timeout: Any = _DEFAULT):
-        """fixture.get: the stored fixture in canonical form, with its name."""
+        """fixture.get: the stored fixture in its explicit form, with its name."""
         return self._invoke("fixture.get", {"id": _fixture_id(fixture_id)}, _object_result,
                             True, timeout)
 

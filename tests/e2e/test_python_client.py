@@ -69,10 +69,10 @@ def test_put_get_list_delete(pyclient):
     # same content, same id; a new name replaces the stored one
     again = c.put_fixture(FX.disc_corner(0.5, name="renamed"))
     assert again.id == put.id and again.name == "renamed"
-    # the canonical form puts back to the same id
+    # the explicit form (the friction in each fixel) puts back to the same id
     stored = c.get_fixture(put.id)
     assert isinstance(stored, dict) and stored["name"] == "renamed"
-    assert stored["friction"] == {"static": 0.5, "kinetic": 0.5}
+    assert [x["friction"] for x in stored["fixels"]] == [{"static": 0.5, "kinetic": 0.5}] * 2
     assert c.put_fixture(stored).id == put.id
     plate = c.put_fixture(FX.rectangle_321(0.3))
     assert plate.goal_cones == 12          # k = 3: twelve kept strings (SPEC 3)
@@ -698,8 +698,8 @@ def test_clients_are_independent(harness, daemon):
         stuck = wrenchd.Client(path, timeout=SHORT)
         with pytest.raises(wrenchd.WrenchdTimeout):
             stuck.status()
-        assert a.get_fixture(fa)["friction"]["static"] == 0.5
-        assert b.get_fixture(fb)["friction"]["static"] == 0.25
+        assert a.get_fixture(fa)["fixels"][0]["friction"]["static"] == 0.5
+        assert b.get_fixture(fb)["fixels"][0]["friction"]["static"] == 0.25
         stuck.close()
     finally:
         silent.close()

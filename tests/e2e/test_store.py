@@ -1,15 +1,22 @@
 """fixture.put / get / delete / list: content ids (idempotence), round trips,
-persistence across SIGKILL, --load."""
+persistence across SIGKILL, --load; the state directory (its lock, files
+named by older ids, files whose name and content disagree), --max-fixtures."""
 
+import copy
+import glob
 import hashlib
 import json
 import os
+import random
 import re
 import shutil
+import subprocess
+import time
 
 import pytest
 
 import fixtures as FX
+from conftest import BINARY, REPO, SANITIZED, START_TIMEOUT
 
 ID_RE = re.compile(r"^[0-9a-f]{32}$")
 
@@ -108,15 +115,42 @@ def canonical(value):
     return json.dumps(value, ensure_ascii=False)
 
 
-def expected_id(fixture):
+def text_id(fixture):
+    """The first half of the SHA-256 of the canonical text of `fixture`
+    without its name."""
     body = {k: v for k, v in fixture.items() if k != "name"}
     return hashlib.sha256(canonical(body).encode()).hexdigest()[:32]
 
 
+def legacy_id(fixture):
+    """The id before ids hashed the explicit form: that of the fixture as
+    written (what older daemons named their files by)."""
+    return text_id(fixture)
+
+
+def explicit(fixture):
+    """PROTOCOL's explicit form of a fixture that gives its body's com and
+    inertia and every fixel's normal (unit): the fixture's friction copied
+    into every fixel without its own, "kinetic" filled in with "static", no
+    top-level friction.  Nothing here is computed, only moved."""
+    f = copy.deepcopy(fixture)
+    default = f.pop("friction", None)
+    for fixel in f["fixels"]:
+        friction = dict(fixel.get("friction", default))
+        friction.setdefault("kinetic", friction["static"])
+        fixel["friction"] = friction
+    return f
+
+
+def expected_id(fixture):
+    return text_id(explicit(fixture))
+
+
 def test_id_is_sha256_of_canonical_form(client):
     """PROTOCOL: the id is the first half of the SHA-256 of the canonical
-    form (every field but name), computed here for fixtures that give every
-    field (so that no default has to be guessed)."""
+    text of the explicit form (every field but name), computed here for
+    fixtures that give com, inertia and normals (so that nothing has to be
+    computed, only moved)."""
     full_rect = {
         "name": "full-rect",
         "body": {"mass": 2, "inertia": 1.25, "com": [2.5, 1],
@@ -164,7 +198,16 @@ def test_get_round_trip(client, make):
     fid = client.result("fixture.put", {"fixture": f})["id"]
     got = client.result("fixture.get", {"id": fid})
     assert got["name"] == f["name"]
-    numbers_equal(f, got)
+    # What was given is stored: the friction in each fixel, normals of unit
+    # length (these builders' normals normalise exactly).
+    given = copy.deepcopy(f)
+    for fixel in given["fixels"]:
+        fixel.setdefault("friction", given.get("friction"))
+        if "normal" in fixel:
+            length = (fixel["normal"][0] ** 2 + fixel["normal"][1] ** 2) ** 0.5
+            fixel["normal"] = [x / length for x in fixel["normal"]]
+    given.pop("friction", None)
+    numbers_equal(given, got)
     assert client.result("fixture.put", {"fixture": got})["id"] == fid
     # the stored form answers exactly like the original
     w = {"fixture": fid, "wrenches": [[-1, -1, 0.3], [0.2, -1, 0]], "sets": ["goal", "strong"]}
@@ -396,3 +439,227 @@ def test_storage_failure_changes_nothing(harness):
     assert e["code"] == -32002, e
     assert c.result("fixture.get", {"id": a})["name"] == "disc-corner"
     assert c.result("server.status", {})["fixtures"] == 1
+
+
+# ---- ids of the explicit form (issue 14) ------------------------------------------
+
+def spellings():
+    """Pairs of fixtures that differ only in writing out a default."""
+    plate = FX.rectangle_321(0.3)
+    plate_explicit = copy.deepcopy(plate)
+    plate_explicit["friction"]["kinetic"] = 0.3             # kinetic = static
+    plate_explicit["body"]["com"] = [2, 1]                  # the centroid
+    for fixel, normal in zip(plate_explicit["fixels"], [[0, 1], [0, 1], [1, 0]]):
+        fixel["normal"] = normal                            # the edges' inward normals
+    per_fixel = copy.deepcopy(plate)                        # the friction in every fixel
+    for fixel in per_fixel["fixels"]:
+        fixel["friction"] = {"static": 0.3}
+    del per_fixel["friction"]
+    disc = FX.disc_corner(0.5)
+    disc_implicit = copy.deepcopy(disc)
+    del disc_implicit["friction"]["kinetic"]
+    for fixel in disc_implicit["fixels"]:
+        del fixel["normal"]                                 # the circle's normals
+    return [(plate, plate_explicit), (plate, per_fixel), (disc, disc_implicit),
+            (FX.triangle(), FX.variant(FX.triangle(), ["fixels", 0, "normal"], [0, 1]))]
+
+
+@pytest.mark.parametrize("pair", range(4))
+def test_writing_out_a_default_keeps_the_id(client, pair):
+    """Issue 14: "kinetic" equal to "static", a com equal to the shape's, a
+    normal equal to the derived one, the fixture's friction written in every
+    fixel, a normal written at unit length: one fixture, one id."""
+    a, b = spellings()[pair]
+    assert canonical(a) != canonical(b)
+    assert client.result("fixture.put", {"fixture": a})["id"] == \
+        client.result("fixture.put", {"fixture": b})["id"]
+
+
+def test_inertia_written_out_keeps_the_id(client):
+    """The inertia the shape gives (the value fixture.get shows, a computed
+    double) written out, and the com with it: the same id."""
+    plate = FX.chamfered_plate()
+    fid = client.result("fixture.put", {"fixture": plate})["id"]
+    body = client.result("fixture.get", {"id": fid})["body"]
+    written = copy.deepcopy(plate)
+    written["body"]["inertia"] = body["inertia"]
+    assert client.result("fixture.put", {"fixture": written})["id"] == fid
+    written["body"]["inertia"] = body["inertia"] * 1.01  # another fixture
+    assert client.result("fixture.put", {"fixture": written})["id"] != fid
+
+
+def every_fixture():
+    fs = [json.load(open(p)) for p in sorted(glob.glob(os.path.join(REPO, "examples", "*.json")))]
+    assert len(fs) >= 4
+    fs += [FX.disc_corner(), FX.disc_corner(0.25, kinetic=0.125), FX.rectangle_321(),
+           FX.rectangle_321(clockwise=True), FX.chamfered_plate(), FX.disc_one_fixel(),
+           FX.offset_disc(), FX.triangle(), FX.corner_fixel_plate(), FX.square_form_closure(),
+           FX.scaled_disc_corner(length=1e-3, mass=1e3)] + FX.many(12)
+    rnd = random.Random(14)
+    for i in range(40):
+        fs.append(FX.random_polygon(rnd, convex=i % 2 == 0, corner=i % 3 == 0))
+        fs.append(FX.random_disc(rnd, corner=i % 2 == 0))
+        fs.append(FX.moved(fs[-2], degrees=rnd.uniform(0, 360), shift=(rnd.uniform(-5, 5), 1.5)))
+    return fs
+
+
+def test_get_put_gives_the_id_back_and_the_id_is_its_hash(client):
+    """For every example and every fixture of the tests: fixture.get is the
+    explicit form (com, inertia, every fixel's normal and own friction, no
+    top-level friction), putting it gives the same id, and the id is the
+    SHA-256 of its canonical text without the name, computed here."""
+    for f in every_fixture():
+        fid = client.result("fixture.put", {"fixture": f})["id"]
+        got = client.result("fixture.get", {"id": fid})
+        assert set(got) <= {"name", "body", "fixels"} and "friction" not in got, got
+        assert {"mass", "inertia", "com"} <= set(got["body"]), got
+        for fixel in got["fixels"]:
+            assert set(fixel) == {"at", "normal", "friction"}, got
+            assert set(fixel["friction"]) == {"static", "kinetic"}, got
+        assert text_id(got) == fid, (f.get("name"), got)
+        assert client.result("fixture.put", {"fixture": got})["id"] == fid, f.get("name")
+        again = client.result("fixture.get", {"id": fid})
+        assert canonical(again) == canonical(got)
+
+
+# ---- the state directory ---------------------------------------------------------
+
+def test_second_daemon_on_the_same_state_dir_refused(harness):
+    """Issue 14: a second daemon on the same --state-dir is refused (exit
+    status 1) with a message naming the directory and the holder's pid; once
+    the first has stopped, the directory can be used again."""
+    state = harness.path("state")
+    first = harness.start(state_dir=state)
+    fid = first.client().result("fixture.put", {"fixture": FX.triangle()})["id"]
+    p = harness.run("--socket", harness.path("second.sock"), "--state-dir", state,
+                    timeout=START_TIMEOUT)
+    err = p.stderr.decode(errors="replace")
+    assert p.returncode == 1, (p.returncode, err[-2000:])
+    assert state in err and "pid %d" % first.pid in err, err[-2000:]
+    assert not os.path.exists(harness.path("second.sock"))
+    assert [x["id"] for x in first.client().result("fixture.list")["fixtures"]] == [fid]
+    first.stop()
+    again = harness.start(state_dir=state)
+    assert [x["id"] for x in again.client().result("fixture.list")["fixtures"]] == [fid]
+
+
+def test_a_file_named_otherwise_is_refused_and_a_delete_sticks(harness):
+    """Issue 14: a file whose name and content disagree is not loaded (a log
+    line says why; the file is left in place), so deleting the fixture it
+    holds leaves nothing on disk to come back at the next start."""
+    state = harness.path("state")
+    folder = os.path.join(state, "fixtures")
+    d = harness.start(state_dir=state)
+    fid = d.client().result("fixture.put", {"fixture": FX.triangle()})["id"]
+    d.stop()
+    stray = os.path.join(folder, "0123456789abcdef0123456789abcdef.json")
+    os.rename(os.path.join(folder, fid + ".json"), stray)
+    d2 = harness.start(state_dir=state)
+    c2 = d2.client()
+    assert c2.result("fixture.list")["fixtures"] == []
+    assert stray in d2.stderr() and fid in d2.stderr(), d2.stderr()[-2000:]
+    assert os.path.exists(stray)
+    # put, delete, restart: gone for good
+    assert c2.result("fixture.put", {"fixture": FX.triangle()})["id"] == fid
+    assert c2.result("fixture.delete", {"id": fid}) == {"deleted": True}
+    d2.stop()
+    d3 = harness.start(state_dir=state)
+    assert d3.client().result("fixture.list")["fixtures"] == []
+    assert d3.client().error("fixture.get", {"id": fid})["code"] == -32001
+
+
+def test_files_of_older_ids_are_re_keyed(harness):
+    """Issue 14: fixtures stored under the older ids (the hash of the text
+    as written) keep loading, under their new id, re-keyed on disk with a
+    log line; afterwards one file is left per fixture, and a delete
+    sticks."""
+    state = harness.path("state")
+    folder = os.path.join(state, "fixtures")
+    os.makedirs(folder)
+    fs = [FX.triangle(), FX.rectangle_321(0.3), FX.disc_corner(0.5, name="disc")]
+    for f in fs:
+        with open(os.path.join(folder, legacy_id(f) + ".json"), "w") as out:
+            out.write(canonical(f) + "\n")
+    # another spelling of the disc, under its own older id: the same fixture
+    other = FX.disc_corner(0.5, name="disc again")
+    del other["friction"]["kinetic"]
+    with open(os.path.join(folder, legacy_id(other) + ".json"), "w") as out:
+        out.write(canonical(other) + "\n")
+    probe = harness.start(socket_path=harness.path("probe.sock")).client()
+    new = [probe.result("fixture.put", {"fixture": f})["id"] for f in fs]
+    assert all(n != legacy_id(f) for n, f in zip(new, fs))
+
+    d = harness.start("--log-level", "info", state_dir=state)  # re-keying logs at info
+    c = d.client()
+    listed = c.result("fixture.list")["fixtures"]
+    assert sorted(x["id"] for x in listed) == sorted(new), listed
+    assert {x["id"]: x["name"] for x in listed}[new[0]] == "triangle"
+    assert sorted(os.listdir(folder)) == sorted(n + ".json" for n in new), os.listdir(folder)
+    assert "re-keyed" in d.stderr() and legacy_id(fs[0]) in d.stderr(), d.stderr()[-3000:]
+    for n in new:
+        got = c.result("fixture.get", {"id": n})
+        assert text_id(got) == n
+    assert c.result("fixture.delete", {"id": new[2]}) == {"deleted": True}
+    d.stop()
+    d2 = harness.start(state_dir=state)
+    listed = d2.client().result("fixture.list")["fixtures"]
+    assert sorted(x["id"] for x in listed) == sorted(new[:2]), listed
+    assert sorted(os.listdir(folder)) == sorted(n + ".json" for n in new[:2])
+
+
+# ---- --max-fixtures ------------------------------------------------------------
+
+def test_max_fixtures(harness):
+    """Issue 14: --max-fixtures caps the stored fixtures: a put of a new one
+    past it answers -32003 (data.field "params.fixture", naming the option)
+    and stores nothing; a put of a stored one (even renamed) still succeeds;
+    after a delete there is room again."""
+    state = harness.path("state")
+    d = harness.start("--max-fixtures", "3", state_dir=state)
+    c = d.client()
+    fs = FX.many(4)
+    ids = [c.result("fixture.put", {"fixture": f})["id"] for f in fs[:3]]
+    e = c.error("fixture.put", {"fixture": fs[3]})
+    assert e["code"] == -32003 and e["data"]["field"] == "params.fixture", e
+    assert "--max-fixtures" in e["data"]["reason"], e
+    assert sorted(x["id"] for x in c.result("fixture.list")["fixtures"]) == sorted(ids)
+    assert len(os.listdir(os.path.join(state, "fixtures"))) == 3
+    renamed = dict(fs[0], name="renamed")
+    assert c.result("fixture.put", {"fixture": renamed})["id"] == ids[0]
+    assert c.result("fixture.put", {"fixture": fs[1]})["id"] == ids[1]
+    # inline fixtures are not stored, so not counted
+    c.result("wrench.classify", {"fixture": fs[3], "wrenches": [[0, -1, 0]]})
+    c.result("fixture.delete", {"id": ids[2]})
+    c.result("fixture.put", {"fixture": fs[3]})
+    assert c.result("server.status")["fixtures"] == 3
+
+
+def test_max_fixtures_in_the_config_file(harness):
+    conf = harness.path("wrenchd.conf")
+    with open(conf, "w") as f:
+        f.write("max-fixtures = 1\n")
+    d = harness.start("--config", conf)
+    c = d.client()
+    c.result("fixture.put", {"fixture": FX.triangle()})
+    assert c.error("fixture.put", {"fixture": FX.disc_corner()})["code"] == -32003
+
+
+@pytest.mark.skipif(SANITIZED, reason="a sanitizer's allocator keeps freed memory")
+def test_inline_fixtures_stay_within_the_cache_bound(harness):
+    """Inline fixtures are cached, not stored: --cache-mb bounds them with
+    their own text, so distinct large ones do not grow memory without
+    bound."""
+    from test_hostile import resident_kib
+    d = harness.start("--cache-mb", "1", "--threads", "1")
+    c = d.client()
+    c.result("server.status")
+    before = resident_kib(d.pid)
+    padding = "x" * (200 << 10)
+    for i in range(300):
+        f = FX.disc_one_fixel(name="%d %s" % (i, padding))
+        f["body"]["mass"] = 1 + i / 1024
+        c.result("wrench.classify", {"fixture": f, "wrenches": [[0, -1, 0]]})
+    status = c.result("server.status")
+    assert status["cache_bytes"] <= status["cache_limit_bytes"], status
+    growth = resident_kib(d.pid) - before
+    assert growth < 16 * 1024, (growth, status)  # KiB; 300 x 200 KiB held would be 60 MiB

@@ -17,7 +17,7 @@ from conftest import BINARY, REPO, WRAPPER, SLOW
 
 WRENCHCTL = os.path.join(REPO, "build", "wrenchctl")
 DISC = os.path.join(REPO, "examples", "disc-corner.json")
-DISC_ID = "f770c1ac339af2c273789c5cce0a8d35"
+DISC_ID = "e0d7a1a0bd6e8bf16fe5845da1960ed9"
 
 
 def request(sock_path, method, params=None, timeout=20):

@@ -21,7 +21,7 @@ EXAMPLES = os.path.join(REPO, "examples")
 DISC = os.path.join(EXAMPLES, "disc-corner.json")
 PLATE = os.path.join(EXAMPLES, "plate-3-2-1.json")
 CHAMFERED = os.path.join(EXAMPLES, "plate-chamfered.json")
-DISC_ID = "f770c1ac339af2c273789c5cce0a8d35"
+DISC_ID = "e0d7a1a0bd6e8bf16fe5845da1960ed9"
 
 
 @pytest.fixture

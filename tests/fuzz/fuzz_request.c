@@ -64,7 +64,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argv;
     wd_log_set_level(WD_LOG_ERROR);
     char why[256] = "";
-    cache = wd_cache_new(NULL, DERIVED_LIMIT, why, sizeof why);
+    cache = wd_cache_new(NULL, DERIVED_LIMIT, 10000, why, sizeof why);
     if (!cache) {
         fprintf(stderr, "fuzz_request: wd_cache_new: %s\n", why);
         abort();

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Write the seed corpus of the libFuzzer targets: tests/fuzz/corpus/
 {request,fixture,parse}/, one input per file.  Run once from the top of the
-repository (python3 tests/fuzz/make_corpus.py); it rewrites the files it
+repository after make (python3 tests/fuzz/make_corpus.py; fixture ids come from
+build/wrenchd); it rewrites the files it
 makes and leaves hand-written ones (named hand-*) alone.
 
 Seeds come from:
@@ -15,7 +16,6 @@ The over-long-line row (2 MiB) is left out: it is far past -max_len, and
 tests/e2e/test_framing.py covers line limits."""
 
 import glob
-import hashlib
 import json
 import os
 import random
@@ -40,61 +40,38 @@ import test_malformed as TM  # noqa: E402
 MAX_LEN = 4096  # the targets' -max_len (tests/fuzz/run-fuzz)
 
 
-# ---- fixture ids, as proto/wp_fixture.c computes them ----------------------------
+# ---- fixture ids, as wrenchd computes them ---------------------------------------
+#
+# An id hashes the fixture's explicit form (docs/PROTOCOL.md), whose computed
+# values (normals, com, inertia) only the library gives exactly: ask the
+# built daemon (build/wrenchd, memory only) rather than redo them here.
 
-def number(v):
-    """proto/wp_number.c wp_format_number: the shortest %g that reads back."""
-    v = float(v)
-    if v == 0:
-        return "0"
-    text = "%.15g" % v
-    if float(text) != v:
-        text = "%.16g" % v
-        return text if float(text) == v else "%.17g" % v
-    if len(re.sub(r"[^0-9]", "", text.split("e")[0]).lstrip("0")) < 15:
-        return text
-    for p in range(14, 0, -1):
-        shorter = "%.*g" % (p, v)
-        if float(shorter) != v:
-            break
-        text = shorter
-    return text
-
-
-def string(s):
-    out = ['"']
-    for ch in s:
-        o = ord(ch)
-        if ch == '"':
-            out.append('\\"')
-        elif ch == "\\":
-            out.append("\\\\")
-        elif o < 0x20:
-            out.append({"\n": "\\n", "\r": "\\r", "\t": "\\t", "\b": "\\b",
-                        "\f": "\\f"}.get(ch, "\\u%04x" % o))
-        else:
-            out.append(ch)
-    out.append('"')
-    return "".join(out)
-
-
-def canonical(v, skip=None):
-    if isinstance(v, dict):
-        keys = sorted(k for k in v if k != skip)
-        return "{" + ",".join(string(k) + ":" + canonical(v[k]) for k in keys) + "}"
-    if isinstance(v, list):
-        return "[" + ",".join(canonical(x) for x in v) + "]"
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return number(v)
-    if isinstance(v, str):
-        return string(v)
-    return "null"
+_daemon = None
 
 
 def fixture_id(f):
-    return hashlib.sha256(canonical(f, "name").encode()).hexdigest()[:32]
+    global _daemon
+    if _daemon is None:
+        import atexit
+        import socket
+        import subprocess
+        import tempfile
+        import time
+        folder = tempfile.mkdtemp(prefix="corpus")
+        path = os.path.join(folder, "s")
+        process = subprocess.Popen([os.path.join(ROOT, "build", "wrenchd"), "--socket", path,
+                                    "--threads", "1", "--log-level", "error"])
+        atexit.register(lambda: (process.terminate(), process.wait()))
+        for _ in range(200):
+            if os.path.exists(path):
+                break
+            time.sleep(0.05)
+        connection = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        connection.connect(path)
+        _daemon = connection.makefile("rwb")
+    _daemon.write((request("fixture.put", {"fixture": f}) + "\n").encode())
+    _daemon.flush()
+    return json.loads(_daemon.readline())["result"]["id"]
 
 
 # ---- requests --------------------------------------------------------------------

@@ -150,7 +150,7 @@ static const char WRONG_ID[] =
     "true,\"margin\":0.5,\"blocking\":null}}]},\"id\":999999}";
 
 static const double G[3] = {-1, -1, 0};
-static const char ID[] = "f770c1ac339af2c273789c5cce0a8d35";
+static const char ID[] = "e0d7a1a0bd6e8bf16fe5845da1960ed9";
 
 static void classify_reads_verdicts_without_allocating(void **state)
 {

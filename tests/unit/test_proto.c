@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include <math.h>
 #include <stdio.h>
 
 #include "test_util.h"
@@ -117,6 +118,73 @@ static void fixture_id_ignores_order_spelling_and_name(void **state)
     cJSON_Delete(b);
 }
 
+/* Every double of two fixtures is the same, bit for bit (memcmp: -0 and +0
+ * differ). */
+static void assert_same_fixture(const wr_fixture *a, const wr_fixture *b)
+{
+    assert_memory_equal(&a->mass, &b->mass, sizeof a->mass);
+    assert_memory_equal(&a->inertia, &b->inertia, sizeof a->inertia);
+    assert_memory_equal(a->com, b->com, sizeof a->com);
+    assert_memory_equal(&a->gyration_radius, &b->gyration_radius, sizeof a->gyration_radius);
+    assert_int_equal(a->shape, b->shape);
+    assert_memory_equal(a->center, b->center, sizeof a->center);
+    assert_int_equal(a->vertex_count, b->vertex_count);
+    if (a->vertex_count)
+        assert_memory_equal(a->vertices, b->vertices, a->vertex_count * sizeof *a->vertices);
+    assert_int_equal(a->fixel_count, b->fixel_count);
+    assert_memory_equal(a->fixels, b->fixels, (size_t)a->fixel_count * sizeof *a->fixels);
+}
+
+/* Issue 14: the id hashes the explicit form (every default written out), so
+ * writing out a default keeps it; the stored text reads back to the same
+ * fixture, bit for bit, and to the same text and id. */
+static void explicit_form_reads_back_to_the_same_fixture(void **state)
+{
+    (void)state;
+    static const char *const fixtures[] = {
+        /* derived normals (-0 components on the bottom edge), com, inertia */
+        "{\"body\":{\"mass\":2,\"shape\":{\"type\":\"polygon\",\"vertices\":"
+        "[[0,0],[4,0],[4,1],[3,2],[0,2]]}},\"friction\":{\"static\":0.1},"
+        "\"fixels\":[{\"at\":[1,0]},{\"at\":[3.5,1.5]},{\"at\":[0,0.5]}]}",
+        /* a circle's derived normal off the axes; a -0 in the input */
+        "{\"name\":\"n\",\"body\":{\"mass\":1.5,\"shape\":{\"type\":\"circle\",\"center\":[-0.0,0.25],"
+        "\"radius\":1.3}},\"friction\":{\"static\":0.5,\"kinetic\":0.25},"
+        "\"fixels\":[{\"at\":[-1.3,0.25]},{\"at\":[0.78,-0.79],\"friction\":{\"static\":0.2}}]}",
+        /* given normals: scaled, near unit, at a vertex */
+        "{\"body\":{\"mass\":1,\"shape\":{\"type\":\"polygon\",\"vertices\":"
+        "[[0,0],[3,0],[0,3]]}},\"friction\":{\"static\":0.3},"
+        "\"fixels\":[{\"at\":[1,0],\"normal\":[0.1,3]},"
+        "{\"at\":[0,0],\"normal\":[0.7071067811865476,0.7071067811865476]},"
+        "{\"at\":[1.5,1.5],\"normal\":[-0.6,-0.8]}]}",
+        /* no shape: com and inertia given */
+        "{\"body\":{\"mass\":3,\"inertia\":0.7,\"com\":[0.1,-0.2]},\"friction\":{\"static\":0.4},"
+        "\"fixels\":[{\"at\":[-1,0],\"normal\":[1,0.1]},{\"at\":[0,-1],\"normal\":[0,2]}]}",
+    };
+    for (size_t i = 0; i < sizeof fixtures / sizeof *fixtures; i++) {
+        cJSON *given = cJSON_Parse(fixtures[i]);
+        assert_non_null(given);
+        wp_fixture_doc first, again;
+        wp_error error;
+        assert_true(wp_fixture_read(given, "params.fixture", &first, &error));
+        cJSON *stored = cJSON_Parse(first.canonical);
+        assert_non_null(stored);
+        assert_null(cJSON_GetObjectItem(stored, "friction"));
+        assert_non_null(cJSON_GetObjectItem(cJSON_GetObjectItem(stored, "body"), "inertia"));
+        assert_true(wp_fixture_read(stored, "params.fixture", &again, &error));
+        assert_string_equal(first.id, again.id);
+        assert_string_equal(first.canonical, again.canonical);
+        assert_same_fixture(first.fixture, again.fixture);
+        for (int k = 0; k < first.fixture->fixel_count; k++)
+            for (int j = 0; j < 2; j++)
+                assert_false(signbit(first.fixture->fixels[k].normal[j]) &&
+                             first.fixture->fixels[k].normal[j] == 0);
+        wp_fixture_doc_release(&first);
+        wp_fixture_doc_release(&again);
+        cJSON_Delete(stored);
+        cJSON_Delete(given);
+    }
+}
+
 /* ---- the envelope, against the real cache -------------------------------- */
 
 typedef struct harness {
@@ -130,7 +198,7 @@ static int setup(void **state)
 {
     harness *h = calloc(1, sizeof *h);
     char why[128];
-    h->cache = wd_cache_new(NULL, 1 << 20, why, sizeof why);
+    h->cache = wd_cache_new(NULL, 1 << 20, 10000, why, sizeof why);
     h->context = wd_context_new(h->cache, &h->stats);
     h->limits = (wp_limits){16, 100, 8};
     *state = h;
@@ -384,6 +452,7 @@ int main(void)
         cmocka_unit_test(sha256_matches_nist_vectors),
         cmocka_unit_test(numbers_round_trip_shortest),
         cmocka_unit_test(fixture_id_ignores_order_spelling_and_name),
+        cmocka_unit_test(explicit_form_reads_back_to_the_same_fixture),
         cmocka_unit_test_setup_teardown(envelope_errors_name_the_field, setup, teardown),
         cmocka_unit_test_setup_teardown(notifications_and_batches, setup, teardown),
         cmocka_unit_test_setup_teardown(put_get_classify_delete, setup, teardown),
