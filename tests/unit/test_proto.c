@@ -446,6 +446,151 @@ static void light_lines_answer_as_any_other(void **state)
     }
 }
 
+/* ---- answers in pieces ---------------------------------------------------- */
+
+/* The answer to `line` made a piece at a time, as the daemon makes it, the
+ * pieces joined; *pieces counts them.  NULL for no answer. */
+static char *answer_in_pieces(const wp_host *host, const wp_limits *limits, const char *line,
+                              int *pieces, wp_counts *counts)
+{
+    wp_answer *answer = wp_answer_begin(limits, line, strlen(line));
+    assert_non_null(answer);
+    wp_buffer joined = {0};
+    wp_step step;
+    *pieces = 0;
+    do {
+        wp_buffer piece = {0};
+        step = wp_answer_step(answer, host, &piece, counts);
+        assert_int_not_equal(step, WP_STEP_FAILED);
+        if (piece.length) {
+            (*pieces)++;
+            wp_buffer_append(&joined, piece.data, piece.length);
+        }
+        free(piece.data);
+    } while (step == WP_STEP_MORE);
+    wp_answer_free(answer, host);
+    if (!joined.length)
+        return NULL;
+    return wp_buffer_take(&joined);
+}
+
+static char *classify_line(const char *id, int count, bool objects, const char *key)
+{
+    wp_buffer b = {0};
+    wp_buffer_puts(&b, "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"id\":7,\"params\":{\"fixture\":\"");
+    wp_buffer_puts(&b, id);
+    wp_buffer_puts(&b, "\",\"sets\":[\"goal\",\"strong\",\"both\"],\"");
+    wp_buffer_puts(&b, key);
+    wp_buffer_puts(&b, "\": [");
+    for (int i = 0; i < count; i++) {
+        /* Directions all round, magnitudes and torques varied: inside,
+         * outside and boundary cases all occur. */
+        double angle = 2 * 3.141592653589793 * i / 97.0, size = 0.5 + (i % 7) * 0.25;
+        char text[160];
+        if (objects)
+            snprintf(text, sizeof text, "%s{\"force\":[%.17g,%.17g],\"at\":[%.17g, 0]}", i ? "," : "",
+                     size * cos(angle), size * sin(angle), 0.1 * (i % 11) - 0.5);
+        else
+            snprintf(text, sizeof text, "%s[%.17g, %.17g ,%.17g]", i ? "," : "", size * cos(angle),
+                     size * sin(angle), 0.05 * (i % 13) - 0.3);
+        wp_buffer_puts(&b, text);
+    }
+    wp_buffer_puts(&b, "]}}");
+    return wp_buffer_take(&b);
+}
+
+/* Made a piece at a time, an answer is byte for byte the whole one; a long
+ * classify read straight from the text (its wrenches as numbers) answers
+ * as the same line read through the tree; a batch's pieces fall between
+ * its requests. */
+static void pieces_join_to_the_whole_answer(void **state)
+{
+    harness *h = *state;
+    const wp_host *host = wd_context_host(h->context);
+    wp_limits limits = {16, 100000, 8};
+    char line[4096];
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
+             DISC);
+    cJSON *put = ask(h, line);
+    char id[WP_ID_LENGTH + 1];
+    snprintf(id, sizeof id, "%s", cJSON_GetObjectItem(cJSON_GetObjectItem(put, "result"), "id")->valuestring);
+    cJSON_Delete(put);
+
+    char *fast = classify_line(id, 6000, false, "wrenches");
+    /* "wr\u0065nches" is "wrenches" to the tree, but not to the text
+     * reader: the same request, read the ordinary way. */
+    char *slow = classify_line(id, 6000, false, "wr\\u0065nches");
+    char *objects = classify_line(id, 3000, true, "wrenches");
+    snprintf(line, sizeof line,
+             "[{\"jsonrpc\":\"2.0\",\"method\":\"modes.get\",\"params\":{\"fixture\":\"%s\"},\"id\":1},"
+             "{\"jsonrpc\":\"2.0\",\"method\":\"server.status\"},"
+             "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
+             "\"wrenches\":[[1,2,3],[-1,-1,0]],\"method\":\"lp\"},\"id\":2},"
+             "{\"jsonrpc\":\"2.0\",\"method\":\"plan.get\",\"params\":{\"fixture\":\"%s\"},\"id\":3},"
+             "7,{\"jsonrpc\":\"2.0\",\"method\":\"no.such\",\"id\":4}]",
+             id, id, id);
+    const char *lines[] = {fast, slow, objects, line,
+                           "[{\"jsonrpc\":\"2.0\",\"method\":\"server.status\"}]", "{\"x\":"};
+    const int min_pieces[] = {2, 2, 2, 2, 0, 1};
+    char *answers[6];
+    for (int i = 0; i < 6; i++) {
+        wp_counts whole_counts = {0, 0}, piece_counts = {0, 0};
+        char *whole = wp_answer_line(host, &limits, lines[i], strlen(lines[i]), &whole_counts);
+        int pieces;
+        answers[i] = answer_in_pieces(host, &limits, lines[i], &pieces, &piece_counts);
+        if (!whole || !answers[i]) {
+            assert_null(whole);
+            assert_null(answers[i]);
+        } else {
+            assert_string_equal(whole, answers[i]);
+        }
+        if (pieces < min_pieces[i])
+            fail_msg("line %d: %d pieces, at least %d expected", i, pieces, min_pieces[i]);
+        assert_int_equal(whole_counts.requests, piece_counts.requests);
+        assert_int_equal(whole_counts.errors, piece_counts.errors);
+        free(whole);
+    }
+    assert_string_equal(answers[0], answers[1]);
+    cJSON *parsed = cJSON_Parse(answers[0]);
+    assert_int_equal(cJSON_GetArraySize(cJSON_GetObjectItem(cJSON_GetObjectItem(parsed, "result"),
+                                                            "results")), 6000);
+    cJSON_Delete(parsed);
+    for (int i = 0; i < 6; i++)
+        free(answers[i]);
+    free(fast);
+    free(slow);
+    free(objects);
+}
+
+static int polls;
+static bool stop_after_three(void *context)
+{
+    (void)context;
+    return ++polls > 3;
+}
+
+/* A stop the host sets ends long work early: push.regions with a finger's
+ * friction gives up within a few polls, and a classify ends its piece at
+ * once (its next step would go on). */
+static void a_stop_ends_long_work(void **state)
+{
+    harness *h = *state;
+    wp_host host = *wd_context_host(h->context);
+    wr_stop stop = {stop_after_three, NULL};
+    host.stop = &stop;
+    char line[4096];
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"push.regions\",\"params\":{\"fixture\":%s,"
+             "\"finger_friction\":0.2},\"id\":1}", DISC);
+    polls = 0;
+    wp_counts counts = {0, 0};
+    char *text = wp_answer_line(&host, &h->limits, line, strlen(line), &counts);
+    assert_non_null(strstr(text, "stopped"));
+    assert_int_equal(polls, 4);
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -457,6 +602,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(notifications_and_batches, setup, teardown),
         cmocka_unit_test_setup_teardown(put_get_classify_delete, setup, teardown),
         cmocka_unit_test_setup_teardown(light_lines_answer_as_any_other, setup, teardown),
+        cmocka_unit_test_setup_teardown(pieces_join_to_the_whole_answer, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_stop_ends_long_work, setup, teardown),
     };
     return cmocka_run_group_tests_name("proto", tests, NULL, NULL);
 }
