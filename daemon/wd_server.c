@@ -755,9 +755,7 @@ static void send_piece(connection *c, wd_task *task)
         return;
     slot piece = {.response = task->piece, .response_length = task->piece_length};
     task->piece = NULL;
-    if (write_response(c, &piece) && evbuffer_get_length(bufferevent_get_output(c->bev)) == 0 &&
-        task->step == WP_STEP_DONE)
-        answers_out(c);
+    write_response(c, &piece);
     free(piece.response); /* NULL when the output buffer took it by reference */
 }
 
@@ -790,6 +788,8 @@ static void piece_done(wd_server *s, wd_task *task)
         c->running = NULL;
         c->held = 0;
         flush(c); /* the answered head leaves the queue, then the next runs */
+        if (c->bev && evbuffer_get_length(bufferevent_get_output(c->bev)) == 0)
+            answers_out(c); /* sent whole, directly: the write callback will not say so */
         if (c->bev)
             dispatch(c);
     }

@@ -62,6 +62,8 @@ struct wp_answer {
     char *refusal;           /* the whole answer of a refused line */
     bool batch;
     bool whole;              /* no pieces: one step writes all (wp_answer_line) */
+    unsigned long budget;    /* work units per piece (WP_PIECE_BUDGET) */
+    size_t piece_bytes;      /* bytes after which a piece ends (PIECE_BYTES) */
     cJSON *next;             /* the next request to start, or NULL */
     bool opened;             /* a batch's "[" is written */
     bool done;
@@ -196,7 +198,7 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
                                size_t start, bool mine, unsigned long *used, wp_counts *counts)
 {
     wp_error error = {0};
-    unsigned long budget = answer->whole ? (unsigned long)-1 : WP_PIECE_BUDGET;
+    unsigned long budget = answer->whole ? (unsigned long)-1 : answer->budget;
     wp_step step = answer->streamer->step(answer->stream, host, out, budget, used, &error);
     if (step == WP_STEP_MORE && answer->whole) {
         while (step == WP_STEP_MORE) {
@@ -416,6 +418,8 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
     if (!answer)
         return NULL;
     answer->limits = *limits;
+    answer->budget = WP_PIECE_BUDGET;
+    answer->piece_bytes = PIECE_BYTES;
     wp_counts counted = {0, 0}; /* a refusal counts when its step writes it */
     size_t short_length = 0;
     char *short_line = NULL;
@@ -489,7 +493,7 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
     }
     while (answer->next) {
         if (!answer->whole && out->length > start &&
-            (used >= WP_PIECE_BUDGET || out->length - start >= PIECE_BYTES))
+            (used >= answer->budget || out->length - start >= answer->piece_bytes))
             return WP_STEP_MORE;
         wp_step step;
         bool cheap = start_request(answer, host, out, &used, counts, &step);
@@ -497,7 +501,7 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
             return WP_STEP_MORE;
         assert(step == WP_STEP_DONE); /* a failure in its first piece is answered */
         if (!cheap)
-            used = used > WP_PIECE_BUDGET ? used : WP_PIECE_BUDGET;
+            used = used > answer->budget ? used : answer->budget;
     }
     if (answer->opened)
         wp_buffer_puts(out, "]");
@@ -508,6 +512,12 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
 }
 
 size_t wp_answer_bytes(const wp_answer *answer) { return answer ? answer->bytes : 0; }
+
+void wp_answer_pieces(wp_answer *answer, unsigned long budget, size_t bytes)
+{
+    answer->budget = budget ? budget : 1;
+    answer->piece_bytes = bytes ? bytes : 1;
+}
 
 void wp_answer_free(wp_answer *answer, const wp_host *host)
 {

@@ -123,6 +123,9 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
 /* Append the next piece to `out`, counting what it answers in *counts. */
 wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
                        wp_counts *counts);
+/* Smaller pieces than the default (tests and fuzzing, to cut answers at
+ * every place they may be cut): `budget` work units, `bytes` of text. */
+void wp_answer_pieces(wp_answer *answer, unsigned long budget, size_t bytes);
 /* Bytes the answer holds between steps (its parsed request, wrenches). */
 size_t wp_answer_bytes(const wp_answer *answer);
 /* Free it, finished or not (a fixture it holds is released through `host`). */

@@ -33,6 +33,7 @@
  * that take seconds to minutes under the sanitizers; they would only make
  * the fuzzer time out.  Set FUZZ_REQUEST_NO_SKIP=1 to answer them anyway,
  * FUZZ_REQUEST_VERBOSE=1 to see each line and its answer on stderr. */
+#define _GNU_SOURCE /* memmem */
 #include "fuzz_util.h"
 #include "wd_log.h"
 #include "wd_worker.h"
@@ -651,6 +652,36 @@ static void check_answer(const cJSON *json, bool whole, const char *answer, cons
 
 /* ---- driving ----------------------------------------------------------------- */
 
+/* The daemon makes answers a piece at a time: cut into the smallest pieces
+ * there are, the same line answers byte for byte what it answered whole --
+ * unless it asks what changes between two askings (a deletion, the
+ * server's counters, a store past its bound). */
+static void pieces_agree(const char *line, size_t length, const char *whole, const char *text)
+{
+    if (memmem(line, length, "delete", 6) || memmem(line, length, "status", 6) ||
+        memmem(line, length, "list", 4))
+        return;
+    wp_answer *answer = wp_answer_begin(&LIMITS, line, length);
+    FUZZ_CHECK(answer, "wp_answer_begin failed for %s", text);
+    wp_answer_pieces(answer, 1, 1);
+    wp_buffer joined = {0};
+    wp_counts counts = {0, 0};
+    wp_step step;
+    do {
+        step = wp_answer_step(answer, host, &joined, &counts);
+        FUZZ_CHECK(step != WP_STEP_FAILED, "an answer in pieces failed for %s", text);
+    } while (step == WP_STEP_MORE);
+    wp_answer_free(answer, host);
+    FUZZ_CHECK(!joined.failed, "out of memory in pieces for %s", text);
+    FUZZ_CHECK((joined.length == 0) == (whole == NULL) &&
+                   (!whole || (joined.length == strlen(whole) &&
+                               memcmp(joined.data, whole, joined.length) == 0)),
+               "in pieces the answer differs for %s:\n%s\n%.*s", text, whole ? whole : "(none)",
+               (int)joined.length, joined.data ? joined.data : "");
+    free(joined.data);
+}
+
+
 static void answer_line(const uint8_t *data, size_t length)
 {
     /* The request as cJSON reads it, for the checks (the answerer's own
@@ -703,6 +734,7 @@ static void answer_line(const uint8_t *data, size_t length)
         memcpy(line, data, length);
     wp_counts counts = {0, 0};
     char *answer = wp_answer_line(host, &LIMITS, line, length, &counts);
+    pieces_agree(line, length, answer, text);
     if (verbose)
         fprintf(stderr, "> %s\n< %s", text, answer ? answer : "(no answer)\n");
     if (either && parse_error_answer(answer))

@@ -451,10 +451,12 @@ static void light_lines_answer_as_any_other(void **state)
 /* The answer to `line` made a piece at a time, as the daemon makes it, the
  * pieces joined; *pieces counts them.  NULL for no answer. */
 static char *answer_in_pieces(const wp_host *host, const wp_limits *limits, const char *line,
-                              int *pieces, wp_counts *counts)
+                              bool tiny, int *pieces, wp_counts *counts)
 {
     wp_answer *answer = wp_answer_begin(limits, line, strlen(line));
     assert_non_null(answer);
+    if (tiny)
+        wp_answer_pieces(answer, 1, 1); /* cut wherever it may be cut */
     wp_buffer joined = {0};
     wp_step step;
     *pieces = 0;
@@ -535,10 +537,16 @@ static void pieces_join_to_the_whole_answer(void **state)
     const int min_pieces[] = {2, 2, 2, 2, 0, 1};
     char *answers[6];
     for (int i = 0; i < 6; i++) {
-        wp_counts whole_counts = {0, 0}, piece_counts = {0, 0};
+        wp_counts whole_counts = {0, 0}, piece_counts = {0, 0}, tiny_counts = {0, 0};
         char *whole = wp_answer_line(host, &limits, lines[i], strlen(lines[i]), &whole_counts);
-        int pieces;
-        answers[i] = answer_in_pieces(host, &limits, lines[i], &pieces, &piece_counts);
+        int pieces, tiny_pieces;
+        char *tiny = answer_in_pieces(host, &limits, lines[i], true, &tiny_pieces, &tiny_counts);
+        answers[i] = answer_in_pieces(host, &limits, lines[i], false, &pieces, &piece_counts);
+        if (whole)
+            assert_string_equal(whole, tiny);
+        assert_true(tiny_pieces >= pieces);
+        assert_int_equal(whole_counts.errors, tiny_counts.errors);
+        free(tiny);
         if (!whole || !answers[i]) {
             assert_null(whole);
             assert_null(answers[i]);
