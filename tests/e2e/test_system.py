@@ -13,7 +13,7 @@ import time
 
 import pytest
 
-from conftest import BINARY, REPO, WRAPPER, SLOW
+from conftest import BINARY, NO_CONFIG, REPO, WRAPPER, SLOW
 
 WRENCHCTL = os.path.join(REPO, "build", "wrenchctl")
 DISC = os.path.join(REPO, "examples", "disc-corner.json")
@@ -103,8 +103,8 @@ def test_socket_activation_and_notify(harness):
     sock = harness.path("activated.sock")
     env = dict(os.environ, NOTIFY_SOCKET=notify_path)
     process = subprocess.Popen(["systemd-socket-activate", "-l", sock, "-E", "NOTIFY_SOCKET"] +
-                               WRAPPER + [BINARY, "--log-level", "warn", "--socket",
-                                          harness.path("ignored.sock")],
+                               WRAPPER + [BINARY] + NO_CONFIG +
+                               ["--log-level", "warn", "--socket", harness.path("ignored.sock")],
                                env=env, stderr=subprocess.PIPE)
     try:
         wait_for_socket(sock, process)
@@ -129,7 +129,8 @@ def test_notify_without_activation(harness):
     STOPPING=1 at SIGTERM; the socket file it made is removed."""
     listener, notify_path = notify_socket(harness.dir)
     sock = harness.path("plain.sock")
-    process = subprocess.Popen(WRAPPER + [BINARY, "--log-level", "warn", "--socket", sock],
+    process = subprocess.Popen(WRAPPER + [BINARY] + NO_CONFIG + ["--log-level", "warn",
+                                                                 "--socket", sock],
                                env=dict(os.environ, NOTIFY_SOCKET=notify_path),
                                stderr=subprocess.PIPE)
     ready = messages_until(listener, "READY=1")
