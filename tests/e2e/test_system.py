@@ -71,7 +71,8 @@ def test_units_verify(harness):
     ExecStart pointing at the built daemon, as make install would)."""
     for name in ("wrenchd.socket", "wrenchd.service"):
         with open(os.path.join(REPO, "systemd", name)) as f:
-            text = f.read().replace("@SBINDIR@", os.path.dirname(BINARY))
+            text = (f.read().replace("@SBINDIR@", os.path.dirname(BINARY))
+                    .replace("@CONFIG_FILE@", harness.path("wrenchd.conf")))
         with open(harness.path(name), "w") as f:
             f.write(text)
     r = subprocess.run(["systemd-analyze", "verify", "--man=no",
@@ -271,12 +272,15 @@ def test_make_install_and_pkg_config(harness):
     root = stage + prefix
     for path in EXPECTED_FILES:
         assert os.path.isfile(os.path.join(root, path)), path
-    assert os.path.isfile(os.path.join(stage, "etc", "wrenchd", "wrenchd.conf"))
+    # The configuration under the prefix too ($(PREFIX)/etc), none in /etc.
+    assert os.path.isfile(os.path.join(root, "etc", "wrenchd", "wrenchd.conf"))
+    assert not os.path.exists(os.path.join(stage, "etc"))
     python = [p for p in os.listdir(os.path.join(root, "lib")) if p.startswith("python")]
     assert python and os.path.isfile(os.path.join(root, "lib", python[0], "dist-packages",
                                                   "wrenchd.py"))
     with open(os.path.join(root, "lib/systemd/system/wrenchd.service")) as f:
-        assert "ExecStart=/usr/local/sbin/wrenchd " in f.read()
+        assert ("ExecStart=/usr/local/sbin/wrenchd --config /usr/local/etc/wrenchd/wrenchd.conf "
+                in f.read())
     # pkg-config pointed at the staged tree compiles and runs a program.
     env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(root, "lib", "pkgconfig"))
     flags = subprocess.run(["pkg-config", "--define-prefix", "--cflags", "--libs", "wrench",
@@ -303,4 +307,110 @@ def test_make_install_and_pkg_config(harness):
                         "PREFIX=" + prefix], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     left = [os.path.join(d, f) for d, _, files in os.walk(stage) for f in files]
+    assert left == [], left
+
+
+def unit_settings(path):
+    """The Key=value lines of a unit file, last one wins."""
+    settings = {}
+    with open(path) as f:
+        for line in f:
+            if "=" in line and not line.startswith("#"):
+                key, value = line.rstrip("\n").split("=", 1)
+                settings[key] = value
+    return settings
+
+
+
+# Run in a mount namespace of its own (unshare -m): every mount read-only
+# but the directories named in argv[1] (colon-separated), then exec argv[2:].
+# A write anywhere else fails with EROFS.
+READ_ONLY_BUT = r"""
+import errno, os, re, subprocess, sys
+writable = sys.argv[1].split(":")
+for path in writable:
+    subprocess.run(["mount", "--bind", path, path], check=True)
+with open("/proc/self/mountinfo") as f:
+    points = [re.sub(r"\\(\d{3})", lambda m: chr(int(m.group(1), 8)), line.split()[4])
+              for line in f]
+for point in points:
+    if point not in writable and not point.startswith(("/proc", "/sys", "/dev")):
+        subprocess.run(["mount", "-o", "remount,bind,ro", point], stderr=subprocess.DEVNULL)
+for probe in ("/etc", os.path.dirname(writable[0])):
+    try:
+        os.close(os.open(os.path.join(probe, ".wrenchd-probe"), os.O_CREAT | os.O_WRONLY))
+        sys.exit("%s is still writable: the test would prove nothing" % probe)
+    except OSError as e:
+        if e.errno != errno.EROFS:
+            raise
+os.execvp(sys.argv[2], sys.argv[2:])
+"""
+
+
+@pytest.fixture(scope="module")
+def build_elsewhere():
+    """A build directory of the install tests' own: a PREFIX other than the
+    checkout's rebuilds the daemon (its configuration path), which must not
+    change build/ under the other tests' feet."""
+    directory = tempfile.mkdtemp(prefix="wrbuild", dir="/tmp")
+    yield directory
+    shutil.rmtree(directory, ignore_errors=True)
+
+
+@pytest.mark.skipif(os.geteuid() != 0 or shutil.which("unshare") is None,
+                    reason="needs root and unshare to make all but DESTDIR read-only")
+@pytest.mark.parametrize("prefix,sysconfdir,destdir", [
+    ("/tmp/inst", None, True),
+    ("/usr", "/etc", True),
+    ("inst", None, False),    # no DESTDIR: a PREFIX in the test's directory
+])
+def test_make_install_writes_only_under_destdir(harness, build_elsewhere, prefix, sysconfdir,
+                                               destdir):
+    """make install writes nothing outside DESTDIR$(PREFIX) (the rest of the
+    system read-only): with a PREFIX of its own, with the usual PREFIX=/usr
+    SYSCONFDIR=/etc, and without DESTDIR.  The unit and the installed daemon
+    name the configuration file of that prefix; make uninstall takes it all
+    away."""
+    scratch = harness.path("scratch")
+    os.makedirs(scratch)
+    if destdir:
+        stage = harness.path("stage")
+        writable = stage
+    else:
+        stage, prefix = "", harness.path(prefix)
+        writable = prefix
+    os.makedirs(writable)
+    make = (["make", "-s", "-C", REPO, "BUILD=" + build_elsewhere, "PREFIX=" + prefix] +
+            (["DESTDIR=" + stage] if destdir else []) +
+            (["SYSCONFDIR=" + sysconfdir] if sysconfdir else []))
+    config = (sysconfdir or prefix + "/etc") + "/wrenchd/wrenchd.conf"
+    env = dict(os.environ, TMPDIR=scratch)   # the compiler's temporary files
+    r = subprocess.run(["unshare", "--mount", "--propagation", "private", sys.executable, "-c",
+                        READ_ONLY_BUT, ":".join([writable, build_elsewhere, scratch])] +
+                       make + ["-j2", "install"],
+                       capture_output=True, text=True, timeout=900, env=env)
+    assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
+    files = {os.path.join(d, f)[len(stage):] for d, _, names in os.walk(writable)
+             for f in names}
+    assert config in files and prefix + "/sbin/wrenchd" in files, sorted(files)
+    unit = unit_settings(stage + prefix + "/lib/systemd/system/wrenchd.service")
+    assert unit["ExecStart"].split()[:3] == [prefix + "/sbin/wrenchd", "--config", config]
+    installed = stage + prefix + "/sbin/wrenchd"
+    help_text = subprocess.run([installed, "--help"], capture_output=True, text=True).stdout
+    assert config in help_text, help_text[:600]
+    with open(stage + config) as f:
+        shipped = f.read()
+    assert shipped.startswith("# " + config + " -- ")
+    if not destdir:
+        # Installed for real: without --config the daemon reads that file.
+        with open(config, "w") as f:
+            f.write("threads = lots\n")
+        ran = subprocess.run([installed, "--socket", harness.path("never.sock")],
+                             capture_output=True, text=True, timeout=30)
+        assert ran.returncode == 2 and config + ":1: threads" in ran.stderr, ran.stderr
+        with open(config, "w") as f:
+            f.write(shipped)
+    r = subprocess.run(make + ["uninstall"], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    left = [os.path.join(d, f) for d, _, names in os.walk(writable) for f in names]
     assert left == [], left
