@@ -353,7 +353,9 @@ install: all
 	@# The configuration is the administrator's: never overwritten.
 	test -e $(DESTDIR)$(CONFIG_FILE) || { sed $(CONFIG_PATHS) systemd/wrenchd.conf \
 	    > $(DESTDIR)$(CONFIG_FILE) && chmod 0644 $(DESTDIR)$(CONFIG_FILE); }
-	sed -e 's|@SBINDIR@|$(PREFIX)/sbin|' $(CONFIG_PATHS) \
+	@# MemoryMax= from the limits in that file (systemd/memory-max says how).
+	memory_max=$$(systemd/memory-max $(BUILD)/wrenchd $(DESTDIR)$(CONFIG_FILE)) && \
+	sed -e 's|@SBINDIR@|$(PREFIX)/sbin|' -e "s|@MEMORY_MAX@|$$memory_max|" $(CONFIG_PATHS) \
 	    systemd/wrenchd.service > $(DESTDIR)$(PREFIX)/lib/systemd/system/wrenchd.service
 
 uninstall:

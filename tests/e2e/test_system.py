@@ -3,6 +3,7 @@ sd_notify, the configuration file, peer access control, make install."""
 
 import json
 import os
+import re
 import shutil
 import signal
 import socket
@@ -69,10 +70,13 @@ def messages_until(listener, wanted):
 def test_units_verify(harness):
     """systemd-analyze verify accepts the socket and the service (with
     ExecStart pointing at the built daemon, as make install would)."""
+    memory_max = subprocess.run([os.path.join(REPO, "systemd", "memory-max"), BINARY],
+                                capture_output=True, text=True, check=True).stdout.strip()
     for name in ("wrenchd.socket", "wrenchd.service"):
         with open(os.path.join(REPO, "systemd", name)) as f:
             text = (f.read().replace("@SBINDIR@", os.path.dirname(BINARY))
-                    .replace("@CONFIG_FILE@", harness.path("wrenchd.conf")))
+                    .replace("@CONFIG_FILE@", harness.path("wrenchd.conf"))
+                    .replace("@MEMORY_MAX@", memory_max))
         with open(harness.path(name), "w") as f:
             f.write(text)
     r = subprocess.run(["systemd-analyze", "verify", "--man=no",
@@ -85,7 +89,7 @@ def test_units_verify(harness):
                       "ProtectSystem=strict", "ProtectHome=yes", "PrivateTmp=yes",
                       "NoNewPrivileges=yes", "RestrictAddressFamilies=AF_UNIX",
                       "MemoryDenyWriteExecute=yes", "SystemCallFilter=@system-service",
-                      "Restart=on-failure", "User=wrenchd"):
+                      "Restart=on-failure", "User=wrenchd", "MemoryMax=" + memory_max):
         assert directive in service, directive
     with open(harness.path("wrenchd.socket")) as f:
         unit = f.read()
@@ -321,6 +325,56 @@ def unit_settings(path):
     return settings
 
 
+def memory_max(binary, config_text=""):
+    """MemoryMax= by the formula of systemd/memory-max, written again here:
+    the defaults from the daemon's --help, the file's settings over them."""
+    help_text = subprocess.run([binary, "--help"], capture_output=True, text=True,
+                               check=True).stdout
+    values, option = {}, None
+    for line in help_text.splitlines():
+        if line.startswith("  --"):
+            option = line.split()[0][2:]
+        found = re.search(r"\(default (\d+)\)", line)
+        if found:
+            values[option] = int(found.group(1))
+    values["threads"] = os.sysconf("SC_NPROCESSORS_ONLN")   # "the number of cores"
+    for line in config_text.splitlines():
+        key, _, value = line.split("#")[0].partition("=")
+        if value.strip():
+            values[key.strip()] = int(value)
+    mib = 1 << 20
+    total = (values["cache-mb"] * mib
+             + values["max-clients"] * (values["max-output"] + values["max-line"])
+             + values["threads"] * (16 * 0.7 * mib + 64 * values["max-line"])
+             + 64 * mib)
+    return "%dM" % -(-total // mib)
+
+
+def test_memory_max_matches_the_configured_limits(harness):
+    """The installed unit's MemoryMax= is the formula's for the daemon's
+    defaults (the shipped file sets nothing); with a file of the
+    administrator's already in place, for its limits -- and the file is kept."""
+    stage = harness.path("stage")
+
+    def install():
+        r = subprocess.run(["make", "-s", "-C", REPO, "install", "DESTDIR=" + stage,
+                            "PREFIX=/usr/local"], capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stdout + r.stderr
+        return unit_settings(os.path.join(stage, "usr/local/lib/systemd/system/wrenchd.service"))
+
+    unit = install()
+    assert unit["MemoryMax"] == memory_max(BINARY), unit.get("MemoryMax")
+    config = os.path.join(stage, "usr/local/etc/wrenchd/wrenchd.conf")
+    mine = "threads = 3\ncache-mb = 100   # less\nmax-clients = 10\nmax-output = 4096\n"
+    with open(config, "w") as f:
+        f.write(mine)
+    unit = install()
+    assert unit["MemoryMax"] == memory_max(BINARY, mine), unit.get("MemoryMax")
+    assert unit["MemoryMax"] == "%dM" % -(-(100 + 10 * (4096 + (1 << 20)) / (1 << 20)
+                                            + 3 * (11.2 + 64) + 64) // 1)
+    with open(config) as f:
+        assert f.read() == mine
+
 
 # Run in a mount namespace of its own (unshare -m): every mount read-only
 # but the directories named in argv[1] (colon-separated), then exec argv[2:].
@@ -398,6 +452,7 @@ def test_make_install_writes_only_under_destdir(harness, build_elsewhere, prefix
     installed = stage + prefix + "/sbin/wrenchd"
     help_text = subprocess.run([installed, "--help"], capture_output=True, text=True).stdout
     assert config in help_text, help_text[:600]
+    assert unit["MemoryMax"] == memory_max(installed)
     with open(stage + config) as f:
         shipped = f.read()
     assert shipped.startswith("# " + config + " -- ")
