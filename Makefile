@@ -22,7 +22,7 @@ TEST_LIBS = -lcmocka -lpthread
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
-        fuzz-build
+        fuzz-build FORCE
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -38,7 +38,8 @@ help:
 	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md)"
 	@echo "make soak       ten minutes of mixed load, resident memory (bench/README.md)"
 	@echo "make bench      the benchmarks, one table (docs/PERFORMANCE.md)"
-	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR"
+	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR;"
+	@echo "                the configuration in SYSCONFDIR (default PREFIX/etc)"
 	@echo "make uninstall  remove what make install installed"
 	@echo "make deps       install the Debian packages the project needs"
 	@echo "make clean      remove build/"
@@ -115,6 +116,19 @@ $(BUILD)/asan/libwrenchproto.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(PROTO_SRC))
 $(BUILD)/asan/libwrenchd.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(DAEMON_SRC))
 	rm -f $@ && ar rcs $@ $^
 
+# The daemon reads $(SYSCONFDIR)/wrenchd/wrenchd.conf when no --config is
+# given (SYSCONFDIR: see install below), so the path is compiled into
+# wd_main.o, which $(BUILD)/sysconfdir rebuilds whenever SYSCONFDIR changes:
+# a build reads the configuration of the prefix it was built for.
+$(BUILD)/daemon/wd_main.o $(BUILD)/asan/daemon/wd_main.o: $(BUILD)/sysconfdir
+$(BUILD)/daemon/wd_main.o $(BUILD)/asan/daemon/wd_main.o: WARN += -DWD_SYSCONFDIR='"$(SYSCONFDIR)"'
+
+$(BUILD)/sysconfdir: FORCE
+	@mkdir -p $(dir $@)
+	@echo '$(SYSCONFDIR)' | cmp -s - $@ || echo '$(SYSCONFDIR)' > $@
+
+FORCE:
+
 $(BUILD)/asan/wrenchd: $(BUILD)/asan/daemon/wd_main.o $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrenchproto.a $(BUILD)/asan/libwrench.a
 	$(CC) $(SAN) $^ $(SERVER_LIBS) -o $@
 
@@ -165,7 +179,9 @@ unit-asan: $(ASAN_BIN)
 # ---- end-to-end tests (pytest; each test starts its own daemon) ----------
 PYTEST = $(PYTHON) -m pytest -q -p no:cacheprovider
 
-e2e: all $(BUILD)/tests/libfail_storage.so
+# tests/e2e/test_access.py runs the ASan daemon even here: a write past a
+# buffer the kernel fills is seen only by ASan's interceptor.
+e2e: all $(BUILD)/asan/wrenchd $(BUILD)/tests/libfail_storage.so
 	$(PYTEST) tests/e2e
 
 e2e-asan: all $(BUILD)/asan/wrenchd $(BUILD)/tests/libfail_storage.so
@@ -289,8 +305,11 @@ fuzz-smoke: $(FUZZ_BIN)
 # ---- end of fuzzing ----
 
 # ---- install -------------------------------------------------------------------
+# Everything goes under $(DESTDIR)$(PREFIX), the configuration too: it is
+# $(SYSCONFDIR)/wrenchd/wrenchd.conf, and the daemon built here reads it by
+# default.  For the system's /etc: make install PREFIX=/usr SYSCONFDIR=/etc.
 PREFIX    ?= /usr/local
-SYSCONFDIR ?= /etc
+SYSCONFDIR ?= $(PREFIX)/etc
 DESTDIR   ?=
 VERSION    = $(shell sed -n 's/^\#define WR_VERSION "\(.*\)"/\1/p' lib/wrench.h)
 PYVERSION  = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])')
@@ -308,6 +327,9 @@ INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
     $(PREFIX)/share/man/man1/wrenchctl.1 $(PREFIX)/share/man/man8/wrenchd.8 \
     $(PYTHONDIR)/wrenchd.py \
     $(addprefix $(PREFIX)/share/wrenchd/examples/,$(notdir $(wildcard examples/*.json)))
+# The installed configuration file, and the shipped one with its paths.
+CONFIG_FILE = $(SYSCONFDIR)/wrenchd/wrenchd.conf
+CONFIG_PATHS = -e 's|@CONFIG_FILE@|$(CONFIG_FILE)|' -e 's|@PREFIX@|$(PREFIX)|'
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/sbin $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
@@ -322,7 +344,6 @@ install: all
 	for pc in lib/wrench.pc.in clients/c/wrenchclient.pc.in; do \
 	    sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' $$pc \
 	        > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$(basename $$pc .in); done
-	sed 's|@SBINDIR@|$(PREFIX)/sbin|' systemd/wrenchd.service > $(DESTDIR)$(PREFIX)/lib/systemd/system/wrenchd.service
 	install -m 0644 systemd/wrenchd.socket $(DESTDIR)$(PREFIX)/lib/systemd/system/
 	install -m 0644 systemd/wrenchd.sysusers $(DESTDIR)$(PREFIX)/lib/sysusers.d/wrenchd.conf
 	install -m 0644 clients/wrenchctl/wrenchctl.1 $(DESTDIR)$(PREFIX)/share/man/man1/
@@ -330,16 +351,20 @@ install: all
 	install -m 0644 clients/python/wrenchd.py $(DESTDIR)$(PYTHONDIR)/
 	install -m 0644 examples/*.json $(DESTDIR)$(PREFIX)/share/wrenchd/examples/
 	@# The configuration is the administrator's: never overwritten.
-	test -e $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf || \
-	    install -m 0644 systemd/wrenchd.conf $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf
+	test -e $(DESTDIR)$(CONFIG_FILE) || { sed $(CONFIG_PATHS) systemd/wrenchd.conf \
+	    > $(DESTDIR)$(CONFIG_FILE) && chmod 0644 $(DESTDIR)$(CONFIG_FILE); }
+	@# MemoryMax= from the limits in that file (systemd/memory-max says how).
+	memory_max=$$(systemd/memory-max $(BUILD)/wrenchd $(DESTDIR)$(CONFIG_FILE)) && \
+	sed -e 's|@SBINDIR@|$(PREFIX)/sbin|' -e "s|@MEMORY_MAX@|$$memory_max|" $(CONFIG_PATHS) \
+	    systemd/wrenchd.service > $(DESTDIR)$(PREFIX)/lib/systemd/system/wrenchd.service
 
 uninstall:
 	rm -f $(addprefix $(DESTDIR),$(INSTALLED))
 	-rmdir $(DESTDIR)$(PREFIX)/include/wrench $(DESTDIR)$(PREFIX)/share/wrenchd/examples \
 	    $(DESTDIR)$(PREFIX)/share/wrenchd 2>/dev/null
 	@# The configuration goes only if it is still the one shipped.
-	-cmp -s systemd/wrenchd.conf $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf && \
-	    rm -f $(DESTDIR)$(SYSCONFDIR)/wrenchd/wrenchd.conf && rmdir $(DESTDIR)$(SYSCONFDIR)/wrenchd
+	-sed $(CONFIG_PATHS) systemd/wrenchd.conf | cmp -s - $(DESTDIR)$(CONFIG_FILE) && \
+	    rm -f $(DESTDIR)$(CONFIG_FILE) && rmdir $(DESTDIR)$(SYSCONFDIR)/wrenchd
 
 # ---- physics validation (tests/physics) ----
 # wrenchd's answers against Box2D (docs/VALIDATION.md).  physics-check is the

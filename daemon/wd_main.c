@@ -21,7 +21,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#define DEFAULT_CONFIG "/etc/wrenchd/wrenchd.conf"
+/* Read when no --config is given: the Makefile's SYSCONFDIR ($(PREFIX)/etc
+ * unless set), so an installed daemon reads the file make install wrote there
+ * and a build never reads one installed for another prefix. */
+#ifndef WD_SYSCONFDIR
+#error "WD_SYSCONFDIR, the configuration directory, comes from the Makefile (SYSCONFDIR)"
+#endif
+#define DEFAULT_CONFIG WD_SYSCONFDIR "/wrenchd/wrenchd.conf"
 
 /* Where a setting comes from, for error messages and list replacement. */
 typedef enum { FROM_FILE, FROM_COMMAND_LINE } origin;
@@ -244,7 +250,8 @@ static void usage(FILE *out)
           "Serve wrench cones of planar fixtures (SPEC.md): JSON-RPC 2.0, Unix socket.\n"
           "\n"
           "  --config FILE            read settings from FILE, 'option = value' per line\n"
-          "                           (default " DEFAULT_CONFIG " when it exists);\n"
+          "                           (default, when it exists:\n"
+          "                           " DEFAULT_CONFIG ");\n"
           "                           options given here override it\n",
           out);
     for (const option_spec *o = OPTIONS; o->name; o++) {

@@ -31,6 +31,7 @@
 #define _GNU_SOURCE
 #include "wd_server.h"
 #include "wd_log.h"
+#include "wd_peer.h"
 #include "wd_systemd.h"
 #include "wd_worker.h"
 
@@ -632,37 +633,6 @@ static void on_event(struct bufferevent *bev, short events, void *argument)
     maybe_finish(c);
 }
 
-/* Is the peer admitted by the allow lists?  Its user id (SO_PEERCRED), or
- * its primary or a supplementary group (SO_PEERGROUPS), must be listed; with
- * no list everyone who can open the socket is.  `who` receives its uid. */
-static bool peer_allowed(const wd_config *config, int fd, char *who, size_t who_size)
-{
-    if (config->allow_uid_count == 0 && config->allow_gid_count == 0)
-        return true;
-    struct ucred credentials;
-    socklen_t length = sizeof credentials;
-    if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &credentials, &length) != 0) {
-        snprintf(who, who_size, "a peer of unknown identity");
-        return false;
-    }
-    snprintf(who, who_size, "uid %u (gid %u)", (unsigned)credentials.uid,
-             (unsigned)credentials.gid);
-    for (int i = 0; i < config->allow_uid_count; i++)
-        if (config->allow_uids[i] == credentials.uid)
-            return true;
-    gid_t groups[256];
-    int group_count = 0;
-    socklen_t groups_length = sizeof groups;
-    groups[group_count++] = credentials.gid;
-    if (getsockopt(fd, SOL_SOCKET, SO_PEERGROUPS, groups + 1, &groups_length) == 0)
-        group_count += (int)(groups_length / sizeof groups[0]);
-    for (int i = 0; i < config->allow_gid_count; i++)
-        for (int j = 0; j < group_count && j < 256; j++)
-            if (config->allow_gids[i] == groups[j])
-                return true;
-    return false;
-}
-
 /* A refused client gets this long to read its error line and hang up. */
 #define LINGER_SECONDS 2
 
@@ -675,7 +645,7 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     wd_server *s = argument;
     char who[64], reason[128];
     int refusal = 0;
-    if (!peer_allowed(s->config, fd, who, sizeof who)) {
+    if (!wd_peer_allowed(s->config, fd, who, sizeof who)) {
         refusal = WP_ACCESS;
         snprintf(reason, sizeof reason, "%s may not use this daemon (allow-uid, allow-gid)", who);
         atomic_fetch_add(&s->stats.denied, 1);

@@ -37,6 +37,11 @@ SLOW = float(os.environ.get("WRENCHD_SLOW", "20" if WRAPPER else "1"))
 # memory is then no measure of what the daemon holds.
 SANITIZED = "asan" in BINARY or "valgrind" in " ".join(WRAPPER)
 
+# Without --config the daemon reads $(SYSCONFDIR)/wrenchd/wrenchd.conf when it
+# exists: a test's daemon reads none unless the test gives its own (a later
+# --config wins).
+NO_CONFIG = ["--config", "/dev/null"]
+
 START_TIMEOUT = 10.0 * SLOW
 IO_TIMEOUT = 30.0 * SLOW
 STOP_TIMEOUT = 20.0 * SLOW
@@ -213,7 +218,7 @@ class Daemon:
         self.checked = False
 
     def command(self):
-        cmd = WRAPPER + [BINARY, "--log-level", "warn"]
+        cmd = WRAPPER + [BINARY] + NO_CONFIG + ["--log-level", "warn"]
         if not self.default_socket:
             cmd += ["--socket", self.path]
         if self.state_dir:
@@ -339,7 +344,7 @@ class Harness:
 
     def run(self, *args, timeout=None):
         """Run the binary to completion (for command-line checks)."""
-        return subprocess.run(WRAPPER + [BINARY] + list(args), cwd=self.dir,
+        return subprocess.run(WRAPPER + [BINARY] + NO_CONFIG + list(args), cwd=self.dir,
                               stdin=subprocess.DEVNULL, capture_output=True,
                               timeout=timeout or STOP_TIMEOUT)
 

@@ -3,6 +3,7 @@ sd_notify, the configuration file, peer access control, make install."""
 
 import json
 import os
+import re
 import shutil
 import signal
 import socket
@@ -13,7 +14,7 @@ import time
 
 import pytest
 
-from conftest import BINARY, REPO, WRAPPER, SLOW
+from conftest import BINARY, NO_CONFIG, REPO, WRAPPER, SLOW
 
 WRENCHCTL = os.path.join(REPO, "build", "wrenchctl")
 DISC = os.path.join(REPO, "examples", "disc-corner.json")
@@ -69,9 +70,13 @@ def messages_until(listener, wanted):
 def test_units_verify(harness):
     """systemd-analyze verify accepts the socket and the service (with
     ExecStart pointing at the built daemon, as make install would)."""
+    memory_max = subprocess.run([os.path.join(REPO, "systemd", "memory-max"), BINARY],
+                                capture_output=True, text=True, check=True).stdout.strip()
     for name in ("wrenchd.socket", "wrenchd.service"):
         with open(os.path.join(REPO, "systemd", name)) as f:
-            text = f.read().replace("@SBINDIR@", os.path.dirname(BINARY))
+            text = (f.read().replace("@SBINDIR@", os.path.dirname(BINARY))
+                    .replace("@CONFIG_FILE@", harness.path("wrenchd.conf"))
+                    .replace("@MEMORY_MAX@", memory_max))
         with open(harness.path(name), "w") as f:
             f.write(text)
     r = subprocess.run(["systemd-analyze", "verify", "--man=no",
@@ -84,7 +89,7 @@ def test_units_verify(harness):
                       "ProtectSystem=strict", "ProtectHome=yes", "PrivateTmp=yes",
                       "NoNewPrivileges=yes", "RestrictAddressFamilies=AF_UNIX",
                       "MemoryDenyWriteExecute=yes", "SystemCallFilter=@system-service",
-                      "Restart=on-failure", "User=wrenchd"):
+                      "Restart=on-failure", "User=wrenchd", "MemoryMax=" + memory_max):
         assert directive in service, directive
     with open(harness.path("wrenchd.socket")) as f:
         unit = f.read()
@@ -103,8 +108,8 @@ def test_socket_activation_and_notify(harness):
     sock = harness.path("activated.sock")
     env = dict(os.environ, NOTIFY_SOCKET=notify_path)
     process = subprocess.Popen(["systemd-socket-activate", "-l", sock, "-E", "NOTIFY_SOCKET"] +
-                               WRAPPER + [BINARY, "--log-level", "warn", "--socket",
-                                          harness.path("ignored.sock")],
+                               WRAPPER + [BINARY] + NO_CONFIG +
+                               ["--log-level", "warn", "--socket", harness.path("ignored.sock")],
                                env=env, stderr=subprocess.PIPE)
     try:
         wait_for_socket(sock, process)
@@ -129,7 +134,8 @@ def test_notify_without_activation(harness):
     STOPPING=1 at SIGTERM; the socket file it made is removed."""
     listener, notify_path = notify_socket(harness.dir)
     sock = harness.path("plain.sock")
-    process = subprocess.Popen(WRAPPER + [BINARY, "--log-level", "warn", "--socket", sock],
+    process = subprocess.Popen(WRAPPER + [BINARY] + NO_CONFIG + ["--log-level", "warn",
+                                                                 "--socket", sock],
                                env=dict(os.environ, NOTIFY_SOCKET=notify_path),
                                stderr=subprocess.PIPE)
     ready = messages_until(listener, "READY=1")
@@ -270,12 +276,15 @@ def test_make_install_and_pkg_config(harness):
     root = stage + prefix
     for path in EXPECTED_FILES:
         assert os.path.isfile(os.path.join(root, path)), path
-    assert os.path.isfile(os.path.join(stage, "etc", "wrenchd", "wrenchd.conf"))
+    # The configuration under the prefix too ($(PREFIX)/etc), none in /etc.
+    assert os.path.isfile(os.path.join(root, "etc", "wrenchd", "wrenchd.conf"))
+    assert not os.path.exists(os.path.join(stage, "etc"))
     python = [p for p in os.listdir(os.path.join(root, "lib")) if p.startswith("python")]
     assert python and os.path.isfile(os.path.join(root, "lib", python[0], "dist-packages",
                                                   "wrenchd.py"))
     with open(os.path.join(root, "lib/systemd/system/wrenchd.service")) as f:
-        assert "ExecStart=/usr/local/sbin/wrenchd " in f.read()
+        assert ("ExecStart=/usr/local/sbin/wrenchd --config /usr/local/etc/wrenchd/wrenchd.conf "
+                in f.read())
     # pkg-config pointed at the staged tree compiles and runs a program.
     env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(root, "lib", "pkgconfig"))
     flags = subprocess.run(["pkg-config", "--define-prefix", "--cflags", "--libs", "wrench",
@@ -302,4 +311,161 @@ def test_make_install_and_pkg_config(harness):
                         "PREFIX=" + prefix], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     left = [os.path.join(d, f) for d, _, files in os.walk(stage) for f in files]
+    assert left == [], left
+
+
+def unit_settings(path):
+    """The Key=value lines of a unit file, last one wins."""
+    settings = {}
+    with open(path) as f:
+        for line in f:
+            if "=" in line and not line.startswith("#"):
+                key, value = line.rstrip("\n").split("=", 1)
+                settings[key] = value
+    return settings
+
+
+def memory_max(binary, config_text=""):
+    """MemoryMax= by the formula of systemd/memory-max, written again here:
+    the defaults from the daemon's --help, the file's settings over them."""
+    help_text = subprocess.run([binary, "--help"], capture_output=True, text=True,
+                               check=True).stdout
+    values, option = {}, None
+    for line in help_text.splitlines():
+        if line.startswith("  --"):
+            option = line.split()[0][2:]
+        found = re.search(r"\(default (\d+)\)", line)
+        if found:
+            values[option] = int(found.group(1))
+    values["threads"] = os.sysconf("SC_NPROCESSORS_ONLN")   # "the number of cores"
+    for line in config_text.splitlines():
+        key, _, value = line.split("#")[0].partition("=")
+        if value.strip():
+            values[key.strip()] = int(value)
+    mib = 1 << 20
+    total = (values["cache-mb"] * mib
+             + values["max-clients"] * (values["max-output"] + values["max-line"])
+             + values["threads"] * (16 * 0.7 * mib + 64 * values["max-line"])
+             + 64 * mib)
+    return "%dM" % -(-total // mib)
+
+
+def test_memory_max_matches_the_configured_limits(harness):
+    """The installed unit's MemoryMax= is the formula's for the daemon's
+    defaults (the shipped file sets nothing); with a file of the
+    administrator's already in place, for its limits -- and the file is kept."""
+    stage = harness.path("stage")
+
+    def install():
+        r = subprocess.run(["make", "-s", "-C", REPO, "install", "DESTDIR=" + stage,
+                            "PREFIX=/usr/local"], capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stdout + r.stderr
+        return unit_settings(os.path.join(stage, "usr/local/lib/systemd/system/wrenchd.service"))
+
+    unit = install()
+    assert unit["MemoryMax"] == memory_max(BINARY), unit.get("MemoryMax")
+    config = os.path.join(stage, "usr/local/etc/wrenchd/wrenchd.conf")
+    mine = "threads = 3\ncache-mb = 100   # less\nmax-clients = 10\nmax-output = 4096\n"
+    with open(config, "w") as f:
+        f.write(mine)
+    unit = install()
+    assert unit["MemoryMax"] == memory_max(BINARY, mine), unit.get("MemoryMax")
+    assert unit["MemoryMax"] == "%dM" % -(-(100 + 10 * (4096 + (1 << 20)) / (1 << 20)
+                                            + 3 * (11.2 + 64) + 64) // 1)
+    with open(config) as f:
+        assert f.read() == mine
+
+
+# Run in a mount namespace of its own (unshare -m): every mount read-only
+# but the directories named in argv[1] (colon-separated), then exec argv[2:].
+# A write anywhere else fails with EROFS.
+READ_ONLY_BUT = r"""
+import errno, os, re, subprocess, sys
+writable = sys.argv[1].split(":")
+for path in writable:
+    subprocess.run(["mount", "--bind", path, path], check=True)
+with open("/proc/self/mountinfo") as f:
+    points = [re.sub(r"\\(\d{3})", lambda m: chr(int(m.group(1), 8)), line.split()[4])
+              for line in f]
+for point in points:
+    if point not in writable and not point.startswith(("/proc", "/sys", "/dev")):
+        subprocess.run(["mount", "-o", "remount,bind,ro", point], stderr=subprocess.DEVNULL)
+for probe in ("/etc", os.path.dirname(writable[0])):
+    try:
+        os.close(os.open(os.path.join(probe, ".wrenchd-probe"), os.O_CREAT | os.O_WRONLY))
+        sys.exit("%s is still writable: the test would prove nothing" % probe)
+    except OSError as e:
+        if e.errno != errno.EROFS:
+            raise
+os.execvp(sys.argv[2], sys.argv[2:])
+"""
+
+
+@pytest.fixture(scope="module")
+def build_elsewhere():
+    """A build directory of the install tests' own: a PREFIX other than the
+    checkout's rebuilds the daemon (its configuration path), which must not
+    change build/ under the other tests' feet."""
+    directory = tempfile.mkdtemp(prefix="wrbuild", dir="/tmp")
+    yield directory
+    shutil.rmtree(directory, ignore_errors=True)
+
+
+@pytest.mark.skipif(os.geteuid() != 0 or shutil.which("unshare") is None,
+                    reason="needs root and unshare to make all but DESTDIR read-only")
+@pytest.mark.parametrize("prefix,sysconfdir,destdir", [
+    ("/tmp/inst", None, True),
+    ("/usr", "/etc", True),
+    ("inst", None, False),    # no DESTDIR: a PREFIX in the test's directory
+])
+def test_make_install_writes_only_under_destdir(harness, build_elsewhere, prefix, sysconfdir,
+                                               destdir):
+    """make install writes nothing outside DESTDIR$(PREFIX) (the rest of the
+    system read-only): with a PREFIX of its own, with the usual PREFIX=/usr
+    SYSCONFDIR=/etc, and without DESTDIR.  The unit and the installed daemon
+    name the configuration file of that prefix; make uninstall takes it all
+    away."""
+    scratch = harness.path("scratch")
+    os.makedirs(scratch)
+    if destdir:
+        stage = harness.path("stage")
+        writable = stage
+    else:
+        stage, prefix = "", harness.path(prefix)
+        writable = prefix
+    os.makedirs(writable)
+    make = (["make", "-s", "-C", REPO, "BUILD=" + build_elsewhere, "PREFIX=" + prefix] +
+            (["DESTDIR=" + stage] if destdir else []) +
+            (["SYSCONFDIR=" + sysconfdir] if sysconfdir else []))
+    config = (sysconfdir or prefix + "/etc") + "/wrenchd/wrenchd.conf"
+    env = dict(os.environ, TMPDIR=scratch)   # the compiler's temporary files
+    r = subprocess.run(["unshare", "--mount", "--propagation", "private", sys.executable, "-c",
+                        READ_ONLY_BUT, ":".join([writable, build_elsewhere, scratch])] +
+                       make + ["-j2", "install"],
+                       capture_output=True, text=True, timeout=900, env=env)
+    assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
+    files = {os.path.join(d, f)[len(stage):] for d, _, names in os.walk(writable)
+             for f in names}
+    assert config in files and prefix + "/sbin/wrenchd" in files, sorted(files)
+    unit = unit_settings(stage + prefix + "/lib/systemd/system/wrenchd.service")
+    assert unit["ExecStart"].split()[:3] == [prefix + "/sbin/wrenchd", "--config", config]
+    installed = stage + prefix + "/sbin/wrenchd"
+    help_text = subprocess.run([installed, "--help"], capture_output=True, text=True).stdout
+    assert config in help_text, help_text[:600]
+    assert unit["MemoryMax"] == memory_max(installed)
+    with open(stage + config) as f:
+        shipped = f.read()
+    assert shipped.startswith("# " + config + " -- ")
+    if not destdir:
+        # Installed for real: without --config the daemon reads that file.
+        with open(config, "w") as f:
+            f.write("threads = lots\n")
+        ran = subprocess.run([installed, "--socket", harness.path("never.sock")],
+                             capture_output=True, text=True, timeout=30)
+        assert ran.returncode == 2 and config + ":1: threads" in ran.stderr, ran.stderr
+        with open(config, "w") as f:
+            f.write(shipped)
+    r = subprocess.run(make + ["uninstall"], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    left = [os.path.join(d, f) for d, _, names in os.walk(writable) for f in names]
     assert left == [], left
