@@ -206,8 +206,9 @@ static const option_spec OPTIONS[] = {
                       "evicted (default 256)", set_cache_mb},
     {"max-fixtures", "N", "most stored fixtures; a put of another one is\n"
                           "refused (default 10000)", set_max_fixtures},
-    {"max-line", "BYTES", "longest request line (default 16777216: room\n"
-                          "for --max-wrenches wrenches however written)", set_max_line},
+    {"max-line", "BYTES", "longest request line, with room for\n"
+                          "--max-wrenches wrenches however written\n"
+                          "(default 16777216)", set_max_line},
     {"max-depth", "N", "deepest JSON nesting of a request (default 64)", set_max_depth},
     {"max-wrenches", "N", "most wrenches in one request (default 100000)",
      set_max_wrenches},

@@ -344,7 +344,7 @@ def memory_max(binary, config_text=""):
             values[key.strip()] = int(value)
     mib = 1 << 20
     total = (values["cache-mb"] * mib
-             + values["max-clients"] * (values["max-output"] + values["max-line"])
+             + values["max-clients"] * (values["max-output"] + 2 * values["max-line"] + mib / 4)
              + values["threads"] * (16 * 0.7 * mib + 64 * values["max-line"])
              + 64 * mib)
     return "%dM" % -(-total // mib)
