@@ -370,8 +370,9 @@ def test_memory_max_matches_the_configured_limits(harness):
         f.write(mine)
     unit = install()
     assert unit["MemoryMax"] == memory_max(BINARY, mine), unit.get("MemoryMax")
-    assert unit["MemoryMax"] == "%dM" % -(-(100 + 10 * (4096 + (1 << 20)) / (1 << 20)
-                                            + 3 * (11.2 + 64) + 64) // 1)
+    # By hand: max-line's default is 16 MiB.
+    assert unit["MemoryMax"] == "%dM" % -(-(100 + 10 * (4096 / (1 << 20) + 2 * 16 + 0.25)
+                                            + 3 * (11.2 + 64 * 16) + 64) // 1)
     with open(config) as f:
         assert f.read() == mine
 
