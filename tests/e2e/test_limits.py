@@ -1,0 +1,80 @@
+"""Limits that mean what they say (issue 14): the default line length holds
+the default number of wrenches however they are written; a classify's
+tolerance is a band in [0, 1), and the lp method, which finds no margin,
+takes none."""
+
+import json
+import random
+
+import fixtures as FX
+import model as M
+
+
+def test_max_wrenches_fits_in_max_line_by_default(harness):
+    """100000 wrenches (the default --max-wrenches) in the longest ordinary
+    spelling, {"force": [x, y], "at": [x, y]} with 17-digit numbers, fit in
+    the default --max-line, and are answered; one more wrench is refused by
+    --max-wrenches (-32003), not by the line length."""
+    d = harness.start()
+    c = d.client()
+    fid = c.result("fixture.put", {"fixture": FX.disc_corner(0.5)})["id"]
+    rnd = random.Random(14)
+
+    def wrench():
+        return {"force": [rnd.uniform(-1, 1), rnd.uniform(-1, 1)],
+                "at": [rnd.uniform(-1, 1), rnd.uniform(-1, 1)]}
+
+    wrenches = [wrench() for _ in range(100000)]
+    request = {"jsonrpc": "2.0", "method": "wrench.classify", "id": 1,
+               "params": {"fixture": fid, "wrenches": wrenches, "sets": ["goal"]}}
+    line = json.dumps(request)
+    assert len(line) > 10 * 1000 * 1000, len(line)  # the old default, 1 MiB, was far short
+    c.send_line(line)
+    answer = c.read_json(timeout=120)
+    assert "result" in answer, str(answer)[:300]
+    assert len(answer["result"]["results"]) == 100000
+    # Spot-check against the independent model: its margins are the daemon's.
+    model = M.Model(FX.disc_corner(0.5))
+    classifier = M.Classifier(model)
+    for i in range(0, 100000, 997):
+        w = wrenches[i]
+        lever = (w["at"][0] - model.com[0], w["at"][1] - model.com[1])
+        g = (w["force"][0], w["force"][1], lever[0] * w["force"][1] - lever[1] * w["force"][0])
+        expected = classifier.classify(g, "goal").margin
+        got = answer["result"]["results"][i]["goal"]["margin"]
+        assert abs(got - expected) < 1e-7, (i, got, expected)
+    request["params"]["wrenches"].append(wrench())
+    c.send_line(json.dumps(request))
+    error = c.read_json(timeout=120)["error"]
+    assert error["code"] == -32003 and error["data"]["field"] == "params.wrenches", error
+
+
+def test_tolerance_is_a_band_in_0_1(daemon):
+    c = daemon.client()
+    fid = c.result("fixture.put", {"fixture": FX.disc_corner(0.5)})["id"]
+    base = {"fixture": fid, "wrenches": [[-1, -1, 0], [1, 1, 0]]}
+    for good in (0, 1e-9, 0.5, 0.999999):
+        results = c.result("wrench.classify", dict(base, tolerance=good))["results"]
+        assert len(results) == 2
+    # A wrench with margin m is "boundary" exactly when |m| <= tolerance.
+    plain = c.result("wrench.classify", base)["results"]
+    for r in plain:
+        m = r["goal"]["margin"]
+        wide = c.result("wrench.classify", dict(base, tolerance=abs(m) + 1e-6))["results"]
+        assert wide[plain.index(r)]["goal"]["verdict"] == "boundary", (m, wide)
+    for bad in (1, 1.5, -1e-12, -1):
+        e = c.error("wrench.classify", dict(base, tolerance=bad))
+        assert e["code"] == -32602 and e["data"]["field"] == "params.tolerance", e
+        assert "[0, 1)" in e["data"]["reason"], e
+
+
+def test_lp_takes_no_tolerance(daemon):
+    c = daemon.client()
+    fid = c.result("fixture.put", {"fixture": FX.disc_corner(0.5)})["id"]
+    base = {"fixture": fid, "wrenches": [[-1, -1, 0]], "method": "lp"}
+    r = c.result("wrench.classify", base)["results"][0]["goal"]
+    assert r["margin"] is None and r["verdict"] in ("inside", "outside")
+    for tolerance in (0, 1e-9):
+        e = c.error("wrench.classify", dict(base, tolerance=tolerance))
+        assert e["code"] == -32602 and e["data"]["field"] == "params.tolerance", e
+        assert "lp" in e["data"]["reason"], e
