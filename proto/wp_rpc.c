@@ -93,7 +93,8 @@ static cJSON *call(const wp_host *host, const wp_limits *limits, const cJSON *re
 }
 
 /* Answer one request object into `b`; nothing for a notification.  The id
- * is echoed as the client wrote it (canonical text of the parsed value). */
+ * is echoed as the client wrote it: a number's own text (kept by
+ * wp_json_keep_id_text), a string's canonical text. */
 static void answer_request(const wp_host *host, const wp_limits *limits, const cJSON *request,
                            wp_buffer *b, wp_counts *counts)
 {
@@ -115,7 +116,7 @@ static void answer_request(const wp_host *host, const wp_limits *limits, const c
         wp_error_set(&error, WP_INVALID_REQUEST, "id", "must be a finite number");
     } else {
         if (id && !cJSON_IsNull(id)) {
-            id_text = id_owned = wp_canonical(id, NULL);
+            id_text = id_owned = wp_json_id_text(id);
             if (!id_owned)
                 id_text = "null";
         }
@@ -224,12 +225,31 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
     }
     const char *end = NULL;
     cJSON *json = cJSON_ParseWithLengthOpts(line + start, length - start, &end, false);
+    if (json && end == line + length && shape.number_problem) {
+        /* cJSON read it, but RFC 8259 does not allow it (a leading zero
+         * would be octal to some readers): not JSON. */
+        cJSON_Delete(json);
+        counts->requests++;
+        counts->errors++;
+        char reason[160];
+        snprintf(reason, sizeof reason, "the number %.*s%s %s, which JSON (RFC 8259) does not allow",
+                 (int)(shape.number_length > 40 ? 40 : shape.number_length),
+                 line + shape.number_at, shape.number_length > 40 ? "..." : "",
+                 shape.number_problem);
+        return refuse(refusal, WP_PARSE_ERROR, reason);
+    }
     if (!json || end != line + length) {
         cJSON_Delete(json);
         counts->requests++;
         counts->errors++;
         return refuse(refusal, WP_PARSE_ERROR, json ? "text after the JSON value"
                                                       : "the line is not valid JSON");
+    }
+    if (!wp_json_keep_id_text(json, line + start, length - start)) {
+        cJSON_Delete(json);
+        counts->requests++;
+        counts->errors++;
+        return refuse(refusal, WP_INTERNAL, "out of memory");
     }
     return json;
 }

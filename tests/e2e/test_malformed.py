@@ -238,6 +238,34 @@ assert len(ROWS) >= 40
 assert len({r[0] for r in ROWS}) == len(ROWS)
 
 
+# Lines refused for what their reason must name: (name, raw line, code,
+# data.field, answer id, a phrase of data.reason).
+REASON_ROWS = [
+    # RFC 8259 numbers that cJSON (strtod) would read
+    ("id-leading-zero", '{"jsonrpc":"2.0","method":"fixture.list","id":012}', -32700, "", None,
+     "the number 012 has a leading zero"),
+    ("negative-leading-zero", classify(wrenches=[[-12345.5, 0, 0]]).replace("-12345.5", "-012"),
+     -32700, "", None, "the number -012 has a leading zero"),
+    ("double-zero", '[{"jsonrpc":"2.0","method":"fixture.list","id":00}]', -32700, "", None,
+     "the number 00 has a leading zero"),
+    ("point-without-digits", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "1."),
+     -32700, "", None, "the number 1. has no digit after its decimal point"),
+    ("point-before-exponent", classify(tolerance=12345.5).replace("12345.5", "1.e-9"),
+     -32700, "", None, "the number 1.e-9 has no digit after its decimal point"),
+    ("fraction-without-integer", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "-.5"),
+     -32700, "", None, "the number -.5 has no digit before its fraction"),
+    # what cJSON refuses itself is answered as before
+    ("plus-sign", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "+1"), -32700, "",
+     None, "the line is not valid JSON"),
+    ("bare-fraction", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", ".5"), -32700, "",
+     None, "the line is not valid JSON"),
+    ("exponent-without-digits", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "1e"),
+     -32700, "", None, "the line is not valid JSON"),
+    ("hexadecimal", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "0x10"), -32700, "",
+     None, "the line is not valid JSON"),
+]
+
+
 def check_error(answer, code, field, rid, name):
     assert isinstance(answer, dict), (name, answer)
     assert answer.get("jsonrpc") == "2.0", (name, answer)
@@ -272,6 +300,18 @@ def test_malformed(daemon, name, raw, code, field, rid):
     r = c.result("wrench.classify", {"fixture": fid, "wrenches": GOOD_WRENCH})
     assert r["results"][0]["goal"]["verdict"] == "inside"
     a.expect_silence(0.05)
+
+
+def test_reasons_name_the_problem(daemon):
+    """One connection, each row: its code, field and id, and a reason that
+    names what is wrong; the connection keeps serving after each."""
+    a = daemon.client()
+    for name, raw, code, field, rid, reason in REASON_ROWS:
+        a.send_line(raw)
+        answer = a.read_json()
+        check_error(answer, code, field, rid, name)
+        assert reason in answer["error"]["data"]["reason"], (name, answer)
+    assert a.result("fixture.list", {}) == {"fixtures": []}
 
 
 def test_all_rows_on_one_connection(daemon):
