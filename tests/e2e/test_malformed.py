@@ -263,6 +263,23 @@ REASON_ROWS = [
      -32700, "", None, "the line is not valid JSON"),
     ("hexadecimal", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "0x10"), -32700, "",
      None, "the line is not valid JSON"),
+    # fixtures and constraint strings: the fault itself, not a consequence
+    ("polygon-bow-tie-crossing", put_variant(["body", "shape", "vertices"],
+                                             [[0, 0], [4, 2], [4, 0], [0, 2]], base=RECT),
+     -32602, "params.fixture.body.shape.vertices", RID,
+     "the polygon intersects itself: edge 0 (vertices 0 to 1) and edge 2 (vertices 2 to 3) "
+     "meet at (2, 1)"),
+    ("polygon-beyond-doubles", put_variant(["body", "shape", "vertices"],
+                                           [[0, 0], [4e200, 0], [4e200, 2e200], [0, 2e200]],
+                                           base=RECT),
+     -32602, "params.fixture.body.shape.vertices", RID,
+     "the polygon is too large for double precision"),
+    ("fixel-normal-tangent", put_variant(["fixels", 0, "normal"], [0, 1]), -32602,
+     "params.fixture.fixels[0].normal", RID, "(0, 1) is tangent to the boundary at (-1, 0)"),
+    ("cone-multibyte-letter", line("cone.get", {"fixture": DC, "constraints": "s\u00e9"}),
+     -32602, "params.constraints", RID, "letter 2 is '\u00e9', not one of s a u l r n m"),
+    ("cone-multibyte-too-long", line("cone.get", {"fixture": DC, "constraints": "s\u00e9m"}),
+     -32602, "params.constraints", RID, "has 3 letters, the fixture has 2 fixels"),
 ]
 
 
