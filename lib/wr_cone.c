@@ -15,24 +15,56 @@
 
 static const char LETTERS[] = "saulrnm";
 
+/* The bytes of the well-formed UTF-8 character at text[0] (at most 4), or
+ * 0 when there is none: a message may quote it then, and '?' else. */
+static size_t utf8_character(const unsigned char *text)
+{
+    if (text[0] < 0x80)
+        return 1;
+    size_t more = text[0] >= 0xc2 && text[0] <= 0xdf   ? 1
+                  : text[0] >= 0xe0 && text[0] <= 0xef ? 2
+                  : text[0] >= 0xf0 && text[0] <= 0xf4 ? 3
+                                                       : 0;
+    if (more == 0)
+        return 0;
+    for (size_t i = 1; i <= more; i++)
+        if ((text[i] & 0xc0) != 0x80)
+            return 0;
+    /* Overlong three- and four-byte forms, surrogates, beyond U+10FFFF. */
+    if ((text[0] == 0xe0 && text[1] < 0xa0) || (text[0] == 0xed && text[1] >= 0xa0) ||
+        (text[0] == 0xf0 && text[1] < 0x90) || (text[0] == 0xf4 && text[1] >= 0x90))
+        return 0;
+    return more + 1;
+}
+
 bool wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
                          wr_error *error)
 {
     memset(out, 0, sizeof *out);
-    size_t length = strlen(text);
-    if ((int)length != fixel_count) {
+    /* Letters are characters: "sé" is two letters, not three bytes. */
+    size_t characters = 0;
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++)
+        characters += (*p & 0xc0) != 0x80;
+    if (characters != (size_t)fixel_count) {
         wr_error_set(error, "", "has %zu letters, the fixture has %d fixels: one letter per fixel",
-                     length, fixel_count);
+                     characters, fixel_count);
         return false;
     }
-    for (size_t i = 0; i < length; i++) {
-        if (!text[i] || !strchr(LETTERS, text[i])) {
-            wr_error_set(error, "",
-                         "letter %zu is '%c', not one of s a u l r n m (SPEC section 2)",
-                         i + 1, text[i] >= 32 && text[i] < 127 ? text[i] : '?');
+    const unsigned char *p = (const unsigned char *)text;
+    for (int i = 0; i < fixel_count; i++) {
+        if (*p >= 0x80 || !strchr(LETTERS, *p)) {
+            size_t bytes = utf8_character(p);
+            bool printable = bytes > 1 || (*p >= 32 && *p < 127);
+            wr_error_set(error, "", "letter %d is '%.*s', not one of s a u l r n m (SPEC section 2)",
+                         i + 1, printable ? (int)bytes : 1, printable ? (const char *)p : "?");
             return false;
         }
-        out->letters[i] = text[i];
+        out->letters[i] = (char)*p++;
+    }
+    if (*p) { /* stray UTF-8 continuation bytes, which the count passed over */
+        wr_error_set(error, "", "byte 0x%02x after letter %d is not a letter (not UTF-8)", *p,
+                     fixel_count);
+        return false;
     }
     out->length = fixel_count;
     return true;

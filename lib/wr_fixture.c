@@ -19,6 +19,9 @@
  * each division round once), so every normal this file computes, and every
  * normalised one, passes: normalising is then idempotent, bit for bit. */
 #define UNIT_LENGTH_TOLERANCE (8 * DBL_EPSILON)
+/* A given normal whose angle to the boundary is below this (its cosine with
+ * the inward normal, in radians near tangency) is tangent to it. */
+#define TANGENT_TOLERANCE 1e-9
 
 void wr_error_set(wr_error *error, const char *field, const char *format, ...)
 {
@@ -102,17 +105,32 @@ static bool on_segment(const double a[2], const double b[2], const double c[2])
            fmin(a[1], b[1]) <= c[1] && c[1] <= fmax(a[1], b[1]);
 }
 
-/* Closed segments ab and cd share a point. */
+/* Closed segments ab and cd share a point?  If so, *point receives one:
+ * where they cross, or an end of one lying on the other. */
 static bool segments_meet(const double a[2], const double b[2], const double c[2],
-                          const double d[2])
+                          const double d[2], double point[2])
 {
     double o1 = orient(a, b, c), o2 = orient(a, b, d);
     double o3 = orient(c, d, a), o4 = orient(c, d, b);
     if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) &&
-        ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+        ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
+        /* c + t (d - c) with t = o3 / (o3 - o4): the orientations are the
+         * signed distances of a and b from cd, times |cd|. */
+        double t = o3 / (o3 - o4);
+        point[0] = a[0] + t * (b[0] - a[0]);
+        point[1] = a[1] + t * (b[1] - a[1]);
         return true;
-    return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
-           (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+    }
+    const double *on = o1 == 0 && on_segment(a, b, c)   ? c
+                       : o2 == 0 && on_segment(a, b, d) ? d
+                       : o3 == 0 && on_segment(c, d, a) ? a
+                       : o4 == 0 && on_segment(c, d, b) ? b
+                                                        : NULL;
+    if (on) {
+        point[0] = on[0];
+        point[1] = on[1];
+    }
+    return on != NULL;
 }
 
 /* Distance from p to segment ab; *fraction receives the parameter of the
@@ -128,6 +146,51 @@ static double segment_distance(const double a[2], const double b[2], const doubl
     if (fraction)
         *fraction = t;
     return hypot(p[0] - (a[0] + t * d[0]), p[1] - (a[1] + t * d[1]));
+}
+
+static void polygon_moments(const double (*v)[2], size_t n, double *area, double centroid[2],
+                            double *polar_moment);
+
+/* Twice the signed area, summed about vertex 0 (as polygon_moments does):
+ * the products are of the polygon's size, not of its distance from the
+ * origin, so they neither overflow nor cancel as much. */
+static double polygon_area2(const double (*v)[2], size_t n)
+{
+    double area2 = 0;
+    for (size_t i = 1; i + 1 < n; i++)
+        area2 += orient(v[0], v[i], v[i + 1]);
+    return area2;
+}
+
+/* The first two edges that meet where a simple polygon's do not: edges
+ * that are not neighbours sharing a point, or neighbours folding back onto
+ * each other.  Edge i runs from vertex i to vertex i + 1. */
+static bool self_intersection(const double (*v)[2], size_t n, size_t *first, size_t *second,
+                              double point[2])
+{
+    for (size_t i = 0; i < n; i++) {
+        const double *a = v[i], *b = v[(i + 1) % n], *c = v[(i + 2) % n];
+        double d1[2] = {b[0] - a[0], b[1] - a[1]}, d2[2] = {c[0] - b[0], c[1] - b[1]};
+        if (cross2(d1, d2) == 0 && d1[0] * d2[0] + d1[1] * d2[1] < 0) {
+            /* Collinear and turning back: they overlap from the shared
+             * vertex b on. */
+            *first = i;
+            *second = (i + 1) % n;
+            point[0] = b[0];
+            point[1] = b[1];
+            return true;
+        }
+        for (size_t j = i + 2; j < n; j++) {
+            if (i == 0 && j == n - 1)
+                continue; /* neighbours through vertex 0 */
+            if (segments_meet(a, b, v[j], v[(j + 1) % n], point)) {
+                *first = i;
+                *second = j;
+                return true;
+            }
+        }
+    }
+    return false;
 }
 
 static bool check_polygon(const wr_fixture_spec *spec, double size, wr_error *error)
@@ -150,6 +213,11 @@ static bool check_polygon(const wr_fixture_spec *spec, double size, wr_error *er
         if (!check_finite2(v[i], field, error))
             return false;
     }
+    if (!isfinite(size)) {
+        wr_error_set(error, "body.shape.vertices",
+                     "the polygon is too large for double precision: its extent overflows");
+        return false;
+    }
     for (size_t i = 0; i < n; i++) {
         const double *a = v[i], *b = v[(i + 1) % n];
         if (hypot(b[0] - a[0], b[1] - a[1]) <= DEGENERATE_TOLERANCE * size) {
@@ -158,33 +226,50 @@ static bool check_polygon(const wr_fixture_spec *spec, double size, wr_error *er
             return false;
         }
     }
-    double area2 = 0;
-    for (size_t i = 0; i < n; i++)
-        area2 += cross2(v[i], v[(i + 1) % n]);
-    if (fabs(area2) / 2 <= DEGENERATE_TOLERANCE * size * size) {
+    /* Simple: no two edges meet except neighbours at their shared vertex,
+     * and neighbours do not fold back onto each other.  Before the area:
+     * a bow tie's two lobes cancel, and "encloses no area" would hide
+     * that its edges cross. */
+    size_t first, second;
+    double point[2];
+    if (self_intersection(v, n, &first, &second, point)) {
+        if (second == (first + 1) % n) {
+            snprintf(field, sizeof field, "body.shape.vertices[%zu]", second);
+            wr_error_set(error, field,
+                         "the polygon is not simple: the edges at this vertex fold back onto "
+                         "each other");
+        } else {
+            wr_error_set(error, "body.shape.vertices",
+                         "the polygon intersects itself: edge %zu (vertices %zu to %zu) and edge "
+                         "%zu (vertices %zu to %zu) meet at (%g, %g)",
+                         first, first, (first + 1) % n, second, second, (second + 1) % n,
+                         point[0], point[1]);
+        }
+        return false;
+    }
+    double area2 = polygon_area2(v, n);
+    if (!isfinite(area2)) {
+        wr_error_set(error, "body.shape.vertices",
+                     "the polygon is too large for double precision: its area overflows "
+                     "(it spans %g)",
+                     size);
+        return false;
+    }
+    /* Compared as area / size with size: size * size may overflow. */
+    if (fabs(area2) / 2 / size <= DEGENERATE_TOLERANCE * size) {
         wr_error_set(error, "body.shape.vertices", "the polygon encloses no area");
         return false;
     }
-    /* Simple: no two edges meet except neighbours at their shared vertex,
-     * and neighbours do not fold back onto each other. */
-    for (size_t i = 0; i < n; i++) {
-        const double *a = v[i], *b = v[(i + 1) % n], *c = v[(i + 2) % n];
-        double d1[2] = {b[0] - a[0], b[1] - a[1]}, d2[2] = {c[0] - b[0], c[1] - b[1]};
-        if (cross2(d1, d2) == 0 && d1[0] * d2[0] + d1[1] * d2[1] < 0) {
-            snprintf(field, sizeof field, "body.shape.vertices[%zu]", (i + 1) % n);
-            wr_error_set(error, field,
-                         "the polygon is not simple: the edges at this vertex fold back onto each other");
-            return false;
-        }
-        for (size_t j = i + 2; j < n; j++) {
-            if (i == 0 && j == n - 1)
-                continue; /* neighbours through vertex 0 */
-            if (segments_meet(a, b, v[j], v[(j + 1) % n])) {
-                wr_error_set(error, "body.shape.vertices",
-                             "the polygon is not simple: edge %zu crosses edge %zu", i, j);
-                return false;
-            }
-        }
+    /* The inertia needs the second moment, of order size^4. */
+    double area, centroid[2], polar_moment;
+    polygon_moments(v, n, &area, centroid, &polar_moment);
+    if (!isfinite(area) || !isfinite(centroid[0]) || !isfinite(centroid[1]) ||
+        !isfinite(polar_moment)) {
+        wr_error_set(error, "body.shape.vertices",
+                     "the polygon is too large for double precision: its second moment of area "
+                     "overflows (it spans %g)",
+                     size);
+        return false;
     }
     return true;
 }
@@ -318,18 +403,32 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
             out->normal[0] = in->normal[0] / length + 0.0;
             out->normal[1] = in->normal[1] / length + 0.0;
         }
-        bool points_in = true;
-        if (inward_known)
-            points_in = out->normal[0] * inward[0] + out->normal[1] * inward[1] > 0;
-        else if (vertex >= 0) {
+        /* The cosine of the angle to the inward normal: a normal within
+         * TANGENT_TOLERANCE of perpendicular to it lies along the boundary
+         * and pushes nothing away (it is said so, not "points out"). */
+        bool points_in = true, tangent = false;
+        if (inward_known) {
+            double along = out->normal[0] * inward[0] + out->normal[1] * inward[1];
+            tangent = fabs(along) <= TANGENT_TOLERANCE;
+            points_in = along > TANGENT_TOLERANCE;
+        } else if (vertex >= 0) {
             /* At a vertex, the normal must point into the body across at
              * least one of the two edges that meet there. */
             double a[2], b[2];
             size_t n = f->vertex_count;
             edge_inward_normal(f, (size_t)vertex, a);
             edge_inward_normal(f, ((size_t)vertex + n - 1) % n, b);
-            points_in = out->normal[0] * a[0] + out->normal[1] * a[1] > 0 ||
-                        out->normal[0] * b[0] + out->normal[1] * b[1] > 0;
+            double along_a = out->normal[0] * a[0] + out->normal[1] * a[1];
+            double along_b = out->normal[0] * b[0] + out->normal[1] * b[1];
+            points_in = along_a > TANGENT_TOLERANCE || along_b > TANGENT_TOLERANCE;
+            tangent = fabs(along_a) <= TANGENT_TOLERANCE || fabs(along_b) <= TANGENT_TOLERANCE;
+        }
+        if (!points_in && tangent) {
+            wr_error_set(error, field,
+                         "(%g, %g) is tangent to the boundary at (%g, %g), not into the "
+                         "workpiece; a fixel's normal points from the fixel into the workpiece",
+                         in->normal[0], in->normal[1], in->at[0], in->at[1]);
+            return false;
         }
         if (!points_in) {
             wr_error_set(error, field,
@@ -559,10 +658,7 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
         for (size_t i = 0; i < spec->vertex_count; i++)
             for (int k = 0; k < 2; k++)
                 f->vertices[i][k] = spec->vertices[i][k] + 0.0;
-        double area2 = 0;
-        for (size_t i = 0; i < f->vertex_count; i++)
-            area2 += cross2(f->vertices[i], f->vertices[(i + 1) % f->vertex_count]);
-        f->orientation = area2 > 0 ? 1 : -1;
+        f->orientation = polygon_area2(spec->vertices, spec->vertex_count) > 0 ? 1 : -1;
         polygon_moments(spec->vertices, spec->vertex_count, &area, centroid, &polar_moment);
     }
     if (spec->com_given) {
@@ -580,7 +676,15 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
                          (f->com[1] - centroid[1]) * (f->com[1] - centroid[1]);
         f->inertia = f->mass * (polar_moment / area + offset2);
     }
-    if (!(f->inertia > 0) || !isfinite(f->inertia)) {
+    if (!isfinite(f->inertia)) {
+        /* The shape fits in doubles, but mass times its size squared does not. */
+        wr_error_set(error, "body.inertia",
+                     "the uniform inertia of this shape (mass %g, size %g) overflows a double",
+                     f->mass, f->size);
+        wr_fixture_free(f);
+        return NULL;
+    }
+    if (!(f->inertia > 0)) {
         wr_error_set(error, "body.inertia", "the uniform inertia of this shape is not positive");
         wr_fixture_free(f);
         return NULL;

@@ -389,9 +389,54 @@ bool wp_utf8_valid(const char *text, size_t length)
     return true;
 }
 
+/* The end of the number token starting at text[i] ('-' or a digit), and
+ * what RFC 8259's grammar finds wrong with it (NULL: nothing):
+ *   number = [ "-" ] int [ "." 1*DIGIT ] [ ("e" / "E") [ "+" / "-" ] 1*DIGIT ]
+ *   int    = "0" / ( digit1-9 *DIGIT )
+ * The token runs on over every character a number could hold, so that a
+ * message shows all of "012" or "1.e5", not just where it went wrong. */
+static size_t number_token(const char *text, size_t i, size_t length, const char **problem)
+{
+#define DIGIT_AT(k) ((k) < length && text[k] >= '0' && text[k] <= '9')
+    *problem = NULL;
+    size_t k = i;
+    if (text[k] == '-')
+        k++;
+    if (DIGIT_AT(k) && text[k] == '0') {
+        k++;
+        if (DIGIT_AT(k))
+            *problem = "has a leading zero";
+    } else if (DIGIT_AT(k)) {
+        while (DIGIT_AT(k))
+            k++;
+    } else {
+        *problem = "has no digit before its fraction"; /* "-", "-.5" */
+    }
+    if (!*problem && k < length && text[k] == '.') {
+        k++;
+        if (!DIGIT_AT(k))
+            *problem = "has no digit after its decimal point";
+        while (DIGIT_AT(k))
+            k++;
+    }
+    if (!*problem && k < length && (text[k] == 'e' || text[k] == 'E')) {
+        k++;
+        if (k < length && (text[k] == '+' || text[k] == '-'))
+            k++;
+        if (!DIGIT_AT(k))
+            *problem = "has no digit in its exponent";
+        while (DIGIT_AT(k))
+            k++;
+    }
+#undef DIGIT_AT
+    while (k < length && text[k] && strchr("0123456789+-.eE", text[k]))
+        k++;
+    return k;
+}
+
 wp_json_shape wp_json_scan(const char *text, size_t length, int limit)
 {
-    wp_json_shape shape = {0, false, false};
+    wp_json_shape shape = {0, false, false, NULL, 0, 0};
     int depth = 0;
     bool in_string = false;
     for (size_t i = 0; i < length; i++) {
@@ -416,14 +461,160 @@ wp_json_shape wp_json_scan(const char *text, size_t length, int limit)
             }
         } else if (c == ']' || c == '}') {
             depth--;
+        } else if (c == '-' || (c >= '0' && c <= '9')) {
+            /* cJSON reads numbers with strtod, which takes more than JSON
+             * allows ("012", "1.", "-.5", "1.e5"): check each by the RFC. */
+            const char *problem;
+            size_t end = number_token(text, i, length, &problem);
+            if (problem && !shape.number_problem) {
+                shape.number_problem = problem;
+                shape.number_at = i;
+                shape.number_length = end - i;
+            }
+            i = end - 1;
         }
     }
     return shape;
 }
 
+/* ---- numeric ids as the client wrote them ---------------------------------- */
+
+/* JSON white space (RFC 8259); the scan has refused any other control
+ * character before a line is parsed. */
+static size_t skip_space(const char *text, size_t i, size_t length)
+{
+    while (i < length && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n'))
+        i++;
+    return i;
+}
+
+/* The end of the JSON value starting at text[i], in a text cJSON has
+ * already accepted (so no validation here, only its extent). */
+static size_t skip_value(const char *text, size_t i, size_t length)
+{
+    if (i >= length)
+        return length;
+    if (text[i] == '"' || text[i] == '[' || text[i] == '{') {
+        int depth = 0;
+        bool in_string = false;
+        for (; i < length; i++) {
+            char c = text[i];
+            if (in_string) {
+                if (c == '\\')
+                    i++;
+                else if (c == '"')
+                    in_string = false;
+                else
+                    continue;
+            } else if (c == '"') {
+                in_string = true;
+                continue;
+            } else if (c == '[' || c == '{') {
+                depth++;
+                continue;
+            } else if (c == ']' || c == '}') {
+                depth--;
+            } else {
+                continue;
+            }
+            if (depth == 0 && !in_string)
+                return i + 1; /* the closing quote or bracket of the value */
+        }
+        return length;
+    }
+    /* A number or a literal: up to the next delimiter. */
+    while (i < length && text[i] != ',' && text[i] != '}' && text[i] != ']' && text[i] != ' ' &&
+           text[i] != '\t' && text[i] != '\r' && text[i] != '\n')
+        i++;
+    return i;
+}
+
+/* Is the text a JSON number by RFC 8259, and all of it? */
+static bool number_exactly(const char *text, size_t length)
+{
+    const char *problem;
+    return length > 0 && (text[0] == '-' || (text[0] >= '0' && text[0] <= '9')) &&
+           number_token(text, 0, length, &problem) == length && !problem;
+}
+
+/* The object at text[i] ('{'), parsed as `object`: give its first member
+ * named "id" (the one cJSON_GetObjectItemCaseSensitive finds), when that is
+ * a number, the text it was written with.  cJSON keeps members in the
+ * order written, duplicates included, so the k-th member of the text is
+ * the k-th child; names are compared decoded, so "\u0069d" is "id" too. */
+static bool keep_object_id(cJSON *object, const char *text, size_t i, size_t length)
+{
+    i = skip_space(text, i + 1, length);
+    for (cJSON *member = object->child; member && i < length && text[i] == '"';
+         member = member->next) {
+        i = skip_space(text, skip_value(text, i, length), length); /* the name */
+        if (i >= length || text[i] != ':')
+            return true; /* not the text cJSON read: leave the id as parsed */
+        size_t start = skip_space(text, i + 1, length);
+        size_t end = skip_value(text, start, length);
+        if (member->string && strcmp(member->string, "id") == 0) {
+            if (!cJSON_IsNumber(member) || member->valuestring ||
+                !number_exactly(text + start, end - start))
+                return true;
+            char *written = cJSON_malloc(end - start + 1);
+            if (!written)
+                return false;
+            memcpy(written, text + start, end - start);
+            written[end - start] = 0;
+            member->valuestring = written;
+            return true;
+        }
+        i = skip_space(text, end, length);
+        if (i < length && text[i] == ',')
+            i = skip_space(text, i + 1, length);
+    }
+    return true;
+}
+
+static bool has_number_id(const cJSON *request)
+{
+    return cJSON_IsObject(request) &&
+           cJSON_IsNumber(cJSON_GetObjectItemCaseSensitive(request, "id"));
+}
+
+bool wp_json_keep_id_text(cJSON *json, const char *text, size_t length)
+{
+    size_t i = skip_space(text, 0, length);
+    if (i >= length)
+        return true;
+    if (cJSON_IsObject(json) && text[i] == '{')
+        return has_number_id(json) ? keep_object_id(json, text, i, length) : true;
+    if (!cJSON_IsArray(json) || text[i] != '[')
+        return true;
+    bool any = false;
+    for (const cJSON *request = json->child; request && !any; request = request->next)
+        any = has_number_id(request);
+    if (!any) /* no walk over a batch without numeric ids */
+        return true;
+    i = skip_space(text, i + 1, length);
+    for (cJSON *request = json->child; request && i < length; request = request->next) {
+        if (has_number_id(request) && text[i] == '{' &&
+            !keep_object_id(request, text, i, length))
+            return false;
+        i = skip_space(text, skip_value(text, i, length), length);
+        if (i < length && text[i] == ',')
+            i = skip_space(text, i + 1, length);
+    }
+    return true;
+}
+
+char *wp_json_id_text(const cJSON *id)
+{
+    if (cJSON_IsNumber(id) && id->valuestring) {
+        char *copy = malloc(strlen(id->valuestring) + 1);
+        return copy ? strcpy(copy, id->valuestring) : NULL;
+    }
+    return wp_canonical(id, NULL);
+}
+
 /* ---- reading spans of a text without a tree ------------------------------ */
 
-static size_t skip_space(const char *text, size_t length, size_t i)
+static size_t span_space(const char *text, size_t length, size_t i)
 {
     while (i < length && (text[i] == ' ' || text[i] == '\t' || text[i] == '\n' || text[i] == '\r'))
         i++;
@@ -432,7 +623,7 @@ static size_t skip_space(const char *text, size_t length, size_t i)
 
 /* The end of the string whose opening quote is at i, past its closing
  * quote; 0 when it does not end. */
-static size_t skip_string(const char *text, size_t length, size_t i)
+static size_t span_string(const char *text, size_t length, size_t i)
 {
     for (i++; i < length; i++) {
         if (text[i] == '\\')
@@ -444,12 +635,12 @@ static size_t skip_string(const char *text, size_t length, size_t i)
 }
 
 /* The end of the value that starts at i; 0 when the text is cut short. */
-static size_t skip_value(const char *text, size_t length, size_t i)
+static size_t span_value(const char *text, size_t length, size_t i)
 {
     if (i >= length)
         return 0;
     if (text[i] == '"')
-        return skip_string(text, length, i);
+        return span_string(text, length, i);
     if (text[i] != '[' && text[i] != '{') {
         while (i < length && strchr("+-.0123456789eEtruefalsn", text[i]) && text[i])
             i++;
@@ -459,7 +650,7 @@ static size_t skip_value(const char *text, size_t length, size_t i)
     for (; i < length; i++) {
         char c = text[i];
         if (c == '"') {
-            i = skip_string(text, length, i);
+            i = span_string(text, length, i);
             if (!i)
                 return 0;
             i--;
@@ -475,23 +666,23 @@ static size_t skip_value(const char *text, size_t length, size_t i)
 bool wp_json_member(const char *text, size_t length, size_t object, const char *key,
                     size_t *start, size_t *end)
 {
-    size_t i = skip_space(text, length, object);
+    size_t i = span_space(text, length, object);
     if (i >= length || text[i] != '{')
         return false;
     size_t key_length = strlen(key);
-    i = skip_space(text, length, i + 1);
+    i = span_space(text, length, i + 1);
     while (i < length && text[i] == '"') {
-        size_t after = skip_string(text, length, i);
+        size_t after = span_string(text, length, i);
         if (!after)
             return false;
         /* Compared as written: a key spelt with escapes is not found, and
          * the caller falls back to the full parse. */
         bool match = after - i - 2 == key_length && memcmp(text + i + 1, key, key_length) == 0;
-        i = skip_space(text, length, after);
+        i = span_space(text, length, after);
         if (i >= length || text[i] != ':')
             return false;
-        i = skip_space(text, length, i + 1);
-        size_t value_end = skip_value(text, length, i);
+        i = span_space(text, length, i + 1);
+        size_t value_end = span_value(text, length, i);
         if (!value_end)
             return false;
         if (match) {
@@ -499,10 +690,10 @@ bool wp_json_member(const char *text, size_t length, size_t object, const char *
             *end = value_end;
             return true;
         }
-        i = skip_space(text, length, value_end);
+        i = span_space(text, length, value_end);
         if (i >= length || text[i] != ',')
             return false;
-        i = skip_space(text, length, i + 1);
+        i = span_space(text, length, i + 1);
     }
     return false;
 }
@@ -531,12 +722,12 @@ static bool read_number(const char *text, size_t length, size_t *i, double *out)
 long wp_json_triples(const char *text, size_t length, double (**out)[3])
 {
     *out = NULL;
-    size_t i = skip_space(text, length, 0);
+    size_t i = span_space(text, length, 0);
     if (i >= length || text[i] != '[')
         return -1;
     size_t count = 0, capacity = 0;
     double (*items)[3] = NULL;
-    i = skip_space(text, length, i + 1);
+    i = span_space(text, length, i + 1);
     if (i < length && text[i] == ']') {
         *out = malloc(sizeof *items);
         return *out ? 0 : -1;
@@ -552,22 +743,22 @@ long wp_json_triples(const char *text, size_t length, double (**out)[3])
         if (i >= length || text[i] != '[')
             goto refuse;
         for (int k = 0; k < 3; k++) {
-            i = skip_space(text, length, i + 1);
+            i = span_space(text, length, i + 1);
             if (!read_number(text, length, &i, &items[count][k]))
                 goto refuse;
-            i = skip_space(text, length, i);
+            i = span_space(text, length, i);
             if (i >= length || text[i] != (k < 2 ? ',' : ']'))
                 goto refuse;
         }
         count++;
-        i = skip_space(text, length, i + 1);
+        i = span_space(text, length, i + 1);
         if (i < length && text[i] == ']')
             break;
         if (i >= length || text[i] != ',')
             goto refuse;
-        i = skip_space(text, length, i + 1);
+        i = span_space(text, length, i + 1);
     }
-    if (skip_space(text, length, i + 1) != length)
+    if (span_space(text, length, i + 1) != length)
         goto refuse;
     *out = items;
     return (long)count;

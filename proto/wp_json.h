@@ -113,6 +113,12 @@ typedef struct wp_json_shape {
     int depth;
     bool nul_escape;
     bool control;
+    /* The first number outside strings that RFC 8259 does not allow
+     * ("012", "-00", "1.", "-.5", "1.e5", "1e"), which cJSON may read
+     * anyway: what is wrong with it ("has a leading zero"), or NULL; and
+     * where it stands in the text. */
+    const char *number_problem;
+    size_t number_at, number_length;
 } wp_json_shape;
 wp_json_shape wp_json_scan(const char *text, size_t length, int limit);
 
@@ -128,6 +134,17 @@ bool wp_json_member(const char *text, size_t length, size_t object, const char *
  * number: their count and *out (malloc'd), or -1 when the text is anything
  * else (the caller then reads it the ordinary way, and says what is wrong). */
 long wp_json_triples(const char *text, size_t length, double (**out)[3]);
+
+/* Numeric ids echoed as written: JSON-RPC wants the id back as the client
+ * sent it, and a double cannot hold 9007199254740993 or a 30-digit id.
+ * For the request object `json` was parsed from `text` (or each request of
+ * a batch), the text of its first "id" member, when that is a number, is
+ * kept in the id item's `valuestring` (unused by cJSON for numbers, freed
+ * by cJSON_Delete).  False only when out of memory. */
+bool wp_json_keep_id_text(cJSON *json, const char *text, size_t length);
+/* The text to echo for an id: a number as it was written (when kept),
+ * else the canonical text.  Malloc'd, or NULL when out of memory. */
+char *wp_json_id_text(const cJSON *id);
 
 #ifdef __cplusplus
 }

@@ -100,9 +100,10 @@ static bool read_envelope(const cJSON *request, wp_error *error, char **id_text,
         return false;
     }
     if (id && !cJSON_IsNull(id)) {
-        /* The id is echoed as the client wrote it (canonical text of the
-         * parsed value); out of memory: answered under id null. */
-        *id_text = wp_canonical(id, NULL);
+        /* The id is echoed as the client wrote it: a number's own text
+         * (kept by wp_json_keep_id_text), a string's canonical text; out of
+         * memory: answered under id null. */
+        *id_text = wp_json_id_text(id);
         if (!*id_text) {
             wp_error_set(error, WP_INTERNAL, "", "out of memory");
             return false;
@@ -345,12 +346,31 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
     }
     const char *end = NULL;
     cJSON *json = cJSON_ParseWithLengthOpts(line + start, length - start, &end, false);
+    if (json && end == line + length && shape.number_problem) {
+        /* cJSON read it, but RFC 8259 does not allow it (a leading zero
+         * would be octal to some readers): not JSON. */
+        cJSON_Delete(json);
+        counts->requests++;
+        counts->errors++;
+        char reason[160];
+        snprintf(reason, sizeof reason, "the number %.*s%s %s, which JSON (RFC 8259) does not allow",
+                 (int)(shape.number_length > 40 ? 40 : shape.number_length),
+                 line + shape.number_at, shape.number_length > 40 ? "..." : "",
+                 shape.number_problem);
+        return refuse(refusal, WP_PARSE_ERROR, reason);
+    }
     if (!json || end != line + length) {
         cJSON_Delete(json);
         counts->requests++;
         counts->errors++;
         return refuse(refusal, WP_PARSE_ERROR, json ? "text after the JSON value"
                                                       : "the line is not valid JSON");
+    }
+    if (!wp_json_keep_id_text(json, line + start, length - start)) {
+        cJSON_Delete(json);
+        counts->requests++;
+        counts->errors++;
+        return refuse(refusal, WP_INTERNAL, "out of memory");
     }
     return json;
 }
@@ -426,7 +446,8 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
     /* Only a text the scan passes (UTF-8, depth, controls) is read so. */
     if (length >= PREPARE_BYTES && wp_utf8_valid(line, length)) {
         wp_json_shape shape = wp_json_scan(line, length, limits->max_depth);
-        if (shape.depth <= limits->max_depth && !shape.control && !shape.nul_escape)
+        if (shape.depth <= limits->max_depth && !shape.control && !shape.nul_escape &&
+            !shape.number_problem)
             short_line = prepare_wrenches(line, length, &answer->prepared, &short_length);
     }
     cJSON *json = short_line ? parse_line(limits, short_line, short_length, &counted, &answer->refusal)

@@ -101,6 +101,31 @@ static void disconnect(wrc_client *c)
     c->fd = -1;
 }
 
+void wrc_connect_reason(const char *socket_path, int os_error, char *out, size_t size)
+{
+    switch (os_error) {
+    case EACCES:
+    case EPERM:
+        snprintf(out, size, "permission denied on %s", socket_path);
+        break;
+    case ENOENT:
+        snprintf(out, size, "no socket at %s: is wrenchd running?", socket_path);
+        break;
+    case ECONNREFUSED:
+        /* The file is there but nobody listens: a daemon that died without
+         * removing it, or a file that is not wrenchd's socket. */
+        snprintf(out, size, "connection refused at %s: a stale socket, wrenchd is not running",
+                 socket_path);
+        break;
+    case ETIMEDOUT:
+        snprintf(out, size, "%s: the daemon does not accept in time", socket_path);
+        break;
+    default:
+        snprintf(out, size, "%s: %s", socket_path, strerror(os_error));
+        break;
+    }
+}
+
 static int open_connection(wrc_client *c)
 {
     struct sockaddr_un address = {.sun_family = AF_UNIX};
@@ -116,13 +141,17 @@ static int open_connection(wrc_client *c)
             /* A full backlog: wait for the daemon to accept. */
             if (wait_for(c, POLLOUT, deadline) != WRC_OK) {
                 disconnect(c);
-                return fail(c, WRC_ECONNECT, "%s: the daemon does not accept in time", c->path);
+                errno = ETIMEDOUT;
+                wrc_connect_reason(c->path, ETIMEDOUT, c->last_error, sizeof c->last_error);
+                return WRC_ECONNECT;
             }
             continue;
         }
         int saved = errno;
         disconnect(c);
-        return fail(c, WRC_ECONNECT, "%s: %s", c->path, strerror(saved));
+        wrc_connect_reason(c->path, saved, c->last_error, sizeof c->last_error);
+        errno = saved;
+        return WRC_ECONNECT;
     }
     return WRC_OK;
 }
@@ -157,7 +186,9 @@ wrc_client *wrc_connect(const char *socket_path, int timeout_ms, size_t buffer_b
     c->fd = -1;
     *error = open_connection(c);
     if (*error != WRC_OK) {
+        int saved = errno; /* why, for wrc_connect_reason */
         wrc_close(c);
+        errno = saved;
         return NULL;
     }
     return c;

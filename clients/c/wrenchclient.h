@@ -41,9 +41,18 @@ typedef struct wrc_client wrc_client;
 /* Connect to the daemon at `socket_path`.  `timeout_ms` bounds connecting
  * and every later call (0: wait forever).  `buffer_bytes` sizes the
  * request and answer buffers of wrc_classify (0: 64 KiB).  Returns NULL
- * with *error set when it cannot connect. */
+ * with *error set when it cannot connect; after WRC_ECONNECT, errno says
+ * why (EACCES, ENOENT, ECONNREFUSED, ETIMEDOUT when the daemon does not
+ * accept in time, ...), and wrc_connect_reason puts that in words. */
 wrc_client *wrc_connect(const char *socket_path, int timeout_ms, size_t buffer_bytes,
                         int *error);
+
+/* Why connecting to `socket_path` failed with errno `os_error`, naming the
+ * cause: "permission denied on PATH", "no socket at PATH: is wrenchd
+ * running?", "connection refused at PATH: a stale socket, wrenchd is not
+ * running", else PATH and strerror.  Into `out` (`size` bytes, cut to fit).
+ * wrc_last_error gives the same sentence when a call reconnects. */
+void wrc_connect_reason(const char *socket_path, int os_error, char *out, size_t size);
 
 /* Close the connection and free the client (NULL is allowed). */
 void wrc_close(wrc_client *client);

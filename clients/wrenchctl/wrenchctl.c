@@ -76,6 +76,7 @@ static cJSON *call(options *o, const char *method, cJSON *params, int *status)
         int error;
         wrc_client *client =
             wrc_connect(o->socket_path, (int)(o->timeout_seconds * 1000), 0, &error);
+        int connect_errno = errno;
         if (client) {
             error = wrc_call(client, line, &answer);
             if (error != WRC_OK && error != WRC_ESERVER) {
@@ -84,9 +85,12 @@ static cJSON *call(options *o, const char *method, cJSON *params, int *status)
                 free(answer);
                 answer = NULL;
             }
+        } else if (error == WRC_ECONNECT) {
+            char reason[512];
+            wrc_connect_reason(o->socket_path, connect_errno, reason, sizeof reason);
+            fprintf(stderr, "wrenchctl: %s: %s (see --socket)\n", wrc_strerror(error), reason);
         } else {
-            fprintf(stderr, "wrenchctl: %s at %s (is wrenchd running? see --socket)\n",
-                    wrc_strerror(error), o->socket_path);
+            fprintf(stderr, "wrenchctl: %s at %s\n", wrc_strerror(error), o->socket_path);
         }
         wrc_close(client);
         if (!answer) {
@@ -142,7 +146,8 @@ static bool looks_like_id(const char *text)
     return true;
 }
 
-static char *read_all(FILE *file)
+/* The whole file, NUL-terminated; *length (may be NULL) its bytes. */
+static char *read_all(FILE *file, size_t *length_out)
 {
     size_t length = 0, capacity = 65536;
     char *text = malloc(capacity);
@@ -157,6 +162,8 @@ static char *read_all(FILE *file)
     }
     if (text)
         text[length] = 0;
+    if (length_out)
+        *length_out = length;
     return text;
 }
 
@@ -167,13 +174,32 @@ static cJSON *fixture_argument(options *o, const char *argument)
     struct stat st;
     if (stat(argument, &st) == 0) {
         FILE *file = fopen(argument, "rb");
-        char *text = file ? read_all(file) : NULL;
+        int open_error = errno;
+        size_t length = 0;
+        char *text = file ? read_all(file, &length) : NULL;
         if (file)
             fclose(file);
-        cJSON *json = text ? cJSON_Parse(text) : NULL;
+        /* One JSON text and nothing after it but white space: a fixture
+         * followed by more is refused, not half read. */
+        const char *end = NULL;
+        cJSON *json = text ? cJSON_ParseWithLengthOpts(text, length, &end, false) : NULL;
+        if (json) {
+            end += strspn(end, " \t\r\n");
+            if (end != text + length) {
+                size_t line = 1;
+                for (const char *c = text; c < end; c++)
+                    line += *c == '\n';
+                int shown = (int)strcspn(end, "\r\n");
+                usage_error("%s: text after the JSON value, on line %zu: '%.*s'", argument, line,
+                            shown > 24 ? 24 : shown, end);
+                cJSON_Delete(json);
+                json = NULL;
+            }
+        } else {
+            usage_error("%s: %s", argument,
+                        !file ? strerror(open_error) : text ? "not a JSON text" : "out of memory");
+        }
         free(text);
-        if (!json)
-            usage_error("%s: %s", argument, file ? "not a JSON text" : strerror(errno));
         return json;
     }
     if (!looks_like_id(argument)) {
@@ -505,8 +531,10 @@ static int take_classify_option(int key, const char *value, void *state)
         for (char *name = strtok(copy, ","); name; name = strtok(NULL, ",")) {
             if (strcmp(name, "goal") != 0 && strcmp(name, "strong") != 0 &&
                 strcmp(name, "both") != 0) {
+                /* `name` points into `copy`: say it before freeing that. */
+                int status = usage_error("--sets: '%s' is not goal, strong or both", name);
                 free(copy);
-                return usage_error("--sets: '%s' is not goal, strong or both", name);
+                return status;
             }
             cJSON_AddItemToArray(c->sets, cJSON_CreateString(name));
         }
@@ -557,25 +585,44 @@ static cJSON *wrench_argument(const char *text)
     return w;
 }
 
-/* JSON lines of wrenches from stdin, appended to `wrenches`. */
+/* JSON wrenches from stdin, appended to `wrenches`: every value on every
+ * line (white space between them), so that none is dropped; anything else
+ * on a line is an error naming it, and so is a stdin without a wrench. */
 static int read_wrenches(cJSON *wrenches)
 {
-    char *text = read_all(stdin);
+    size_t length = 0;
+    char *text = read_all(stdin, &length);
     if (!text)
         return usage_error("stdin: out of memory");
-    int line_number = 0;
-    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+    int line_number = 0, read = 0;
+    for (size_t start = 0; start < length;) {
         line_number++;
-        if (strspn(line, " \t\r") == strlen(line))
-            continue;
-        cJSON *w = cJSON_Parse(line);
-        if (!w) {
-            free(text);
-            return usage_error("stdin line %d: not a JSON wrench", line_number);
+        const char *line = text + start;
+        const char *newline = memchr(line, '\n', length - start);
+        size_t line_length = newline ? (size_t)(newline - line) : length - start;
+        start += line_length + 1;
+        size_t at = 0;
+        for (;;) {
+            at += strspn(line + at, " \t\r"); /* stops at the NUL read_all ends with */
+            if (at >= line_length)
+                break;
+            const char *end = NULL;
+            cJSON *w = cJSON_ParseWithLengthOpts(line + at, line_length - at, &end, false);
+            if (!w) {
+                int shown = (int)(line_length - at > 24 ? 24 : line_length - at);
+                int status = usage_error("stdin line %d, column %zu: not a JSON wrench: '%.*s'",
+                                         line_number, at + 1, shown, line + at);
+                free(text);
+                return status;
+            }
+            cJSON_AddItemToArray(wrenches, w);
+            read++;
+            at = (size_t)(end - line);
         }
-        cJSON_AddItemToArray(wrenches, w);
     }
     free(text);
+    if (read == 0)
+        return usage_error("stdin: no wrenches given (one JSON wrench or more per line)");
     return -1;
 }
 
@@ -1120,7 +1167,8 @@ static const command COMMANDS[] = {
      "when not inside the blocking transition, said in words.\n"
      "  FIXTURE          a stored fixture's id, or a fixture file (sent inline)\n"
      "  WRENCH           fx,fy,tau (torque about the centre of mass), or fx,fy@x,y (a force at\n"
-     "                   a point); '-' reads JSON wrenches from stdin, one per line, as one batch\n"
+     "                   a point); '-' reads JSON wrenches from stdin, one or more per line,\n"
+     "                   as one batch\n"
      "  --sets LIST      comma-separated: goal, strong, both (default goal,strong)\n"
      "  --method M       auto (explicit cones, with margins; default) or lp (GLPK, no margin)\n"
      "  --tolerance T    |margin| <= T is 'boundary' (default 1e-9)\n"

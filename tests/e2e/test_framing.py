@@ -111,6 +111,31 @@ def test_id_echoed(client, id):
     assert r["id"] == id and type(r["id"]) is type(id), r
 
 
+@pytest.mark.parametrize("id", ["9007199254740993", "123456789012345678901234567890", "-0",
+                                "1.50", "1E+05", "0.5e-3", "-12"])
+def test_numeric_id_echoed_as_written(client, id):
+    """JSON-RPC echoes the id itself: the client's text, not a double's
+    (9007199254740993 is not a double; a 30-digit id is not 1.23e+29)."""
+    client.send_raw(('{"jsonrpc":"2.0","method":"fixture.list","id": %s}\n' % id).encode())
+    line = client.read_line()
+    assert line.endswith((',"id":%s}' % id).encode()), line
+    check_response_shape(json.loads(line))
+
+
+def test_numeric_ids_of_a_batch_echoed_as_written(client):
+    client.send_raw(b'[{"jsonrpc":"2.0","method":"fixture.list","id":9007199254740993},'
+                    b'{"id":1.50,"jsonrpc":"2.0","method":"no.such"},'
+                    b'{"jsonrpc":"2.0","method":"fixture.list","params":{"id":1},'
+                    b'"id":123456789012345678901234567890}]\n')
+    line = client.read_line()
+    ids = [b'"id":9007199254740993}', b'"id":1.50}', b'"id":123456789012345678901234567890}]']
+    at = 0
+    for id in ids:
+        at = line.find(id, at)
+        assert at > 0, (id, line)
+    assert len(json.loads(line)) == 3
+
+
 def test_id_with_nul_refused(client):
     """An id holding U+0000 cannot be echoed faithfully: the line is refused."""
     client.send(req("fixture.list", {}, id="a\u0000b"))

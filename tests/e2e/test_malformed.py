@@ -238,6 +238,51 @@ assert len(ROWS) >= 40
 assert len({r[0] for r in ROWS}) == len(ROWS)
 
 
+# Lines refused for what their reason must name: (name, raw line, code,
+# data.field, answer id, a phrase of data.reason).
+REASON_ROWS = [
+    # RFC 8259 numbers that cJSON (strtod) would read
+    ("id-leading-zero", '{"jsonrpc":"2.0","method":"fixture.list","id":012}', -32700, "", None,
+     "the number 012 has a leading zero"),
+    ("negative-leading-zero", classify(wrenches=[[-12345.5, 0, 0]]).replace("-12345.5", "-012"),
+     -32700, "", None, "the number -012 has a leading zero"),
+    ("double-zero", '[{"jsonrpc":"2.0","method":"fixture.list","id":00}]', -32700, "", None,
+     "the number 00 has a leading zero"),
+    ("point-without-digits", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "1."),
+     -32700, "", None, "the number 1. has no digit after its decimal point"),
+    ("point-before-exponent", classify(tolerance=12345.5).replace("12345.5", "1.e-9"),
+     -32700, "", None, "the number 1.e-9 has no digit after its decimal point"),
+    ("fraction-without-integer", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "-.5"),
+     -32700, "", None, "the number -.5 has no digit before its fraction"),
+    # what cJSON refuses itself is answered as before
+    ("plus-sign", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "+1"), -32700, "",
+     None, "the line is not valid JSON"),
+    ("bare-fraction", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", ".5"), -32700, "",
+     None, "the line is not valid JSON"),
+    ("exponent-without-digits", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "1e"),
+     -32700, "", None, "the line is not valid JSON"),
+    ("hexadecimal", classify(wrenches=[[12345.5, 0, 0]]).replace("12345.5", "0x10"), -32700, "",
+     None, "the line is not valid JSON"),
+    # fixtures and constraint strings: the fault itself, not a consequence
+    ("polygon-bow-tie-crossing", put_variant(["body", "shape", "vertices"],
+                                             [[0, 0], [4, 2], [4, 0], [0, 2]], base=RECT),
+     -32602, "params.fixture.body.shape.vertices", RID,
+     "the polygon intersects itself: edge 0 (vertices 0 to 1) and edge 2 (vertices 2 to 3) "
+     "meet at (2, 1)"),
+    ("polygon-beyond-doubles", put_variant(["body", "shape", "vertices"],
+                                           [[0, 0], [4e200, 0], [4e200, 2e200], [0, 2e200]],
+                                           base=RECT),
+     -32602, "params.fixture.body.shape.vertices", RID,
+     "the polygon is too large for double precision"),
+    ("fixel-normal-tangent", put_variant(["fixels", 0, "normal"], [0, 1]), -32602,
+     "params.fixture.fixels[0].normal", RID, "(0, 1) is tangent to the boundary at (-1, 0)"),
+    ("cone-multibyte-letter", line("cone.get", {"fixture": DC, "constraints": "s\u00e9"}),
+     -32602, "params.constraints", RID, "letter 2 is '\u00e9', not one of s a u l r n m"),
+    ("cone-multibyte-too-long", line("cone.get", {"fixture": DC, "constraints": "s\u00e9m"}),
+     -32602, "params.constraints", RID, "has 3 letters, the fixture has 2 fixels"),
+]
+
+
 def check_error(answer, code, field, rid, name):
     assert isinstance(answer, dict), (name, answer)
     assert answer.get("jsonrpc") == "2.0", (name, answer)
@@ -272,6 +317,18 @@ def test_malformed(daemon, name, raw, code, field, rid):
     r = c.result("wrench.classify", {"fixture": fid, "wrenches": GOOD_WRENCH})
     assert r["results"][0]["goal"]["verdict"] == "inside"
     a.expect_silence(0.05)
+
+
+def test_reasons_name_the_problem(daemon):
+    """One connection, each row: its code, field and id, and a reason that
+    names what is wrong; the connection keeps serving after each."""
+    a = daemon.client()
+    for name, raw, code, field, rid, reason in REASON_ROWS:
+        a.send_line(raw)
+        answer = a.read_json()
+        check_error(answer, code, field, rid, name)
+        assert reason in answer["error"]["data"]["reason"], (name, answer)
+    assert a.result("fixture.list", {}) == {"fixtures": []}
 
 
 def test_all_rows_on_one_connection(daemon):

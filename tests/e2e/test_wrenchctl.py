@@ -8,6 +8,7 @@ bench programs.  Expected numbers: SPEC section 7 (the disc in a corner)."""
 import json
 import math
 import os
+import shutil
 import socket
 import subprocess
 import time
@@ -111,6 +112,52 @@ def test_classify_reads_a_batch_from_stdin(ctl):
     assert r.returncode == 2 and "stdin line 2" in r.stderr
 
 
+def test_classify_stdin_reads_every_wrench_or_refuses(ctl):
+    """Every value on a line is a wrench (none dropped after the first);
+    anything else on a line, or no wrench at all, is a usage error."""
+    fid = put_disc(ctl)
+    r = ctl("classify", fid, "-", "--json", "--sets", "goal",
+            stdin="[-1, -1, 0] [-1, -0.2, 0]\n\n  [-2, -2, 5]\t{\"force\": [0, -1], \"at\": [-1, 0]}\n")
+    assert r.returncode == 1, r.stderr
+    verdicts = [x["goal"]["verdict"] for x in json.loads(r.stdout)["results"]]
+    assert verdicts == ["inside", "outside", "inside", "outside"], verdicts
+    # Trailing garbage names its line (blank lines count).
+    r = ctl("classify", fid, "-", stdin="[-1, -1, 0]\n\n[-1, -1, 0] trailing\n")
+    assert r.returncode == 2 and "stdin line 3" in r.stderr and "trailing" in r.stderr, r.stderr
+    assert r.stdout == ""
+    for empty in ("", "\n  \n"):
+        r = ctl("classify", fid, "-", stdin=empty)
+        assert r.returncode == 2 and "no wrenches given" in r.stderr, r.stderr
+        assert r.stdout == ""
+
+
+def test_put_refuses_text_after_the_fixture(ctl, harness):
+    bad = harness.path("trailing.json")
+    with open(DISC) as f:
+        text = f.read()
+    with open(bad, "w") as f:
+        f.write(text.rstrip() + "\n trailing\n")
+    for args in (["put", bad], ["--local", "classify", bad, "-1,-1,0"]):
+        r = ctl(*args)
+        assert r.returncode == 2, (args, r.stderr)
+        assert "text after the JSON value" in r.stderr and "trailing" in r.stderr, r.stderr
+    with open(bad, "w") as f:
+        f.write(text + "\n\n  \n")  # white space after it is fine
+    assert ctl("put", bad).returncode == 0
+
+
+@pytest.mark.skipif(not shutil.which("valgrind"), reason="needs valgrind")
+def test_unknown_set_message_reads_no_freed_memory(ctl):
+    """--sets gaol: the message names the set from memory still held
+    (it printed a freed block)."""
+    r = subprocess.run(["valgrind", "-q", "--error-exitcode=99", WRENCHCTL, "--local",
+                        "classify", DISC, "1,1,1", "--sets", "goal,gaol"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert "Invalid read" not in r.stderr, r.stderr
+    assert "--sets: 'gaol' is not goal, strong or both" in r.stderr, r.stderr
+
+
 @pytest.mark.parametrize("path", [DISC, PLATE, CHAMFERED])
 def test_local_answers_as_the_daemon(ctl, path):
     wrenches = ["-1,-1,0", "0,-1,0.3", "-1,0@4,0.5", "-0.7071,-0.7071@3.25,1.75", "1,1,1"]
@@ -194,6 +241,14 @@ def test_server_errors_exit_4_naming_the_field(ctl, harness):
 def test_unreachable_exits_3(ctl, harness):
     r = ctl("status", socket_path=harness.path("nobody-here.sock"))
     assert r.returncode == 3 and "cannot connect" in r.stderr
+    assert "no socket at %s: is wrenchd running?" % harness.path("nobody-here.sock") in r.stderr
+    # A socket file nobody listens on: refused, a stale socket.
+    stale = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    stale.bind(harness.path("stale.sock"))
+    stale.close()
+    r = ctl("status", socket_path=harness.path("stale.sock"))
+    assert r.returncode == 3, r.stderr
+    assert "connection refused at %s: a stale socket" % harness.path("stale.sock") in r.stderr
     # A socket that accepts but never answers: the timeout.
     silent = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     silent.bind(harness.path("silent.sock"))
@@ -205,6 +260,31 @@ def test_unreachable_exits_3(ctl, harness):
         assert time.monotonic() - start < 10
     finally:
         silent.close()
+
+
+def test_permission_denied_is_named(daemon):
+    """A socket the user may not open is "permission denied", not "is
+    wrenchd running?".  Root opens anything: then wrenchctl runs as nobody."""
+    path = os.path.join(daemon.workdir, "denied.sock")
+    listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    listener.bind(path)
+    listener.listen(1)
+    os.chmod(path, 0o600)
+    prefix = []
+    if os.geteuid() == 0:
+        if not shutil.which("setpriv"):
+            listener.close()
+            pytest.skip("running as root without setpriv")
+        prefix = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"]
+        os.chmod(daemon.workdir, 0o755)
+    try:
+        r = subprocess.run(prefix + [WRENCHCTL, "--socket", path, "status"],
+                           capture_output=True, text=True, timeout=60, cwd="/")
+    finally:
+        listener.close()
+    assert r.returncode == 3, r.stderr
+    assert "permission denied on %s" % path in r.stderr, r.stderr
+    assert "running" not in r.stderr, r.stderr
 
 
 def test_every_command_has_help(ctl):

@@ -170,6 +170,51 @@ static bool control_characters_ok(const char *text, size_t length, bool trim)
     return true;
 }
 
+/* Does every number outside strings follow RFC 8259's grammar?  cJSON
+ * reads numbers with strtod, which also takes "012", "1." and "-.5"; the
+ * answerer must refuse those lines as not JSON.  A state machine over the
+ * grammar, written apart from proto/wp_json.c's check. */
+static bool numbers_ok(const char *text, size_t length)
+{
+    enum { OUTSIDE, STRING, ESCAPE, MINUS, ZERO, INTEGER, POINT, FRACTION, E, E_SIGN, EXPONENT };
+    int state = OUTSIDE;
+    for (size_t i = 0; i <= length; i++) {
+        int c = i < length ? (unsigned char)text[i] : ' ';
+        bool digit = c >= '0' && c <= '9';
+        switch (state) {
+        case STRING: state = c == '\\' ? ESCAPE : c == '"' ? OUTSIDE : STRING; continue;
+        case ESCAPE: state = STRING; continue;
+        case MINUS: if (!digit) return false; state = c == '0' ? ZERO : INTEGER; continue;
+        case ZERO:
+            if (digit) return false; /* a leading zero */
+            if (c == '.') { state = POINT; continue; }
+            if (c == 'e' || c == 'E') { state = E; continue; }
+            break;
+        case INTEGER:
+            if (digit) continue;
+            if (c == '.') { state = POINT; continue; }
+            if (c == 'e' || c == 'E') { state = E; continue; }
+            break;
+        case POINT: if (!digit) return false; state = FRACTION; continue;
+        case FRACTION:
+            if (digit) continue;
+            if (c == 'e' || c == 'E') { state = E; continue; }
+            break;
+        case E:
+            if (c == '+' || c == '-') { state = E_SIGN; continue; }
+            if (!digit) return false;
+            state = EXPONENT;
+            continue;
+        case E_SIGN: if (!digit) return false; state = EXPONENT; continue;
+        case EXPONENT: if (digit) continue; break;
+        default: break;
+        }
+        /* OUTSIDE, or just past the end of a number. */
+        state = c == '"' ? STRING : c == '-' ? MINUS : c == '0' ? ZERO : digit ? INTEGER : OUTSIDE;
+    }
+    return true;
+}
+
 /* A whole line refused as not JSON: {"error": {"code": -32700, ...}, "id": null}. */
 static bool parse_error_answer(const char *answer)
 {
@@ -714,6 +759,11 @@ static void answer_line(const uint8_t *data, size_t length)
             cJSON_Delete(json);
             json = NULL;
         }
+    }
+    if (json && !numbers_ok(text, length)) {
+        refusal = "a number RFC 8259 does not allow, though cJSON reads it";
+        cJSON_Delete(json);
+        json = NULL;
     }
     bool whole = !wp_utf8_valid(text, length) || shape.depth > LIMITS.max_depth ||
                  shape.nul_escape ||

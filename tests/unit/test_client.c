@@ -11,6 +11,7 @@
 
 #include "wrenchclient.h"
 
+#include <errno.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -235,6 +236,44 @@ static void bad_arguments_and_bad_answers(void **state)
     assert_string_equal(wrc_strerror(WRC_ETIMEOUT), "wrenchd did not answer in time");
 }
 
+/* A failed connect names its cause, not "is wrenchd running?" for all:
+ * errno after wrc_connect, and wrc_connect_reason's words for it. */
+static void connect_failures_name_their_cause(void **state)
+{
+    (void)state;
+    int error;
+    errno = 0;
+    assert_null(wrc_connect("/nonexistent/wrenchd.sock", 100, 0, &error));
+    assert_int_equal(error, WRC_ECONNECT);
+    assert_int_equal(errno, ENOENT);
+    char reason[256];
+    wrc_connect_reason("/nonexistent/wrenchd.sock", ENOENT, reason, sizeof reason);
+    assert_string_equal(reason, "no socket at /nonexistent/wrenchd.sock: is wrenchd running?");
+    wrc_connect_reason("/run/w.sock", EACCES, reason, sizeof reason);
+    assert_string_equal(reason, "permission denied on /run/w.sock");
+    wrc_connect_reason("/run/w.sock", ECONNREFUSED, reason, sizeof reason);
+    assert_string_equal(reason,
+                        "connection refused at /run/w.sock: a stale socket, wrenchd is not running");
+    wrc_connect_reason("/run/w.sock", ENOTDIR, reason, sizeof reason);
+    assert_string_equal(reason, "/run/w.sock: Not a directory");
+    /* A socket file nobody listens on: refused, and said so. */
+    char path[] = "/tmp/wrc-stale-XXXXXX";
+    assert_non_null(mkdtemp(path));
+    char socket_path[64];
+    snprintf(socket_path, sizeof socket_path, "%s/s.sock", path);
+    int fd = socket(AF_UNIX, SOCK_STREAM, 0);
+    struct sockaddr_un address = {.sun_family = AF_UNIX};
+    snprintf(address.sun_path, sizeof address.sun_path, "%s", socket_path);
+    assert_int_equal(bind(fd, (struct sockaddr *)&address, sizeof address), 0);
+    close(fd); /* never listened: connecting is refused */
+    errno = 0;
+    assert_null(wrc_connect(socket_path, 100, 0, &error));
+    assert_int_equal(error, WRC_ECONNECT);
+    assert_int_equal(errno, ECONNREFUSED);
+    unlink(socket_path);
+    rmdir(path);
+}
+
 static void a_silent_daemon_times_out(void **state)
 {
     (void)state;
@@ -295,6 +334,7 @@ int main(void)
         cmocka_unit_test(bad_arguments_and_bad_answers),
         cmocka_unit_test(a_silent_daemon_times_out),
         cmocka_unit_test(a_dropped_connection_is_reopened),
+        cmocka_unit_test(connect_failures_name_their_cause),
         cmocka_unit_test(a_small_buffer_refuses_a_big_answer),
     };
     return cmocka_run_group_tests_name("client", tests, NULL, NULL);

@@ -174,6 +174,94 @@ static void every_invalid_field_is_named(void **state)
                   sizeof mutations / sizeof mutations[0]);
 }
 
+/* Refusals that say what is wrong, not something near it. */
+MUTATION(huge_rectangle, (b->vertices[1][0] = b->vertices[2][0] = 4e200,
+                          b->vertices[2][1] = b->vertices[3][1] = 2e200))
+MUTATION(large_rectangle, (b->vertices[1][0] = b->vertices[2][0] = 4e100,
+                           b->vertices[2][1] = b->vertices[3][1] = 2e100))
+/* The left edge's fixel pushing along the edge, and a corner's along
+ * the bottom edge, outwards. */
+MUTATION(tangent_normal, (b->fixels[2].normal_given = true, b->fixels[2].normal[1] = -1))
+MUTATION(tangent_at_vertex, (b->fixels[1].at[0] = 4, b->fixels[1].normal_given = true,
+                             b->fixels[1].normal[0] = 1))
+MUTATION(nearly_tangent_normal,
+         (b->fixels[2].normal_given = true, b->fixels[2].normal[0] = 1e-12,
+          b->fixels[2].normal[1] = 1))
+
+static const struct {
+    const char *name;
+    void (*apply)(base *);
+    const char *field, *reason; /* the reason starts with this */
+} messages[] = {
+    {"bow tie", bow_tie, "body.shape.vertices",
+     "the polygon intersects itself: edge 1 (vertices 1 to 2) and edge 3 (vertices 3 to 0) "
+     "meet at (2, 1)"},
+    {"area beyond doubles", huge_rectangle, "body.shape.vertices",
+     "the polygon is too large for double precision: its area overflows"},
+    {"second moment beyond doubles", large_rectangle, "body.shape.vertices",
+     "the polygon is too large for double precision: its second moment of area overflows"},
+    {"tangent normal", tangent_normal, "fixels[2].normal",
+     "(0, -1) is tangent to the boundary at (0, 1)"},
+    {"nearly tangent normal", nearly_tangent_normal, "fixels[2].normal",
+     "(1e-12, 1) is tangent to the boundary"},
+    {"tangent at a vertex", tangent_at_vertex, "fixels[1].normal",
+     "(1, 0) is tangent to the boundary at (4, 0)"},
+    {"outward normal", outward_normal, "fixels[2].normal", "(-1, 0) points out of the workpiece"},
+};
+
+static void refusals_say_what_is_wrong(void **state)
+{
+    (void)state;
+    base b;
+    for (size_t i = 0; i < sizeof messages / sizeof messages[0]; i++) {
+        make_base(&b);
+        messages[i].apply(&b);
+        wr_error error;
+        memset(&error, 0, sizeof error);
+        wr_fixture *f = wr_fixture_new(&b.spec, &error);
+        if (f) {
+            wr_fixture_free(f);
+            fail_msg("%s: accepted", messages[i].name);
+        }
+        if (strcmp(error.field, messages[i].field) != 0 ||
+            strncmp(error.reason, messages[i].reason, strlen(messages[i].reason)) != 0)
+            fail_msg("%s: \"%s\": \"%s\", expected \"%s\": \"%s...\"", messages[i].name,
+                     error.field, error.reason, messages[i].field, messages[i].reason);
+    }
+}
+
+/* A constraint string's length is counted in letters (characters), and a
+ * letter that is not one is quoted whole. */
+static void constraint_letters_are_characters(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *text;
+        int fixels;
+        const char *reason;
+    } bad[] = {
+        {"s\xc3\xa9", 2, "letter 2 is '\xc3\xa9', not one of s a u l r n m"},     /* sé */
+        {"\xc3\xa9s", 2, "letter 1 is '\xc3\xa9', not one of s a u l r n m"},     /* és */
+        {"s\xe2\x9c\x93m", 2, "has 3 letters, the fixture has 2 fixels"},       /* s✓m */
+        {"\xf0\x9f\x94\xa7", 1, "letter 1 is '\xf0\x9f\x94\xa7', not one"}, /* a wrench */
+        {"s\x80", 1, "byte 0x80 after letter 1 is not a letter"},
+        {"\xff", 1, "letter 1 is '?', not one"},
+        {"Sm", 2, "letter 1 is 'S', not one"},
+        {"smu", 2, "has 3 letters, the fixture has 2 fixels"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        wr_constraint constraint;
+        wr_error error = {{0}, {0}};
+        if (wr_constraint_parse(bad[i].text, bad[i].fixels, &constraint, &error))
+            fail_msg("\"%s\": accepted", bad[i].text);
+        if (strncmp(error.reason, bad[i].reason, strlen(bad[i].reason)) != 0)
+            fail_msg("\"%s\": \"%s\", expected \"%s...\"", bad[i].text, error.reason,
+                     bad[i].reason);
+    }
+    wr_constraint constraint;
+    assert_true(wr_constraint_parse("sm", 2, &constraint, NULL));
+}
+
 /* A fixture without a shape is accepted when com, inertia and normals are
  * given, and a null error pointer is allowed. */
 static void shapeless_fixture_is_accepted(void **state)
@@ -226,6 +314,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_invalid_field_is_named),
         cmocka_unit_test(shapeless_fixture_is_accepted),
+        cmocka_unit_test(refusals_say_what_is_wrong),
+        cmocka_unit_test(constraint_letters_are_characters),
     };
     return cmocka_run_group_tests_name("fixture", tests, NULL, NULL);
 }

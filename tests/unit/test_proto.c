@@ -307,6 +307,113 @@ static void notifications_and_batches(void **state)
     cJSON_Delete(answer);
 }
 
+/* The raw answer to `line` (the caller frees it). */
+static char *answer_text(harness *h, const char *line)
+{
+    wp_counts counts = {0, 0};
+    char *text = wp_answer_line(wd_context_host(h->context), &h->limits, line, strlen(line),
+                                &counts);
+    assert_non_null(text);
+    return text;
+}
+
+/* JSON-RPC: the id comes back exactly as sent.  A double would turn
+ * 9007199254740993 into ...992 and a 30-digit id into 1.2345678901234568e+29. */
+static void numeric_ids_are_echoed_as_written(void **state)
+{
+    harness *h = *state;
+    static const char *const ids[] = {"9007199254740993", "123456789012345678901234567890",
+                                      "-0", "1.50", "1E+05", "0.5e-3", "-12", "0", "7"};
+    for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++) {
+        char line[256], tail[128];
+        snprintf(line, sizeof line,
+                 "{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"params\":{\"x\":1},"
+                 "\"id\" : %s }",
+                 ids[i]);
+        snprintf(tail, sizeof tail, ",\"id\":%s}\n", ids[i]);
+        char *answer = answer_text(h, line);
+        size_t length = strlen(answer), tail_length = strlen(tail);
+        if (length < tail_length || strcmp(answer + length - tail_length, tail) != 0)
+            fail_msg("id %s echoed as: %s", ids[i], answer);
+        free(answer);
+    }
+    /* In a batch, each member's own id, wherever "id" stands among the
+     * members, however spaced, and not a nested "id" of params; the name
+     * may be escaped. */
+    char *answer = answer_text(
+        h, "[ {\"id\" :\t9007199254740993 ,\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\","
+           "\"params\":{\"id\":5}}, 5, {\"jsonrpc\":\"2.0\",\"method\":\"server.status\","
+           "\"params\":{\"s\":\"]}\\\"{\"},\"id\":\"9007199254740993\"},"
+           "{\"jsonrpc\":\"2.0\",\"method\":\"nope\",\"\\u0069d\":-1.0e+4}, "
+           "{\"jsonrpc\":\"2.0\",\"method\":\"nope\",\"id\":100000000000000000000000000001} ]");
+    const char *expected[] = {"\"id\":9007199254740993}", "\"id\":null}",
+                              "\"id\":\"9007199254740993\"}", "\"id\":-1.0e+4}",
+                              "\"id\":100000000000000000000000000001}]"};
+    const char *at = answer;
+    for (size_t i = 0; i < sizeof expected / sizeof expected[0]; i++) {
+        const char *found = strstr(at, expected[i]);
+        if (!found)
+            fail_msg("answer %zu does not end with %s: %s", i, expected[i], answer);
+        at = found + strlen(expected[i]);
+    }
+    free(answer);
+}
+
+/* RFC 8259 numbers: cJSON (strtod) reads "012", "1.", "-.5" and "1.e5";
+ * JSON does not allow them, anywhere in the line. */
+static void numbers_outside_the_rfc_are_parse_errors(void **state)
+{
+    harness *h = *state;
+    static const struct {
+        const char *number, *reason;
+    } bad[] = {{"012", "the number 012 has a leading zero"},
+               {"-012", "the number -012 has a leading zero"},
+               {"00", "the number 00 has a leading zero"},
+               {"-00.5", "the number -00.5 has a leading zero"},
+               {"1.", "the number 1. has no digit after its decimal point"},
+               {"1.e5", "the number 1.e5 has no digit after its decimal point"},
+               {"-.5", "the number -.5 has no digit before its fraction"}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        for (int where = 0; where < 2; where++) {
+            char line[256];
+            if (where == 0)
+                snprintf(line, sizeof line,
+                         "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"id\":%s}", bad[i].number);
+            else
+                snprintf(line, sizeof line,
+                         "[{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":"
+                         "{\"wrenches\":[[1,%s,0]]},\"id\":1}]",
+                         bad[i].number);
+            cJSON *answer = ask(h, line);
+            const cJSON *error = cJSON_GetObjectItem(answer, "error");
+            const cJSON *reason = cJSON_GetObjectItem(cJSON_GetObjectItem(error, "data"), "reason");
+            if (!cJSON_IsString(reason) || cJSON_GetObjectItem(error, "code")->valueint !=
+                                               WP_PARSE_ERROR ||
+                strstr(reason->valuestring, bad[i].reason) != reason->valuestring ||
+                !cJSON_IsNull(cJSON_GetObjectItem(answer, "id")))
+                fail_msg("%s: not refused as a parse error naming it", line);
+            cJSON_Delete(answer);
+        }
+    /* The numbers JSON allows, and digits inside strings, pass. */
+    static const char *const good[] = {"0", "-0", "0.5", "-0.5", "0e1", "0E-0", "10", "1e+05",
+                                       "\"012\"", "\"1.\""};
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        char line[256];
+        snprintf(line, sizeof line, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"id\":%s}",
+                 good[i]);
+        cJSON *answer = ask(h, line);
+        if (!cJSON_GetObjectItem(answer, "result"))
+            fail_msg("%s: refused", line);
+        cJSON_Delete(answer);
+    }
+    /* What cJSON refuses itself keeps its answer. */
+    expect_error(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"id\":1e}", WP_PARSE_ERROR,
+                 "");
+    char *answer = answer_text(h, "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\",\"id\":0x10}");
+    assert_non_null(strstr(answer, "the line is not valid JSON"));
+    free(answer);
+}
+
 static void put_get_classify_delete(void **state)
 {
     harness *h = *state;
@@ -560,6 +667,17 @@ static void pieces_join_to_the_whole_answer(void **state)
         free(whole);
     }
     assert_string_equal(answers[0], answers[1]);
+    /* A number JSON does not allow among a long line's wrenches is refused
+     * as in any other line, though the wrenches are read from the text. */
+    char *wrong = malloc(strlen(fast) + 16);
+    const char *at = strstr(fast, "\"wrenches\": [") + strlen("\"wrenches\": [");
+    sprintf(wrong, "%.*s[012,1,1],%s", (int)(at - fast), fast, at);
+    wp_counts counts = {0, 0};
+    char *refused = wp_answer_line(host, &limits, wrong, strlen(wrong), &counts);
+    assert_non_null(strstr(refused, "\"code\":-32700"));
+    assert_non_null(strstr(refused, "leading zero"));
+    free(refused);
+    free(wrong);
     cJSON *parsed = cJSON_Parse(answers[0]);
     assert_int_equal(cJSON_GetArraySize(cJSON_GetObjectItem(cJSON_GetObjectItem(parsed, "result"),
                                                             "results")), 6000);
@@ -608,6 +726,8 @@ int main(void)
         cmocka_unit_test(explicit_form_reads_back_to_the_same_fixture),
         cmocka_unit_test_setup_teardown(envelope_errors_name_the_field, setup, teardown),
         cmocka_unit_test_setup_teardown(notifications_and_batches, setup, teardown),
+        cmocka_unit_test_setup_teardown(numeric_ids_are_echoed_as_written, setup, teardown),
+        cmocka_unit_test_setup_teardown(numbers_outside_the_rfc_are_parse_errors, setup, teardown),
         cmocka_unit_test_setup_teardown(put_get_classify_delete, setup, teardown),
         cmocka_unit_test_setup_teardown(light_lines_answer_as_any_other, setup, teardown),
         cmocka_unit_test_setup_teardown(pieces_join_to_the_whole_answer, setup, teardown),
