@@ -79,16 +79,15 @@ def test_half_a_line_then_silence(harness):
 def test_idle_timeout_spares_a_client_waiting_for_its_answer(harness):
     """The timeout is for silence with nothing in flight: a connection
     waiting on a long request is not cut."""
-    # (Three seconds at least: answers left unread for the idle timeout
-    # close the connection too, and a loaded machine may stall this reader.)
-    d = harness.start("--idle-timeout", str(max(3, 2 * int(SLOW))), "--threads", "1")
+    # (Two seconds at least: answers left unread for the idle timeout close
+    # the connection too, and a loaded machine may stall this reader.)
+    d = harness.start("--idle-timeout", str(max(2, int(SLOW))), "--threads", "1")
     c = d.client()
     # Many wrenches with the LP method: longer than the timeout under ASan or
     # valgrind, and at least a while otherwise; the answer must arrive.
-    wrenches = [[-1, -1, 0.001 * i] for i in range(60000)]
-    start = time.monotonic()
+    wrenches = [[-1, -1, 0.001 * i] for i in range(20000)]
     r = c.result("wrench.classify", {"fixture": DISC, "wrenches": wrenches, "method": "lp"})
-    assert len(r["results"]) == 60000
+    assert len(r["results"]) == 20000
     time.sleep(0.2)
     assert c.result("server.status")["clients"] >= 1
 
