@@ -708,14 +708,18 @@ bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *er
     return ready(c, e, NULL, use, error);
 }
 
-int wd_cache_ready(wd_cache *c, const char *id)
+int wd_cache_use_ready(wd_cache *c, const char *id, wp_fixture_use *use)
 {
     pthread_mutex_lock(&c->lock);
-    const entry *e = find(c, id);
-    int cones = e && e->stored && e->analysis
-                    ? wr_analysis_cone_count(e->analysis, WR_SET_GOAL) +
-                          wr_analysis_cone_count(e->analysis, WR_SET_STRONG)
-                    : -1;
+    entry *e = find(c, id);
+    int cones = -1;
+    if (e && e->stored && e->analysis) {
+        cones = wr_analysis_cone_count(e->analysis, WR_SET_GOAL) +
+                wr_analysis_cone_count(e->analysis, WR_SET_STRONG);
+        e->refs++;
+        e->last_used = ++c->clock;
+        fill_use(e, NULL, use);
+    }
     pthread_mutex_unlock(&c->lock);
     return cones;
 }
@@ -767,39 +771,33 @@ static int compare_ids(const void *a, const void *b)
     return strcmp((*(const entry *const *)a)->id, (*(const entry *const *)b)->id);
 }
 
-cJSON *wd_cache_list(wd_cache *c)
+bool wd_cache_list(wd_cache *c, wp_fixture_listing *listing)
 {
-    cJSON *result = cJSON_CreateObject();
-    cJSON *list = cJSON_AddArrayToObject(result, "fixtures");
-    if (!list) {
-        cJSON_Delete(result);
-        return NULL;
-    }
+    listing->count = 0;
     pthread_mutex_lock(&c->lock);
     entry **sorted = malloc((c->count ? c->count : 1) * sizeof *sorted);
+    listing->entries = calloc(c->count ? c->count : 1, sizeof *listing->entries);
     size_t n = 0;
-    for (size_t b = 0; sorted && b < c->bucket_count; b++)
+    for (size_t b = 0; sorted && listing->entries && b < c->bucket_count; b++)
         for (entry *e = c->buckets[b]; e; e = e->next)
             if (e->stored)
                 sorted[n++] = e;
-    if (sorted)
+    bool ok = sorted && listing->entries;
+    if (ok)
         qsort(sorted, n, sizeof *sorted, compare_ids);
-    bool ok = sorted != NULL;
     for (size_t i = 0; ok && i < n; i++) {
-        cJSON *item = cJSON_CreateObject();
-        ok = item && cJSON_AddStringToObject(item, "id", sorted[i]->id) &&
-             cJSON_AddStringToObject(item, "name", sorted[i]->texts->name) &&
-             cJSON_AddNumberToObject(item, "fixels", sorted[i]->fixture->fixel_count);
-        if (item)
-            cJSON_AddItemToArray(list, item);
+        wp_fixture_entry *item = &listing->entries[i];
+        snprintf(item->id, sizeof item->id, "%s", sorted[i]->id);
+        item->name = strdup(sorted[i]->texts->name);
+        item->fixels = sorted[i]->fixture->fixel_count;
+        ok = item->name != NULL;
+        listing->count = i + 1;
     }
     pthread_mutex_unlock(&c->lock);
     free(sorted);
-    if (!ok) {
-        cJSON_Delete(result);
-        return NULL;
-    }
-    return result;
+    if (!ok)
+        wp_fixture_listing_release(listing);
+    return ok;
 }
 
 uint64_t wd_cache_serial(const wp_fixture_use *use)

@@ -27,12 +27,14 @@ void wd_cache_free(wd_cache *cache);
 bool wd_cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                     wp_error *error);
 bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use, wp_error *error);
-/* Is the stored fixture `id` there with its derived data (so that using it
- * derives nothing)?  Its number of cones (goal + strong), or -1. */
-int wd_cache_ready(wd_cache *cache, const char *id);
+/* Hold the stored fixture `id` if its derived data is there (so that using
+ * it derives nothing): its number of cones (goal + strong), or -1 with
+ * nothing held. */
+int wd_cache_use_ready(wd_cache *cache, const char *id, wp_fixture_use *use);
 void wd_cache_release(wd_cache *cache, wp_fixture_use *use);
 bool wd_cache_delete(wd_cache *cache, const char *id, wp_error *error);
-cJSON *wd_cache_list(wd_cache *cache);
+/* The stored fixtures, by id (false: out of memory, nothing held). */
+bool wd_cache_list(wd_cache *cache, wp_fixture_listing *listing);
 
 /* A number naming the derived data of a fixture in use: it changes whenever
  * that data is rebuilt, so per-thread state derived from it (warm LPs) can

@@ -58,10 +58,6 @@
 
 /* A connection stops reading while this many answers are pending. */
 #define MAX_PENDING 1024
-/* A client's light requests answered in the loop per read, at most: one
- * that pipelines thousands gets the rest answered by the workers, in turn
- * with everyone else, rather than holding the loop. */
-#define LIGHT_BURST 32
 /* Answers from this size on are handed to libevent rather than copied. */
 #define ZERO_COPY_BYTES 65536
 /* After SIGTERM, answers in flight get this long before the daemon exits. */
@@ -97,7 +93,7 @@ struct connection {
     struct event *request_timer; /* a request begun must arrive whole in time */
     bool discarding;           /* skipping the rest of an over-long line */
     int light_answered;        /* light requests answered in the loop since
-                                  the last read (at most LIGHT_BURST) */
+                                  the last read (at most WP_LIGHT_BURST) */
     size_t scanned;            /* the first bytes of the input, known to hold no
                                   "\n": a long line is searched once, not once
                                   per read */
@@ -371,19 +367,27 @@ static void answer_now(connection *c, int code, const char *reason)
  * writes answers in queue order, so order is kept.  (Should a worker evict
  * the fixture's derived data between wp_answer_light's check and its use,
  * the loop derives it once: milliseconds, rarely.) */
-static bool answer_light(connection *c, slot *x)
+static bool answer_light(connection *c, slot *x, wp_answer **parsed)
 {
     wd_server *s = c->server;
-    if (!s->light || c->light_answered >= LIGHT_BURST)
+    *parsed = NULL;
+    if (!s->light || c->light_answered >= WP_LIGHT_BURST || x->length > WP_LIGHT_LINE)
+        return false; /* a long line is parsed by the worker, not here */
+    /* Parsed here, once: light or not, the worker gets it parsed (and its
+     * fixture held, when the light check looked it up). */
+    wp_answer *answer = wp_answer_begin(&s->limits, x->line, x->length);
+    if (!answer)
         return false;
-    wp_counts counts = {0, 0};
-    if (!wp_answer_light(wd_context_host(s->light), &s->limits, x->line, x->length, &counts,
-                         &x->response))
-        return false;
-    atomic_fetch_add(&s->stats.requests, counts.requests);
-    atomic_fetch_add(&s->stats.errors, counts.errors);
     free(x->line);
     x->line = NULL;
+    if (!wp_answer_light(answer, s->loop_host)) {
+        *parsed = answer;
+        return false;
+    }
+    wp_counts counts = {0, 0};
+    x->response = wp_answer_whole(answer, s->loop_host, &counts);
+    atomic_fetch_add(&s->stats.requests, counts.requests);
+    atomic_fetch_add(&s->stats.errors, counts.errors);
     x->done = true;
     c->light_answered++;
     return true;
@@ -395,6 +399,7 @@ static bool answer_light(connection *c, slot *x)
 static void dispatch(connection *c)
 {
     slot *x;
+    wp_answer *parsed = NULL;
     for (;;) {
         if (c->running || !output_room(c))
             return;
@@ -404,12 +409,13 @@ static void dispatch(connection *c)
         if (!x)
             return;
         c->queued_bytes -= x->length;
-        if (!answer_light(c, x))
+        if (!answer_light(c, x, &parsed))
             break;
         flush(c); /* the rest still run while the client reads */
     }
     wd_task *task = calloc(1, sizeof *task);
     if (!task) {
+        wp_answer_free(parsed, c->server->loop_host);
         free(x->line);
         x->line = NULL;
         x->response = wp_error_line(WP_INTERNAL, "", "out of memory");
@@ -419,7 +425,8 @@ static void dispatch(connection *c)
     }
     atomic_init(&task->cancelled, false);
     task->owner = x;
-    task->line = x->line;
+    task->answer = parsed;
+    task->line = x->line; /* NULL when parsed already */
     task->length = x->length;
     x->line = NULL;
     x->task = task;

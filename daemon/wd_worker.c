@@ -47,39 +47,42 @@ static bool host_delete(void *self, const char *id, wp_error *error)
     return wd_cache_delete(((wd_context *)self)->cache, id, error);
 }
 
-static int host_ready(void *self, const char *id)
+static int host_use_ready(void *self, const char *id, wp_fixture_use *use)
 {
-    return wd_cache_ready(((wd_context *)self)->cache, id);
+    return wd_cache_use_ready(((wd_context *)self)->cache, id, use);
 }
 
-static cJSON *host_list(void *self) { return wd_cache_list(((wd_context *)self)->cache); }
-
-static cJSON *host_status(void *self)
+static bool host_list(void *self, wp_fixture_listing *listing, wp_error *error)
 {
+    if (wd_cache_list(((wd_context *)self)->cache, listing))
+        return true;
+    wp_error_set(error, WP_INTERNAL, "", "out of memory");
+    return false;
+}
+
+/* The daemon's counters and the cache's figures, as data: proto writes
+ * the JSON. */
+static bool host_state(void *self, wp_server_state *state, wp_error *error)
+{
+    (void)error;
     wd_context *context = self;
     wd_cache_stats cache;
     wd_cache_stats_get(context->cache, &cache);
     const wd_stats *s = context->stats;
-    cJSON *result = cJSON_CreateObject();
-    if (!result)
-        return NULL;
-    cJSON_AddStringToObject(result, "version", WR_VERSION);
-    cJSON_AddNumberToObject(result, "uptime_s", (double)(time(NULL) - s->started));
-    cJSON_AddNumberToObject(result, "fixtures", (double)cache.stored);
-    cJSON_AddNumberToObject(result, "cached", (double)cache.cached);
-    cJSON_AddNumberToObject(result, "cache_bytes", (double)cache.derived_bytes);
-    cJSON_AddNumberToObject(result, "cache_limit_bytes", (double)cache.derived_limit);
-    cJSON_AddNumberToObject(result, "threads", s->threads);
-    cJSON_AddNumberToObject(result, "clients", (double)atomic_load(&s->clients));
-    cJSON_AddNumberToObject(result, "refused", (double)atomic_load(&s->refused));
-    cJSON_AddNumberToObject(result, "denied", (double)atomic_load(&s->denied));
-    cJSON_AddNumberToObject(result, "requests", (double)atomic_load(&s->requests));
-    cJSON *errors = cJSON_AddNumberToObject(result, "errors", (double)atomic_load(&s->errors));
-    if (!errors) {
-        cJSON_Delete(result);
-        return NULL;
-    }
-    return result;
+    *state = (wp_server_state){
+        .uptime_s = (double)(time(NULL) - s->started),
+        .fixtures = cache.stored,
+        .cached = cache.cached,
+        .cache_bytes = cache.derived_bytes,
+        .cache_limit_bytes = cache.derived_limit,
+        .threads = s->threads,
+        .clients = atomic_load(&s->clients),
+        .refused = atomic_load(&s->refused),
+        .denied = atomic_load(&s->denied),
+        .requests = atomic_load(&s->requests),
+        .errors = atomic_load(&s->errors),
+    };
+    return true;
 }
 
 static void slot_clear(lp_slot *slot)
@@ -136,9 +139,15 @@ wd_context *wd_context_new(wd_cache *cache, wd_stats *stats)
         wr_lp_env_inject_failure(context->solver, atoi(failure));
     context->cache = cache;
     context->stats = stats;
-    context->host = (wp_host){context,     host_adopt,  host_use,    host_release,
-                              host_delete, host_list,   host_status, host_lp_sets,
-                              host_ready,  NULL};
+    context->host = (wp_host){.self = context,
+                              .fixture_adopt = host_adopt,
+                              .fixture_use = host_use,
+                              .fixture_use_ready = host_use_ready,
+                              .fixture_release = host_release,
+                              .fixture_delete = host_delete,
+                              .fixture_list = host_list,
+                              .state = host_state,
+                              .lp_sets = host_lp_sets};
     return context;
 }
 

@@ -77,10 +77,19 @@ static bool local_delete(void *self, const char *id, wp_error *error)
     return no_store(error);
 }
 
-static cJSON *local_nothing(void *self)
+static bool local_list(void *self, wp_fixture_listing *listing, wp_error *error)
 {
     (void)self;
-    return NULL; /* answered as an internal error; wrenchctl never asks */
+    (void)listing;
+    return no_store(error);
+}
+
+static bool local_state(void *self, wp_server_state *state, wp_error *error)
+{
+    (void)self;
+    (void)state;
+    wp_error_set(error, WP_NO_METHOD, "method", "server.status needs the daemon");
+    return false;
 }
 
 static bool local_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
@@ -107,9 +116,14 @@ wp_local *wp_local_new(void)
         free(local);
         return NULL;
     }
-    local->host = (wp_host){local,         local_adopt,   local_use,     local_release,
-                            local_delete,  local_nothing, local_nothing, local_lp_sets,
-                            NULL, NULL};
+    local->host = (wp_host){.self = local,
+                            .fixture_adopt = local_adopt,
+                            .fixture_use = local_use,
+                            .fixture_release = local_release,
+                            .fixture_delete = local_delete,
+                            .fixture_list = local_list,
+                            .state = local_state,
+                            .lp_sets = local_lp_sets};
     return local;
 }
 

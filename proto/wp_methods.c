@@ -10,34 +10,6 @@
 
 /* ---- shared readers ------------------------------------------------------ */
 
-/* params.fixture: a stored id, or an inline fixture object. */
-static bool use_fixture(const wp_host *host, const cJSON *params, wp_fixture_use *use,
-                        wp_error *error)
-{
-    const cJSON *value = cJSON_GetObjectItemCaseSensitive(params, "fixture");
-    bool ok;
-    if (cJSON_IsString(value)) {
-        if (!wp_fixture_id_valid(value->valuestring)) {
-            wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
-                         "not a fixture id (32 hexadecimal digits) nor a fixture object");
-            return false;
-        }
-        ok = host->fixture_use(host->self, value->valuestring, use, error);
-    } else if (cJSON_IsObject(value)) {
-        wp_fixture_doc doc;
-        if (!wp_fixture_read(value, "params.fixture", &doc, error))
-            return false;
-        ok = host->fixture_adopt(host->self, &doc, false, use, error);
-    } else {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
-                     "must be a fixture id or a fixture object, not %s", wp_type_name(value));
-        return false;
-    }
-    if (!ok && !error->field[0])
-        snprintf(error->field, sizeof error->field, "params.fixture");
-    return ok;
-}
-
 /* params.id: a well-formed fixture id. */
 static const char *read_id(const cJSON *params, wp_error *error)
 {
@@ -68,10 +40,11 @@ static cJSON *vector3(const double v[3])
 
 /* ---- fixtures ------------------------------------------------------------ */
 
-static cJSON *fixture_put(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                          wp_error *error)
+static cJSON *fixture_put(wp_call *call)
 {
-    (void)limits;
+    const wp_host *host = call->host;
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
     wp_fixture_doc doc;
     if (!wp_fixture_read(cJSON_GetObjectItemCaseSensitive(params, "fixture"), "params.fixture",
                          &doc, error))
@@ -92,10 +65,11 @@ static cJSON *fixture_put(const wp_host *host, const wp_limits *limits, const cJ
     return result ? result : out_of_memory(NULL, error);
 }
 
-static cJSON *fixture_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                          wp_error *error)
+static cJSON *fixture_get(wp_call *call)
 {
-    (void)limits;
+    const wp_host *host = call->host;
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
     const char *id = read_id(params, error);
     wp_fixture_use use;
     if (!id || !host->fixture_use(host->self, id, &use, error)) {
@@ -108,10 +82,11 @@ static cJSON *fixture_get(const wp_host *host, const wp_limits *limits, const cJ
     return result ? result : out_of_memory(NULL, error);
 }
 
-static cJSON *fixture_delete(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                             wp_error *error)
+static cJSON *fixture_delete(wp_call *call)
 {
-    (void)limits;
+    const wp_host *host = call->host;
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
     const char *id = read_id(params, error);
     if (!id || !host->fixture_delete(host->self, id, error)) {
         if (id && !error->field[0])
@@ -124,22 +99,58 @@ static cJSON *fixture_delete(const wp_host *host, const wp_limits *limits, const
     return result;
 }
 
-static cJSON *fixture_list(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                           wp_error *error)
+static cJSON *fixture_list(wp_call *call)
 {
-    (void)limits;
-    (void)params;
-    cJSON *result = host->fixture_list(host->self);
-    return result ? result : out_of_memory(NULL, error);
+    wp_fixture_listing listing = {0, NULL};
+    if (!call->host->fixture_list(call->host->self, &listing, call->error))
+        return NULL;
+    cJSON *result = cJSON_CreateObject();
+    cJSON *list = cJSON_AddArrayToObject(result, "fixtures");
+    bool ok = list != NULL;
+    for (size_t i = 0; ok && i < listing.count; i++) {
+        const wp_fixture_entry *e = &listing.entries[i];
+        cJSON *item = cJSON_CreateObject();
+        ok = item && cJSON_AddStringToObject(item, "id", e->id) &&
+             cJSON_AddStringToObject(item, "name", e->name) &&
+             cJSON_AddNumberToObject(item, "fixels", e->fixels);
+        if (item)
+            cJSON_AddItemToArray(list, item);
+    }
+    wp_fixture_listing_release(&listing);
+    return ok ? result : out_of_memory(result, call->error);
 }
 
-static cJSON *server_status(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                            wp_error *error)
+static cJSON *server_status(wp_call *call)
 {
-    (void)limits;
-    (void)params;
-    cJSON *result = host->status(host->self);
-    return result ? result : out_of_memory(NULL, error);
+    wp_server_state state;
+    if (!call->host->state(call->host->self, &state, call->error))
+        return NULL;
+    cJSON *result = cJSON_CreateObject();
+    if (!result)
+        return out_of_memory(NULL, call->error);
+    cJSON_AddStringToObject(result, "version", WR_VERSION);
+    cJSON_AddNumberToObject(result, "uptime_s", state.uptime_s);
+    cJSON_AddNumberToObject(result, "fixtures", (double)state.fixtures);
+    cJSON_AddNumberToObject(result, "cached", (double)state.cached);
+    cJSON_AddNumberToObject(result, "cache_bytes", (double)state.cache_bytes);
+    cJSON_AddNumberToObject(result, "cache_limit_bytes", (double)state.cache_limit_bytes);
+    cJSON_AddNumberToObject(result, "threads", state.threads);
+    cJSON_AddNumberToObject(result, "clients", (double)state.clients);
+    cJSON_AddNumberToObject(result, "refused", (double)state.refused);
+    cJSON_AddNumberToObject(result, "denied", (double)state.denied);
+    cJSON_AddNumberToObject(result, "requests", (double)state.requests);
+    if (!cJSON_AddNumberToObject(result, "errors", (double)state.errors))
+        return out_of_memory(result, call->error);
+    return result;
+}
+
+void wp_fixture_listing_release(wp_fixture_listing *listing)
+{
+    for (size_t i = 0; i < listing->count; i++)
+        free(listing->entries[i].name);
+    free(listing->entries);
+    listing->entries = NULL;
+    listing->count = 0;
 }
 
 /* ---- wrench.classify ------------------------------------------------------ */
@@ -321,39 +332,37 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
  * are read once, up front, so that a bad one is refused before any answer
  * is written; then each step answers the next few. */
 struct wp_stream {
-    wp_fixture_use use;
     classify_request request;
+    bool opened;        /* "[" written */
     size_t next;        /* the next wrench to answer */
 };
 
-static void classify_free(wp_stream *stream, const wp_host *host)
+static void classify_free(wp_stream *stream)
 {
     if (!stream)
         return;
     free(stream->request.wrenches);
-    host->fixture_release(host->self, &stream->use);
     free(stream);
 }
 
-static wp_stream *classify_begin(const wp_host *host, const wp_limits *limits, cJSON *params,
-                                 wp_prepared *prepared, wp_error *error)
+static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
 {
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
     wp_stream *stream = calloc(1, sizeof *stream);
     if (!stream) {
-        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
     }
-    if (!use_fixture(host, params, &stream->use, error)) {
-        free(stream);
-        return NULL;
-    }
-    if (!read_classify(limits, params, stream->use.fixture, prepared, &stream->request, error)) {
-        classify_free(stream, host);
+    if (!read_classify(call->limits, call->params, use->fixture, prepared, &stream->request,
+                       call->error)) {
+        classify_free(stream);
         return NULL;
     }
     /* Read: the tree of a hundred thousand wrenches (tens of megabytes of
      * nodes) need not live as long as the answer does. */
-    cJSON_DeleteItemFromObjectCaseSensitive(params, "wrenches");
+    cJSON_DeleteItemFromObjectCaseSensitive(call->params, "wrenches");
     return stream;
 }
 
@@ -361,13 +370,18 @@ static wp_stream *classify_begin(const wp_host *host, const wp_limits *limits, c
  * on a connection's unsent output is checked between pieces. */
 #define CLASSIFY_PIECE_BYTES (256 * 1024)
 
-static wp_step classify_step(wp_stream *stream, const wp_host *host, wp_buffer *out,
-                             unsigned long budget, unsigned long *used, wp_error *error)
+static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
+                             unsigned long budget, unsigned long *used)
 {
+    const wp_host *host = call->host;
+    wp_error *error = call->error;
+    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
+    if (!use)
+        return WP_STEP_FAILED;
     classify_request *r = &stream->request;
-    const wr_analysis *a = stream->use.analysis;
+    const wr_analysis *a = use->analysis;
     wr_lp_set *goal = NULL, *strong = NULL;
-    if (r->lp && !host->lp_sets(host->self, &stream->use, &goal, &strong, error))
+    if (r->lp && !host->lp_sets(host->self, use, &goal, &strong, error))
         return WP_STEP_FAILED;
     unsigned long cost = 1;
     for (int s = 0; s < r->set_count; s++)
@@ -378,15 +392,19 @@ static wp_step classify_step(wp_stream *stream, const wp_host *host, wp_buffer *
     if (r->lp)
         cost *= 64; /* an LP per cone, not a few dot products */
     size_t start = out->length;
-    if (stream->next == 0) {
+    if (!stream->opened) {
+        stream->opened = true;
         wp_buffer_reserve(out, out->length + 64 +
                                    (r->wrench_count < 1024 ? r->wrench_count : 1024) *
                                        (size_t)r->set_count * 320);
         WP_BUFFER_LITERAL(out, "[");
     }
     while (stream->next < r->wrench_count && !out->failed) {
-        if (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES ||
-            wr_stop_requested(host->stop))
+        /* At least one wrench a step, whatever the piece spent before it:
+         * every step makes progress. */
+        if (out->length > start + 1 &&
+            (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES ||
+             wr_stop_requested(host->stop)))
             return WP_STEP_MORE;
         size_t i = stream->next++;
         *used += cost;
@@ -434,17 +452,17 @@ static bool classify_light(const cJSON *params, int cones)
 
 /* ---- cone.get, plan.get, modes.get --------------------------------------- */
 
-static cJSON *cone_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                       wp_error *error)
+static cJSON *cone_get(wp_call *call)
 {
-    (void)limits;
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
     const char *text;
     if (!wp_member_string(params, "params", "constraints", true, &text, error))
         return NULL;
-    wp_fixture_use use;
-    if (!use_fixture(host, params, &use, error))
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
         return NULL;
-    const wr_fixture *f = use.fixture;
+    const wr_fixture *f = use->fixture;
     wr_constraint constraint;
     wr_error invalid;
     wr_cone cone;
@@ -490,18 +508,16 @@ static cJSON *cone_get(const wp_host *host, const wp_limits *limits, const cJSON
     }
     wr_cone_release(&cone);
 done:
-    host->fixture_release(host->self, &use);
     return result;
 }
 
-static cJSON *plan_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                       wp_error *error)
+static cJSON *plan_get(wp_call *call)
 {
-    (void)limits;
-    wp_fixture_use use;
-    if (!use_fixture(host, params, &use, error))
+    wp_error *error = call->error;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
         return NULL;
-    const wr_plan *plan = use.analysis->plan;
+    const wr_plan *plan = use->analysis->plan;
     int k = plan->fixel_count;
     cJSON *result = cJSON_CreateObject();
     cJSON *states = cJSON_AddArrayToObject(result, "states");
@@ -520,20 +536,18 @@ static cJSON *plan_get(const wp_host *host, const wp_limits *limits, const cJSON
     }
     for (int i = 0; cones && i < plan->kept_count; i++)
         cJSON_AddItemToArray(cones, cJSON_CreateString(plan->kept[i].letters));
-    host->fixture_release(host->self, &use);
     if (!states || !cones)
         return out_of_memory(result, error);
     return result;
 }
 
-static cJSON *modes_get(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                        wp_error *error)
+static cJSON *modes_get(wp_call *call)
 {
-    (void)limits;
-    wp_fixture_use use;
-    if (!use_fixture(host, params, &use, error))
+    wp_error *error = call->error;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
         return NULL;
-    const wr_analysis *a = use.analysis;
+    const wr_analysis *a = use->analysis;
     cJSON *result = cJSON_CreateObject();
     cJSON *feasible = cJSON_AddArrayToObject(result, "feasible");
     for (int i = 0; feasible && i < a->mode_count; i++) {
@@ -542,7 +556,6 @@ static cJSON *modes_get(const wp_host *host, const wp_limits *limits, const cJSO
         cJSON_AddItemToArray(feasible, cJSON_CreateString(text));
     }
     cJSON_AddBoolToObject(result, "pinned", a->pinned);
-    host->fixture_release(host->self, &use);
     if (!feasible)
         return out_of_memory(result, error);
     return result;
@@ -574,10 +587,11 @@ static cJSON *point(const double p[2])
     return cJSON_CreateDoubleArray(q, 2);
 }
 
-static cJSON *push_regions(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                           wp_error *error)
+static cJSON *push_regions(wp_call *call)
 {
-    (void)limits;
+    const wp_host *host = call->host;
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
     wr_set set;
     double friction = 0;
     if (!read_set(params, &set, error) ||
@@ -587,15 +601,15 @@ static cJSON *push_regions(const wp_host *host, const wp_limits *limits, const c
         wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction", "must not be negative");
         return NULL;
     }
-    wp_fixture_use use;
-    if (!use_fixture(host, params, &use, error))
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
         return NULL;
-    const wr_fixture *f = use.fixture;
+    const wr_fixture *f = use->fixture;
     cJSON *result = NULL;
     wr_regions regions;
     int status = f->shape == WR_SHAPE_NONE
                      ? -1
-                     : wr_push_regions(use.analysis, set, friction, host->stop, &regions);
+                     : wr_push_regions(use->analysis, set, friction, host->stop, &regions);
     if (status == -3) {
         wp_error_set(error, WP_INTERNAL, "", "stopped: the client is gone");
     } else if (status == -1) {
@@ -630,23 +644,22 @@ static cJSON *push_regions(const wp_host *host, const wp_limits *limits, const c
             result = out_of_memory(result, error);
         wr_regions_release(&regions);
     }
-    host->fixture_release(host->self, &use);
     return result;
 }
 
-static cJSON *gravity_sweep(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                            wp_error *error)
+static cJSON *gravity_sweep(wp_call *call)
 {
-    (void)limits;
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
     wr_set set;
     if (!read_set(params, &set, error))
         return NULL;
-    wp_fixture_use use;
-    if (!use_fixture(host, params, &use, error))
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
         return NULL;
     cJSON *result = NULL;
     wr_regions arcs;
-    if (wr_gravity_sweep(use.analysis, set, &arcs) != 0) {
+    if (wr_gravity_sweep(use->analysis, set, &arcs) != 0) {
         out_of_memory(NULL, error);
     } else {
         result = cJSON_CreateObject();
@@ -659,30 +672,29 @@ static cJSON *gravity_sweep(const wp_host *host, const wp_limits *limits, const 
             result = out_of_memory(result, error);
         wr_regions_release(&arcs);
     }
-    host->fixture_release(host->self, &use);
     return result;
 }
 
-static cJSON *stability_margin(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                               wp_error *error)
+static cJSON *stability_margin(wp_call *call)
 {
-    (void)limits;
-    wp_fixture_use use;
-    if (!use_fixture(host, params, &use, error))
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
         return NULL;
     double bias[3];
     cJSON *result = NULL;
     wr_disturbance d;
     bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",
-                               use.fixture, bias, error);
-    if (read && wr_disturbance_margin(use.analysis, bias, &d) != 0)
+                               use->fixture, bias, error);
+    if (read && wr_disturbance_margin(use->analysis, bias, &d) != 0)
         wp_error_set(error, WP_INVALID_PARAMS, "params.bias",
                      "so large that its margin is beyond the largest number");
     else if (read) {
         result = cJSON_CreateObject();
         if (d.bounded) {
             char text[WR_CONSTRAINT_TEXT];
-            wr_constraint_format(&use.analysis->modes[d.blocking], text);
+            wr_constraint_format(&use->analysis->modes[d.blocking], text);
             cJSON_AddNumberToObject(result, "margin", d.margin + 0.0);
             cJSON_AddStringToObject(result, "blocking", text);
             cJSON_AddItemToObject(result, "worst_direction", vector3(d.worst_direction));
@@ -695,7 +707,6 @@ static cJSON *stability_margin(const wp_host *host, const wp_limits *limits, con
         if (!cJSON_GetObjectItem(result, "worst_direction"))
             result = out_of_memory(result, error);
     }
-    host->fixture_release(host->self, &use);
     return result;
 }
 
@@ -726,22 +737,23 @@ const wp_method wp_methods[] = {
     {.name = "fixture.list", .handler = fixture_list, .fields = NONE, .required = NONE,
      .flags = WP_CHEAP, .summary = "the stored fixtures"},
     {.name = "wrench.classify", .stream = &CLASSIFY_STREAM, .fields = CLASSIFY,
-     .required = CLASSIFY_REQUIRED, .flags = WP_READY, .light = classify_light,
+     .required = CLASSIFY_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = classify_light,
      .summary = "verdicts, margins and blocking transitions of wrenches"},
-    {.name = "cone.get", .handler = cone_get, .fields = CONE, .required = CONE,
+    {.name = "cone.get", .handler = cone_get, .fields = CONE, .required = CONE, .flags = WP_FIXTURE,
      .summary = "the explicit cone of a constraint string"},
     {.name = "plan.get", .handler = plan_get, .fields = FIXTURE, .required = FIXTURE,
-     .flags = WP_READY, .summary = "contact states, their excluded strings, G_goal's cones"},
+     .flags = WP_FIXTURE | WP_READY, .summary = "contact states, their excluded strings, G_goal's cones"},
     {.name = "modes.get", .handler = modes_get, .fields = FIXTURE, .required = FIXTURE,
-     .flags = WP_READY, .summary = "the feasible moving contact modes"},
+     .flags = WP_FIXTURE | WP_READY, .summary = "the feasible moving contact modes"},
     {.name = "server.status", .handler = server_status, .fields = NONE, .required = NONE,
      .flags = WP_CHEAP, .summary = "version, uptime, counts"},
     {.name = "push.regions", .handler = push_regions, .fields = PUSH, .required = FIXTURE,
+     .flags = WP_FIXTURE,
      .summary = "the boundary intervals where a finger's push is in a set"},
     {.name = "gravity.sweep", .handler = gravity_sweep, .fields = SWEEP, .required = FIXTURE,
-     .flags = WP_READY, .summary = "the tilts under which gravity is in a set"},
+     .flags = WP_FIXTURE | WP_READY, .summary = "the tilts under which gravity is in a set"},
     {.name = "stability.margin", .handler = stability_margin, .fields = MARGIN,
-     .required = MARGIN, .summary = "how large a disturbance a biasing wrench tolerates"},
+     .required = MARGIN, .flags = WP_FIXTURE, .summary = "how large a disturbance a biasing wrench tolerates"},
     {0},
 };
 

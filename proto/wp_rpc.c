@@ -68,12 +68,58 @@ struct wp_answer {
     bool opened;             /* a batch's "[" is written */
     bool done;
     wp_prepared prepared;    /* a long classify's wrenches, read from the text */
+    /* The fixture of the request in hand, held (invariant: `holding` iff
+     * use.handle[0] is the host's): from the light check on, or for the
+     * call, or until a streamed result's last piece. */
+    wp_fixture_use use;
+    bool holding;
     /* The request in progress, when its result is written in pieces. */
     const wp_streamer *streamer;
     wp_stream *stream;
+    cJSON *params;           /* its params (in `json`, or `empty`) */
+    cJSON *empty;            /* {} for a request without params */
     char *id_text;           /* its id as answered (malloc'd) */
     size_t bytes;            /* wp_answer_bytes */
 };
+
+static void release_fixture(wp_answer *answer, const wp_host *host)
+{
+    if (answer->holding)
+        host->fixture_release(host->self, &answer->use);
+    answer->holding = false;
+}
+
+/* params.fixture, held for the call: a stored id, or an inline fixture
+ * object (validated, then cached under its id). */
+static bool acquire_fixture(wp_answer *answer, const wp_host *host, const cJSON *params,
+                            wp_error *error)
+{
+    if (answer->holding)
+        return true; /* held since the light check, or an earlier piece */
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(params, "fixture");
+    bool ok;
+    if (cJSON_IsString(value)) {
+        if (!wp_fixture_id_valid(value->valuestring)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
+                         "not a fixture id (32 hexadecimal digits) nor a fixture object");
+            return false;
+        }
+        ok = host->fixture_use(host->self, value->valuestring, &answer->use, error);
+    } else if (cJSON_IsObject(value)) {
+        wp_fixture_doc doc;
+        if (!wp_fixture_read(value, "params.fixture", &doc, error))
+            return false;
+        ok = host->fixture_adopt(host->self, &doc, false, &answer->use, error);
+    } else {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
+                     "must be a fixture id or a fixture object, not %s", wp_type_name(value));
+        return false;
+    }
+    if (!ok && !error->field[0])
+        snprintf(error->field, sizeof error->field, "params.fixture");
+    answer->holding = ok;
+    return ok;
+}
 
 /* What the envelope of one request says: an error found in it, its id as
  * the answer echoes it, and whether it is a notification.  Returns whether
@@ -182,14 +228,26 @@ static void write_error_answer(wp_answer *answer, wp_buffer *out, const wp_error
     write_error(out, error, id_text ? id_text : "null");
 }
 
+wp_fixture_use *wp_call_fixture(wp_call *call)
+{
+    wp_answer *answer = call->answer;
+    if (!acquire_fixture(answer, call->host, call->params, call->error))
+        return NULL;
+    return &answer->use;
+}
+
 static void end_stream(wp_answer *answer, const wp_host *host)
 {
     if (answer->stream)
-        answer->streamer->free(answer->stream, host);
+        answer->streamer->free(answer->stream);
     answer->stream = NULL;
     answer->streamer = NULL;
+    answer->params = NULL;
+    cJSON_Delete(answer->empty);
+    answer->empty = NULL;
     free(answer->id_text);
     answer->id_text = NULL;
+    release_fixture(answer, host);
 }
 
 /* Go on with the request whose result is written in pieces.  `mine` says
@@ -199,13 +257,12 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
                                size_t start, bool mine, unsigned long *used, wp_counts *counts)
 {
     wp_error error = {0};
+    wp_call call = {host, &answer->limits, answer->params, &error, answer};
     unsigned long budget = answer->whole ? (unsigned long)-1 : answer->budget;
-    wp_step step = answer->streamer->step(answer->stream, host, out, budget, used, &error);
-    if (step == WP_STEP_MORE && answer->whole) {
-        while (step == WP_STEP_MORE) {
-            *used = 0;
-            step = answer->streamer->step(answer->stream, host, out, budget, used, &error);
-        }
+    wp_step step = answer->streamer->step(answer->stream, &call, out, budget, used);
+    while (step == WP_STEP_MORE && answer->whole) {
+        *used = 0;
+        step = answer->streamer->step(answer->stream, &call, out, budget, used);
     }
     if (step == WP_STEP_MORE)
         return WP_STEP_MORE;
@@ -255,17 +312,20 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             m = find_method(request, params, &error);
     }
     bool cheap = !m || (m->flags & WP_CHEAP);
+    wp_call call = {host, &answer->limits, params, &error, answer};
     if (m && m->stream) {
-        wp_stream *stream = m->stream->begin(host, &answer->limits, params,
-                                             answer->batch ? NULL : &answer->prepared, &error);
+        wp_stream *stream = m->stream->begin(&call, answer->batch ? NULL : &answer->prepared);
         if (stream && notification) {
             /* Nobody will read it: nothing to compute. */
-            m->stream->free(stream, host);
+            m->stream->free(stream);
         } else if (stream) {
             size_t start = out->length;
             separate(answer, out);
             answer->streamer = m->stream;
             answer->stream = stream;
+            answer->params = params;
+            answer->empty = empty;
+            empty = NULL;
             answer->id_text = id_text;
             id_text = NULL;
             answer->bytes = 4096 + (m->stream->bytes ? m->stream->bytes(stream) : 0);
@@ -278,7 +338,7 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
                 write_error_answer(answer, out, &error, id_text);
         }
     } else {
-        cJSON *result = m ? m->handler(host, &answer->limits, params, &error) : NULL;
+        cJSON *result = m ? m->handler(&call) : NULL;
         if (!result)
             counts->errors++;
         if (!notification) {
@@ -289,6 +349,10 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
         }
         cJSON_Delete(result);
     }
+    /* The flags, acted on here and only here: the fixture wp_call_fixture
+     * acquired for the call is released after it (after its last piece). */
+    if (!answer->stream)
+        release_fixture(answer, host);
     cJSON_Delete(empty);
     free(id_text);
     return cheap;
@@ -377,21 +441,28 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
 
 /* Light work (wp_answer_light): server.status, or an auto classify of a
  * few wrenches against a stored fixture whose cones are ready. */
-static bool json_is_light(const wp_host *host, const cJSON *json)
+bool wp_answer_light(wp_answer *answer, const wp_host *host)
 {
+    if (answer->refusal)
+        return true; /* refusing a line is light */
+    const cJSON *json = answer->json;
+    if (answer->batch)
+        return false; /* a batch may be work */
     const cJSON *method = cJSON_GetObjectItemCaseSensitive(json, "method");
     const cJSON *params = cJSON_GetObjectItemCaseSensitive(json, "params");
     if (!cJSON_IsObject(json) || !cJSON_IsString(method))
-        return !cJSON_IsArray(json); /* an invalid request, but a batch may be work */
+        return true; /* an invalid request */
     const wp_method *m = wp_method_find(method->valuestring);
     if (!m || (m->flags & WP_CHEAP))
         return true; /* no such method: an error answer */
-    if (!(m->flags & WP_READY) || !cJSON_IsObject(params) || !host->fixture_ready)
+    if (!(m->flags & WP_READY) || !cJSON_IsObject(params) || !host->fixture_use_ready)
         return false;
     const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
     if (!cJSON_IsString(id) || !wp_fixture_id_valid(id->valuestring))
         return false;
-    int cones = host->fixture_ready(host->self, id->valuestring);
+    assert(!answer->holding);
+    int cones = host->fixture_use_ready(host->self, id->valuestring, &answer->use);
+    answer->holding = cones >= 0;
     return cones >= 0 && (!m->light || m->light(params, cones));
 }
 
@@ -544,7 +615,7 @@ void wp_answer_free(wp_answer *answer, const wp_host *host)
 {
     if (!answer)
         return;
-    end_stream(answer, host);
+    end_stream(answer, host); /* and the fixture held, if any */
     cJSON_Delete(answer->json);
     free(answer->refusal);
     free(answer->prepared.wrenches);
@@ -553,7 +624,7 @@ void wp_answer_free(wp_answer *answer, const wp_host *host)
 
 /* All of an answer in one buffer: the line, or NULL for none, or the error
  * saying the answer did not fit in memory. */
-static char *answer_whole(wp_answer *answer, const wp_host *host, wp_counts *counts)
+char *wp_answer_whole(wp_answer *answer, const wp_host *host, wp_counts *counts)
 {
     answer->whole = true;
     wp_buffer b = {0};
@@ -581,22 +652,5 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
         counts->errors++;
         return wp_error_line(WP_INTERNAL, "", "out of memory");
     }
-    return answer_whole(answer, host, counts);
-}
-
-bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *line,
-                     size_t length, wp_counts *counts, char **out)
-{
-    if (length > WP_LIGHT_LINE)
-        return false;
-    wp_answer *answer = wp_answer_begin(limits, line, length);
-    if (!answer)
-        return false;
-    /* A refused line is light; so is a request json_is_light says is. */
-    if (!answer->refusal && (answer->batch || !json_is_light(host, answer->json))) {
-        wp_answer_free(answer, host); /* nothing counted yet: the worker will */
-        return false;
-    }
-    *out = answer_whole(answer, host, counts);
-    return true;
+    return wp_answer_whole(answer, host, counts);
 }

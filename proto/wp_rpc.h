@@ -23,6 +23,34 @@ typedef struct wp_fixture_use {
     void *handle[2];             /* the host's */
 } wp_fixture_use;
 
+/* One stored fixture, as fixture.list shows it. */
+typedef struct wp_fixture_entry {
+    char id[WP_ID_LENGTH + 1];
+    char *name;                  /* malloc'd */
+    int fixels;
+} wp_fixture_entry;
+
+/* The stored fixtures, by id. */
+typedef struct wp_fixture_listing {
+    size_t count;
+    wp_fixture_entry *entries;   /* malloc'd */
+} wp_fixture_listing;
+void wp_fixture_listing_release(wp_fixture_listing *listing);
+
+/* What server.status reports. */
+typedef struct wp_server_state {
+    double uptime_s;
+    size_t fixtures;             /* stored */
+    size_t cached;               /* with derived data in memory */
+    size_t cache_bytes, cache_limit_bytes;
+    int threads;
+    unsigned long clients, refused, denied, requests, errors;
+} wp_server_state;
+
+/* The daemon's side of the seam: the fixture store and the solver state a
+ * request needs, as data.  One per thread (so `self` may hold that thread's
+ * GLPK environment).  The envelope acquires and releases a request's
+ * fixture; handlers only read what it holds. */
 typedef struct wp_host {
     void *self;
     /* Keep a validated fixture and hold it: stored (persisted, listed) when
@@ -32,19 +60,19 @@ typedef struct wp_host {
                           wp_error *error);
     /* Hold the stored fixture `id`; WP_NO_FIXTURE when there is none. */
     bool (*fixture_use)(void *self, const char *id, wp_fixture_use *use, wp_error *error);
+    /* Hold the stored fixture `id` only if its derived data is ready (using
+     * it then costs no derivation): its number of cones (goal + strong), or
+     * -1 with nothing held.  May be NULL: never ready. */
+    int (*fixture_use_ready)(void *self, const char *id, wp_fixture_use *use);
     void (*fixture_release)(void *self, wp_fixture_use *use);
     /* Forget the stored fixture `id` (and its file); WP_NO_FIXTURE, WP_STORAGE. */
     bool (*fixture_delete)(void *self, const char *id, wp_error *error);
-    /* The result of fixture.list and of server.status (NULL: out of memory). */
-    cJSON *(*fixture_list)(void *self);
-    cJSON *(*status)(void *self);
+    /* The stored fixtures, and the server's state. */
+    bool (*fixture_list)(void *self, wp_fixture_listing *listing, wp_error *error);
+    bool (*state)(void *self, wp_server_state *state, wp_error *error);
     /* This thread's warm LP sets for a fixture in use. */
     bool (*lp_sets)(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
                     wp_error *error);
-    /* Is the stored fixture `id` there with its derived data, so that using
-     * it costs no derivation?  Its number of cones (goal + strong), or -1.
-     * May be NULL: never. */
-    int (*fixture_ready)(void *self, const char *id);
     /* Polled by long work between bounded units (wrenches, edges): set by
      * the host to the request's own stop before each piece of work, so that
      * work for a client that hung up ends.  NULL: never stops. */
@@ -68,24 +96,19 @@ typedef struct wp_counts {
 char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
                      size_t length, wp_counts *counts);
 
-/* Lines up to this long may be light; a classify, when its wrenches times
- * its fixture's cones are at most WP_LIGHT_CONE_CHECKS (tens of
- * microseconds); other methods by their flags in the table. */
+/* What may be answered on an event loop (wp_answer_light): the one place
+ * this policy lives.  Lines up to WP_LIGHT_LINE bytes are parsed there; of
+ * them, light are a line refused before any request is read, an invalid
+ * request, an unknown method, a method flagged WP_CHEAP, and one flagged
+ * WP_READY whose fixture is a stored one with its derived data ready -- a
+ * classify only by the "auto" method and with wrenches x cones at most
+ * WP_LIGHT_CONE_CHECKS (tens of microseconds).  A loop answers at most
+ * WP_LIGHT_BURST of one connection's light requests per read, so that a
+ * client pipelining thousands shares the workers with everyone else rather
+ * than holding the loop. */
 #define WP_LIGHT_LINE 2048
 #define WP_LIGHT_CONE_CHECKS 1024
-/* Answer `line` as wp_answer_line does -- but only if that is light work:
- * microseconds, no GLPK, no derivation, no disk -- so that an event loop
- * may answer it itself rather than pay two thread hand-offs.  Light: a line
- * refused before any request is read (not JSON, too deep), an invalid
- * request object, an unknown method, the methods flagged WP_CHEAP, and
- * those flagged WP_READY against a stored fixture whose derived data is
- * ready (host->fixture_ready) -- for wrench.classify, by the "auto" method
- * and of so few wrenches that wrenches x cones <= WP_LIGHT_CONE_CHECKS.
- * Conservative: anything else, batches included, is not.  Returns true with *answer set (NULL for a
- * notification) and counts added, or false with nothing counted: answer it
- * with wp_answer_line elsewhere. */
-bool wp_answer_light(const wp_host *host, const wp_limits *limits, const char *line,
-                     size_t length, wp_counts *counts, char **answer);
+#define WP_LIGHT_BURST 32
 
 /* A response line for an error found before the line was read (a line over
  * the length limit, too many clients): id null.  Malloc'd, or NULL. */
@@ -120,6 +143,14 @@ typedef enum wp_step {
 /* Parse a line (without its "\n").  The line is not kept.  NULL only when
  * out of memory. */
 wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t length);
+/* Is the answer light work, to be made on an event loop now (the policy
+ * above)?  Ask it only of lines up to WP_LIGHT_LINE: a loop parses no
+ * longer ones.  The fixture of a WP_READY request is looked up here, once,
+ * and held from here on, light or not. */
+bool wp_answer_light(wp_answer *answer, const wp_host *host);
+/* The whole answer at once, and the answer freed: the line (malloc'd), or
+ * NULL when there is none (notifications only). */
+char *wp_answer_whole(wp_answer *answer, const wp_host *host, wp_counts *counts);
 /* Append the next piece to `out`, counting what it answers in *counts. */
 wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
                        wp_counts *counts);
@@ -131,11 +162,30 @@ size_t wp_answer_bytes(const wp_answer *answer);
 /* Free it, finished or not (a fixture it holds is released through `host`). */
 void wp_answer_free(wp_answer *answer, const wp_host *host);
 
-/* A method whose result is written in pieces: begin reads the params (and
- * may take out of them what it has read, to free it early), step appends
- * the next part of the result's JSON text, spending at most about `budget`
- * units (added to *used), free ends it.  Step returns WP_STEP_FAILED with
- * `error` set when it cannot go on. */
+/* One call of a method: what its handler reads and where it says what
+ * went wrong. */
+typedef struct wp_call {
+    const wp_host *host;
+    const wp_limits *limits;
+    cJSON *params;               /* the request's params ({} when left out);
+                                    a stream's begin may take out what it
+                                    has read, to free it early */
+    wp_error *error;
+    struct wp_answer *answer;    /* the envelope's, for wp_call_fixture */
+} wp_call;
+
+/* The call's fixture (params.fixture: a stored id, or an inline fixture),
+ * for a method flagged WP_FIXTURE: looked up on the first call (so that a
+ * handler reads its cheaper params first), then held by the envelope until
+ * the call ends -- for a streamed result, until its last piece.  NULL with
+ * call->error set when there is none. */
+wp_fixture_use *wp_call_fixture(wp_call *call);
+
+/* A method whose result is written in pieces: begin reads the params,
+ * step appends the next part of the result's JSON text, spending at most
+ * about `budget` units (added to *used), free ends it.  Step returns
+ * WP_STEP_FAILED with `error` set when it cannot go on.  The call's fixture
+ * stays held until free. */
 typedef struct wp_stream wp_stream;
 /* params.wrenches of a long line, read by the envelope straight from the
  * text as numbers (their place in params holds []): begin takes the array
@@ -145,32 +195,34 @@ typedef struct wp_prepared {
     size_t count;
 } wp_prepared;
 typedef struct wp_streamer {
-    wp_stream *(*begin)(const wp_host *host, const wp_limits *limits, cJSON *params,
-                        wp_prepared *prepared, wp_error *error);
-    wp_step (*step)(wp_stream *stream, const wp_host *host, wp_buffer *out,
-                    unsigned long budget, unsigned long *used, wp_error *error);
-    void (*free)(wp_stream *stream, const wp_host *host);
+    wp_stream *(*begin)(wp_call *call, wp_prepared *prepared);
+    wp_step (*step)(wp_stream *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                    unsigned long *used);
+    void (*free)(wp_stream *stream);
     size_t (*bytes)(const wp_stream *stream); /* what it holds */
 } wp_streamer;
 
-/* Method flags: what the envelope needs to know of a method. */
-#define WP_CHEAP 1u /* no derivation, no solver, no disk: microseconds, always */
-#define WP_READY 2u /* as cheap when its fixture is a stored one whose derived
-                       data is ready (and `light` agrees, if set) */
+/* Method flags: what the envelope needs to know of a method, checked in
+ * one place (wp_rpc.c). */
+#define WP_FIXTURE 1u /* takes params.fixture, an id or an inline fixture,
+                         held by the envelope for the call (wp_call_fixture) */
+#define WP_CHEAP 2u   /* no derivation, no solver, no disk: microseconds,
+                         always; a batch answers several in one piece */
+#define WP_READY 4u   /* as cheap when its fixture is a stored one whose
+                         derived data is ready (and `light` agrees, if set) */
 
 /* The method table: every method name, served or announced. */
 typedef struct wp_method {
     const char *name;
-    /* Returns the result, or NULL with `error` set.  A method with neither
-     * handler nor stream is announced but not served yet (-32601). */
-    cJSON *(*handler)(const wp_host *host, const wp_limits *limits, const cJSON *params,
-                      wp_error *error);
+    /* Returns the result, or NULL with call->error set.  A method with
+     * neither handler nor stream is announced but not served yet (-32601). */
+    cJSON *(*handler)(wp_call *call);
     const wp_streamer *stream;    /* or a result written in pieces: {"results": ...} */
     const char *const *fields;    /* params it accepts, NULL-ended */
     const char *const *required;  /* of those, the ones it needs */
-    unsigned flags;               /* WP_CHEAP, WP_READY */
+    unsigned flags;               /* WP_FIXTURE, WP_CHEAP, WP_READY */
     /* With WP_READY: is this call light, given the fixture's number of
-     * cones?  NULL: yes. */
+     * cones?  NULL: yes.  A cost estimate, in the table's own terms. */
     bool (*light)(const cJSON *params, int cones);
     const char *summary;          /* one line, for --help and the README */
 } wp_method;

@@ -814,18 +814,14 @@ static void bound_store(void)
                s.derived_bytes, s.derived_limit);
     if (s.stored <= STORE_BOUND)
         return;
-    cJSON *list = host->fixture_list(host->self);
-    FUZZ_CHECK(list, "fixture_list failed");
-    const cJSON *fixtures = cJSON_GetObjectItemCaseSensitive(list, "fixtures");
-    FUZZ_CHECK((size_t)cJSON_GetArraySize(fixtures) == s.stored, "%d listed, %zu stored",
-               cJSON_GetArraySize(fixtures), s.stored);
-    for (const cJSON *f = fixtures->child; f; f = f->next) {
-        wp_error error;
-        const cJSON *id = cJSON_GetObjectItemCaseSensitive(f, "id");
-        FUZZ_CHECK(cJSON_IsString(id) && host->fixture_delete(host->self, id->valuestring, &error),
+    wp_fixture_listing listing;
+    wp_error error;
+    FUZZ_CHECK(host->fixture_list(host->self, &listing, &error), "fixture_list failed");
+    FUZZ_CHECK(listing.count == s.stored, "%zu listed, %zu stored", listing.count, s.stored);
+    for (size_t i = 0; i < listing.count; i++)
+        FUZZ_CHECK(host->fixture_delete(host->self, listing.entries[i].id, &error),
                    "deleting a listed fixture failed");
-    }
-    cJSON_Delete(list);
+    wp_fixture_listing_release(&listing);
     wd_cache_stats_get(cache, &s);
     FUZZ_CHECK(s.stored == 0, "%zu stored after deleting all", s.stored);
 }
