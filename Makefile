@@ -22,7 +22,7 @@ TEST_LIBS = -lcmocka -lpthread
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
-        fuzz-build FORCE
+        fuzz-build links FORCE
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -32,7 +32,8 @@ help:
 	@echo "make demo       build, start wrenchd, put the examples, classify, stop"
 	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
 	@echo "make pictures   redraw docs/pictures (the README's figures)"
-	@echo "make check      every test: unit (plain, ASan+UBSan), physics, load, fuzz smoke, end to end"
+	@echo "make check      every test: links, unit (plain, ASan+UBSan), physics, load, fuzz smoke, end to end"
+	@echo "make links      every relative link of the Markdown files resolves (also in make check)"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
 	@echo "make validate   the full physics validation against Box2D (docs/VALIDATION.md)"
 	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md)"
@@ -193,8 +194,13 @@ check-valgrind: all $(BUILD)/tests/libfail_storage.so
 	WRENCHD_WRAPPER="valgrind --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect" \
 	    $(PYTEST) tests/e2e
 
+# Every relative link (and #anchor) of the tracked Markdown files resolves
+# inside the repository; a fraction of a second.
+links:
+	@$(PYTHON) tests/check-links
+
 # The last line printed is the test runner's closing line (CI reads it).
-check: unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
+check: links unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
 
 # ---- running it ------------------------------------------------------------
 

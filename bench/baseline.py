@@ -2,10 +2,10 @@
 """bench/baseline.py -- what a user without wrenchd would script, timed.
 
 What it measures
-    The cost of classifying wrenches for G_goal and G_strong (SPEC sections
-    3 and 4) the way a user with Debian's python3-scipy and no wrenchd would:
+    The cost of classifying wrenches for G_goal and G_strong (docs/MODEL.md
+    sections 3 and 4) the way a user with Debian's python3-scipy and no wrenchd would:
     for every wrench and every excluded cone, build the membership LP of
-    SPEC section 2 (Newton-Euler in the scaled, normalised problem of
+    docs/MODEL.md section 2 (Newton-Euler in the scaled, normalised problem of
     section 5, the letter rows of the table, the slack t in [0, 1] for the
     strict rows) and solve it with scipy.optimize.linprog(method="highs").
     A wrench is outside a set as soon as one excluded cone contains it; the
@@ -16,7 +16,7 @@ What it measures
     normals, generating the wrenches and asking wrenchd are outside the
     timer.
 
-    The LPs are this script's own code, from SPEC alone.  The *lists* of
+    The LPs are this script's own code, from docs/MODEL.md alone.  The *lists* of
     cones (plan.get's "cones" for G_goal, modes.get's "feasible" moving
     modes for G_strong) come from wrenchd: a user would script the LPs, but
     which strings to test is what wrenchd tells.
@@ -64,7 +64,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "clients", "python"))
 import wrenchd  # noqa: E402  (the stdlib client, imported by path)
 
-# SPEC section 2: a strict row holds iff the optimum slack t is above this,
+# docs/MODEL.md section 2: a strict row holds iff the optimum slack t is above this,
 # on the scaled, normalised problem (so the threshold is unit-free).
 STRICT_EPS = 1e-9
 
@@ -73,7 +73,7 @@ class BadFixture(Exception):
     pass
 
 
-# ---- the fixture, from SPEC section 1 and 8 ------------------------------------------
+# ---- the fixture, from docs/MODEL.md section 1 and docs/PROTOCOL.md --------------------
 
 def cross(a, b):
     return a[0] * b[1] - a[1] * b[0]
@@ -100,7 +100,7 @@ def polygon_properties(vertices):
 
 
 def inward_normal(shape, at, size):
-    """The shape's inward unit normal at a boundary point (SPEC section 8:
+    """The shape's inward unit normal at a boundary point (docs/PROTOCOL.md:
     an error at a polygon vertex, where the fixture must give it)."""
     if shape["type"] == "circle":
         d = (shape["center"][0] - at[0], shape["center"][1] - at[1])
@@ -157,9 +157,9 @@ class Model:
             inertia = float(body["inertia"])
         else:
             d2 = (com[0] - centroid[0]) ** 2 + (com[1] - centroid[1]) ** 2
-            inertia = i_centroid + m * d2               # parallel axes (SPEC 8)
+            inertia = i_centroid + m * d2               # parallel axes (docs/PROTOCOL.md)
         self.mass, self.inertia, self.com = m, inertia, com
-        self.rho = math.sqrt(inertia / m)          # radius of gyration (SPEC 5)
+        self.rho = math.sqrt(inertia / m)          # radius of gyration (docs/MODEL.md section 5)
         glob = fixture.get("friction")
         n_rows, t_rows, mu_s, mu_k = [], [], [], []
         for fixel in fixture["fixels"]:
@@ -202,12 +202,12 @@ class Model:
         return float(np.abs(lhs - rhs).max() / scale) if scale > 0 else 0.0
 
     def scaled_unit(self, wrench):
-        """SPEC 5: (f_x, f_y, tau/rho), normalised to length 1."""
+        """docs/MODEL.md section 5: (f_x, f_y, tau/rho), normalised to length 1."""
         h = np.array([wrench[0], wrench[1], wrench[2] / self.rho])
         return h / np.linalg.norm(h)
 
 
-# ---- one membership LP (SPEC section 2) ----------------------------------------------
+# ---- one membership LP (docs/MODEL.md section 2) -------------------------------------
 #
 # Variables x = (q'_1..3, c_n1, c_t1, ..., c_nk, c_tk, t), where
 # q' = m (a_x, a_y, rho alpha): with M = diag(m, m, I) and I = m rho^2, the
@@ -215,12 +215,12 @@ class Model:
 #     q' - sum_i (N'_i c_in + T'_i c_it) = h        (h: the unit scaled wrench)
 # and the contact accelerations are a_in = N'_i . q' / m, a_it = T'_i . q' / m,
 # so every sign row can be written on N'_i . q' and T'_i . q' directly.
-# Rows never mix q' and c, as SPEC says.  Maximise t in [0, 1]: a string
+# Rows never mix q' and c (docs/MODEL.md section 2).  Maximise t in [0, 1]: a string
 # without strict rows leaves t free, so t* = 1 whenever it is feasible.
 
 def build_lp(model, string, h, strict_s):
     """The LP of one constraint string for the unit scaled wrench h.
-    strict_s: `s` is strictly separating (a_n > 0, modes of SPEC 4) rather
+    strict_s: `s` is strictly separating (a_n > 0, modes of docs/MODEL.md section 4) rather
     than not approaching (a_n >= 0, the table).  A trailing + or - is a
     pivot (every contact rolling, alpha > 0 or < 0)."""
     pivot = 0
@@ -414,7 +414,7 @@ def raw_classify_seconds(socket_path, fixture, wrenches, repeats=3):
 
 
 def random_wrenches(model, count, seed):
-    """Directions uniform on the unit sphere of the scaled metric (SPEC 5),
+    """Directions uniform on the unit sphere of the scaled metric (docs/MODEL.md section 5),
     given to both sides as physical wrenches [f_x, f_y, tau]: the cones are
     cones, so only the direction matters, and the scaled metric makes the
     draw independent of units.  Python floats go over JSON exactly."""

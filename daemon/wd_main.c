@@ -248,7 +248,7 @@ static const option_spec *find_option(const char *name)
 static void usage(FILE *out)
 {
     fputs("Usage: wrenchd [OPTION]...\n"
-          "Serve wrench cones of planar fixtures (SPEC.md): JSON-RPC 2.0, Unix socket.\n"
+          "Serve wrench cones of planar fixtures (docs/MODEL.md): JSON-RPC 2.0, Unix socket.\n"
           "\n"
           "  --config FILE            read settings from FILE, 'option = value' per line\n"
           "                           (default, when it exists:\n"

@@ -17,7 +17,7 @@ verdict with its margin and what blocks it, in words.
 are at N evenly spaced points of every edge (--samples, default 2: a
 quarter and three quarters along), or at the points given with --push.
 
-The outline file has the form of a fixture (SPEC section 8) with a polygon
+The outline file has the form of a fixture (docs/PROTOCOL.md) with a polygon
 shape, so that it also loads as one (wrenchd --load):
     {"name": "...",
      "body": {"mass": 2.0, "shape": {"type": "polygon", "vertices": [[x, y], ...]}},

@@ -57,7 +57,7 @@ def main():
         print("fixture.put examples/%s.json -> id %s: %d fixels, G_goal excludes %d cones, "
               "G_strong %d" % (name, put.id, put.fixels, put.goal_cones, put.strong_cones))
 
-    print("\ndisc-corner: a disc in a corner, friction 0.5 (SPEC section 7)")
+    print("\ndisc-corner: a disc in a corner, friction 0.5 (docs/MODEL.md section 7.1)")
     show(client, ids["disc-corner"], "push toward the corner, g = (-1, -1, 0)", [-1, -1, 0])
     show(client, ids["disc-corner"], "push mostly to the left, g = (-1, -0.2, 0)", [-1, -0.2, 0])
     show(client, ids["disc-corner"], "the same push with a strong twist, g = (-1, -1, -100)",

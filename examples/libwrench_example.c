@@ -1,4 +1,4 @@
-/* libwrench_example.c -- the disc in a corner of SPEC section 7, classified
+/* libwrench_example.c -- the disc in a corner of docs/MODEL.md section 7, classified
  * in process with libwrench (no daemon).  Built by `make` as
  * build/libwrench-example. */
 #include "wrench.h"

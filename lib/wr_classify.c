@@ -1,5 +1,5 @@
-/* wr_classify.c -- the analysis of a fixture and the answers of SPEC
- * section 5: verdict, margin, blocking cone, witness. */
+/* wr_classify.c -- the analysis of a fixture and the answers of
+ * docs/MODEL.md section 5: verdict, margin, blocking cone, witness. */
 #include "wr_classify.h"
 #include "wr_internal.h"
 
@@ -161,7 +161,7 @@ static bool finite3(const double v[3])
     return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
 }
 
-/* SPEC section 5: the zero wrench seats nothing, and is held unless some
+/* docs/MODEL.md section 5: the zero wrench seats nothing, and is held unless some
  * moving mode admits it.  Its margin is 0 either way. */
 static void classify_zero(const wr_analysis *a, wr_set set, wr_answer *answer)
 {

@@ -1,4 +1,4 @@
-/* wr_classify.h -- G_goal and G_strong of a fixture (SPEC sections 3-5), and
+/* wr_classify.h -- G_goal and G_strong of a fixture (docs/MODEL.md sections 3-5), and
  * three-valued answers for wrenches.
  *
  * A wr_analysis holds everything derived from one fixture: the plan, the
@@ -68,7 +68,7 @@ const wr_cone *wr_analysis_cone(const wr_analysis *analysis, wr_set set, int ind
 typedef struct wr_answer {
     wr_verdict verdict;
     bool has_margin;          /* false for the lp method */
-    double margin;            /* SPEC section 5, in [-1, 1] */
+    double margin;            /* docs/MODEL.md section 5, in [-1, 1] */
     wr_set blocking_set;      /* which set's cone blocks (for WR_SET_BOTH) */
     int blocking;             /* index of the blocking cone in that set, or -1
                                  (inside) */

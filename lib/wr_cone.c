@@ -55,7 +55,7 @@ bool wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
         if (*p >= 0x80 || !strchr(LETTERS, *p)) {
             size_t bytes = utf8_character(p);
             bool printable = bytes > 1 || (*p >= 32 && *p < 127);
-            wr_error_set(error, "", "letter %d is '%.*s', not one of s a u l r n m (SPEC section 2)",
+            wr_error_set(error, "", "letter %d is '%.*s', not one of s a u l r n m (docs/MODEL.md section 2)",
                          i + 1, printable ? (int)bytes : 1, printable ? (const char *)p : "?");
             return false;
         }

@@ -1,11 +1,11 @@
-/* wr_cone.h -- constraint strings and the explicit wrench cone G_X of SPEC
- * section 2.
+/* wr_cone.h -- constraint strings and the explicit wrench cone G_X of
+ * docs/MODEL.md section 2.
  *
  * G_X is the set of external wrenches g for which some acceleration q and
  * contact forces c satisfy Newton-Euler and every fixel's letter of X.  It is
  * computed as G_X = M Q_X - W C_X: generators of both parts, then facets by
  * 3-D geometry.  All geometry is in the scaled space h = (f_x, f_y, tau/rho)
- * of SPEC section 5, where the metric does not depend on units. */
+ * of docs/MODEL.md section 5, where the metric does not depend on units. */
 #ifndef WR_CONE_H
 #define WR_CONE_H
 
@@ -18,7 +18,7 @@ extern "C" {
 #endif
 
 /* A constraint string: one letter per fixel, in fixel order, over "saulrnm"
- * (SPEC section 2).  As a contact mode (SPEC section 4) `s` is strictly
+ * (docs/MODEL.md section 2).  As a contact mode (docs/MODEL.md section 4) `s` is strictly
  * separating, and an unpinned body's pivots are n...n with a sign. */
 typedef struct wr_constraint {
     int length;                        /* = the fixture's fixel count */
@@ -37,8 +37,8 @@ bool wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
                          wr_error *error);
 void wr_constraint_format(const wr_constraint *constraint, char text[WR_CONSTRAINT_TEXT]);
 
-/* The order of SPEC section 3: s, a below u; l, r, n below m; each letter below
- * itself; strings letter by letter.  X below Y implies G_X inside G_Y. */
+/* The order of letters (docs/MODEL.md section 2): s, a below u; l, r, n
+ * below m; each letter below itself; strings letter by letter.  X below Y implies G_X inside G_Y. */
 bool wr_letter_below(char x, char y);
 bool wr_constraint_below(const wr_constraint *x, const wr_constraint *y);
 
@@ -76,13 +76,13 @@ typedef struct wr_cone {
 bool wr_cone_build(wr_cone *cone, const wr_fixture *fixture, const wr_constraint *constraint);
 void wr_cone_release(wr_cone *cone);
 
-/* Signed distance of a unit scaled wrench x to closure(G_X), SPEC section 5:
+/* Signed distance of a unit scaled wrench x to closure(G_X), docs/MODEL.md section 5:
  * its distance when outside, minus its depth (distance to the complement)
  * when inside.  +INFINITY for an empty cone.  `projection` (may be NULL)
  * receives the nearest point of the closure. */
 double wr_cone_signed_distance(const wr_cone *cone, const double x[3], double projection[3]);
 
-/* A witness (SPEC section 5): an acceleration and contact forces satisfying
+/* A witness (docs/MODEL.md section 5): an acceleration and contact forces satisfying
  * the constraint's closure, and the wrench they make by Newton-Euler. */
 typedef struct wr_witness {
     double acceleration[3];            /* (a_cx, a_cy, alpha), physical */

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Geometric tolerances are relative to the body's size (SPEC section 8:
+/* Geometric tolerances are relative to the body's size (docs/PROTOCOL.md:
  * "within 1e-9 of the body's size"). */
 #define BOUNDARY_TOLERANCE 1e-9
 #define DEGENERATE_TOLERANCE 1e-12

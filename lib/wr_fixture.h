@@ -1,10 +1,10 @@
-/* wr_fixture.h -- the fixture model of SPEC section 1: a planar workpiece, its
+/* wr_fixture.h -- the fixture model of docs/MODEL.md section 1: a planar workpiece, its
  * shape and the point contacts ("fixels") that seat it.
  *
  * A caller describes a fixture with a wr_fixture_spec (borrowed memory,
  * optional fields flagged), and wr_fixture_new() validates it into a
  * wr_fixture (owned, every optional value filled in).  Field paths in errors
- * mirror the JSON of SPEC section 8 ("fixels[2].normal", "body.mass"), so the
+ * mirror the JSON of docs/PROTOCOL.md ("fixels[2].normal", "body.mass"), so the
  * protocol layer only has to prefix them.
  *
  * Units: any consistent set.  Angles nowhere.  The frame is the fixture's. */
@@ -85,7 +85,7 @@ typedef struct wr_fixel {
     double tangent[2];  /* unit */
     double mu_static;
     double mu_kinetic;
-    /* Scaled contact wrenches (SPEC section 5 metric): for a unit normal
+    /* Scaled contact wrenches (docs/MODEL.md section 5 metric): for a unit normal
      * force, (n_x, n_y, (r x n) / rho); likewise for the tangent. */
     double normal_wrench[3];
     double tangent_wrench[3];
@@ -123,7 +123,7 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error);
 void wr_fixture_free(wr_fixture *fixture);
 
 /* The unit direction, in the scaled metric, of a physical wrench, and the
- * length of its scaled form (SPEC section 5).  Exact for any finite wrench,
+ * length of its scaled form (docs/MODEL.md section 5).  Exact for any finite wrench,
  * however large or small: it divides by the largest component first.  The
  * length may be +inf for wrenches near the largest double; for the zero
  * wrench it is 0 and `unit` is zero. */

@@ -3,7 +3,7 @@
  * Why no polyhedral library: in three dimensions every facet of a cone is
  * spanned by two of its generators and every extreme ray is the meeting line
  * of two facets, so cross products enumerate both exactly; and distances
- * follow from the face structure.  See SPEC section 2.
+ * follow from the face structure.  See docs/MODEL.md section 2.
  *
  * Invariant: all vectors passed between these routines are unit length (or
  * zero, which is dropped), so the tolerances in wr_internal.h are absolute. */

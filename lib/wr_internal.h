@@ -1,7 +1,7 @@
 /* wr_internal.h -- helpers shared inside lib/, not part of the public API.
  *
  * Polyhedral cones in R^3.  Every cone here lives in the scaled wrench space
- * of SPEC section 5, where the vectors handled are unit length, so the
+ * of docs/MODEL.md section 5, where the vectors handled are unit length, so the
  * tolerances below are absolute. */
 #ifndef WR_INTERNAL_H
 #define WR_INTERNAL_H
@@ -111,7 +111,7 @@ struct wr_analysis;
 double wr_set_margin(const struct wr_analysis *analysis, int set, const double x[3],
                      int *blocking);
 /* Is there an acceleration satisfying the constraint's acceleration rows,
- * strict rows strictly (kinematic feasibility, SPEC section 4)? */
+ * strict rows strictly (kinematic feasibility, docs/MODEL.md section 4)? */
 bool wr_constraint_kinematically_feasible(const wr_fixture *fixture,
                                           const struct wr_constraint *constraint);
 

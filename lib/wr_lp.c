@@ -1,4 +1,4 @@
-/* wr_lp.c -- GLPK membership LPs (SPEC section 2).
+/* wr_lp.c -- GLPK membership LPs (docs/MODEL.md section 2).
  *
  * Variables, in the scaled space of wr_cone.c: q' = m (a_x, a_y, rho alpha)
  * (columns 1..3, free), then (c_in, c_it) per fixel, then the slack t in

@@ -1,5 +1,5 @@
 /* wr_lp.h -- cone membership as an LP feasibility problem, solved with GLPK
- * (SPEC section 2): the method of the seed, and the cross-check of the
+ * (docs/MODEL.md section 2): the method of the seed, and the cross-check of the
  * explicit cones.
  *
  * Threads.  GLPK keeps one environment per thread.  A thread that solves
@@ -24,7 +24,8 @@ extern "C" {
 #define WR_LP_OK 0
 #define WR_LP_FAILED (-1)  /* GLPK failed; the answer is unknown */
 
-/* Strictly feasible means an optimal slack above this (SPEC section 2). */
+/* Strictly feasible means an optimal slack above this (docs/MODEL.md
+ * section 2). */
 #define WR_LP_SLACK_THRESHOLD 1e-9
 
 typedef struct wr_lp_env wr_lp_env;

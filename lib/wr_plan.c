@@ -1,4 +1,4 @@
-/* wr_plan.c -- contact states and their excluded transitions (SPEC section 3),
+/* wr_plan.c -- contact states and their excluded transitions (docs/MODEL.md section 3),
  * and the search for kinematically feasible contact modes (section 4). */
 #include "wr_plan.h"
 #include "wr_internal.h"

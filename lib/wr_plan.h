@@ -1,6 +1,6 @@
-/* wr_plan.h -- the insertion plan of SPEC section 3 (contact states, the
+/* wr_plan.h -- the insertion plan of docs/MODEL.md section 3 (contact states, the
  * transitions each must rule out, the maximal strings whose cones G_goal
- * excludes) and the contact modes of SPEC section 4. */
+ * excludes) and the contact modes of docs/MODEL.md section 4. */
 #ifndef WR_PLAN_H
 #define WR_PLAN_H
 
@@ -16,7 +16,7 @@ typedef unsigned wr_state;
 #define WR_STATE_TEXT (WR_MAX_FIXELS + 1)
 void wr_state_format(wr_state state, int fixel_count, char text[WR_STATE_TEXT]);
 
-/* A kept string comes from at most two states (SPEC section 3: "sm" from 01
+/* A kept string comes from at most two states (docs/MODEL.md section 3: "sm" from 01
  * and from 11); room is left for more. */
 #define WR_PLAN_MAX_ORIGINS 4
 
@@ -44,13 +44,14 @@ typedef struct wr_plan {
 } wr_plan;
 
 /* The plan for `fixel_count` fixels (1..WR_MAX_FIXELS), derived from the rule
- * and the order of SPEC section 3.  NULL when out of memory or out of range. */
+ * of docs/MODEL.md section 3 and the order of letters of its section 2.  NULL
+ * when out of memory or out of range. */
 wr_plan *wr_plan_new(int fixel_count);
 void wr_plan_free(wr_plan *plan);
 
-/* Kinematically feasible contact modes other than n...n (SPEC section 4): mode
- * strings over {s, l, r, n} with strict separation, ordered by number of
- * contacts, then letters in the order s < l < r < n; then, for a body the
+/* Kinematically feasible contact modes other than n...n (docs/MODEL.md
+ * section 4): mode strings over {s, l, r, n} with strict separation, ordered
+ * by number of contacts, then letters in the order s < l < r < n; then, for a body the
  * fixels do not pin, the pivots n...n+ and n...n-.  Returns the count and a
  * malloc'd array in *modes (free() it), or -1 when out of memory.  *pinned
  * says whether rolling at every fixel forces q = 0. */

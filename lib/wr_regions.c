@@ -1,4 +1,4 @@
-/* wr_regions.c -- push regions, gravity arcs, disturbance margins (SPEC 6).
+/* wr_regions.c -- push regions, gravity arcs, disturbance margins (docs/MODEL.md section 6).
  *
  * Everything here is in the scaled space of wr_cone.c, where the excluded
  * cones live: a wrench g is scaled to h = (f_x, f_y, tau / rho).  A point is

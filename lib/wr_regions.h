@@ -1,5 +1,5 @@
-/* wr_regions.h -- where to push, which tilt, how much disturbance (SPEC
- * section 6).
+/* wr_regions.h -- where to push, which tilt, how much disturbance
+ * (docs/MODEL.md section 6).
  *
  * A frictionless finger at boundary point p with inward normal nu applies
  * w(p) = (nu, (p - x_c) x nu) times a positive magnitude.  The push region of
@@ -67,7 +67,7 @@ void wr_push_wrench(const wr_fixture *fixture, int edge, double t, double wrench
 double wr_region_length(const wr_fixture *fixture, const wr_region *region);
 double wr_perimeter(const wr_fixture *fixture);
 
-/* The disturbance margin of a biasing wrench (SPEC section 6): in the
+/* The disturbance margin of a biasing wrench (docs/MODEL.md section 6): in the
  * scaled metric but not normalised (force units), the distance from the
  * bias to the union of G_strong's excluded cones, or minus its depth in the
  * deepest one. */

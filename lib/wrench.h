@@ -1,5 +1,5 @@
 /* wrench.h -- libwrench: sensorless insertion of rigid planar parts
- * (Balkcom and Trinkle), as made exact by SPEC.md.
+ * (Balkcom and Trinkle), as docs/MODEL.md states it.
  *
  *   wr_fixture.h   the fixture model and its validation
  *   wr_cone.h      constraint strings and explicit wrench cones G_X

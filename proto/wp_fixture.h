@@ -1,4 +1,4 @@
-/* wp_fixture.h -- fixtures and wrenches as JSON (SPEC section 8). */
+/* wp_fixture.h -- fixtures and wrenches as JSON (docs/PROTOCOL.md). */
 #ifndef WP_FIXTURE_H
 #define WP_FIXTURE_H
 

@@ -65,7 +65,7 @@ typedef enum wrc_verdict {
 
 typedef struct wrc_answer {
     wrc_verdict verdict;
-    double margin;        /* in [-1, 1]; SPEC section 5 */
+    double margin;        /* in [-1, 1]; docs/MODEL.md section 5 */
     char blocking[16];    /* the blocking string ("ms", "ll", "nn+"), "" when inside */
 } wrc_answer;
 

@@ -26,7 +26,7 @@ Methods of Client (and of Batch, see below):
     call(method, params=None, readonly=False) -> the raw "result" (any method)
 
 A `fixture` argument is a fixture id (a string), a PutResult / FixtureInfo,
-or a fixture dict (SPEC section 8; sent inline, not stored).  A wrench is
+or a fixture dict (docs/PROTOCOL.md; sent inline, not stored).  A wrench is
 (f_x, f_y, tau), tau about the centre of mass, or {"force": (f_x, f_y),
 "at": (x, y)}.  Every method also takes `timeout=` (seconds, None: wait
 forever) to override the client's timeout for that call.  Field names of the

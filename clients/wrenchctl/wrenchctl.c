@@ -1157,7 +1157,7 @@ static int cmd_help(options *o, int argc, char **argv);
 
 static const command COMMANDS[] = {
     {"put", cmd_put, "FILE", "store a fixture; print its id",
-     "Store the fixture in FILE (SPEC section 8's JSON); print its id."},
+     "Store the fixture in FILE (docs/PROTOCOL.md's JSON); print its id."},
     {"get", cmd_get, "ID", "print a stored fixture", "Print the stored fixture ID as JSON."},
     {"list", cmd_list, "", "list the stored fixtures", "List the stored fixtures."},
     {"delete", cmd_delete, "ID", "forget a stored fixture", "Forget the stored fixture ID."},

@@ -1,11 +1,11 @@
-"""Fixtures (SPEC section 8 wire form) used by the end-to-end tests."""
+"""Fixtures (docs/PROTOCOL.md wire form) used by the end-to-end tests."""
 
 import copy
 import math
 
 
 def disc_corner(mu=0.5, kinetic=None, name="disc-corner", inertia=0.5, com=(0, 0)):
-    """SPEC section 7: a unit disc in a corner, fixel 1 at (-1, 0) with
+    """docs/MODEL.md section 7: a unit disc in a corner, fixel 1 at (-1, 0) with
     normal (1, 0), fixel 2 at (0, -1) with normal (0, 1)."""
     friction = {"static": mu}
     friction["kinetic"] = mu if kinetic is None else kinetic
@@ -45,7 +45,7 @@ def rectangle_321(mu=0.3, clockwise=False, name="plate-3-2-1", width=4.0, height
 
 def chamfered_plate(mu=0.05, name="chamfer"):
     """The 4 x 2 plate of rectangle_321 with the corner opposite the
-    locators cut from (4, 1) to (3, 2) (SPEC section 7's demo part)."""
+    locators cut from (4, 1) to (3, 2) (docs/MODEL.md section 7's demo part)."""
     return {
         "name": name,
         "body": {"mass": 1.0, "shape": {"type": "polygon",
@@ -56,7 +56,7 @@ def chamfered_plate(mu=0.05, name="chamfer"):
 
 
 def disc_one_fixel(mu=0.5, name="disc-one"):
-    """A disc on a single fixel: not pinned (SPEC section 4)."""
+    """A disc on a single fixel: not pinned (docs/MODEL.md section 4)."""
     return {
         "name": name,
         "body": {"mass": 1.0, "shape": {"type": "circle", "center": [0, 0], "radius": 1.0}},
@@ -155,7 +155,7 @@ def variant(fixture, path, value=None, delete=False):
     return f
 
 
-# ---- for the push-region, gravity-sweep and margin tests (SPEC 6) -------------
+# ---- for the push-region, gravity-sweep and margin tests (docs/MODEL.md section 6) -------------
 
 def square_form_closure(name="square-form-closure"):
     """A 2 x 2 square held by four frictionless fixels, one per edge, each
@@ -272,7 +272,7 @@ def random_disc(rnd, corner=False, name="random-disc"):
     boundary angles, its centre of mass off the centre about half the time
     (inertia then given), normals left out or given (unnormalised).  With
     `corner`: two fixels 50..150 degrees apart and low friction (a corner
-    like SPEC 7's, rotated), so that G_goal has push regions more often."""
+    like docs/MODEL.md section 7's, rotated), so that G_goal has push regions more often."""
     radius = round(rnd.uniform(0.4, 2.5), 4)
     center = (round(rnd.uniform(-2, 2), 4), round(rnd.uniform(-2, 2), 4))
     k = 2 if corner else rnd.randint(2, 4)

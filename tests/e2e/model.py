@@ -1,4 +1,4 @@
-"""An independent, brute-force Python model of SPEC.md sections 1-5.
+"""An independent, brute-force Python model of docs/MODEL.md sections 1-5.
 
 Nothing here is taken from the daemon or from libwrench: every cone is built
 from the definitions (Newton-Euler, the letter table of section 2, the plan
@@ -258,7 +258,7 @@ class Fixel:
 
 
 class Model:
-    """SPEC sections 1-5 for one fixture dict (the wire form of SPEC 8)."""
+    """docs/MODEL.md sections 1-5 for one fixture dict (the wire form of docs/PROTOCOL.md)."""
 
     def __init__(self, fixture):
         body = fixture["body"]
@@ -449,7 +449,7 @@ class Model:
         return out
 
 
-# ---- the plan (SPEC 3) -------------------------------------------------------
+# ---- the plan (docs/MODEL.md section 3) -------------------------------------------------------
 
 BELOW = {("s", "u"), ("a", "u"), ("l", "m"), ("r", "m"), ("n", "m")}
 
@@ -496,7 +496,7 @@ def plan(k):
     return states, kept, origins
 
 
-# ---- modes (SPEC 4) ------------------------------------------------------------
+# ---- modes (docs/MODEL.md section 4) ------------------------------------------------------------
 
 def strictly_feasible(model, letters, pivot=0):
     _, nonempty, _ = model.q_cone(letters, mode=True, pivot=pivot)
@@ -536,7 +536,7 @@ def mode_rows(model, name):
     return model.rows(name, True)
 
 
-# ---- classification (SPEC 5) -------------------------------------------------------
+# ---- classification (docs/MODEL.md section 5) ---------------------------------------
 
 class Answer:
     def __init__(self, margin, blocking, candidates, states):
@@ -601,7 +601,7 @@ class Classifier:
         return a if a.margin < b.margin else b
 
 
-# ---- the outline and the push wrench (SPEC 6) ---------------------------------
+# ---- the outline and the push wrench (docs/MODEL.md section 6) ---------------------------------
 #
 # Independent of the daemon: a polygon's edge i runs from vertex i to vertex
 # i + 1, t the fraction along it; a circle is edge 0, t the boundary angle in

@@ -361,7 +361,7 @@ def test_garbage_bytes_do_not_hurt(daemon):
 
 
 def test_boundary_tolerance(daemon):
-    """SPEC 8: a fixel's at must lie on the boundary within 1e-9 of the
+    """docs/PROTOCOL.md: a fixel's at must lie on the boundary within 1e-9 of the
     body's size (a unit disc: size 2, so 2e-9): 5e-10 off is accepted,
     1e-7 off is refused, naming the field."""
     c = daemon.client()

@@ -1,5 +1,5 @@
-"""Every method's answers, with numbers derived from SPEC.md (sections 2-5,
-7) and the seed's counts -- closed forms where SPEC gives them, otherwise the
+"""Every method's answers, with numbers derived from docs/MODEL.md (sections 2-5,
+7) and the seed's counts -- closed forms where it gives them, otherwise the
 independent model in model.py."""
 
 import json
@@ -67,7 +67,7 @@ def test_put_single_fixel_not_pinned(client):
     assert r["pinned"] is False
 
 
-# ---- wrench.classify: SPEC section 7 closed forms ---------------------------------
+# ---- wrench.classify: docs/MODEL.md section 7 closed forms ---------------------------------
 
 @pytest.mark.parametrize("mu", [0.0, 0.25, 0.5, 0.9, 1.0, 1.5])
 def test_disc_corner_goal_margin_closed_form(client, mu):
@@ -122,7 +122,7 @@ def test_disc_corner_goal_wedge(client, mu):
 
 
 def test_readme_numbers_and_counterexample(client):
-    """SPEC section 4's counterexample, mu = 0.5: g = (-1, -1, -100) seats the
+    """docs/MODEL.md section 4's counterexample, mu = 0.5: g = (-1, -1, -100) seats the
     disc (inside G_goal) but spins it, sliding at both fixels: outside
     G_strong, blocked by mode ll.  Margins: +-0.1 * 0.316228 (the force part
     of the normalised scaled wrench is 0.01 of it)."""
@@ -152,7 +152,7 @@ def test_readme_numbers_and_counterexample(client):
 
 
 def test_zero_wrench(client):
-    """SPEC section 5: the zero wrench has margin 0, seats nothing (goal:
+    """docs/MODEL.md section 5: the zero wrench has margin 0, seats nothing (goal:
     outside) and, as no moving mode of the disc in a corner admits it
     (every mode needs c = 0 and then q = 0), is inside G_strong."""
     (r,) = classify(client, FX.disc_corner(0.5), [[0, 0, 0]], sets=["goal", "strong", "both"])
@@ -166,7 +166,7 @@ def test_zero_wrench(client):
 @pytest.mark.parametrize("k", [1e-300, 1e-160, 1e-100, 1e-6, 1e6, 1e100, 1e160, 1e300])
 def test_scale_invariance(client, k):
     """Every G_X is a cone and the margin is taken on the normalised wrench
-    (SPEC 5): k g has g's verdict and margin for any finite k > 0."""
+    (docs/MODEL.md section 5): k g has g's verdict and margin for any finite k > 0."""
     f = FX.disc_corner(0.5)
     base = [(1, 1, 0), (-1, -1, 0), (-1, -0.2, 0), (-1, -1, -100), (0.3, -1, 2)]
     ref = classify(client, f, base, sets=["goal", "strong"])
@@ -180,7 +180,7 @@ def test_scale_invariance(client, k):
 
 @pytest.mark.parametrize("length,mass", [(1e-3, 1e-3), (1e3, 1e3), (1e6, 2.0), (0.01, 50.0)])
 def test_units_do_not_matter(client, length, mass):
-    """SPEC 5: the scaled metric does not depend on units.  The disc in a
+    """docs/MODEL.md section 5: the scaled metric does not depend on units.  The disc in a
     corner in other units (lengths x L, mass x m, inertia x m L^2), with
     forces x F and torques x F L: the same verdicts and margins."""
     F = mass * length  # any force unit will do
@@ -285,7 +285,7 @@ def test_classify_matches_model(client, name):
                                   "one-fixel"])
 def test_lp_agrees_with_auto(client, name):
     """method lp: verdicts by GLPK, no margin; they agree with auto wherever
-    the margin is farther than 1e-6 from 0 (SPEC 8)."""
+    the margin is farther than 1e-6 from 0 (docs/MODEL.md section 5)."""
     f = MODEL_FIXTURES[name]()
     mdl, cl = classifier_for(f)
     wrenches = H.random_wrenches(seed=7 + len(name), n=30, scale=(1, 1, 2))
@@ -407,7 +407,7 @@ def check_generators(r, expected_cone):
 
 
 def test_cone_ss_disc(client):
-    """G_ss for the disc in a corner is {f_x >= 0, f_y >= 0} (SPEC 7; seed
+    """G_ss for the disc in a corner is {f_x >= 0, f_y >= 0} (docs/MODEL.md section 7; seed
     eq. 4): rows (-1, 0, 0), (0, -1, 0); tau is a lineality direction."""
     f = FX.disc_corner(0.5)
     r = cone_get(client, f, "ss")
@@ -422,7 +422,7 @@ def test_cone_ss_disc(client):
 
 @pytest.mark.parametrize("mu", [0.0, 0.5, 2.0])
 def test_cone_sm_ms_su_us_disc(client, mu):
-    """From g = M q - W c (SPEC 7): G_su = {f_x >= 0}, G_us = {f_y >= 0},
+    """From g = M q - W c (docs/MODEL.md section 7): G_su = {f_x >= 0}, G_us = {f_y >= 0},
     G_sm = {f_y <= 0, f_x >= mu f_y}, G_ms = {f_x <= 0, f_y >= mu f_x}."""
     f = FX.disc_corner(mu)
     s = math.sqrt(1 + mu * mu)
@@ -585,11 +585,11 @@ def test_modes_single_fixel_pivots(client):
     assert r["pinned"] is False
 
 
-# ---- SPEC section 7: where to push ----------------------------------------------------
+# ---- docs/MODEL.md section 7: where to push ----------------------------------------------------
 
 @pytest.mark.parametrize("mu", [0.0, 0.1, 0.3, 1.0])
 def test_rectangle_no_goal_push(client, mu):
-    """SPEC 7: a frictionless finger anywhere on the 3-2-1 plate's edges
+    """docs/MODEL.md section 7: a frictionless finger anywhere on the 3-2-1 plate's edges
     pushes toward the bottom or the left wall, never both: no push is inside
     G_goal, for any friction."""
     f = FX.rectangle_321(mu)
@@ -611,7 +611,7 @@ def test_rectangle_no_goal_push(client, mu):
 
 
 def test_chamfer_push_seats(client):
-    """SPEC 7: with a chamfer across the corner opposite the locators and
+    """docs/MODEL.md section 7: with a chamfer across the corner opposite the locators and
     little friction (0.05), pushing near its upper end seats the part; near
     its lower end it does not; with friction 0.3 nowhere on it."""
     for mu, inside in ((0.05, {7, 8, 9}), (0.3, set())):
@@ -665,7 +665,7 @@ def test_server_status(harness):
 
 @pytest.mark.parametrize("method", ["push.regions", "gravity.sweep", "stability.margin"])
 def test_section_6_methods_served(client, method):
-    """Once announced with -32601, now served: each answers the SPEC 7 disc."""
+    """Once announced with -32601, now served: each answers the docs/MODEL.md section 7 disc."""
     params = {"fixture": FX.disc_corner(0.5), "set": "goal"}
     if method == "stability.margin":
         params = {"fixture": FX.disc_corner(0.5), "bias": [-1, -1, 0]}

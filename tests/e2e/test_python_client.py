@@ -1,6 +1,6 @@
 """The Python client (clients/python/wrenchd.py) against a running wrenchd:
 every call, its errors, batches, timeouts, reconnecting, independent
-clients, and examples/cad_plugin.py.  Numbers come from SPEC.md's closed
+clients, and examples/cad_plugin.py.  Numbers come from docs/MODEL.md's closed
 forms (sections 3, 4, 7) or from the independent model (model.py), never
 from the daemon.  A few tests talk to a socket the test serves itself (a
 listener that never answers, a scripted fake daemon), to make timeouts and
@@ -75,7 +75,7 @@ def test_put_get_list_delete(pyclient):
     assert [x["friction"] for x in stored["fixels"]] == [{"static": 0.5, "kinetic": 0.5}] * 2
     assert c.put_fixture(stored).id == put.id
     plate = c.put_fixture(FX.rectangle_321(0.3))
-    assert plate.goal_cones == 12          # k = 3: twelve kept strings (SPEC 3)
+    assert plate.goal_cones == 12          # k = 3: twelve kept strings (docs/MODEL.md section 3)
     listed = c.list_fixtures()
     assert all(isinstance(f, wrenchd.FixtureInfo) for f in listed)
     assert [(f.id, f.name, f.fixels) for f in listed] == sorted(
@@ -94,7 +94,7 @@ def test_put_get_list_delete(pyclient):
 
 @pytest.mark.parametrize("mu", [0.25, 0.5, 0.9])
 def test_classify_disc_corner_margin(pyclient, mu):
-    """SPEC 7: the G_goal margin of (-1, -1, 0) is (1 - mu) / sqrt(2 (1 + mu^2))
+    """docs/MODEL.md section 7: the G_goal margin of (-1, -1, 0) is (1 - mu) / sqrt(2 (1 + mu^2))
     for mu < 1, whatever tau's units; a force at the centre of mass is the
     same wrench; inline and stored fixtures answer alike."""
     c = pyclient
@@ -113,9 +113,9 @@ def test_classify_disc_corner_margin(pyclient, mu):
 
 
 def test_classify_blocking_witness_and_words(pyclient):
-    """mu = 0.5: (-1, -0.2, 0) is blocked by ms from states 10 and 11 (SPEC
+    """mu = 0.5: (-1, -0.2, 0) is blocked by ms from states 10 and 11 (docs/MODEL.md section
     3); (-1, -1, -100) seats the disc but spins it: strong blocked by ll
-    (SPEC 4's counterexample).  Every verdict, margin and witness checked
+    (docs/MODEL.md section 4's counterexample).  Every verdict, margin and witness checked
     against the independent model."""
     c = pyclient
     f = FX.disc_corner(0.5)
@@ -168,7 +168,7 @@ def test_classify_method_lp_and_tolerance(pyclient):
 
 
 def test_single_fixel_pivots_and_words(pyclient):
-    """A disc on one fixel is not pinned (SPEC 4): its modes are s, l, r
+    """A disc on one fixel is not pinned (docs/MODEL.md section 4): its modes are s, l, r
     and the pivots n+ and n-; pulling it away is blocked by s from both
     contact states, and the words name the untouched state too."""
     c = pyclient
@@ -259,7 +259,7 @@ def test_cone_sm_disc_corner(pyclient):
 
 
 def test_plan_kept_strings(pyclient):
-    """SPEC 3 (seed eq. 6): from 00 rule out ss, from 10 su and ms, from 01
+    """docs/MODEL.md section 3 (seed eq. 6): from 00 rule out ss, from 10 su and ms, from 01
     us and sm, from 11 ss, sm and ms; kept: su us sm ms."""
     c = pyclient
     plan = c.plan(FX.disc_corner(0.5))

@@ -1,8 +1,8 @@
-"""push.regions, gravity.sweep and stability.margin (SPEC section 6).
+"""push.regions, gravity.sweep and stability.margin (docs/MODEL.md section 6).
 
 Every expected number is derived here, not read back from the daemon:
 
-* closed forms for SPEC 7's disc in a corner (the push region, the gravity
+* closed forms for docs/MODEL.md section 7's disc in a corner (the push region, the gravity
   arc, the finger-friction region, their lengths and fractions), derived in
   the docstrings below;
 * elsewhere the push wrench w(p) = (nu, (p - x_c) x nu) is computed from the
@@ -233,7 +233,7 @@ def same_intervals(a, b, tol=1e-9):
 
 
 def check_both_is_the_intersection(found, rng):
-    """margin(both) = min(margin(goal), margin(strong)) (SPEC 5), so the
+    """margin(both) = min(margin(goal), margin(strong)) (docs/MODEL.md section 5), so the
     both region is the goal region intersected with the strong one."""
     if set(SETS) <= set(found):
         inter = intersect(found["goal"], found["strong"])
@@ -294,7 +294,7 @@ def check_push_regions(client, fixture, sets=SETS, per_edge=PER_EDGE, model_ever
     return found
 
 
-# ---- 1. SPEC 7: the disc in a corner, closed forms ---------------------------------
+# ---- 1. docs/MODEL.md section 7: the disc in a corner, closed forms ---------------
 
 MUS = [0.1, 0.3, 0.5, 0.8, 0.95, 1.0, 1.2]
 
@@ -303,7 +303,7 @@ MUS = [0.1, 0.3, 0.5, 0.8, 0.95, 1.0, 1.2]
 def test_disc_corner_push_regions_closed_form(client, mu):
     """The disc (radius R, centre = com = origin): at boundary angle theta,
     p = R (cos, sin), nu = -(cos, sin), (p - x_c) x nu = 0, so
-    w = (-cos theta, -sin theta, 0).  SPEC 7: G_goal = {f_x < 0, f_y < 0,
+    w = (-cos theta, -sin theta, 0).  docs/MODEL.md section 7: G_goal = {f_x < 0, f_y < 0,
     |f_x| > mu |f_y|, |f_y| > mu |f_x|}, i.e. theta in (0, 90) with
     mu < tan theta < 1/mu: (atan mu, 90 - atan mu), empty for mu >= 1.
     Length (90 - 2 atan mu) degrees in radians times R, fraction that over
@@ -354,7 +354,7 @@ def test_disc_corner_push_regions_closed_form(client, mu):
 @pytest.mark.parametrize("mu", MUS)
 def test_disc_corner_gravity_closed_form(client, mu):
     """Gravity pulls along phi: w = m g0 (cos phi, sin phi, 0), torque 0 as
-    for the push.  In G_goal (SPEC 7) iff phi is in the third quadrant with
+    for the push.  In G_goal (docs/MODEL.md section 7) iff phi is in the third quadrant with
     mu < tan(phi - 180) < 1/mu: (180 + atan mu, 270 - atan mu), empty for
     mu >= 1.  G_strong: the open quadrant (180, 270) (the argument of the
     push test); 'both' is the goal arc."""
@@ -397,7 +397,7 @@ def test_disc_corner_in_other_units(client, length):
 def test_intervals_through_zero_are_split(client):
     """Turn the corner so that the arcs straddle 0 degrees.
 
-    Push: fixels at 135 and 225 degrees (normals towards the centre) is SPEC
+    Push: fixels at 135 and 225 degrees (normals towards the centre) is docs/MODEL.md section
     7's corner turned by -45 degrees, so its goal region (atan mu,
     90 - atan mu) turns to (atan mu - 45, 45 - atan mu): [0, 45 - atan mu]
     and [315 + atan mu, 360].  Gravity: fixels at 315 and 45 degrees is the
@@ -589,7 +589,7 @@ def test_regions_are_invariant_under_a_change_of_coordinates(client):
 @pytest.mark.parametrize("mu", [0.0, 0.1, 0.3, 0.6, 1.0])
 @pytest.mark.parametrize("clockwise", [False, True])
 def test_rectangle_321_has_no_goal_region(client, mu, clockwise):
-    """SPEC 7: a frictionless finger on an edge pushes along that edge's
+    """docs/MODEL.md section 7: a frictionless finger on an edge pushes along that edge's
     normal, toward the bottom locators or toward the left one, never toward
     both, so a self-transition (all-m on the touched fixels, s elsewhere)
     stays possible and no push seats the plate: no goal region for any
@@ -652,7 +652,7 @@ def test_chamfered_plate_goal_region_on_the_chamfer_only(client):
 def test_disc_corner_finger_friction(client, mu, mu_f):
     """A finger with friction mu_f at angle theta can push with any force
     nu + s mu_f tangent, |s| <= 1: directions (theta + 180) +- atan mu_f.
-    Their torque about the centre (R mu_f s) is free in SPEC 7's G_goal, and
+    Their torque about the centre (R mu_f s) is free in docs/MODEL.md section 7's G_goal, and
     its force part is the open wedge of directions 180 + (atan mu,
     90 - atan mu), convex, so every force of the finger's cone is in G_goal
     iff both edges are: theta - atan mu_f > atan mu and theta + atan mu_f <
@@ -770,7 +770,7 @@ def check_gravity(client, fixture, seed, model_every=0):
 
 
 def test_gravity_sweep_random_fixtures(client):
-    """Random polygons and discs, the SPEC 7 disc and the plates: the arcs of
+    """Random polygons and discs, the docs/MODEL.md section 7 disc and the plates: the arcs of
     each set against classify of m g0 (cos phi, sin phi, 0) (g0 random
     positive: cones do not care) at 720 points around plus the points just
     inside and outside each end; the ends have margin 0; one point in 23
@@ -889,7 +889,7 @@ def check_margin(client, fixture, mdl, cl, bias, rnd, disturbances=300):
 
 
 def test_stability_margin_random(client):
-    """Random biases on random fixtures (and SPEC 7's disc, the plates, the
+    """Random biases on random fixtures (and docs/MODEL.md section 7's disc, the plates, the
     offset disc, a body on one fixel that is not pinned): (a) the margin is
     |scaled bias| times classify's strong margin (and model.py's), the
     blocking mode is the nearest / deepest one; (b) along worst_direction
@@ -926,7 +926,7 @@ def test_stability_margin_random(client):
 
 
 def test_stability_margin_disc_corner_closed_form(client):
-    """SPEC 7's disc (m = 1, I = 0.5, rho = sqrt(1/2)), mu = 0.5, bias
+    """docs/MODEL.md section 7's disc (m = 1, I = 0.5, rho = sqrt(1/2)), mu = 0.5, bias
     (-1, -1, 0).  Mode sn (fixel 1 leaves, fixel 2 sticks): a_x > 0,
     a_y = 0, a_t2 = -a_x - alpha = 0, so M q = a (1, 0, -1/2); the friction
     edges of fixel 2 give -(W_2n +- mu W_2t) = (+-mu, -1, +-mu).  The facet
@@ -988,7 +988,7 @@ def test_stability_margin_form_closure_is_null(client):
 
 def test_stability_margin_of_a_huge_bias(client):
     """Finite input, a margin past the largest double: |scaled bias| of
-    (-1e308, -1e308, 1e308) overflows.  SPEC 6 / 8 leave no room for a
+    (-1e308, -1e308, 1e308) overflows.  docs/MODEL.md section 6 and docs/PROTOCOL.md leave no room for a
     margin that is not a number when a moving mode exists (null means no
     moving mode at all, and then blocking and worst_direction are null
     too): the answer is either the margin, 1e308 times that of (-1, -1, 1)

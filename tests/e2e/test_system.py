@@ -299,7 +299,7 @@ def test_make_install_and_pkg_config(harness):
                               flags.stdout.split(), capture_output=True, text=True)
     assert compiled.returncode == 0, compiled.stderr
     ran = subprocess.run([program], capture_output=True, text=True, timeout=30)
-    # SPEC 7: inside, margin (1 - mu) / sqrt(2 (1 + mu^2)) at mu = 0.5.
+    # docs/MODEL.md section 7: inside, margin (1 - mu) / sqrt(2 (1 + mu^2)) at mu = 0.5.
     assert ran.stdout.split()[:2] == ["0", "%.12f" % (0.5 / (2 * 1.25) ** 0.5)]
     # The installed wrenchctl answers locally with the installed examples.
     local = subprocess.run([os.path.join(root, "bin", "wrenchctl"), "--local", "plan",

@@ -3,7 +3,7 @@
 Every subcommand, its exit status (0 all inside, 1 some not inside, 2 usage,
 3 unreachable, 4 server error), --json, stdin batches, --local against the
 daemon on the examples (identical JSON), and the C client's example and
-bench programs.  Expected numbers: SPEC section 7 (the disc in a corner)."""
+bench programs.  Expected numbers: docs/MODEL.md section 7 (the disc in a corner)."""
 
 import json
 import math
@@ -57,7 +57,7 @@ def test_put_list_get_delete(ctl, client):
 
 def test_classify_table_and_exit_status(ctl):
     fid = put_disc(ctl)
-    # SPEC 7, mu = 0.5: (-1,-1) seats the disc with margin (1-mu)/sqrt(2(1+mu^2)).
+    # docs/MODEL.md section 7, mu = 0.5: (-1,-1) seats the disc with margin (1-mu)/sqrt(2(1+mu^2)).
     r = ctl("classify", fid, "-1,-1,0", "--sets", "goal")
     assert r.returncode == 0, r.stderr
     margin = (1 - 0.5) / math.sqrt(2 * (1 + 0.25))
@@ -71,7 +71,7 @@ def test_classify_table_and_exit_status(ctl):
     # A force at a point: (-1,-1) at 45 degrees on the rim has no torque.
     r = ctl("classify", fid, "-1,-1@0.7071067811865476,0.7071067811865476", "--sets=goal")
     assert r.returncode == 0 and "(-1, -1) at (0.707107, 0.707107)" in r.stdout
-    # SPEC 4's counterexample: seats, then spins, sliding at both fixels.
+    # docs/MODEL.md section 4's counterexample: seats, then spins, sliding at both fixels.
     r = ctl("classify", fid, "-1,-1,-100")
     assert r.returncode == 1
     assert "fixel 1 slides left, fixel 2 slides left" in r.stdout
@@ -180,7 +180,7 @@ def test_local_answers_as_the_daemon(ctl, path):
 def test_cone_plan_modes_status_tables(ctl):
     fid = put_disc(ctl)
     r = ctl("cone", fid, "ss")
-    # SPEC 7: G_ss of the disc is {f_x >= 0, f_y >= 0}.
+    # docs/MODEL.md section 7: G_ss of the disc is {f_x >= 0, f_y >= 0}.
     assert r.returncode == 0
     assert "G_ss: dimension 3, 2 half-spaces" in r.stdout
     assert "[-1.000000, +0.000000, +0.000000]" in r.stdout

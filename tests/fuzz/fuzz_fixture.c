@@ -1,7 +1,7 @@
 /* fuzz_fixture.c -- libFuzzer target (b): the fixture validator and
  * everything derived from a valid fixture.
  *
- * The input is a fixture document (SPEC section 8), read with
+ * The input is a fixture document (docs/PROTOCOL.md), read with
  * wp_fixture_read as fixture.put reads params.fixture.  Checked:
  *
  *  - refused: a -32602 error naming a field under "fixture", with a reason

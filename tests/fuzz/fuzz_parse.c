@@ -1,7 +1,7 @@
 /* fuzz_parse.c -- libFuzzer target (c): constraint strings and wrenches.
  *
  * The input is: one byte choosing a fixed fixture (its value modulo
- * FIXTURE_COUNT: the disc in a corner of SPEC section 7, the 3-fixel
+ * FIXTURE_COUNT: the disc in a corner of docs/MODEL.md section 7, the 3-fixel
  * 3-2-1 plate, the chamfered plate, a disc on one fixel (not pinned)),
  * then a constraint string up to the first '\n', then a wrench as JSON
  * (the rest).  For example "\x01" "smu\n" "[-1, -1, 0]".
@@ -10,22 +10,22 @@
  * of one letter of "saulrnm" per fixel (an oracle written here); an
  * accepted string formats back to itself and is below itself; its cone
  * (wr_cone_build) is well-formed (fuzz_check_cone), lies inside the cone
- * of the string with every letter raised (s, a -> u; l, r, n -> m: SPEC
- * section 3's order, G_X inside G_Y), and equals the analysis's goal cone
+ * of the string with every letter raised (s, a -> u; l, r, n -> m: the order of
+ * docs/MODEL.md section 2, G_X inside G_Y), and equals the analysis's goal cone
  * when the string is one of them.
  *
  * Wrenches: wp_wrench_read refuses with a -32602 error under "wrench", or
  * gives a finite wrench; that wrench is classified for the three sets
  * (margins in [-1, 1], verdicts, both = min(goal, strong), witnesses, the
  * LP method agreeing beyond 1e-6), twice it has the same margins and
- * verdicts (cones are cones), and its disturbance margin (SPEC section 6)
+ * verdicts (cones are cones), and its disturbance margin (docs/MODEL.md section 6)
  * is bounded exactly when there are moving modes, with the sign and size
  * of its strong margin. */
 #include "fuzz_util.h"
 #include "wp_fixture.h"
 
 static const char *const FIXTURES[] = {
-    /* SPEC section 7: the unit disc in a corner. */
+    /* docs/MODEL.md section 7: the unit disc in a corner. */
     "{\"name\":\"disc-corner\",\"body\":{\"mass\":1,\"inertia\":0.5,\"com\":[0,0],"
     "\"shape\":{\"type\":\"circle\",\"center\":[0,0],\"radius\":1}},"
     "\"friction\":{\"static\":0.5,\"kinetic\":0.5},"
@@ -103,7 +103,7 @@ static void check_constraint(const wr_analysis *a, const char *text)
     FUZZ_CHECK(wr_cone_build(&cone, f, &c), "wr_cone_build(\"%s\") failed", text);
     fuzz_check_cone(&cone, f, "parsed cone");
 
-    /* Raised letter by letter: a larger cone (SPEC section 3). */
+    /* Raised letter by letter: a larger cone (docs/MODEL.md section 2). */
     wr_constraint up = c;
     for (int i = 0; i < k; i++)
         up.letters[i] = strchr("sa", c.letters[i]) ? 'u' : strchr("lrn", c.letters[i]) ? 'm'

@@ -76,9 +76,9 @@ static inline bool fuzz_finite3(const double v[3])
 
 static const char *const FUZZ_SET_NAMES[] = {"goal", "strong", "both"};
 
-/* The invariants of one wr_classify answer (SPEC section 5): a margin in
+/* The invariants of one wr_classify answer (docs/MODEL.md section 5): a margin in
  * [-1, 1], the verdict its margin and the tolerance say (the zero wrench:
- * margin 0, outside for goal and both, SPEC section 5), no blocking cone
+ * margin 0, outside for goal and both, docs/MODEL.md section 5), no blocking cone
  * when inside, and a blocking cone within the set it names. */
 static inline void fuzz_check_answer(const wr_analysis *a, const double wrench[3], wr_set set,
                               double tolerance, const wr_answer *answer, const char *what)

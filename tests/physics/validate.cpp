@@ -50,7 +50,7 @@
 namespace {
 
 // ---- the parameters of every trial (canonical units: metres, seconds) ----
-// The fixture is scaled uniformly so that its size (SPEC: a circle's
+// The fixture is scaled uniformly so that its size (docs/MODEL.md section 1: a circle's
 // diameter, a polygon's bounding-box diagonal) is SIZE metres.  Box2D's
 // tolerances are absolute (linear slop 0.005 m, polygon skin 0.01 m), so a
 // fixed size makes every run see them in the same proportion.

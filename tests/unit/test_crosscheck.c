@@ -3,7 +3,7 @@
  * Two methods that share no code beyond the fixture model must agree: the
  * explicit cones (3-D geometry) and the seed's LP feasibility problems.
  * Witnesses are checked against the constraint rows by a checker written
- * here from SPEC section 2's table. */
+ * here from docs/MODEL.md section 2's table. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

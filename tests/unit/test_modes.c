@@ -1,4 +1,4 @@
-/* test_modes.c -- kinematically feasible contact modes (SPEC section 4),
+/* test_modes.c -- kinematically feasible contact modes (docs/MODEL.md section 4),
  * against an enumeration that shares nothing with the library's search.
  *
  * A mode is the sign pattern of the contact accelerations of some q != 0 that

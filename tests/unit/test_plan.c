@@ -1,5 +1,5 @@
-/* test_plan.c -- contact states, excluded strings and kept strings (SPEC
- * section 3), checked against a brute-force reading of the rule. */
+/* test_plan.c -- contact states, excluded strings and kept strings
+ * (docs/MODEL.md section 3), checked against a brute-force reading of the rule. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -438,7 +438,7 @@ static void put_get_classify_delete(void **state)
     assert_string_equal(cJSON_GetObjectItem(result, "id")->valuestring, id);
     assert_string_equal(cJSON_GetObjectItem(result, "name")->valuestring, "b");
     cJSON_Delete(answer);
-    /* Classify by id: SPEC section 7's margin. */
+    /* Classify by id: docs/MODEL.md section 7's margin. */
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
              "\"wrenches\":[[-1,-1,0]],\"sets\":[\"goal\"]},\"id\":3}",

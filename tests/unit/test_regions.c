@@ -1,5 +1,5 @@
 /* test_regions.c -- push regions, gravity arcs and disturbance margins
- * (SPEC section 6) against closed forms and against classification. */
+ * (docs/MODEL.md section 6) against closed forms and against classification. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -18,7 +18,7 @@ static double margin_of(const wr_analysis *a, const double w[3], wr_set set)
     return answer.margin;
 }
 
-/* SPEC 7: the disc in a corner seats from (atan mu, 90 - atan mu), empty for
+/* docs/MODEL.md section 7: the disc in a corner seats from (atan mu, 90 - atan mu), empty for
  * mu >= 1; gravity seats it from (180 + atan mu, 270 - atan mu). */
 static void disc_corner_closed_forms(void **state)
 {

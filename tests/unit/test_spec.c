@@ -1,12 +1,12 @@
-/* test_spec.c -- independent checks of libwrench against SPEC.md and the seed
+/* test_spec.c -- independent checks of libwrench against docs/MODEL.md and the
  * paper (Balkcom & Trinkle, "A Sensorless Insertion Strategy for Rigid Planar
  * Parts").
  *
- * Every expected number below is derived by hand from the SPEC (closed forms,
+ * Every expected number below is derived by hand from docs/MODEL.md (closed forms,
  * plane geometry), never copied from the library's output.  The derivations
  * are summarised in the comment of each test.
  *
- * Common facts about the SPEC section 7 disc in a corner (radius 1, centre and
+ * Common facts about the docs/MODEL.md section 7 disc in a corner (radius 1, centre and
  * com at the origin, m = 1, I = 0.5, so rho = sqrt(I/m) = 1/sqrt(2)):
  *   fixel 1: p = (-1, 0), n = (1, 0), t = (-n_y, n_x) = (0, 1)
  *   fixel 2: p = (0, -1), n = (0, 1), t = (-1, 0)
@@ -170,7 +170,7 @@ static wr_fixel_spec fixel_on_unit_circle(double theta_deg)
     return fixel_at(c, s, -c, -s);
 }
 
-/* SPEC section 7: the disc in a corner, mu_s = mu_k = mu. */
+/* docs/MODEL.md section 7: the disc in a corner, mu_s = mu_k = mu. */
 static wr_fixture *disc_corner(double mu_s, double mu_k)
 {
     wr_fixel_spec fx[2] = {fixel_at(-1, 0, 1, 0), fixel_at(0, -1, 0, 1)};
@@ -226,7 +226,7 @@ static void expect_string_set(const wr_constraint *list, int n, const char *cons
 }
 
 /* ========================================================================= */
-/* 1. G_goal of the SPEC section 7 disc in a corner.
+/* 1. G_goal of the docs/MODEL.md section 7 disc in a corner.
  *
  * Test points g = (r cos theta, r sin theta, tau) are placed on both sides of
  * each bounding line of G_goal (see the file comment): with a = atan(mu),
@@ -305,7 +305,7 @@ static void test_disc_corner_goal_membership_and_margin(void **state)
 }
 
 /* ========================================================================= */
-/* 2. G_ss of the disc corner (SPEC section 7, the seed's eq. 4).  With c = 0,
+/* 2. G_ss of the disc corner (docs/MODEL.md section 7, the seed's eq. 4).  With c = 0,
  * g = M q = (a_x, a_y, I alpha) with a_1n = a_x >= 0, a_2n = a_y >= 0 and
  * alpha free: G_ss = {f_x >= 0, f_y >= 0}, a 3-D cone whose only facets, as
  * rows of F g <= 0, are (-1, 0, 0) and (0, -1, 0); no equalities. */
@@ -337,7 +337,7 @@ static void test_disc_corner_G_ss_is_positive_quadrant(void **state)
 }
 
 /* ========================================================================= */
-/* 3. Kept strings of SPEC section 3.
+/* 3. Kept strings of docs/MODEL.md section 3.
  *
  * k = 2: state 00 excludes ss; 10: su, ms; 01: us, sm; 11: ss, sm, ms.  ss is
  * below su, so the kept set is {su, us, sm, ms} (seed eq. 6).
@@ -611,8 +611,8 @@ static void test_single_fixel_disc_not_pinned_has_pivots(void **state)
  * (-1, 0, 0); they sum to 0 and the first three are independent (det 0.5),
  * so they positively span R^3: every q with all a_n >= 0 has all a_n = 0 and
  * then q = 0.  No moving mode is feasible (not even with friction 0), the body
- * is pinned, G_strong excludes nothing and, by SPEC section 5, "with no
- * excluded cone at all [the margin] is 1": every nonzero wrench is inside
+ * is pinned, G_strong excludes nothing and, by docs/MODEL.md section 5 (with no
+ * excluded cone at all the margin is 1), every nonzero wrench is inside
  * G_strong with margin 1. */
 static void test_form_closure_square_has_no_moving_modes(void **state)
 {
@@ -681,7 +681,7 @@ static void test_force_closure_G_nn_whole_space(void **state)
 }
 
 /* ========================================================================= */
-/* 6. SPEC section 4's counterexample to "G_goal subset of G_strong".  Disc
+/* 6. docs/MODEL.md section 4's counterexample to "G_goal subset of G_strong".  Disc
  * corner, mu = 0.5, g = (-1, -1, -100).  Force direction 225 deg lies in
  * G_goal's wedge (206.6, 243.4) deg: inside.  Mode ll: a = 0, alpha < 0,
  * c_t = -mu c_n, so g = (-c1 - mu c2, mu c1 - c2, I alpha - mu (c1 + c2));
@@ -722,7 +722,7 @@ static void test_goal_not_subset_of_strong_counterexample(void **state)
 }
 
 /* ========================================================================= */
-/* 7. The zero wrench (SPEC section 5): margin 0; it seats nothing (goal:
+/* 7. The zero wrench (docs/MODEL.md section 5): margin 0; it seats nothing (goal:
  * outside).  For the disc corner no moving mode admits g = 0: every feasible
  * mode has a strict row (a_n > 0, a_t > 0 or < 0), and with g = 0 each forces
  * q = 0 (e.g. ll: -c1 - mu c2 = 0 and mu c1 - c2 = 0 give c = 0, then
@@ -753,7 +753,7 @@ static void test_zero_wrench(void **state)
 }
 
 /* ========================================================================= */
-/* 8. Fixture validation (SPEC section 8): each invalid spec is rejected with
+/* 8. Fixture validation (docs/PROTOCOL.md): each invalid spec is rejected with
  * the offending field's path (JSON of section 8) and a non-empty reason.
  * Each case starts from a valid disc-corner spec and breaks one thing. */
 typedef struct valid_case {
@@ -982,7 +982,7 @@ static void test_validation_missing_friction(void **state)
 }
 
 /* ========================================================================= */
-/* 9. Derived quantities (SPEC section 8).  Rectangle [1, 5] x [2, 4]
+/* 9. Derived quantities (docs/PROTOCOL.md).  Rectangle [1, 5] x [2, 4]
  * (w = 4, h = 2), m = 3: centroid (3, 3); uniform inertia about it
  * m (w^2 + h^2)/12 = 3 * 20 / 12 = 5; inward normals: bottom (0, 1),
  * right (-1, 0), top (0, -1), left (1, 0), whichever the orientation; tangent

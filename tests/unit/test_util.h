@@ -118,7 +118,7 @@ static inline wr_fixture *test_random_fixture(test_rng *rng, int k, bool disc)
     return wr_fixture_new(&spec, &error);
 }
 
-/* The disc in a corner of SPEC section 7. */
+/* The disc in a corner of docs/MODEL.md section 7. */
 static inline wr_fixture *test_disc_corner(double mu)
 {
     wr_fixel_spec fixels[2];
@@ -140,8 +140,8 @@ static inline wr_fixture *test_disc_corner(double mu)
 }
 
 /* Does (q, c) of a witness satisfy the closure of the constraint's rows
- * (SPEC section 2's table) and make the wrench g by Newton-Euler, within
- * `relative` of |g|?  NULL, or which row fails.  Written from the SPEC, not
+ * (docs/MODEL.md section 2's table) and make the wrench g by Newton-Euler, within
+ * `relative` of |g|?  NULL, or which row fails.  Written from docs/MODEL.md, not
  * from lib/; the acceleration tolerance scales with the longest lever arm
  * (far fixels cancel digits), and a NaN fails every comparison.  Used by
  * test_crosscheck and by the fuzz targets. */
