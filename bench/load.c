@@ -255,7 +255,8 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!options.quiet)
-        fprintf(stderr, "load: %zu requests in the table (%zu fixtures), expected answers in %.1f s\n",
+        fprintf(stderr,
+                "load: %zu requests in the table (%zu fixtures), expected answers in %.1f s\n",
                 table_size(t), table_fixture_count(t), build_seconds);
 
     client_settings load = {
@@ -357,9 +358,10 @@ int main(int argc, char **argv)
     printf("load: %d clients x %s%ld lines, pipeline %d, seed %llu: %lu lines (%lu requests, "
            "%lu batches, %lu notifications) in %.2f s; warm-up %lu lines in %.2f s\n",
            options.clients, options.duration > 0 ? "~" : "",
-           options.duration > 0 ? (long)(total.lines / (unsigned long)options.clients) : options.requests,
-           options.pipeline, (unsigned long long)options.seed, total.lines, total.requests, total.batches,
-           total.notifications, seconds, warm.stats.lines, warm_seconds);
+           options.duration > 0 ? (long)(total.lines / (unsigned long)options.clients)
+                                : options.requests,
+           options.pipeline, (unsigned long long)options.seed, total.lines, total.requests,
+           total.batches, total.notifications, seconds, warm.stats.lines, warm_seconds);
     if (counted)
         printf("load: errors expected %lu, seen %lu; the daemon counted %.0f requests and %.0f "
                "errors, expected %lu and %lu%s\n",
@@ -370,7 +372,8 @@ int main(int argc, char **argv)
         printf("load: errors expected %lu, seen %lu; the daemon's counts could not be read "
                "(server.status failed)\n",
                all.answers_expected_errors, all.answers_seen_errors);
-    printf("load: wrong answers %lu, lost answers %lu, unexpected answers %lu, failed connections %d\n",
+    printf("load: wrong answers %lu, lost answers %lu, unexpected answers %lu, "
+           "failed connections %d\n",
            all.wrong, all.lost, all.unexpected, failed_clients);
     printf("load: throughput %.0f requests/s (%.0f lines/s)\n", (double)total.requests / seconds,
            (double)total.lines / seconds);

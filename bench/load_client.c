@@ -166,7 +166,8 @@ static void report(const client *cl, const char *what, const char *sent, const c
         if (sent)
             fprintf(stderr, "  request:  %.600s%s\n", sent, strlen(sent) > 600 ? "..." : "");
         if (expected)
-            fprintf(stderr, "  expected: %.600s%s\n", expected, strlen(expected) > 600 ? "..." : "");
+            fprintf(stderr, "  expected: %.600s%s\n", expected,
+                    strlen(expected) > 600 ? "..." : "");
         if (seen)
             fprintf(stderr, "  observed: %.600s%s\n", seen, strlen(seen) > 600 ? "..." : "");
     }
@@ -250,13 +251,16 @@ static bool next_line(session *s, char **line, size_t *length, pending *p)
                     do
                         r = table_pick(t, &cl->random);
                     while (!(r->flags & REQUEST_BATCHABLE));
-                items[i] = (choice){r, (r->flags & REQUEST_NOTIFIABLE) && random_pick(&cl->random, 8) == 0};
+                items[i] = (choice){r, (r->flags & REQUEST_NOTIFIABLE) &&
+                                           random_pick(&cl->random, 8) == 0};
             }
         } else if (roll < 10 && cl->private_fixture) {
-            items[count++] = (choice){private_fixture_next(cl->private_fixture, &cl->random), false};
+            items[count++] =
+                (choice){private_fixture_next(cl->private_fixture, &cl->random), false};
         } else {
             const request *r = table_pick(t, &cl->random);
-            items[count++] = (choice){r, (r->flags & REQUEST_NOTIFIABLE) && random_pick(&cl->random, 25) == 0};
+            items[count++] =
+                (choice){r, (r->flags & REQUEST_NOTIFIABLE) && random_pick(&cl->random, 25) == 0};
         }
     }
     if (batch)
@@ -510,7 +514,8 @@ bool server_counts(const client_settings *settings, double *requests, double *er
     connection c;
     if (connection_open(&c, settings) != 0)
         return false;
-    const char *status_line = "{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"id\":\"counts\"}\n";
+    const char *status_line =
+        "{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"id\":\"counts\"}\n";
     const char *why;
     size_t length;
     char *line = connection_write(&c, status_line, strlen(status_line))

@@ -77,20 +77,21 @@ struct table {
     size_t shared_count;
 };
 
-static request *table_add(table *t, int category, unsigned flags, int check, char *wire, char *oracle)
+static request *table_add(table *t, int category, unsigned flags, int check, char *wire,
+                          char *oracle)
 {
     if (t->count == t->capacity) {
         t->capacity = t->capacity ? 2 * t->capacity : 256;
         t->items = xrealloc(t->items, t->capacity * sizeof *t->items);
     }
-    request *m = &t->items[t->count++];
-    memset(m, 0, sizeof *m);
-    m->category = category;
-    m->flags = flags;
-    m->check = check;
-    m->wire = wire;
-    m->oracle = oracle;
-    return m;
+    request *r = &t->items[t->count++];
+    memset(r, 0, sizeof *r);
+    r->category = category;
+    r->flags = flags;
+    r->check = check;
+    r->wire = wire;
+    r->oracle = oracle;
+    return r;
 }
 
 /* The text of a request object without its closing brace. */
@@ -133,7 +134,8 @@ static bool list_ok(const table *t, const cJSON *result)
         previous = id->valuestring;
         shared_fixture key;
         snprintf(key.id, sizeof key.id, "%s", id->valuestring);
-        shared_fixture *s = bsearch(&key, t->shared, t->shared_count, sizeof *t->shared, compare_ids);
+        shared_fixture *s =
+            bsearch(&key, t->shared, t->shared_count, sizeof *t->shared, compare_ids);
         if (s) {
             if (strcmp(s->name, name->valuestring) != 0 || s->fixels != fixels->valueint)
                 return false;
@@ -213,10 +215,10 @@ int answer_error_count(const cJSON *answer)
 }
 
 /* The canonical text an answer is compared by (the caller frees). */
-char *table_comparable(const table *t, cJSON *answer, const request *m)
+char *table_comparable(const table *t, cJSON *answer, const request *r)
 {
-    normalize(t, answer, m->check);
-    char *text = wp_canonical(answer, (m->flags & REQUEST_RAW) ? NULL : "id");
+    normalize(t, answer, r->check);
+    char *text = wp_canonical(answer, (r->flags & REQUEST_RAW) ? NULL : "id");
     if (!text)
         die("out of memory");
     return text;
@@ -279,7 +281,8 @@ static cJSON *generate_fixture(uint64_t *stream, const char *name)
         add_point(v, 0, h);
         if (random_pick(stream, 4) == 0) {
             cJSON_AddNumberToObject(body, "inertia", round4(random_uniform(stream, 0.5, 4)));
-            const double com[2] = {round4(random_uniform(stream, 0.3, 0.6) * w), round4(random_uniform(stream, 0.3, 0.6) * h)};
+            const double com[2] = {round4(random_uniform(stream, 0.3, 0.6) * w),
+                                   round4(random_uniform(stream, 0.3, 0.6) * h)};
             add_number_array(body, "com", com, 2);
         }
         int k = 2 + random_pick(stream, 3); /* 2..4 fixels */
@@ -294,21 +297,25 @@ static cJSON *generate_fixture(uint64_t *stream, const char *name)
             cJSON_AddItemToArray(fixels, x);
         } else {
             x = cJSON_CreateObject();
-            add_number_array(x, "at", (double[2]){round4(random_uniform(stream, 0.2, 0.8) * w), 0}, 2);
+            add_number_array(x, "at", (double[2]){round4(random_uniform(stream, 0.2, 0.8) * w), 0},
+                             2);
             cJSON_AddItemToArray(fixels, x);
         }
         x = cJSON_CreateObject(); /* one to its left */
-        add_number_array(x, "at", (double[2]){0, round4(random_uniform(stream, 0.15, 0.85) * h)}, 2);
+        add_number_array(x, "at", (double[2]){0, round4(random_uniform(stream, 0.15, 0.85) * h)},
+                         2);
         if (random_pick(stream, 4) == 0)
             cJSON_AddItemToObject(x, "friction", friction_json(stream));
         cJSON_AddItemToArray(fixels, x);
         if (k == 4) { /* and one above */
             x = cJSON_CreateObject();
-            add_number_array(x, "at", (double[2]){round4(random_uniform(stream, 0.1, 0.5) * (w - c)), h}, 2);
+            add_number_array(x, "at",
+                             (double[2]){round4(random_uniform(stream, 0.1, 0.5) * (w - c)), h}, 2);
             cJSON_AddItemToArray(fixels, x);
         }
     } else if (kind < 8) {
-        double radius = round4(random_uniform(stream, 0.5, 2)), cx = round4(random_uniform(stream, -1, 1)),
+        double radius = round4(random_uniform(stream, 0.5, 2)),
+               cx = round4(random_uniform(stream, -1, 1)),
                cy = round4(random_uniform(stream, -1, 1));
         cJSON *shape = cJSON_AddObjectToObject(body, "shape");
         cJSON_AddStringToObject(shape, "type", "circle");
@@ -318,7 +325,8 @@ static cJSON *generate_fixture(uint64_t *stream, const char *name)
             cJSON_AddNumberToObject(body, "inertia", round4(random_uniform(stream, 0.2, 2)));
         int k = 2 + random_pick(stream, 2);
         const double pi = 3.14159265358979323846;
-        double angles[3] = {random_uniform(stream, 165, 195), random_uniform(stream, 255, 285), random_uniform(stream, 120, 150)};
+        double angles[3] = {random_uniform(stream, 165, 195), random_uniform(stream, 255, 285),
+                            random_uniform(stream, 120, 150)};
         for (int i = 0; i < k; i++) {
             /* On the circle to the last bit: the validator allows a tolerance. */
             double t = angles[i] * pi / 180;
@@ -329,7 +337,10 @@ static cJSON *generate_fixture(uint64_t *stream, const char *name)
         }
     } else {
         cJSON_AddNumberToObject(body, "inertia", round4(random_uniform(stream, 0.3, 3)));
-        add_number_array(body, "com", (double[2]){round4(random_uniform(stream, -0.3, 0.3)), round4(random_uniform(stream, -0.3, 0.3))}, 2);
+        add_number_array(body, "com",
+                         (double[2]){round4(random_uniform(stream, -0.3, 0.3)),
+                                     round4(random_uniform(stream, -0.3, 0.3))},
+                         2);
         int k = 2 + random_pick(stream, 2);
         const double at[3][2] = {{-1, round4(random_uniform(stream, -0.5, 0.5))},
                                  {round4(random_uniform(stream, -0.5, 0.5)), -1},
@@ -480,14 +491,19 @@ static cJSON *wrench_json(uint64_t *stream, const fixture *f)
 {
     if (f->has_shape && random_pick(stream, 4) == 0) { /* a force at a point */
         cJSON *w = cJSON_CreateObject();
-        add_number_array(w, "force", (double[2]){round4(random_uniform(stream, -1, 1)), round4(random_uniform(stream, -1, 1))}, 2);
-        add_number_array(w, "at",
-                         (double[2]){round4(f->com[0] + random_uniform(stream, -0.5, 0.5) * f->size),
-                                     round4(f->com[1] + random_uniform(stream, -0.5, 0.5) * f->size)},
+        add_number_array(w, "force",
+                         (double[2]){round4(random_uniform(stream, -1, 1)),
+                                     round4(random_uniform(stream, -1, 1))},
                          2);
+        add_number_array(
+            w, "at",
+            (double[2]){round4(f->com[0] + random_uniform(stream, -0.5, 0.5) * f->size),
+                        round4(f->com[1] + random_uniform(stream, -0.5, 0.5) * f->size)},
+            2);
         return w;
     }
-    const double g[3] = {round4(random_uniform(stream, -1, 1)), round4(random_uniform(stream, -1, 1)),
+    const double g[3] = {round4(random_uniform(stream, -1, 1)),
+                         round4(random_uniform(stream, -1, 1)),
                          round4(random_uniform(stream, -0.5, 0.5) * f->size)};
     return cJSON_CreateDoubleArray(g, 3);
 }
@@ -503,12 +519,13 @@ static void add_sets(uint64_t *stream, cJSON *params)
     int first = random_pick(stream, 3);
     cJSON_AddItemToArray(sets, cJSON_CreateString(SETS[first]));
     if (which >= 5)
-        cJSON_AddItemToArray(sets, cJSON_CreateString(SETS[(first + 1 + random_pick(stream, 2)) % 3]));
+        cJSON_AddItemToArray(sets,
+                             cJSON_CreateString(SETS[(first + 1 + random_pick(stream, 2)) % 3]));
 }
 
 /* A request on fixture f: by id when stored, else inline. */
-static request *add_on_fixture(table *t, int category, const fixture *f, bool stored, const char *method,
-                              cJSON *params, int check, unsigned flags)
+static request *add_on_fixture(table *t, int category, const fixture *f, bool stored,
+                               const char *method, cJSON *params, int check, unsigned flags)
 {
     /* params holds "fixture" as a placeholder first member: replace it. */
     cJSON_ReplaceItemInObjectCaseSensitive(params, "fixture", cJSON_Duplicate(f->json, true));
@@ -523,7 +540,8 @@ static request *add_on_fixture(table *t, int category, const fixture *f, bool st
         wire = oracle;
         oracle = NULL;
     }
-    return table_add(t, category, flags | REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, check, wire, oracle);
+    return table_add(t, category, flags | REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, check, wire,
+                     oracle);
 }
 
 static cJSON *params_on(void)
@@ -533,17 +551,17 @@ static cJSON *params_on(void)
     return p;
 }
 
-static void add_given(const table *t, request *m, const char *expected_json)
+static void add_given(const table *t, request *r, const char *expected_json)
 {
     /* An answer known without the oracle: {"jsonrpc":"2.0",...} without id. */
     cJSON *answer = cJSON_Parse(expected_json);
     if (!answer)
         die("internal: bad expected text %s", expected_json);
-    m->expected = table_comparable(t, answer, m);
-    m->answer_errors = answer_error_count(answer);
-    m->counted_requests = 1;
-    m->counted_errors = (unsigned long)m->answer_errors;
-    m->given = true;
+    r->expected = table_comparable(t, answer, r);
+    r->answer_errors = answer_error_count(answer);
+    r->counted_requests = 1;
+    r->counted_errors = (unsigned long)r->answer_errors;
+    r->given = true;
     cJSON_Delete(answer);
 }
 
@@ -562,31 +580,53 @@ static char *put_answer(const fixture *f)
     return answer;
 }
 
-static request *add_put(table *t, const fixture *f)
+/* The requests and answers of the store, shared by the table's fixtures
+ * and the private ones: the wire text and the answer the store must give. */
+static char *put_request(const fixture *f)
 {
     cJSON *params = cJSON_CreateObject();
     cJSON_AddItemToObject(params, "fixture", cJSON_Duplicate(f->json, true));
-    request *m = table_add(t, CATEGORY_PUT, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_EXACT,
-                           request_prefix("fixture.put", params), NULL);
+    char *wire = request_prefix("fixture.put", params);
     cJSON_Delete(params);
-    char *answer = put_answer(f);
-    add_given(t, m, answer);
-    free(answer);
-    return m;
+    return wire;
+}
+
+static char *get_request(const fixture *f)
+{
+    return xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"params\":{\"id\":\"%s\"}",
+                   f->id);
+}
+
+static char *get_answer(const fixture *f)
+{
+    return xprintf("{\"jsonrpc\":\"2.0\",\"result\":%s}", f->canonical);
+}
+
+/* add_given, then free the text (made by the functions above). */
+static void add_given_and_free(const table *t, request *r, char *expected_json)
+{
+    add_given(t, r, expected_json);
+    free(expected_json);
+}
+
+static request *add_put(table *t, const fixture *f)
+{
+    request *r = table_add(t, CATEGORY_PUT, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_EXACT,
+                           put_request(f), NULL);
+    add_given_and_free(t, r, put_answer(f));
+    return r;
 }
 
 static request *add_get(table *t, const fixture *f)
 {
-    char *wire = xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"params\":{\"id\":\"%s\"}",
-                         f->id);
-    request *m = table_add(t, CATEGORY_GET, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_EXACT, wire, NULL);
-    char *answer = xprintf("{\"jsonrpc\":\"2.0\",\"result\":%s}", f->canonical);
-    add_given(t, m, answer);
-    free(answer);
-    return m;
+    request *r = table_add(t, CATEGORY_GET, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_EXACT,
+                           get_request(f), NULL);
+    add_given_and_free(t, r, get_answer(f));
+    return r;
 }
 
-static void add_classify(table *t, uint64_t *stream, const fixture *f, bool stored, int wrenches, int category)
+static void add_classify(table *t, uint64_t *stream, const fixture *f, bool stored, int wrenches,
+                         int category)
 {
     cJSON *p = params_on();
     cJSON *list = cJSON_AddArrayToObject(p, "wrenches");
@@ -649,8 +689,10 @@ static void add_bad_params(table *t, uint64_t *stream, const fixture *f, bool st
         "[[1,2]]", "[[1,2,\"x\"]]", "[{\"force\":[1,0]}]", "[[1e999,0,0]]",
         "[[0,0,0],[1,2,3,4]]", "{\"x\":1}", "[{\"force\":[1,0],\"at\":[0,0],\"x\":1}]"};
     cJSON *p = params_on();
-    cJSON_AddItemToObject(p, "wrenches",
-                          cJSON_Parse(BAD_WRENCHES[random_pick(stream, (int)(sizeof BAD_WRENCHES / sizeof *BAD_WRENCHES))]));
+    cJSON_AddItemToObject(
+        p, "wrenches",
+        cJSON_Parse(
+            BAD_WRENCHES[random_pick(stream, (int)(sizeof BAD_WRENCHES / sizeof *BAD_WRENCHES))]));
     add_on_fixture(t, CATEGORY_ERROR, f, stored, "wrench.classify", p, CHECK_EXACT, 0);
 
     p = params_on();
@@ -697,17 +739,17 @@ static void add_fixed_errors(table *t, uint64_t *stream)
     unknown[WP_ID_LENGTH] = 0;
     const unsigned req = REQUEST_NOTIFIABLE | REQUEST_BATCHABLE;
     table_add(t, CATEGORY_ERROR, req, CHECK_LOOSE,
-               xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":"
-                       "\"%s\",\"wrenches\":[[0,-1,0]]}", unknown), NULL);
+              xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":"
+                      "\"%s\",\"wrenches\":[[0,-1,0]]}", unknown), NULL);
     table_add(t, CATEGORY_ERROR, req, CHECK_LOOSE,
-               xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"params\":{\"id\":\"%s\"}",
-                       unknown), NULL);
+              xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"params\":{\"id\":\"%s\"}",
+                      unknown), NULL);
     table_add(t, CATEGORY_ERROR, req, CHECK_LOOSE,
-               xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"plan.get\",\"params\":{\"fixture\":\"%s\"}",
-                       unknown), NULL);
+              xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"plan.get\",\"params\":{\"fixture\":\"%s\"}",
+                      unknown), NULL);
     table_add(t, CATEGORY_ERROR, req, CHECK_LOOSE,
-               xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.delete\",\"params\":{\"id\":\"%s\"}",
-                       unknown), NULL);
+              xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.delete\",\"params\":{\"id\":\"%s\"}",
+                      unknown), NULL);
     static const char *const BAD_REQUESTS[] = {
         "{\"jsonrpc\":\"2.0\",\"method\":\"no.such.method\"",
         "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":[1]",
@@ -727,11 +769,11 @@ static void add_fixed_errors(table *t, uint64_t *stream)
         table_add(t, CATEGORY_ERROR, req, CHECK_EXACT, xstrdup(BAD_REQUESTS[i]), NULL);
     /* Invalid requests: answered even without an id, so never notifications. */
     table_add(t, CATEGORY_ERROR, REQUEST_BATCHABLE, CHECK_EXACT,
-               xstrdup("{\"jsonrpc\":\"1.0\",\"method\":\"server.status\""), NULL);
+              xstrdup("{\"jsonrpc\":\"1.0\",\"method\":\"server.status\""), NULL);
     table_add(t, CATEGORY_ERROR, REQUEST_BATCHABLE, CHECK_EXACT,
-               xstrdup("{\"jsonrpc\":\"2.0\",\"method\":7"), NULL);
+              xstrdup("{\"jsonrpc\":\"2.0\",\"method\":7"), NULL);
     table_add(t, CATEGORY_ERROR, REQUEST_BATCHABLE, CHECK_EXACT,
-               xstrdup("{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"extra\":1"), NULL);
+              xstrdup("{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"extra\":1"), NULL);
 
     /* Whole lines, sent as they are. */
     static const char *const RAW[] = {
@@ -760,7 +802,8 @@ static void add_fixed_errors(table *t, uint64_t *stream)
     /* Nesting deeper than --max-depth. */
     size_t depth = (size_t)t->settings.max_depth + 2;
     char *deep = xmalloc(2 * depth + 128);
-    size_t n = (size_t)sprintf(deep, "{\"jsonrpc\":\"2.0\",\"method\":\"cone.get\",\"params\":{\"x\":");
+    size_t n =
+        (size_t)sprintf(deep, "{\"jsonrpc\":\"2.0\",\"method\":\"cone.get\",\"params\":{\"x\":");
     for (size_t i = 0; i < depth; i++)
         deep[n++] = '[';
     for (size_t i = 0; i < depth; i++)
@@ -782,49 +825,49 @@ static void add_fixed_errors(table *t, uint64_t *stream)
     /* Batchable invalid members: answered with id null inside a batch. */
     table_add(t, CATEGORY_RAW, REQUEST_RAW | REQUEST_BATCHABLE, CHECK_EXACT, xstrdup("1"), NULL);
     table_add(t, CATEGORY_RAW, REQUEST_RAW | REQUEST_BATCHABLE, CHECK_EXACT,
-               xstrdup("{\"jsonrpc\":\"2.0\",\"id\":null}"), NULL);
+              xstrdup("{\"jsonrpc\":\"2.0\",\"id\":null}"), NULL);
 }
 
 static void add_status_and_list(table *t)
 {
-    request *m = table_add(t, CATEGORY_STATUS, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_STATUS,
-                           xstrdup("{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"params\":{}"),
-                           NULL);
-    add_given(t, m, "{\"jsonrpc\":\"2.0\",\"result\":{\"version\":\"string\",\"uptime_s\":0,"
-                 "\"fixtures\":0,\"cached\":0,\"cache_bytes\":0,\"cache_limit_bytes\":0,"
-                 "\"threads\":0,\"clients\":0,\"refused\":0,\"denied\":0,\"requests\":0,"
-                 "\"errors\":0}}");
-    m = table_add(t, CATEGORY_LIST, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_LIST,
-                   xstrdup("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\""), NULL);
-    add_given(t, m, "{\"jsonrpc\":\"2.0\",\"result\":{\"ok\":true}}");
+    request *r =
+        table_add(t, CATEGORY_STATUS, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_STATUS,
+                  xstrdup("{\"jsonrpc\":\"2.0\",\"method\":\"server.status\",\"params\":{}"), NULL);
+    add_given(t, r, "{\"jsonrpc\":\"2.0\",\"result\":{\"version\":\"string\",\"uptime_s\":0,"
+                    "\"fixtures\":0,\"cached\":0,\"cache_bytes\":0,\"cache_limit_bytes\":0,"
+                    "\"threads\":0,\"clients\":0,\"refused\":0,\"denied\":0,\"requests\":0,"
+                    "\"errors\":0}}");
+    r = table_add(t, CATEGORY_LIST, REQUEST_NOTIFIABLE | REQUEST_BATCHABLE, CHECK_LIST,
+                  xstrdup("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.list\""), NULL);
+    add_given(t, r, "{\"jsonrpc\":\"2.0\",\"result\":{\"ok\":true}}");
 }
 
 /* ---- the oracle: expected answers, computed in process ---------------------- */
 
-static void oracle_answer(const table *t, const wp_host *host, request *m)
+static void oracle_answer(const table *t, const wp_host *host, request *r)
 {
-    if (m->given)
+    if (r->given)
         return;
-    const char *text = m->oracle ? m->oracle : m->wire;
-    char *line = (m->flags & REQUEST_RAW) ? xstrdup(text) : xprintf("%s,\"id\":0}", text);
+    const char *text = r->oracle ? r->oracle : r->wire;
+    char *line = (r->flags & REQUEST_RAW) ? xstrdup(text) : xprintf("%s,\"id\":0}", text);
     wp_limits limits = {.max_depth = t->settings.max_depth,
                         .max_wrenches = (size_t)t->settings.max_wrenches,
                         .max_batch = (size_t)t->settings.max_batch};
     wp_counts counts = {0, 0};
     char *answer = wp_answer_line(host, &limits, line, strlen(line), &counts);
     free(line);
-    m->counted_requests = counts.requests;
-    m->counted_errors = counts.errors;
+    r->counted_requests = counts.requests;
+    r->counted_errors = counts.errors;
     if (!answer) {
-        m->expected = NULL;
+        r->expected = NULL;
         return;
     }
     cJSON *json = cJSON_Parse(answer);
     if (!json)
         die("internal: the oracle answered %s", answer);
     free(answer);
-    m->answer_errors = answer_error_count(json);
-    m->expected = table_comparable(t, json, m);
+    r->answer_errors = answer_error_count(json);
+    r->expected = table_comparable(t, json, r);
     cJSON_Delete(json);
 }
 
@@ -867,14 +910,14 @@ static void compute_expected(table *t)
 
 /* ---- private fixtures: a store only one client changes ---------------------- */
 
-static void private_step(request *m, char *wire, char *oracle, int check)
+static void private_step(request *r, char *wire, char *oracle, int check)
 {
-    memset(m, 0, sizeof *m);
-    m->category = CATEGORY_PRIVATE;
-    m->flags = REQUEST_NOTIFIABLE | REQUEST_BATCHABLE;
-    m->check = check;
-    m->wire = wire;
-    m->oracle = oracle;
+    memset(r, 0, sizeof *r);
+    r->category = CATEGORY_PRIVATE;
+    r->flags = REQUEST_NOTIFIABLE | REQUEST_BATCHABLE;
+    r->check = check;
+    r->wire = wire;
+    r->oracle = oracle;
 }
 
 static void make_private(const table *t, private_fixture *private, int client, wp_local *local)
@@ -893,18 +936,12 @@ static void make_private(const table *t, private_fixture *private, int client, w
     json = f.json;
     const wp_host *host = wp_local_host(local);
     for (int stored = 0; stored < 2; stored++) {
-        cJSON *params = cJSON_CreateObject();
-        cJSON_AddItemToObject(params, "fixture", cJSON_Duplicate(f.json, true));
-        private_step(&private->steps[PRIVATE_PUT][stored], request_prefix("fixture.put", params), NULL,
-                       CHECK_EXACT);
-        cJSON_Delete(params);
-        char *answer = put_answer(&f);
-        add_given(t, &private->steps[PRIVATE_PUT][stored], answer);
-        free(answer);
+        private_step(&private->steps[PRIVATE_PUT][stored], put_request(&f), NULL, CHECK_EXACT);
+        add_given_and_free(t, &private->steps[PRIVATE_PUT][stored], put_answer(&f));
 
-        char *get = xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.get\",\"params\":{\"id\":\"%s\"}", f.id);
-        private_step(&private->steps[PRIVATE_GET][stored], get, NULL, CHECK_LOOSE);
-        char *del = xprintf("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.delete\",\"params\":{\"id\":\"%s\"}", f.id);
+        private_step(&private->steps[PRIVATE_GET][stored], get_request(&f), NULL, CHECK_LOOSE);
+        char *del = xprintf(
+            "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.delete\",\"params\":{\"id\":\"%s\"}", f.id);
         private_step(&private->steps[PRIVATE_DELETE][stored], del, NULL, CHECK_LOOSE);
         uint64_t wrench_stream = stream; /* the same wrenches whether stored or not */
         cJSON *p = cJSON_CreateObject();
@@ -918,10 +955,9 @@ static void make_private(const table *t, private_fixture *private, int client, w
         cJSON_Delete(p);
         private_step(&private->steps[PRIVATE_CLASSIFY][stored], wire, oracle, CHECK_LOOSE);
         if (stored) {
-            answer = xprintf("{\"jsonrpc\":\"2.0\",\"result\":%s}", f.canonical);
-            add_given(t, &private->steps[PRIVATE_GET][stored], answer);
-            free(answer);
-            add_given(t, &private->steps[PRIVATE_DELETE][stored], "{\"jsonrpc\":\"2.0\",\"result\":{\"deleted\":true}}");
+            add_given_and_free(t, &private->steps[PRIVATE_GET][stored], get_answer(&f));
+            add_given(t, &private->steps[PRIVATE_DELETE][stored],
+                      "{\"jsonrpc\":\"2.0\",\"result\":{\"deleted\":true}}");
         } else {
             oracle_answer(t, host, &private->steps[PRIVATE_GET][stored]);
             oracle_answer(t, host, &private->steps[PRIVATE_DELETE][stored]);
@@ -967,9 +1003,9 @@ static void index_table(table *t)
     }
     t->batchable = xmalloc(t->count * sizeof(size_t));
     for (size_t i = 0; i < t->count; i++) {
-        request *m = &t->items[i];
-        t->by_category[m->category][t->category_count[m->category]++] = i;
-        if ((m->flags & REQUEST_RAW) && (m->flags & REQUEST_BATCHABLE))
+        request *r = &t->items[i];
+        t->by_category[r->category][t->category_count[r->category]++] = i;
+        if ((r->flags & REQUEST_RAW) && (r->flags & REQUEST_BATCHABLE))
             t->batchable[t->batchable_count++] = i;
     }
 }
