@@ -223,9 +223,15 @@ pictures: $(BUILD)/wrenchctl
 # bench/README.md says what these measure and how to read their output.
 BENCH_LOAD = $(BUILD)/bench/load
 
-$(BENCH_LOAD): bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
+# The driver (load.c), the table of requests (load_requests.c) and one
+# client (load_client.c); bench/README.md says what each does.
+BENCH_LOAD_SRC = bench/load.c bench/load_requests.c bench/load_client.c bench/load_util.c
+BENCH_LOAD_HDR = bench/load_requests.h bench/load_client.h bench/load_util.h bench/bench_util.h
+
+$(BENCH_LOAD): $(BENCH_LOAD_SRC) $(BENCH_LOAD_HDR) $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
+               $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $(BENCH_LOAD_SRC) $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
 	    -lcjson -lglpk -lpthread -lm -o $@
 
 # The cost of writing a number, old (snprintf + strtod) against new
