@@ -7,18 +7,22 @@ BUILD    = build
 PYTHON   = /usr/bin/python3
 
 LIB_SRC  = $(wildcard lib/*.c)
-LIB_HDR  = $(wildcard lib/*.h)
 PROTO_SRC = $(wildcard proto/*.c)
-PROTO_HDR = $(wildcard proto/*.h)
 DAEMON_SRC = $(filter-out daemon/wd_main.c,$(wildcard daemon/*.c))
-DAEMON_HDR = $(wildcard daemon/*.h)
+WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
 INCLUDES = -Ilib -Iproto -Idaemon
+# Hand-listed headers, for what is not yet in a variant below.
+LIB_HDR  = $(wildcard lib/*.h)
+PROTO_HDR = $(wildcard proto/*.h)
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
-UNIT_BIN = $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRC))
-ASAN_BIN = $(patsubst tests/unit/%.c,$(BUILD)/asan/tests/%,$(UNIT_SRC))
 LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
+# The client's tests count heap allocations by wrapping malloc at link time.
+WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc
+# Everything of the daemon but main(), in link order: wrenchd, the unit
+# tests and the fuzzers link it.
+DAEMON_LINK = libwrenchd.a libwrenchproto.a libwrench.a
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
@@ -44,84 +48,91 @@ help:
 	@echo "make deps       install the Debian packages the project needs"
 	@echo "make clean      remove build/"
 
-# ---- the library ----------------------------------------------------------
-$(BUILD)/lib/%.o: lib/%.c $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) -c $< -o $@
+# ---- variants ------------------------------------------------------------------
+# The libraries, the daemon, wrenchctl and the unit tests are built in each
+# variant, a directory of its own with its compiler and flags:
+#   plain  $(BUILD)/        $(CC) $(CFLAGS)
+#   asan   $(BUILD)/asan/   $(CC) -O1 -g, ASan + UBSan
+#   fuzz   $(BUILD)/fuzz/   $(FUZZ_CC), ASan + UBSan + libFuzzer's coverage
+#                           instrumentation (the fuzzers, tests/fuzz, below)
+# The rules are written once, in `variant', and $(eval)ed for each.  Every
+# compile writes the headers its output depends on beside it (-MMD -MP: x.o
+# -> x.d, a program -> program.d), read back at the end of this file.
+VARIANTS    = plain asan fuzz
+plain_DIR   = $(BUILD)
+plain_CC    = $(CC)
+plain_FLAGS = $(CFLAGS)
+asan_DIR    = $(BUILD)/asan
+asan_CC     = $(CC)
+asan_FLAGS  = -O1 -g $(SAN)
+FUZZ_CC     = clang
+fuzz_DIR    = $(BUILD)/fuzz
+fuzz_CC     = $(FUZZ_CC)
+fuzz_FLAGS  = -g -O1 -fsanitize=fuzzer-no-link $(SAN)
 
-$(BUILD)/libwrench.a: $(patsubst lib/%.c,$(BUILD)/lib/%.o,$(LIB_SRC))
-	rm -f $@ && ar rcs $@ $^
+# $(call compile,VARIANT): the compiler and flags of VARIANT; the command
+# writes the header dependencies of its output.
+compile = $($(1)_CC) $(WARN) $($(1)_FLAGS) -MMD -MP
 
-$(BUILD)/asan/lib/%.o: lib/%.c $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) -c $< -o $@
+# $(call variant,VARIANT): the rules of VARIANT, one pattern rule a kind of
+# source.  (lib/ compiles alone: it sees no other directory's headers.)
+define variant
+$$($(1)_DIR)/lib/%.o: lib/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) -c $$< -o $$@
 
-$(BUILD)/asan/libwrench.a: $(patsubst lib/%.c,$(BUILD)/asan/lib/%.o,$(LIB_SRC))
-	rm -f $@ && ar rcs $@ $^
+$$($(1)_DIR)/proto/%.o: proto/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) -c $$< -o $$@
 
-# ---- the protocol layer and the daemon --------------------------------------
-$(BUILD)/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
+$$($(1)_DIR)/daemon/%.o: daemon/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) -c $$< -o $$@
 
-$(BUILD)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
+$$($(1)_DIR)/clients/%.o: clients/c/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) -Iclients/c -c $$< -o $$@
 
-$(BUILD)/libwrenchproto.a: $(patsubst %.c,$(BUILD)/%.o,$(PROTO_SRC))
-	rm -f $@ && ar rcs $@ $^
+$$($(1)_DIR)/clients/wrenchctl/%.o: clients/wrenchctl/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) -Iclients/c -c $$< -o $$@
 
-# Everything of the daemon but main(): tests and fuzzers link it too.
-$(BUILD)/libwrenchd.a: $(patsubst %.c,$(BUILD)/%.o,$(DAEMON_SRC))
-	rm -f $@ && ar rcs $@ $^
+$$($(1)_DIR)/libwrench.a: $$(LIB_SRC:%.c=$$($(1)_DIR)/%.o)
+$$($(1)_DIR)/libwrenchproto.a: $$(PROTO_SRC:%.c=$$($(1)_DIR)/%.o)
+$$($(1)_DIR)/libwrenchd.a: $$(DAEMON_SRC:%.c=$$($(1)_DIR)/%.o)
+$$($(1)_DIR)/libwrenchclient.a: $$($(1)_DIR)/clients/wrenchclient.o
 
-$(BUILD)/wrenchd: $(BUILD)/daemon/wd_main.o $(BUILD)/libwrenchd.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
-	$(CC) $(CFLAGS) $^ $(SERVER_LIBS) -o $@
+$$($(1)_DIR)/wrenchd: $$($(1)_DIR)/daemon/wd_main.o $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	$$($(1)_CC) $$($(1)_FLAGS) $$^ $$(SERVER_LIBS) -o $$@
 
-# ---- clients -----------------------------------------------------------------
-$(BUILD)/clients/%.o: clients/c/%.c clients/c/wrenchclient.h
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c -c $< -o $@
+$$($(1)_DIR)/wrenchctl: $$(WRENCHCTL_SRC:%.c=$$($(1)_DIR)/%.o) \
+        $$(addprefix $$($(1)_DIR)/,libwrenchclient.a libwrenchproto.a libwrench.a)
+	$$($(1)_CC) $$($(1)_FLAGS) $$^ -lcjson -lglpk -lm -o $$@
 
-$(BUILD)/libwrenchclient.a: $(BUILD)/clients/wrenchclient.o
-	rm -f $@ && ar rcs $@ $^
+# The unit tests (cmocka), compiled and linked in one step.
+$$($(1)_DIR)/tests/%: tests/unit/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
 
-WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
-WRENCHCTL_HDR = $(wildcard clients/wrenchctl/*.h)
+# The client's tests link the client alone (WRAP_ALLOC above).
+$$($(1)_DIR)/tests/test_client: tests/unit/test_client.c $$($(1)_DIR)/libwrenchclient.a
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) -Iclients/c $$< $$(filter %.a,$$^) $$(WRAP_ALLOC) -lcmocka -lpthread -lm -o $$@
+endef
 
-$(BUILD)/clients/wrenchctl/%.o: clients/wrenchctl/%.c $(WRENCHCTL_HDR) clients/c/wrenchclient.h $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -Iclients/c -c $< -o $@
+$(foreach v,$(VARIANTS),$(eval $(call variant,$(v))))
 
-$(BUILD)/wrenchctl: $(patsubst clients/%.c,$(BUILD)/clients/%.o,$(WRENCHCTL_SRC)) $(BUILD)/libwrenchclient.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
-	$(CC) $(CFLAGS) $^ -lcjson -lglpk -lm -o $@
-
-$(BUILD)/wrenchclient-example: clients/c/example.c $(BUILD)/libwrenchclient.a
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
-
-$(BUILD)/wrenchclient-bench: clients/c/bench.c $(BUILD)/libwrenchclient.a
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
-
-$(BUILD)/asan/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
-
-$(BUILD)/asan/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
-
-$(BUILD)/asan/libwrenchproto.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(PROTO_SRC))
-	rm -f $@ && ar rcs $@ $^
-
-$(BUILD)/asan/libwrenchd.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(DAEMON_SRC))
+# Each library, in any variant: its objects, listed above.
+$(BUILD)/%.a:
 	rm -f $@ && ar rcs $@ $^
 
 # The daemon reads $(SYSCONFDIR)/wrenchd/wrenchd.conf when no --config is
 # given (SYSCONFDIR: see install below), so the path is compiled into
 # wd_main.o, which $(BUILD)/sysconfdir rebuilds whenever SYSCONFDIR changes:
 # a build reads the configuration of the prefix it was built for.
-$(BUILD)/daemon/wd_main.o $(BUILD)/asan/daemon/wd_main.o: $(BUILD)/sysconfdir
-$(BUILD)/daemon/wd_main.o $(BUILD)/asan/daemon/wd_main.o: WARN += -DWD_SYSCONFDIR='"$(SYSCONFDIR)"'
+WD_MAIN_OBJ = $(foreach v,$(VARIANTS),$($(v)_DIR)/daemon/wd_main.o)
+$(WD_MAIN_OBJ): $(BUILD)/sysconfdir
+$(WD_MAIN_OBJ): WARN += -DWD_SYSCONFDIR='"$(SYSCONFDIR)"'
 
 $(BUILD)/sysconfdir: FORCE
 	@mkdir -p $(dir $@)
@@ -129,40 +140,19 @@ $(BUILD)/sysconfdir: FORCE
 
 FORCE:
 
-$(BUILD)/asan/wrenchd: $(BUILD)/asan/daemon/wd_main.o $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrenchproto.a $(BUILD)/asan/libwrench.a
-	$(CC) $(SAN) $^ $(SERVER_LIBS) -o $@
+# ---- the examples (plain only) ------------------------------------------------
+$(BUILD)/wrenchclient-example: clients/c/example.c $(BUILD)/libwrenchclient.a
+	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
+
+$(BUILD)/wrenchclient-bench: clients/c/bench.c $(BUILD)/libwrenchclient.a
+	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
 
 $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
 	$(CC) $(WARN) $(CFLAGS) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
 
-# ---- unit tests (cmocka) -------------------------------------------------
-TEST_HDR = $(wildcard tests/unit/*.h)
-
-TEST_LINK = libwrenchd.a libwrenchproto.a libwrench.a
-
-$(BUILD)/tests/%: tests/unit/%.c $(TEST_HDR) $(addprefix $(BUILD)/,$(TEST_LINK))
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $< $(addprefix $(BUILD)/,$(TEST_LINK)) $(SERVER_LIBS) $(TEST_LIBS) -o $@
-
-$(BUILD)/asan/tests/%: tests/unit/%.c $(TEST_HDR) $(addprefix $(BUILD)/asan/,$(TEST_LINK))
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) $< $(addprefix $(BUILD)/asan/,$(TEST_LINK)) $(SERVER_LIBS) $(TEST_LIBS) -o $@
-
-# The client's tests count heap allocations by wrapping malloc at link time.
-WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc
-
-$(BUILD)/tests/test_client: tests/unit/test_client.c $(BUILD)/libwrenchclient.a
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $< $(BUILD)/libwrenchclient.a $(WRAP_ALLOC) -lcmocka -lpthread -lm -o $@
-
-$(BUILD)/asan/libwrenchclient.a: clients/c/wrenchclient.c clients/c/wrenchclient.h
-	@mkdir -p $(BUILD)/asan/clients
-	$(CC) $(WARN) -O1 -g $(SAN) -Iclients/c -c $< -o $(BUILD)/asan/clients/wrenchclient.o
-	ar rcs $@ $(BUILD)/asan/clients/wrenchclient.o
-
-$(BUILD)/asan/tests/test_client: tests/unit/test_client.c $(BUILD)/asan/libwrenchclient.a
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) -Iclients/c $< $(BUILD)/asan/libwrenchclient.a $(WRAP_ALLOC) -lcmocka -lpthread -lm -o $@
+# ---- unit tests ------------------------------------------------------------------
+UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(plain_DIR)/tests/%)
+ASAN_BIN = $(UNIT_SRC:tests/unit/%.c=$(asan_DIR)/tests/%)
 
 # An LD_PRELOAD library the fault tests use to fail writes to a directory.
 $(BUILD)/tests/libfail_storage.so: tests/faults/fail_storage.c
@@ -260,48 +250,28 @@ soak: $(BUILD)/wrenchd $(BENCH_LOAD)
 # ---- end of load and soak ----
 
 # ---- fuzzing (tests/fuzz) ----
-# libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined) over the
-# sources of lib/, proto/ and daemon/ (but main) rebuilt with coverage
-# instrumentation in build/fuzz/.  tests/fuzz/README.md says what each
-# target checks.  make fuzz: each target for FUZZ_SECONDS on a copy of the
-# corpus (build/fuzz/corpus-work); make fuzz-smoke: the committed corpus and
-# regressions, then FUZZ_SMOKE_RUNS mutations of each, seed 1.
-FUZZ_CC       = clang
-FUZZ_SAN      = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FUZZ_CFLAGS   = -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -g -O1 $(INCLUDES) \
-                -fsanitize=fuzzer-no-link $(FUZZ_SAN)
-FUZZ_DIR      = $(BUILD)/fuzz
+# libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined) linking
+# the fuzz variant of lib/, proto/ and daemon/ (but main), built with
+# coverage instrumentation in build/fuzz/ (see variants above).
+# tests/fuzz/README.md says what each target checks.  make fuzz: each target
+# for FUZZ_SECONDS on a copy of the corpus (build/fuzz/corpus-work); make
+# fuzz-smoke: the committed corpus and regressions, then FUZZ_SMOKE_RUNS
+# mutations of each, seed 1.
 FUZZ_TARGETS  = request fixture parse
-FUZZ_BIN      = $(addprefix $(FUZZ_DIR)/fuzz_,$(FUZZ_TARGETS))
-FUZZ_OBJ      = $(patsubst %.c,$(FUZZ_DIR)/%.o,$(LIB_SRC) $(PROTO_SRC) $(DAEMON_SRC))
+FUZZ_BIN      = $(addprefix $(fuzz_DIR)/fuzz_,$(FUZZ_TARGETS))
 FUZZ_SECONDS ?= 60
 FUZZ_SMOKE_RUNS ?= 10000
 
-$(FUZZ_DIR)/lib/%.o: lib/%.c $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
-
-$(FUZZ_DIR)/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
-
-$(FUZZ_DIR)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
-
-$(FUZZ_DIR)/libwrench-fuzz.a: $(FUZZ_OBJ)
-	rm -f $@ && ar rcs $@ $^
-
-$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h tests/unit/test_util.h $(FUZZ_DIR)/libwrench-fuzz.a
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer $< $(FUZZ_DIR)/libwrench-fuzz.a $(SERVER_LIBS) -o $@
+$(fuzz_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(addprefix $(fuzz_DIR)/,$(DAEMON_LINK))
+	$(call compile,fuzz) $(INCLUDES) -fsanitize=fuzzer $< $(filter %.a,$^) $(SERVER_LIBS) -o $@
 
 fuzz-build: $(FUZZ_BIN)
 
 fuzz: $(FUZZ_BIN)
-	@FUZZ_DIR=$(FUZZ_DIR) tests/fuzz/run-fuzz fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+	@FUZZ_DIR=$(fuzz_DIR) tests/fuzz/run-fuzz fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 fuzz-smoke: $(FUZZ_BIN)
-	@FUZZ_DIR=$(FUZZ_DIR) tests/fuzz/run-fuzz smoke $(FUZZ_SMOKE_RUNS) $(FUZZ_TARGETS)
+	@FUZZ_DIR=$(fuzz_DIR) tests/fuzz/run-fuzz smoke $(FUZZ_SMOKE_RUNS) $(FUZZ_TARGETS)
 # ---- end of fuzzing ----
 
 # ---- install -------------------------------------------------------------------
@@ -399,3 +369,7 @@ deps:
 
 clean:
 	rm -rf $(BUILD)
+
+# ---- header dependencies -----------------------------------------------------
+# What each compile wrote (-MMD -MP above), in every variant's directory.
+-include $(wildcard $(addsuffix *.d,$(BUILD)/ $(BUILD)/*/ $(BUILD)/*/*/ $(BUILD)/*/*/*/))
