@@ -11,9 +11,6 @@ PROTO_SRC = $(wildcard proto/*.c)
 DAEMON_SRC = $(filter-out daemon/wd_main.c,$(wildcard daemon/*.c))
 WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
 INCLUDES = -Ilib -Iproto -Idaemon
-# Hand-listed headers, for what is not yet in a variant below.
-LIB_HDR  = $(wildcard lib/*.h)
-PROTO_HDR = $(wildcard proto/*.h)
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
@@ -141,14 +138,12 @@ $(BUILD)/sysconfdir: FORCE
 FORCE:
 
 # ---- the examples (plain only) ------------------------------------------------
-$(BUILD)/wrenchclient-example: clients/c/example.c $(BUILD)/libwrenchclient.a
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
-
-$(BUILD)/wrenchclient-bench: clients/c/bench.c $(BUILD)/libwrenchclient.a
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
+# build/wrenchclient-example and build/wrenchclient-bench, from clients/c/.
+$(BUILD)/wrenchclient-%: clients/c/%.c $(BUILD)/libwrenchclient.a
+	$(call compile,plain) -Iclients/c $< $(filter %.a,$^) -lm -o $@
 
 $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
-	$(CC) $(WARN) $(CFLAGS) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
+	$(call compile,plain) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
 
 # ---- unit tests ------------------------------------------------------------------
 UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(plain_DIR)/tests/%)
@@ -157,7 +152,7 @@ ASAN_BIN = $(UNIT_SRC:tests/unit/%.c=$(asan_DIR)/tests/%)
 # An LD_PRELOAD library the fault tests use to fail writes to a directory.
 $(BUILD)/tests/libfail_storage.so: tests/faults/fail_storage.c
 	@mkdir -p $(dir $@)
-	$(CC) -std=c11 -Wall -Wextra -Werror -O2 -fPIC -shared $< -ldl -o $@
+	$(CC) -std=c11 -Wall -Wextra -Werror -O2 -fPIC -shared -MMD -MP $< -ldl -o $@
 
 unit: $(UNIT_BIN)
 	@tests/run-unit $(UNIT_BIN)
@@ -205,37 +200,28 @@ pictures: $(BUILD)/wrenchctl
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.
-BENCH_LOAD = $(BUILD)/bench/load
-
-$(BENCH_LOAD): bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/load.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
-	    -lcjson -lglpk -lpthread -lm -o $@
-
-# The cost of writing a number, old (snprintf + strtod) against new
-# (proto/wp_number.c): prints figures, asserts nothing.
+BENCH_LOAD   = $(BUILD)/bench/load
 BENCH_NUMBER = $(BUILD)/bench/number
-
-$(BENCH_NUMBER): bench/number.c bench/bench_util.h $(BUILD)/libwrenchproto.a $(PROTO_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/number.c $(BUILD)/libwrenchproto.a -lm -o $@
-
-BENCH_MICRO = $(BUILD)/bench/micro
-
-$(BENCH_MICRO): bench/micro.c bench/bench_util.h $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
-	    -lcjson -lglpk -lm -o $@
-
+BENCH_MICRO  = $(BUILD)/bench/micro
 BENCH_SOCKET = $(BUILD)/bench/socket
 
-$(BENCH_SOCKET): bench/socket.c bench/bench_util.h
+# bench/X.c -> build/bench/X, linked with the libraries it lists below.
+# number: the cost of writing a number, old (snprintf + strtod) against new
+# (proto/wp_number.c): prints figures, asserts nothing.
+$(BUILD)/bench/%: bench/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) bench/socket.c -lpthread -lm -o $@
+	$(call compile,plain) $(INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
+
+$(BENCH_LOAD) $(BENCH_MICRO): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
+$(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
+$(BENCH_MICRO): BENCH_LIBS = -lcjson -lglpk -lm
+$(BENCH_NUMBER): BENCH_LIBS = -lm
+$(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
 # Issue 9's benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
-bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BUILD)/bench/number
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER)
 	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
@@ -342,9 +328,9 @@ uninstall:
 PHYSICS_FIXTURES = $(wildcard examples/*.json) $(wildcard tests/physics/fixtures/*.json)
 PHYSICS_CXXFLAGS = -std=c++17 -Wall -Wextra -Werror -O2 -g
 
-$(BUILD)/physics-validate: tests/physics/validate.cpp $(LIB_HDR) $(PROTO_HDR) $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 	@mkdir -p $(dir $@)
-	$(CXX) $(PHYSICS_CXXFLAGS) $(INCLUDES) $$(pkg-config --cflags box2d) $< \
+	$(CXX) $(PHYSICS_CXXFLAGS) -MMD -MP $(INCLUDES) $$(pkg-config --cflags box2d) $< \
 	    $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $$(pkg-config --libs box2d) -lcjson -lglpk -lm -o $@
 
 physics-check: $(BUILD)/physics-validate
