@@ -29,14 +29,17 @@ all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrench
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
 
 help:
-	@echo "make            build build/libwrench.a"
+	@echo "make            build the library, wrenchd, wrenchctl, the C client and the examples in build/"
 	@echo "make demo       build, start wrenchd, put the examples, classify, stop"
 	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
 	@echo "make pictures   redraw docs/pictures (the README's figures)"
 	@echo "make check      every test: unit (plain, ASan+UBSan), physics, load, fuzz smoke, end to end"
+	@echo "make unit       the unit tests (build/tests/); make unit-asan: under ASan+UBSan (build/asan/tests/)"
+	@echo "make e2e        the end-to-end tests; make e2e-asan: against build/asan/wrenchd"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
 	@echo "make validate   the full physics validation against Box2D (docs/VALIDATION.md)"
-	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md)"
+	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md);"
+	@echo "                make fuzz-build builds them (build/fuzz/), make fuzz-smoke runs them briefly"
 	@echo "make soak       ten minutes of mixed load, resident memory (bench/README.md)"
 	@echo "make bench      the benchmarks, one table (docs/PERFORMANCE.md)"
 	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR;"
