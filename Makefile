@@ -7,18 +7,19 @@ BUILD    = build
 PYTHON   = /usr/bin/python3
 
 LIB_SRC  = $(wildcard lib/*.c)
-LIB_HDR  = $(wildcard lib/*.h)
 PROTO_SRC = $(wildcard proto/*.c)
-PROTO_HDR = $(wildcard proto/*.h)
 DAEMON_SRC = $(filter-out daemon/wd_main.c,$(wildcard daemon/*.c))
-DAEMON_HDR = $(wildcard daemon/*.h)
+WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
 INCLUDES = -Ilib -Iproto -Idaemon
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
-UNIT_BIN = $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRC))
-ASAN_BIN = $(patsubst tests/unit/%.c,$(BUILD)/asan/tests/%,$(UNIT_SRC))
 LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
+# The client's tests count heap allocations by wrapping malloc at link time.
+WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc
+# Everything of the daemon but main(), in link order: wrenchd, the unit
+# tests and the fuzzers link it.
+DAEMON_LINK = libwrenchd.a libwrenchproto.a libwrench.a
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
@@ -28,15 +29,18 @@ all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrench
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
 
 help:
-	@echo "make            build build/libwrench.a"
+	@echo "make            build the library, wrenchd, wrenchctl, the C client and the examples in build/"
 	@echo "make demo       build, start wrenchd, put the examples, classify, stop"
 	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
 	@echo "make pictures   redraw docs/pictures (the README's figures)"
 	@echo "make check      every test: links, unit (plain, ASan+UBSan), physics, load, fuzz smoke, end to end"
 	@echo "make links      every relative link of the Markdown files resolves (also in make check)"
+	@echo "make unit       the unit tests (build/tests/); make unit-asan: under ASan+UBSan (build/asan/tests/)"
+	@echo "make e2e        the end-to-end tests; make e2e-asan: against build/asan/wrenchd"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
 	@echo "make validate   the full physics validation against Box2D (docs/VALIDATION.md)"
-	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md)"
+	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md);"
+	@echo "                make fuzz-build builds them (build/fuzz/), make fuzz-smoke runs them briefly"
 	@echo "make soak       ten minutes of mixed load, resident memory (bench/README.md)"
 	@echo "make bench      the benchmarks, one table (docs/PERFORMANCE.md)"
 	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR;"
@@ -45,84 +49,91 @@ help:
 	@echo "make deps       install the Debian packages the project needs"
 	@echo "make clean      remove build/"
 
-# ---- the library ----------------------------------------------------------
-$(BUILD)/lib/%.o: lib/%.c $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) -c $< -o $@
+# ---- variants ------------------------------------------------------------------
+# The libraries, the daemon, wrenchctl and the unit tests are built in each
+# variant, a directory of its own with its compiler and flags:
+#   plain  $(BUILD)/        $(CC) $(CFLAGS)
+#   asan   $(BUILD)/asan/   $(CC) -O1 -g, ASan + UBSan
+#   fuzz   $(BUILD)/fuzz/   $(FUZZ_CC), ASan + UBSan + libFuzzer's coverage
+#                           instrumentation (the fuzzers, tests/fuzz, below)
+# The rules are written once, in `variant', and $(eval)ed for each.  Every
+# compile writes the headers its output depends on beside it (-MMD -MP: x.o
+# -> x.d, a program -> program.d), read back at the end of this file.
+VARIANTS    = plain asan fuzz
+plain_DIR   = $(BUILD)
+plain_CC    = $(CC)
+plain_FLAGS = $(CFLAGS)
+asan_DIR    = $(BUILD)/asan
+asan_CC     = $(CC)
+asan_FLAGS  = -O1 -g $(SAN)
+FUZZ_CC     = clang
+fuzz_DIR    = $(BUILD)/fuzz
+fuzz_CC     = $(FUZZ_CC)
+fuzz_FLAGS  = -g -O1 -fsanitize=fuzzer-no-link $(SAN)
 
-$(BUILD)/libwrench.a: $(patsubst lib/%.c,$(BUILD)/lib/%.o,$(LIB_SRC))
-	rm -f $@ && ar rcs $@ $^
+# $(call compile,VARIANT): the compiler and flags of VARIANT; the command
+# writes the header dependencies of its output.
+compile = $($(1)_CC) $(WARN) $($(1)_FLAGS) -MMD -MP
 
-$(BUILD)/asan/lib/%.o: lib/%.c $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) -c $< -o $@
+# $(call variant,VARIANT): the rules of VARIANT, one pattern rule a kind of
+# source.  (lib/ compiles alone: it sees no other directory's headers.)
+define variant
+$$($(1)_DIR)/lib/%.o: lib/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) -c $$< -o $$@
 
-$(BUILD)/asan/libwrench.a: $(patsubst lib/%.c,$(BUILD)/asan/lib/%.o,$(LIB_SRC))
-	rm -f $@ && ar rcs $@ $^
+$$($(1)_DIR)/proto/%.o: proto/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) -c $$< -o $$@
 
-# ---- the protocol layer and the daemon --------------------------------------
-$(BUILD)/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
+$$($(1)_DIR)/daemon/%.o: daemon/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) -c $$< -o $$@
 
-$(BUILD)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -c $< -o $@
+$$($(1)_DIR)/clients/%.o: clients/c/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) -Iclients/c -c $$< -o $$@
 
-$(BUILD)/libwrenchproto.a: $(patsubst %.c,$(BUILD)/%.o,$(PROTO_SRC))
-	rm -f $@ && ar rcs $@ $^
+$$($(1)_DIR)/clients/wrenchctl/%.o: clients/wrenchctl/%.c
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) -Iclients/c -c $$< -o $$@
 
-# Everything of the daemon but main(): tests and fuzzers link it too.
-$(BUILD)/libwrenchd.a: $(patsubst %.c,$(BUILD)/%.o,$(DAEMON_SRC))
-	rm -f $@ && ar rcs $@ $^
+$$($(1)_DIR)/libwrench.a: $$(LIB_SRC:%.c=$$($(1)_DIR)/%.o)
+$$($(1)_DIR)/libwrenchproto.a: $$(PROTO_SRC:%.c=$$($(1)_DIR)/%.o)
+$$($(1)_DIR)/libwrenchd.a: $$(DAEMON_SRC:%.c=$$($(1)_DIR)/%.o)
+$$($(1)_DIR)/libwrenchclient.a: $$($(1)_DIR)/clients/wrenchclient.o
 
-$(BUILD)/wrenchd: $(BUILD)/daemon/wd_main.o $(BUILD)/libwrenchd.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
-	$(CC) $(CFLAGS) $^ $(SERVER_LIBS) -o $@
+$$($(1)_DIR)/wrenchd: $$($(1)_DIR)/daemon/wd_main.o $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	$$($(1)_CC) $$($(1)_FLAGS) $$^ $$(SERVER_LIBS) -o $$@
 
-# ---- clients -----------------------------------------------------------------
-$(BUILD)/clients/%.o: clients/c/%.c clients/c/wrenchclient.h
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c -c $< -o $@
+$$($(1)_DIR)/wrenchctl: $$(WRENCHCTL_SRC:%.c=$$($(1)_DIR)/%.o) \
+        $$(addprefix $$($(1)_DIR)/,libwrenchclient.a libwrenchproto.a libwrench.a)
+	$$($(1)_CC) $$($(1)_FLAGS) $$^ -lcjson -lglpk -lm -o $$@
 
-$(BUILD)/libwrenchclient.a: $(BUILD)/clients/wrenchclient.o
-	rm -f $@ && ar rcs $@ $^
+# The unit tests (cmocka), compiled and linked in one step.
+$$($(1)_DIR)/tests/%: tests/unit/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(INCLUDES) $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
 
-WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
-WRENCHCTL_HDR = $(wildcard clients/wrenchctl/*.h)
+# The client's tests link the client alone (WRAP_ALLOC above).
+$$($(1)_DIR)/tests/test_client: tests/unit/test_client.c $$($(1)_DIR)/libwrenchclient.a
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) -Iclients/c $$< $$(filter %.a,$$^) $$(WRAP_ALLOC) -lcmocka -lpthread -lm -o $$@
+endef
 
-$(BUILD)/clients/wrenchctl/%.o: clients/wrenchctl/%.c $(WRENCHCTL_HDR) clients/c/wrenchclient.h $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -Iclients/c -c $< -o $@
+$(foreach v,$(VARIANTS),$(eval $(call variant,$(v))))
 
-$(BUILD)/wrenchctl: $(patsubst clients/%.c,$(BUILD)/clients/%.o,$(WRENCHCTL_SRC)) $(BUILD)/libwrenchclient.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
-	$(CC) $(CFLAGS) $^ -lcjson -lglpk -lm -o $@
-
-$(BUILD)/wrenchclient-example: clients/c/example.c $(BUILD)/libwrenchclient.a
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
-
-$(BUILD)/wrenchclient-bench: clients/c/bench.c $(BUILD)/libwrenchclient.a
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $^ -lm -o $@
-
-$(BUILD)/asan/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
-
-$(BUILD)/asan/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) -c $< -o $@
-
-$(BUILD)/asan/libwrenchproto.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(PROTO_SRC))
-	rm -f $@ && ar rcs $@ $^
-
-$(BUILD)/asan/libwrenchd.a: $(patsubst %.c,$(BUILD)/asan/%.o,$(DAEMON_SRC))
+# Each library, in any variant: its objects, listed above.
+$(BUILD)/%.a:
 	rm -f $@ && ar rcs $@ $^
 
 # The daemon reads $(SYSCONFDIR)/wrenchd/wrenchd.conf when no --config is
 # given (SYSCONFDIR: see install below), so the path is compiled into
 # wd_main.o, which $(BUILD)/sysconfdir rebuilds whenever SYSCONFDIR changes:
 # a build reads the configuration of the prefix it was built for.
-$(BUILD)/daemon/wd_main.o $(BUILD)/asan/daemon/wd_main.o: $(BUILD)/sysconfdir
-$(BUILD)/daemon/wd_main.o $(BUILD)/asan/daemon/wd_main.o: WARN += -DWD_SYSCONFDIR='"$(SYSCONFDIR)"'
+WD_MAIN_OBJ = $(foreach v,$(VARIANTS),$($(v)_DIR)/daemon/wd_main.o)
+$(WD_MAIN_OBJ): $(BUILD)/sysconfdir
+$(WD_MAIN_OBJ): WARN += -DWD_SYSCONFDIR='"$(SYSCONFDIR)"'
 
 $(BUILD)/sysconfdir: FORCE
 	@mkdir -p $(dir $@)
@@ -130,45 +141,22 @@ $(BUILD)/sysconfdir: FORCE
 
 FORCE:
 
-$(BUILD)/asan/wrenchd: $(BUILD)/asan/daemon/wd_main.o $(BUILD)/asan/libwrenchd.a $(BUILD)/asan/libwrenchproto.a $(BUILD)/asan/libwrench.a
-	$(CC) $(SAN) $^ $(SERVER_LIBS) -o $@
+# ---- the examples (plain only) ------------------------------------------------
+# build/wrenchclient-example and build/wrenchclient-bench, from clients/c/.
+$(BUILD)/wrenchclient-%: clients/c/%.c $(BUILD)/libwrenchclient.a
+	$(call compile,plain) -Iclients/c $< $(filter %.a,$^) -lm -o $@
 
 $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
-	$(CC) $(WARN) $(CFLAGS) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
+	$(call compile,plain) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
 
-# ---- unit tests (cmocka) -------------------------------------------------
-TEST_HDR = $(wildcard tests/unit/*.h)
-
-TEST_LINK = libwrenchd.a libwrenchproto.a libwrench.a
-
-$(BUILD)/tests/%: tests/unit/%.c $(TEST_HDR) $(addprefix $(BUILD)/,$(TEST_LINK))
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $< $(addprefix $(BUILD)/,$(TEST_LINK)) $(SERVER_LIBS) $(TEST_LIBS) -o $@
-
-$(BUILD)/asan/tests/%: tests/unit/%.c $(TEST_HDR) $(addprefix $(BUILD)/asan/,$(TEST_LINK))
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) $(INCLUDES) $< $(addprefix $(BUILD)/asan/,$(TEST_LINK)) $(SERVER_LIBS) $(TEST_LIBS) -o $@
-
-# The client's tests count heap allocations by wrapping malloc at link time.
-WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc
-
-$(BUILD)/tests/test_client: tests/unit/test_client.c $(BUILD)/libwrenchclient.a
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) -Iclients/c $< $(BUILD)/libwrenchclient.a $(WRAP_ALLOC) -lcmocka -lpthread -lm -o $@
-
-$(BUILD)/asan/libwrenchclient.a: clients/c/wrenchclient.c clients/c/wrenchclient.h
-	@mkdir -p $(BUILD)/asan/clients
-	$(CC) $(WARN) -O1 -g $(SAN) -Iclients/c -c $< -o $(BUILD)/asan/clients/wrenchclient.o
-	ar rcs $@ $(BUILD)/asan/clients/wrenchclient.o
-
-$(BUILD)/asan/tests/test_client: tests/unit/test_client.c $(BUILD)/asan/libwrenchclient.a
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) -O1 -g $(SAN) -Iclients/c $< $(BUILD)/asan/libwrenchclient.a $(WRAP_ALLOC) -lcmocka -lpthread -lm -o $@
+# ---- unit tests ------------------------------------------------------------------
+UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(plain_DIR)/tests/%)
+ASAN_BIN = $(UNIT_SRC:tests/unit/%.c=$(asan_DIR)/tests/%)
 
 # An LD_PRELOAD library the fault tests use to fail writes to a directory.
 $(BUILD)/tests/libfail_storage.so: tests/faults/fail_storage.c
 	@mkdir -p $(dir $@)
-	$(CC) -std=c11 -Wall -Wextra -Werror -O2 -fPIC -shared $< -ldl -o $@
+	$(CC) -std=c11 -Wall -Wextra -Werror -O2 -fPIC -shared -MMD -MP $< -ldl -o $@
 
 unit: $(UNIT_BIN)
 	@tests/run-unit $(UNIT_BIN)
@@ -221,43 +209,38 @@ pictures: $(BUILD)/wrenchctl
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.
-BENCH_LOAD = $(BUILD)/bench/load
+BENCH_LOAD   = $(BUILD)/bench/load
 
-# The driver (load.c), the table of requests (load_requests.c) and one
-# client (load_client.c); bench/README.md says what each does.
+# The load generator is four files: the driver (load.c), the table of
+# requests (load_requests.c), one client (load_client.c) and what they share
+# (load_util.c); bench/README.md says what each does.  One program from
+# several sources, so its headers are its directory's and the layers'.
 BENCH_LOAD_SRC = bench/load.c bench/load_requests.c bench/load_client.c bench/load_util.c
-BENCH_LOAD_HDR = bench/load_requests.h bench/load_client.h bench/load_util.h bench/bench_util.h
-
-$(BENCH_LOAD): $(BENCH_LOAD_SRC) $(BENCH_LOAD_HDR) $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
-               $(PROTO_HDR) $(LIB_HDR)
+$(BENCH_LOAD): $(BENCH_LOAD_SRC) $(wildcard bench/*.h proto/*.h lib/*.h)
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $(BENCH_LOAD_SRC) $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
-	    -lcjson -lglpk -lpthread -lm -o $@
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $(BENCH_LOAD_SRC) $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
-# The cost of writing a number, old (snprintf + strtod) against new
-# (proto/wp_number.c): prints figures, asserts nothing.
 BENCH_NUMBER = $(BUILD)/bench/number
-
-$(BENCH_NUMBER): bench/number.c bench/bench_util.h $(BUILD)/libwrenchproto.a $(PROTO_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/number.c $(BUILD)/libwrenchproto.a -lm -o $@
-
-BENCH_MICRO = $(BUILD)/bench/micro
-
-$(BENCH_MICRO): bench/micro.c bench/bench_util.h $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) bench/micro.c $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a \
-	    -lcjson -lglpk -lm -o $@
-
+BENCH_MICRO  = $(BUILD)/bench/micro
 BENCH_SOCKET = $(BUILD)/bench/socket
 
-$(BENCH_SOCKET): bench/socket.c bench/bench_util.h
+# bench/X.c -> build/bench/X, linked with the libraries it lists below.
+# number: the cost of writing a number, old (snprintf + strtod) against new
+# (proto/wp_number.c): prints figures, asserts nothing.
+$(BUILD)/bench/%: bench/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) bench/socket.c -lpthread -lm -o $@
+	$(call compile,plain) $(INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
+
+$(BENCH_LOAD) $(BENCH_MICRO): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
+$(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
+$(BENCH_MICRO): BENCH_LIBS = -lcjson -lglpk -lm
+$(BENCH_NUMBER): BENCH_LIBS = -lm
+$(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
 # Issue 9's benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
-bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BUILD)/bench/number
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER)
 	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
@@ -272,48 +255,28 @@ soak: $(BUILD)/wrenchd $(BENCH_LOAD)
 # ---- end of load and soak ----
 
 # ---- fuzzing (tests/fuzz) ----
-# libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined) over the
-# sources of lib/, proto/ and daemon/ (but main) rebuilt with coverage
-# instrumentation in build/fuzz/.  tests/fuzz/README.md says what each
-# target checks.  make fuzz: each target for FUZZ_SECONDS on a copy of the
-# corpus (build/fuzz/corpus-work); make fuzz-smoke: the committed corpus and
-# regressions, then FUZZ_SMOKE_RUNS mutations of each, seed 1.
-FUZZ_CC       = clang
-FUZZ_SAN      = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FUZZ_CFLAGS   = -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -g -O1 $(INCLUDES) \
-                -fsanitize=fuzzer-no-link $(FUZZ_SAN)
-FUZZ_DIR      = $(BUILD)/fuzz
+# libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined) linking
+# the fuzz variant of lib/, proto/ and daemon/ (but main), built with
+# coverage instrumentation in build/fuzz/ (see variants above).
+# tests/fuzz/README.md says what each target checks.  make fuzz: each target
+# for FUZZ_SECONDS on a copy of the corpus (build/fuzz/corpus-work); make
+# fuzz-smoke: the committed corpus and regressions, then FUZZ_SMOKE_RUNS
+# mutations of each, seed 1.
 FUZZ_TARGETS  = request fixture parse
-FUZZ_BIN      = $(addprefix $(FUZZ_DIR)/fuzz_,$(FUZZ_TARGETS))
-FUZZ_OBJ      = $(patsubst %.c,$(FUZZ_DIR)/%.o,$(LIB_SRC) $(PROTO_SRC) $(DAEMON_SRC))
+FUZZ_BIN      = $(addprefix $(fuzz_DIR)/fuzz_,$(FUZZ_TARGETS))
 FUZZ_SECONDS ?= 60
 FUZZ_SMOKE_RUNS ?= 10000
 
-$(FUZZ_DIR)/lib/%.o: lib/%.c $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
-
-$(FUZZ_DIR)/proto/%.o: proto/%.c $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
-
-$(FUZZ_DIR)/daemon/%.o: daemon/%.c $(DAEMON_HDR) $(PROTO_HDR) $(LIB_HDR)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -c $< -o $@
-
-$(FUZZ_DIR)/libwrench-fuzz.a: $(FUZZ_OBJ)
-	rm -f $@ && ar rcs $@ $^
-
-$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h tests/unit/test_util.h $(FUZZ_DIR)/libwrench-fuzz.a
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer $< $(FUZZ_DIR)/libwrench-fuzz.a $(SERVER_LIBS) -o $@
+$(fuzz_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(addprefix $(fuzz_DIR)/,$(DAEMON_LINK))
+	$(call compile,fuzz) $(INCLUDES) -fsanitize=fuzzer $< $(filter %.a,$^) $(SERVER_LIBS) -o $@
 
 fuzz-build: $(FUZZ_BIN)
 
 fuzz: $(FUZZ_BIN)
-	@FUZZ_DIR=$(FUZZ_DIR) tests/fuzz/run-fuzz fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+	@FUZZ_DIR=$(fuzz_DIR) tests/fuzz/run-fuzz fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 fuzz-smoke: $(FUZZ_BIN)
-	@FUZZ_DIR=$(FUZZ_DIR) tests/fuzz/run-fuzz smoke $(FUZZ_SMOKE_RUNS) $(FUZZ_TARGETS)
+	@FUZZ_DIR=$(fuzz_DIR) tests/fuzz/run-fuzz smoke $(FUZZ_SMOKE_RUNS) $(FUZZ_TARGETS)
 # ---- end of fuzzing ----
 
 # ---- install -------------------------------------------------------------------
@@ -384,9 +347,9 @@ uninstall:
 PHYSICS_FIXTURES = $(wildcard examples/*.json) $(wildcard tests/physics/fixtures/*.json)
 PHYSICS_CXXFLAGS = -std=c++17 -Wall -Wextra -Werror -O2 -g
 
-$(BUILD)/physics-validate: tests/physics/validate.cpp $(LIB_HDR) $(PROTO_HDR) $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 	@mkdir -p $(dir $@)
-	$(CXX) $(PHYSICS_CXXFLAGS) $(INCLUDES) $$(pkg-config --cflags box2d) $< \
+	$(CXX) $(PHYSICS_CXXFLAGS) -MMD -MP $(INCLUDES) $$(pkg-config --cflags box2d) $< \
 	    $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $$(pkg-config --libs box2d) -lcjson -lglpk -lm -o $@
 
 physics-check: $(BUILD)/physics-validate
@@ -411,3 +374,7 @@ deps:
 
 clean:
 	rm -rf $(BUILD)
+
+# ---- header dependencies -----------------------------------------------------
+# What each compile wrote (-MMD -MP above), in every variant's directory.
+-include $(wildcard $(addsuffix *.d,$(BUILD)/ $(BUILD)/*/ $(BUILD)/*/*/ $(BUILD)/*/*/*/))
