@@ -87,11 +87,17 @@ $(BUILD)/libwrenchclient.a: $(BUILD)/clients/wrenchclient.o
 	rm -f $@ && ar rcs $@ $^
 
 WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
-WRENCHCTL_HDR = $(wildcard clients/wrenchctl/*.h)
+WRENCHCTL_HDR = $(wildcard clients/wrenchctl/*.h) $(BUILD)/clients/wrenchctl/wc_explain.h
+
+# The words wrenchctl explains a verdict with are the Python client's
+# (_EXPLAIN_WORDS in clients/python/wrenchd.py): one table for both.
+$(BUILD)/clients/wrenchctl/wc_explain.h: clients/python/wrenchd.py clients/wrenchctl/wc_explain_gen.py
+	@mkdir -p $(dir $@)
+	$(PYTHON) clients/wrenchctl/wc_explain_gen.py clients/python/wrenchd.py $@.tmp && mv $@.tmp $@
 
 $(BUILD)/clients/wrenchctl/%.o: clients/wrenchctl/%.c $(WRENCHCTL_HDR) clients/c/wrenchclient.h $(PROTO_HDR) $(LIB_HDR)
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -Iclients/c -c $< -o $@
+	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) -Iclients/c -I$(BUILD)/clients/wrenchctl -c $< -o $@
 
 $(BUILD)/wrenchctl: $(patsubst clients/%.c,$(BUILD)/clients/%.o,$(WRENCHCTL_SRC)) $(BUILD)/libwrenchclient.a $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 	$(CC) $(CFLAGS) $^ -lcjson -lglpk -lm -o $@
