@@ -75,6 +75,14 @@ fuzz_FLAGS  = -g -O1 -fsanitize=fuzzer-no-link $(SAN)
 # writes the header dependencies of its output.
 compile = $($(1)_CC) $(WARN) $($(1)_FLAGS) -MMD -MP
 
+# The words wrenchctl explains a verdict with are the Python client's
+# (_EXPLAIN_WORDS in clients/python/wrenchd.py): one table for both, made a
+# header here for every variant's wrenchctl.
+WC_EXPLAIN = $(BUILD)/clients/wrenchctl/wc_explain.h
+$(WC_EXPLAIN): clients/python/wrenchd.py clients/wrenchctl/wc_explain_gen.py
+	@mkdir -p $(dir $@)
+	$(PYTHON) clients/wrenchctl/wc_explain_gen.py clients/python/wrenchd.py $@.tmp && mv $@.tmp $@
+
 # $(call variant,VARIANT): the rules of VARIANT, one pattern rule a kind of
 # source.  (lib/ compiles alone: it sees no other directory's headers.)
 define variant
@@ -94,9 +102,9 @@ $$($(1)_DIR)/clients/%.o: clients/c/%.c
 	@mkdir -p $$(@D)
 	$$(call compile,$(1)) -Iclients/c -c $$< -o $$@
 
-$$($(1)_DIR)/clients/wrenchctl/%.o: clients/wrenchctl/%.c
+$$($(1)_DIR)/clients/wrenchctl/%.o: clients/wrenchctl/%.c $$(WC_EXPLAIN)
 	@mkdir -p $$(@D)
-	$$(call compile,$(1)) $$(INCLUDES) -Iclients/c -c $$< -o $$@
+	$$(call compile,$(1)) $$(INCLUDES) -Iclients/c -I$$(dir $$(WC_EXPLAIN)) -c $$< -o $$@
 
 $$($(1)_DIR)/libwrench.a: $$(LIB_SRC:%.c=$$($(1)_DIR)/%.o)
 $$($(1)_DIR)/libwrenchproto.a: $$(PROTO_SRC:%.c=$$($(1)_DIR)/%.o)
@@ -122,6 +130,7 @@ $$($(1)_DIR)/tests/test_client: tests/unit/test_client.c $$($(1)_DIR)/libwrenchc
 endef
 
 $(foreach v,$(VARIANTS),$(eval $(call variant,$(v))))
+
 
 # Each library, in any variant: its objects, listed above.
 $(BUILD)/%.a:

@@ -396,16 +396,57 @@ def _same(result: Any) -> Any:
 
 # ---- explanations (the words of examples/demo.py) -----------------------------------
 
-MOTION = {"s": "separates", "l": "slides left", "r": "slides right", "n": "rolls"}
+# Every word the clients explain a verdict with, for this module and for
+# wrenchctl: the build generates wrenchctl's wc_explain.h from this table
+# (clients/wrenchctl/wc_explain_gen.py), so that both say the same.  Keep it
+# a dict of plain string literals; a template takes %s and %d only.
+_EXPLAIN_WORDS = {
+    # a list of fixels: "fixel 1", "fixel 1 and fixel 2", "fixel 1, fixel 2 and fixel 3"
+    "fixel": "fixel %d",
+    "list_comma": ", ",
+    "list_and": " and ",
+    # a goal blocking string: the transition from each of its contact states
+    "states_join": "; ",
+    "stay": "from contact state %s it can stay as it is: ",
+    "holds_one": "%s holds",
+    "holds_many": "%s hold",
+    "stay_and": " and ",
+    "apart_one": "%s is never reached",
+    "apart_many": "%s are never reached",
+    "break_away": "from contact state %s %s may break away",
+    "while_one": " while %s holds",
+    "while_many": " while %s hold",
+    # a strong blocking mode: a pivot, or the motion at each fixel
+    "pivot": "it may pivot %s about its contact point",
+    "pivot_plus": "counter-clockwise",
+    "pivot_minus": "clockwise",
+    "move": "it may start to move: ",
+    "move_join": ", ",
+    "move_fixel": "fixel %d %s",
+    "motion_s": "separates",
+    "motion_l": "slides left",
+    "motion_r": "slides right",
+    "motion_n": "rolls",
+    "mode": "it may move in mode %s",
+    # a verdict inside the set (explain() only: wrenchctl leaves it blank)
+    "inside_goal": "seats the part from every contact state",
+    "inside_strong": "once seated, it does not move",
+    "inside_both": "seats the part from every contact state and, once seated, it does not move",
+}
+_W = _EXPLAIN_WORDS
+
+MOTION = {letter: _W["motion_" + letter] for letter in "slrn"}
 
 
 def _fixels_named(indices: Sequence[int]) -> str:
-    names = ["fixel %d" % (i + 1) for i in indices]
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+    names = [_W["fixel"] % (i + 1) for i in indices]
+    if len(names) == 1:
+        return names[0]
+    return _W["list_comma"].join(names[:-1]) + _W["list_and"] + names[-1]
 
 
-def _verb(indices: Sequence[int], one: str, many: str) -> str:
-    return one if len(indices) == 1 else many
+def _one_or_many(indices: Sequence[int], key: str) -> str:
+    return _W[key + ("_one" if len(indices) == 1 else "_many")] % _fixels_named(indices)
 
 
 def explain_goal(blocking: str, states: Sequence[str]) -> str:
@@ -420,29 +461,26 @@ def explain_goal(blocking: str, states: Sequence[str]) -> str:
             apart = [i for i, c in enumerate(state) if c == "0"]
             parts = []
             if holding:
-                parts.append("%s %s" % (_fixels_named(holding), _verb(holding, "holds", "hold")))
+                parts.append(_one_or_many(holding, "holds"))
             if apart:
-                parts.append("%s %s never reached" % (_fixels_named(apart),
-                                                      _verb(apart, "is", "are")))
-            reasons.append("from contact state %s it can stay as it is: %s"
-                           % (state, " and ".join(parts)))
+                parts.append(_one_or_many(apart, "apart"))
+            reasons.append(_W["stay"] % state + _W["stay_and"].join(parts))
         else:
-            text = "from contact state %s %s may break away" % (state, _fixels_named(separating))
+            text = _W["break_away"] % (state, _fixels_named(separating))
             if holding:
-                text += " while %s %s" % (_fixels_named(holding), _verb(holding, "holds", "hold"))
+                text += _one_or_many(holding, "while")
             reasons.append(text)
-    return "; ".join(reasons)
+    return _W["states_join"].join(reasons)
 
 
 def explain_strong(blocking: str) -> str:
     """The motion a strong-set blocking mode allows."""
     if blocking[-1:] in ("+", "-"):
-        return "it may pivot %s about its contact point" % (
-            "counter-clockwise" if blocking[-1] == "+" else "clockwise")
+        return _W["pivot"] % _W["pivot_plus" if blocking[-1] == "+" else "pivot_minus"]
     if any(c not in MOTION for c in blocking):
-        return "it may move in mode %s" % blocking
-    return "it may start to move: " + ", ".join(
-        "fixel %d %s" % (i + 1, MOTION[c]) for i, c in enumerate(blocking))
+        return _W["mode"] % blocking
+    return _W["move"] + _W["move_join"].join(
+        _W["move_fixel"] % (i + 1, MOTION[c]) for i, c in enumerate(blocking))
 
 
 def explain(verdict: Union[Verdict, Mapping[str, Any]], set_name: Optional[str] = None) -> str:
@@ -464,11 +502,9 @@ def explain(verdict: Union[Verdict, Mapping[str, Any]], set_name: Optional[str] 
     if not isinstance(verdict, Verdict):
         verdict = Verdict.from_wire(dict(verdict))
     if verdict.inside or not verdict.blocking:
-        if set_name == "goal":
-            return "seats the part from every contact state"
-        if set_name == "strong":
-            return "once seated, it does not move"
-        return "seats the part from every contact state and, once seated, it does not move"
+        if set_name in ("goal", "strong"):
+            return _W["inside_" + set_name]
+        return _W["inside_both"]
     if set_name == "goal" or (set_name != "strong" and verdict.states):
         return explain_goal(verdict.blocking, verdict.states)
     return explain_strong(verdict.blocking)

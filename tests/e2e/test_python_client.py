@@ -185,19 +185,38 @@ def test_single_fixel_pivots_and_words(pyclient):
                                  "reached; from contact state 1 fixel 1 may break away")
 
 
-def test_explain_speaks_like_wrenchctl():
-    """Two implementations of the sentences, one language: the Python
-    client's explain() and wrenchctl's (C) say the same of every blocking
-    string that 300 random wrenches meet on the 3-2-1 plate and on a
-    single-fixel disc (whose goal string "s" comes from the no-contact
-    state), for the goal, strong and both sets."""
+class _Recording(dict):
+    """A dict that notes the keys looked up (as prefix + key)."""
+
+    def __init__(self, table, used, prefix=""):
+        super().__init__(table)
+        self.used, self.prefix = used, prefix
+
+    def __getitem__(self, key):
+        self.used.add(self.prefix + key)
+        return super().__getitem__(key)
+
+
+def test_explain_speaks_like_wrenchctl(monkeypatch):
+    """One table of words (wrenchd._EXPLAIN_WORDS, from which the build
+    generates wrenchctl's wc_explain.h), two compositions of the sentences:
+    the Python client's explain() and wrenchctl's (C) say the same of every
+    blocking string that 300 random wrenches meet on the 3-2-1 plate, on
+    a single-fixel disc (whose goal string "s" comes from the no-contact
+    state, and whose strong modes include the pivots) and on the disc in a
+    corner, for the goal, strong
+    and both sets, and of margin's blocking mode; and between them they use
+    every entry of the table wrenchctl has."""
     import random
     import subprocess
     import tempfile
+    used = set()
+    monkeypatch.setattr(wrenchd, "_W", _Recording(wrenchd._EXPLAIN_WORDS, used))
+    monkeypatch.setattr(wrenchd, "MOTION", _Recording(wrenchd.MOTION, used, "motion_"))
     rng = random.Random(7)
     wrenchctl = os.path.join(REPO, "build", "wrenchctl")
     seen = set()
-    for fixture in (FX.rectangle_321(0.3), FX.disc_one_fixel(0.4)):
+    for fixture in (FX.rectangle_321(0.3), FX.disc_one_fixel(0.4), FX.disc_corner(0.5)):
         with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
             json.dump(fixture, f)
         try:
@@ -208,6 +227,9 @@ def test_explain_speaks_like_wrenchctl():
             table = subprocess.run(command, capture_output=True, text=True, timeout=60)
             as_json = subprocess.run(command + ["--json"], capture_output=True, text=True,
                                      timeout=60)
+            margins = [subprocess.run([wrenchctl, "--local", "margin", f.name, w],
+                                      capture_output=True, text=True, timeout=60)
+                       for w in wrenches[:12]]
         finally:
             os.unlink(f.name)
         assert table.returncode in (0, 1), table.stderr
@@ -226,14 +248,126 @@ def test_explain_speaks_like_wrenchctl():
             pattern = r"\s%s\s+%s$" % (re.escape(v["blocking"]), re.escape(why))
             assert re.search(pattern, row.rstrip()), (row, why)
             seen.add((name, v["blocking"], tuple(v["states"])))
+        for margin in margins:
+            assert margin.returncode in (0, 1), margin.stderr
+            (line,) = [x for x in margin.stdout.splitlines() if x.startswith("blocking  ")]
+            blocking, why = line[len("blocking  "):].split(": ", 1)
+            assert why == wrenchd.explain_strong(blocking), line
     # Enough variety for the comparison to mean something, the state-0 case
     # included.
     assert len(seen) >= 12
     assert any(states == ("0", "1") for _, _, states in seen)
+    assert any(blocking in ("n+", "n-") for _, blocking, _ in seen)
+    # Every word wrenchctl has was compared but "are never reached" (two
+    # fixels apart in a self transition: no plan keeps such a cone, see
+    # test_explain_every_case_alike); the rest only the Python client says
+    # (a verdict inside, a mode of letters no daemon sends).
+    python_only = {"mode", "inside_goal", "inside_strong", "inside_both", "apart_many"}
+    assert used >= set(wrenchd._EXPLAIN_WORDS) - python_only, \
+        set(wrenchd._EXPLAIN_WORDS) - python_only - used
     pivot = wrenchd.Verdict("boundary", False, 0.0, "nn+", [], None)
     assert pivot.explain("strong") == "it may pivot counter-clockwise about its contact point"
     pivot.blocking = "nn-"
     assert pivot.explain("strong") == "it may pivot clockwise about its contact point"
+
+
+EXPLAIN_DRIVER = r"""
+#include "wc_print.h"
+#include <stdio.h>
+#include <string.h>
+/* Lines "goal BLOCKING STATE..." or "strong BLOCKING": wrenchctl's words. */
+int main(void)
+{
+    char line[4096], out[8192];
+    while (fgets(line, sizeof line, stdin)) {
+        char *set = strtok(line, " \n"), *blocking = strtok(NULL, " \n");
+        if (strcmp(set, "strong") == 0) {
+            wc_explain_strong(blocking, out, sizeof out);
+        } else {
+            cJSON *states = cJSON_CreateArray();
+            for (char *s = strtok(NULL, " \n"); s; s = strtok(NULL, " \n"))
+                cJSON_AddItemToArray(states, cJSON_CreateString(s));
+            wc_explain_goal(blocking, states, out, sizeof out);
+            cJSON_Delete(states);
+        }
+        puts(out);
+    }
+    return 0;
+}
+"""
+
+
+def test_explain_every_case_alike(harness):
+    """wrenchctl's explanations (its wc_print.o, driven directly) and the
+    Python client's, over every goal string the plan can make for up to
+    four fixels (from one, two and three of its contact states) and every
+    strong mode of up to three fixels and the pivots: the same text."""
+    import itertools
+    import subprocess
+    obj = os.path.join(REPO, "build", "clients", "wrenchctl", "wc_print.o")
+    source, program = harness.path("explain.c"), harness.path("explain")
+    with open(source, "w") as f:
+        f.write(EXPLAIN_DRIVER)
+    r = subprocess.run(["cc", "-std=c11", "-Wall", "-Werror", "-I" + os.path.join(REPO, "clients",
+                        "wrenchctl"), source, obj, "-lcjson", "-o", program],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    cases = []
+    for k in range(1, 5):
+        origins = {}       # goal string -> the states it comes from (SPEC 5's plan)
+        for bits in itertools.product("01", repeat=k):
+            state = "".join(bits)
+            touched = [i for i, c in enumerate(state) if c == "1"]
+            for letters in itertools.product("sm", repeat=len(touched)):
+                if touched and all(c == "m" for c in letters):
+                    continue           # backward: all-m on S excluded
+                string = ["u"] * k
+                for i, c in zip(touched, letters):
+                    string[i] = c
+                origins.setdefault("".join(string), []).append(state)
+            if len(touched) < k:       # self: all-m on S, s elsewhere
+                origins.setdefault("".join("m" if c == "1" else "s" for c in state),
+                                   []).append(state)
+        for string, states in origins.items():
+            for n in (1, 2, 3):
+                for chosen in itertools.combinations(states, n):
+                    cases.append(("goal", string, list(chosen)))
+        if k <= 3:
+            for mode in itertools.product("slrn", repeat=k):
+                cases.append(("strong", "".join(mode), []))
+        cases.append(("strong", "n" * k + "+", []))
+        cases.append(("strong", "n" * k + "-", []))
+    text = "".join("%s %s %s\n" % (s, b, " ".join(st)) for s, b, st in cases)
+    ran = subprocess.run([program], input=text, capture_output=True, text=True, timeout=60)
+    assert ran.returncode == 0, ran.stderr
+    got = ran.stdout.splitlines()
+    assert len(got) == len(cases)
+    for line, (set_name, blocking, states) in zip(got, cases):
+        expected = (wrenchd.explain_goal(blocking, states) if set_name == "goal"
+                    else wrenchd.explain_strong(blocking))
+        assert line == expected, (set_name, blocking, states)
+    assert any("are never reached" in line for line in got)
+    assert any("fixel 1, fixel 2 and fixel 3" in line for line in got)
+
+
+def test_explain_words_are_wrenchctls():
+    """wrenchctl's wc_explain.h is generated from wrenchd._EXPLAIN_WORDS:
+    the generator run now writes the header the build used."""
+    import subprocess
+    import tempfile
+    header = os.path.join(REPO, "build", "clients", "wrenchctl", "wc_explain.h")
+    with tempfile.TemporaryDirectory() as d:
+        out = os.path.join(d, "wc_explain.h")
+        r = subprocess.run([sys.executable, os.path.join(REPO, "clients", "wrenchctl",
+                                                         "wc_explain_gen.py"),
+                            os.path.join(REPO, "clients", "python", "wrenchd.py"), out],
+                           capture_output=True, text=True, timeout=60)
+        assert r.returncode == 0, r.stderr
+        with open(out) as f, open(header) as g:
+            generated = f.read()
+            assert generated == g.read()
+    for key, text in wrenchd._EXPLAIN_WORDS.items():
+        assert '#define WC_EXPLAIN_%s "%s"\n' % (key.upper(), text) in generated
 
 
 # ---- cone.get, plan.get, modes.get, server.status --------------------------------------

@@ -1,0 +1,116 @@
+/* wc.h -- what wrenchctl's pieces share: the exit statuses, the options,
+ * the table of commands and the run of one command.
+ *
+ * wrenchctl.c holds the table and the dispatcher.  For every command the
+ * dispatcher does the common steps in this order, each in one place:
+ *
+ *   1. its options, wherever they stand (those its row's WC_OPT_* name, and
+ *      the global ones), --help, and the count of its arguments;
+ *   2. WC_DAEMON: refused with --local (there is no store in process);
+ *   3. WC_FIXTURE: its first argument read as a fixture (a file, sent
+ *      inline, or a stored fixture's id) into run->fixture;
+ *   4. the row's request function adds the rest of the params (or refuses
+ *      the arguments with an exit status);
+ *   5. the request to the daemon, or in process with --local: errors said
+ *      and mapped to an exit status by wc_call();
+ *   6. with --json (always, for WC_JSON) the result printed as JSON;
+ *   7. the row's answer function prints the table (unless --json), draws
+ *      any --svg picture and returns the exit status.
+ *
+ * A row without a method (help) is done by its request function alone. */
+#ifndef WC_H
+#define WC_H
+
+#include <cjson/cJSON.h>
+#include <stdbool.h>
+#include <stdio.h>
+
+/* Exit statuses, for scripts: see wrenchctl(1). */
+enum {
+    EXIT_INSIDE = 0,      /* success; for classify, every wrench inside */
+    EXIT_NOT_INSIDE = 1,  /* classify: some wrench not inside */
+    EXIT_USAGE = 2,       /* bad command line or input file */
+    EXIT_UNREACHABLE = 3, /* no daemon answered */
+    EXIT_SERVER = 4       /* the daemon (or the in-process code) answered an error */
+};
+
+/* The global options: before or after the command. */
+typedef struct wc_options {
+    const char *socket_path;
+    double timeout_seconds;
+    bool json;
+    bool local;
+} wc_options;
+
+/* A command's flags: what the dispatcher does for it, and the options it
+ * takes besides the global ones. */
+enum {
+    WC_DAEMON = 1 << 0,     /* needs the daemon's store: refused with --local */
+    WC_FIXTURE = 1 << 1,    /* the first argument is a FIXTURE (file or id) */
+    WC_JSON = 1 << 2,       /* the result is always printed as JSON */
+    WC_STDIN = 1 << 3,      /* an argument '-' reads from stdin */
+    WC_OPT_SETS = 1 << 8,   /* --sets LIST */
+    WC_OPT_METHOD = 1 << 9, /* --method auto|lp */
+    WC_OPT_TOLERANCE = 1 << 10, /* --tolerance T */
+    WC_OPT_SET = 1 << 11,       /* --set goal|strong|both */
+    WC_OPT_FRICTION = 1 << 12,  /* --finger-friction MU */
+    WC_OPT_SVG = 1 << 13        /* --svg FILE */
+};
+
+/* One run of one command: its arguments, its options once read, and what
+ * the request function keeps for the answer function.  The dispatcher
+ * frees every cJSON here after the answer. */
+typedef struct wc_run {
+    wc_options *o;
+    const struct wc_command *command;
+    int count;    /* the arguments, options taken out (FIXTURE included) */
+    char **items;
+    /* WC_OPT_*: NULL or not given when absent */
+    cJSON *sets;  /* an array of set names; the request may take it */
+    const char *method;
+    double tolerance;
+    bool tolerance_given;
+    const char *set;
+    const char *svg;
+    double finger_friction;
+    bool friction_given;
+    /* WC_FIXTURE: the fixture as sent (an object, or an id string) */
+    cJSON *fixture;
+    /* kept by a request function for its answer */
+    cJSON *wrenches;
+    cJSON *bias;
+} wc_run;
+
+/* Adds the command's params to `params` (the fixture is already there for
+ * WC_FIXTURE).  Returns -1 to go on, or the exit status after saying why
+ * not.  For a command without a method it does the whole command and
+ * returns its exit status. */
+typedef int (*wc_request_fn)(wc_run *run, cJSON *params);
+
+/* Prints `result` as a table unless run->o->json, draws any picture, and
+ * returns the exit status.  NULL: nothing to print but JSON, status 0. */
+typedef int (*wc_answer_fn)(wc_run *run, const cJSON *result);
+
+typedef struct wc_command {
+    const char *name;
+    const char *usage;   /* the arguments and options, for the usage line */
+    unsigned flags;      /* WC_* */
+    int min_args, max_args;
+    const char *method;  /* the JSON-RPC method; NULL: no request */
+    wc_request_fn request;
+    wc_answer_fn answer;
+    const char *summary; /* one line, for the list of commands */
+    const char *help;    /* what it does, and its options */
+} wc_command;
+
+/* The table, ending with a row of NULLs (wrenchctl.c). */
+extern const wc_command wc_commands[];
+
+/* `wrenchctl COMMAND --help`: EXIT_INSIDE, or EXIT_USAGE for no such
+ * command (said on stderr). */
+int wc_command_help(const char *name);
+
+/* `wrenchctl --help`. */
+void wc_general_help(void);
+
+#endif

@@ -1,0 +1,32 @@
+/* wc_call.h -- one request to wrenchd (or answered in process), and the
+ * readers of wrenchctl's arguments. */
+#ifndef WC_CALL_H
+#define WC_CALL_H
+
+#include "wc.h"
+
+#include <stddef.h>
+
+/* "wrenchctl: " and the message on stderr; returns EXIT_USAGE. */
+int wc_usage_error(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
+/* Sends {"method", "params"} (taking `params`) to the daemon, or answers it
+ * in process with --local, and returns the parsed result.  NULL after
+ * saying what went wrong on stderr, with the exit status in *status:
+ * EXIT_UNREACHABLE when no daemon answered, EXIT_SERVER for an error
+ * answer (its message, code, field and reason said) or a broken one. */
+cJSON *wc_call(wc_options *o, const char *method, cJSON *params, int *status);
+
+/* The whole file, NUL-terminated; *length (may be NULL) its bytes.  NULL
+ * when out of memory. */
+char *wc_read_all(FILE *file, size_t *length);
+
+/* A FIXTURE argument: an existing file is read as one JSON value (sent
+ * inline), otherwise a fixture id (a string; refused with --local).  NULL
+ * after saying why when neither. */
+cJSON *wc_fixture_argument(wc_options *o, const char *argument);
+
+/* "fx,fy,tau" or "fx,fy@x,y" as a wrench JSON value; NULL if neither. */
+cJSON *wc_wrench_argument(const char *text);
+
+#endif

@@ -1,0 +1,32 @@
+/* wc_print.h -- how wrenchctl prints: JSON, rows of tables, and a blocking
+ * verdict in words.  The words of the explanations are those of the
+ * Python client's table (clients/python/wrenchd.py, _EXPLAIN_WORDS), from
+ * which the build generates wc_explain.h: one source for every client. */
+#ifndef WC_PRINT_H
+#define WC_PRINT_H
+
+#include <cjson/cJSON.h>
+#include <stddef.h>
+
+/* The value, indented, and a newline. */
+void wc_print_json(const cJSON *value);
+
+/* Rows [a, b, c] under a label ("none" when there is none); a row whose
+ * flag (may be NULL) is true ends with flag_text. */
+void wc_print_rows(const char *label, const cJSON *rows, const cJSON *flags,
+                   const char *flag_text);
+
+/* The strings of a list, each after a space, and a newline. */
+void wc_print_strings(const cJSON *list);
+
+/* A wrench as written: "(fx, fy, tau)" or "(fx, fy) at (x, y)". */
+void wc_describe_wrench(const cJSON *w, char *out, size_t size);
+
+/* The transitions a goal blocking string allows, from each of its contact
+ * `states` (a JSON array of strings), in words. */
+void wc_explain_goal(const char *blocking, const cJSON *states, char *out, size_t size);
+
+/* The motion a strong-set blocking mode allows, in words. */
+void wc_explain_strong(const char *blocking, char *out, size_t size);
+
+#endif

@@ -1,0 +1,276 @@
+/* wc_regions.c -- docs/MODEL.md section 6's answers: push (where a finger's push
+ * seats the part), gravity (the tilts under which gravity does) and margin
+ * (how large a disturbance a biasing wrench tolerates); each as a table
+ * and, with --svg, a picture (wc_svg.h). */
+#include "wc_call.h"
+#include "wc_commands.h"
+#include "wc_print.h"
+#include "wc_svg.h"
+
+#include "wp_fixture.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- pictures ---------------------------------------------------------------- */
+
+/* The fixture's geometry for a picture: the file, or the stored fixture.
+ * NULL after saying why. */
+static wr_fixture *fixture_geometry(wc_options *o, const cJSON *fixture, char *name, size_t size)
+{
+    cJSON *json = NULL;
+    if (cJSON_IsString(fixture)) {
+        int status;
+        cJSON *params = cJSON_CreateObject();
+        cJSON_AddStringToObject(params, "id", fixture->valuestring);
+        json = wc_call(o, "fixture.get", params, &status);
+        if (!json)
+            return NULL;
+    } else {
+        json = cJSON_Duplicate(fixture, true);
+    }
+    wp_fixture_doc doc;
+    wp_error error;
+    bool ok = wp_fixture_read(json, "fixture", &doc, &error);
+    cJSON_Delete(json);
+    if (!ok) {
+        wc_usage_error("%s: %s", error.field, error.reason);
+        return NULL;
+    }
+    snprintf(name, size, "%s", doc.name[0] ? doc.name : "fixture");
+    wr_fixture *geometry = doc.fixture;
+    doc.fixture = NULL;
+    wp_fixture_doc_release(&doc);
+    return geometry;
+}
+
+/* A picture for --svg: the fixture's geometry (file or stored) and the
+ * open file.  NULL after saying why (nothing left to release). */
+static FILE *svg_begin(wc_options *o, const cJSON *fixture, const char *path, char name[128],
+                       wr_fixture **geometry)
+{
+    *geometry = fixture_geometry(o, fixture, name, 128);
+    if (!*geometry)
+        return NULL;
+    FILE *out = fopen(path, "w");
+    if (!out) {
+        wc_usage_error("--svg %s: %s", path, strerror(errno));
+        wr_fixture_free(*geometry);
+        *geometry = NULL;
+    }
+    return out;
+}
+
+static void svg_end(FILE *out, wr_fixture *geometry)
+{
+    fclose(out);
+    wr_fixture_free(geometry);
+}
+
+/* Draws the answer `result` on the part; false after saying why not. */
+typedef bool (*drawing)(const wc_run *run, const cJSON *result, FILE *out,
+                        const wr_fixture *geometry, const char *name);
+
+/* With --svg, the picture: -1, or EXIT_USAGE after saying why there is
+ * none. */
+static int picture(wc_run *run, const cJSON *result, drawing draw)
+{
+    if (!run->svg)
+        return -1;
+    char name[128];
+    wr_fixture *geometry;
+    FILE *out = svg_begin(run->o, run->fixture, run->svg, name, &geometry);
+    if (!out)
+        return EXIT_USAGE;
+    bool drawn = draw(run, result, out, geometry, name);
+    svg_end(out, geometry);
+    return drawn ? -1 : EXIT_USAGE;
+}
+
+/* The set asked, for the tables and pictures. */
+static const char *set_name(const wc_run *run)
+{
+    return run->set ? run->set : "goal";
+}
+
+/* ---- push --------------------------------------------------------------------- */
+
+int wc_push_request(wc_run *run, cJSON *params)
+{
+    if (run->set)
+        cJSON_AddStringToObject(params, "set", run->set);
+    if (run->friction_given)
+        cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
+    return -1;
+}
+
+static void print_push(const wc_run *run, const cJSON *result)
+{
+    const cJSON *regions = cJSON_GetObjectItem(result, "regions");
+    int count = cJSON_GetArraySize(regions);
+    double fraction = cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction"));
+    printf("%4s  %-24s  %-24s  %10s  %10s  %9s\n", "edge", "from", "to", "t0", "t1", "length");
+    const cJSON *r;
+    cJSON_ArrayForEach(r, regions)
+    {
+        const cJSON *from = cJSON_GetObjectItem(r, "from"), *to = cJSON_GetObjectItem(r, "to");
+        char a_text[64], b_text[64];
+        snprintf(a_text, sizeof a_text, "(%.6g, %.6g)", cJSON_GetArrayItem(from, 0)->valuedouble,
+                 cJSON_GetArrayItem(from, 1)->valuedouble);
+        snprintf(b_text, sizeof b_text, "(%.6g, %.6g)", cJSON_GetArrayItem(to, 0)->valuedouble,
+                 cJSON_GetArrayItem(to, 1)->valuedouble);
+        printf("%4d  %-24s  %-24s  %10.6f  %10.6f  %9.6f\n",
+               (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge")), a_text, b_text,
+               cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0")),
+               cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1")),
+               cJSON_GetNumberValue(cJSON_GetObjectItem(r, "length")));
+    }
+    printf("set %s: %d region%s, length %.6g, %.2f%% of the outline", set_name(run), count,
+           count == 1 ? "" : "s",
+           cJSON_GetNumberValue(cJSON_GetObjectItem(result, "total_length")), 100 * fraction);
+    if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
+        printf(" (sampled: resolution %g)",
+               cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+    printf("\n");
+}
+
+static bool draw_push(const wc_run *run, const cJSON *result, FILE *out,
+                      const wr_fixture *geometry, const char *name)
+{
+    const cJSON *regions = cJSON_GetObjectItem(result, "regions");
+    int count = cJSON_GetArraySize(regions);
+    wr_region *items = calloc((size_t)(count ? count : 1), sizeof *items);
+    int i = 0;
+    const cJSON *r;
+    cJSON_ArrayForEach(r, regions)
+    {
+        items[i].edge = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge"));
+        items[i].t0 = cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0"));
+        items[i].t1 = cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1"));
+        i++;
+    }
+    wc_svg_push(out, geometry, name, set_name(run), items, count,
+                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction")),
+                run->finger_friction);
+    free(items);
+    return true;
+}
+
+int wc_push_answer(wc_run *run, const cJSON *result)
+{
+    if (!run->o->json)
+        print_push(run, result);
+    int status = picture(run, result, draw_push);
+    if (status >= 0)
+        return status;
+    return cJSON_GetArraySize(cJSON_GetObjectItem(result, "regions")) > 0 ? EXIT_INSIDE
+                                                                          : EXIT_NOT_INSIDE;
+}
+
+/* ---- gravity ------------------------------------------------------------------ */
+
+int wc_gravity_request(wc_run *run, cJSON *params)
+{
+    if (run->set)
+        cJSON_AddStringToObject(params, "set", run->set);
+    return -1;
+}
+
+static bool draw_gravity(const wc_run *run, const cJSON *result, FILE *out,
+                         const wr_fixture *geometry, const char *name)
+{
+    const cJSON *arcs = cJSON_GetObjectItem(result, "intervals_deg");
+    int count = cJSON_GetArraySize(arcs);
+    wr_region *items = calloc((size_t)(count ? count : 1), sizeof *items);
+    for (int i = 0; i < count; i++) {
+        items[i].t0 = cJSON_GetArrayItem(cJSON_GetArrayItem(arcs, i), 0)->valuedouble;
+        items[i].t1 = cJSON_GetArrayItem(cJSON_GetArrayItem(arcs, i), 1)->valuedouble;
+    }
+    wc_svg_gravity(out, geometry, name, set_name(run), items, count);
+    free(items);
+    return true;
+}
+
+int wc_gravity_answer(wc_run *run, const cJSON *result)
+{
+    const cJSON *arcs = cJSON_GetObjectItem(result, "intervals_deg");
+    int count = cJSON_GetArraySize(arcs);
+    if (!run->o->json) {
+        printf("set %s: tilts (degrees, the direction gravity pulls in the part's frame)\n",
+               set_name(run));
+        const cJSON *arc;
+        cJSON_ArrayForEach(arc, arcs)
+        printf("  from %10.6f to %10.6f  (%.6g degrees)\n", cJSON_GetArrayItem(arc, 0)->valuedouble,
+               cJSON_GetArrayItem(arc, 1)->valuedouble,
+               cJSON_GetArrayItem(arc, 1)->valuedouble - cJSON_GetArrayItem(arc, 0)->valuedouble);
+        if (count == 0)
+            printf("  none: gravity alone never does it\n");
+    }
+    int status = picture(run, result, draw_gravity);
+    if (status >= 0)
+        return status;
+    return count > 0 ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
+
+/* ---- margin ------------------------------------------------------------------- */
+
+int wc_margin_request(wc_run *run, cJSON *params)
+{
+    run->bias = wc_wrench_argument(run->items[1]);
+    if (!run->bias)
+        return wc_usage_error("'%s' is not a wrench: fx,fy,tau or fx,fy@x,y", run->items[1]);
+    cJSON_AddItemToObject(params, "bias", cJSON_Duplicate(run->bias, true));
+    return -1;
+}
+
+static void print_margin(const cJSON *result, bool held)
+{
+    const cJSON *margin = cJSON_GetObjectItem(result, "margin");
+    const char *blocking = cJSON_GetStringValue(cJSON_GetObjectItem(result, "blocking"));
+    const cJSON *worst = cJSON_GetObjectItem(result, "worst_direction");
+    if (!blocking) {
+        printf("no contact mode moves the part: it holds against any disturbance\n");
+        return;
+    }
+    char why[512];
+    wc_explain_strong(blocking, why, sizeof why);
+    printf("margin    %+.9g  (%s)\n", margin->valuedouble,
+           held ? "any smaller disturbance is held, in the scaled metric"
+                : "not held: the bias itself is inside G_strong's excluded cones");
+    printf("blocking  %s: %s\n", blocking, why);
+    printf("worst     (%.6g, %.6g, %.6g)\n", cJSON_GetArrayItem(worst, 0)->valuedouble,
+           cJSON_GetArrayItem(worst, 1)->valuedouble, cJSON_GetArrayItem(worst, 2)->valuedouble);
+}
+
+/* The bias as the daemon read it ([fx, fy, tau] or a force at a point):
+ * the protocol layer's reader, which the daemon accepted. */
+static bool draw_margin(const wc_run *run, const cJSON *result, FILE *out,
+                        const wr_fixture *geometry, const char *name)
+{
+    const cJSON *margin = cJSON_GetObjectItem(result, "margin");
+    const cJSON *worst = cJSON_GetObjectItem(result, "worst_direction");
+    double g[3] = {0, 0, 0}, w[3] = {0, 0, 0};
+    wp_error error;
+    if (!wp_wrench_read(run->bias, "bias", geometry, g, &error)) {
+        wc_usage_error("%s: %s", error.field, error.reason);
+        return false;
+    }
+    for (int k = 0; k < 3 && worst && cJSON_IsArray(worst); k++)
+        w[k] = cJSON_GetArrayItem(worst, k)->valuedouble;
+    wc_svg_margin(out, geometry, name, g, cJSON_IsNumber(margin) ? margin->valuedouble : 0, w,
+                  cJSON_GetStringValue(cJSON_GetObjectItem(result, "blocking")));
+    return true;
+}
+
+int wc_margin_answer(wc_run *run, const cJSON *result)
+{
+    const cJSON *margin = cJSON_GetObjectItem(result, "margin");
+    bool held = !cJSON_IsNumber(margin) || margin->valuedouble > 0;
+    if (!run->o->json)
+        print_margin(result, held);
+    int status = picture(run, result, draw_margin);
+    if (status >= 0)
+        return status;
+    return held ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
