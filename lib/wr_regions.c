@@ -197,10 +197,10 @@ static void scale_wrench(const wr_fixture *f, const double w[3], double h[3])
     h[2] = w[2] / f->gyration_radius;
 }
 
-static bool polygon_exact(const wr_fixture *f, const wr_cone **cones, int count,
-                          const wr_stop *stop, bool *stopped, wr_regions *out)
+static bool polygon_exact(const wr_fixture *f, const wr_cone **cones, int count, size_t first,
+                          size_t end, const wr_stop *stop, bool *stopped, wr_regions *out)
 {
-    for (size_t e = 0; e < f->vertex_count; e++) {
+    for (size_t e = first; e < end; e++) {
         if (wr_stop_requested(stop)) {
             *stopped = true;
             return false;
@@ -395,42 +395,62 @@ static bool sampled(const wr_fixture *f, const wr_cone **cones, int count, doubl
 
 /* ---- the public functions ------------------------------------------------------- */
 
-int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, const wr_stop *stop,
-                    wr_regions *out)
+int wr_push_edge_count(const wr_fixture *f)
 {
-    memset(out, 0, sizeof *out);
+    return f->shape == WR_SHAPE_POLYGON ? (int)f->vertex_count : f->shape == WR_SHAPE_CIRCLE;
+}
+
+int wr_push_regions_part(const wr_analysis *a, wr_set set, double finger_friction, int first_edge,
+                         int edge_count, const wr_stop *stop, wr_regions *out)
+{
     const wr_fixture *f = a->fixture;
-    if (f->shape == WR_SHAPE_NONE || !(finger_friction >= 0) || !isfinite(finger_friction))
+    int edges = wr_push_edge_count(f);
+    if (f->shape == WR_SHAPE_NONE || !(finger_friction >= 0) || !isfinite(finger_friction) ||
+        first_edge < 0 || edge_count < 0 || edge_count > edges - first_edge)
         return -1;
     const wr_cone **cones;
     int count = set_cones(a, set, &cones);
     if (count < 0)
         return -2;
-    bool ok;
+    /* What this part adds is taken back if it fails: `out` is as it was. */
+    int before = out->count;
+    bool ok = true;
     bool stopped = false;
+    size_t first = (size_t)first_edge, end = (size_t)(first_edge + edge_count);
     if (finger_friction > 0) {
         out->resolution = f->shape == WR_SHAPE_CIRCLE ? 360.0 / SAMPLES : 1.0 / SAMPLES;
-        ok = true;
         if (f->shape == WR_SHAPE_CIRCLE)
-            ok = sampled(f, cones, count, finger_friction, 0, 0, 360, stop, &stopped, out);
+            ok = edge_count == 0 ||
+                 sampled(f, cones, count, finger_friction, 0, 0, 360, stop, &stopped, out);
         else
-            for (size_t e = 0; e < f->vertex_count && ok; e++)
+            for (size_t e = first; e < end && ok; e++)
                 ok = sampled(f, cones, count, finger_friction, (int)e, 0, 1, stop, &stopped, out);
     } else if (f->shape == WR_SHAPE_CIRCLE) {
         /* w = (-u, -(d x u)) with d = centre - com: linear in u. */
         double d[2] = {f->center[0] - f->com[0], f->center[1] - f->com[1]};
         double rho = f->gyration_radius;
         const double matrix[3][2] = {{-1, 0}, {0, -1}, {d[1] / rho, -d[0] / rho}};
-        ok = circle_exact(matrix, cones, count, stop, &stopped, out);
+        ok = edge_count == 0 || circle_exact(matrix, cones, count, stop, &stopped, out);
     } else {
-        ok = polygon_exact(f, cones, count, stop, &stopped, out);
+        ok = polygon_exact(f, cones, count, first, end, stop, &stopped, out);
     }
     free(cones);
     if (!ok) {
-        wr_regions_release(out);
+        out->count = before;
         return stopped ? -3 : -2;
     }
     return 0;
+}
+
+int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, const wr_stop *stop,
+                    wr_regions *out)
+{
+    memset(out, 0, sizeof *out);
+    int status = wr_push_regions_part(a, set, finger_friction, 0,
+                                      wr_push_edge_count(a->fixture), stop, out);
+    if (status != 0)
+        wr_regions_release(out);
+    return status;
 }
 
 int wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)

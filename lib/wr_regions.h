@@ -53,6 +53,18 @@ void wr_regions_release(wr_regions *regions);
 int wr_push_regions(const wr_analysis *analysis, wr_set set, double finger_friction,
                     const wr_stop *stop, wr_regions *regions);
 
+/* The same for edges [first_edge, first_edge + edge_count) only, appended
+ * to `regions` (which may hold earlier parts': the parts of all edges, in
+ * order, make wr_push_regions' answer), so that long work can be done a
+ * part at a time.  A circle is one edge.  On failure `regions` is as it
+ * was.  Returns as wr_push_regions, and -1 for a range past the edges. */
+int wr_push_regions_part(const wr_analysis *analysis, wr_set set, double finger_friction,
+                         int first_edge, int edge_count, const wr_stop *stop,
+                         wr_regions *regions);
+/* The edges of the outline: a polygon's sides, 1 for a circle, 0 without a
+ * shape. */
+int wr_push_edge_count(const wr_fixture *fixture);
+
 /* The tilts phi (degrees, the direction gravity pulls) under which the
  * gravity wrench m g (cos phi, sin phi, 0) is in the set: exact arcs.
  * Returns 0, or -2 when out of memory. */

@@ -331,17 +331,35 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
 /* wrench.classify, written in pieces (wp_stream, wp_rpc.h): the wrenches
  * are read once, up front, so that a bad one is refused before any answer
  * is written; then each step answers the next few. */
-struct wp_stream {
+typedef struct classify_state {
     classify_request request;
     bool opened;        /* "[" written */
     size_t next;        /* the next wrench to answer */
+} classify_state;
+
+/* push.regions, written an edge at a time (a finger with friction samples
+ * every edge: a long outline is seconds of work). */
+typedef struct push_state {
+    wr_set set;
+    double friction;
+    int edges, next;     /* the outline's edges; the next to answer */
+    unsigned long edge_cost;
+    bool opened, any;    /* "{"regions":[" written; a region written */
+    double total, resolution;
+} push_state;
+
+struct wp_stream {
+    union {
+        classify_state classify;
+        push_state push;
+    } u;
 };
 
 static void classify_free(wp_stream *stream)
 {
     if (!stream)
         return;
-    free(stream->request.wrenches);
+    free(stream->u.classify.request.wrenches);
     free(stream);
 }
 
@@ -355,7 +373,7 @@ static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
         wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
     }
-    if (!read_classify(call->limits, call->params, use->fixture, prepared, &stream->request,
+    if (!read_classify(call->limits, call->params, use->fixture, prepared, &stream->u.classify.request,
                        call->error)) {
         classify_free(stream);
         return NULL;
@@ -378,7 +396,7 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
     wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
     if (!use)
         return WP_STEP_FAILED;
-    classify_request *r = &stream->request;
+    classify_request *r = &stream->u.classify.request;
     const wr_analysis *a = use->analysis;
     wr_lp_set *goal = NULL, *strong = NULL;
     if (r->lp && !host->lp_sets(host->self, use, &goal, &strong, error))
@@ -391,22 +409,23 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
                                     : wr_analysis_cone_count(a, r->sets[s]));
     if (r->lp)
         cost *= 64; /* an LP per cone, not a few dot products */
+    classify_state *state = &stream->u.classify;
     size_t start = out->length;
-    if (!stream->opened) {
-        stream->opened = true;
+    if (!state->opened) {
+        state->opened = true;
         wp_buffer_reserve(out, out->length + 64 +
                                    (r->wrench_count < 1024 ? r->wrench_count : 1024) *
                                        (size_t)r->set_count * 320);
-        WP_BUFFER_LITERAL(out, "[");
+        WP_BUFFER_LITERAL(out, "{\"results\":[");
     }
-    while (stream->next < r->wrench_count && !out->failed) {
+    while (state->next < r->wrench_count && !out->failed) {
         /* At least one wrench a step, whatever the piece spent before it:
          * every step makes progress. */
         if (out->length > start + 1 &&
             (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES ||
              wr_stop_requested(host->stop)))
             return WP_STEP_MORE;
-        size_t i = stream->next++;
+        size_t i = state->next++;
         *used += cost;
         wp_buffer_puts(out, i ? ",{" : "{");
         for (int s = 0; s < r->set_count; s++) {
@@ -425,13 +444,14 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
         }
         WP_BUFFER_LITERAL(out, "}");
     }
-    WP_BUFFER_LITERAL(out, "]");
+    WP_BUFFER_LITERAL(out, "]}");
     return WP_STEP_DONE;
 }
 
 static size_t classify_bytes(const wp_stream *stream)
 {
-    return sizeof *stream + stream->request.wrench_count * sizeof *stream->request.wrenches;
+    const classify_request *r = &stream->u.classify.request;
+    return sizeof *stream + r->wrench_count * sizeof *r->wrenches;
 }
 
 static const wp_streamer CLASSIFY_STREAM = {classify_begin, classify_step, classify_free,
@@ -581,71 +601,129 @@ static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
     return false;
 }
 
-static cJSON *point(const double p[2])
-{
-    const double q[2] = {p[0] + 0.0, p[1] + 0.0};
-    return cJSON_CreateDoubleArray(q, 2);
-}
+static void stream_free(wp_stream *stream) { free(stream); }
 
-static cJSON *push_regions(wp_call *call)
+static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
 {
-    const wp_host *host = call->host;
-    const cJSON *params = call->params;
-    wp_error *error = call->error;
+    (void)prepared;
     wr_set set;
     double friction = 0;
-    if (!read_set(params, &set, error) ||
-        !wp_member_number(params, "params", "finger_friction", false, &friction, NULL, error))
+    if (!read_set(call->params, &set, call->error) ||
+        !wp_member_number(call->params, "params", "finger_friction", false, &friction, NULL,
+                          call->error))
         return NULL;
     if (friction < 0) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction", "must not be negative");
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "must not be negative");
         return NULL;
     }
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
-    const wr_fixture *f = use->fixture;
-    cJSON *result = NULL;
-    wr_regions regions;
-    int status = f->shape == WR_SHAPE_NONE
-                     ? -1
-                     : wr_push_regions(use->analysis, set, friction, host->stop, &regions);
-    if (status == -3) {
-        wp_error_set(error, WP_INTERNAL, "", "stopped: the client is gone");
-    } else if (status == -1) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+    if (use->fixture->shape == WR_SHAPE_NONE) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.body.shape",
                      "push regions need the part's outline: the fixture has no shape");
-    } else if (status != 0) {
-        out_of_memory(NULL, error);
-    } else {
-        result = cJSON_CreateObject();
-        cJSON *list = cJSON_AddArrayToObject(result, "regions");
-        double total = 0;
-        for (int i = 0; list && i < regions.count; i++) {
-            const wr_region *r = &regions.items[i];
-            double from[2], to[2], normal[2];
-            wr_boundary_point(f, r->edge, r->t0, from, normal);
-            wr_boundary_point(f, r->edge, r->t1, to, normal);
-            double length = wr_region_length(f, r);
-            total += length;
-            cJSON *item = cJSON_CreateObject();
-            cJSON_AddNumberToObject(item, "edge", r->edge);
-            cJSON_AddItemToObject(item, "from", point(from));
-            cJSON_AddItemToObject(item, "to", point(to));
-            cJSON_AddNumberToObject(item, "t0", r->t0);
-            cJSON_AddNumberToObject(item, "t1", r->t1);
-            cJSON_AddNumberToObject(item, "length", length);
-            cJSON_AddItemToArray(list, item);
-        }
-        cJSON_AddNumberToObject(result, "total_length", total);
-        cJSON_AddNumberToObject(result, "fraction", total / wr_perimeter(f));
-        cJSON_AddBoolToObject(result, "exact", regions.resolution == 0);
-        if (!cJSON_AddNumberToObject(result, "resolution", regions.resolution))
-            result = out_of_memory(result, error);
-        wr_regions_release(&regions);
+        return NULL;
     }
-    return result;
+    wp_stream *stream = calloc(1, sizeof *stream);
+    if (!stream) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return NULL;
+    }
+    push_state *state = &stream->u.push;
+    state->set = set;
+    state->friction = friction;
+    state->edges = wr_push_edge_count(use->fixture);
+    /* An edge against every cone: a few dot products each, or, with a
+     * finger's friction, a segment test at every sample and bisection. */
+    const wr_analysis *a = use->analysis;
+    unsigned long cones = (unsigned long)(set == WR_SET_GOAL     ? wr_analysis_cone_count(a, WR_SET_GOAL)
+                                          : set == WR_SET_STRONG ? wr_analysis_cone_count(a, WR_SET_STRONG)
+                                                                 : wr_analysis_cone_count(a, WR_SET_GOAL) +
+                                                                       wr_analysis_cone_count(a, WR_SET_STRONG));
+    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4);
+    return stream;
 }
+
+static void write_region(wp_buffer *out, const wr_fixture *f, const wr_region *r, double length)
+{
+    double from[2], to[2], normal[2];
+    wr_boundary_point(f, r->edge, r->t0, from, normal);
+    wr_boundary_point(f, r->edge, r->t1, to, normal);
+    /* + 0.0: a -0 is written 0. */
+    WP_BUFFER_LITERAL(out, "{\"edge\":");
+    wp_buffer_number(out, r->edge);
+    WP_BUFFER_LITERAL(out, ",\"from\":[");
+    wp_buffer_number(out, from[0] + 0.0);
+    WP_BUFFER_LITERAL(out, ",");
+    wp_buffer_number(out, from[1] + 0.0);
+    WP_BUFFER_LITERAL(out, "],\"to\":[");
+    wp_buffer_number(out, to[0] + 0.0);
+    WP_BUFFER_LITERAL(out, ",");
+    wp_buffer_number(out, to[1] + 0.0);
+    WP_BUFFER_LITERAL(out, "],\"t0\":");
+    wp_buffer_number(out, r->t0);
+    WP_BUFFER_LITERAL(out, ",\"t1\":");
+    wp_buffer_number(out, r->t1);
+    WP_BUFFER_LITERAL(out, ",\"length\":");
+    wp_buffer_number(out, length);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                         unsigned long *used)
+{
+    push_state *state = &stream->u.push;
+    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
+    if (!use)
+        return WP_STEP_FAILED;
+    const wr_fixture *f = use->fixture;
+    size_t start = out->length;
+    if (!state->opened) {
+        state->opened = true;
+        WP_BUFFER_LITERAL(out, "{\"regions\":[");
+    }
+    /* At least one edge a step: every step makes progress. */
+    for (bool first = true; state->next < state->edges && !out->failed; first = false) {
+        if (!first && (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES))
+            return WP_STEP_MORE;
+        wr_regions part = {0};
+        int status = wr_push_regions_part(use->analysis, state->set, state->friction, state->next,
+                                          1, call->host->stop, &part);
+        if (status != 0) {
+            wr_regions_release(&part);
+            if (status == -3)
+                wp_error_set(call->error, WP_INTERNAL, "", "stopped: the client is gone");
+            else
+                wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+            return WP_STEP_FAILED;
+        }
+        for (int i = 0; i < part.count; i++) {
+            /* Summed in the order written, as the whole answer always was. */
+            double length = wr_region_length(f, &part.items[i]);
+            state->total += length;
+            if (state->any)
+                WP_BUFFER_LITERAL(out, ",");
+            state->any = true;
+            write_region(out, f, &part.items[i], length);
+        }
+        state->resolution = part.resolution;
+        wr_regions_release(&part);
+        state->next++;
+        *used += state->edge_cost;
+    }
+    WP_BUFFER_LITERAL(out, "],\"total_length\":");
+    wp_buffer_number(out, state->total);
+    WP_BUFFER_LITERAL(out, ",\"fraction\":");
+    wp_buffer_number(out, state->total / wr_perimeter(f));
+    wp_buffer_puts(out, state->resolution == 0 ? ",\"exact\":true" : ",\"exact\":false");
+    WP_BUFFER_LITERAL(out, ",\"resolution\":");
+    wp_buffer_number(out, state->resolution);
+    WP_BUFFER_LITERAL(out, "}");
+    return WP_STEP_DONE;
+}
+
+static const wp_streamer PUSH_STREAM = {push_begin, push_step, stream_free, NULL};
 
 static cJSON *gravity_sweep(wp_call *call)
 {
@@ -747,7 +825,7 @@ const wp_method wp_methods[] = {
      .flags = WP_FIXTURE | WP_READY, .summary = "the feasible moving contact modes"},
     {.name = "server.status", .handler = server_status, .fields = NONE, .required = NONE,
      .flags = WP_CHEAP, .summary = "version, uptime, counts"},
-    {.name = "push.regions", .handler = push_regions, .fields = PUSH, .required = FIXTURE,
+    {.name = "push.regions", .stream = &PUSH_STREAM, .fields = PUSH, .required = FIXTURE,
      .flags = WP_FIXTURE,
      .summary = "the boundary intervals where a finger's push is in a set"},
     {.name = "gravity.sweep", .handler = gravity_sweep, .fields = SWEEP, .required = FIXTURE,

@@ -267,7 +267,7 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
     if (step == WP_STEP_MORE)
         return WP_STEP_MORE;
     if (step == WP_STEP_DONE) {
-        wp_buffer_puts(out, "},\"id\":");
+        wp_buffer_puts(out, ",\"id\":");
         wp_buffer_puts(out, answer->id_text ? answer->id_text : "null");
         wp_buffer_puts(out, "}");
         end_stream(answer, host);
@@ -329,7 +329,7 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             answer->id_text = id_text;
             id_text = NULL;
             answer->bytes = 4096 + (m->stream->bytes ? m->stream->bytes(stream) : 0);
-            wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":");
+            wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
             /* `start` is before the "," or "[": a failure takes it all back. */
             *stream_step = continue_stream(answer, host, out, start, true, used, counts);
         } else {

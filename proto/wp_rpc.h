@@ -182,7 +182,8 @@ typedef struct wp_call {
 wp_fixture_use *wp_call_fixture(wp_call *call);
 
 /* A method whose result is written in pieces: begin reads the params,
- * step appends the next part of the result's JSON text, spending at most
+ * step appends the next part of the result's JSON text (all of it, from
+ * its opening brace), spending at most
  * about `budget` units (added to *used), free ends it.  Step returns
  * WP_STEP_FAILED with `error` set when it cannot go on.  The call's fixture
  * stays held until free. */
@@ -217,7 +218,7 @@ typedef struct wp_method {
     /* Returns the result, or NULL with call->error set.  A method with
      * neither handler nor stream is announced but not served yet (-32601). */
     cJSON *(*handler)(wp_call *call);
-    const wp_streamer *stream;    /* or a result written in pieces: {"results": ...} */
+    const wp_streamer *stream;    /* or a result written in pieces */
     const char *const *fields;    /* params it accepts, NULL-ended */
     const char *const *required;  /* of those, the ones it needs */
     unsigned flags;               /* WP_FIXTURE, WP_CHEAP, WP_READY */

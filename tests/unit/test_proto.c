@@ -83,6 +83,11 @@ static void numbers_round_trip_shortest(void **state)
     print_message("proto: %d random doubles round-trip through their shortest text\n", checked);
 }
 
+/* The 3-2-1 plate: a polygon of four edges, regions on two. */
+static const char PLATE[] =
+    "{\"body\":{\"mass\":1,\"shape\":{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],[4,2],[0,2]]}},"
+    "\"friction\":{\"static\":0.3},\"fixels\":[{\"at\":[1,0]},{\"at\":[3,0]},{\"at\":[0,1]}]}";
+
 static const char DISC[] =
     "{\"name\":\"a\",\"body\":{\"mass\":1,\"inertia\":0.5,\"com\":[0,0],"
     "\"shape\":{\"type\":\"circle\",\"center\":[0,0],\"radius\":1}},"
@@ -626,7 +631,7 @@ static void pieces_join_to_the_whole_answer(void **state)
     harness *h = *state;
     const wp_host *host = wd_context_host(h->context);
     wp_limits limits = {16, 100000, 8};
-    char line[4096];
+    char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
              DISC);
@@ -650,12 +655,19 @@ static void pieces_join_to_the_whole_answer(void **state)
              /* work answered with nothing (a notification), then a stream:
               * the piece's budget is spent before the stream begins */
              "{\"jsonrpc\":\"2.0\",\"method\":\"push.regions\",\"params\":{\"fixture\":\"%s\"}},"
+             /* regions written an edge at a time, with and without friction */
+             "{\"jsonrpc\":\"2.0\",\"method\":\"push.regions\",\"params\":{\"fixture\":%s,"
+             "\"set\":\"strong\",\"finger_friction\":0.1},\"id\":6},"
+             "{\"jsonrpc\":\"2.0\",\"method\":\"push.regions\",\"params\":{\"fixture\":%s,"
+             "\"set\":\"strong\"},\"id\":7},"
              "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
              "\"wrenches\":[[1,2,3],[-1,-1,0]]},\"id\":5}]",
-             id, id, id, id, id);
+             id, id, id, id, PLATE, PLATE, id);
     const char *lines[] = {fast, slow, objects, line,
                            "[{\"jsonrpc\":\"2.0\",\"method\":\"server.status\"}]", "{\"x\":"};
     const int min_pieces[] = {2, 2, 2, 2, 0, 1};
+    /* (the batch, line 3, is cut within its push.regions too: tiny pieces
+     * end after every edge) */
     char *answers[6];
     for (int i = 0; i < 6; i++) {
         wp_counts whole_counts = {0, 0}, piece_counts = {0, 0}, tiny_counts = {0, 0};
