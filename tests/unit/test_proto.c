@@ -630,7 +630,7 @@ static void pieces_join_to_the_whole_answer(void **state)
 {
     harness *h = *state;
     const wp_host *host = wd_context_host(h->context);
-    wp_limits limits = {16, 100000, 8};
+    wp_limits limits = {16, 100000, 16};
     char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
