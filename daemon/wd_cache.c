@@ -23,6 +23,7 @@
  * own texts and outline, so evicting it frees what it was charged. */
 #define _DEFAULT_SOURCE /* flock */
 #include "wd_cache.h"
+#include "wd_file.h"
 #include "wd_log.h"
 
 #include <dirent.h>
@@ -33,8 +34,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
-#include <sys/stat.h>
 #include <unistd.h>
+
+/* A file of the state directory longer than this is not loaded. */
+#define STORED_FILE_LIMIT ((size_t)256 << 20)
 
 /* Name and canonical text, shared by an entry and the requests reading them:
  * a put that renames a fixture replaces them without pulling them from under
@@ -326,39 +329,6 @@ static bool remove_fixture_file(const wd_cache *c, const char *id, wp_error *err
     return true;
 }
 
-static char *read_file(const char *path, size_t limit)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return NULL;
-    char *text = NULL;
-    size_t length = 0, capacity = 0;
-    for (;;) {
-        if (length + 4096 + 1 > capacity) {
-            capacity = capacity ? 2 * capacity : 8192;
-            char *grown = capacity > limit ? NULL : realloc(text, capacity);
-            if (!grown) {
-                free(text);
-                fclose(file);
-                return NULL;
-            }
-            text = grown;
-        }
-        size_t n = fread(text + length, 1, 4096, file);
-        length += n;
-        if (n < 4096)
-            break;
-    }
-    bool failed = ferror(file);
-    fclose(file);
-    if (failed) {
-        free(text);
-        return NULL;
-    }
-    text[length] = 0;
-    return text;
-}
-
 static bool add_loaded(wd_cache *c, wp_fixture_doc *doc)
 {
     entry *e = calloc(1, sizeof *e);
@@ -436,8 +406,9 @@ static void load_directory(wd_cache *c)
             memcpy(named, d->d_name, WP_ID_LENGTH);
             named[WP_ID_LENGTH] = 0;
         }
-        char *text = read_file(path, 256u << 20);
-        cJSON *json = text ? cJSON_Parse(text) : NULL;
+        bool longer;
+        char *text = wd_file_read(path, STORED_FILE_LIMIT, NULL, &longer);
+        cJSON *json = text && !longer ? cJSON_Parse(text) : NULL;
         free(text);
         wp_fixture_doc doc;
         wp_error error = {0};
@@ -534,20 +505,6 @@ static int lock_state_directory(const char *state_dir, char *why, size_t why_siz
     return fd;
 }
 
-static bool make_directories(const char *path)
-{
-    char partial[4096];
-    snprintf(partial, sizeof partial, "%s", path);
-    for (char *p = partial + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(partial, 0750) != 0 && errno != EEXIST)
-                return false;
-            *p = '/';
-        }
-    return mkdir(partial, 0750) == 0 || errno == EEXIST;
-}
-
 /* ---- the public functions -------------------------------------------------- */
 
 wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_stored, char *why,
@@ -579,7 +536,7 @@ wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_s
             return NULL;
         }
         snprintf(c->dir, size, "%s/fixtures", state_dir);
-        if (!make_directories(c->dir) || access(c->dir, R_OK | X_OK) != 0) {
+        if (!wd_file_make_directories(c->dir, 0750) || access(c->dir, R_OK | X_OK) != 0) {
             snprintf(why, why_size, "cannot use the state directory %s: %s", c->dir,
                      strerror(errno));
             wd_cache_free(c);
