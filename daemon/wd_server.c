@@ -30,6 +30,7 @@
 /* SO_PEERCRED, SO_PEERGROUPS and struct ucred are Linux's. */
 #define _GNU_SOURCE
 #include "wd_server.h"
+#include "wd_listen.h"
 #include "wd_log.h"
 #include "wd_peer.h"
 #include "wd_systemd.h"
@@ -832,72 +833,6 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
         event_base_loopexit(s->base, NULL);
 }
 
-static bool make_parent_directories(const char *path)
-{
-    char partial[4096];
-    snprintf(partial, sizeof partial, "%s", path);
-    char *slash = strrchr(partial, '/');
-    if (!slash || slash == partial)
-        return true;
-    *slash = 0;
-    for (char *p = partial + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(partial, 0755) != 0 && errno != EEXIST)
-                return false;
-            *p = '/';
-        }
-    return mkdir(partial, 0755) == 0 || errno == EEXIST;
-}
-
-/* Bind the listening socket, mode 0660: refuse when a live daemon answers
- * there, replace a stale socket file.  Returns the fd or -1 with `why`. */
-static int open_socket(const char *path, char *why, size_t why_size)
-{
-    struct sockaddr_un address = {.sun_family = AF_UNIX};
-    if (strlen(path) >= sizeof address.sun_path) {
-        snprintf(why, why_size, "the socket path %s is longer than %zu bytes", path,
-                 sizeof address.sun_path - 1);
-        return -1;
-    }
-    strcpy(address.sun_path, path);
-    if (!make_parent_directories(path)) {
-        snprintf(why, why_size, "cannot create the directory of %s: %s", path, strerror(errno));
-        return -1;
-    }
-    struct stat st;
-    if (lstat(path, &st) == 0) {
-        if (!S_ISSOCK(st.st_mode)) {
-            snprintf(why, why_size, "%s exists and is not a socket", path);
-            return -1;
-        }
-        int probe = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-        if (probe >= 0 && connect(probe, (struct sockaddr *)&address, sizeof address) == 0) {
-            close(probe);
-            snprintf(why, why_size, "a wrenchd is already answering on %s", path);
-            return -1;
-        }
-        if (probe >= 0)
-            close(probe);
-        wd_log(WD_LOG_INFO, "replacing the stale socket %s", path);
-        unlink(path);
-    }
-    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-    if (fd < 0) {
-        snprintf(why, why_size, "socket: %s", strerror(errno));
-        return -1;
-    }
-    mode_t old = umask(0117);
-    int bound = bind(fd, (struct sockaddr *)&address, sizeof address);
-    umask(old);
-    if (bound != 0 || chmod(path, 0660) != 0 || listen(fd, 256) != 0) {
-        snprintf(why, why_size, "cannot listen on %s: %s", path, strerror(errno));
-        close(fd);
-        return -1;
-    }
-    return fd;
-}
-
 /* Put the fixtures of --load files, as fixture.put would. */
 static bool load_files(wd_server *s)
 {
@@ -978,7 +913,7 @@ int wd_server_run(const wd_config *config)
     }
     event_add(s->signal_events[0], NULL);
     event_add(s->signal_events[1], NULL);
-    fd = config->listen_fd >= 0 ? config->listen_fd : open_socket(config->socket_path, why, sizeof why);
+    fd = config->listen_fd >= 0 ? config->listen_fd : wd_listen_open(config->socket_path, why, sizeof why);
     if (fd < 0) {
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;
