@@ -329,6 +329,40 @@ static bool remove_fixture_file(const wd_cache *c, const char *id, wp_error *err
     return true;
 }
 
+/* What reading a fixture file came to. */
+typedef enum file_read {
+    FILE_UNREADABLE,  /* not opened, not read, or too long: errno says why */
+    FILE_NOT_JSON,
+    FILE_NOT_FIXTURE, /* JSON that wp_fixture_read refused: `error` says why */
+    FILE_FIXTURE
+} file_read;
+
+/* Read the fixture in the file `path` into `doc`: one reader for --load
+ * (wd_cache_load_file) and the state directory (load_directory).  At most
+ * `limit` bytes are read; a longer file is unreadable (EFBIG), unless
+ * `cut`, when the rest is ignored (--load has always read a line's worth).
+ * *json is its JSON, for the caller's further questions (the caller deletes
+ * it), or NULL when the file is not read as JSON. */
+static file_read read_fixture_file(const char *path, size_t limit, bool cut, cJSON **json,
+                                   wp_fixture_doc *doc, wp_error *error)
+{
+    *json = NULL;
+    bool more;
+    char *text = wd_file_read(path, limit, NULL, &more);
+    if (!text)
+        return FILE_UNREADABLE;
+    if (more && !cut) {
+        free(text);
+        errno = EFBIG;
+        return FILE_UNREADABLE;
+    }
+    *json = cJSON_Parse(text);
+    free(text);
+    if (!*json)
+        return FILE_NOT_JSON;
+    return wp_fixture_read(*json, "", doc, error) ? FILE_FIXTURE : FILE_NOT_FIXTURE;
+}
+
 static bool add_loaded(wd_cache *c, wp_fixture_doc *doc)
 {
     entry *e = calloc(1, sizeof *e);
@@ -406,14 +440,12 @@ static void load_directory(wd_cache *c)
             memcpy(named, d->d_name, WP_ID_LENGTH);
             named[WP_ID_LENGTH] = 0;
         }
-        bool longer;
-        char *text = wd_file_read(path, STORED_FILE_LIMIT, NULL, &longer);
-        cJSON *json = text && !longer ? cJSON_Parse(text) : NULL;
-        free(text);
+        cJSON *json;
         wp_fixture_doc doc;
         wp_error error = {0};
         char legacy[WP_ID_LENGTH + 1] = "";
-        bool ok = json && wp_fixture_read(json, "", &doc, &error);
+        file_read read = read_fixture_file(path, STORED_FILE_LIMIT, false, &json, &doc, &error);
+        bool ok = read == FILE_FIXTURE;
         if (ok && strcmp(named, doc.id) != 0 && !wp_fixture_legacy_id(json, legacy)) {
             wp_fixture_doc_release(&doc);
             ok = false;
@@ -421,9 +453,10 @@ static void load_directory(wd_cache *c)
         }
         cJSON_Delete(json);
         if (!ok) {
+            bool parsed = read >= FILE_NOT_FIXTURE;
             wd_log(WD_LOG_WARN, "skipping %s: %s%s%s", path,
-                   json ? error.field : "", json && error.field[0] ? ": " : "",
-                   json ? error.reason : "not readable as JSON");
+                   parsed ? error.field : "", parsed && error.field[0] ? ": " : "",
+                   parsed ? error.reason : "not readable as JSON");
             skipped++;
             continue;
         }
@@ -568,6 +601,28 @@ void wd_cache_free(wd_cache *c)
     pthread_mutex_destroy(&c->lock);
     pthread_mutex_destroy(&c->store_lock);
     free(c);
+}
+
+bool wd_cache_load_file(wd_cache *c, const char *path, size_t limit)
+{
+    cJSON *json;
+    wp_fixture_doc doc;
+    wp_error error = {0};
+    file_read read = read_fixture_file(path, limit, true, &json, &doc, &error);
+    cJSON_Delete(json);
+    if (read == FILE_UNREADABLE) {
+        wd_log(WD_LOG_ERROR, "--load %s: %s", path, strerror(errno));
+        return false;
+    }
+    wp_fixture_use use;
+    if (read != FILE_FIXTURE || !wd_cache_adopt(c, &doc, true, &use, &error)) {
+        wd_log(WD_LOG_ERROR, "--load %s: %s%s%s", path, error.field, error.field[0] ? ": " : "",
+               read == FILE_NOT_JSON ? "not a JSON text" : error.reason);
+        return false;
+    }
+    wd_log(WD_LOG_INFO, "loaded %s as %s (%s)", path, use.id, use.name);
+    wd_cache_release(c, &use);
+    return true;
 }
 
 bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use *use,

@@ -833,43 +833,6 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
         event_base_loopexit(s->base, NULL);
 }
 
-/* Put the fixtures of --load files, as fixture.put would. */
-static bool load_files(wd_server *s)
-{
-    for (int i = 0; i < s->config->load_count; i++) {
-        const char *path = s->config->load_files[i];
-        FILE *file = fopen(path, "rb");
-        char *text = NULL;
-        size_t length = 0;
-        if (file) {
-            text = malloc(s->config->max_line + 1);
-            length = text ? fread(text, 1, s->config->max_line, file) : 0;
-            fclose(file);
-        }
-        if (!text) {
-            wd_log(WD_LOG_ERROR, "--load %s: %s", path, strerror(errno));
-            return false;
-        }
-        text[length] = 0;
-        cJSON *json = cJSON_Parse(text);
-        free(text);
-        wp_fixture_doc doc;
-        wp_fixture_use use;
-        wp_error error = {0};
-        bool ok = json && wp_fixture_read(json, "", &doc, &error) &&
-                  wd_cache_adopt(s->cache, &doc, true, &use, &error);
-        cJSON_Delete(json);
-        if (!ok) {
-            wd_log(WD_LOG_ERROR, "--load %s: %s%s%s", path, error.field,
-                   error.field[0] ? ": " : "", json ? error.reason : "not a JSON text");
-            return false;
-        }
-        wd_log(WD_LOG_INFO, "loaded %s as %s (%s)", path, use.id, use.name);
-        wd_cache_release(s->cache, &use);
-    }
-    return true;
-}
-
 int wd_server_run(const wd_config *config)
 {
     wd_server server;
@@ -892,8 +855,9 @@ int wd_server_run(const wd_config *config)
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;
     }
-    if (!load_files(s))
-        goto out;
+    for (int i = 0; i < config->load_count; i++)
+        if (!wd_cache_load_file(s->cache, config->load_files[i], config->max_line))
+            goto out; /* logged */
     /* Signals are caught and workers run before the socket listens: a
      * client (or a supervisor's SIGTERM) may come the moment it does. */
     s->base = event_base_new();
