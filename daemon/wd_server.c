@@ -118,7 +118,7 @@ struct wd_server {
     struct evconnlistener *listener;
     struct event *done_event, *signal_events[2], *grace_timer;
     wd_pool *pool;
-    wd_context *light;              /* the loop's own host, for light requests */
+    wd_thread_host *light;              /* the loop's own host, for light requests */
     wd_cache *cache;
     wd_stats stats;
     wp_limits limits;
@@ -378,7 +378,7 @@ static bool answer_light(connection *c, slot *x)
     if (!s->light || c->light_answered >= LIGHT_BURST)
         return false;
     wp_counts counts = {0, 0};
-    if (!wp_answer_light(wd_context_host(s->light), &s->limits, x->line, x->length, &counts,
+    if (!wp_answer_light(wd_thread_host_wp(s->light), &s->limits, x->line, x->length, &counts,
                          &x->response))
         return false;
     atomic_fetch_add(&s->stats.requests, counts.requests);
@@ -868,8 +868,8 @@ int wd_server_run(const wd_config *config)
     s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
     s->grace_timer = evtimer_new(s->base, on_grace_over, s);
     s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, task_done, s);
-    s->light = wd_context_new(s->cache, &s->stats);
-    s->loop_host = s->light ? wd_context_host(s->light) : NULL;
+    s->light = wd_thread_host_new(s->cache, &s->stats);
+    s->loop_host = s->light ? wd_thread_host_wp(s->light) : NULL;
     if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
         !s->pool || !s->light) {
         wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
@@ -919,7 +919,7 @@ out:
         close_socket(s->connections);
         free_connection(s->connections);
     }
-    wd_context_free(s->light);
+    wd_thread_host_free(s->light);
     if (s->listener) {
         evconnlistener_free(s->listener);
         if (config->listen_fd < 0)
