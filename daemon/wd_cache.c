@@ -23,8 +23,10 @@
  * own texts and outline, so evicting it frees what it was charged. */
 #define _DEFAULT_SOURCE /* flock */
 #include "wd_cache.h"
+#include "wd_file.h"
 #include "wd_log.h"
 
+#include <assert.h>
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -33,8 +35,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
-#include <sys/stat.h>
 #include <unistd.h>
+
+/* A file of the state directory longer than this is not loaded. */
+#define STORED_FILE_LIMIT ((size_t)256 << 20)
 
 /* Name and canonical text, shared by an entry and the requests reading them:
  * a put that renames a fixture replaces them without pulling them from under
@@ -89,6 +93,7 @@ static texts *texts_from(wp_fixture_doc *doc)
 
 static void texts_drop(texts *t)
 {
+    assert(!t || t->refs > 0);
     if (t && --t->refs == 0) {
         free(t->name);
         free(t->canonical);
@@ -160,14 +165,52 @@ static void unlink_entry(wd_cache *c, entry *e)
 {
     for (entry **p = &c->buckets[bucket_of(c, e->id)]; *p; p = &(*p)->next)
         if (*p == e) {
+            assert(c->count > 0);
             *p = e->next;
             c->count--;
             return;
         }
+    assert(!"an entry to unlink is in its bucket");
+}
+
+/* The invariants of the map, checked entry by entry (under the lock, where
+ * the caller walks every entry anyway -- never on a request's fast path):
+ * the hash and the count agree, each entry is in the bucket of its id and
+ * found by it; reference counts are never negative; the derived bytes are
+ * the sum of what the entries are charged, and an entry without derived
+ * data is charged nothing; the stored count is the entries stored; the LRU
+ * clock is ahead of every entry; and beyond the bound, every entry with
+ * derived data is in use (eviction took everything it could). */
+static void check_locked(const wd_cache *c)
+{
+#ifdef NDEBUG
+    (void)c;
+#else
+    size_t count = 0, stored = 0, derived = 0;
+    bool all_derived_in_use = true;
+    for (size_t b = 0; b < c->bucket_count; b++)
+        for (const entry *e = c->buckets[b]; e; e = e->next) {
+            count++;
+            stored += e->stored;
+            derived += e->analysis_bytes;
+            assert(bucket_of(c, e->id) == b && find(c, e->id) == e);
+            assert(e->refs >= 0 && e->texts && e->texts->refs > 0);
+            assert(e->analysis || e->analysis_bytes == 0);
+            assert(e->last_used <= c->clock && e->serial <= c->serial);
+            if (e->analysis && e->refs == 0)
+                all_derived_in_use = false;
+        }
+    assert(count == c->count);
+    assert(stored == c->stored_count);
+    assert(derived == c->derived_bytes);
+    assert(c->derived_bytes <= c->derived_limit || all_derived_in_use);
+#endif
 }
 
 static void drop_analysis(wd_cache *c, entry *e)
 {
+    assert(e->refs == 0); /* an entry in use is never evicted */
+    assert(c->derived_bytes >= e->analysis_bytes);
     wr_analysis_free(e->analysis);
     e->analysis = NULL;
     c->derived_bytes -= e->analysis_bytes;
@@ -178,14 +221,16 @@ static void drop_analysis(wd_cache *c, entry *e)
  * Entries in use are skipped; a cached-only entry goes with its data. */
 static void evict_locked(wd_cache *c)
 {
+    bool walked = false;
     while (c->derived_bytes > c->derived_limit) {
+        walked = true;
         entry *oldest = NULL;
         for (size_t b = 0; b < c->bucket_count; b++)
             for (entry *e = c->buckets[b]; e; e = e->next)
                 if (e->analysis && e->refs == 0 && (!oldest || e->last_used < oldest->last_used))
                     oldest = e;
         if (!oldest)
-            return;
+            break; /* the rest is in use */
         wd_log(WD_LOG_DEBUG, "evicting the derived data of %s (%zu bytes)", oldest->id,
                oldest->analysis_bytes);
         drop_analysis(c, oldest);
@@ -194,6 +239,9 @@ static void evict_locked(wd_cache *c)
             entry_free(oldest);
         }
     }
+    if (walked)
+        check_locked(c); /* done, over the bound only with everything in use;
+                            one more walk where each step walked them all */
 }
 
 /* Hold e for a request; `t` is the texts to answer with (e's own when
@@ -202,6 +250,7 @@ static void fill_use(entry *e, texts *t, wp_fixture_use *use)
 {
     if (!t)
         t = e->texts;
+    assert(e->refs > 0 && e->analysis && t->refs > 0);
     t->refs++;
     use->id = e->id;
     use->name = t->name;
@@ -212,11 +261,13 @@ static void fill_use(entry *e, texts *t, wp_fixture_use *use)
     use->handle[1] = t;
 }
 
-/* With e held (refs counted), make sure its analysis exists and fill `use`
- * (with the texts `t`, see fill_use; a reference to them is passed in and
- * consumed).  The analysis is built without the lock; if two threads race,
- * one keeps its result and the other's is freed. */
-static bool ready(wd_cache *c, entry *e, texts *t, wp_fixture_use *use, wp_error *error)
+/* With e held (refs counted), derive its analysis unless it exists, and
+ * fill `use` (with the texts `t`, see fill_use; a reference to them is
+ * passed in and consumed).  The analysis is built without the lock; if two
+ * threads race, one keeps its result and the other's is freed.  (Not to be
+ * confused with wd_cache_ready, which asks whether it exists.) */
+static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
+                           wp_error *error)
 {
     pthread_mutex_lock(&c->lock);
     e->last_used = ++c->clock;
@@ -230,6 +281,7 @@ static bool ready(wd_cache *c, entry *e, texts *t, wp_fixture_use *use, wp_error
     wr_analysis *a = wr_analysis_new(e->fixture);
     pthread_mutex_lock(&c->lock);
     if (!a) {
+        assert(e->refs > 0);
         e->refs--;
         texts_drop(t);
         pthread_mutex_unlock(&c->lock);
@@ -267,6 +319,16 @@ static bool sync_directory(const char *dir)
     return ok;
 }
 
+/* The steps of storing a fixture's file, in their order (the durability
+ * order): a put is answered only once the last is reached. */
+typedef enum store_step {
+    STEP_CREATE, STEP_WRITE, STEP_SYNC, STEP_CLOSE, STEP_RENAME, STEP_SYNC_DIRECTORY,
+    STEP_DURABLE /* written, synced, renamed, its directory synced */
+} store_step;
+
+static const char *const store_step_verbs[] = {"create", "write", "sync", "close", "rename",
+                                               "sync the directory of"};
+
 static bool write_fixture_file(const wd_cache *c, const char *id, const char *text,
                                wp_error *error)
 {
@@ -274,10 +336,10 @@ static bool write_fixture_file(const wd_cache *c, const char *id, const char *te
     snprintf(final_path, sizeof final_path, "%s/%s.json", c->dir, id);
     snprintf(temporary, sizeof temporary, "%s/.%s.tmp", c->dir, id);
     int fd = open(temporary, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0640);
-    const char *step = "create";
+    store_step step = STEP_CREATE;
     if (fd >= 0) {
         size_t length = strlen(text), done = 0;
-        step = "write";
+        step = STEP_WRITE;
         while (done < length) {
             ssize_t n = write(fd, text + done, length - done);
             if (n < 0 && errno == EINTR)
@@ -287,28 +349,32 @@ static bool write_fixture_file(const wd_cache *c, const char *id, const char *te
             done += (size_t)n;
         }
         if (done == length && write(fd, "\n", 1) == 1) {
-            step = "sync";
+            step = STEP_SYNC;
             if (fsync(fd) == 0) {
-                step = "close";
+                step = STEP_CLOSE;
                 int closed = close(fd);
                 fd = -1;
                 if (closed == 0) {
-                    step = "rename";
+                    step = STEP_RENAME;
                     if (rename(temporary, final_path) == 0) {
-                        step = "sync the directory of";
+                        step = STEP_SYNC_DIRECTORY;
                         if (sync_directory(c->dir))
-                            return true;
+                            step = STEP_DURABLE;
                     }
                 }
             }
         }
     }
+    if (step == STEP_DURABLE) {
+        assert(fd < 0); /* synced and closed before the rename */
+        return true;
+    }
     int saved = errno;
     if (fd >= 0)
         close(fd);
     unlink(temporary);
-    wp_error_set(error, WP_STORAGE, "", "could not %s %s: %s; the fixture is not stored", step,
-                 final_path, strerror(saved));
+    wp_error_set(error, WP_STORAGE, "", "could not %s %s: %s; the fixture is not stored",
+                 store_step_verbs[step], final_path, strerror(saved));
     wd_log(WD_LOG_ERROR, "%s", error->reason);
     return false;
 }
@@ -326,37 +392,38 @@ static bool remove_fixture_file(const wd_cache *c, const char *id, wp_error *err
     return true;
 }
 
-static char *read_file(const char *path, size_t limit)
+/* What reading a fixture file came to. */
+typedef enum file_read {
+    FILE_UNREADABLE,  /* not opened, not read, or too long: errno says why */
+    FILE_NOT_JSON,
+    FILE_NOT_FIXTURE, /* JSON that wp_fixture_read refused: `error` says why */
+    FILE_FIXTURE
+} file_read;
+
+/* Read the fixture in the file `path` into `doc`: one reader for --load
+ * (wd_cache_load_file) and the state directory (load_directory).  At most
+ * `limit` bytes are read; a longer file is unreadable (EFBIG), unless
+ * `cut`, when the rest is ignored (--load has always read a line's worth).
+ * *json is its JSON, for the caller's further questions (the caller deletes
+ * it), or NULL when the file is not read as JSON. */
+static file_read read_fixture_file(const char *path, size_t limit, bool cut, cJSON **json,
+                                   wp_fixture_doc *doc, wp_error *error)
 {
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return NULL;
-    char *text = NULL;
-    size_t length = 0, capacity = 0;
-    for (;;) {
-        if (length + 4096 + 1 > capacity) {
-            capacity = capacity ? 2 * capacity : 8192;
-            char *grown = capacity > limit ? NULL : realloc(text, capacity);
-            if (!grown) {
-                free(text);
-                fclose(file);
-                return NULL;
-            }
-            text = grown;
-        }
-        size_t n = fread(text + length, 1, 4096, file);
-        length += n;
-        if (n < 4096)
-            break;
-    }
-    bool failed = ferror(file);
-    fclose(file);
-    if (failed) {
+    *json = NULL;
+    bool more;
+    char *text = wd_file_read(path, limit, NULL, &more);
+    if (!text)
+        return FILE_UNREADABLE;
+    if (more && !cut) {
         free(text);
-        return NULL;
+        errno = EFBIG;
+        return FILE_UNREADABLE;
     }
-    text[length] = 0;
-    return text;
+    *json = cJSON_Parse(text);
+    free(text);
+    if (!*json)
+        return FILE_NOT_JSON;
+    return wp_fixture_read(*json, "", doc, error) ? FILE_FIXTURE : FILE_NOT_FIXTURE;
 }
 
 static bool add_loaded(wd_cache *c, wp_fixture_doc *doc)
@@ -436,13 +503,12 @@ static void load_directory(wd_cache *c)
             memcpy(named, d->d_name, WP_ID_LENGTH);
             named[WP_ID_LENGTH] = 0;
         }
-        char *text = read_file(path, 256u << 20);
-        cJSON *json = text ? cJSON_Parse(text) : NULL;
-        free(text);
+        cJSON *json;
         wp_fixture_doc doc;
         wp_error error = {0};
         char legacy[WP_ID_LENGTH + 1] = "";
-        bool ok = json && wp_fixture_read(json, "", &doc, &error);
+        file_read read = read_fixture_file(path, STORED_FILE_LIMIT, false, &json, &doc, &error);
+        bool ok = read == FILE_FIXTURE;
         if (ok && strcmp(named, doc.id) != 0 && !wp_fixture_legacy_id(json, legacy)) {
             wp_fixture_doc_release(&doc);
             ok = false;
@@ -450,9 +516,10 @@ static void load_directory(wd_cache *c)
         }
         cJSON_Delete(json);
         if (!ok) {
+            bool parsed = read >= FILE_NOT_FIXTURE;
             wd_log(WD_LOG_WARN, "skipping %s: %s%s%s", path,
-                   json ? error.field : "", json && error.field[0] ? ": " : "",
-                   json ? error.reason : "not readable as JSON");
+                   parsed ? error.field : "", parsed && error.field[0] ? ": " : "",
+                   parsed ? error.reason : "not readable as JSON");
             skipped++;
             continue;
         }
@@ -486,6 +553,7 @@ static void load_directory(wd_cache *c)
         }
     }
     closedir(dir);
+    check_locked(c);
     wd_log(WD_LOG_INFO, "loaded %zu stored fixtures from %s%s%s", loaded, c->dir,
            rekeyed ? " (some re-keyed, see above)" : "",
            skipped ? " (some files skipped, see above)" : "");
@@ -534,20 +602,6 @@ static int lock_state_directory(const char *state_dir, char *why, size_t why_siz
     return fd;
 }
 
-static bool make_directories(const char *path)
-{
-    char partial[4096];
-    snprintf(partial, sizeof partial, "%s", path);
-    for (char *p = partial + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(partial, 0750) != 0 && errno != EEXIST)
-                return false;
-            *p = '/';
-        }
-    return mkdir(partial, 0750) == 0 || errno == EEXIST;
-}
-
 /* ---- the public functions -------------------------------------------------- */
 
 wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_stored, char *why,
@@ -579,7 +633,7 @@ wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_s
             return NULL;
         }
         snprintf(c->dir, size, "%s/fixtures", state_dir);
-        if (!make_directories(c->dir) || access(c->dir, R_OK | X_OK) != 0) {
+        if (!wd_file_make_directories(c->dir, 0750) || access(c->dir, R_OK | X_OK) != 0) {
             snprintf(why, why_size, "cannot use the state directory %s: %s", c->dir,
                      strerror(errno));
             wd_cache_free(c);
@@ -599,9 +653,12 @@ void wd_cache_free(wd_cache *c)
 {
     if (!c)
         return;
+    if (c->buckets)
+        check_locked(c);
     for (size_t b = 0; c->buckets && b < c->bucket_count; b++)
         for (entry *e = c->buckets[b], *next; e; e = next) {
             next = e->next;
+            assert(e->refs == 0); /* every use released */
             entry_free(e);
         }
     free(c->buckets);
@@ -611,6 +668,28 @@ void wd_cache_free(wd_cache *c)
     pthread_mutex_destroy(&c->lock);
     pthread_mutex_destroy(&c->store_lock);
     free(c);
+}
+
+bool wd_cache_load_file(wd_cache *c, const char *path, size_t limit)
+{
+    cJSON *json;
+    wp_fixture_doc doc;
+    wp_error error = {0};
+    file_read read = read_fixture_file(path, limit, true, &json, &doc, &error);
+    cJSON_Delete(json);
+    if (read == FILE_UNREADABLE) {
+        wd_log(WD_LOG_ERROR, "--load %s: %s", path, strerror(errno));
+        return false;
+    }
+    wp_fixture_use use;
+    if (read != FILE_FIXTURE || !wd_cache_adopt(c, &doc, true, &use, &error)) {
+        wd_log(WD_LOG_ERROR, "--load %s: %s%s%s", path, error.field, error.field[0] ? ": " : "",
+               read == FILE_NOT_JSON ? "not a JSON text" : error.reason);
+        return false;
+    }
+    wd_log(WD_LOG_INFO, "loaded %s as %s (%s)", path, use.id, use.name);
+    wd_cache_release(c, &use);
+    return true;
 }
 
 bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
@@ -672,6 +751,9 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
             wp_fixture_doc_release(doc);
             return false;
         }
+        /* The file is durable (write_fixture_file: written, synced,
+         * renamed, its directory synced): only now is the fixture stored,
+         * and only then is the put answered. */
         pthread_mutex_lock(&c->lock);
         c->stored_count += !e->stored;
         e->stored = true;
@@ -691,7 +773,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
     if (store)
         pthread_mutex_unlock(&c->store_lock);
     wp_fixture_doc_release(doc);
-    return ready(c, e, answered, use, error);
+    return derive_for_use(c, e, answered, use, error);
 }
 
 bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *error)
@@ -705,7 +787,19 @@ bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *er
     }
     e->refs++;
     pthread_mutex_unlock(&c->lock);
-    return ready(c, e, NULL, use, error);
+    return derive_for_use(c, e, NULL, use, error);
+}
+
+int wd_cache_ready(wd_cache *c, const char *id)
+{
+    pthread_mutex_lock(&c->lock);
+    const entry *e = find(c, id);
+    int cones = e && e->stored && e->analysis
+                    ? wr_analysis_cone_count(e->analysis, WR_SET_GOAL) +
+                          wr_analysis_cone_count(e->analysis, WR_SET_STRONG)
+                    : -1;
+    pthread_mutex_unlock(&c->lock);
+    return cones;
 }
 
 int wd_cache_use_ready(wd_cache *c, const char *id, wp_fixture_use *use)
@@ -729,6 +823,7 @@ void wd_cache_release(wd_cache *c, wp_fixture_use *use)
     entry *e = use->handle[0];
     pthread_mutex_lock(&c->lock);
     texts_drop(use->handle[1]);
+    assert(e->refs > 0);
     e->refs--;
     if (e->refs == 0 && !e->stored && !e->analysis) {
         unlink_entry(c, e);
@@ -753,6 +848,7 @@ bool wd_cache_delete(wd_cache *c, const char *id, wp_error *error)
     else if (!c->dir || remove_fixture_file(c, id, error)) {
         /* It stays as a cached fixture until its derived data is evicted. */
         pthread_mutex_lock(&c->lock);
+        assert(e->stored && c->stored_count > 0);
         e->stored = false;
         c->stored_count--;
         if (e->refs == 0 && !e->analysis) {
@@ -784,6 +880,8 @@ bool wd_cache_list(wd_cache *c, wp_fixture_listing *listing)
                 sorted[n++] = e;
     bool ok = sorted && listing->entries;
     if (ok)
+        check_locked(c);
+    if (ok)
         qsort(sorted, n, sizeof *sorted, compare_ids);
     for (size_t i = 0; ok && i < n; i++) {
         wp_fixture_entry *item = &listing->entries[i];
@@ -803,7 +901,9 @@ bool wd_cache_list(wd_cache *c, wp_fixture_listing *listing)
 uint64_t wd_cache_serial(const wp_fixture_use *use)
 {
     /* Stable while the fixture is in use: its analysis cannot be evicted. */
-    return ((const entry *)use->handle[0])->serial;
+    const entry *e = use->handle[0];
+    assert(e->refs > 0 && e->analysis);
+    return e->serial;
 }
 
 void wd_cache_stats_get(wd_cache *c, wd_cache_stats *stats)
@@ -815,6 +915,7 @@ void wd_cache_stats_get(wd_cache *c, wd_cache_stats *stats)
             stats->stored += e->stored;
             stats->cached += e->analysis != NULL;
         }
+    check_locked(c);
     stats->derived_bytes = c->derived_bytes;
     stats->derived_limit = c->derived_limit;
     pthread_mutex_unlock(&c->lock);

@@ -23,6 +23,11 @@ wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_s
                        size_t why_size);
 void wd_cache_free(wd_cache *cache);
 
+/* --load FILE: put the fixture in the file as fixture.put would (stored,
+ * on disk with a state directory; --max-fixtures applies), reading at most
+ * `limit` bytes of it.  Logs "loaded FILE as ID (NAME)", or the error. */
+bool wd_cache_load_file(wd_cache *cache, const char *path, size_t limit);
+
 /* The wp_host fixture functions (docs in wp_rpc.h), on the shared cache. */
 bool wd_cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                     wp_error *error);
@@ -31,6 +36,9 @@ bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use, wp_error
  * it derives nothing): its number of cones (goal + strong), or -1 with
  * nothing held. */
 int wd_cache_use_ready(wd_cache *cache, const char *id, wp_fixture_use *use);
+/* The same question without holding it or counting it as a use (which
+ * would move it in the least-recently-used order): for inspection. */
+int wd_cache_ready(wd_cache *cache, const char *id);
 void wd_cache_release(wd_cache *cache, wp_fixture_use *use);
 bool wd_cache_delete(wd_cache *cache, const char *id, wp_error *error);
 /* The stored fixtures, by id (false: out of memory, nothing held). */

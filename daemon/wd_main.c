@@ -5,6 +5,7 @@
  * file is read first; options on the command line override it (for the
  * list-valued ones, --load and --allow-*, a command-line list replaces the
  * file's). */
+#include "wd_file.h"
 #include "wd_log.h"
 #include "wd_server.h"
 #include "wd_systemd.h"
@@ -16,6 +17,7 @@
 #include <pwd.h>
 #include <stdarg.h>
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -281,34 +283,21 @@ static void usage(FILE *out)
 
 /* ---- the configuration file ------------------------------------------------------ */
 
-/* Read `path`: one "option = value" per line, '#' starts a comment.
- * Missing and not required: nothing to do.  Returns false after saying why. */
-static bool read_file(settings *s, const char *path, bool required)
+/* Read the configuration file `path`: one "option = value" per line, '#'
+ * starts a comment.  Missing and not required: nothing to do.  Returns
+ * false after saying why. */
+static bool read_config_file(settings *s, const char *path, bool required)
 {
-    FILE *file = fopen(path, "r");
-    if (!file) {
+    char *text = wd_file_read(path, SIZE_MAX, NULL, NULL);
+    if (!text) {
         if (!required && errno == ENOENT)
             return true;
-        fprintf(stderr, "wrenchd: --config %s: %s\n", path, strerror(errno));
+        if (errno == ENOMEM)
+            fprintf(stderr, "wrenchd: %s: out of memory\n", path);
+        else
+            fprintf(stderr, "wrenchd: --config %s: %s\n", path, strerror(errno));
         return false;
     }
-    size_t capacity = 4096, length = 0;
-    char *text = malloc(capacity);
-    while (text) {
-        length += fread(text + length, 1, capacity - length - 1, file);
-        if (length + 1 < capacity)
-            break;
-        char *grown = realloc(text, capacity *= 2);
-        if (!grown)
-            free(text);
-        text = grown;
-    }
-    fclose(file);
-    if (!text) {
-        fprintf(stderr, "wrenchd: %s: out of memory\n", path);
-        return false;
-    }
-    text[length] = 0;
     s->file_text = text;
     int number = 0;
     for (char *line = text, *next; line; line = next) {
@@ -414,8 +403,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "wrenchd: unexpected argument '%s'; try 'wrenchd --help'\n", argv[optind]);
         exit_now = WD_EXIT_USAGE;
     }
-    if (exit_now < 0 && !read_file(&s, config_path ? config_path : DEFAULT_CONFIG,
-                                   config_path != NULL))
+    if (exit_now < 0 && !read_config_file(&s, config_path ? config_path : DEFAULT_CONFIG,
+                                          config_path != NULL))
         exit_now = WD_EXIT_USAGE;
     optind = 1;
     while (exit_now < 0 && (option = getopt_long(argc, argv, "", long_options, NULL)) != -1) {

@@ -30,6 +30,7 @@
 /* SO_PEERCRED, SO_PEERGROUPS and struct ucred are Linux's. */
 #define _GNU_SOURCE
 #include "wd_server.h"
+#include "wd_listen.h"
 #include "wd_log.h"
 #include "wd_peer.h"
 #include "wd_systemd.h"
@@ -113,7 +114,7 @@ struct wd_server {
     struct evconnlistener *listener;
     struct event *done_event, *signal_events[2], *grace_timer;
     wd_pool *pool;
-    wd_context *light;              /* the loop's own host, for light requests */
+    wd_thread_host *light;              /* the loop's own host, for light requests */
     wd_cache *cache;
     wd_stats stats;
     wp_limits limits;
@@ -839,109 +840,6 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
         event_base_loopexit(s->base, NULL);
 }
 
-static bool make_parent_directories(const char *path)
-{
-    char partial[4096];
-    snprintf(partial, sizeof partial, "%s", path);
-    char *slash = strrchr(partial, '/');
-    if (!slash || slash == partial)
-        return true;
-    *slash = 0;
-    for (char *p = partial + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(partial, 0755) != 0 && errno != EEXIST)
-                return false;
-            *p = '/';
-        }
-    return mkdir(partial, 0755) == 0 || errno == EEXIST;
-}
-
-/* Bind the listening socket, mode 0660: refuse when a live daemon answers
- * there, replace a stale socket file.  Returns the fd or -1 with `why`. */
-static int open_socket(const char *path, char *why, size_t why_size)
-{
-    struct sockaddr_un address = {.sun_family = AF_UNIX};
-    if (strlen(path) >= sizeof address.sun_path) {
-        snprintf(why, why_size, "the socket path %s is longer than %zu bytes", path,
-                 sizeof address.sun_path - 1);
-        return -1;
-    }
-    strcpy(address.sun_path, path);
-    if (!make_parent_directories(path)) {
-        snprintf(why, why_size, "cannot create the directory of %s: %s", path, strerror(errno));
-        return -1;
-    }
-    struct stat st;
-    if (lstat(path, &st) == 0) {
-        if (!S_ISSOCK(st.st_mode)) {
-            snprintf(why, why_size, "%s exists and is not a socket", path);
-            return -1;
-        }
-        int probe = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-        if (probe >= 0 && connect(probe, (struct sockaddr *)&address, sizeof address) == 0) {
-            close(probe);
-            snprintf(why, why_size, "a wrenchd is already answering on %s", path);
-            return -1;
-        }
-        if (probe >= 0)
-            close(probe);
-        wd_log(WD_LOG_INFO, "replacing the stale socket %s", path);
-        unlink(path);
-    }
-    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-    if (fd < 0) {
-        snprintf(why, why_size, "socket: %s", strerror(errno));
-        return -1;
-    }
-    mode_t old = umask(0117);
-    int bound = bind(fd, (struct sockaddr *)&address, sizeof address);
-    umask(old);
-    if (bound != 0 || chmod(path, 0660) != 0 || listen(fd, 256) != 0) {
-        snprintf(why, why_size, "cannot listen on %s: %s", path, strerror(errno));
-        close(fd);
-        return -1;
-    }
-    return fd;
-}
-
-/* Put the fixtures of --load files, as fixture.put would. */
-static bool load_files(wd_server *s)
-{
-    for (int i = 0; i < s->config->load_count; i++) {
-        const char *path = s->config->load_files[i];
-        FILE *file = fopen(path, "rb");
-        char *text = NULL;
-        size_t length = 0;
-        if (file) {
-            text = malloc(s->config->max_line + 1);
-            length = text ? fread(text, 1, s->config->max_line, file) : 0;
-            fclose(file);
-        }
-        if (!text) {
-            wd_log(WD_LOG_ERROR, "--load %s: %s", path, strerror(errno));
-            return false;
-        }
-        text[length] = 0;
-        cJSON *json = cJSON_Parse(text);
-        free(text);
-        wp_fixture_doc doc;
-        wp_fixture_use use;
-        wp_error error = {0};
-        bool ok = json && wp_fixture_read(json, "", &doc, &error) &&
-                  wd_cache_adopt(s->cache, &doc, true, &use, &error);
-        cJSON_Delete(json);
-        if (!ok) {
-            wd_log(WD_LOG_ERROR, "--load %s: %s%s%s", path, error.field,
-                   error.field[0] ? ": " : "", json ? error.reason : "not a JSON text");
-            return false;
-        }
-        wd_log(WD_LOG_INFO, "loaded %s as %s (%s)", path, use.id, use.name);
-        wd_cache_release(s->cache, &use);
-    }
-    return true;
-}
-
 int wd_server_run(const wd_config *config)
 {
     wd_server server;
@@ -964,8 +862,9 @@ int wd_server_run(const wd_config *config)
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;
     }
-    if (!load_files(s))
-        goto out;
+    for (int i = 0; i < config->load_count; i++)
+        if (!wd_cache_load_file(s->cache, config->load_files[i], config->max_line))
+            goto out; /* logged */
     /* Signals are caught and workers run before the socket listens: a
      * client (or a supervisor's SIGTERM) may come the moment it does. */
     s->base = event_base_new();
@@ -976,8 +875,8 @@ int wd_server_run(const wd_config *config)
     s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
     s->grace_timer = evtimer_new(s->base, on_grace_over, s);
     s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, task_done, s);
-    s->light = wd_context_new(s->cache, &s->stats);
-    s->loop_host = s->light ? wd_context_host(s->light) : NULL;
+    s->light = wd_thread_host_new(s->cache, &s->stats);
+    s->loop_host = s->light ? wd_thread_host_wp(s->light) : NULL;
     if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
         !s->pool || !s->light) {
         wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
@@ -985,7 +884,7 @@ int wd_server_run(const wd_config *config)
     }
     event_add(s->signal_events[0], NULL);
     event_add(s->signal_events[1], NULL);
-    fd = config->listen_fd >= 0 ? config->listen_fd : open_socket(config->socket_path, why, sizeof why);
+    fd = config->listen_fd >= 0 ? config->listen_fd : wd_listen_open(config->socket_path, why, sizeof why);
     if (fd < 0) {
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;
@@ -1027,7 +926,7 @@ out:
         close_socket(s->connections);
         free_connection(s->connections);
     }
-    wd_context_free(s->light);
+    wd_thread_host_free(s->light);
     if (s->listener) {
         evconnlistener_free(s->listener);
         if (config->listen_fd < 0)

@@ -16,7 +16,7 @@ typedef struct lp_slot {
 /* A thread keeps warm LPs for this many fixtures, least recently used out. */
 #define LP_SLOTS 16
 
-struct wd_context {
+struct wd_thread_host {
     wp_host host;
     wd_cache *cache;
     wd_stats *stats;
@@ -29,32 +29,32 @@ struct wd_context {
 static bool host_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                        wp_error *error)
 {
-    return wd_cache_adopt(((wd_context *)self)->cache, doc, store, use, error);
+    return wd_cache_adopt(((wd_thread_host *)self)->cache, doc, store, use, error);
 }
 
 static bool host_use(void *self, const char *id, wp_fixture_use *use, wp_error *error)
 {
-    return wd_cache_use(((wd_context *)self)->cache, id, use, error);
+    return wd_cache_use(((wd_thread_host *)self)->cache, id, use, error);
 }
 
 static void host_release(void *self, wp_fixture_use *use)
 {
-    wd_cache_release(((wd_context *)self)->cache, use);
+    wd_cache_release(((wd_thread_host *)self)->cache, use);
 }
 
 static bool host_delete(void *self, const char *id, wp_error *error)
 {
-    return wd_cache_delete(((wd_context *)self)->cache, id, error);
+    return wd_cache_delete(((wd_thread_host *)self)->cache, id, error);
 }
 
 static int host_use_ready(void *self, const char *id, wp_fixture_use *use)
 {
-    return wd_cache_use_ready(((wd_context *)self)->cache, id, use);
+    return wd_cache_use_ready(((wd_thread_host *)self)->cache, id, use);
 }
 
 static bool host_list(void *self, wp_fixture_listing *listing, wp_error *error)
 {
-    if (wd_cache_list(((wd_context *)self)->cache, listing))
+    if (wd_cache_list(((wd_thread_host *)self)->cache, listing))
         return true;
     wp_error_set(error, WP_INTERNAL, "", "out of memory");
     return false;
@@ -65,10 +65,10 @@ static bool host_list(void *self, wp_fixture_listing *listing, wp_error *error)
 static bool host_state(void *self, wp_server_state *state, wp_error *error)
 {
     (void)error;
-    wd_context *context = self;
+    wd_thread_host *thread = self;
     wd_cache_stats cache;
-    wd_cache_stats_get(context->cache, &cache);
-    const wd_stats *s = context->stats;
+    wd_cache_stats_get(thread->cache, &cache);
+    const wd_stats *s = thread->stats;
     *state = (wp_server_state){
         .uptime_s = (double)(time(NULL) - s->started),
         .fixtures = cache.stored,
@@ -95,72 +95,72 @@ static void slot_clear(lp_slot *slot)
 static bool host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
                          wp_error *error)
 {
-    wd_context *context = self;
+    wd_thread_host *thread = self;
     uint64_t serial = wd_cache_serial(use);
-    lp_slot *slot = &context->slots[0];
+    lp_slot *slot = &thread->slots[0];
     for (int i = 0; i < LP_SLOTS; i++) {
-        if (context->slots[i].serial == serial && context->slots[i].goal) {
-            slot = &context->slots[i];
+        if (thread->slots[i].serial == serial && thread->slots[i].goal) {
+            slot = &thread->slots[i];
             break;
         }
-        if (context->slots[i].last_used < slot->last_used)
-            slot = &context->slots[i];
+        if (thread->slots[i].last_used < slot->last_used)
+            slot = &thread->slots[i];
     }
     if (slot->serial != serial || !slot->goal) {
         /* A slot of stale derived data only ever gets freed: its sets are
          * never used again. */
         slot_clear(slot);
-        if (wr_analysis_lp_sets(use->analysis, context->solver, &slot->goal, &slot->strong) != 0) {
+        if (wr_analysis_lp_sets(use->analysis, thread->solver, &slot->goal, &slot->strong) != 0) {
             wp_error_set(error, WP_INTERNAL, "", "out of memory");
             return false;
         }
         slot->serial = serial;
     }
-    slot->last_used = ++context->clock;
+    slot->last_used = ++thread->clock;
     *goal = slot->goal;
     *strong = slot->strong;
     return true;
 }
 
-wd_context *wd_context_new(wd_cache *cache, wd_stats *stats)
+wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
 {
-    wd_context *context = calloc(1, sizeof *context);
-    if (!context)
+    wd_thread_host *thread = calloc(1, sizeof *thread);
+    if (!thread)
         return NULL;
-    context->solver = wr_lp_env_new();
-    if (!context->solver) {
-        free(context);
+    thread->solver = wr_lp_env_new();
+    if (!thread->solver) {
+        free(thread);
         return NULL;
     }
     /* A test hook (wrenchd(8), ENVIRONMENT): make this thread's GLPK fail
      * fatally after N solves, to see the failure answered, not fatal. */
     const char *failure = getenv("WRENCHD_TEST_GLPK_FAILURE");
     if (failure && *failure)
-        wr_lp_env_inject_failure(context->solver, atoi(failure));
-    context->cache = cache;
-    context->stats = stats;
-    context->host = (wp_host){.self = context,
-                              .fixture_adopt = host_adopt,
-                              .fixture_use = host_use,
-                              .fixture_use_ready = host_use_ready,
-                              .fixture_release = host_release,
-                              .fixture_delete = host_delete,
-                              .fixture_list = host_list,
-                              .state = host_state,
-                              .lp_sets = host_lp_sets};
-    return context;
+        wr_lp_env_inject_failure(thread->solver, atoi(failure));
+    thread->cache = cache;
+    thread->stats = stats;
+    thread->host = (wp_host){.self = thread,
+                             .fixture_adopt = host_adopt,
+                             .fixture_use = host_use,
+                             .fixture_use_ready = host_use_ready,
+                             .fixture_release = host_release,
+                             .fixture_delete = host_delete,
+                             .fixture_list = host_list,
+                             .state = host_state,
+                             .lp_sets = host_lp_sets};
+    return thread;
 }
 
-const wp_host *wd_context_host(wd_context *context) { return &context->host; }
+const wp_host *wd_thread_host_wp(wd_thread_host *thread) { return &thread->host; }
 
-void wd_context_free(wd_context *context)
+void wd_thread_host_free(wd_thread_host *thread)
 {
-    if (!context)
+    if (!thread)
         return;
     for (int i = 0; i < LP_SLOTS; i++)
-        slot_clear(&context->slots[i]);
-    wr_lp_env_free(context->solver);
-    free(context);
+        slot_clear(&thread->slots[i]);
+    wr_lp_env_free(thread->solver);
+    free(thread);
 }
 
 /* ---- the pool ------------------------------------------------------------- */
@@ -177,7 +177,7 @@ struct wd_pool {
     wp_limits limits;
     wd_stats *stats;
     wd_task_done done;
-    void *context;
+    void *argument;
 };
 
 static bool task_cancelled(void *argument)
@@ -186,7 +186,7 @@ static bool task_cancelled(void *argument)
 }
 
 /* One piece of the task's answer, into task->piece. */
-static void run_piece(wd_pool *pool, wd_context *context, wd_task *task)
+static void run_piece(wd_pool *pool, wd_thread_host *thread, wd_task *task)
 {
     task->piece = NULL;
     task->piece_length = 0;
@@ -195,13 +195,13 @@ static void run_piece(wd_pool *pool, wd_context *context, wd_task *task)
         return;
     }
     wp_counts counts = {0, 0};
-    if (!context) {
+    if (!thread) {
         task->piece = wp_error_line(WP_INTERNAL, "", "out of memory");
         task->step = WP_STEP_DONE;
         counts.requests = counts.errors = 1;
     } else {
-        context->stop = (wr_stop){task_cancelled, task};
-        context->host.stop = &context->stop;
+        thread->stop = (wr_stop){task_cancelled, task};
+        thread->host.stop = &thread->stop;
         if (!task->answer) {
             task->answer = wp_answer_begin(&pool->limits, task->line, task->length);
             free(task->line); /* parsed: the line is not needed again */
@@ -213,7 +213,7 @@ static void run_piece(wd_pool *pool, wd_context *context, wd_task *task)
             counts.requests = counts.errors = 1;
         } else {
             wp_buffer piece = {0};
-            task->step = wp_answer_step(task->answer, &context->host, &piece, &counts);
+            task->step = wp_answer_step(task->answer, &thread->host, &piece, &counts);
             if (piece.failed) {
                 /* The piece did not fit in memory: the answer cannot go on
                  * (what was sent of it cannot be taken back). */
@@ -228,10 +228,10 @@ static void run_piece(wd_pool *pool, wd_context *context, wd_task *task)
             }
         }
         if (task->step != WP_STEP_MORE) {
-            wp_answer_free(task->answer, &context->host);
+            wp_answer_free(task->answer, &thread->host);
             task->answer = NULL;
         }
-        context->host.stop = NULL;
+        thread->host.stop = NULL;
     }
     task->held = wp_answer_bytes(task->answer);
     atomic_fetch_add(&pool->stats->requests, counts.requests);
@@ -241,8 +241,8 @@ static void run_piece(wd_pool *pool, wd_context *context, wd_task *task)
 static void *worker_main(void *argument)
 {
     wd_pool *pool = argument;
-    wd_context *context = wd_context_new(pool->cache, pool->stats);
-    if (!context)
+    wd_thread_host *thread = wd_thread_host_new(pool->cache, pool->stats);
+    if (!thread)
         wd_log(WD_LOG_ERROR, "a worker could not start: out of memory");
     for (;;) {
         pthread_mutex_lock(&pool->lock);
@@ -259,15 +259,15 @@ static void *worker_main(void *argument)
             break; /* stopping, and nothing left */
         if (pool->stop)
             atomic_store(&task->cancelled, true); /* handed back unworked */
-        run_piece(pool, context, task);
-        pool->done(pool->context, task);
+        run_piece(pool, thread, task);
+        pool->done(pool->argument, task);
     }
-    wd_context_free(context);
+    wd_thread_host_free(thread);
     return NULL;
 }
 
 wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_stats *stats,
-                     wd_task_done done, void *context)
+                     wd_task_done done, void *argument)
 {
     wd_pool *pool = calloc(1, sizeof *pool);
     if (!pool)
@@ -278,7 +278,7 @@ wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_s
     pool->limits = *limits;
     pool->stats = stats;
     pool->done = done;
-    pool->context = context;
+    pool->argument = argument;
     pool->threads = calloc((size_t)threads, sizeof *pool->threads);
     if (!pool->threads) {
         wd_pool_free(pool);

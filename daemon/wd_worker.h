@@ -46,13 +46,13 @@ typedef struct wd_task {
 
 /* Called in a worker thread once a piece is made; must be thread-safe.
  * The callee owns the task from then on. */
-typedef void (*wd_task_done)(void *context, wd_task *task);
+typedef void (*wd_task_done)(void *argument, wd_task *task);
 
 typedef struct wd_pool wd_pool;
 
 /* Start `threads` workers.  NULL when a thread cannot be started. */
 wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_stats *stats,
-                     wd_task_done done, void *context);
+                     wd_task_done done, void *argument);
 /* Queue a task for its next piece (takes it).  A cancelled task is handed
  * back without work. */
 void wd_pool_submit(wd_pool *pool, wd_task *task);
@@ -68,9 +68,9 @@ void wd_task_free(wd_task *task, const wp_host *host);
  * with that thread's GLPK environment and warm LPs.  Workers make one each;
  * anything else answering lines in a thread of its own (a test, a fuzzer)
  * may too.  Create, use and free it in the same thread. */
-typedef struct wd_context wd_context;
-wd_context *wd_context_new(wd_cache *cache, wd_stats *stats);
-const wp_host *wd_context_host(wd_context *context);
-void wd_context_free(wd_context *context);
+typedef struct wd_thread_host wd_thread_host;
+wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats);
+const wp_host *wd_thread_host_wp(wd_thread_host *thread);
+void wd_thread_host_free(wd_thread_host *thread);
 
 #endif

@@ -1,11 +1,12 @@
 /* fuzz_request.c -- libFuzzer target (a): request lines through decode,
  * validation and dispatch (wp_answer_line) against the daemon's real
- * fixture cache (wd_cache) and a worker's context (wd_context: its GLPK
- * environment and warm LPs), as one worker thread of wrenchd answers them.
+ * fixture cache (wd_cache) and a worker's thread host (wd_thread_host: its
+ * GLPK environment and warm LPs), as one worker thread of wrenchd answers
+ * them.
  *
  * The input is split at '\n' and each line is answered in turn, as the
  * daemon frames a connection's bytes; an input without '\n' is one line.
- * The cache and the context live for the whole process, so a fixture.put in
+ * The cache and the thread host live for the whole process, so a fixture.put in
  * one line (or one input) is there for the queries of the next.  Stored
  * fixtures are never evicted by the cache, so once more than
  * STORE_BOUND are stored they are all deleted (through the cache's own
@@ -53,7 +54,7 @@ static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 64, .max_batch
 
 static wd_cache *cache;
 static wd_stats stats;
-static wd_context *context;
+static wd_thread_host *thread;
 static const wp_host *host;
 static bool no_skip, verbose;
 static const char *refusal = ""; /* why the line must be refused whole, for messages */
@@ -72,10 +73,10 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     }
     stats.started = time(NULL);
     stats.threads = 1;
-    context = wd_context_new(cache, &stats);
-    if (!context)
+    thread = wd_thread_host_new(cache, &stats);
+    if (!thread)
         abort();
-    host = wd_context_host(context);
+    host = wd_thread_host_wp(thread);
     const char *env = getenv("FUZZ_REQUEST_NO_SKIP");
     no_skip = env && *env && strcmp(env, "0") != 0;
     env = getenv("FUZZ_REQUEST_VERBOSE"); /* print each line and its answer */

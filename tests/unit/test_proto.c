@@ -195,7 +195,7 @@ static void explicit_form_reads_back_to_the_same_fixture(void **state)
 typedef struct harness {
     wd_cache *cache;
     wd_stats stats;
-    wd_context *context;
+    wd_thread_host *thread;
     wp_limits limits;
 } harness;
 
@@ -204,16 +204,16 @@ static int setup(void **state)
     harness *h = calloc(1, sizeof *h);
     char why[128];
     h->cache = wd_cache_new(NULL, 1 << 20, 10000, why, sizeof why);
-    h->context = wd_context_new(h->cache, &h->stats);
+    h->thread = wd_thread_host_new(h->cache, &h->stats);
     h->limits = (wp_limits){16, 100, 8};
     *state = h;
-    return h->cache && h->context ? 0 : -1;
+    return h->cache && h->thread ? 0 : -1;
 }
 
 static int teardown(void **state)
 {
     harness *h = *state;
-    wd_context_free(h->context);
+    wd_thread_host_free(h->thread);
     wd_cache_free(h->cache);
     free(h);
     return 0;
@@ -223,7 +223,7 @@ static int teardown(void **state)
 static cJSON *ask(harness *h, const char *line)
 {
     wp_counts counts = {0, 0};
-    char *text = wp_answer_line(wd_context_host(h->context), &h->limits, line, strlen(line),
+    char *text = wp_answer_line(wd_thread_host_wp(h->thread), &h->limits, line, strlen(line),
                                 &counts);
     if (!text)
         return NULL;
@@ -316,7 +316,7 @@ static void notifications_and_batches(void **state)
 static char *answer_text(harness *h, const char *line)
 {
     wp_counts counts = {0, 0};
-    char *text = wp_answer_line(wd_context_host(h->context), &h->limits, line, strlen(line),
+    char *text = wp_answer_line(wd_thread_host_wp(h->thread), &h->limits, line, strlen(line),
                                 &counts);
     assert_non_null(text);
     return text;
@@ -481,7 +481,7 @@ static void put_get_classify_delete(void **state)
 static void light_lines_answer_as_any_other(void **state)
 {
     harness *h = *state;
-    const wp_host *host = wd_context_host(h->context);
+    const wp_host *host = wd_thread_host_wp(h->thread);
     char line[4096];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
@@ -629,7 +629,7 @@ static char *classify_line(const char *id, int count, bool objects, const char *
 static void pieces_join_to_the_whole_answer(void **state)
 {
     harness *h = *state;
-    const wp_host *host = wd_context_host(h->context);
+    const wp_host *host = wd_thread_host_wp(h->thread);
     wp_limits limits = {16, 100000, 16};
     char line[8192];
     snprintf(line, sizeof line,
@@ -716,9 +716,9 @@ static void pieces_join_to_the_whole_answer(void **state)
 }
 
 static int polls;
-static bool stop_after_three(void *context)
+static bool stop_after_three(void *argument)
 {
-    (void)context;
+    (void)argument;
     return ++polls > 3;
 }
 
@@ -728,7 +728,7 @@ static bool stop_after_three(void *context)
 static void a_stop_ends_long_work(void **state)
 {
     harness *h = *state;
-    wp_host host = *wd_context_host(h->context);
+    wp_host host = *wd_thread_host_wp(h->thread);
     wr_stop stop = {stop_after_three, NULL};
     host.stop = &stop;
     char line[4096];
