@@ -395,17 +395,19 @@ static bool sampled(const wr_fixture *f, const wr_cone **cones, int count, doubl
 
 /* ---- the public functions ------------------------------------------------------- */
 
-int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, const wr_stop *stop,
-                    wr_regions *out)
+wr_status wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction,
+                          const wr_stop *stop, wr_regions *out)
 {
     memset(out, 0, sizeof *out);
     const wr_fixture *f = a->fixture;
-    if (f->shape == WR_SHAPE_NONE || !(finger_friction >= 0) || !isfinite(finger_friction))
-        return -1;
+    if (f->shape == WR_SHAPE_NONE)
+        return WR_NO_SHAPE;
+    if (!(finger_friction >= 0) || !isfinite(finger_friction))
+        return WR_INVALID;
     const wr_cone **cones;
     int count = set_cones(a, set, &cones);
     if (count < 0)
-        return -2;
+        return WR_NO_MEMORY;
     bool ok;
     bool stopped = false;
     if (finger_friction > 0) {
@@ -428,37 +430,37 @@ int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, co
     free(cones);
     if (!ok) {
         wr_regions_release(out);
-        return stopped ? -3 : -2;
+        return stopped ? WR_STOPPED : WR_NO_MEMORY;
     }
-    return 0;
+    return WR_OK;
 }
 
-int wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)
+wr_status wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)
 {
     memset(out, 0, sizeof *out);
     const wr_cone **cones;
     int count = set_cones(a, set, &cones);
     if (count < 0)
-        return -2;
+        return WR_NO_MEMORY;
     /* m g0 (cos phi, sin phi, 0): gravity acts at the centre of mass. */
     const double matrix[3][2] = {{1, 0}, {0, 1}, {0, 0}};
     bool ok = circle_exact(matrix, cones, count, NULL, &(bool){false}, out);
     free(cones);
     if (!ok) {
         wr_regions_release(out);
-        return -2;
+        return WR_NO_MEMORY;
     }
-    return 0;
+    return WR_OK;
 }
 
-int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturbance *out)
+wr_status wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturbance *out)
 {
     memset(out, 0, sizeof *out);
     out->blocking = -1;
     if (!isfinite(bias[0]) || !isfinite(bias[1]) || !isfinite(bias[2]))
-        return -1;
+        return WR_INVALID;
     if (a->mode_count == 0)
-        return 0; /* nothing moves the part */
+        return WR_OK; /* nothing moves the part */
     out->bounded = true;
     const wr_fixture *f = a->fixture;
     double x[3];
@@ -481,7 +483,7 @@ int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturb
         if (!isfinite(out->margin)) {
             memset(out, 0, sizeof *out);
             out->blocking = -1;
-            return -1;
+            return WR_INVALID;
         }
         const wr_cone *cone = &a->mode_cones[out->blocking];
         if (unit_margin > 0) {
@@ -505,5 +507,5 @@ int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturb
     }
     wr_normalize3(direction);
     wr_fixture_unscale_wrench(f, direction, out->worst_direction);
-    return 0;
+    return WR_OK;
 }
