@@ -380,8 +380,8 @@ static bool fixture_fill(fixture *out, cJSON *json, bool measure_lp)
         cJSON_Delete(json);
         return false;
     }
-    wr_analysis *a = wr_analysis_new(doc.fixture);
-    if (!a)
+    wr_analysis *a;
+    if (wr_analysis_new(doc.fixture, &a) != WR_OK)
         die("out of memory");
     out->json = json;
     out->text = cJSON_PrintUnformatted(json);
@@ -393,24 +393,24 @@ static bool fixture_fill(fixture *out, cJSON *json, bool measure_lp)
     out->size = doc.fixture->size > 0 ? doc.fixture->size : 1;
     out->com[0] = doc.fixture->com[0];
     out->com[1] = doc.fixture->com[1];
-    out->goal_cones = a->plan->kept_count;
-    out->strong_cones = a->mode_count;
-    out->pinned = a->pinned;
+    out->goal_cones = wr_analysis_cone_count(a, WR_SET_GOAL);
+    out->strong_cones = wr_analysis_cone_count(a, WR_SET_STRONG);
+    out->pinned = wr_analysis_pinned(a);
     out->analysis_bytes = wr_analysis_bytes(a);
     if (measure_lp) {
         /* What a worker's warm LPs for this fixture hold: every problem built. */
-        wr_lp_env *env = wr_lp_env_new();
+        wr_lp_env *env;
         int count, peak;
         size_t before, after, tpeak;
         glp_mem_usage(&count, &peak, &before, &tpeak);
         wr_lp_set *goal, *strong;
-        if (!env || wr_analysis_lp_sets(a, env, &goal, &strong) != 0)
+        if (wr_lp_env_new(&env) != WR_OK || wr_analysis_lp_sets(a, env, &goal, &strong) != WR_OK)
             die("out of memory");
         const double g[3] = {-1, -1, 0};
         bool member;
-        for (int i = 0; i < a->plan->kept_count; i++)
+        for (int i = 0; i < out->goal_cones; i++)
             wr_lp_member(goal, i, g, &member, NULL);
-        for (int i = 0; i < a->mode_count; i++)
+        for (int i = 0; i < out->strong_cones; i++)
             wr_lp_member(strong, i, g, &member, NULL);
         glp_mem_usage(&count, &peak, &after, &tpeak);
         out->lp_bytes = after - before;

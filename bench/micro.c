@@ -76,7 +76,8 @@ static wr_fixture *disc_fixture(int k, double radius_jitter)
         .fixel_count = (size_t)k,
         .fixels = fixels,
     };
-    return wr_fixture_new(&spec, NULL);
+    wr_fixture *fixture;
+    return wr_fixture_new(&spec, &fixture, NULL) == WR_OK ? fixture : NULL;
 }
 
 int main(int argc, char **argv)
@@ -103,10 +104,11 @@ int main(int argc, char **argv)
     wr_fixture *fixture = read_fixture(path);
     if (!fixture)
         return 1;
-    wr_analysis *analysis = wr_analysis_new(fixture);
-    wr_lp_env *env = wr_lp_env_new();
+    wr_analysis *analysis;
+    wr_lp_env *env;
     wr_lp_set *goal = NULL, *strong = NULL;
-    if (!analysis || !env || wr_analysis_lp_sets(analysis, env, &goal, &strong) != 0) {
+    if (wr_analysis_new(fixture, &analysis) != WR_OK || wr_lp_env_new(&env) != WR_OK ||
+        wr_analysis_lp_sets(analysis, env, &goal, &strong) != WR_OK) {
         fprintf(stderr, "out of memory\n");
         return 1;
     }
@@ -236,8 +238,8 @@ int main(int argc, char **argv)
         start = bench_seconds();
         for (int r = 0; r < repeats; r++) {
             wr_fixture *disc = disc_fixture(k, 1e-3 * r);
-            wr_analysis *disc_analysis = disc ? wr_analysis_new(disc) : NULL;
-            if (!disc_analysis) {
+            wr_analysis *disc_analysis;
+            if (!disc || wr_analysis_new(disc, &disc_analysis) != WR_OK) {
                 fprintf(stderr, "k = %d: no analysis\n", k);
                 return 1;
             }

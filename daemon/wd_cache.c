@@ -278,9 +278,10 @@ static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
         return true;
     }
     pthread_mutex_unlock(&c->lock);
-    wr_analysis *a = wr_analysis_new(e->fixture);
+    wr_analysis *a;
+    wr_status status = wr_analysis_new(e->fixture, &a);
     pthread_mutex_lock(&c->lock);
-    if (!a) {
+    if (status != WR_OK) {
         assert(e->refs > 0);
         e->refs--;
         texts_drop(t);

@@ -110,8 +110,10 @@ static bool host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_l
         /* A slot of stale derived data only ever gets freed: its sets are
          * never used again. */
         slot_clear(slot);
-        if (wr_analysis_lp_sets(use->analysis, thread->solver, &slot->goal, &slot->strong) != 0) {
-            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        wr_status status =
+            wr_analysis_lp_sets(use->analysis, thread->solver, &slot->goal, &slot->strong);
+        if (status != WR_OK) {
+            wp_error_status(error, status, "", "%s", wr_strerror(status));
             return false;
         }
         slot->serial = serial;
@@ -127,8 +129,7 @@ wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
     wd_thread_host *thread = calloc(1, sizeof *thread);
     if (!thread)
         return NULL;
-    thread->solver = wr_lp_env_new();
-    if (!thread->solver) {
+    if (wr_lp_env_new(&thread->solver) != WR_OK) {
         free(thread);
         return NULL;
     }

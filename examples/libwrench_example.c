@@ -19,13 +19,15 @@ int main(void)
         .fixel_count = 2, .fixels = fixels,
     };
     wr_error error;
-    wr_fixture *fixture = wr_fixture_new(&spec, &error);
-    if (!fixture) {
+    wr_fixture *fixture;
+    if (wr_fixture_new(&spec, &fixture, &error) != WR_OK) {
         fprintf(stderr, "%s: %s\n", error.field, error.reason);
         return 1;
     }
-    wr_analysis *analysis = wr_analysis_new(fixture);
-    if (!analysis) {
+    wr_analysis *analysis;
+    wr_status status = wr_analysis_new(fixture, &analysis);
+    if (status != WR_OK) {
+        fprintf(stderr, "%s\n", wr_strerror(status));
         wr_fixture_free(fixture);
         return 1;
     }

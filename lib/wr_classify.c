@@ -6,16 +6,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-static bool build_cones(const wr_fixture *fixture, const wr_constraint *constraints, int count,
-                        wr_cone **cones)
+static wr_status build_cones(const wr_fixture *fixture, const wr_constraint *constraints,
+                             int count, wr_cone **cones)
 {
     *cones = calloc((size_t)(count > 0 ? count : 1), sizeof **cones);
     if (!*cones)
-        return false;
-    for (int i = 0; i < count; i++)
-        if (!wr_cone_build(&(*cones)[i], fixture, &constraints[i]))
-            return false;
-    return true;
+        return WR_NO_MEMORY;
+    for (int i = 0; i < count; i++) {
+        wr_status status = wr_cone_build(&(*cones)[i], fixture, &constraints[i]);
+        if (status != WR_OK)
+            return status;
+    }
+    return WR_OK;
 }
 
 static void release_cones(wr_cone *cones, int count)
@@ -27,28 +29,26 @@ static void release_cones(wr_cone *cones, int count)
     free(cones);
 }
 
-wr_analysis *wr_analysis_new(const wr_fixture *fixture)
+wr_status wr_analysis_new(const wr_fixture *fixture, wr_analysis **out)
 {
+    *out = NULL;
     wr_analysis *a = calloc(1, sizeof *a);
     if (!a)
-        return NULL;
+        return WR_NO_MEMORY;
     a->fixture = fixture;
-    a->plan = wr_plan_new(fixture->fixel_count);
-    if (!a->plan)
-        goto fail;
-    if (!build_cones(fixture, a->plan->kept, a->plan->kept_count, &a->goal_cones))
-        goto fail;
-    a->mode_count = wr_modes_find(fixture, &a->modes, &a->pinned);
-    if (a->mode_count < 0) {
-        a->mode_count = 0;
-        goto fail;
+    wr_status status = wr_plan_new(fixture->fixel_count, &a->plan);
+    if (status == WR_OK)
+        status = build_cones(fixture, a->plan->kept, a->plan->kept_count, &a->goal_cones);
+    if (status == WR_OK)
+        status = wr_modes_find(fixture, &a->modes, &a->mode_count, &a->pinned);
+    if (status == WR_OK)
+        status = build_cones(fixture, a->modes, a->mode_count, &a->mode_cones);
+    if (status != WR_OK) {
+        wr_analysis_free(a);
+        return status;
     }
-    if (!build_cones(fixture, a->modes, a->mode_count, &a->mode_cones))
-        goto fail;
-    return a;
-fail:
-    wr_analysis_free(a);
-    return NULL;
+    *out = a;
+    return WR_OK;
 }
 
 void wr_analysis_free(wr_analysis *analysis)
@@ -84,6 +84,12 @@ size_t wr_analysis_bytes(const wr_analysis *a)
            cones_bytes(a->mode_cones, a->mode_count);
 }
 
+const wr_fixture *wr_analysis_fixture(const wr_analysis *analysis) { return analysis->fixture; }
+
+const wr_plan *wr_analysis_plan(const wr_analysis *analysis) { return analysis->plan; }
+
+bool wr_analysis_pinned(const wr_analysis *analysis) { return analysis->pinned; }
+
 int wr_analysis_cone_count(const wr_analysis *analysis, wr_set set)
 {
     return set == WR_SET_GOAL ? analysis->plan->kept_count : analysis->mode_count;
@@ -92,6 +98,11 @@ int wr_analysis_cone_count(const wr_analysis *analysis, wr_set set)
 const wr_cone *wr_analysis_cone(const wr_analysis *analysis, wr_set set, int index)
 {
     return set == WR_SET_GOAL ? &analysis->goal_cones[index] : &analysis->mode_cones[index];
+}
+
+const wr_constraint *wr_analysis_constraints(const wr_analysis *analysis, wr_set set)
+{
+    return set == WR_SET_GOAL ? analysis->plan->kept : analysis->modes;
 }
 
 /* A lower bound on the distance from x to the cone's closure: the largest
@@ -184,18 +195,18 @@ static void classify_zero(const wr_analysis *a, wr_set set, wr_answer *answer)
         }
 }
 
-int wr_classify(const wr_analysis *a, const double wrench[3], wr_set set, double tolerance,
-                wr_answer *answer)
+wr_status wr_classify(const wr_analysis *a, const double wrench[3], wr_set set,
+                      double tolerance, wr_answer *answer)
 {
     memset(answer, 0, sizeof *answer);
     answer->blocking = -1;
     if (!finite3(wrench) || !(tolerance >= 0))
-        return -1;
+        return WR_INVALID;
     double x[3];
     double scale = wr_fixture_unit_wrench(a->fixture, wrench, x);
     if (!(scale > 0)) {
         classify_zero(a, set, answer);
-        return 0;
+        return WR_OK;
     }
 
     int goal_blocking = -1, strong_blocking = -1;
@@ -210,7 +221,7 @@ int wr_classify(const wr_analysis *a, const double wrench[3], wr_set set, double
     answer->blocking_set = goal_decides ? WR_SET_GOAL : WR_SET_STRONG;
     answer->verdict = verdict_of(answer->margin, tolerance);
     if (answer->verdict == WR_VERDICT_INSIDE)
-        return 0;
+        return WR_OK;
     answer->blocking = goal_decides ? goal_blocking : strong_blocking;
     if (answer->blocking >= 0) {
         const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
@@ -229,31 +240,32 @@ int wr_classify(const wr_analysis *a, const double wrench[3], wr_set set, double
             for (int k = 0; k < 2; k++)
                 w->force[i][k] *= scale;
     }
-    return 0;
+    return WR_OK;
 }
 
-int wr_analysis_lp_sets(const wr_analysis *a, wr_lp_env *env, wr_lp_set **goal,
-                        wr_lp_set **strong)
+wr_status wr_analysis_lp_sets(const wr_analysis *a, wr_lp_env *env, wr_lp_set **goal,
+                              wr_lp_set **strong)
 {
-    *goal = wr_lp_set_new(env, a->fixture, a->plan->kept, a->plan->kept_count);
-    *strong = wr_lp_set_new(env, a->fixture, a->modes, a->mode_count);
-    if (!*goal || !*strong) {
+    wr_status status = wr_lp_set_new(env, a->fixture, a->plan->kept, a->plan->kept_count, goal);
+    wr_status other = wr_lp_set_new(env, a->fixture, a->modes, a->mode_count, strong);
+    if (status == WR_OK)
+        status = other;
+    if (status != WR_OK) {
         wr_lp_set_free(*goal);
         wr_lp_set_free(*strong);
         *goal = *strong = NULL;
-        return -1;
     }
-    return 0;
+    return status;
 }
 
 /* The first excluded cone holding g, by LP; -1 if none. */
 static int first_member(wr_lp_set *lp, int count, const double wrench[3], wr_witness *witness,
-                        int *status)
+                        wr_status *status)
 {
     for (int i = 0; i < count; i++) {
         bool member = false;
         *status = wr_lp_member(lp, i, wrench, &member, witness);
-        if (*status != WR_LP_OK)
+        if (*status != WR_OK)
             return -1;
         if (member)
             return i;
@@ -261,27 +273,27 @@ static int first_member(wr_lp_set *lp, int count, const double wrench[3], wr_wit
     return -1;
 }
 
-int wr_classify_lp(const wr_analysis *a, wr_lp_set *goal, wr_lp_set *strong,
-                   const double wrench[3], wr_set set, wr_answer *answer)
+wr_status wr_classify_lp(const wr_analysis *a, wr_lp_set *goal, wr_lp_set *strong,
+                         const double wrench[3], wr_set set, wr_answer *answer)
 {
     memset(answer, 0, sizeof *answer);
     answer->blocking = -1;
     if (!finite3(wrench))
-        return -1;
-    int status = WR_LP_OK;
+        return WR_INVALID;
+    wr_status status = WR_OK;
     if (set != WR_SET_STRONG) {
         answer->blocking_set = WR_SET_GOAL;
         answer->blocking = first_member(goal, a->plan->kept_count, wrench, &answer->witness,
                                         &status);
     }
-    if (status == WR_LP_OK && answer->blocking < 0 && set != WR_SET_GOAL) {
+    if (status == WR_OK && answer->blocking < 0 && set != WR_SET_GOAL) {
         answer->blocking_set = WR_SET_STRONG;
         answer->blocking = first_member(strong, a->mode_count, wrench, &answer->witness, &status);
     }
-    if (status != WR_LP_OK)
+    if (status != WR_OK)
         return status;
     answer->verdict = answer->blocking < 0 ? WR_VERDICT_INSIDE : WR_VERDICT_OUTSIDE;
     if (answer->blocking < 0)
         memset(&answer->witness, 0, sizeof answer->witness);
-    return 0;
+    return WR_OK;
 }

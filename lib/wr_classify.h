@@ -44,26 +44,34 @@ static inline bool wr_stop_requested(const wr_stop *stop)
     return stop && stop->requested(stop->context);
 }
 
-typedef struct wr_analysis {
-    const wr_fixture *fixture;  /* borrowed: must outlive the analysis */
-    wr_plan *plan;
-    wr_cone *goal_cones;        /* plan->kept_count, in the plan's order */
-    int mode_count;
-    wr_constraint *modes;       /* feasible moving modes, pivots last */
-    wr_cone *mode_cones;        /* one per mode */
-    bool pinned;                /* rolling at every fixel forces q = 0 */
-} wr_analysis;
+/* Opaque: read it through the accessors below. */
+typedef struct wr_analysis wr_analysis;
 
-/* Derive everything for `fixture`.  NULL when out of memory. */
-wr_analysis *wr_analysis_new(const wr_fixture *fixture);
+/* Derive everything for `fixture` (borrowed: it must outlive the analysis)
+ * into *out.  WR_OK, or WR_NO_MEMORY (*out NULL). */
+wr_status wr_analysis_new(const wr_fixture *fixture, wr_analysis **out);
 void wr_analysis_free(wr_analysis *analysis);
 
 /* Bytes the analysis holds (for a cache's memory bound). */
 size_t wr_analysis_bytes(const wr_analysis *analysis);
 
-/* The excluded cones of a set (WR_SET_GOAL or WR_SET_STRONG). */
+/* The fixture it was derived from. */
+const wr_fixture *wr_analysis_fixture(const wr_analysis *analysis);
+/* The insertion plan: its kept strings are G_goal's excluded strings, in
+ * the order of the goal cones, and plan->origins[i] the states goal cone i
+ * comes from. */
+const wr_plan *wr_analysis_plan(const wr_analysis *analysis);
+/* Does rolling at every fixel force q = 0 (no pivot among the modes)? */
+bool wr_analysis_pinned(const wr_analysis *analysis);
+
+/* The excluded cones of a set (WR_SET_GOAL or WR_SET_STRONG): for the goal,
+ * one per kept string of the plan; for strong, one per feasible moving
+ * mode (pivots last). */
 int wr_analysis_cone_count(const wr_analysis *analysis, wr_set set);
 const wr_cone *wr_analysis_cone(const wr_analysis *analysis, wr_set set, int index);
+/* Their constraint strings, as one array of wr_analysis_cone_count()
+ * (the plan's kept strings, or the modes), for wr_lp_set_new(). */
+const wr_constraint *wr_analysis_constraints(const wr_analysis *analysis, wr_set set);
 
 typedef struct wr_answer {
     wr_verdict verdict;
@@ -77,22 +85,22 @@ typedef struct wr_answer {
 } wr_answer;
 
 /* Classify the physical wrench g with the explicit cones (method "auto").
- * For WR_SET_BOTH the margin is the smaller of the two.  Returns 0, or -1 if
- * g is not finite or the tolerance is negative. */
-int wr_classify(const wr_analysis *analysis, const double wrench[3], wr_set set,
-                double tolerance, wr_answer *answer);
+ * For WR_SET_BOTH the margin is the smaller of the two.  WR_OK, or
+ * WR_INVALID if g is not finite or the tolerance is negative. */
+wr_status wr_classify(const wr_analysis *analysis, const double wrench[3], wr_set set,
+                      double tolerance, wr_answer *answer);
 
 /* The same with GLPK LPs against every excluded cone (method "lp"): verdict
  * inside or outside, no margin.  `goal` and `strong` are LP sets over the
- * analysis's goal and mode constraints (see wr_analysis_lp_sets).  Returns 0,
- * -1 on bad input, or WR_LP_FAILED. */
-int wr_classify_lp(const wr_analysis *analysis, wr_lp_set *goal, wr_lp_set *strong,
-                   const double wrench[3], wr_set set, wr_answer *answer);
+ * analysis's goal and mode constraints (see wr_analysis_lp_sets).  WR_OK,
+ * WR_INVALID if g is not finite, or WR_LP_FAILED. */
+wr_status wr_classify_lp(const wr_analysis *analysis, wr_lp_set *goal, wr_lp_set *strong,
+                         const double wrench[3], wr_set set, wr_answer *answer);
 
-/* LP sets for an analysis, in one thread's env.  Returns 0 or -1 (out of
- * memory, nothing allocated). */
-int wr_analysis_lp_sets(const wr_analysis *analysis, wr_lp_env *env, wr_lp_set **goal,
-                        wr_lp_set **strong);
+/* LP sets for an analysis, in one thread's env.  WR_OK, or WR_NO_MEMORY
+ * (nothing allocated, both NULL). */
+wr_status wr_analysis_lp_sets(const wr_analysis *analysis, wr_lp_env *env, wr_lp_set **goal,
+                              wr_lp_set **strong);
 
 #ifdef __cplusplus
 }

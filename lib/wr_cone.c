@@ -37,8 +37,8 @@ static size_t utf8_character(const unsigned char *text)
     return more + 1;
 }
 
-bool wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
-                         wr_error *error)
+wr_status wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
+                              wr_error *error)
 {
     memset(out, 0, sizeof *out);
     /* Letters are characters: "sé" is two letters, not three bytes. */
@@ -48,7 +48,7 @@ bool wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
     if (characters != (size_t)fixel_count) {
         wr_error_set(error, "", "has %zu letters, the fixture has %d fixels: one letter per fixel",
                      characters, fixel_count);
-        return false;
+        return WR_INVALID;
     }
     const unsigned char *p = (const unsigned char *)text;
     for (int i = 0; i < fixel_count; i++) {
@@ -57,17 +57,17 @@ bool wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
             bool printable = bytes > 1 || (*p >= 32 && *p < 127);
             wr_error_set(error, "", "letter %d is '%.*s', not one of s a u l r n m (docs/MODEL.md section 2)",
                          i + 1, printable ? (int)bytes : 1, printable ? (const char *)p : "?");
-            return false;
+            return WR_INVALID;
         }
         out->letters[i] = (char)*p++;
     }
     if (*p) { /* stray UTF-8 continuation bytes, which the count passed over */
         wr_error_set(error, "", "byte 0x%02x after letter %d is not a letter (not UTF-8)", *p,
                      fixel_count);
-        return false;
+        return WR_INVALID;
     }
     out->length = fixel_count;
-    return true;
+    return WR_OK;
 }
 
 void wr_constraint_format(const wr_constraint *constraint, char text[WR_CONSTRAINT_TEXT])
@@ -274,7 +274,8 @@ bool wr_constraint_kinematically_feasible(const wr_fixture *fixture,
     return strict_rows_met(&r, (const double (*)[3])gens, count);
 }
 
-bool wr_cone_build(wr_cone *cone, const wr_fixture *fixture, const wr_constraint *constraint)
+wr_status wr_cone_build(wr_cone *cone, const wr_fixture *fixture,
+                        const wr_constraint *constraint)
 {
     memset(cone, 0, sizeof *cone);
     cone->constraint = *constraint;
@@ -296,7 +297,7 @@ bool wr_cone_build(wr_cone *cone, const wr_fixture *fixture, const wr_constraint
     if (!strict_rows_met(&r, (const double (*)[3])gens, accel_count)) {
         cone->empty = true;
         cone->dimension = -1;
-        return true;
+        return WR_OK;
     }
     cone->zero_admitted = zero_admitted(&r, (const double (*)[3])(gens + accel_count), force_count);
 
@@ -310,7 +311,7 @@ bool wr_cone_build(wr_cone *cone, const wr_fixture *fixture, const wr_constraint
     char *block = malloc(vectors * sizeof(double[3]) + (size_t)total * sizeof(wr_generator_origin) +
                          (size_t)h.facet_count * sizeof(bool) + 1);
     if (!block)
-        return false;
+        return WR_NO_MEMORY;
     cone->facets = (double (*)[3])block;
     cone->rays = cone->facets + h.facet_count;
     cone->generators = cone->rays + ray_count;
@@ -338,7 +339,7 @@ bool wr_cone_build(wr_cone *cone, const wr_fixture *fixture, const wr_constraint
                 wr_copy3(gens[j], face[face_count++]);
         cone->facet_open[i] = !strict_rows_met(&r, (const double (*)[3])face, face_count);
     }
-    return true;
+    return WR_OK;
 }
 
 void wr_cone_release(wr_cone *cone)

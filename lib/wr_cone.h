@@ -32,9 +32,10 @@ typedef struct wr_constraint {
 #define WR_CONSTRAINT_TEXT (WR_MAX_FIXELS + 2)
 
 /* Parse `text` (letters only) for a fixture of `fixel_count` fixels.  On a bad
- * letter or length, returns false and sets error->reason (field left empty). */
-bool wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
-                         wr_error *error);
+ * letter or length, returns WR_INVALID and sets error->reason (field left
+ * empty). */
+wr_status wr_constraint_parse(const char *text, int fixel_count, wr_constraint *out,
+                              wr_error *error);
 void wr_constraint_format(const wr_constraint *constraint, char text[WR_CONSTRAINT_TEXT]);
 
 /* The order of letters (docs/MODEL.md section 2): s, a below u; l, r, n
@@ -71,9 +72,10 @@ typedef struct wr_cone {
 } wr_cone;
 
 /* Compute the cone of `constraint` (whose length must equal the fixture's
- * fixel count).  Returns false only when out of memory.  Release with
- * wr_cone_release(). */
-bool wr_cone_build(wr_cone *cone, const wr_fixture *fixture, const wr_constraint *constraint);
+ * fixel count).  WR_OK, or WR_NO_MEMORY.  Release with wr_cone_release()
+ * either way. */
+wr_status wr_cone_build(wr_cone *cone, const wr_fixture *fixture,
+                        const wr_constraint *constraint);
 void wr_cone_release(wr_cone *cone);
 
 /* Signed distance of a unit scaled wrench x to closure(G_X), docs/MODEL.md section 5:

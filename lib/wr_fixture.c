@@ -606,7 +606,9 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
     return check_friction(&spec->friction, "friction", error);
 }
 
-wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
+/* wr_fixture_new but for the status: NULL with *no_memory set when out of
+ * memory, NULL alone when invalid. */
+static wr_fixture *validate(const wr_fixture_spec *spec, wr_error *error, bool *no_memory)
 {
     if (!check_body(spec, error))
         return NULL;
@@ -632,6 +634,7 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
     wr_fixture *f = calloc(1, sizeof *f);
     if (!f) {
         wr_error_set(error, "", "out of memory");
+        *no_memory = true;
         return NULL;
     }
     f->shape = spec->shape;
@@ -653,6 +656,7 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
         if (!f->vertices) {
             free(f);
             wr_error_set(error, "", "out of memory");
+            *no_memory = true;
             return NULL;
         }
         for (size_t i = 0; i < spec->vertex_count; i++)
@@ -721,6 +725,15 @@ wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error)
             }
         }
     return f;
+}
+
+wr_status wr_fixture_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error)
+{
+    bool no_memory = false;
+    *out = validate(spec, error, &no_memory);
+    if (*out)
+        return WR_OK;
+    return no_memory ? WR_NO_MEMORY : WR_INVALID;
 }
 
 void wr_fixture_free(wr_fixture *fixture)

@@ -11,6 +11,8 @@
 #ifndef WR_FIXTURE_H
 #define WR_FIXTURE_H
 
+#include "wr_status.h"
+
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -116,10 +118,11 @@ typedef struct wr_fixture {
     wr_fixel fixels[WR_MAX_FIXELS];
 } wr_fixture;
 
-/* Validate `spec` and build a fixture.  Returns NULL and fills `error` (which
- * may be NULL) when anything is invalid; the first problem found is reported.
- * Out of memory also returns NULL, with field "" and a reason saying so. */
-wr_fixture *wr_fixture_new(const wr_fixture_spec *spec, wr_error *error);
+/* Validate `spec` and build a fixture into *out.  WR_INVALID when anything
+ * is invalid, with `error` (which may be NULL) filled in: the first problem
+ * found.  WR_NO_MEMORY with field "" and a reason saying so.  *out is NULL
+ * unless WR_OK. */
+wr_status wr_fixture_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error);
 void wr_fixture_free(wr_fixture *fixture);
 
 /* The unit direction, in the scaled metric, of a physical wrench, and the

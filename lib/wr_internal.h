@@ -104,7 +104,20 @@ double wr_hull_depth(const wr_hull_view *cone, const double x[3]);
 double wr_nnls3(const double (*columns)[3], int count, const double y[3], double *lambda);
 
 struct wr_constraint;
-struct wr_analysis;
+struct wr_plan;
+struct wr_cone;
+
+/* Everything derived from one fixture (wr_classify.h: opaque to callers). */
+struct wr_analysis {
+    const wr_fixture *fixture;    /* borrowed: must outlive the analysis */
+    struct wr_plan *plan;
+    struct wr_cone *goal_cones;   /* plan->kept_count, in the plan's order */
+    int mode_count;
+    struct wr_constraint *modes;  /* feasible moving modes, pivots last */
+    struct wr_cone *mode_cones;   /* one per mode */
+    bool pinned;                  /* rolling at every fixel forces q = 0 */
+};
+
 /* The margin of the unit scaled wrench x for one set (WR_SET_GOAL or
  * WR_SET_STRONG): minus the largest depth in an excluded cone, else the
  * smallest distance; 1 with no cone.  *blocking: the cone's index or -1. */

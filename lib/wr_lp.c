@@ -49,14 +49,15 @@ static void configure_thread(wr_lp_env *env)
     glp_error_hook(on_fatal_error, env);
 }
 
-wr_lp_env *wr_lp_env_new(void)
+wr_status wr_lp_env_new(wr_lp_env **out)
 {
     wr_lp_env *env = calloc(1, sizeof *env);
+    *out = env;
     if (!env)
-        return NULL;
+        return WR_NO_MEMORY;
     env->inject_after = -1;
     configure_thread(env);
-    return env;
+    return WR_OK;
 }
 
 void wr_lp_env_free(wr_lp_env *env)
@@ -69,12 +70,13 @@ void wr_lp_env_free(wr_lp_env *env)
 
 void wr_lp_env_inject_failure(wr_lp_env *env, int calls) { env->inject_after = calls; }
 
-wr_lp_set *wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
-                         const wr_constraint *constraints, int count)
+wr_status wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
+                        const wr_constraint *constraints, int count, wr_lp_set **out)
 {
+    *out = NULL;
     wr_lp_set *set = calloc(1, sizeof *set);
     if (!set)
-        return NULL;
+        return WR_NO_MEMORY;
     set->env = env;
     set->fixture = fixture;
     set->constraints = constraints;
@@ -83,9 +85,10 @@ wr_lp_set *wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
     set->generations = calloc((size_t)(count > 0 ? count : 1), sizeof *set->generations);
     if (!set->problems || !set->generations) {
         wr_lp_set_free(set);
-        return NULL;
+        return WR_NO_MEMORY;
     }
-    return set;
+    *out = set;
+    return WR_OK;
 }
 
 void wr_lp_set_free(wr_lp_set *set)
@@ -238,8 +241,8 @@ static int solve(glp_prob *p)
     return -1;
 }
 
-int wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
-                 wr_witness *witness)
+wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
+                       wr_witness *witness)
 {
     wr_lp_env *env = set->env;
     const wr_fixture *f = set->fixture;
@@ -286,5 +289,5 @@ int wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member
         wr_newton_euler_wrench(f, witness->acceleration, (const double (*)[2])witness->force,
                                witness->wrench);
     }
-    return WR_LP_OK;
+    return WR_OK;
 }

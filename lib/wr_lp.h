@@ -11,7 +11,7 @@
  * Failures.  GLPK never aborts the process nor prints: a fatal GLPK error is
  * caught (error hook and longjmp), the thread's GLPK environment is rebuilt,
  * every problem of the thread is rebuilt on its next use, and the call that
- * met the error returns WR_LP_FAILED. */
+ * met the error returns WR_LP_FAILED (wr_status.h). */
 #ifndef WR_LP_H
 #define WR_LP_H
 
@@ -21,9 +21,6 @@
 extern "C" {
 #endif
 
-#define WR_LP_OK 0
-#define WR_LP_FAILED (-1)  /* GLPK failed; the answer is unknown */
-
 /* Strictly feasible means an optimal slack above this (docs/MODEL.md
  * section 2). */
 #define WR_LP_SLACK_THRESHOLD 1e-9
@@ -32,8 +29,8 @@ typedef struct wr_lp_env wr_lp_env;
 typedef struct wr_lp_set wr_lp_set;
 
 /* Start using GLPK in the calling thread: terminal output off, fatal errors
- * caught.  NULL when out of memory. */
-wr_lp_env *wr_lp_env_new(void);
+ * caught.  WR_OK, or WR_NO_MEMORY (*out NULL). */
+wr_status wr_lp_env_new(wr_lp_env **out);
 /* Free the env and the calling thread's GLPK environment.  Every wr_lp_set
  * of this env must be freed first. */
 void wr_lp_env_free(wr_lp_env *env);
@@ -43,17 +40,18 @@ void wr_lp_env_inject_failure(wr_lp_env *env, int calls);
 
 /* Membership problems for `count` constraints of one fixture, each built on
  * first use and then reused with new wrench bounds (warm start).  The fixture
- * and the constraints array must outlive the set.  NULL when out of memory. */
-wr_lp_set *wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
-                         const wr_constraint *constraints, int count);
+ * and the constraints array must outlive the set.  WR_OK, or WR_NO_MEMORY
+ * (*out NULL). */
+wr_status wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
+                        const wr_constraint *constraints, int count, wr_lp_set **out);
 void wr_lp_set_free(wr_lp_set *set);
 
 /* Is the physical wrench in G_X for constraint `index`?  Decided on the
  * scaled, normalised problem.  On membership `witness` (may be NULL) receives
- * an acceleration and forces that make the wrench.  Returns WR_LP_OK or
+ * an acceleration and forces that make the wrench.  Returns WR_OK or
  * WR_LP_FAILED. */
-int wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
-                 wr_witness *witness);
+wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
+                       wr_witness *witness);
 
 #ifdef __cplusplus
 }

@@ -82,10 +82,11 @@ static bool is_maximal(const char *letters, int fixel_count, const unsigned char
     return true;
 }
 
-wr_plan *wr_plan_new(int fixel_count)
+wr_status wr_plan_new(int fixel_count, wr_plan **out)
 {
+    *out = NULL;
     if (fixel_count < 1 || fixel_count > WR_MAX_FIXELS)
-        return NULL;
+        return WR_INVALID;
     int k = fixel_count;
     int state_count = 1 << k;
     int excluded_max = 1;
@@ -172,12 +173,13 @@ wr_plan *wr_plan_new(int fixel_count)
     }
     free(present);
     free(kept_index);
-    return plan;
+    *out = plan;
+    return WR_OK;
 fail:
     free(present);
     free(kept_index);
     wr_plan_free(plan);
-    return NULL;
+    return WR_NO_MEMORY;
 }
 
 void wr_plan_free(wr_plan *plan)
@@ -263,7 +265,8 @@ static void search_modes(mode_search *search, int fixel)
     search->current.letters[fixel] = 'u';
 }
 
-int wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, bool *pinned)
+wr_status wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, int *count,
+                        bool *pinned)
 {
     mode_search search;
     memset(&search, 0, sizeof search);
@@ -289,11 +292,14 @@ int wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, bool *pinned
     }
     if (search.out_of_memory) {
         free(search.found);
-        return -1;
+        *modes = NULL;
+        *count = 0;
+        return WR_NO_MEMORY;
     }
     /* A form-closed fixture has no moving mode at all: count 0, no array. */
     if (search.count > 0)
         qsort(search.found, (size_t)search.count, sizeof *search.found, compare_modes);
     *modes = search.found;
-    return search.count;
+    *count = search.count;
+    return WR_OK;
 }

@@ -44,18 +44,19 @@ typedef struct wr_plan {
 } wr_plan;
 
 /* The plan for `fixel_count` fixels (1..WR_MAX_FIXELS), derived from the rule
- * of docs/MODEL.md section 3 and the order of letters of its section 2.  NULL
- * when out of memory or out of range. */
-wr_plan *wr_plan_new(int fixel_count);
+ * and the order of docs/MODEL.md section 3, into *out.  WR_INVALID when the count is
+ * out of range, WR_NO_MEMORY; *out is NULL unless WR_OK. */
+wr_status wr_plan_new(int fixel_count, wr_plan **out);
 void wr_plan_free(wr_plan *plan);
 
-/* Kinematically feasible contact modes other than n...n (docs/MODEL.md
- * section 4): mode strings over {s, l, r, n} with strict separation, ordered
- * by number of contacts, then letters in the order s < l < r < n; then, for a body the
- * fixels do not pin, the pivots n...n+ and n...n-.  Returns the count and a
- * malloc'd array in *modes (free() it), or -1 when out of memory.  *pinned
- * says whether rolling at every fixel forces q = 0. */
-int wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, bool *pinned);
+/* Kinematically feasible contact modes other than n...n (docs/MODEL.md section 4): mode
+ * strings over {s, l, r, n} with strict separation, ordered by number of
+ * contacts, then letters in the order s < l < r < n; then, for a body the
+ * fixels do not pin, the pivots n...n+ and n...n-.  WR_OK with the count in
+ * *count and a malloc'd array in *modes (free() it; NULL for none), or
+ * WR_NO_MEMORY.  *pinned says whether rolling at every fixel forces q = 0. */
+wr_status wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, int *count,
+                        bool *pinned);
 
 #ifdef __cplusplus
 }

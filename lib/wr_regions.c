@@ -400,18 +400,21 @@ int wr_push_edge_count(const wr_fixture *f)
     return f->shape == WR_SHAPE_POLYGON ? (int)f->vertex_count : f->shape == WR_SHAPE_CIRCLE;
 }
 
-int wr_push_regions_part(const wr_analysis *a, wr_set set, double finger_friction, int first_edge,
-                         int edge_count, const wr_stop *stop, wr_regions *out)
+wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, double finger_friction,
+                               int first_edge, int edge_count, const wr_stop *stop,
+                               wr_regions *out)
 {
     const wr_fixture *f = a->fixture;
     int edges = wr_push_edge_count(f);
-    if (f->shape == WR_SHAPE_NONE || !(finger_friction >= 0) || !isfinite(finger_friction) ||
-        first_edge < 0 || edge_count < 0 || edge_count > edges - first_edge)
-        return -1;
+    if (f->shape == WR_SHAPE_NONE)
+        return WR_NO_SHAPE;
+    if (!(finger_friction >= 0) || !isfinite(finger_friction) || first_edge < 0 ||
+        edge_count < 0 || edge_count > edges - first_edge)
+        return WR_INVALID;
     const wr_cone **cones;
     int count = set_cones(a, set, &cones);
     if (count < 0)
-        return -2;
+        return WR_NO_MEMORY;
     /* What this part adds is taken back if it fails: `out` is as it was. */
     int before = out->count;
     bool ok = true;
@@ -437,48 +440,48 @@ int wr_push_regions_part(const wr_analysis *a, wr_set set, double finger_frictio
     free(cones);
     if (!ok) {
         out->count = before;
-        return stopped ? -3 : -2;
+        return stopped ? WR_STOPPED : WR_NO_MEMORY;
     }
-    return 0;
+    return WR_OK;
 }
 
-int wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction, const wr_stop *stop,
-                    wr_regions *out)
+wr_status wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction,
+                          const wr_stop *stop, wr_regions *out)
 {
     memset(out, 0, sizeof *out);
-    int status = wr_push_regions_part(a, set, finger_friction, 0,
-                                      wr_push_edge_count(a->fixture), stop, out);
-    if (status != 0)
+    wr_status status = wr_push_regions_part(a, set, finger_friction, 0,
+                                            wr_push_edge_count(a->fixture), stop, out);
+    if (status != WR_OK)
         wr_regions_release(out);
     return status;
 }
 
-int wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)
+wr_status wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)
 {
     memset(out, 0, sizeof *out);
     const wr_cone **cones;
     int count = set_cones(a, set, &cones);
     if (count < 0)
-        return -2;
+        return WR_NO_MEMORY;
     /* m g0 (cos phi, sin phi, 0): gravity acts at the centre of mass. */
     const double matrix[3][2] = {{1, 0}, {0, 1}, {0, 0}};
     bool ok = circle_exact(matrix, cones, count, NULL, &(bool){false}, out);
     free(cones);
     if (!ok) {
         wr_regions_release(out);
-        return -2;
+        return WR_NO_MEMORY;
     }
-    return 0;
+    return WR_OK;
 }
 
-int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturbance *out)
+wr_status wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturbance *out)
 {
     memset(out, 0, sizeof *out);
     out->blocking = -1;
     if (!isfinite(bias[0]) || !isfinite(bias[1]) || !isfinite(bias[2]))
-        return -1;
+        return WR_INVALID;
     if (a->mode_count == 0)
-        return 0; /* nothing moves the part */
+        return WR_OK; /* nothing moves the part */
     out->bounded = true;
     const wr_fixture *f = a->fixture;
     double x[3];
@@ -501,7 +504,7 @@ int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturb
         if (!isfinite(out->margin)) {
             memset(out, 0, sizeof *out);
             out->blocking = -1;
-            return -1;
+            return WR_INVALID;
         }
         const wr_cone *cone = &a->mode_cones[out->blocking];
         if (unit_margin > 0) {
@@ -525,5 +528,5 @@ int wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_disturb
     }
     wr_normalize3(direction);
     wr_fixture_unscale_wrench(f, direction, out->worst_direction);
-    return 0;
+    return WR_OK;
 }

@@ -48,27 +48,29 @@ void wr_regions_release(wr_regions *regions);
  * the finger's Coulomb coefficient (0: frictionless); with friction a point
  * counts only if every force of the finger's friction cone is in the set.
  * `stop` (may be NULL) is polled between edges and between runs of samples.
- * Returns 0, -1 for a fixture without a shape or a bad coefficient, -2 when
- * out of memory, -3 when stopped (nothing is returned then). */
-int wr_push_regions(const wr_analysis *analysis, wr_set set, double finger_friction,
-                    const wr_stop *stop, wr_regions *regions);
+ * WR_OK; WR_NO_SHAPE for a fixture without a shape; WR_INVALID for a
+ * negative or infinite coefficient; WR_NO_MEMORY; WR_STOPPED.  Unless WR_OK
+ * `regions` is empty. */
+wr_status wr_push_regions(const wr_analysis *analysis, wr_set set, double finger_friction,
+                          const wr_stop *stop, wr_regions *regions);
 
 /* The same for edges [first_edge, first_edge + edge_count) only, appended
  * to `regions` (which may hold earlier parts': the parts of all edges, in
  * order, make wr_push_regions' answer), so that long work can be done a
  * part at a time.  A circle is one edge.  On failure `regions` is as it
- * was.  Returns as wr_push_regions, and -1 for a range past the edges. */
-int wr_push_regions_part(const wr_analysis *analysis, wr_set set, double finger_friction,
-                         int first_edge, int edge_count, const wr_stop *stop,
-                         wr_regions *regions);
+ * was.  Returns as wr_push_regions, and WR_INVALID for a range past the
+ * edges. */
+wr_status wr_push_regions_part(const wr_analysis *analysis, wr_set set, double finger_friction,
+                               int first_edge, int edge_count, const wr_stop *stop,
+                               wr_regions *regions);
 /* The edges of the outline: a polygon's sides, 1 for a circle, 0 without a
  * shape. */
 int wr_push_edge_count(const wr_fixture *fixture);
 
 /* The tilts phi (degrees, the direction gravity pulls) under which the
  * gravity wrench m g (cos phi, sin phi, 0) is in the set: exact arcs.
- * Returns 0, or -2 when out of memory. */
-int wr_gravity_sweep(const wr_analysis *analysis, wr_set set, wr_regions *arcs);
+ * WR_OK, or WR_NO_MEMORY (`arcs` empty). */
+wr_status wr_gravity_sweep(const wr_analysis *analysis, wr_set set, wr_regions *arcs);
 
 /* The boundary point at (edge, t) and its inward unit normal. */
 void wr_boundary_point(const wr_fixture *fixture, int edge, double t, double point[2],
@@ -87,18 +89,18 @@ typedef struct wr_disturbance {
     bool bounded;          /* false: no excluded cone at all (nothing moves
                               the part); the rest is then zero */
     double margin;
-    int blocking;          /* the nearest (or deepest) mode, index into
-                              analysis->modes */
+    int blocking;          /* the nearest (or deepest) mode: an index of
+                              the strong set's cones (and constraints) */
     double worst_direction[3]; /* a physical wrench of unit scaled length:
                               with margin > 0, bias + margin * it lies on the
                               nearest cone; with margin < 0, adding |margin|
                               of it leaves the deepest cone */
 } wr_disturbance;
 
-/* Returns 0, or -1 when the bias is not finite or so large that its margin
- * is beyond the largest double. */
-int wr_disturbance_margin(const wr_analysis *analysis, const double bias[3],
-                          wr_disturbance *out);
+/* WR_OK, or WR_INVALID when the bias is not finite or so large that its
+ * margin is beyond the largest double. */
+wr_status wr_disturbance_margin(const wr_analysis *analysis, const double bias[3],
+                                wr_disturbance *out);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,7 @@
 /* wrench.h -- libwrench: sensorless insertion of rigid planar parts
  * (Balkcom and Trinkle), as docs/MODEL.md states it.
  *
+ *   wr_status.h    wr_status: how every function that can fail says so
  *   wr_fixture.h   the fixture model and its validation
  *   wr_cone.h      constraint strings and explicit wrench cones G_X
  *   wr_plan.h      contact states, the strings G_goal excludes, contact modes
@@ -9,8 +10,10 @@
  *   wr_regions.h   push regions, gravity arcs, disturbance margins
  *
  * Pure computation: no I/O, no global state; every function is re-entrant.
- * Objects are created by *_new and released by *_free; an object passed by
- * const pointer is borrowed. */
+ * Objects are created by wr_status *_new(..., T **out) and released by
+ * *_free; an object passed by const pointer is borrowed.  wr_analysis is
+ * opaque (accessors in wr_classify.h); the fixture, plan, cone and region
+ * structures are plain read-only data. */
 #ifndef WRENCH_H
 #define WRENCH_H
 
@@ -22,6 +25,7 @@
 #include "wr_lp.h"
 #include "wr_plan.h"
 #include "wr_regions.h"
+#include "wr_status.h"
 
 #ifdef __cplusplus
 extern "C" {

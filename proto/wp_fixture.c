@@ -320,11 +320,12 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     }
     if (ok) {
         wr_error invalid;
-        out->fixture = wr_fixture_new(&spec, &invalid);
-        if (!out->fixture) {
+        wr_status status = wr_fixture_new(&spec, &out->fixture, &invalid);
+        if (status != WR_OK) {
+            /* Invalid: at the field to blame.  Out of memory: at the fixture. */
             wp_path_key(field, path, invalid.field);
-            wp_error_set(error, invalid.field[0] ? WP_INVALID_PARAMS : WP_INTERNAL,
-                         invalid.field[0] ? field : path, "%s", invalid.reason);
+            wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
+                         status == WR_INVALID ? field : path, "%s", invalid.reason);
             ok = false;
         }
     }

@@ -10,15 +10,38 @@
 #include <string.h>
 #include <sys/mman.h>
 
-void wp_error_set(wp_error *error, int code, const char *field, const char *format, ...)
+static void error_vset(wp_error *error, int code, const char *field, const char *format,
+                       va_list args) __attribute__((format(printf, 4, 0)));
+
+static void error_vset(wp_error *error, int code, const char *field, const char *format,
+                       va_list args)
 {
     if (!error)
         return;
     error->code = code;
     snprintf(error->field, sizeof error->field, "%s", field ? field : "");
+    vsnprintf(error->reason, sizeof error->reason, format, args);
+}
+
+void wp_error_set(wp_error *error, int code, const char *field, const char *format, ...)
+{
     va_list args;
     va_start(args, format);
-    vsnprintf(error->reason, sizeof error->reason, format, args);
+    error_vset(error, code, field, format, args);
+    va_end(args);
+}
+
+void wp_error_status(wp_error *error, wr_status status, const char *field, const char *format,
+                     ...)
+{
+    if (status == WR_NO_MEMORY || status == WR_STOPPED) {
+        wp_error_set(error, WP_INTERNAL, "", "%s",
+                     status == WR_NO_MEMORY ? "out of memory" : "stopped: the client is gone");
+        return;
+    }
+    va_list args;
+    va_start(args, format);
+    error_vset(error, status == WR_LP_FAILED ? WP_SOLVER : WP_INVALID_PARAMS, field, format, args);
     va_end(args);
 }
 

@@ -4,6 +4,7 @@
 #define WP_JSON_H
 
 #include "wp_number.h" /* wp_format_number */
+#include "wr_status.h"
 
 #include <cjson/cJSON.h>
 #include <stdbool.h>
@@ -36,6 +37,15 @@ typedef struct wp_error {
 
 void wp_error_set(wp_error *error, int code, const char *field, const char *format, ...)
     __attribute__((format(printf, 4, 5)));
+
+/* The error of a libwrench call that did not return WR_OK, the one place
+ * lib statuses become JSON-RPC codes.  WR_NO_MEMORY and WR_STOPPED are
+ * said in their own words ("out of memory", "stopped: the client is
+ * gone"), WP_INTERNAL at no field; WR_LP_FAILED is WP_SOLVER and the rest
+ * (the request's input: WR_INVALID, WR_NO_SHAPE) WP_INVALID_PARAMS, both at
+ * `field` with the caller's reason, which says what of the request failed. */
+void wp_error_status(wp_error *error, wr_status status, const char *field, const char *format,
+                     ...) __attribute__((format(printf, 4, 5)));
 
 /* "prefix.key" and "prefix[index]" into a WP_FIELD_MAX buffer. */
 void wp_path_key(char out[WP_FIELD_MAX], const char *prefix, const char *key);

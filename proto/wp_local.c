@@ -35,9 +35,7 @@ static bool local_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_
         return false;
     }
     held *h = calloc(1, sizeof *h);
-    if (h)
-        h->analysis = wr_analysis_new(doc->fixture);
-    if (!h || !h->analysis) {
+    if (!h || wr_analysis_new(doc->fixture, &h->analysis) != WR_OK) {
         free(h);
         wp_fixture_doc_release(doc);
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
@@ -97,8 +95,10 @@ static bool local_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_
 {
     wp_local *local = self;
     held *h = use->handle[0];
-    if (!h->goal && wr_analysis_lp_sets(h->analysis, local->solver, &h->goal, &h->strong) != 0) {
-        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+    wr_status status =
+        h->goal ? WR_OK : wr_analysis_lp_sets(h->analysis, local->solver, &h->goal, &h->strong);
+    if (status != WR_OK) {
+        wp_error_status(error, status, "", "%s", wr_strerror(status));
         return false;
     }
     *goal = h->goal;
@@ -111,8 +111,7 @@ wp_local *wp_local_new(void)
     wp_local *local = calloc(1, sizeof *local);
     if (!local)
         return NULL;
-    local->solver = wr_lp_env_new();
-    if (!local->solver) {
+    if (wr_lp_env_new(&local->solver) != WR_OK) {
         free(local);
         return NULL;
     }

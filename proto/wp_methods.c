@@ -57,9 +57,11 @@ static cJSON *fixture_put(wp_call *call)
         cJSON_AddStringToObject(result, "id", use.id);
         cJSON_AddStringToObject(result, "name", use.name);
         cJSON_AddNumberToObject(result, "fixels", use.fixture->fixel_count);
-        cJSON_AddNumberToObject(result, "goal_cones", use.analysis->plan->kept_count);
-        cJSON_AddNumberToObject(result, "strong_cones", use.analysis->mode_count);
-        cJSON_AddBoolToObject(result, "pinned", use.analysis->pinned);
+        cJSON_AddNumberToObject(result, "goal_cones",
+                                wr_analysis_cone_count(use.analysis, WR_SET_GOAL));
+        cJSON_AddNumberToObject(result, "strong_cones",
+                                wr_analysis_cone_count(use.analysis, WR_SET_STRONG));
+        cJSON_AddBoolToObject(result, "pinned", wr_analysis_pinned(use.analysis));
     }
     host->fixture_release(host->self, &use);
     return result ? result : out_of_memory(NULL, error);
@@ -304,11 +306,12 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
     WP_BUFFER_LITERAL(b, ",\"blocking\":\"");
     wp_buffer_puts(b, text);
     WP_BUFFER_LITERAL(b, "\",\"states\":[");
+    const wr_fixture *f = wr_analysis_fixture(a);
     if (answer->blocking_set == WR_SET_GOAL) {
-        const wr_plan_origins *origins = &a->plan->origins[answer->blocking];
+        const wr_plan_origins *origins = &wr_analysis_plan(a)->origins[answer->blocking];
         for (int i = 0; i < origins->count; i++) {
             char state[WR_STATE_TEXT];
-            wr_state_format(origins->states[i], a->fixture->fixel_count, state);
+            wr_state_format(origins->states[i], f->fixel_count, state);
             wp_buffer_puts(b, i ? ",\"" : "\"");
             wp_buffer_puts(b, state);
             WP_BUFFER_LITERAL(b, "\"");
@@ -318,7 +321,7 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
     WP_BUFFER_LITERAL(b, "],\"witness\":{\"acceleration\":");
     write_vector(b, w->acceleration, 3);
     WP_BUFFER_LITERAL(b, ",\"forces\":[");
-    for (int i = 0; i < a->fixture->fixel_count; i++) {
+    for (int i = 0; i < f->fixel_count; i++) {
         if (i)
             WP_BUFFER_LITERAL(b, ",");
         write_vector(b, w->force[i], 2);
@@ -430,11 +433,12 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
         wp_buffer_puts(out, i ? ",{" : "{");
         for (int s = 0; s < r->set_count; s++) {
             wr_answer answer;
-            int status = r->lp ? wr_classify_lp(a, goal, strong, r->wrenches[i], r->sets[s], &answer)
-                               : wr_classify(a, r->wrenches[i], r->sets[s], r->tolerance, &answer);
-            if (status != 0) {
-                wp_error_set(error, WP_SOLVER, "params.wrenches",
-                             "GLPK failed on wrench %zu; nothing was answered", i);
+            wr_status status =
+                r->lp ? wr_classify_lp(a, goal, strong, r->wrenches[i], r->sets[s], &answer)
+                      : wr_classify(a, r->wrenches[i], r->sets[s], r->tolerance, &answer);
+            if (status != WR_OK) {
+                wp_error_status(error, status, "params.wrenches",
+                                "GLPK failed on wrench %zu; nothing was answered", i);
                 return WP_STEP_FAILED;
             }
             wp_buffer_puts(out, s ? ",\"" : "\"");
@@ -487,13 +491,15 @@ static cJSON *cone_get(wp_call *call)
     wr_error invalid;
     wr_cone cone;
     cJSON *result = NULL;
-    if (!wr_constraint_parse(text, f->fixel_count, &constraint, &invalid)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.constraints", "%s", invalid.reason);
+    wr_status status = wr_constraint_parse(text, f->fixel_count, &constraint, &invalid);
+    if (status != WR_OK) {
+        wp_error_status(error, status, "params.constraints", "%s", invalid.reason);
         goto done;
     }
-    if (!wr_cone_build(&cone, f, &constraint)) {
+    status = wr_cone_build(&cone, f, &constraint);
+    if (status != WR_OK) {
         wr_cone_release(&cone);
-        out_of_memory(NULL, error);
+        wp_error_status(error, status, "params.constraints", "%s", wr_strerror(status));
         goto done;
     }
     result = cJSON_CreateObject();
@@ -537,7 +543,7 @@ static cJSON *plan_get(wp_call *call)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
-    const wr_plan *plan = use->analysis->plan;
+    const wr_plan *plan = wr_analysis_plan(use->analysis);
     int k = plan->fixel_count;
     cJSON *result = cJSON_CreateObject();
     cJSON *states = cJSON_AddArrayToObject(result, "states");
@@ -570,12 +576,13 @@ static cJSON *modes_get(wp_call *call)
     const wr_analysis *a = use->analysis;
     cJSON *result = cJSON_CreateObject();
     cJSON *feasible = cJSON_AddArrayToObject(result, "feasible");
-    for (int i = 0; feasible && i < a->mode_count; i++) {
+    const wr_constraint *modes = wr_analysis_constraints(a, WR_SET_STRONG);
+    for (int i = 0; feasible && i < wr_analysis_cone_count(a, WR_SET_STRONG); i++) {
         char text[WR_CONSTRAINT_TEXT];
-        wr_constraint_format(&a->modes[i], text);
+        wr_constraint_format(&modes[i], text);
         cJSON_AddItemToArray(feasible, cJSON_CreateString(text));
     }
-    cJSON_AddBoolToObject(result, "pinned", a->pinned);
+    cJSON_AddBoolToObject(result, "pinned", wr_analysis_pinned(a));
     if (!feasible)
         return out_of_memory(result, error);
     return result;
@@ -688,14 +695,11 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
         if (!first && (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
-        int status = wr_push_regions_part(use->analysis, state->set, state->friction, state->next,
-                                          1, call->host->stop, &part);
-        if (status != 0) {
+        wr_status status = wr_push_regions_part(use->analysis, state->set, state->friction,
+                                                state->next, 1, call->host->stop, &part);
+        if (status != WR_OK) {
             wr_regions_release(&part);
-            if (status == -3)
-                wp_error_set(call->error, WP_INTERNAL, "", "stopped: the client is gone");
-            else
-                wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+            wp_error_status(call->error, status, "", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
         }
         for (int i = 0; i < part.count; i++) {
@@ -737,8 +741,9 @@ static cJSON *gravity_sweep(wp_call *call)
         return NULL;
     cJSON *result = NULL;
     wr_regions arcs;
-    if (wr_gravity_sweep(use->analysis, set, &arcs) != 0) {
-        out_of_memory(NULL, error);
+    wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
+    if (status != WR_OK) {
+        wp_error_status(error, status, "params.set", "%s", wr_strerror(status));
     } else {
         result = cJSON_CreateObject();
         cJSON *list = cJSON_AddArrayToObject(result, "intervals_deg");
@@ -765,14 +770,16 @@ static cJSON *stability_margin(wp_call *call)
     wr_disturbance d;
     bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",
                                use->fixture, bias, error);
-    if (read && wr_disturbance_margin(use->analysis, bias, &d) != 0)
-        wp_error_set(error, WP_INVALID_PARAMS, "params.bias",
-                     "so large that its margin is beyond the largest number");
+    wr_status status = read ? wr_disturbance_margin(use->analysis, bias, &d) : WR_OK;
+    if (status != WR_OK)
+        wp_error_status(error, status, "params.bias",
+                        "so large that its margin is beyond the largest number");
     else if (read) {
         result = cJSON_CreateObject();
         if (d.bounded) {
             char text[WR_CONSTRAINT_TEXT];
-            wr_constraint_format(&use->analysis->modes[d.blocking], text);
+            wr_constraint_format(&wr_analysis_constraints(use->analysis, WR_SET_STRONG)[d.blocking],
+                                 text);
             cJSON_AddNumberToObject(result, "margin", d.margin + 0.0);
             cJSON_AddStringToObject(result, "blocking", text);
             cJSON_AddItemToObject(result, "worst_direction", vector3(d.worst_direction));

@@ -246,8 +246,10 @@ int main(void)
     wr_fixture_spec spec = {.mass = 1, .shape = WR_SHAPE_CIRCLE, .radius = 1,
                             .friction = {.given = 1, .static_mu = 0.5},
                             .fixel_count = 2, .fixels = fixels};
-    wr_fixture *f = wr_fixture_new(&spec, NULL);
-    wr_analysis *a = wr_analysis_new(f);
+    wr_fixture *f;
+    wr_analysis *a;
+    if (wr_fixture_new(&spec, &f, NULL) != WR_OK || wr_analysis_new(f, &a) != WR_OK)
+        return 1;
     wr_answer answer;
     wr_classify(a, (double[3]){-1, -1, 0}, WR_SET_GOAL, WR_DEFAULT_TOLERANCE, &answer);
     printf("%d %.12f %s\n", answer.verdict, answer.margin, wrc_strerror(WRC_ETIMEOUT));
@@ -258,7 +260,8 @@ int main(void)
 """
 
 EXPECTED_FILES = ["sbin/wrenchd", "bin/wrenchctl", "lib/libwrench.a", "lib/libwrenchclient.a",
-                  "include/wrench/wrench.h", "include/wrench/wr_fixture.h",
+                  "include/wrench/wrench.h", "include/wrench/wr_status.h",
+                  "include/wrench/wr_fixture.h",
                   "include/wrench/wr_regions.h", "include/wrench/wrenchclient.h",
                   "lib/pkgconfig/wrench.pc", "lib/pkgconfig/wrenchclient.pc",
                   "lib/systemd/system/wrenchd.service", "lib/systemd/system/wrenchd.socket",

@@ -40,7 +40,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    env = wr_lp_env_new();
+    env = test_lp_env_new();
     if (!env)
         abort();
     return 0;
@@ -107,18 +107,21 @@ static void check_doc(const cJSON *json, const wp_fixture_doc *doc)
 
 static void check_analysis(const wr_analysis *a)
 {
-    const wr_fixture *f = a->fixture;
+    const wr_fixture *f = wr_analysis_fixture(a);
     int k = f->fixel_count;
-    FUZZ_CHECK(a->plan && a->plan->fixel_count == k && a->plan->state_count == 1 << k &&
-                   a->plan->kept_count == k << (k - 1),
-               "plan of %d fixels: %d states, %d kept", k, a->plan ? a->plan->state_count : -1,
-               a->plan ? a->plan->kept_count : -1);
-    for (int i = 0; i < a->plan->kept_count; i++)
-        fuzz_check_cone(&a->goal_cones[i], f, "goal cone");
-    FUZZ_CHECK(a->mode_count >= 0, "%d modes", a->mode_count);
+    const wr_plan *plan = wr_analysis_plan(a);
+    FUZZ_CHECK(plan && plan->fixel_count == k && plan->state_count == 1 << k &&
+                   plan->kept_count == k << (k - 1) &&
+                   wr_analysis_cone_count(a, WR_SET_GOAL) == plan->kept_count &&
+                   wr_analysis_constraints(a, WR_SET_GOAL) == plan->kept,
+               "plan of %d fixels: %d states, %d kept", k, plan->state_count, plan->kept_count);
+    for (int i = 0; i < plan->kept_count; i++)
+        fuzz_check_cone(wr_analysis_cone(a, WR_SET_GOAL, i), f, "goal cone");
+    int mode_count = wr_analysis_cone_count(a, WR_SET_STRONG);
+    FUZZ_CHECK(mode_count >= 0, "%d modes", mode_count);
     int pivots = 0;
-    for (int i = 0; i < a->mode_count; i++) {
-        const wr_constraint *m = &a->modes[i];
+    for (int i = 0; i < mode_count; i++) {
+        const wr_constraint *m = &wr_analysis_constraints(a, WR_SET_STRONG)[i];
         FUZZ_CHECK(m->length == k && m->strict_separation, "mode %d malformed", i);
         FUZZ_CHECK(strspn(m->letters, "slrn") == (size_t)k, "mode %d: letters %s", i, m->letters);
         if (m->pivot) {
@@ -128,12 +131,14 @@ static void check_analysis(const wr_analysis *a)
             FUZZ_CHECK(pivots == 0, "mode %d after a pivot", i);
             FUZZ_CHECK(strspn(m->letters, "n") != (size_t)k, "mode %d is n...n", i);
         }
-        fuzz_check_cone(&a->mode_cones[i], f, "mode cone");
-        FUZZ_CHECK(wr_constraint_below(m, &a->mode_cones[i].constraint) &&
-                       wr_constraint_below(&a->mode_cones[i].constraint, m),
+        const wr_cone *cone = wr_analysis_cone(a, WR_SET_STRONG, i);
+        fuzz_check_cone(cone, f, "mode cone");
+        FUZZ_CHECK(wr_constraint_below(m, &cone->constraint) &&
+                       wr_constraint_below(&cone->constraint, m),
                    "mode cone %d is of another constraint", i);
     }
-    FUZZ_CHECK(pivots == (a->pinned ? 0 : 2), "%d pivots, pinned %d", pivots, a->pinned);
+    bool pinned = wr_analysis_pinned(a);
+    FUZZ_CHECK(pivots == (pinned ? 0 : 2), "%d pivots, pinned %d", pivots, pinned);
     FUZZ_CHECK(wr_analysis_bytes(a) > 0, "no bytes");
 }
 
@@ -141,20 +146,21 @@ static void check_analysis(const wr_analysis *a)
 static void check_disturbance(const wr_analysis *a, const double bias[3])
 {
     wr_disturbance d;
-    int status = wr_disturbance_margin(a, bias, &d);
-    FUZZ_CHECK(status == 0 || status == -1, "wr_disturbance_margin returned %d", status);
-    if (status != 0)
+    wr_status status = wr_disturbance_margin(a, bias, &d);
+    FUZZ_CHECK(status == WR_OK || status == WR_INVALID, "wr_disturbance_margin returned %d",
+               status);
+    if (status != WR_OK)
         return;
-    FUZZ_CHECK(d.bounded == (a->mode_count > 0), "bounded %d with %d modes", d.bounded,
-               a->mode_count);
+    int modes = wr_analysis_cone_count(a, WR_SET_STRONG);
+    FUZZ_CHECK(d.bounded == (modes > 0), "bounded %d with %d modes", d.bounded, modes);
     if (!d.bounded)
         return;
-    FUZZ_CHECK(d.blocking >= 0 && d.blocking < a->mode_count, "blocking mode %d of %d",
-               d.blocking, a->mode_count);
+    FUZZ_CHECK(d.blocking >= 0 && d.blocking < modes, "blocking mode %d of %d", d.blocking,
+               modes);
     FUZZ_CHECK(isfinite(d.margin) && fuzz_finite3(d.worst_direction),
                "disturbance margin %.17g or its direction not finite", d.margin);
     double unit[3];
-    double length = wr_fixture_unit_wrench(a->fixture, bias, unit);
+    double length = wr_fixture_unit_wrench(wr_analysis_fixture(a), bias, unit);
     if (!(length > 1e-280 && length < 1e280)) /* subnormal last bits: not compared */
         return;
     wr_answer strong;
@@ -169,7 +175,7 @@ static void check_disturbance(const wr_analysis *a, const double bias[3])
  * wr_classify of the push wrench there. */
 static void check_push_semantics(const wr_analysis *a, wr_set set, const wr_regions *r)
 {
-    const wr_fixture *f = a->fixture;
+    const wr_fixture *f = wr_analysis_fixture(a);
     int edges = f->shape == WR_SHAPE_CIRCLE ? 1 : (int)f->vertex_count;
     double high = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
     int next = 0;
@@ -238,7 +244,7 @@ static void check_gravity_semantics(const wr_analysis *a, wr_set set, const wr_r
 
 static void check_regions(const wr_analysis *a)
 {
-    const wr_fixture *f = a->fixture;
+    const wr_fixture *f = wr_analysis_fixture(a);
     for (int s = 0; s < 3; s++) {
         wr_set set = (wr_set)s;
         wr_regions r;
@@ -248,7 +254,8 @@ static void check_regions(const wr_analysis *a)
         check_gravity_semantics(a, set, &r);
         wr_regions_release(&r);
         if (f->shape == WR_SHAPE_NONE) {
-            FUZZ_CHECK(wr_push_regions(a, set, 0, NULL, &r) == -1, "push regions without a shape");
+            FUZZ_CHECK(wr_push_regions(a, set, 0, NULL, &r) == WR_NO_SHAPE,
+                       "push regions without a shape");
             continue;
         }
         int edges = f->shape == WR_SHAPE_CIRCLE ? 1 : (int)f->vertex_count;
@@ -258,8 +265,8 @@ static void check_regions(const wr_analysis *a)
         FUZZ_CHECK(r.resolution == 0, "frictionless push regions not exact");
         check_push_semantics(a, set, &r);
         wr_regions_release(&r);
-        double cones = (set != WR_SET_STRONG ? a->plan->kept_count : 0) +
-                       (set != WR_SET_GOAL ? a->mode_count : 0);
+        double cones = (set != WR_SET_STRONG ? wr_analysis_plan(a)->kept_count : 0) +
+                       (set != WR_SET_GOAL ? wr_analysis_cone_count(a, WR_SET_STRONG) : 0);
         if (edges * 2049.0 * cones <= FRICTION_BUDGET) {
             FUZZ_CHECK(wr_push_regions(a, set, 0.3, NULL, &r) == 0, "wr_push_regions with friction");
             fuzz_check_regions(&r, edges, 0, high, "push with friction");
@@ -304,7 +311,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         free(text);
         return 0;
     }
-    wr_analysis *a = wr_analysis_new(f);
+    wr_analysis *a = test_analysis_new(f);
     FUZZ_CHECK(a, "wr_analysis_new failed");
     check_analysis(a);
 

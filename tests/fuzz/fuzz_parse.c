@@ -56,7 +56,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    env = wr_lp_env_new();
+    env = test_lp_env_new();
     if (!env)
         abort();
     for (int i = 0; i < FIXTURE_COUNT; i++) {
@@ -67,7 +67,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
             abort();
         }
         cJSON_Delete(json);
-        fixed[i].analysis = wr_analysis_new(fixed[i].doc.fixture);
+        fixed[i].analysis = test_analysis_new(fixed[i].doc.fixture);
         if (!fixed[i].analysis ||
             wr_analysis_lp_sets(fixed[i].analysis, env, &fixed[i].goal, &fixed[i].strong) != 0)
             abort();
@@ -79,13 +79,13 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 
 static void check_constraint(const wr_analysis *a, const char *text)
 {
-    const wr_fixture *f = a->fixture;
+    const wr_fixture *f = wr_analysis_fixture(a);
     int k = f->fixel_count;
     bool expected = strlen(text) == (size_t)k && strspn(text, "saulrnm") == (size_t)k;
     wr_constraint c;
     wr_error error;
     memset(&error, 0, sizeof error);
-    bool parsed = wr_constraint_parse(text, k, &c, &error);
+    bool parsed = wr_constraint_parse(text, k, &c, &error) == WR_OK;
     FUZZ_CHECK(parsed == expected, "wr_constraint_parse(\"%s\", %d) says %d", text, k, parsed);
     if (!parsed) {
         FUZZ_CHECK(error.reason[0], "refused \"%s\" without a reason", text);
@@ -100,7 +100,7 @@ static void check_constraint(const wr_analysis *a, const char *text)
     FUZZ_CHECK(wr_constraint_below(&c, &c), "\"%s\" is not below itself", text);
 
     wr_cone cone;
-    FUZZ_CHECK(wr_cone_build(&cone, f, &c), "wr_cone_build(\"%s\") failed", text);
+    FUZZ_CHECK(wr_cone_build(&cone, f, &c) == WR_OK, "wr_cone_build(\"%s\") failed", text);
     fuzz_check_cone(&cone, f, "parsed cone");
 
     /* Raised letter by letter: a larger cone (docs/MODEL.md section 2). */
@@ -110,7 +110,7 @@ static void check_constraint(const wr_analysis *a, const char *text)
                                                                                        : c.letters[i];
     FUZZ_CHECK(wr_constraint_below(&c, &up), "\"%s\" not below \"%s\"", text, up.letters);
     wr_cone upper;
-    FUZZ_CHECK(wr_cone_build(&upper, f, &up), "wr_cone_build(\"%s\") failed", up.letters);
+    FUZZ_CHECK(wr_cone_build(&upper, f, &up) == WR_OK, "wr_cone_build(\"%s\") failed", up.letters);
     fuzz_check_cone(&upper, f, "raised cone");
     FUZZ_CHECK(!upper.empty || cone.empty, "\"%s\" is empty but \"%s\" is not", up.letters, text);
     for (int r = 0; r < cone.ray_count; r++) {
@@ -120,8 +120,8 @@ static void check_constraint(const wr_analysis *a, const char *text)
     wr_cone_release(&upper);
 
     /* One of the analysis's goal cones: the same cone. */
-    for (int i = 0; i < a->plan->kept_count; i++) {
-        const wr_cone *g = &a->goal_cones[i];
+    for (int i = 0; i < wr_analysis_plan(a)->kept_count; i++) {
+        const wr_cone *g = wr_analysis_cone(a, WR_SET_GOAL, i);
         if (strcmp(g->constraint.letters, text) != 0)
             continue;
         FUZZ_CHECK(g->dimension == cone.dimension && g->facet_count == cone.facet_count &&
@@ -136,7 +136,7 @@ static void check_constraint(const wr_analysis *a, const char *text)
 static void check_wrench(int which, const char *text, size_t length)
 {
     const wr_analysis *a = fixed[which].analysis;
-    const wr_fixture *f = a->fixture;
+    const wr_fixture *f = wr_analysis_fixture(a);
     cJSON *json = cJSON_ParseWithLength(text, length);
     if (!json)
         return;
@@ -173,14 +173,15 @@ static void check_wrench(int which, const char *text, size_t length)
     }
 
     wr_disturbance d;
-    int status = wr_disturbance_margin(a, g, &d);
-    FUZZ_CHECK(status == 0 || status == -1, "wr_disturbance_margin returned %d", status);
-    if (status == 0) {
-        FUZZ_CHECK(d.bounded == (a->mode_count > 0), "bounded %d with %d modes", d.bounded,
-                   a->mode_count);
+    wr_status status = wr_disturbance_margin(a, g, &d);
+    FUZZ_CHECK(status == WR_OK || status == WR_INVALID, "wr_disturbance_margin returned %d",
+               status);
+    if (status == WR_OK) {
+        int modes = wr_analysis_cone_count(a, WR_SET_STRONG);
+        FUZZ_CHECK(d.bounded == (modes > 0), "bounded %d with %d modes", d.bounded, modes);
         if (d.bounded) {
-            FUZZ_CHECK(d.blocking >= 0 && d.blocking < a->mode_count, "blocking %d of %d",
-                       d.blocking, a->mode_count);
+            FUZZ_CHECK(d.blocking >= 0 && d.blocking < modes, "blocking %d of %d", d.blocking,
+                       modes);
             FUZZ_CHECK(isfinite(d.margin) && fuzz_finite3(d.worst_direction),
                        "margin %.17g or direction not finite", d.margin);
             double unit[3];

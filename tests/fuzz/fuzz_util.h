@@ -240,10 +240,11 @@ static inline void fuzz_classify_all(const wr_analysis *a, const double g[3], wr
              * (finding "witness"): then only gross errors of well-scaled
              * fixtures count. */
             bool known = fuzz_skip_known("witness");
+            const wr_fixture *f = wr_analysis_fixture(a);
             const char *why =
-                known && fuzz_badly_scaled(a->fixture)
+                known && fuzz_badly_scaled(f)
                     ? NULL
-                    : test_witness_violation(a->fixture, &cone->constraint, &answer->witness, g,
+                    : test_witness_violation(f, &cone->constraint, &answer->witness, g,
                                              known ? 1e-2 : 1e-6);
             char text[WR_CONSTRAINT_TEXT];
             wr_constraint_format(&cone->constraint, text);
@@ -260,14 +261,14 @@ static inline void fuzz_classify_all(const wr_analysis *a, const double g[3], wr
         return;
     /* Known: the LPs' absolute slack threshold misjudges badly scaled
      * fixtures (finding "lp-slack"). */
-    if (fuzz_skip_known("lp-slack") && fuzz_badly_scaled(a->fixture))
+    if (fuzz_skip_known("lp-slack") && fuzz_badly_scaled(wr_analysis_fixture(a)))
         return;
     for (int s = 0; s < 3; s++) {
         if (fabs(answers[s].margin) <= 1e-6)
             continue;
         wr_answer lp;
-        int status = wr_classify_lp(a, goal, strong, g, (wr_set)s, &lp);
-        FUZZ_CHECK(status == 0, "%s: wr_classify_lp failed (%d)", what, status);
+        wr_status status = wr_classify_lp(a, goal, strong, g, (wr_set)s, &lp);
+        FUZZ_CHECK(status == WR_OK, "%s: wr_classify_lp failed: %s", what, wr_strerror(status));
         FUZZ_CHECK(!lp.has_margin && lp.verdict != WR_VERDICT_BOUNDARY,
                    "%s: the LP method gave a margin or a boundary", what);
         bool cones_inside = answers[s].verdict == WR_VERDICT_INSIDE;

@@ -193,9 +193,9 @@ bool prepare(const std::string &path, Prepared *p, std::string *error)
     }
     p->f = p->doc.fixture;
     p->name = p->doc.name && *p->doc.name ? p->doc.name : path;
-    p->an = wr_analysis_new(p->f);
-    if (!p->an) {
-        *error = path + ": wr_analysis_new failed";
+    wr_status status = wr_analysis_new(p->f, &p->an);
+    if (status != WR_OK) {
+        *error = path + ": wr_analysis_new: " + wr_strerror(status);
         return false;
     }
     const wr_fixture *f = p->f;

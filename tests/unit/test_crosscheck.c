@@ -63,8 +63,9 @@ static void compare_sets(const wr_analysis *a, wr_lp_set *goal, wr_lp_set *stron
             const wr_constraint *lc =
                 &wr_analysis_cone(a, by_lp.blocking_set, by_lp.blocking)->constraint;
             /* GLPK's feasibility tolerance is 1e-7 on the normalised rows. */
-            const char *why = test_witness_violation(a->fixture, c, &by_cones.witness, g, 1e-9);
-            const char *lp_why = test_witness_violation(a->fixture, lc, &by_lp.witness, g, 1e-6);
+            const wr_fixture *f = wr_analysis_fixture(a);
+            const char *why = test_witness_violation(f, c, &by_cones.witness, g, 1e-9);
+            const char *lp_why = test_witness_violation(f, lc, &by_lp.witness, g, 1e-6);
             if (why || lp_why) {
                 char text[WR_CONSTRAINT_TEXT], lp_text[WR_CONSTRAINT_TEXT];
                 wr_constraint_format(c, text);
@@ -81,7 +82,7 @@ static void auto_and_lp_agree_on_random_fixtures(void **state)
 {
     (void)state;
     test_rng rng = {20261122};
-    wr_lp_env *env = wr_lp_env_new();
+    wr_lp_env *env = test_lp_env_new();
     totals t = {0, 0, 0, 0};
     int discs = 0, polygons = 0;
     for (int i = 0; i < FIXTURES; i++) {
@@ -91,7 +92,7 @@ static void auto_and_lp_agree_on_random_fixtures(void **state)
         assert_non_null(f);
         discs += disc;
         polygons += !disc;
-        wr_analysis *a = wr_analysis_new(f);
+        wr_analysis *a = test_analysis_new(f);
         assert_non_null(a);
         wr_lp_set *goal, *strong;
         assert_int_equal(wr_analysis_lp_sets(a, env, &goal, &strong), 0);
@@ -119,18 +120,19 @@ static void every_cone_agrees_with_lp_membership(void **state)
 {
     (void)state;
     test_rng rng = {777};
-    wr_lp_env *env = wr_lp_env_new();
+    wr_lp_env *env = test_lp_env_new();
     long inside = 0, outside = 0, relative_interior = 0, cones = 0, near = 0;
     for (int i = 0; i < FIXTURES; i++) {
         int k = 2 + i % 3;
         wr_fixture *f = test_random_fixture(&rng, k, i % 2 == 0);
         assert_non_null(f);
-        wr_analysis *a = wr_analysis_new(f);
+        wr_analysis *a = test_analysis_new(f);
         for (int s = 0; s < 2; s++) {
             wr_set set = s == 0 ? WR_SET_GOAL : WR_SET_STRONG;
             int count = wr_analysis_cone_count(a, set);
-            const wr_constraint *constraints = s == 0 ? a->plan->kept : a->modes;
-            wr_lp_set *lp = wr_lp_set_new(env, f, constraints, count);
+            wr_lp_set *lp;
+            assert_int_equal(wr_lp_set_new(env, f, wr_analysis_constraints(a, set), count, &lp),
+                             WR_OK);
             for (int c = 0; c < count; c++) {
                 const wr_cone *cone = wr_analysis_cone(a, set, c);
                 assert_false(cone->empty); /* feasible by construction */
@@ -176,7 +178,7 @@ static void every_cone_agrees_with_lp_membership(void **state)
                     double d = wr_cone_signed_distance(cone, x, NULL);
                     wr_fixture_unscale_wrench(f, x, g);
                     bool member;
-                    assert_int_equal(wr_lp_member(lp, c, g, &member, NULL), WR_LP_OK);
+                    assert_int_equal(wr_lp_member(lp, c, g, &member, NULL), WR_OK);
                     if (p < 10) {
                         /* Relative interior: in G_X even with strict rows. */
                         if (d > 1e-9) {

@@ -21,7 +21,7 @@ typedef struct job {
 
 static void classify_all(job *j)
 {
-    wr_lp_env *env = wr_lp_env_new();
+    wr_lp_env *env = test_lp_env_new();
     wr_lp_set *goal, *strong;
     assert_int_equal(wr_analysis_lp_sets(j->analysis, env, &goal, &strong), 0);
     for (int i = 0; i < SAMPLES; i++)
@@ -45,7 +45,7 @@ static void two_threads_solve_concurrently(void **state)
     test_rng rng = {99};
     wr_fixture *f = test_random_fixture(&rng, 3, false);
     assert_non_null(f);
-    wr_analysis *a = wr_analysis_new(f);
+    wr_analysis *a = test_analysis_new(f);
     static double wrenches[SAMPLES][3];
     for (int i = 0; i < SAMPLES; i++)
         for (int k = 0; k < 3; k++)
@@ -103,30 +103,35 @@ static void inject_and_recover(void *argument)
 {
     recovery *r = argument;
     const wr_analysis *a = r->analysis;
-    wr_lp_env *env = wr_lp_env_new();
+    wr_lp_env *env = test_lp_env_new();
     /* Two sets in one env: a fatal error invalidates both. */
-    wr_lp_set *set = wr_lp_set_new(env, a->fixture, a->plan->kept, a->plan->kept_count);
-    wr_lp_set *other = wr_lp_set_new(env, a->fixture, a->modes, a->mode_count);
+    const wr_fixture *f = wr_analysis_fixture(a);
+    int modes = wr_analysis_cone_count(a, WR_SET_STRONG);
+    wr_lp_set *set, *other;
+    assert_int_equal(wr_lp_set_new(env, f, wr_analysis_constraints(a, WR_SET_GOAL),
+                                   wr_analysis_cone_count(a, WR_SET_GOAL), &set),
+                     WR_OK);
+    assert_int_equal(
+        wr_lp_set_new(env, f, wr_analysis_constraints(a, WR_SET_STRONG), modes, &other), WR_OK);
     double g[3] = {-1, -1, 0.3};
     for (int i = 0; i < 4; i++) {
         wr_lp_member(set, i, g, &r->member_before[i], NULL);
         bool unused;
-        wr_lp_member(other, i % a->mode_count, g, &unused, NULL);
+        wr_lp_member(other, i % modes, g, &unused, NULL);
     }
     wr_lp_env_inject_failure(env, 2);
     for (int i = 0; i < 4; i++) {
         bool member = false;
-        int status = wr_lp_member(set, i, g, &member, NULL);
+        wr_status status = wr_lp_member(set, i, g, &member, NULL);
         if (status == WR_LP_FAILED)
             r->failed_calls++;
         else
-            assert_int_equal(status, WR_LP_OK);
+            assert_int_equal(status, WR_OK);
     }
     /* Every problem is rebuilt on its next use, in both sets. */
     for (int i = 0; i < 4; i++) {
-        assert_int_equal(wr_lp_member(set, i, g, &r->member_after[i], NULL), WR_LP_OK);
-        assert_int_equal(wr_lp_member(other, i % a->mode_count, g, &r->other_after[i], NULL),
-                         WR_LP_OK);
+        assert_int_equal(wr_lp_member(set, i, g, &r->member_after[i], NULL), WR_OK);
+        assert_int_equal(wr_lp_member(other, i % modes, g, &r->other_after[i], NULL), WR_OK);
     }
     wr_lp_set_free(set);
     wr_lp_set_free(other);
@@ -137,7 +142,7 @@ static void fatal_glpk_error_is_caught_silently(void **state)
 {
     (void)state;
     wr_fixture *f = test_disc_corner(0.5);
-    wr_analysis *a = wr_analysis_new(f);
+    wr_analysis *a = test_analysis_new(f);
     recovery r;
     memset(&r, 0, sizeof r);
     r.analysis = a;
@@ -154,7 +159,8 @@ static void fatal_glpk_error_is_caught_silently(void **state)
         double n = wr_fixture_scale_wrench(f, g, x);
         for (int k = 0; k < 3; k++)
             x[k] /= n;
-        double d = wr_cone_signed_distance(&a->mode_cones[i % a->mode_count], x, NULL);
+        int modes = wr_analysis_cone_count(a, WR_SET_STRONG);
+        double d = wr_cone_signed_distance(wr_analysis_cone(a, WR_SET_STRONG, i % modes), x, NULL);
         assert_int_equal(r.other_after[i], d < 0);
     }
     wr_analysis_free(a);

@@ -15,7 +15,7 @@ static void excluded_strings_follow_the_rule(void **state)
 {
     (void)state;
     for (int k = 1; k <= WR_MAX_FIXELS; k++) {
-        wr_plan *plan = wr_plan_new(k);
+        wr_plan *plan = test_plan_new(k);
         assert_non_null(plan);
         assert_int_equal(plan->state_count, 1 << k);
         unsigned seen[1 << WR_MAX_FIXELS] = {0};
@@ -74,7 +74,7 @@ static void kept_strings_are_the_maximal_ones(void **state)
 {
     (void)state;
     for (int k = 1; k <= 6; k++) {
-        wr_plan *plan = wr_plan_new(k);
+        wr_plan *plan = test_plan_new(k);
         int n = plan->excluded_total;
         int maximal = 0;
         for (int i = 0; i < n; i++) {
@@ -123,7 +123,7 @@ static void kept_strings_are_the_maximal_ones(void **state)
 static void seed_order_of_states(void **state)
 {
     (void)state;
-    wr_plan *plan = wr_plan_new(3);
+    wr_plan *plan = test_plan_new(3);
     const char *expected[] = {"000", "100", "010", "001", "110", "101", "011", "111"};
     for (int s = 0; s < 8; s++) {
         char text[WR_STATE_TEXT];
@@ -142,8 +142,11 @@ static void seed_order_of_states(void **state)
 static void out_of_range_fixel_counts(void **state)
 {
     (void)state;
-    assert_null(wr_plan_new(0));
-    assert_null(wr_plan_new(WR_MAX_FIXELS + 1));
+    wr_plan *plan;
+    assert_int_equal(wr_plan_new(0, &plan), WR_INVALID);
+    assert_null(plan);
+    assert_int_equal(wr_plan_new(WR_MAX_FIXELS + 1, &plan), WR_INVALID);
+    assert_null(plan);
 }
 
 int main(void)

@@ -27,7 +27,7 @@ static void disc_corner_closed_forms(void **state)
     for (size_t i = 0; i < sizeof mus / sizeof mus[0]; i++) {
         double mu = mus[i], a = atan(mu) * DEG;
         wr_fixture *f = test_disc_corner(mu);
-        wr_analysis *an = wr_analysis_new(f);
+        wr_analysis *an = test_analysis_new(f);
         for (int set = WR_SET_GOAL; set <= WR_SET_BOTH; set += 2) { /* goal and both agree here */
             wr_regions r;
             assert_int_equal(wr_push_regions(an, (wr_set)set, 0, NULL, &r), 0);
@@ -77,7 +77,7 @@ static void regions_agree_with_classification(void **state)
     for (int i = 0; i < 40; i++) {
         wr_fixture *f = test_random_fixture(&rng, 2 + i % 3, i % 2 == 0);
         assert_non_null(f);
-        wr_analysis *a = wr_analysis_new(f);
+        wr_analysis *a = test_analysis_new(f);
         int edges = f->shape == WR_SHAPE_CIRCLE ? 1 : (int)f->vertex_count;
         double span = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
         for (int set = WR_SET_GOAL; set <= WR_SET_BOTH; set++) {
@@ -137,7 +137,7 @@ static void gravity_arcs_agree_with_classification(void **state)
     test_rng rng = {707};
     for (int i = 0; i < 12; i++) {
         wr_fixture *f = test_random_fixture(&rng, 2 + i % 3, i % 2 == 1);
-        wr_analysis *a = wr_analysis_new(f);
+        wr_analysis *a = test_analysis_new(f);
         for (int set = WR_SET_GOAL; set <= WR_SET_BOTH; set++) {
             wr_regions r;
             assert_int_equal(wr_gravity_sweep(a, (wr_set)set, &r), 0);
@@ -169,7 +169,7 @@ static void disturbance_margin_is_the_distance(void **state)
     int held = 0, not_held = 0;
     for (int i = 0; i < 12; i++) {
         wr_fixture *f = test_random_fixture(&rng, 2 + i % 3, i % 2 == 0);
-        wr_analysis *a = wr_analysis_new(f);
+        wr_analysis *a = test_analysis_new(f);
         for (int b = 0; b < 40; b++) {
             double bias[3];
             for (int k = 0; k < 3; k++)
@@ -209,8 +209,9 @@ static void disturbance_margin_is_the_distance(void **state)
             /* A bias in an excluded cone: a negative margin, and leaving
              * through the worst direction by more than |margin| exits that
              * cone. */
-            const wr_cone *cone = &a->mode_cones[b % (a->mode_count ? a->mode_count : 1)];
-            if (a->mode_count == 0 || cone->dimension < 3 || cone->ray_count == 0)
+            int modes = wr_analysis_cone_count(a, WR_SET_STRONG);
+            const wr_cone *cone = wr_analysis_cone(a, WR_SET_STRONG, b % (modes ? modes : 1));
+            if (modes == 0 || cone->dimension < 3 || cone->ray_count == 0)
                 continue;
             double inside[3] = {0, 0, 0}, bias[3];
             for (int r = 0; r < cone->ray_count; r++)
@@ -241,16 +242,16 @@ static void no_shape_and_bad_friction_are_refused(void **state)
     spec.inertia = 1;
     spec.fixel_count = 1;
     spec.fixels = fixels;
-    wr_fixture *f = wr_fixture_new(&spec, NULL);
-    wr_analysis *a = wr_analysis_new(f);
+    wr_fixture *f = test_fixture_new(&spec, NULL);
+    wr_analysis *a = test_analysis_new(f);
     wr_regions r;
-    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, 0, NULL, &r), -1);
+    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, 0, NULL, &r), WR_NO_SHAPE);
     wr_analysis_free(a);
     wr_fixture_free(f);
     f = test_disc_corner(0.5);
-    a = wr_analysis_new(f);
-    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, -0.1, NULL, &r), -1);
-    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, NAN, NULL, &r), -1);
+    a = test_analysis_new(f);
+    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, -0.1, NULL, &r), WR_INVALID);
+    assert_int_equal(wr_push_regions(a, WR_SET_GOAL, NAN, NULL, &r), WR_INVALID);
     wr_analysis_free(a);
     wr_fixture_free(f);
 }

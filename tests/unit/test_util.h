@@ -12,6 +12,32 @@
 
 #define TEST_PI 3.14159265358979323846
 
+/* The constructors in pointer form, for tests that need only the object:
+ * NULL unless WR_OK.  (Tests of the statuses call the constructors.) */
+static inline wr_fixture *test_fixture_new(const wr_fixture_spec *spec, wr_error *error)
+{
+    wr_fixture *fixture;
+    return wr_fixture_new(spec, &fixture, error) == WR_OK ? fixture : NULL;
+}
+
+static inline wr_analysis *test_analysis_new(const wr_fixture *fixture)
+{
+    wr_analysis *analysis;
+    return wr_analysis_new(fixture, &analysis) == WR_OK ? analysis : NULL;
+}
+
+static inline wr_plan *test_plan_new(int fixel_count)
+{
+    wr_plan *plan;
+    return wr_plan_new(fixel_count, &plan) == WR_OK ? plan : NULL;
+}
+
+static inline wr_lp_env *test_lp_env_new(void)
+{
+    wr_lp_env *env;
+    return wr_lp_env_new(&env) == WR_OK ? env : NULL;
+}
+
 /* xorshift64*: a fixed seed gives the same sequence on every machine. */
 typedef struct test_rng {
     uint64_t state;
@@ -115,7 +141,7 @@ static inline wr_fixture *test_random_fixture(test_rng *rng, int k, bool disc)
     spec.fixel_count = (size_t)k;
     spec.fixels = fixels;
     wr_error error;
-    return wr_fixture_new(&spec, &error);
+    return test_fixture_new(&spec, &error);
 }
 
 /* The disc in a corner of docs/MODEL.md section 7. */
@@ -136,7 +162,7 @@ static inline wr_fixture *test_disc_corner(double mu)
     spec.friction.static_mu = mu;
     spec.fixel_count = 2;
     spec.fixels = fixels;
-    return wr_fixture_new(&spec, NULL);
+    return test_fixture_new(&spec, NULL);
 }
 
 /* Does (q, c) of a witness satisfy the closure of the constraint's rows
