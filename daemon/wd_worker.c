@@ -2,6 +2,7 @@
 #include "wd_worker.h"
 #include "wd_log.h"
 
+#include <assert.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -297,6 +298,9 @@ wd_pool *wd_pool_new(int threads, wd_cache *cache, const wp_limits *limits, wd_s
 
 void wd_pool_submit(wd_pool *pool, wd_task *task)
 {
+    /* Submitted with its last piece sent, and with work left: a task that
+     * finished or failed is never queued again. */
+    assert(!task->piece && (!task->answer || task->step == WP_STEP_MORE));
     task->next = NULL;
     pthread_mutex_lock(&pool->lock);
     if (pool->tail)
