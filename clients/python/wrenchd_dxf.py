@@ -36,7 +36,8 @@ Containment: loop B lies inside loop A when a probe point of B (its vertices
 and the midpoints of its segments) is inside A by an exact point-in-loop test
 with arcs -- even-odd crossing of A's chord polygon, flipped inside each
 circular segment between a chord and its arc -- and none is outside; probes
-within the tolerance of A's boundary do not count.  The loop that holds all
+within the tolerance of A's boundary do not count, and a probe on the line of
+one of A's chords is first moved off it by half the tolerance.  The loop that holds all
 others comes first.
 
 Refused (DxfShapeError; exit status 1 with the message): no closed loop; an
@@ -220,6 +221,26 @@ def _distance(loop, p):
                         math.hypot(p[0] - p1[0], p[1] - p1[1]))
         best = min(best, d)
     return best
+
+
+def _off_chords(loop, p, step):
+    """p moved by `step` off the lines of the loop's arcs' chords, where the
+    crossing test and the circular segments' disagree at rounding level.  A
+    probe further than 2 step from the boundary is inside or outside just as
+    the moved one is."""
+    for _ in range(4):
+        for p0, p1, b in _segments(loop):
+            if not b:
+                continue
+            dx, dy = p1[0] - p0[0], p1[1] - p0[1]
+            ll = math.hypot(dx, dy)
+            t = ((p[0] - p0[0]) * dx + (p[1] - p0[1]) * dy) / (ll * ll)
+            if -0.5 <= t <= 1.5 and abs(dx * (p[1] - p0[1]) - dy * (p[0] - p0[0])) / ll < step / 2:
+                p = (p[0] - dy / ll * step, p[1] + dx / ll * step)
+                break
+        else:
+            break
+    return p
 
 
 def _probes(loop):
@@ -500,18 +521,20 @@ def _join(pieces, tol, report):
 def _drop_zero_segments(loop, tol):
     """Remove segments shorter than tol (a closed polyline's repeated first
     point, joints within the tolerance): the later vertex goes, the earlier
-    one takes its bulge.  Returns the loop and how many went."""
+    one taking its bulge, but the first vertex stays.  Returns the loop and
+    how many went."""
     out = list(loop)
     dropped = 0
     i = 0
     while len(out) > 1 and i < len(out):
         j = (i + 1) % len(out)
         if math.hypot(out[j][0] - out[i][0], out[j][1] - out[i][1]) <= tol:
-            out[i] = (out[i][0], out[i][1], out[j][2])
-            del out[j]
+            if j == 0:                # the closing segment: the first vertex stays
+                del out[i]
+            else:
+                out[i] = (out[i][0], out[i][1], out[j][2])
+                del out[j]
             dropped += 1
-            if j < i:
-                i -= 1
         else:
             i += 1
     return out, dropped
@@ -603,6 +626,7 @@ def shape_from_dxf(path, layer=None, tolerance=None):
 
     # containment
     n = len(clean)
+    near = max(tol, 1e-9 * extent)       # probes nearer A's boundary do not count
     inside_of = [[] for _ in range(n)]
     for i in range(n):
         for j in range(n):
@@ -611,8 +635,8 @@ def shape_from_dxf(path, layer=None, tolerance=None):
             a, b = clean[i][1], clean[j][1]
             votes = set()
             for p in _probes(b):
-                if _distance(a, p) > tol:
-                    votes.add(_inside(a, p))
+                if _distance(a, p) > near:
+                    votes.add(_inside(a, _off_chords(a, p, near / 2)))
             if votes == {True, False}:
                 raise DxfShapeError("the loops of %s and of %s cross" % (clean[i][0], clean[j][0]))
             if not votes:
