@@ -534,9 +534,16 @@ def test_freecad_drawing():
     assert A == pytest.approx(2256.095137745191, rel=1e-12)      # FreeCAD's own face.Area
 
 
-def test_the_client_stays_stdlib_only():
-    tree = ast.parse(open(os.path.join(REPO, "clients", "python", "wrenchd.py")).read())
-    names = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
-    names |= {n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.module}
-    assert "ezdxf" not in names
-    assert names <= set(sys.stdlib_module_names)
+def test_imports():
+    """wrenchd_dxf.py: Python 3.8 syntax, the standard library and ezdxf; the
+    client wrenchd.py does not import it (test_python_client.py checks the
+    client is standard library only)."""
+    for name, allowed in (("wrenchd_dxf.py", {"ezdxf"}), ("wrenchd.py", set())):
+        with open(os.path.join(REPO, "clients", "python", name)) as fh:
+            tree = ast.parse(fh.read(), name, feature_version=(3, 8))
+        names = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import)
+                 for a in n.names}
+        names |= {n.module.split(".")[0] for n in ast.walk(tree)
+                  if isinstance(n, ast.ImportFrom) and n.module and n.level == 0}
+        assert names - allowed <= set(sys.stdlib_module_names), (name, names)
+        assert ("ezdxf" in names) == (name == "wrenchd_dxf.py")
