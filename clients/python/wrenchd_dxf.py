@@ -223,6 +223,23 @@ def _distance(loop, p):
     return best
 
 
+def _box(loop, margin):
+    """A box holding the loop (an arc's whole circle), widened by margin."""
+    xs, ys = [], []
+    for p0, p1, b in _segments(loop):
+        xs.append(p0[0])
+        ys.append(p0[1])
+        if b:
+            c, r, _ = _arc_of(p0, p1, b)
+            xs += [c[0] - r, c[0] + r]
+            ys += [c[1] - r, c[1] + r]
+    return min(xs) - margin, min(ys) - margin, max(xs) + margin, max(ys) + margin
+
+
+def _apart(a, b):
+    return a[2] < b[0] or b[2] < a[0] or a[3] < b[1] or b[3] < a[1]
+
+
 def _off_chords(loop, p, step):
     """p moved by `step` off the lines of the loop's arcs' chords, where the
     crossing test and the circular segments' disagree at rounding level.  A
@@ -605,6 +622,20 @@ def shape_from_dxf(path, layer=None, tolerance=None):
             raise DxfShapeError("%s is not in a plane parallel to XY (z from %g to %g)" % (where, z0, z1))
     report["z"] = [min(float(z[1]) for z in zs), max(float(z[2]) for z in zs)] if zs else None
 
+    # a LINE or ARC shorter than the tolerance would be a third end at a joint
+    kept = []
+    for pc in pieces:
+        x0, y0 = pc.points[0]
+        if all(math.hypot(x - x0, y - y0) <= tol for x, y in pc.points):
+            kind = pc.where.split(" ", 1)[0]
+            report["used"][kind] -= 1
+            if not report["used"][kind]:
+                del report["used"][kind]
+            reason = report["ignored"].setdefault("shorter than the tolerance", {})
+            reason[kind] = reason.get(kind, 0) + 1
+        else:
+            kept.append(pc)
+    pieces = kept
     loops = loops + _join(pieces, tol, report) if pieces else loops
     if not pieces:
         report["largest_gap"] = 0.0
@@ -628,9 +659,10 @@ def shape_from_dxf(path, layer=None, tolerance=None):
     n = len(clean)
     near = max(tol, 1e-9 * extent)       # probes nearer A's boundary do not count
     inside_of = [[] for _ in range(n)]
+    boxes = [_box(lp, near) for _, lp, _ in clean]
     for i in range(n):
         for j in range(n):
-            if i == j:
+            if i == j or _apart(boxes[i], boxes[j]):
                 continue
             a, b = clean[i][1], clean[j][1]
             votes = set()

@@ -328,6 +328,20 @@ def test_gaps_below_the_tolerance_are_closed(tmp_path):
     assert "largest gap closed 1e-07" in err and "tolerance 0.000116619" in err
 
 
+def test_a_line_shorter_than_the_tolerance_is_left_out(tmp_path):
+    doc = new_doc()
+    msp = doc.modelspace()
+    msp.add_line((0, 0), (10, 0))
+    msp.add_line((10, 0), (10, 1e-9))
+    msp.add_line((10, 1e-9), (10, 10))
+    msp.add_line((10, 10), (10, 10))
+    msp.add_line((10, 10), (0, 0))
+    shape, report = wrenchd_dxf.shape_from_dxf(save(doc, tmp_path))
+    same_loop(shape["loops"][0], [[0, 0], [10, 0], [10, 10]], tol=1e-9)
+    assert report["used"] == {"LINE": 3}
+    assert report["ignored"] == {"shorter than the tolerance": {"LINE": 2}}
+
+
 def test_a_gap_above_the_tolerance_is_an_open_chain(tmp_path):
     doc = new_doc()
     add_plate(doc.modelspace(), gap=0.01)
