@@ -309,7 +309,7 @@ INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
     $(PREFIX)/lib/systemd/system/wrenchd.service $(PREFIX)/lib/systemd/system/wrenchd.socket \
     $(PREFIX)/lib/sysusers.d/wrenchd.conf \
     $(PREFIX)/share/man/man1/wrenchctl.1 $(PREFIX)/share/man/man8/wrenchd.8 \
-    $(PYTHONDIR)/wrenchd.py \
+    $(PYTHONDIR)/wrenchd.py $(PYTHONDIR)/wrenchd_dxf.py \
     $(addprefix $(PREFIX)/share/wrenchd/examples/,$(notdir $(wildcard examples/*.json)))
 # The installed configuration file, and the shipped one with its paths.
 CONFIG_FILE = $(SYSCONFDIR)/wrenchd/wrenchd.conf
@@ -332,7 +332,7 @@ install: all
 	install -m 0644 systemd/wrenchd.sysusers $(DESTDIR)$(PREFIX)/lib/sysusers.d/wrenchd.conf
 	install -m 0644 clients/wrenchctl/wrenchctl.1 $(DESTDIR)$(PREFIX)/share/man/man1/
 	install -m 0644 daemon/wrenchd.8 $(DESTDIR)$(PREFIX)/share/man/man8/
-	install -m 0644 clients/python/wrenchd.py $(DESTDIR)$(PYTHONDIR)/
+	install -m 0644 clients/python/wrenchd.py clients/python/wrenchd_dxf.py $(DESTDIR)$(PYTHONDIR)/
 	install -m 0644 examples/*.json $(DESTDIR)$(PREFIX)/share/wrenchd/examples/
 	@# The configuration is the administrator's: never overwritten.
 	test -e $(DESTDIR)$(CONFIG_FILE) || { sed $(CONFIG_PATHS) systemd/wrenchd.conf \
@@ -370,7 +370,8 @@ validate: $(BUILD)/physics-validate
 
 # ---- dependencies --------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \
-               libcmocka-dev python3 python3-pytest libbox2d-dev systemd clang libclang-rt-14-dev python3-scipy
+               libcmocka-dev python3 python3-pytest libbox2d-dev systemd clang libclang-rt-14-dev python3-scipy \
+               python3-ezdxf
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
