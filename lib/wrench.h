@@ -3,6 +3,7 @@
  *
  *   wr_status.h    wr_status: how every function that can fail says so
  *   wr_fixture.h   the fixture model and its validation
+ *   wr_outline.h   outlines of lines and arcs with holes: validation, mass properties
  *   wr_cone.h      constraint strings and explicit wrench cones G_X
  *   wr_plan.h      contact states, the strings G_goal excludes, contact modes
  *   wr_lp.h        GLPK membership LPs (per-thread environments)
@@ -23,6 +24,7 @@
 #include "wr_cone.h"
 #include "wr_fixture.h"
 #include "wr_lp.h"
+#include "wr_outline.h"
 #include "wr_plan.h"
 #include "wr_regions.h"
 #include "wr_status.h"
