@@ -105,7 +105,7 @@ static int start(void **state)
         prctl(PR_SET_PDEATHSIG, SIGKILL);
         if (getppid() == 1)
             _exit(1);
-        wd_log_set_level(WD_LOG_ERROR);
+        wd_log_set_level(WD_LOG_WARN);
         wd_config config = {
             .socket_path = d->path, .threads = 2, .cache_bytes = 64 << 20,
             .max_fixtures = 100, .max_line = 16 << 20, .max_depth = 64,
@@ -138,7 +138,10 @@ static void send_all(int fd, const char *text, size_t length)
 {
     while (length > 0) {
         ssize_t n = send(fd, text, length, MSG_NOSIGNAL);
-        assert_true(n > 0);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            fail_msg("send: %s", n < 0 ? strerror(errno) : "nothing sent");
         text += n;
         length -= (size_t)n;
     }
