@@ -205,20 +205,25 @@ static void close_socket(connection *c)
 
 /* Free the connection once nothing more will be read or written: its input
  * ended (or the socket is gone) and every answer has been written out. */
+/* Take the answered slot at the head of the queue off it. */
+static void remove_head(connection *c)
+{
+    slot *x = c->head;
+    assert(x && x->done && !x->task);
+    c->head = x->next;
+    if (!c->head)
+        c->tail = NULL;
+    c->pending--;
+    free(x->response);
+    free(x);
+}
+
 static void maybe_finish(connection *c)
 {
     if (c->busy)
         return; /* the outermost callback comes back here */
-    while (!c->bev && c->head && c->head->done) {
-        /* Gone: answered and cancelled requests leave without a word. */
-        slot *x = c->head;
-        c->head = x->next;
-        if (!c->head)
-            c->tail = NULL;
-        c->pending--;
-        free(x->response);
-        free(x);
-    }
+    while (!c->bev && c->head && c->head->done)
+        remove_head(c); /* gone: answered and cancelled requests leave without a word */
     if (c->bev && !c->input_closed)
         return;
     if (c->pending > 0)
@@ -291,16 +296,9 @@ static void flush(connection *c)
 {
     bool wrote_directly = false;
     while (c->head && c->head->done) {
-        slot *x = c->head;
-        assert(!x->task);
-        if (c->bev && x->response)
-            wrote_directly |= write_response(c, x);
-        c->head = x->next;
-        if (!c->head)
-            c->tail = NULL;
-        c->pending--;
-        free(x->response);
-        free(x);
+        if (c->bev && c->head->response)
+            wrote_directly |= write_response(c, c->head);
+        remove_head(c);
     }
     if (c->bev && wrote_directly && evbuffer_get_length(bufferevent_get_output(c->bev)) == 0)
         answers_out(c);

@@ -105,22 +105,31 @@ static bool on_segment(const double a[2], const double b[2], const double c[2])
            fmin(a[1], b[1]) <= c[1] && c[1] <= fmax(a[1], b[1]);
 }
 
+bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
+                       double point[2])
+{
+    double o1 = orient(a, b, c), o2 = orient(a, b, d);
+    double o3 = orient(c, d, a), o4 = orient(c, d, b);
+    if (!((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) ||
+        !((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+        return false;
+    /* a + t (b - a) with t = o3 / (o3 - o4): the orientations are the
+     * signed distances of a and b from cd, times |cd|. */
+    double t = o3 / (o3 - o4);
+    point[0] = a[0] + t * (b[0] - a[0]);
+    point[1] = a[1] + t * (b[1] - a[1]);
+    return true;
+}
+
 /* Closed segments ab and cd share a point?  If so, *point receives one:
  * where they cross, or an end of one lying on the other. */
 static bool segments_meet(const double a[2], const double b[2], const double c[2],
                           const double d[2], double point[2])
 {
+    if (wr_segments_cross(a, b, c, d, point))
+        return true;
     double o1 = orient(a, b, c), o2 = orient(a, b, d);
     double o3 = orient(c, d, a), o4 = orient(c, d, b);
-    if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) &&
-        ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
-        /* c + t (d - c) with t = o3 / (o3 - o4): the orientations are the
-         * signed distances of a and b from cd, times |cd|. */
-        double t = o3 / (o3 - o4);
-        point[0] = a[0] + t * (b[0] - a[0]);
-        point[1] = a[1] + t * (b[1] - a[1]);
-        return true;
-    }
     const double *on = o1 == 0 && on_segment(a, b, c)   ? c
                        : o2 == 0 && on_segment(a, b, d) ? d
                        : o3 == 0 && on_segment(c, d, a) ? a

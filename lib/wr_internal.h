@@ -101,6 +101,13 @@ double wr_hull_depth(const wr_hull_view *cone, const double x[3]);
 
 /* Non-negative least squares: lambda >= 0 minimising |sum lambda_j a_j - y|.
  * Returns the residual norm. */
+/* Do the segments ab and cd cross properly, each line separating the
+ * other's ends (a touch or an overlap is not a crossing)?  If so, *point
+ * receives where.  Polygons (wr_fixture.c) and outlines (wr_outline.c)
+ * check their edges with it. */
+bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
+                       double point[2]);
+
 double wr_nnls3(const double (*columns)[3], int count, const double y[3], double *lambda);
 
 struct wr_constraint;

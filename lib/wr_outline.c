@@ -484,19 +484,7 @@ static bool segments_meet(const wr_segment *first, const wr_segment *second,
         if (shared->count > 0)
             return false; /* two lines through a shared vertex meet only there */
         /* A proper crossing: each line separates the other's ends. */
-        const double *a = first->start, *b = first->end, *c = second->start, *d = second->end;
-        double o1 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-        double o2 = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
-        double o3 = (d[0] - c[0]) * (a[1] - c[1]) - (d[1] - c[1]) * (a[0] - c[0]);
-        double o4 = (d[0] - c[0]) * (b[1] - c[1]) - (d[1] - c[1]) * (b[0] - c[0]);
-        if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) &&
-            ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
-            double t = o3 / (o3 - o4);
-            point[0] = a[0] + t * (b[0] - a[0]);
-            point[1] = a[1] + t * (b[1] - a[1]);
-            return true;
-        }
-        return false;
+        return wr_segments_cross(first->start, first->end, second->start, second->end, point);
     }
     if (is_arc(first) && is_arc(second)) {
         bool one_circle = near_point(first->center, second->center, tolerance) &&

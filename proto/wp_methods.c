@@ -387,10 +387,6 @@ static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
     return stream;
 }
 
-/* Bytes of results after which a step ends its piece: the daemon's bound
- * on a connection's unsent output is checked between pieces. */
-#define CLASSIFY_PIECE_BYTES (256 * 1024)
-
 static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
                              unsigned long budget, unsigned long *used)
 {
@@ -425,7 +421,7 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
         /* At least one wrench a step, whatever the piece spent before it:
          * every step makes progress. */
         if (out->length > start + 1 &&
-            (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES ||
+            (*used >= budget || out->length - start >= WP_PIECE_BYTES ||
              wr_stop_requested(host->stop)))
             return WP_STEP_MORE;
         size_t i = state->next++;
@@ -658,17 +654,14 @@ static void write_region(wp_buffer *out, const wr_fixture *f, const wr_region *r
     wr_boundary_point(f, r->edge, r->t0, from, normal);
     wr_boundary_point(f, r->edge, r->t1, to, normal);
     /* + 0.0: a -0 is written 0. */
+    const double ends[2][2] = {{from[0] + 0.0, from[1] + 0.0}, {to[0] + 0.0, to[1] + 0.0}};
     WP_BUFFER_LITERAL(out, "{\"edge\":");
     wp_buffer_number(out, r->edge);
-    WP_BUFFER_LITERAL(out, ",\"from\":[");
-    wp_buffer_number(out, from[0] + 0.0);
-    WP_BUFFER_LITERAL(out, ",");
-    wp_buffer_number(out, from[1] + 0.0);
-    WP_BUFFER_LITERAL(out, "],\"to\":[");
-    wp_buffer_number(out, to[0] + 0.0);
-    WP_BUFFER_LITERAL(out, ",");
-    wp_buffer_number(out, to[1] + 0.0);
-    WP_BUFFER_LITERAL(out, "],\"t0\":");
+    WP_BUFFER_LITERAL(out, ",\"from\":");
+    write_vector(out, ends[0], 2);
+    WP_BUFFER_LITERAL(out, ",\"to\":");
+    write_vector(out, ends[1], 2);
+    WP_BUFFER_LITERAL(out, ",\"t0\":");
     wp_buffer_number(out, r->t0);
     WP_BUFFER_LITERAL(out, ",\"t1\":");
     wp_buffer_number(out, r->t1);
@@ -692,7 +685,7 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
     }
     /* At least one edge a step: every step makes progress. */
     for (bool first = true; state->next < state->edges && !out->failed; first = false) {
-        if (!first && (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES))
+        if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
         wr_status status = wr_push_regions_part(use->analysis, state->set, state->friction,

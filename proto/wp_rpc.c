@@ -52,9 +52,6 @@ char *wp_error_line(int code, const char *field, const char *reason)
 
 static const char *const ENVELOPE_FIELDS[] = {"jsonrpc", "method", "params", "id", NULL};
 
-/* Bytes of answer after which a step ends its piece between requests of a
- * batch. */
-#define PIECE_BYTES (256 * 1024)
 
 struct wp_answer {
     wp_limits limits;
@@ -63,7 +60,7 @@ struct wp_answer {
     bool batch;
     bool whole;              /* no pieces: one step writes all (wp_answer_line) */
     unsigned long budget;    /* work units per piece (WP_PIECE_BUDGET) */
-    size_t piece_bytes;      /* bytes after which a piece ends (PIECE_BYTES) */
+    size_t piece_bytes;      /* bytes after which a piece ends (WP_PIECE_BYTES) */
     cJSON *next;             /* the next request to start, or NULL */
     bool opened;             /* a batch's "[" is written */
     bool done;
@@ -510,7 +507,7 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
         return NULL;
     answer->limits = *limits;
     answer->budget = WP_PIECE_BUDGET;
-    answer->piece_bytes = PIECE_BYTES;
+    answer->piece_bytes = WP_PIECE_BYTES;
     wp_counts counted = {0, 0}; /* a refusal counts when its step writes it */
     size_t short_length = 0;
     char *short_line = NULL;

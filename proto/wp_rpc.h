@@ -139,6 +139,10 @@ typedef enum wp_step {
  * of nanoseconds); other methods count as a whole piece each, but for the
  * cheap ones (WP_CHEAP). */
 #define WP_PIECE_BUDGET 200000UL
+/* Bytes of answer after which a piece ends (between wrenches, edges or
+ * requests of a batch): the daemon checks its bound on a connection's
+ * unsent output between pieces. */
+#define WP_PIECE_BYTES (256 * 1024)
 
 /* Parse a line (without its "\n").  The line is not kept.  NULL only when
  * out of memory. */
