@@ -363,9 +363,9 @@ static void answer_now(connection *c, int code, const char *reason)
  * wrenches' answer takes microseconds, and handing it to a worker and back
  * costs two thread wake-ups, more than the work.  dispatch only calls it
  * when no earlier request of the connection is still running, and flush
- * writes answers in queue order, so order is kept.  (Should a worker evict
- * the fixture's derived data between wp_answer_light's check and its use,
- * the loop derives it once: milliseconds, rarely.) */
+ * writes answers in queue order, so order is kept.  The light check holds
+ * the fixture it looked up, so no worker can evict its derived data before
+ * it is used. */
 static bool answer_light(connection *c, slot *x, wp_answer **parsed)
 {
     wd_server *s = c->server;

@@ -436,8 +436,7 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
     return json;
 }
 
-/* Light work (wp_answer_light): server.status, or an auto classify of a
- * few wrenches against a stored fixture whose cones are ready. */
+/* Light work, by the method table's flags (the policy in wp_rpc.h). */
 bool wp_answer_light(wp_answer *answer, const wp_host *host)
 {
     if (answer->refusal)

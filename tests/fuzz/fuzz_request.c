@@ -708,7 +708,7 @@ static void pieces_agree(const char *line, size_t length, const char *whole, con
         memmem(line, length, "list", 4) ||
         /* The LP method's witnesses hang on the solver's warm start: asked
          * again, their last bits may differ (load-check drops them too). */
-        memmem(line, length, "lp", 2))
+        memmem(line, length, "\"lp\"", 4))
         return;
     wp_answer *answer = wp_answer_begin(&LIMITS, line, length);
     FUZZ_CHECK(answer, "wp_answer_begin failed for %s", text);
