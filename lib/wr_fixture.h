@@ -45,8 +45,12 @@ typedef struct wr_error {
 typedef enum wr_shape_type {
     WR_SHAPE_NONE = 0, /* no outline: com and inertia are then required */
     WR_SHAPE_CIRCLE,
-    WR_SHAPE_POLYGON
+    WR_SHAPE_POLYGON,
+    WR_SHAPE_OUTLINE   /* loops of lines and arcs, holes (wr_outline.h) */
 } wr_shape_type;
+
+struct wr_loop_spec;
+struct wr_outline;
 
 /* Friction as given: static, optional kinetic (equals static when absent). */
 typedef struct wr_friction_spec {
@@ -75,6 +79,8 @@ typedef struct wr_fixture_spec {
     double radius;                  /* circle */
     size_t vertex_count;            /* polygon */
     const double (*vertices)[2];    /* polygon, either orientation; borrowed */
+    size_t loop_count;              /* outline: the outer loop, then holes */
+    const struct wr_loop_spec *loops; /* outline; borrowed */
     wr_friction_spec friction;      /* global friction */
     size_t fixel_count;
     const wr_fixel_spec *fixels;    /* borrowed */
@@ -106,14 +112,23 @@ typedef struct wr_fixture {
     double inertia;
     double com[2];
     double gyration_radius;       /* rho = sqrt(I / m): scales torque to force */
-    double size;                  /* circle: diameter; polygon: bounding-box
-                                     diagonal; none: spread of the fixels */
+    double size;                  /* circle: diameter; polygon, outline:
+                                     bounding-box diagonal (arcs included);
+                                     none: spread of the fixels */
+    /* The uniform lamina of the shape (0 without one): what com and
+     * inertia default to, reported by fixture.put. */
+    double area;
     wr_shape_type shape;
     double center[2];             /* circle */
     double radius;                /* circle */
     size_t vertex_count;          /* polygon, as given (same order) */
     double (*vertices)[2];        /* owned */
     int orientation;              /* polygon: +1 counter-clockwise, -1 not */
+    /* Outline: the validated loops (owned).  Polygon: also set, its one
+     * loop of straight segments built from the vertices (owned), so that
+     * boundary geometry (a finger's clearance) has one form for both.
+     * Circle and no shape: NULL. */
+    struct wr_outline *outline;
     int fixel_count;
     wr_fixel fixels[WR_MAX_FIXELS];
 } wr_fixture;

@@ -26,7 +26,10 @@ extern "C" {
 #endif
 
 /* An open interval of the boundary.  On a polygon, edge i runs from vertex
- * i to vertex i+1 and t is the fraction along it, in (0, 1).  On a circle
+ * i to vertex i+1 and t is the fraction along it, in (0, 1).  On an
+ * outline, the edges are the segments of every loop in order (loop 0's
+ * first; wr_push_edge_place names them) and t is the fraction of the
+ * segment's length (on an arc, of its included angle).  On a circle
  * (edge 0), and for gravity, t is an angle in degrees, counter-clockwise
  * from +x, in [0, 360]; an interval through 0 degrees is split in two. */
 typedef struct wr_region {
@@ -54,18 +57,36 @@ void wr_regions_release(wr_regions *regions);
 wr_status wr_push_regions(const wr_analysis *analysis, wr_set set, double finger_friction,
                           const wr_stop *stop, wr_regions *regions);
 
+/* A finger's shape: its Coulomb coefficient (0: frictionless) and its
+ * radius (0: a point).  With a radius r > 0 a boundary point p (inward
+ * normal nu) counts only if the disc of radius r centred at p - r nu
+ * overlaps no part of the workpiece (wr_finger.h); on a circle every point
+ * passes. */
+typedef struct wr_finger {
+    double friction;
+    double radius;
+} wr_finger;
+
+/* wr_push_regions with a finger of any size: WR_INVALID also for a
+ * negative or infinite radius. */
+wr_status wr_push_regions_finger(const wr_analysis *analysis, wr_set set, const wr_finger *finger,
+                                 const wr_stop *stop, wr_regions *regions);
+
 /* The same for edges [first_edge, first_edge + edge_count) only, appended
  * to `regions` (which may hold earlier parts': the parts of all edges, in
  * order, make wr_push_regions' answer), so that long work can be done a
  * part at a time.  A circle is one edge.  On failure `regions` is as it
  * was.  Returns as wr_push_regions, and WR_INVALID for a range past the
  * edges. */
-wr_status wr_push_regions_part(const wr_analysis *analysis, wr_set set, double finger_friction,
+wr_status wr_push_regions_part(const wr_analysis *analysis, wr_set set, const wr_finger *finger,
                                int first_edge, int edge_count, const wr_stop *stop,
                                wr_regions *regions);
-/* The edges of the outline: a polygon's sides, 1 for a circle, 0 without a
- * shape. */
+/* The edges of the outline: a polygon's sides, 1 for a circle, an
+ * outline's segments over all its loops, 0 without a shape. */
 int wr_push_edge_count(const wr_fixture *fixture);
+/* Which loop and segment of an outline edge `edge` is (polygon: loop 0,
+ * segment = edge; circle: 0, 0). */
+void wr_push_edge_place(const wr_fixture *fixture, int edge, size_t *loop, size_t *segment);
 
 /* The tilts phi (degrees, the direction gravity pulls) under which the
  * gravity wrench m g (cos phi, sin phi, 0) is in the set: exact arcs.
