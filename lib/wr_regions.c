@@ -400,10 +400,11 @@ int wr_push_edge_count(const wr_fixture *f)
     return f->shape == WR_SHAPE_POLYGON ? (int)f->vertex_count : f->shape == WR_SHAPE_CIRCLE;
 }
 
-wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, double finger_friction,
+wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger *finger,
                                int first_edge, int edge_count, const wr_stop *stop,
                                wr_regions *out)
 {
+    double finger_friction = finger->friction;
     const wr_fixture *f = a->fixture;
     int edges = wr_push_edge_count(f);
     if (f->shape == WR_SHAPE_NONE)
@@ -449,8 +450,9 @@ wr_status wr_push_regions(const wr_analysis *a, wr_set set, double finger_fricti
                           const wr_stop *stop, wr_regions *out)
 {
     memset(out, 0, sizeof *out);
-    wr_status status = wr_push_regions_part(a, set, finger_friction, 0,
-                                            wr_push_edge_count(a->fixture), stop, out);
+    wr_finger finger = {finger_friction, 0};
+    wr_status status = wr_push_regions_part(a, set, &finger, 0, wr_push_edge_count(a->fixture),
+                                            stop, out);
     if (status != WR_OK)
         wr_regions_release(out);
     return status;

@@ -688,8 +688,8 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
         if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
-        wr_status status = wr_push_regions_part(use->analysis, state->set, state->friction,
-                                                state->next, 1, call->host->stop, &part);
+        wr_status status = wr_push_regions_part(use->analysis, state->set,
+                                                &(wr_finger){state->friction, 0}, state->next, 1, call->host->stop, &part);
         if (status != WR_OK) {
             wr_regions_release(&part);
             wp_error_status(call->error, status, "", "%s", wr_strerror(status));
