@@ -15,6 +15,10 @@
 //   --friction-factor X   Box2D's friction X times the fixture's (a negative
 //                         control: the criteria must then fail)
 //   --static-as-kinetic   Box2D's static coefficient set to the kinetic one
+//   --chains              convex polygons too given to Box2D as chain loops
+//                         (a cross-check of the path non-convex outlines take)
+//   --sensor-depth M      the sensor pieces M m inside the outline (below
+//                         Box2D's slop they must report, a negative control)
 //   --sweep N             seating rate along the whole outline, tilts all
 //                         round, G_strong margin bins (no criteria)
 //     --spin W            ... with the start spinning at +-W rad/s (and, for
@@ -35,6 +39,7 @@
 #include "wrench.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
@@ -130,6 +135,358 @@ V2 rotate(V2 a, double th) { return {std::cos(th) * a.x - std::sin(th) * a.y, st
 b2Vec2 b2(V2 a) { return b2Vec2((float)a.x, (float)a.y); }
 V2 v2(b2Vec2 a) { return {a.x, a.y}; }
 
+std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
+std::string fmt(const char *format, ...)
+{
+    char buf[512];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(buf, sizeof buf, format, args);
+    va_end(args);
+    return buf;
+}
+
+// Intersection of the lines a + s u and b + t v.
+V2 intersect(V2 a, V2 u, V2 b, V2 v)
+{
+    double s = cross(b - a, v) / cross(u, v);
+    return a + s * u;
+}
+
+// ---- outlines that are not one convex polygon: exact loops, their polyline
+// approximation, Box2D chain loops, and convex pieces ----
+//
+// A non-convex polygon (and, later, an outline of lines and arcs with holes)
+// is given to Box2D as one b2ChainShape loop per boundary loop, inset by the
+// skin: chains are one-sided, their edges' ghost vertices hand a contact
+// over smoothly from one edge to the next, and they have no interior, so no
+// internal edge exists for a fixel to touch.  The convex pieces of a
+// decomposition (ear clipping, then Hertel-Mehlhorn merging within
+// b2_maxPolygonVertices) ride on the same body as sensors, shrunk well
+// inside the outline: they take part in no contact's response, and a fixel
+// that ever overlaps one has sunk DEEP_PENETRATION into the part, which
+// fails the row.  Mass, centre of mass and inertia are the fixture's
+// (SetMassData); the pieces' areas are checked against the outline's.
+
+// Arcs become polylines whose edges are tangent to the arc (circumscribed):
+// at each tangent point the polyline touches the arc with the arc's own
+// normal, and every fixel on an arc is made a tangent point.  Between
+// tangent points an angle Delta apart the polyline's vertex lies
+// r (sec(Delta / 2) - 1) outside the arc: at most ARC_DEVIATION.
+constexpr double ARC_DEVIATION = 1e-4 * SIZE;   // m: 1e-4 of the size
+// m: a sensor piece's depth (--sensor-depth: the detector's negative control)
+double DEEP_PENETRATION = 4 * b2_linearSlop;
+// Near a fixel (within its radius plus GAP_MAX of its circle's centre) the
+// boundary must be one piece without a concave corner, turning by less
+// than 90 degrees: elsewhere the circle could touch the part twice.
+constexpr double CLEARANCE = GAP_MAX;
+// Force the chain path on convex polygons too (a cross-check of it).
+bool force_chains = false;
+
+struct Seg {
+    V2 a, b;         // from a to b, the material on the left
+    bool arc = false;
+    V2 c{};          // arc: centre, radius, start angle, signed sweep
+    double r = 0, a0 = 0, sweep = 0;
+};
+
+V2 seg_point(const Seg &s, double t)
+{
+    if (!s.arc)
+        return s.a + t * (s.b - s.a);
+    double phi = s.a0 + t * s.sweep;
+    return s.c + s.r * V2{std::cos(phi), std::sin(phi)};
+}
+
+// Unit tangent along the direction of travel, and the normal into the
+// material (its left).
+V2 seg_tangent(const Seg &s, double t)
+{
+    if (!s.arc) {
+        V2 e = s.b - s.a;
+        return (1.0 / norm(e)) * e;
+    }
+    double phi = s.a0 + t * s.sweep, sg = s.sweep > 0 ? 1 : -1;
+    return {-sg * std::sin(phi), sg * std::cos(phi)};
+}
+V2 seg_normal(const Seg &s, double t)
+{
+    V2 u = seg_tangent(s, t);
+    return {-u.y, u.x};
+}
+double seg_length(const Seg &s) { return s.arc ? s.r * std::fabs(s.sweep) : norm(s.b - s.a); }
+
+// The parameter of the point of s nearest to q, and the distance.
+double seg_nearest(const Seg &s, V2 q, double *t)
+{
+    if (!s.arc) {
+        V2 e = s.b - s.a;
+        double u = std::clamp(dot(q - s.a, e) / dot(e, e), 0.0, 1.0);
+        *t = u;
+        return norm(q - (s.a + u * e));
+    }
+    double ang = std::atan2(q.y - s.c.y, q.x - s.c.x);
+    double d = s.sweep > 0 ? ang - s.a0 : s.a0 - ang;
+    d = std::fmod(d, 2 * PI);
+    if (d < 0)
+        d += 2 * PI;
+    if (d <= std::fabs(s.sweep)) {
+        *t = d / std::fabs(s.sweep);
+        return std::fabs(norm(q - s.c) - s.r);
+    }
+    double da = norm(q - s.a), db = norm(q - s.b);
+    *t = da <= db ? 0 : 1;
+    return std::min(da, db);
+}
+
+// Is q inside the closed polyline `poly` (crossing number)?
+bool inside_polyline(const std::vector<V2> &poly, V2 q)
+{
+    bool in = false;
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+        V2 a = poly[j], b = poly[i];
+        if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x))
+            in = !in;
+    }
+    return in;
+}
+
+double polyline_area(const std::vector<V2> &poly)
+{
+    double a = 0;
+    for (size_t i = 0; i < poly.size(); i++)
+        a += cross(poly[i], poly[(i + 1) % poly.size()]);
+    return a / 2;
+}
+
+// Ear clipping of one weakly simple counter-clockwise polygon (holes
+// already bridged in, so a position may appear twice): triangles as index
+// triples.
+bool ear_clip(const std::vector<V2> &v, std::vector<std::array<int, 3>> *tris)
+{
+    std::vector<int> idx(v.size());
+    for (size_t i = 0; i < v.size(); i++)
+        idx[i] = (int)i;
+    double scale = 0;
+    for (V2 x : v)
+        scale = std::max(scale, norm(x));
+    const double eps = 1e-12 * scale * scale;
+    auto in_triangle = [&](V2 q, V2 a, V2 b, V2 c) {
+        return cross(b - a, q - a) >= -eps && cross(c - b, q - b) >= -eps && cross(a - c, q - c) >= -eps;
+    };
+    size_t guard = 0;
+    while (idx.size() > 3) {
+        bool clipped = false;
+        size_t m = idx.size();
+        // Prefer the ear with the largest smallest angle: fewer slivers.
+        int best = -1;
+        double best_q = -1;
+        for (size_t i = 0; i < m; i++) {
+            int ia = idx[(i + m - 1) % m], ib = idx[i], ic = idx[(i + 1) % m];
+            V2 a = v[ia], b = v[ib], c = v[ic];
+            if (cross(b - a, c - b) <= eps)
+                continue; // reflex or flat: not an ear
+            bool empty = true;
+            for (size_t j = 0; j < m && empty; j++) {
+                int ij = idx[j];
+                if (ij == ia || ij == ib || ij == ic)
+                    continue;
+                V2 q = v[ij];
+                if (norm(q - a) == 0 || norm(q - b) == 0 || norm(q - c) == 0)
+                    continue; // a bridge's twin
+                if (in_triangle(q, a, b, c))
+                    empty = false;
+            }
+            if (!empty)
+                continue;
+            auto angle = [](V2 p, V2 q, V2 r) {
+                V2 u = q - p, w = r - p;
+                return std::atan2(std::fabs(cross(u, w)), dot(u, w));
+            };
+            double quality = std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+            if (quality > best_q) {
+                best_q = quality;
+                best = (int)i;
+            }
+        }
+        if (best >= 0) {
+            size_t i = (size_t)best;
+            tris->push_back({idx[(i + m - 1) % m], idx[i], idx[(i + 1) % m]});
+            idx.erase(idx.begin() + (long)i);
+            clipped = true;
+        }
+        if (!clipped) {
+            // Only flat vertices left (collinear runs): drop one.
+            for (size_t i = 0; i < m && !clipped; i++) {
+                V2 a = v[idx[(i + m - 1) % m]], b = v[idx[i]], c = v[idx[(i + 1) % m]];
+                if (std::fabs(cross(b - a, c - b)) <= eps && dot(b - a, c - b) > 0) {
+                    idx.erase(idx.begin() + (long)i);
+                    clipped = true;
+                }
+            }
+        }
+        if (!clipped || ++guard > 4 * v.size())
+            return false;
+    }
+    if (cross(v[idx[1]] - v[idx[0]], v[idx[2]] - v[idx[1]]) > eps)
+        tris->push_back({idx[0], idx[1], idx[2]});
+    return true;
+}
+
+// Hertel-Mehlhorn: merge neighbouring pieces across their shared diagonal
+// while the union stays strictly convex and within max_vertices.
+std::vector<std::vector<int>> merge_convex(const std::vector<V2> &v, const std::vector<std::array<int, 3>> &tris,
+                                           size_t max_vertices)
+{
+    std::vector<std::vector<int>> pieces;
+    for (auto &t : tris)
+        pieces.push_back({t[0], t[1], t[2]});
+    double scale = 0;
+    for (V2 x : v)
+        scale = std::max(scale, norm(x));
+    auto convex = [&](const std::vector<int> &p) {
+        size_t m = p.size();
+        for (size_t i = 0; i < m; i++) {
+            V2 a = v[p[i]], b = v[p[(i + 1) % m]], c = v[p[(i + 2) % m]];
+            if (cross(b - a, c - b) <= 1e-9 * norm(b - a) * norm(c - b))
+                return false;
+        }
+        return true;
+    };
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (size_t A = 0; A < pieces.size() && !merged; A++) {
+            for (size_t i = 0; i < pieces[A].size() && !merged; i++) {
+                int u = pieces[A][i], w = pieces[A][(i + 1) % pieces[A].size()];
+                for (size_t B = A + 1; B < pieces.size() && !merged; B++) {
+                    const std::vector<int> &pb = pieces[B];
+                    size_t m = pb.size(), j = 0;
+                    while (j < m && !(pb[j] == w && pb[(j + 1) % m] == u))
+                        j++;
+                    if (j == m)
+                        continue;
+                    if (pieces[A].size() + m - 2 > max_vertices)
+                        continue;
+                    // A from w round to u, then B's vertices after u up to before w.
+                    std::vector<int> un;
+                    size_t n = pieces[A].size();
+                    for (size_t k = 0; k < n; k++)
+                        un.push_back(pieces[A][(i + 1 + k) % n]);
+                    for (size_t k = 2; k < m; k++)
+                        un.push_back(pb[(j + k) % m]);
+                    if (!convex(un))
+                        continue;
+                    pieces[A] = un;
+                    pieces.erase(pieces.begin() + (long)B);
+                    merged = true;
+                }
+            }
+        }
+    }
+    return pieces;
+}
+
+// Bridge holes (clockwise) into the outer loop (counter-clockwise): one
+// weakly simple polygon, and which of its edges are bridges.
+bool bridge_holes(std::vector<V2> outer, std::vector<std::vector<V2>> holes, std::vector<V2> *out,
+                  std::vector<std::pair<V2, V2>> *bridges)
+{
+    std::sort(holes.begin(), holes.end(), [](const std::vector<V2> &a, const std::vector<V2> &b) {
+        double xa = -1e300, xb = -1e300;
+        for (V2 q : a)
+            xa = std::max(xa, q.x);
+        for (V2 q : b)
+            xb = std::max(xb, q.x);
+        return xa > xb;
+    });
+    for (const std::vector<V2> &h : holes) {
+        size_t mi = 0;
+        for (size_t i = 1; i < h.size(); i++)
+            if (h[i].x > h[mi].x)
+                mi = i;
+        V2 M = h[mi];
+        // The nearest edge of `outer` the ray M + s (1, 0) meets.
+        double best = 1e300;
+        size_t bi = SIZE_MAX;
+        size_t n = outer.size();
+        for (size_t i = 0; i < n; i++) {
+            V2 a = outer[i], b = outer[(i + 1) % n];
+            if ((a.y > M.y) == (b.y > M.y))
+                continue;
+            double x = a.x + (M.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if (x > M.x && x - M.x < best) {
+                best = x - M.x;
+                bi = i;
+            }
+        }
+        if (bi == SIZE_MAX)
+            return false;
+        V2 I{M.x + best, M.y};
+        size_t P = outer[bi].x > outer[(bi + 1) % n].x ? bi : (bi + 1) % n;
+        // A reflex vertex inside the triangle (M, I, P) hides P: take the
+        // one nearest the ray in angle.
+        double best_angle = 1e300;
+        size_t chosen = P;
+        for (size_t i = 0; i < n; i++) {
+            V2 q = outer[i], a = outer[(i + n - 1) % n], c = outer[(i + 1) % n];
+            if (i == P || cross(q - a, c - q) >= 0)
+                continue;
+            V2 t0 = M, t1 = I, t2 = outer[P];
+            double o = cross(t1 - t0, t2 - t0) > 0 ? 1 : -1;
+            if (o * cross(t1 - t0, q - t0) < 0 || o * cross(t2 - t1, q - t1) < 0 || o * cross(t0 - t2, q - t2) < 0)
+                continue;
+            double ang = std::atan2(std::fabs(q.y - M.y), q.x - M.x);
+            if (ang < best_angle) {
+                best_angle = ang;
+                chosen = i;
+            }
+        }
+        if (chosen != P)
+            P = chosen;
+        std::vector<V2> next;
+        for (size_t i = 0; i <= P; i++)
+            next.push_back(outer[i]);
+        for (size_t k = 0; k <= h.size(); k++)
+            next.push_back(h[(mi + k) % h.size()]);
+        next.push_back(outer[P]);
+        for (size_t i = P + 1; i < n; i++)
+            next.push_back(outer[i]);
+        bridges->push_back({outer[P], M});
+        outer = next;
+    }
+    *out = outer;
+    return true;
+}
+
+// Offset a closed polyline (material on the left) by d towards its left:
+// each vertex where the two offset lines meet (the offset point itself
+// where they are parallel).  False when an edge would reverse or become
+// shorter than min_edge.
+bool inset_loop(const std::vector<V2> &x, const std::vector<double> &shift, double min_edge, std::vector<V2> *out)
+{
+    size_t n = x.size();
+    out->assign(n, V2{0, 0});
+    for (size_t i = 0; i < n; i++) {
+        size_t h = (i + n - 1) % n;
+        V2 u = x[i] - x[h], w = x[(i + 1) % n] - x[i];
+        V2 nu = (1.0 / norm(u)) * V2{-u.y, u.x}, nw = (1.0 / norm(w)) * V2{-w.y, w.x};
+        V2 a = x[h] + shift[h] * nu, b = x[i] + shift[i] * nw;
+        if (std::fabs(cross(u, w)) <= 1e-9 * norm(u) * norm(w)) {
+            if (std::fabs(shift[h] - shift[i]) > 1e-12)
+                return false;
+            (*out)[i] = b;
+        } else {
+            (*out)[i] = intersect(a, u, b, w);
+        }
+    }
+    for (size_t i = 0; i < n; i++) {
+        V2 e = x[(i + 1) % n] - x[i], f = (*out)[(i + 1) % n] - (*out)[i];
+        if (dot(e, f) <= 0 || norm(f) < min_edge)
+            return false;
+    }
+    return true;
+}
+
 // ---- a fixture, read by wrenchd's own reader, and its Box2D geometry ----
 struct Prepared {
     std::string file, name;
@@ -145,6 +502,18 @@ struct Prepared {
     std::vector<V2> outline;  // polygon as given, CCW, body frame
     std::vector<V2> out_normal; // outward unit normal of edge i (CCW)
     std::vector<V2> core;     // outline inset by the skin: what Box2D is given
+    // Not one convex polygon: Box2D gets chain loops (docs/VALIDATION.md).
+    bool chains = false;
+    std::vector<std::vector<Seg>> loops;      // exact, body frame, material on the left
+    std::vector<std::vector<V2>> polylines;   // arcs approximated (ARC_DEVIATION)
+    std::vector<std::vector<V2>> cores;       // the polylines inset by the skin: the chains
+    std::vector<std::vector<V2>> pieces;      // convex pieces of the polylines
+    std::vector<std::vector<V2>> sensors;     // the pieces shrunk by DEEP_PENETRATION
+    int sensorless_pieces = 0;                // pieces too thin to shrink
+    double deviation = 0;                     // largest distance polyline - arc (m)
+    double piece_area_error = 0;              // |pieces' area - polylines'| / polylines'
+    std::vector<size_t> fixel_loop, fixel_seg;
+    std::vector<double> fixel_t;
     V2 center{};              // circle centre, body frame
     double radius = 0;
     // Fixels (world).
@@ -164,11 +533,168 @@ bool read_text(const std::string &path, std::string *text)
     return true;
 }
 
-// Intersection of the lines a + s u and b + t v.
-V2 intersect(V2 a, V2 u, V2 b, V2 v)
+
+// The polylines, the chains and the pieces of p->loops; false with
+// p->unsupported set when Box2D cannot be given them faithfully.
+bool build_chains(Prepared *p)
 {
-    double s = cross(b - a, v) / cross(u, v);
-    return a + s * u;
+    p->polylines.clear();
+    p->cores.clear();
+    p->outline.clear();
+    p->deviation = 0;
+    std::vector<std::vector<bool>> concave(p->loops.size());
+    for (size_t l = 0; l < p->loops.size(); l++) {
+        const std::vector<Seg> &loop = p->loops[l];
+        std::vector<V2> poly;
+        std::vector<bool> corner;
+        for (size_t s = 0; s < loop.size(); s++) {
+            const Seg &g = loop[s], &prev = loop[(s + loop.size() - 1) % loop.size()];
+            poly.push_back(g.a);
+            V2 t0 = seg_tangent(prev, 1), t1 = seg_tangent(g, 0);
+            corner.push_back(cross(t0, t1) < -1e-9); // turning right: a concave corner
+            if (!g.arc)
+                continue;
+            // Tangent points: the ends, every fixel on the arc, and enough
+            // between them that no vertex is farther than ARC_DEVIATION out.
+            std::vector<double> ts = {0, 1};
+            for (int i = 0; i < p->k; i++)
+                if (p->fixel_loop[i] == l && p->fixel_seg[i] == s)
+                    ts.push_back(p->fixel_t[i]);
+            std::sort(ts.begin(), ts.end());
+            double step = 2 * std::acos(1 / (1 + ARC_DEVIATION / g.r)) / std::fabs(g.sweep);
+            std::vector<double> all;
+            for (size_t j = 0; j + 1 < ts.size(); j++) {
+                int parts = std::max(1, (int)std::ceil((ts[j + 1] - ts[j]) / step));
+                for (int q = 0; q < parts; q++)
+                    all.push_back(ts[j] + (ts[j + 1] - ts[j]) * q / parts);
+            }
+            all.push_back(1);
+            for (size_t j = 0; j + 1 < all.size(); j++) {
+                double half = 0.5 * (all[j + 1] - all[j]) * g.sweep;
+                double phi = g.a0 + 0.5 * (all[j] + all[j + 1]) * g.sweep;
+                double rr = g.r / std::cos(half);
+                poly.push_back(g.c + rr * V2{std::cos(phi), std::sin(phi)});
+                corner.push_back(false);
+                p->deviation = std::max(p->deviation, rr - g.r);
+            }
+        }
+        p->polylines.push_back(poly);
+        concave[l] = corner;
+        for (V2 x : poly)
+            p->outline.push_back(x);
+    }
+    // The chains: each polyline inset by the skin (Box2D adds it back).
+    for (const std::vector<V2> &poly : p->polylines) {
+        std::vector<V2> core;
+        if (!inset_loop(poly, std::vector<double>(poly.size(), b2_polygonRadius), 1.5 * b2_linearSlop, &core)) {
+            p->unsupported = "a feature smaller than Box2D's skin: an edge of the outline inset by 0.01 m "
+                             "would vanish or be shorter than the linear slop";
+            return false;
+        }
+        p->cores.push_back(core);
+    }
+    // Near each fixel the boundary must be one smooth or convex piece.
+    for (int i = 0; i < p->k; i++) {
+        V2 c = p->fixel_center[i] - p->com, n = p->fixel_normal[i];
+        double reach = FIXEL_RADIUS + CLEARANCE;
+        for (size_t l = 0; l < p->loops.size(); l++) {
+            const std::vector<Seg> &loop = p->loops[l];
+            // Samples every 0.002 m in order round the loop.
+            struct Sample {
+                bool near, concave_corner, faces;
+                bool own;
+            };
+            std::vector<Sample> sm;
+            size_t own_at = SIZE_MAX;
+            for (size_t s = 0; s < loop.size(); s++) {
+                int parts = std::max(2, (int)std::ceil(seg_length(loop[s]) / 0.002));
+                for (int q = 0; q < parts; q++) {
+                    double t = (double)q / parts;
+                    V2 x = seg_point(loop[s], t);
+                    Sample a;
+                    a.near = norm(x - c) < reach;
+                    a.concave_corner = q == 0 && concave[l][s];
+                    a.faces = dot(seg_normal(loop[s], t), n) > 0;
+                    a.own = l == p->fixel_loop[i] && s == p->fixel_seg[i] && std::fabs(t - p->fixel_t[i]) * parts < 1;
+                    if (a.own && own_at == SIZE_MAX)
+                        own_at = sm.size();
+                    sm.push_back(a);
+                }
+            }
+            size_t total = 0;
+            for (const Sample &a : sm)
+                total += a.near;
+            size_t run = 0;
+            bool bad = false;
+            if (own_at != SIZE_MAX) {
+                size_t m = sm.size();
+                for (size_t j = own_at; sm[j].near && run < m; j = (j + 1) % m) {
+                    run++;
+                    bad = bad || sm[j].concave_corner || !sm[j].faces;
+                }
+                for (size_t j = (own_at + m - 1) % m; sm[j].near && run < m; j = (j + m - 1) % m) {
+                    run++;
+                    bad = bad || sm[j].concave_corner || !sm[j].faces;
+                }
+                bad = bad || run >= m;
+            }
+            if (bad || total != run) {
+                p->unsupported = fmt("fixel %d: within %.2f m of its circle's centre the outline has a concave "
+                                     "corner, turns by 90 degrees or more, or comes back: the circle could touch "
+                                     "the part twice",
+                                     i + 1, reach);
+                return false;
+            }
+        }
+    }
+    // The convex pieces: holes bridged in, ear clipping, Hertel-Mehlhorn.
+    std::vector<V2> outer = p->polylines[0], merged;
+    std::vector<std::vector<V2>> holes;
+    for (size_t l = 1; l < p->polylines.size(); l++) {
+        std::vector<V2> h = p->polylines[l];
+        holes.push_back(h);
+    }
+    std::vector<std::pair<V2, V2>> bridges;
+    std::vector<std::array<int, 3>> tris;
+    if (!bridge_holes(outer, holes, &merged, &bridges) || !ear_clip(merged, &tris)) {
+        p->unsupported = "harness: the outline could not be decomposed into convex pieces";
+        return false;
+    }
+    auto pieces = merge_convex(merged, tris, b2_maxPolygonVertices);
+    double area = 0, want = 0;
+    for (const std::vector<V2> &poly : p->polylines)
+        want += polyline_area(poly);
+    p->pieces.clear();
+    p->sensors.clear();
+    for (const std::vector<int> &pc : pieces) {
+        std::vector<V2> x;
+        std::vector<double> shift;
+        size_t N = merged.size();
+        for (size_t j = 0; j < pc.size(); j++) {
+            int a = pc[j], b = pc[(j + 1) % pc.size()];
+            x.push_back(merged[a]);
+            bool boundary = (size_t)b == ((size_t)a + 1) % N;
+            for (auto &br : bridges)
+                if ((norm(merged[a] - br.first) == 0 && norm(merged[b] - br.second) == 0) ||
+                    (norm(merged[a] - br.second) == 0 && norm(merged[b] - br.first) == 0))
+                    boundary = false;
+            shift.push_back(boundary ? b2_polygonRadius + DEEP_PENETRATION : 0);
+        }
+        area += polyline_area(x);
+        p->pieces.push_back(x);
+        std::vector<V2> core;
+        if (!inset_loop(x, shift, 1.5 * b2_linearSlop, &core) || polyline_area(core) <= 0) {
+            p->sensorless_pieces++;
+            continue;
+        }
+        p->sensors.push_back(core);
+    }
+    p->piece_area_error = std::fabs(area - want) / want;
+    if (p->piece_area_error > 1e-9) {
+        p->unsupported = fmt("harness: the convex pieces' area is off by %.2e of the outline's", p->piece_area_error);
+        return false;
+    }
+    return true;
 }
 
 bool prepare(const std::string &path, Prepared *p, std::string *error)
@@ -214,53 +740,94 @@ bool prepare(const std::string &path, Prepared *p, std::string *error)
     if (p->circle) {
         p->center = body(f->center);
         p->radius = s * f->radius;
-    } else {
+    } else if (f->shape == WR_SHAPE_POLYGON) {
         size_t n = f->vertex_count;
-        if (n > (size_t)b2_maxPolygonVertices) {
-            p->unsupported = "polygon of " + std::to_string(n) + " vertices: Box2D takes at most " +
-                             std::to_string(b2_maxPolygonVertices) + " in one convex shape";
-            return true;
-        }
+        std::vector<V2> ccw;
         for (size_t i = 0; i < n; i++) {
             size_t j = f->orientation > 0 ? i : n - 1 - i;
-            p->outline.push_back(body(f->vertices[j]));
+            ccw.push_back(body(f->vertices[j]));
         }
-        for (size_t i = 0; i < n; i++) {
-            V2 a = p->outline[i], b = p->outline[(i + 1) % n], c = p->outline[(i + 2) % n];
-            if (cross(b - a, c - b) <= 1e-12 * SIZE * SIZE) {
-                p->unsupported = "polygon not strictly convex: Box2D shapes are convex "
-                                 "(a decomposition would add internal skins)";
+        bool convex = n <= (size_t)b2_maxPolygonVertices;
+        for (size_t i = 0; i < n && convex; i++) {
+            V2 a = ccw[i], b = ccw[(i + 1) % n], c = ccw[(i + 2) % n];
+            convex = cross(b - a, c - b) > 1e-12 * SIZE * SIZE;
+        }
+        if (!convex || force_chains) {
+            p->chains = true;
+            std::vector<Seg> loop;
+            for (size_t i = 0; i < n; i++) {
+                Seg g;
+                g.a = ccw[i];
+                g.b = ccw[(i + 1) % n];
+                loop.push_back(g);
+            }
+            p->loops.push_back(loop);
+        } else {
+            p->outline = ccw;
+            for (size_t i = 0; i < n; i++) {
+                V2 e = p->outline[(i + 1) % n] - p->outline[i];
+                p->out_normal.push_back((1.0 / norm(e)) * V2{e.y, -e.x});
+            }
+            // Box2D rounds every polygon by a skin of b2_polygonRadius: give it the
+            // outline inset by the skin, so that its surface is the outline itself
+            // along every edge (corners become arcs of radius 0.01 m).
+            double d = b2_polygonRadius;
+            for (size_t i = 0; i < n; i++) {
+                size_t h = (i + n - 1) % n;
+                V2 a = p->outline[h] - d * p->out_normal[h], u = p->outline[i] - p->outline[h];
+                V2 b = p->outline[i] - d * p->out_normal[i], v = p->outline[(i + 1) % n] - p->outline[i];
+                p->core.push_back(intersect(a, u, b, v));
+            }
+            std::vector<b2Vec2> vs;
+            for (V2 c : p->core)
+                vs.push_back(b2(c));
+            b2PolygonShape poly;
+            poly.Set(vs.data(), (int32)vs.size());
+            bool same = poly.m_count == (int32)n;
+            for (int32 i = 0; same && i < poly.m_count; i++) {
+                bool found = false;
+                for (b2Vec2 c : vs)
+                    found = found || (c - poly.m_vertices[i]).Length() == 0;
+                same = found;
+            }
+            if (!same) {
+                p->unsupported = "Box2D's b2PolygonShape::Set welded or dropped vertices";
                 return true;
             }
-            V2 e = b - a;
-            p->out_normal.push_back((1.0 / norm(e)) * V2{e.y, -e.x});
         }
-        // Box2D rounds every polygon by a skin of b2_polygonRadius: give it the
-        // outline inset by the skin, so that its surface is the outline itself
-        // along every edge (corners become arcs of radius 0.01 m).
-        double d = b2_polygonRadius;
-        for (size_t i = 0; i < n; i++) {
-            size_t h = (i + n - 1) % n;
-            V2 a = p->outline[h] - d * p->out_normal[h], u = p->outline[i] - p->outline[h];
-            V2 b = p->outline[i] - d * p->out_normal[i], v = p->outline[(i + 1) % n] - p->outline[i];
-            p->core.push_back(intersect(a, u, b, v));
+    } else if (f->shape == WR_SHAPE_OUTLINE && f->outline) {
+        // Every loop turned so that the material lies on its left (the outer
+        // loop counter-clockwise, holes clockwise).
+        p->chains = true;
+        for (size_t l = 0; l < f->outline->loop_count; l++) {
+            const wr_loop &wl = f->outline->loops[l];
+            std::vector<Seg> loop;
+            for (size_t j = 0; j < wl.segment_count; j++) {
+                const wr_segment &ws = wl.segments[j];
+                Seg g;
+                g.a = body(ws.start);
+                g.b = body(ws.end);
+                if (ws.bulge != 0) {
+                    g.arc = true;
+                    g.c = body(ws.center);
+                    g.r = s * ws.radius;
+                    g.a0 = ws.start_angle;
+                    g.sweep = ws.sweep;
+                }
+                if (wl.material_side < 0) {
+                    std::swap(g.a, g.b);
+                    g.a0 += g.sweep;
+                    g.sweep = -g.sweep;
+                }
+                loop.push_back(g);
+            }
+            if (wl.material_side < 0)
+                std::reverse(loop.begin(), loop.end());
+            p->loops.push_back(loop);
         }
-        std::vector<b2Vec2> vs;
-        for (V2 c : p->core)
-            vs.push_back(b2(c));
-        b2PolygonShape poly;
-        poly.Set(vs.data(), (int32)vs.size());
-        bool same = poly.m_count == (int32)n;
-        for (int32 i = 0; same && i < poly.m_count; i++) {
-            bool found = false;
-            for (b2Vec2 c : vs)
-                found = found || (c - poly.m_vertices[i]).Length() == 0;
-            same = found;
-        }
-        if (!same) {
-            p->unsupported = "Box2D's b2PolygonShape::Set welded or dropped vertices";
-            return true;
-        }
+    } else {
+        p->unsupported = "a shape the harness does not know";
+        return true;
     }
     for (int i = 0; i < p->k; i++) {
         const wr_fixel &x = f->fixels[i];
@@ -271,6 +838,26 @@ bool prepare(const std::string &path, Prepared *p, std::string *error)
         V2 local = at - p->com;
         if (p->circle) {
             geometric = (1.0 / norm(p->center - local)) * (p->center - local);
+        } else if (p->chains) {
+            // The nearest point of the exact outline, not at a vertex.
+            double best = 1e300, bt = 0;
+            size_t bl = 0, bs = 0;
+            for (size_t l = 0; l < p->loops.size(); l++)
+                for (size_t g = 0; g < p->loops[l].size(); g++) {
+                    double t, d = seg_nearest(p->loops[l][g], local, &t);
+                    if (d < best) {
+                        best = d, bt = t, bl = l, bs = g;
+                    }
+                }
+            if (best > 1e-6 * SIZE || bt < 1e-6 || bt > 1 - 1e-6) {
+                p->unsupported = "fixel " + std::to_string(i + 1) +
+                                 (best > 1e-6 * SIZE ? " not on the outline" : " at a vertex: its normal is not defined");
+                return true;
+            }
+            geometric = seg_normal(p->loops[bl][bs], bt);
+            p->fixel_loop.push_back(bl);
+            p->fixel_seg.push_back(bs);
+            p->fixel_t.push_back(bt);
         } else {
             double best = 1e300;
             size_t n = p->outline.size();
@@ -304,6 +891,8 @@ bool prepare(const std::string &path, Prepared *p, std::string *error)
         p->unsupported = "more than 3 fixels: the start sampler sets one gap per fixel";
         return true;
     }
+    if (p->chains)
+        build_chains(p); // sets p->unsupported when it fails
     return true;
 }
 
@@ -320,6 +909,17 @@ double signed_distance(const Prepared &p, V2 local)
 {
     if (p.circle)
         return norm(local - p.center) - p.radius;
+    if (p.chains) {
+        // The distance to the exact outline, negative inside the material.
+        double best = 1e300, t;
+        for (const std::vector<Seg> &loop : p.loops)
+            for (const Seg &g : loop)
+                best = std::min(best, seg_nearest(g, local, &t));
+        bool inside = inside_polyline(p.polylines[0], local);
+        for (size_t l = 1; l < p.polylines.size() && inside; l++)
+            inside = !inside_polyline(p.polylines[l], local);
+        return inside ? -best : best;
+    }
     double best = -1e300;
     for (size_t e = 0; e < p.outline.size(); e++)
         best = std::max(best, dot(local - p.outline[e], p.out_normal[e]));
@@ -513,6 +1113,8 @@ Pose preloaded(const Prepared &p)
 }
 
 // ---- the Box2D world ----
+long long deep_contacts = 0; // over the run: fixels that met a sensor piece
+
 // Friction: Box2D mixes two fixtures' coefficients as sqrt(f_a f_b).  The
 // part's fixture has friction 1 and fixel i's has mu_s(i)^2, so the mix is
 // mu_s(i); on top of that this listener sets every contact's coefficient
@@ -521,6 +1123,14 @@ Pose preloaded(const Prepared &p)
 struct Friction : b2ContactListener {
     const Prepared *p = nullptr;
     long long set_static = 0, set_kinetic = 0;
+    long long deep = 0; // a fixel met a sensor piece: sunk DEEP_PENETRATION into the part
+    void BeginContact(b2Contact *contact) override
+    {
+        if (contact->GetFixtureA()->IsSensor() || contact->GetFixtureB()->IsSensor()) {
+            deep++;
+            deep_contacts++;
+        }
+    }
     void PreSolve(b2Contact *contact, const b2Manifold *) override
     {
         b2Fixture *a = contact->GetFixtureA(), *b = contact->GetFixtureB();
@@ -557,7 +1167,7 @@ struct Friction : b2ContactListener {
 struct Sim {
     b2World world;
     b2Body *part = nullptr;
-    b2Fixture *part_fixture = nullptr;
+    std::vector<b2Fixture *> part_fixtures; // the colliding ones (not the sensor pieces)
     std::vector<b2Fixture *> fixel_fixtures;
     Friction friction;
     Sim(const Prepared &p, const Pose &pose, V2 v, double w, V2 gravity)
@@ -589,21 +1199,47 @@ struct Sim {
         b2FixtureDef fd;
         b2PolygonShape poly;
         b2CircleShape disc;
+        fd.density = 1;
+        fd.friction = 1;
+        fd.restitution = 0;
         if (p.circle) {
             disc.m_p = b2(p.center);
             disc.m_radius = (float)p.radius;
             fd.shape = &disc;
-        } else {
+            part_fixtures.push_back(part->CreateFixture(&fd));
+        } else if (!p.chains) {
             std::vector<b2Vec2> vs;
             for (V2 c : p.core)
                 vs.push_back(b2(c));
             poly.Set(vs.data(), (int32)vs.size());
             fd.shape = &poly;
+            part_fixtures.push_back(part->CreateFixture(&fd));
+        } else {
+            // One chain loop per boundary loop (they collide), and the convex
+            // pieces as sensors (they only watch for deep penetration).
+            for (const std::vector<V2> &core : p.cores) {
+                std::vector<b2Vec2> vs;
+                for (V2 c : core)
+                    vs.push_back(b2(c));
+                b2ChainShape chain;
+                chain.CreateLoop(vs.data(), (int32)vs.size());
+                fd.shape = &chain;
+                fd.density = 0;
+                part_fixtures.push_back(part->CreateFixture(&fd));
+            }
+            for (const std::vector<V2> &piece : p.sensors) {
+                std::vector<b2Vec2> vs;
+                for (V2 c : piece)
+                    vs.push_back(b2(c));
+                b2PolygonShape sp;
+                sp.Set(vs.data(), (int32)vs.size());
+                b2FixtureDef sd;
+                sd.shape = &sp;
+                sd.density = 0;
+                sd.isSensor = true;
+                part->CreateFixture(&sd);
+            }
         }
-        fd.density = 1;
-        fd.friction = 1;
-        fd.restitution = 0;
-        part_fixture = part->CreateFixture(&fd);
         b2MassData md;
         md.mass = (float)p.mass;
         md.center = b2Vec2(0, 0);
@@ -617,7 +1253,7 @@ struct Sim {
         unsigned bits = 0;
         for (b2ContactEdge *e = part->GetContactList(); e; e = e->next) {
             b2Contact *c = e->contact;
-            if (!c->IsTouching())
+            if (!c->IsTouching() || c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor())
                 continue;
             uintptr_t ia = c->GetFixtureA()->GetUserData().pointer;
             uintptr_t ib = c->GetFixtureB()->GetUserData().pointer;
@@ -632,17 +1268,22 @@ struct Sim {
     // the part: 0 when they touch, negative never (it reports overlap as 0).
     double distance(int i)
     {
-        b2DistanceInput in;
-        in.proxyA.Set(fixel_fixtures[i]->GetShape(), 0);
-        in.proxyB.Set(part_fixture->GetShape(), 0);
-        in.transformA = fixel_fixtures[i]->GetBody()->GetTransform();
-        in.transformB = part->GetTransform();
-        in.useRadii = true;
-        b2SimplexCache cache;
-        cache.count = 0;
-        b2DistanceOutput out;
-        b2Distance(&out, &cache, &in);
-        return out.distance;
+        double best = 1e300;
+        for (b2Fixture *pf : part_fixtures)
+            for (int32 child = 0; child < pf->GetShape()->GetChildCount(); child++) {
+                b2DistanceInput in;
+                in.proxyA.Set(fixel_fixtures[i]->GetShape(), 0);
+                in.proxyB.Set(pf->GetShape(), child);
+                in.transformA = fixel_fixtures[i]->GetBody()->GetTransform();
+                in.transformB = part->GetTransform();
+                in.useRadii = true;
+                b2SimplexCache cache;
+                cache.count = 0;
+                b2DistanceOutput out;
+                b2Distance(&out, &cache, &in);
+                best = std::min(best, (double)out.distance);
+            }
+        return best;
     }
 };
 
@@ -826,12 +1467,34 @@ Load finger_at(const Prepared &p, int edge, double t, double wrench[3])
     return l;
 }
 
-int edge_count(const Prepared &p) { return p.circle ? 1 : (int)p.f->vertex_count; }
+// wrenchd's edges: a polygon's sides, the circle, an outline's segments
+// over all its loops in order.
+int edge_count(const Prepared &p)
+{
+    if (p.circle)
+        return 1;
+    if (p.f->shape == WR_SHAPE_OUTLINE) {
+        size_t n = 0;
+        for (size_t l = 0; l < p.f->outline->loop_count; l++)
+            n += p.f->outline->loops[l].segment_count;
+        return (int)n;
+    }
+    return (int)p.f->vertex_count;
+}
 double edge_range(const Prepared &p) { return p.circle ? 360.0 : 1.0; }
 double edge_length(const Prepared &p, int e)
 {
     if (p.circle)
         return 2 * PI * p.f->radius;
+    if (p.f->shape == WR_SHAPE_OUTLINE) {
+        for (size_t l = 0; l < p.f->outline->loop_count; l++) {
+            const wr_loop &wl = p.f->outline->loops[l];
+            if ((size_t)e < wl.segment_count)
+                return wl.segments[e].length;
+            e -= (int)wl.segment_count;
+        }
+        return 0;
+    }
     const double *a = p.f->vertices[e], *b = p.f->vertices[(e + 1) % p.f->vertex_count];
     return std::hypot(b[0] - a[0], b[1] - a[1]);
 }
@@ -900,6 +1563,7 @@ enum Criterion { AT_LEAST_99, REPORT, NONE_MOVES, SOME_MOVE, NOT_APPLICABLE, ALL
 
 struct Row {
     std::string fixture, set, note;
+    long long deep_before = deep_contacts; // deep_contacts when the row began
     int points = 0, trials = 0, successes = 0;
     Criterion criterion = REPORT;
     bool pass = true;
@@ -933,6 +1597,7 @@ struct Config {
 
 void finish(Row &row)
 {
+    long long deep = deep_contacts - row.deep_before;
     switch (row.criterion) {
     case AT_LEAST_99:
         row.pass = row.trials >= 200 && row.successes * 100 >= 99 * row.trials;
@@ -948,6 +1613,12 @@ void finish(Row &row)
     default:
         row.pass = true;
     }
+    if (deep > 0) {
+        // A fixel sank DEEP_PENETRATION into the part: Box2D's chain let it
+        // through, and no trial of the row can be trusted.
+        row.pass = false;
+        row.note += fmt("; %lld fixel(s) sank %.3f m into the part (sensor pieces)", deep, DEEP_PENETRATION);
+    }
 }
 
 void print_row(const Row &r)
@@ -956,17 +1627,6 @@ void print_row(const Row &r)
                 r.points, r.trials, r.successes, r.trials ? 100.0 * r.successes / r.trials : 0.0,
                 criterion_text(r.criterion), r.pass ? "ok" : "FAIL", r.note.c_str());
     std::fflush(stdout);
-}
-
-std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
-std::string fmt(const char *format, ...)
-{
-    char buf[512];
-    va_list args;
-    va_start(args, format);
-    std::vsnprintf(buf, sizeof buf, format, args);
-    va_end(args);
-    return buf;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -1594,7 +2254,8 @@ Row spin_trials(const Prepared &p, const char *set, bool inside, const std::vect
 void usage()
 {
     std::fprintf(stderr, "usage: physics-validate [--quick | --full] [--verbose] FIXTURE.json ...\n"
-                 "investigations (docs/VALIDATION.md): [--friction-factor X] [--static-as-kinetic]\n"
+                 "investigations (docs/VALIDATION.md): [--friction-factor X] [--static-as-kinetic] [--chains]\n"
+                 "    [--sensor-depth M]\n"
                  "    [--sweep N [--spin W] [--slide V]] [--hold-at EDGE T]\n");
 }
 
@@ -1624,6 +2285,10 @@ int main(int argc, char **argv)
             slide_speed = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--spin") && i + 1 < argc)
             spin = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--chains"))
+            force_chains = true;
+        else if (!std::strcmp(argv[i], "--sensor-depth") && i + 1 < argc)
+            DEEP_PENETRATION = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--static-as-kinetic"))
             static_as_kinetic = true;
         else if (!std::strcmp(argv[i], "--friction-factor") && i + 1 < argc)
@@ -1726,6 +2391,17 @@ int main(int argc, char **argv)
                     p.scale, p.k);
         for (int i = 0; i < p.k; i++)
             std::printf(" %g/%g", p.mu_s[i], p.mu_k[i]);
+        if (p.chains) {
+            size_t vertices = 0, most = 0;
+            for (auto &c : p.cores)
+                vertices += c.size();
+            for (auto &pc : p.pieces)
+                most = std::max(most, pc.size());
+            std::printf("\n  chains: %zu loop(s), %zu vertices, arcs within %.1e m; %zu convex pieces (at most %zu "
+                        "vertices), %zu sensors, area matched to %.1e",
+                        p.cores.size(), vertices, p.deviation, p.pieces.size(), most, p.sensors.size(),
+                        p.piece_area_error);
+        }
         std::printf("\n  G_goal push region: %s\n  G_strong push region: %s\n  G_goal tilts: %s\n",
                     region_text(p, goal).c_str(), region_text(p, strong).c_str(), region_text(p, tilt).c_str());
         std::vector<Row> mine;
