@@ -1004,6 +1004,10 @@ void gap_jacobian(const Prepared &p, const Pose &pose, double J[3][3])
     }
 }
 
+double boundary_displacement(const Prepared &p, const Pose &a, const Pose &b);
+// A start moves no boundary point farther than this from the seated pose.
+constexpr double START_REACH = 4 * GAP_MAX;
+
 struct Start {
     Pose pose;
     V2 v;
@@ -1058,23 +1062,41 @@ bool sample_start(const Prepared &p, Rng &rng, Start *out)
             q[c] += z[c] - back[c];
     }
     Pose pose = apply(p, seated, q);
-    for (int it = 0; it < 20; it++) {
-        double r[3] = {0, 0, 0}, worst = 0;
+    // Newton, its step halved until the residual's norm decreases: on a
+    // curved outline (a fixel in a concave arc) a full step can leave the
+    // arc for a line and jump to a far pose that has the same gaps.
+    auto residual = [&](const Pose &at, double r[3]) {
+        double sum = 0;
         for (int i = 0; i < p.k; i++) {
-            r[i] = target[i] - gap(p, pose, i);
-            worst = std::max(worst, std::fabs(r[i]));
+            r[i] = target[i] - gap(p, at, i);
+            sum += r[i] * r[i];
         }
+        return std::sqrt(sum);
+    };
+    for (int it = 0; it < 40; it++) {
+        double r[3] = {0, 0, 0}, worst = residual(pose, r);
         if (worst < 1e-12 * SIZE)
             break;
         gap_jacobian(p, pose, J);
         double dq[3];
         if (!least_norm(p, J, r, dq))
             return false;
-        pose = apply(p, pose, dq);
+        Pose next = apply(p, pose, dq);
+        double r2[3];
+        for (int halving = 0; halving < 30 && residual(next, r2) >= worst; halving++) {
+            for (double &c : dq)
+                c *= 0.5;
+            next = apply(p, pose, dq);
+        }
+        pose = next;
     }
     for (int i = 0; i < p.k; i++)
         if (std::fabs(gap(p, pose, i) - target[i]) > 1e-9 * SIZE)
             return false;
+    // The start must be near the seated pose (the model is local): a far
+    // pose with the same gaps is no start.
+    if (boundary_displacement(p, seated, pose) > START_REACH)
+        return false;
     double speed = V0_MAX * std::sqrt(rng.uniform()), dir = rng.uniform(0, 2 * PI);
     out->pose = pose;
     out->v = {speed * std::cos(dir), speed * std::sin(dir)};
@@ -1113,7 +1135,7 @@ Pose preloaded(const Prepared &p)
 }
 
 // ---- the Box2D world ----
-long long deep_contacts = 0; // over the run: fixels that met a sensor piece
+double deep_speed = 0; // the part's fastest boundary speed at a sensor contact, this row
 
 // Friction: Box2D mixes two fixtures' coefficients as sqrt(f_a f_b).  The
 // part's fixture has friction 1 and fixel i's has mu_s(i)^2, so the mix is
@@ -1126,9 +1148,12 @@ struct Friction : b2ContactListener {
     long long deep = 0; // a fixel met a sensor piece: sunk DEEP_PENETRATION into the part
     void BeginContact(b2Contact *contact) override
     {
-        if (contact->GetFixtureA()->IsSensor() || contact->GetFixtureB()->IsSensor()) {
+        b2Fixture *a = contact->GetFixtureA(), *b = contact->GetFixtureB();
+        if (a->IsSensor() || b->IsSensor()) {
             deep++;
-            deep_contacts++;
+            b2Body *part = a->IsSensor() ? a->GetBody() : b->GetBody();
+            deep_speed = std::max(deep_speed, (double)part->GetLinearVelocity().Length() +
+                                                  std::fabs(part->GetAngularVelocity()) * SIZE);
         }
     }
     void PreSolve(b2Contact *contact, const b2Manifold *) override
@@ -1326,6 +1351,7 @@ struct Seat {
     double pos_err = 0, ang_err = 0, penetration = 0;
     unsigned touching = 0; // at the end
     bool rest = false;     // came to rest (possibly not seated)
+    long long deep = 0;    // fixels that met a sensor piece (the trial counts against its row)
     double moved = 0;      // distance of the com from the seated pose at the end
 };
 
@@ -1367,13 +1393,15 @@ Seat run_seat(const Prepared &p, const Start &st, const Load &load)
     out.moved = norm(end.x - p.com);
     for (int i = 0; i < p.k; i++)
         out.penetration = std::max(out.penetration, -gap(p, end, i));
-    out.seated = out.rest && out.pos_err < POSE_TOLERANCE && out.ang_err < ANGLE_TOLERANCE;
+    out.deep = sim.friction.deep;
+    out.seated = out.rest && out.pos_err < POSE_TOLERANCE && out.ang_err < ANGLE_TOLERANCE && out.deep == 0;
     return out;
 }
 
 // ---- holding trials: the part seated (preloaded), at rest, under a wrench ----
 struct Hold {
     double moved = 0; // largest boundary displacement over HOLD_TIME
+    long long deep = 0; // fixels that met a sensor piece (the trial counts against its row)
 };
 
 bool hold_trace = std::getenv("PHYSICS_HOLD_TRACE") != nullptr;
@@ -1405,6 +1433,7 @@ Hold run_hold(const Prepared &p, V2 force, double torque, const Load *finger)
         if (out.moved > 100 * MOVE_TOLERANCE)
             break; // it moves: no need to watch it fly
     }
+    out.deep = sim.friction.deep;
     return out;
 }
 
@@ -1563,7 +1592,7 @@ enum Criterion { AT_LEAST_99, REPORT, NONE_MOVES, SOME_MOVE, NOT_APPLICABLE, ALL
 
 struct Row {
     std::string fixture, set, note;
-    long long deep_before = deep_contacts; // deep_contacts when the row began
+    int deep_trials = 0; // trials in which a fixel met a sensor piece
     int points = 0, trials = 0, successes = 0;
     Criterion criterion = REPORT;
     bool pass = true;
@@ -1597,7 +1626,7 @@ struct Config {
 
 void finish(Row &row)
 {
-    long long deep = deep_contacts - row.deep_before;
+
     switch (row.criterion) {
     case AT_LEAST_99:
         row.pass = row.trials >= 200 && row.successes * 100 >= 99 * row.trials;
@@ -1613,12 +1642,13 @@ void finish(Row &row)
     default:
         row.pass = true;
     }
-    if (deep > 0) {
-        // A fixel sank DEEP_PENETRATION into the part: Box2D's chain let it
-        // through, and no trial of the row can be trusted.
-        row.pass = false;
-        row.note += fmt("; %lld fixel(s) sank %.3f m into the part (sensor pieces)", deep, DEEP_PENETRATION);
-    }
+    if (row.deep_trials > 0)
+        // A fixel sank DEEP_PENETRATION into the part (Box2D's chain let it
+        // through): such a trial counts against the criterion.
+        row.note += fmt("; %d trial(s) with a fixel sunk %.3f m into the part (sensor pieces; part speed up to "
+                        "%.2f m/s), counted against the criterion",
+                        row.deep_trials, DEEP_PENETRATION, deep_speed);
+    deep_speed = 0;
 }
 
 void print_row(const Row &r)
@@ -1691,6 +1721,7 @@ Row seat_trials(const Prepared &p, const Config &cfg, const char *set, bool grav
             starts_touching += st.touching > 0;
             Seat s = run_seat(p, st, load);
             row.trials++;
+            row.deep_trials += s.deep > 0;
             if (s.seated) {
                 row.successes++;
                 worst_time = std::max(worst_time, s.time);
@@ -1751,14 +1782,19 @@ Row hold_pushes(const Prepared &p, const Config &cfg, const char *set, bool insi
         Hold h = run_hold(p, {0, 0}, 0, &finger);
         row.points++;
         row.trials++;
+        // A trial in which a fixel sank into the part counts as moved where
+        // nothing may move, and as not moved where something must.
+        row.deep_trials += h.deep > 0;
         bool moved = h.moved > MOVE_TOLERANCE;
         if (inside) {
+            moved = moved || h.deep > 0;
             row.successes += !moved;
             worst = std::max(worst, h.moved);
             if (moved && (cfg.verbose || row.trials - row.successes <= 10))
                 std::fprintf(stderr, "  moved: %s %s edge %d t %.6f (strong margin %+.4f): %.4f m\n",
                              p.name.c_str(), set, edge, t, ms, h.moved);
         } else {
+            moved = moved && h.deep == 0;
             row.successes += moved;
             if (!moved && cfg.verbose)
                 std::fprintf(stderr, "  held: %s %s edge %d t %.6f (strong margin %+.4f, by %s): %.2e m\n",
@@ -1804,14 +1840,17 @@ Row hold_wrenches(const Prepared &p, const Config &cfg, const char *set, bool in
         Hold h = run_hold(p, {F * u[0], F * u[1]}, F * u[2] * p.rho, nullptr);
         row.points++;
         row.trials++;
+        row.deep_trials += h.deep > 0;
         bool moved = h.moved > MOVE_TOLERANCE;
         if (inside) {
+            moved = moved || h.deep > 0;
             row.successes += !moved;
             worst = std::max(worst, h.moved);
             if (moved && (cfg.verbose || row.trials - row.successes <= 10))
                 std::fprintf(stderr, "  moved: %s %s w (%.4f, %.4f, %.4f) strong margin %+.4f: %.4f m\n",
                              p.name.c_str(), set, w[0], w[1], w[2], ms, h.moved);
         } else {
+            moved = moved && h.deep == 0;
             row.successes += moved;
             if (!moved && cfg.verbose)
                 std::fprintf(stderr, "  held: %s w (%.4f, %.4f, %.4f) strong margin %+.4f by %s: %.2e m\n",
