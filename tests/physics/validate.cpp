@@ -511,6 +511,7 @@ struct Prepared {
     std::vector<std::vector<V2>> sensors;     // the pieces shrunk by DEEP_PENETRATION
     int sensorless_pieces = 0;                // pieces too thin to shrink
     double deviation = 0;                     // largest distance polyline - arc (m)
+    double normal_error = 0;                  // largest angle polyline normal - arc normal (rad)
     double piece_area_error = 0;              // |pieces' area - polylines'| / polylines'
     std::vector<size_t> fixel_loop, fixel_seg;
     std::vector<double> fixel_t;
@@ -576,6 +577,7 @@ bool build_chains(Prepared *p)
                 poly.push_back(g.c + rr * V2{std::cos(phi), std::sin(phi)});
                 corner.push_back(false);
                 p->deviation = std::max(p->deviation, rr - g.r);
+                p->normal_error = std::max(p->normal_error, std::fabs(half));
             }
         }
         p->polylines.push_back(poly);
@@ -2436,10 +2438,10 @@ int main(int argc, char **argv)
                 vertices += c.size();
             for (auto &pc : p.pieces)
                 most = std::max(most, pc.size());
-            std::printf("\n  chains: %zu loop(s), %zu vertices, arcs within %.1e m; %zu convex pieces (at most %zu "
-                        "vertices), %zu sensors, area matched to %.1e",
-                        p.cores.size(), vertices, p.deviation, p.pieces.size(), most, p.sensors.size(),
-                        p.piece_area_error);
+            std::printf("\n  chains: %zu loop(s), %zu vertices, arcs within %.1e m and %.2f deg; %zu convex pieces "
+                        "(at most %zu vertices), %zu sensors, area matched to %.1e",
+                        p.cores.size(), vertices, p.deviation, p.normal_error * DEG, p.pieces.size(), most,
+                        p.sensors.size(), p.piece_area_error);
         }
         std::printf("\n  G_goal push region: %s\n  G_strong push region: %s\n  G_goal tilts: %s\n",
                     region_text(p, goal).c_str(), region_text(p, strong).c_str(), region_text(p, tilt).c_str());
