@@ -376,10 +376,9 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
     if (f->shape == WR_SHAPE_OUTLINE) {
         wr_outline_place place;
         if (!wr_outline_locate(f->outline, in->at, BOUNDARY_TOLERANCE * f->size, &place)) {
-            wr_outline_locate(f->outline, in->at, INFINITY, &place);
             wr_error_set(error, field,
                          "(%g, %g) is not on the workpiece boundary: %.3g away from it",
-                         in->at[0], in->at[1], place.distance);
+                         in->at[0], in->at[1], wr_outline_distance(f->outline, in->at));
             return false;
         }
         const wr_loop *loop = &f->outline->loops[place.loop];
