@@ -102,6 +102,8 @@ int wc_push_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "set", run->set);
     if (run->friction_given)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
+    if (run->radius_given)
+        cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
     return -1;
 }
 
@@ -199,7 +201,7 @@ static bool draw_push(const wc_run *run, const cJSON *result, FILE *out,
     }
     wc_svg_push(out, geometry, name, set_name(run), items, count,
                 cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction")),
-                run->finger_friction, -1);
+                run->finger_friction, run->radius_given ? run->finger_radius : -1);
     free(items);
     return true;
 }
