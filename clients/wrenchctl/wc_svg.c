@@ -141,7 +141,12 @@ static bool edge_place(const wr_outline *o, int edge, size_t *loop, size_t *segm
  * a half circle.  An arc whose sagitta is below 0.005 pixels is a line on
  * the page (a nearly straight arc's radius may be beyond what a viewer
  * computes with); one of more than a half circle whose ends print as the
- * same point (SVG leaves such an arc out) is drawn as its two halves. */
+ * same point (SVG leaves such an arc out) is drawn as its two halves.
+ *
+ * Outline paths are written to six decimals, not two: an arc near a half
+ * circle is ill-conditioned in its endpoints and radius (a rounding delta
+ * moves its middle by about sqrt(2 r delta): a pixel at two decimals). */
+#define OUTLINE_XY "%.6f %.6f"
 static void segment_to(FILE *out, const frame *f, const wr_outline *o, size_t loop,
                        size_t segment, double t0, double t1)
 {
@@ -150,8 +155,8 @@ static void segment_to(FILE *out, const frame *f, const wr_outline *o, size_t lo
     wr_outline_boundary(o, loop, segment, t0, a, NULL);
     wr_outline_boundary(o, loop, segment, t1, b, NULL);
     char from[64], to[64];
-    snprintf(from, sizeof from, "%.2f %.2f", page_x(f, a[0]), page_y(f, a[1]));
-    snprintf(to, sizeof to, "%.2f %.2f", page_x(f, b[0]), page_y(f, b[1]));
+    snprintf(from, sizeof from, OUTLINE_XY, page_x(f, a[0]), page_y(f, a[1]));
+    snprintf(to, sizeof to, OUTLINE_XY, page_x(f, b[0]), page_y(f, b[1]));
     double sweep = (t1 - t0) * s->sweep;
     double r = s->radius * f->scale;
     double quarter = sin(sweep / 4);
@@ -164,7 +169,7 @@ static void segment_to(FILE *out, const frame *f, const wr_outline *o, size_t lo
         segment_to(out, f, o, loop, segment, (t0 + t1) / 2, t1);
         return;
     }
-    fprintf(out, " A %.2f %.2f 0 %d %d %s", r, r, fabs(sweep) > PI ? 1 : 0, sweep > 0 ? 0 : 1, to);
+    fprintf(out, " A %.6f %.6f 0 %d %d %s", r, r, fabs(sweep) > PI ? 1 : 0, sweep > 0 ? 0 : 1, to);
 }
 
 /* Every loop as a closed subpath of one path: with fill-rule evenodd the
@@ -173,7 +178,7 @@ static void outline_path(FILE *out, const frame *f, const wr_outline *o)
 {
     for (size_t i = 0; i < o->loop_count; i++) {
         const wr_loop *l = &o->loops[i];
-        fprintf(out, "%sM %.2f %.2f", i ? " " : "", page_x(f, l->segments[0].start[0]),
+        fprintf(out, "%sM " OUTLINE_XY, i ? " " : "", page_x(f, l->segments[0].start[0]),
                 page_y(f, l->segments[0].start[1]));
         for (size_t j = 0; j < l->segment_count; j++) {
             if (j + 1 == l->segment_count && l->segments[j].bulge == 0)
@@ -252,15 +257,16 @@ static void friction_cone(FILE *out, const frame *f, const wr_fixel *x, double c
 }
 
 /* A fixel on a hole's boundary: a pin in the hole, a dark disc touching the
- * boundary at the contact (its radius the wedge's size, or less in a small
- * hole), its friction cone, and an arrow from its centre along the normal,
- * into the material; its number on it. */
+ * boundary at the contact (its radius the wedge's size, or 0.35 of the
+ * hole's narrower side if that is less, so that it shows its clearance),
+ * its friction cone, and an arrow from its centre along the normal, into
+ * the material; its number on it. */
 static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t hole,
                 double wedge, double cone)
 {
     const wr_fixel *x = &fx->fixels[i];
     const double *p = x->at, *n = x->normal;
-    double radius = fmin(wedge, 0.45 * loop_width(&fx->outline->loops[hole]));
+    double radius = fmin(wedge, 0.35 * loop_width(&fx->outline->loops[hole]));
     double c[2] = {p[0] - radius * n[0], p[1] - radius * n[1]};
     fprintf(out, "<circle class=\"fixel pin\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#444\"/>\n",
             page_x(f, c[0]), page_y(f, c[1]), radius * f->scale);
@@ -368,7 +374,7 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
             /* Along its segment: on an arc, an arc. */
             double a[2];
             wr_outline_boundary(fx->outline, loop, segment, r->t0, a, NULL);
-            fprintf(out, "M %.2f %.2f", page_x(&f, a[0]), page_y(&f, a[1]));
+            fprintf(out, "M " OUTLINE_XY, page_x(&f, a[0]), page_y(&f, a[1]));
             segment_to(out, &f, fx->outline, loop, segment, r->t0, r->t1);
         } else {
             double a[2], b[2], n[2];
