@@ -2,6 +2,7 @@
  * (centroid, uniform inertia, inward normals, scaled contact wrenches). */
 #include "wr_fixture.h"
 #include "wr_internal.h"
+#include "wr_outline.h"
 
 #include <float.h>
 #include <math.h>
@@ -364,11 +365,38 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
     out->at[0] = in->at[0] + 0.0;
     out->at[1] = in->at[1] + 0.0;
 
-    /* The shape's inward normal at `at`, when defined. */
+    /* The shape's inward normal at `at`, when defined; at a corner (a
+     * polygon's vertex, an outline's vertex where the boundary turns) the
+     * inward normals of the two segments that meet there instead. */
     double inward[2] = {0, 0};
     bool inward_known = false;
-    long vertex = -1;
-    if (f->shape != WR_SHAPE_NONE) {
+    bool at_corner = false;
+    double corner[2][2];
+    char corner_name[64] = "";
+    if (f->shape == WR_SHAPE_OUTLINE) {
+        wr_outline_place place;
+        if (!wr_outline_locate(f->outline, in->at, BOUNDARY_TOLERANCE * f->size, &place)) {
+            wr_outline_locate(f->outline, in->at, INFINITY, &place);
+            wr_error_set(error, field,
+                         "(%g, %g) is not on the workpiece boundary: %.3g away from it",
+                         in->at[0], in->at[1], place.distance);
+            return false;
+        }
+        const wr_loop *loop = &f->outline->loops[place.loop];
+        double unused[2];
+        if (place.at_vertex && !place.smooth) {
+            at_corner = true;
+            wr_outline_boundary(f->outline, place.loop, place.vertex, 0, unused, corner[0]);
+            wr_outline_boundary(f->outline, place.loop,
+                                (place.vertex + loop->segment_count - 1) % loop->segment_count, 1,
+                                unused, corner[1]);
+            snprintf(corner_name, sizeof corner_name, "vertex %zu of loop %zu of the outline",
+                     place.vertex, place.loop);
+        } else {
+            wr_outline_boundary(f->outline, place.loop, place.segment, place.t, unused, inward);
+            inward_known = true;
+        }
+    } else if (f->shape != WR_SHAPE_NONE) {
         size_t edge = 0;
         double fraction = 0;
         double distance = boundary_distance(f, in->at, &edge, &fraction);
@@ -385,10 +413,16 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
             inward[1] = d[1] / length;
             inward_known = true;
         } else {
-            vertex = near_vertex(f, in->at);
+            long vertex = near_vertex(f, in->at);
             if (vertex < 0) {
                 edge_inward_normal(f, edge, inward);
                 inward_known = true;
+            } else {
+                size_t n = f->vertex_count;
+                at_corner = true;
+                edge_inward_normal(f, (size_t)vertex, corner[0]);
+                edge_inward_normal(f, ((size_t)vertex + n - 1) % n, corner[1]);
+                snprintf(corner_name, sizeof corner_name, "vertex %ld of the polygon", vertex);
             }
         }
     }
@@ -420,15 +454,11 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
             double along = out->normal[0] * inward[0] + out->normal[1] * inward[1];
             tangent = fabs(along) <= TANGENT_TOLERANCE;
             points_in = along > TANGENT_TOLERANCE;
-        } else if (vertex >= 0) {
-            /* At a vertex, the normal must point into the body across at
-             * least one of the two edges that meet there. */
-            double a[2], b[2];
-            size_t n = f->vertex_count;
-            edge_inward_normal(f, (size_t)vertex, a);
-            edge_inward_normal(f, ((size_t)vertex + n - 1) % n, b);
-            double along_a = out->normal[0] * a[0] + out->normal[1] * a[1];
-            double along_b = out->normal[0] * b[0] + out->normal[1] * b[1];
+        } else if (at_corner) {
+            /* At a corner, the normal must point into the body across at
+             * least one of the two segments that meet there. */
+            double along_a = out->normal[0] * corner[0][0] + out->normal[1] * corner[0][1];
+            double along_b = out->normal[0] * corner[1][0] + out->normal[1] * corner[1][1];
             points_in = along_a > TANGENT_TOLERANCE || along_b > TANGENT_TOLERANCE;
             tangent = fabs(along_a) <= TANGENT_TOLERANCE || fabs(along_b) <= TANGENT_TOLERANCE;
         }
@@ -448,10 +478,10 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
     } else if (inward_known) {
         out->normal[0] = inward[0] + 0.0;
         out->normal[1] = inward[1] + 0.0;
-    } else if (vertex >= 0) {
+    } else if (at_corner) {
         wr_error_set(error, field,
-                     "required: (%g, %g) is vertex %ld of the polygon, where the inward normal is not defined",
-                     in->at[0], in->at[1], vertex);
+                     "required: (%g, %g) is %s, where the inward normal is not defined",
+                     in->at[0], in->at[1], corner_name);
         return false;
     } else {
         wr_error_set(error, field, "required when the body has no shape");
@@ -511,9 +541,9 @@ static bool check_scales(const wr_fixture *f, const wr_fixture_spec *spec, wr_er
                 lo[k] = f->center[k] - f->radius;
                 hi[k] = f->center[k] + f->radius;
             }
-            for (size_t i = 0; i < f->vertex_count; i++) {
-                lo[k] = fmin(lo[k], f->vertices[i][k]);
-                hi[k] = fmax(hi[k], f->vertices[i][k]);
+            if (f->outline) { /* a polygon's: its vertices' box */
+                lo[k] = f->outline->box_min[k];
+                hi[k] = f->outline->box_max[k];
             }
         }
         double dx = fmax(0, fmax(lo[0] - f->com[0], f->com[0] - hi[0]));
@@ -602,7 +632,7 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
     } else if (spec->shape == WR_SHAPE_POLYGON) {
         if (!check_polygon(spec, shape_size(spec), error))
             return false;
-    } else {
+    } else if (spec->shape == WR_SHAPE_NONE) {
         if (!spec->com_given) {
             wr_error_set(error, "body.com", "required when the body has no shape");
             return false;
@@ -647,9 +677,31 @@ static wr_fixture *validate(const wr_fixture_spec *spec, wr_error *error, bool *
         return NULL;
     }
     f->shape = spec->shape;
-    f->size = shape_size(spec);
     f->mass = spec->mass;
     double area = 0, centroid[2] = {0, 0}, polar_moment = 0;
+    if (spec->shape == WR_SHAPE_OUTLINE) {
+        wr_error outline_error;
+        wr_status status = wr_outline_new(spec->loops, spec->loop_count, &f->outline, &outline_error);
+        if (status != WR_OK) {
+            /* Its fields are the shape's: "loops[1][2]" is
+             * "body.shape.loops[1][2]" of the fixture.  (Loop fields are
+             * short: "loops[4095][4095][2]" at most.) */
+            *no_memory = status == WR_NO_MEMORY;
+            char field[96];
+            snprintf(field, sizeof field, "body.shape%s%.80s", outline_error.field[0] ? "." : "",
+                     outline_error.field);
+            wr_error_set(error, *no_memory ? "" : field, "%s", outline_error.reason);
+            free(f);
+            return NULL;
+        }
+        f->size = f->outline->size;
+        area = f->outline->area;
+        centroid[0] = f->outline->centroid[0];
+        centroid[1] = f->outline->centroid[1];
+        polar_moment = f->outline->polar_moment;
+    } else {
+        f->size = shape_size(spec);
+    }
     if (spec->shape == WR_SHAPE_CIRCLE) {
         f->center[0] = spec->center[0] + 0.0;
         f->center[1] = spec->center[1] + 0.0;
@@ -673,7 +725,15 @@ static wr_fixture *validate(const wr_fixture_spec *spec, wr_error *error, bool *
                 f->vertices[i][k] = spec->vertices[i][k] + 0.0;
         f->orientation = polygon_area2(spec->vertices, spec->vertex_count) > 0 ? 1 : -1;
         polygon_moments(spec->vertices, spec->vertex_count, &area, centroid, &polar_moment);
+        if (wr_outline_polygon((const double (*)[2])f->vertices, f->vertex_count, &f->outline) !=
+            WR_OK) {
+            wr_fixture_free(f);
+            wr_error_set(error, "", "out of memory");
+            *no_memory = true;
+            return NULL;
+        }
     }
+    f->area = area;
     if (spec->com_given) {
         f->com[0] = spec->com[0] + 0.0;
         f->com[1] = spec->com[1] + 0.0;
@@ -750,6 +810,7 @@ void wr_fixture_free(wr_fixture *fixture)
     if (!fixture)
         return;
     free(fixture->vertices);
+    wr_outline_free(fixture->outline);
     free(fixture);
 }
 

@@ -13,6 +13,7 @@
 #include "wr_outline.h"
 #include "wr_internal.h"
 
+#include <assert.h>
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -885,6 +886,43 @@ wr_status wr_outline_new(const wr_loop_spec *loops, size_t loop_count, wr_outlin
         }
     }
     if (!check_geometry(outline, error) || !mass_properties(outline, error)) {
+        wr_outline_free(outline);
+        return WR_INVALID;
+    }
+    *out = outline;
+    return WR_OK;
+}
+
+wr_status wr_outline_polygon(const double (*vertices)[2], size_t count, wr_outline **out)
+{
+    *out = NULL;
+    assert(count >= 3);
+    wr_outline *outline = calloc(1, sizeof *outline);
+    wr_loop *loop = calloc(1, sizeof *loop);
+    wr_segment *segments = calloc(count, sizeof *segments);
+    if (!outline || !loop || !segments) {
+        free(outline);
+        free(loop);
+        free(segments);
+        return WR_NO_MEMORY;
+    }
+    outline->loop_count = 1;
+    outline->loops = loop;
+    outline->vertex_count = count;
+    loop->segment_count = count;
+    loop->segments = segments;
+    for (size_t j = 0; j < count; j++) {
+        segment_build(&segments[j], vertices[j], vertices[(j + 1) % count], 0);
+        segment_box(&segments[j]);
+    }
+    loop_box(outline, outline->box_min, outline->box_max);
+    outline->size = hypot(outline->box_max[0] - outline->box_min[0],
+                          outline->box_max[1] - outline->box_min[1]);
+    moments m = loop_moments(loop, segments[0].start);
+    loop->signed_area = m.area;
+    loop->orientation = m.area > 0 ? 1 : -1;
+    loop->material_side = loop->orientation;
+    if (!mass_properties(outline, NULL)) { /* validated polygons fit: never */
         wr_outline_free(outline);
         return WR_INVALID;
     }

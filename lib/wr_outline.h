@@ -154,6 +154,11 @@ wr_status wr_outline_new(const wr_loop_spec *loops, size_t loop_count, wr_outlin
                          wr_error *error);
 void wr_outline_free(wr_outline *outline);
 
+/* The outline of a polygon wr_fixture has validated (at least 3 vertices,
+ * simple, with area): one loop of straight segments, without checks.
+ * WR_OK, or WR_NO_MEMORY. */
+wr_status wr_outline_polygon(const double (*vertices)[2], size_t count, wr_outline **out);
+
 /* The point at fraction t of the length of segment `segment` of loop
  * `loop` (t clamped to [0, 1]; t = 0 and t = 1 give the segment's vertices
  * exactly), and, if `normal` is not NULL, the unit normal there pointing

@@ -6,8 +6,11 @@
  * set; membership of a closed cone {F h <= 0, E h = 0} along an affine or
  * trigonometric curve reduces to one linear condition per row. */
 #include "wr_regions.h"
+#include "wr_finger.h"
 #include "wr_internal.h"
+#include "wr_outline.h"
 
+#include <assert.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -108,8 +111,22 @@ static int set_cones(const wr_analysis *a, wr_set set, const wr_cone ***cones)
 
 /* ---- the boundary ---------------------------------------------------------------- */
 
+/* The segment of an outline edge. */
+static const wr_segment *edge_segment(const wr_fixture *f, int edge)
+{
+    size_t loop, segment;
+    wr_push_edge_place(f, edge, &loop, &segment);
+    return &f->outline->loops[loop].segments[segment];
+}
+
 void wr_boundary_point(const wr_fixture *f, int edge, double t, double point[2], double normal[2])
 {
+    if (f->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(f, edge, &loop, &segment);
+        wr_outline_boundary(f->outline, loop, segment, t, point, normal);
+        return;
+    }
     if (f->shape == WR_SHAPE_CIRCLE) {
         double angle = t * WR_PI / 180;
         double u[2] = {cos(angle), sin(angle)};
@@ -136,6 +153,8 @@ double wr_region_length(const wr_fixture *f, const wr_region *r)
 {
     if (f->shape == WR_SHAPE_CIRCLE)
         return f->radius * (r->t1 - r->t0) * WR_PI / 180;
+    if (f->shape == WR_SHAPE_OUTLINE)
+        return (r->t1 - r->t0) * edge_segment(f, r->edge)->length;
     const double *a = f->vertices[r->edge], *b = f->vertices[((size_t)r->edge + 1) % f->vertex_count];
     return (r->t1 - r->t0) * hypot(b[0] - a[0], b[1] - a[1]);
 }
@@ -144,6 +163,8 @@ double wr_perimeter(const wr_fixture *f)
 {
     if (f->shape == WR_SHAPE_CIRCLE)
         return 2 * WR_PI * f->radius;
+    if (f->shape == WR_SHAPE_OUTLINE)
+        return f->outline->perimeter;
     double length = 0;
     for (size_t i = 0; i < f->vertex_count; i++) {
         const double *a = f->vertices[i], *b = f->vertices[(i + 1) % f->vertex_count];
@@ -197,35 +218,25 @@ static void scale_wrench(const wr_fixture *f, const double w[3], double h[3])
     h[2] = w[2] / f->gyration_radius;
 }
 
-static bool polygon_exact(const wr_fixture *f, const wr_cone **cones, int count, size_t first,
-                          size_t end, const wr_stop *stop, bool *stopped, wr_regions *out)
+/* The closed t-spans of a straight edge (a polygon's side, an outline's
+ * line) where its push wrench is in some cone: w is affine in t. */
+static void line_bad_spans(const wr_fixture *f, const wr_cone **cones, int count, int edge,
+                           spans *bad)
 {
-    for (size_t e = first; e < end; e++) {
-        if (wr_stop_requested(stop)) {
-            *stopped = true;
-            return false;
-        }
-        double w0[3], w1[3], h0[3], h1[3];
-        wr_push_wrench(f, (int)e, 0, w0);
-        wr_push_wrench(f, (int)e, 1, w1);
-        for (int k = 0; k < 3; k++)
-            w1[k] -= w0[k]; /* affine: w(t) = w0 + t w1 */
-        scale_wrench(f, w0, h0);
-        scale_wrench(f, w1, h1);
-        double scale = wr_norm3(h0) + wr_norm3(h1);
-        spans bad = {0, 0, NULL, false};
-        for (int c = 0; c < count; c++) {
-            if (cones[c]->empty)
-                continue;
-            span s = line_in_cone(cones[c], h0, h1, scale);
-            add_span(&bad, s.lo, s.hi);
-        }
-        bool ok = !bad.failed && complement(&bad, 0, 1, (int)e, out);
-        free(bad.items);
-        if (!ok)
-            return false;
+    double w0[3], w1[3], h0[3], h1[3];
+    wr_push_wrench(f, edge, 0, w0);
+    wr_push_wrench(f, edge, 1, w1);
+    for (int k = 0; k < 3; k++)
+        w1[k] -= w0[k]; /* affine: w(t) = w0 + t w1 */
+    scale_wrench(f, w0, h0);
+    scale_wrench(f, w1, h1);
+    double scale = wr_norm3(h0) + wr_norm3(h1);
+    for (int c = 0; c < count; c++) {
+        if (cones[c]->empty)
+            continue;
+        span s = line_in_cone(cones[c], h0, h1, scale);
+        add_span(bad, s.lo, s.hi);
     }
-    return true;
 }
 
 /* ---- exact: a circle of directions u(theta) against each cone -------------------- */
@@ -288,29 +299,74 @@ static spans circle_in_cone(const wr_cone *cone, const double a[3][2])
     return set;
 }
 
-/* The open arcs of [0, 360) where A u(theta) is outside every cone's
- * closure, split at 0 degrees. */
-static bool circle_exact(const double a[3][2], const wr_cone **cones, int count,
-                         const wr_stop *stop, bool *stopped, wr_regions *out)
+/* The closed arcs of [0, 360] degrees where A u(theta) is in some cone's
+ * closure, added to `bad`. */
+static bool circle_bad_spans(const double a[3][2], const wr_cone **cones, int count,
+                             const wr_stop *stop, bool *stopped, spans *bad)
 {
-    spans bad = {0, 0, NULL, false};
-    for (int c = 0; c < count && !bad.failed; c++) {
+    for (int c = 0; c < count && !bad->failed; c++) {
         if (wr_stop_requested(stop)) {
             *stopped = true;
-            free(bad.items);
             return false;
         }
         if (cones[c]->empty)
             continue;
         spans arcs = circle_in_cone(cones[c], a);
         for (int i = 0; i < arcs.count; i++)
-            add_span(&bad, arcs.items[i].lo, arcs.items[i].hi);
-        bad.failed |= arcs.failed;
+            add_span(bad, arcs.items[i].lo, arcs.items[i].hi);
+        bad->failed |= arcs.failed;
         free(arcs.items);
     }
-    bool ok = !bad.failed && complement(&bad, 0, 360, 0, out);
+    return !bad->failed;
+}
+
+/* The open arcs of [0, 360) where A u(theta) is outside every cone's
+ * closure, split at 0 degrees. */
+static bool circle_exact(const double a[3][2], const wr_cone **cones, int count,
+                         const wr_stop *stop, bool *stopped, wr_regions *out)
+{
+    spans bad = {0, 0, NULL, false};
+    bool ok = circle_bad_spans(a, cones, count, stop, stopped, &bad) &&
+              complement(&bad, 0, 360, 0, out);
     free(bad.items);
     return ok;
+}
+
+/* The closed t-spans of an outline's arc where its push wrench is in some
+ * cone.  On the arc's circle (centre C, unit radial u(theta)) the inward
+ * normal is sigma u with sigma = -1 when the material lies inside the
+ * circle and +1 outside, so w = sigma (u, (C - x_c) x u): linear in u as
+ * on a circular part.  The arcs of angles found are mapped to the
+ * fraction t of the included angle, theta = start + t sweep. */
+static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count, int edge,
+                          const wr_stop *stop, bool *stopped, spans *bad)
+{
+    size_t loop, segment;
+    wr_push_edge_place(f, edge, &loop, &segment);
+    const wr_segment *arc = &f->outline->loops[loop].segments[segment];
+    double inward[2], point[2];
+    wr_outline_boundary(f->outline, loop, segment, 0.5, point, inward);
+    double radial[2] = {point[0] - arc->center[0], point[1] - arc->center[1]};
+    double sigma = inward[0] * radial[0] + inward[1] * radial[1] > 0 ? 1 : -1;
+    double d[2] = {arc->center[0] - f->com[0], arc->center[1] - f->com[1]};
+    double rho = f->gyration_radius;
+    const double matrix[3][2] = {
+        {sigma, 0}, {0, sigma}, {-sigma * d[1] / rho, sigma * d[0] / rho}};
+    spans angles = {0, 0, NULL, false};
+    if (!circle_bad_spans(matrix, cones, count, stop, stopped, &angles)) {
+        free(angles.items);
+        bad->failed |= angles.failed;
+        return false;
+    }
+    double start = arc->start_angle * 180 / WR_PI, sweep = arc->sweep * 180 / WR_PI;
+    for (int i = 0; i < angles.count; i++)
+        for (int turn = -2; turn <= 2; turn++) {
+            double t0 = (angles.items[i].lo + 360.0 * turn - start) / sweep;
+            double t1 = (angles.items[i].hi + 360.0 * turn - start) / sweep;
+            add_span(bad, fmax(0, fmin(t0, t1)), fmin(1, fmax(t0, t1)));
+        }
+    free(angles.items);
+    return !bad->failed;
 }
 
 /* ---- sampled: a finger with friction --------------------------------------------- */
@@ -397,20 +453,94 @@ static bool sampled(const wr_fixture *f, const wr_cone **cones, int count, doubl
 
 int wr_push_edge_count(const wr_fixture *f)
 {
-    return f->shape == WR_SHAPE_POLYGON ? (int)f->vertex_count : f->shape == WR_SHAPE_CIRCLE;
+    switch (f->shape) {
+    case WR_SHAPE_CIRCLE:
+        return 1;
+    case WR_SHAPE_POLYGON:
+        return (int)f->vertex_count;
+    case WR_SHAPE_OUTLINE:
+        return (int)f->outline->vertex_count;
+    default:
+        return 0;
+    }
+}
+
+void wr_push_edge_place(const wr_fixture *f, int edge, size_t *loop, size_t *segment)
+{
+    *loop = 0;
+    *segment = edge < 0 ? 0 : (size_t)edge;
+    if (f->shape != WR_SHAPE_OUTLINE)
+        return;
+    while (*loop + 1 < f->outline->loop_count &&
+           *segment >= f->outline->loops[*loop].segment_count)
+        *segment -= f->outline->loops[(*loop)++].segment_count;
+    assert(*segment < f->outline->loops[*loop].segment_count);
+}
+
+/* The regions of one edge of a polygon or an outline: exact for a
+ * frictionless finger (affine on a line, trigonometric on an arc), sampled
+ * with friction; less what a finger of the given radius cannot reach. */
+static bool edge_regions(const wr_fixture *f, const wr_cone **cones, int count,
+                         const wr_finger *finger, int edge, const wr_stop *stop, bool *stopped,
+                         wr_regions *out)
+{
+    if (wr_stop_requested(stop)) {
+        *stopped = true;
+        return false;
+    }
+    spans blocked = {0, 0, NULL, false};
+    if (finger->radius > 0) {
+        size_t loop, segment;
+        wr_push_edge_place(f, edge, &loop, &segment);
+        wr_span *items = NULL;
+        int n = 0;
+        wr_status status =
+            wr_finger_blocked(f->outline, loop, segment, finger->radius, stop, &items, &n);
+        if (status != WR_OK) {
+            *stopped = status == WR_STOPPED;
+            free(items);
+            return false;
+        }
+        for (int i = 0; i < n; i++)
+            add_span(&blocked, items[i].lo, items[i].hi);
+        free(items);
+    }
+    bool ok;
+    if (finger->friction > 0) {
+        /* Sampled regions, then each less the blocked spans. */
+        wr_regions sampled_regions = {0};
+        ok = sampled(f, cones, count, finger->friction, edge, 0, 1, stop, stopped,
+                     &sampled_regions);
+        for (int i = 0; ok && i < sampled_regions.count; i++)
+            ok = complement(&blocked, sampled_regions.items[i].t0, sampled_regions.items[i].t1,
+                            edge, out);
+        wr_regions_release(&sampled_regions);
+    } else {
+        bool arc = f->shape == WR_SHAPE_OUTLINE && edge_segment(f, edge)->bulge != 0;
+        if (arc)
+            ok = arc_bad_spans(f, cones, count, edge, stop, stopped, &blocked);
+        else {
+            line_bad_spans(f, cones, count, edge, &blocked);
+            ok = !blocked.failed;
+        }
+        ok = ok && complement(&blocked, 0, 1, edge, out);
+    }
+    ok = ok && !blocked.failed;
+    free(blocked.items);
+    return ok;
 }
 
 wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger *finger,
                                int first_edge, int edge_count, const wr_stop *stop,
                                wr_regions *out)
 {
-    double finger_friction = finger->friction;
     const wr_fixture *f = a->fixture;
     int edges = wr_push_edge_count(f);
     if (f->shape == WR_SHAPE_NONE)
         return WR_NO_SHAPE;
-    if (!(finger_friction >= 0) || !isfinite(finger_friction) || first_edge < 0 ||
-        edge_count < 0 || edge_count > edges - first_edge)
+    if (!(finger->friction >= 0) || !isfinite(finger->friction) || !(finger->radius >= 0) ||
+        !isfinite(finger->radius) || first_edge < 0 || edge_count < 0 ||
+        edge_count > edges - first_edge)
         return WR_INVALID;
     const wr_cone **cones;
     int count = set_cones(a, set, &cones);
@@ -420,23 +550,23 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
     int before = out->count;
     bool ok = true;
     bool stopped = false;
-    size_t first = (size_t)first_edge, end = (size_t)(first_edge + edge_count);
-    if (finger_friction > 0) {
+    if (finger->friction > 0)
         out->resolution = f->shape == WR_SHAPE_CIRCLE ? 360.0 / SAMPLES : 1.0 / SAMPLES;
-        if (f->shape == WR_SHAPE_CIRCLE)
+    if (f->shape == WR_SHAPE_CIRCLE) {
+        /* A disc is convex: a finger of any radius reaches all of it. */
+        if (finger->friction > 0) {
             ok = edge_count == 0 ||
-                 sampled(f, cones, count, finger_friction, 0, 0, 360, stop, &stopped, out);
-        else
-            for (size_t e = first; e < end && ok; e++)
-                ok = sampled(f, cones, count, finger_friction, (int)e, 0, 1, stop, &stopped, out);
-    } else if (f->shape == WR_SHAPE_CIRCLE) {
-        /* w = (-u, -(d x u)) with d = centre - com: linear in u. */
-        double d[2] = {f->center[0] - f->com[0], f->center[1] - f->com[1]};
-        double rho = f->gyration_radius;
-        const double matrix[3][2] = {{-1, 0}, {0, -1}, {d[1] / rho, -d[0] / rho}};
-        ok = edge_count == 0 || circle_exact(matrix, cones, count, stop, &stopped, out);
+                 sampled(f, cones, count, finger->friction, 0, 0, 360, stop, &stopped, out);
+        } else {
+            /* w = (-u, -(d x u)) with d = centre - com: linear in u. */
+            double d[2] = {f->center[0] - f->com[0], f->center[1] - f->com[1]};
+            double rho = f->gyration_radius;
+            const double matrix[3][2] = {{-1, 0}, {0, -1}, {d[1] / rho, -d[0] / rho}};
+            ok = edge_count == 0 || circle_exact(matrix, cones, count, stop, &stopped, out);
+        }
     } else {
-        ok = polygon_exact(f, cones, count, first, end, stop, &stopped, out);
+        for (int e = first_edge; e < first_edge + edge_count && ok; e++)
+            ok = edge_regions(f, cones, count, finger, e, stop, &stopped, out);
     }
     free(cones);
     if (!ok) {
@@ -446,16 +576,22 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
     return WR_OK;
 }
 
-wr_status wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction,
-                          const wr_stop *stop, wr_regions *out)
+wr_status wr_push_regions_finger(const wr_analysis *a, wr_set set, const wr_finger *finger,
+                                 const wr_stop *stop, wr_regions *out)
 {
     memset(out, 0, sizeof *out);
-    wr_finger finger = {finger_friction, 0};
-    wr_status status = wr_push_regions_part(a, set, &finger, 0, wr_push_edge_count(a->fixture),
-                                            stop, out);
+    wr_status status =
+        wr_push_regions_part(a, set, finger, 0, wr_push_edge_count(a->fixture), stop, out);
     if (status != WR_OK)
         wr_regions_release(out);
     return status;
+}
+
+wr_status wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction,
+                          const wr_stop *stop, wr_regions *out)
+{
+    wr_finger finger = {finger_friction, 0};
+    return wr_push_regions_finger(a, set, &finger, stop, out);
 }
 
 wr_status wr_gravity_sweep(const wr_analysis *a, wr_set set, wr_regions *out)

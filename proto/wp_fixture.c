@@ -11,6 +11,115 @@ static const char *const FIXTURE_FIELDS[] = {"name", "body", "friction", "fixels
 static const char *const BODY_FIELDS[] = {"mass", "inertia", "com", "shape", NULL};
 static const char *const CIRCLE_FIELDS[] = {"type", "center", "radius", NULL};
 static const char *const POLYGON_FIELDS[] = {"type", "vertices", NULL};
+static const char *const OUTLINE_FIELDS[] = {"type", "loops", NULL};
+
+/* What a shape read from JSON borrows into its spec: a polygon's vertices,
+ * an outline's loops and their (x, y, bulge) rows.  Freed by the reader. */
+typedef struct shape_storage {
+    double (*vertices)[2];
+    wr_loop_spec *loops;
+    double (*rows)[3];
+} shape_storage;
+
+static void shape_storage_free(shape_storage *storage)
+{
+    free(storage->vertices);
+    free(storage->loops);
+    free(storage->rows);
+}
+
+/* An array at `path` of at most `limit` items; its size in *count. */
+static bool read_array(const cJSON *list, const char *path, const char *what, size_t limit,
+                       size_t *count, wp_error *error)
+{
+    if (!cJSON_IsArray(list)) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "must be an array of %s, not %s", what,
+                     wp_type_name(list));
+        return false;
+    }
+    *count = (size_t)cJSON_GetArraySize(list);
+    if (*count > limit) {
+        wp_error_set(error, WP_INVALID_PARAMS, path, "at most %zu %s, %zu given", limit, what,
+                     *count);
+        return false;
+    }
+    return true;
+}
+
+/* {"type": "outline", "loops": [[[x, y] or [x, y, bulge], ...], ...]}: the
+ * numbers here, the geometry in wr_outline_new. */
+static bool read_outline(const cJSON *json, const char *path, wr_fixture_spec *spec,
+                         shape_storage *storage, wp_error *error)
+{
+    spec->shape = WR_SHAPE_OUTLINE;
+    if (!wp_check_object(json, path, OUTLINE_FIELDS, error))
+        return false;
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, "loops");
+    const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "loops");
+    if (!list) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "required");
+        return false;
+    }
+    size_t loop_count, total = 0;
+    if (!read_array(list, field, "loops", WR_OUTLINE_MAX_VERTICES, &loop_count, error))
+        return false;
+    if (loop_count == 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "at least one loop, the outer boundary");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *loop = list->child; loop; loop = loop->next, i++) {
+        char item[WP_FIELD_MAX];
+        wp_path_index(item, field, i);
+        size_t count;
+        if (!read_array(loop, item, "vertices", WR_OUTLINE_MAX_VERTICES, &count, error))
+            return false;
+        total += count;
+        if (total > WR_OUTLINE_MAX_VERTICES) {
+            wp_error_set(error, WP_INVALID_PARAMS, field,
+                         "at most %d vertices in all loops, more given", WR_OUTLINE_MAX_VERTICES);
+            return false;
+        }
+    }
+    storage->loops = calloc(loop_count, sizeof *storage->loops);
+    storage->rows = calloc(total ? total : 1, sizeof *storage->rows);
+    if (!storage->loops || !storage->rows) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    size_t next = 0;
+    i = 0;
+    for (const cJSON *loop = list->child; loop; loop = loop->next, i++) {
+        char item[WP_FIELD_MAX];
+        wp_path_index(item, field, i);
+        storage->loops[i].vertices = (const double (*)[3])(storage->rows + next);
+        size_t j = 0;
+        for (const cJSON *vertex = loop->child; vertex; vertex = vertex->next, j++, next++) {
+            char at[WP_FIELD_MAX];
+            wp_path_index(at, item, j);
+            int size = cJSON_GetArraySize(vertex);
+            if (!cJSON_IsArray(vertex) || (size != 2 && size != 3)) {
+                wp_error_set(error, WP_INVALID_PARAMS, at,
+                             "must be [x, y] or [x, y, bulge], not %s",
+                             cJSON_IsArray(vertex) ? "an array of another length"
+                                                   : wp_type_name(vertex));
+                return false;
+            }
+            int k = 0;
+            for (const cJSON *number = vertex->child; number; number = number->next, k++) {
+                char component[WP_FIELD_MAX];
+                wp_path_index(component, at, (size_t)k);
+                if (!wp_number(number, component, &storage->rows[next][k], error))
+                    return false;
+            }
+        }
+        storage->loops[i].vertex_count = j;
+    }
+    spec->loop_count = loop_count;
+    spec->loops = storage->loops;
+    return true;
+}
 static const char *const FRICTION_FIELDS[] = {"static", "kinetic", NULL};
 static const char *const FIXEL_FIELDS[] = {"at", "normal", "friction", NULL};
 
@@ -28,7 +137,7 @@ static bool read_friction(const cJSON *json, const char *path, wr_friction_spec 
 }
 
 static bool read_shape(const cJSON *json, const char *path, wr_fixture_spec *spec,
-                       double (**vertices)[2], wp_error *error)
+                       shape_storage *storage, wp_error *error)
 {
     if (!cJSON_IsObject(json)) {
         wp_error_set(error, WP_INVALID_PARAMS, path, "must be an object, not %s",
@@ -39,14 +148,19 @@ static bool read_shape(const cJSON *json, const char *path, wr_fixture_spec *spe
     wp_path_key(field, path, "type");
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(json, "type");
     if (!type) {
-        wp_error_set(error, WP_INVALID_PARAMS, field, "required: \"circle\" or \"polygon\"");
+        wp_error_set(error, WP_INVALID_PARAMS, field,
+                     "required: \"circle\", \"polygon\" or \"outline\"");
         return false;
     }
     if (!cJSON_IsString(type) ||
-        (strcmp(type->valuestring, "circle") != 0 && strcmp(type->valuestring, "polygon") != 0)) {
-        wp_error_set(error, WP_INVALID_PARAMS, field, "must be \"circle\" or \"polygon\"");
+        (strcmp(type->valuestring, "circle") != 0 && strcmp(type->valuestring, "polygon") != 0 &&
+         strcmp(type->valuestring, "outline") != 0)) {
+        wp_error_set(error, WP_INVALID_PARAMS, field,
+                     "must be \"circle\", \"polygon\" or \"outline\"");
         return false;
     }
+    if (strcmp(type->valuestring, "outline") == 0)
+        return read_outline(json, path, spec, storage, error);
     if (strcmp(type->valuestring, "circle") == 0) {
         spec->shape = WR_SHAPE_CIRCLE;
         return wp_check_object(json, path, CIRCLE_FIELDS, error) &&
@@ -73,6 +187,7 @@ static bool read_shape(const cJSON *json, const char *path, wr_fixture_spec *spe
                      WR_MAX_VERTICES, count);
         return false;
     }
+    double (**vertices)[2] = &storage->vertices;
     *vertices = malloc((count ? count : 1) * sizeof **vertices);
     if (!*vertices) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
@@ -91,7 +206,7 @@ static bool read_shape(const cJSON *json, const char *path, wr_fixture_spec *spe
 }
 
 static bool read_body(const cJSON *json, const char *path, wr_fixture_spec *spec,
-                      double (**vertices)[2], wp_error *error)
+                      shape_storage *storage, wp_error *error)
 {
     if (!wp_check_object(json, path, BODY_FIELDS, error) ||
         !wp_member_number(json, path, "mass", true, &spec->mass, NULL, error) ||
@@ -104,7 +219,7 @@ static bool read_body(const cJSON *json, const char *path, wr_fixture_spec *spec
         return true;
     char field[WP_FIELD_MAX];
     wp_path_key(field, path, "shape");
-    return read_shape(shape, field, spec, vertices, error);
+    return read_shape(shape, field, spec, storage, error);
 }
 
 static bool read_fixels(const cJSON *json, const char *path, wr_fixel_spec **fixels,
@@ -178,6 +293,33 @@ static bool add(cJSON *object, const char *key, cJSON *item)
     return true;
 }
 
+/* An outline's loops as given: [x, y] for a straight segment, [x, y,
+ * bulge] for an arc (a bulge of 0, or -0, is the straight form: one
+ * fixture, one id). */
+static cJSON *explicit_loops(const wr_outline *outline)
+{
+    cJSON *loops = cJSON_CreateArray();
+    for (size_t i = 0; loops && i < outline->loop_count; i++) {
+        cJSON *loop = cJSON_CreateArray();
+        if (!loop) {
+            cJSON_Delete(loops);
+            return NULL;
+        }
+        cJSON_AddItemToArray(loops, loop);
+        for (size_t j = 0; j < outline->loops[i].segment_count; j++) {
+            const wr_segment *segment = &outline->loops[i].segments[j];
+            double row[3] = {segment->start[0], segment->start[1], segment->bulge + 0.0};
+            cJSON *vertex = cJSON_CreateDoubleArray(row, row[2] != 0 ? 3 : 2);
+            if (!vertex) {
+                cJSON_Delete(loops);
+                return NULL;
+            }
+            cJSON_AddItemToArray(loop, vertex);
+        }
+    }
+    return loops;
+}
+
 static cJSON *explicit_shape(const wr_fixture *f)
 {
     cJSON *shape = cJSON_CreateObject();
@@ -186,6 +328,9 @@ static cJSON *explicit_shape(const wr_fixture *f)
         ok = add(shape, "type", cJSON_CreateString("circle")) &&
              add(shape, "center", vector2(f->center)) &&
              add(shape, "radius", cJSON_CreateNumber(f->radius));
+    } else if (ok && f->shape == WR_SHAPE_OUTLINE) {
+        ok = add(shape, "type", cJSON_CreateString("outline")) &&
+             add(shape, "loops", explicit_loops(f->outline));
     } else if (ok) {
         cJSON *vertices = cJSON_CreateArray();
         ok = add(shape, "type", cJSON_CreateString("polygon")) &&
@@ -287,7 +432,7 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
         return false;
     wr_fixture_spec spec;
     memset(&spec, 0, sizeof spec);
-    double (*vertices)[2] = NULL;
+    shape_storage storage = {NULL, NULL, NULL};
     wr_fixel_spec *fixels = NULL;
     const char *name = NULL;
     char field[WP_FIELD_MAX];
@@ -299,7 +444,7 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
             wp_error_set(error, WP_INVALID_PARAMS, field, "required");
             ok = false;
         } else {
-            ok = read_body(body, field, &spec, &vertices, error);
+            ok = read_body(body, field, &spec, &storage, error);
         }
     }
     if (ok) {
@@ -329,7 +474,7 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
             ok = false;
         }
     }
-    free(vertices);
+    shape_storage_free(&storage);
     free(fixels);
     if (!ok)
         return false;

@@ -62,6 +62,13 @@ static cJSON *fixture_put(wp_call *call)
         cJSON_AddNumberToObject(result, "strong_cones",
                                 wr_analysis_cone_count(use.analysis, WR_SET_STRONG));
         cJSON_AddBoolToObject(result, "pinned", wr_analysis_pinned(use.analysis));
+        /* The mass properties in use, given or derived from the shape, for
+         * a client to check against its own CAD. */
+        const wr_fixture *f = use.fixture;
+        if (f->shape != WR_SHAPE_NONE)
+            cJSON_AddNumberToObject(result, "area", f->area);
+        cJSON_AddItemToObject(result, "com", cJSON_CreateDoubleArray(f->com, 2));
+        cJSON_AddNumberToObject(result, "inertia", f->inertia);
     }
     host->fixture_release(host->self, &use);
     return result ? result : out_of_memory(NULL, error);
@@ -344,7 +351,7 @@ typedef struct classify_state {
  * every edge: a long outline is seconds of work). */
 typedef struct push_state {
     wr_set set;
-    double friction;
+    wr_finger finger;    /* its friction and radius */
     int edges, next;     /* the outline's edges; the next to answer */
     unsigned long edge_cost;
     bool opened, any;    /* "{"regions":[" written; a region written */
@@ -610,13 +617,20 @@ static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
 {
     (void)prepared;
     wr_set set;
-    double friction = 0;
+    double friction = 0, radius = 0;
     if (!read_set(call->params, &set, call->error) ||
         !wp_member_number(call->params, "params", "finger_friction", false, &friction, NULL,
+                          call->error) ||
+        !wp_member_number(call->params, "params", "finger_radius", false, &radius, NULL,
                           call->error))
         return NULL;
     if (friction < 0) {
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "must not be negative");
+        return NULL;
+    }
+    if (radius < 0) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.finger_radius",
                      "must not be negative");
         return NULL;
     }
@@ -635,7 +649,7 @@ static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
     }
     push_state *state = &stream->u.push;
     state->set = set;
-    state->friction = friction;
+    state->finger = (wr_finger){friction, radius};
     state->edges = wr_push_edge_count(use->fixture);
     /* An edge against every cone: a few dot products each, or, with a
      * finger's friction, a segment test at every sample and bisection. */
@@ -644,7 +658,9 @@ static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
                                           : set == WR_SET_STRONG ? wr_analysis_cone_count(a, WR_SET_STRONG)
                                                                  : wr_analysis_cone_count(a, WR_SET_GOAL) +
                                                                        wr_analysis_cone_count(a, WR_SET_STRONG));
-    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4);
+    /* A finger with a size is tested against every segment of the outline. */
+    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) +
+                       (radius > 0 ? 8 * (unsigned long)state->edges : 0);
     return stream;
 }
 
@@ -655,8 +671,17 @@ static void write_region(wp_buffer *out, const wr_fixture *f, const wr_region *r
     wr_boundary_point(f, r->edge, r->t1, to, normal);
     /* + 0.0: a -0 is written 0. */
     const double ends[2][2] = {{from[0] + 0.0, from[1] + 0.0}, {to[0] + 0.0, to[1] + 0.0}};
-    WP_BUFFER_LITERAL(out, "{\"edge\":");
-    wp_buffer_number(out, r->edge);
+    if (f->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(f, r->edge, &loop, &segment);
+        WP_BUFFER_LITERAL(out, "{\"loop\":");
+        wp_buffer_number(out, (double)loop);
+        WP_BUFFER_LITERAL(out, ",\"segment\":");
+        wp_buffer_number(out, (double)segment);
+    } else {
+        WP_BUFFER_LITERAL(out, "{\"edge\":");
+        wp_buffer_number(out, r->edge);
+    }
     WP_BUFFER_LITERAL(out, ",\"from\":");
     write_vector(out, ends[0], 2);
     WP_BUFFER_LITERAL(out, ",\"to\":");
@@ -688,8 +713,8 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
         if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
-        wr_status status = wr_push_regions_part(use->analysis, state->set,
-                                                &(wr_finger){state->friction, 0}, state->next, 1, call->host->stop, &part);
+        wr_status status = wr_push_regions_part(use->analysis, state->set, &state->finger,
+                                                state->next, 1, call->host->stop, &part);
         if (status != WR_OK) {
             wr_regions_release(&part);
             wp_error_status(call->error, status, "", "%s", wr_strerror(status));
@@ -796,7 +821,7 @@ static const char *const ID[] = {"id", NULL};
 static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
-static const char *const PUSH[] = {"fixture", "set", "finger_friction", NULL};
+static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 
