@@ -259,8 +259,9 @@ static void friction_cone(FILE *out, const frame *f, const wr_fixel *x, double c
 /* A fixel on a hole's boundary: a pin in the hole, a dark disc touching the
  * boundary at the contact (its radius the wedge's size, or 0.35 of the
  * hole's narrower side if that is less, so that it shows its clearance),
- * its friction cone, and an arrow from its centre along the normal, into
- * the material; its number on it. */
+ * its friction cone, and an arrow from its centre along the normal, its
+ * head half the pin's radius into the material (short: the wall beyond a
+ * hole may be thin); its number on it. */
 static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t hole,
                 double wedge, double cone)
 {
@@ -274,8 +275,8 @@ static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t h
     fprintf(out,
             "<line class=\"fixel-normal\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
             "stroke=\"#c0392b\" stroke-width=\"2\" marker-end=\"url(#arrow-c0392b)\"/>\n",
-            page_x(f, c[0]), page_y(f, c[1]), page_x(f, p[0] + cone * n[0]),
-            page_y(f, p[1] + cone * n[1]));
+            page_x(f, c[0]), page_y(f, c[1]), page_x(f, p[0] + 0.5 * radius * n[0]),
+            page_y(f, p[1] + 0.5 * radius * n[1]));
     fprintf(out,
             "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" fill=\"white\" "
             "text-anchor=\"middle\">%d</text>\n",
