@@ -1018,6 +1018,17 @@ bool wr_outline_locate(const wr_outline *outline, const double p[2], double tole
     return true;
 }
 
+double wr_outline_distance(const wr_outline *outline, const double p[2])
+{
+    double best = INFINITY;
+    for (size_t i = 0; i < outline->loop_count; i++)
+        for (size_t j = 0; j < outline->loops[i].segment_count; j++) {
+            double t;
+            best = fmin(best, segment_distance(&outline->loops[i].segments[j], p, &t, NULL));
+        }
+    return best;
+}
+
 bool wr_outline_contains(const wr_outline *outline, const double p[2], double tolerance)
 {
     if (!isfinite(p[0]) || !isfinite(p[1]))
