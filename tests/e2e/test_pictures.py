@@ -348,6 +348,34 @@ def test_outline_push_picture_draws_arcs_holes_and_pins(harness, name):
         assert large
 
 
+def outline_examples():
+    names = []
+    for n in sorted(os.listdir(EXAMPLES)):
+        if n.endswith(".json"):
+            with open(os.path.join(EXAMPLES, n)) as f:
+                shape = json.load(f)["body"].get("shape") or {}
+            if shape.get("type") == "outline":
+                names.append(n[:-len(".json")])
+    return names
+
+
+@pytest.mark.parametrize("name", outline_examples())
+@pytest.mark.parametrize("set_name", ["goal", "strong", "both"])
+def test_outline_example_pictures(harness, name, set_name):
+    """Every example written as an outline, drawn and checked as above."""
+    path = os.path.join(EXAMPLES, name + ".json")
+    with open(path) as f:
+        fixture = json.load(f)
+    svg = harness.path("%s-%s.svg" % (name, set_name))
+    answer = run("push", path, "--set", set_name, "--json", "--svg", svg)
+    assert answer.returncode in (0, 1), answer.stderr
+    page, loops = check_outline(svg, fixture["body"]["shape"])
+    arcs = check_regions(svg, json.loads(answer.stdout), loops, page)
+    pins = check_fixels(svg, fixture, loops, page)
+    FIGURES["outline region arcs checked"] = FIGURES.get("outline region arcs checked", 0) + arcs
+    FIGURES["outline pins checked"] = FIGURES.get("outline pins checked", 0) + pins
+
+
 @pytest.mark.parametrize("name", ["issue", "bulb"])
 def test_outline_gravity_and_margin_pictures(harness, name):
     path, fixture = outline_fixture(harness, name)
