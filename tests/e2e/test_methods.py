@@ -697,6 +697,12 @@ def test_examples_loaded(harness):
             f = json.load(fh)
         fid = c.result("fixture.put", {"fixture": f})["id"]
         assert fid in [x["id"] for x in listed]
+        if f["body"].get("shape", {}).get("type") == "outline":
+            # model.py knows no outlines; the explicit form gives what it
+            # needs (com, inertia, every normal) without the shape, whose
+            # mass properties test_outline.py checks against closed forms.
+            f = c.result("fixture.get", {"id": fid})
+            del f["body"]["shape"]
         mdl, cl = classifier_for(f)
         ws = H.random_wrenches(seed=len(p), n=10, scale=(1, 1, 2))
         for g, r in zip(ws, classify(c, fid, ws, sets=["goal", "strong", "both"])):
