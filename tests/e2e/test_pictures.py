@@ -74,6 +74,7 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-3-2-1-push-strong.svg", ["push", "plate-3-2-1.json", "--set", "strong"]),
     ("plate-chamfered-push-both.svg", ["push", "plate-chamfered.json", "--set", "both"]),
     ("disc-corner-push-goal.svg", ["push", "disc-corner.json", "--set", "goal"]),
+    ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both"]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
