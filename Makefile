@@ -215,6 +215,7 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/plate-3-2-1.json --set strong --svg docs/pictures/plate-3-2-1-push-strong.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/plate-chamfered.json --set both --svg docs/pictures/plate-chamfered-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/disc-corner.json --set goal --svg docs/pictures/disc-corner-push-goal.svg >/dev/null
+	$(BUILD)/wrenchctl --local push examples/bracket.json --set both --svg docs/pictures/bracket-push-both.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.

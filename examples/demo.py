@@ -49,13 +49,16 @@ def main():
     print("wrenchd %s is listening on %s\n" % (client.status().version, SOCKET))
 
     ids = {}
-    for name in ("disc-corner", "plate-3-2-1", "plate-chamfered"):
+    for name in ("disc-corner", "plate-3-2-1", "plate-chamfered", "bracket"):
         with open(os.path.join(ROOT, "examples", name + ".json")) as f:
             fixture = json.load(f)
         put = client.put_fixture(fixture)
         ids[name] = put.id
         print("fixture.put examples/%s.json -> id %s: %d fixels, G_goal excludes %d cones, "
               "G_strong %d" % (name, put.id, put.fixels, put.goal_cones, put.strong_cones))
+    print("  bracket: an outline of lines and arcs with a hole and a slot; its mass properties "
+          "in use: area %.6g, com (%.6g, %.6g), inertia %.6g"
+          % (put.area, put.com[0], put.com[1], put.inertia))
 
     print("\ndisc-corner: a disc in a corner, friction 0.5 (docs/MODEL.md section 7.1)")
     show(client, ids["disc-corner"], "push toward the corner, g = (-1, -1, 0)", [-1, -1, 0])
@@ -77,9 +80,12 @@ def main():
 
     print("\nWhere to push, which tilt, how much disturbance:")
     for name, set_name in (("disc-corner", "goal"), ("plate-3-2-1", "goal"),
-                           ("plate-3-2-1", "strong"), ("plate-chamfered", "both")):
+                           ("plate-3-2-1", "strong"), ("plate-chamfered", "both"),
+                           ("bracket", "both")):
         regions = client.push_regions(ids[name], set_name)
-        where = ", ".join("edge %d t in (%.4g, %.4g)" % (r.edge, r.t0, r.t1)
+        where = ", ".join(("edge %d" % r.edge if r.edge is not None
+                           else "loop %d segment %d" % (r.loop, r.segment))
+                          + " t in (%.4g, %.4g)" % (r.t0, r.t1)
                           for r in regions.regions) or "nowhere"
         print("  %-16s push.regions %-6s -> %s (%.1f%% of the outline)"
               % (name, set_name, where, 100 * regions.fraction))
@@ -105,6 +111,8 @@ def main():
         ("plate-chamfered-gravity-both.svg", ["gravity", ids["plate-chamfered"], "--set", "both"]),
         ("plate-chamfered-margin.svg", ["margin", ids["plate-chamfered"],
                                         "-0.7071067811865476,-0.7071067811865476@3.25,1.75"]),
+        ("bracket-push-both.svg", ["push", ids["bracket"], "--set", "both"]),
+        ("bracket-gravity-both.svg", ["gravity", ids["bracket"], "--set", "both"]),
     ]
     for filename, command in pictures:
         subprocess.run(wrenchctl + command + ["--svg", os.path.join(out, filename)],

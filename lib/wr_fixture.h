@@ -35,6 +35,11 @@ extern "C" {
  * bounding box: beyond them torques, scaled by 1/rho, swamp the forces in
  * double precision (and no rigid body has its centre of mass outside it). */
 #define WR_GYRATION_RANGE 1e4
+/* Fixels at distinct points must spread over at least this fraction of
+ * the radius of gyration: closer, their torque rows differ only in digits
+ * that rounding decides (no fixture puts all its locators within 0.1 %
+ * of the part's size of each other). */
+#define WR_FIXEL_SPREAD 1e-3
 
 /* An error: which field, and why.  Both NUL-terminated, possibly truncated. */
 typedef struct wr_error {

@@ -135,9 +135,14 @@ static void segment_build(wr_segment *segment, const double start[2], const doub
     segment->start[1] = start[1] + 0.0;
     segment->end[0] = end[0] + 0.0;
     segment->end[1] = end[1] + 0.0;
-    segment->bulge = bulge + 0.0;
     double chord[2] = {end[0] - start[0], end[1] - start[1]};
     double chord_length = hypot(chord[0], chord[1]);
+    /* A bulge so small that its arc's radius, about half the chord over the
+     * bulge, is beyond the largest double (1e-310 on a chord of 4) is its
+     * chord in double precision: a straight segment. */
+    if (bulge != 0 && !isfinite(chord_length / (4 * fabs(bulge))))
+        bulge = 0;
+    segment->bulge = bulge + 0.0;
     segment->midpoint[0] = start[0] + chord[0] / 2;
     segment->midpoint[1] = start[1] + chord[1] / 2;
     segment->half_chord = chord_length / 2;
@@ -226,9 +231,20 @@ static void segment_left_normal(const wr_segment *segment, double t, double norm
         normal[1] = segment->direction[0];
         return;
     }
-    double phi = segment->half_angle * (2 * fmax(0.0, fmin(1.0, t)) - 1);
-    double radial[2] = {sin(phi) * segment->direction[0] + cos(phi) * segment->bulge_normal[0],
-                        sin(phi) * segment->direction[1] + cos(phi) * segment->bulge_normal[1]};
+    /* At the ends phi = -+a, whose sine and cosine the bulge gives
+     * exactly (a half circle's end normals are exact: (1, 0), not
+     * (1, 6e-17)), so a derived normal there equals the one a user writes. */
+    double sine, cosine;
+    if (t <= 0 || t >= 1) {
+        sine = t <= 0 ? -segment->half_angle_sin : segment->half_angle_sin;
+        cosine = segment->half_angle_cos;
+    } else {
+        double phi = segment->half_angle * (2 * t - 1);
+        sine = sin(phi);
+        cosine = cos(phi);
+    }
+    double radial[2] = {sine * segment->direction[0] + cosine * segment->bulge_normal[0],
+                        sine * segment->direction[1] + cosine * segment->bulge_normal[1]};
     double side = segment->bulge > 0 ? -1 : 1;
     /* Unit up to rounding already; normalised so that callers get a
      * normal of unit length within a few ulp, as wr_fixture expects. */
@@ -1016,6 +1032,17 @@ bool wr_outline_locate(const wr_outline *outline, const double p[2], double tole
     if (place)
         *place = best;
     return true;
+}
+
+double wr_outline_distance(const wr_outline *outline, const double p[2])
+{
+    double best = INFINITY;
+    for (size_t i = 0; i < outline->loop_count; i++)
+        for (size_t j = 0; j < outline->loops[i].segment_count; j++) {
+            double t;
+            best = fmin(best, segment_distance(&outline->loops[i].segments[j], p, &t, NULL));
+        }
+    return best;
 }
 
 bool wr_outline_contains(const wr_outline *outline, const double p[2], double tolerance)

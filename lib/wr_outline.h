@@ -176,6 +176,9 @@ void wr_outline_boundary(const wr_outline *outline, size_t loop, size_t segment,
 bool wr_outline_locate(const wr_outline *outline, const double p[2], double tolerance,
                        wr_outline_place *place);
 
+/* The distance from p to the nearest point of the boundary. */
+double wr_outline_distance(const wr_outline *outline, const double p[2]);
+
 /* Is p strictly inside the material (inside the outer loop, outside every
  * hole)?  Points within `tolerance` of the boundary are not. */
 bool wr_outline_contains(const wr_outline *outline, const double p[2], double tolerance);

@@ -332,6 +332,13 @@ static bool circle_exact(const double a[3][2], const wr_cone **cones, int count,
     return ok;
 }
 
+/* A fraction of an arc within rounding of its ends (degrees turned into
+ * fractions leave 1e-17 where the arc's vertex is) is the end. */
+static double snap(double t)
+{
+    return fabs(t) < 1e-14 ? 0 : fabs(t - 1) < 1e-14 ? 1 : t;
+}
+
 /* The closed t-spans of an outline's arc where its push wrench is in some
  * cone.  On the arc's circle (centre C, unit radial u(theta)) the inward
  * normal is sigma u with sigma = -1 when the material lies inside the
@@ -361,8 +368,8 @@ static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count,
     double start = arc->start_angle * 180 / WR_PI, sweep = arc->sweep * 180 / WR_PI;
     for (int i = 0; i < angles.count; i++)
         for (int turn = -2; turn <= 2; turn++) {
-            double t0 = (angles.items[i].lo + 360.0 * turn - start) / sweep;
-            double t1 = (angles.items[i].hi + 360.0 * turn - start) / sweep;
+            double t0 = snap((angles.items[i].lo + 360.0 * turn - start) / sweep);
+            double t1 = snap((angles.items[i].hi + 360.0 * turn - start) / sweep);
             add_span(bad, fmax(0, fmin(t0, t1)), fmin(1, fmax(t0, t1)));
         }
     free(angles.items);
@@ -482,7 +489,7 @@ void wr_push_edge_place(const wr_fixture *f, int edge, size_t *loop, size_t *seg
  * with friction; less what a finger of the given radius cannot reach. */
 static bool edge_regions(const wr_fixture *f, const wr_cone **cones, int count,
                          const wr_finger *finger, int edge, const wr_stop *stop, bool *stopped,
-                         wr_regions *out)
+                         wr_status *failure, wr_regions *out)
 {
     if (wr_stop_requested(stop)) {
         *stopped = true;
@@ -498,6 +505,7 @@ static bool edge_regions(const wr_fixture *f, const wr_cone **cones, int count,
             wr_finger_blocked(f->outline, loop, segment, finger->radius, stop, &items, &n);
         if (status != WR_OK) {
             *stopped = status == WR_STOPPED;
+            *failure = status;
             free(items);
             return false;
         }
@@ -550,6 +558,7 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
     int before = out->count;
     bool ok = true;
     bool stopped = false;
+    wr_status failure = WR_NO_MEMORY; /* what a failure is unless said */
     if (finger->friction > 0)
         out->resolution = f->shape == WR_SHAPE_CIRCLE ? 360.0 / SAMPLES : 1.0 / SAMPLES;
     if (f->shape == WR_SHAPE_CIRCLE) {
@@ -566,12 +575,12 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
         }
     } else {
         for (int e = first_edge; e < first_edge + edge_count && ok; e++)
-            ok = edge_regions(f, cones, count, finger, e, stop, &stopped, out);
+            ok = edge_regions(f, cones, count, finger, e, stop, &stopped, &failure, out);
     }
     free(cones);
     if (!ok) {
         out->count = before;
-        return stopped ? WR_STOPPED : WR_NO_MEMORY;
+        return stopped ? WR_STOPPED : failure;
     }
     return WR_OK;
 }

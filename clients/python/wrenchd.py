@@ -95,7 +95,7 @@ import os
 import socket
 import threading
 import time
-from dataclasses import dataclass, fields
+from dataclasses import MISSING, dataclass, fields
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
 
 __all__ = [
@@ -197,10 +197,13 @@ def _build(cls, obj: Any, what: str):
     if not isinstance(obj, dict):
         raise WrenchdProtocolError("%s: expected an object, got %r" % (what, obj))
     names = [f.name for f in fields(cls)]
-    missing = [n for n in names if n not in obj]
+    # A field with a default is one some answers leave out (a region's
+    # "edge" on an outline, "area" of a body without a shape).
+    missing = [f.name for f in fields(cls) if f.name not in obj
+               and f.default is MISSING and f.default_factory is MISSING]
     if missing:
         raise WrenchdProtocolError("%s: the answer lacks %s" % (what, ", ".join(missing)))
-    return cls(**{n: obj[n] for n in names})     # members added later are ignored
+    return cls(**{n: obj[n] for n in names if n in obj})  # members added later are ignored
 
 
 @dataclass
@@ -242,6 +245,11 @@ class PutResult:
     goal_cones: int
     strong_cones: int
     pinned: bool
+    # The mass properties in use, given or derived from the shape (area None
+    # for a body without a shape).
+    com: Optional[List[float]] = None
+    inertia: Optional[float] = None
+    area: Optional[float] = None
 
 
 @dataclass
@@ -297,15 +305,19 @@ class Status:
 
 @dataclass
 class Region:
-    """An open interval of the outline: on a polygon, edge i runs from vertex
+    """An open interval of the boundary: on a polygon, edge i runs from vertex
     i to vertex i+1 and t is the fraction along it; on a circle (edge 0) t is
-    the boundary angle in degrees."""
-    edge: int
+    the boundary angle in degrees; on an outline (edge None) segment S of
+    loop L runs from that loop's vertex S to the next and t is the fraction
+    of its length."""
     t0: float
     t1: float
     length: float
     from_point: List[float]            # "from" on the wire
     to_point: List[float]              # "to"
+    edge: Optional[int] = None         # polygon and circle
+    loop: Optional[int] = None         # outline
+    segment: Optional[int] = None      # outline
 
 
 @dataclass
@@ -617,13 +629,17 @@ class _Methods:
                             lambda r: _build(Modes, r, "modes.get"), True, timeout)
 
     def push_regions(self, fixture: Any, set: str = "goal", finger_friction: float = 0.0, *,
-                     timeout: Any = _DEFAULT):
+                     finger_radius: float = 0.0, timeout: Any = _DEFAULT):
         """push.regions: where a finger pushing along the inward normal gives
         a wrench in the set (PushRegions).  finger_friction > 0: every force
-        of the finger's friction cone must be in it (sampled)."""
+        of the finger's friction cone must be in it (sampled).  finger_radius
+        > 0: only where a disc of that radius touching the boundary from
+        outside overlaps no part of the workpiece."""
         params = {"fixture": _fixture_ref(fixture), "set": set}
         if finger_friction:
             params["finger_friction"] = finger_friction
+        if finger_radius:
+            params["finger_radius"] = finger_radius
         return self._invoke("push.regions", params, _push_result, True, timeout)
 
     def gravity_sweep(self, fixture: Any, set: str = "goal", *, timeout: Any = _DEFAULT):

@@ -54,7 +54,8 @@ enum {
     WC_OPT_TOLERANCE = 1 << 10, /* --tolerance T */
     WC_OPT_SET = 1 << 11,       /* --set goal|strong|both */
     WC_OPT_FRICTION = 1 << 12,  /* --finger-friction MU */
-    WC_OPT_SVG = 1 << 13        /* --svg FILE */
+    WC_OPT_SVG = 1 << 13,       /* --svg FILE */
+    WC_OPT_RADIUS = 1 << 14     /* --finger-radius R */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -74,6 +75,8 @@ typedef struct wc_run {
     const char *svg;
     double finger_friction;
     bool friction_given;
+    double finger_radius;
+    bool radius_given;
     /* WC_FIXTURE: the fixture as sent (an object, or an id string) */
     cJSON *fixture;
     /* kept by a request function for its answer */

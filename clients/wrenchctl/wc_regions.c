@@ -102,7 +102,15 @@ int wc_push_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "set", run->set);
     if (run->friction_given)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
+    if (run->radius_given)
+        cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
     return -1;
+}
+
+/* Does the answer name its regions by loop and segment (an outline)? */
+static bool by_segment(const cJSON *regions)
+{
+    return cJSON_HasObjectItem(cJSON_GetArrayItem(regions, 0), "loop");
 }
 
 static void print_push(const wc_run *run, const cJSON *result)
@@ -110,7 +118,13 @@ static void print_push(const wc_run *run, const cJSON *result)
     const cJSON *regions = cJSON_GetObjectItem(result, "regions");
     int count = cJSON_GetArraySize(regions);
     double fraction = cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction"));
-    printf("%4s  %-24s  %-24s  %10s  %10s  %9s\n", "edge", "from", "to", "t0", "t1", "length");
+    bool outline = by_segment(regions);
+    if (outline)
+        printf("%4s  %7s  %-24s  %-24s  %10s  %10s  %9s\n", "loop", "segment", "from", "to", "t0",
+               "t1", "length");
+    else
+        printf("%4s  %-24s  %-24s  %10s  %10s  %9s\n", "edge", "from", "to", "t0", "t1",
+               "length");
     const cJSON *r;
     cJSON_ArrayForEach(r, regions)
     {
@@ -120,8 +134,12 @@ static void print_push(const wc_run *run, const cJSON *result)
                  cJSON_GetArrayItem(from, 1)->valuedouble);
         snprintf(b_text, sizeof b_text, "(%.6g, %.6g)", cJSON_GetArrayItem(to, 0)->valuedouble,
                  cJSON_GetArrayItem(to, 1)->valuedouble);
-        printf("%4d  %-24s  %-24s  %10.6f  %10.6f  %9.6f\n",
-               (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge")), a_text, b_text,
+        if (outline)
+            printf("%4d  %7d  ", (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "loop")),
+                   (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "segment")));
+        else
+            printf("%4d  ", (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge")));
+        printf("%-24s  %-24s  %10.6f  %10.6f  %9.6f\n", a_text, b_text,
                cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0")),
                cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1")),
                cJSON_GetNumberValue(cJSON_GetObjectItem(r, "length")));
@@ -135,6 +153,29 @@ static void print_push(const wc_run *run, const cJSON *result)
     printf("\n");
 }
 
+/* An outline's region (loop, segment) as wc_svg_push's edge: the segments
+ * of every loop counted in order, loop 0's first.  False for a place the
+ * outline does not have. */
+static bool outline_edge(const wr_fixture *geometry, const cJSON *region, int *edge)
+{
+    const cJSON *loop = cJSON_GetObjectItem(region, "loop");
+    const cJSON *segment = cJSON_GetObjectItem(region, "segment");
+    const wr_outline *o = geometry->outline;
+    if (geometry->shape != WR_SHAPE_OUTLINE || !o || !cJSON_IsNumber(loop) ||
+        !cJSON_IsNumber(segment) || !(loop->valuedouble >= 0) ||
+        !(loop->valuedouble < (double)o->loop_count))
+        return false;
+    size_t l = (size_t)loop->valuedouble;
+    if (!(segment->valuedouble >= 0) ||
+        !(segment->valuedouble < (double)o->loops[l].segment_count))
+        return false;
+    size_t before = 0;
+    for (size_t i = 0; i < l; i++)
+        before += o->loops[i].segment_count;
+    *edge = (int)(before + (size_t)segment->valuedouble);
+    return true;
+}
+
 static bool draw_push(const wc_run *run, const cJSON *result, FILE *out,
                       const wr_fixture *geometry, const char *name)
 {
@@ -145,14 +186,22 @@ static bool draw_push(const wc_run *run, const cJSON *result, FILE *out,
     const cJSON *r;
     cJSON_ArrayForEach(r, regions)
     {
-        items[i].edge = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge"));
+        if (cJSON_HasObjectItem(r, "loop")) {
+            if (!outline_edge(geometry, r, &items[i].edge)) {
+                free(items);
+                wc_usage_error("--svg: region %d of the answer is on no segment of the outline", i);
+                return false;
+            }
+        } else {
+            items[i].edge = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge"));
+        }
         items[i].t0 = cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0"));
         items[i].t1 = cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1"));
         i++;
     }
     wc_svg_push(out, geometry, name, set_name(run), items, count,
                 cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction")),
-                run->finger_friction);
+                run->finger_friction, run->radius_given ? run->finger_radius : -1);
     free(items);
     return true;
 }

@@ -30,7 +30,14 @@ static void bounds(const wr_fixture *fx, double lo[2], double hi[2])
             hi[k] = fx->center[k] + fx->radius;
         }
     }
-    for (size_t i = 0; i < fx->vertex_count; i++)
+    if (fx->shape == WR_SHAPE_OUTLINE && fx->outline) {
+        /* The box of every loop, arcs included. */
+        for (int k = 0; k < 2; k++) {
+            lo[k] = fx->outline->box_min[k];
+            hi[k] = fx->outline->box_max[k];
+        }
+    }
+    for (size_t i = 0; fx->shape != WR_SHAPE_OUTLINE && i < fx->vertex_count; i++)
         for (int k = 0; k < 2; k++) {
             lo[k] = fmin(lo[k], fx->vertices[i][k]);
             hi[k] = fmax(hi[k], fx->vertices[i][k]);
@@ -105,6 +112,107 @@ static void legend(FILE *out, int line, const char *text)
     fputs("</text>\n", out);
 }
 
+/* ---- outlines of lines and arcs (issue 16) ------------------------------------ */
+
+/* Which loop and segment an outline's edge is: the edges count the
+ * segments of every loop in order, loop 0's first (wr_region).  False for
+ * an edge past the last. */
+static bool edge_place(const wr_outline *o, int edge, size_t *loop, size_t *segment)
+{
+    if (edge < 0)
+        return false;
+    size_t rest = (size_t)edge;
+    for (size_t i = 0; i < o->loop_count; i++) {
+        if (rest < o->loops[i].segment_count) {
+            *loop = i;
+            *segment = rest;
+            return true;
+        }
+        rest -= o->loops[i].segment_count;
+    }
+    return false;
+}
+
+/* Path data from the point at t0 of a segment (the current point) to the
+ * point at t1 (fractions of its length, or of an arc's included angle):
+ * " L x y" for a straight segment, " A r r 0 large sweep x y" along an arc.
+ * The fixture's counter-clockwise is clockwise on the page, whose y points
+ * down: a positive sweep is sweep-flag 0.  The large-arc flag is set beyond
+ * a half circle.  An arc whose sagitta is below 0.005 pixels is a line on
+ * the page (a nearly straight arc's radius may be beyond what a viewer
+ * computes with); one of more than a half circle whose ends print as the
+ * same point (SVG leaves such an arc out) is drawn as its two halves.
+ *
+ * Outline paths are written to six decimals, not two: an arc near a half
+ * circle is ill-conditioned in its endpoints and radius (a rounding delta
+ * moves its middle by about sqrt(2 r delta): a pixel at two decimals). */
+#define OUTLINE_XY "%.6f %.6f"
+static void segment_to(FILE *out, const frame *f, const wr_outline *o, size_t loop,
+                       size_t segment, double t0, double t1)
+{
+    const wr_segment *s = &o->loops[loop].segments[segment];
+    double a[2], b[2];
+    wr_outline_boundary(o, loop, segment, t0, a, NULL);
+    wr_outline_boundary(o, loop, segment, t1, b, NULL);
+    char from[64], to[64];
+    snprintf(from, sizeof from, OUTLINE_XY, page_x(f, a[0]), page_y(f, a[1]));
+    snprintf(to, sizeof to, OUTLINE_XY, page_x(f, b[0]), page_y(f, b[1]));
+    double sweep = (t1 - t0) * s->sweep;
+    double r = s->radius * f->scale;
+    double quarter = sin(sweep / 4);
+    if (s->bulge == 0 || !(2 * r * quarter * quarter >= 0.005)) {
+        fprintf(out, " L %s", to);
+        return;
+    }
+    if (fabs(sweep) > PI && strcmp(from, to) == 0) {
+        segment_to(out, f, o, loop, segment, t0, (t0 + t1) / 2);
+        segment_to(out, f, o, loop, segment, (t0 + t1) / 2, t1);
+        return;
+    }
+    fprintf(out, " A %.6f %.6f 0 %d %d %s", r, r, fabs(sweep) > PI ? 1 : 0, sweep > 0 ? 0 : 1, to);
+}
+
+/* Every loop as a closed subpath of one path: with fill-rule evenodd the
+ * holes (the loops after the first) are left unfilled. */
+static void outline_path(FILE *out, const frame *f, const wr_outline *o)
+{
+    for (size_t i = 0; i < o->loop_count; i++) {
+        const wr_loop *l = &o->loops[i];
+        fprintf(out, "%sM " OUTLINE_XY, i ? " " : "", page_x(f, l->segments[0].start[0]),
+                page_y(f, l->segments[0].start[1]));
+        for (size_t j = 0; j < l->segment_count; j++) {
+            if (j + 1 == l->segment_count && l->segments[j].bulge == 0)
+                break; /* z draws the closing line */
+            segment_to(out, f, o, i, j, 0, 1);
+        }
+        fputs(" z", out);
+    }
+}
+
+/* The hole whose boundary holds p (a fixel there is a pin in the hole):
+ * its loop, > 0; 0 when p is on the outer loop or on no outline. */
+static size_t hole_at(const wr_fixture *fx, const double p[2])
+{
+    if (fx->shape != WR_SHAPE_OUTLINE || !fx->outline)
+        return 0;
+    wr_outline_place place;
+    if (!wr_outline_locate(fx->outline, p, 1e-7 * fx->outline->size, &place))
+        return 0;
+    return place.loop;
+}
+
+/* The smaller side of a loop's bounding box. */
+static double loop_width(const wr_loop *l)
+{
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (size_t j = 0; j < l->segment_count; j++)
+        for (int k = 0; k < 2; k++) {
+            lo[k] = fmin(lo[k], l->segments[j].box_min[k]);
+            hi[k] = fmax(hi[k], l->segments[j].box_max[k]);
+        }
+    return fmin(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
 /* The outline, filled light and stroked grey: the boundary outside any
  * region. */
 static void outline(FILE *out, const frame *f, const wr_fixture *fx)
@@ -116,6 +224,14 @@ static void outline(FILE *out, const frame *f, const wr_fixture *fx)
                 page_x(f, fx->center[0]), page_y(f, fx->center[1]), fx->radius * f->scale);
         return;
     }
+    if (fx->shape == WR_SHAPE_OUTLINE && fx->outline) {
+        fputs("<path class=\"outline\" d=\"", out);
+        outline_path(out, f, fx->outline);
+        fputs("\" fill=\"#f2f2f2\" fill-rule=\"evenodd\" stroke=\"#a0a0a0\" stroke-width=\"3\" "
+              "stroke-linejoin=\"round\"/>\n",
+              out);
+        return;
+    }
     fputs("<polygon class=\"outline\" points=\"", out);
     for (size_t i = 0; i < fx->vertex_count; i++)
         fprintf(out, "%s%.2f,%.2f", i ? " " : "", page_x(f, fx->vertices[i][0]),
@@ -125,13 +241,60 @@ static void outline(FILE *out, const frame *f, const wr_fixture *fx)
           out);
 }
 
+/* A fixel's friction cone, its apex at the contact, opening into the part. */
+static void friction_cone(FILE *out, const frame *f, const wr_fixel *x, double cone)
+{
+    const double *p = x->at, *n = x->normal, *t = x->tangent;
+    double mu = x->mu_static;
+    double length = cone / sqrt(1 + mu * mu);
+    double a[2] = {p[0] + length * (n[0] + mu * t[0]), p[1] + length * (n[1] + mu * t[1])};
+    double b[2] = {p[0] + length * (n[0] - mu * t[0]), p[1] + length * (n[1] - mu * t[1])};
+    fprintf(out,
+            "<polygon class=\"friction-cone\" points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" "
+            "fill=\"#c0392b\" fill-opacity=\"0.18\" stroke=\"#c0392b\" stroke-width=\"1.2\"/>\n",
+            page_x(f, p[0]), page_y(f, p[1]), page_x(f, a[0]), page_y(f, a[1]), page_x(f, b[0]),
+            page_y(f, b[1]));
+}
+
+/* A fixel on a hole's boundary: a pin in the hole, a dark disc touching the
+ * boundary at the contact (its radius the wedge's size, or 0.35 of the
+ * hole's narrower side if that is less, so that it shows its clearance),
+ * its friction cone, and an arrow from its centre along the normal, its
+ * head half the pin's radius into the material (short: the wall beyond a
+ * hole may be thin); its number on it. */
+static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t hole,
+                double wedge, double cone)
+{
+    const wr_fixel *x = &fx->fixels[i];
+    const double *p = x->at, *n = x->normal;
+    double radius = fmin(wedge, 0.35 * loop_width(&fx->outline->loops[hole]));
+    double c[2] = {p[0] - radius * n[0], p[1] - radius * n[1]};
+    fprintf(out, "<circle class=\"fixel pin\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#444\"/>\n",
+            page_x(f, c[0]), page_y(f, c[1]), radius * f->scale);
+    friction_cone(out, f, x, cone);
+    fprintf(out,
+            "<line class=\"fixel-normal\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+            "stroke=\"#c0392b\" stroke-width=\"2\" marker-end=\"url(#arrow-c0392b)\"/>\n",
+            page_x(f, c[0]), page_y(f, c[1]), page_x(f, p[0] + 0.5 * radius * n[0]),
+            page_y(f, p[1] + 0.5 * radius * n[1]));
+    fprintf(out,
+            "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" fill=\"white\" "
+            "text-anchor=\"middle\">%d</text>\n",
+            page_x(f, c[0]), page_y(f, c[1]) + 5, i + 1);
+}
+
 /* Each fixel: a dark wedge outside the part, its apex at the contact, and
- * its friction cone opening into the part. */
+ * its friction cone opening into the part; on a hole's boundary, a pin. */
 static void fixels(FILE *out, const frame *f, const wr_fixture *fx)
 {
     double wedge = 0.06 * f->size, cone = 0.16 * f->size;
     for (int i = 0; i < fx->fixel_count; i++) {
         const wr_fixel *x = &fx->fixels[i];
+        size_t hole = hole_at(fx, x->at);
+        if (hole > 0) {
+            pin(out, f, fx, i, hole, wedge, cone);
+            continue;
+        }
         const double *p = x->at, *n = x->normal, *t = x->tangent;
         fprintf(out,
                 "<polygon class=\"fixel\" points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" "
@@ -141,15 +304,7 @@ static void fixels(FILE *out, const frame *f, const wr_fixture *fx)
                 page_y(f, p[1] - wedge * (n[1] + 0.6 * t[1])),
                 page_x(f, p[0] - wedge * (n[0] - 0.6 * t[0])),
                 page_y(f, p[1] - wedge * (n[1] - 0.6 * t[1])));
-        double mu = x->mu_static;
-        double length = cone / sqrt(1 + mu * mu);
-        double a[2] = {p[0] + length * (n[0] + mu * t[0]), p[1] + length * (n[1] + mu * t[1])};
-        double b[2] = {p[0] + length * (n[0] - mu * t[0]), p[1] + length * (n[1] - mu * t[1])};
-        fprintf(out,
-                "<polygon class=\"friction-cone\" points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" "
-                "fill=\"#c0392b\" fill-opacity=\"0.18\" stroke=\"#c0392b\" stroke-width=\"1.2\"/>\n",
-                page_x(f, p[0]), page_y(f, p[1]), page_x(f, a[0]), page_y(f, a[1]),
-                page_x(f, b[0]), page_y(f, b[1]));
+        friction_cone(out, f, x, cone);
         fprintf(out, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" text-anchor=\"middle\">%d</text>\n",
                 page_x(f, p[0] - 0.12 * f->size * n[0]),
                 page_y(f, p[1] - 0.12 * f->size * n[1]) + 5, i + 1);
@@ -199,7 +354,8 @@ static void arc_path(FILE *out, const frame *f, const double centre[2], double r
 }
 
 void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *set,
-                 const wr_region *regions, int count, double fraction, double finger_friction)
+                 const wr_region *regions, int count, double fraction, double finger_friction,
+                 double finger_radius)
 {
     frame f = frame_for(fx, 0.2, 3);
     char text[256], mu[64];
@@ -208,9 +364,19 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
     outline(out, &f, fx);
     for (int i = 0; i < count; i++) {
         const wr_region *r = &regions[i];
+        size_t loop, segment;
+        bool on_outline = fx->shape == WR_SHAPE_OUTLINE && fx->outline;
+        if (on_outline && !edge_place(fx->outline, r->edge, &loop, &segment))
+            continue; /* no such segment: nothing to draw */
         fputs("<path class=\"region\" d=\"", out);
         if (fx->shape == WR_SHAPE_CIRCLE) {
             arc_path(out, &f, fx->center, fx->radius, r->t0, r->t1);
+        } else if (on_outline) {
+            /* Along its segment: on an arc, an arc. */
+            double a[2];
+            wr_outline_boundary(fx->outline, loop, segment, r->t0, a, NULL);
+            fprintf(out, "M " OUTLINE_XY, page_x(&f, a[0]), page_y(&f, a[1]));
+            segment_to(out, &f, fx->outline, loop, segment, r->t0, r->t1);
         } else {
             double a[2], b[2], n[2];
             wr_boundary_point(fx, r->edge, r->t0, a, n);
@@ -226,10 +392,14 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
     snprintf(text, sizeof text, "%s, set %s: push here (thick black) with a %s finger", name, set,
              finger_friction > 0 ? "frictional" : "frictionless");
     legend(out, 0, text);
+    int used;
     if (finger_friction > 0)
-        snprintf(text, sizeof text, "fixel friction %s; finger friction %g", mu, finger_friction);
+        used = snprintf(text, sizeof text, "fixel friction %s; finger friction %g", mu,
+                        finger_friction);
     else
-        snprintf(text, sizeof text, "fixel friction %s", mu);
+        used = snprintf(text, sizeof text, "fixel friction %s", mu);
+    if (finger_radius >= 0 && used > 0 && (size_t)used < sizeof text)
+        snprintf(text + used, sizeof text - (size_t)used, "; finger radius %g", finger_radius);
     legend(out, 1, text);
     if (count)
         snprintf(text, sizeof text, "%d region%s, %.1f%% of the outline", count,

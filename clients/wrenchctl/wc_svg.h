@@ -2,6 +2,13 @@
  * 8: the part's outline in grey, the fixels as small wedges with their
  * friction cones, the centre of mass, the answer in thick black, a legend.
  *
+ * An outline of lines and arcs (issue 16) is one <path class="outline">,
+ * each loop a closed subpath, straight segments as lines and arcs as SVG
+ * arcs, with fill-rule evenodd so that holes are holes; a push region on an
+ * arc is an arc.  A fixel on a hole's boundary is a pin in the hole (a
+ * <circle class="fixel pin">), with an arrow (class "fixel-normal") along
+ * its normal into the material.
+ *
  * Every region (a push region, a gravity arc) is one <path class="region">,
  * so a reader (or a test) can count them; nothing else is a path of that
  * class.  Coordinates: the fixture's, y up, scaled to fit. */
@@ -12,9 +19,12 @@
 
 #include <stdio.h>
 
-/* The push region of a set: `regions` as wr_push_regions gives them. */
+/* The push region of a set: `regions` as wr_push_regions gives them (on an
+ * outline, edge counts the segments of every loop, loop 0's first).
+ * finger_radius < 0: none was asked for, and the legend names none. */
 void wc_svg_push(FILE *out, const wr_fixture *fixture, const char *name, const char *set,
-                 const wr_region *regions, int count, double fraction, double finger_friction);
+                 const wr_region *regions, int count, double fraction, double finger_friction,
+                 double finger_radius);
 
 /* The gravity sweep as a dial around the part: arcs of tilt, in degrees. */
 void wc_svg_gravity(FILE *out, const wr_fixture *fixture, const char *name, const char *set,

@@ -108,6 +108,14 @@ static int take_friction(wc_run *run, const char *value)
     return 0;
 }
 
+static int take_radius(wc_run *run, const char *value)
+{
+    if (!take_number("finger-radius", value, &run->finger_radius))
+        return EXIT_USAGE;
+    run->radius_given = true;
+    return 0;
+}
+
 static int take_svg(wc_run *run, const char *value)
 {
     run->svg = value;
@@ -128,6 +136,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"tolerance", WC_OPT_TOLERANCE, take_tolerance},
     {"set", WC_OPT_SET, take_set},
     {"finger-friction", WC_OPT_FRICTION, take_friction},
+    {"finger-radius", WC_OPT_RADIUS, take_radius},
     {"svg", WC_OPT_SVG, take_svg},
     {NULL, 0, NULL},
 };
@@ -288,16 +297,19 @@ const wc_command wc_commands[] = {
      "modes.get", NULL, wc_modes_answer,
      "the feasible moving contact modes",
      "The kinematically feasible moving contact modes, and whether the fixels pin the part."},
-    {"push", "FIXTURE [--set SET] [--finger-friction MU] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_SVG, 1, 1,
+    {"push", "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
      "push.regions", wc_push_request, wc_push_answer,
      "where a finger's push seats the part",
      "The push region of a set: the open intervals of the outline where a finger pushing along\n"
      "the inward normal gives a wrench in the set, exact (a polygon edge i runs from vertex i to\n"
-     "vertex i+1, t is the fraction along it; on a circle t is the angle in degrees).\n"
+     "vertex i+1, t is the fraction along it; on a circle t is the angle in degrees; on an\n"
+     "outline, segment S of loop L, t the fraction of its length, or of an arc's angle).\n"
      "  --set SET              goal (default), strong or both\n"
      "  --finger-friction MU   a finger with friction: every force of its friction cone must be\n"
      "                         in the set (sampled and bisected; the resolution is printed)\n"
+     "  --finger-radius R      a round finger of radius R (default 0, a point): only where it\n"
+     "                         fits against the part without overlapping it\n"
      "  --svg FILE             also draw the part, its fixels and the region\n"
      "Exit status 0 when there is a region, 1 when there is none."},
     {"gravity", "FIXTURE [--set SET] [--svg FILE]",

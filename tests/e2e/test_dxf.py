@@ -548,6 +548,32 @@ def test_freecad_drawing():
     assert A == pytest.approx(2256.095137745191, rel=1e-12)      # FreeCAD's own face.Area
 
 
+# FreeCAD 0.20.2's mass properties of that plate at unit density
+# (data/freecad_plate.py prints them): area, centroid, polar moment about it.
+FREECAD_AREA = 2256.095137745191
+FREECAD_CENTROID = (29.874242633466682, 20.240539808092137)
+FREECAD_POLAR = 1008815.3563047722
+
+
+def test_freecad_drawing_through_wrenchd(client):
+    """The DXF round trip into wrenchd: the shape wrenchd_dxf reads from
+    FreeCAD's drawing, put as a fixture of unit density (mass = area), gets
+    from fixture.put the area, centroid and moment of inertia FreeCAD
+    computes for the same face, to 1e-13; and it round-trips through
+    fixture.get to the same id."""
+    shape, _ = wrenchd_dxf.shape_from_dxf(os.path.join(DATA, "freecad_plate.dxf"))
+    fixture = {"body": {"mass": FREECAD_AREA, "shape": shape}, "friction": {"static": 0.3},
+               "fixels": [{"at": [20, 0]}, {"at": [0, 20]}, {"at": [40, 40]}]}
+    put = client.result("fixture.put", {"fixture": fixture})
+    assert put["area"] == pytest.approx(FREECAD_AREA, rel=1e-13)
+    assert put["com"][0] == pytest.approx(FREECAD_CENTROID[0], rel=1e-13)
+    assert put["com"][1] == pytest.approx(FREECAD_CENTROID[1], rel=1e-13)
+    assert put["inertia"] == pytest.approx(FREECAD_POLAR, rel=1e-13)
+    again = client.result("fixture.put", {"fixture": client.result("fixture.get",
+                                                                   {"id": put["id"]})})
+    assert again["id"] == put["id"]
+
+
 def test_imports():
     """wrenchd_dxf.py: Python 3.8 syntax, the standard library and ezdxf; the
     client wrenchd.py does not import it (test_python_client.py checks the

@@ -78,3 +78,37 @@ def test_lp_takes_no_tolerance(daemon):
         e = c.error("wrench.classify", dict(base, tolerance=tolerance))
         assert e["code"] == -32602 and e["data"]["field"] == "params.tolerance", e
         assert "lp" in e["data"]["reason"], e
+
+
+def test_fixels_must_spread_over_a_thousandth_of_the_gyration_radius(daemon):
+    """Fuzz finding 8: fixels bunched far below the radius of gyration have
+    torque rows equal but for spread / rho; a long bar held by three fixels
+    at one end is refused at "fixels" below 1e-3 rho, taken above it, and
+    fixels all at one point (exact) are kept."""
+    c = daemon.client()
+    length, width, mass = 1000.0, 2.0, 1.0
+    # A uniform bar about its centroid: I = m (l^2 + w^2) / 12.
+    rho = ((length ** 2 + width ** 2) / 12) ** 0.5
+
+    def bar(spread):
+        return {"body": {"mass": mass, "shape": {"type": "polygon", "vertices": [
+                    [0, 0], [length, 0], [length, width], [0, width]]}},
+                "friction": {"static": 0.3},
+                "fixels": [{"at": [1, 0]}, {"at": [1 + spread, 0]}, {"at": [0, 1]}]}
+
+    # The spread is the largest distance between two fixels: from (0, 1) to
+    # (1 + s, 0) it is hypot(1 + s, 1), at least sqrt(2); so the refused
+    # bar has the third fixel near the others too.
+    tight = bar(0.0)
+    tight["fixels"] = [{"at": [0, 0.05]}, {"at": [0, 0.05 + 0.2 * 1e-3 * rho]},
+                       {"at": [0.1 * 1e-3 * rho, 0]}]
+    e = c.error("fixture.put", {"fixture": tight})
+    assert e["code"] == -32602 and e["data"]["field"] == "params.fixture.fixels", e
+    assert "radius of gyration" in e["data"]["reason"], e
+    loose = bar(0.0)
+    loose["fixels"] = [{"at": [0, 0.5]}, {"at": [0, 1.5]}, {"at": [2 * 1e-3 * rho, 0]}]
+    assert c.result("fixture.put", {"fixture": loose})["fixels"] == 3
+    # Two fixels at one point (a corner of the bar), normals given: exact, kept.
+    corner = bar(0.0)
+    corner["fixels"] = [{"at": [0, 0], "normal": [1, 0]}, {"at": [0, 0], "normal": [0, 1]}]
+    assert c.result("fixture.put", {"fixture": corner})["fixels"] == 2

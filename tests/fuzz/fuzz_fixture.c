@@ -62,6 +62,16 @@ static void check_fixture(const wr_fixture *f)
                "polygon: %zu vertices, orientation %d", f->vertex_count, f->orientation);
     FUZZ_CHECK(f->shape != WR_SHAPE_CIRCLE || (f->radius > 0 && isfinite(f->radius)),
                "circle: radius %.17g", f->radius);
+    /* Polygons and outlines carry an outline; the lamina has area. */
+    FUZZ_CHECK((f->outline != NULL) ==
+                   (f->shape == WR_SHAPE_POLYGON || f->shape == WR_SHAPE_OUTLINE),
+               "outline %p for shape %d", (void *)f->outline, (int)f->shape);
+    FUZZ_CHECK(f->shape == WR_SHAPE_NONE || (f->area > 0 && isfinite(f->area)), "area %.17g",
+               f->area);
+    FUZZ_CHECK(f->shape != WR_SHAPE_OUTLINE ||
+                   (f->outline->loop_count >= 1 && f->outline->area == f->area &&
+                    f->outline->vertex_count <= WR_OUTLINE_MAX_VERTICES),
+               "outline: %zu loops, area %.17g", f->outline->loop_count, f->outline->area);
     for (int i = 0; i < f->fixel_count; i++) {
         const wr_fixel *x = &f->fixels[i];
         FUZZ_CHECK(fabs(hypot(x->normal[0], x->normal[1]) - 1) < 1e-12, "fixel %d: normal not unit",
@@ -99,7 +109,10 @@ static void check_doc(const cJSON *json, const wp_fixture_doc *doc)
     const wr_fixture *f = doc->fixture, *g = second.fixture;
     FUZZ_CHECK(f->fixel_count == g->fixel_count && f->mass == g->mass &&
                    f->inertia == g->inertia && f->com[0] == g->com[0] && f->com[1] == g->com[1] &&
-                   f->shape == g->shape && f->vertex_count == g->vertex_count,
+                   f->shape == g->shape && f->vertex_count == g->vertex_count &&
+                   (f->shape != WR_SHAPE_OUTLINE ||
+                    f->outline->vertex_count == g->outline->vertex_count) &&
+                   f->area == g->area,
                "the canonical text is another fixture");
     wp_fixture_doc_release(&second);
     cJSON_Delete(again);
@@ -176,7 +189,7 @@ static void check_disturbance(const wr_analysis *a, const double bias[3])
 static void check_push_semantics(const wr_analysis *a, wr_set set, const wr_regions *r)
 {
     const wr_fixture *f = wr_analysis_fixture(a);
-    int edges = f->shape == WR_SHAPE_CIRCLE ? 1 : (int)f->vertex_count;
+    int edges = wr_push_edge_count(f);
     double high = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
     int next = 0;
     for (int e = 0; e < edges; e++) {
@@ -258,7 +271,7 @@ static void check_regions(const wr_analysis *a)
                        "push regions without a shape");
             continue;
         }
-        int edges = f->shape == WR_SHAPE_CIRCLE ? 1 : (int)f->vertex_count;
+        int edges = wr_push_edge_count(f);
         double high = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
         FUZZ_CHECK(wr_push_regions(a, set, 0, NULL, &r) == 0, "wr_push_regions failed");
         fuzz_check_regions(&r, edges, 0, high, "push");

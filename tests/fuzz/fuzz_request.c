@@ -255,7 +255,7 @@ static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edge
     const wr_analysis *a = use.analysis;
     *cones = (set != WR_SET_STRONG ? wr_analysis_plan(a)->kept_count : 0) +
              (set != WR_SET_GOAL ? wr_analysis_cone_count(a, WR_SET_STRONG) : 0);
-    *edges = use.fixture->shape == WR_SHAPE_POLYGON ? (double)use.fixture->vertex_count : 1;
+    *edges = use.fixture->shape == WR_SHAPE_NONE ? 1 : (double)wr_push_edge_count(use.fixture);
     host->fixture_release(host->self, &use);
     return true;
 }

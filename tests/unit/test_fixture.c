@@ -287,7 +287,8 @@ static void shapeless_fixture_is_accepted(void **state)
     wr_fixture_free(f);
     /* One fixel far from the centre of mass, and then two close together
      * at one end of a long part: nothing says where a shapeless part is,
-     * so neither is refused for its centre of mass. */
+     * so neither is refused for its centre of mass (the two are 1e-2 rho
+     * apart: 1e-3 rho is the least spread taken, WR_FIXEL_SPREAD). */
     b.spec.inertia = 2; /* rho = 1 */
     b.spec.fixel_count = 1;
     b.fixels[0].at[0] = 500;
@@ -296,7 +297,7 @@ static void shapeless_fixture_is_accepted(void **state)
     assert_non_null(f);
     wr_fixture_free(f);
     b.spec.fixel_count = 2;
-    b.fixels[1].at[0] = 500.001;
+    b.fixels[1].at[0] = 500.01;
     b.fixels[1].at[1] = 300;
     f = test_fixture_new(&b.spec, NULL);
     assert_non_null(f);

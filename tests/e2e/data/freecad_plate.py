@@ -37,4 +37,9 @@ slot = Part.Wire(Part.__sortEdges__([
 face = Part.Face(outer).cut(Part.Face(hole)).cut(Part.Face(slot)).Faces[0]
 assert face.isValid()
 print("FreeCAD %s: area %r" % (".".join(FreeCAD.Version()[:3]), face.Area))
+# Its mass properties at unit density, which tests/e2e/test_dxf.py holds
+# wrenchd's to: the centroid, and the polar moment about it (A33 of the
+# matrix of inertia about the centre of mass).
+c, m = face.CenterOfMass, face.MatrixOfInertia
+print("centroid (%r, %r), polar moment %r" % (c.x, c.y, m.A33))
 Import.writeDXFShape([face], os.path.join(os.getcwd(), "freecad_plate.dxf"))
