@@ -1015,12 +1015,58 @@ struct Start {
     V2 v;
     double w;
     int touching; // fixels touching at the start
+    double scale; // the gaps' scale (1 but for pins in holes, below)
 };
 
 // A start displaced from the seated pose away from the fixels: a target gap
 // per fixel (0 with probability TOUCH_PROBABILITY, else up to GAP_MAX, never
 // all 0), the least-norm rigid motion that makes them (plus a random motion
 // the fixels do not see, for k < 3), refined by Newton on the exact gaps.
+// Newton from the seated pose moved by q to the pose with the gaps `goal`,
+// near the seated pose; false when there is none.
+bool newton_start(const Prepared &p, const Pose &seated, const double q[3], const double goal[3], Pose *out)
+{
+    double J[3][3];
+    Pose pose = apply(p, seated, q);
+    // Newton, its step halved until the residual's norm decreases: on a
+    // curved outline (a fixel in a concave arc) a full step can leave the
+    // arc for a line and jump to a far pose that has the same gaps.
+    auto residual = [&](const Pose &at, double r[3]) {
+        double sum = 0;
+        for (int i = 0; i < p.k; i++) {
+            r[i] = goal[i] - gap(p, at, i);
+            sum += r[i] * r[i];
+        }
+        return std::sqrt(sum);
+    };
+    for (int it = 0; it < 40; it++) {
+        double r[3] = {0, 0, 0}, worst = residual(pose, r);
+        if (worst < 1e-12 * SIZE)
+            break;
+        gap_jacobian(p, pose, J);
+        double dq[3];
+        if (!least_norm(p, J, r, dq))
+            return false;
+        Pose next = apply(p, pose, dq);
+        double r2[3];
+        for (int halving = 0; halving < 30 && residual(next, r2) >= worst; halving++) {
+            for (double &c : dq)
+                c *= 0.5;
+            next = apply(p, pose, dq);
+        }
+        pose = next;
+    }
+    for (int i = 0; i < p.k; i++)
+        if (std::fabs(gap(p, pose, i) - goal[i]) > 1e-9 * SIZE)
+            return false;
+    // The start must be near the seated pose (the model is local): a far
+    // pose with the same gaps is no start.
+    if (boundary_displacement(p, seated, pose) > START_REACH)
+        return false;
+    *out = pose;
+    return true;
+}
+
 bool sample_start(const Prepared &p, Rng &rng, Start *out)
 {
     Pose seated{p.com, 0};
@@ -1063,42 +1109,22 @@ bool sample_start(const Prepared &p, Rng &rng, Start *out)
         for (int c = 0; c < 3; c++)
             q[c] += z[c] - back[c];
     }
-    Pose pose = apply(p, seated, q);
-    // Newton, its step halved until the residual's norm decreases: on a
-    // curved outline (a fixel in a concave arc) a full step can leave the
-    // arc for a line and jump to a far pose that has the same gaps.
-    auto residual = [&](const Pose &at, double r[3]) {
-        double sum = 0;
-        for (int i = 0; i < p.k; i++) {
-            r[i] = target[i] - gap(p, at, i);
-            sum += r[i] * r[i];
+    // A pin in a hole has only the hole's clearance: targets it cannot
+    // reach together are halved (up to 3 times; q is linear in them).
+    Pose pose{};
+    double scale = 1;
+    bool found = false;
+    for (int attempt = 0; attempt < 4 && !found; attempt++, scale *= 0.5) {
+        double goal[3], q0[3];
+        for (int c = 0; c < 3; c++) {
+            goal[c] = scale * target[c];
+            q0[c] = scale * q[c];
         }
-        return std::sqrt(sum);
-    };
-    for (int it = 0; it < 40; it++) {
-        double r[3] = {0, 0, 0}, worst = residual(pose, r);
-        if (worst < 1e-12 * SIZE)
-            break;
-        gap_jacobian(p, pose, J);
-        double dq[3];
-        if (!least_norm(p, J, r, dq))
-            return false;
-        Pose next = apply(p, pose, dq);
-        double r2[3];
-        for (int halving = 0; halving < 30 && residual(next, r2) >= worst; halving++) {
-            for (double &c : dq)
-                c *= 0.5;
-            next = apply(p, pose, dq);
-        }
-        pose = next;
+        found = newton_start(p, seated, q0, goal, &pose);
     }
-    for (int i = 0; i < p.k; i++)
-        if (std::fabs(gap(p, pose, i) - target[i]) > 1e-9 * SIZE)
-            return false;
-    // The start must be near the seated pose (the model is local): a far
-    // pose with the same gaps is no start.
-    if (boundary_displacement(p, seated, pose) > START_REACH)
+    if (!found)
         return false;
+    out->scale = scale * 2;
     double speed = V0_MAX * std::sqrt(rng.uniform()), dir = rng.uniform(0, 2 * PI);
     out->pose = pose;
     out->v = {speed * std::cos(dir), speed * std::sin(dir)};
@@ -1679,7 +1705,8 @@ Row seat_trials(const Prepared &p, const Config &cfg, const char *set, bool grav
         return row;
     }
     double worst_time = 0, worst_pos = 0, worst_ang = 0, worst_pen = 0, least_margin = 1;
-    int failures_shown = 0, starts_touching = 0, starts = 0;
+    int failures_shown = 0, starts_touching = 0, starts = 0, starts_scaled = 0;
+    double least_scale = 1;
     for (int j = 0; j < points; j++) {
         Rng prng(seed_of(p.name, set, j, -1));
         int edge = -1;
@@ -1721,6 +1748,8 @@ Row seat_trials(const Prepared &p, const Config &cfg, const char *set, bool grav
             }
             starts++;
             starts_touching += st.touching > 0;
+            starts_scaled += st.scale < 1;
+            least_scale = std::min(least_scale, st.scale);
             Seat s = run_seat(p, st, load);
             row.trials++;
             row.deep_trials += s.deep > 0;
@@ -1749,6 +1778,8 @@ Row seat_trials(const Prepared &p, const Config &cfg, const char *set, bool grav
     if (inside)
         row.note += fmt("; least margin %.4f", least_margin);
     row.note += fmt("; %d/%d starts touching", starts_touching, starts);
+    if (starts_scaled)
+        row.note += fmt("; %d starts with their gaps scaled down (to %g at least)", starts_scaled, least_scale);
     finish(row);
     row.seconds = since(t0);
     return row;
