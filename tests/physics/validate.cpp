@@ -19,6 +19,7 @@
 //                         (a cross-check of the path non-convex outlines take)
 //   --sensor-depth M      the sensor pieces M m inside the outline (below
 //                         Box2D's slop they must report, a negative control)
+//   --velocity-iterations N  Box2D's velocity iterations (20 otherwise)
 //   --sweep N             seating rate along the whole outline, tilts all
 //                         round, G_strong margin bins (no criteria)
 //     --spin W            ... with the start spinning at +-W rad/s (and, for
@@ -61,7 +62,7 @@ namespace {
 // fixed size makes every run see them in the same proportion.
 constexpr double SIZE = 4.0;
 constexpr double HZ = 240.0;              // time step 1/240 s
-constexpr int VELOCITY_ITERATIONS = 20;
+int VELOCITY_ITERATIONS = 20;              // --velocity-iterations N: an investigation
 constexpr int POSITION_ITERATIONS = 10;
 constexpr double ACCEL = 10.0;            // finger force = mass * ACCEL; |gravity| = ACCEL
 constexpr double FIXEL_RADIUS = 0.02 * SIZE;
@@ -809,7 +810,10 @@ bool prepare(const std::string &path, Prepared *p, std::string *error)
                 Seg g;
                 g.a = body(ws.start);
                 g.b = body(ws.end);
-                if (ws.bulge != 0) {
+                // An arc flatter than 1e-3 of ARC_DEVIATION (its radius may
+                // be near the largest double) is taken for its chord.
+                double sagitta = s * ws.radius * 2 * std::pow(std::sin(std::fabs(ws.sweep) / 4), 2);
+                if (ws.bulge != 0 && sagitta > 1e-3 * ARC_DEVIATION) {
                     g.arc = true;
                     g.c = body(ws.center);
                     g.r = s * ws.radius;
@@ -2327,7 +2331,7 @@ void usage()
 {
     std::fprintf(stderr, "usage: physics-validate [--quick | --full] [--verbose] FIXTURE.json ...\n"
                  "investigations (docs/VALIDATION.md): [--friction-factor X] [--static-as-kinetic] [--chains]\n"
-                 "    [--sensor-depth M]\n"
+                 "    [--sensor-depth M] [--velocity-iterations N]\n"
                  "    [--sweep N [--spin W] [--slide V]] [--hold-at EDGE T]\n");
 }
 
@@ -2357,6 +2361,8 @@ int main(int argc, char **argv)
             slide_speed = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--spin") && i + 1 < argc)
             spin = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--velocity-iterations") && i + 1 < argc)
+            VELOCITY_ITERATIONS = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--chains"))
             force_chains = true;
         else if (!std::strcmp(argv[i], "--sensor-depth") && i + 1 < argc)
