@@ -3,7 +3,8 @@
  * Along segment S the finger's centre is c(t) = p(t) - r nu(t).  It is
  * blocked at t iff the open disc of radius r about c(t) meets the
  * material, i.e. iff c(t) lies in the open set
- *     B = {x : dist(x, boundary) < r} union interior,
+ *     B = {x : dist(x, boundary) < r}
+ * (c inside the material is in B: see overlaps() below),
  * whose boundary is within {x : dist(x, boundary) = r}: c(t) can enter or
  * leave B only where it crosses the curve at distance r from some segment.
  * For a straight segment that curve lies on the two lines parallel to it
@@ -35,9 +36,9 @@
 #include <string.h>
 
 /* The most crossings one obstacle can add: an arc path meets each of two
- * lines or each of four circles at most twice; a straight path meets a
+ * lines or each of three circles at most twice; a straight path meets a
  * circle twice and a line once. */
-#define CROSSINGS_PER_SEGMENT 8
+#define CROSSINGS_PER_SEGMENT 6
 
 /* The finger centre's path, in the chord frame of the segment pushed on. */
 typedef struct path {
@@ -131,11 +132,11 @@ static void cross_circle(const path *p, const double q[2], double radius, crossi
 /* The crossings of the path with the curves at distance r from obstacle s. */
 static void obstacle_crossings(const path *p, const wr_segment *s, double r, crossings *out)
 {
-    double start[2], end[2];
+    double start[2];
     to_frame(p, s->start, start);
-    to_frame(p, s->end, end);
+    /* Only the start's circle: each vertex starts one segment, and that
+     * segment is near whenever the vertex is. */
     cross_circle(p, start, r, out);
-    cross_circle(p, end, r, out);
     if (s->bulge == 0) {
         double middle[2];
         to_frame(p, s->midpoint, middle);
@@ -177,7 +178,11 @@ static double segment_distance(const wr_segment *s, const double x[2])
 }
 
 /* The finger at t overlaps the workpiece: some segment nearer to c than
- * r - tolerance (only the `near` ones can be), or c inside the material. */
+ * r - tolerance (only the `near` ones can be).  That c might lie inside
+ * the material with all of the boundary r away needs no test: the
+ * segment from p to c (length r) leaves p into the free side, so to end in
+ * the material it crosses the boundary at some q != p, and
+ * |c - q| < r. */
 static bool overlaps(const wr_outline *outline, size_t loop, size_t segment, double t, double r,
                      const wr_segment *const *near, size_t near_count)
 {
@@ -188,7 +193,7 @@ static bool overlaps(const wr_outline *outline, size_t loop, size_t segment, dou
     for (size_t i = 0; i < near_count; i++)
         if (segment_distance(near[i], c) < r - tolerance)
             return true;
-    return wr_outline_contains(outline, c, tolerance);
+    return false;
 }
 
 /* Can any point of s be within r of the path?  c is at distance r from
