@@ -80,7 +80,8 @@ static void circle_loop(shape *s, double cx, double cy, double r, int direction)
 static void d_hole_loop(shape *s, double cx, double cy, double R, double e)
 {
     double m = sqrt((R - e) * (R + e)), beta = atan2(e, m);
-    const double loop[2][3] = {{cx - m, cy - e, 0}, {cx + m, cy - e, tan((TEST_PI + 2 * beta) / 4)}};
+    double bulge = tan((TEST_PI + 2 * beta) / 4);
+    const double loop[2][3] = {{cx - m, cy - e, 0}, {cx + m, cy - e, bulge}};
     add_loop(s, 2, loop);
 }
 
