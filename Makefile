@@ -216,6 +216,7 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/plate-chamfered.json --set both --svg docs/pictures/plate-chamfered-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/disc-corner.json --set goal --svg docs/pictures/disc-corner-push-goal.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/bracket.json --set both --svg docs/pictures/bracket-push-both.svg >/dev/null
+	$(BUILD)/wrenchctl --local push examples/notched-plate.json --set strong --finger-radius 4 --svg docs/pictures/notched-plate-push-strong-r4.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.

@@ -75,6 +75,8 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-chamfered-push-both.svg", ["push", "plate-chamfered.json", "--set", "both"]),
     ("disc-corner-push-goal.svg", ["push", "disc-corner.json", "--set", "goal"]),
     ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both"]),
+    ("notched-plate-push-strong-r4.svg", ["push", "notched-plate.json", "--set", "strong",
+                                          "--finger-radius", "4"]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
