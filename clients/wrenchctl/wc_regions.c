@@ -119,10 +119,12 @@ static void print_push(const wc_run *run, const cJSON *result)
     int count = cJSON_GetArraySize(regions);
     double fraction = cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction"));
     bool outline = by_segment(regions);
-    if (outline)
+    /* No regions, no table: an outline's empty answer does not say it is
+     * one, so no header could be the right one. */
+    if (count > 0 && outline)
         printf("%4s  %7s  %-24s  %-24s  %10s  %10s  %9s\n", "loop", "segment", "from", "to", "t0",
                "t1", "length");
-    else
+    else if (count > 0)
         printf("%4s  %-24s  %-24s  %10s  %10s  %9s\n", "edge", "from", "to", "t0", "t1",
                "length");
     const cJSON *r;
