@@ -153,6 +153,8 @@ static void print_push(const wc_run *run, const cJSON *result)
         printf(" (sampled: resolution %g)",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
     printf("\n");
+    if (strcmp(set_name(run), "both") != 0)
+        printf("%s\n", wc_set_promise(set_name(run)));
 }
 
 /* An outline's region (loop, segment) as wc_svg_push's edge: the segments
@@ -257,6 +259,8 @@ int wc_gravity_answer(wc_run *run, const cJSON *result)
                cJSON_GetArrayItem(arc, 1)->valuedouble - cJSON_GetArrayItem(arc, 0)->valuedouble);
         if (count == 0)
             printf("  none: gravity alone never does it\n");
+        if (strcmp(set_name(run), "both") != 0)
+            printf("%s\n", wc_set_promise(set_name(run)));
     }
     int status = picture(run, result, draw_gravity);
     if (status >= 0)
