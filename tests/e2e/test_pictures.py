@@ -536,6 +536,8 @@ def test_outline_regions_printed_by_loop_and_segment(harness):
     assert answer.returncode == 0, answer.stderr
     lines = answer.stdout.splitlines()
     assert lines[0].split()[:4] == ["loop", "segment", "from", "to"]
-    rows = [l.split() for l in lines[1:-1]]
+    # The table, its summary, and what the strong set promises.
+    assert lines[-2].startswith("set strong: ") and lines[-1].startswith("strong: "), lines
+    rows = [l.split() for l in lines[1:-2]]
     assert rows and all(r[0] in ("0", "1") for r in rows)
     assert any(r[0] == "1" for r in rows)    # a region in the hole
