@@ -78,7 +78,9 @@ def main():
     show(client, ids["plate-chamfered"], "the same push lower on the chamfer, at (3.75, 1.25)",
          {"force": [-0.7071067811865476, -0.7071067811865476], "at": [3.75, 1.25]})
 
-    print("\nWhere to push, which tilt, how much disturbance:")
+    print("\nWhere to push, which tilt, how much disturbance (a goal push reaches every fixel "
+          "but may leave\nthe part sliding on, a strong one holds it only once seated: push "
+          "with both and let go):")
     for name, set_name in (("disc-corner", "goal"), ("plate-3-2-1", "goal"),
                            ("plate-3-2-1", "strong"), ("plate-chamfered", "both"),
                            ("bracket", "both")):

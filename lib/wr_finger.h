@@ -35,8 +35,9 @@ typedef struct wr_span {
 /* The closed parts of segment `segment` of loop `loop` where a finger of
  * radius `radius` overlaps the workpiece, sorted by lo, disjoint, within
  * [0, 1], appended to the array *spans of *count items (grown with
- * realloc; the caller frees it).  radius 0: none.  Endpoints to 1e-12
- * relative.  `stop` (may be NULL) is polled between segments.  WR_OK;
+ * realloc; the caller frees it).  radius 0 (or within the tolerance of
+ * 0): none.  Endpoints to 1e-12 relative.  `stop` (may be NULL) is polled
+ * between the segments looked at and between the pieces tested.  WR_OK;
  * WR_INVALID for a negative or non-finite radius or a loop or segment out
  * of range; WR_NO_MEMORY and WR_STOPPED with *spans and *count as they
  * were. */

@@ -9,6 +9,7 @@
  *   wr_lp.h        GLPK membership LPs (per-thread environments)
  *   wr_classify.h  G_goal, G_strong: verdicts, margins, blocking cones
  *   wr_regions.h   push regions, gravity arcs, disturbance margins
+ *   wr_finger.h    where a round finger fits against an outline
  *
  * Pure computation: no I/O, no global state; every function is re-entrant.
  * Objects are created by wr_status *_new(..., T **out) and released by
@@ -22,6 +23,7 @@
 
 #include "wr_classify.h"
 #include "wr_cone.h"
+#include "wr_finger.h"
 #include "wr_fixture.h"
 #include "wr_lp.h"
 #include "wr_outline.h"

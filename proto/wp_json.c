@@ -2,6 +2,7 @@
 #define _DEFAULT_SOURCE /* madvise's MADV_HUGEPAGE */
 #include "wp_json.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -459,7 +460,7 @@ static size_t number_token(const char *text, size_t i, size_t length, const char
 
 wp_json_shape wp_json_scan(const char *text, size_t length, int limit)
 {
-    wp_json_shape shape = {0, false, false, NULL, 0, 0};
+    wp_json_shape shape = {0, false, false, false, NULL, 0, 0};
     int depth = 0;
     bool in_string = false;
     for (size_t i = 0; i < length; i++) {
@@ -468,8 +469,21 @@ wp_json_shape wp_json_scan(const char *text, size_t length, int limit)
             shape.control = true;
         if (in_string) {
             if (c == '\\') {
-                if (i + 5 < length && text[i + 1] == 'u' && memcmp(text + i + 2, "0000", 4) == 0)
-                    shape.nul_escape = true;
+                /* An escape RFC 8259 allows, \uXXXX with four hex digits:
+                 * cJSON reads "\udu" as U+0000 and cuts the string there,
+                 * and would skip the byte after a lone backslash unchecked. */
+                char next = i + 1 < length ? text[i + 1] : '\0';
+                if (next == 'u') {
+                    bool hex = i + 5 < length;
+                    for (size_t k = i + 2; hex && k < i + 6; k++)
+                        hex = isxdigit((unsigned char)text[k]) != 0;
+                    if (!hex)
+                        shape.bad_escape = true;
+                    else if (memcmp(text + i + 2, "0000", 4) == 0)
+                        shape.nul_escape = true;
+                } else if (!next || !strchr("\"\\/bfnrt", next)) {
+                    shape.bad_escape = true;
+                }
                 i++;
             } else if (c == '"') {
                 in_string = false;

@@ -123,6 +123,7 @@ typedef struct wp_json_shape {
     int depth;
     bool nul_escape;
     bool control;
+    bool bad_escape; /* an escape RFC 8259 does not allow ("\x", "\udu") */
     /* The first number outside strings that RFC 8259 does not allow
      * ("012", "-00", "1.", "-.5", "1.e5", "1e"), which cJSON may read
      * anyway: what is wrong with it ("has a leading zero"), or NULL; and

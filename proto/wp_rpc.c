@@ -397,6 +397,12 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
                       "a control character where JSON allows none (raw in a string, or "
                              "as white space)");
     }
+    if (shape.bad_escape) {
+        counts->requests++;
+        counts->errors++;
+        return refuse(refusal, WP_PARSE_ERROR,
+                      "an escape JSON does not allow in a string (\\u takes four hex digits)");
+    }
     if (shape.nul_escape) {
         /* cJSON would cut the string at the NUL and answer for another
          * request ("fixture.list\u0000x" as "fixture.list"): refuse it. */
@@ -514,7 +520,7 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
     if (length >= PREPARE_BYTES && wp_utf8_valid(line, length)) {
         wp_json_shape shape = wp_json_scan(line, length, limits->max_depth);
         if (shape.depth <= limits->max_depth && !shape.control && !shape.nul_escape &&
-            !shape.number_problem)
+            !shape.bad_escape && !shape.number_problem)
             short_line = prepare_wrenches(line, length, &answer->prepared, &short_length);
     }
     cJSON *json = short_line ? parse_line(limits, short_line, short_length, &counted, &answer->refusal)

@@ -119,10 +119,12 @@ static void print_push(const wc_run *run, const cJSON *result)
     int count = cJSON_GetArraySize(regions);
     double fraction = cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction"));
     bool outline = by_segment(regions);
-    if (outline)
+    /* No regions, no table: an outline's empty answer does not say it is
+     * one, so no header could be the right one. */
+    if (count > 0 && outline)
         printf("%4s  %7s  %-24s  %-24s  %10s  %10s  %9s\n", "loop", "segment", "from", "to", "t0",
                "t1", "length");
-    else
+    else if (count > 0)
         printf("%4s  %-24s  %-24s  %10s  %10s  %9s\n", "edge", "from", "to", "t0", "t1",
                "length");
     const cJSON *r;
@@ -151,6 +153,8 @@ static void print_push(const wc_run *run, const cJSON *result)
         printf(" (sampled: resolution %g)",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
     printf("\n");
+    if (strcmp(set_name(run), "both") != 0)
+        printf("%s\n", wc_set_promise(set_name(run)));
 }
 
 /* An outline's region (loop, segment) as wc_svg_push's edge: the segments
@@ -255,6 +259,8 @@ int wc_gravity_answer(wc_run *run, const cJSON *result)
                cJSON_GetArrayItem(arc, 1)->valuedouble - cJSON_GetArrayItem(arc, 0)->valuedouble);
         if (count == 0)
             printf("  none: gravity alone never does it\n");
+        if (strcmp(set_name(run), "both") != 0)
+            printf("%s\n", wc_set_promise(set_name(run)));
     }
     int status = picture(run, result, draw_gravity);
     if (status >= 0)

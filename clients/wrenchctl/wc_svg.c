@@ -353,11 +353,26 @@ static void arc_path(FILE *out, const frame *f, const double centre[2], double r
             page_y(f, centre[1] + radius * sin(rb)));
 }
 
+/* What a set's region promises, for the legend: G_goal reaches every fixel
+ * but does not promise the part then rests (on a part two fixels do not
+ * pin it slides on along them), G_strong holds the part only once seated;
+ * what to push with and let go is "both". */
+const char *wc_set_promise(const char *set)
+{
+    if (strcmp(set, "goal") == 0)
+        return "goal: reaches every fixel, then the part may slide on; to push and let go, use "
+               "set both";
+    if (strcmp(set, "strong") == 0)
+        return "strong: holds the part once seated, may not seat it; to push and let go, use "
+               "set both";
+    return "both: seats the part from any contact state and holds it: push here and let go";
+}
+
 void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *set,
                  const wr_region *regions, int count, double fraction, double finger_friction,
                  double finger_radius)
 {
-    frame f = frame_for(fx, 0.2, 3);
+    frame f = frame_for(fx, 0.2, 4);
     char text[256], mu[64];
     snprintf(text, sizeof text, "%s: push region of G_%s", name, set);
     begin(out, &f, text);
@@ -407,6 +422,7 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
     else
         snprintf(text, sizeof text, "no push region: no point of the outline will do");
     legend(out, 2, text);
+    legend(out, 3, wc_set_promise(set));
     end(out);
 }
 
@@ -414,7 +430,7 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fx, const char *name, const cha
                     const wr_region *arcs, int count)
 {
     /* The part in the middle, the dial around it. */
-    frame f = frame_for(fx, 0.8, 3);
+    frame f = frame_for(fx, 0.8, 4);
     double lo[2], hi[2];
     bounds(fx, lo, hi);
     double centre[2] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2};
@@ -462,6 +478,7 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fx, const char *name, const cha
                  total);
         legend(out, 2, text);
     }
+    legend(out, 3, wc_set_promise(set));
     end(out);
 }
 

@@ -35,4 +35,10 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fixture, const char *name, cons
 void wc_svg_margin(FILE *out, const wr_fixture *fixture, const char *name, const double bias[3],
                    double margin, const double worst_direction[3], const char *blocking);
 
+/* What a set's push region or tilt promises, in one line ("goal: reaches
+ * every fixel, then the part may slide on; ..."): G_goal does not promise
+ * the part rests, G_strong does not promise it seats; "both" is what to
+ * push with and let go. */
+const char *wc_set_promise(const char *set);
+
 #endif

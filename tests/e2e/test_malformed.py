@@ -61,6 +61,14 @@ ROWS = [
     # ---- -32700: not JSON ----
     ("truncated", '{"jsonrpc":"2.0","method":"fixture.list"', -32700, "", None),
     ("not-json", "hello world", -32700, "", None),
+    # RFC 8259's escapes only: cJSON reads "\udu" as U+0000 and would cut the
+    # id there (found by fuzz_request), and skips the byte after a stray "\".
+    ("bad-u-escape", '{"jsonrpc":"2.0","method":"fixture.list","id":"a\\udub"}', -32700, "",
+     None),
+    ("short-u-escape", '{"jsonrpc":"2.0","method":"fixture.list","id":"a\\u12"}', -32700, "",
+     None),
+    ("unknown-escape", '{"jsonrpc":"2.0","method":"fixture.list","id":"a\\qb"}', -32700, "",
+     None),
     ("empty-line", "", -32700, "", None),
     ("blank-line", "   \t ", -32700, "", None),
     ("trailing-comma", '{"jsonrpc":"2.0","method":"fixture.list","id":77,}', -32700, "", None),

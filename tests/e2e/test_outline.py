@@ -1078,6 +1078,9 @@ def test_ids_of_older_fixtures_unchanged(client):
     few circles, polygons and a shapeless fixture keep the id they had at
     commit 0596807; each example is in the table."""
     fx = old_fixtures()
+    # Examples added with or after the outline shape have no older id.
+    for new in ("notched-plate.json",):
+        fx.pop(new, None)
     assert set(fx) == set(OLD_IDS), sorted(set(fx) ^ set(OLD_IDS))
     for name, f in fx.items():
         assert put(client, f)["id"] == OLD_IDS[name], name

@@ -75,6 +75,8 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-chamfered-push-both.svg", ["push", "plate-chamfered.json", "--set", "both"]),
     ("disc-corner-push-goal.svg", ["push", "disc-corner.json", "--set", "goal"]),
     ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both"]),
+    ("notched-plate-push-strong-r4.svg", ["push", "notched-plate.json", "--set", "strong",
+                                          "--finger-radius", "4"]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
@@ -534,6 +536,8 @@ def test_outline_regions_printed_by_loop_and_segment(harness):
     assert answer.returncode == 0, answer.stderr
     lines = answer.stdout.splitlines()
     assert lines[0].split()[:4] == ["loop", "segment", "from", "to"]
-    rows = [l.split() for l in lines[1:-1]]
+    # The table, its summary, and what the strong set promises.
+    assert lines[-2].startswith("set strong: ") and lines[-1].startswith("strong: "), lines
+    rows = [l.split() for l in lines[1:-2]]
     assert rows and all(r[0] in ("0", "1") for r in rows)
     assert any(r[0] == "1" for r in rows)    # a region in the hole

@@ -1011,3 +1011,33 @@ def test_sources_are_python38_stdlib():
                     continue
                 if stdlib is not None:
                     assert top in stdlib, (path, name)
+
+
+def test_regions_on_outlines_and_a_finger_with_a_size(pyclient):
+    """Region names an outline's loop and segment (edge None), a polygon's
+    edge (loop and segment None); finger_radius reaches the daemon: on the
+    notched plate a finger of radius 4 keeps the notch floor's middle third
+    only, (48, 52) of its 12 units from 44 to 56, and one of radius 7 none
+    of it (half the notch's width is 6); PutResult reports the mass
+    properties in use."""
+    with open(os.path.join(REPO, "examples", "bracket.json")) as fh:
+        bracket = json.load(fh)
+    put = pyclient.put_fixture(bracket)
+    # 120 x 60 less four fillets of 8 ((4 - pi) 64), a hole of radius 6 and a
+    # slot 20 x 10 with round ends (20 * 10 + 25 pi).
+    area = 120 * 60 - (4 - math.pi) * 64 - 36 * math.pi - (200 + 25 * math.pi)
+    assert put.area == pytest.approx(area, rel=1e-13)
+    assert put.com[1] == pytest.approx(30, rel=1e-13)
+    regions = pyclient.push_regions(put, "both")
+    assert regions.regions
+    assert all(r.edge is None and r.loop is not None and r.segment is not None
+               for r in regions.regions)
+    assert {r.loop for r in regions.regions} == {0, 1, 2}
+    with open(os.path.join(REPO, "examples", "notched-plate.json")) as fh:
+        notched = json.load(fh)
+    floor = {r.edge: r for r in pyclient.push_regions(notched, "strong", finger_radius=4).regions}
+    assert floor[4].loop is None and floor[4].segment is None
+    assert floor[4].from_point == pytest.approx([52, 15]) and floor[4].to_point == pytest.approx([48, 15])
+    wide = pyclient.push_regions(notched, "strong", finger_radius=7).regions
+    assert 4 not in [r.edge for r in wide]
+    assert pyclient.put_fixture(FX.disc_corner(0.5)).area == pytest.approx(math.pi)

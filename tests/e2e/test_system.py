@@ -261,7 +261,7 @@ int main(void)
 
 EXPECTED_FILES = ["sbin/wrenchd", "bin/wrenchctl", "lib/libwrench.a", "lib/libwrenchclient.a",
                   "include/wrench/wrench.h", "include/wrench/wr_status.h",
-                  "include/wrench/wr_outline.h",
+                  "include/wrench/wr_outline.h", "include/wrench/wr_finger.h",
                   "include/wrench/wr_fixture.h",
                   "include/wrench/wr_regions.h", "include/wrench/wrenchclient.h",
                   "lib/pkgconfig/wrench.pc", "lib/pkgconfig/wrenchclient.pc",
