@@ -80,6 +80,11 @@ constexpr double HOLD_TIME = 3.0;         // s under a constant wrench
 constexpr double MOVE_TOLERANCE = 2 * b2_linearSlop; // m: 0.01 m = 0.25% of the size
 constexpr double SLIP_SPEED = 0.005;      // m/s: faster tangential speed = sliding (mu_k)
 constexpr double STRONG_MARGIN = 0.05;    // wrenches "clearly" inside / outside G_strong
+// Pushes this close to G_strong's boundary are not asserted to hold: Box2D's
+// iterative solver has not converged there in 20 velocity iterations (the
+// bracket's pushes at margins +0.0002 and +0.0014 crept 0.013 and 0.011 m,
+// 0.0023 m at 200 iterations); docs/VALIDATION.md.
+constexpr double HOLD_PUSH_MARGIN = 0.005;
 constexpr double PI = 3.14159265358979323846;
 constexpr double DEG = 180.0 / PI;
 
@@ -1804,6 +1809,7 @@ Row hold_pushes(const Prepared &p, const Config &cfg, const char *set, bool insi
         return row;
     }
     double worst = 0;
+    int near_boundary = 0;
     for (int j = 0; j < points; j++) {
         Rng prng(seed_of(p.name, set, j, -1));
         int edge;
@@ -1816,6 +1822,10 @@ Row hold_pushes(const Prepared &p, const Config &cfg, const char *set, bool insi
         }
         Load finger = finger_at(p, edge, t, w);
         double ms = margin_of(p, w, WR_SET_STRONG);
+        if (inside && ms < HOLD_PUSH_MARGIN) {
+            near_boundary++;
+            continue;
+        }
         Hold h = run_hold(p, {0, 0}, 0, &finger);
         row.points++;
         row.trials++;
@@ -1840,6 +1850,9 @@ Row hold_pushes(const Prepared &p, const Config &cfg, const char *set, bool insi
     }
     row.note = inside ? fmt("largest displacement %.2e m", worst)
                       : fmt("success = moved more than %.3f m", MOVE_TOLERANCE);
+    if (near_boundary > 0)
+        row.note += fmt("; %d points within %.3g of the boundary not tried", near_boundary,
+                        HOLD_PUSH_MARGIN);
     finish(row);
     row.seconds = since(t0);
     return row;
