@@ -176,11 +176,20 @@ static int force_generators(const wr_fixture *f, const wr_constraint *c, double 
         double ratios[2];
         int ratio_count = 0;
         switch (c->letters[i]) {
+        /* With friction intervals (docs/PROTOCOL.md) the union over the box
+         * of the coefficients: l and r take every force between the
+         * kinetic edges at the two bounds, n and m the static cone at the
+         * upper bound (which contains every smaller one).  A point interval
+         * gives the one edge of the single coefficient. */
         case 'l': /* c_t = -mu_k c_n: friction opposes sliding along +t */
             ratios[ratio_count++] = -fixel->mu_kinetic;
+            if (fixel->mu_kinetic_min < fixel->mu_kinetic)
+                ratios[ratio_count++] = -fixel->mu_kinetic_min;
             break;
         case 'r':
             ratios[ratio_count++] = fixel->mu_kinetic;
+            if (fixel->mu_kinetic_min < fixel->mu_kinetic)
+                ratios[ratio_count++] = fixel->mu_kinetic_min;
             break;
         case 'n':
         case 'm':
@@ -388,6 +397,29 @@ void wr_newton_euler_wrench(const wr_fixture *fixture, const double acceleration
     }
 }
 
+void wr_witness_friction(const wr_fixture *fixture, const wr_constraint *constraint,
+                         wr_witness *witness)
+{
+    for (int i = 0; i < fixture->fixel_count; i++) {
+        const wr_fixel *fixel = &fixture->fixels[i];
+        char letter = i < constraint->length ? constraint->letters[i] : 'u';
+        double cn = witness->force[i][0], ct = witness->force[i][1];
+        if (letter == 'n' || letter == 'm') {
+            witness->friction[i] = fixel->mu_static;
+        } else if (letter == 'l' || letter == 'r') {
+            double lo = fixel->mu_kinetic_min, hi = fixel->mu_kinetic;
+            double mu = lo;
+            if (lo < hi && cn > 0) {
+                mu = (letter == 'l' ? -ct : ct) / cn;
+                mu = !(mu >= lo) ? lo : mu > hi ? hi : mu; /* NaN: lo */
+            }
+            witness->friction[i] = mu;
+        } else {
+            witness->friction[i] = NAN;
+        }
+    }
+}
+
 void wr_cone_witness(const wr_cone *cone, const wr_fixture *fixture, const double point[3],
                      wr_witness *out)
 {
@@ -413,4 +445,5 @@ void wr_cone_witness(const wr_cone *cone, const wr_fixture *fixture, const doubl
     out->acceleration[2] = scaled_acceleration[2] / (fixture->mass * fixture->gyration_radius);
     wr_newton_euler_wrench(fixture, out->acceleration, (const double (*)[2])out->force,
                            out->wrench);
+    wr_witness_friction(fixture, &cone->constraint, out);
 }

@@ -90,7 +90,17 @@ typedef struct wr_witness {
     double acceleration[3];            /* (a_cx, a_cy, alpha), physical */
     double force[WR_MAX_FIXELS][2];    /* (c_n, c_t) per fixel, physical */
     double wrench[3];                  /* M q - sum(W_n c_n + W_t c_t) */
+    /* Per fixel the coefficient its letter uses, at which the forces
+     * satisfy the letter (docs/PROTOCOL.md, friction intervals): static
+     * for n and m (the upper bound), kinetic for l and r (-c_t / c_n,
+     * resp. c_t / c_n, clamped into the interval; its lower bound when
+     * c_n = 0); NAN for s, a and u, which use none. */
+    double friction[WR_MAX_FIXELS];
 } wr_witness;
+
+/* Fill in witness->friction from its forces and the constraint's letters. */
+void wr_witness_friction(const wr_fixture *fixture, const wr_constraint *constraint,
+                         wr_witness *witness);
 
 /* Express `point` (a scaled wrench in the closure of the cone, any length) as
  * an acceleration and contact forces: a non-negative combination of the

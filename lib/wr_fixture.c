@@ -49,6 +49,43 @@ static bool check_finite2(const double v[2], const char *path, wr_error *error)
     return true;
 }
 
+/* One coefficient at `field`: a point mu, or an interval [lo, hi] whose
+ * bounds are named field[0] and field[1]. */
+static bool check_coefficient(bool interval, double lo, double hi, const char *field,
+                              wr_error *error)
+{
+    char bound[160];
+    double values[2] = {lo, hi};
+    for (int i = interval ? 0 : 1; i < 2; i++) {
+        if (interval)
+            snprintf(bound, sizeof bound, "%s[%d]", field, i);
+        else
+            snprintf(bound, sizeof bound, "%s", field);
+        if (!isfinite(values[i])) {
+            wr_error_set(error, bound, "must be a finite number");
+            return false;
+        }
+        if (values[i] < 0) {
+            wr_error_set(error, bound, "friction coefficient %g is negative", values[i]);
+            return false;
+        }
+        if (values[i] > WR_MAX_FRICTION) {
+            wr_error_set(error, bound,
+                         "friction coefficient %g is above %g: no contact has it, and the cones "
+                         "would lose precision",
+                         values[i], WR_MAX_FRICTION);
+            return false;
+        }
+    }
+    if (interval && lo > hi) {
+        wr_error_set(error, field,
+                     "the interval [%g, %g] is empty: its lower bound is above its upper bound",
+                     lo, hi);
+        return false;
+    }
+    return true;
+}
+
 static bool check_friction(const wr_friction_spec *friction, const char *path,
                            wr_error *error)
 {
@@ -56,35 +93,44 @@ static bool check_friction(const wr_friction_spec *friction, const char *path,
     if (!friction->given)
         return true;
     snprintf(field, sizeof field, "%s.static", path);
-    if (!isfinite(friction->static_mu)) {
-        wr_error_set(error, field, "must be a finite number");
+    double static_lo = friction->static_interval ? friction->static_min : friction->static_mu;
+    double static_hi = friction->static_mu;
+    if (!check_coefficient(friction->static_interval, static_lo, static_hi, field, error))
         return false;
-    }
-    if (friction->static_mu < 0) {
-        wr_error_set(error, field, "friction coefficient %g is negative", friction->static_mu);
-        return false;
-    }
-    if (friction->static_mu > WR_MAX_FRICTION) {
-        wr_error_set(error, field,
-                     "friction coefficient %g is above %g: no contact has it, and the cones "
-                     "would lose precision",
-                     friction->static_mu, WR_MAX_FRICTION);
-        return false;
-    }
     if (!friction->kinetic_given)
         return true;
     snprintf(field, sizeof field, "%s.kinetic", path);
-    if (!isfinite(friction->kinetic_mu)) {
-        wr_error_set(error, field, "must be a finite number");
+    bool interval = friction->kinetic_interval;
+    double lo = interval ? friction->kinetic_min : friction->kinetic_mu;
+    double hi = friction->kinetic_mu;
+    if (!check_coefficient(interval, lo, hi, field, error))
+        return false;
+    /* Every value of either interval must be attained by a pair with
+     * mu_k <= mu_s: kinetic's bounds not above static's. */
+    if (!interval && !friction->static_interval) {
+        if (hi > static_hi) {
+            wr_error_set(error, field, "kinetic friction %g exceeds static friction %g", hi,
+                         static_hi);
+            return false;
+        }
+        return true;
+    }
+    char bound[160];
+    if (hi > static_hi) {
+        snprintf(bound, sizeof bound, interval ? "%s[1]" : "%s", field);
+        wr_error_set(error, bound,
+                     "kinetic friction's upper bound %g exceeds static friction's upper bound %g: "
+                     "kinetic bounds must not be above the static ones",
+                     hi, static_hi);
         return false;
     }
-    if (friction->kinetic_mu < 0) {
-        wr_error_set(error, field, "friction coefficient %g is negative", friction->kinetic_mu);
-        return false;
-    }
-    if (friction->kinetic_mu > friction->static_mu) {
-        wr_error_set(error, field, "kinetic friction %g exceeds static friction %g",
-                     friction->kinetic_mu, friction->static_mu);
+    if (lo > static_lo) {
+        snprintf(bound, sizeof bound, interval ? "%s[0]" : "%s", field);
+        wr_error_set(error, bound,
+                     "kinetic friction's lower bound %g exceeds static friction's lower bound %g: "
+                     "kinetic bounds must not be above the static ones (a static coefficient of "
+                     "%g would have no kinetic one below it)",
+                     lo, static_lo, static_lo);
         return false;
     }
     return true;
@@ -498,8 +544,17 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
     }
     if (in->friction.given && !check_friction(&in->friction, field, error))
         return false;
+    /* An interval [a, a] is the point a: one fixture, one explicit form. */
     out->mu_static = friction->static_mu + 0.0;
-    out->mu_kinetic = (friction->kinetic_given ? friction->kinetic_mu : friction->static_mu) + 0.0;
+    out->mu_static_min = (friction->static_interval ? friction->static_min : friction->static_mu) + 0.0;
+    if (friction->kinetic_given) {
+        out->mu_kinetic = friction->kinetic_mu + 0.0;
+        out->mu_kinetic_min =
+            (friction->kinetic_interval ? friction->kinetic_min : friction->kinetic_mu) + 0.0;
+    } else { /* kinetic left out: the whole static interval */
+        out->mu_kinetic = out->mu_static;
+        out->mu_kinetic_min = out->mu_static_min;
+    }
     return true;
 }
 

@@ -57,12 +57,23 @@ typedef enum wr_shape_type {
 struct wr_loop_spec;
 struct wr_outline;
 
-/* Friction as given: static, optional kinetic (equals static when absent). */
+/* Friction as given: static, optional kinetic (equals static when absent).
+ *
+ * Either coefficient may be an interval [lo, hi] (docs/PROTOCOL.md,
+ * "Friction intervals"): then *_interval is set, *_min is lo and *_mu is hi.
+ * Without the flag the coefficient is the point *_mu (*_min is ignored).
+ * Valid: 0 <= lo <= hi <= WR_MAX_FRICTION for each, and kinetic's bounds
+ * not above static's (kinetic lo <= static lo, kinetic hi <= static hi), so
+ * that every value of either interval is attained by a pair mu_k <= mu_s. */
 typedef struct wr_friction_spec {
     bool given;            /* false: not given here */
-    double static_mu;      /* mu_s >= 0 */
+    double static_mu;      /* mu_s >= 0; an interval's upper bound */
     bool kinetic_given;
-    double kinetic_mu;     /* 0 <= mu_k <= mu_s */
+    double kinetic_mu;     /* 0 <= mu_k <= mu_s; an interval's upper bound */
+    bool static_interval;  /* static is [static_min, static_mu] */
+    double static_min;
+    bool kinetic_interval; /* kinetic is [kinetic_min, kinetic_mu] */
+    double kinetic_min;
 } wr_friction_spec;
 
 typedef struct wr_fixel_spec {
@@ -96,19 +107,23 @@ typedef struct wr_fixel {
     double at[2];
     double normal[2];   /* unit, into the workpiece */
     double tangent[2];  /* unit */
-    double mu_static;
-    double mu_kinetic;
+    /* Friction: each coefficient is an interval [*_min, *]; a point when
+     * the two are equal, as every fixture without intervals has. */
+    double mu_static;       /* static, upper bound */
+    double mu_kinetic;      /* kinetic, upper bound */
     /* Scaled contact wrenches (docs/MODEL.md section 5 metric): for a unit normal
      * force, (n_x, n_y, (r x n) / rho); likewise for the tangent. */
     double normal_wrench[3];
     double tangent_wrench[3];
+    double mu_static_min;   /* static, lower bound (<= mu_static) */
+    double mu_kinetic_min;  /* kinetic, lower bound (<= mu_kinetic, <= mu_static_min) */
 } wr_fixel;
 
 /* A validated fixture; every field is filled in.  Read-only for callers.
  *
  * Invariant: writing the fixture's values back into a spec with every
  * optional field given (mass, inertia, com, shape as stored, each fixel's
- * at, normal, static and kinetic friction) and validating it gives the same
+ * at, normal, static and kinetic friction, intervals as intervals) and validating it gives the same
  * fixture, bit for bit.  Hence no field holds -0 (a -0 of the spec is +0:
  * text writes both as 0), and a given normal already of unit length (within
  * a few ulp, as every normalised or computed one is) is kept as given. */

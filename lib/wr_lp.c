@@ -106,7 +106,8 @@ void wr_lp_set_free(wr_lp_set *set)
 }
 
 /* Non-zeros: 3 wrench rows of 1 + 2k; per fixel at most two acceleration rows
- * of 4 (q' and t) and two friction rows of 2; the pivot row's 2. */
+ * of 4 (q' and t) and two friction rows of 2 (l and r with a kinetic
+ * interval have two, as n and m); the pivot row's 2. */
 #define TRIPLETS_MAX (3 * (1 + 2 * WR_MAX_FIXELS) + 12 * WR_MAX_FIXELS + 2)
 
 /* Triplets for glp_load_matrix (1-based). */
@@ -190,7 +191,17 @@ static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c)
             row = glp_add_rows(p, 1);
             put(t, row, ct, 1);
             put(t, row, cn, letter == 'l' ? fixel->mu_kinetic : -fixel->mu_kinetic);
-            glp_set_row_bnds(p, row, GLP_FX, 0, 0);
+            if (fixel->mu_kinetic_min == fixel->mu_kinetic) {
+                glp_set_row_bnds(p, row, GLP_FX, 0, 0);
+                break;
+            }
+            /* A kinetic interval: -mu_max c_n <= c_t <= -mu_min c_n for l,
+             * mu_min c_n <= c_t <= mu_max c_n for r. */
+            glp_set_row_bnds(p, row, letter == 'l' ? GLP_LO : GLP_UP, 0, 0);
+            row = glp_add_rows(p, 1);
+            put(t, row, ct, 1);
+            put(t, row, cn, letter == 'l' ? fixel->mu_kinetic_min : -fixel->mu_kinetic_min);
+            glp_set_row_bnds(p, row, letter == 'l' ? GLP_UP : GLP_LO, 0, 0);
             break;
         case 'n': /* a_n = 0, a_t = 0, |c_t| <= mu_s c_n */
         case 'm': /* a_n = 0, |c_t| <= mu_s c_n */
@@ -288,6 +299,7 @@ wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *
         }
         wr_newton_euler_wrench(f, witness->acceleration, (const double (*)[2])witness->force,
                                witness->wrench);
+        wr_witness_friction(f, &set->constraints[index], witness);
     }
     return WR_OK;
 }

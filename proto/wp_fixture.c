@@ -123,6 +123,36 @@ static bool read_outline(const cJSON *json, const char *path, wr_fixture_spec *s
 static const char *const FRICTION_FIELDS[] = {"static", "kinetic", NULL};
 static const char *const FIXEL_FIELDS[] = {"at", "normal", "friction", NULL};
 
+/* A coefficient: a number mu, or an interval [lo, hi] of two numbers
+ * (*upper = hi, *lower = lo, *interval set).  The library checks the
+ * values.  `present` NULL: required. */
+static bool read_coefficient(const cJSON *json, const char *path, const char *key,
+                             double *upper, bool *interval, double *lower, bool *present,
+                             wp_error *error)
+{
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(json, key);
+    if (!cJSON_IsArray(value))
+        return wp_member_number(json, path, key, present == NULL, upper, present, error);
+    if (present)
+        *present = true;
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, key);
+    if (cJSON_GetArraySize(value) != 2) {
+        wp_error_set(error, WP_INVALID_PARAMS, field,
+                     "must be a number or an interval [lo, hi] of 2 numbers, not an array of "
+                     "%d",
+                     cJSON_GetArraySize(value));
+        return false;
+    }
+    double bounds[2];
+    if (!wp_vector2(value, field, bounds, error))
+        return false;
+    *interval = true;
+    *lower = bounds[0];
+    *upper = bounds[1];
+    return true;
+}
+
 static bool read_friction(const cJSON *json, const char *path, wr_friction_spec *out,
                           wp_error *error)
 {
@@ -131,9 +161,10 @@ static bool read_friction(const cJSON *json, const char *path, wr_friction_spec 
     if (!wp_check_object(json, path, FRICTION_FIELDS, error))
         return false;
     out->given = true;
-    return wp_member_number(json, path, "static", true, &out->static_mu, NULL, error) &&
-           wp_member_number(json, path, "kinetic", false, &out->kinetic_mu, &out->kinetic_given,
-                            error);
+    return read_coefficient(json, path, "static", &out->static_mu, &out->static_interval,
+                            &out->static_min, NULL, error) &&
+           read_coefficient(json, path, "kinetic", &out->kinetic_mu, &out->kinetic_interval,
+                            &out->kinetic_min, &out->kinetic_given, error);
 }
 
 static bool read_shape(const cJSON *json, const char *path, wr_fixture_spec *spec,
@@ -349,14 +380,24 @@ static cJSON *explicit_shape(const wr_fixture *f)
     return shape;
 }
 
+/* A coefficient: the number itself when a point (as every fixture without
+ * intervals has, and [a, a] is a), else [lo, hi]. */
+static cJSON *coefficient(double lo, double hi)
+{
+    if (lo == hi)
+        return cJSON_CreateNumber(hi);
+    double bounds[2] = {lo, hi};
+    return cJSON_CreateDoubleArray(bounds, 2);
+}
+
 static cJSON *explicit_fixel(const wr_fixel *fixel)
 {
     cJSON *item = cJSON_CreateObject(), *friction = cJSON_CreateObject();
     bool ok = item && friction && add(item, "friction", friction);
     if (!ok)
         cJSON_Delete(friction);
-    ok = ok && add(friction, "static", cJSON_CreateNumber(fixel->mu_static)) &&
-         add(friction, "kinetic", cJSON_CreateNumber(fixel->mu_kinetic)) &&
+    ok = ok && add(friction, "static", coefficient(fixel->mu_static_min, fixel->mu_static)) &&
+         add(friction, "kinetic", coefficient(fixel->mu_kinetic_min, fixel->mu_kinetic)) &&
          add(item, "at", vector2(fixel->at)) && add(item, "normal", vector2(fixel->normal));
     if (!ok) {
         cJSON_Delete(item);

@@ -335,7 +335,16 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
     }
     WP_BUFFER_LITERAL(b, "],\"wrench\":");
     write_vector(b, w->wrench, 3);
-    WP_BUFFER_LITERAL(b, "}}");
+    WP_BUFFER_LITERAL(b, ",\"friction\":[");
+    for (int i = 0; i < f->fixel_count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(b, ",");
+        if (isnan(w->friction[i]))
+            WP_BUFFER_LITERAL(b, "null");
+        else
+            wp_buffer_number(b, w->friction[i]);
+    }
+    WP_BUFFER_LITERAL(b, "]}}");
 }
 
 /* wrench.classify, written in pieces (wp_stream, wp_rpc.h): the wrenches

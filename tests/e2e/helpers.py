@@ -31,7 +31,7 @@ def check_witness(mdl, g, name, witness, exact):
     the string's rows (closure), they make `witness.wrench` by Newton-Euler
     (computed here), and that wrench is g itself when `exact`."""
     assert isinstance(witness, dict), witness
-    assert set(witness) == {"acceleration", "forces", "wrench"}, witness
+    assert set(witness) == {"acceleration", "forces", "wrench", "friction"}, witness
     q = witness["acceleration"]
     forces = witness["forces"]
     w = witness["wrench"]
@@ -52,6 +52,14 @@ def check_witness(mdl, g, name, witness, exact):
         pivot = 1 if name.endswith("+") else -1
         letters = name[:-1]
     assert len(letters) == mdl.k, name
+    # the coefficient each letter uses (point friction: the fixel's own)
+    friction = witness["friction"]
+    assert isinstance(friction, list) and len(friction) == mdl.k, witness
+    for f, x, mu in zip(mdl.fixels, letters, friction):
+        if x in "sau":
+            assert mu is None, (name, friction)
+        else:
+            assert mu == (f.mu_k if x in "lr" else f.mu_s), (name, friction)
     for f, x, (cn, ct) in zip(mdl.fixels, letters, forces):
         an, at = M.dot(f.Wn, q), M.dot(f.Wt, q)
         if x in "sau":

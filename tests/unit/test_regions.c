@@ -234,7 +234,7 @@ static void disturbance_margin_is_the_distance(void **state)
 static void no_shape_and_bad_friction_are_refused(void **state)
 {
     (void)state;
-    wr_fixel_spec fixels[1] = {{{1, 0}, true, {-1, 0}, {true, 0.3, false, 0}}};
+    wr_fixel_spec fixels[1] = {{{1, 0}, true, {-1, 0}, {.given = true, .static_mu = 0.3}}};
     wr_fixture_spec spec;
     memset(&spec, 0, sizeof spec);
     spec.mass = 1;

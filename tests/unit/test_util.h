@@ -224,7 +224,15 @@ static inline const char *test_witness_violation(const wr_fixture *f, const wr_c
                 return "l/r: a_n != 0 or c_n < 0";
             if (c->letters[i] == 'l' ? at < -atol : at > atol)
                 return "l/r: a_t of the wrong sign";
-            if (fabs(ct - (c->letters[i] == 'l' ? -1 : 1) * x->mu_kinetic * cn) > ftol)
+            /* With a kinetic interval, the coefficient the witness names,
+             * which must lie in it (docs/PROTOCOL.md, friction intervals). */
+            double mu = x->mu_kinetic;
+            if (x->mu_kinetic_min < x->mu_kinetic) {
+                mu = w->friction[i];
+                if (!(mu >= x->mu_kinetic_min && mu <= x->mu_kinetic))
+                    return "l/r: the witness's kinetic friction is outside the interval";
+            }
+            if (fabs(ct - (c->letters[i] == 'l' ? -1 : 1) * mu * cn) > ftol)
                 return "l/r: c_t off the friction-cone edge";
             break;
         case 'n':
