@@ -213,6 +213,10 @@ class Witness:
     acceleration: List[float]
     forces: List[List[float]]
     wrench: List[float]
+    # Per fixel the friction coefficient its letter uses (None for s, a,
+    # u): with friction intervals, a value in the interval at which the
+    # motion is possible.  Left out by daemons before friction intervals.
+    friction: Optional[List[Optional[float]]] = None
 
 
 @dataclass
