@@ -321,20 +321,34 @@ static void centre_of_mass(FILE *out, const frame *f, const wr_fixture *fx)
             x, y, x, y - 6, x + 6, y, x, y, x, y + 6, x - 6, y, x, y);
 }
 
-/* "mu = 0.5", or "mu per fixel". */
+/* One coefficient: "0.5", or "[0.2, 0.35]" for an interval. */
+static void coefficient_text(double lo, double hi, char *out, size_t size)
+{
+    if (lo == hi)
+        snprintf(out, size, "%g", hi);
+    else
+        snprintf(out, size, "[%g, %g]", lo, hi);
+}
+
+/* "mu = 0.5", "mu = [0.2, 0.35]", or "mu per fixel". */
 static void friction_text(const wr_fixture *fx, char *out, size_t size)
 {
     bool same = true;
+    const wr_fixel *first = &fx->fixels[0];
     for (int i = 1; i < fx->fixel_count; i++)
-        same &= fx->fixels[i].mu_static == fx->fixels[0].mu_static &&
-                fx->fixels[i].mu_kinetic == fx->fixels[0].mu_kinetic;
+        same &= fx->fixels[i].mu_static == first->mu_static &&
+                fx->fixels[i].mu_kinetic == first->mu_kinetic &&
+                fx->fixels[i].mu_static_min == first->mu_static_min &&
+                fx->fixels[i].mu_kinetic_min == first->mu_kinetic_min;
+    char s[32], k[32];
+    coefficient_text(first->mu_static_min, first->mu_static, s, sizeof s);
+    coefficient_text(first->mu_kinetic_min, first->mu_kinetic, k, sizeof k);
     if (!same)
         snprintf(out, size, "\xce\xbc per fixel");
-    else if (fx->fixels[0].mu_kinetic != fx->fixels[0].mu_static)
-        snprintf(out, size, "\xce\xbc_s = %g, \xce\xbc_k = %g", fx->fixels[0].mu_static,
-                 fx->fixels[0].mu_kinetic);
+    else if (first->mu_kinetic != first->mu_static || first->mu_kinetic_min != first->mu_static_min)
+        snprintf(out, size, "\xce\xbc_s = %s, \xce\xbc_k = %s", s, k);
     else
-        snprintf(out, size, "\xce\xbc = %g", fx->fixels[0].mu_static);
+        snprintf(out, size, "\xce\xbc = %s", s);
 }
 
 static void end(FILE *out) { fputs("</svg>\n", out); }
@@ -373,7 +387,7 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
                  double finger_radius)
 {
     frame f = frame_for(fx, 0.2, 4);
-    char text[256], mu[64];
+    char text[256], mu[96];
     snprintf(text, sizeof text, "%s: push region of G_%s", name, set);
     begin(out, &f, text);
     outline(out, &f, fx);
@@ -435,7 +449,7 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fx, const char *name, const cha
     bounds(fx, lo, hi);
     double centre[2] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2};
     double radius = 0.5 * hypot(hi[0] - lo[0], hi[1] - lo[1]) + 0.2 * f.size;
-    char text[256], mu[64];
+    char text[256], mu[96];
     snprintf(text, sizeof text, "%s: gravity sweep of G_%s", name, set);
     begin(out, &f, text);
     fprintf(out,
@@ -513,7 +527,7 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
                    double margin, const double worst[3], const char *blocking)
 {
     frame f = frame_for(fx, 0.5, 3);
-    char text[256], mu[64];
+    char text[256], mu[96];
     snprintf(text, sizeof text, "%s: disturbance margin", name);
     begin(out, &f, text);
     outline(out, &f, fx);
