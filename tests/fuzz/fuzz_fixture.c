@@ -81,6 +81,13 @@ static void check_fixture(const wr_fixture *f)
         FUZZ_CHECK(x->mu_static >= 0 && x->mu_kinetic >= 0 && x->mu_kinetic <= x->mu_static &&
                        isfinite(x->mu_static),
                    "fixel %d: mu_s %.17g, mu_k %.17g", i, x->mu_static, x->mu_kinetic);
+        /* Friction intervals: 0 <= min <= max, kinetic bounds not above
+         * static's. */
+        FUZZ_CHECK(x->mu_static_min >= 0 && x->mu_static_min <= x->mu_static &&
+                       x->mu_kinetic_min >= 0 && x->mu_kinetic_min <= x->mu_kinetic &&
+                       x->mu_kinetic_min <= x->mu_static_min,
+                   "fixel %d: mu_s [%.17g, %.17g], mu_k [%.17g, %.17g]", i, x->mu_static_min,
+                   x->mu_static, x->mu_kinetic_min, x->mu_kinetic);
         FUZZ_CHECK(fuzz_finite3(x->normal_wrench) && fuzz_finite3(x->tangent_wrench),
                    "fixel %d: contact wrenches not finite", i);
     }
