@@ -223,6 +223,36 @@ def test_robust_answers_are_the_union_over_the_box(client, seed):
                 figure("friction-interval answers")
 
 
+@pytest.mark.parametrize("seed", [4, 5])
+def test_robust_disturbance_margins_and_regions(client, seed):
+    """stability.margin of a bias is at most that of every sampled point
+    fixture; a push region point (its midpoint) of the robust fixture is in
+    a region at every sample."""
+    rnd = random.Random(1800 + seed)
+    for base in base_fixtures(rnd, 6):
+        fixture, boxes = with_intervals(rnd, base)
+        mdl = M.Model(at_friction(fixture, [(b[1], b[3]) for b in boxes]))
+        bias = [0.0, 0.0, 0.0]
+        for fx in mdl.fixels:
+            lam = rnd.uniform(0.1, 1.0)
+            bias = [bias[i] - lam * fx.Wn[i] for i in range(3)]
+        robust = client.result("stability.margin", {"fixture": fixture, "bias": bias})
+        points = samples(rnd, boxes, extra=3)
+        regions = client.result("push.regions", {"fixture": fixture, "set": "both"})["regions"]
+        for pt in points:
+            point = at_friction(fixture, pt)
+            there = client.result("stability.margin", {"fixture": point, "bias": bias})
+            if robust["margin"] is not None and there["margin"] is not None:
+                assert robust["margin"] <= there["margin"] + 1e-9, (fixture, pt, robust, there)
+                figure("friction-interval disturbance margins compared")
+            sample_regions = client.result("push.regions", {"fixture": point, "set": "both"})
+            for reg in regions:
+                mid = (reg["t0"] + reg["t1"]) / 2
+                assert any(r["edge"] == reg["edge"] and r["t0"] <= mid <= r["t1"]
+                           for r in sample_regions["regions"]), (fixture, pt, reg)
+                figure("friction-interval region midpoints checked")
+
+
 def check_robust_witness(client, fixture, boxes, g, s, v):
     """The witness's friction lies in its intervals, is null for s, a, u and
     the static upper bound for n, m; at it (a point fixture) the witness
