@@ -49,6 +49,7 @@ typedef struct fixture {
     bool has_shape;
     double size;       /* a length scale for torques and points */
     double com[2];
+    double area, inertia; /* the mass properties fixture.put reports */
     int goal_cones, strong_cones;
     bool pinned;
     size_t analysis_bytes;
@@ -393,6 +394,8 @@ static bool fixture_fill(fixture *out, cJSON *json, bool measure_lp)
     out->size = doc.fixture->size > 0 ? doc.fixture->size : 1;
     out->com[0] = doc.fixture->com[0];
     out->com[1] = doc.fixture->com[1];
+    out->area = doc.fixture->area;
+    out->inertia = doc.fixture->inertia;
     out->goal_cones = wr_analysis_cone_count(a, WR_SET_GOAL);
     out->strong_cones = wr_analysis_cone_count(a, WR_SET_STRONG);
     out->pinned = wr_analysis_pinned(a);
@@ -572,10 +575,16 @@ static char *put_answer(const fixture *f)
     cJSON_Delete(name);
     if (!quoted)
         die("out of memory");
+    /* The mass properties in use: area only with a shape. */
+    char area[48] = "";
+    if (f->has_shape)
+        snprintf(area, sizeof area, ",\"area\":%.17g", f->area);
     char *answer = xprintf("{\"jsonrpc\":\"2.0\",\"result\":{\"id\":\"%s\",\"name\":%s,"
-                           "\"fixels\":%d,\"goal_cones\":%d,\"strong_cones\":%d,\"pinned\":%s}}",
+                           "\"fixels\":%d,\"goal_cones\":%d,\"strong_cones\":%d,\"pinned\":%s%s,"
+                           "\"com\":[%.17g,%.17g],\"inertia\":%.17g}}",
                            f->id, quoted, f->fixels, f->goal_cones, f->strong_cones,
-                           f->pinned ? "true" : "false");
+                           f->pinned ? "true" : "false", area, f->com[0] + 0.0, f->com[1] + 0.0,
+                           f->inertia);
     free(quoted);
     return answer;
 }

@@ -43,6 +43,12 @@ static void add_span(spans *s, double lo, double hi)
     s->items[s->count++] = (span){lo, hi};
 }
 
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 static int compare_spans(const void *a, const void *b)
 {
     double x = ((const span *)a)->lo, y = ((const span *)b)->lo;
@@ -332,19 +338,37 @@ static bool circle_exact(const double a[3][2], const wr_cone **cones, int count,
     return ok;
 }
 
-/* A fraction of an arc within rounding of its ends (degrees turned into
- * fractions leave 1e-17 where the arc's vertex is) is the end. */
-static double snap(double t)
+/* The closed t-spans of an outline's arc where its push wrench is in some
+ * cone, worked out in the arc's chord frame rather than about its centre,
+ * which for a nearly straight arc lies far away (a bulge of 1e-18 puts it
+ * 1e19 out, and angles about it would carry no digits of t).
+ *
+ * With the chord's midpoint M, unit direction e_d, the unit normal e_n on
+ * the side the arc bulges to, half chord h and half angle a (s = sin a,
+ * c = cos a), the point at angle phi in [-a, a] from the bisector is
+ * M + h (sin phi / s) e_d + h ((cos phi - c) / s) e_n, its outward radial
+ * direction sin phi e_d + cos phi e_n, and the inward normal sigma times
+ * that.  The scaled push wrench is then C1 b1(phi) + C2 b2(phi) with
+ * b1 = sin phi / s, b2 = cos phi and, with D = M - x_c and
+ * kappa = e_d x e_n,
+ *     C1 = sigma (s e_d, (s D x e_d + kappa h c) / rho),
+ *     C2 = sigma (e_n, D x e_n / rho):
+ * no coefficient is large.  A row f of a cone is zero where
+ * tan phi = -(f.C2) s / (f.C1): atan2 keeps every digit of a small root,
+ * and t = (phi / a + 1) / 2 keeps them.  Between consecutive roots the
+ * cone's membership does not change and is tested at the middle; at each
+ * root it is tested too (a thin cone is met at points only).  arc_wrench
+ * gives the scaled wrench at phi. */
+static double arc_wrench(const double c1[3], const double c2[3], double s, double phi,
+                         double wrench[3])
 {
-    return fabs(t) < 1e-14 ? 0 : fabs(t - 1) < 1e-14 ? 1 : t;
+    double b1 = s > 0 ? sin(phi) / s : 0, b2 = cos(phi);
+    for (int k = 0; k < 3; k++)
+        wrench[k] = c1[k] * b1 + c2[k] * b2;
+    /* The size of its parts: what counts as zero against it. */
+    return fabs(b1) * wr_norm3(c1) + fabs(b2) * wr_norm3(c2);
 }
 
-/* The closed t-spans of an outline's arc where its push wrench is in some
- * cone.  On the arc's circle (centre C, unit radial u(theta)) the inward
- * normal is sigma u with sigma = -1 when the material lies inside the
- * circle and +1 outside, so w = sigma (u, (C - x_c) x u): linear in u as
- * on a circular part.  The arcs of angles found are mapped to the
- * fraction t of the included angle, theta = start + t sweep. */
 static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count, int edge,
                           const wr_stop *stop, bool *stopped, spans *bad)
 {
@@ -353,26 +377,67 @@ static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count,
     const wr_segment *arc = &f->outline->loops[loop].segments[segment];
     double inward[2], point[2];
     wr_outline_boundary(f->outline, loop, segment, 0.5, point, inward);
-    double radial[2] = {point[0] - arc->center[0], point[1] - arc->center[1]};
-    double sigma = inward[0] * radial[0] + inward[1] * radial[1] > 0 ? 1 : -1;
-    double d[2] = {arc->center[0] - f->com[0], arc->center[1] - f->com[1]};
-    double rho = f->gyration_radius;
-    const double matrix[3][2] = {
-        {sigma, 0}, {0, sigma}, {-sigma * d[1] / rho, sigma * d[0] / rho}};
-    spans angles = {0, 0, NULL, false};
-    if (!circle_bad_spans(matrix, cones, count, stop, stopped, &angles)) {
-        free(angles.items);
-        bad->failed |= angles.failed;
-        return false;
-    }
-    double start = arc->start_angle * 180 / WR_PI, sweep = arc->sweep * 180 / WR_PI;
-    for (int i = 0; i < angles.count; i++)
-        for (int turn = -2; turn <= 2; turn++) {
-            double t0 = snap((angles.items[i].lo + 360.0 * turn - start) / sweep);
-            double t1 = snap((angles.items[i].hi + 360.0 * turn - start) / sweep);
-            add_span(bad, fmax(0, fmin(t0, t1)), fmin(1, fmax(t0, t1)));
+    const double *ed = arc->direction, *en = arc->bulge_normal;
+    double sigma = inward[0] * en[0] + inward[1] * en[1] > 0 ? 1 : -1;
+    double a = arc->half_angle, s = arc->half_angle_sin, c = arc->half_angle_cos;
+    double h = arc->half_chord, rho = f->gyration_radius;
+    double d[2] = {arc->midpoint[0] - f->com[0], arc->midpoint[1] - f->com[1]};
+    double kappa = ed[0] * en[1] - ed[1] * en[0];
+    double d_ed = d[0] * ed[1] - d[1] * ed[0], d_en = d[0] * en[1] - d[1] * en[0];
+    const double c1[3] = {sigma * s * ed[0], sigma * s * ed[1],
+                          sigma * (s * d_ed + kappa * h * c) / rho};
+    const double c2[3] = {sigma * en[0], sigma * en[1], sigma * d_en / rho};
+    for (int n = 0; n < count && !bad->failed; n++) {
+        if (wr_stop_requested(stop)) {
+            *stopped = true;
+            return false;
         }
-    free(angles.items);
+        const wr_cone *cone = cones[n];
+        if (cone->empty)
+            continue;
+        int rows = cone->facet_count + cone->equality_count;
+        double *roots = malloc((size_t)(5 * rows + 2) * sizeof *roots);
+        if (!roots) {
+            bad->failed = true;
+            return false;
+        }
+        int found = 0;
+        roots[found++] = -a;
+        roots[found++] = a;
+        for (int i = 0; i < rows; i++) {
+            const double *row =
+                i < cone->facet_count ? cone->facets[i] : cone->equalities[i - cone->facet_count];
+            double alpha = wr_dot3(row, c1), beta = wr_dot3(row, c2);
+            if (alpha == 0 && beta == 0)
+                continue;
+            /* The root in [-pi/2, pi/2], the other pi away: taken from
+             * atan2 as it is, a small root beside pi would keep only
+             * pi's ulp of its digits once pi is taken off. */
+            double root = alpha >= 0 ? atan2(-beta * s, alpha) : atan2(beta * s, -alpha);
+            for (int turn = -2; turn <= 2; turn++) {
+                double phi = root + turn * WR_PI;
+                if (phi > -a && phi < a)
+                    roots[found++] = phi;
+            }
+        }
+        qsort(roots, (size_t)found, sizeof *roots, compare_doubles);
+        /* Each root, then each piece between two: in the cone's closure? */
+        for (int i = 0; i < 2 * found - 1; i++) {
+            double phi = i % 2 == 0 ? roots[i / 2] : (roots[i / 2] + roots[i / 2 + 1]) / 2;
+            double wrench[3];
+            double zero = 1e-12 * arc_wrench(c1, c2, s, phi, wrench);
+            bool inside = true;
+            for (int k = 0; k < cone->facet_count && inside; k++)
+                inside = wr_dot3(cone->facets[k], wrench) <= zero;
+            for (int k = 0; k < cone->equality_count && inside; k++)
+                inside = fabs(wr_dot3(cone->equalities[k], wrench)) <= zero;
+            if (!inside)
+                continue;
+            double lo = i % 2 == 0 ? phi : roots[i / 2], hi = i % 2 == 0 ? phi : roots[i / 2 + 1];
+            add_span(bad, (lo / a + 1) / 2, (hi / a + 1) / 2);
+        }
+        free(roots);
+    }
     return !bad->failed;
 }
 

@@ -1396,3 +1396,27 @@ def test_tiny_bulges(client, bulge):
         r = resp["result"]
         assert rel_close(r["area"], 8.0) and H.vec_close(r["com"], (2, 1), 1e-12), r
         assert rel_close(r["inertia"], 20 / 12), r
+
+
+@pytest.mark.parametrize("bulge", [1e-6, 1e-9, 1e-12, 1e-18])
+def test_nearly_straight_arcs_give_their_chords_regions(client, bulge):
+    """Fuzz (issue 16's session): an arc of bulge 1e-18 has its centre 1e19
+    away, and regions worked out about it lost every digit of t (a whole
+    region was missed).  Worked out in the chord frame, the 3-2-1 plate
+    whose right and top sides bow out by bulge b has the polygon's regions
+    within what the bow changes: the sagitta is b h, the normals turn by
+    up to 4b, so each endpoint moves by O(b) of its side (1e-6 allowed
+    at b = 1e-6, 1e-9 below)."""
+    plate = FX.rectangle_321(0.3)
+    straight = as_intervals(regions(client, plate, "strong"))
+    assert straight, "the 3-2-1 plate has strong regions on its right and top sides"
+    bowed = json.loads(json.dumps(plate))
+    v = plate["body"]["shape"]["vertices"]
+    bowed["body"]["shape"] = {"type": "outline", "loops": [
+        [v[0], v[1] + [bulge], v[2] + [bulge], v[3]]]}
+    arcs = as_intervals(regions(client, bowed, "strong"))
+    tol = max(1e-9, 4 * bulge)
+    assert len(arcs) == len(straight), (arcs, straight)
+    for (l0, s0, a0, b0), (l1, s1, a1, b1) in zip(straight, arcs):
+        assert (l0, s0) == (l1, s1)
+        assert a1 == pytest.approx(a0, abs=tol) and b1 == pytest.approx(b0, abs=tol)
