@@ -305,7 +305,9 @@ const wc_command wc_commands[] = {
      "the inward normal gives a wrench in the set, exact (a polygon edge i runs from vertex i to\n"
      "vertex i+1, t is the fraction along it; on a circle t is the angle in degrees; on an\n"
      "outline, segment S of loop L, t the fraction of its length, or of an arc's angle).\n"
-     "  --set SET              goal (default), strong or both\n"
+     "  --set SET              goal (default), strong or both: goal reaches every fixel but\n"
+     "                         may leave the part sliding on, strong holds it only once\n"
+     "                         seated; push with both's region and let go\n"
      "  --finger-friction MU   a finger with friction: every force of its friction cone must be\n"
      "                         in the set (sampled and bisected; the resolution is printed)\n"
      "  --finger-radius R      a round finger of radius R (default 0, a point): only where it\n"
@@ -318,7 +320,8 @@ const wc_command wc_commands[] = {
      "the tilts under which gravity seats the part",
      "The arcs of tilt (the direction gravity pulls, degrees, in the part's frame) under which\n"
      "gravity alone gives a wrench in the set.\n"
-     "  --set SET   goal (default), strong or both\n"
+     "  --set SET   goal (default), strong or both (goal may leave the part sliding on,\n"
+     "              strong holds it only once seated; both does both)\n"
      "  --svg FILE  also draw the sweep as a dial around the part\n"
      "Exit status 0 when there is an arc, 1 when there is none."},
     {"margin", "FIXTURE BIAS [--svg FILE]",

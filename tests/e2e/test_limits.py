@@ -4,6 +4,7 @@ tolerance is a band in [0, 1), and the lp method, which finds no margin,
 takes none."""
 
 import json
+import math
 import random
 
 import fixtures as FX
@@ -90,25 +91,26 @@ def test_fixels_must_spread_over_a_thousandth_of_the_gyration_radius(daemon):
     # A uniform bar about its centroid: I = m (l^2 + w^2) / 12.
     rho = ((length ** 2 + width ** 2) / 12) ** 0.5
 
-    def bar(spread):
+    def bar(fixels):
         return {"body": {"mass": mass, "shape": {"type": "polygon", "vertices": [
                     [0, 0], [length, 0], [length, width], [0, width]]}},
-                "friction": {"static": 0.3},
-                "fixels": [{"at": [1, 0]}, {"at": [1 + spread, 0]}, {"at": [0, 1]}]}
+                "friction": {"static": 0.3}, "fixels": fixels}
 
-    # The spread is the largest distance between two fixels: from (0, 1) to
-    # (1 + s, 0) it is hypot(1 + s, 1), at least sqrt(2); so the refused
-    # bar has the third fixel near the others too.
-    tight = bar(0.0)
-    tight["fixels"] = [{"at": [0, 0.05]}, {"at": [0, 0.05 + 0.2 * 1e-3 * rho]},
-                       {"at": [0.1 * 1e-3 * rho, 0]}]
+    def spread(fixture):
+        at = [f["at"] for f in fixture["fixels"]]
+        return max(math.dist(p, q) for p in at for q in at)
+
+    # The spread is the largest distance between two fixels: here 0.39 of
+    # 1e-3 rho (the second fixel to the third), and 5.6 of it below.
+    tight = bar([{"at": [0, 0.05]}, {"at": [0, 0.05 + 0.2 * 1e-3 * rho]},
+                 {"at": [0.1 * 1e-3 * rho, 0]}])
+    assert 0 < spread(tight) < 1e-3 * rho
     e = c.error("fixture.put", {"fixture": tight})
     assert e["code"] == -32602 and e["data"]["field"] == "params.fixture.fixels", e
     assert "radius of gyration" in e["data"]["reason"], e
-    loose = bar(0.0)
-    loose["fixels"] = [{"at": [0, 0.5]}, {"at": [0, 1.5]}, {"at": [2 * 1e-3 * rho, 0]}]
+    loose = bar([{"at": [0, 0.5]}, {"at": [0, 1.5]}, {"at": [2 * 1e-3 * rho, 0]}])
+    assert spread(loose) > 1e-3 * rho
     assert c.result("fixture.put", {"fixture": loose})["fixels"] == 3
     # Two fixels at one point (a corner of the bar), normals given: exact, kept.
-    corner = bar(0.0)
-    corner["fixels"] = [{"at": [0, 0], "normal": [1, 0]}, {"at": [0, 0], "normal": [0, 1]}]
+    corner = bar([{"at": [0, 0], "normal": [1, 0]}, {"at": [0, 0], "normal": [0, 1]}])
     assert c.result("fixture.put", {"fixture": corner})["fixels"] == 2

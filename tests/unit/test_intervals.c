@@ -154,17 +154,8 @@ static void make_case(test_rng *rng, int k, interval_case *c)
         c->spec.com[1] = test_range(rng, -0.3, 0.3);
     }
     double angles[WR_MAX_FIXELS];
+    test_spaced_angles(rng, k, 15, angles);
     for (int i = 0; i < k; i++) {
-        bool spaced;
-        do {
-            angles[i] = test_range(rng, 0, 2 * TEST_PI);
-            spaced = true;
-            for (int j = 0; j < i; j++) {
-                double d = fabs(angles[i] - angles[j]);
-                d = fmin(d, 2 * TEST_PI - d);
-                spaced &= d > 15 * TEST_PI / 180 && fabs(d - TEST_PI) > 15 * TEST_PI / 180;
-            }
-        } while (!spaced);
         c->fixels[i].at[0] = cos(angles[i]);
         c->fixels[i].at[1] = sin(angles[i]);
         double s1 = test_range(rng, 0, 1), s2 = test_range(rng, 0, 1);

@@ -66,6 +66,26 @@ static inline void test_sphere(test_rng *rng, double v[3])
     v[2] = z;
 }
 
+/* k random angles (radians) on a circle, each pair at least `degrees`
+ * apart and at least that far from opposite: fixels there neither
+ * coincide nor face each other across a disc. */
+static inline void test_spaced_angles(test_rng *rng, int k, double degrees, double angles[])
+{
+    double gap = degrees * TEST_PI / 180;
+    for (int i = 0; i < k; i++) {
+        bool spaced;
+        do {
+            angles[i] = test_range(rng, 0, 2 * TEST_PI);
+            spaced = true;
+            for (int j = 0; j < i; j++) {
+                double d = fabs(angles[i] - angles[j]);
+                d = fmin(d, 2 * TEST_PI - d);
+                spaced &= d > gap && fabs(d - TEST_PI) > gap;
+            }
+        } while (!spaced);
+    }
+}
+
 /* A random fixture: even seeds give a disc, odd seeds a convex polygon (in
  * either orientation); k fixels on the boundary with the normal left out
  * (so the library's inward normal is used), fixels at least 12 degrees
@@ -89,17 +109,8 @@ static inline wr_fixture *test_random_fixture(test_rng *rng, int k, bool disc)
         spec.center[0] = test_range(rng, -1, 1);
         spec.center[1] = test_range(rng, -1, 1);
         double angles[WR_MAX_FIXELS];
+        test_spaced_angles(rng, k, 12, angles);
         for (int i = 0; i < k; i++) {
-            bool spaced;
-            do {
-                angles[i] = test_range(rng, 0, 2 * TEST_PI);
-                spaced = true;
-                for (int j = 0; j < i; j++) {
-                    double d = fabs(angles[i] - angles[j]);
-                    d = fmin(d, 2 * TEST_PI - d);
-                    spaced &= d > 12 * TEST_PI / 180 && fabs(d - TEST_PI) > 12 * TEST_PI / 180;
-                }
-            } while (!spaced);
             fixels[i].at[0] = spec.center[0] + spec.radius * cos(angles[i]);
             fixels[i].at[1] = spec.center[1] + spec.radius * sin(angles[i]);
         }
