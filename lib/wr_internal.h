@@ -130,6 +130,23 @@ struct wr_analysis {
  * smallest distance; 1 with no cone.  *blocking: the cone's index or -1. */
 double wr_set_margin(const struct wr_analysis *analysis, int set, const double x[3],
                      int *blocking);
+/* The push wrench along one edge of the outline (wr_regions.h), in scaled
+ * space, as a combination of two fixed wrenches c1 and c2, so that a row
+ * f of a cone meets it where a linear form in two coordinates vanishes:
+ *   WR_EDGE_LINE:   w(t) = c1 + t c2, t in [0, 1];
+ *   WR_EDGE_ARC:    w(phi) = (sin phi / s) c1 + cos phi c2, phi in [-a, a]
+ *                   (a = half_angle, s = sin a), t = (phi / a + 1) / 2;
+ *   WR_EDGE_CIRCLE: w(theta) = cos theta c1 + sin theta c2, theta the
+ *                   boundary angle.
+ * No coefficient is large, even on a nearly straight arc. */
+enum { WR_EDGE_LINE, WR_EDGE_ARC, WR_EDGE_CIRCLE };
+typedef struct wr_edge_frame {
+    int kind;
+    double c1[3], c2[3];
+    double half_angle, half_angle_sin; /* an arc's */
+} wr_edge_frame;
+void wr_edge_frame_of(const wr_fixture *fixture, int edge, wr_edge_frame *out);
+
 /* Is there an acceleration satisfying the constraint's acceleration rows,
  * strict rows strictly (kinematic feasibility, docs/MODEL.md section 4)? */
 bool wr_constraint_kinematically_feasible(const wr_fixture *fixture,

@@ -369,9 +369,30 @@ static double arc_wrench(const double c1[3], const double c2[3], double s, doubl
     return fabs(b1) * wr_norm3(c1) + fabs(b2) * wr_norm3(c2);
 }
 
-static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count, int edge,
-                          const wr_stop *stop, bool *stopped, spans *bad)
+void wr_edge_frame_of(const wr_fixture *f, int edge, wr_edge_frame *out)
 {
+    memset(out, 0, sizeof *out);
+    double rho = f->gyration_radius;
+    if (f->shape == WR_SHAPE_CIRCLE) {
+        /* w = (-u, -(d x u)) with d = centre - com: linear in u. */
+        double d[2] = {f->center[0] - f->com[0], f->center[1] - f->com[1]};
+        out->kind = WR_EDGE_CIRCLE;
+        const double c1[3] = {-1, 0, d[1] / rho}, c2[3] = {0, -1, -d[0] / rho};
+        wr_copy3(c1, out->c1);
+        wr_copy3(c2, out->c2);
+        return;
+    }
+    if (f->shape != WR_SHAPE_OUTLINE || edge_segment(f, edge)->bulge == 0) {
+        double w0[3], w1[3];
+        wr_push_wrench(f, edge, 0, w0);
+        wr_push_wrench(f, edge, 1, w1);
+        for (int k = 0; k < 3; k++)
+            w1[k] -= w0[k]; /* affine: w(t) = w0 + t w1 */
+        out->kind = WR_EDGE_LINE;
+        scale_wrench(f, w0, out->c1);
+        scale_wrench(f, w1, out->c2);
+        return;
+    }
     size_t loop, segment;
     wr_push_edge_place(f, edge, &loop, &segment);
     const wr_segment *arc = &f->outline->loops[loop].segments[segment];
@@ -379,14 +400,27 @@ static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count,
     wr_outline_boundary(f->outline, loop, segment, 0.5, point, inward);
     const double *ed = arc->direction, *en = arc->bulge_normal;
     double sigma = inward[0] * en[0] + inward[1] * en[1] > 0 ? 1 : -1;
-    double a = arc->half_angle, s = arc->half_angle_sin, c = arc->half_angle_cos;
-    double h = arc->half_chord, rho = f->gyration_radius;
+    double s = arc->half_angle_sin, c = arc->half_angle_cos, h = arc->half_chord;
     double d[2] = {arc->midpoint[0] - f->com[0], arc->midpoint[1] - f->com[1]};
     double kappa = ed[0] * en[1] - ed[1] * en[0];
     double d_ed = d[0] * ed[1] - d[1] * ed[0], d_en = d[0] * en[1] - d[1] * en[0];
     const double c1[3] = {sigma * s * ed[0], sigma * s * ed[1],
                           sigma * (s * d_ed + kappa * h * c) / rho};
     const double c2[3] = {sigma * en[0], sigma * en[1], sigma * d_en / rho};
+    out->kind = WR_EDGE_ARC;
+    wr_copy3(c1, out->c1);
+    wr_copy3(c2, out->c2);
+    out->half_angle = arc->half_angle;
+    out->half_angle_sin = s;
+}
+
+static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count, int edge,
+                          const wr_stop *stop, bool *stopped, spans *bad)
+{
+    wr_edge_frame frame;
+    wr_edge_frame_of(f, edge, &frame);
+    const double *c1 = frame.c1, *c2 = frame.c2;
+    double a = frame.half_angle, s = frame.half_angle_sin;
     for (int n = 0; n < count && !bad->failed; n++) {
         if (wr_stop_requested(stop)) {
             *stopped = true;

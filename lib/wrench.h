@@ -30,6 +30,7 @@
 #include "wr_plan.h"
 #include "wr_regions.h"
 #include "wr_status.h"
+#include "wr_sweep.h"
 
 #ifdef __cplusplus
 extern "C" {

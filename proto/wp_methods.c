@@ -602,11 +602,11 @@ static cJSON *modes_get(wp_call *call)
 
 /* ---- push.regions, gravity.sweep, stability.margin ----------------------- */
 
-/* params.set: one of goal, strong, both (default goal). */
-static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
+/* path.set: one of goal, strong, both (default goal). */
+static bool read_set_at(const cJSON *object, const char *path, wr_set *set, wp_error *error)
 {
     const char *name;
-    if (!wp_member_string(params, "params", "set", false, &name, error))
+    if (!wp_member_string(object, path, "set", false, &name, error))
         return false;
     *set = WR_SET_GOAL;
     if (!name)
@@ -616,8 +616,33 @@ static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
             *set = (wr_set)s;
             return true;
         }
-    wp_error_set(error, WP_INVALID_PARAMS, "params.set", "must be \"goal\", \"strong\" or \"both\"");
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, "set");
+    wp_error_set(error, WP_INVALID_PARAMS, field, "must be \"goal\", \"strong\" or \"both\"");
     return false;
+}
+
+static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
+{
+    return read_set_at(params, "params", set, error);
+}
+
+/* path.finger_friction and path.finger_radius: not negative (default 0). */
+static bool read_finger(const cJSON *object, const char *path, wr_finger *finger,
+                        wp_error *error)
+{
+    *finger = (wr_finger){0, 0};
+    if (!wp_member_number(object, path, "finger_friction", false, &finger->friction, NULL,
+                          error) ||
+        !wp_member_number(object, path, "finger_radius", false, &finger->radius, NULL, error))
+        return false;
+    char field[WP_FIELD_MAX];
+    if (finger->friction < 0 || finger->radius < 0) {
+        wp_path_key(field, path, finger->friction < 0 ? "finger_friction" : "finger_radius");
+        wp_error_set(error, WP_INVALID_PARAMS, field, "must not be negative");
+        return false;
+    }
+    return true;
 }
 
 static void stream_free(wp_stream *stream) { free(stream); }
@@ -626,23 +651,11 @@ static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
 {
     (void)prepared;
     wr_set set;
-    double friction = 0, radius = 0;
+    wr_finger finger;
     if (!read_set(call->params, &set, call->error) ||
-        !wp_member_number(call->params, "params", "finger_friction", false, &friction, NULL,
-                          call->error) ||
-        !wp_member_number(call->params, "params", "finger_radius", false, &radius, NULL,
-                          call->error))
+        !read_finger(call->params, "params", &finger, call->error))
         return NULL;
-    if (friction < 0) {
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.finger_friction",
-                     "must not be negative");
-        return NULL;
-    }
-    if (radius < 0) {
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.finger_radius",
-                     "must not be negative");
-        return NULL;
-    }
+    double friction = finger.friction, radius = finger.radius;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
@@ -822,6 +835,257 @@ static cJSON *stability_margin(wp_call *call)
     return result;
 }
 
+/* ---- friction.sweep -------------------------------------------------------- */
+
+static const char *const SWEEP_PUSH[] = {"set", "finger_friction", "finger_radius", NULL};
+static const char *const SWEEP_GRAVITY[] = {"set", NULL};
+
+/* params.range: [low, high], 0 <= low < high <= WR_MAX_FRICTION (default
+ * [0, 2]); params.kinetic_ratio in (0, 1] (default 1). */
+static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_error *error)
+{
+    *range = (wr_sweep_range){0, 2, 1};
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(params, "range");
+    if (value) {
+        if (!cJSON_IsArray(value) || cJSON_GetArraySize(value) != 2) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range",
+                         "must be [low, high]: two coefficients of friction");
+            return false;
+        }
+        double ends[2];
+        for (int i = 0; i < 2; i++) {
+            char field[WP_FIELD_MAX];
+            wp_path_index(field, "params.range", (size_t)i);
+            const cJSON *end = cJSON_GetArrayItem(value, i);
+            if (!cJSON_IsNumber(end) || !isfinite(end->valuedouble)) {
+                wp_error_set(error, WP_INVALID_PARAMS, field, "must be a number, not %s",
+                             wp_type_name(end));
+                return false;
+            }
+            ends[i] = end->valuedouble;
+        }
+        if (ends[0] < 0) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range[0]",
+                         "a coefficient of friction is not negative");
+            return false;
+        }
+        if (ends[1] > WR_MAX_FRICTION) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range[1]",
+                         "at most %g: no contact has more friction", WR_MAX_FRICTION);
+            return false;
+        }
+        if (!(ends[0] < ends[1])) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range",
+                         "the low end must be below the high end");
+            return false;
+        }
+        range->low = ends[0] + 0.0;
+        range->high = ends[1];
+    }
+    bool given;
+    if (!wp_member_number(params, "params", "kinetic_ratio", false, &range->kinetic_ratio, &given,
+                          error))
+        return false;
+    if (!(range->kinetic_ratio > 0 && range->kinetic_ratio <= 1)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.kinetic_ratio",
+                     "must be in (0, 1]: kinetic friction is positive and not above static");
+        return false;
+    }
+    return true;
+}
+
+static cJSON *intervals_json(const wr_intervals *list)
+{
+    cJSON *array = cJSON_CreateArray();
+    for (int i = 0; array && i < list->count; i++) {
+        const double pair[2] = {list->items[i][0] + 0.0, list->items[i][1] + 0.0};
+        cJSON *item = cJSON_CreateDoubleArray(pair, 2);
+        if (!item) {
+            cJSON_Delete(array);
+            return NULL;
+        }
+        cJSON_AddItemToArray(array, item);
+    }
+    return array;
+}
+
+/* {"intervals", "critical", "curve", "exact", "resolution"} */
+static cJSON *curve_json(const wr_sweep_curve *curve)
+{
+    cJSON *result = cJSON_CreateObject();
+    cJSON *intervals = intervals_json(&curve->intervals);
+    cJSON *points = cJSON_CreateArray();
+    bool ok = result && intervals && points;
+    if (ok) {
+        cJSON_AddItemToObject(result, "intervals", intervals);
+        intervals = NULL;
+        if (curve->has_critical)
+            ok = cJSON_AddNumberToObject(result, "critical", curve->critical + 0.0) != NULL;
+        else
+            ok = cJSON_AddNullToObject(result, "critical") != NULL;
+    }
+    for (int i = 0; ok && i < curve->point_count; i++) {
+        const double point[2] = {curve->points[i][0] + 0.0, curve->points[i][1] + 0.0};
+        cJSON *item = cJSON_CreateDoubleArray(point, 2);
+        ok = item != NULL;
+        if (ok)
+            cJSON_AddItemToArray(points, item);
+    }
+    if (ok) {
+        cJSON_AddItemToObject(result, "curve", points);
+        points = NULL;
+        ok = cJSON_AddBoolToObject(result, "exact", curve->exact) &&
+             cJSON_AddNumberToObject(result, "resolution", curve->resolution);
+    }
+    cJSON_Delete(intervals);
+    cJSON_Delete(points);
+    if (!ok) {
+        cJSON_Delete(result);
+        return NULL;
+    }
+    return result;
+}
+
+/* Every wrench against every set asked: {"results": [{"goal": [[lo, hi],
+ * ...], ...}, ...]}. */
+static cJSON *sweep_wrenches(wp_call *call, const wr_fixture *fixture,
+                             const wr_sweep_range *range)
+{
+    wp_error *error = call->error;
+    classify_request r;
+    memset(&r, 0, sizeof r);
+    if (!read_sets(call->params, &r, error))
+        return NULL;
+    const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(call->params, "wrenches");
+    if (!cJSON_IsArray(wrenches)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.wrenches",
+                     "must be an array of wrenches, not %s", wp_type_name(wrenches));
+        return NULL;
+    }
+    size_t count = (size_t)cJSON_GetArraySize(wrenches);
+    if (count > call->limits->max_wrenches) {
+        wp_error_set(error, WP_LIMIT, "params.wrenches",
+                     "%zu wrenches in one request, the limit is %zu (--max-wrenches)", count,
+                     call->limits->max_wrenches);
+        return NULL;
+    }
+    double (*list)[3] = malloc((count ? count : 1) * sizeof *list);
+    if (!list)
+        return out_of_memory(NULL, error);
+    size_t index = 0;
+    for (const cJSON *w = wrenches->child; w; w = w->next, index++) {
+        char field[WP_FIELD_MAX];
+        wp_path_index(field, "params.wrenches", index);
+        if (!wp_wrench_read(w, field, fixture, list[index], error)) {
+            free(list);
+            return NULL;
+        }
+    }
+    wr_sweeper *sweepers[3] = {NULL, NULL, NULL};
+    cJSON *result = cJSON_CreateObject();
+    cJSON *results = result ? cJSON_AddArrayToObject(result, "results") : NULL;
+    wr_status status = results ? WR_OK : WR_NO_MEMORY;
+    for (int s = 0; status == WR_OK && s < r.set_count; s++)
+        status = wr_sweeper_new(fixture, r.sets[s], range, &sweepers[s]);
+    for (size_t i = 0; status == WR_OK && i < count; i++) {
+        cJSON *item = cJSON_CreateObject();
+        if (!item) {
+            status = WR_NO_MEMORY;
+            break;
+        }
+        cJSON_AddItemToArray(results, item);
+        for (int s = 0; status == WR_OK && s < r.set_count; s++) {
+            wr_intervals intervals;
+            status = wr_sweep_wrench(sweepers[s], list[i], call->host->stop, &intervals);
+            if (status != WR_OK)
+                break;
+            cJSON *array = intervals_json(&intervals);
+            wr_intervals_release(&intervals);
+            if (!array)
+                status = WR_NO_MEMORY;
+            else
+                cJSON_AddItemToObject(item, SET_NAMES[r.sets[s]], array);
+        }
+    }
+    for (int s = 0; s < 3; s++)
+        wr_sweeper_free(sweepers[s]);
+    free(list);
+    if (status != WR_OK) {
+        cJSON_Delete(result);
+        wp_error_status(error, status, "params.wrenches", "%s", wr_strerror(status));
+        return NULL;
+    }
+    return result;
+}
+
+/* params.push or params.gravity: the region (arc) against mu. */
+static cJSON *sweep_region(wp_call *call, const wr_fixture *fixture, const wr_sweep_range *range,
+                           bool push)
+{
+    wp_error *error = call->error;
+    const char *path = push ? "params.push" : "params.gravity";
+    const cJSON *what = cJSON_GetObjectItemCaseSensitive(call->params, push ? "push" : "gravity");
+    wr_set set;
+    wr_finger finger = {0, 0};
+    if (!wp_check_object(what, path, push ? SWEEP_PUSH : SWEEP_GRAVITY, error) ||
+        !read_set_at(what, path, &set, error) ||
+        (push && !read_finger(what, path, &finger, error)))
+        return NULL;
+    if (push && fixture->shape == WR_SHAPE_NONE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                     "push regions need the part's outline: the fixture has no shape");
+        return NULL;
+    }
+    wr_sweeper *sweeper;
+    wr_status status = wr_sweeper_new(fixture, set, range, &sweeper);
+    wr_sweep_curve curve;
+    if (status == WR_OK) {
+        status = push ? wr_sweep_push(sweeper, &finger, call->host->stop, &curve)
+                      : wr_sweep_gravity(sweeper, call->host->stop, &curve);
+        wr_sweeper_free(sweeper);
+    }
+    if (status != WR_OK) {
+        wp_error_status(error, status, path, "%s", wr_strerror(status));
+        return NULL;
+    }
+    cJSON *result = curve_json(&curve);
+    wr_sweep_curve_release(&curve);
+    return result ? result : out_of_memory(NULL, error);
+}
+
+/* friction.sweep: one of wrenches, push, gravity, against a common mu. */
+static cJSON *friction_sweep(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    const char *names[3] = {"wrenches", "push", "gravity"};
+    int given = 0, which = -1;
+    for (int i = 0; i < 3; i++)
+        if (cJSON_GetObjectItemCaseSensitive(params, names[i])) {
+            given++;
+            which = i;
+        }
+    if (given != 1) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params",
+                     "give exactly one of \"wrenches\", \"push\" and \"gravity\" (%d given)",
+                     given);
+        return NULL;
+    }
+    if (which != 0 && cJSON_GetObjectItemCaseSensitive(params, "sets")) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.sets",
+                     "only with \"wrenches\": a push or gravity sweep takes its \"set\"");
+        return NULL;
+    }
+    wr_sweep_range range;
+    if (!read_sweep_range(params, &range, error))
+        return NULL;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    return which == 0 ? sweep_wrenches(call, use->fixture, &range)
+                      : sweep_region(call, use->fixture, &range, which == 1);
+}
+
 /* ---- the table ------------------------------------------------------------ */
 
 static const char *const NONE[] = {NULL};
@@ -833,6 +1097,8 @@ static const char *const CONE[] = {"fixture", "constraints", NULL};
 static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
+static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
+                                             "push", "gravity", NULL};
 
 /* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
  * one piece, and the event loop may answer it.  The rest end their piece
@@ -866,6 +1132,9 @@ const wp_method wp_methods[] = {
      .flags = WP_FIXTURE | WP_READY, .summary = "the tilts under which gravity is in a set"},
     {.name = "stability.margin", .handler = stability_margin, .fields = MARGIN,
      .required = MARGIN, .flags = WP_FIXTURE, .summary = "how large a disturbance a biasing wrench tolerates"},
+    {.name = "friction.sweep", .handler = friction_sweep, .fields = FRICTION_SWEEP,
+     .required = FIXTURE, .flags = WP_FIXTURE,
+     .summary = "where wrenches, push regions and gravity arcs hold, against a common friction"},
     {0},
 };
 

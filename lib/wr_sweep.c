@@ -1,0 +1,896 @@
+/* wr_sweep.c -- answers against one common friction coefficient: the roots
+ * where they can change, then one decision per piece between roots
+ * (wr_sweep.h says why that misses nothing). */
+#include "wr_sweep.h"
+#include "wr_finger.h"
+#include "wr_internal.h"
+#include "wr_outline.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A wrench this close to a plane, or this far on the wrong side of a
+ * generator, still counts as on the face: a root kept for nothing costs
+ * one more piece, a root dropped could lose an interval. */
+#define FACE_SLACK 1e-7
+/* Roots closer than this (relative to the range's scale) are one. */
+#define ROOT_MERGE 1e-12
+/* Points of a curve between roots: a gap at most 1/GRID of the range. */
+#define GRID 64
+/* A finger with friction: steps of the sampled sweep. */
+#define FRICTION_STEPS 256
+
+/* A generator as a function of mu: base + mu * slope (scaled space). */
+typedef struct affine {
+    double base[3], slope[3];
+} affine;
+
+/* The plane of two generators: normal(mu) = n[0] + mu n[1] + mu^2 n[2]. */
+typedef struct plane {
+    int a, b;              /* family members, a < b */
+    double n[3][3];
+    int cone_first, cone_count; /* into sweeper->plane_cones */
+} plane;
+
+struct wr_sweeper {
+    const wr_fixture *fixture;
+    wr_set set;
+    wr_sweep_range range;
+    int family_count;
+    affine *family;
+    int cone_count;
+    int *cone_first;       /* cone i's members: members[cone_first[i] ..
+                              cone_first[i + 1]) */
+    int *members;
+    int plane_count;
+    plane *planes;
+    int *plane_cones;
+};
+
+/* ---- small things ------------------------------------------------------------------ */
+
+void wr_intervals_release(wr_intervals *intervals)
+{
+    free(intervals->items);
+    memset(intervals, 0, sizeof *intervals);
+}
+
+void wr_sweep_curve_release(wr_sweep_curve *curve)
+{
+    wr_intervals_release(&curve->intervals);
+    free(curve->points);
+    memset(curve, 0, sizeof *curve);
+}
+
+static bool add_interval(wr_intervals *list, double lo, double hi)
+{
+    if (list->count > 0 && lo <= list->items[list->count - 1][1]) {
+        /* Touching the last one: one interval. */
+        if (hi > list->items[list->count - 1][1])
+            list->items[list->count - 1][1] = hi;
+        return true;
+    }
+    if (list->count == list->capacity) {
+        int capacity = list->capacity ? 2 * list->capacity : 8;
+        double (*items)[2] = realloc(list->items, (size_t)capacity * sizeof *items);
+        if (!items)
+            return false;
+        list->items = items;
+        list->capacity = capacity;
+    }
+    list->items[list->count][0] = lo;
+    list->items[list->count][1] = hi;
+    list->count++;
+    return true;
+}
+
+/* A growing array of doubles. */
+typedef struct values {
+    int count, capacity;
+    double *items;
+    bool failed;
+} values;
+
+static void add_value(values *v, double x)
+{
+    if (v->failed)
+        return;
+    if (v->count == v->capacity) {
+        int capacity = v->capacity ? 2 * v->capacity : 64;
+        double *items = realloc(v->items, (size_t)capacity * sizeof *items);
+        if (!items) {
+            v->failed = true;
+            return;
+        }
+        v->items = items;
+        v->capacity = capacity;
+    }
+    v->items[v->count++] = x;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sort, keep [low, high], merge roots within ROOT_MERGE of each other, and
+ * make sure both ends are there. */
+static void settle(values *v, const wr_sweep_range *range)
+{
+    add_value(v, range->low);
+    add_value(v, range->high);
+    if (v->failed)
+        return;
+    qsort(v->items, (size_t)v->count, sizeof *v->items, compare_doubles);
+    double merge = ROOT_MERGE * fmax(1, range->high);
+    int n = 0;
+    for (int i = 0; i < v->count; i++) {
+        double x = v->items[i];
+        if (x < range->low || x > range->high)
+            continue;
+        if (n > 0 && x - v->items[n - 1] <= merge)
+            continue;
+        v->items[n++] = x;
+    }
+    /* The top of the range is the last point even if a root merged it. */
+    if (n > 0 && v->items[n - 1] != range->high) {
+        if (range->high - v->items[n - 1] <= merge && n > 1)
+            v->items[n - 1] = range->high;
+        else
+            v->items[n++] = range->high;
+    }
+    v->count = n;
+}
+
+void wr_fixture_at_friction(const wr_fixture *fixture, double mu, double ratio, wr_fixture *out)
+{
+    *out = *fixture;
+    for (int i = 0; i < out->fixel_count; i++) {
+        wr_fixel *fixel = &out->fixels[i];
+        fixel->mu_static = fixel->mu_static_min = mu;
+        fixel->mu_kinetic = fixel->mu_kinetic_min = ratio * mu;
+    }
+}
+
+static void affine_at(const affine *g, double mu, double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = g->base[k] + mu * g->slope[k];
+}
+
+/* ---- real roots of a polynomial in an interval ------------------------------------ */
+
+#define MAX_DEGREE 4
+
+static double poly_value(const double *c, int degree, double x)
+{
+    double v = c[degree];
+    for (int i = degree - 1; i >= 0; i--)
+        v = v * x + c[i];
+    return v;
+}
+
+/* The root of a polynomial that changes sign on [lo, hi], bisected until
+ * the interval cannot shrink. */
+static double bisect(const double *c, int degree, double lo, double hi, double value_lo)
+{
+    for (int i = 0; i < 200; i++) {
+        double mid = lo + (hi - lo) / 2;
+        if (mid <= lo || mid >= hi)
+            break;
+        double v = poly_value(c, degree, mid);
+        if (v == 0)
+            return mid;
+        if ((v < 0) == (value_lo < 0)) {
+            lo = mid;
+            value_lo = v;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo + (hi - lo) / 2;
+}
+
+/* Every real root of c[0] + c[1] x + ... + c[degree] x^degree in [lo, hi]
+ * into roots (at most degree + 1 of them: a touching root may come with
+ * its neighbours).  Its monotone pieces lie between the roots of its
+ * derivative, found the same way, so two roots however close are both
+ * found.  A root where the polynomial only touches zero (to within
+ * rounding of its size) is kept too.  -1 when the polynomial is zero on
+ * the whole interval, to rounding. */
+static int poly_roots(const double *coefficients, int degree, double lo, double hi,
+                      double *roots)
+{
+    double reach = fmax(1, fmax(fabs(lo), fabs(hi)));
+    double size = 0, power = 1;
+    for (int i = 0; i <= degree; i++, power *= reach)
+        size += fabs(coefficients[i]) * power;
+    if (size == 0 || !isfinite(size))
+        return size == 0 ? -1 : 0;
+    /* Terms that cannot matter on the interval are dropped: the degree
+     * the polynomial really has there. */
+    double c[MAX_DEGREE + 1];
+    memcpy(c, coefficients, (size_t)(degree + 1) * sizeof *c);
+    while (degree > 0 && fabs(c[degree]) * pow(reach, degree) <= 1e-15 * size)
+        degree--;
+    double zero = 1e-13 * size;
+    if (degree == 0)
+        return fabs(c[0]) <= zero ? -1 : 0;
+    if (degree == 1) {
+        double x = -c[0] / c[1];
+        if (x >= lo && x <= hi) {
+            roots[0] = x;
+            return 1;
+        }
+        return 0;
+    }
+    double derivative[MAX_DEGREE] = {0}, critical[MAX_DEGREE + 2];
+    for (int i = 1; i <= degree; i++)
+        derivative[i - 1] = i * c[i];
+    int n = poly_roots(derivative, degree - 1, lo, hi, critical + 1);
+    if (n < 0)
+        n = 0; /* a constant derivative on the interval: none */
+    critical[0] = lo;
+    critical[n + 1] = hi;
+    int found = 0;
+    double previous = poly_value(c, degree, lo);
+    if (previous == 0)
+        roots[found++] = lo;
+    for (int i = 1; i <= n + 1; i++) {
+        double x = critical[i];
+        double v = poly_value(c, degree, x);
+        if (v != 0 && previous != 0 && (v < 0) != (previous < 0))
+            roots[found++] = bisect(c, degree, critical[i - 1], x, previous);
+        else if (i <= n && fabs(v) <= zero)
+            roots[found++] = x; /* touches zero at an extremum */
+        if (v == 0 && found <= degree && (found == 0 || roots[found - 1] != x))
+            roots[found++] = x;
+        previous = v;
+        if (found > degree)
+            break;
+    }
+    return found;
+}
+
+/* ---- the family of generators and the planes of faces ----------------------------- */
+
+static int family_add(wr_sweeper *s, int *capacity, const affine *g)
+{
+    for (int i = 0; i < s->family_count; i++) {
+        const affine *h = &s->family[i];
+        double d = 0;
+        for (int k = 0; k < 3; k++)
+            d = fmax(d, fmax(fabs(h->base[k] - g->base[k]), fabs(h->slope[k] - g->slope[k])));
+        if (d <= 1e-12)
+            return i;
+    }
+    if (s->family_count == *capacity) {
+        int grown = *capacity ? 2 * *capacity : 32;
+        affine *family = realloc(s->family, (size_t)grown * sizeof *family);
+        if (!family)
+            return -1;
+        s->family = family;
+        *capacity = grown;
+    }
+    s->family[s->family_count] = *g;
+    return s->family_count++;
+}
+
+typedef struct pair {
+    int a, b, cone;
+} pair;
+
+static int compare_pairs(const void *x, const void *y)
+{
+    const pair *p = x, *q = y;
+    if (p->a != q->a)
+        return (p->a > q->a) - (p->a < q->a);
+    if (p->b != q->b)
+        return (p->b > q->b) - (p->b < q->b);
+    return (p->cone > q->cone) - (p->cone < q->cone);
+}
+
+/* The cones of the set at mu = 1, read back as affine generators: an
+ * acceleration generator (origin fixel -1) does not depend on mu; a
+ * friction edge -(W_n + r W_t) / |.| with r = c mu becomes
+ * -(W_n + c mu W_t) (its length only scales it: planes and sides stay). */
+static wr_status build_family(wr_sweeper *s)
+{
+    wr_fixture at_one;
+    wr_fixture_at_friction(s->fixture, 1, s->range.kinetic_ratio, &at_one);
+    wr_analysis *analysis;
+    if (wr_analysis_new(&at_one, &analysis) != WR_OK)
+        return WR_NO_MEMORY;
+    wr_status status = WR_NO_MEMORY;
+    int sets[2], set_count = 0;
+    if (s->set != WR_SET_STRONG)
+        sets[set_count++] = WR_SET_GOAL;
+    if (s->set != WR_SET_GOAL)
+        sets[set_count++] = WR_SET_STRONG;
+    int total = 0, generators = 0;
+    for (int i = 0; i < set_count; i++) {
+        int n = wr_analysis_cone_count(analysis, (wr_set)sets[i]);
+        total += n;
+        for (int j = 0; j < n; j++)
+            generators += wr_analysis_cone(analysis, (wr_set)sets[i], j)->generator_count;
+    }
+    int capacity = 0, pair_count = 0;
+    pair *pairs = NULL;
+    s->cone_first = malloc((size_t)(total + 1) * sizeof *s->cone_first);
+    s->members = malloc((size_t)(generators + 1) * sizeof *s->members);
+    if (!s->cone_first || !s->members)
+        goto done;
+    int member_count = 0;
+    s->cone_count = 0;
+    for (int i = 0; i < set_count; i++) {
+        for (int j = 0; j < wr_analysis_cone_count(analysis, (wr_set)sets[i]); j++) {
+            const wr_cone *cone = wr_analysis_cone(analysis, (wr_set)sets[i], j);
+            if (cone->empty)
+                continue; /* empty at every mu: emptiness is kinematic */
+            int first = member_count;
+            for (int g = 0; g < cone->generator_count; g++) {
+                const wr_generator_origin *o = &cone->origins[g];
+                affine a;
+                if (o->fixel < 0) {
+                    wr_copy3(cone->generators[g], a.base);
+                    memset(a.slope, 0, sizeof a.slope);
+                } else {
+                    const wr_fixel *fixel = &s->fixture->fixels[o->fixel];
+                    double c = o->tangent_force / o->normal_force; /* at mu = 1 */
+                    for (int k = 0; k < 3; k++) {
+                        a.base[k] = -fixel->normal_wrench[k];
+                        a.slope[k] = -c * fixel->tangent_wrench[k];
+                    }
+                }
+                int index = family_add(s, &capacity, &a);
+                if (index < 0)
+                    goto done;
+                bool seen = false;
+                for (int m = first; m < member_count && !seen; m++)
+                    seen = s->members[m] == index;
+                if (!seen)
+                    s->members[member_count++] = index;
+            }
+            s->cone_first[s->cone_count++] = first;
+        }
+    }
+    s->cone_first[s->cone_count] = member_count;
+
+    /* Every pair of members of a cone spans a plane that may hold a face. */
+    for (int c = 0; c < s->cone_count; c++)
+        for (int i = s->cone_first[c]; i < s->cone_first[c + 1]; i++)
+            for (int j = i + 1; j < s->cone_first[c + 1]; j++)
+                pair_count++;
+    pairs = malloc((size_t)(pair_count + 1) * sizeof *pairs);
+    s->plane_cones = malloc((size_t)(pair_count + 1) * sizeof *s->plane_cones);
+    s->planes = malloc((size_t)(pair_count + 1) * sizeof *s->planes);
+    if (!pairs || !s->plane_cones || !s->planes)
+        goto done;
+    int n = 0;
+    for (int c = 0; c < s->cone_count; c++)
+        for (int i = s->cone_first[c]; i < s->cone_first[c + 1]; i++)
+            for (int j = i + 1; j < s->cone_first[c + 1]; j++) {
+                int a = s->members[i], b = s->members[j];
+                pairs[n++] = (pair){a < b ? a : b, a < b ? b : a, c};
+            }
+    qsort(pairs, (size_t)n, sizeof *pairs, compare_pairs);
+    s->plane_count = 0;
+    for (int i = 0; i < n; i++) {
+        s->plane_cones[i] = pairs[i].cone;
+        if (i > 0 && pairs[i].a == pairs[i - 1].a && pairs[i].b == pairs[i - 1].b) {
+            s->planes[s->plane_count - 1].cone_count++;
+            continue;
+        }
+        plane *p = &s->planes[s->plane_count++];
+        p->a = pairs[i].a;
+        p->b = pairs[i].b;
+        p->cone_first = i;
+        p->cone_count = 1;
+        const affine *ga = &s->family[p->a], *gb = &s->family[p->b];
+        double x[3], y[3];
+        wr_cross3(ga->base, gb->base, p->n[0]);
+        wr_cross3(ga->base, gb->slope, x);
+        wr_cross3(ga->slope, gb->base, y);
+        for (int k = 0; k < 3; k++)
+            p->n[1][k] = x[k] + y[k];
+        wr_cross3(ga->slope, gb->slope, p->n[2]);
+    }
+    status = WR_OK;
+done:
+    free(pairs);
+    wr_analysis_free(analysis);
+    return status;
+}
+
+wr_status wr_sweeper_new(const wr_fixture *fixture, wr_set set, const wr_sweep_range *range,
+                         wr_sweeper **out)
+{
+    *out = NULL;
+    if (!(range->low >= 0) || !(range->high > range->low) || !(range->high <= WR_MAX_FRICTION) ||
+        !(range->kinetic_ratio > 0) || !(range->kinetic_ratio <= 1))
+        return WR_INVALID;
+    wr_sweeper *s = calloc(1, sizeof *s);
+    if (!s)
+        return WR_NO_MEMORY;
+    s->fixture = fixture;
+    s->set = set;
+    s->range = *range;
+    if (build_family(s) != WR_OK) {
+        wr_sweeper_free(s);
+        return WR_NO_MEMORY;
+    }
+    *out = s;
+    return WR_OK;
+}
+
+void wr_sweeper_free(wr_sweeper *s)
+{
+    if (!s)
+        return;
+    free(s->family);
+    free(s->cone_first);
+    free(s->members);
+    free(s->planes);
+    free(s->plane_cones);
+    free(s);
+}
+
+/* ---- is a root real? -------------------------------------------------------------- */
+
+/* At mu, does the scaled wrench h (which lies in plane p, to rounding) lie
+ * on the part of it between the plane's two generators, and does the
+ * plane support one of its cones (every other generator on one side)?
+ * Only then can h be on a face there.  Degenerate planes say yes. */
+static bool on_face(const wr_sweeper *s, const plane *p, const double h[3], double mu)
+{
+    double ga[3], gb[3], n[3], x[3], unit_h[3];
+    affine_at(&s->family[p->a], mu, ga);
+    affine_at(&s->family[p->b], mu, gb);
+    if (wr_normalize3(ga) == 0 || wr_normalize3(gb) == 0)
+        return true;
+    wr_copy3(h, unit_h);
+    if (wr_normalize3(unit_h) == 0)
+        return true;
+    wr_cross3(ga, gb, n);
+    double sine = wr_normalize3(n);
+    if (sine <= 1e-9)
+        return true;
+    /* h = alpha ga + beta gb: alpha ~ (h x gb) . n, beta ~ (ga x h) . n. */
+    wr_cross3(unit_h, gb, x);
+    if (wr_dot3(x, n) < -FACE_SLACK * sine)
+        return false;
+    wr_cross3(ga, unit_h, x);
+    if (wr_dot3(x, n) < -FACE_SLACK * sine)
+        return false;
+    for (int i = 0; i < p->cone_count; i++) {
+        int c = s->plane_cones[p->cone_first + i];
+        double lowest = 0, highest = 0;
+        for (int m = s->cone_first[c]; m < s->cone_first[c + 1]; m++) {
+            double g[3];
+            affine_at(&s->family[s->members[m]], mu, g);
+            if (wr_normalize3(g) == 0)
+                continue;
+            double side = wr_dot3(n, g);
+            lowest = fmin(lowest, side);
+            highest = fmax(highest, side);
+        }
+        if (highest <= FACE_SLACK || lowest >= -FACE_SLACK)
+            return true;
+    }
+    return false;
+}
+
+/* Where a fixed scaled wrench h meets a face: roots of h . n(mu) for every
+ * plane, kept when on the face. */
+static void fixed_roots(const wr_sweeper *s, const double h[3], values *out)
+{
+    const wr_sweep_range *r = &s->range;
+    for (int i = 0; i < s->plane_count; i++) {
+        const plane *p = &s->planes[i];
+        double c[3] = {wr_dot3(h, p->n[0]), wr_dot3(h, p->n[1]), wr_dot3(h, p->n[2])};
+        double roots[MAX_DEGREE + 2];
+        int found = poly_roots(c, 2, r->low, r->high, roots);
+        if (found < 0) {
+            /* h lies in the plane at every mu: it can still meet the face
+             * where a generator turns through it, h x g(mu) = 0. */
+            int ends[2] = {p->a, p->b};
+            for (int e = 0; e < 2; e++) {
+                const affine *g = &s->family[ends[e]];
+                double u[3], v[3];
+                wr_cross3(h, g->base, u);
+                wr_cross3(h, g->slope, v);
+                double vv = wr_dot3(v, v);
+                if (vv == 0)
+                    continue;
+                double mu = -wr_dot3(u, v) / vv;
+                double residual[3];
+                for (int k = 0; k < 3; k++)
+                    residual[k] = u[k] + mu * v[k];
+                if (wr_norm3(residual) <= 1e-9 * (wr_norm3(u) + fabs(mu) * sqrt(vv)))
+                    add_value(out, mu);
+            }
+            continue;
+        }
+        for (int j = 0; j < found; j++)
+            if (on_face(s, p, h, roots[j]))
+                add_value(out, roots[j]);
+    }
+}
+
+/* ---- deciding a piece ------------------------------------------------------------- */
+
+typedef enum what {
+    WHAT_WRENCH,
+    WHAT_PUSH,
+    WHAT_GRAVITY
+} what;
+
+typedef struct question {
+    what what;
+    const double *wrench;      /* WHAT_WRENCH: physical */
+    const wr_finger *finger;   /* WHAT_PUSH */
+    const wr_stop *stop;
+} question;
+
+/* The answer at mu: for a wrench 1 inside, 0 not; for a region its total
+ * length (a wrench's "length" is 1 or 0 too).  Negative on failure:
+ * -1 no memory, -2 stopped. */
+static double answer_at(const wr_sweeper *s, const question *q, double mu, wr_status *status)
+{
+    wr_fixture at;
+    wr_fixture_at_friction(s->fixture, mu, s->range.kinetic_ratio, &at);
+    wr_analysis *analysis;
+    *status = wr_analysis_new(&at, &analysis);
+    if (*status != WR_OK)
+        return -1;
+    double result = 0;
+    if (q->what == WHAT_WRENCH) {
+        wr_answer answer;
+        *status = wr_classify(analysis, q->wrench, s->set, WR_DEFAULT_TOLERANCE, &answer);
+        result = answer.verdict == WR_VERDICT_INSIDE;
+    } else {
+        wr_regions regions;
+        if (q->what == WHAT_PUSH)
+            *status = wr_push_regions_finger(analysis, s->set, q->finger, q->stop, &regions);
+        else
+            *status = wr_gravity_sweep(analysis, s->set, &regions);
+        for (int i = 0; *status == WR_OK && i < regions.count; i++)
+            result += q->what == WHAT_PUSH ? wr_region_length(&at, &regions.items[i])
+                                           : regions.items[i].t1 - regions.items[i].t0;
+        /* An empty region has length 0; a region has more. */
+        if (*status == WR_OK && regions.count > 0 && !(result > 0))
+            result = 0;
+        wr_regions_release(&regions);
+    }
+    wr_analysis_free(analysis);
+    return *status == WR_OK ? result : -1;
+}
+
+/* The intervals where the answer is non-zero, deciding each piece between
+ * consecutive points of `roots` (settled) at its middle. */
+static wr_status decide(const wr_sweeper *s, const question *q, const values *roots,
+                        wr_intervals *out)
+{
+    for (int i = 0; i + 1 < roots->count; i++) {
+        if (wr_stop_requested(q->stop))
+            return WR_STOPPED;
+        double lo = roots->items[i], hi = roots->items[i + 1];
+        wr_status status;
+        double value = answer_at(s, q, lo + (hi - lo) / 2, &status);
+        if (status != WR_OK)
+            return status;
+        if (value > 0 && !add_interval(out, lo, hi))
+            return WR_NO_MEMORY;
+    }
+    return WR_OK;
+}
+
+wr_status wr_sweep_wrench(const wr_sweeper *s, const double wrench[3], const wr_stop *stop,
+                          wr_intervals *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]))
+        return WR_INVALID;
+    double h[3];
+    wr_fixture_unit_wrench(s->fixture, wrench, h);
+    values roots = {0};
+    fixed_roots(s, h, &roots);
+    settle(&roots, &s->range);
+    wr_status status = WR_NO_MEMORY;
+    if (!roots.failed) {
+        question q = {WHAT_WRENCH, wrench, NULL, stop};
+        status = decide(s, &q, &roots, out);
+    }
+    free(roots.items);
+    if (status != WR_OK)
+        wr_intervals_release(out);
+    return status;
+}
+
+/* ---- push and gravity ------------------------------------------------------------- */
+
+/* Two planes meet the edge's wrench s1 c1 + s2 c2 at one point where
+ * alpha_P beta_Q - alpha_Q beta_P = 0, alpha = c1 . n(mu), beta = c2 . n(mu)
+ * (quadratics, so a quartic).  Each root is kept when the point is on the
+ * edge and on both faces. */
+static void edge_roots(const wr_sweeper *s, const wr_edge_frame *frame, const wr_stop *stop,
+                       values *out, bool *stopped)
+{
+    const wr_sweep_range *r = &s->range;
+    int n = s->plane_count;
+    double (*alpha)[3] = malloc((size_t)(n + 1) * sizeof *alpha);
+    double (*beta)[3] = malloc((size_t)(n + 1) * sizeof *beta);
+    if (!alpha || !beta) {
+        free(alpha);
+        free(beta);
+        out->failed = true;
+        return;
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            alpha[i][k] = wr_dot3(frame->c1, s->planes[i].n[k]);
+            beta[i][k] = wr_dot3(frame->c2, s->planes[i].n[k]);
+        }
+    for (int i = 0; i < n && !out->failed; i++) {
+        if (i % 16 == 0 && wr_stop_requested(stop)) {
+            *stopped = true;
+            break;
+        }
+        for (int j = i + 1; j < n; j++) {
+            double c[5] = {0, 0, 0, 0, 0};
+            for (int x = 0; x < 3; x++)
+                for (int y = 0; y < 3; y++)
+                    c[x + y] += alpha[i][x] * beta[j][y] - alpha[j][x] * beta[i][y];
+            double roots[MAX_DEGREE + 2];
+            int found = poly_roots(c, 4, r->low, r->high, roots);
+            for (int k = 0; k < found; k++) {
+                double mu = roots[k];
+                /* Where on the edge: from the plane that cuts it more
+                 * steeply. */
+                double ai = poly_value(alpha[i], 2, mu), bi = poly_value(beta[i], 2, mu);
+                double aj = poly_value(alpha[j], 2, mu), bj = poly_value(beta[j], 2, mu);
+                double a = ai, b = bi;
+                if (hypot(aj, bj) > hypot(ai, bi)) {
+                    a = aj;
+                    b = bj;
+                }
+                double points[3][2]; /* (s1, s2) */
+                int point_count = 0;
+                if (frame->kind == WR_EDGE_LINE) {
+                    /* a + t b = 0 */
+                    if (b == 0)
+                        continue;
+                    double t = -a / b;
+                    if (t >= -1e-9 && t <= 1 + 1e-9) {
+                        points[point_count][0] = 1;
+                        points[point_count++][1] = t;
+                    }
+                } else if (frame->kind == WR_EDGE_ARC) {
+                    /* (sin phi / s) a + cos phi b = 0 */
+                    double sa = frame->half_angle_sin, half = frame->half_angle;
+                    double root = a >= 0 ? atan2(-b * sa, a) : atan2(b * sa, -a);
+                    for (int turn = -2; turn <= 2; turn++) {
+                        double phi = root + turn * WR_PI;
+                        if (phi >= -half - 1e-9 && phi <= half + 1e-9 && point_count < 3) {
+                            points[point_count][0] = sin(phi) / sa;
+                            points[point_count++][1] = cos(phi);
+                        }
+                    }
+                } else {
+                    /* cos theta a + sin theta b = 0: two opposite points */
+                    double theta = atan2(-a, b);
+                    points[0][0] = cos(theta);
+                    points[0][1] = sin(theta);
+                    points[1][0] = -points[0][0];
+                    points[1][1] = -points[0][1];
+                    point_count = 2;
+                }
+                for (int m = 0; m < point_count; m++) {
+                    double h[3];
+                    for (int q = 0; q < 3; q++)
+                        h[q] = points[m][0] * frame->c1[q] + points[m][1] * frame->c2[q];
+                    if (on_face(s, &s->planes[i], h, mu) && on_face(s, &s->planes[j], h, mu)) {
+                        add_value(out, mu);
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    free(alpha);
+    free(beta);
+}
+
+/* The points of the curve: every root kept, and a grid between. */
+static wr_status make_curve(const wr_sweeper *s, const question *q, const values *roots,
+                            wr_sweep_curve *out)
+{
+    values points = {0};
+    for (int i = 0; i < roots->count; i++)
+        add_value(&points, roots->items[i]);
+    double width = s->range.high - s->range.low;
+    for (int i = 1; i < GRID; i++)
+        add_value(&points, s->range.low + width * i / GRID);
+    for (int i = 0; i < out->intervals.count; i++) {
+        add_value(&points, out->intervals.items[i][0]);
+        add_value(&points, out->intervals.items[i][1]);
+    }
+    settle(&points, &s->range);
+    wr_status status = points.failed ? WR_NO_MEMORY : WR_OK;
+    if (status == WR_OK) {
+        out->points = malloc((size_t)points.count * sizeof *out->points);
+        if (!out->points)
+            status = WR_NO_MEMORY;
+    }
+    for (int i = 0; status == WR_OK && i < points.count; i++) {
+        if (wr_stop_requested(q->stop)) {
+            status = WR_STOPPED;
+            break;
+        }
+        double mu = points.items[i];
+        double length = answer_at(s, q, mu, &status);
+        out->points[i][0] = mu;
+        out->points[i][1] = length;
+        out->point_count = i + 1;
+    }
+    free(points.items);
+    return status;
+}
+
+static void set_critical(const wr_sweeper *s, wr_sweep_curve *out)
+{
+    const wr_intervals *list = &out->intervals;
+    if (list->count == 0) {
+        out->has_critical = true;
+        out->critical = s->range.low;
+    } else if (list->items[list->count - 1][1] < s->range.high) {
+        out->has_critical = true;
+        out->critical = list->items[list->count - 1][1];
+    } else {
+        out->has_critical = false;
+    }
+}
+
+/* A finger with friction: its regions are sampled, so the sweep is too --
+ * FRICTION_STEPS pieces of mu, each change of emptiness bisected. */
+static wr_status sampled_intervals(const wr_sweeper *s, const question *q, wr_intervals *out)
+{
+    const wr_sweep_range *r = &s->range;
+    double width = r->high - r->low;
+    wr_status status;
+    double first = answer_at(s, q, r->low, &status);
+    if (status != WR_OK)
+        return status;
+    bool previous = first > 0;
+    double start = r->low;
+    for (int i = 1; i <= FRICTION_STEPS; i++) {
+        if (wr_stop_requested(q->stop))
+            return WR_STOPPED;
+        double lo = r->low + width * (i - 1) / FRICTION_STEPS;
+        double hi = i == FRICTION_STEPS ? r->high : r->low + width * i / FRICTION_STEPS;
+        bool now = answer_at(s, q, hi, &status) > 0;
+        if (status != WR_OK)
+            return status;
+        if (now == previous)
+            continue;
+        /* Bisect the change to the last bit worth having. */
+        while (hi - lo > ROOT_MERGE * fmax(1, r->high)) {
+            double mid = lo + (hi - lo) / 2;
+            bool m = answer_at(s, q, mid, &status) > 0;
+            if (status != WR_OK)
+                return status;
+            if (m == previous)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        double change = lo + (hi - lo) / 2;
+        if (previous && !add_interval(out, start, change))
+            return WR_NO_MEMORY;
+        start = change;
+        previous = now;
+    }
+    if (previous && !add_interval(out, start, r->high))
+        return WR_NO_MEMORY;
+    return WR_OK;
+}
+
+static wr_status sweep_region(const wr_sweeper *s, const question *q, wr_sweep_curve *out)
+{
+    memset(out, 0, sizeof *out);
+    const wr_fixture *f = s->fixture;
+    values roots = {0};
+    bool stopped = false;
+    wr_status status = WR_OK;
+    out->exact = true;
+    if (q->what == WHAT_PUSH && q->finger->friction > 0) {
+        out->exact = false;
+        out->resolution = (s->range.high - s->range.low) / FRICTION_STEPS;
+        status = sampled_intervals(s, q, &out->intervals);
+    } else {
+        if (q->what == WHAT_GRAVITY) {
+            wr_edge_frame frame = {WR_EDGE_CIRCLE, {1, 0, 0}, {0, 1, 0}, 0, 0};
+            edge_roots(s, &frame, q->stop, &roots, &stopped);
+        } else {
+            int edges = wr_push_edge_count(f);
+            for (int e = 0; e < edges && !stopped && !roots.failed; e++) {
+                wr_edge_frame frame;
+                wr_edge_frame_of(f, e, &frame);
+                edge_roots(s, &frame, q->stop, &roots, &stopped);
+                /* The ends of the edge and of the finger's blocked spans. */
+                if (frame.kind == WR_EDGE_CIRCLE)
+                    continue;
+                double ends[2][3];
+                for (int k = 0; k < 3; k++) {
+                    if (frame.kind == WR_EDGE_LINE) {
+                        ends[0][k] = frame.c1[k];
+                        ends[1][k] = frame.c1[k] + frame.c2[k];
+                    } else {
+                        double c = cos(frame.half_angle);
+                        ends[0][k] = -frame.c1[k] + c * frame.c2[k];
+                        ends[1][k] = frame.c1[k] + c * frame.c2[k];
+                    }
+                }
+                fixed_roots(s, ends[0], &roots);
+                fixed_roots(s, ends[1], &roots);
+                if (q->finger->radius > 0) {
+                    size_t loop, segment;
+                    wr_push_edge_place(f, e, &loop, &segment);
+                    wr_span *spans = NULL;
+                    int count = 0;
+                    status = wr_finger_blocked(f->outline, loop, segment, q->finger->radius,
+                                               q->stop, &spans, &count);
+                    for (int i = 0; status == WR_OK && i < count; i++) {
+                        double ts[2] = {spans[i].lo, spans[i].hi};
+                        for (int m = 0; m < 2; m++) {
+                            double w[3], h[3];
+                            wr_push_wrench(f, e, ts[m], w);
+                            h[0] = w[0];
+                            h[1] = w[1];
+                            h[2] = w[2] / f->gyration_radius;
+                            fixed_roots(s, h, &roots);
+                        }
+                    }
+                    free(spans);
+                    if (status != WR_OK)
+                        break;
+                }
+            }
+        }
+        settle(&roots, &s->range);
+        if (status == WR_OK)
+            status = stopped ? WR_STOPPED : roots.failed ? WR_NO_MEMORY : WR_OK;
+        if (status == WR_OK)
+            status = decide(s, q, &roots, &out->intervals);
+    }
+    if (status == WR_OK) {
+        set_critical(s, out);
+        status = make_curve(s, q, &roots, out);
+    }
+    free(roots.items);
+    if (status != WR_OK)
+        wr_sweep_curve_release(out);
+    return status;
+}
+
+wr_status wr_sweep_push(const wr_sweeper *s, const wr_finger *finger, const wr_stop *stop,
+                        wr_sweep_curve *out)
+{
+    memset(out, 0, sizeof *out);
+    if (s->fixture->shape == WR_SHAPE_NONE)
+        return WR_NO_SHAPE;
+    if (!(finger->friction >= 0) || !isfinite(finger->friction) || !(finger->radius >= 0) ||
+        !isfinite(finger->radius))
+        return WR_INVALID;
+    question q = {WHAT_PUSH, NULL, finger, stop};
+    return sweep_region(s, &q, out);
+}
+
+wr_status wr_sweep_gravity(const wr_sweeper *s, const wr_stop *stop, wr_sweep_curve *out)
+{
+    question q = {WHAT_GRAVITY, NULL, NULL, stop};
+    return sweep_region(s, &q, out);
+}

@@ -1,0 +1,111 @@
+/* wr_sweep.h -- answers as functions of one common friction coefficient
+ * (docs/PROTOCOL.md, friction.sweep; docs/MODEL.md section 8).
+ *
+ * On every fixel mu_s = mu and mu_k = ratio * mu, mu over [low, high]; the
+ * fixture's own friction is ignored.  Each answer changes only where some
+ * wrench meets the boundary of an excluded cone, and those values of mu
+ * are roots of polynomials:
+ *
+ *   - every generator of every excluded cone is affine in mu: an
+ *     acceleration direction of M Q_X (no mu at all) or a friction edge
+ *     -(W_n + c mu W_t), c in {+-1, +-ratio};
+ *   - a face of a cone lies in the plane of two of its generators, whose
+ *     normal g_a(mu) x g_b(mu) is quadratic in mu;
+ *   - a fixed wrench h (a classified wrench, the push at an end of an edge
+ *     or of a finger's blocked span) meets the plane where h . n(mu) = 0:
+ *     degree 2;
+ *   - the push wrench along an edge (or gravity over the circle of tilts)
+ *     is s1 c1 + s2 c2 in two coordinates (wr_internal.h), so two planes
+ *     meet it at the same point where (c1.n_P)(c2.n_Q) - (c1.n_Q)(c2.n_P)
+ *     vanishes: degree 4.  A push region (an arc) can only appear or
+ *     vanish where two of its ends meet, which is such a point or an end
+ *     of the edge.
+ *
+ * Every real root in the range is found, however close to another (each
+ * polynomial's monotone pieces come from its derivative's roots, and each
+ * is bisected to the last bit), and kept when the wrench there lies on the
+ * face itself in a plane that supports its cone.  Between two consecutive
+ * roots nothing changes, so the answer is decided at the middle of each
+ * piece: no interval can hide between samples, however narrow.  G_goal
+ * needs no special case (it shrinks as mu grows, so its intervals start at
+ * the bottom of the range); G_strong's, which do not, come out the same
+ * way. */
+#ifndef WR_SWEEP_H
+#define WR_SWEEP_H
+
+#include "wr_regions.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct wr_sweep_range {
+    double low, high;     /* 0 <= low < high <= WR_MAX_FRICTION */
+    double kinetic_ratio; /* mu_k / mu_s, in (0, 1] */
+} wr_sweep_range;
+
+/* Closed intervals [lo, hi] of mu, sorted and disjoint. */
+typedef struct wr_intervals {
+    int count;
+    int capacity;
+    double (*items)[2];
+} wr_intervals;
+
+void wr_intervals_release(wr_intervals *intervals);
+
+/* A push region's total length (or a gravity arc's, in degrees) against mu. */
+typedef struct wr_sweep_curve {
+    wr_intervals intervals; /* where the region is non-empty */
+    bool has_critical;      /* false: non-empty at the top of the range */
+    double critical;        /* the upper end of the last interval, or the
+                               bottom of the range when there is none */
+    int point_count;
+    double (*points)[2];    /* (mu, length), increasing in mu, from low to
+                               high: every root kept and a grid between */
+    bool exact;             /* false with a finger with friction */
+    double resolution;      /* 0 when exact; else the step in mu below
+                               which an interval may be missed */
+} wr_sweep_curve;
+
+void wr_sweep_curve_release(wr_sweep_curve *curve);
+
+/* Opaque: the excluded cones of a set, their generators as functions of mu
+ * and the planes of their faces.  Immutable once built: any number of
+ * threads may sweep with it at once. */
+typedef struct wr_sweeper wr_sweeper;
+
+/* For `fixture` (borrowed: it must outlive the sweeper), `set` and
+ * `range`.  WR_OK; WR_INVALID for a range or ratio out of bounds;
+ * WR_NO_MEMORY.  *out is NULL unless WR_OK. */
+wr_status wr_sweeper_new(const wr_fixture *fixture, wr_set set, const wr_sweep_range *range,
+                         wr_sweeper **out);
+void wr_sweeper_free(wr_sweeper *sweeper);
+
+/* The intervals of mu in which the physical wrench is inside the set (its
+ * margin above WR_DEFAULT_TOLERANCE).  WR_OK; WR_INVALID for a wrench that
+ * is not finite; WR_NO_MEMORY; WR_STOPPED.  `out` is empty unless WR_OK. */
+wr_status wr_sweep_wrench(const wr_sweeper *sweeper, const double wrench[3],
+                          const wr_stop *stop, wr_intervals *out);
+
+/* The push region's total length against mu for a finger (as
+ * wr_push_regions_finger).  Exact unless the finger has friction: its
+ * regions are sampled, and so is the sweep (256 steps of mu, each change
+ * bisected).  WR_OK; WR_NO_SHAPE; WR_INVALID for a bad finger;
+ * WR_NO_MEMORY; WR_STOPPED.  `out` is empty unless WR_OK. */
+wr_status wr_sweep_push(const wr_sweeper *sweeper, const wr_finger *finger,
+                        const wr_stop *stop, wr_sweep_curve *out);
+
+/* The total gravity arc of the set, in degrees, against mu (always exact).
+ * WR_OK; WR_NO_MEMORY; WR_STOPPED. */
+wr_status wr_sweep_gravity(const wr_sweeper *sweeper, const wr_stop *stop, wr_sweep_curve *out);
+
+/* The fixture at a common coefficient: a shallow copy of `fixture` (its
+ * shape borrowed, never to be freed) with mu_s = mu and mu_k = ratio * mu
+ * on every fixel. */
+void wr_fixture_at_friction(const wr_fixture *fixture, double mu, double ratio, wr_fixture *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
