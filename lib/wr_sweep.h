@@ -1,5 +1,5 @@
 /* wr_sweep.h -- answers as functions of one common friction coefficient
- * (docs/PROTOCOL.md, friction.sweep; docs/MODEL.md section 8).
+ * (docs/PROTOCOL.md, friction.sweep).
  *
  * On every fixel mu_s = mu and mu_k = ratio * mu, mu over [low, high]; the
  * fixture's own friction is ignored.  Each answer changes only where some
