@@ -100,6 +100,18 @@ def main():
     print("  %-16s stability.margin of the chamfer push -> %.4g, the worst disturbance "
           "starts %s" % ("plate-chamfered", held.margin, held.blocking))
 
+    # Friction nobody knows exactly: the same question for every mu at once.
+    sweep = client.call("friction.sweep", {"fixture": ids["plate-chamfered"], "range": [0, 1],
+                                           "push": {"set": "goal"}})
+    print("\nfriction.sweep: how much friction can the chamfered plate take?")
+    print("  %-16s push goal region, mu in [0, 1]: non-empty on %s; critical mu %.6f "
+          "(above it no push seats the part)"
+          % ("plate-chamfered", ", ".join("[%.6g, %.6g]" % (a, b) for a, b in sweep["intervals"]),
+             sweep["critical"]))
+    lengths = {round(mu, 6): length for mu, length in sweep["curve"]}
+    print("  %-16s region length at mu = 0, 0.125, 0.25: %s" % (
+        "", ", ".join("%.4f" % lengths[m] for m in (0.0, 0.125, 0.25) if m in lengths)))
+
     # Pictures, drawn by wrenchctl from the daemon's answers.
     out = os.path.join(ROOT, "out")
     os.makedirs(out, exist_ok=True)
