@@ -210,8 +210,16 @@ static bool draw_push(const wc_run *run, const cJSON *result, FILE *out,
     return true;
 }
 
+/* With --friction, the line saying so above the table. */
+static void print_friction(const wc_run *run)
+{
+    if (!run->o->json && run->friction_interval_given)
+        wc_print_friction(run->friction_low, run->friction_high);
+}
+
 int wc_push_answer(wc_run *run, const cJSON *result)
 {
+    print_friction(run);
     if (!run->o->json)
         print_push(run, result);
     int status = picture(run, result, draw_push);
@@ -249,6 +257,7 @@ int wc_gravity_answer(wc_run *run, const cJSON *result)
 {
     const cJSON *arcs = cJSON_GetObjectItem(result, "intervals_deg");
     int count = cJSON_GetArraySize(arcs);
+    print_friction(run);
     if (!run->o->json) {
         printf("set %s: tilts (degrees, the direction gravity pulls in the part's frame)\n",
                set_name(run));
@@ -322,6 +331,7 @@ int wc_margin_answer(wc_run *run, const cJSON *result)
 {
     const cJSON *margin = cJSON_GetObjectItem(result, "margin");
     bool held = !cJSON_IsNumber(margin) || margin->valuedouble > 0;
+    print_friction(run);
     if (!run->o->json)
         print_margin(result, held);
     int status = picture(run, result, draw_margin);
