@@ -467,6 +467,29 @@ const wc_command wc_commands[] = {
      "  --svg FILE        also draw the bias and the worst disturbance on the part\n"
      FRICTION_HELP("  ")
      "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
+    {"sweep",
+     "FIXTURE (--push SET | --gravity SET | --wrench FX,FY,TAU... [--set SET]) [--range LO:HI]\n"
+     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+     "friction.sweep", wc_sweep_request, wc_sweep_answer,
+     "how the answers change with the friction",
+     "Sweep the friction: mu_s = mu and mu_k = R mu at every fixel (the fixture's own friction\n"
+     "ignored), for mu over a range; one of:\n"
+     "  --push SET          the push region of SET (goal, strong or both): the mu where it is\n"
+     "                      not empty, the critical mu above which it is (none when it is not\n"
+     "                      empty at the top of the range), and its length against mu\n"
+     "  --gravity SET       the same for the gravity arcs, their total in degrees\n"
+     "  --wrench FX,FY,TAU  a wrench (torque about the centre of mass), repeated for more: for\n"
+     "                      each, and each set, the mu where it is inside\n"
+     "  --set SET           with --wrench: one set (default goal and strong)\n"
+     "  --range LO:HI       the range of mu, 0 <= LO < HI (default 0:2)\n"
+     "  --kinetic-ratio R   mu_k = R mu, 0 < R <= 1 (default 1)\n"
+     "  --finger-friction MU, --finger-radius R\n"
+     "                      with --push: the finger, as for push\n"
+     "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
+     "                      and the critical mu marked; for wrenches a band per wrench and set\n"
+     "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
+     "inside each set for some mu), 1 when not."},
     {"status", "",
      WC_DAEMON, 0, 0,
      "server.status", NULL, wc_status_answer,
@@ -497,8 +520,8 @@ static const char GENERAL[] =
 
 static const char EXIT_TEXT[] =
     "\nExit status: 0 done (classify: every wrench inside; push, gravity: a region; margin:\n"
-    "the bias holds); 1 not so; 2 usage error; 3 the daemon is unreachable; 4 the daemon\n"
-    "answered an error.\n";
+    "the bias holds; sweep: not empty for some mu); 1 not so; 2 usage error; 3 the daemon is\n"
+    "unreachable; 4 the daemon answered an error.\n";
 
 int wc_command_help(const char *name)
 {
