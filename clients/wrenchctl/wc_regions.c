@@ -379,9 +379,21 @@ int wc_sweep_request(wc_run *run, cJSON *params)
     return -1;
 }
 
-static double sweep_low(const wc_run *run) { return run->range_given ? run->range[0] : DEFAULT_RANGE[0]; }
-static double sweep_high(const wc_run *run) { return run->range_given ? run->range[1] : DEFAULT_RANGE[1]; }
-static double sweep_ratio(const wc_run *run) { return run->ratio_given ? run->kinetic_ratio : 1; }
+/* The range and the kinetic ratio swept: those given, or the defaults. */
+static double sweep_low(const wc_run *run)
+{
+    return run->range_given ? run->range[0] : DEFAULT_RANGE[0];
+}
+
+static double sweep_high(const wc_run *run)
+{
+    return run->range_given ? run->range[1] : DEFAULT_RANGE[1];
+}
+
+static double sweep_ratio(const wc_run *run)
+{
+    return run->ratio_given ? run->kinetic_ratio : 1;
+}
 
 /* The first line: what was swept, and how. */
 static void print_sweep_header(const wc_run *run, const char *what)

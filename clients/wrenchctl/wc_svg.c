@@ -704,7 +704,8 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
              push ? "push region" : "gravity sweep", spans);
     legend(out, 1, text);
     if (!isfinite(p->critical))
-        snprintf(text, sizeof text, "not empty at the top of the range, \xce\xbc = %g: no critical \xce\xbc",
+        snprintf(text, sizeof text,
+                 "not empty at the top of the range, \xce\xbc = %g: no critical \xce\xbc",
                  p->range[1]);
     else if (p->interval_count == 0)
         snprintf(text, sizeof text, "red: empty for every \xce\xbc from %g to %g", p->range[0],
@@ -754,7 +755,8 @@ void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], doub
         fprintf(out, "  %s</text>\n", bands[i].set);
     }
     mu_axis(out, &x, bottom, kinetic_ratio);
-    snprintf(text, sizeof text, "%s: where each wrench is inside each set, against the friction \xce\xbc", name);
+    snprintf(text, sizeof text,
+             "%s: where each wrench is inside each set, against the friction \xce\xbc", name);
     legend(out, 0, text);
     legend(out, 1, "black: \xce\xbc where the wrench is inside the set");
     for (int i = 0; i < set_count; i++)
