@@ -212,7 +212,8 @@ int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
         if (low == high)
             cJSON_AddNumberToObject(friction, names[k], low);
         else
-            cJSON_AddItemToObject(friction, names[k], cJSON_CreateDoubleArray((double[]){low, high}, 2));
+            cJSON_AddItemToObject(friction, names[k],
+                                  cJSON_CreateDoubleArray((double[]){low, high}, 2));
     }
     cJSON_DeleteItemFromObject(*fixture, "friction");
     cJSON_AddItemToObject(*fixture, "friction", friction);
