@@ -410,6 +410,118 @@ int wrc_classify(wrc_client *c, const char *fixture_id, const double wrench[3], 
     return WRC_OK;
 }
 
+/* Reads "[[a, b], [c, d], ...]" at p into sweep's intervals; the end of the
+ * array, or NULL when it is not one. */
+static const char *read_intervals(const char *p, wrc_sweep *sweep)
+{
+    sweep->interval_count = 0;
+    p += strspn(p, " ");
+    if (*p++ != '[')
+        return NULL;
+    for (;;) {
+        p += strspn(p, " ,");
+        if (*p == ']')
+            return p + 1;
+        if (*p++ != '[')
+            return NULL;
+        double bounds[2];
+        for (int k = 0; k < 2; k++) {
+            p += strspn(p, " ,");
+            char *end;
+            bounds[k] = strtod(p, &end);
+            if (end == p)
+                return NULL;
+            p = end;
+        }
+        p += strspn(p, " ");
+        if (*p++ != ']')
+            return NULL;
+        if (sweep->interval_count < WRC_SWEEP_INTERVALS) {
+            sweep->intervals[sweep->interval_count][0] = bounds[0];
+            sweep->intervals[sweep->interval_count][1] = bounds[1];
+        }
+        sweep->interval_count++;
+    }
+}
+
+int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_request *r,
+                       wrc_sweep *sweep)
+{
+    if (!c || !fixture_id || !r || !r->kind || !r->set || !sweep)
+        return WRC_EINVAL;
+    bool push = strcmp(r->kind, "push") == 0, wrench = strcmp(r->kind, "wrench") == 0;
+    if (!push && !wrench && strcmp(r->kind, "gravity") != 0)
+        return fail(c, WRC_EINVAL, "kind is \"push\", \"gravity\" or \"wrench\", not \"%.20s\"",
+                    r->kind);
+    if (strcmp(r->set, "goal") != 0 && strcmp(r->set, "strong") != 0 &&
+        strcmp(r->set, "both") != 0)
+        return fail(c, WRC_EINVAL, "set is \"goal\", \"strong\" or \"both\", not \"%.20s\"",
+                    r->set);
+    for (const char *p = fixture_id; *p; p++)
+        if (*p == '"' || *p == '\\' || (unsigned char)*p < 32)
+            return fail(c, WRC_EINVAL, "a fixture id has no quotes, backslashes or controls");
+    const double numbers[] = {r->wrench[0], r->wrench[1], r->wrench[2], r->range[0],
+                              r->range[1], r->kinetic_ratio, r->finger_friction,
+                              r->finger_radius};
+    for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; k++)
+        if (!isfinite(numbers[k]))
+            return fail(c, WRC_EINVAL, "a number of the request is not finite");
+    unsigned long id = ++c->next_id;
+    size_t n = 0, size = c->buffer_bytes;
+    char *q = c->request;
+#define PUT(...)                                                                                   \
+    do {                                                                                           \
+        int written = snprintf(q + (n < size ? n : size), n < size ? size - n : 0, __VA_ARGS__);  \
+        n += written > 0 ? (size_t)written : 0;                                                    \
+    } while (0)
+    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"friction.sweep\",\"params\":{\"fixture\":\"%s\"",
+        fixture_id);
+    if (r->range[0] != 0 || r->range[1] != 0)
+        PUT(",\"range\":[%.17g,%.17g]", r->range[0], r->range[1]);
+    if (r->kinetic_ratio != 0)
+        PUT(",\"kinetic_ratio\":%.17g", r->kinetic_ratio);
+    if (wrench) {
+        PUT(",\"wrenches\":[[%.17g,%.17g,%.17g]],\"sets\":[\"%s\"]", r->wrench[0], r->wrench[1],
+            r->wrench[2], r->set);
+    } else {
+        PUT(",\"%s\":{\"set\":\"%s\"", r->kind, r->set);
+        if (push && r->finger_friction != 0)
+            PUT(",\"finger_friction\":%.17g", r->finger_friction);
+        if (push && r->finger_radius != 0)
+            PUT(",\"finger_radius\":%.17g", r->finger_radius);
+        PUT("}");
+    }
+    PUT("},\"id\":%lu}\n", id);
+#undef PUT
+    if (n >= size)
+        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
+    size_t capacity = c->buffer_bytes;
+    int status = exchange(c, c->request, n, &c->answer, &capacity, false);
+    if (status != WRC_OK)
+        return status;
+    const char *text = c->answer;
+    /* The id is the answer's last member: the curve's numbers come before. */
+    const char *answer_id = strstr(text, "\"id\":");
+    while (answer_id && strstr(answer_id + 1, "\"id\":"))
+        answer_id = strstr(answer_id + 1, "\"id\":");
+    if (!answer_id || strtoul(answer_id + 5, NULL, 10) != id)
+        return fail(c, WRC_EPROTO, "the answer's id is not the request's");
+    if (read_server_error(c, text))
+        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
+    sweep->critical = NAN;
+    const char *intervals = value_of(text, wrench ? r->set : "intervals");
+    if (!intervals || !read_intervals(intervals, sweep))
+        return fail(c, WRC_EPROTO, "the answer has no intervals");
+    if (!wrench) {
+        const char *critical = value_of(text, "critical");
+        if (!critical)
+            return fail(c, WRC_EPROTO, "the answer has no critical mu");
+        if (strncmp(critical, "null", 4) != 0)
+            sweep->critical = strtod(critical, NULL);
+    }
+    return WRC_OK;
+}
+
 int wrc_call(wrc_client *c, const char *request, char **answer)
 {
     if (!c || !request || !answer)

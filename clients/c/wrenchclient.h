@@ -7,8 +7,8 @@
  * it again (once) before giving up.
  *
  * Memory: wrc_connect allocates the client and its buffers; wrc_classify
- * then allocates nothing, whatever it is asked.  wrc_call allocates its
- * answer.
+ * and wrc_friction_sweep then allocate nothing, whatever they are asked.
+ * wrc_call allocates its answer.
  *
  * Threads: a client belongs to one thread at a time (calls on one client
  * must not overlap); different clients are independent.  Nothing is global.
@@ -74,6 +74,48 @@ typedef struct wrc_answer {
  * Returns WRC_OK, or an error code (WRC_ESERVER for an unknown fixture). */
 int wrc_classify(wrc_client *client, const char *fixture_id, const double wrench[3],
                  const char *set, wrc_answer *answer);
+
+/* friction.sweep, for a stored fixture: mu_s = mu and mu_k = kinetic_ratio
+ * mu at every fixel (the fixture's own friction ignored), mu over a range.
+ * `kind` says what is swept:
+ *   "push"     the push region of `set` (a finger as in push.regions:
+ *              finger_friction, finger_radius, 0 for none);
+ *   "gravity"  the gravity arcs of `set`;
+ *   "wrench"   `wrench` (f_x, f_y, tau) against `set`.
+ * range {0, 0} and kinetic_ratio 0 ask for the daemon's defaults ([0, 2]
+ * and 1). */
+typedef struct wrc_sweep_request {
+    const char *kind;       /* "push", "gravity" or "wrench" */
+    const char *set;        /* "goal", "strong" or "both" */
+    double wrench[3];       /* kind "wrench" */
+    double range[2];        /* 0 <= range[0] < range[1]; {0, 0}: the default */
+    double kinetic_ratio;   /* in (0, 1]; 0: the default */
+    double finger_friction; /* kind "push" */
+    double finger_radius;   /* kind "push" */
+} wrc_sweep_request;
+
+#define WRC_SWEEP_INTERVALS 16
+
+typedef struct wrc_sweep {
+    /* The mu intervals where the region is not empty (for a wrench: where
+     * it is inside the set), in order.  interval_count may exceed
+     * WRC_SWEEP_INTERVALS: the first ones are kept. */
+    int interval_count;
+    double intervals[WRC_SWEEP_INTERVALS][2];
+    /* push and gravity: the mu above which the region is empty (the bottom
+     * of the range when it is empty throughout); NAN when it is not empty
+     * at the top of the range, and for a wrench. */
+    double critical;
+} wrc_sweep;
+
+/* One friction.sweep; allocates nothing.  The answer's curve (the region's
+ * size at many mu, which this leaves out) must fit the client's buffer
+ * (buffer_bytes of wrc_connect; WRC_ETOOBIG otherwise): for the curve
+ * itself, send the request with wrc_call.  Returns WRC_OK, or an error code
+ * (WRC_ESERVER for an unknown fixture, or a daemon without friction.sweep:
+ * -32601). */
+int wrc_friction_sweep(wrc_client *client, const char *fixture_id,
+                       const wrc_sweep_request *request, wrc_sweep *sweep);
 
 /* Send one JSON-RPC request (a JSON text without "\n") and return its
  * answer line, malloc'd (the caller frees it).  For notifications nothing

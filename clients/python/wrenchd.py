@@ -22,6 +22,12 @@ Methods of Client (and of Batch, see below):
     cone(fixture, constraints)             -> Cone        cone.get
     plan(fixture)                          -> Plan        plan.get
     modes(fixture)                         -> Modes       modes.get
+    push_regions(fixture, set="goal", finger_friction=0, finger_radius=0)
+                                           -> PushRegions push.regions
+    gravity_sweep(fixture, set="goal")     -> [[a, b]]    gravity.sweep (degrees)
+    stability_margin(fixture, bias)        -> Disturbance stability.margin
+    friction_sweep(fixture, range=(0, 2), kinetic_ratio=1.0, wrenches=None, sets=None,
+                   push=None, gravity=None) -> FrictionSweep  friction.sweep
     status()                               -> Status      server.status
     call(method, params=None, readonly=False) -> the raw "result" (any method)
 
@@ -96,13 +102,14 @@ import socket
 import threading
 import time
 from dataclasses import MISSING, dataclass, fields
+from dataclasses import field as dataclasses_field
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
 
 __all__ = [
     "Client", "Batch", "Pending",
     "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
     "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
-    "FixtureInfo", "explain", "explain_goal", "explain_strong", "default_socket_path",
+    "FixtureInfo", "FrictionSweep", "explain", "explain_goal", "explain_strong", "default_socket_path",
     "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
     "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
 ]
@@ -111,7 +118,7 @@ __version__ = "0.1.0"
 
 DEFAULT_TIMEOUT = 30.0
 READ_ONLY_METHODS = frozenset(("wrench.classify", "fixture.get", "fixture.list", "cone.get",
-                               "plan.get", "modes.get", "server.status"))
+                               "plan.get", "modes.get", "server.status", "friction.sweep"))
 
 # JSON-RPC error codes (docs/PROTOCOL.md)
 PARSE_ERROR = -32700
@@ -341,6 +348,44 @@ class Disturbance:
     margin: Optional[float]            # < 0: the bias itself moves the part
     blocking: Optional[str]            # the mode the worst disturbance starts
     worst_direction: Optional[List[float]]  # a wrench of unit scaled length
+
+
+@dataclass
+class FrictionSweep:
+    """friction.sweep: mu_s = mu and mu_k = kinetic_ratio * mu at every
+    fixel, mu over a range.  For push or gravity: `intervals` of mu where
+    the region is not empty, `critical` the mu above which it is empty
+    (None when it is not empty at the top of the range; the bottom of the
+    range when empty throughout), `curve` [[mu, size], ...] increasing in mu
+    (the push region's total length, or the gravity arcs' total in
+    degrees), and for push `exact` and `resolution`.  For wrenches:
+    `results`, one {set name: [[lo, hi], ...]} per wrench, the mu where it
+    is inside; the other fields are then empty."""
+    intervals: List[List[float]] = dataclasses_field(default_factory=list)
+    critical: Optional[float] = None
+    curve: List[List[float]] = dataclasses_field(default_factory=list)
+    exact: bool = True
+    resolution: float = 0.0
+    results: Optional[List[Dict[str, List[List[float]]]]] = None
+
+
+def _friction_sweep_result(result: Any) -> FrictionSweep:
+    if not isinstance(result, dict) or not (isinstance(result.get("results"), list)
+                                            or isinstance(result.get("intervals"), list)):
+        raise WrenchdProtocolError("friction.sweep: the answer has no results or intervals")
+    return _build(FrictionSweep, result, "friction.sweep")
+
+
+def _sweep_part(value: Any, what: str) -> Dict[str, Any]:
+    """push= or gravity= of friction_sweep: a set name, True (the defaults)
+    or a dict of its members."""
+    if value is True:
+        return {}
+    if isinstance(value, str):
+        return {"set": value}
+    if isinstance(value, Mapping):
+        return dict(value)
+    raise TypeError("%s is a set name, True or a dict, not %s" % (what, type(value).__name__))
 
 
 def _push_result(result: Any) -> PushRegions:
@@ -658,6 +703,37 @@ class _Methods:
         return self._invoke("stability.margin", {"fixture": _fixture_ref(fixture),
                                                  "bias": _wrench(bias)},
                             lambda r: _build(Disturbance, r, "stability.margin"), True, timeout)
+
+    def friction_sweep(self, fixture: Any, *, range: Sequence[float] = (0, 2),
+                       kinetic_ratio: float = 1.0, wrenches: Optional[Iterable[Any]] = None,
+                       sets: Optional[Union[str, Sequence[str]]] = None,
+                       push: Any = None, gravity: Any = None, timeout: Any = _DEFAULT):
+        """friction.sweep: how the answers change with the friction, mu_s =
+        mu and mu_k = kinetic_ratio * mu at every fixel (the fixture's own
+        friction ignored), mu over `range` (FrictionSweep).  Exactly one of
+        `wrenches` (with `sets`, default the daemon's: goal and strong),
+        `push` and `gravity`; push and gravity are a set name, True (set
+        goal) or a dict ({"set", "finger_friction", "finger_radius"} for
+        push)."""
+        given = [name for name, value in (("wrenches", wrenches), ("push", push),
+                                          ("gravity", gravity)) if value is not None]
+        if len(given) != 1:
+            raise ValueError("friction_sweep takes exactly one of wrenches, push and gravity%s"
+                             % (", not " + " and ".join(given) if given else ""))
+        if sets is not None and wrenches is None:
+            raise ValueError("friction_sweep: sets go with wrenches")
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture),
+                                  "range": [float(x) for x in range],
+                                  "kinetic_ratio": kinetic_ratio}
+        if wrenches is not None:
+            params["wrenches"] = [_wrench(w) for w in wrenches]
+            if sets is not None:
+                params["sets"] = [sets] if isinstance(sets, str) else list(sets)
+        elif push is not None:
+            params["push"] = _sweep_part(push, "push")
+        else:
+            params["gravity"] = _sweep_part(gravity, "gravity")
+        return self._invoke("friction.sweep", params, _friction_sweep_result, True, timeout)
 
     def status(self, *, timeout: Any = _DEFAULT):
         """server.status."""

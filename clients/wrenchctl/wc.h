@@ -8,7 +8,9 @@
  *      the global ones), --help, and the count of its arguments;
  *   2. WC_DAEMON: refused with --local (there is no store in process);
  *   3. WC_FIXTURE: its first argument read as a fixture (a file, sent
- *      inline, or a stored fixture's id) into run->fixture;
+ *      inline, or a stored fixture's id) into run->fixture; with --friction
+ *      (WC_OPT_INTERVAL) a stored one is fetched, and the fixture is sent
+ *      inline with its friction replaced by the interval (wc_call.h);
  *   4. the row's request function adds the rest of the params (or refuses
  *      the arguments with an exit status);
  *   5. the request to the daemon, or in process with --local: errors said
@@ -55,7 +57,10 @@ enum {
     WC_OPT_SET = 1 << 11,       /* --set goal|strong|both */
     WC_OPT_FRICTION = 1 << 12,  /* --finger-friction MU */
     WC_OPT_SVG = 1 << 13,       /* --svg FILE */
-    WC_OPT_RADIUS = 1 << 14     /* --finger-radius R */
+    WC_OPT_RADIUS = 1 << 14,    /* --finger-radius R */
+    WC_OPT_INTERVAL = 1 << 15,  /* --friction LO:HI (or MU): the fixels' friction */
+    WC_OPT_SWEEP = 1 << 16      /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
+                                   --range LO:HI, --kinetic-ratio R */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -77,9 +82,17 @@ typedef struct wc_run {
     bool friction_given;
     double finger_radius;
     bool radius_given;
+    double friction_low, friction_high; /* --friction: [low, high], low == high for MU */
+    bool friction_interval_given;
+    const char *sweep_kind; /* sweep: "push", "gravity" or "wrenches"; NULL when none */
+    const char *sweep_set;  /* --push SET or --gravity SET */
+    double range[2];        /* --range */
+    bool range_given;
+    double kinetic_ratio;   /* --kinetic-ratio */
+    bool ratio_given;
     /* WC_FIXTURE: the fixture as sent (an object, or an id string) */
     cJSON *fixture;
-    /* kept by a request function for its answer */
+    /* kept by a request function for its answer (sweep: --wrench, as read) */
     cJSON *wrenches;
     cJSON *bias;
 } wc_run;

@@ -183,6 +183,43 @@ cJSON *wc_fixture_argument(wc_options *o, const char *argument)
     return cJSON_CreateString(argument);
 }
 
+/* --friction LO:HI: the fixture inline, its friction the interval at every
+ * fixel. */
+int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
+{
+    if (cJSON_IsString(*fixture)) {
+        int status;
+        cJSON *params = cJSON_CreateObject();
+        cJSON_AddStringToObject(params, "id", (*fixture)->valuestring);
+        cJSON *stored = wc_call(o, "fixture.get", params, &status);
+        if (!stored)
+            return status;
+        cJSON_Delete(*fixture);
+        *fixture = stored;
+    }
+    if (!cJSON_IsObject(*fixture))
+        return wc_usage_error("--friction: the fixture is not a JSON object");
+    cJSON *fixels = cJSON_GetObjectItem(*fixture, "fixels");
+    cJSON *fixel;
+    cJSON_ArrayForEach(fixel, fixels)
+    {
+        if (cJSON_IsObject(fixel))
+            cJSON_DeleteItemFromObject(fixel, "friction");
+    }
+    cJSON *friction = cJSON_CreateObject();
+    const char *const names[] = {"static", "kinetic"};
+    for (int k = 0; k < 2; k++) {
+        if (low == high)
+            cJSON_AddNumberToObject(friction, names[k], low);
+        else
+            cJSON_AddItemToObject(friction, names[k],
+                                  cJSON_CreateDoubleArray((double[]){low, high}, 2));
+    }
+    cJSON_DeleteItemFromObject(*fixture, "friction");
+    cJSON_AddItemToObject(*fixture, "friction", friction);
+    return -1;
+}
+
 /* ---- wrenches ---------------------------------------------------------------- */
 
 /* "fx,fy,tau" or "fx,fy@x,y" as a wrench JSON value; NULL if neither. */

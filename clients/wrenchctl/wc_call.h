@@ -26,6 +26,18 @@ char *wc_read_all(FILE *file, size_t *length);
  * after saying why when neither. */
 cJSON *wc_fixture_argument(wc_options *o, const char *argument);
 
+/* The largest friction coefficient wrenchd takes (docs/PROTOCOL.md). */
+#define WC_FRICTION_MOST 1000.0
+
+/* --friction: *fixture (an object, or a stored fixture's id, which is
+ * fetched with fixture.get) becomes an object whose friction is
+ * {"static": [low, high], "kinetic": [low, high]} (numbers when low ==
+ * high) at the top level, every fixel's own "friction" removed so that the
+ * interval applies to every fixel.  Returns -1 to go on, or the exit status
+ * after saying why not (the fetch's, or EXIT_USAGE for a fixture that is
+ * not an object). */
+int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high);
+
 /* "fx,fy,tau" or "fx,fy@x,y" as a wrench JSON value; NULL if neither. */
 cJSON *wc_wrench_argument(const char *text);
 

@@ -143,6 +143,8 @@ int wc_classify_answer(wc_run *run, const cJSON *result)
     const cJSON *r, *v;
     cJSON_ArrayForEach(r, results)
     cJSON_ArrayForEach(v, r) all_inside &= cJSON_IsTrue(cJSON_GetObjectItem(v, "inside"));
+    if (!run->o->json && run->friction_interval_given)
+        wc_print_friction(run->friction_low, run->friction_high);
     if (!run->o->json)
         print_verdicts(run->wrenches, results);
     return all_inside ? EXIT_INSIDE : EXIT_NOT_INSIDE;

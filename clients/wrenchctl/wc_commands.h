@@ -27,12 +27,14 @@ int wc_cone_answer(wc_run *run, const cJSON *result);
 int wc_plan_answer(wc_run *run, const cJSON *result);
 int wc_modes_answer(wc_run *run, const cJSON *result);
 
-/* wc_regions.c: push, gravity, margin, and their --svg pictures */
+/* wc_regions.c: push, gravity, margin, sweep, and their --svg pictures */
 int wc_push_request(wc_run *run, cJSON *params);
 int wc_push_answer(wc_run *run, const cJSON *result);
 int wc_gravity_request(wc_run *run, cJSON *params);
 int wc_gravity_answer(wc_run *run, const cJSON *result);
 int wc_margin_request(wc_run *run, cJSON *params);
 int wc_margin_answer(wc_run *run, const cJSON *result);
+int wc_sweep_request(wc_run *run, cJSON *params); /* friction.sweep */
+int wc_sweep_answer(wc_run *run, const cJSON *result);
 
 #endif

@@ -40,6 +40,16 @@ void wc_print_strings(const cJSON *list)
     printf("\n");
 }
 
+void wc_print_friction(double low, double high)
+{
+    if (low == high)
+        printf("friction %g at every fixel, static and kinetic (--friction)\n", low);
+    else
+        printf("friction [%g, %g] at every fixel, static and kinetic: robust answers, each holds "
+               "for every friction in the interval\n",
+               low, high);
+}
+
 /* "(fx, fy, tau)" or "(fx, fy) at (x, y)". */
 void wc_describe_wrench(const cJSON *w, char *out, size_t size)
 {

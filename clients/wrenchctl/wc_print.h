@@ -16,6 +16,11 @@ void wc_print_json(const cJSON *value);
 void wc_print_rows(const char *label, const cJSON *rows, const cJSON *flags,
                    const char *flag_text);
 
+/* With --friction, the line above a table saying the friction every fixel
+ * was given, [low, high] (or low when high == low), and that the answers
+ * below are robust: each holds for every friction in the interval. */
+void wc_print_friction(double low, double high);
+
 /* The strings of a list, each after a space, and a newline. */
 void wc_print_strings(const cJSON *list);
 

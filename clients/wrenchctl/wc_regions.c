@@ -1,7 +1,8 @@
 /* wc_regions.c -- docs/MODEL.md section 6's answers: push (where a finger's push
  * seats the part), gravity (the tilts under which gravity does) and margin
- * (how large a disturbance a biasing wrench tolerates); each as a table
- * and, with --svg, a picture (wc_svg.h). */
+ * (how large a disturbance a biasing wrench tolerates), and sweep (how the
+ * push region, the gravity arcs or wrenches' verdicts change with the
+ * friction); each as a table and, with --svg, a picture (wc_svg.h). */
 #include "wc_call.h"
 #include "wc_commands.h"
 #include "wc_print.h"
@@ -10,6 +11,7 @@
 #include "wp_fixture.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -210,8 +212,16 @@ static bool draw_push(const wc_run *run, const cJSON *result, FILE *out,
     return true;
 }
 
+/* With --friction, the line saying so above the table. */
+static void print_friction(const wc_run *run)
+{
+    if (!run->o->json && run->friction_interval_given)
+        wc_print_friction(run->friction_low, run->friction_high);
+}
+
 int wc_push_answer(wc_run *run, const cJSON *result)
 {
+    print_friction(run);
     if (!run->o->json)
         print_push(run, result);
     int status = picture(run, result, draw_push);
@@ -249,6 +259,7 @@ int wc_gravity_answer(wc_run *run, const cJSON *result)
 {
     const cJSON *arcs = cJSON_GetObjectItem(result, "intervals_deg");
     int count = cJSON_GetArraySize(arcs);
+    print_friction(run);
     if (!run->o->json) {
         printf("set %s: tilts (degrees, the direction gravity pulls in the part's frame)\n",
                set_name(run));
@@ -322,10 +333,261 @@ int wc_margin_answer(wc_run *run, const cJSON *result)
 {
     const cJSON *margin = cJSON_GetObjectItem(result, "margin");
     bool held = !cJSON_IsNumber(margin) || margin->valuedouble > 0;
+    print_friction(run);
     if (!run->o->json)
         print_margin(result, held);
     int status = picture(run, result, draw_margin);
     if (status >= 0)
         return status;
     return held ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
+
+/* ---- sweep -------------------------------------------------------------------- */
+
+/* friction.sweep's defaults (docs/PROTOCOL.md). */
+static const double DEFAULT_RANGE[2] = {0, 2};
+
+int wc_sweep_request(wc_run *run, cJSON *params)
+{
+    if (!run->sweep_kind)
+        return wc_usage_error("sweep wants --push SET, --gravity SET or --wrench FX,FY,TAU");
+    bool wrenches = strcmp(run->sweep_kind, "wrenches") == 0;
+    bool push = strcmp(run->sweep_kind, "push") == 0;
+    if (run->set && !wrenches)
+        return wc_usage_error("sweep: --set is for --wrench; --%s SET names the set",
+                              run->sweep_kind);
+    if ((run->friction_given || run->radius_given) && !push)
+        return wc_usage_error("sweep: --finger-friction and --finger-radius are for --push");
+    if (run->range_given)
+        cJSON_AddItemToObject(params, "range", cJSON_CreateDoubleArray(run->range, 2));
+    if (run->ratio_given)
+        cJSON_AddNumberToObject(params, "kinetic_ratio", run->kinetic_ratio);
+    if (wrenches) {
+        cJSON_AddItemToObject(params, "wrenches", cJSON_Duplicate(run->wrenches, true));
+        if (run->set) {
+            cJSON *sets = cJSON_AddArrayToObject(params, "sets");
+            cJSON_AddItemToArray(sets, cJSON_CreateString(run->set));
+        }
+        return -1;
+    }
+    cJSON *what = cJSON_AddObjectToObject(params, run->sweep_kind);
+    cJSON_AddStringToObject(what, "set", run->sweep_set);
+    if (run->friction_given)
+        cJSON_AddNumberToObject(what, "finger_friction", run->finger_friction);
+    if (run->radius_given)
+        cJSON_AddNumberToObject(what, "finger_radius", run->finger_radius);
+    return -1;
+}
+
+/* The range and the kinetic ratio swept: those given, or the defaults. */
+static double sweep_low(const wc_run *run)
+{
+    return run->range_given ? run->range[0] : DEFAULT_RANGE[0];
+}
+
+static double sweep_high(const wc_run *run)
+{
+    return run->range_given ? run->range[1] : DEFAULT_RANGE[1];
+}
+
+static double sweep_ratio(const wc_run *run)
+{
+    return run->ratio_given ? run->kinetic_ratio : 1;
+}
+
+/* The first line: what was swept, and how. */
+static void print_sweep_header(const wc_run *run, const char *what)
+{
+    printf("friction sweep of %s: mu_s = mu, mu_k = %g mu at every fixel, mu from %g to %g\n",
+           what, sweep_ratio(run), sweep_low(run), sweep_high(run));
+}
+
+/* "[0, 0.5], [0.8, 2]", or "none". */
+static void print_intervals(const cJSON *intervals)
+{
+    int i = 0;
+    const cJSON *interval;
+    cJSON_ArrayForEach(interval, intervals)
+    printf("%s[%g, %g]", i++ ? ", " : "", cJSON_GetNumberValue(cJSON_GetArrayItem(interval, 0)),
+           cJSON_GetNumberValue(cJSON_GetArrayItem(interval, 1)));
+    printf("%s\n", i ? "" : "none");
+}
+
+/* The intervals of the answer, as the pictures take them (freed by the
+ * caller); *count their number. */
+static wc_interval *intervals_of(const cJSON *intervals, int *count)
+{
+    *count = cJSON_GetArraySize(intervals);
+    wc_interval *out = calloc((size_t)(*count ? *count : 1), sizeof *out);
+    for (int i = 0; i < *count; i++) {
+        const cJSON *interval = cJSON_GetArrayItem(intervals, i);
+        out[i].low = cJSON_GetNumberValue(cJSON_GetArrayItem(interval, 0));
+        out[i].high = cJSON_GetNumberValue(cJSON_GetArrayItem(interval, 1));
+    }
+    return out;
+}
+
+static void print_region_sweep(const wc_run *run, const cJSON *result)
+{
+    bool push = strcmp(run->sweep_kind, "push") == 0;
+    char what[96];
+    snprintf(what, sizeof what, "the %s, set %s", push ? "push region" : "gravity arcs",
+             run->sweep_set);
+    print_sweep_header(run, what);
+    const cJSON *intervals = cJSON_GetObjectItem(result, "intervals");
+    const cJSON *critical = cJSON_GetObjectItem(result, "critical");
+    printf("not empty for mu in ");
+    print_intervals(intervals);
+    if (!cJSON_IsNumber(critical))
+        printf("critical mu: none, not empty at the top of the range (mu = %g)\n",
+               sweep_high(run));
+    else if (cJSON_GetArraySize(intervals) == 0)
+        printf("critical mu %g: empty throughout the range\n", critical->valuedouble);
+    else
+        printf("critical mu %g: empty above it\n", critical->valuedouble);
+    if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
+        printf("sampled: resolution %g\n",
+               cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+    printf("%12s  %14s\n", "mu", push ? "length" : "arc (degrees)");
+    const cJSON *point;
+    cJSON_ArrayForEach(point, cJSON_GetObjectItem(result, "curve"))
+    printf("%12.6f  %14.6f\n", cJSON_GetNumberValue(cJSON_GetArrayItem(point, 0)),
+           cJSON_GetNumberValue(cJSON_GetArrayItem(point, 1)));
+    printf("%s\n", wc_set_promise(run->sweep_set));
+}
+
+static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
+                              const wr_fixture *geometry, const char *name)
+{
+    (void)geometry;
+    const cJSON *curve = cJSON_GetObjectItem(result, "curve");
+    int points = cJSON_GetArraySize(curve);
+    double(*xy)[2] = calloc((size_t)(points ? points : 1), sizeof *xy);
+    for (int i = 0; i < points; i++)
+        for (int k = 0; k < 2; k++)
+            xy[i][k] = cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetArrayItem(curve, i), k));
+    const cJSON *critical = cJSON_GetObjectItem(result, "critical");
+    wc_sweep_plot plot = {
+        .name = name,
+        .what = run->sweep_kind,
+        .set = run->sweep_set,
+        .range = {sweep_low(run), sweep_high(run)},
+        .kinetic_ratio = sweep_ratio(run),
+        .critical = cJSON_IsNumber(critical) ? critical->valuedouble : NAN,
+        .curve = (const double(*)[2])xy,
+        .curve_count = points,
+    };
+    wc_interval *intervals = intervals_of(cJSON_GetObjectItem(result, "intervals"),
+                                          &plot.interval_count);
+    plot.intervals = intervals;
+    wc_svg_sweep(out, &plot);
+    free(intervals);
+    free(xy);
+    return true;
+}
+
+/* The sets of a sweep of wrenches, in the answer's order: those of its
+ * first result. */
+static int sweep_sets(const cJSON *results, const char *sets[3])
+{
+    int count = 0;
+    const cJSON *set;
+    cJSON_ArrayForEach(set, cJSON_GetArrayItem(results, 0))
+    {
+        if (count < 3)
+            sets[count++] = set->string;
+    }
+    return count;
+}
+
+static void print_wrench_sweep(const wc_run *run, const cJSON *result)
+{
+    print_sweep_header(run, "wrenches");
+    const cJSON *results = cJSON_GetObjectItem(result, "results");
+    int width = 6;
+    const cJSON *w, *r, *set;
+    cJSON_ArrayForEach(w, run->wrenches)
+    {
+        char text[96];
+        wc_describe_wrench(w, text, sizeof text);
+        width = (int)strlen(text) > width ? (int)strlen(text) : width;
+    }
+    printf("%4s  %-*s  %-6s  %s\n", "#", width, "wrench", "set", "inside for mu in");
+    int index = 0;
+    cJSON_ArrayForEach(r, results)
+    {
+        char wrench[96];
+        wc_describe_wrench(cJSON_GetArrayItem(run->wrenches, index), wrench, sizeof wrench);
+        bool first = true;
+        cJSON_ArrayForEach(set, r)
+        {
+            char number[16] = "";
+            if (first)
+                snprintf(number, sizeof number, "%d", index + 1);
+            printf("%4s  %-*s  %-6s  ", number, width, first ? wrench : "", set->string);
+            print_intervals(set);
+            first = false;
+        }
+        index++;
+    }
+    const char *sets[3];
+    int set_count = sweep_sets(results, sets);
+    for (int i = 0; i < set_count; i++)
+        printf("%s\n", wc_set_promise(sets[i]));
+}
+
+static bool draw_wrench_sweep(const wc_run *run, const cJSON *result, FILE *out,
+                              const wr_fixture *geometry, const char *name)
+{
+    (void)geometry;
+    const cJSON *results = cJSON_GetObjectItem(result, "results");
+    const char *sets[3];
+    int set_count = sweep_sets(results, sets);
+    int count = cJSON_GetArraySize(results) * set_count;
+    wc_sweep_band *bands = calloc((size_t)(count ? count : 1), sizeof *bands);
+    int n = 0, index = 0;
+    const cJSON *r, *set;
+    cJSON_ArrayForEach(r, results)
+    {
+        char wrench[96];
+        wc_describe_wrench(cJSON_GetArrayItem(run->wrenches, index), wrench, sizeof wrench);
+        cJSON_ArrayForEach(set, r)
+        {
+            if (n == count)
+                break;
+            snprintf(bands[n].label, sizeof bands[n].label, "%d %s", index + 1, wrench);
+            bands[n].set = set->string;
+            bands[n].intervals = intervals_of(set, &bands[n].count);
+            n++;
+        }
+        index++;
+    }
+    double range[2] = {sweep_low(run), sweep_high(run)};
+    wc_svg_sweep_bands(out, name, range, sweep_ratio(run), bands, n, sets, set_count);
+    for (int i = 0; i < n; i++)
+        free((void *)bands[i].intervals);
+    free(bands);
+    return true;
+}
+
+int wc_sweep_answer(wc_run *run, const cJSON *result)
+{
+    bool wrenches = strcmp(run->sweep_kind, "wrenches") == 0;
+    if (!run->o->json) {
+        if (wrenches)
+            print_wrench_sweep(run, result);
+        else
+            print_region_sweep(run, result);
+    }
+    int status = picture(run, result, wrenches ? draw_wrench_sweep : draw_region_sweep);
+    if (status >= 0)
+        return status;
+    if (!wrenches)
+        return cJSON_GetArraySize(cJSON_GetObjectItem(result, "intervals")) > 0 ? EXIT_INSIDE
+                                                                                 : EXIT_NOT_INSIDE;
+    /* Wrenches: 0 when each is inside each set for some mu. */
+    const cJSON *r, *set;
+    cJSON_ArrayForEach(r, cJSON_GetObjectItem(result, "results"))
+    cJSON_ArrayForEach(set, r) if (cJSON_GetArraySize(set) == 0) return EXIT_NOT_INSIDE;
+    return EXIT_INSIDE;
 }

@@ -1,5 +1,5 @@
 /* wc_svg.c -- SVG pictures of push regions, gravity sweeps and disturbance
- * margins (see wc_svg.h). */
+ * margins, and plots of friction sweeps against mu (see wc_svg.h). */
 #include "wc_svg.h"
 
 #include <math.h>
@@ -552,5 +552,214 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
                  blocking);
         legend(out, 2, text);
     }
+    end(out);
+}
+
+/* ---- friction sweeps: plots against mu ------------------------------------------ */
+
+#define PLOT_LEFT 80.0
+#define PLOT_RIGHT 24.0
+#define PLOT_HEIGHT 300.0
+#define PLOT_BOTTOM 64.0 /* below the plot: tick labels and the axis's title */
+
+/* A round step near span / parts: 1, 2 or 5 times a power of ten. */
+static double round_step(double span, int parts)
+{
+    double raw = span / parts;
+    if (!(raw > 0) || !isfinite(raw))
+        return 1;
+    double power = pow(10, floor(log10(raw)));
+    double ratio = raw / power;
+    return (ratio < 1.5 ? 1 : ratio < 3.5 ? 2 : ratio < 7.5 ? 5 : 10) * power;
+}
+
+/* The plot's horizontal axis: mu over range, from x = PLOT_LEFT. */
+typedef struct axis {
+    double low, high; /* the values at either end */
+    double from, to;  /* the page coordinates of low and high */
+} axis;
+
+static double on_axis(const axis *a, double value)
+{
+    return a->from + (value - a->low) / (a->high - a->low) * (a->to - a->from);
+}
+
+/* The mu axis along y = `bottom`: its line, round ticks and their values,
+ * and its title below. */
+static void mu_axis(FILE *out, const axis *x, double bottom, double kinetic_ratio)
+{
+    fprintf(out,
+            "<line class=\"axis\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+            "stroke=\"black\" stroke-width=\"1.5\"/>\n",
+            x->from, bottom, x->to, bottom);
+    double step = round_step(x->high - x->low, 5);
+    for (double k = ceil(x->low / step - 1e-9); k * step <= x->high + 1e-9 * step; k++) {
+        double value = k == 0 ? 0 : k * step; /* not -0 */
+        double px = on_axis(x, value);
+        fprintf(out,
+                "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"black\"/>\n"
+                "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"middle\">%g</text>\n",
+                px, bottom, px, bottom + 5, px, bottom + 19, value);
+    }
+    char title[128];
+    if (kinetic_ratio == 1)
+        snprintf(title, sizeof title, "\xce\xbc  (\xce\xbc_s = \xce\xbc_k = \xce\xbc at every fixel)");
+    else
+        snprintf(title, sizeof title,
+                 "\xce\xbc  (\xce\xbc_s = \xce\xbc, \xce\xbc_k = %g \xce\xbc at every fixel)",
+                 kinetic_ratio);
+    fprintf(out, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\">", (x->from + x->to) / 2,
+            bottom + 42);
+    text_escaped(out, title);
+    fputs("</text>\n", out);
+}
+
+/* "[0, 0.5], [0.8, 2]" or "none", for a legend. */
+static void intervals_text(const wc_interval *intervals, int count, char *out, size_t size)
+{
+    size_t n = 0;
+    out[0] = 0;
+    for (int i = 0; i < count && n < size; i++) {
+        int written = snprintf(out + n, size - n, "%s[%g, %g]", i ? ", " : "",
+                               intervals[i].low, intervals[i].high);
+        n += written > 0 ? (size_t)written : 0;
+    }
+    if (count == 0)
+        snprintf(out, size, "none");
+}
+
+void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
+{
+    bool push = strcmp(p->what, "push") == 0;
+    int lines = 4;
+    frame f = {0};
+    f.top = 20 + 18 * lines;
+    f.height = f.top + 20 + PLOT_HEIGHT + PLOT_BOTTOM;
+    char text[512], spans[256];
+    snprintf(text, sizeof text, "%s: friction sweep of the %s of G_%s", p->name,
+             push ? "push region" : "gravity arcs", p->set);
+    begin(out, &f, text);
+    double top = f.top + 20, bottom = top + PLOT_HEIGHT;
+    axis x = {p->range[0], p->range[1], PLOT_LEFT, WIDTH - PLOT_RIGHT};
+    double most = 0;
+    for (int i = 0; i < p->curve_count; i++)
+        most = fmax(most, p->curve[i][1]);
+    double y_step = round_step(most > 0 ? most : 1, 4);
+    double y_high = y_step * ceil((most > 0 ? most : 1) / y_step);
+    axis y = {0, y_high, bottom, top};
+    /* The intervals, shaded behind the rest. */
+    for (int i = 0; i < p->interval_count; i++) {
+        double a = fmax(p->intervals[i].low, x.low), b = fmin(p->intervals[i].high, x.high);
+        fprintf(out,
+                "<rect class=\"interval\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                "fill=\"#1f4e9c\" fill-opacity=\"0.15\"/>\n",
+                on_axis(&x, a), top, fmax(0, on_axis(&x, b) - on_axis(&x, a)), PLOT_HEIGHT);
+    }
+    /* The vertical axis, its ticks and title. */
+    fprintf(out,
+            "<line class=\"axis\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+            "stroke=\"black\" stroke-width=\"1.5\"/>\n",
+            x.from, bottom, x.from, top);
+    for (double k = 0; k * y_step <= y_high + 1e-9 * y_step; k++) {
+        double py = on_axis(&y, k * y_step);
+        fprintf(out,
+                "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"black\"/>\n"
+                "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"end\">%g</text>\n",
+                x.from - 5, py, x.from, py, x.from - 8, py + 4, k * y_step);
+    }
+    fprintf(out,
+            "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" "
+            "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n",
+            22.0, (top + bottom) / 2, 22.0, (top + bottom) / 2,
+            push ? "push region length" : "gravity arcs (\xc2\xb0)");
+    mu_axis(out, &x, bottom, p->kinetic_ratio);
+    /* The curve. */
+    if (p->curve_count > 0) {
+        fputs("<polyline class=\"curve\" points=\"", out);
+        for (int i = 0; i < p->curve_count; i++)
+            fprintf(out, "%s%.2f,%.2f", i ? " " : "", on_axis(&x, p->curve[i][0]),
+                    on_axis(&y, p->curve[i][1]));
+        fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"2.5\" "
+              "stroke-linejoin=\"round\"/>\n",
+              out);
+    }
+    /* The critical mu. */
+    if (isfinite(p->critical)) {
+        double px = on_axis(&x, p->critical);
+        fprintf(out,
+                "<line class=\"critical\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+                "stroke=\"#c0392b\" stroke-width=\"2\" stroke-dasharray=\"6 4\"/>\n",
+                px, top, px, bottom);
+        bool right = px > (x.from + x.to) / 2;
+        fprintf(out,
+                "<text class=\"critical\" x=\"%.2f\" y=\"%.2f\" fill=\"#c0392b\" "
+                "text-anchor=\"%s\">critical \xce\xbc = %g</text>\n",
+                px + (right ? -6 : 6), top + 16, right ? "end" : "start", p->critical);
+    }
+    snprintf(text, sizeof text, "%s, set %s: %s against the friction \xce\xbc", p->name, p->set,
+             push ? "the push region's length" : "the gravity arcs, in degrees,");
+    legend(out, 0, text);
+    intervals_text(p->intervals, p->interval_count, spans, sizeof spans);
+    snprintf(text, sizeof text, "shaded: \xce\xbc where the %s is not empty: %s",
+             push ? "push region" : "gravity sweep", spans);
+    legend(out, 1, text);
+    if (!isfinite(p->critical))
+        snprintf(text, sizeof text,
+                 "not empty at the top of the range, \xce\xbc = %g: no critical \xce\xbc",
+                 p->range[1]);
+    else if (p->interval_count == 0)
+        snprintf(text, sizeof text, "red: empty for every \xce\xbc from %g to %g", p->range[0],
+                 p->range[1]);
+    else
+        snprintf(text, sizeof text, "red: the critical \xce\xbc = %g, above which it is empty",
+                 p->critical);
+    legend(out, 2, text);
+    legend(out, 3, wc_set_promise(p->set));
+    end(out);
+}
+
+#define BAND_LEFT 230.0
+#define BAND_HEIGHT 26.0
+
+void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], double kinetic_ratio,
+                        const wc_sweep_band *bands, int count, const char *const *sets,
+                        int set_count)
+{
+    int lines = 2 + set_count;
+    frame f = {0};
+    f.top = 20 + 18 * lines;
+    f.height = f.top + 20 + BAND_HEIGHT * count + PLOT_BOTTOM;
+    char text[256];
+    snprintf(text, sizeof text, "%s: friction sweep of wrenches", name);
+    begin(out, &f, text);
+    double top = f.top + 20, bottom = top + BAND_HEIGHT * count;
+    axis x = {range[0], range[1], BAND_LEFT, WIDTH - PLOT_RIGHT};
+    for (int i = 0; i < count; i++) {
+        double y = top + BAND_HEIGHT * i;
+        fprintf(out,
+                "<rect class=\"band\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                "fill=\"#f2f2f2\" stroke=\"#a0a0a0\"/>\n",
+                x.from, y + 3, x.to - x.from, BAND_HEIGHT - 6);
+        for (int j = 0; j < bands[i].count; j++) {
+            double a = fmax(bands[i].intervals[j].low, x.low);
+            double b = fmin(bands[i].intervals[j].high, x.high);
+            fprintf(out,
+                    "<rect class=\"inside\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                    "fill=\"black\"/>\n",
+                    on_axis(&x, a), y + 6, fmax(0, on_axis(&x, b) - on_axis(&x, a)),
+                    BAND_HEIGHT - 12);
+        }
+        fprintf(out, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" text-anchor=\"end\">",
+                x.from - 8, y + BAND_HEIGHT / 2 + 5);
+        text_escaped(out, bands[i].label);
+        fprintf(out, "  %s</text>\n", bands[i].set);
+    }
+    mu_axis(out, &x, bottom, kinetic_ratio);
+    snprintf(text, sizeof text,
+             "%s: where each wrench is inside each set, against the friction \xce\xbc", name);
+    legend(out, 0, text);
+    legend(out, 1, "black: \xce\xbc where the wrench is inside the set");
+    for (int i = 0; i < set_count; i++)
+        legend(out, 2 + i, wc_set_promise(sets[i]));
     end(out);
 }

@@ -35,6 +35,48 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fixture, const char *name, cons
 void wc_svg_margin(FILE *out, const wr_fixture *fixture, const char *name, const double bias[3],
                    double margin, const double worst_direction[3], const char *blocking);
 
+/* An interval [low, high] of friction coefficients. */
+typedef struct wc_interval {
+    double low, high;
+} wc_interval;
+
+/* A friction sweep of a push region or of the gravity arcs (friction.sweep):
+ * mu_s = mu and mu_k = kinetic_ratio * mu at every fixel. */
+typedef struct wc_sweep_plot {
+    const char *name;      /* the fixture's */
+    const char *what;      /* "push" (length, the fixture's units) or "gravity" (degrees) */
+    const char *set;
+    double range[2];       /* of mu, the plot's horizontal axis */
+    double kinetic_ratio;
+    const wc_interval *intervals; /* where the region is not empty */
+    int interval_count;
+    double critical;       /* the mu above which it is empty; NAN: none */
+    const double (*curve)[2]; /* (mu, length), increasing in mu */
+    int curve_count;
+} wc_sweep_plot;
+
+/* The region's size against mu: the curve (a <polyline class="curve">),
+ * each interval shaded (a <rect class="interval">), the critical mu a
+ * vertical line (<line class="critical">) with its value, and what the set
+ * promises. */
+void wc_svg_sweep(FILE *out, const wc_sweep_plot *plot);
+
+/* One row of a sweep of wrenches: where wrench `label` is inside `set`. */
+typedef struct wc_sweep_band {
+    char label[112];
+    const char *set;
+    const wc_interval *intervals;
+    int count;
+} wc_sweep_band;
+
+/* One horizontal band per wrench and set (<rect class="band">), black
+ * where the wrench is inside (one <rect class="inside"> per interval),
+ * against mu over `range`; the legend says what each set in `sets`
+ * promises. */
+void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], double kinetic_ratio,
+                        const wc_sweep_band *bands, int count, const char *const *sets,
+                        int set_count);
+
 /* What a set's push region or tilt promises, in one line ("goal: reaches
  * every fixel, then the part may slide on; ..."): G_goal does not promise
  * the part rests, G_strong does not promise it seats; "both" is what to

@@ -116,6 +116,116 @@ static int take_radius(wc_run *run, const char *value)
     return 0;
 }
 
+/* "LO:HI" (or, with `single`, "MU", the interval [MU, MU]) for --NAME:
+ * finite numbers, 0 <= LO, LO <= HI (LO < HI with `strict`), HI <= `most`.
+ * False after saying why not. */
+static bool take_bounds(const char *name, const char *value, bool single, bool strict,
+                        double most, double *low, double *high)
+{
+    char *end;
+    *low = strtod(value, &end);
+    bool ok = end != value && isfinite(*low);
+    *high = *low;
+    if (ok && *end == ':') {
+        const char *second = end + 1;
+        *high = strtod(second, &end);
+        ok = end != second && isfinite(*high);
+    } else if (ok && !single) {
+        ok = false; /* one number where an interval is wanted */
+    }
+    if (!ok || *end) {
+        wc_usage_error("--%s wants %s, numbers, not '%s'", name, single ? "LO:HI or MU" : "LO:HI",
+                       value);
+        return false;
+    }
+    if (!(*low >= 0) || !(*high >= 0)) {
+        wc_usage_error("--%s %s: %g is negative: the bounds are at least 0", name, value,
+                       *low < 0 ? *low : *high);
+        return false;
+    }
+    if (*high > most) {
+        wc_usage_error("--%s %s: %g is above %g, the largest wrenchd takes", name, value, *high,
+                       most);
+        return false;
+    }
+    if (strict ? !(*low < *high) : !(*low <= *high)) {
+        wc_usage_error("--%s %s: LO must be %s HI", name, value,
+                       strict ? "below" : "at most");
+        return false;
+    }
+    return true;
+}
+
+/* --friction LO:HI or MU: every fixel's friction, static and kinetic. */
+static int take_interval(wc_run *run, const char *value)
+{
+    if (!take_bounds("friction", value, true, false, WC_FRICTION_MOST, &run->friction_low,
+                     &run->friction_high))
+        return EXIT_USAGE;
+    run->friction_interval_given = true;
+    return 0;
+}
+
+/* --push SET, --gravity SET, --wrench: the kind of sweep; one kind only. */
+static int take_sweep_kind(wc_run *run, const char *kind, const char *option)
+{
+    if (run->sweep_kind && strcmp(run->sweep_kind, kind) != 0)
+        return wc_usage_error("sweep: --%s and --%s: one of --push, --gravity or --wrench",
+                              strcmp(run->sweep_kind, "wrenches") == 0 ? "wrench"
+                                                                       : run->sweep_kind,
+                              option);
+    run->sweep_kind = kind;
+    return 0;
+}
+
+static int take_push(wc_run *run, const char *value)
+{
+    if (!is_set_name(value))
+        return wc_usage_error("--push is goal, strong or both, not '%s'", value);
+    run->sweep_set = value;
+    return take_sweep_kind(run, "push", "push");
+}
+
+static int take_gravity(wc_run *run, const char *value)
+{
+    if (!is_set_name(value))
+        return wc_usage_error("--gravity is goal, strong or both, not '%s'", value);
+    run->sweep_set = value;
+    return take_sweep_kind(run, "gravity", "gravity");
+}
+
+static int take_wrench(wc_run *run, const char *value)
+{
+    cJSON *w = strchr(value, '@') ? NULL : wc_wrench_argument(value);
+    if (!w)
+        return wc_usage_error("--wrench wants FX,FY,TAU (the torque about the centre of mass), "
+                              "not '%s'",
+                              value);
+    if (!run->wrenches)
+        run->wrenches = cJSON_CreateArray();
+    cJSON_AddItemToArray(run->wrenches, w);
+    return take_sweep_kind(run, "wrenches", "wrench");
+}
+
+static int take_range(wc_run *run, const char *value)
+{
+    if (!take_bounds("range", value, false, true, INFINITY, &run->range[0], &run->range[1]))
+        return EXIT_USAGE;
+    run->range_given = true;
+    return 0;
+}
+
+static int take_ratio(wc_run *run, const char *value)
+{
+    char *end;
+    run->kinetic_ratio = strtod(value, &end);
+    if (*end || end == value || !(run->kinetic_ratio > 0 && run->kinetic_ratio <= 1))
+        return wc_usage_error("--kinetic-ratio wants a number above 0 and at most 1, not '%s'",
+                              value);
+    run->ratio_given = true;
+    return 0;
+}
+
 static int take_svg(wc_run *run, const char *value)
 {
     run->svg = value;
@@ -138,6 +248,12 @@ static const command_option COMMAND_OPTIONS[] = {
     {"finger-friction", WC_OPT_FRICTION, take_friction},
     {"finger-radius", WC_OPT_RADIUS, take_radius},
     {"svg", WC_OPT_SVG, take_svg},
+    {"friction", WC_OPT_INTERVAL, take_interval},
+    {"push", WC_OPT_SWEEP, take_push},
+    {"gravity", WC_OPT_SWEEP, take_gravity},
+    {"wrench", WC_OPT_SWEEP, take_wrench},
+    {"range", WC_OPT_SWEEP, take_range},
+    {"kinetic-ratio", WC_OPT_SWEEP, take_ratio},
     {NULL, 0, NULL},
 };
 
@@ -212,6 +328,8 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
         run.fixture = wc_fixture_argument(o, run.items[0]);
         if (!run.fixture)
             status = EXIT_USAGE;
+        else if (run.friction_interval_given)
+            status = wc_fixture_friction(o, &run.fixture, run.friction_low, run.friction_high);
     }
     if (status < 0 && !c->method)
         status = c->request(&run, NULL);
@@ -244,6 +362,14 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
 
 static int help_request(wc_run *run, cJSON *params);
 
+/* --friction, in the help of every command that takes it; PAD (spaces)
+ * brings its text to the column of the command's other options'. */
+#define FRICTION_HELP(PAD)                                                                   \
+    "  --friction LO:HI" PAD "every fixel's friction, static and kinetic, anywhere in\n"     \
+    "                  " PAD "[LO, HI] (or MU: exactly MU), in place of the fixture's;\n"   \
+    "                  " PAD "the answers are robust: each holds for every friction in\n"   \
+    "                  " PAD "the interval (a stored fixture is fetched, sent inline)\n"
+
 /* name, usage, flags, arguments (fewest, most), method, request, answer,
  * summary, help. */
 const wc_command wc_commands[] = {
@@ -267,8 +393,10 @@ const wc_command wc_commands[] = {
      "fixture.delete", wc_id_request, wc_delete_answer,
      "forget a stored fixture",
      "Forget the stored fixture ID."},
-    {"classify", "FIXTURE WRENCH... [--sets LIST] [--method auto|lp] [--tolerance T]",
-     WC_FIXTURE | WC_STDIN | WC_OPT_SETS | WC_OPT_METHOD | WC_OPT_TOLERANCE, 2, 1 << 20,
+    {"classify",
+     "FIXTURE WRENCH... [--sets LIST] [--method auto|lp] [--tolerance T] [--friction LO:HI]",
+     WC_FIXTURE | WC_STDIN | WC_OPT_SETS | WC_OPT_METHOD | WC_OPT_TOLERANCE | WC_OPT_INTERVAL, 2,
+     1 << 20,
      "wrench.classify", wc_classify_request, wc_classify_answer,
      "verdicts, margins and blocking transitions of wrenches",
      "Classify wrenches: for each set, the verdict (inside, boundary, outside), the margin, and\n"
@@ -280,6 +408,7 @@ const wc_command wc_commands[] = {
      "  --sets LIST      comma-separated: goal, strong, both (default goal,strong)\n"
      "  --method M       auto (explicit cones, with margins; default) or lp (GLPK, no margin)\n"
      "  --tolerance T    |margin| <= T is 'boundary' (default 1e-9)\n"
+     FRICTION_HELP(" ")
      "Exit status 0 when every wrench is inside every set asked, 1 when one is not."},
     {"cone", "FIXTURE STRING",
      WC_FIXTURE, 2, 2,
@@ -297,8 +426,11 @@ const wc_command wc_commands[] = {
      "modes.get", NULL, wc_modes_answer,
      "the feasible moving contact modes",
      "The kinematically feasible moving contact modes, and whether the fixels pin the part."},
-    {"push", "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+    {"push",
+     "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--friction LO:HI] "
+     "[--svg FILE]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_INTERVAL,
+     1, 1,
      "push.regions", wc_push_request, wc_push_answer,
      "where a finger's push seats the part",
      "The push region of a set: the open intervals of the outline where a finger pushing along\n"
@@ -313,26 +445,52 @@ const wc_command wc_commands[] = {
      "  --finger-radius R      a round finger of radius R (default 0, a point): only where it\n"
      "                         fits against the part without overlapping it\n"
      "  --svg FILE             also draw the part, its fixels and the region\n"
+     FRICTION_HELP("       ")
      "Exit status 0 when there is a region, 1 when there is none."},
-    {"gravity", "FIXTURE [--set SET] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG, 1, 1,
+    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL, 1, 1,
      "gravity.sweep", wc_gravity_request, wc_gravity_answer,
      "the tilts under which gravity seats the part",
      "The arcs of tilt (the direction gravity pulls, degrees, in the part's frame) under which\n"
      "gravity alone gives a wrench in the set.\n"
-     "  --set SET   goal (default), strong or both (goal may leave the part sliding on,\n"
-     "              strong holds it only once seated; both does both)\n"
-     "  --svg FILE  also draw the sweep as a dial around the part\n"
+     "  --set SET         goal (default), strong or both (goal may leave the part sliding\n"
+     "                    on, strong holds it only once seated; both does both)\n"
+     "  --svg FILE        also draw the sweep as a dial around the part\n"
+     FRICTION_HELP("  ")
      "Exit status 0 when there is an arc, 1 when there is none."},
-    {"margin", "FIXTURE BIAS [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SVG, 2, 2,
+    {"margin", "FIXTURE BIAS [--friction LO:HI] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SVG | WC_OPT_INTERVAL, 2, 2,
      "stability.margin", wc_margin_request, wc_margin_answer,
      "how large a disturbance a biasing wrench tolerates",
      "The disturbance margin of a biasing wrench (fx,fy,tau or fx,fy@x,y): how large a\n"
      "disturbance, in the scaled metric (f_x, f_y, tau/rho), the seated part holds under it,\n"
      "the contact mode the worst one starts, and that worst direction.\n"
-     "  --svg FILE  also draw the bias and the worst disturbance on the part\n"
+     "  --svg FILE        also draw the bias and the worst disturbance on the part\n"
+     FRICTION_HELP("  ")
      "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
+    {"sweep",
+     "FIXTURE (--push SET | --gravity SET | --wrench FX,FY,TAU... [--set SET]) [--range LO:HI]\n"
+     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+     "friction.sweep", wc_sweep_request, wc_sweep_answer,
+     "how the answers change with the friction",
+     "Sweep the friction: mu_s = mu and mu_k = R mu at every fixel (the fixture's own friction\n"
+     "ignored), for mu over a range; one of:\n"
+     "  --push SET          the push region of SET (goal, strong or both): the mu where it is\n"
+     "                      not empty, the critical mu above which it is (none when it is not\n"
+     "                      empty at the top of the range), and its length against mu\n"
+     "  --gravity SET       the same for the gravity arcs, their total in degrees\n"
+     "  --wrench FX,FY,TAU  a wrench (torque about the centre of mass), repeated for more: for\n"
+     "                      each, and each set, the mu where it is inside\n"
+     "  --set SET           with --wrench: one set (default goal and strong)\n"
+     "  --range LO:HI       the range of mu, 0 <= LO < HI (default 0:2)\n"
+     "  --kinetic-ratio R   mu_k = R mu, 0 < R <= 1 (default 1)\n"
+     "  --finger-friction MU, --finger-radius R\n"
+     "                      with --push: the finger, as for push\n"
+     "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
+     "                      and the critical mu marked; for wrenches a band per wrench and set\n"
+     "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
+     "inside each set for some mu), 1 when not."},
     {"status", "",
      WC_DAEMON, 0, 0,
      "server.status", NULL, wc_status_answer,
@@ -363,8 +521,8 @@ static const char GENERAL[] =
 
 static const char EXIT_TEXT[] =
     "\nExit status: 0 done (classify: every wrench inside; push, gravity: a region; margin:\n"
-    "the bias holds); 1 not so; 2 usage error; 3 the daemon is unreachable; 4 the daemon\n"
-    "answered an error.\n";
+    "the bias holds; sweep: not empty for some mu); 1 not so; 2 usage error; 3 the daemon is\n"
+    "unreachable; 4 the daemon answered an error.\n";
 
 int wc_command_help(const char *name)
 {

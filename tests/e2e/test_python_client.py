@@ -581,6 +581,11 @@ STATUS = {"version": "fake", "uptime_s": 1, "fixtures": 0, "cached": 0, "cache_b
           "errors": 0}
 
 
+SWEEP_PUSH = {"intervals": [[0, 0.75]], "critical": 0.75, "curve": [[0, 2], [0.75, 0], [2, 0]],
+              "exact": False, "resolution": 0.001}
+SWEEP_WRENCHES = {"results": [{"goal": [[0, 0.2]], "strong": []}]}
+
+
 class FakeDaemon:
     """Serves `path` itself.  The n-th connection follows script[n] ("drop":
     read one line and close without answering; "answer": answer every line;
@@ -620,7 +625,9 @@ class FakeDaemon:
     def answer(request):
         result = {"server.status": STATUS,
                   "fixture.put": {"id": "1" * 32, "name": "x", "fixels": 1, "goal_cones": 1,
-                                  "strong_cones": 1, "pinned": False}}.get(request["method"], {})
+                                  "strong_cones": 1, "pinned": False},
+                  "friction.sweep": SWEEP_WRENCHES if "wrenches" in request.get("params", {})
+                  else SWEEP_PUSH}.get(request["method"], {})
         return {"jsonrpc": "2.0", "result": result, "id": request["id"]}
 
     def _serve(self, conn, action):
@@ -717,6 +724,71 @@ def test_broken_connection_retries_only_read_only(fake):
     assert f.connections == 6
     assert [r["method"] for r in f.requests()][-2:] == ["fixture.list", "fixture.list"]
     c.close()
+
+
+def test_friction_sweep_request_shape(fake):
+    """friction_sweep sends one friction.sweep with the range, the ratio and
+    exactly one of wrenches (and sets), push and gravity; the answer is a
+    FrictionSweep."""
+    f = fake()
+    fixture = FX.disc_corner(0.5)
+    with wrenchd.Client(f.path, timeout=TIMEOUT) as c:
+        r = c.friction_sweep("1" * 32, push="strong")
+        assert (r.intervals, r.critical, r.curve) == ([[0, 0.75]], 0.75,
+                                                       [[0, 2], [0.75, 0], [2, 0]])
+        assert (r.exact, r.resolution, r.results) == (False, 0.001, None)
+        c.friction_sweep(fixture, push={"set": "both", "finger_radius": 0.5}, range=(0.1, 1),
+                         kinetic_ratio=0.5)
+        c.friction_sweep(fixture, gravity=True)
+        w = c.friction_sweep(fixture, wrenches=[(-1, -1, 0), {"force": [0, -1], "at": [1, 1]}],
+                             sets="goal")
+        assert w.results == [{"goal": [[0, 0.2]], "strong": []}] and w.intervals == []
+        c.friction_sweep(fixture, wrenches=[(-1, -1, 0)])
+    sent = [r["params"] for r in f.requests()]
+    assert [r["method"] for r in f.requests()] == ["friction.sweep"] * 5
+    assert sent[0] == {"fixture": "1" * 32, "range": [0, 2], "kinetic_ratio": 1.0,
+                       "push": {"set": "strong"}}
+    assert sent[1] == {"fixture": fixture, "range": [0.1, 1], "kinetic_ratio": 0.5,
+                       "push": {"set": "both", "finger_radius": 0.5}}
+    assert sent[2]["gravity"] == {} and "push" not in sent[2] and "wrenches" not in sent[2]
+    assert sent[3]["wrenches"] == [[-1, -1, 0], {"force": [0, -1], "at": [1, 1]}]
+    assert sent[3]["sets"] == ["goal"] and "push" not in sent[3]
+    assert "sets" not in sent[4]
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    ({}, "exactly one of wrenches, push and gravity"),
+    ({"push": "goal", "gravity": "goal"}, "not push and gravity"),
+    ({"wrenches": [(1, 0, 0)], "push": True}, "not wrenches and push"),
+    ({"push": "goal", "sets": ["goal"]}, "sets go with wrenches"),
+    ({"push": 3}, "push is a set name"),
+])
+def test_friction_sweep_refuses_before_sending(fake, kwargs, words):
+    f = fake()
+    with wrenchd.Client(f.path, timeout=TIMEOUT) as c:
+        with pytest.raises((ValueError, TypeError)) as e:
+            c.friction_sweep("1" * 32, **kwargs)
+    assert words in str(e.value)
+    assert f.lines == []
+
+
+def test_friction_sweep_of_the_disc(pyclient):
+    """The disc in a corner (docs/MODEL.md section 7.1): the goal push
+    region is the arc (atan mu, 90 - atan mu) degrees of a unit circle, so
+    its length is pi/2 - 2 atan mu, empty from mu = 1; the wrench (-1, -0.2,
+    0) seats it while mu <= 0.2 (needs the daemon's friction.sweep)."""
+    put = pyclient.put_fixture(FX.disc_corner(0.5))
+    r = pyclient.friction_sweep(put, push="goal")
+    assert r.critical == pytest.approx(1, abs=1e-9)
+    assert len(r.intervals) == 1 and r.intervals[0] == pytest.approx([0, 1], abs=1e-9)
+    assert r.curve[0][0] == 0 and r.curve[-1][0] == 2
+    assert [mu for mu, _ in r.curve] == sorted(mu for mu, _ in r.curve)
+    for mu, length in r.curve:
+        assert length == pytest.approx(max(0.0, math.pi / 2 - 2 * math.atan(mu)), abs=1e-9)
+    w = pyclient.friction_sweep(put.id, wrenches=[(-1, -0.2, 0)], sets=["goal"], range=(0, 1))
+    (row,) = w.results
+    assert list(row) == ["goal"] and len(row["goal"]) == 1
+    assert row["goal"][0] == pytest.approx([0, 0.2], abs=1e-9)
 
 
 def test_timeout_when_the_daemon_does_not_answer(harness):

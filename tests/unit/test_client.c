@@ -326,6 +326,75 @@ static void a_small_buffer_refuses_a_big_answer(void **state)
     stop(&f);
 }
 
+static const char SWEEP_PUSH[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"intervals\":[[0,0.25],[0.5,1]],\"critical\":1,"
+    "\"curve\":[[0,1.5],[0.25,0],[0.5,0.5],[1,0],[2,0]],\"exact\":true,\"resolution\":0},"
+    "\"id\":%ID%}";
+static const char SWEEP_GRAVITY[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"intervals\":[[0.1,2]],\"critical\":null,"
+    "\"curve\":[[0.1,0],[2,33.5]]},\"id\":%ID%}";
+static const char SWEEP_WRENCH[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"strong\":[[0,0.5],[1.25,2]]}]},"
+    "\"id\":%ID%}";
+static const char NO_METHOD[] =
+    "{\"jsonrpc\":\"2.0\",\"error\":{\"code\":-32601,\"message\":\"Method not found\","
+    "\"data\":{\"field\":\"method\",\"reason\":\"no method friction.sweep\"}},\"id\":%ID%}";
+
+static void friction_sweep_reads_intervals_without_allocating(void **state)
+{
+    (void)state;
+    const char *const answers[] = {SWEEP_PUSH, SWEEP_GRAVITY, SWEEP_WRENCH, NO_METHOD, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    wrc_sweep sweep;
+    long before = atomic_load(&allocations);
+    wrc_sweep_request push = {.kind = "push", .set = "goal", .finger_radius = 0.5};
+    assert_int_equal(wrc_friction_sweep(c, ID, &push, &sweep), WRC_OK);
+    assert_int_equal(sweep.interval_count, 2);
+    assert_true(sweep.intervals[0][0] == 0 && sweep.intervals[0][1] == 0.25);
+    assert_true(sweep.intervals[1][0] == 0.5 && sweep.intervals[1][1] == 1);
+    assert_true(sweep.critical == 1);
+    /* The defaults are left to the daemon; the finger is the push's. */
+    assert_non_null(strstr(f.last_request, "\"method\":\"friction.sweep\""));
+    assert_non_null(strstr(f.last_request, "\"push\":{\"set\":\"goal\",\"finger_radius\":0.5}"));
+    assert_null(strstr(f.last_request, "range"));
+    assert_null(strstr(f.last_request, "kinetic_ratio"));
+    wrc_sweep_request gravity = {.kind = "gravity", .set = "both", .range = {0.1, 2},
+                                 .kinetic_ratio = 0.5};
+    assert_int_equal(wrc_friction_sweep(c, ID, &gravity, &sweep), WRC_OK);
+    assert_int_equal(sweep.interval_count, 1);
+    assert_true(sweep.intervals[0][0] == 0.1 && sweep.intervals[0][1] == 2);
+    assert_true(isnan(sweep.critical)); /* not empty at the top of the range */
+    assert_non_null(strstr(f.last_request, "\"range\":[0.10000000000000001,2]"));
+    assert_non_null(strstr(f.last_request, "\"kinetic_ratio\":0.5"));
+    assert_non_null(strstr(f.last_request, "\"gravity\":{\"set\":\"both\"}"));
+    wrc_sweep_request wrench = {.kind = "wrench", .set = "strong", .wrench = {-1, -1, 0}};
+    assert_int_equal(wrc_friction_sweep(c, ID, &wrench, &sweep), WRC_OK);
+    assert_int_equal(sweep.interval_count, 2);
+    assert_true(sweep.intervals[1][0] == 1.25 && sweep.intervals[1][1] == 2);
+    assert_true(isnan(sweep.critical));
+    assert_non_null(strstr(f.last_request, "\"wrenches\":[[-1,-1,0]],\"sets\":[\"strong\"]"));
+    assert_int_equal(atomic_load(&allocations) - before, 0);
+    /* A daemon without the method: its error. */
+    assert_int_equal(wrc_friction_sweep(c, ID, &push, &sweep), WRC_ESERVER);
+    int code;
+    wrc_server_error(c, &code, NULL, NULL);
+    assert_int_equal(code, -32601);
+    /* Refused before sending. */
+    wrc_sweep_request bad = {.kind = "tilt", .set = "goal"};
+    assert_int_equal(wrc_friction_sweep(c, ID, &bad, &sweep), WRC_EINVAL);
+    bad = (wrc_sweep_request){.kind = "push", .set = "gaol"};
+    assert_int_equal(wrc_friction_sweep(c, ID, &bad, &sweep), WRC_EINVAL);
+    bad = (wrc_sweep_request){.kind = "wrench", .set = "goal", .wrench = {NAN, 0, 0}};
+    assert_int_equal(wrc_friction_sweep(c, ID, &bad, &sweep), WRC_EINVAL);
+    assert_int_equal(wrc_friction_sweep(c, ID, NULL, &sweep), WRC_EINVAL);
+    assert_int_equal(f.requests, 4);
+    wrc_close(c);
+    stop(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -336,6 +405,7 @@ int main(void)
         cmocka_unit_test(a_dropped_connection_is_reopened),
         cmocka_unit_test(connect_failures_name_their_cause),
         cmocka_unit_test(a_small_buffer_refuses_a_big_answer),
+        cmocka_unit_test(friction_sweep_reads_intervals_without_allocating),
     };
     return cmocka_run_group_tests_name("client", tests, NULL, NULL);
 }
