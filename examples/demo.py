@@ -101,14 +101,13 @@ def main():
           "starts %s" % ("plate-chamfered", held.margin, held.blocking))
 
     # Friction nobody knows exactly: the same question for every mu at once.
-    sweep = client.call("friction.sweep", {"fixture": ids["plate-chamfered"], "range": [0, 1],
-                                           "push": {"set": "goal"}})
+    sweep = client.friction_sweep(ids["plate-chamfered"], range=(0, 1), push="goal")
     print("\nfriction.sweep: how much friction can the chamfered plate take?")
     print("  %-16s push goal region, mu in [0, 1]: non-empty on %s; critical mu %.6f "
           "(above it no push seats the part)"
-          % ("plate-chamfered", ", ".join("[%.6g, %.6g]" % (a, b) for a, b in sweep["intervals"]),
-             sweep["critical"]))
-    lengths = {round(mu, 6): length for mu, length in sweep["curve"]}
+          % ("plate-chamfered", ", ".join("[%.6g, %.6g]" % (a, b) for a, b in sweep.intervals),
+             sweep.critical))
+    lengths = {round(mu, 6): length for mu, length in sweep.curve}
     print("  %-16s region length at mu = 0, 0.125, 0.25: %s" % (
         "", ", ".join("%.4f" % lengths[m] for m in (0.0, 0.125, 0.25) if m in lengths)))
 
@@ -128,6 +127,8 @@ def main():
         ("bracket-push-both.svg", ["push", ids["bracket"], "--set", "both"]),
         ("bracket-gravity-both.svg", ["gravity", ids["bracket"], "--set", "both"]),
     ]
+    pictures.append(("plate-chamfered-sweep-goal.svg",
+                     ["sweep", ids["plate-chamfered"], "--push", "goal", "--range", "0:1"]))
     for filename, command in pictures:
         subprocess.run(wrenchctl + command + ["--svg", os.path.join(out, filename)],
                        stdout=subprocess.DEVNULL, check=False)
