@@ -47,6 +47,7 @@ struct wr_sweeper {
     int plane_count;
     plane *planes;
     int *plane_cones;
+    int analysis_cones; /* both sets' cones: what each analysis builds */
 };
 
 /* ---- small things ------------------------------------------------------------------ */
@@ -311,6 +312,8 @@ static wr_status build_family(wr_sweeper *s)
     if (s->set != WR_SET_GOAL)
         sets[set_count++] = WR_SET_STRONG;
     int total = 0, generators = 0;
+    s->analysis_cones = wr_analysis_cone_count(analysis, WR_SET_GOAL) +
+                        wr_analysis_cone_count(analysis, WR_SET_STRONG);
     for (int i = 0; i < set_count; i++) {
         int n = wr_analysis_cone_count(analysis, (wr_set)sets[i]);
         total += n;
@@ -528,18 +531,45 @@ typedef enum what {
     WHAT_GRAVITY
 } what;
 
-typedef struct question {
+typedef enum phase {
+    PHASE_ROOTS,   /* the roots, an edge's plane row at a time */
+    PHASE_DECIDE,  /* one piece between roots at a time */
+    PHASE_SAMPLED, /* a finger with friction: a step of mu, or a bisection */
+    PHASE_CURVE,   /* one point of the curve at a time */
+    PHASE_DONE
+} phase;
+
+struct wr_sweep_job {
+    const wr_sweeper *sweeper;
     what what;
-    const double *wrench;      /* WHAT_WRENCH: physical */
-    const wr_finger *finger;   /* WHAT_PUSH */
-    const wr_stop *stop;
-} question;
+    double wrench[3];          /* WHAT_WRENCH: physical */
+    wr_finger finger;          /* WHAT_PUSH */
+    const wr_stop *stop;       /* of the current run */
+    phase phase;
+    /* PHASE_ROOTS: the edge (gravity: one circle), its frame once set up
+     * (row >= 0), the next plane row, each plane's alpha and beta. */
+    int edge, edge_count, row;
+    wr_edge_frame frame;
+    double (*alpha)[3], (*beta)[3];
+    values roots;
+    /* PHASE_DECIDE, PHASE_CURVE: the next piece or point. */
+    int index;
+    values points;
+    /* PHASE_SAMPLED: the step of mu, the emptiness before it, where the
+     * current interval started, and a change being bisected in [lo, hi]. */
+    int step;
+    bool previous, bisecting;
+    double start, lo, hi;
+    wr_intervals intervals;    /* a wrench's answer */
+    wr_sweep_curve curve;      /* a region's */
+    unsigned long evaluation_cost, row_cost;
+};
 
 /* The answer at mu: for a wrench 1 inside, 0 not; for a region its total
- * length (a wrench's "length" is 1 or 0 too).  Negative on failure:
- * -1 no memory, -2 stopped. */
-static double answer_at(const wr_sweeper *s, const question *q, double mu, wr_status *status)
+ * length.  -1 with *status set on failure. */
+static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
 {
+    const wr_sweeper *s = job->sweeper;
     wr_fixture at;
     wr_fixture_at_friction(s->fixture, mu, s->range.kinetic_ratio, &at);
     wr_analysis *analysis;
@@ -547,19 +577,19 @@ static double answer_at(const wr_sweeper *s, const question *q, double mu, wr_st
     if (*status != WR_OK)
         return -1;
     double result = 0;
-    if (q->what == WHAT_WRENCH) {
+    if (job->what == WHAT_WRENCH) {
         wr_answer answer;
-        *status = wr_classify(analysis, q->wrench, s->set, WR_DEFAULT_TOLERANCE, &answer);
+        *status = wr_classify(analysis, job->wrench, s->set, WR_DEFAULT_TOLERANCE, &answer);
         result = answer.verdict == WR_VERDICT_INSIDE;
     } else {
         wr_regions regions;
-        if (q->what == WHAT_PUSH)
-            *status = wr_push_regions_finger(analysis, s->set, q->finger, q->stop, &regions);
+        if (job->what == WHAT_PUSH)
+            *status = wr_push_regions_finger(analysis, s->set, &job->finger, job->stop, &regions);
         else
             *status = wr_gravity_sweep(analysis, s->set, &regions);
         for (int i = 0; *status == WR_OK && i < regions.count; i++)
-            result += q->what == WHAT_PUSH ? wr_region_length(&at, &regions.items[i])
-                                           : regions.items[i].t1 - regions.items[i].t0;
+            result += job->what == WHAT_PUSH ? wr_region_length(&at, &regions.items[i])
+                                             : regions.items[i].t1 - regions.items[i].t0;
         /* An empty region has length 0; a region has more. */
         if (*status == WR_OK && regions.count > 0 && !(result > 0))
             result = 0;
@@ -569,176 +599,139 @@ static double answer_at(const wr_sweeper *s, const question *q, double mu, wr_st
     return *status == WR_OK ? result : -1;
 }
 
-/* The intervals where the answer is non-zero, deciding each piece between
- * consecutive points of `roots` (settled) at its middle. */
-static wr_status decide(const wr_sweeper *s, const question *q, const values *roots,
-                        wr_intervals *out)
-{
-    for (int i = 0; i + 1 < roots->count; i++) {
-        if (wr_stop_requested(q->stop))
-            return WR_STOPPED;
-        double lo = roots->items[i], hi = roots->items[i + 1];
-        wr_status status;
-        double value = answer_at(s, q, lo + (hi - lo) / 2, &status);
-        if (status != WR_OK)
-            return status;
-        if (value > 0 && !add_interval(out, lo, hi))
-            return WR_NO_MEMORY;
-    }
-    return WR_OK;
-}
+/* ---- push and gravity: where two planes meet the edge at one point ---------------- */
 
-wr_status wr_sweep_wrench(const wr_sweeper *s, const double wrench[3], const wr_stop *stop,
-                          wr_intervals *out)
+/* The frame of the job's current edge, each plane's alpha = c1 . n(mu) and
+ * beta = c2 . n(mu) on it, and for a push the roots of the edge's ends
+ * and of its finger's blocked spans (fixed wrenches). */
+static wr_status edge_begin(wr_sweep_job *job)
 {
-    memset(out, 0, sizeof *out);
-    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]))
-        return WR_INVALID;
-    double h[3];
-    wr_fixture_unit_wrench(s->fixture, wrench, h);
-    values roots = {0};
-    fixed_roots(s, h, &roots);
-    settle(&roots, &s->range);
-    wr_status status = WR_NO_MEMORY;
-    if (!roots.failed) {
-        question q = {WHAT_WRENCH, wrench, NULL, stop};
-        status = decide(s, &q, &roots, out);
-    }
-    free(roots.items);
-    if (status != WR_OK)
-        wr_intervals_release(out);
-    return status;
-}
-
-/* ---- push and gravity ------------------------------------------------------------- */
-
-/* Two planes meet the edge's wrench s1 c1 + s2 c2 at one point where
- * alpha_P beta_Q - alpha_Q beta_P = 0, alpha = c1 . n(mu), beta = c2 . n(mu)
- * (quadratics, so a quartic).  Each root is kept when the point is on the
- * edge and on both faces. */
-static void edge_roots(const wr_sweeper *s, const wr_edge_frame *frame, const wr_stop *stop,
-                       values *out, bool *stopped)
-{
-    const wr_sweep_range *r = &s->range;
-    int n = s->plane_count;
-    double (*alpha)[3] = malloc((size_t)(n + 1) * sizeof *alpha);
-    double (*beta)[3] = malloc((size_t)(n + 1) * sizeof *beta);
-    if (!alpha || !beta) {
-        free(alpha);
-        free(beta);
-        out->failed = true;
-        return;
-    }
-    for (int i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) {
-            alpha[i][k] = wr_dot3(frame->c1, s->planes[i].n[k]);
-            beta[i][k] = wr_dot3(frame->c2, s->planes[i].n[k]);
-        }
-    for (int i = 0; i < n && !out->failed; i++) {
-        if (i % 16 == 0 && wr_stop_requested(stop)) {
-            *stopped = true;
-            break;
-        }
-        for (int j = i + 1; j < n; j++) {
-            double c[5] = {0, 0, 0, 0, 0};
-            for (int x = 0; x < 3; x++)
-                for (int y = 0; y < 3; y++)
-                    c[x + y] += alpha[i][x] * beta[j][y] - alpha[j][x] * beta[i][y];
-            double roots[MAX_DEGREE + 2];
-            int found = poly_roots(c, 4, r->low, r->high, roots);
-            for (int k = 0; k < found; k++) {
-                double mu = roots[k];
-                /* Where on the edge: from the plane that cuts it more
-                 * steeply. */
-                double ai = poly_value(alpha[i], 2, mu), bi = poly_value(beta[i], 2, mu);
-                double aj = poly_value(alpha[j], 2, mu), bj = poly_value(beta[j], 2, mu);
-                double a = ai, b = bi;
-                if (hypot(aj, bj) > hypot(ai, bi)) {
-                    a = aj;
-                    b = bj;
-                }
-                double points[3][2]; /* (s1, s2) */
-                int point_count = 0;
+    const wr_sweeper *s = job->sweeper;
+    const wr_fixture *f = s->fixture;
+    if (job->what == WHAT_GRAVITY) {
+        job->frame = (wr_edge_frame){WR_EDGE_CIRCLE, {1, 0, 0}, {0, 1, 0}, 0, 0};
+    } else {
+        int e = job->edge;
+        wr_edge_frame_of(f, e, &job->frame);
+        const wr_edge_frame *frame = &job->frame;
+        if (frame->kind != WR_EDGE_CIRCLE) {
+            double ends[2][3];
+            for (int k = 0; k < 3; k++) {
                 if (frame->kind == WR_EDGE_LINE) {
-                    /* a + t b = 0 */
-                    if (b == 0)
-                        continue;
-                    double t = -a / b;
-                    if (t >= -1e-9 && t <= 1 + 1e-9) {
-                        points[point_count][0] = 1;
-                        points[point_count++][1] = t;
-                    }
-                } else if (frame->kind == WR_EDGE_ARC) {
-                    /* (sin phi / s) a + cos phi b = 0 */
-                    double sa = frame->half_angle_sin, half = frame->half_angle;
-                    double root = a >= 0 ? atan2(-b * sa, a) : atan2(b * sa, -a);
-                    for (int turn = -2; turn <= 2; turn++) {
-                        double phi = root + turn * WR_PI;
-                        if (phi >= -half - 1e-9 && phi <= half + 1e-9 && point_count < 3) {
-                            points[point_count][0] = sin(phi) / sa;
-                            points[point_count++][1] = cos(phi);
-                        }
-                    }
+                    ends[0][k] = frame->c1[k];
+                    ends[1][k] = frame->c1[k] + frame->c2[k];
                 } else {
-                    /* cos theta a + sin theta b = 0: two opposite points */
-                    double theta = atan2(-a, b);
-                    points[0][0] = cos(theta);
-                    points[0][1] = sin(theta);
-                    points[1][0] = -points[0][0];
-                    points[1][1] = -points[0][1];
-                    point_count = 2;
+                    double c = cos(frame->half_angle);
+                    ends[0][k] = -frame->c1[k] + c * frame->c2[k];
+                    ends[1][k] = frame->c1[k] + c * frame->c2[k];
                 }
-                for (int m = 0; m < point_count; m++) {
-                    double h[3];
-                    for (int q = 0; q < 3; q++)
-                        h[q] = points[m][0] * frame->c1[q] + points[m][1] * frame->c2[q];
-                    if (on_face(s, &s->planes[i], h, mu) && on_face(s, &s->planes[j], h, mu)) {
-                        add_value(out, mu);
-                        break;
+            }
+            fixed_roots(s, ends[0], &job->roots);
+            fixed_roots(s, ends[1], &job->roots);
+        }
+        if (job->finger.radius > 0 && f->outline) {
+            size_t loop, segment;
+            wr_push_edge_place(f, e, &loop, &segment);
+            wr_span *spans = NULL;
+            int count = 0;
+            wr_status status = wr_finger_blocked(f->outline, loop, segment, job->finger.radius,
+                                                 job->stop, &spans, &count);
+            for (int i = 0; status == WR_OK && i < count; i++) {
+                const double ts[2] = {spans[i].lo, spans[i].hi};
+                for (int m = 0; m < 2; m++) {
+                    double w[3], h[3];
+                    wr_push_wrench(f, e, ts[m], w);
+                    h[0] = w[0];
+                    h[1] = w[1];
+                    h[2] = w[2] / f->gyration_radius;
+                    fixed_roots(s, h, &job->roots);
+                }
+            }
+            free(spans);
+            if (status != WR_OK)
+                return status;
+        }
+    }
+    for (int i = 0; i < s->plane_count; i++)
+        for (int k = 0; k < 3; k++) {
+            job->alpha[i][k] = wr_dot3(job->frame.c1, s->planes[i].n[k]);
+            job->beta[i][k] = wr_dot3(job->frame.c2, s->planes[i].n[k]);
+        }
+    return job->roots.failed ? WR_NO_MEMORY : WR_OK;
+}
+
+/* Plane i against every later plane j on the current edge: two planes meet
+ * the edge's wrench s1 c1 + s2 c2 at one point where alpha_i beta_j -
+ * alpha_j beta_i = 0 (a quartic in mu).  Each root is kept when the point
+ * is on the edge and on both faces. */
+static void edge_row(wr_sweep_job *job, int i)
+{
+    const wr_sweeper *s = job->sweeper;
+    const wr_sweep_range *r = &s->range;
+    const wr_edge_frame *frame = &job->frame;
+    double (*alpha)[3] = job->alpha, (*beta)[3] = job->beta;
+    for (int j = i + 1; j < s->plane_count; j++) {
+        double c[5] = {0, 0, 0, 0, 0};
+        for (int x = 0; x < 3; x++)
+            for (int y = 0; y < 3; y++)
+                c[x + y] += alpha[i][x] * beta[j][y] - alpha[j][x] * beta[i][y];
+        double roots[MAX_DEGREE + 2];
+        int found = poly_roots(c, 4, r->low, r->high, roots);
+        for (int k = 0; k < found; k++) {
+            double mu = roots[k];
+            /* Where on the edge: from the plane that cuts it more steeply. */
+            double ai = poly_value(alpha[i], 2, mu), bi = poly_value(beta[i], 2, mu);
+            double aj = poly_value(alpha[j], 2, mu), bj = poly_value(beta[j], 2, mu);
+            double a = ai, b = bi;
+            if (hypot(aj, bj) > hypot(ai, bi)) {
+                a = aj;
+                b = bj;
+            }
+            double points[5][2]; /* (s1, s2) */
+            int point_count = 0;
+            if (frame->kind == WR_EDGE_LINE) {
+                /* a + t b = 0 */
+                if (b == 0)
+                    continue;
+                double t = -a / b;
+                if (t >= -1e-9 && t <= 1 + 1e-9) {
+                    points[point_count][0] = 1;
+                    points[point_count++][1] = t;
+                }
+            } else if (frame->kind == WR_EDGE_ARC) {
+                /* (sin phi / s) a + cos phi b = 0 */
+                double sa = frame->half_angle_sin, half = frame->half_angle;
+                double root = a >= 0 ? atan2(-b * sa, a) : atan2(b * sa, -a);
+                for (int turn = -2; turn <= 2; turn++) {
+                    double phi = root + turn * WR_PI;
+                    if (phi >= -half - 1e-9 && phi <= half + 1e-9) {
+                        points[point_count][0] = sin(phi) / sa;
+                        points[point_count++][1] = cos(phi);
                     }
+                }
+            } else {
+                /* cos theta a + sin theta b = 0: two opposite points */
+                double theta = atan2(-a, b);
+                points[0][0] = cos(theta);
+                points[0][1] = sin(theta);
+                points[1][0] = -points[0][0];
+                points[1][1] = -points[0][1];
+                point_count = 2;
+            }
+            for (int m = 0; m < point_count; m++) {
+                double h[3];
+                for (int q = 0; q < 3; q++)
+                    h[q] = points[m][0] * frame->c1[q] + points[m][1] * frame->c2[q];
+                if (on_face(s, &s->planes[i], h, mu) && on_face(s, &s->planes[j], h, mu)) {
+                    add_value(&job->roots, mu);
+                    break;
                 }
             }
         }
     }
-    free(alpha);
-    free(beta);
 }
 
-/* The points of the curve: every root kept, and a grid between. */
-static wr_status make_curve(const wr_sweeper *s, const question *q, const values *roots,
-                            wr_sweep_curve *out)
-{
-    values points = {0};
-    for (int i = 0; i < roots->count; i++)
-        add_value(&points, roots->items[i]);
-    double width = s->range.high - s->range.low;
-    for (int i = 1; i < GRID; i++)
-        add_value(&points, s->range.low + width * i / GRID);
-    for (int i = 0; i < out->intervals.count; i++) {
-        add_value(&points, out->intervals.items[i][0]);
-        add_value(&points, out->intervals.items[i][1]);
-    }
-    settle(&points, &s->range);
-    wr_status status = points.failed ? WR_NO_MEMORY : WR_OK;
-    if (status == WR_OK) {
-        out->points = malloc((size_t)points.count * sizeof *out->points);
-        if (!out->points)
-            status = WR_NO_MEMORY;
-    }
-    for (int i = 0; status == WR_OK && i < points.count; i++) {
-        if (wr_stop_requested(q->stop)) {
-            status = WR_STOPPED;
-            break;
-        }
-        double mu = points.items[i];
-        double length = answer_at(s, q, mu, &status);
-        out->points[i][0] = mu;
-        out->points[i][1] = length;
-        out->point_count = i + 1;
-    }
-    free(points.items);
-    return status;
-}
+/* ---- the job, a unit of work at a time ------------------------------------------- */
 
 static void set_critical(const wr_sweeper *s, wr_sweep_curve *out)
 {
@@ -754,143 +747,332 @@ static void set_critical(const wr_sweeper *s, wr_sweep_curve *out)
     }
 }
 
-/* A finger with friction: its regions are sampled, so the sweep is too --
- * FRICTION_STEPS pieces of mu, each change of emptiness bisected. */
-static wr_status sampled_intervals(const wr_sweeper *s, const question *q, wr_intervals *out)
+/* The intervals are known: the points of the curve are every root kept,
+ * every interval end and a grid between. */
+static wr_status curve_begin(wr_sweep_job *job)
 {
-    const wr_sweep_range *r = &s->range;
-    double width = r->high - r->low;
-    wr_status status;
-    double first = answer_at(s, q, r->low, &status);
-    if (status != WR_OK)
-        return status;
-    bool previous = first > 0;
-    double start = r->low;
-    for (int i = 1; i <= FRICTION_STEPS; i++) {
-        if (wr_stop_requested(q->stop))
-            return WR_STOPPED;
-        double lo = r->low + width * (i - 1) / FRICTION_STEPS;
-        double hi = i == FRICTION_STEPS ? r->high : r->low + width * i / FRICTION_STEPS;
-        bool now = answer_at(s, q, hi, &status) > 0;
-        if (status != WR_OK)
-            return status;
-        if (now == previous)
-            continue;
-        /* Bisect the change to the last bit worth having. */
-        while (hi - lo > ROOT_MERGE * fmax(1, r->high)) {
-            double mid = lo + (hi - lo) / 2;
-            bool m = answer_at(s, q, mid, &status) > 0;
-            if (status != WR_OK)
-                return status;
-            if (m == previous)
-                lo = mid;
-            else
-                hi = mid;
-        }
-        double change = lo + (hi - lo) / 2;
-        if (previous && !add_interval(out, start, change))
-            return WR_NO_MEMORY;
-        start = change;
-        previous = now;
+    const wr_sweeper *s = job->sweeper;
+    set_critical(s, &job->curve);
+    values *points = &job->points;
+    for (int i = 0; i < job->roots.count; i++)
+        add_value(points, job->roots.items[i]);
+    double width = s->range.high - s->range.low;
+    for (int i = 1; i < GRID; i++)
+        add_value(points, s->range.low + width * i / GRID);
+    for (int i = 0; i < job->curve.intervals.count; i++) {
+        add_value(points, job->curve.intervals.items[i][0]);
+        add_value(points, job->curve.intervals.items[i][1]);
     }
-    if (previous && !add_interval(out, start, r->high))
+    settle(points, &s->range);
+    if (points->failed)
         return WR_NO_MEMORY;
+    job->curve.points = malloc((size_t)points->count * sizeof *job->curve.points);
+    if (!job->curve.points)
+        return WR_NO_MEMORY;
+    job->curve.point_count = 0;
+    job->index = 0;
+    job->phase = PHASE_CURVE;
     return WR_OK;
 }
 
-static wr_status sweep_region(const wr_sweeper *s, const question *q, wr_sweep_curve *out)
+/* One step of the sampled sweep (a finger with friction): FRICTION_STEPS
+ * steps of mu, each change of emptiness bisected. */
+static wr_status sampled_unit(wr_sweep_job *job, unsigned long *spent)
 {
-    memset(out, 0, sizeof *out);
-    const wr_fixture *f = s->fixture;
-    values roots = {0};
-    bool stopped = false;
+    const wr_sweep_range *r = &job->sweeper->range;
+    double width = r->high - r->low;
+    wr_intervals *out = &job->curve.intervals;
     wr_status status = WR_OK;
-    out->exact = true;
-    if (q->what == WHAT_PUSH && q->finger->friction > 0) {
-        out->exact = false;
-        out->resolution = (s->range.high - s->range.low) / FRICTION_STEPS;
-        status = sampled_intervals(s, q, &out->intervals);
-    } else {
-        if (q->what == WHAT_GRAVITY) {
-            wr_edge_frame frame = {WR_EDGE_CIRCLE, {1, 0, 0}, {0, 1, 0}, 0, 0};
-            edge_roots(s, &frame, q->stop, &roots, &stopped);
+    if (job->step == 0) {
+        job->previous = answer_at(job, r->low, &status) > 0;
+        job->start = r->low;
+        job->step = 1;
+        *spent += job->evaluation_cost;
+        return status;
+    }
+    if (!job->bisecting) {
+        if (job->step > FRICTION_STEPS) {
+            if (job->previous && !add_interval(out, job->start, r->high))
+                return WR_NO_MEMORY;
+            return curve_begin(job);
+        }
+        double lo = r->low + width * (job->step - 1) / FRICTION_STEPS;
+        double hi = job->step == FRICTION_STEPS ? r->high : r->low + width * job->step / FRICTION_STEPS;
+        bool now = answer_at(job, hi, &status) > 0;
+        *spent += job->evaluation_cost;
+        if (status != WR_OK)
+            return status;
+        if (now == job->previous) {
+            job->step++;
         } else {
-            int edges = wr_push_edge_count(f);
-            for (int e = 0; e < edges && !stopped && !roots.failed; e++) {
-                wr_edge_frame frame;
-                wr_edge_frame_of(f, e, &frame);
-                edge_roots(s, &frame, q->stop, &roots, &stopped);
-                /* The ends of the edge and of the finger's blocked spans. */
-                if (frame.kind == WR_EDGE_CIRCLE)
-                    continue;
-                double ends[2][3];
-                for (int k = 0; k < 3; k++) {
-                    if (frame.kind == WR_EDGE_LINE) {
-                        ends[0][k] = frame.c1[k];
-                        ends[1][k] = frame.c1[k] + frame.c2[k];
-                    } else {
-                        double c = cos(frame.half_angle);
-                        ends[0][k] = -frame.c1[k] + c * frame.c2[k];
-                        ends[1][k] = frame.c1[k] + c * frame.c2[k];
-                    }
-                }
-                fixed_roots(s, ends[0], &roots);
-                fixed_roots(s, ends[1], &roots);
-                if (q->finger->radius > 0) {
-                    size_t loop, segment;
-                    wr_push_edge_place(f, e, &loop, &segment);
-                    wr_span *spans = NULL;
-                    int count = 0;
-                    status = wr_finger_blocked(f->outline, loop, segment, q->finger->radius,
-                                               q->stop, &spans, &count);
-                    for (int i = 0; status == WR_OK && i < count; i++) {
-                        double ts[2] = {spans[i].lo, spans[i].hi};
-                        for (int m = 0; m < 2; m++) {
-                            double w[3], h[3];
-                            wr_push_wrench(f, e, ts[m], w);
-                            h[0] = w[0];
-                            h[1] = w[1];
-                            h[2] = w[2] / f->gyration_radius;
-                            fixed_roots(s, h, &roots);
-                        }
-                    }
-                    free(spans);
-                    if (status != WR_OK)
-                        break;
-                }
+            job->bisecting = true;
+            job->lo = lo;
+            job->hi = hi;
+        }
+        return WR_OK;
+    }
+    if (job->hi - job->lo > ROOT_MERGE * fmax(1, r->high)) {
+        double mid = job->lo + (job->hi - job->lo) / 2;
+        bool m = answer_at(job, mid, &status) > 0;
+        *spent += job->evaluation_cost;
+        if (status != WR_OK)
+            return status;
+        if (m == job->previous)
+            job->lo = mid;
+        else
+            job->hi = mid;
+        return WR_OK;
+    }
+    double change = job->lo + (job->hi - job->lo) / 2;
+    if (job->previous && !add_interval(out, job->start, change))
+        return WR_NO_MEMORY;
+    job->start = change;
+    job->previous = !job->previous;
+    job->bisecting = false;
+    job->step++;
+    return WR_OK;
+}
+
+/* One unit of work: a plane row of an edge, a piece decided, a point of the
+ * curve, a step of the sampled sweep. */
+static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
+{
+    const wr_sweeper *s = job->sweeper;
+    wr_status status = WR_OK;
+    switch (job->phase) {
+    case PHASE_ROOTS:
+        if (job->what == WHAT_WRENCH) {
+            double h[3];
+            wr_fixture_unit_wrench(s->fixture, job->wrench, h);
+            fixed_roots(s, h, &job->roots);
+            *spent += (unsigned long)s->plane_count * 4 + 1;
+            job->edge = job->edge_count;
+        } else if (job->edge < job->edge_count) {
+            if (job->row < 0) {
+                status = edge_begin(job);
+                job->row = 0;
+                *spent += (unsigned long)s->plane_count * 8 + 1;
+            } else if (job->row < s->plane_count) {
+                edge_row(job, job->row);
+                *spent += (unsigned long)(s->plane_count - job->row) * job->row_cost + 1;
+                job->row++;
+            }
+            if (job->row >= s->plane_count) {
+                job->edge++;
+                job->row = -1;
             }
         }
-        settle(&roots, &s->range);
-        if (status == WR_OK)
-            status = stopped ? WR_STOPPED : roots.failed ? WR_NO_MEMORY : WR_OK;
-        if (status == WR_OK)
-            status = decide(s, q, &roots, &out->intervals);
+        if (status == WR_OK && job->edge >= job->edge_count) {
+            settle(&job->roots, &s->range);
+            job->phase = PHASE_DECIDE;
+            job->index = 0;
+        }
+        if (status == WR_OK && job->roots.failed)
+            status = WR_NO_MEMORY;
+        return status;
+    case PHASE_DECIDE: {
+        wr_intervals *out = job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;
+        if (job->index + 1 >= job->roots.count) {
+            if (job->what == WHAT_WRENCH) {
+                job->phase = PHASE_DONE;
+                return WR_OK;
+            }
+            return curve_begin(job);
+        }
+        double lo = job->roots.items[job->index], hi = job->roots.items[job->index + 1];
+        double value = answer_at(job, lo + (hi - lo) / 2, &status);
+        *spent += job->evaluation_cost;
+        job->index++;
+        if (status == WR_OK && value > 0 && !add_interval(out, lo, hi))
+            status = WR_NO_MEMORY;
+        return status;
     }
+    case PHASE_SAMPLED:
+        return sampled_unit(job, spent);
+    case PHASE_CURVE: {
+        if (job->index >= job->points.count) {
+            job->phase = PHASE_DONE;
+            return WR_OK;
+        }
+        double mu = job->points.items[job->index];
+        double length = answer_at(job, mu, &status);
+        *spent += job->evaluation_cost;
+        if (status != WR_OK)
+            return status;
+        job->curve.points[job->index][0] = mu;
+        job->curve.points[job->index][1] = length;
+        job->curve.point_count = ++job->index;
+        return WR_OK;
+    }
+    case PHASE_DONE:
+        break;
+    }
+    return WR_OK;
+}
+
+void wr_sweep_job_free(wr_sweep_job *job)
+{
+    if (!job)
+        return;
+    free(job->alpha);
+    free(job->beta);
+    free(job->roots.items);
+    free(job->points.items);
+    wr_intervals_release(&job->intervals);
+    wr_sweep_curve_release(&job->curve);
+    free(job);
+}
+
+static wr_sweep_job *job_new(const wr_sweeper *s, what what)
+{
+    wr_sweep_job *job = calloc(1, sizeof *job);
+    if (!job)
+        return NULL;
+    job->sweeper = s;
+    job->what = what;
+    job->row = -1;
+    job->edge_count = 1;
+    job->curve.exact = true;
+    job->row_cost = 32; /* a quartic's roots and their checks */
+    /* An analysis at one mu: every cone's hull; then the question. */
+    unsigned long cones = (unsigned long)s->cone_count + 1;
+    job->evaluation_cost = (unsigned long)s->analysis_cones * 300 + cones * 4;
+    if (what != WHAT_WRENCH) {
+        size_t planes = (size_t)s->plane_count + 1;
+        job->alpha = malloc(planes * sizeof *job->alpha);
+        job->beta = malloc(planes * sizeof *job->beta);
+        if (!job->alpha || !job->beta) {
+            wr_sweep_job_free(job);
+            return NULL;
+        }
+    }
+    return job;
+}
+
+wr_status wr_sweep_job_wrench(const wr_sweeper *s, const double wrench[3], wr_sweep_job **out)
+{
+    *out = NULL;
+    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]))
+        return WR_INVALID;
+    wr_sweep_job *job = job_new(s, WHAT_WRENCH);
+    if (!job)
+        return WR_NO_MEMORY;
+    wr_copy3(wrench, job->wrench);
+    *out = job;
+    return WR_OK;
+}
+
+wr_status wr_sweep_job_push(const wr_sweeper *s, const wr_finger *finger, wr_sweep_job **out)
+{
+    *out = NULL;
+    if (s->fixture->shape == WR_SHAPE_NONE)
+        return WR_NO_SHAPE;
+    if (!(finger->friction >= 0) || !isfinite(finger->friction) || !(finger->radius >= 0) ||
+        !isfinite(finger->radius))
+        return WR_INVALID;
+    wr_sweep_job *job = job_new(s, WHAT_PUSH);
+    if (!job)
+        return WR_NO_MEMORY;
+    job->finger = *finger;
+    int edges = wr_push_edge_count(s->fixture);
+    job->edge_count = edges;
+    unsigned long per_edge = finger->friction > 0 ? 2200 : 4;
+    job->evaluation_cost += (unsigned long)edges * ((unsigned long)s->cone_count + 1) * per_edge;
+    if (finger->friction > 0) {
+        /* Its regions are sampled, and so is the sweep. */
+        job->phase = PHASE_SAMPLED;
+        job->curve.exact = false;
+        job->curve.resolution = (s->range.high - s->range.low) / FRICTION_STEPS;
+    }
+    *out = job;
+    return WR_OK;
+}
+
+wr_status wr_sweep_job_gravity(const wr_sweeper *s, wr_sweep_job **out)
+{
+    *out = job_new(s, WHAT_GRAVITY);
+    return *out ? WR_OK : WR_NO_MEMORY;
+}
+
+wr_status wr_sweep_job_run(wr_sweep_job *job, unsigned long budget, unsigned long *used,
+                           const wr_stop *stop, bool *done)
+{
+    job->stop = stop;
+    unsigned long spent = 0;
+    wr_status status = WR_OK;
+    while (job->phase != PHASE_DONE && status == WR_OK) {
+        if (wr_stop_requested(stop)) {
+            status = WR_STOPPED;
+            break;
+        }
+        status = job_unit(job, &spent);
+        if (spent >= budget)
+            break;
+    }
+    if (used)
+        *used += spent;
+    *done = status == WR_OK && job->phase == PHASE_DONE;
+    return status;
+}
+
+const wr_intervals *wr_sweep_job_intervals(const wr_sweep_job *job)
+{
+    return job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;
+}
+
+const wr_sweep_curve *wr_sweep_job_curve(const wr_sweep_job *job) { return &job->curve; }
+
+/* ---- all at once ------------------------------------------------------------------- */
+
+static wr_status run_all(wr_sweep_job *job, const wr_stop *stop)
+{
+    bool done = false;
+    wr_status status = wr_sweep_job_run(job, (unsigned long)-1, NULL, stop, &done);
+    assert(status != WR_OK || done);
+    return status;
+}
+
+wr_status wr_sweep_wrench(const wr_sweeper *s, const double wrench[3], const wr_stop *stop,
+                          wr_intervals *out)
+{
+    memset(out, 0, sizeof *out);
+    wr_sweep_job *job;
+    wr_status status = wr_sweep_job_wrench(s, wrench, &job);
+    if (status == WR_OK)
+        status = run_all(job, stop);
     if (status == WR_OK) {
-        set_critical(s, out);
-        status = make_curve(s, q, &roots, out);
+        *out = job->intervals;
+        memset(&job->intervals, 0, sizeof job->intervals);
     }
-    free(roots.items);
-    if (status != WR_OK)
-        wr_sweep_curve_release(out);
+    wr_sweep_job_free(job);
+    return status;
+}
+
+static wr_status take_curve(wr_sweep_job *job, wr_status status, const wr_stop *stop,
+                            wr_sweep_curve *out)
+{
+    memset(out, 0, sizeof *out);
+    if (status == WR_OK)
+        status = run_all(job, stop);
+    if (status == WR_OK) {
+        *out = job->curve;
+        memset(&job->curve, 0, sizeof job->curve);
+    }
+    wr_sweep_job_free(job);
     return status;
 }
 
 wr_status wr_sweep_push(const wr_sweeper *s, const wr_finger *finger, const wr_stop *stop,
                         wr_sweep_curve *out)
 {
-    memset(out, 0, sizeof *out);
-    if (s->fixture->shape == WR_SHAPE_NONE)
-        return WR_NO_SHAPE;
-    if (!(finger->friction >= 0) || !isfinite(finger->friction) || !(finger->radius >= 0) ||
-        !isfinite(finger->radius))
-        return WR_INVALID;
-    question q = {WHAT_PUSH, NULL, finger, stop};
-    return sweep_region(s, &q, out);
+    wr_sweep_job *job;
+    wr_status status = wr_sweep_job_push(s, finger, &job);
+    return take_curve(job, status, stop, out);
 }
 
 wr_status wr_sweep_gravity(const wr_sweeper *s, const wr_stop *stop, wr_sweep_curve *out)
 {
-    question q = {WHAT_GRAVITY, NULL, NULL, stop};
-    return sweep_region(s, &q, out);
+    wr_sweep_job *job;
+    wr_status status = wr_sweep_job_gravity(s, &job);
+    return take_curve(job, status, stop, out);
 }

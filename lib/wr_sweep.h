@@ -99,6 +99,30 @@ wr_status wr_sweep_push(const wr_sweeper *sweeper, const wr_finger *finger,
  * WR_OK; WR_NO_MEMORY; WR_STOPPED. */
 wr_status wr_sweep_gravity(const wr_sweeper *sweeper, const wr_stop *stop, wr_sweep_curve *out);
 
+/* The same a bounded amount of work at a time, so that a server can share
+ * its threads among clients: a job is made by one of the three functions
+ * below (returning as the functions above do before any work), then run
+ * until done.  Each run does units of work (an edge's row of plane pairs,
+ * one analysis at one mu) until about `budget` work units are spent (a
+ * unit is about one wrench against one cone, as the server counts them;
+ * at least one unit a run), adds them to *used (may be NULL), and sets
+ * *done when the answer is complete.  WR_OK; WR_NO_MEMORY; WR_STOPPED when
+ * `stop` asks (between units); after a failure the job can only be freed.
+ * The sweeper must outlive the job. */
+typedef struct wr_sweep_job wr_sweep_job;
+
+wr_status wr_sweep_job_wrench(const wr_sweeper *sweeper, const double wrench[3],
+                              wr_sweep_job **out);
+wr_status wr_sweep_job_push(const wr_sweeper *sweeper, const wr_finger *finger,
+                            wr_sweep_job **out);
+wr_status wr_sweep_job_gravity(const wr_sweeper *sweeper, wr_sweep_job **out);
+wr_status wr_sweep_job_run(wr_sweep_job *job, unsigned long budget, unsigned long *used,
+                           const wr_stop *stop, bool *done);
+/* When done: a wrench's intervals (also a region's), a region's curve. */
+const wr_intervals *wr_sweep_job_intervals(const wr_sweep_job *job);
+const wr_sweep_curve *wr_sweep_job_curve(const wr_sweep_job *job);
+void wr_sweep_job_free(wr_sweep_job *job);
+
 /* The fixture at a common coefficient: a shallow copy of `fixture` (its
  * shape borrowed, never to be freed) with mu_s = mu and mu_k = ratio * mu
  * on every fixel. */

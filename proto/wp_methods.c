@@ -367,10 +367,25 @@ typedef struct push_state {
     double total, resolution;
 } push_state;
 
+/* friction.sweep, a job's budget at a time (wr_sweep.h). */
+enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY };
+typedef struct sweep_state {
+    int what;                   /* SWEEP_* */
+    wr_sweep_range range;
+    classify_request request;   /* the sets (one for push and gravity), the wrenches */
+    wr_finger finger;
+    wr_sweeper *sweepers[3];    /* one per set */
+    wr_sweep_job *job;          /* the current one */
+    size_t next;                /* wrenches: the next to answer, */
+    int set;                    /* and its next set */
+    bool opened;                /* "{"results":[" written */
+} sweep_state;
+
 struct wp_stream {
     union {
         classify_state classify;
         push_state push;
+        sweep_state sweep;
     } u;
 };
 
@@ -837,8 +852,8 @@ static cJSON *stability_margin(wp_call *call)
 
 /* ---- friction.sweep -------------------------------------------------------- */
 
-static const char *const SWEEP_PUSH[] = {"set", "finger_friction", "finger_radius", NULL};
-static const char *const SWEEP_GRAVITY[] = {"set", NULL};
+static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
+static const char *const SWEEP_GRAVITY_FIELDS[] = {"set", NULL};
 
 /* params.range: [low, high], 0 <= low < high <= WR_MAX_FRICTION (default
  * [0, 2]); params.kinetic_ratio in (0, 1] (default 1). */
@@ -894,197 +909,229 @@ static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_erro
     return true;
 }
 
-static cJSON *intervals_json(const wr_intervals *list)
+static void write_intervals(wp_buffer *out, const wr_intervals *list)
 {
-    cJSON *array = cJSON_CreateArray();
-    for (int i = 0; array && i < list->count; i++) {
+    WP_BUFFER_LITERAL(out, "[");
+    for (int i = 0; i < list->count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
         const double pair[2] = {list->items[i][0] + 0.0, list->items[i][1] + 0.0};
-        cJSON *item = cJSON_CreateDoubleArray(pair, 2);
-        if (!item) {
-            cJSON_Delete(array);
-            return NULL;
-        }
-        cJSON_AddItemToArray(array, item);
+        write_vector(out, pair, 2);
     }
-    return array;
+    WP_BUFFER_LITERAL(out, "]");
 }
 
 /* {"intervals", "critical", "curve", "exact", "resolution"} */
-static cJSON *curve_json(const wr_sweep_curve *curve)
+static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
 {
-    cJSON *result = cJSON_CreateObject();
-    cJSON *intervals = intervals_json(&curve->intervals);
-    cJSON *points = cJSON_CreateArray();
-    bool ok = result && intervals && points;
-    if (ok) {
-        cJSON_AddItemToObject(result, "intervals", intervals);
-        intervals = NULL;
-        if (curve->has_critical)
-            ok = cJSON_AddNumberToObject(result, "critical", curve->critical + 0.0) != NULL;
-        else
-            ok = cJSON_AddNullToObject(result, "critical") != NULL;
-    }
-    for (int i = 0; ok && i < curve->point_count; i++) {
+    WP_BUFFER_LITERAL(out, "{\"intervals\":");
+    write_intervals(out, &curve->intervals);
+    WP_BUFFER_LITERAL(out, ",\"critical\":");
+    if (curve->has_critical)
+        wp_buffer_number(out, curve->critical + 0.0);
+    else
+        WP_BUFFER_LITERAL(out, "null");
+    WP_BUFFER_LITERAL(out, ",\"curve\":[");
+    for (int i = 0; i < curve->point_count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
         const double point[2] = {curve->points[i][0] + 0.0, curve->points[i][1] + 0.0};
-        cJSON *item = cJSON_CreateDoubleArray(point, 2);
-        ok = item != NULL;
-        if (ok)
-            cJSON_AddItemToArray(points, item);
+        write_vector(out, point, 2);
     }
-    if (ok) {
-        cJSON_AddItemToObject(result, "curve", points);
-        points = NULL;
-        ok = cJSON_AddBoolToObject(result, "exact", curve->exact) &&
-             cJSON_AddNumberToObject(result, "resolution", curve->resolution);
-    }
-    cJSON_Delete(intervals);
-    cJSON_Delete(points);
-    if (!ok) {
-        cJSON_Delete(result);
-        return NULL;
-    }
-    return result;
+    wp_buffer_puts(out, curve->exact ? "],\"exact\":true" : "],\"exact\":false");
+    WP_BUFFER_LITERAL(out, ",\"resolution\":");
+    wp_buffer_number(out, curve->resolution);
+    WP_BUFFER_LITERAL(out, "}");
 }
 
-/* Every wrench against every set asked: {"results": [{"goal": [[lo, hi],
- * ...], ...}, ...]}. */
-static cJSON *sweep_wrenches(wp_call *call, const wr_fixture *fixture,
-                             const wr_sweep_range *range)
-{
-    wp_error *error = call->error;
-    classify_request r;
-    memset(&r, 0, sizeof r);
-    if (!read_sets(call->params, &r, error))
-        return NULL;
-    const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(call->params, "wrenches");
-    if (!cJSON_IsArray(wrenches)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.wrenches",
-                     "must be an array of wrenches, not %s", wp_type_name(wrenches));
-        return NULL;
-    }
-    size_t count = (size_t)cJSON_GetArraySize(wrenches);
-    if (count > call->limits->max_wrenches) {
-        wp_error_set(error, WP_LIMIT, "params.wrenches",
-                     "%zu wrenches in one request, the limit is %zu (--max-wrenches)", count,
-                     call->limits->max_wrenches);
-        return NULL;
-    }
-    double (*list)[3] = malloc((count ? count : 1) * sizeof *list);
-    if (!list)
-        return out_of_memory(NULL, error);
-    size_t index = 0;
-    for (const cJSON *w = wrenches->child; w; w = w->next, index++) {
-        char field[WP_FIELD_MAX];
-        wp_path_index(field, "params.wrenches", index);
-        if (!wp_wrench_read(w, field, fixture, list[index], error)) {
-            free(list);
-            return NULL;
-        }
-    }
-    wr_sweeper *sweepers[3] = {NULL, NULL, NULL};
-    cJSON *result = cJSON_CreateObject();
-    cJSON *results = result ? cJSON_AddArrayToObject(result, "results") : NULL;
-    wr_status status = results ? WR_OK : WR_NO_MEMORY;
-    for (int s = 0; status == WR_OK && s < r.set_count; s++)
-        status = wr_sweeper_new(fixture, r.sets[s], range, &sweepers[s]);
-    for (size_t i = 0; status == WR_OK && i < count; i++) {
-        cJSON *item = cJSON_CreateObject();
-        if (!item) {
-            status = WR_NO_MEMORY;
-            break;
-        }
-        cJSON_AddItemToArray(results, item);
-        for (int s = 0; status == WR_OK && s < r.set_count; s++) {
-            wr_intervals intervals;
-            status = wr_sweep_wrench(sweepers[s], list[i], call->host->stop, &intervals);
-            if (status != WR_OK)
-                break;
-            cJSON *array = intervals_json(&intervals);
-            wr_intervals_release(&intervals);
-            if (!array)
-                status = WR_NO_MEMORY;
-            else
-                cJSON_AddItemToObject(item, SET_NAMES[r.sets[s]], array);
-        }
-    }
-    for (int s = 0; s < 3; s++)
-        wr_sweeper_free(sweepers[s]);
-    free(list);
-    if (status != WR_OK) {
-        cJSON_Delete(result);
-        wp_error_status(error, status, "params.wrenches", "%s", wr_strerror(status));
-        return NULL;
-    }
-    return result;
-}
-
-/* params.push or params.gravity: the region (arc) against mu. */
-static cJSON *sweep_region(wp_call *call, const wr_fixture *fixture, const wr_sweep_range *range,
-                           bool push)
-{
-    wp_error *error = call->error;
-    const char *path = push ? "params.push" : "params.gravity";
-    const cJSON *what = cJSON_GetObjectItemCaseSensitive(call->params, push ? "push" : "gravity");
-    wr_set set;
-    wr_finger finger = {0, 0};
-    if (!wp_check_object(what, path, push ? SWEEP_PUSH : SWEEP_GRAVITY, error) ||
-        !read_set_at(what, path, &set, error) ||
-        (push && !read_finger(what, path, &finger, error)))
-        return NULL;
-    if (push && fixture->shape == WR_SHAPE_NONE) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
-                     "push regions need the part's outline: the fixture has no shape");
-        return NULL;
-    }
-    wr_sweeper *sweeper;
-    wr_status status = wr_sweeper_new(fixture, set, range, &sweeper);
-    wr_sweep_curve curve;
-    if (status == WR_OK) {
-        status = push ? wr_sweep_push(sweeper, &finger, call->host->stop, &curve)
-                      : wr_sweep_gravity(sweeper, call->host->stop, &curve);
-        wr_sweeper_free(sweeper);
-    }
-    if (status != WR_OK) {
-        wp_error_status(error, status, path, "%s", wr_strerror(status));
-        return NULL;
-    }
-    cJSON *result = curve_json(&curve);
-    wr_sweep_curve_release(&curve);
-    return result ? result : out_of_memory(NULL, error);
-}
-
-/* friction.sweep: one of wrenches, push, gravity, against a common mu. */
-static cJSON *friction_sweep(wp_call *call)
+/* The sweep's reading of params: which question, the range, and the
+ * wrenches and sets or the set and finger. */
+static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *state)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
     const char *names[3] = {"wrenches", "push", "gravity"};
-    int given = 0, which = -1;
+    int given = 0;
     for (int i = 0; i < 3; i++)
         if (cJSON_GetObjectItemCaseSensitive(params, names[i])) {
             given++;
-            which = i;
+            state->what = i;
         }
     if (given != 1) {
         wp_error_set(error, WP_INVALID_PARAMS, "params",
                      "give exactly one of \"wrenches\", \"push\" and \"gravity\" (%d given)",
                      given);
-        return NULL;
+        return false;
     }
-    if (which != 0 && cJSON_GetObjectItemCaseSensitive(params, "sets")) {
+    if (state->what != SWEEP_WRENCHES && cJSON_GetObjectItemCaseSensitive(params, "sets")) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.sets",
                      "only with \"wrenches\": a push or gravity sweep takes its \"set\"");
-        return NULL;
+        return false;
     }
-    wr_sweep_range range;
-    if (!read_sweep_range(params, &range, error))
-        return NULL;
+    if (!read_sweep_range(params, &state->range, error))
+        return false;
+    if (state->what == SWEEP_WRENCHES) {
+        classify_request *r = &state->request;
+        if (!read_sets(params, r, error))
+            return false;
+        const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
+        if (!cJSON_IsArray(wrenches)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.wrenches",
+                         "must be an array of wrenches, not %s", wp_type_name(wrenches));
+            return false;
+        }
+        size_t count = (size_t)cJSON_GetArraySize(wrenches);
+        if (count > call->limits->max_wrenches) {
+            wp_error_set(error, WP_LIMIT, "params.wrenches",
+                         "%zu wrenches in one request, the limit is %zu (--max-wrenches)", count,
+                         call->limits->max_wrenches);
+            return false;
+        }
+        r->wrenches = malloc((count ? count : 1) * sizeof *r->wrenches);
+        if (!r->wrenches) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        size_t index = 0;
+        for (const cJSON *w = wrenches->child; w; w = w->next, index++) {
+            char field[WP_FIELD_MAX];
+            wp_path_index(field, "params.wrenches", index);
+            if (!wp_wrench_read(w, field, fixture, r->wrenches[index], error))
+                return false;
+        }
+        r->wrench_count = count;
+        return true;
+    }
+    bool push = state->what == SWEEP_PUSH;
+    const char *path = push ? "params.push" : "params.gravity";
+    const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, push ? "push" : "gravity");
+    state->request.set_count = 1;
+    if (!wp_check_object(what, path, push ? SWEEP_PUSH_FIELDS : SWEEP_GRAVITY_FIELDS, error) ||
+        !read_set_at(what, path, &state->request.sets[0], error) ||
+        (push && !read_finger(what, path, &state->finger, error)))
+        return false;
+    if (push && fixture->shape == WR_SHAPE_NONE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                     "push regions need the part's outline: the fixture has no shape");
+        return false;
+    }
+    return true;
+}
+
+static void sweep_free(wp_stream *stream)
+{
+    if (!stream)
+        return;
+    sweep_state *state = &stream->u.sweep;
+    wr_sweep_job_free(state->job);
+    for (int s = 0; s < 3; s++)
+        wr_sweeper_free(state->sweepers[s]);
+    free(state->request.wrenches);
+    free(stream);
+}
+
+/* friction.sweep: one of wrenches, push, gravity, against a common mu.
+ * Everything is read and the sweepers made before any answer is written;
+ * then each step runs the current job for its budget (wr_sweep.h). */
+static wp_stream *sweep_begin(wp_call *call, wp_prepared *prepared)
+{
+    (void)prepared;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
-    return which == 0 ? sweep_wrenches(call, use->fixture, &range)
-                      : sweep_region(call, use->fixture, &range, which == 1);
+    wp_stream *stream = calloc(1, sizeof *stream);
+    if (!stream) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return NULL;
+    }
+    sweep_state *state = &stream->u.sweep;
+    if (!read_sweep(call, use->fixture, state)) {
+        sweep_free(stream);
+        return NULL;
+    }
+    wr_status status = WR_OK;
+    for (int s = 0; status == WR_OK && s < state->request.set_count; s++)
+        status = wr_sweeper_new(use->fixture, state->request.sets[s], &state->range,
+                                &state->sweepers[s]);
+    if (status == WR_OK && state->what == SWEEP_PUSH)
+        status = wr_sweep_job_push(state->sweepers[0], &state->finger, &state->job);
+    else if (status == WR_OK && state->what == SWEEP_GRAVITY)
+        status = wr_sweep_job_gravity(state->sweepers[0], &state->job);
+    if (status != WR_OK) {
+        wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+        sweep_free(stream);
+        return NULL;
+    }
+    return stream;
 }
+
+static wp_step sweep_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                          unsigned long *used)
+{
+    sweep_state *state = &stream->u.sweep;
+    const classify_request *r = &state->request;
+    const wr_stop *stop = call->host->stop;
+    size_t start = out->length;
+    for (bool first = true; !out->failed; first = false) {
+        if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
+            return WP_STEP_MORE;
+        if (state->what == SWEEP_WRENCHES) {
+            if (!state->opened) {
+                state->opened = true;
+                WP_BUFFER_LITERAL(out, "{\"results\":[");
+            }
+            if (state->next >= r->wrench_count) {
+                WP_BUFFER_LITERAL(out, "]}");
+                return WP_STEP_DONE;
+            }
+            if (!state->job) {
+                wr_status status = wr_sweep_job_wrench(state->sweepers[state->set],
+                                                       r->wrenches[state->next], &state->job);
+                if (status != WR_OK) {
+                    wp_error_status(call->error, status, "params.wrenches", "%s",
+                                    wr_strerror(status));
+                    return WP_STEP_FAILED;
+                }
+            }
+        }
+        bool done;
+        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1, used,
+                                            stop, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        if (!done)
+            continue;
+        if (state->what != SWEEP_WRENCHES) {
+            write_curve(out, wr_sweep_job_curve(state->job));
+            return WP_STEP_DONE;
+        }
+        /* A wrench's set answered: {"goal": [...], ...} as its sets end. */
+        if (state->set == 0)
+            wp_buffer_puts(out, state->next ? ",{\"" : "{\"");
+        else
+            WP_BUFFER_LITERAL(out, ",\"");
+        wp_buffer_puts(out, SET_NAMES[r->sets[state->set]]);
+        WP_BUFFER_LITERAL(out, "\":");
+        write_intervals(out, wr_sweep_job_intervals(state->job));
+        wr_sweep_job_free(state->job);
+        state->job = NULL;
+        if (++state->set == r->set_count) {
+            WP_BUFFER_LITERAL(out, "}");
+            state->set = 0;
+            state->next++;
+        }
+    }
+    return WP_STEP_FAILED; /* out of memory: the buffer says so */
+}
+
+static size_t sweep_bytes(const wp_stream *stream)
+{
+    return sizeof *stream + stream->u.sweep.request.wrench_count * sizeof(double[3]);
+}
+
+static const wp_streamer SWEEP_STREAM = {sweep_begin, sweep_step, sweep_free, sweep_bytes};
 
 /* ---- the table ------------------------------------------------------------ */
 
@@ -1132,7 +1179,7 @@ const wp_method wp_methods[] = {
      .flags = WP_FIXTURE | WP_READY, .summary = "the tilts under which gravity is in a set"},
     {.name = "stability.margin", .handler = stability_margin, .fields = MARGIN,
      .required = MARGIN, .flags = WP_FIXTURE, .summary = "how large a disturbance a biasing wrench tolerates"},
-    {.name = "friction.sweep", .handler = friction_sweep, .fields = FRICTION_SWEEP,
+    {.name = "friction.sweep", .stream = &SWEEP_STREAM, .fields = FRICTION_SWEEP,
      .required = FIXTURE, .flags = WP_FIXTURE,
      .summary = "where wrenches, push regions and gravity arcs hold, against a common friction"},
     {0},

@@ -732,3 +732,59 @@ def test_help_and_config_know_the_request_timeout(harness):
         f.write("request-timeout = 5\n")
     d = harness.start("--config", conf)
     assert "result" in d.client().call("server.status")
+
+
+# ---- 4. friction.sweep is long work too ---------------------------------------------
+
+def sweep_batch(fixture_id, first_id, count=6):
+    """One batch line of friction.sweep push sweeps of the eight-fixel disc
+    with a finger with friction (1024 goal cones; 256 steps of mu, at each
+    push regions sampled all round: seconds each), no two alike."""
+    batch = [{"jsonrpc": "2.0", "method": "friction.sweep",
+              "params": {"fixture": fixture_id, "range": [0, 1.0 + 0.01 * i],
+                         "push": {"set": "goal", "finger_friction": 0.1}},
+              "id": first_id + i} for i in range(count)]
+    return (json.dumps(batch, separators=(",", ":")) + "\n").encode()
+
+
+def test_sweeps_share_the_workers_and_stop_with_their_clients(harness):
+    """Two clients each send a batch of long friction.sweep requests: a
+    third client's cheap requests are answered within 1 s while both run
+    (a sweep is worked a piece at a time, wr_sweep.h's jobs); when the two
+    disconnect, the daemon stops their work: under 0.3 s of CPU in the 2 s
+    from 1 s after."""
+    d = harness.start("--threads", "2")
+    try:
+        setup = d.client()
+        eight = setup.result("fixture.put", {"fixture": eight_fixels()})["id"]
+        disc = setup.result("fixture.put", {"fixture": FX.disc_corner(0.5)})["id"]
+        setup.result("modes.get", {"fixture": disc})
+        setup.close()
+        busy = [raw_socket(d.path) for _ in range(2)]
+        for n, s in enumerate(busy):
+            s.sendall(sweep_batch(eight, 1000 * (n + 1)))
+        wait_for_cpu(d.pid, 0.4, 10 * SLOW)
+
+        third = raw_socket(d.path)
+        reader = LineReader(third)
+        waits = []
+        for i, (method, params) in enumerate(cheap_requests(disc) * 3):
+            took, _ = timed_call(third, reader, method, params, i, 5 * SLOW)
+            waits.append((took, method))
+            time.sleep(0.2)
+        report("third client behind two sweep batches: %s"
+               % ", ".join("%s %.0f ms" % (m, 1000 * t) for t, m in waits))
+        FIGURES["resources: worst cheap wait ms behind sweeps"] = int(1000 * max(waits)[0])
+        assert max(waits)[0] < 1.0 * SLOW, waits
+
+        for s in busy:
+            s.close()
+        time.sleep(1.0 * SLOW)
+        before = cpu_seconds(d.pid)
+        time.sleep(2.0)
+        used = cpu_seconds(d.pid) - before
+        report("CPU used 1-3 s after the sweeping clients left: %.2f s" % used)
+        assert used < 0.3 * SLOW, used
+    except BaseException:
+        d.kill()
+        raise
