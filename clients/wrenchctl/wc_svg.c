@@ -718,8 +718,10 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
     end(out);
 }
 
-#define BAND_LEFT 230.0
 #define BAND_HEIGHT 26.0
+/* A band's label is right-aligned before it; at 13 px a character of it is
+ * at most about 7.5 px wide, and the plot keeps at least half the page. */
+#define LABEL_CHAR 7.5
 
 void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], double kinetic_ratio,
                         const wc_sweep_band *bands, int count, const char *const *sets,
@@ -733,7 +735,13 @@ void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], doub
     snprintf(text, sizeof text, "%s: friction sweep of wrenches", name);
     begin(out, &f, text);
     double top = f.top + 20, bottom = top + BAND_HEIGHT * count;
-    axis x = {range[0], range[1], BAND_LEFT, WIDTH - PLOT_RIGHT};
+    size_t longest = 0;
+    for (int i = 0; i < count; i++) {
+        size_t length = strlen(bands[i].label) + 2 + strlen(bands[i].set);
+        longest = length > longest ? length : longest;
+    }
+    double left = fmin(WIDTH / 2.0, 20 + LABEL_CHAR * (double)longest);
+    axis x = {range[0], range[1], left, WIDTH - PLOT_RIGHT};
     for (int i = 0; i < count; i++) {
         double y = top + BAND_HEIGHT * i;
         fprintf(out,
