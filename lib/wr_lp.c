@@ -27,6 +27,8 @@ struct wr_lp_set {
     int count;
     glp_prob **problems;     /* NULL until first use */
     unsigned *generations;   /* env->generation when each was built */
+    signed char *possible;   /* per constraint: -1 not yet known, else whether
+                                its motion is possible (strict rows met) */
 };
 
 static int swallow_output(void *info, const char *text)
@@ -83,10 +85,12 @@ wr_status wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
     set->count = count;
     set->problems = calloc((size_t)(count > 0 ? count : 1), sizeof *set->problems);
     set->generations = calloc((size_t)(count > 0 ? count : 1), sizeof *set->generations);
-    if (!set->problems || !set->generations) {
+    set->possible = malloc((size_t)(count > 0 ? count : 1));
+    if (!set->problems || !set->generations || !set->possible) {
         wr_lp_set_free(set);
         return WR_NO_MEMORY;
     }
+    memset(set->possible, -1, (size_t)(count > 0 ? count : 1));
     *out = set;
     return WR_OK;
 }
@@ -102,6 +106,7 @@ void wr_lp_set_free(wr_lp_set *set)
                 glp_delete_prob(set->problems[i]);
     free(set->problems);
     free(set->generations);
+    free(set->possible);
     free(set);
 }
 
@@ -141,7 +146,10 @@ static int add_row(glp_prob *p, triplets *t, const double v[3], double sign, dou
     return row;
 }
 
-static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c)
+/* The membership problem of a constraint, or (`motion`) the problem of its
+ * motion alone: q' in the box [-1, 1]^3, the wrench rows free, so that the
+ * best slack is the strict rows' margin relative to the motion's size. */
+static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c, bool motion)
 {
     int k = f->fixel_count;
     int t_column = 4 + 2 * k;
@@ -149,7 +157,7 @@ static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c)
     glp_set_obj_dir(p, GLP_MAX);
     glp_add_cols(p, t_column);
     for (int j = 1; j <= 3; j++)
-        glp_set_col_bnds(p, j, GLP_FR, 0, 0);
+        glp_set_col_bnds(p, j, motion ? GLP_DB : GLP_FR, -1, 1);
     glp_set_col_bnds(p, t_column, GLP_DB, 0, 1);
     glp_set_obj_coef(p, t_column, 1);
 
@@ -166,7 +174,7 @@ static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c)
             put(t, 1 + j, 4 + 2 * i, -f->fixels[i].normal_wrench[j]);
             put(t, 1 + j, 5 + 2 * i, -f->fixels[i].tangent_wrench[j]);
         }
-        glp_set_row_bnds(p, 1 + j, GLP_FX, 0, 0);
+        glp_set_row_bnds(p, 1 + j, motion ? GLP_FR : GLP_FX, 0, 0);
     }
     for (int i = 0; i < k; i++) {
         const wr_fixel *fixel = &f->fixels[i];
@@ -264,9 +272,21 @@ wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *
         configure_thread(env);
         return WR_LP_FAILED;
     }
+    if (set->possible[index] < 0) {
+        /* Is the motion possible at all: its strict rows met with a slack
+         * above the threshold by an acceleration in the box [-1, 1]^3?  A
+         * property of the constraint, not of the wrench: asked once. */
+        glp_prob *motion = build_problem(f, &set->constraints[index], true);
+        int status = solve(motion);
+        bool possible = status == GLP_OPT && glp_get_obj_val(motion) > WR_LP_SLACK_THRESHOLD;
+        glp_delete_prob(motion);
+        if (status < 0)
+            return WR_LP_FAILED;
+        set->possible[index] = possible;
+    }
     glp_prob *p = set->problems[index];
     if (!p || set->generations[index] != env->generation) {
-        p = build_problem(f, &set->constraints[index]);
+        p = build_problem(f, &set->constraints[index], false);
         set->problems[index] = p;
         set->generations[index] = env->generation;
     }
@@ -283,7 +303,10 @@ wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *
     int status = solve(p);
     if (status < 0)
         return WR_LP_FAILED;
-    *member = status == GLP_OPT && glp_get_obj_val(p) > WR_LP_SLACK_THRESHOLD;
+    /* In G_X: the motion is possible and the wrench is in the closure (the
+     * relative interior of the closure lies in G_X; only its open faces,
+     * where margins are 0, are not). */
+    *member = set->possible[index] && status == GLP_OPT;
     if (*member && witness) {
         memset(witness, 0, sizeof *witness);
         double unit = scale > 0 ? scale : 1;

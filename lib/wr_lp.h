@@ -21,8 +21,11 @@
 extern "C" {
 #endif
 
-/* Strictly feasible means an optimal slack above this (docs/MODEL.md
- * section 2). */
+/* A constraint's motion is possible when an acceleration in the box
+ * [-1, 1]^3 (scaled) meets its strict rows with a slack above this
+ * (docs/MODEL.md section 2): relative to the motion's size, as the
+ * explicit cones judge strict rows on unit generators.  A wrench is then
+ * in G_X when it is in the closure. */
 #define WR_LP_SLACK_THRESHOLD 1e-9
 
 typedef struct wr_lp_env wr_lp_env;
@@ -47,7 +50,8 @@ wr_status wr_lp_set_new(wr_lp_env *env, const wr_fixture *fixture,
 void wr_lp_set_free(wr_lp_set *set);
 
 /* Is the physical wrench in G_X for constraint `index`?  Decided on the
- * scaled, normalised problem.  On membership `witness` (may be NULL) receives
+ * scaled, normalised problem: the motion possible, the wrench in the
+ * closure.  On membership `witness` (may be NULL) receives
  * an acceleration and forces that make the wrench.  Returns WR_OK or
  * WR_LP_FAILED. */
 wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
