@@ -34,6 +34,13 @@ typedef struct plane {
     int cone_first, cone_count; /* into sweeper->plane_cones */
 } plane;
 
+/* A growing array of doubles. */
+typedef struct values {
+    int count, capacity;
+    double *items;
+    bool failed;
+} values;
+
 struct wr_sweeper {
     const wr_fixture *fixture;
     wr_set set;
@@ -48,6 +55,7 @@ struct wr_sweeper {
     plane *planes;
     int *plane_cones;
     int analysis_cones; /* both sets' cones: what each analysis builds */
+    values structure;   /* where a cone's faces change (settled) */
 };
 
 /* ---- small things ------------------------------------------------------------------ */
@@ -86,13 +94,6 @@ static bool add_interval(wr_intervals *list, double lo, double hi)
     list->count++;
     return true;
 }
-
-/* A growing array of doubles. */
-typedef struct values {
-    int count, capacity;
-    double *items;
-    bool failed;
-} values;
 
 static void add_value(values *v, double x)
 {
@@ -408,6 +409,8 @@ done:
     return status;
 }
 
+static wr_status structure_roots(wr_sweeper *s);
+
 wr_status wr_sweeper_new(const wr_fixture *fixture, wr_set set, const wr_sweep_range *range,
                          wr_sweeper **out)
 {
@@ -421,7 +424,7 @@ wr_status wr_sweeper_new(const wr_fixture *fixture, wr_set set, const wr_sweep_r
     s->fixture = fixture;
     s->set = set;
     s->range = *range;
-    if (build_family(s) != WR_OK) {
+    if (build_family(s) != WR_OK || structure_roots(s) != WR_OK) {
         wr_sweeper_free(s);
         return WR_NO_MEMORY;
     }
@@ -438,6 +441,7 @@ void wr_sweeper_free(wr_sweeper *s)
     free(s->members);
     free(s->planes);
     free(s->plane_cones);
+    free(s->structure.items);
     free(s);
 }
 
@@ -484,6 +488,84 @@ static bool on_face(const wr_sweeper *s, const plane *p, const double h[3], doub
             return true;
     }
     return false;
+}
+
+/* det(a, b, c) of three 3-vectors. */
+static double det3(const double a[3], const double b[3], const double c[3])
+{
+    double x[3];
+    wr_cross3(b, c, x);
+    return wr_dot3(a, x);
+}
+
+/* Where the faces of a cone change: three of its generators become
+ * coplanar (det(g_a, g_b, g_c)(mu) = 0, a cubic) in a plane that supports
+ * the cone.  A face can appear or vanish there without any wrench crossing
+ * a face -- a cone turning into a half-space or into all of space swallows
+ * the wrenches beyond its vanishing face -- so these roots are every
+ * sweep's roots too. */
+static wr_status structure_roots(wr_sweeper *s)
+{
+    const wr_sweep_range *r = &s->range;
+    for (int c = 0; c < s->cone_count; c++) {
+        int first = s->cone_first[c], last = s->cone_first[c + 1];
+        for (int i = first; i < last; i++)
+            for (int j = i + 1; j < last; j++)
+                for (int l = j + 1; l < last; l++) {
+                    const affine *g[3] = {&s->family[s->members[i]], &s->family[s->members[j]],
+                                          &s->family[s->members[l]]};
+                    bool moves = false;
+                    for (int m = 0; m < 3; m++)
+                        moves |= g[m]->slope[0] != 0 || g[m]->slope[1] != 0 ||
+                                 g[m]->slope[2] != 0;
+                    if (!moves)
+                        continue; /* a constant determinant: no event */
+                    const double *A0 = g[0]->base, *A1 = g[0]->slope, *B0 = g[1]->base,
+                                 *B1 = g[1]->slope, *C0 = g[2]->base, *C1 = g[2]->slope;
+                    double coefficients[4] = {
+                        det3(A0, B0, C0),
+                        det3(A1, B0, C0) + det3(A0, B1, C0) + det3(A0, B0, C1),
+                        det3(A1, B1, C0) + det3(A1, B0, C1) + det3(A0, B1, C1),
+                        det3(A1, B1, C1)};
+                    double roots[MAX_DEGREE + 2];
+                    int found = poly_roots(coefficients, 3, r->low, r->high, roots);
+                    for (int k = 0; k < found; k++) {
+                        double mu = roots[k], v[3][3], n[3], best = 0;
+                        for (int m = 0; m < 3; m++) {
+                            affine_at(g[m], mu, v[m]);
+                            wr_normalize3(v[m]);
+                        }
+                        /* The plane: of the two that span it best. */
+                        for (int m = 0; m < 3; m++) {
+                            double x[3];
+                            wr_cross3(v[m], v[(m + 1) % 3], x);
+                            double length = wr_norm3(x);
+                            if (length > best) {
+                                best = length;
+                                for (int q = 0; q < 3; q++)
+                                    n[q] = x[q] / length;
+                            }
+                        }
+                        if (best <= 1e-9) {
+                            add_value(&s->structure, mu); /* degenerate: keep */
+                            continue;
+                        }
+                        double lowest = 0, highest = 0;
+                        for (int m = first; m < last; m++) {
+                            double w[3];
+                            affine_at(&s->family[s->members[m]], mu, w);
+                            if (wr_normalize3(w) == 0)
+                                continue;
+                            double side = wr_dot3(n, w);
+                            lowest = fmin(lowest, side);
+                            highest = fmax(highest, side);
+                        }
+                        if (highest <= FACE_SLACK || lowest >= -FACE_SLACK)
+                            add_value(&s->structure, mu);
+                    }
+                }
+    }
+    return s->structure.failed ? WR_NO_MEMORY : WR_OK;
 }
 
 /* Where a fixed scaled wrench h meets a face: roots of h . n(mu) for every
@@ -733,13 +815,20 @@ static void edge_row(wr_sweep_job *job, int i)
 
 /* ---- the job, a unit of work at a time ------------------------------------------- */
 
+/* The critical mu, once the curve is known: the last interval's end when
+ * the region is empty at the top of the range (an interval reaching the
+ * top where the region vanishes exactly there ends at the top: critical is
+ * the top), none when it is not empty there, the bottom of the range when
+ * it is empty throughout. */
 static void set_critical(const wr_sweeper *s, wr_sweep_curve *out)
 {
     const wr_intervals *list = &out->intervals;
+    assert(out->point_count > 0 && out->points[out->point_count - 1][0] == s->range.high);
+    bool empty_at_top = !(out->points[out->point_count - 1][1] > 0);
     if (list->count == 0) {
         out->has_critical = true;
         out->critical = s->range.low;
-    } else if (list->items[list->count - 1][1] < s->range.high) {
+    } else if (list->items[list->count - 1][1] < s->range.high || empty_at_top) {
         out->has_critical = true;
         out->critical = list->items[list->count - 1][1];
     } else {
@@ -752,7 +841,6 @@ static void set_critical(const wr_sweeper *s, wr_sweep_curve *out)
 static wr_status curve_begin(wr_sweep_job *job)
 {
     const wr_sweeper *s = job->sweeper;
-    set_critical(s, &job->curve);
     values *points = &job->points;
     for (int i = 0; i < job->roots.count; i++)
         add_value(points, job->roots.items[i]);
@@ -891,6 +979,7 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
         return sampled_unit(job, spent);
     case PHASE_CURVE: {
         if (job->index >= job->points.count) {
+            set_critical(job->sweeper, &job->curve);
             job->phase = PHASE_DONE;
             return WR_OK;
         }
@@ -937,6 +1026,13 @@ static wr_sweep_job *job_new(const wr_sweeper *s, what what)
     /* An analysis at one mu: every cone's hull; then the question. */
     unsigned long cones = (unsigned long)s->cone_count + 1;
     job->evaluation_cost = (unsigned long)s->analysis_cones * 300 + cones * 4;
+    /* Where the cones' faces change, every answer may change too. */
+    for (int i = 0; i < s->structure.count; i++)
+        add_value(&job->roots, s->structure.items[i]);
+    if (job->roots.failed) {
+        wr_sweep_job_free(job);
+        return NULL;
+    }
     if (what != WHAT_WRENCH) {
         size_t planes = (size_t)s->plane_count + 1;
         job->alpha = malloc(planes * sizeof *job->alpha);
