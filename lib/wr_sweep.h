@@ -14,6 +14,10 @@
  *   - a fixed wrench h (a classified wrench, the push at an end of an edge
  *     or of a finger's blocked span) meets the plane where h . n(mu) = 0:
  *     degree 2;
+ *   - a cone's faces change where three of its generators become coplanar
+ *     in a plane that supports it, det(g_a, g_b, g_c)(mu) = 0: degree 3
+ *     (a face may vanish there with no wrench crossing it: the cone opens
+ *     into a half-space or all of space);
  *   - the push wrench along an edge (or gravity over the circle of tilts)
  *     is s1 c1 + s2 c2 in two coordinates (wr_internal.h), so two planes
  *     meet it at the same point where (c1.n_P)(c2.n_Q) - (c1.n_Q)(c2.n_P)
