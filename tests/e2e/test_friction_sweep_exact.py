@@ -184,3 +184,15 @@ def test_disc_critical_is_exactly_one(client):
     for mu, length in ans["curve"]:
         expected = max(0.0, math.pi / 2 - 2 * math.atan(mu))
         assert abs(length - expected) <= 1e-12, (mu, length, expected)
+
+
+@pytest.mark.parametrize("what", ["push", "gravity"])
+def test_region_vanishing_at_the_top_has_its_critical_mu_there(client, what):
+    """The disc's goal arc vanishes at mu = 1 exactly: over [0, 1] the region
+    is empty at the top, so the critical mu is 1 (the rule: the last
+    interval's end when the region is empty at the top), not null."""
+    ans = client.result("friction.sweep", {"fixture": FX.disc_corner(0.5), "range": [0, 1],
+                                           what: {"set": "goal"}})
+    assert ans["intervals"] and abs(ans["intervals"][-1][1] - 1) <= 1e-12, ans["intervals"]
+    assert ans["critical"] is not None and abs(ans["critical"] - 1) <= 1e-12, ans["critical"]
+    assert ans["curve"][-1] == [1, 0], ans["curve"][-1]
