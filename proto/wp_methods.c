@@ -213,36 +213,12 @@ static bool read_sets(const cJSON *params, classify_request *r, wp_error *error)
     return true;
 }
 
-static bool read_classify(const wp_limits *limits, const cJSON *params,
-                          const wr_fixture *fixture, wp_prepared *prepared, classify_request *r,
-                          wp_error *error)
+/* params.wrenches: each read into r->wrenches (or taken from `prepared`,
+ * which may be NULL), no more than --max-wrenches of them. */
+static bool read_wrench_list(const wp_limits *limits, const cJSON *params,
+                             const wr_fixture *fixture, wp_prepared *prepared,
+                             classify_request *r, wp_error *error)
 {
-    memset(r, 0, sizeof *r);
-    r->tolerance = WR_DEFAULT_TOLERANCE;
-    const char *method;
-    bool tolerance_given;
-    if (!read_sets(params, r, error) ||
-        !wp_member_string(params, "params", "method", false, &method, error) ||
-        !wp_member_number(params, "params", "tolerance", false, &r->tolerance, &tolerance_given,
-                          error))
-        return false;
-    if (method && strcmp(method, "auto") != 0 && strcmp(method, "lp") != 0) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.method", "must be \"auto\" or \"lp\"");
-        return false;
-    }
-    r->lp = method && strcmp(method, "lp") == 0;
-    /* A margin is in [-1, 1]: a band of 1 or more would call every wrench
-     * a boundary case. */
-    if (!(r->tolerance >= 0 && r->tolerance < 1)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance", "must be in [0, 1)");
-        return false;
-    }
-    if (r->lp && tolerance_given) {
-        /* The LP method finds no margin, so it has no band to widen. */
-        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance",
-                     "the \"lp\" method computes no margin, so it takes no tolerance");
-        return false;
-    }
     const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
     if (!cJSON_IsArray(wrenches)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.wrenches",
@@ -279,6 +255,39 @@ static bool read_classify(const wp_limits *limits, const cJSON *params,
     }
     r->wrench_count = count;
     return true;
+}
+
+static bool read_classify(const wp_limits *limits, const cJSON *params,
+                          const wr_fixture *fixture, wp_prepared *prepared, classify_request *r,
+                          wp_error *error)
+{
+    memset(r, 0, sizeof *r);
+    r->tolerance = WR_DEFAULT_TOLERANCE;
+    const char *method;
+    bool tolerance_given;
+    if (!read_sets(params, r, error) ||
+        !wp_member_string(params, "params", "method", false, &method, error) ||
+        !wp_member_number(params, "params", "tolerance", false, &r->tolerance, &tolerance_given,
+                          error))
+        return false;
+    if (method && strcmp(method, "auto") != 0 && strcmp(method, "lp") != 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.method", "must be \"auto\" or \"lp\"");
+        return false;
+    }
+    r->lp = method && strcmp(method, "lp") == 0;
+    /* A margin is in [-1, 1]: a band of 1 or more would call every wrench
+     * a boundary case. */
+    if (!(r->tolerance >= 0 && r->tolerance < 1)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance", "must be in [0, 1)");
+        return false;
+    }
+    if (r->lp && tolerance_given) {
+        /* The LP method finds no margin, so it has no band to widen. */
+        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance",
+                     "the \"lp\" method computes no margin, so it takes no tolerance");
+        return false;
+    }
+    return read_wrench_list(limits, params, fixture, prepared, r, error);
 }
 
 static void write_vector(wp_buffer *b, const double *v, int n)
@@ -397,16 +406,25 @@ static void classify_free(wp_stream *stream)
     free(stream);
 }
 
-static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
+/* The call's fixture (held until the stream's free) and a zeroed stream;
+ * NULL with the error set when either fails. */
+static wp_stream *stream_with_fixture(wp_call *call, wp_fixture_use **use)
 {
-    wp_fixture_use *use = wp_call_fixture(call);
-    if (!use)
+    *use = wp_call_fixture(call);
+    if (!*use)
         return NULL;
     wp_stream *stream = calloc(1, sizeof *stream);
-    if (!stream) {
+    if (!stream)
         wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+    return stream;
+}
+
+static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
+{
+    wp_fixture_use *use;
+    wp_stream *stream = stream_with_fixture(call, &use);
+    if (!stream)
         return NULL;
-    }
     if (!read_classify(call->limits, call->params, use->fixture, prepared, &stream->u.classify.request,
                        call->error)) {
         classify_free(stream);
@@ -974,33 +992,7 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
         classify_request *r = &state->request;
         if (!read_sets(params, r, error))
             return false;
-        const cJSON *wrenches = cJSON_GetObjectItemCaseSensitive(params, "wrenches");
-        if (!cJSON_IsArray(wrenches)) {
-            wp_error_set(error, WP_INVALID_PARAMS, "params.wrenches",
-                         "must be an array of wrenches, not %s", wp_type_name(wrenches));
-            return false;
-        }
-        size_t count = (size_t)cJSON_GetArraySize(wrenches);
-        if (count > call->limits->max_wrenches) {
-            wp_error_set(error, WP_LIMIT, "params.wrenches",
-                         "%zu wrenches in one request, the limit is %zu (--max-wrenches)", count,
-                         call->limits->max_wrenches);
-            return false;
-        }
-        r->wrenches = malloc((count ? count : 1) * sizeof *r->wrenches);
-        if (!r->wrenches) {
-            wp_error_set(error, WP_INTERNAL, "", "out of memory");
-            return false;
-        }
-        size_t index = 0;
-        for (const cJSON *w = wrenches->child; w; w = w->next, index++) {
-            char field[WP_FIELD_MAX];
-            wp_path_index(field, "params.wrenches", index);
-            if (!wp_wrench_read(w, field, fixture, r->wrenches[index], error))
-                return false;
-        }
-        r->wrench_count = count;
-        return true;
+        return read_wrench_list(call->limits, params, fixture, NULL, r, error);
     }
     bool push = state->what == SWEEP_PUSH;
     const char *path = push ? "params.push" : "params.gravity";
@@ -1036,14 +1028,10 @@ static void sweep_free(wp_stream *stream)
 static wp_stream *sweep_begin(wp_call *call, wp_prepared *prepared)
 {
     (void)prepared;
-    wp_fixture_use *use = wp_call_fixture(call);
-    if (!use)
+    wp_fixture_use *use;
+    wp_stream *stream = stream_with_fixture(call, &use);
+    if (!stream)
         return NULL;
-    wp_stream *stream = calloc(1, sizeof *stream);
-    if (!stream) {
-        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
-        return NULL;
-    }
     sweep_state *state = &stream->u.sweep;
     if (!read_sweep(call, use->fixture, state)) {
         sweep_free(stream);
