@@ -699,29 +699,48 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
     return check_friction(&spec->friction, "friction", error);
 }
 
-/* wr_fixture_new but for the status: NULL with *no_memory set when out of
- * memory, NULL alone when invalid. */
-static wr_fixture *validate(const wr_fixture_spec *spec, wr_error *error, bool *no_memory)
+/* The fixels of `spec` checked and placed on the body `f` (its shape and
+ * mass properties final), with the checks that need them all. */
+static bool place_fixels(wr_fixture *f, const wr_fixture_spec *spec, wr_error *error);
+
+/* The fixel count and the points' finiteness: what must hold before
+ * anything is derived from the fixels. */
+static bool check_fixel_list(const wr_fixture_spec *spec, wr_error *error)
 {
-    if (!check_body(spec, error))
-        return NULL;
     if (spec->fixel_count == 0 || !spec->fixels) {
         wr_error_set(error, "fixels", "at least one fixel is required");
-        return NULL;
+        return false;
     }
     if (spec->fixel_count > WR_MAX_FIXELS) {
         wr_error_set(error, "fixels",
                      "%zu fixels given, at most %d are supported: G_goal has k*2^(k-1) cones, "
                      "1024 at k = 8 and doubling with every fixel",
                      spec->fixel_count, WR_MAX_FIXELS);
-        return NULL;
+        return false;
     }
-    /* Before anything is derived from them (a shapeless body's size). */
     for (size_t i = 0; i < spec->fixel_count; i++) {
         char field[96];
         snprintf(field, sizeof field, "fixels[%zu].at", i);
         if (!check_finite2(spec->fixels[i].at, field, error))
-            return NULL;
+            return false;
+    }
+    return true;
+}
+
+/* wr_fixture_new but for the status: NULL with *no_memory set when out of
+ * memory, NULL alone when invalid.  `body_only`: the body alone, no fixels
+ * (wr_fixture_body_new). */
+static wr_fixture *validate(const wr_fixture_spec *spec, bool body_only, wr_error *error,
+                            bool *no_memory)
+{
+    if (!check_body(spec, error))
+        return NULL;
+    /* Before anything is derived from them (a shapeless body's size). */
+    if (!body_only && !check_fixel_list(spec, error))
+        return NULL;
+    if (body_only && spec->shape == WR_SHAPE_NONE) {
+        wr_error_set(error, "body.shape", "required: fixels are placed on the shape's boundary");
+        return NULL;
     }
 
     wr_fixture *f = calloc(1, sizeof *f);
@@ -822,16 +841,19 @@ static wr_fixture *validate(const wr_fixture_spec *spec, wr_error *error, bool *
         wr_fixture_free(f);
         return NULL;
     }
-    if (!check_scales(f, spec, error)) {
+    if (!check_scales(f, spec, error) || (!body_only && !place_fixels(f, spec, error))) {
         wr_fixture_free(f);
         return NULL;
     }
+    return f;
+}
 
+static bool place_fixels(wr_fixture *f, const wr_fixture_spec *spec, wr_error *error)
+{
     f->fixel_count = (int)spec->fixel_count;
     for (size_t i = 0; i < spec->fixel_count; i++) {
         if (!build_fixel(f, spec, i, error)) {
-            wr_fixture_free(f);
-            return NULL;
+            return false;
         }
         fixel_wrenches(f, &f->fixels[i]);
     }
@@ -850,8 +872,7 @@ static wr_fixture *validate(const wr_fixture_spec *spec, wr_error *error, bool *
                      "the fixels lie within %.3g of each other, less than %g of the radius of "
                      "gyration sqrt(I/m) = %.3g: their torques cannot be told apart",
                      spread, WR_FIXEL_SPREAD, f->gyration_radius);
-        wr_fixture_free(f);
-        return NULL;
+        return false;
     }
     for (int i = 0; i < f->fixel_count; i++)
         for (int j = 0; j < i; j++) {
@@ -861,20 +882,46 @@ static wr_fixture *validate(const wr_fixture_spec *spec, wr_error *error, bool *
                 char field[96];
                 snprintf(field, sizeof field, "fixels[%d]", i);
                 wr_error_set(error, field, "duplicates fixels[%d]: same point and same normal", j);
-                wr_fixture_free(f);
-                return NULL;
+                return false;
             }
         }
-    return f;
+    return true;
 }
 
 wr_status wr_fixture_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error)
 {
     bool no_memory = false;
-    *out = validate(spec, error, &no_memory);
+    *out = validate(spec, false, error, &no_memory);
     if (*out)
         return WR_OK;
     return no_memory ? WR_NO_MEMORY : WR_INVALID;
+}
+
+wr_status wr_fixture_body_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error)
+{
+    bool no_memory = false;
+    *out = validate(spec, true, error, &no_memory);
+    if (*out)
+        return WR_OK;
+    return no_memory ? WR_NO_MEMORY : WR_INVALID;
+}
+
+wr_status wr_fixture_place(const wr_fixture *body, const wr_fixel_spec *fixels, size_t count,
+                           const wr_friction_spec *friction, wr_fixture *out, wr_error *error)
+{
+    /* Only what build_fixel and the list checks read of a spec. */
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.fixel_count = count;
+    spec.fixels = fixels;
+    spec.friction = *friction;
+    if (!check_friction(friction, "friction", error) || !check_fixel_list(&spec, error))
+        return WR_INVALID;
+    *out = *body;
+    memset(out->fixels, 0, sizeof out->fixels);
+    if (!place_fixels(out, &spec, error))
+        return WR_INVALID;
+    return WR_OK;
 }
 
 void wr_fixture_free(wr_fixture *fixture)

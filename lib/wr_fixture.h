@@ -160,6 +160,19 @@ typedef struct wr_fixture {
 wr_status wr_fixture_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error);
 void wr_fixture_free(wr_fixture *fixture);
 
+/* A body alone, for placing fixels on again and again (fixture.design):
+ * `spec` validated as wr_fixture_new does but for its fixels, which are
+ * ignored; a shape is required.  The result has no fixels. */
+wr_status wr_fixture_body_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error);
+/* `body` (from wr_fixture_body_new) with `count` fixels, each with its own
+ * friction or else `friction`: into *out, a shallow copy whose shape is
+ * borrowed from `body` (never wr_fixture_free it; `body` must outlive it).
+ * Checked exactly as wr_fixture_new checks the same fixels on the same
+ * body, so it is the fixture fixture.put builds from them, bit for bit.
+ * WR_OK, or WR_INVALID with `error` set (fields "fixels[i].at", ...). */
+wr_status wr_fixture_place(const wr_fixture *body, const wr_fixel_spec *fixels, size_t count,
+                           const wr_friction_spec *friction, wr_fixture *out, wr_error *error);
+
 /* The unit direction, in the scaled metric, of a physical wrench, and the
  * length of its scaled form (docs/MODEL.md section 5).  Exact for any finite wrench,
  * however large or small: it divides by the largest component first.  The

@@ -10,6 +10,8 @@
  *   wr_classify.h  G_goal, G_strong: verdicts, margins, blocking cones
  *   wr_regions.h   push regions, gravity arcs, disturbance margins
  *   wr_finger.h    where a round finger fits against an outline
+ *   wr_sweep.h     answers as functions of a common friction coefficient
+ *   wr_design.h    fixture design: sites, the best push, the search
  *
  * Pure computation: no I/O, no global state; every function is re-entrant.
  * Objects are created by wr_status *_new(..., T **out) and released by
@@ -23,6 +25,7 @@
 
 #include "wr_classify.h"
 #include "wr_cone.h"
+#include "wr_design.h"
 #include "wr_finger.h"
 #include "wr_fixture.h"
 #include "wr_lp.h"

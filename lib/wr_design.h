@@ -1,0 +1,192 @@
+/* wr_design.h -- designing a fixture (docs/PROTOCOL.md, fixture.design):
+ * where the fixels go and where the push is made.
+ *
+ * A candidate is a choice of k of n candidate sites (points of the
+ * boundary with their inward normals), in increasing order of site index;
+ * candidates are numbered in lexicographic order of their index lists,
+ * from 0.  Each is judged as the fixture of the body with fixels at its
+ * sites, the design's friction on every fixel:
+ *
+ *   - degenerate: the fixels are refused as a fixture's would be (two at
+ *     one point with one normal, all within WR_FIXEL_SPREAD);
+ *   - unpinned: the fixels let the seated part turn about a point with
+ *     every contact kept (a pivot mode): they do not locate the part, so
+ *     no push makes it a fixture;
+ *   - no seating push: the push region of G_goal is empty (for the
+ *     finger given);
+ *   - else scored by the objective:
+ *       WR_OBJECTIVE_MARGIN   the best push's margin (0 without a `both`
+ *                             region: it ranks after every design with one);
+ *       WR_OBJECTIVE_REGION   the total length of the `both` push region;
+ *       WR_OBJECTIVE_GRAVITY  the longest arc of gravity tilts in G_goal, in
+ *                             degrees.
+ * Designs rank by score, higher first, ties by candidate number, lower
+ * first.  A candidate's score depends on nothing but the candidate, so the
+ * ranking is the same however the candidates are split (shards, threads).
+ *
+ * The best push: the point of the `both` push region whose frictionless
+ * push (the inward normal there) has the largest margin.  Found by branch
+ * and bound over the region's intervals, which cannot miss the maximum:
+ *   - along one edge the unit push wrench moves on a great circle of the
+ *     unit sphere (its scaled form is c1 + t c2 on a line, an ellipse about
+ *     the origin on an arc), monotonically, so the arc it travels between
+ *     two parameters of less than half a turn apart is the angle between
+ *     their two directions;
+ *   - the margin, the distance to the union of the excluded cones, is
+ *     1-Lipschitz in that arc (a chord is shorter than its arc), so over an
+ *     interval whose ends have margins m_a, m_b and arc theta it is at most
+ *     (m_a + m_b + theta) / 2;
+ *   - and at most |x - p| for any point p of any excluded cone: the
+ *     nearest points of the nearest cones found at the interval's ends give
+ *     a bound that is tight to second order at a smooth maximum, where the
+ *     first bound alone would need ever more intervals.
+ * The interval with the largest bound is split until that bound is within
+ * WR_DESIGN_TOLERANCE of the best margin found at a point: the answer is
+ * then the maximum to that tolerance, and never above it (it is the margin
+ * at a point of the region).  The push at an end of an edge is along that
+ * edge's normal. */
+#ifndef WR_DESIGN_H
+#define WR_DESIGN_H
+
+#include "wr_regions.h"
+#include "wr_sweep.h"
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The best push's margin is the maximum to within this. */
+#define WR_DESIGN_TOLERANCE 1e-9
+/* At most this many candidate sites, and designs kept (`top`). */
+#define WR_DESIGN_MAX_SITES 100000
+#define WR_DESIGN_MAX_TOP 1000
+/* The range of common friction the critical mu of a design is sought in
+ * (friction.sweep's default). */
+#define WR_DESIGN_SWEEP_HIGH 2.0
+
+typedef enum wr_objective {
+    WR_OBJECTIVE_MARGIN,
+    WR_OBJECTIVE_REGION,
+    WR_OBJECTIVE_GRAVITY
+} wr_objective;
+
+/* A candidate site: a boundary point and its unit inward normal, as a
+ * fixel there would have them. */
+typedef struct wr_site {
+    double at[2];
+    double normal[2];
+} wr_site;
+
+/* The site at `at` on `body` (from wr_fixture_body_new), with `normal`
+ * (NULL: the boundary's, required at a corner): checked as a fixel there
+ * would be.  WR_OK, or WR_INVALID with `error` ("fixels[0].at" and the
+ * like: the caller renames the field). */
+wr_status wr_site_new(const wr_fixture *body, const double at[2], const double *normal,
+                      wr_site *out, wr_error *error);
+
+/* Sites every `spacing` along every segment of every loop (a circle: the
+ * whole circle), none closer than spacing / 2 to a segment's ends: on a
+ * segment of length L, n = floor(L / spacing) sites, spacing apart,
+ * centred.  Appended to *sites (malloc'd, *count items).  WR_OK;
+ * WR_INVALID for a spacing that is not positive and finite, or that gives
+ * more than WR_DESIGN_MAX_SITES sites; WR_NO_MEMORY (*sites as it was). */
+wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **sites, int *count,
+                          wr_error *error);
+
+/* The best push of a set of regions (wr_push_regions_finger of
+ * WR_SET_BOTH on the analysis's fixture), or none. */
+typedef struct wr_best_push {
+    bool found;            /* false: the regions are empty */
+    int edge;
+    double t;              /* as wr_region's t */
+    double at[2];          /* the boundary point */
+    double direction[2];   /* the push: the inward normal there */
+    double margin;
+    unsigned long evaluations; /* margins computed */
+} wr_best_push;
+
+/* The branch and bound above.  It gives up, with *below set and `out` not
+ * found, as soon as the maximum is certainly below `threshold` (use
+ * -INFINITY never to give up).  WR_OK; WR_NO_MEMORY; WR_STOPPED. */
+wr_status wr_best_push_find(const wr_analysis *analysis, const wr_regions *both,
+                            double threshold, const wr_stop *stop, wr_best_push *out,
+                            bool *below);
+
+/* What a design search is asked. */
+typedef struct wr_design_spec {
+    const wr_fixture *body;          /* borrowed; from wr_fixture_body_new */
+    wr_friction_spec friction;       /* on every fixel */
+    const wr_site *sites;            /* borrowed */
+    int site_count;
+    int fixel_count;                 /* k, 1..WR_MAX_FIXELS */
+    wr_objective objective;
+    int top;                         /* designs kept, 1..WR_DESIGN_MAX_TOP */
+    wr_finger finger;
+    int shard_index, shard_count;    /* candidates numbered r with
+                                        r mod shard_count = shard_index;
+                                        0 and 1 for all */
+} wr_design_spec;
+
+/* A ranked design. */
+typedef struct wr_design {
+    uint64_t candidate;              /* its number */
+    int sites[WR_MAX_FIXELS];        /* the sites chosen, increasing */
+    double score;
+    wr_best_push best_push;
+    double goal_length, both_length; /* of the push regions */
+    double gravity_goal_deg;         /* the longest arc of G_goal's tilts */
+    bool has_critical;               /* false: the goal region is not empty
+                                        at mu = WR_DESIGN_SWEEP_HIGH */
+    double critical_mu;
+} wr_design;
+
+typedef struct wr_design_counts {
+    uint64_t examined;               /* candidates of this shard */
+    uint64_t degenerate;
+    uint64_t unpinned;
+    uint64_t no_seating_push;
+    uint64_t bounded;                /* ended early by the bound: below the
+                                        top designs so far (depends on the
+                                        order of work; not part of the answer) */
+} wr_design_counts;
+
+/* The number of candidates, C(site_count, fixel_count); UINT64_MAX when
+ * it does not fit. */
+uint64_t wr_design_candidates(int site_count, int fixel_count);
+
+/* The search, a bounded amount of work at a time (as wr_sweep_job): made,
+ * run until *done, then read.  Each run evaluates candidates (a unit: one
+ * wrench against one cone, about) until about `budget` units are spent
+ * (at least one candidate, or one design's details), adds them to *used
+ * (may be NULL).  First the candidates of the shard, then for each design
+ * kept the rest of its figures (best push, lengths, gravity, critical mu).
+ * WR_OK; WR_INVALID for a spec out of bounds (with `error`); WR_NO_MEMORY;
+ * WR_STOPPED when `stop` asks.  The spec's memory must outlive the job. */
+typedef struct wr_design_job wr_design_job;
+
+wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_error *error);
+wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned long *used,
+                            const wr_stop *stop, bool *done);
+/* Progress: candidates of the shard looked at, of how many, and the best
+ * score so far (has_best false before any). */
+void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *total,
+                            bool *has_best, double *best);
+/* When done: the designs, best first (at most `top`), and the counts. */
+const wr_design *wr_design_job_designs(const wr_design_job *job, int *count);
+const wr_design_counts *wr_design_job_counts(const wr_design_job *job);
+/* The fixture of a design (a shallow copy of the body, valid while the
+ * job is). */
+void wr_design_job_fixture(const wr_design_job *job, const wr_design *design, wr_fixture *out);
+size_t wr_design_job_bytes(const wr_design_job *job);
+void wr_design_job_free(wr_design_job *job);
+
+/* Does design a rank before design b (score, then candidate number)? */
+bool wr_design_before(const wr_design *a, const wr_design *b);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
