@@ -897,6 +897,15 @@ wr_status wr_fixture_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error
     return no_memory ? WR_NO_MEMORY : WR_INVALID;
 }
 
+wr_status wr_friction_check(const wr_friction_spec *friction, const char *field, wr_error *error)
+{
+    if (!friction->given) {
+        wr_error_set(error, field, "required");
+        return WR_INVALID;
+    }
+    return check_friction(friction, field, error) ? WR_OK : WR_INVALID;
+}
+
 wr_status wr_fixture_body_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error)
 {
     bool no_memory = false;

@@ -160,6 +160,9 @@ typedef struct wr_fixture {
 wr_status wr_fixture_new(const wr_fixture_spec *spec, wr_fixture **out, wr_error *error);
 void wr_fixture_free(wr_fixture *fixture);
 
+/* Friction as a fixture's would be checked, its faults at `field`.  WR_OK
+ * or WR_INVALID (also when not given). */
+wr_status wr_friction_check(const wr_friction_spec *friction, const char *field, wr_error *error);
 /* A body alone, for placing fixels on again and again (fixture.design):
  * `spec` validated as wr_fixture_new does but for its fixels, which are
  * ignored; a shape is required.  The result has no fixels. */

@@ -528,6 +528,82 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     return true;
 }
 
+bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_error *error)
+{
+    *body = NULL;
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    shape_storage storage = {NULL, NULL, NULL};
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, "body");
+    const cJSON *json = cJSON_GetObjectItemCaseSensitive(params, "body");
+    bool ok = json != NULL;
+    if (!ok)
+        wp_error_set(error, WP_INVALID_PARAMS, field, "required");
+    else
+        ok = read_body(json, field, &spec, &storage, error);
+    if (ok) {
+        wr_error invalid;
+        wr_status status = wr_fixture_body_new(&spec, body, &invalid);
+        if (status != WR_OK) {
+            wp_path_key(field, path, invalid.field);
+            wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
+                         status == WR_INVALID ? field : "", "%s", invalid.reason);
+            ok = false;
+        }
+    }
+    shape_storage_free(&storage);
+    return ok;
+}
+
+bool wp_friction_read(const cJSON *json, const char *path, wr_friction_spec *out,
+                      wp_error *error)
+{
+    memset(out, 0, sizeof *out);
+    bool ok;
+    if (cJSON_IsNumber(json)) {
+        out->given = true;
+        ok = wp_number(json, path, &out->static_mu, error);
+    } else if (cJSON_IsArray(json)) {
+        double bounds[2];
+        if (cJSON_GetArraySize(json) != 2) {
+            wp_error_set(error, WP_INVALID_PARAMS, path,
+                         "must be a number, an interval [lo, hi] or {\"static\", \"kinetic\"}, "
+                         "not an array of %d",
+                         cJSON_GetArraySize(json));
+            return false;
+        }
+        if (!wp_vector2(json, path, bounds, error))
+            return false;
+        ok = true;
+        out->given = out->static_interval = true;
+        out->static_min = bounds[0];
+        out->static_mu = bounds[1];
+    } else if (cJSON_IsObject(json)) {
+        ok = read_friction(json, path, out, error);
+    } else {
+        wp_error_set(error, WP_INVALID_PARAMS, path,
+                     "must be a number, an interval [lo, hi] or {\"static\", \"kinetic\"}, not %s",
+                     wp_type_name(json));
+        ok = false;
+    }
+    if (!ok)
+        return false;
+    wr_error invalid;
+    if (wr_friction_check(out, "friction", &invalid) != WR_OK) {
+        /* "friction.static[1]" is path.static[1] of an object, path[1] of
+         * an interval, path of a number. */
+        const char *suffix = invalid.field + strlen("friction");
+        if (!cJSON_IsObject(json) && strncmp(suffix, ".static", 7) == 0)
+            suffix += 7;
+        char field[WP_FIELD_MAX];
+        snprintf(field, sizeof field, "%.120s%.60s", path, suffix);
+        wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid.reason);
+        return false;
+    }
+    return true;
+}
+
 void wp_fixture_doc_release(wp_fixture_doc *doc)
 {
     if (!doc)

@@ -1,6 +1,7 @@
 /* wp_methods.c -- the methods of docs/PROTOCOL.md: one table of names,
  * handlers and parameters, and the handlers, which read params, call
  * libwrench and write results. */
+#include "wp_design.h"
 #include "wp_rpc.h"
 
 #include <math.h>
@@ -395,6 +396,7 @@ struct wp_stream {
         classify_state classify;
         push_state push;
         sweep_state sweep;
+        wp_design_stream *design;
     } u;
 };
 
@@ -504,7 +506,7 @@ static size_t classify_bytes(const wp_stream *stream)
 }
 
 static const wp_streamer CLASSIFY_STREAM = {classify_begin, classify_step, classify_free,
-                                            classify_bytes};
+                                            classify_bytes, false};
 
 /* Light enough for an event loop: the explicit cones (no GLPK), and few
  * wrenches against few cones. */
@@ -800,7 +802,7 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
     return WP_STEP_DONE;
 }
 
-static const wp_streamer PUSH_STREAM = {push_begin, push_step, stream_free, NULL};
+static const wp_streamer PUSH_STREAM = {push_begin, push_step, stream_free, NULL, false};
 
 static cJSON *gravity_sweep(wp_call *call)
 {
@@ -1119,7 +1121,47 @@ static size_t sweep_bytes(const wp_stream *stream)
     return sizeof *stream + stream->u.sweep.request.wrench_count * sizeof(double[3]);
 }
 
-static const wp_streamer SWEEP_STREAM = {sweep_begin, sweep_step, sweep_free, sweep_bytes};
+static const wp_streamer SWEEP_STREAM = {sweep_begin, sweep_step, sweep_free, sweep_bytes, false};
+
+/* ---- fixture.design (wp_design.c) -------------------------------------------------- */
+
+static void design_free(wp_stream *stream)
+{
+    if (!stream)
+        return;
+    wp_design_free(stream->u.design);
+    free(stream);
+}
+
+static wp_stream *design_begin(wp_call *call, wp_prepared *prepared)
+{
+    (void)prepared;
+    wp_stream *stream = calloc(1, sizeof *stream);
+    if (!stream) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return NULL;
+    }
+    stream->u.design = wp_design_begin(call);
+    if (!stream->u.design) {
+        free(stream);
+        return NULL;
+    }
+    return stream;
+}
+
+static wp_step design_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                           unsigned long *used)
+{
+    return wp_design_step(stream->u.design, call, out, budget, used);
+}
+
+static size_t design_bytes(const wp_stream *stream)
+{
+    return sizeof *stream + wp_design_bytes(stream->u.design);
+}
+
+static const wp_streamer DESIGN_STREAM = {design_begin, design_step, design_free, design_bytes,
+                                          .opens_result = true};
 
 /* ---- the table ------------------------------------------------------------ */
 
@@ -1132,6 +1174,10 @@ static const char *const CONE[] = {"fixture", "constraints", NULL};
 static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
+static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
+                                     "objective", "top", "finger_radius", "finger_friction",
+                                     "progress", "shard", NULL};
+static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", NULL};
 
@@ -1170,6 +1216,9 @@ const wp_method wp_methods[] = {
     {.name = "friction.sweep", .stream = &SWEEP_STREAM, .fields = FRICTION_SWEEP,
      .required = FIXTURE, .flags = WP_FIXTURE,
      .summary = "where wrenches, push regions and gravity arcs hold, against a common friction"},
+    {.name = "fixture.design", .stream = &DESIGN_STREAM, .fields = DESIGN,
+     .required = DESIGN_REQUIRED,
+     .summary = "the best fixel sites and push for a body: ranked designs"},
     {0},
 };
 

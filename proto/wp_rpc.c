@@ -233,6 +233,19 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
     return &answer->use;
 }
 
+void wp_call_open_result(wp_call *call, wp_buffer *out)
+{
+    (void)call;
+    wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
+}
+
+const char *wp_call_id_text(const wp_call *call)
+{
+    return call->answer->id_text ? call->answer->id_text : "null";
+}
+
+bool wp_call_may_notify(const wp_call *call) { return !call->answer->batch && !call->answer->whole; }
+
 static void end_stream(wp_answer *answer, const wp_host *host)
 {
     if (answer->stream)
@@ -326,7 +339,8 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             answer->id_text = id_text;
             id_text = NULL;
             answer->bytes = 4096 + (m->stream->bytes ? m->stream->bytes(stream) : 0);
-            wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
+            if (!m->stream->opens_result)
+                wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
             /* `start` is before the "," or "[": a failure takes it all back. */
             *stream_step = continue_stream(answer, host, out, start, true, used, counts);
         } else {

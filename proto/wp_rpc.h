@@ -205,7 +205,19 @@ typedef struct wp_streamer {
                     unsigned long *used);
     void (*free)(wp_stream *stream);
     size_t (*bytes)(const wp_stream *stream); /* what it holds */
+    /* True: the envelope does not open the response; step may first write
+     * whole notification lines (progress) and then opens it with
+     * wp_call_open_result before its result's text. */
+    bool opens_result;
 } wp_streamer;
+
+/* Open the response whose result follows (a streamer with opens_result). */
+void wp_call_open_result(wp_call *call, wp_buffer *out);
+/* The call's id as the response will write it ("null" for none). */
+const char *wp_call_id_text(const wp_call *call);
+/* Can the call send notifications before its response: a request of its
+ * own (not a batch member) answered in pieces (not wp_answer_line)? */
+bool wp_call_may_notify(const wp_call *call);
 
 /* Method flags: what the envelope needs to know of a method, checked in
  * one place (wp_rpc.c). */

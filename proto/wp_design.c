@@ -1,0 +1,420 @@
+/* wp_design.c -- fixture.design: parameters, progress, the answer. */
+#include "wp_design.h"
+#include "wp_fixture.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* Progress notifications at most this often (and at the start and the end
+ * of the search). */
+#define PROGRESS_INTERVAL_S 0.25
+
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity"};
+
+struct wp_design_stream {
+    wr_fixture *body;
+    wr_site *sites;
+    int site_count;
+    wr_design_spec spec;
+    wr_design_job *job;
+    uint64_t candidates;  /* of every shard */
+    bool progress;
+    bool opened;          /* the response is open */
+    bool search_reported; /* the notification at the search's end is sent */
+    double last_report;   /* monotonic seconds; < 0 before the first */
+};
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+/* A whole number in [lo, hi] at params.key (default kept when absent). */
+static bool read_count(const cJSON *params, const char *key, double lo, double hi, int *out,
+                       wp_error *error)
+{
+    double value;
+    bool present = false;
+    if (!wp_member_number(params, "params", key, false, &value, &present, error))
+        return false;
+    if (!present)
+        return true;
+    if (value != floor(value) || value < lo || value > hi) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, "params", key);
+        wp_error_set(error, WP_INVALID_PARAMS, field, "must be a whole number from %g to %g, got %g",
+                     lo, hi, value);
+        return false;
+    }
+    *out = (int)value;
+    return true;
+}
+
+/* A site's fault, from wr_site_new's "fixels[0]..." to "params.sites[i]...". */
+static void site_error(wp_error *error, size_t index, const wr_error *invalid)
+{
+    char prefix[WP_FIELD_MAX], field[WP_FIELD_MAX];
+    wp_path_index(prefix, "params.sites", index);
+    const char *rest = invalid->field;
+    if (strncmp(rest, "fixels[0]", 9) == 0)
+        rest += 9;
+    else
+        rest = "";
+    snprintf(field, sizeof field, "%s%s", prefix, rest);
+    wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid->reason);
+}
+
+static const char *const SITE_FIELDS[] = {"at", "normal", NULL};
+
+static bool read_sites(const cJSON *list, wp_design_stream *s, wp_error *error)
+{
+    if (!cJSON_IsArray(list)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.sites",
+                     "must be an array of {\"at\": [x, y], \"normal\"?: [nx, ny]}, not %s",
+                     wp_type_name(list));
+        return false;
+    }
+    size_t count = (size_t)cJSON_GetArraySize(list);
+    if (count > WR_DESIGN_MAX_SITES) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.sites", "at most %d sites, %zu given",
+                     WR_DESIGN_MAX_SITES, count);
+        return false;
+    }
+    s->sites = calloc(count ? count : 1, sizeof *s->sites);
+    if (!s->sites) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *item = list->child; item; item = item->next, i++) {
+        char field[WP_FIELD_MAX];
+        wp_path_index(field, "params.sites", i);
+        double at[2], normal[2];
+        bool has_normal = false;
+        if (!wp_check_object(item, field, SITE_FIELDS, error) ||
+            !wp_member_vector2(item, field, "at", true, at, NULL, error) ||
+            !wp_member_vector2(item, field, "normal", false, normal, &has_normal, error))
+            return false;
+        wr_error invalid;
+        wr_status status =
+            wr_site_new(s->body, at, has_normal ? normal : NULL, &s->sites[i], &invalid);
+        if (status != WR_OK) {
+            site_error(error, i, &invalid);
+            return false;
+        }
+    }
+    s->site_count = (int)count;
+    return true;
+}
+
+static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *error)
+{
+    wr_design_spec *spec = &s->spec;
+    spec->fixel_count = 3;
+    spec->top = 10;
+    spec->shard_count = 1;
+    spec->objective = WR_OBJECTIVE_MARGIN;
+    if (!wp_body_read(params, "params", &s->body, error))
+        return false;
+    spec->body = s->body;
+    const cJSON *friction = cJSON_GetObjectItemCaseSensitive(params, "friction");
+    if (!friction) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.friction", "required");
+        return false;
+    }
+    if (!wp_friction_read(friction, "params.friction", &spec->friction, error) ||
+        !read_count(params, "fixels", 1, WR_MAX_FIXELS, &spec->fixel_count, error) ||
+        !read_count(params, "top", 1, WR_DESIGN_MAX_TOP, &spec->top, error))
+        return false;
+    const char *objective = NULL;
+    if (!wp_member_string(params, "params", "objective", false, &objective, error))
+        return false;
+    if (objective) {
+        int found = -1;
+        for (int i = 0; i < 3; i++)
+            if (strcmp(objective, OBJECTIVES[i]) == 0)
+                found = i;
+        if (found < 0) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
+                         "must be \"margin\", \"region\" or \"gravity\"");
+            return false;
+        }
+        spec->objective = (wr_objective)found;
+    }
+    bool present;
+    if (!wp_member_number(params, "params", "finger_friction", false, &spec->finger.friction,
+                          NULL, error) ||
+        !wp_member_number(params, "params", "finger_radius", false, &spec->finger.radius, NULL,
+                          error))
+        return false;
+    if (spec->finger.friction < 0 || spec->finger.radius < 0) {
+        wp_error_set(error, WP_INVALID_PARAMS,
+                     spec->finger.friction < 0 ? "params.finger_friction" : "params.finger_radius",
+                     "must not be negative");
+        return false;
+    }
+    const cJSON *progress = cJSON_GetObjectItemCaseSensitive(params, "progress");
+    if (progress && !cJSON_IsBool(progress)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.progress", "must be true or false, not %s",
+                     wp_type_name(progress));
+        return false;
+    }
+    s->progress = progress && cJSON_IsTrue(progress);
+    const cJSON *shard = cJSON_GetObjectItemCaseSensitive(params, "shard");
+    if (shard) {
+        double pair[2];
+        if (!cJSON_IsArray(shard) || cJSON_GetArraySize(shard) != 2) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.shard",
+                         "must be [i, n]: this request evaluates shard i of n, 0 <= i < n");
+            return false;
+        }
+        if (!wp_vector2(shard, "params.shard", pair, error))
+            return false;
+        if (pair[1] != floor(pair[1]) || pair[1] < 1 || pair[1] > 1e6) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.shard[1]",
+                         "must be a whole number of shards from 1 to 1000000, got %g", pair[1]);
+            return false;
+        }
+        if (pair[0] != floor(pair[0]) || pair[0] < 0 || pair[0] >= pair[1]) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.shard[0]",
+                         "must be a whole number from 0 to %g, got %g", pair[1] - 1, pair[0]);
+            return false;
+        }
+        spec->shard_index = (int)pair[0];
+        spec->shard_count = (int)pair[1];
+    }
+    /* Exactly one source of candidate sites. */
+    const cJSON *sites = cJSON_GetObjectItemCaseSensitive(params, "sites");
+    const cJSON *spacing = cJSON_GetObjectItemCaseSensitive(params, "spacing");
+    const cJSON *lattice = cJSON_GetObjectItemCaseSensitive(params, "lattice");
+    int sources = (sites != NULL) + (spacing != NULL) + (lattice != NULL);
+    if (sources != 1) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params",
+                     sources ? "give only one of sites, spacing and lattice"
+                             : "candidate sites are required: sites, spacing or lattice");
+        return false;
+    }
+    if (lattice) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.lattice",
+                     "modular-fixture lattices are not served yet; give sites or spacing");
+        return false;
+    }
+    if (sites)
+        return read_sites(sites, s, error);
+    double h;
+    if (!wp_member_number(params, "params", "spacing", true, &h, &present, error))
+        return false;
+    wr_error invalid;
+    wr_status status = wr_sites_spaced(s->body, h, &s->sites, &s->site_count, &invalid);
+    if (status != WR_OK) {
+        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
+                     status == WR_INVALID ? "params.spacing" : "", "%s", invalid.reason);
+        return false;
+    }
+    return true;
+}
+
+wp_design_stream *wp_design_begin(wp_call *call)
+{
+    wp_design_stream *s = calloc(1, sizeof *s);
+    if (!s) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return NULL;
+    }
+    s->last_report = -1;
+    if (!read_params(call->params, s, call->error)) {
+        wp_design_free(s);
+        return NULL;
+    }
+    if (s->progress && !wp_call_may_notify(call)) {
+        /* A batch's answer is one line: nothing can come before it. */
+        s->progress = false;
+    }
+    s->spec.sites = s->sites;
+    s->spec.site_count = s->site_count;
+    s->candidates = wr_design_candidates(s->site_count, s->spec.fixel_count);
+    wr_error invalid;
+    wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
+    if (status != WR_OK) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, "params", invalid.field);
+        wp_error_set(call->error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
+                     status == WR_INVALID ? field : "", "%s", invalid.reason);
+        wp_design_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+static void write_pair(wp_buffer *out, const double v[2])
+{
+    WP_BUFFER_LITERAL(out, "[");
+    wp_buffer_number(out, v[0] + 0.0);
+    WP_BUFFER_LITERAL(out, ",");
+    wp_buffer_number(out, v[1] + 0.0);
+    WP_BUFFER_LITERAL(out, "]");
+}
+
+static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
+{
+    uint64_t done, total;
+    bool has_best;
+    double best;
+    wr_design_job_progress(s->job, &done, &total, &has_best, &best);
+    WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
+    wp_buffer_puts(out, wp_call_id_text(call));
+    WP_BUFFER_LITERAL(out, ",\"done\":");
+    wp_buffer_number(out, (double)done);
+    WP_BUFFER_LITERAL(out, ",\"total\":");
+    wp_buffer_number(out, (double)total);
+    WP_BUFFER_LITERAL(out, ",\"best\":");
+    if (has_best)
+        wp_buffer_number(out, best);
+    else
+        WP_BUFFER_LITERAL(out, "null");
+    WP_BUFFER_LITERAL(out, "}}\n");
+    s->last_report = now_s();
+}
+
+static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d, int rank)
+{
+    wr_fixture fixture;
+    wr_design_job_fixture(s->job, d, &fixture);
+    WP_BUFFER_LITERAL(out, "{\"rank\":");
+    wp_buffer_number(out, rank);
+    WP_BUFFER_LITERAL(out, ",\"candidate\":");
+    wp_buffer_number(out, (double)d->candidate);
+    WP_BUFFER_LITERAL(out, ",\"sites\":[");
+    for (int i = 0; i < s->spec.fixel_count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
+        wp_buffer_number(out, (double)d->sites[i]);
+    }
+    WP_BUFFER_LITERAL(out, "],\"fixels\":[");
+    for (int i = 0; i < fixture.fixel_count; i++) {
+        wp_buffer_puts(out, i ? ",{\"at\":" : "{\"at\":");
+        write_pair(out, fixture.fixels[i].at);
+        WP_BUFFER_LITERAL(out, ",\"normal\":");
+        write_pair(out, fixture.fixels[i].normal);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    WP_BUFFER_LITERAL(out, "],\"best_push\":");
+    const wr_best_push *push = &d->best_push;
+    if (push->found) {
+        WP_BUFFER_LITERAL(out, "{\"at\":");
+        write_pair(out, push->at);
+        WP_BUFFER_LITERAL(out, ",\"direction\":");
+        write_pair(out, push->direction);
+        WP_BUFFER_LITERAL(out, ",\"margin\":");
+        wp_buffer_number(out, push->margin);
+        if (fixture.shape == WR_SHAPE_OUTLINE) {
+            size_t loop, segment;
+            wr_push_edge_place(&fixture, push->edge, &loop, &segment);
+            WP_BUFFER_LITERAL(out, ",\"loop\":");
+            wp_buffer_number(out, (double)loop);
+            WP_BUFFER_LITERAL(out, ",\"segment\":");
+            wp_buffer_number(out, (double)segment);
+        } else {
+            WP_BUFFER_LITERAL(out, ",\"edge\":");
+            wp_buffer_number(out, push->edge);
+        }
+        WP_BUFFER_LITERAL(out, ",\"t\":");
+        wp_buffer_number(out, push->t);
+        WP_BUFFER_LITERAL(out, "}");
+    } else {
+        WP_BUFFER_LITERAL(out, "null");
+    }
+    WP_BUFFER_LITERAL(out, ",\"goal_length\":");
+    wp_buffer_number(out, d->goal_length);
+    WP_BUFFER_LITERAL(out, ",\"both_length\":");
+    wp_buffer_number(out, d->both_length);
+    WP_BUFFER_LITERAL(out, ",\"gravity_goal_deg\":");
+    wp_buffer_number(out, d->gravity_goal_deg);
+    WP_BUFFER_LITERAL(out, ",\"critical_mu\":");
+    if (d->has_critical)
+        wp_buffer_number(out, d->critical_mu);
+    else
+        WP_BUFFER_LITERAL(out, "null");
+    WP_BUFFER_LITERAL(out, ",\"score\":");
+    wp_buffer_number(out, d->score);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+static void write_answer(wp_design_stream *s, wp_buffer *out)
+{
+    int count;
+    const wr_design *designs = wr_design_job_designs(s->job, &count);
+    WP_BUFFER_LITERAL(out, "{\"designs\":[");
+    for (int i = 0; i < count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
+        write_design(s, out, &designs[i], i + 1);
+    }
+    const wr_design_counts *c = wr_design_job_counts(s->job);
+    WP_BUFFER_LITERAL(out, "],\"counts\":{\"candidates\":");
+    wp_buffer_number(out, (double)s->candidates);
+    WP_BUFFER_LITERAL(out, ",\"examined\":");
+    wp_buffer_number(out, (double)c->examined);
+    WP_BUFFER_LITERAL(out, ",\"degenerate\":");
+    wp_buffer_number(out, (double)c->degenerate);
+    WP_BUFFER_LITERAL(out, ",\"unpinned\":");
+    wp_buffer_number(out, (double)c->unpinned);
+    WP_BUFFER_LITERAL(out, ",\"no_seating_push\":");
+    wp_buffer_number(out, (double)c->no_seating_push);
+    WP_BUFFER_LITERAL(out, "},\"sites\":");
+    wp_buffer_number(out, s->site_count);
+    WP_BUFFER_LITERAL(out, ",\"objective\":\"");
+    wp_buffer_puts(out, OBJECTIVES[s->spec.objective]);
+    WP_BUFFER_LITERAL(out, "\",\"shard\":[");
+    wp_buffer_number(out, s->spec.shard_index);
+    WP_BUFFER_LITERAL(out, ",");
+    wp_buffer_number(out, s->spec.shard_count);
+    WP_BUFFER_LITERAL(out, "]}");
+}
+
+wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsigned long budget,
+                       unsigned long *used)
+{
+    if (s->progress && s->last_report < 0)
+        write_progress(s, call, out);
+    bool done = false;
+    wr_status status = wr_design_job_run(s->job, budget, used, call->host->stop, &done);
+    if (status != WR_OK) {
+        wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+        return WP_STEP_FAILED;
+    }
+    uint64_t examined, total;
+    bool has_best;
+    double best;
+    wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
+    if (s->progress && !s->search_reported &&
+        (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
+        s->search_reported = examined == total;
+        write_progress(s, call, out);
+    }
+    if (!done)
+        return out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
+    wp_call_open_result(call, out);
+    write_answer(s, out);
+    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
+void wp_design_free(wp_design_stream *s)
+{
+    if (!s)
+        return;
+    wr_design_job_free(s->job);
+    free(s->sites);
+    wr_fixture_free(s->body);
+    free(s);
+}
+
+size_t wp_design_bytes(const wp_design_stream *s)
+{
+    return sizeof *s + (size_t)s->site_count * sizeof *s->sites + wr_design_job_bytes(s->job);
+}
