@@ -273,10 +273,67 @@ static int read_line(wrc_client *c, char **buffer, size_t *capacity, bool grow, 
     }
 }
 
+/* A notification the daemon sends before an answer (design.progress): its
+ * lines, and only they, begin so. */
+static const char NOTIFICATION[] = "{\"jsonrpc\":\"2.0\",\"method\":";
+
+/* read_line, but notification lines before the answer go to `notify` (each
+ * one renews the deadline: the timeout is a silence). */
+static int read_notified(wrc_client *c, char **buffer, size_t *capacity, long long deadline,
+                         wrc_notify notify, void *context)
+{
+    size_t length = 0;
+    for (;;) {
+        char *end;
+        while ((end = memchr(*buffer, '\n', length)) != NULL) {
+            size_t line_length = (size_t)(end - *buffer);
+            if (line_length >= sizeof NOTIFICATION - 1 &&
+                memcmp(*buffer, NOTIFICATION, sizeof NOTIFICATION - 1) == 0) {
+                *end = 0;
+                notify(*buffer, context);
+                length -= line_length + 1;
+                memmove(*buffer, end + 1, length);
+                if (c->timeout_ms > 0)
+                    deadline = now_ms() + c->timeout_ms;
+                continue;
+            }
+            if (end != *buffer + length - 1)
+                return fail(c, WRC_EPROTO, "more than one answer line arrived");
+            *end = 0;
+            return WRC_OK;
+        }
+        if (length + 1 >= *capacity) {
+            size_t bigger = *capacity * 2;
+            char *grown = realloc(*buffer, bigger);
+            if (!grown)
+                return fail(c, WRC_ENOMEM, "out of memory reading an answer");
+            *buffer = grown;
+            *capacity = bigger;
+        }
+        ssize_t n = recv(c->fd, *buffer + length, *capacity - 1 - length, 0);
+        if (n > 0) {
+            length += (size_t)n;
+            continue;
+        }
+        if (n == 0)
+            return fail(c, WRC_EIO, "the daemon closed the connection");
+        if (errno == EINTR)
+            continue;
+        if (errno == EAGAIN || errno == EWOULDBLOCK) {
+            int status = wait_for(c, POLLIN, deadline);
+            if (status != WRC_OK)
+                return status;
+            continue;
+        }
+        return fail(c, WRC_EIO, "recv: %s", strerror(errno));
+    }
+}
+
 /* Send `line` (ending in "\n") and read the answer; reconnect once if the
- * old connection turns out dead before anything was sent. */
+ * old connection turns out dead before anything was sent.  With `notify`,
+ * notifications before the answer go to it. */
 static int exchange(wrc_client *c, const char *line, size_t length, char **answer,
-                    size_t *capacity, bool grow)
+                    size_t *capacity, bool grow, wrc_notify notify, void *context)
 {
     for (int attempt = 0; attempt < 2; attempt++) {
         bool reconnected = false;
@@ -294,7 +351,8 @@ static int exchange(wrc_client *c, const char *line, size_t length, char **answe
             continue;
         }
         if (status == WRC_OK)
-            status = read_line(c, answer, capacity, grow, deadline);
+            status = notify ? read_notified(c, answer, capacity, deadline, notify, context)
+                            : read_line(c, answer, capacity, grow, deadline);
         if (status != WRC_OK && status != WRC_ETOOBIG)
             disconnect(c); /* a late answer would be read as the next one's */
         if (status == WRC_ETOOBIG)
@@ -381,7 +439,7 @@ int wrc_classify(wrc_client *c, const char *fixture_id, const double wrench[3], 
     if (length < 0 || (size_t)length >= c->buffer_bytes)
         return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
     size_t capacity = c->buffer_bytes;
-    int status = exchange(c, c->request, (size_t)length, &c->answer, &capacity, false);
+    int status = exchange(c, c->request, (size_t)length, &c->answer, &capacity, false, NULL, NULL);
     if (status != WRC_OK)
         return status;
     const char *text = c->answer;
@@ -496,7 +554,7 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
     if (n >= size)
         return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
     size_t capacity = c->buffer_bytes;
-    int status = exchange(c, c->request, n, &c->answer, &capacity, false);
+    int status = exchange(c, c->request, n, &c->answer, &capacity, false, NULL, NULL);
     if (status != WRC_OK)
         return status;
     const char *text = c->answer;
@@ -524,6 +582,12 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
 
 int wrc_call(wrc_client *c, const char *request, char **answer)
 {
+    return wrc_call_notified(c, request, answer, NULL, NULL);
+}
+
+int wrc_call_notified(wrc_client *c, const char *request, char **answer, wrc_notify notify,
+                      void *context)
+{
     if (!c || !request || !answer)
         return WRC_EINVAL;
     *answer = NULL;
@@ -541,7 +605,7 @@ int wrc_call(wrc_client *c, const char *request, char **answer)
     memcpy(line, request, length);
     line[length] = '\n';
     line[length + 1] = 0;
-    int status = exchange(c, line, length + 1, &buffer, &capacity, true);
+    int status = exchange(c, line, length + 1, &buffer, &capacity, true, notify, context);
     free(line);
     if (status != WRC_OK) {
         free(buffer);

@@ -122,6 +122,13 @@ int wrc_friction_sweep(wrc_client *client, const char *fixture_id,
  * comes back: do not send them here. */
 int wrc_call(wrc_client *client, const char *request, char **answer);
 
+/* wrc_call for a request that may be preceded by notifications (fixture.design
+ * with "progress": true): each notification line (NUL-terminated, without
+ * its "\n") goes to `notify` as it arrives, and each renews the timeout. */
+typedef void (*wrc_notify)(const char *line, void *context);
+int wrc_call_notified(wrc_client *client, const char *request, char **answer, wrc_notify notify,
+                      void *context);
+
 /* After WRC_ESERVER: the JSON-RPC error code, the field it names and why.
  * The strings live until the next call on the client. */
 void wrc_server_error(const wrc_client *client, int *code, const char **field,

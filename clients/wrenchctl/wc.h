@@ -42,6 +42,9 @@ typedef struct wc_options {
     double timeout_seconds;
     bool json;
     bool local;
+    /* Notifications before the answer (design.progress), or NULL. */
+    void (*notify)(const char *line, void *context);
+    void *notify_context;
 } wc_options;
 
 /* A command's flags: what the dispatcher does for it, and the options it
@@ -59,8 +62,10 @@ enum {
     WC_OPT_SVG = 1 << 13,       /* --svg FILE */
     WC_OPT_RADIUS = 1 << 14,    /* --finger-radius R */
     WC_OPT_INTERVAL = 1 << 15,  /* --friction LO:HI (or MU): the fixels' friction */
-    WC_OPT_SWEEP = 1 << 16      /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
+    WC_OPT_SWEEP = 1 << 16,     /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
                                    --range LO:HI, --kinetic-ratio R */
+    WC_OPT_DESIGN = 1 << 17     /* --spacing H, --fixels K, --objective O, --top N,
+                                   --shard I/N */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -90,6 +95,11 @@ typedef struct wc_run {
     bool range_given;
     double kinetic_ratio;   /* --kinetic-ratio */
     bool ratio_given;
+    double spacing;         /* --spacing; 0 when not given */
+    int fixels, top;        /* --fixels, --top; 0 when not given */
+    const char *objective;  /* --objective */
+    int shard[2];           /* --shard I/N */
+    bool shard_given;
     /* WC_FIXTURE: the fixture as sent (an object, or an id string) */
     cJSON *fixture;
     /* kept by a request function for its answer (sweep: --wrench, as read) */

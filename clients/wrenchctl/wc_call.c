@@ -56,7 +56,9 @@ cJSON *wc_call(wc_options *o, const char *method, cJSON *params, int *status)
             wrc_connect(o->socket_path, (int)(o->timeout_seconds * 1000), 0, &error);
         int connect_errno = errno;
         if (client) {
-            error = wrc_call(client, line, &answer);
+            error = o->notify ? wrc_call_notified(client, line, &answer, o->notify,
+                                                  o->notify_context)
+                              : wrc_call(client, line, &answer);
             if (error != WRC_OK && error != WRC_ESERVER) {
                 fprintf(stderr, "wrenchctl: %s: %s\n", wrc_strerror(error),
                         wrc_last_error(client));

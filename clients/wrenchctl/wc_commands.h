@@ -36,5 +36,7 @@ int wc_margin_request(wc_run *run, cJSON *params);
 int wc_margin_answer(wc_run *run, const cJSON *result);
 int wc_sweep_request(wc_run *run, cJSON *params); /* friction.sweep */
 int wc_sweep_answer(wc_run *run, const cJSON *result);
+int wc_design_request(wc_run *run, cJSON *params); /* fixture.design */
+int wc_design_answer(wc_run *run, const cJSON *result);
 
 #endif

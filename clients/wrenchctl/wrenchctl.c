@@ -226,6 +226,64 @@ static int take_ratio(wc_run *run, const char *value)
     return 0;
 }
 
+static int take_spacing(wc_run *run, const char *value)
+{
+    if (!take_number("spacing", value, &run->spacing) || !(run->spacing > 0))
+        return run->spacing == 0 ? wc_usage_error("--spacing wants a length above 0") : EXIT_USAGE;
+    return 0;
+}
+
+/* A whole number in [lo, hi] for --NAME. */
+static int take_whole(const char *name, const char *value, int lo, int hi, int *out)
+{
+    char *end;
+    long n = strtol(value, &end, 10);
+    if (*end || end == value || n < lo || n > hi)
+        return wc_usage_error("--%s wants a whole number from %d to %d, not '%s'", name, lo, hi,
+                              value);
+    *out = (int)n;
+    return 0;
+}
+
+static int take_fixels(wc_run *run, const char *value)
+{
+    return take_whole("fixels", value, 1, 8, &run->fixels);
+}
+
+static int take_top(wc_run *run, const char *value)
+{
+    return take_whole("top", value, 1, 1000, &run->top);
+}
+
+static int take_objective(wc_run *run, const char *value)
+{
+    if (strcmp(value, "margin") != 0 && strcmp(value, "region") != 0 &&
+        strcmp(value, "gravity") != 0)
+        return wc_usage_error("--objective is margin, region or gravity, not '%s'", value);
+    run->objective = value;
+    return 0;
+}
+
+/* --shard I/N: shard I of N, 0 <= I < N. */
+static int take_shard(wc_run *run, const char *value)
+{
+    char *end;
+    long i = strtol(value, &end, 10), n = -1;
+    if (end != value && *end == '/') {
+        const char *second = end + 1;
+        n = strtol(second, &end, 10);
+        if (end == second)
+            n = -1;
+    }
+    if (*end || n < 1 || n > 1000000 || i < 0 || i >= n)
+        return wc_usage_error("--shard wants I/N, whole numbers with 0 <= I < N, not '%s'",
+                              value);
+    run->shard[0] = (int)i;
+    run->shard[1] = (int)n;
+    run->shard_given = true;
+    return 0;
+}
+
 static int take_svg(wc_run *run, const char *value)
 {
     run->svg = value;
@@ -254,6 +312,11 @@ static const command_option COMMAND_OPTIONS[] = {
     {"wrench", WC_OPT_SWEEP, take_wrench},
     {"range", WC_OPT_SWEEP, take_range},
     {"kinetic-ratio", WC_OPT_SWEEP, take_ratio},
+    {"spacing", WC_OPT_DESIGN, take_spacing},
+    {"fixels", WC_OPT_DESIGN, take_fixels},
+    {"top", WC_OPT_DESIGN, take_top},
+    {"objective", WC_OPT_DESIGN, take_objective},
+    {"shard", WC_OPT_DESIGN, take_shard},
     {NULL, 0, NULL},
 };
 
@@ -491,6 +554,29 @@ const wc_command wc_commands[] = {
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu), 1 when not."},
+    {"design",
+     "BODY [--spacing H] [--fixels K] [--objective margin|region|gravity] [--top N]\n"
+     "       [--friction LO:HI] [--finger-radius R] [--finger-friction MU] [--shard I/N]",
+     WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION, 1, 1,
+     "fixture.design", wc_design_request, wc_design_answer,
+     "where to put the fixels, and where to push",
+     "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
+     "are ranked, each with its best push (the point of the both region whose push has the\n"
+     "largest margin: push there and let go), its push regions' lengths, its longest gravity\n"
+     "arc and its critical mu.  A progress bar on a terminal.\n"
+     "  BODY               a JSON file: a fixture (its body and friction are used, and its\n"
+     "                     fixels are the candidate sites unless --spacing is given) or a\n"
+     "                     body alone\n"
+     "  --spacing H        candidate sites every H along every segment, centred\n"
+     "  --fixels K         fixels per design (default 3)\n"
+     "  --objective O      margin (the best push's; default), region (the both region's\n"
+     "                     length) or gravity (the longest goal arc of tilts)\n"
+     "  --top N            how many designs (default 10)\n"
+     "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
+     "  --finger-radius R, --finger-friction MU\n"
+     "                     the finger that pushes, as for push\n"
+     "  --shard I/N        evaluate shard I of N of the candidates only\n"
+     "Exit status 0 when some design has a push that seats and holds the part, 1 when none."},
     {"status", "",
      WC_DAEMON, 0, 0,
      "server.status", NULL, wc_status_answer,
@@ -556,7 +642,7 @@ static int help_request(wc_run *run, cJSON *params)
 
 int main(int argc, char **argv)
 {
-    wc_options o = {getenv("WRENCHD_SOCKET"), 30, false, false};
+    wc_options o = {getenv("WRENCHD_SOCKET"), 30, false, false, NULL, NULL};
     if (!o.socket_path || !*o.socket_path)
         o.socket_path = "./run/wrenchd.sock";
     static const struct option global[] = {
