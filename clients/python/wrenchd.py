@@ -369,6 +369,45 @@ class FrictionSweep:
     results: Optional[List[Dict[str, List[List[float]]]]] = None
 
 
+@dataclass
+class Design:
+    """One design of fixture.design: its `fixels` ([{"at", "normal"}]: put
+    {"body", "friction", "fixels"} to ask anything else of it), the
+    candidate sites chosen, the best push ({"at", "direction", "margin",
+    ...}, None without a both region: push there and let go), the push
+    regions' lengths, the longest goal arc of gravity tilts in degrees, the
+    goal region's critical mu (None: not empty at mu = 2) and the score."""
+    rank: int
+    candidate: int
+    sites: List[int]
+    fixels: List[Dict[str, List[float]]]
+    best_push: Optional[Dict[str, Any]]
+    goal_length: float
+    both_length: float
+    gravity_goal_deg: float
+    critical_mu: Optional[float]
+    score: float
+
+
+@dataclass
+class DesignResult:
+    """fixture.design: `designs` best first; `counts` {"candidates",
+    "examined", "degenerate", "unpinned", "no_seating_push"}; the number of
+    `sites`, the `objective` and the `shard` [i, n]."""
+    designs: List[Design]
+    counts: Dict[str, int]
+    sites: int = 0
+    objective: str = "margin"
+    shard: List[int] = dataclasses_field(default_factory=lambda: [0, 1])
+
+
+def _design_result(result: Any) -> DesignResult:
+    if not isinstance(result, dict) or not isinstance(result.get("designs"), list):
+        raise WrenchdProtocolError("fixture.design: the answer has no designs")
+    designs = [_build(Design, d, "fixture.design") for d in result["designs"]]
+    return _build(DesignResult, dict(result, designs=designs), "fixture.design")
+
+
 def _friction_sweep_result(result: Any) -> FrictionSweep:
     if not isinstance(result, dict) or not (isinstance(result.get("results"), list)
                                             or isinstance(result.get("intervals"), list)):
@@ -625,7 +664,8 @@ def _wrench(w: Any) -> Any:
 
 class _Methods:
     def _invoke(self, method: str, params: Optional[Dict[str, Any]], convert: Callable,
-                readonly: bool, timeout: Any, on_error: Optional[Callable] = None):
+                readonly: bool, timeout: Any, on_error: Optional[Callable] = None,
+                notify: Optional[Callable] = None):
         raise NotImplementedError
 
     def put_fixture(self, fixture: Mapping[str, Any], *, timeout: Any = _DEFAULT):
@@ -735,6 +775,44 @@ class _Methods:
             params["gravity"] = _sweep_part(gravity, "gravity")
         return self._invoke("friction.sweep", params, _friction_sweep_result, True, timeout)
 
+    def design(self, body: Mapping[str, Any], friction: Any, *, fixels: int = 3,
+               sites: Optional[Iterable[Any]] = None, spacing: Optional[float] = None,
+               lattice: Optional[Mapping[str, Any]] = None, objective: str = "margin",
+               top: int = 10, finger_radius: float = 0.0, finger_friction: float = 0.0,
+               shard: Optional[Sequence[int]] = None,
+               progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
+               timeout: Any = _DEFAULT):
+        """fixture.design: where to put `fixels` fixels among candidate
+        sites (exactly one of `sites`, a list of {"at", "normal"?} or of
+        [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
+        `progress`, a callable, receives each design.progress notification's
+        params ({"id", "done", "total", "best"}) as it arrives; the timeout
+        is then the longest silence.  `shard` = (i, n): shard i of n."""
+        given = [name for name, value in (("sites", sites), ("spacing", spacing),
+                                          ("lattice", lattice)) if value is not None]
+        if len(given) != 1:
+            raise ValueError("design takes exactly one of sites, spacing and lattice%s"
+                             % (", not " + " and ".join(given) if given else ""))
+        params: Dict[str, Any] = {"body": dict(body), "friction": friction, "fixels": fixels,
+                                  "objective": objective, "top": top}
+        if sites is not None:
+            params["sites"] = [dict(x) if isinstance(x, Mapping) else {"at": list(x)}
+                               for x in sites]
+        elif spacing is not None:
+            params["spacing"] = spacing
+        else:
+            params["lattice"] = dict(lattice)
+        if finger_radius:
+            params["finger_radius"] = finger_radius
+        if finger_friction:
+            params["finger_friction"] = finger_friction
+        if shard is not None:
+            params["shard"] = [int(shard[0]), int(shard[1])]
+        if progress is not None:
+            params["progress"] = True
+        return self._invoke("fixture.design", params, _design_result, True, timeout,
+                            notify=progress)
+
     def status(self, *, timeout: Any = _DEFAULT):
         """server.status."""
         return self._invoke("server.status", {}, lambda r: _build(Status, r, "server.status"),
@@ -748,6 +826,10 @@ class _Methods:
 
 
 # ---- the connection -----------------------------------------------------------------
+
+# Notification lines (design.progress) begin so, as the daemon writes them.
+_NOTIFICATION = b'{"jsonrpc":"2.0","method":'
+
 
 class _Broken(Exception):
     """The connection broke; maybe_executed: some of the request went out."""
@@ -913,6 +995,19 @@ class Client(_Methods):
             except OSError as e:
                 raise _Broken("sending: %s" % (e.strerror or e), sent > 0) from None
 
+    def _notify(self, notify: Callable, line: bytes) -> None:
+        try:
+            params = json.loads(line).get("params")
+        except ValueError:
+            self._close()
+            raise WrenchdProtocolError("wrenchd at %s: a notification that is not JSON: %.200r"
+                                       % (self.socket_path, line)) from None
+        try:
+            notify(params)
+        except BaseException:
+            self._close()   # the answer is still to come: this connection is spent
+            raise
+
     def _read_line(self, deadline: Optional[float]) -> bytes:
         while True:
             end = self._buf.find(b"\n", self._scanned)
@@ -937,9 +1032,12 @@ class Client(_Methods):
                 raise _Broken("the daemon closed the connection before answering", True)
             self._buf += chunk
 
-    def _exchange(self, data: bytes, readonly: bool, timeout: Any, what: str) -> Any:
+    def _exchange(self, data: bytes, readonly: bool, timeout: Any, what: str,
+                  notify: Optional[Callable] = None) -> Any:
         """Send one line and return the parsed answer line, reconnecting as
-        the module's docstring says."""
+        the module's docstring says.  With `notify`, notifications before
+        the answer (design.progress) go to it, their params; each renews
+        the timeout."""
         deadline = self._deadline(timeout)
         with self._lock:
             for attempt in (1, 2):
@@ -950,6 +1048,10 @@ class Client(_Methods):
                 try:
                     self._send(data, deadline)
                     line = self._read_line(deadline)
+                    while notify is not None and line.startswith(_NOTIFICATION):
+                        self._notify(notify, line)
+                        deadline = self._deadline(timeout)
+                        line = self._read_line(deadline)
                 except _Broken as e:
                     refusal = self._refusal()
                     self._close()
@@ -983,12 +1085,12 @@ class Client(_Methods):
         raise WrenchdProtocolError("wrenchd at %s: an answer that does not match the request: "
                                    "%.200r" % (self.socket_path, answer), self.socket_path, True)
 
-    def _invoke(self, method, params, convert, readonly, timeout, on_error=None):
+    def _invoke(self, method, params, convert, readonly, timeout, on_error=None, notify=None):
         rid = next(self._ids)
         request = {"jsonrpc": "2.0", "method": method, "id": rid}
         if params is not None:
             request["params"] = params
-        answer = self._exchange(_encode(request), readonly, timeout, method)
+        answer = self._exchange(_encode(request), readonly, timeout, method, notify)
         if not isinstance(answer, dict) or answer.get("id") != rid \
                 or isinstance(answer.get("id"), bool):
             self._connection_error(answer, method)
@@ -1069,7 +1171,10 @@ class Batch(_Methods):
             self._fail(RuntimeError("the batch was not sent: its with block raised"))
             self._sent = True
 
-    def _invoke(self, method, params, convert, readonly, timeout, on_error=None):
+    def _invoke(self, method, params, convert, readonly, timeout, on_error=None, notify=None):
+        if notify is not None:
+            raise ValueError("%s: progress needs a request of its own; a batch is answered "
+                             "in one line" % method)
         if timeout is not _DEFAULT:
             raise TypeError("give the timeout to client.batch(timeout=...), not to one request")
         if self._sent:
