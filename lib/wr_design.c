@@ -380,10 +380,11 @@ static double longest_arc(const wr_regions *arcs)
 
 struct wr_design_job {
     wr_design_spec spec;
+    bool failed;
     uint64_t total;            /* candidates of the shard */
     uint64_t candidates;       /* of all shards */
-    uint64_t next;             /* the next candidate's number */
-    int combination[WR_MAX_FIXELS];
+    uint64_t next;             /* the first candidate number not yet claimed */
+    int outstanding;           /* chunks claimed, not yet merged */
     wr_design_counts counts;
     wr_design *designs;        /* spec.top, best first */
     int design_count;
@@ -392,7 +393,6 @@ struct wr_design_job {
     wr_fixture detail_fixture;
     wr_sweeper *sweeper;
     wr_sweep_job *sweep;
-    bool failed;
 };
 
 uint64_t wr_design_candidates(int site_count, int fixel_count)
@@ -436,7 +436,7 @@ static wr_status place(const wr_design_job *job, const int *sites, wr_fixture *o
 
 /* Score one candidate, giving up (OUTCOME_BOUNDED) once its score is
  * certainly below `threshold`.  *units: about the work done. */
-static wr_status score_candidate(wr_design_job *job, const int *sites, double threshold,
+static wr_status score_candidate(const wr_design_job *job, const int *sites, double threshold,
                                  outcome *result, double *score, unsigned long *units)
 {
     const wr_design_spec *spec = &job->spec;
@@ -554,10 +554,27 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
     job->candidates = candidates;
     uint64_t n = (uint64_t)spec->shard_count, i = (uint64_t)spec->shard_index;
     job->total = candidates > i ? (candidates - i + n - 1) / n : 0;
-    for (int k = 0; k < spec->fixel_count; k++)
-        job->combination[k] = k;
     *out = job;
     return WR_OK;
+}
+
+/* The combination numbered r in lexicographic order (0 <= r < C(n, k)):
+ * at each place the smallest index whose count of completions does not
+ * exceed what is left of r. */
+static void unrank(uint64_t r, int k, int n, int *c)
+{
+    int next = 0;
+    for (int place = 0; place < k; place++) {
+        for (int v = next;; v++) {
+            uint64_t completions = wr_design_candidates(n - v - 1, k - place - 1);
+            if (r < completions) {
+                c[place] = v;
+                next = v + 1;
+                break;
+            }
+            r -= completions;
+        }
+    }
 }
 
 /* The next combination in lexicographic order; false after the last. */
@@ -574,30 +591,121 @@ static bool next_combination(int *c, int k, int n)
     return true;
 }
 
-static void keep(wr_design_job *job, uint64_t candidate, const int *sites, double score)
+/* Into a list of at most `top`, best first. */
+static void keep(wr_design *list, int *count, int top, const wr_design *d)
 {
-    wr_design d;
-    memset(&d, 0, sizeof d);
-    d.candidate = candidate;
-    memcpy(d.sites, sites, (size_t)job->spec.fixel_count * sizeof *sites);
-    d.score = score;
-    int n = job->design_count;
-    if (n == job->spec.top && !wr_design_before(&d, &job->designs[n - 1]))
+    int n = *count;
+    if (n == top && !wr_design_before(d, &list[n - 1]))
         return;
-    int i = n < job->spec.top ? n : n - 1;
-    while (i > 0 && wr_design_before(&d, &job->designs[i - 1])) {
-        job->designs[i] = job->designs[i - 1];
+    int i = n < top ? n : n - 1;
+    while (i > 0 && wr_design_before(d, &list[i - 1])) {
+        list[i] = list[i - 1];
         i--;
     }
-    job->designs[i] = d;
-    if (n < job->spec.top)
-        job->design_count++;
+    list[i] = *d;
+    if (n < top)
+        (*count)++;
 }
 
-static double threshold_of(const wr_design_job *job)
+/* The score a candidate must beat to be kept: the top-th so far. */
+static double threshold_of(const wr_design *list, int count, int top)
 {
-    return job->design_count == job->spec.top ? job->designs[job->design_count - 1].score
-                                              : -INFINITY;
+    return count == top ? list[count - 1].score : -INFINITY;
+}
+
+bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
+                         double *threshold)
+{
+    if (job->next >= job->candidates || job->failed)
+        return false;
+    uint64_t span = (uint64_t)WR_DESIGN_CHUNK * (uint64_t)job->spec.shard_count;
+    *first = job->next;
+    *count = job->candidates - job->next < span ? job->candidates - job->next : span;
+    job->next += *count;
+    job->outstanding++;
+    *threshold = threshold_of(job->designs, job->design_count, job->spec.top);
+    return true;
+}
+
+void wr_design_chunk_release(wr_design_chunk *chunk)
+{
+    free(chunk->designs);
+    memset(chunk, 0, sizeof *chunk);
+}
+
+wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t count,
+                              double threshold, const wr_stop *stop, wr_design_chunk *out,
+                              unsigned long *used)
+{
+    const wr_design_spec *spec = &job->spec;
+    memset(out, 0, sizeof *out);
+    out->designs = calloc((size_t)spec->top, sizeof *out->designs);
+    if (!out->designs)
+        return WR_NO_MEMORY;
+    int combination[WR_MAX_FIXELS];
+    unrank(first, spec->fixel_count, spec->site_count, combination);
+    uint64_t n = (uint64_t)spec->shard_count, shard = (uint64_t)spec->shard_index;
+    unsigned long spent = 0;
+    wr_status status = WR_OK;
+    for (uint64_t r = first; r < first + count; r++) {
+        if (r % n == shard) {
+            if (wr_stop_requested(stop)) {
+                status = WR_STOPPED;
+                break;
+            }
+            /* The bound is the better of the job's when claimed and this
+             * chunk's own: either only ever rises. */
+            double bar = fmax(threshold, threshold_of(out->designs, out->design_count, spec->top));
+            outcome result;
+            double score = 0;
+            status = score_candidate(job, combination, bar, &result, &score, &spent);
+            if (status != WR_OK)
+                break;
+            out->counts.examined++;
+            switch (result) {
+            case OUTCOME_DEGENERATE: out->counts.degenerate++; break;
+            case OUTCOME_UNPINNED: out->counts.unpinned++; break;
+            case OUTCOME_NO_SEATING_PUSH: out->counts.no_seating_push++; break;
+            case OUTCOME_BOUNDED: out->counts.bounded++; break;
+            case OUTCOME_SCORED: {
+                wr_design d;
+                memset(&d, 0, sizeof d);
+                d.candidate = r;
+                memcpy(d.sites, combination, (size_t)spec->fixel_count * sizeof *combination);
+                d.score = score;
+                keep(out->designs, &out->design_count, spec->top, &d);
+                break;
+            }
+            }
+        }
+        if (r + 1 < first + count)
+            next_combination(combination, spec->fixel_count, spec->site_count);
+    }
+    if (used)
+        *used += spent;
+    if (status != WR_OK)
+        wr_design_chunk_release(out);
+    return status;
+}
+
+void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk)
+{
+    assert(job->outstanding > 0);
+    job->outstanding--;
+    for (int i = 0; i < chunk->design_count; i++)
+        keep(job->designs, &job->design_count, job->spec.top, &chunk->designs[i]);
+    job->counts.examined += chunk->counts.examined;
+    job->counts.degenerate += chunk->counts.degenerate;
+    job->counts.unpinned += chunk->counts.unpinned;
+    job->counts.no_seating_push += chunk->counts.no_seating_push;
+    job->counts.bounded += chunk->counts.bounded;
+}
+
+void wr_design_job_abandon(wr_design_job *job)
+{
+    assert(job->outstanding > 0);
+    job->outstanding--;
+    job->failed = true;
 }
 
 /* One design's figures but its critical mu (which the sweep job finds). */
@@ -645,36 +753,23 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
     unsigned long spent = 0;
     wr_status status = WR_OK;
     const wr_design_spec *spec = &job->spec;
-    uint64_t n = (uint64_t)spec->shard_count, shard = (uint64_t)spec->shard_index;
-    /* The search. */
-    while (status == WR_OK && job->next < job->candidates && (spent == 0 || spent < budget)) {
-        if (wr_stop_requested(stop)) {
-            status = WR_STOPPED;
+    /* The search, a chunk at a time. */
+    uint64_t first, count;
+    double threshold;
+    while (status == WR_OK && (spent == 0 || spent < budget) &&
+           wr_design_job_claim(job, &first, &count, &threshold)) {
+        wr_design_chunk chunk;
+        status = wr_design_chunk_run(job, first, count, threshold, stop, &chunk, &spent);
+        if (status != WR_OK) {
+            wr_design_job_abandon(job);
             break;
         }
-        if (job->next % n == shard) {
-            outcome result;
-            double score = 0;
-            status = score_candidate(job, job->combination, threshold_of(job), &result, &score,
-                                     &spent);
-            if (status != WR_OK)
-                break;
-            job->counts.examined++;
-            switch (result) {
-            case OUTCOME_DEGENERATE: job->counts.degenerate++; break;
-            case OUTCOME_UNPINNED: job->counts.unpinned++; break;
-            case OUTCOME_NO_SEATING_PUSH: job->counts.no_seating_push++; break;
-            case OUTCOME_BOUNDED: job->counts.bounded++; break;
-            case OUTCOME_SCORED: keep(job, job->next, job->combination, score); break;
-            }
-        }
-        job->next++;
-        if (job->next < job->candidates)
-            next_combination(job->combination, spec->fixel_count, spec->site_count);
+        wr_design_job_merge(job, &chunk);
+        wr_design_chunk_release(&chunk);
     }
     /* The designs' figures. */
-    while (status == WR_OK && job->next >= job->candidates && job->detailing < job->design_count &&
-           (spent == 0 || spent < budget)) {
+    while (status == WR_OK && job->next >= job->candidates && job->outstanding == 0 &&
+           job->detailing < job->design_count && (spent == 0 || spent < budget)) {
         if (wr_stop_requested(stop)) {
             status = WR_STOPPED;
             break;
@@ -712,7 +807,8 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
         job->failed = true;
         return status;
     }
-    *done = job->next >= job->candidates && job->detailing >= job->design_count;
+    *done = job->next >= job->candidates && job->outstanding == 0 &&
+            job->detailing >= job->design_count;
     return WR_OK;
 }
 

@@ -169,6 +169,34 @@ typedef struct wr_design_job wr_design_job;
 wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_error *error);
 wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned long *used,
                             const wr_stop *stop, bool *done);
+/* The same in chunks that several threads may evaluate at once, for a
+ * server that spreads one search over its workers: a chunk is a range of
+ * candidate numbers holding at most WR_DESIGN_CHUNK of the shard's.  Claim
+ * and merge change the job (the caller serialises them, with each other
+ * and with wr_design_job_run); wr_design_chunk_run only reads it, and any
+ * number may run at once.  A claimed chunk is merged, or abandoned after a
+ * failure (the job then fails); the job is done only when every claimed
+ * chunk is merged.  The threshold a chunk gets is the top-th score when it
+ * was claimed: it ends candidates early, never changes a score. */
+#define WR_DESIGN_CHUNK 32
+
+typedef struct wr_design_chunk {
+    wr_design *designs;      /* at most `top`, best first (malloc'd) */
+    int design_count;
+    wr_design_counts counts;
+} wr_design_chunk;
+
+/* False when no candidate is left to claim (or the job failed). */
+bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
+                         double *threshold);
+/* WR_OK; WR_NO_MEMORY; WR_STOPPED (`out` empty unless WR_OK). */
+wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t count,
+                              double threshold, const wr_stop *stop, wr_design_chunk *out,
+                              unsigned long *used);
+void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk);
+void wr_design_job_abandon(wr_design_job *job);
+void wr_design_chunk_release(wr_design_chunk *chunk);
+
 /* Progress: candidates of the shard looked at, of how many, and the best
  * score so far (has_best false before any). */
 void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *total,

@@ -380,6 +380,58 @@ static void search_against_brute_force(void **state)
     wr_fixture_free(body);
 }
 
+/* Chunks claimed at once and run in reverse order (as threads might finish
+ * them) merge to the designs of one run: a chunk starts anywhere (the
+ * combination unranked from its number) and scores never depend on the
+ * bound a chunk was given. */
+static void chunks_in_any_order(void **state)
+{
+    (void)state;
+    wr_fixture *body = body_of(DODECAGON, 12);
+    wr_site *sites = NULL;
+    int count = 0;
+    wr_error error;
+    assert_int_equal(wr_sites_spaced(body, 2, &sites, &count, &error), WR_OK);
+    wr_design_spec spec = {.body = body, .friction = {.given = true, .static_mu = 0.25},
+                           .sites = sites, .site_count = count, .fixel_count = 3,
+                           .objective = WR_OBJECTIVE_MARGIN, .top = 5, .shard_count = 1};
+    wr_design_job *whole, *parts;
+    run_job(&spec, &whole);
+    assert_int_equal(wr_design_job_new(&spec, &parts, &error), WR_OK);
+    enum { MOST = 64 };
+    uint64_t first[MOST], span[MOST];
+    double threshold;
+    int chunks = 0;
+    while (chunks < MOST && wr_design_job_claim(parts, &first[chunks], &span[chunks], &threshold))
+        chunks++;
+    assert_int_equal(chunks, (int)((wr_design_candidates(count, 3) + WR_DESIGN_CHUNK - 1) /
+                                   WR_DESIGN_CHUNK));
+    for (int i = chunks - 1; i >= 0; i--) {
+        wr_design_chunk chunk;
+        assert_int_equal(wr_design_chunk_run(parts, first[i], span[i], -INFINITY, NULL, &chunk,
+                                             NULL),
+                         WR_OK);
+        wr_design_job_merge(parts, &chunk);
+        wr_design_chunk_release(&chunk);
+    }
+    bool done = false;
+    while (!done)
+        assert_int_equal(wr_design_job_run(parts, 1 << 20, NULL, NULL, &done), WR_OK);
+    int n, m;
+    const wr_design *a = wr_design_job_designs(whole, &n), *b = wr_design_job_designs(parts, &m);
+    assert_int_equal(n, m);
+    assert_true(n == 5);
+    for (int i = 0; i < n; i++)
+        assert_memory_equal(&a[i], &b[i], sizeof a[i]);
+    assert_int_equal(wr_design_job_counts(whole)->examined, wr_design_job_counts(parts)->examined);
+    assert_int_equal(wr_design_job_counts(whole)->no_seating_push,
+                     wr_design_job_counts(parts)->no_seating_push);
+    wr_design_job_free(whole);
+    wr_design_job_free(parts);
+    free(sites);
+    wr_fixture_free(body);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -387,6 +439,7 @@ int main(void)
         cmocka_unit_test(placed_equals_whole),
         cmocka_unit_test(best_push_against_sampling),
         cmocka_unit_test(search_against_brute_force),
+        cmocka_unit_test(chunks_in_any_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
