@@ -187,6 +187,116 @@ static bool task_cancelled(void *argument)
     return atomic_load_explicit(&((wd_task *)argument)->cancelled, memory_order_relaxed);
 }
 
+/* The helpers of one piece being made.  Invariant: a helper calls
+ * wp_answer_work only while registered in `active`, and registers only
+ * while `open`; the piece's worker closes the fork and waits for `active`
+ * to reach 0 as soon as its step returns, so no helper touches the answer
+ * after that (wp_rpc.h: the next step may end it).  Freed by the last of
+ * the piece's worker and its helpers to let go of it. */
+typedef struct wd_fork {
+    pthread_mutex_t lock;
+    pthread_cond_t idle;     /* active fell to 0 */
+    wd_task *task;           /* the task whose piece is being made */
+    bool open;
+    int active;              /* helpers inside wp_answer_work */
+    int references;          /* the worker's, and each queued or running helper's */
+} wd_fork;
+
+static void fork_release(wd_fork *fork)
+{
+    pthread_mutex_lock(&fork->lock);
+    bool last = --fork->references == 0;
+    pthread_mutex_unlock(&fork->lock);
+    if (last) {
+        pthread_mutex_destroy(&fork->lock);
+        pthread_cond_destroy(&fork->idle);
+        free(fork);
+    }
+}
+
+static void queue_locked(wd_pool *pool, wd_task *task)
+{
+    task->next = NULL;
+    if (pool->tail)
+        pool->tail->next = task;
+    else
+        pool->head = task;
+    pool->tail = task;
+}
+
+/* Queue a helper for every other worker; NULL when there is no memory for
+ * it (the piece is then made by its worker alone). */
+static wd_fork *fork_open(wd_pool *pool, wd_task *task)
+{
+    int helpers = pool->thread_count - 1;
+    wd_fork *fork = calloc(1, sizeof *fork);
+    if (!fork)
+        return NULL;
+    pthread_mutex_init(&fork->lock, NULL);
+    pthread_cond_init(&fork->idle, NULL);
+    fork->task = task;
+    fork->open = true;
+    fork->references = 1;
+    wd_task *made[helpers > 0 ? helpers : 1];
+    int count = 0;
+    for (int i = 0; i < helpers; i++) {
+        made[count] = calloc(1, sizeof **made);
+        if (!made[count])
+            break;
+        made[count]->fork = fork;
+        count++;
+    }
+    fork->references += count;
+    pthread_mutex_lock(&pool->lock);
+    for (int i = 0; i < count; i++)
+        queue_locked(pool, made[i]);
+    pthread_cond_broadcast(&pool->ready);
+    pthread_mutex_unlock(&pool->lock);
+    return fork;
+}
+
+static void fork_close(wd_fork *fork)
+{
+    pthread_mutex_lock(&fork->lock);
+    fork->open = false;
+    while (fork->active > 0)
+        pthread_cond_wait(&fork->idle, &fork->lock);
+    pthread_mutex_unlock(&fork->lock);
+    fork_release(fork);
+}
+
+/* A helper's turn: a share of its fork's work, then queued again while
+ * the fork is open and work is left, else let go of. */
+static void run_helper(wd_pool *pool, wd_thread_host *thread, wd_task *helper)
+{
+    wd_fork *fork = helper->fork;
+    pthread_mutex_lock(&fork->lock);
+    bool go = fork->open && thread && !pool->stop;
+    if (go)
+        fork->active++;
+    pthread_mutex_unlock(&fork->lock);
+    if (go) {
+        thread->stop = (wr_stop){task_cancelled, fork->task};
+        thread->host.stop = &thread->stop;
+        bool more = wp_answer_work(fork->task->answer, &thread->host);
+        thread->host.stop = NULL;
+        pthread_mutex_lock(&fork->lock);
+        if (--fork->active == 0)
+            pthread_cond_broadcast(&fork->idle);
+        go = more && fork->open;
+        pthread_mutex_unlock(&fork->lock);
+    }
+    if (go) {
+        pthread_mutex_lock(&pool->lock);
+        queue_locked(pool, helper);
+        pthread_cond_signal(&pool->ready);
+        pthread_mutex_unlock(&pool->lock);
+        return;
+    }
+    fork_release(fork);
+    free(helper);
+}
+
 /* One piece of the task's answer, into task->piece. */
 static void run_piece(wd_pool *pool, wd_thread_host *thread, wd_task *task)
 {
@@ -215,7 +325,12 @@ static void run_piece(wd_pool *pool, wd_thread_host *thread, wd_task *task)
             counts.requests = counts.errors = 1;
         } else {
             wp_buffer piece = {0};
+            wd_fork *fork = pool->thread_count > 1 && wp_answer_parallel(task->answer)
+                                ? fork_open(pool, task)
+                                : NULL;
             task->step = wp_answer_step(task->answer, &thread->host, &piece, &counts);
+            if (fork)
+                fork_close(fork);
             if (piece.failed) {
                 /* The piece did not fit in memory: the answer cannot go on
                  * (what was sent of it cannot be taken back). */
@@ -259,6 +374,10 @@ static void *worker_main(void *argument)
         pthread_mutex_unlock(&pool->lock);
         if (!task)
             break; /* stopping, and nothing left */
+        if (task->fork) {
+            run_helper(pool, thread, task);
+            continue;
+        }
         if (pool->stop)
             atomic_store(&task->cancelled, true); /* handed back unworked */
         run_piece(pool, thread, task);
@@ -300,14 +419,9 @@ void wd_pool_submit(wd_pool *pool, wd_task *task)
 {
     /* Submitted with its last piece sent, and with work left: a task that
      * finished or failed is never queued again. */
-    assert(!task->piece && (!task->answer || task->step == WP_STEP_MORE));
-    task->next = NULL;
+    assert(!task->piece && (!task->answer || task->step == WP_STEP_MORE) && !task->fork);
     pthread_mutex_lock(&pool->lock);
-    if (pool->tail)
-        pool->tail->next = task;
-    else
-        pool->head = task;
-    pool->tail = task;
+    queue_locked(pool, task);
     pthread_cond_signal(&pool->ready);
     pthread_mutex_unlock(&pool->lock);
 }

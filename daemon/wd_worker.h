@@ -27,6 +27,10 @@ typedef struct wd_stats {
  * when more follow and the client keeps reading, submits it again, at the
  * tail of the queue.  So the workers take connections' work round-robin,
  * a piece each, and a request never runs ahead of its client's reading.
+ * A piece with work to share (a design's candidates) also queues a helper
+ * for every other worker: each takes a bounded share at a time, queueing
+ * again at the tail, until the piece is made; so one request uses every
+ * idle core, and still waits its turn behind other clients' pieces.
  *
  * Ownership: the loop's while it is not submitted; a worker's from its
  * submission until `done` is called with it. */
@@ -42,6 +46,10 @@ typedef struct wd_task {
     size_t piece_length;
     wp_step step;           /* what wp_answer_step said */
     size_t held;            /* bytes the answer holds between pieces */
+    /* A helper: not a request of its own but a share of another task's
+     * work (wp_answer_work) while that task's piece is being made; the
+     * pool makes, runs and frees helpers, and the loop never sees one. */
+    struct wd_fork *fork;
 } wd_task;
 
 /* Called in a worker thread once a piece is made; must be thread-safe.

@@ -627,6 +627,11 @@ bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
     return true;
 }
 
+bool wr_design_job_claimable(const wr_design_job *job)
+{
+    return job->next < job->candidates && !job->failed;
+}
+
 void wr_design_chunk_release(wr_design_chunk *chunk)
 {
     free(chunk->designs);

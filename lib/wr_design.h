@@ -194,6 +194,8 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
                               double threshold, const wr_stop *stop, wr_design_chunk *out,
                               unsigned long *used);
 void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk);
+/* Is a chunk left to claim? */
+bool wr_design_job_claimable(const wr_design_job *job);
 void wr_design_job_abandon(wr_design_job *job);
 void wr_design_chunk_release(wr_design_chunk *chunk);
 

@@ -3,6 +3,7 @@
 #include "wp_fixture.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,9 @@
 static const char *const OBJECTIVES[] = {"margin", "region", "gravity"};
 
 struct wp_design_stream {
+    /* Steps (one thread at a time) and wp_design_work (any number of
+     * threads beside them) share the job: claims and merges under it. */
+    pthread_mutex_t lock;
     wr_fixture *body;
     wr_site *sites;
     int site_count;
@@ -25,6 +29,7 @@ struct wp_design_stream {
     bool opened;          /* the response is open */
     bool search_reported; /* the notification at the search's end is sent */
     double last_report;   /* monotonic seconds; < 0 before the first */
+    wr_status failure;    /* a failure seen in a shared step, said in the next */
 };
 
 static double now_s(void)
@@ -227,6 +232,7 @@ wp_design_stream *wp_design_begin(wp_call *call)
         return NULL;
     }
     s->last_report = -1;
+    pthread_mutex_init(&s->lock, NULL);
     if (!read_params(call->params, s, call->error)) {
         wp_design_free(s);
         return NULL;
@@ -377,13 +383,78 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "]}");
 }
 
+/* Claim a chunk, run it outside the lock, merge it.  False when none was
+ * left; WR_OK or the failure in *status. */
+static bool run_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
+                      wr_status *status)
+{
+    uint64_t first, count;
+    double threshold;
+    pthread_mutex_lock(&s->lock);
+    bool claimed = wr_design_job_claim(s->job, &first, &count, &threshold);
+    pthread_mutex_unlock(&s->lock);
+    *status = WR_OK;
+    if (!claimed)
+        return false;
+    wr_design_chunk chunk;
+    *status = wr_design_chunk_run(s->job, first, count, threshold, stop, &chunk, used);
+    pthread_mutex_lock(&s->lock);
+    if (*status == WR_OK)
+        wr_design_job_merge(s->job, &chunk);
+    else
+        wr_design_job_abandon(s->job);
+    pthread_mutex_unlock(&s->lock);
+    wr_design_chunk_release(&chunk);
+    return true;
+}
+
+bool wp_design_parallel(wp_design_stream *s)
+{
+    pthread_mutex_lock(&s->lock);
+    bool more = wr_design_job_claimable(s->job);
+    pthread_mutex_unlock(&s->lock);
+    return more;
+}
+
+bool wp_design_work(wp_design_stream *s, const wp_host *host)
+{
+    unsigned long used = 0;
+    wr_status status;
+    return run_chunk(s, host->stop, &used, &status) && status == WR_OK;
+}
+
 wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsigned long budget,
                        unsigned long *used)
 {
+    if (s->failure != WR_OK) {
+        wp_error_status(call->error, s->failure, "params", "%s", wr_strerror(s->failure));
+        return WP_STEP_FAILED;
+    }
     if (s->progress && s->last_report < 0)
         write_progress(s, call, out);
+    /* The search: chunks while the budget lasts (helpers may run others
+     * meanwhile); then the rest (the designs' figures) by the job itself. */
+    wr_status status = WR_OK;
+    unsigned long start = *used;
+    /* A step that begins with chunks to share never ends the answer:
+     * other threads may be in wp_design_work until it returns
+     * (wp_streamer.work), so the figures and the answer come in a later
+     * step, when the search is over. */
+    bool shared = wp_design_parallel(s);
+    while (*used - start < budget && run_chunk(s, call->host->stop, used, &status) &&
+           status == WR_OK)
+        continue;
     bool done = false;
-    wr_status status = wr_design_job_run(s->job, budget, used, call->host->stop, &done);
+    if (status == WR_OK && !shared && *used - start < budget) {
+        pthread_mutex_lock(&s->lock);
+        status = wr_design_job_run(s->job, budget - (*used - start), used, call->host->stop,
+                                   &done);
+        pthread_mutex_unlock(&s->lock);
+    }
+    if (status != WR_OK && shared) {
+        s->failure = status; /* helpers may still be working: end in the next step */
+        return WP_STEP_MORE;
+    }
     if (status != WR_OK) {
         wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
         return WP_STEP_FAILED;
@@ -391,14 +462,18 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
     uint64_t examined, total;
     bool has_best;
     double best;
+    pthread_mutex_lock(&s->lock);
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
+    pthread_mutex_unlock(&s->lock);
     if (s->progress && !s->search_reported &&
         (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
         s->search_reported = examined == total;
         write_progress(s, call, out);
     }
+    /* A shared step never ends the answer, not even for a piece that did
+     * not fit in memory: the caller sees that in the buffer. */
     if (!done)
-        return out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
+        return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     wp_call_open_result(call, out);
     write_answer(s, out);
     return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
@@ -411,6 +486,7 @@ void wp_design_free(wp_design_stream *s)
     wr_design_job_free(s->job);
     free(s->sites);
     wr_fixture_free(s->body);
+    pthread_mutex_destroy(&s->lock);
     free(s);
 }
 

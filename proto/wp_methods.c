@@ -506,7 +506,7 @@ static size_t classify_bytes(const wp_stream *stream)
 }
 
 static const wp_streamer CLASSIFY_STREAM = {classify_begin, classify_step, classify_free,
-                                            classify_bytes, false};
+                                            classify_bytes, false, NULL, NULL};
 
 /* Light enough for an event loop: the explicit cones (no GLPK), and few
  * wrenches against few cones. */
@@ -802,7 +802,7 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
     return WP_STEP_DONE;
 }
 
-static const wp_streamer PUSH_STREAM = {push_begin, push_step, stream_free, NULL, false};
+static const wp_streamer PUSH_STREAM = {push_begin, push_step, stream_free, NULL, false, NULL, NULL};
 
 static cJSON *gravity_sweep(wp_call *call)
 {
@@ -1121,7 +1121,7 @@ static size_t sweep_bytes(const wp_stream *stream)
     return sizeof *stream + stream->u.sweep.request.wrench_count * sizeof(double[3]);
 }
 
-static const wp_streamer SWEEP_STREAM = {sweep_begin, sweep_step, sweep_free, sweep_bytes, false};
+static const wp_streamer SWEEP_STREAM = {sweep_begin, sweep_step, sweep_free, sweep_bytes, false, NULL, NULL};
 
 /* ---- fixture.design (wp_design.c) -------------------------------------------------- */
 
@@ -1160,8 +1160,16 @@ static size_t design_bytes(const wp_stream *stream)
     return sizeof *stream + wp_design_bytes(stream->u.design);
 }
 
-static const wp_streamer DESIGN_STREAM = {design_begin, design_step, design_free, design_bytes,
-                                          .opens_result = true};
+static bool design_parallel(wp_stream *stream) { return wp_design_parallel(stream->u.design); }
+
+static bool design_work(wp_stream *stream, const wp_host *host)
+{
+    return wp_design_work(stream->u.design, host);
+}
+
+static const wp_streamer DESIGN_STREAM = {design_begin,  design_step,     design_free,
+                                          design_bytes,  true,            design_parallel,
+                                          design_work};
 
 /* ---- the table ------------------------------------------------------------ */
 

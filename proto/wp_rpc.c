@@ -621,6 +621,18 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
 
 size_t wp_answer_bytes(const wp_answer *answer) { return answer ? answer->bytes : 0; }
 
+bool wp_answer_parallel(wp_answer *answer)
+{
+    return answer && answer->stream && answer->streamer->parallel &&
+           answer->streamer->parallel(answer->stream);
+}
+
+bool wp_answer_work(wp_answer *answer, const wp_host *host)
+{
+    return answer->stream && answer->streamer->work &&
+           answer->streamer->work(answer->stream, host);
+}
+
 void wp_answer_pieces(wp_answer *answer, unsigned long budget, size_t bytes)
 {
     answer->budget = budget ? budget : 1;

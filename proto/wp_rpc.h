@@ -161,6 +161,15 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
 /* Smaller pieces than the default (tests and fuzzing, to cut answers at
  * every place they may be cut): `budget` work units, `bytes` of text. */
 void wp_answer_pieces(wp_answer *answer, unsigned long budget, size_t bytes);
+/* Work for other threads beside the answer's steps (a design's chunks of
+ * candidates): wp_answer_parallel, asked between steps, says whether there
+ * is some now; wp_answer_work does a bounded piece of it, in any thread,
+ * with the thread's own host (its stop is the request's), while one step
+ * of the answer runs -- and only then: never once that step has returned,
+ * for the step that follows may end the answer.  False when there was
+ * none left. */
+bool wp_answer_parallel(wp_answer *answer);
+bool wp_answer_work(wp_answer *answer, const wp_host *host);
 /* Bytes the answer holds between steps (its parsed request, wrenches). */
 size_t wp_answer_bytes(const wp_answer *answer);
 /* Free it, finished or not (a fixture it holds is released through `host`). */
@@ -209,6 +218,14 @@ typedef struct wp_streamer {
      * whole notification lines (progress) and then opens it with
      * wp_call_open_result before its result's text. */
     bool opens_result;
+    /* Optional, both or neither: work that other threads may do while a
+     * step runs.  `parallel`: is some to be had now?  `work`: do a bounded
+     * piece of it (false when there was none, or it failed).  A step that
+     * begins while `parallel` is true must not end the stream (return
+     * WP_STEP_DONE or FAILED), since `work` may still be running in
+     * another thread until that step returns. */
+    bool (*parallel)(wp_stream *stream);
+    bool (*work)(wp_stream *stream, const wp_host *host);
 } wp_streamer;
 
 /* Open the response whose result follows (a streamer with opens_result). */
