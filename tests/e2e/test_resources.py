@@ -788,3 +788,68 @@ def test_sweeps_share_the_workers_and_stop_with_their_clients(harness):
     except BaseException:
         d.kill()
         raise
+
+
+def design_request(id, spacing=0.5):
+    """A design of about 82,000 candidates on a 12-sided plate: about 8 s
+    of one core."""
+    body = {"mass": 1, "shape": {"type": "polygon", "vertices": [
+        [1, 0], [11, 0], [12, 1], [12, 7], [11, 8], [7, 8], [7, 6], [5, 6], [5, 8], [1, 8],
+        [0, 7], [0, 1]]}}
+    return rpc_line("fixture.design", {"body": body, "friction": 0.25, "spacing": spacing,
+                                       "top": 3}, id)
+
+
+def test_a_design_uses_every_worker_shares_them_and_stops_with_its_client(harness):
+    """One design on a daemon with two workers keeps both busy (its pieces
+    queue a helper for the other worker); a second client's cheap requests
+    meanwhile wait at most one piece (under 1 s); the answer is the one a
+    single worker gives, byte for byte; and when the client leaves, the
+    work stops (under 0.3 s of CPU in the 2 s from 1 s after)."""
+    smaller = design_request(1, spacing=1)
+    one = harness.start("--threads", "1")
+    try:
+        s = raw_socket(one.path)
+        s.sendall(smaller)
+        alone = LineReader(s).line(60 * SLOW)
+        s.close()
+    finally:
+        one.stop()
+    d = harness.start("--threads", "2")
+    try:
+        s = raw_socket(d.path)
+        s.sendall(smaller)
+        assert LineReader(s).line(60 * SLOW) == alone
+        s.close()
+
+        busy = raw_socket(d.path)
+        busy.sendall(design_request(2))
+        time.sleep(0.5)
+        before = cpu_seconds(d.pid)
+        time.sleep(2.0)
+        cores = (cpu_seconds(d.pid) - before) / 2.0
+        report("one design on two workers: %.2f cores busy" % cores)
+        FIGURES["design: CPU percent with one design on 2 workers"] = int(100 * cores)
+        assert cores > 1.5, cores
+
+        disc = FX.disc_corner(0.5)
+        third = raw_socket(d.path)
+        reader = LineReader(third)
+        waits = []
+        for i, (method, params) in enumerate(cheap_requests(disc) * 3):
+            took, _ = timed_call(third, reader, method, params, 100 + i, 5 * SLOW)
+            waits.append((took, method))
+            time.sleep(0.1)
+        FIGURES["resources: worst cheap wait ms behind a design"] = int(1000 * max(waits)[0])
+        assert max(waits)[0] < 1.0 * SLOW, waits
+
+        busy.close()
+        time.sleep(1.0 * SLOW)
+        before = cpu_seconds(d.pid)
+        time.sleep(2.0)
+        used = cpu_seconds(d.pid) - before
+        report("CPU used 1-3 s after the designing client left: %.2f s" % used)
+        assert used < 0.3 * SLOW, used
+    except BaseException:
+        d.kill()
+        raise
