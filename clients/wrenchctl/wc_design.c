@@ -102,6 +102,8 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->shard_given)
         cJSON_AddItemToObject(params, "shard", cJSON_CreateIntArray(run->shard, 2));
+    if (run->shard_given && run->o->json)
+        return wc_usage_error("design: --shard writes JSON lines for design-merge; no --json");
     if (!run->o->local && isatty(STDERR_FILENO)) {
         cJSON_AddBoolToObject(params, "progress", true);
         run->o->notify = progress_bar;
@@ -114,8 +116,34 @@ static double number(const cJSON *object, const char *key)
     return cJSON_GetNumberValue(cJSON_GetObjectItem(object, key));
 }
 
+/* --shard: a line per design, then one of the rest ({"counts", "sites",
+ * "objective", "shard", "top"}): what design-merge reads. */
+static void shard_lines(const wc_run *run, const cJSON *result)
+{
+    const cJSON *d;
+    cJSON_ArrayForEach(d, cJSON_GetObjectItem(result, "designs"))
+    {
+        char *line = cJSON_PrintUnformatted(d);
+        if (line)
+            printf("%s\n", line);
+        free(line);
+    }
+    cJSON *rest = cJSON_Duplicate(result, true);
+    cJSON_DeleteItemFromObject(rest, "designs");
+    cJSON_AddNumberToObject(rest, "top", run->top ? run->top : 10);
+    char *line = cJSON_PrintUnformatted(rest);
+    if (line)
+        printf("%s\n", line);
+    free(line);
+    cJSON_Delete(rest);
+}
+
 int wc_design_answer(wc_run *run, const cJSON *result)
 {
+    if (run->shard_given) {
+        shard_lines(run, result);
+        return EXIT_INSIDE;
+    }
     const cJSON *designs = cJSON_GetObjectItem(result, "designs");
     const cJSON *counts = cJSON_GetObjectItem(result, "counts");
     bool any_push = false;
@@ -172,4 +200,156 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("Push at the best push and let go: it is in the both region (goal seats the part,\n"
                "strong then holds it); a goal push alone may leave it sliding along its fixels.\n");
     return any_push ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
+
+/* ---- design-merge -------------------------------------------------------------------- */
+
+static bool same_number(const cJSON *a, const cJSON *b)
+{
+    return cJSON_IsNumber(a) && cJSON_IsNumber(b) && a->valuedouble == b->valuedouble;
+}
+
+/* Does design a rank before b: score, then candidate number. */
+static bool ranks_before(const cJSON *a, const cJSON *b)
+{
+    double sa = number(a, "score"), sb = number(b, "score");
+    if (sa != sb)
+        return sa > sb;
+    return number(a, "candidate") < number(b, "candidate");
+}
+
+int wc_design_merge_request(wc_run *run, cJSON *params)
+{
+    (void)params;
+    cJSON *designs = cJSON_CreateArray(), *first = NULL;
+    double counts[5] = {0};
+    static const char *const COUNT_NAMES[5] = {"candidates", "examined", "degenerate", "unpinned",
+                                               "no_seating_push"};
+    int shard_count = 0, summaries = 0;
+    bool *seen = NULL;
+    int status = EXIT_INSIDE;
+    for (int f = 0; f < run->count && status == EXIT_INSIDE; f++) {
+        FILE *file = strcmp(run->items[f], "-") == 0 ? stdin : fopen(run->items[f], "r");
+        if (!file) {
+            status = wc_usage_error("design-merge: cannot open '%s'", run->items[f]);
+            break;
+        }
+        char *text = wc_read_all(file, NULL);
+        if (file != stdin)
+            fclose(file);
+        int line_number = 0;
+        for (char *line = text ? strtok(text, "\n") : NULL; line && status == EXIT_INSIDE;
+             line = strtok(NULL, "\n")) {
+            line_number++;
+            cJSON *json = cJSON_Parse(line);
+            if (!cJSON_IsObject(json)) {
+                cJSON_Delete(json);
+                status = wc_usage_error("design-merge: %s line %d is not a JSON object",
+                                        run->items[f], line_number);
+                break;
+            }
+            if (cJSON_GetObjectItem(json, "candidate")) {
+                cJSON_AddItemToArray(designs, json);
+                continue;
+            }
+            const cJSON *shard = cJSON_GetObjectItem(json, "shard");
+            const cJSON *n = cJSON_GetArrayItem(shard, 1), *i = cJSON_GetArrayItem(shard, 0);
+            if (!cJSON_GetObjectItem(json, "counts") || !cJSON_IsNumber(n) || !cJSON_IsNumber(i) ||
+                n->valuedouble < 1 || i->valuedouble < 0 || i->valuedouble >= n->valuedouble) {
+                cJSON_Delete(json);
+                status = wc_usage_error("design-merge: %s line %d is neither a design nor a "
+                                        "shard's summary", run->items[f], line_number);
+                break;
+            }
+            if (!first) {
+                first = json;
+                shard_count = (int)n->valuedouble;
+                seen = calloc((size_t)shard_count, sizeof *seen);
+                counts[0] = number(cJSON_GetObjectItem(json, "counts"), "candidates");
+            } else {
+                /* Shards of one design: the same candidates, objective and top. */
+                const char *keys[] = {"sites", "top"};
+                bool same = same_number(cJSON_GetArrayItem(cJSON_GetObjectItem(first, "shard"), 1), n);
+                for (int k = 0; k < 2; k++)
+                    same = same && same_number(cJSON_GetObjectItem(first, keys[k]),
+                                               cJSON_GetObjectItem(json, keys[k]));
+                same = same && strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(first, "objective")),
+                                      cJSON_GetStringValue(cJSON_GetObjectItem(json, "objective"))) == 0;
+                if (!same) {
+                    cJSON_Delete(json);
+                    status = wc_usage_error("design-merge: %s line %d is a shard of another design "
+                                            "(its shard count, sites, objective or top differ)",
+                                            run->items[f], line_number);
+                    break;
+                }
+            }
+            int index = (int)i->valuedouble;
+            if (seen[index]) {
+                if (json != first)
+                    cJSON_Delete(json);
+                status = wc_usage_error("design-merge: shard %d of %d given twice", index,
+                                        shard_count);
+                break;
+            }
+            seen[index] = true;
+            summaries++;
+            for (int k = 1; k < 5; k++)
+                counts[k] += number(cJSON_GetObjectItem(json, "counts"), COUNT_NAMES[k]);
+            if (json != first)
+                cJSON_Delete(json);
+        }
+        free(text);
+    }
+    if (status == EXIT_INSIDE && !first)
+        status = wc_usage_error("design-merge: no shard's summary line in the input");
+    if (status == EXIT_INSIDE && summaries < shard_count) {
+        fprintf(stderr, "wrenchctl: design-merge: %d of %d shards given; missing:", summaries,
+                shard_count);
+        for (int k = 0; k < shard_count; k++)
+            if (!seen[k])
+                fprintf(stderr, " %d", k);
+        fputs("; the answer covers only those given\n", stderr);
+    }
+    if (status == EXIT_INSIDE) {
+        /* Sort by rank (insertion: shards' outputs are short), keep top. */
+        int n = cJSON_GetArraySize(designs);
+        cJSON **all = calloc((size_t)(n ? n : 1), sizeof *all);
+        int k = 0;
+        while (designs->child)
+            all[k++] = cJSON_DetachItemViaPointer(designs, designs->child);
+        for (int a = 1; a < n; a++)
+            for (int b = a; b > 0 && ranks_before(all[b], all[b - 1]); b--) {
+                cJSON *swap = all[b];
+                all[b] = all[b - 1];
+                all[b - 1] = swap;
+            }
+        int top = (int)number(first, "top");
+        cJSON *result = cJSON_CreateObject();
+        cJSON *kept = cJSON_AddArrayToObject(result, "designs");
+        for (int a = 0; a < n; a++) {
+            if (a < top) {
+                cJSON_ReplaceItemInObject(all[a], "rank", cJSON_CreateNumber(a + 1));
+                cJSON_AddItemToArray(kept, all[a]);
+            } else {
+                cJSON_Delete(all[a]);
+            }
+        }
+        free(all);
+        cJSON *total = cJSON_AddObjectToObject(result, "counts");
+        for (int c = 0; c < 5; c++)
+            cJSON_AddNumberToObject(total, COUNT_NAMES[c], counts[c]);
+        cJSON_AddItemToObject(result, "sites", cJSON_Duplicate(cJSON_GetObjectItem(first, "sites"), true));
+        cJSON_AddItemToObject(result, "objective",
+                              cJSON_Duplicate(cJSON_GetObjectItem(first, "objective"), true));
+        cJSON_AddItemToObject(result, "shard", cJSON_CreateIntArray((int[2]){0, 1}, 2));
+        run->fixels = cJSON_GetArraySize(cJSON_GetObjectItem(cJSON_GetArrayItem(kept, 0), "sites"));
+        if (run->o->json)
+            wc_print_json(result);
+        status = wc_design_answer(run, result);
+        cJSON_Delete(result);
+    }
+    free(seen);
+    cJSON_Delete(first);
+    cJSON_Delete(designs);
+    return status;
 }

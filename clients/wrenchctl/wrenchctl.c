@@ -577,6 +577,15 @@ const wc_command wc_commands[] = {
      "                     the finger that pushes, as for push\n"
      "  --shard I/N        evaluate shard I of N of the candidates only\n"
      "Exit status 0 when some design has a push that seats and holds the part, 1 when none."},
+    {"design-merge", "SHARD_OUTPUT...",
+     WC_STDIN, 1, 1 << 20,
+     NULL, wc_design_merge_request, NULL,
+     "merge the outputs of design --shard into one answer",
+     "Merge the JSON lines that 'design --shard I/N' wrote (files, or '-' for stdin) into\n"
+     "exactly the answer of one design over every candidate: the designs ranked again by\n"
+     "score, then candidate number, the first --top kept, the counts summed.  Shards missing\n"
+     "are named on stderr.  With --json the merged answer as fixture.design gives it.\n"
+     "Exit status 0 when some design has a push that seats and holds the part, 1 when none."},
     {"status", "",
      WC_DAEMON, 0, 0,
      "server.status", NULL, wc_status_answer,
