@@ -23,7 +23,7 @@ DAEMON_LINK = libwrenchd.a libwrenchproto.a libwrench.a
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
-        fuzz-build links FORCE
+        fuzz-build links check-cluster FORCE
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -38,6 +38,7 @@ help:
 	@echo "make unit       the unit tests (build/tests/); make unit-asan: under ASan+UBSan (build/asan/tests/)"
 	@echo "make e2e        the end-to-end tests; make e2e-asan: against build/asan/wrenchd"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
+	@echo "make check-cluster   a design as a Slurm job array on a one-node cluster it starts (root)"
 	@echo "make validate   the full physics validation against Box2D (docs/VALIDATION.md)"
 	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md);"
 	@echo "                make fuzz-build builds them (build/fuzz/), make fuzz-smoke runs them briefly"
@@ -198,6 +199,12 @@ links:
 
 # The last line printed is the test runner's closing line (CI reads it).
 check: links unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
+
+# A single-node Slurm cluster started by the test itself runs a design as a
+# job array (examples/design-array.sbatch); the merged shards must equal one
+# unsharded run.  As root, with slurm-wlm and munge (make deps).
+check-cluster: $(plain_DIR)/wrenchctl
+	@tests/cluster/check-cluster
 
 # ---- running it ------------------------------------------------------------
 
@@ -375,7 +382,7 @@ validate: $(BUILD)/physics-validate
 # ---- dependencies --------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev \
                libcmocka-dev python3 python3-pytest libbox2d-dev systemd clang libclang-rt-14-dev python3-scipy \
-               python3-ezdxf
+               python3-ezdxf slurm-wlm munge
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
