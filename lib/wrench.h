@@ -12,6 +12,7 @@
  *   wr_finger.h    where a round finger fits against an outline
  *   wr_sweep.h     answers as functions of a common friction coefficient
  *   wr_design.h    fixture design: sites, the best push, the search
+ *   wr_lattice.h   designs on a modular fixture plate: pegs and poses
  *
  * Pure computation: no I/O, no global state; every function is re-entrant.
  * Objects are created by wr_status *_new(..., T **out) and released by
@@ -27,6 +28,7 @@
 #include "wr_cone.h"
 #include "wr_design.h"
 #include "wr_finger.h"
+#include "wr_lattice.h"
 #include "wr_fixture.h"
 #include "wr_lp.h"
 #include "wr_outline.h"

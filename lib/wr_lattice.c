@@ -1,0 +1,574 @@
+/* wr_lattice.c -- designs on a modular fixture plate (wr_lattice.h). */
+#include "wr_lattice.h"
+#include "wr_internal.h"
+#include "wr_outline.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A segment's offset curve at the peg radius, in the part's frame: where a
+ * peg's centre is when the peg touches the segment from outside. */
+typedef struct curve {
+    int edge;
+    bool line;
+    /* line: the segment a-b, its outward unit normal n; n . q = c on the
+     * offset line */
+    double a[2], b[2], n[2], c;
+    /* arc: centre, the arc's radius, the offset radius rho; the arc's
+     * start angle and signed sweep; material inside the circle or not */
+    double center[2], radius, rho, start_angle, sweep;
+    bool inside;
+    /* a circle holding the whole offset curve (for pruning) */
+    double hull_center[2], hull_radius;
+} curve;
+
+typedef struct hole {
+    int i, j;
+    double at[2];
+} hole;
+
+struct wr_lattice_job {
+    const wr_fixture *body;
+    wr_lattice lattice;
+    double reach;            /* no two peg centres are farther apart */
+    double tolerance;        /* of lengths: 1e-9 of the part's size */
+    curve *curves;
+    int curve_count;
+    hole *holes;             /* after (0, 0) in (j, i) order, within reach */
+    size_t hole_count;
+    size_t pair;             /* the next (second, third) hole pair, as one index */
+    size_t pair_total;
+    size_t second, third;    /* the next pair */
+    wr_lattice_design *designs;
+    size_t design_count, design_capacity;
+    bool failed;
+};
+
+static double cross2(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
+static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
+
+/* R(-theta) p: a plate point seen from the part's frame, before the
+ * translation. */
+static void unrotate(const double p[2], double theta, double out[2])
+{
+    double c = cos(theta), s = sin(theta);
+    out[0] = c * p[0] + s * p[1];
+    out[1] = -s * p[0] + c * p[1];
+}
+
+static bool build_curves(wr_lattice_job *job)
+{
+    const wr_outline *o = job->body->outline;
+    size_t total = 0;
+    for (size_t l = 0; l < o->loop_count; l++)
+        total += o->loops[l].segment_count;
+    job->curves = calloc(total ? total : 1, sizeof *job->curves);
+    if (!job->curves)
+        return false;
+    double r = job->lattice.peg_radius;
+    int edge = 0;
+    for (size_t l = 0; l < o->loop_count; l++)
+        for (size_t s = 0; s < o->loops[l].segment_count; s++, edge++) {
+            const wr_segment *g = &o->loops[l].segments[s];
+            double mid[2], inward[2];
+            wr_outline_boundary(o, l, s, 0.5, mid, inward);
+            curve *k = &job->curves[job->curve_count];
+            k->edge = edge;
+            if (g->bulge == 0) {
+                k->line = true;
+                memcpy(k->a, g->start, sizeof k->a);
+                memcpy(k->b, g->end, sizeof k->b);
+                k->n[0] = -inward[0];
+                k->n[1] = -inward[1];
+                k->c = dot2(k->n, k->a) + r;
+                for (int d = 0; d < 2; d++)
+                    k->hull_center[d] = (g->start[d] + g->end[d]) / 2 + r * k->n[d];
+                k->hull_radius = g->length / 2;
+            } else {
+                k->line = false;
+                memcpy(k->center, g->center, sizeof k->center);
+                k->radius = g->radius;
+                k->start_angle = g->start_angle;
+                k->sweep = g->sweep;
+                double to_center[2] = {g->center[0] - mid[0], g->center[1] - mid[1]};
+                k->inside = dot2(inward, to_center) > 0;
+                k->rho = k->inside ? g->radius + r : g->radius - r;
+                if (k->rho <= job->tolerance)
+                    continue; /* a peg wider than the hole or the fillet: never touches it */
+                memcpy(k->hull_center, g->center, sizeof k->hull_center);
+                k->hull_radius = k->rho;
+            }
+            job->curve_count++;
+        }
+    return true;
+}
+
+static bool build_holes(wr_lattice_job *job)
+{
+    const wr_lattice *L = &job->lattice;
+    int nx = L->extent[0], ny = L->extent[1];
+    size_t capacity = (size_t)(2 * nx - 1) * (size_t)ny;
+    job->holes = calloc(capacity, sizeof *job->holes);
+    if (!job->holes)
+        return false;
+    for (int j = 0; j < ny; j++)
+        for (int i = -(nx - 1); i < nx; i++) {
+            if (j == 0 && i <= 0)
+                continue; /* (0, 0) is the first peg's; the others come after it */
+            double at[2] = {L->pitch * i, L->pitch * j};
+            if (hypot(at[0], at[1]) > job->reach)
+                continue;
+            job->holes[job->hole_count++] = (hole){i, j, {at[0], at[1]}};
+        }
+    job->pair_total = job->hole_count * (job->hole_count ? job->hole_count - 1 : 0) / 2;
+    job->second = 0;
+    job->third = 1;
+    return true;
+}
+
+wr_status wr_lattice_job_new(const wr_fixture *body, const wr_lattice *lattice,
+                             wr_lattice_job **out, wr_error *error)
+{
+    *out = NULL;
+    if (!body->outline) {
+        wr_error_set(error, "", "a lattice design needs a polygon or an outline (a circle "
+                                "touches every peg along its own normal line)");
+        return WR_INVALID;
+    }
+    if (!(lattice->pitch > 0) || !isfinite(lattice->pitch) ||
+        lattice->pitch < body->size * 1e-6) {
+        wr_error_set(error, "pitch", "must be a positive length above 1e-6 of the part's size");
+        return WR_INVALID;
+    }
+    if (!(lattice->peg_radius >= 0) || !isfinite(lattice->peg_radius) ||
+        lattice->peg_radius >= lattice->pitch / 2) {
+        wr_error_set(error, "peg_radius", "must be at least 0 and below half the pitch");
+        return WR_INVALID;
+    }
+    if (lattice->extent[0] < 1 || lattice->extent[1] < 1 ||
+        lattice->extent[0] > WR_LATTICE_MAX_EXTENT || lattice->extent[1] > WR_LATTICE_MAX_EXTENT) {
+        wr_error_set(error, "extent", "must be [nx, ny], whole numbers from 1 to %d",
+                     WR_LATTICE_MAX_EXTENT);
+        return WR_INVALID;
+    }
+    wr_lattice_job *job = calloc(1, sizeof *job);
+    if (!job) {
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    job->body = body;
+    job->lattice = *lattice;
+    job->tolerance = 1e-9 * body->size;
+    /* Every peg centre lies within r of the part, so within the circle
+     * about its bounding box's centre of radius size / 2 + r. */
+    job->reach = body->size + 2 * lattice->peg_radius + job->tolerance;
+    if (!build_curves(job) || !build_holes(job)) {
+        wr_lattice_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    *out = job;
+    return WR_OK;
+}
+
+/* ---- one pose ----------------------------------------------------------------------- */
+
+/* The residual of peg centre q on curve k: signed distance to the full
+ * offset line or circle. */
+static double residual(const curve *k, const double q[2])
+{
+    if (k->line)
+        return dot2(k->n, q) - k->c;
+    return hypot(q[0] - k->center[0], q[1] - k->center[1]) - k->rho;
+}
+
+/* Is the contact of a peg centred at q on curve k on the segment itself?
+ * The contact point and inward normal into at and normal. */
+static bool contact_on_segment(const wr_lattice_job *job, const curve *k, const double q[2],
+                               double at[2], double normal[2])
+{
+    const double eps = 1e-9;
+    double r = job->lattice.peg_radius;
+    if (k->line) {
+        double d[2] = {k->b[0] - k->a[0], k->b[1] - k->a[1]};
+        double foot[2] = {q[0] - r * k->n[0], q[1] - r * k->n[1]};
+        double rel[2] = {foot[0] - k->a[0], foot[1] - k->a[1]};
+        double s = dot2(rel, d) / dot2(d, d);
+        if (s < -eps || s > 1 + eps)
+            return false;
+        s = fmin(1, fmax(0, s));
+        at[0] = k->a[0] + s * d[0];
+        at[1] = k->a[1] + s * d[1];
+        normal[0] = -k->n[0];
+        normal[1] = -k->n[1];
+        return true;
+    }
+    double v[2] = {q[0] - k->center[0], q[1] - k->center[1]};
+    double length = hypot(v[0], v[1]);
+    if (!(length > 0))
+        return false;
+    double u[2] = {v[0] / length, v[1] / length};
+    double angle = atan2(u[1], u[0]) - k->start_angle;
+    double span = fabs(k->sweep);
+    if (k->sweep < 0)
+        angle = -angle;
+    angle = fmod(angle, 2 * WR_PI);
+    if (angle < 0)
+        angle += 2 * WR_PI;
+    if (angle > span + eps && angle < 2 * WR_PI - eps)
+        return false;
+    at[0] = k->center[0] + k->radius * u[0];
+    at[1] = k->center[1] + k->radius * u[1];
+    normal[0] = k->inside ? -u[0] : u[0];
+    normal[1] = k->inside ? -u[1] : u[1];
+    return true;
+}
+
+static bool add_design(wr_lattice_job *job, const wr_lattice_design *d)
+{
+    /* The same holes and pose from another assignment (a peg on a vertex
+     * touches both its segments): one design. */
+    for (size_t i = job->design_count; i-- > 0;) {
+        const wr_lattice_design *e = &job->designs[i];
+        if (memcmp(e->holes, d->holes, sizeof d->holes) != 0)
+            break; /* designs of one hole triple are consecutive */
+        double dtheta = fabs(remainder(e->pose[2] - d->pose[2], 2 * WR_PI));
+        if (dtheta <= 1e-9 && hypot(e->pose[0] - d->pose[0], e->pose[1] - d->pose[1]) <=
+                                  1e-7 * job->body->size)
+            return true;
+    }
+    if (job->design_count >= WR_LATTICE_MAX_DESIGNS)
+        return true; /* the caller says the list is full */
+    if (job->design_count == job->design_capacity) {
+        size_t grown = job->design_capacity ? 2 * job->design_capacity : 64;
+        wr_lattice_design *more = realloc(job->designs, grown * sizeof *more);
+        if (!more)
+            return false;
+        job->designs = more;
+        job->design_capacity = grown;
+    }
+    job->designs[job->design_count++] = *d;
+    return true;
+}
+
+/* Check a pose (theta, tau: the translation seen in the part's frame) of
+ * the part against pegs at P with curves k, and keep it. */
+static bool try_pose(wr_lattice_job *job, const hole *const P[3], const curve *const k[3],
+                     double theta, const double tau[2])
+{
+    wr_lattice_design d;
+    memset(&d, 0, sizeof d);
+    double r = job->lattice.peg_radius;
+    const wr_outline *o = job->body->outline;
+    for (int m = 0; m < 3; m++) {
+        double p[2], q[2];
+        unrotate(P[m]->at, theta, p);
+        q[0] = p[0] - tau[0];
+        q[1] = p[1] - tau[1];
+        if (fabs(residual(k[m], q)) > 1e-7 * job->body->size)
+            return true;
+        if (!contact_on_segment(job, k[m], q, d.at[m], d.normal[m]))
+            return true;
+        /* Touching is not overlapping: the peg's centre outside the
+         * material, at least its radius from every segment. */
+        if (wr_outline_contains(o, q, job->tolerance) ||
+            wr_outline_distance(o, q) < r - 1e-7 * job->body->size)
+            return true;
+        d.holes[m][0] = P[m]->i;
+        d.holes[m][1] = P[m]->j;
+        d.edges[m] = k[m]->edge;
+    }
+    theta = fmod(theta, 2 * WR_PI);
+    if (theta < 0)
+        theta += 2 * WR_PI;
+    double c = cos(theta), s = sin(theta);
+    d.pose[0] = c * tau[0] - s * tau[1];
+    d.pose[1] = s * tau[0] + c * tau[1];
+    d.pose[2] = theta;
+    return add_design(job, &d);
+}
+
+/* Three lines: sum_m lambda_m n_m = 0 with lambda from cross products, so
+ * sum_m lambda_m (n_m . p_m(theta) - c_m) = 0, that is A cos + B sin = C. */
+static bool three_lines(wr_lattice_job *job, const hole *const P[3], const curve *const k[3])
+{
+    double lambda[3] = {cross2(k[1]->n, k[2]->n), cross2(k[2]->n, k[0]->n),
+                        cross2(k[0]->n, k[1]->n)};
+    if (fabs(lambda[0]) + fabs(lambda[1]) + fabs(lambda[2]) < 1e-9)
+        return true; /* all parallel: the part slides along them, no pose is fixed */
+    double A = 0, B = 0, C = 0;
+    for (int m = 0; m < 3; m++) {
+        double perp[2] = {-k[m]->n[1], k[m]->n[0]};
+        A += lambda[m] * dot2(k[m]->n, P[m]->at);
+        B += lambda[m] * dot2(perp, P[m]->at);
+        C += lambda[m] * k[m]->c;
+    }
+    double R = hypot(A, B);
+    if (!(R > 0) || fabs(C) > R * (1 + 1e-12))
+        return true;
+    double phi = atan2(B, A), delta = acos(fmax(-1, fmin(1, C / R)));
+    int count = delta < 1e-12 ? 1 : 2;
+    /* The translation from the two lines whose normals are farthest from
+     * parallel. */
+    int u = 0, v = 1;
+    double best = fabs(lambda[2]);
+    if (fabs(lambda[0]) > best) {
+        u = 1, v = 2;
+        best = fabs(lambda[0]);
+    }
+    if (fabs(lambda[1]) > best) {
+        u = 2, v = 0;
+        best = fabs(lambda[1]);
+    }
+    for (int e = 0; e < count; e++) {
+        double theta = phi + (e ? -delta : delta);
+        double pu[2], pv[2];
+        unrotate(P[u]->at, theta, pu);
+        unrotate(P[v]->at, theta, pv);
+        double bu = dot2(k[u]->n, pu) - k[u]->c, bv = dot2(k[v]->n, pv) - k[v]->c;
+        double det = cross2(k[u]->n, k[v]->n);
+        double tau[2] = {(bu * k[v]->n[1] - bv * k[u]->n[1]) / det,
+                         (k[u]->n[0] * bv - k[v]->n[0] * bu) / det};
+        if (!try_pose(job, P, k, theta, tau))
+            return false;
+    }
+    return true;
+}
+
+/* With an arc: the translation from the first two curves (lines first),
+ * branch 0 or 1 of a circle's two points; false where it has none. */
+static bool solve_two(const hole *const P[3], const curve *const k[3], double theta, int branch,
+                      double tau[2])
+{
+    double p0[2], p1[2];
+    unrotate(P[0]->at, theta, p0);
+    unrotate(P[1]->at, theta, p1);
+    if (k[0]->line && k[1]->line) {
+        double b0 = dot2(k[0]->n, p0) - k[0]->c, b1 = dot2(k[1]->n, p1) - k[1]->c;
+        double det = cross2(k[0]->n, k[1]->n);
+        if (fabs(det) < 1e-9 || branch)
+            return false;
+        tau[0] = (b0 * k[1]->n[1] - b1 * k[0]->n[1]) / det;
+        tau[1] = (k[0]->n[0] * b1 - k[1]->n[0] * b0) / det;
+        return true;
+    }
+    /* The circle: tau on the circle about m1 = p1 - C of radius rho. */
+    double m1[2] = {p1[0] - k[1]->center[0], p1[1] - k[1]->center[1]};
+    double sign = branch ? -1 : 1;
+    if (k[0]->line) {
+        /* n . tau = v: tau = v n + s n_perp. */
+        double v = dot2(k[0]->n, p0) - k[0]->c;
+        double perp[2] = {-k[0]->n[1], k[0]->n[0]};
+        double off = v - dot2(k[0]->n, m1);
+        double h2 = k[1]->rho * k[1]->rho - off * off;
+        if (h2 < 0)
+            return false;
+        double s = dot2(perp, m1) + sign * sqrt(h2);
+        tau[0] = v * k[0]->n[0] + s * perp[0];
+        tau[1] = v * k[0]->n[1] + s * perp[1];
+        return true;
+    }
+    double m0[2] = {p0[0] - k[0]->center[0], p0[1] - k[0]->center[1]};
+    double d[2] = {m1[0] - m0[0], m1[1] - m0[1]};
+    double D = hypot(d[0], d[1]);
+    if (!(D > 0))
+        return false;
+    double r0 = k[0]->rho, r1 = k[1]->rho;
+    double along = (D * D + r0 * r0 - r1 * r1) / (2 * D);
+    double h2 = r0 * r0 - along * along;
+    if (h2 < 0)
+        return false;
+    double h = sign * sqrt(h2);
+    tau[0] = m0[0] + (along * d[0] - h * d[1]) / D;
+    tau[1] = m0[1] + (along * d[1] + h * d[0]) / D;
+    return true;
+}
+
+static double third_residual(const hole *const P[3], const curve *const k[3], double theta,
+                             int branch, double tau[2])
+{
+    if (!solve_two(P, k, theta, branch, tau))
+        return NAN;
+    double p2[2], q[2];
+    unrotate(P[2]->at, theta, p2);
+    q[0] = p2[0] - tau[0];
+    q[1] = p2[1] - tau[1];
+    return residual(k[2], q);
+}
+
+/* Q, K: the holes and curves with the lines first, to solve with; P, k:
+ * as the design has them. */
+static bool with_arcs(wr_lattice_job *job, const hole *const Q[3], const curve *const K[3],
+                      const hole *const P[3], const curve *const k[3])
+{
+    const int n = WR_LATTICE_STEPS;
+    const double step = 2 * WR_PI / n;
+    double tau[2];
+    for (int branch = 0; branch < 2; branch++) {
+        if (branch && K[0]->line && K[1]->line)
+            break;
+        double f[WR_LATTICE_STEPS + 1];
+        for (int i = 0; i <= n; i++)
+            f[i] = third_residual(Q, K, i * step, branch, tau);
+        for (int i = 0; i < n; i++) {
+            double lo = i * step, hi = lo + step, flo = f[i], fhi = f[i + 1];
+            if (isnan(flo) || isnan(fhi))
+                continue;
+            bool root = (flo <= 0) != (fhi <= 0) || flo == 0;
+            bool touch = false;
+            if (!root && i > 0 && !isnan(f[i - 1]) && fabs(flo) <= fabs(f[i - 1]) &&
+                fabs(flo) <= fabs(fhi) && fabs(flo) < 0.05 * job->body->size) {
+                /* A small local minimum of |f|: perhaps a touch of zero. */
+                double a = lo - step, b = hi;
+                const double g = (sqrt(5) - 1) / 2;
+                for (int it = 0; it < 100; it++) {
+                    double c = b - g * (b - a), e = a + g * (b - a);
+                    double fc = fabs(third_residual(Q, K, c, branch, tau));
+                    double fe = fabs(third_residual(Q, K, e, branch, tau));
+                    if (!(fc > fe))
+                        b = e;
+                    else
+                        a = c;
+                }
+                lo = (a + b) / 2;
+                double fm = third_residual(Q, K, lo, branch, tau);
+                touch = fabs(fm) <= 1e-9 * job->body->size;
+            }
+            if (root) {
+                for (int it = 0; it < 100 && hi - lo > 1e-15; it++) {
+                    double mid = (lo + hi) / 2, fm = third_residual(Q, K, mid, branch, tau);
+                    if (isnan(fm))
+                        break;
+                    if ((fm <= 0) == (flo <= 0)) {
+                        lo = mid;
+                        flo = fm;
+                    } else {
+                        hi = mid;
+                    }
+                }
+            }
+            if (root || touch) {
+                double theta = root ? (lo + hi) / 2 : lo;
+                if (!isnan(third_residual(Q, K, theta, branch, tau)) &&
+                    !try_pose(job, P, k, theta, tau))
+                    return false;
+            }
+        }
+    }
+    return true;
+}
+
+/* The offset curves' centre distance range: can pegs this far apart touch
+ * these two curves? */
+static bool reachable(const curve *a, const curve *b, double distance, double slack)
+{
+    double between = hypot(a->hull_center[0] - b->hull_center[0],
+                           a->hull_center[1] - b->hull_center[1]);
+    return distance <= between + a->hull_radius + b->hull_radius + slack &&
+           distance >= between - a->hull_radius - b->hull_radius - slack;
+}
+
+/* Every pose for the holes P, every assignment of curves. */
+static bool hole_triple(wr_lattice_job *job, const hole *const P[3], unsigned long *units)
+{
+    double d01 = hypot(P[0]->at[0] - P[1]->at[0], P[0]->at[1] - P[1]->at[1]);
+    double d02 = hypot(P[0]->at[0] - P[2]->at[0], P[0]->at[1] - P[2]->at[1]);
+    double d12 = hypot(P[1]->at[0] - P[2]->at[0], P[1]->at[1] - P[2]->at[1]);
+    double slack = 1e-6 * job->body->size;
+    for (int x = 0; x < job->curve_count; x++)
+        for (int y = 0; y < job->curve_count; y++) {
+            if (!reachable(&job->curves[x], &job->curves[y], d01, slack))
+                continue;
+            for (int z = 0; z < job->curve_count; z++) {
+                const curve *k[3] = {&job->curves[x], &job->curves[y], &job->curves[z]};
+                if (!reachable(k[0], k[2], d02, slack) || !reachable(k[1], k[2], d12, slack))
+                    continue;
+                *units += 8;
+                if (k[0]->line && k[1]->line && k[2]->line) {
+                    if (!three_lines(job, P, k))
+                        return false;
+                    continue;
+                }
+                /* Lines first: the translation comes from them. */
+                int order[3] = {0, 1, 2};
+                for (int a = 0; a < 3; a++)
+                    for (int b = 0; b < 2; b++)
+                        if (!k[order[b]]->line && k[order[b + 1]]->line) {
+                            int t = order[b];
+                            order[b] = order[b + 1];
+                            order[b + 1] = t;
+                        }
+                const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
+                const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
+                *units += 40 * WR_LATTICE_STEPS;
+                if (!with_arcs(job, Q, K, P, k))
+                    return false;
+            }
+        }
+    return true;
+}
+
+wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned long *used,
+                             const wr_stop *stop, bool *done)
+{
+    *done = false;
+    if (job->failed)
+        return WR_NO_MEMORY;
+    static const hole origin = {0, 0, {0, 0}};
+    unsigned long spent = 0;
+    int nx = job->lattice.extent[0], ny = job->lattice.extent[1];
+    while (job->pair < job->pair_total && (spent == 0 || spent < budget)) {
+        if (wr_stop_requested(stop)) {
+            if (used)
+                *used += spent;
+            return WR_STOPPED;
+        }
+        const hole *second = &job->holes[job->second], *third = &job->holes[job->third];
+        int lo_i = second->i < third->i ? second->i : third->i;
+        int hi_i = second->i > third->i ? second->i : third->i;
+        lo_i = lo_i < 0 ? lo_i : 0;
+        hi_i = hi_i > 0 ? hi_i : 0;
+        int hi_j = second->j > third->j ? second->j : third->j;
+        spent += 1;
+        if (hi_i - lo_i < nx && hi_j < ny &&
+            hypot(second->at[0] - third->at[0], second->at[1] - third->at[1]) <= job->reach) {
+            const hole *P[3] = {&origin, second, third};
+            if (!hole_triple(job, P, &spent)) {
+                job->failed = true;
+                return WR_NO_MEMORY;
+            }
+        }
+        job->pair++;
+        if (++job->third == job->hole_count) {
+            job->second++;
+            job->third = job->second + 1;
+        }
+    }
+    if (used)
+        *used += spent;
+    *done = job->pair >= job->pair_total;
+    return WR_OK;
+}
+
+void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total)
+{
+    *done = job->pair;
+    *total = job->pair_total;
+}
+
+const wr_lattice_design *wr_lattice_job_designs(const wr_lattice_job *job, size_t *count)
+{
+    *count = job->design_count;
+    return job->designs;
+}
+
+void wr_lattice_job_free(wr_lattice_job *job)
+{
+    if (!job)
+        return;
+    free(job->curves);
+    free(job->holes);
+    free(job->designs);
+    free(job);
+}

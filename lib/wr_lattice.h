@@ -1,0 +1,84 @@
+/* wr_lattice.h -- designs on a modular fixture plate (Brost and Goldberg):
+ * three round pegs in holes of a square lattice, and a pose of the part in
+ * which it touches all three and overlaps none (docs/PROTOCOL.md,
+ * fixture.design, "lattice").
+ *
+ * The plate's holes are at pitch * (i, j); a pose (x, y, theta) puts the
+ * part's point p at R(theta) p + (x, y).  Designs are enumerated up to the
+ * lattice's translations: the first peg is at hole (0, 0), the others at
+ * holes after it in the order (j, then i), all three within an extent of
+ * nx by ny holes.  For three holes and three segments of the outline (one
+ * per peg, a segment may serve two), the pose follows from three distance
+ * equations: in the part's frame peg k's centre q_k = R(-theta)(P_k - t)
+ * lies on the segment's offset curve at the peg's radius (a line parallel
+ * to a straight segment, a circle about an arc's centre), its contact
+ * point on the segment itself.
+ *
+ *   - Three straight segments: eliminating the translation leaves
+ *     A cos theta + B sin theta = C, solved in closed form (at most two
+ *     poses), the translation then from two of the lines.
+ *   - With an arc: the translation is solved from two of the curves for
+ *     each theta (lines first: one point, or the two points where a line
+ *     or circle meets a circle), and the third curve's residual is
+ *     scanned over theta in WR_LATTICE_STEPS steps, each change of sign
+ *     bisected, and each small local minimum of its size refined (a pose
+ *     where the residual touches zero without crossing it).  A pose whose
+ *     residual crosses zero and back within one step may be missed.
+ *
+ * A pose is kept when each contact point lies on its segment, each peg's
+ * centre is outside the material at least its radius from the outline
+ * (touching is not overlapping), and it is not a pose already found for
+ * the same holes (a peg on a vertex touches two segments). */
+#ifndef WR_LATTICE_H
+#define WR_LATTICE_H
+
+#include "wr_classify.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define WR_LATTICE_STEPS 1440
+/* At most this many holes a side, and designs in all. */
+#define WR_LATTICE_MAX_EXTENT 1000
+#define WR_LATTICE_MAX_DESIGNS 1000000
+
+typedef struct wr_lattice {
+    double pitch;        /* > 0 */
+    double peg_radius;   /* >= 0 */
+    int extent[2];       /* nx, ny: holes a side, >= 1 */
+} wr_lattice;
+
+typedef struct wr_lattice_design {
+    int holes[3][2];     /* (i, j) of each peg; the first (0, 0) */
+    double pose[3];      /* x, y, theta in radians, theta in [0, 2 pi) */
+    int edges[3];        /* the outline segment each peg touches (wr_push_edge numbering) */
+    double at[3][2];     /* the contact points, in the part's frame */
+    double normal[3][2]; /* unit, into the material */
+} wr_lattice_design;
+
+/* A bounded amount of work at a time, as the other jobs: made, run until
+ * *done, then read.  WR_INVALID (`error` at "pitch", "peg_radius",
+ * "extent", or "" for a body without an outline); WR_NO_MEMORY;
+ * WR_STOPPED.  The body (wr_fixture_body_new: a polygon or an outline)
+ * must outlive the job. */
+typedef struct wr_lattice_job wr_lattice_job;
+
+wr_status wr_lattice_job_new(const wr_fixture *body, const wr_lattice *lattice,
+                             wr_lattice_job **out, wr_error *error);
+wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned long *used,
+                             const wr_stop *stop, bool *done);
+/* Progress: hole triples looked at, of how many. */
+void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total);
+/* When done: the designs, in the order found (hole triples in order, then
+ * segment triples, then theta). */
+const wr_lattice_design *wr_lattice_job_designs(const wr_lattice_job *job, size_t *count);
+void wr_lattice_job_free(wr_lattice_job *job);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
