@@ -535,7 +535,17 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
         wr_error_set(error, "finger_radius", "must be a non-negative number");
         return WR_INVALID;
     }
-    uint64_t candidates = wr_design_candidates(spec->site_count, spec->fixel_count);
+    uint64_t candidates = spec->candidates
+                              ? spec->candidate_count
+                              : wr_design_candidates(spec->site_count, spec->fixel_count);
+    for (uint64_t r = 0; spec->candidates && r < spec->candidate_count; r++)
+        for (int k = 0; k < spec->fixel_count; k++)
+            if (spec->candidates[r][k] < 0 || spec->candidates[r][k] >= spec->site_count ||
+                (k > 0 && spec->candidates[r][k] <= spec->candidates[r][k - 1])) {
+                wr_error_set(error, "", "candidate %llu is not increasing site indices",
+                             (unsigned long long)r);
+                return WR_INVALID;
+            }
     if (candidates == UINT64_MAX) {
         wr_error_set(error, "fixels", "%d of %d sites give more candidates than can be counted",
                      spec->fixel_count, spec->site_count);
@@ -648,7 +658,10 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
     if (!out->designs)
         return WR_NO_MEMORY;
     int combination[WR_MAX_FIXELS];
-    unrank(first, spec->fixel_count, spec->site_count, combination);
+    if (spec->candidates)
+        memcpy(combination, spec->candidates[first], sizeof combination);
+    else
+        unrank(first, spec->fixel_count, spec->site_count, combination);
     uint64_t n = (uint64_t)spec->shard_count, shard = (uint64_t)spec->shard_index;
     unsigned long spent = 0;
     wr_status status = WR_OK;
@@ -683,7 +696,9 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
             }
             }
         }
-        if (r + 1 < first + count)
+        if (r + 1 < first + count && spec->candidates)
+            memcpy(combination, spec->candidates[r + 1], sizeof combination);
+        else if (r + 1 < first + count)
             next_combination(combination, spec->fixel_count, spec->site_count);
     }
     if (used)

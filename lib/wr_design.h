@@ -127,6 +127,11 @@ typedef struct wr_design_spec {
     int shard_index, shard_count;    /* candidates numbered r with
                                         r mod shard_count = shard_index;
                                         0 and 1 for all */
+    /* Or the candidates listed, numbered in this order (a lattice's
+     * designs): each fixel_count site indices, increasing.  NULL: every
+     * combination of the sites. */
+    const int (*candidates)[WR_MAX_FIXELS];
+    uint64_t candidate_count;
 } wr_design_spec;
 
 /* A ranked design. */

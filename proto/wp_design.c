@@ -30,6 +30,11 @@ struct wp_design_stream {
     bool search_reported; /* the notification at the search's end is sent */
     double last_report;   /* monotonic seconds; < 0 before the first */
     wr_status failure;    /* a failure seen in a shared step, said in the next */
+    /* A lattice: its designs are enumerated first, then they are the
+     * candidates (their fixels the sites, three each). */
+    wr_lattice_job *lattice;
+    const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
+    int (*listed)[WR_MAX_FIXELS];
 };
 
 static double now_s(void)
@@ -114,6 +119,52 @@ static bool read_sites(const cJSON *list, wp_design_stream *s, wp_error *error)
         }
     }
     s->site_count = (int)count;
+    return true;
+}
+
+static const char *const LATTICE_FIELDS[] = {"pitch", "peg_radius", "extent", NULL};
+
+/* {"pitch", "peg_radius", "extent": [nx, ny]}: the lattice job, made here. */
+static bool read_lattice(const cJSON *params, const cJSON *json, wp_design_stream *s,
+                         wp_error *error)
+{
+    const char *path = "params.lattice";
+    wr_lattice lattice;
+    double extent[2];
+    if (!wp_check_object(json, path, LATTICE_FIELDS, error) ||
+        !wp_member_number(json, path, "pitch", true, &lattice.pitch, NULL, error) ||
+        !wp_member_number(json, path, "peg_radius", true, &lattice.peg_radius, NULL, error) ||
+        !wp_member_vector2(json, path, "extent", true, extent, NULL, error))
+        return false;
+    for (int k = 0; k < 2; k++) {
+        if (extent[k] != floor(extent[k]) || extent[k] < 1 || extent[k] > WR_LATTICE_MAX_EXTENT) {
+            char field[WP_FIELD_MAX];
+            wp_path_index(field, "params.lattice.extent", (size_t)k);
+            wp_error_set(error, WP_INVALID_PARAMS, field,
+                         "must be a whole number of holes from 1 to %d, got %g",
+                         WR_LATTICE_MAX_EXTENT, extent[k]);
+            return false;
+        }
+        lattice.extent[k] = (int)extent[k];
+    }
+    if (cJSON_GetObjectItemCaseSensitive(params, "fixels") && s->spec.fixel_count != 3) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixels",
+                     "a lattice design has 3 pegs: 3 fixels, not %d", s->spec.fixel_count);
+        return false;
+    }
+    s->spec.fixel_count = 3;
+    wr_error invalid;
+    wr_status status = wr_lattice_job_new(s->body, &lattice, &s->lattice, &invalid);
+    if (status != WR_OK) {
+        char field[WP_FIELD_MAX];
+        if (invalid.field[0])
+            wp_path_key(field, path, invalid.field);
+        else
+            snprintf(field, sizeof field, "%s", status == WR_INVALID ? "params.body.shape" : "");
+        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL, field, "%s",
+                     invalid.reason);
+        return false;
+    }
     return true;
 }
 
@@ -204,11 +255,8 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
                              : "candidate sites are required: sites, spacing or lattice");
         return false;
     }
-    if (lattice) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.lattice",
-                     "modular-fixture lattices are not served yet; give sites or spacing");
-        return false;
-    }
+    if (lattice)
+        return read_lattice(params, lattice, s, error);
     if (sites)
         return read_sites(sites, s, error);
     double h;
@@ -219,6 +267,47 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
     if (status != WR_OK) {
         wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
                      status == WR_INVALID ? "params.spacing" : "", "%s", invalid.reason);
+        return false;
+    }
+    return true;
+}
+
+/* The search's job, over the sites (or the lattice's designs, once
+ * enumerated: their contacts are the sites, three a candidate). */
+static bool start_search(wp_design_stream *s, wp_error *error)
+{
+    if (s->lattice) {
+        size_t count;
+        s->poses = wr_lattice_job_designs(s->lattice, &count);
+        s->sites = calloc(3 * count + 1, sizeof *s->sites);
+        s->listed = calloc(count + 1, sizeof *s->listed);
+        if (!s->sites || !s->listed) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        /* Not checked as sites: a contact that a fixture would refuse makes
+         * its candidate degenerate, counted as such. */
+        for (size_t i = 0; i < count; i++)
+            for (int m = 0; m < 3; m++) {
+                memcpy(s->sites[3 * i + m].at, s->poses[i].at[m], sizeof s->sites->at);
+                memcpy(s->sites[3 * i + m].normal, s->poses[i].normal[m], sizeof s->sites->normal);
+                s->listed[i][m] = (int)(3 * i) + m;
+            }
+        s->site_count = (int)(3 * count);
+        s->spec.candidates = (const int (*)[WR_MAX_FIXELS])s->listed;
+        s->spec.candidate_count = count;
+    }
+    s->spec.sites = s->sites;
+    s->spec.site_count = s->site_count;
+    s->candidates = s->lattice ? s->spec.candidate_count
+                               : wr_design_candidates(s->site_count, s->spec.fixel_count);
+    wr_error invalid;
+    wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
+    if (status != WR_OK) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, "params", invalid.field);
+        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
+                     status == WR_INVALID ? field : "", "%s", invalid.reason);
         return false;
     }
     return true;
@@ -241,16 +330,7 @@ wp_design_stream *wp_design_begin(wp_call *call)
         /* A batch's answer is one line: nothing can come before it. */
         s->progress = false;
     }
-    s->spec.sites = s->sites;
-    s->spec.site_count = s->site_count;
-    s->candidates = wr_design_candidates(s->site_count, s->spec.fixel_count);
-    wr_error invalid;
-    wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
-    if (status != WR_OK) {
-        char field[WP_FIELD_MAX];
-        wp_path_key(field, "params", invalid.field);
-        wp_error_set(call->error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? field : "", "%s", invalid.reason);
+    if (!s->lattice && !start_search(s, call->error)) {
         wp_design_free(s);
         return NULL;
     }
@@ -268,12 +348,22 @@ static void write_pair(wp_buffer *out, const double v[2])
 
 static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
 {
-    uint64_t done, total;
-    bool has_best;
-    double best;
-    wr_design_job_progress(s->job, &done, &total, &has_best, &best);
+    uint64_t done = 0, total = 0;
+    bool has_best = false;
+    double best = 0;
+    if (s->job) {
+        wr_design_job_progress(s->job, &done, &total, &has_best, &best);
+    } else {
+        size_t pairs, of;
+        wr_lattice_job_progress(s->lattice, &pairs, &of);
+        done = pairs;
+        total = of;
+    }
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
+    /* The stage: "poses" while a lattice's designs are enumerated (done and
+     * total count its hole pairs), then "candidates". */
+    wp_buffer_puts(out, s->job ? ",\"stage\":\"candidates\"" : ",\"stage\":\"poses\"");
     WP_BUFFER_LITERAL(out, ",\"done\":");
     wp_buffer_number(out, (double)done);
     WP_BUFFER_LITERAL(out, ",\"total\":");
@@ -295,13 +385,16 @@ static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d
     wp_buffer_number(out, rank);
     WP_BUFFER_LITERAL(out, ",\"candidate\":");
     wp_buffer_number(out, (double)d->candidate);
-    WP_BUFFER_LITERAL(out, ",\"sites\":[");
-    for (int i = 0; i < s->spec.fixel_count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
-        wp_buffer_number(out, (double)d->sites[i]);
+    if (!s->poses) {
+        WP_BUFFER_LITERAL(out, ",\"sites\":[");
+        for (int i = 0; i < s->spec.fixel_count; i++) {
+            if (i)
+                WP_BUFFER_LITERAL(out, ",");
+            wp_buffer_number(out, (double)d->sites[i]);
+        }
+        WP_BUFFER_LITERAL(out, "]");
     }
-    WP_BUFFER_LITERAL(out, "],\"fixels\":[");
+    WP_BUFFER_LITERAL(out, ",\"fixels\":[");
     for (int i = 0; i < fixture.fixel_count; i++) {
         wp_buffer_puts(out, i ? ",{\"at\":" : "{\"at\":");
         write_pair(out, fixture.fixels[i].at);
@@ -309,7 +402,25 @@ static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d
         write_pair(out, fixture.fixels[i].normal);
         WP_BUFFER_LITERAL(out, "}");
     }
-    WP_BUFFER_LITERAL(out, "],\"best_push\":");
+    WP_BUFFER_LITERAL(out, "]");
+    if (s->poses) {
+        const wr_lattice_design *pose = &s->poses[d->candidate];
+        WP_BUFFER_LITERAL(out, ",\"pegs\":[");
+        for (int m = 0; m < 3; m++) {
+            double hole[2] = {pose->holes[m][0], pose->holes[m][1]};
+            if (m)
+                WP_BUFFER_LITERAL(out, ",");
+            write_pair(out, hole);
+        }
+        WP_BUFFER_LITERAL(out, "],\"pose\":[");
+        wp_buffer_number(out, pose->pose[0] + 0.0);
+        WP_BUFFER_LITERAL(out, ",");
+        wp_buffer_number(out, pose->pose[1] + 0.0);
+        WP_BUFFER_LITERAL(out, ",");
+        wp_buffer_number(out, pose->pose[2] * 180 / 3.14159265358979323846 + 0.0);
+        WP_BUFFER_LITERAL(out, "]");
+    }
+    WP_BUFFER_LITERAL(out, ",\"best_push\":");
     const wr_best_push *push = &d->best_push;
     if (push->found) {
         WP_BUFFER_LITERAL(out, "{\"at\":");
@@ -372,8 +483,13 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
     wp_buffer_number(out, (double)c->unpinned);
     WP_BUFFER_LITERAL(out, ",\"no_seating_push\":");
     wp_buffer_number(out, (double)c->no_seating_push);
-    WP_BUFFER_LITERAL(out, "},\"sites\":");
-    wp_buffer_number(out, s->site_count);
+    if (s->poses) {
+        WP_BUFFER_LITERAL(out, "},\"poses\":");
+        wp_buffer_number(out, (double)s->spec.candidate_count);
+    } else {
+        WP_BUFFER_LITERAL(out, "},\"sites\":");
+        wp_buffer_number(out, s->site_count);
+    }
     WP_BUFFER_LITERAL(out, ",\"objective\":\"");
     wp_buffer_puts(out, OBJECTIVES[s->spec.objective]);
     WP_BUFFER_LITERAL(out, "\",\"shard\":[");
@@ -410,6 +526,8 @@ static bool run_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *u
 
 bool wp_design_parallel(wp_design_stream *s)
 {
+    if (!s->job)
+        return false;
     pthread_mutex_lock(&s->lock);
     bool more = wr_design_job_claimable(s->job);
     pthread_mutex_unlock(&s->lock);
@@ -432,6 +550,21 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
     }
     if (s->progress && s->last_report < 0)
         write_progress(s, call, out);
+    if (!s->job) {
+        /* A lattice: its designs first, a budget at a time. */
+        bool enumerated = false;
+        wr_status status =
+            wr_lattice_job_run(s->lattice, budget, used, call->host->stop, &enumerated);
+        if (status == WR_OK && enumerated && !start_search(s, call->error))
+            return WP_STEP_FAILED;
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+            write_progress(s, call, out);
+        return out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
+    }
     /* The search: chunks while the budget lasts (helpers may run others
      * meanwhile); then the rest (the designs' figures) by the job itself. */
     wr_status status = WR_OK;
@@ -484,6 +617,8 @@ void wp_design_free(wp_design_stream *s)
     if (!s)
         return;
     wr_design_job_free(s->job);
+    wr_lattice_job_free(s->lattice);
+    free(s->listed);
     free(s->sites);
     wr_fixture_free(s->body);
     pthread_mutex_destroy(&s->lock);
@@ -492,5 +627,10 @@ void wp_design_free(wp_design_stream *s)
 
 size_t wp_design_bytes(const wp_design_stream *s)
 {
-    return sizeof *s + (size_t)s->site_count * sizeof *s->sites + wr_design_job_bytes(s->job);
+    size_t poses = 0;
+    if (s->lattice)
+        wr_lattice_job_designs(s->lattice, &poses);
+    return sizeof *s + (size_t)s->site_count * sizeof *s->sites +
+           (s->job ? wr_design_job_bytes(s->job) : 0) +
+           poses * (sizeof(wr_lattice_design) + sizeof *s->listed);
 }

@@ -64,8 +64,8 @@ enum {
     WC_OPT_INTERVAL = 1 << 15,  /* --friction LO:HI (or MU): the fixels' friction */
     WC_OPT_SWEEP = 1 << 16,     /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
                                    --range LO:HI, --kinetic-ratio R */
-    WC_OPT_DESIGN = 1 << 17     /* --spacing H, --fixels K, --objective O, --top N,
-                                   --shard I/N */
+    WC_OPT_DESIGN = 1 << 17     /* --spacing H, --lattice P,R,NXxNY, --fixels K,
+                                   --objective O, --top N, --shard I/N */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -100,6 +100,9 @@ typedef struct wc_run {
     const char *objective;  /* --objective */
     int shard[2];           /* --shard I/N */
     bool shard_given;
+    double lattice[2];      /* --lattice PITCH,RADIUS,NXxNY: pitch, peg radius */
+    int lattice_extent[2];
+    bool lattice_given;
     /* WC_FIXTURE: the fixture as sent (an object, or an id string) */
     cJSON *fixture;
     /* kept by a request function for its answer (sweep: --wrench, as read) */

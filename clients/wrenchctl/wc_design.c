@@ -67,7 +67,16 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_Delete(json);
         return wc_usage_error("design: no friction: give --friction or a fixture with one");
     }
-    if (run->spacing > 0) {
+    if (run->spacing > 0 && run->lattice_given) {
+        cJSON_Delete(json);
+        return wc_usage_error("design: --spacing or --lattice, not both");
+    }
+    if (run->lattice_given) {
+        cJSON *lattice = cJSON_AddObjectToObject(params, "lattice");
+        cJSON_AddNumberToObject(lattice, "pitch", run->lattice[0]);
+        cJSON_AddNumberToObject(lattice, "peg_radius", run->lattice[1]);
+        cJSON_AddItemToObject(lattice, "extent", cJSON_CreateIntArray(run->lattice_extent, 2));
+    } else if (run->spacing > 0) {
         cJSON_AddNumberToObject(params, "spacing", run->spacing);
     } else if (body && cJSON_IsArray(cJSON_GetObjectItem(json, "fixels"))) {
         /* The fixture's fixels are the candidate sites. */
@@ -155,8 +164,13 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     if (run->o->json)
         return any_push ? EXIT_INSIDE : EXIT_NOT_INSIDE;
     const char *objective = cJSON_GetStringValue(cJSON_GetObjectItem(result, "objective"));
-    printf("design: %.0f fixels from %.0f sites, %.0f candidates", run->fixels ? run->fixels : 3.0,
-           number(result, "sites"), number(counts, "candidates"));
+    if (cJSON_GetObjectItem(result, "poses"))
+        printf("design: 3 pegs on the lattice, %.0f poses of the part touching three",
+               number(result, "poses"));
+    else
+        printf("design: %.0f fixels from %.0f sites, %.0f candidates",
+               run->fixels ? run->fixels : 3.0, number(result, "sites"),
+               number(counts, "candidates"));
     const cJSON *shard = cJSON_GetObjectItem(result, "shard");
     if (cJSON_GetArraySize(shard) == 2 && cJSON_GetArrayItem(shard, 1)->valuedouble > 1)
         printf(" (shard %.0f of %.0f: %.0f of them)", cJSON_GetArrayItem(shard, 0)->valuedouble,
@@ -193,6 +207,20 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("%-4.0f  %-10.6g  %-34s  %-30s  %-9.4g  %-9.4g  %-7.3g  %s\n", number(d, "rank"),
                number(d, "score"), fixels, push, number(d, "goal_length"),
                number(d, "both_length"), number(d, "gravity_goal_deg"), critical_text);
+        const cJSON *pegs = cJSON_GetObjectItem(d, "pegs"), *pose = cJSON_GetObjectItem(d, "pose");
+        if (cJSON_GetArraySize(pegs) == 3 && cJSON_GetArraySize(pose) == 3) {
+            printf("      pegs in holes");
+            const cJSON *hole;
+            cJSON_ArrayForEach(hole, pegs)
+            {
+                printf(" (%.0f, %.0f)", cJSON_GetArrayItem(hole, 0)->valuedouble,
+                       cJSON_GetArrayItem(hole, 1)->valuedouble);
+            }
+            printf("; the part at (%.6g, %.6g) turned %.6g degrees\n",
+                   cJSON_GetArrayItem(pose, 0)->valuedouble,
+                   cJSON_GetArrayItem(pose, 1)->valuedouble,
+                   cJSON_GetArrayItem(pose, 2)->valuedouble);
+        }
     }
     if (cJSON_GetArraySize(designs) == 0)
         printf("no design: no candidate has a push that seats the part\n");
@@ -268,9 +296,10 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
                 counts[0] = number(cJSON_GetObjectItem(json, "counts"), "candidates");
             } else {
                 /* Shards of one design: the same candidates, objective and top. */
-                const char *keys[] = {"sites", "top"};
+                const char *keys[] = {"sites", "poses", "top"};
                 bool same = same_number(cJSON_GetArrayItem(cJSON_GetObjectItem(first, "shard"), 1), n);
-                for (int k = 0; k < 2; k++)
+                for (int k = 0; k < 3; k++)
+                    if (cJSON_GetObjectItem(first, keys[k]) || cJSON_GetObjectItem(json, keys[k]))
                     same = same && same_number(cJSON_GetObjectItem(first, keys[k]),
                                                cJSON_GetObjectItem(json, keys[k]));
                 same = same && strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(first, "objective")),
@@ -338,7 +367,9 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         cJSON *total = cJSON_AddObjectToObject(result, "counts");
         for (int c = 0; c < 5; c++)
             cJSON_AddNumberToObject(total, COUNT_NAMES[c], counts[c]);
-        cJSON_AddItemToObject(result, "sites", cJSON_Duplicate(cJSON_GetObjectItem(first, "sites"), true));
+        const char *source = cJSON_GetObjectItem(first, "poses") ? "poses" : "sites";
+        cJSON_AddItemToObject(result, source,
+                              cJSON_Duplicate(cJSON_GetObjectItem(first, source), true));
         cJSON_AddItemToObject(result, "objective",
                               cJSON_Duplicate(cJSON_GetObjectItem(first, "objective"), true));
         cJSON_AddItemToObject(result, "shard", cJSON_CreateIntArray((int[2]){0, 1}, 2));

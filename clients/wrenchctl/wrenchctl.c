@@ -264,6 +264,20 @@ static int take_objective(wc_run *run, const char *value)
     return 0;
 }
 
+/* --lattice PITCH,RADIUS,NXxNY: a modular fixture plate. */
+static int take_lattice(wc_run *run, const char *value)
+{
+    char tail;
+    if (sscanf(value, "%lf,%lf,%dx%d%c", &run->lattice[0], &run->lattice[1],
+               &run->lattice_extent[0], &run->lattice_extent[1], &tail) != 4 ||
+        !(run->lattice[0] > 0) || !(run->lattice[1] >= 0) || run->lattice_extent[0] < 1 ||
+        run->lattice_extent[1] < 1)
+        return wc_usage_error("--lattice wants PITCH,PEG_RADIUS,NXxNY (10,1,20x20), not '%s'",
+                              value);
+    run->lattice_given = true;
+    return 0;
+}
+
 /* --shard I/N: shard I of N, 0 <= I < N. */
 static int take_shard(wc_run *run, const char *value)
 {
@@ -313,6 +327,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"range", WC_OPT_SWEEP, take_range},
     {"kinetic-ratio", WC_OPT_SWEEP, take_ratio},
     {"spacing", WC_OPT_DESIGN, take_spacing},
+    {"lattice", WC_OPT_DESIGN, take_lattice},
     {"fixels", WC_OPT_DESIGN, take_fixels},
     {"top", WC_OPT_DESIGN, take_top},
     {"objective", WC_OPT_DESIGN, take_objective},
@@ -555,9 +570,10 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu), 1 when not."},
     {"design",
-     "BODY [--spacing H] [--fixels K] [--objective margin|region|gravity] [--top N]\n"
-     "       [--friction LO:HI] [--finger-radius R] [--finger-friction MU] [--shard I/N]",
-     WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION, 1, 1,
+     "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K] [--objective margin|region|gravity]\n"
+     "       [--top N] [--friction LO:HI] [--finger-radius R] [--finger-friction MU]\n"
+     "       [--shard I/N] [--svg FILE]",
+     WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
      "where to put the fixels, and where to push",
      "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
@@ -568,6 +584,8 @@ const wc_command wc_commands[] = {
      "                     fixels are the candidate sites unless --spacing is given) or a\n"
      "                     body alone\n"
      "  --spacing H        candidate sites every H along every segment, centred\n"
+     "  --lattice P,R,NXxNY  a modular fixture plate: holes at pitch P, pegs of radius R,\n"
+     "                     NX by NY holes; every pose of the part touching three pegs\n"
      "  --fixels K         fixels per design (default 3)\n"
      "  --objective O      margin (the best push's; default), region (the both region's\n"
      "                     length) or gravity (the longest goal arc of tilts)\n"
@@ -575,7 +593,10 @@ const wc_command wc_commands[] = {
      "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
      "  --finger-radius R, --finger-friction MU\n"
      "                     the finger that pushes, as for push\n"
-     "  --shard I/N        evaluate shard I of N of the candidates only\n"
+     "  --shard I/N        evaluate shard I of N of the candidates only, and write JSON lines\n"
+     "                     for design-merge (examples/design-array.sbatch runs it on Slurm)\n"
+     "  --svg FILE         also draw the best designs side by side: the part, its fixels\n"
+     "                     (pegs on a lattice), the both region and the best push\n"
      "Exit status 0 when some design has a push that seats and holds the part, 1 when none."},
     {"design-merge", "SHARD_OUTPUT...",
      WC_STDIN, 1, 1 << 20,
