@@ -3,7 +3,11 @@
 #include "wc_call.h"
 #include "wc_commands.h"
 #include "wc_print.h"
+#include "wc_svg.h"
 
+#include "wp_fixture.h"
+
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -99,6 +103,12 @@ int wc_design_request(wc_run *run, cJSON *params)
                               "fixels are the sites");
     }
     cJSON_Delete(json);
+    /* For --svg: the body and friction, to draw each design as a fixture. */
+    run->fixture = cJSON_CreateObject();
+    cJSON_AddItemToObject(run->fixture, "body",
+                          cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
+    cJSON_AddItemToObject(run->fixture, "friction",
+                          cJSON_Duplicate(cJSON_GetObjectItem(params, "friction"), true));
     if (run->fixels)
         cJSON_AddNumberToObject(params, "fixels", run->fixels);
     if (run->top)
@@ -145,6 +155,121 @@ static void shard_lines(const wc_run *run, const cJSON *result)
         printf("%s\n", line);
     free(line);
     cJSON_Delete(rest);
+}
+
+/* A design as a fixture: the request's body and friction with its fixels
+ * (friction as a number or an interval becomes the fixture's form). */
+static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
+{
+    cJSON *json = cJSON_CreateObject();
+    cJSON_AddItemToObject(json, "body",
+                          cJSON_Duplicate(cJSON_GetObjectItem(run->fixture, "body"), true));
+    const cJSON *friction = cJSON_GetObjectItem(run->fixture, "friction");
+    cJSON *form = cJSON_IsObject(friction) ? cJSON_Duplicate(friction, true) : cJSON_CreateObject();
+    if (!cJSON_IsObject(friction))
+        cJSON_AddItemToObject(form, "static", cJSON_Duplicate(friction, true));
+    cJSON_AddItemToObject(json, "friction", form);
+    cJSON_AddItemToObject(json, "fixels",
+                          cJSON_Duplicate(cJSON_GetObjectItem(design, "fixels"), true));
+    wp_fixture_doc doc;
+    wp_error error;
+    bool ok = wp_fixture_read(json, "fixture", &doc, &error);
+    cJSON_Delete(json);
+    if (!ok) {
+        wc_usage_error("design: a design's fixture: %s: %s", error.field, error.reason);
+        return NULL;
+    }
+    wr_fixture *fixture = doc.fixture;
+    doc.fixture = NULL;
+    wp_fixture_doc_release(&doc);
+    return fixture;
+}
+
+/* --svg: the first six designs side by side, their both regions computed
+ * here (the same library the daemon uses). */
+static int design_pictures(const wc_run *run, const cJSON *result)
+{
+    enum { MOST = 6 };
+    wc_design_panel panels[MOST];
+    wr_fixture *fixtures[MOST] = {NULL};
+    wr_regions regions[MOST];
+    memset(panels, 0, sizeof panels);
+    memset(regions, 0, sizeof regions);
+    int count = 0, status = -1;
+    const cJSON *d;
+    cJSON_ArrayForEach(d, cJSON_GetObjectItem(result, "designs"))
+    {
+        if (count == MOST)
+            break;
+        fixtures[count] = design_fixture(run, d);
+        if (!fixtures[count]) {
+            status = EXIT_USAGE;
+            break;
+        }
+        wr_analysis *analysis;
+        wr_finger finger = {run->friction_given ? run->finger_friction : 0,
+                            run->radius_given ? run->finger_radius : 0};
+        if (wr_analysis_new(fixtures[count], &analysis) != WR_OK ||
+            wr_push_regions_finger(analysis, WR_SET_BOTH, &finger, NULL, &regions[count]) !=
+                WR_OK) {
+            wr_fixture_free(fixtures[count]);
+            status = wc_usage_error("design: out of memory drawing");
+            break;
+        }
+        wr_analysis_free(analysis);
+        wc_design_panel *p = &panels[count];
+        p->fixture = fixtures[count];
+        p->regions = regions[count].items;
+        p->region_count = regions[count].count;
+        p->rank = (int)number(d, "rank");
+        p->score = number(d, "score");
+        const cJSON *push = cJSON_GetObjectItem(d, "best_push");
+        if (cJSON_IsObject(push)) {
+            p->has_push = true;
+            for (int k = 0; k < 2; k++) {
+                p->push_at[k] = cJSON_GetArrayItem(cJSON_GetObjectItem(push, "at"), k)->valuedouble;
+                p->push_direction[k] =
+                    cJSON_GetArrayItem(cJSON_GetObjectItem(push, "direction"), k)->valuedouble;
+            }
+            p->margin = number(push, "margin");
+        }
+        const cJSON *pegs = cJSON_GetObjectItem(d, "pegs"), *pose = cJSON_GetObjectItem(d, "pose");
+        if (run->lattice_given && cJSON_GetArraySize(pegs) == 3 && cJSON_GetArraySize(pose) == 3) {
+            p->lattice = true;
+            p->peg_radius = run->lattice[1];
+            double x = cJSON_GetArrayItem(pose, 0)->valuedouble;
+            double y = cJSON_GetArrayItem(pose, 1)->valuedouble;
+            double theta = cJSON_GetArrayItem(pose, 2)->valuedouble * 3.14159265358979323846 / 180;
+            for (int m = 0; m < 3; m++) {
+                const cJSON *hole = cJSON_GetArrayItem(pegs, m);
+                p->holes[m][0] = (int)cJSON_GetArrayItem(hole, 0)->valuedouble;
+                p->holes[m][1] = (int)cJSON_GetArrayItem(hole, 1)->valuedouble;
+                /* The peg's centre in the part's frame: R(-theta)(P - t). */
+                double rel[2] = {run->lattice[0] * p->holes[m][0] - x,
+                                 run->lattice[0] * p->holes[m][1] - y};
+                p->pegs[m][0] = cos(theta) * rel[0] + sin(theta) * rel[1];
+                p->pegs[m][1] = -sin(theta) * rel[0] + cos(theta) * rel[1];
+            }
+        }
+        count++;
+    }
+    if (status < 0) {
+        FILE *out = fopen(run->svg, "w");
+        if (!out) {
+            status = wc_usage_error("--svg %s: %s", run->svg, strerror(errno));
+        } else {
+            const char *objective = cJSON_GetStringValue(cJSON_GetObjectItem(result, "objective"));
+            const cJSON *name = cJSON_GetObjectItem(cJSON_GetObjectItem(run->fixture, "body"), "name");
+            wc_svg_designs(out, cJSON_IsString(name) ? name->valuestring : run->items[0],
+                           objective ? objective : "margin", panels, count);
+            fclose(out);
+        }
+    }
+    for (int i = 0; i < count; i++) {
+        wr_regions_release(&regions[i]);
+        wr_fixture_free(fixtures[i]);
+    }
+    return status;
 }
 
 int wc_design_answer(wc_run *run, const cJSON *result)
@@ -221,6 +346,11 @@ int wc_design_answer(wc_run *run, const cJSON *result)
                    cJSON_GetArrayItem(pose, 1)->valuedouble,
                    cJSON_GetArrayItem(pose, 2)->valuedouble);
         }
+    }
+    if (run->svg && run->fixture) {
+        int status = design_pictures(run, result);
+        if (status >= 0)
+            return status;
     }
     if (cJSON_GetArraySize(designs) == 0)
         printf("no design: no candidate has a push that seats the part\n");

@@ -555,6 +555,124 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
     end(out);
 }
 
+/* ---- designs side by side ------------------------------------------------------- */
+
+#define PANEL_WIDTH 420.0
+#define PANEL_COLUMNS 3
+
+/* One design in the page's frame of WIDTH (its group scales it down). */
+static void design_panel(FILE *out, const frame *f, const wc_design_panel *p)
+{
+    const wr_fixture *fx = p->fixture;
+    outline(out, f, fx);
+    for (int i = 0; i < p->region_count; i++) {
+        const wr_region *r = &p->regions[i];
+        size_t loop, segment;
+        bool on_outline = fx->shape == WR_SHAPE_OUTLINE && fx->outline;
+        if (on_outline && !edge_place(fx->outline, r->edge, &loop, &segment))
+            continue;
+        fputs("<path class=\"region\" d=\"", out);
+        if (fx->shape == WR_SHAPE_CIRCLE) {
+            arc_path(out, f, fx->center, fx->radius, r->t0, r->t1);
+        } else if (on_outline) {
+            double a[2];
+            wr_outline_boundary(fx->outline, loop, segment, r->t0, a, NULL);
+            fprintf(out, "M " OUTLINE_XY, page_x(f, a[0]), page_y(f, a[1]));
+            segment_to(out, f, fx->outline, loop, segment, r->t0, r->t1);
+        } else {
+            double a[2], b[2], n[2];
+            wr_boundary_point(fx, r->edge, r->t0, a, n);
+            wr_boundary_point(fx, r->edge, r->t1, b, n);
+            fprintf(out, "M %.2f %.2f L %.2f %.2f", page_x(f, a[0]), page_y(f, a[1]),
+                    page_x(f, b[0]), page_y(f, b[1]));
+        }
+        fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"7\"/>\n", out);
+    }
+    for (int m = 0; p->lattice && m < 3; m++)
+        fprintf(out,
+                "<circle class=\"peg\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#bbb\" "
+                "stroke=\"#444\" stroke-width=\"2\"/>\n",
+                page_x(f, p->pegs[m][0]), page_y(f, p->pegs[m][1]),
+                fmax(3, p->peg_radius * f->scale));
+    fixels(out, f, fx);
+    centre_of_mass(out, f, fx);
+    if (p->has_push) {
+        /* The finger's push: an arrow ending at the point, along the push. */
+        double length = 0.3 * f->size;
+        double tail[2] = {p->push_at[0] - length * p->push_direction[0],
+                          p->push_at[1] - length * p->push_direction[1]};
+        fprintf(out,
+                "<line class=\"best-push\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+                "stroke=\"#c0392b\" stroke-width=\"5\" marker-end=\"url(#arrow-c0392b)\"/>\n",
+                page_x(f, tail[0]), page_y(f, tail[1]), page_x(f, p->push_at[0]),
+                page_y(f, p->push_at[1]));
+    }
+}
+
+void wc_svg_designs(FILE *out, const char *name, const char *objective,
+                    const wc_design_panel *panels, int count)
+{
+    int columns = count < PANEL_COLUMNS ? (count > 0 ? count : 1) : PANEL_COLUMNS;
+    int rows = (count + columns - 1) / columns;
+    double scale = PANEL_WIDTH / WIDTH;
+    /* Every panel as tall as the tallest. */
+    double tallest = 0;
+    for (int i = 0; i < count; i++) {
+        frame f = frame_for(panels[i].fixture, 0.35, 2);
+        tallest = fmax(tallest, f.height * scale);
+    }
+    double top = 66, width = columns * PANEL_WIDTH, height = top + rows * tallest + 10;
+    fprintf(out,
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+            "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"14\">\n<title>",
+            width, height, width, height);
+    text_escaped(out, name);
+    fputs(": designs</title>\n<defs>", out);
+    fputs("<marker id=\"arrow-c0392b\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
+          "markerWidth=\"4\" markerHeight=\"4\" orient=\"auto-start-reverse\">"
+          "<path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#c0392b\"/></marker>",
+          out);
+    fputs("</defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", out);
+    char text[256];
+    snprintf(text, sizeof text, "%s: the best %d design%s by %s, best first", name, count,
+             count == 1 ? "" : "s", objective);
+    legend(out, 0, text);
+    legend(out, 1, "thick black: the both region; red arrow: the best push (largest margin) -");
+    legend(out, 2, "push there and let go: goal seats the part, strong then holds it");
+    for (int i = 0; i < count; i++) {
+        const wc_design_panel *p = &panels[i];
+        frame f = frame_for(p->fixture, 0.35, 2);
+        double x = (i % columns) * PANEL_WIDTH, y = top + (i / columns) * tallest;
+        fprintf(out, "<g class=\"design\" transform=\"translate(%.2f %.2f) scale(%.4f)\">\n", x,
+                y, scale);
+        fprintf(out,
+                "<rect x=\"4\" y=\"4\" width=\"%.0f\" height=\"%.0f\" fill=\"none\" "
+                "stroke=\"#ddd\" stroke-width=\"2\"/>\n",
+                WIDTH - 8, tallest / scale - 8);
+        design_panel(out, &f, p);
+        if (p->has_push)
+            snprintf(text, sizeof text, "#%d  score %.6g  best push margin %.4g", p->rank,
+                     p->score, p->margin);
+        else
+            snprintf(text, sizeof text, "#%d  score %.6g  no both region: no push to let go",
+                     p->rank, p->score);
+        fprintf(out, "<text x=\"16\" y=\"30\" font-size=\"22\">");
+        text_escaped(out, text);
+        fputs("</text>\n", out);
+        if (p->lattice) {
+            snprintf(text, sizeof text, "pegs in holes (%d, %d) (%d, %d) (%d, %d)", p->holes[0][0],
+                     p->holes[0][1], p->holes[1][0], p->holes[1][1], p->holes[2][0],
+                     p->holes[2][1]);
+            fprintf(out, "<text x=\"16\" y=\"56\" font-size=\"20\">");
+            text_escaped(out, text);
+            fputs("</text>\n", out);
+        }
+        fputs("</g>\n", out);
+    }
+    end(out);
+}
+
 /* ---- friction sweeps: plots against mu ------------------------------------------ */
 
 #define PLOT_LEFT 80.0

@@ -77,6 +77,29 @@ void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], doub
                         const wc_sweep_band *bands, int count, const char *const *sets,
                         int set_count);
 
+/* One design of fixture.design, for wc_svg_designs. */
+typedef struct wc_design_panel {
+    const wr_fixture *fixture;    /* the body with the design's fixels */
+    const wr_region *regions;     /* its both push region (wc_svg_push's edges) */
+    int region_count;
+    bool has_push;
+    double push_at[2], push_direction[2], margin;
+    int rank;
+    double score;
+    bool lattice;                 /* pegs: their centres in the part's frame */
+    double pegs[3][2];
+    int holes[3][2];
+    double peg_radius;
+} wc_design_panel;
+
+/* The best designs side by side, three to a row: each part with its
+ * fixels (and pegs, <circle class="peg">), its both region (<path
+ * class="region">) and its best push as an arrow into the part (<line
+ * class="best-push">), its rank and score; the legend says why the push
+ * is both's. */
+void wc_svg_designs(FILE *out, const char *name, const char *objective,
+                    const wc_design_panel *panels, int count);
+
 /* What a set's push region or tilt promises, in one line ("goal: reaches
  * every fixel, then the part may slide on; ..."): G_goal does not promise
  * the part rests, G_strong does not promise it seats; "both" is what to
