@@ -111,6 +111,29 @@ def main():
     print("  %-16s region length at mu = 0, 0.125, 0.25: %s" % (
         "", ", ".join("%.4f" % lengths[m] for m in (0.0, 0.125, 0.25) if m in lengths)))
 
+    # Design the fixture: where the locators go and where the clamp pushes.
+    with open(os.path.join(ROOT, "examples", "bracket.json")) as f:
+        bracket = json.load(f)
+    seen = []
+    design = client.design(bracket["body"], bracket["friction"], spacing=10, top=3,
+                           progress=seen.append)
+    counts = design.counts
+    print("\nfixture.design: 3 fixels among %d sites every 10 mm on the bracket's outline, "
+          "hole and slot" % design.sites)
+    print("  %d candidates (%d progress notifications): %d without a seating push, %d "
+          "unpinned, %d degenerate; the best by the margin of their best push:"
+          % (counts["candidates"], len(seen), counts["no_seating_push"], counts["unpinned"],
+             counts["degenerate"]))
+    for d in design.designs:
+        push = d.best_push
+        print("  #%d fixels %s; push at (%.2f, %.2f) along (%.3f, %.3f), margin %.4f; "
+              "critical mu %s" % (d.rank, " ".join("(%g, %g)" % tuple(x["at"]) for x in d.fixels),
+                                 push["at"][0], push["at"][1], push["direction"][0],
+                                 push["direction"][1], push["margin"],
+                                 "%.4f" % d.critical_mu if d.critical_mu is not None else "none"))
+    print("  push there and let go: the best push is in the both region (goal seats, strong "
+          "holds)")
+
     # Pictures, drawn by wrenchctl from the daemon's answers.
     out = os.path.join(ROOT, "out")
     os.makedirs(out, exist_ok=True)
@@ -129,6 +152,9 @@ def main():
     ]
     pictures.append(("plate-chamfered-sweep-goal.svg",
                      ["sweep", ids["plate-chamfered"], "--push", "goal", "--range", "0:1"]))
+    pictures.append(("bracket-designs.svg",
+                     ["design", os.path.join(ROOT, "examples", "bracket.json"), "--spacing", "10",
+                      "--top", "3"]))
     for filename, command in pictures:
         subprocess.run(wrenchctl + command + ["--svg", os.path.join(out, filename)],
                        stdout=subprocess.DEVNULL, check=False)

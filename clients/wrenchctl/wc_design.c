@@ -56,6 +56,10 @@ int wc_design_request(wc_run *run, cJSON *params)
     }
     cJSON *body = cJSON_GetObjectItem(json, "body");
     cJSON_AddItemToObject(params, "body", cJSON_Duplicate(body ? body : json, true));
+    /* The pictures' name: the file's, else the file name without its path. */
+    const char *base = strrchr(run->items[0], '/');
+    const cJSON *named = cJSON_GetObjectItem(json, "name");
+    char *name = strdup(cJSON_IsString(named) ? named->valuestring : base ? base + 1 : run->items[0]);
     if (run->friction_interval_given) {
         if (run->friction_low == run->friction_high)
             cJSON_AddNumberToObject(params, "friction", run->friction_low);
@@ -69,10 +73,12 @@ int wc_design_request(wc_run *run, cJSON *params)
                               cJSON_Duplicate(cJSON_GetObjectItem(json, "friction"), true));
     } else {
         cJSON_Delete(json);
+        free(name);
         return wc_usage_error("design: no friction: give --friction or a fixture with one");
     }
     if (run->spacing > 0 && run->lattice_given) {
         cJSON_Delete(json);
+        free(name);
         return wc_usage_error("design: --spacing or --lattice, not both");
     }
     if (run->lattice_given) {
@@ -99,12 +105,15 @@ int wc_design_request(wc_run *run, cJSON *params)
         }
     } else {
         cJSON_Delete(json);
+        free(name);
         return wc_usage_error("design: no candidate sites: give --spacing H, or a fixture whose "
                               "fixels are the sites");
     }
     cJSON_Delete(json);
     /* For --svg: the body and friction, to draw each design as a fixture. */
     run->fixture = cJSON_CreateObject();
+    cJSON_AddStringToObject(run->fixture, "name", name ? name : "design");
+    free(name);
     cJSON_AddItemToObject(run->fixture, "body",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
     cJSON_AddItemToObject(run->fixture, "friction",
@@ -259,8 +268,7 @@ static int design_pictures(const wc_run *run, const cJSON *result)
             status = wc_usage_error("--svg %s: %s", run->svg, strerror(errno));
         } else {
             const char *objective = cJSON_GetStringValue(cJSON_GetObjectItem(result, "objective"));
-            const cJSON *name = cJSON_GetObjectItem(cJSON_GetObjectItem(run->fixture, "body"), "name");
-            wc_svg_designs(out, cJSON_IsString(name) ? name->valuestring : run->items[0],
+            wc_svg_designs(out, cJSON_GetStringValue(cJSON_GetObjectItem(run->fixture, "name")),
                            objective ? objective : "margin", panels, count);
             fclose(out);
         }

@@ -77,6 +77,9 @@ def test_bad_svg_path_is_a_usage_error():
     ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both"]),
     ("notched-plate-push-strong-r4.svg", ["push", "notched-plate.json", "--set", "strong",
                                           "--finger-radius", "4"]),
+    ("plate-chamfered-sweep-both.svg", ["sweep", "plate-chamfered.json", "--push", "both",
+                                        "--range", "0:1"]),
+    ("bracket-designs.svg", ["design", "bracket.json", "--spacing", "10", "--top", "3"]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
