@@ -3,6 +3,7 @@
 #include "wr_classify.h"
 #include "wr_internal.h"
 
+#include <assert.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,26 +30,60 @@ static void release_cones(wr_cone *cones, int count)
     free(cones);
 }
 
-wr_status wr_analysis_new(const wr_fixture *fixture, wr_analysis **out)
+wr_status wr_analysis_goal_new(const wr_fixture *fixture, const wr_plan *plan,
+                               wr_analysis **out)
 {
     *out = NULL;
+    assert(!plan || plan->fixel_count == fixture->fixel_count);
     wr_analysis *a = calloc(1, sizeof *a);
     if (!a)
         return WR_NO_MEMORY;
     a->fixture = fixture;
-    wr_status status = wr_plan_new(fixture->fixel_count, &a->plan);
+    wr_status status = WR_OK;
+    if (plan) {
+        /* Only read: the cast keeps the struct's one field type. */
+        a->plan = (wr_plan *)plan;
+        a->plan_borrowed = true;
+    } else {
+        status = wr_plan_new(fixture->fixel_count, &a->plan);
+    }
     if (status == WR_OK)
         status = build_cones(fixture, a->plan->kept, a->plan->kept_count, &a->goal_cones);
-    if (status == WR_OK)
-        status = wr_modes_find(fixture, &a->modes, &a->mode_count, &a->pinned);
-    if (status == WR_OK)
-        status = build_cones(fixture, a->modes, a->mode_count, &a->mode_cones);
     if (status != WR_OK) {
         wr_analysis_free(a);
         return status;
     }
     *out = a;
     return WR_OK;
+}
+
+wr_status wr_analysis_complete(wr_analysis *a)
+{
+    if (a->complete)
+        return WR_OK;
+    wr_status status = wr_modes_find(a->fixture, &a->modes, &a->mode_count, &a->pinned);
+    if (status == WR_OK)
+        status = build_cones(a->fixture, a->modes, a->mode_count, &a->mode_cones);
+    if (status != WR_OK) {
+        release_cones(a->mode_cones, a->mode_count);
+        free(a->modes);
+        a->mode_cones = NULL;
+        a->modes = NULL;
+        a->mode_count = 0;
+        return status;
+    }
+    a->complete = true;
+    return WR_OK;
+}
+
+wr_status wr_analysis_new(const wr_fixture *fixture, wr_analysis **out)
+{
+    wr_status status = wr_analysis_goal_new(fixture, NULL, out);
+    if (status == WR_OK && (status = wr_analysis_complete(*out)) != WR_OK) {
+        wr_analysis_free(*out);
+        *out = NULL;
+    }
+    return status;
 }
 
 void wr_analysis_free(wr_analysis *analysis)
@@ -58,7 +93,8 @@ void wr_analysis_free(wr_analysis *analysis)
     release_cones(analysis->goal_cones, analysis->plan ? analysis->plan->kept_count : 0);
     release_cones(analysis->mode_cones, analysis->mode_count);
     free(analysis->modes);
-    wr_plan_free(analysis->plan);
+    if (!analysis->plan_borrowed)
+        wr_plan_free(analysis->plan);
     free(analysis);
 }
 

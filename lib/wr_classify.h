@@ -52,6 +52,18 @@ typedef struct wr_analysis wr_analysis;
 wr_status wr_analysis_new(const wr_fixture *fixture, wr_analysis **out);
 void wr_analysis_free(wr_analysis *analysis);
 
+/* The same in two stages, for a caller that may stop after G_goal (a design
+ * search: most candidates have no seating push).  wr_analysis_goal_new
+ * derives G_goal's cones only, with `plan` (borrowed, made for the
+ * fixture's fixel count; it must outlive the analysis) or, when NULL, a
+ * plan of its own; until wr_analysis_complete adds the modes and G_strong's
+ * cones, the strong set has no cones and wr_analysis_pinned is false (ask
+ * wr_fixture_pinned).  Complete, it is what wr_analysis_new gives.  Both
+ * WR_OK or WR_NO_MEMORY (goal_new: *out NULL; complete: as it was). */
+wr_status wr_analysis_goal_new(const wr_fixture *fixture, const wr_plan *plan,
+                               wr_analysis **out);
+wr_status wr_analysis_complete(wr_analysis *analysis);
+
 /* Bytes the analysis holds (for a cache's memory bound). */
 size_t wr_analysis_bytes(const wr_analysis *analysis);
 

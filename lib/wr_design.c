@@ -380,6 +380,7 @@ static double longest_arc(const wr_regions *arcs)
 
 struct wr_design_job {
     wr_design_spec spec;
+    wr_plan *plan;             /* for spec.fixel_count: shared by every candidate */
     bool failed;
     uint64_t total;            /* candidates of the shard */
     uint64_t candidates;       /* of all shards */
@@ -446,25 +447,28 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         *result = OUTCOME_DEGENERATE;
         return WR_OK;
     }
-    wr_analysis *analysis;
-    wr_status status = wr_analysis_new(&fixture, &analysis);
-    if (status != WR_OK)
-        return status;
-    int cones = wr_analysis_cone_count(analysis, WR_SET_GOAL) +
-                wr_analysis_cone_count(analysis, WR_SET_STRONG);
-    int edges = wr_push_edge_count(&fixture);
-    *units += (unsigned long)cones * 40;
-    if (!wr_analysis_pinned(analysis)) {
+    if (!wr_fixture_pinned(&fixture)) {
         *result = OUTCOME_UNPINNED;
-        wr_analysis_free(analysis);
         return WR_OK;
     }
+    /* G_goal first: most candidates have no seating push, and need no
+     * modes nor G_strong. */
+    wr_analysis *analysis;
+    wr_status status = wr_analysis_goal_new(&fixture, job->plan, &analysis);
+    if (status != WR_OK)
+        return status;
+    int cones = wr_analysis_cone_count(analysis, WR_SET_GOAL);
+    int edges = wr_push_edge_count(&fixture);
+    *units += (unsigned long)cones * 40;
     wr_regions goal, both = {0};
     status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
     *units += (unsigned long)cones * (unsigned long)edges * 4;
     if (status == WR_OK && goal.count == 0)
         *result = OUTCOME_NO_SEATING_PUSH;
-    else if (status == WR_OK) {
+    else if (status == WR_OK && (spec->objective == WR_OBJECTIVE_GRAVITY ||
+                                 (status = wr_analysis_complete(analysis)) == WR_OK)) {
+        cones += wr_analysis_cone_count(analysis, WR_SET_STRONG);
+        *units += (unsigned long)cones * 40;
         *result = OUTCOME_SCORED;
         if (spec->objective == WR_OBJECTIVE_GRAVITY) {
             wr_regions arcs;
@@ -561,6 +565,12 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
     }
     job->spec = *spec;
     job->designs = designs;
+    if (wr_plan_new(spec->fixel_count, &job->plan) != WR_OK) {
+        free(designs);
+        free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
     job->candidates = candidates;
     uint64_t n = (uint64_t)spec->shard_count, i = (uint64_t)spec->shard_index;
     job->total = candidates > i ? (candidates - i + n - 1) / n : 0;
@@ -867,6 +877,7 @@ void wr_design_job_free(wr_design_job *job)
         return;
     wr_sweep_job_free(job->sweep);
     wr_sweeper_free(job->sweeper);
+    wr_plan_free(job->plan);
     free(job->designs);
     free(job);
 }

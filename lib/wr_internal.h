@@ -123,6 +123,8 @@ struct wr_analysis {
     struct wr_constraint *modes;  /* feasible moving modes, pivots last */
     struct wr_cone *mode_cones;   /* one per mode */
     bool pinned;                  /* rolling at every fixel forces q = 0 */
+    bool plan_borrowed;           /* the plan is the caller's (wr_analysis_goal_new) */
+    bool complete;                /* the modes and G_strong's cones are derived */
 };
 
 /* The margin of the unit scaled wrench x for one set (WR_SET_GOAL or

@@ -265,6 +265,25 @@ static void search_modes(mode_search *search, int fixel)
     search->current.letters[fixel] = 'u';
 }
 
+/* The rolling string n...n with a pivot: feasible iff the fixels leave the
+ * part a rotation about their common point (wr_modes_find's pinned). */
+static wr_constraint rolling_pivot(int k)
+{
+    wr_constraint rolling;
+    memset(&rolling, 0, sizeof rolling);
+    rolling.length = k;
+    rolling.strict_separation = true;
+    memset(rolling.letters, 'n', (size_t)k);
+    rolling.pivot = 1;
+    return rolling;
+}
+
+bool wr_fixture_pinned(const wr_fixture *fixture)
+{
+    wr_constraint rolling = rolling_pivot(fixture->fixel_count);
+    return !wr_constraint_kinematically_feasible(fixture, &rolling);
+}
+
 wr_status wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, int *count,
                         bool *pinned)
 {

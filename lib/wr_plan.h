@@ -55,6 +55,10 @@ void wr_plan_free(wr_plan *plan);
  * fixels do not pin, the pivots n...n+ and n...n-.  WR_OK with the count in
  * *count and a malloc'd array in *modes (free() it; NULL for none), or
  * WR_NO_MEMORY.  *pinned says whether rolling at every fixel forces q = 0. */
+/* Do the fixels pin the part: does rolling at every fixel force q = 0 (as
+ * wr_modes_find says it)?  Without deriving the modes. */
+bool wr_fixture_pinned(const wr_fixture *fixture);
+
 wr_status wr_modes_find(const wr_fixture *fixture, wr_constraint **modes, int *count,
                         bool *pinned);
 
