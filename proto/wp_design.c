@@ -337,6 +337,14 @@ wp_design_stream *wp_design_begin(wp_call *call)
     return s;
 }
 
+/* A count, exactly: above 2^53 a double would round it. */
+static void write_count(wp_buffer *out, uint64_t n)
+{
+    char text[24];
+    snprintf(text, sizeof text, "%llu", (unsigned long long)n);
+    wp_buffer_puts(out, text);
+}
+
 static void write_pair(wp_buffer *out, const double v[2])
 {
     WP_BUFFER_LITERAL(out, "[");
@@ -365,9 +373,9 @@ static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
      * total count its hole pairs), then "candidates". */
     wp_buffer_puts(out, s->job ? ",\"stage\":\"candidates\"" : ",\"stage\":\"poses\"");
     WP_BUFFER_LITERAL(out, ",\"done\":");
-    wp_buffer_number(out, (double)done);
+    write_count(out, done);
     WP_BUFFER_LITERAL(out, ",\"total\":");
-    wp_buffer_number(out, (double)total);
+    write_count(out, total);
     WP_BUFFER_LITERAL(out, ",\"best\":");
     if (has_best)
         wp_buffer_number(out, best);
@@ -384,7 +392,7 @@ static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d
     WP_BUFFER_LITERAL(out, "{\"rank\":");
     wp_buffer_number(out, rank);
     WP_BUFFER_LITERAL(out, ",\"candidate\":");
-    wp_buffer_number(out, (double)d->candidate);
+    write_count(out, d->candidate);
     if (!s->poses) {
         WP_BUFFER_LITERAL(out, ",\"sites\":[");
         for (int i = 0; i < s->spec.fixel_count; i++) {
@@ -474,18 +482,18 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
     }
     const wr_design_counts *c = wr_design_job_counts(s->job);
     WP_BUFFER_LITERAL(out, "],\"counts\":{\"candidates\":");
-    wp_buffer_number(out, (double)s->candidates);
+    write_count(out, s->candidates);
     WP_BUFFER_LITERAL(out, ",\"examined\":");
-    wp_buffer_number(out, (double)c->examined);
+    write_count(out, c->examined);
     WP_BUFFER_LITERAL(out, ",\"degenerate\":");
-    wp_buffer_number(out, (double)c->degenerate);
+    write_count(out, c->degenerate);
     WP_BUFFER_LITERAL(out, ",\"unpinned\":");
-    wp_buffer_number(out, (double)c->unpinned);
+    write_count(out, c->unpinned);
     WP_BUFFER_LITERAL(out, ",\"no_seating_push\":");
-    wp_buffer_number(out, (double)c->no_seating_push);
+    write_count(out, c->no_seating_push);
     if (s->poses) {
         WP_BUFFER_LITERAL(out, "},\"poses\":");
-        wp_buffer_number(out, (double)s->spec.candidate_count);
+        write_count(out, s->spec.candidate_count);
     } else {
         WP_BUFFER_LITERAL(out, "},\"sites\":");
         wp_buffer_number(out, s->site_count);
