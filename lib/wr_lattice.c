@@ -43,18 +43,23 @@ struct wr_lattice_job {
     wr_lattice_design *designs;
     size_t design_count, design_capacity;
     bool failed;
+    double grid[WR_LATTICE_STEPS + 1][2]; /* cos, sin of the scan's angles */
 };
 
 static double cross2(const double a[2], const double b[2]) { return a[0] * b[1] - a[1] * b[0]; }
 static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
 
 /* R(-theta) p: a plate point seen from the part's frame, before the
- * translation. */
-static void unrotate(const double p[2], double theta, double out[2])
+ * translation; theta given by its cosine and sine. */
+static void unrotate_cs(const double p[2], double c, double s, double out[2])
 {
-    double c = cos(theta), s = sin(theta);
     out[0] = c * p[0] + s * p[1];
     out[1] = -s * p[0] + c * p[1];
+}
+
+static void unrotate(const double p[2], double theta, double out[2])
+{
+    unrotate_cs(p, cos(theta), sin(theta), out);
 }
 
 static bool build_curves(wr_lattice_job *job)
@@ -159,6 +164,11 @@ wr_status wr_lattice_job_new(const wr_fixture *body, const wr_lattice *lattice,
     }
     job->body = body;
     job->lattice = *lattice;
+    for (int i = 0; i <= WR_LATTICE_STEPS; i++) {
+        double theta = 2 * WR_PI * i / WR_LATTICE_STEPS;
+        job->grid[i][0] = cos(theta);
+        job->grid[i][1] = sin(theta);
+    }
     job->tolerance = 1e-9 * body->size;
     /* Every peg centre lies within r of the part, so within the circle
      * about its bounding box's centre of radius size / 2 + r. */
@@ -338,12 +348,12 @@ static bool three_lines(wr_lattice_job *job, const hole *const P[3], const curve
 
 /* With an arc: the translation from the first two curves (lines first),
  * branch 0 or 1 of a circle's two points; false where it has none. */
-static bool solve_two(const hole *const P[3], const curve *const k[3], double theta, int branch,
-                      double tau[2])
+static bool solve_two(const hole *const P[3], const curve *const k[3], double c, double s,
+                      int branch, double tau[2])
 {
     double p0[2], p1[2];
-    unrotate(P[0]->at, theta, p0);
-    unrotate(P[1]->at, theta, p1);
+    unrotate_cs(P[0]->at, c, s, p0);
+    unrotate_cs(P[1]->at, c, s, p1);
     if (k[0]->line && k[1]->line) {
         double b0 = dot2(k[0]->n, p0) - k[0]->c, b1 = dot2(k[1]->n, p1) - k[1]->c;
         double det = cross2(k[0]->n, k[1]->n);
@@ -385,16 +395,22 @@ static bool solve_two(const hole *const P[3], const curve *const k[3], double th
     return true;
 }
 
-static double third_residual(const hole *const P[3], const curve *const k[3], double theta,
-                             int branch, double tau[2])
+static double residual_cs(const hole *const P[3], const curve *const k[3], double c, double s,
+                          int branch, double tau[2])
 {
-    if (!solve_two(P, k, theta, branch, tau))
+    if (!solve_two(P, k, c, s, branch, tau))
         return NAN;
     double p2[2], q[2];
-    unrotate(P[2]->at, theta, p2);
+    unrotate_cs(P[2]->at, c, s, p2);
     q[0] = p2[0] - tau[0];
     q[1] = p2[1] - tau[1];
     return residual(k[2], q);
+}
+
+static double third_residual(const hole *const P[3], const curve *const k[3], double theta,
+                             int branch, double tau[2])
+{
+    return residual_cs(P, k, cos(theta), sin(theta), branch, tau);
 }
 
 /* Q, K: the holes and curves with the lines first, to solve with; P, k:
@@ -410,7 +426,7 @@ static bool with_arcs(wr_lattice_job *job, const hole *const Q[3], const curve *
             break;
         double f[WR_LATTICE_STEPS + 1];
         for (int i = 0; i <= n; i++)
-            f[i] = third_residual(Q, K, i * step, branch, tau);
+            f[i] = residual_cs(Q, K, job->grid[i][0], job->grid[i][1], branch, tau);
         for (int i = 0; i < n; i++) {
             double lo = i * step, hi = lo + step, flo = f[i], fhi = f[i + 1];
             if (isnan(flo) || isnan(fhi))
