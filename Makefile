@@ -312,7 +312,8 @@ PYVERSION  = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[
 # /usr/local/lib/python3.X/dist-packages for /usr/local.
 PYTHONDIR ?= $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$(PREFIX)/lib/python$(PYVERSION)/dist-packages)
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
-                 lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h \
+                 lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_design.h \
+                 lib/wr_lattice.h \
                  clients/c/wrenchclient.h
 INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
     $(PREFIX)/lib/libwrench.a $(PREFIX)/lib/libwrenchclient.a \

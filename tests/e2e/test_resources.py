@@ -826,11 +826,13 @@ def test_a_design_uses_every_worker_shares_them_and_stops_with_its_client(harnes
         busy.sendall(design_request(2, spacing=0.25))  # about a minute of one core
         time.sleep(0.5)
         before = cpu_seconds(d.pid)
-        time.sleep(2.0)
-        cores = (cpu_seconds(d.pid) - before) / 2.0
+        time.sleep(3.0)
+        cores = (cpu_seconds(d.pid) - before) / 3.0
         report("one design on two workers: %.2f cores busy" % cores)
         FIGURES["design: CPU percent with one design on 2 workers"] = int(100 * cores)
-        assert cores > 1.5, cores
+        # One worker alone is 1.0; both, about 1.8 on a quiet machine (a
+        # loaded one gives less to everyone).
+        assert cores > 1.3, cores
 
         disc = FX.disc_corner(0.5)
         third = raw_socket(d.path)
