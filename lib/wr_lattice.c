@@ -28,6 +28,11 @@ typedef struct hole {
     double at[2];
 } hole;
 
+typedef struct design_list {
+    wr_lattice_design *items;
+    size_t count, capacity;
+} design_list;
+
 struct wr_lattice_job {
     const wr_fixture *body;
     wr_lattice lattice;
@@ -37,11 +42,12 @@ struct wr_lattice_job {
     int curve_count;
     hole *holes;             /* after (0, 0) in (j, i) order, within reach */
     size_t hole_count;
-    size_t pair;             /* the next (second, third) hole pair, as one index */
-    size_t pair_total;
-    size_t second, third;    /* the next pair */
-    wr_lattice_design *designs;
-    size_t design_count, design_capacity;
+    size_t pair_total;       /* (second, third) hole pairs, numbered in order */
+    size_t claimed;          /* pairs handed out as chunks */
+    size_t merged;           /* pairs whose designs are in `found`, in order */
+    int outstanding;         /* chunks claimed, not yet merged or abandoned */
+    wr_lattice_chunk *waiting; /* finished chunks ahead of their turn, by chunk number */
+    design_list found;
     bool failed;
     double grid[WR_LATTICE_STEPS + 1][2]; /* cos, sin of the scan's angles */
 };
@@ -127,8 +133,6 @@ static bool build_holes(wr_lattice_job *job)
             job->holes[job->hole_count++] = (hole){i, j, {at[0], at[1]}};
         }
     job->pair_total = job->hole_count * (job->hole_count ? job->hole_count - 1 : 0) / 2;
-    job->second = 0;
-    job->third = 1;
     return true;
 }
 
@@ -235,12 +239,12 @@ static bool contact_on_segment(const wr_lattice_job *job, const curve *k, const 
     return true;
 }
 
-static bool add_design(wr_lattice_job *job, const wr_lattice_design *d)
+static bool add_design(const wr_lattice_job *job, design_list *list, const wr_lattice_design *d)
 {
     /* The same holes and pose from another assignment (a peg on a vertex
      * touches both its segments): one design. */
-    for (size_t i = job->design_count; i-- > 0;) {
-        const wr_lattice_design *e = &job->designs[i];
+    for (size_t i = list->count; i-- > 0;) {
+        const wr_lattice_design *e = &list->items[i];
         if (memcmp(e->holes, d->holes, sizeof d->holes) != 0)
             break; /* designs of one hole triple are consecutive */
         double dtheta = fabs(remainder(e->pose[2] - d->pose[2], 2 * WR_PI));
@@ -248,24 +252,24 @@ static bool add_design(wr_lattice_job *job, const wr_lattice_design *d)
                                   1e-7 * job->body->size)
             return true;
     }
-    if (job->design_count >= WR_LATTICE_MAX_DESIGNS)
-        return true; /* the caller says the list is full */
-    if (job->design_count == job->design_capacity) {
-        size_t grown = job->design_capacity ? 2 * job->design_capacity : 64;
-        wr_lattice_design *more = realloc(job->designs, grown * sizeof *more);
+    if (list->count >= WR_LATTICE_MAX_DESIGNS)
+        return true; /* more than any search would take: the rest are dropped */
+    if (list->count == list->capacity) {
+        size_t grown = list->capacity ? 2 * list->capacity : 16;
+        wr_lattice_design *more = realloc(list->items, grown * sizeof *more);
         if (!more)
             return false;
-        job->designs = more;
-        job->design_capacity = grown;
+        list->items = more;
+        list->capacity = grown;
     }
-    job->designs[job->design_count++] = *d;
+    list->items[list->count++] = *d;
     return true;
 }
 
 /* Check a pose (theta, tau: the translation seen in the part's frame) of
  * the part against pegs at P with curves k, and keep it. */
-static bool try_pose(wr_lattice_job *job, const hole *const P[3], const curve *const k[3],
-                     double theta, const double tau[2])
+static bool try_pose(const wr_lattice_job *job, design_list *out, const hole *const P[3],
+                     const curve *const k[3], double theta, const double tau[2])
 {
     wr_lattice_design d;
     memset(&d, 0, sizeof d);
@@ -296,12 +300,13 @@ static bool try_pose(wr_lattice_job *job, const hole *const P[3], const curve *c
     d.pose[0] = c * tau[0] - s * tau[1];
     d.pose[1] = s * tau[0] + c * tau[1];
     d.pose[2] = theta;
-    return add_design(job, &d);
+    return add_design(job, out, &d);
 }
 
 /* Three lines: sum_m lambda_m n_m = 0 with lambda from cross products, so
  * sum_m lambda_m (n_m . p_m(theta) - c_m) = 0, that is A cos + B sin = C. */
-static bool three_lines(wr_lattice_job *job, const hole *const P[3], const curve *const k[3])
+static bool three_lines(const wr_lattice_job *job, design_list *out, const hole *const P[3],
+                        const curve *const k[3])
 {
     double lambda[3] = {cross2(k[1]->n, k[2]->n), cross2(k[2]->n, k[0]->n),
                         cross2(k[0]->n, k[1]->n)};
@@ -340,7 +345,7 @@ static bool three_lines(wr_lattice_job *job, const hole *const P[3], const curve
         double det = cross2(k[u]->n, k[v]->n);
         double tau[2] = {(bu * k[v]->n[1] - bv * k[u]->n[1]) / det,
                          (k[u]->n[0] * bv - k[v]->n[0] * bu) / det};
-        if (!try_pose(job, P, k, theta, tau))
+        if (!try_pose(job, out, P, k, theta, tau))
             return false;
     }
     return true;
@@ -415,8 +420,8 @@ static double third_residual(const hole *const P[3], const curve *const k[3], do
 
 /* Q, K: the holes and curves with the lines first, to solve with; P, k:
  * as the design has them. */
-static bool with_arcs(wr_lattice_job *job, const hole *const Q[3], const curve *const K[3],
-                      const hole *const P[3], const curve *const k[3])
+static bool with_arcs(const wr_lattice_job *job, design_list *out, const hole *const Q[3],
+                      const curve *const K[3], const hole *const P[3], const curve *const k[3])
 {
     const int n = WR_LATTICE_STEPS;
     const double step = 2 * WR_PI / n;
@@ -467,7 +472,7 @@ static bool with_arcs(wr_lattice_job *job, const hole *const Q[3], const curve *
             if (root || touch) {
                 double theta = root ? (lo + hi) / 2 : lo;
                 if (!isnan(third_residual(Q, K, theta, branch, tau)) &&
-                    !try_pose(job, P, k, theta, tau))
+                    !try_pose(job, out, P, k, theta, tau))
                     return false;
             }
         }
@@ -486,7 +491,8 @@ static bool reachable(const curve *a, const curve *b, double distance, double sl
 }
 
 /* Every pose for the holes P, every assignment of curves. */
-static bool hole_triple(wr_lattice_job *job, const hole *const P[3], unsigned long *units)
+static bool hole_triple(const wr_lattice_job *job, design_list *out, const hole *const P[3],
+                        unsigned long *units)
 {
     double d01 = hypot(P[0]->at[0] - P[1]->at[0], P[0]->at[1] - P[1]->at[1]);
     double d02 = hypot(P[0]->at[0] - P[2]->at[0], P[0]->at[1] - P[2]->at[1]);
@@ -502,7 +508,7 @@ static bool hole_triple(wr_lattice_job *job, const hole *const P[3], unsigned lo
                     continue;
                 *units += 8;
                 if (k[0]->line && k[1]->line && k[2]->line) {
-                    if (!three_lines(job, P, k))
+                    if (!three_lines(job, out, P, k))
                         return false;
                     continue;
                 }
@@ -518,29 +524,68 @@ static bool hole_triple(wr_lattice_job *job, const hole *const P[3], unsigned lo
                 const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
                 const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
                 *units += 40 * WR_LATTICE_STEPS;
-                if (!with_arcs(job, Q, K, P, k))
+                if (!with_arcs(job, out, Q, K, P, k))
                     return false;
             }
         }
     return true;
 }
 
-wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned long *used,
-                             const wr_stop *stop, bool *done)
+/* Pair number p as the indices of its second and third holes. */
+static void pair_holes(const wr_lattice_job *job, size_t p, size_t *second, size_t *third)
 {
-    *done = false;
-    if (job->failed)
-        return WR_NO_MEMORY;
+    size_t i = 0, row = job->hole_count - 1;
+    while (p >= row) {
+        p -= row;
+        i++;
+        row--;
+    }
+    *second = i;
+    *third = i + 1 + p;
+}
+
+bool wr_lattice_job_claim(wr_lattice_job *job, size_t *first, size_t *count)
+{
+    if (job->failed || job->claimed >= job->pair_total)
+        return false;
+    *first = job->claimed;
+    *count = job->pair_total - job->claimed < WR_LATTICE_CHUNK ? job->pair_total - job->claimed
+                                                                : WR_LATTICE_CHUNK;
+    job->claimed += *count;
+    job->outstanding++;
+    return true;
+}
+
+bool wr_lattice_job_claimable(const wr_lattice_job *job)
+{
+    return !job->failed && job->claimed < job->pair_total;
+}
+
+void wr_lattice_chunk_release(wr_lattice_chunk *chunk)
+{
+    free(chunk->designs);
+    memset(chunk, 0, sizeof *chunk);
+}
+
+wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t count,
+                               const wr_stop *stop, wr_lattice_chunk *out, unsigned long *used)
+{
     static const hole origin = {0, 0, {0, 0}};
+    memset(out, 0, sizeof *out);
+    out->first = first;
+    out->count = count;
+    design_list list = {NULL, 0, 0};
     unsigned long spent = 0;
     int nx = job->lattice.extent[0], ny = job->lattice.extent[1];
-    while (job->pair < job->pair_total && (spent == 0 || spent < budget)) {
+    wr_status status = WR_OK;
+    for (size_t p = first; p < first + count; p++) {
         if (wr_stop_requested(stop)) {
-            if (used)
-                *used += spent;
-            return WR_STOPPED;
+            status = WR_STOPPED;
+            break;
         }
-        const hole *second = &job->holes[job->second], *third = &job->holes[job->third];
+        size_t a, b;
+        pair_holes(job, p, &a, &b);
+        const hole *second = &job->holes[a], *third = &job->holes[b];
         int lo_i = second->i < third->i ? second->i : third->i;
         int hi_i = second->i > third->i ? second->i : third->i;
         lo_i = lo_i < 0 ? lo_i : 0;
@@ -550,41 +595,124 @@ wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned
         if (hi_i - lo_i < nx && hi_j < ny &&
             hypot(second->at[0] - third->at[0], second->at[1] - third->at[1]) <= job->reach) {
             const hole *P[3] = {&origin, second, third};
-            if (!hole_triple(job, P, &spent)) {
-                job->failed = true;
-                return WR_NO_MEMORY;
+            if (!hole_triple(job, &list, P, &spent)) {
+                status = WR_NO_MEMORY;
+                break;
             }
-        }
-        job->pair++;
-        if (++job->third == job->hole_count) {
-            job->second++;
-            job->third = job->second + 1;
         }
     }
     if (used)
         *used += spent;
-    *done = job->pair >= job->pair_total;
+    if (status != WR_OK) {
+        free(list.items);
+        return status;
+    }
+    out->designs = list.items;
+    out->design_count = list.count;
+    return WR_OK;
+}
+
+/* Append the chunk's designs to `found`, and any waiting chunks that now
+ * come next: designs stay in the order of their hole pairs. */
+static bool append(wr_lattice_job *job, wr_lattice_chunk *chunk)
+{
+    for (size_t i = 0; i < chunk->design_count; i++)
+        if (!add_design(job, &job->found, &chunk->designs[i]))
+            return false;
+    job->merged += chunk->count;
+    wr_lattice_chunk_release(chunk);
+    return true;
+}
+
+wr_status wr_lattice_job_merge(wr_lattice_job *job, wr_lattice_chunk *chunk)
+{
+    job->outstanding--;
+    size_t index = chunk->first / WR_LATTICE_CHUNK;
+    if (!job->waiting) {
+        size_t chunks = (job->pair_total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK;
+        job->waiting = calloc(chunks ? chunks : 1, sizeof *job->waiting);
+        if (!job->waiting) {
+            wr_lattice_chunk_release(chunk);
+            job->failed = true;
+            return WR_NO_MEMORY;
+        }
+    }
+    job->waiting[index] = *chunk;
+    memset(chunk, 0, sizeof *chunk);
+    /* A chunk has arrived when its count is set (a claim is never empty);
+     * append every one that comes next in the pairs' order. */
+    while (job->merged < job->pair_total) {
+        wr_lattice_chunk *next = &job->waiting[job->merged / WR_LATTICE_CHUNK];
+        if (next->count == 0)
+            break;
+        if (!append(job, next)) {
+            job->failed = true;
+            return WR_NO_MEMORY;
+        }
+    }
+    return WR_OK;
+}
+
+void wr_lattice_job_abandon(wr_lattice_job *job)
+{
+    job->outstanding--;
+    job->failed = true;
+}
+
+wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned long *used,
+                             const wr_stop *stop, bool *done)
+{
+    *done = false;
+    if (job->failed)
+        return WR_NO_MEMORY;
+    unsigned long spent = 0;
+    size_t first, count;
+    while ((spent == 0 || spent < budget) && wr_lattice_job_claim(job, &first, &count)) {
+        wr_lattice_chunk chunk;
+        wr_status status = wr_lattice_chunk_run(job, first, count, stop, &chunk, &spent);
+        if (status != WR_OK) {
+            wr_lattice_job_abandon(job);
+            if (used)
+                *used += spent;
+            return status;
+        }
+        status = wr_lattice_job_merge(job, &chunk);
+        if (status != WR_OK) {
+            if (used)
+                *used += spent;
+            return status;
+        }
+    }
+    if (used)
+        *used += spent;
+    *done = job->merged >= job->pair_total && job->outstanding == 0;
     return WR_OK;
 }
 
 void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total)
 {
-    *done = job->pair;
+    *done = job->merged;
     *total = job->pair_total;
 }
 
 const wr_lattice_design *wr_lattice_job_designs(const wr_lattice_job *job, size_t *count)
 {
-    *count = job->design_count;
-    return job->designs;
+    *count = job->found.count;
+    return job->found.items;
 }
 
 void wr_lattice_job_free(wr_lattice_job *job)
 {
     if (!job)
         return;
+    if (job->waiting) {
+        size_t chunks = (job->pair_total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK;
+        for (size_t i = 0; i < chunks; i++)
+            wr_lattice_chunk_release(&job->waiting[i]);
+    }
+    free(job->waiting);
     free(job->curves);
     free(job->holes);
-    free(job->designs);
+    free(job->found.items);
     free(job);
 }

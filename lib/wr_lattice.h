@@ -70,7 +70,30 @@ wr_status wr_lattice_job_new(const wr_fixture *body, const wr_lattice *lattice,
                              wr_lattice_job **out, wr_error *error);
 wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned long *used,
                              const wr_stop *stop, bool *done);
-/* Progress: hole triples looked at, of how many. */
+/* The same in chunks that threads may run at once (as wr_design.h's): a
+ * chunk is WR_LATTICE_CHUNK consecutive hole pairs.  Claim, merge and
+ * abandon change the job (the caller serialises them, and
+ * wr_lattice_job_run); wr_lattice_chunk_run only reads it.  Merged chunks
+ * are kept in the order of their pairs, whatever order they finish in, so
+ * the designs are the same however the work was split; the job is done
+ * when every pair's chunk is merged.  Merge takes the chunk's designs. */
+#define WR_LATTICE_CHUNK 8
+
+typedef struct wr_lattice_chunk {
+    size_t first, count;            /* its hole pairs */
+    wr_lattice_design *designs;     /* malloc'd */
+    size_t design_count;
+} wr_lattice_chunk;
+
+bool wr_lattice_job_claim(wr_lattice_job *job, size_t *first, size_t *count);
+bool wr_lattice_job_claimable(const wr_lattice_job *job);
+wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t count,
+                               const wr_stop *stop, wr_lattice_chunk *out, unsigned long *used);
+wr_status wr_lattice_job_merge(wr_lattice_job *job, wr_lattice_chunk *chunk);
+void wr_lattice_job_abandon(wr_lattice_job *job);
+void wr_lattice_chunk_release(wr_lattice_chunk *chunk);
+
+/* Progress: hole pairs looked at (merged), of how many. */
 void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total);
 /* When done: the designs, in the order found (hole triples in order, then
  * segment triples, then theta). */

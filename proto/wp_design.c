@@ -359,6 +359,8 @@ static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
     uint64_t done = 0, total = 0;
     bool has_best = false;
     double best = 0;
+    /* Helpers may be merging meanwhile. */
+    pthread_mutex_lock(&s->lock);
     if (s->job) {
         wr_design_job_progress(s->job, &done, &total, &has_best, &best);
     } else {
@@ -367,6 +369,7 @@ static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
         done = pairs;
         total = of;
     }
+    pthread_mutex_unlock(&s->lock);
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
@@ -532,12 +535,32 @@ static bool run_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *u
     return true;
 }
 
+/* A lattice's chunk of hole pairs, as run_chunk does the search's. */
+static bool run_lattice_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
+                              wr_status *status)
+{
+    size_t first, count;
+    pthread_mutex_lock(&s->lock);
+    bool claimed = wr_lattice_job_claim(s->lattice, &first, &count);
+    pthread_mutex_unlock(&s->lock);
+    *status = WR_OK;
+    if (!claimed)
+        return false;
+    wr_lattice_chunk chunk;
+    *status = wr_lattice_chunk_run(s->lattice, first, count, stop, &chunk, used);
+    pthread_mutex_lock(&s->lock);
+    if (*status == WR_OK)
+        *status = wr_lattice_job_merge(s->lattice, &chunk);
+    else
+        wr_lattice_job_abandon(s->lattice);
+    pthread_mutex_unlock(&s->lock);
+    return true;
+}
+
 bool wp_design_parallel(wp_design_stream *s)
 {
-    if (!s->job)
-        return false;
     pthread_mutex_lock(&s->lock);
-    bool more = wr_design_job_claimable(s->job);
+    bool more = s->job ? wr_design_job_claimable(s->job) : wr_lattice_job_claimable(s->lattice);
     pthread_mutex_unlock(&s->lock);
     return more;
 }
@@ -546,6 +569,10 @@ bool wp_design_work(wp_design_stream *s, const wp_host *host)
 {
     unsigned long used = 0;
     wr_status status;
+    /* s->job is set only by a step that shares nothing (below): it does
+     * not change while this runs. */
+    if (!s->job)
+        return run_lattice_chunk(s, host->stop, &used, &status) && status == WR_OK;
     return run_chunk(s, host->stop, &used, &status) && status == WR_OK;
 }
 
@@ -559,19 +586,38 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
     if (s->progress && s->last_report < 0)
         write_progress(s, call, out);
     if (!s->job) {
-        /* A lattice: its designs first, a budget at a time. */
-        bool enumerated = false;
-        wr_status status =
-            wr_lattice_job_run(s->lattice, budget, used, call->host->stop, &enumerated);
-        if (status == WR_OK && enumerated && !start_search(s, call->error))
-            return WP_STEP_FAILED;
+        /* A lattice: its designs first, in chunks of hole pairs that
+         * helpers share; the search begins in a step that shares nothing,
+         * so that no helper is in a chunk when s->job appears. */
+        bool shared = wp_design_parallel(s);
+        wr_status status = WR_OK;
+        unsigned long start = *used;
+        while (*used - start < budget &&
+               run_lattice_chunk(s, call->host->stop, used, &status) && status == WR_OK)
+            continue;
+        if (status != WR_OK && shared) {
+            s->failure = status;
+            return WP_STEP_MORE;
+        }
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
         }
+        bool enumerated = false;
+        if (!shared) {
+            pthread_mutex_lock(&s->lock);
+            status = wr_lattice_job_run(s->lattice, 1, used, call->host->stop, &enumerated);
+            pthread_mutex_unlock(&s->lock);
+            if (status != WR_OK) {
+                wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+                return WP_STEP_FAILED;
+            }
+            if (enumerated && !start_search(s, call->error))
+                return WP_STEP_FAILED;
+        }
         if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
             write_progress(s, call, out);
-        return out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
+        return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
     /* The search: chunks while the budget lasts (helpers may run others
      * meanwhile); then the rest (the designs' figures) by the job itself. */

@@ -379,7 +379,6 @@ class Design:
     goal region's critical mu (None: not empty at mu = 2) and the score."""
     rank: int
     candidate: int
-    sites: List[int]
     fixels: List[Dict[str, List[float]]]
     best_push: Optional[Dict[str, Any]]
     goal_length: float
@@ -387,16 +386,21 @@ class Design:
     gravity_goal_deg: float
     critical_mu: Optional[float]
     score: float
+    sites: Optional[List[int]] = None          # the sites chosen (not on a lattice)
+    pegs: Optional[List[List[int]]] = None     # a lattice: the pegs' holes
+    pose: Optional[List[float]] = None         # a lattice: [x, y, theta in degrees]
 
 
 @dataclass
 class DesignResult:
     """fixture.design: `designs` best first; `counts` {"candidates",
     "examined", "degenerate", "unpinned", "no_seating_push"}; the number of
-    `sites`, the `objective` and the `shard` [i, n]."""
+    `sites` (or, on a lattice, of `poses`), the `objective` and the `shard`
+    [i, n]."""
     designs: List[Design]
     counts: Dict[str, int]
-    sites: int = 0
+    sites: int = 0                     # candidate sites (0 on a lattice)
+    poses: int = 0                     # a lattice: the poses found
     objective: str = "margin"
     shard: List[int] = dataclasses_field(default_factory=lambda: [0, 1])
 

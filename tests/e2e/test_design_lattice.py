@@ -146,3 +146,22 @@ def test_lattice_wants_three_fixels_and_an_outline(client):
     disc = {"mass": 1, "shape": {"type": "circle", "center": [0, 0], "radius": 1}}
     error = client.error("fixture.design", {"body": disc, "friction": 0.3, "lattice": lattice})
     assert error["data"]["field"] == "params.body.shape"
+
+
+def test_lattice_answer_does_not_depend_on_the_workers(harness):
+    """The poses are found in chunks of hole pairs that every worker takes:
+    the answer of one worker and of two, byte for byte."""
+    params = {"body": ROUNDED, "friction": 0.3, "top": 4,
+              "lattice": {"pitch": 1, "peg_radius": R, "extent": [4, 4]}}
+    lines = []
+    for threads in ("1", "2"):
+        d = harness.start("--threads", threads)
+        try:
+            c = d.client()
+            c.send({"jsonrpc": "2.0", "method": "fixture.design", "params": params, "id": 1})
+            lines.append(c.read_line(60))
+            c.close()
+        finally:
+            d.stop()
+    assert lines[0] == lines[1]
+    assert '"pegs"' in (lines[0].decode() if isinstance(lines[0], bytes) else lines[0])

@@ -313,6 +313,19 @@ def test_python_client_design_and_progress(daemon):
         client.design(b["body"], b["friction"], spacing=8, sites=[[0, 0]])
 
 
+def test_python_client_lattice_design(daemon):
+    seen = []
+    with wrenchd.Client(daemon.path, timeout=60) as client:
+        result = client.design(SQUARE["body"], 0.3, top=2, progress=seen.append,
+                               lattice={"pitch": 1, "peg_radius": 0.2, "extent": [4, 4]})
+    assert result.poses == result.counts["candidates"] > 0 and result.sites == 0
+    assert all(d.pegs[0] == [0, 0] and len(d.pose) == 3 and d.sites is None
+               for d in result.designs)
+    stages = [p["stage"] for p in seen]
+    assert stages[0] == "poses" and stages[-1] == "candidates"
+    assert stages == sorted(stages, key=["poses", "candidates"].index)
+
+
 def test_python_client_progress_callback_that_raises_spends_the_connection(daemon):
     b = bracket()
 

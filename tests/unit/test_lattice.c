@@ -312,6 +312,44 @@ static void triangle_on_a_small_lattice(void **state)
     against_brute_force(triangle, 3, &L, "triangle");
 }
 
+/* Chunks claimed at once and run in reverse order merge to the designs
+ * of one run, bit for bit. */
+static void chunks_in_any_order(void **state)
+{
+    (void)state;
+    static const double triangle[3][2] = {{0, 0}, {3.2, 0}, {0.7, 2.1}};
+    wr_fixture *body = polygon_body(triangle, 3);
+    wr_lattice L = {1, 0.15, {4, 4}};
+    wr_lattice_job *whole, *parts;
+    run_lattice(body, &L, &whole);
+    wr_error error;
+    assert_int_equal(wr_lattice_job_new(body, &L, &parts, &error), WR_OK);
+    enum { MOST = 4096 };
+    size_t first[MOST], count[MOST];
+    int chunks = 0;
+    while (chunks < MOST && wr_lattice_job_claim(parts, &first[chunks], &count[chunks]))
+        chunks++;
+    assert_true(chunks > 2);
+    for (int i = chunks - 1; i >= 0; i--) {
+        wr_lattice_chunk chunk;
+        assert_int_equal(wr_lattice_chunk_run(parts, first[i], count[i], NULL, &chunk, NULL),
+                         WR_OK);
+        assert_int_equal(wr_lattice_job_merge(parts, &chunk), WR_OK);
+    }
+    bool done = false;
+    assert_int_equal(wr_lattice_job_run(parts, 1, NULL, NULL, &done), WR_OK);
+    assert_true(done);
+    size_t n, m;
+    const wr_lattice_design *a = wr_lattice_job_designs(whole, &n);
+    const wr_lattice_design *b = wr_lattice_job_designs(parts, &m);
+    assert_int_equal(n, m);
+    assert_memory_equal(a, b, n * sizeof *a);
+    print_message("triangle: %d chunks in reverse order, %zu designs, the same\n", chunks, m);
+    wr_lattice_job_free(whole);
+    wr_lattice_job_free(parts);
+    wr_fixture_free(body);
+}
+
 static void refusals(void **state)
 {
     (void)state;
@@ -333,6 +371,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(square_on_a_small_lattice),
         cmocka_unit_test(triangle_on_a_small_lattice),
+        cmocka_unit_test(chunks_in_any_order),
         cmocka_unit_test(refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
