@@ -230,79 +230,44 @@ static int send_all(wrc_client *c, const char *data, size_t length, long long de
     return WRC_OK;
 }
 
-/* Read one answer line into buffer[0..capacity); with `grow`, *buffer is
- * malloc'd and grows.  The line ends with "\n", replaced by NUL. */
-static int read_line(wrc_client *c, char **buffer, size_t *capacity, bool grow, long long deadline)
-{
-    size_t length = 0;
-    for (;;) {
-        if (length + 1 >= *capacity) {
-            if (!grow)
-                return fail(c, WRC_ETOOBIG, "the answer is longer than %zu bytes", *capacity);
-            size_t bigger = *capacity * 2;
-            char *grown = realloc(*buffer, bigger);
-            if (!grown)
-                return fail(c, WRC_ENOMEM, "out of memory reading an answer");
-            *buffer = grown;
-            *capacity = bigger;
-        }
-        ssize_t n = recv(c->fd, *buffer + length, *capacity - 1 - length, 0);
-        if (n > 0) {
-            char *end = memchr(*buffer + length, '\n', (size_t)n);
-            length += (size_t)n;
-            if (end) {
-                /* One request at a time: nothing may follow the line. */
-                if (end != *buffer + length - 1)
-                    return fail(c, WRC_EPROTO, "more than one answer line arrived");
-                *end = 0;
-                return WRC_OK;
-            }
-            continue;
-        }
-        if (n == 0)
-            return fail(c, WRC_EIO, "the daemon closed the connection");
-        if (errno == EINTR)
-            continue;
-        if (errno == EAGAIN || errno == EWOULDBLOCK) {
-            int status = wait_for(c, POLLIN, deadline);
-            if (status != WRC_OK)
-                return status;
-            continue;
-        }
-        return fail(c, WRC_EIO, "recv: %s", strerror(errno));
-    }
-}
-
 /* A notification the daemon sends before an answer (design.progress): its
  * lines, and only they, begin so. */
 static const char NOTIFICATION[] = "{\"jsonrpc\":\"2.0\",\"method\":";
 
-/* read_line, but notification lines before the answer go to `notify` (each
- * one renews the deadline: the timeout is a silence). */
-static int read_notified(wrc_client *c, char **buffer, size_t *capacity, long long deadline,
-                         wrc_notify notify, void *context)
+/* Read one answer line into buffer[0..capacity); with `grow`, *buffer is
+ * malloc'd and grows.  The line ends with "\n", replaced by NUL.  With
+ * `notify`, notification lines before it go there instead (each renews
+ * the deadline: the timeout is a silence); without, nothing may precede
+ * the answer. */
+static int read_line(wrc_client *c, char **buffer, size_t *capacity, bool grow, long long deadline,
+                     wrc_notify notify, void *context)
 {
-    size_t length = 0;
+    size_t length = 0, scanned = 0;
     for (;;) {
         char *end;
-        while ((end = memchr(*buffer, '\n', length)) != NULL) {
+        while ((end = memchr(*buffer + scanned, '\n', length - scanned)) != NULL) {
             size_t line_length = (size_t)(end - *buffer);
-            if (line_length >= sizeof NOTIFICATION - 1 &&
+            if (notify && line_length >= sizeof NOTIFICATION - 1 &&
                 memcmp(*buffer, NOTIFICATION, sizeof NOTIFICATION - 1) == 0) {
                 *end = 0;
                 notify(*buffer, context);
                 length -= line_length + 1;
                 memmove(*buffer, end + 1, length);
+                scanned = 0;
                 if (c->timeout_ms > 0)
                     deadline = now_ms() + c->timeout_ms;
                 continue;
             }
+            /* One request at a time: nothing may follow the line. */
             if (end != *buffer + length - 1)
                 return fail(c, WRC_EPROTO, "more than one answer line arrived");
             *end = 0;
             return WRC_OK;
         }
+        scanned = length;
         if (length + 1 >= *capacity) {
+            if (!grow)
+                return fail(c, WRC_ETOOBIG, "the answer is longer than %zu bytes", *capacity);
             size_t bigger = *capacity * 2;
             char *grown = realloc(*buffer, bigger);
             if (!grown)
@@ -351,8 +316,7 @@ static int exchange(wrc_client *c, const char *line, size_t length, char **answe
             continue;
         }
         if (status == WRC_OK)
-            status = notify ? read_notified(c, answer, capacity, deadline, notify, context)
-                            : read_line(c, answer, capacity, grow, deadline);
+            status = read_line(c, answer, capacity, grow, deadline, notify, context);
         if (status != WRC_OK && status != WRC_ETOOBIG)
             disconnect(c); /* a late answer would be read as the next one's */
         if (status == WRC_ETOOBIG)

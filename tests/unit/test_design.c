@@ -20,25 +20,12 @@ static const double PLATE[4][2] = {{0, 0}, {10, 0}, {10, 4}, {0, 4}};
 static const double DODECAGON[12][2] = {{1, 0},  {11, 0}, {12, 1}, {12, 7}, {11, 8}, {7, 8},
                                         {7, 6},  {5, 6},  {5, 8},  {1, 8},  {0, 7},  {0, 1}};
 
-static wr_fixture *body_of(const double (*vertices)[2], size_t count)
-{
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.shape = WR_SHAPE_POLYGON;
-    spec.vertex_count = count;
-    spec.vertices = vertices;
-    wr_fixture *body;
-    wr_error error;
-    assert_int_equal(wr_fixture_body_new(&spec, &body, &error), WR_OK);
-    assert_int_equal(body->fixel_count, 0);
-    return body;
-}
 
 static void spaced_sites_closed_form(void **state)
 {
     (void)state;
-    wr_fixture *body = body_of(PLATE, 4);
+    wr_fixture *body = test_polygon_body(PLATE, 4);
+    assert_non_null(body);
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;
@@ -74,7 +61,8 @@ static void spaced_sites_closed_form(void **state)
 static void placed_equals_whole(void **state)
 {
     (void)state;
-    wr_fixture *body = body_of(DODECAGON, 12);
+    wr_fixture *body = test_polygon_body(DODECAGON, 12);
+    assert_non_null(body);
     wr_fixel_spec fixels[3];
     memset(fixels, 0, sizeof fixels);
     const double at[3][2] = {{4, 0}, {12, 3}, {0, 5}};
@@ -109,6 +97,23 @@ static void placed_equals_whole(void **state)
     wr_fixture_free(body);
 }
 
+/* The fixture of three sites, as fixture.design places a candidate; false
+ * when the fixels are refused. */
+static bool place_three(const wr_fixture *body, const wr_site *sites, int i, int j, int k,
+                        const wr_friction_spec *friction, wr_fixture *fixture)
+{
+    wr_fixel_spec fixels[3];
+    memset(fixels, 0, sizeof fixels);
+    int chosen[3] = {i, j, k};
+    for (int m = 0; m < 3; m++) {
+        memcpy(fixels[m].at, sites[chosen[m]].at, sizeof fixels[m].at);
+        fixels[m].normal_given = true;
+        memcpy(fixels[m].normal, sites[chosen[m]].normal, sizeof fixels[m].normal);
+    }
+    wr_error error;
+    return wr_fixture_place(body, fixels, 3, friction, fixture, &error) == WR_OK;
+}
+
 static double both_margin(const wr_analysis *analysis, int edge, double t)
 {
     double w[3];
@@ -140,7 +145,8 @@ static double golden(const wr_analysis *analysis, int edge, double lo, double hi
 static void best_push_against_sampling(void **state)
 {
     (void)state;
-    wr_fixture *body = body_of(DODECAGON, 12);
+    wr_fixture *body = test_polygon_body(DODECAGON, 12);
+    assert_non_null(body);
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;
@@ -151,16 +157,8 @@ static void best_push_against_sampling(void **state)
     for (int i = 0; i < count; i += 1)
         for (int j = i + 1; j < count; j++)
             for (int k = j + 1; k < count; k++) {
-                wr_fixel_spec fixels[3];
-                memset(fixels, 0, sizeof fixels);
-                int chosen[3] = {i, j, k};
-                for (int m = 0; m < 3; m++) {
-                    memcpy(fixels[m].at, sites[chosen[m]].at, sizeof fixels[m].at);
-                    fixels[m].normal_given = true;
-                    memcpy(fixels[m].normal, sites[chosen[m]].normal, sizeof fixels[m].normal);
-                }
                 wr_fixture fixture;
-                if (wr_fixture_place(body, fixels, 3, &friction, &fixture, &error) != WR_OK)
+                if (!place_three(body, sites, i, j, k, &friction, &fixture))
                     continue;
                 wr_analysis *analysis = test_analysis_new(&fixture);
                 wr_regions both;
@@ -240,7 +238,8 @@ static void run_job(const wr_design_spec *spec, wr_design_job **out)
 static void search_against_brute_force(void **state)
 {
     (void)state;
-    wr_fixture *body = body_of(DODECAGON, 12);
+    wr_fixture *body = test_polygon_body(DODECAGON, 12);
+    assert_non_null(body);
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;
@@ -264,17 +263,8 @@ static void search_against_brute_force(void **state)
         for (int i = 0; i < count; i++)
             for (int j = i + 1; j < count; j++)
                 for (int k = j + 1; k < count; k++, r++) {
-                    wr_fixel_spec fixels[3];
-                    memset(fixels, 0, sizeof fixels);
-                    int chosen[3] = {i, j, k};
-                    for (int m = 0; m < 3; m++) {
-                        memcpy(fixels[m].at, sites[chosen[m]].at, sizeof fixels[m].at);
-                        fixels[m].normal_given = true;
-                        memcpy(fixels[m].normal, sites[chosen[m]].normal, sizeof fixels[m].normal);
-                    }
                     wr_fixture fixture;
-                    if (wr_fixture_place(body, fixels, 3, &spec.friction, &fixture, &error) !=
-                        WR_OK) {
+                    if (!place_three(body, sites, i, j, k, &spec.friction, &fixture)) {
                         degenerate++;
                         continue;
                     }
@@ -387,7 +377,8 @@ static void search_against_brute_force(void **state)
 static void chunks_in_any_order(void **state)
 {
     (void)state;
-    wr_fixture *body = body_of(DODECAGON, 12);
+    wr_fixture *body = test_polygon_body(DODECAGON, 12);
+    assert_non_null(body);
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;

@@ -17,19 +17,6 @@
 
 #include "test_util.h"
 
-static wr_fixture *polygon_body(const double (*v)[2], size_t n)
-{
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.shape = WR_SHAPE_POLYGON;
-    spec.vertex_count = n;
-    spec.vertices = v;
-    wr_fixture *body;
-    wr_error error;
-    assert_int_equal(wr_fixture_body_new(&spec, &body, &error), WR_OK);
-    return body;
-}
 
 static void run_lattice(const wr_fixture *body, const wr_lattice *lattice, wr_lattice_job **job)
 {
@@ -241,7 +228,8 @@ static void check_valid(const wr_fixture *body, const poly *P, const wr_lattice 
 static void against_brute_force(const double (*v)[2], int n, const wr_lattice *L,
                                 const char *name)
 {
-    wr_fixture *body = polygon_body(v, (size_t)n);
+    wr_fixture *body = test_polygon_body(v, (size_t)n);
+    assert_non_null(body);
     poly P = {v, n, body->orientation};
     wr_lattice_job *job;
     run_lattice(body, L, &job);
@@ -318,7 +306,8 @@ static void chunks_in_any_order(void **state)
 {
     (void)state;
     static const double triangle[3][2] = {{0, 0}, {3.2, 0}, {0.7, 2.1}};
-    wr_fixture *body = polygon_body(triangle, 3);
+    wr_fixture *body = test_polygon_body(triangle, 3);
+    assert_non_null(body);
     wr_lattice L = {1, 0.15, {4, 4}};
     wr_lattice_job *whole, *parts;
     run_lattice(body, &L, &whole);
@@ -354,7 +343,8 @@ static void refusals(void **state)
 {
     (void)state;
     static const double square[4][2] = {{0, 0}, {2.5, 0}, {2.5, 2.5}, {0, 2.5}};
-    wr_fixture *body = polygon_body(square, 4);
+    wr_fixture *body = test_polygon_body(square, 4);
+    assert_non_null(body);
     wr_lattice_job *job;
     wr_error error;
     wr_lattice bad[] = {{0, 0.1, {4, 4}}, {1, 0.5, {4, 4}}, {1, -0.1, {4, 4}}, {1, 0.1, {0, 4}}};

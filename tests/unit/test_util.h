@@ -20,6 +20,23 @@ static inline wr_fixture *test_fixture_new(const wr_fixture_spec *spec, wr_error
     return wr_fixture_new(spec, &fixture, error) == WR_OK ? fixture : NULL;
 }
 
+/* A body alone (wr_fixture_body_new): a polygon of mass 1; NULL when it is
+ * refused (the caller asserts). */
+static inline wr_fixture *test_polygon_body(const double (*vertices)[2], size_t count)
+{
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = 1;
+    spec.shape = WR_SHAPE_POLYGON;
+    spec.vertex_count = count;
+    spec.vertices = vertices;
+    wr_fixture *body = NULL;
+    wr_error error;
+    if (wr_fixture_body_new(&spec, &body, &error) != WR_OK)
+        return NULL;
+    return body;
+}
+
 static inline wr_analysis *test_analysis_new(const wr_fixture *fixture)
 {
     wr_analysis *analysis;
