@@ -67,6 +67,20 @@ def cpu_seconds(pid):
     return (int(fields[11]) + int(fields[12])) / CLOCK_TICKS
 
 
+def thread_cpu(pid):
+    """CPU seconds of each thread of a process, by thread id."""
+    ticks = os.sysconf("SC_CLK_TCK")
+    out = {}
+    for tid in os.listdir("/proc/%d/task" % pid):
+        try:
+            with open("/proc/%d/task/%s/stat" % (pid, tid)) as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            out[tid] = (int(fields[11]) + int(fields[12])) / ticks
+        except OSError:
+            pass
+    return out
+
+
 def report(text):
     print("[resources] " + text)
 
@@ -825,14 +839,19 @@ def test_a_design_uses_every_worker_shares_them_and_stops_with_its_client(harnes
         busy = raw_socket(d.path)
         busy.sendall(design_request(2, spacing=0.25))  # about a minute of one core
         time.sleep(0.5)
-        before = cpu_seconds(d.pid)
+        before, threads_before = cpu_seconds(d.pid), thread_cpu(d.pid)
         time.sleep(3.0)
         cores = (cpu_seconds(d.pid) - before) / 3.0
-        report("one design on two workers: %.2f cores busy" % cores)
+        threads_after = thread_cpu(d.pid)
+        used = sorted((threads_after[t] - threads_before.get(t, 0) for t in threads_after),
+                      reverse=True)
+        report("one design on two workers: %.2f cores busy; its busiest threads %s s"
+               % (cores, ", ".join("%.2f" % u for u in used[:3])))
         FIGURES["design: CPU percent with one design on 2 workers"] = int(100 * cores)
-        # One worker alone is 1.0; both, about 1.8 on a quiet machine (a
-        # loaded one gives less to everyone).
-        assert cores > 1.3, cores
+        # Both workers work on it: the second busiest thread used at least
+        # half what the busiest did (on a quiet machine the two add up to
+        # about 1.8 cores; a loaded one gives less to both, alike).
+        assert used[1] >= 0.5 * used[0] > 0, used
 
         disc = FX.disc_corner(0.5)
         third = raw_socket(d.path)
