@@ -231,6 +231,76 @@ static void classify_zero(const wr_analysis *a, wr_set set, wr_answer *answer)
         }
 }
 
+/* The verdict of unit x for one set, as verdict_of(wr_set_margin(...))
+ * gives it, from the same formulas but no more of them than it needs: a
+ * cone whose facet bound is beyond the tolerance cannot bring the margin
+ * within it, and the depth in a cone x is in is the bound itself. */
+static wr_verdict set_verdict(const wr_analysis *a, int set, const double x[3], double tolerance)
+{
+    /* A distance is at least its bound, up to rounding in the projection
+     * that computes it: |y|^2 - t^2 to an edge ray loses half the digits,
+     * so a distance below about 1e-8 may come out 0.  Cones this close to
+     * the band are measured. */
+    const double reach = tolerance + 1e-7;
+    int count = wr_analysis_cone_count(a, (wr_set)set);
+    double deepest = -1;
+    bool near = false;
+    for (int i = 0; i < count; i++) {
+        const wr_cone *cone = wr_analysis_cone(a, (wr_set)set, i);
+        if (cone->empty)
+            continue;
+        double bound = distance_bound(cone, x);
+        if (bound > 0) {
+            near = near || bound <= reach;
+            continue;
+        }
+        double depth = cone->dimension < 3 ? 0 : cone->facet_count == 0 ? 1 : -bound;
+        if (fmin(depth, 1) > tolerance)
+            return WR_VERDICT_OUTSIDE; /* deeper than the band in this cone: the margin is too */
+        deepest = fmax(deepest, depth);
+    }
+    if (deepest >= 0)
+        return verdict_of(-fmin(deepest, 1), tolerance);
+    if (!near)
+        return WR_VERDICT_INSIDE; /* every distance is at least its bound, above the band */
+    /* Outside every cone, some within reach of the band by its bound: the
+     * margin itself decides, computed as wr_classify computes it (tiny
+     * distances are rounded, and which cones it measures depends on the
+     * order it meets them, so nothing else would agree to the last case). */
+    int blocking;
+    return verdict_of(wr_set_margin(a, set, x, &blocking), tolerance);
+}
+
+wr_status wr_classify_verdict(const wr_analysis *a, const double wrench[3], wr_set set,
+                              double tolerance, wr_verdict *verdict)
+{
+    if (!finite3(wrench) || !(tolerance >= 0))
+        return WR_INVALID;
+    double x[3];
+    double scale = wr_fixture_unit_wrench(a->fixture, wrench, x);
+    if (!(scale > 0)) {
+        wr_answer answer;
+        classify_zero(a, set, &answer);
+        *verdict = answer.verdict;
+        return WR_OK;
+    }
+    if (set != WR_SET_BOTH) {
+        *verdict = set_verdict(a, set, x, tolerance);
+        return WR_OK;
+    }
+    /* Both: the smaller margin; outside when either is, inside when both are. */
+    wr_verdict goal = set_verdict(a, WR_SET_GOAL, x, tolerance);
+    if (goal == WR_VERDICT_OUTSIDE) {
+        *verdict = goal;
+        return WR_OK;
+    }
+    wr_verdict strong = set_verdict(a, WR_SET_STRONG, x, tolerance);
+    *verdict = strong == WR_VERDICT_OUTSIDE ? strong
+               : goal == WR_VERDICT_INSIDE  ? strong
+                                            : goal;
+    return WR_OK;
+}
+
 wr_status wr_classify(const wr_analysis *a, const double wrench[3], wr_set set,
                       double tolerance, wr_answer *answer)
 {

@@ -102,6 +102,13 @@ typedef struct wr_answer {
 wr_status wr_classify(const wr_analysis *analysis, const double wrench[3], wr_set set,
                       double tolerance, wr_answer *answer);
 
+/* The verdict alone: exactly wr_classify's, for a fraction of the work
+ * (no margin is computed unless the wrench lies within the tolerance band
+ * of some cone by its facets' bound, no witness ever).  WR_OK, or
+ * WR_INVALID as wr_classify. */
+wr_status wr_classify_verdict(const wr_analysis *analysis, const double wrench[3], wr_set set,
+                              double tolerance, wr_verdict *verdict);
+
 /* The same with GLPK LPs against every excluded cone (method "lp"): verdict
  * inside or outside, no margin.  `goal` and `strong` are LP sets over the
  * analysis's goal and mode constraints (see wr_analysis_lp_sets).  WR_OK,

@@ -1,0 +1,111 @@
+/* test_verdict.c -- the verdict alone (wr_classify_verdict) against the full
+ * classification (wr_classify): on random fixtures (discs and polygons, 1 to
+ * 5 fixels), random wrenches and wrenches put near the excluded cones'
+ * boundaries on purpose (a cone's nearest point of a random direction,
+ * moved by a fraction of the tolerance band either way), every set and
+ * several tolerances, the verdicts must be the same, wrench by wrench. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+
+#include "test_util.h"
+
+static void agree(const wr_analysis *a, const double w[3], double tolerance, long *count)
+{
+    for (int set = 0; set < 3; set++) {
+        wr_answer full;
+        wr_verdict lean;
+        assert_int_equal(wr_classify(a, w, (wr_set)set, tolerance, &full), WR_OK);
+        assert_int_equal(wr_classify_verdict(a, w, (wr_set)set, tolerance, &lean), WR_OK);
+        if (lean != full.verdict)
+            print_message("set %d tolerance %g wrench (%.17g, %.17g, %.17g): full %d (margin "
+                          "%.3g), verdict alone %d\n",
+                          set, tolerance, w[0], w[1], w[2], full.verdict, full.margin, lean);
+        assert_int_equal(lean, full.verdict);
+        (*count)++;
+    }
+}
+
+static void verdict_alone_agrees(void **state)
+{
+    (void)state;
+    static const double tolerances[] = {1e-9, 0, 1e-4, 0.05, 0.5};
+    long compared = 0, near = 0;
+    for (int seed = 0; seed < 60; seed++) {
+        test_rng rng = {(uint64_t)seed * 7919 + 11};
+        int k = 1 + seed % 5;
+        wr_fixture *f = test_random_fixture(&rng, k, seed % 2 == 0);
+        if (!f)
+            continue;
+        wr_analysis *a = test_analysis_new(f);
+        for (int t = 0; t < 5; t++) {
+            double tolerance = tolerances[t];
+            for (int i = 0; i < 300; i++) {
+                double w[3];
+                test_sphere(&rng, w);
+                for (int c = 0; c < 3; c++)
+                    w[c] *= test_range(&rng, 0.01, 100);
+                agree(a, w, tolerance, &compared);
+            }
+            /* Near the boundary: a cone's nearest point to a random unit
+             * direction, moved along the direction by a little. */
+            for (int set = 0; set < 2; set++) {
+                int cones = wr_analysis_cone_count(a, (wr_set)set);
+                for (int c = 0; c < cones && c < 40; c++) {
+                    const wr_cone *cone = wr_analysis_cone(a, (wr_set)set, c);
+                    if (cone->empty)
+                        continue;
+                    for (int j = 0; j < 4; j++) {
+                        double x[3], p[3];
+                        test_sphere(&rng, x);
+                        wr_cone_signed_distance(cone, x, p);
+                        double shift = test_range(&rng, -2, 2) * (tolerance > 0 ? tolerance : 1e-12);
+                        double h[3];
+                        for (int m = 0; m < 3; m++)
+                            h[m] = p[m] + shift * x[m];
+                        double w[3];
+                        wr_fixture_unscale_wrench(f, h, w);
+                        agree(a, w, tolerance, &compared);
+                        near++;
+                    }
+                }
+            }
+            double zero[3] = {0, 0, 0};
+            agree(a, zero, tolerance, &compared);
+        }
+        wr_analysis_free(a);
+        wr_fixture_free(f);
+    }
+    print_message("verdict alone: %ld verdicts compared with the full classification, %ld "
+                  "near a cone's boundary\n",
+                  compared, 3 * near);
+    assert_true(compared > 200000);
+}
+
+static void refusals(void **state)
+{
+    (void)state;
+    wr_fixture *f = test_disc_corner(0.5);
+    wr_analysis *a = test_analysis_new(f);
+    wr_verdict v;
+    double bad[3] = {NAN, 0, 0}, ok[3] = {-1, -1, 0};
+    assert_int_equal(wr_classify_verdict(a, bad, WR_SET_GOAL, 1e-9, &v), WR_INVALID);
+    assert_int_equal(wr_classify_verdict(a, ok, WR_SET_GOAL, -1, &v), WR_INVALID);
+    /* The disc in a corner, docs/MODEL.md section 7.1: (-1, -1, 0) seats it. */
+    assert_int_equal(wr_classify_verdict(a, ok, WR_SET_GOAL, 1e-9, &v), WR_OK);
+    assert_int_equal(v, WR_VERDICT_INSIDE);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(verdict_alone_agrees),
+        cmocka_unit_test(refusals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
