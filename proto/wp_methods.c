@@ -168,6 +168,12 @@ void wp_fixture_listing_release(wp_fixture_listing *listing)
 static const char *const SET_NAMES[] = {"goal", "strong", "both"};
 static const char *const VERDICT_NAMES[] = {"inside", "boundary", "outside"};
 
+/* wrench.classify's "fields": which parts of each verdict to return. */
+enum { FIELD_VERDICT, FIELD_MARGIN, FIELD_BLOCKING, FIELD_STATES, FIELD_WITNESS, FIELD_COUNT };
+static const char *const FIELD_NAMES[] = {"verdict", "margin", "blocking", "states", "witness"};
+/* Their columns in the lean answer, in this order. */
+static const char *const COLUMN_NAMES[] = {"verdicts", "margins", "blocking", "states", "witness"};
+
 typedef struct classify_request {
     wr_set sets[3];
     int set_count;
@@ -175,7 +181,44 @@ typedef struct classify_request {
     double tolerance;
     size_t wrench_count;
     double (*wrenches)[3];
+    unsigned fields;   /* 1 << FIELD_*; 0: not given, every field in rows */
 } classify_request;
+
+/* params.fields: a non-empty array of distinct names of FIELD_NAMES. */
+static bool read_fields(const cJSON *params, classify_request *r, wp_error *error)
+{
+    const cJSON *fields = cJSON_GetObjectItemCaseSensitive(params, "fields");
+    if (!fields)
+        return true;
+    if (!cJSON_IsArray(fields) || cJSON_GetArraySize(fields) == 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fields",
+                     "must be a non-empty array of \"verdict\", \"margin\", \"blocking\", "
+                     "\"states\", \"witness\"");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *item = fields->child; item; item = item->next, i++) {
+        char field[WP_FIELD_MAX];
+        wp_path_index(field, "params.fields", i);
+        int found = -1;
+        for (int f = 0; f < FIELD_COUNT && cJSON_IsString(item); f++)
+            if (strcmp(item->valuestring, FIELD_NAMES[f]) == 0)
+                found = f;
+        if (found < 0) {
+            wp_error_set(error, WP_INVALID_PARAMS, field,
+                         "must be \"verdict\", \"margin\", \"blocking\", \"states\" or "
+                         "\"witness\"");
+            return false;
+        }
+        if (r->fields & (1u << found)) {
+            wp_error_set(error, WP_INVALID_PARAMS, field, "\"%s\" is given twice",
+                         FIELD_NAMES[found]);
+            return false;
+        }
+        r->fields |= 1u << found;
+    }
+    return true;
+}
 
 static bool read_sets(const cJSON *params, classify_request *r, wp_error *error)
 {
@@ -266,7 +309,7 @@ static bool read_classify(const wp_limits *limits, const cJSON *params,
     r->tolerance = WR_DEFAULT_TOLERANCE;
     const char *method;
     bool tolerance_given;
-    if (!read_sets(params, r, error) ||
+    if (!read_sets(params, r, error) || !read_fields(params, r, error) ||
         !wp_member_string(params, "params", "method", false, &method, error) ||
         !wp_member_number(params, "params", "tolerance", false, &r->tolerance, &tolerance_given,
                           error))
@@ -302,6 +345,10 @@ static void write_vector(wp_buffer *b, const double *v, int n)
     WP_BUFFER_LITERAL(b, "]");
 }
 
+static void write_blocking(wp_buffer *b, const wr_analysis *a, const wr_answer *answer);
+static void write_states(wp_buffer *b, const wr_analysis *a, const wr_answer *answer);
+static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *answer);
+
 /* One set's answer V (docs/PROTOCOL.md). */
 static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
 {
@@ -313,18 +360,36 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
         wp_buffer_number(b, answer->margin);
     else
         WP_BUFFER_LITERAL(b, "null");
+    WP_BUFFER_LITERAL(b, ",\"blocking\":");
+    write_blocking(b, a, answer);
+    WP_BUFFER_LITERAL(b, ",\"states\":");
+    write_states(b, a, answer);
+    WP_BUFFER_LITERAL(b, ",\"witness\":");
+    write_witness(b, a, answer);
+    WP_BUFFER_LITERAL(b, "}");
+}
+
+/* The blocking string, or null. */
+static void write_blocking(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+{
     if (answer->blocking < 0) {
-        WP_BUFFER_LITERAL(b, ",\"blocking\":null,\"states\":[],\"witness\":null}");
+        WP_BUFFER_LITERAL(b, "null");
         return;
     }
     const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
     char text[WR_CONSTRAINT_TEXT];
     wr_constraint_format(&cone->constraint, text);
-    WP_BUFFER_LITERAL(b, ",\"blocking\":\"");
+    WP_BUFFER_LITERAL(b, "\"");
     wp_buffer_puts(b, text);
-    WP_BUFFER_LITERAL(b, "\",\"states\":[");
-    const wr_fixture *f = wr_analysis_fixture(a);
-    if (answer->blocking_set == WR_SET_GOAL) {
+    WP_BUFFER_LITERAL(b, "\"");
+}
+
+/* The contact states a blocking goal string comes from: [] otherwise. */
+static void write_states(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+{
+    WP_BUFFER_LITERAL(b, "[");
+    if (answer->blocking >= 0 && answer->blocking_set == WR_SET_GOAL) {
+        const wr_fixture *f = wr_analysis_fixture(a);
         const wr_plan_origins *origins = &wr_analysis_plan(a)->origins[answer->blocking];
         for (int i = 0; i < origins->count; i++) {
             char state[WR_STATE_TEXT];
@@ -334,8 +399,19 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
             WP_BUFFER_LITERAL(b, "\"");
         }
     }
+    WP_BUFFER_LITERAL(b, "]");
+}
+
+/* The witness, or null when inside. */
+static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+{
+    if (answer->blocking < 0) {
+        WP_BUFFER_LITERAL(b, "null");
+        return;
+    }
+    const wr_fixture *f = wr_analysis_fixture(a);
     const wr_witness *w = &answer->witness;
-    WP_BUFFER_LITERAL(b, "],\"witness\":{\"acceleration\":");
+    WP_BUFFER_LITERAL(b, "{\"acceleration\":");
     write_vector(b, w->acceleration, 3);
     WP_BUFFER_LITERAL(b, ",\"forces\":[");
     for (int i = 0; i < f->fixel_count; i++) {
@@ -354,7 +430,7 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
         else
             wp_buffer_number(b, w->friction[i]);
     }
-    WP_BUFFER_LITERAL(b, "]}}");
+    WP_BUFFER_LITERAL(b, "]}");
 }
 
 /* wrench.classify, written in pieces (wp_stream, wp_rpc.h): the wrenches
@@ -364,6 +440,8 @@ typedef struct classify_state {
     classify_request request;
     bool opened;        /* "[" written */
     size_t next;        /* the next wrench to answer */
+    /* With fields, by column: the set and the column being written. */
+    int set, column;
 } classify_state;
 
 /* push.regions, written an edge at a time (a finger with friction samples
@@ -438,6 +516,100 @@ static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
     return stream;
 }
 
+/* The lean answer, by column: {"count": N, "sets": {"goal": {"verdicts":
+ * "iob...", "margins": [...], ...}, ...}} (docs/PROTOCOL.md).  A column is
+ * written a wrench at a time, and each computes what it needs: the
+ * verdicts alone need no margin (wr_classify_verdict), the others the
+ * whole answer. */
+static wp_step classify_columns(classify_state *state, const wr_analysis *a, wr_lp_set *goal,
+                                wr_lp_set *strong, const wp_host *host, wp_error *error,
+                                wp_buffer *out, unsigned long budget, unsigned long *used,
+                                unsigned long cost)
+{
+    const classify_request *r = &state->request;
+    size_t start = out->length;
+    if (!state->opened) {
+        state->opened = true;
+        state->column = -1;
+        WP_BUFFER_LITERAL(out, "{\"count\":");
+        char count[24];
+        snprintf(count, sizeof count, "%zu", r->wrench_count);
+        wp_buffer_puts(out, count);
+        WP_BUFFER_LITERAL(out, ",\"sets\":{");
+    }
+    while (state->set < r->set_count && !out->failed) {
+        if (state->column < 0 || state->next >= r->wrench_count) {
+            /* Close the column written, open the next one asked. */
+            if (state->column >= 0)
+                wp_buffer_puts(out, state->column == FIELD_VERDICT ? "\"" : "]");
+            int next = state->column + 1;
+            while (next < FIELD_COUNT && !(r->fields & (1u << next)))
+                next++;
+            if (next == FIELD_COUNT) {
+                WP_BUFFER_LITERAL(out, "}");
+                state->set++;
+                state->column = -1;
+                state->next = 0;
+                continue;
+            }
+            if (state->column < 0) {
+                wp_buffer_puts(out, state->set ? ",\"" : "\"");
+                wp_buffer_puts(out, SET_NAMES[r->sets[state->set]]);
+                WP_BUFFER_LITERAL(out, "\":{\"");
+            } else {
+                WP_BUFFER_LITERAL(out, ",\"");
+            }
+            wp_buffer_puts(out, COLUMN_NAMES[next]);
+            wp_buffer_puts(out, next == FIELD_VERDICT ? "\":\"" : "\":[");
+            state->column = next;
+            state->next = 0;
+            continue;
+        }
+        if (out->length > start + 1 &&
+            (*used >= budget || out->length - start >= WP_PIECE_BYTES ||
+             wr_stop_requested(host->stop)))
+            return WP_STEP_MORE;
+        size_t i = state->next++;
+        wr_set set = r->sets[state->set];
+        wr_answer answer;
+        wr_status status;
+        if (state->column == FIELD_VERDICT && !r->lp) {
+            *used += 1 + cost / 8; /* facet bounds, mostly */
+            status = wr_classify_verdict(a, r->wrenches[i], set, r->tolerance, &answer.verdict);
+        } else {
+            *used += cost;
+            status = r->lp ? wr_classify_lp(a, goal, strong, r->wrenches[i], set, &answer)
+                           : wr_classify(a, r->wrenches[i], set, r->tolerance, &answer);
+        }
+        if (status != WR_OK) {
+            wp_error_status(error, status, "params.wrenches",
+                            "GLPK failed on wrench %zu; nothing was answered", i);
+            return WP_STEP_FAILED;
+        }
+        static const char LETTERS[] = {'i', 'b', 'o'};
+        if (state->column == FIELD_VERDICT) {
+            wp_buffer_append(out, &LETTERS[answer.verdict], 1);
+            continue;
+        }
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
+        if (state->column == FIELD_MARGIN) {
+            if (answer.has_margin)
+                wp_buffer_number(out, answer.margin);
+            else
+                WP_BUFFER_LITERAL(out, "null");
+        } else if (state->column == FIELD_BLOCKING) {
+            write_blocking(out, a, &answer);
+        } else if (state->column == FIELD_STATES) {
+            write_states(out, a, &answer);
+        } else {
+            write_witness(out, a, &answer);
+        }
+    }
+    WP_BUFFER_LITERAL(out, "}}");
+    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
                              unsigned long budget, unsigned long *used)
 {
@@ -461,6 +633,8 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
         cost *= 64; /* an LP per cone, not a few dot products */
     classify_state *state = &stream->u.classify;
     size_t start = out->length;
+    if (r->fields)
+        return classify_columns(state, a, goal, strong, host, error, out, budget, used, cost);
     if (!state->opened) {
         state->opened = true;
         wp_buffer_reserve(out, out->length + 64 +
@@ -1176,7 +1350,8 @@ static const wp_streamer DESIGN_STREAM = {design_begin,  design_step,     design
 static const char *const NONE[] = {NULL};
 static const char *const FIXTURE[] = {"fixture", NULL};
 static const char *const ID[] = {"id", NULL};
-static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance", NULL};
+static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance",
+                                       "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
 static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
