@@ -133,6 +133,38 @@ int main(int argc, char **argv)
         }
     double auto_us = (bench_seconds() - start) * 1e6 / (double)wrench_count;
 
+    /* The verdict alone (fields: ["verdict"]): the same wrenches, and every
+     * verdict compared with the full path's. */
+    long verdict_disagree = 0;
+    start = bench_seconds();
+    for (long i = 0; i < wrench_count; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
+            wr_verdict verdict;
+            wr_classify_verdict(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE,
+                                &verdict);
+            inside[set] -= verdict == WR_VERDICT_INSIDE; /* back to 0 if they agree */
+        }
+    double verdict_ns = (bench_seconds() - start) * 1e9 / (double)wrench_count;
+    for (long i = 0; i < wrench_count && i < 200000; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
+            wr_verdict verdict;
+            wr_answer full;
+            wr_classify_verdict(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE,
+                                &verdict);
+            wr_classify(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE, &full);
+            verdict_disagree += verdict != full.verdict;
+        }
+    long verdict_compared = 2 * (wrench_count < 200000 ? wrench_count : 200000);
+    /* The inside counts again, for the summary. */
+    inside[0] = inside[1] = 0;
+    for (long i = 0; i < wrench_count; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
+            wr_verdict verdict;
+            wr_classify_verdict(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE,
+                                &verdict);
+            inside[set] += verdict == WR_VERDICT_INSIDE;
+        }
+
     /* lp: the same with GLPK (warm problems: every one solved once first). */
     wr_answer answer;
     wr_classify_lp(analysis, goal, strong, wrenches[0], WR_SET_GOAL, &answer);
@@ -254,9 +286,11 @@ int main(int argc, char **argv)
         printf("{\"fixture\": \"%s\", \"goal_cones\": %d, \"strong_cones\": %d, "
                "\"wrenches\": %ld, \"lp_wrenches\": %ld, \"auto_us\": %.4f, \"lp_us\": %.3f, "
                "\"warm_lp_us\": %.4f, \"cone_us\": %.5f, \"lp_agree\": %ld, \"lp_compared\": %ld, "
-               "\"batch_us\": %.4f, \"batch_answer_bytes\": %zu, \"derive_ms\": {",
+               "\"batch_us\": %.4f, \"batch_answer_bytes\": %zu, \"verdict_ns\": %.2f, "
+               "\"verdict_disagree\": %ld, \"verdict_compared\": %ld, \"derive_ms\": {",
                path, goal_cones, strong_cones, wrench_count, lp_wrench_count, auto_us, lp_us,
-               warm_us, cone_us, agree, 2 * lp_wrench_count, batch_us, batch_answer);
+               warm_us, cone_us, agree, 2 * lp_wrench_count, batch_us, batch_answer, verdict_ns,
+               verdict_disagree, verdict_compared);
         for (int k = 2; k <= WR_MAX_FIXELS; k++)
             printf("%s\"%d\": %.3f", k > 2 ? ", " : "", k, derive_ms[k]);
         printf("}, \"derive_bytes\": {");
@@ -268,6 +302,9 @@ int main(int argc, char **argv)
                "inside)\n",
                path, goal_cones, strong_cones, wrench_count, inside[0], inside[1]);
         printf("auto (goal + strong, witnesses)  %9.3f us/wrench   target <= 1\n", auto_us);
+        printf("the verdict alone (goal + strong) %8.1f ns/wrench  target <= 50; %ld of %ld "
+               "verdicts differ from the full path's\n",
+               verdict_ns, verdict_disagree, verdict_compared);
         printf("lp (goal + strong)               %9.3f us/wrench   target <= %.1f "
                "(2 x %d cones x warm LP); agrees on %ld of %ld verdicts\n",
                lp_us, 2 * cones * warm_us, cones, agree, 2 * lp_wrench_count);
