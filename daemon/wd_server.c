@@ -743,6 +743,13 @@ static void piece_done(wd_server *s, wd_task *task)
     assert(c->running == x && x->task == task && !c->parked);
     assert(c->head == x); /* every earlier answer written */
     c->busy++;
+    if (c->bev && c->input_closed && task->step == WP_STEP_MORE && peer_gone(c)) {
+        /* It closed its sending side first, then hung up entirely: no
+         * event says so (the input ended long ago), so each piece asks. */
+        wd_log(WD_LOG_DEBUG, "client %lu: hung up after closing its input; its requests are "
+                             "cancelled", c->number);
+        close_socket(c);
+    }
     if (c->bev && !atomic_load(&task->cancelled))
         send_piece(c, task);
     if (task->step == WP_STEP_FAILED && c->bev) {

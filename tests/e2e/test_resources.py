@@ -874,3 +874,36 @@ def test_a_design_uses_every_worker_shares_them_and_stops_with_its_client(harnes
     except BaseException:
         d.kill()
         raise
+
+
+def test_a_client_that_half_closes_then_hangs_up_is_noticed(harness):
+    """A client sends a long design, shuts its sending side, then closes
+    the socket: no event says the second part (the input ended before), so
+    the daemon asks at every piece.  The work stops and the slot is freed
+    within a second or two (found by a review helper: the slot was held
+    until --max-clients ran out)."""
+    d = harness.start("--threads", "2")
+    try:
+        status = d.client()
+        for i in range(3):
+            s = raw_socket(d.path)
+            s.sendall(design_request(10 + i, spacing=0.25))
+            s.shutdown(socket.SHUT_WR)
+            time.sleep(0.3)
+            s.close()
+        deadline = time.monotonic() + 5 * SLOW
+        while time.monotonic() < deadline:
+            if status.result("server.status", {})["clients"] == 1:
+                break
+            time.sleep(0.1)
+        assert status.result("server.status", {})["clients"] == 1
+        time.sleep(0.5)
+        before = cpu_seconds(d.pid)
+        time.sleep(2.0)
+        used = cpu_seconds(d.pid) - before
+        report("CPU in the 2 s after three half-closed, then closed, designing clients: %.2f s"
+               % used)
+        assert used < 0.3 * SLOW, used
+    except BaseException:
+        d.kill()
+        raise
