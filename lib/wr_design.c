@@ -73,7 +73,7 @@ wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **site
         double circumference = 2 * WR_PI * body->radius;
         double steps = floor(circumference / spacing + 1e-9);
         if (steps > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.0f sites, more than %d", steps, WR_DESIGN_MAX_SITES);
+            wr_error_set(error, "", "gives %.3g sites, more than %d", steps, WR_DESIGN_MAX_SITES);
             return WR_INVALID;
         }
         for (int i = 0; i < (int)steps && status == WR_OK; i++) {
@@ -89,7 +89,7 @@ wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **site
             for (size_t s = 0; s < o->loops[l].segment_count; s++)
                 total += floor(o->loops[l].segments[s].length / spacing + 1e-9);
         if (total > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.0f sites, more than %d", total, WR_DESIGN_MAX_SITES);
+            wr_error_set(error, "", "gives %.3g sites, more than %d", total, WR_DESIGN_MAX_SITES);
             return WR_INVALID;
         }
         for (size_t l = 0; l < o->loop_count && status == WR_OK; l++)

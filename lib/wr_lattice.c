@@ -46,7 +46,10 @@ struct wr_lattice_job {
     size_t claimed;          /* pairs handed out as chunks */
     size_t merged;           /* pairs whose designs are in `found`, in order */
     int outstanding;         /* chunks claimed, not yet merged or abandoned */
-    wr_lattice_chunk *waiting; /* finished chunks ahead of their turn, by chunk number */
+    /* Finished chunks ahead of their turn (claimed later than one still
+     * running): at most the chunks outstanding at once, a few. */
+    wr_lattice_chunk *waiting;
+    size_t waiting_count, waiting_capacity;
     design_list found;
     bool failed;
     double grid[WR_LATTICE_STEPS + 1][2]; /* cos, sin of the scan's angles */
@@ -119,19 +122,34 @@ static bool build_holes(wr_lattice_job *job)
 {
     const wr_lattice *L = &job->lattice;
     int nx = L->extent[0], ny = L->extent[1];
-    size_t capacity = (size_t)(2 * nx - 1) * (size_t)ny;
-    job->holes = calloc(capacity, sizeof *job->holes);
-    if (!job->holes)
-        return false;
-    for (int j = 0; j < ny; j++)
-        for (int i = -(nx - 1); i < nx; i++) {
-            if (j == 0 && i <= 0)
-                continue; /* (0, 0) is the first peg's; the others come after it */
-            double at[2] = {L->pitch * i, L->pitch * j};
-            if (hypot(at[0], at[1]) > job->reach)
-                continue;
-            job->holes[job->hole_count++] = (hole){i, j, {at[0], at[1]}};
+    /* Only holes within reach of (0, 0): counted first, so that a fine
+     * lattice's far holes cost nothing. */
+    int reach_i = (int)fmin(nx - 1, floor(job->reach / L->pitch));
+    int reach_j = (int)fmin(ny - 1, floor(job->reach / L->pitch));
+    for (int pass = 0; pass < 2; pass++) {
+        size_t count = 0;
+        for (int j = 0; j <= reach_j; j++)
+            for (int i = -reach_i; i <= reach_i; i++) {
+                if (j == 0 && i <= 0)
+                    continue; /* (0, 0) is the first peg's; the others come after it */
+                double at[2] = {L->pitch * i, L->pitch * j};
+                if (hypot(at[0], at[1]) > job->reach)
+                    continue;
+                if (pass == 1)
+                    job->holes[count] = (hole){i, j, {at[0], at[1]}};
+                count++;
+            }
+        if (pass == 0) {
+            if (count > WR_LATTICE_MAX_HOLES) {
+                job->hole_count = count;
+                return true; /* the caller refuses it */
+            }
+            job->holes = calloc(count ? count : 1, sizeof *job->holes);
+            if (!job->holes)
+                return false;
         }
+        job->hole_count = count;
+    }
     job->pair_total = job->hole_count * (job->hole_count ? job->hole_count - 1 : 0) / 2;
     return true;
 }
@@ -181,6 +199,14 @@ wr_status wr_lattice_job_new(const wr_fixture *body, const wr_lattice *lattice,
         wr_lattice_job_free(job);
         wr_error_set(error, "", "out of memory");
         return WR_NO_MEMORY;
+    }
+    if (job->hole_count > WR_LATTICE_MAX_HOLES) {
+        wr_error_set(error, "pitch",
+                     "gives %zu holes within reach of a peg across the part, more than %d: "
+                     "the pitch is too fine for a part this size",
+                     job->hole_count, WR_LATTICE_MAX_HOLES);
+        wr_lattice_job_free(job);
+        return WR_INVALID;
     }
     *out = job;
     return WR_OK;
@@ -627,28 +653,40 @@ static bool append(wr_lattice_job *job, wr_lattice_chunk *chunk)
 wr_status wr_lattice_job_merge(wr_lattice_job *job, wr_lattice_chunk *chunk)
 {
     job->outstanding--;
-    size_t index = chunk->first / WR_LATTICE_CHUNK;
-    if (!job->waiting) {
-        size_t chunks = (job->pair_total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK;
-        job->waiting = calloc(chunks ? chunks : 1, sizeof *job->waiting);
-        if (!job->waiting) {
-            wr_lattice_chunk_release(chunk);
-            job->failed = true;
-            return WR_NO_MEMORY;
+    if (chunk->first != job->merged) {
+        /* Ahead of its turn: it waits for the chunks before it. */
+        if (job->waiting_count == job->waiting_capacity) {
+            size_t grown = job->waiting_capacity ? 2 * job->waiting_capacity : 8;
+            wr_lattice_chunk *more = realloc(job->waiting, grown * sizeof *more);
+            if (!more) {
+                wr_lattice_chunk_release(chunk);
+                job->failed = true;
+                return WR_NO_MEMORY;
+            }
+            job->waiting = more;
+            job->waiting_capacity = grown;
         }
+        job->waiting[job->waiting_count++] = *chunk;
+        memset(chunk, 0, sizeof *chunk);
+        return WR_OK;
     }
-    job->waiting[index] = *chunk;
-    memset(chunk, 0, sizeof *chunk);
-    /* A chunk has arrived when its count is set (a claim is never empty);
-     * append every one that comes next in the pairs' order. */
-    while (job->merged < job->pair_total) {
-        wr_lattice_chunk *next = &job->waiting[job->merged / WR_LATTICE_CHUNK];
-        if (next->count == 0)
-            break;
-        if (!append(job, next)) {
+    if (!append(job, chunk)) {
+        job->failed = true;
+        return WR_NO_MEMORY;
+    }
+    /* Then every waiting chunk whose turn has come. */
+    for (size_t i = 0; i < job->waiting_count;) {
+        if (job->waiting[i].first != job->merged) {
+            i++;
+            continue;
+        }
+        wr_lattice_chunk next = job->waiting[i];
+        job->waiting[i] = job->waiting[--job->waiting_count];
+        if (!append(job, &next)) {
             job->failed = true;
             return WR_NO_MEMORY;
         }
+        i = 0;
     }
     return WR_OK;
 }
@@ -705,11 +743,8 @@ void wr_lattice_job_free(wr_lattice_job *job)
 {
     if (!job)
         return;
-    if (job->waiting) {
-        size_t chunks = (job->pair_total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK;
-        for (size_t i = 0; i < chunks; i++)
-            wr_lattice_chunk_release(&job->waiting[i]);
-    }
+    for (size_t i = 0; i < job->waiting_count; i++)
+        wr_lattice_chunk_release(&job->waiting[i]);
     free(job->waiting);
     free(job->curves);
     free(job->holes);

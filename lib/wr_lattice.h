@@ -25,6 +25,9 @@
  *     where the residual touches zero without crossing it).  A pose whose
  *     residual crosses zero and back within one step may be missed.
  *
+ * At most WR_LATTICE_MAX_DESIGNS poses are kept (those found first);
+ * the answer's count of poses says how many.
+ *
  * A pose is kept when each contact point lies on its segment, each peg's
  * centre is outside the material at least its radius from the outline
  * (touching is not overlapping), and it is not a pose already found for
@@ -44,6 +47,9 @@ extern "C" {
 /* At most this many holes a side, and designs in all. */
 #define WR_LATTICE_MAX_EXTENT 1000
 #define WR_LATTICE_MAX_DESIGNS 1000000
+/* At most this many holes within reach of the first peg (a pitch much
+ * finer than the part is refused: its pairs would be billions). */
+#define WR_LATTICE_MAX_HOLES 20000
 
 typedef struct wr_lattice {
     double pitch;        /* > 0 */

@@ -571,16 +571,26 @@ bool wp_design_work(wp_design_stream *s, const wp_host *host)
     wr_status status;
     /* s->job is set only by a step that shares nothing (below): it does
      * not change while this runs. */
-    if (!s->job)
-        return run_lattice_chunk(s, host->stop, &used, &status) && status == WR_OK;
-    return run_chunk(s, host->stop, &used, &status) && status == WR_OK;
+    bool ran = !s->job ? run_lattice_chunk(s, host->stop, &used, &status)
+                       : run_chunk(s, host->stop, &used, &status);
+    if (ran && status != WR_OK) {
+        /* The step says it, as it is (the job only knows it failed). */
+        pthread_mutex_lock(&s->lock);
+        if (s->failure == WR_OK)
+            s->failure = status;
+        pthread_mutex_unlock(&s->lock);
+    }
+    return ran && status == WR_OK;
 }
 
 wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsigned long budget,
                        unsigned long *used)
 {
-    if (s->failure != WR_OK) {
-        wp_error_status(call->error, s->failure, "params", "%s", wr_strerror(s->failure));
+    pthread_mutex_lock(&s->lock);
+    wr_status failure = s->failure;
+    pthread_mutex_unlock(&s->lock);
+    if (failure != WR_OK) {
+        wp_error_status(call->error, failure, "params", "%s", wr_strerror(failure));
         return WP_STEP_FAILED;
     }
     if (s->progress && s->last_report < 0)
@@ -596,7 +606,9 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
                run_lattice_chunk(s, call->host->stop, used, &status) && status == WR_OK)
             continue;
         if (status != WR_OK && shared) {
-            s->failure = status;
+            pthread_mutex_lock(&s->lock);
+            s->failure = s->failure == WR_OK ? status : s->failure;
+            pthread_mutex_unlock(&s->lock);
             return WP_STEP_MORE;
         }
         if (status != WR_OK) {
@@ -639,7 +651,10 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
         pthread_mutex_unlock(&s->lock);
     }
     if (status != WR_OK && shared) {
-        s->failure = status; /* helpers may still be working: end in the next step */
+        /* Helpers may still be working: end in the next step. */
+        pthread_mutex_lock(&s->lock);
+        s->failure = s->failure == WR_OK ? status : s->failure;
+        pthread_mutex_unlock(&s->lock);
         return WP_STEP_MORE;
     }
     if (status != WR_OK) {

@@ -63,6 +63,7 @@ struct wp_answer {
     size_t piece_bytes;      /* bytes after which a piece ends (WP_PIECE_BYTES) */
     cJSON *next;             /* the next request to start, or NULL */
     bool opened;             /* a batch's "[" is written */
+    size_t stream_written;   /* bytes the current stream's steps have written */
     bool done;
     wp_prepared prepared;    /* a long classify's wrenches, read from the text */
     /* The fixture of the request in hand, held (invariant: `holding` iff
@@ -269,11 +270,18 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
     wp_error error = {0};
     wp_call call = {host, &answer->limits, answer->params, &error, answer};
     unsigned long budget = answer->whole ? (unsigned long)-1 : answer->budget;
+    size_t before = out->length;
     wp_step step = answer->streamer->step(answer->stream, &call, out, budget, used);
     while (step == WP_STEP_MORE && answer->whole) {
         *used = 0;
         step = answer->streamer->step(answer->stream, &call, out, budget, used);
     }
+    /* A stream that opens its own response and has written nothing in
+     * earlier pieces (no notification either) can still be answered an
+     * error, outside a batch (whose separator went out before). */
+    bool untouched = answer->streamer->opens_result && !answer->batch &&
+                     answer->stream_written == 0;
+    answer->stream_written += out->length - before;
     if (step == WP_STEP_MORE)
         return WP_STEP_MORE;
     if (step == WP_STEP_DONE) {
@@ -284,7 +292,9 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
         return WP_STEP_DONE;
     }
     counts->errors++;
-    if (!mine) {
+    if (!mine && untouched)
+        start = before; /* nothing of it went out: answer the error instead */
+    else if (!mine) {
         end_stream(answer, host);
         return WP_STEP_FAILED;
     }
@@ -333,6 +343,7 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             separate(answer, out);
             answer->streamer = m->stream;
             answer->stream = stream;
+            answer->stream_written = 0;
             answer->params = params;
             answer->empty = empty;
             empty = NULL;
