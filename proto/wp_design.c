@@ -557,6 +557,24 @@ static bool run_lattice_chunk(wp_design_stream *s, const wr_stop *stop, unsigned
     return true;
 }
 
+/* The next chunk of whichever stage is on: the lattice's poses, then the
+ * search's candidates. */
+static bool run_some(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
+                     wr_status *status)
+{
+    return s->job ? run_chunk(s, stop, used, status) : run_lattice_chunk(s, stop, used, status);
+}
+
+/* Keep the first failure, for the step that can say it (helpers, or a
+ * step that shares, cannot end the answer). */
+static void note_failure(wp_design_stream *s, wr_status status)
+{
+    pthread_mutex_lock(&s->lock);
+    if (s->failure == WR_OK)
+        s->failure = status;
+    pthread_mutex_unlock(&s->lock);
+}
+
 bool wp_design_parallel(wp_design_stream *s)
 {
     pthread_mutex_lock(&s->lock);
@@ -571,15 +589,9 @@ bool wp_design_work(wp_design_stream *s, const wp_host *host)
     wr_status status;
     /* s->job is set only by a step that shares nothing (below): it does
      * not change while this runs. */
-    bool ran = !s->job ? run_lattice_chunk(s, host->stop, &used, &status)
-                       : run_chunk(s, host->stop, &used, &status);
-    if (ran && status != WR_OK) {
-        /* The step says it, as it is (the job only knows it failed). */
-        pthread_mutex_lock(&s->lock);
-        if (s->failure == WR_OK)
-            s->failure = status;
-        pthread_mutex_unlock(&s->lock);
-    }
+    bool ran = run_some(s, host->stop, &used, &status);
+    if (ran && status != WR_OK)
+        note_failure(s, status); /* the step says it, as it is */
     return ran && status == WR_OK;
 }
 
@@ -602,13 +614,11 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
         bool shared = wp_design_parallel(s);
         wr_status status = WR_OK;
         unsigned long start = *used;
-        while (*used - start < budget &&
-               run_lattice_chunk(s, call->host->stop, used, &status) && status == WR_OK)
+        while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
+               status == WR_OK)
             continue;
         if (status != WR_OK && shared) {
-            pthread_mutex_lock(&s->lock);
-            s->failure = s->failure == WR_OK ? status : s->failure;
-            pthread_mutex_unlock(&s->lock);
+            note_failure(s, status);
             return WP_STEP_MORE;
         }
         if (status != WR_OK) {
@@ -640,7 +650,7 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
      * (wp_streamer.work), so the figures and the answer come in a later
      * step, when the search is over. */
     bool shared = wp_design_parallel(s);
-    while (*used - start < budget && run_chunk(s, call->host->stop, used, &status) &&
+    while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
            status == WR_OK)
         continue;
     bool done = false;
@@ -651,10 +661,7 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
         pthread_mutex_unlock(&s->lock);
     }
     if (status != WR_OK && shared) {
-        /* Helpers may still be working: end in the next step. */
-        pthread_mutex_lock(&s->lock);
-        s->failure = s->failure == WR_OK ? status : s->failure;
-        pthread_mutex_unlock(&s->lock);
+        note_failure(s, status); /* helpers may still be working: end in the next step */
         return WP_STEP_MORE;
     }
     if (status != WR_OK) {
