@@ -165,6 +165,37 @@ int main(int argc, char **argv)
             inside[set] += verdict == WR_VERDICT_INSIDE;
         }
 
+    /* The verdict map (a long lean batch's way): built once, then every
+     * wrench looked up, and every verdict compared with the verdict
+     * alone's, which agrees with the full path's (above). */
+    start = bench_seconds();
+    wr_verdict_map *map;
+    if (wr_verdict_map_new(analysis, WR_DEFAULT_TOLERANCE, &map) != WR_OK) {
+        fprintf(stderr, "out of memory\n");
+        return 1;
+    }
+    double map_build_ms = (bench_seconds() - start) * 1e3;
+    long map_inside = 0;
+    start = bench_seconds();
+    for (long i = 0; i < wrench_count; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
+            wr_verdict verdict;
+            wr_verdict_map_classify(map, wrenches[i], (wr_set)set, &verdict);
+            map_inside += verdict == WR_VERDICT_INSIDE;
+        }
+    double map_ns = (bench_seconds() - start) * 1e9 / (double)wrench_count;
+    long map_disagree = 0;
+    for (long i = 0; i < wrench_count; i++)
+        for (int set = WR_SET_GOAL; set <= WR_SET_STRONG; set++) {
+            wr_verdict mapped, alone;
+            wr_verdict_map_classify(map, wrenches[i], (wr_set)set, &mapped);
+            wr_classify_verdict(analysis, wrenches[i], (wr_set)set, WR_DEFAULT_TOLERANCE, &alone);
+            map_disagree += mapped != alone;
+        }
+    double map_decided = wr_verdict_map_decided(map);
+    size_t map_bytes = wr_verdict_map_bytes(map);
+    wr_verdict_map_free(map);
+
     /* lp: the same with GLPK (warm problems: every one solved once first). */
     wr_answer answer;
     wr_classify_lp(analysis, goal, strong, wrenches[0], WR_SET_GOAL, &answer);
@@ -287,10 +318,13 @@ int main(int argc, char **argv)
                "\"wrenches\": %ld, \"lp_wrenches\": %ld, \"auto_us\": %.4f, \"lp_us\": %.3f, "
                "\"warm_lp_us\": %.4f, \"cone_us\": %.5f, \"lp_agree\": %ld, \"lp_compared\": %ld, "
                "\"batch_us\": %.4f, \"batch_answer_bytes\": %zu, \"verdict_ns\": %.2f, "
-               "\"verdict_disagree\": %ld, \"verdict_compared\": %ld, \"derive_ms\": {",
+               "\"verdict_disagree\": %ld, \"verdict_compared\": %ld, \"map_ns\": %.2f, "
+               "\"map_build_ms\": %.3f, \"map_decided\": %.4f, \"map_bytes\": %zu, "
+               "\"map_disagree\": %ld, \"map_compared\": %ld, \"derive_ms\": {",
                path, goal_cones, strong_cones, wrench_count, lp_wrench_count, auto_us, lp_us,
                warm_us, cone_us, agree, 2 * lp_wrench_count, batch_us, batch_answer, verdict_ns,
-               verdict_disagree, verdict_compared);
+               verdict_disagree, verdict_compared, map_ns, map_build_ms, map_decided, map_bytes,
+               map_disagree, 2 * wrench_count);
         for (int k = 2; k <= WR_MAX_FIXELS; k++)
             printf("%s\"%d\": %.3f", k > 2 ? ", " : "", k, derive_ms[k]);
         printf("}, \"derive_bytes\": {");
@@ -305,6 +339,10 @@ int main(int argc, char **argv)
         printf("the verdict alone (goal + strong) %8.1f ns/wrench  target <= 50; %ld of %ld "
                "verdicts differ from the full path's\n",
                verdict_ns, verdict_disagree, verdict_compared);
+        printf("the verdict by the map            %8.1f ns/wrench  target <= 50; built in %.2f ms "
+               "(%zu bytes, %.1f%% of cells decided); %ld of %ld verdicts differ from the verdict "
+               "alone's\n",
+               map_ns, map_build_ms, map_bytes, 100 * map_decided, map_disagree, 2 * wrench_count);
         printf("lp (goal + strong)               %9.3f us/wrench   target <= %.1f "
                "(2 x %d cones x warm LP); agrees on %ld of %ld verdicts\n",
                lp_us, 2 * cones * warm_us, cones, agree, 2 * lp_wrench_count);

@@ -235,13 +235,13 @@ static void classify_zero(const wr_analysis *a, wr_set set, wr_answer *answer)
  * gives it, from the same formulas but no more of them than it needs: a
  * cone whose facet bound is beyond the tolerance cannot bring the margin
  * within it, and the depth in a cone x is in is the bound itself. */
-static wr_verdict set_verdict(const wr_analysis *a, int set, const double x[3], double tolerance)
+wr_verdict wr_set_verdict(const wr_analysis *a, int set, const double x[3], double tolerance)
 {
     /* A distance is at least its bound, up to rounding in the projection
      * that computes it: |y|^2 - t^2 to an edge ray loses half the digits,
      * so a distance below about 1e-8 may come out 0.  Cones this close to
      * the band are measured. */
-    const double reach = tolerance + 1e-7;
+    const double reach = tolerance + WR_VERDICT_REACH;
     int count = wr_analysis_cone_count(a, (wr_set)set);
     double deepest = -1;
     bool near = false;
@@ -285,24 +285,25 @@ wr_status wr_classify_verdict(const wr_analysis *a, const double wrench[3], wr_s
         return WR_OK;
     }
     if (set != WR_SET_BOTH) {
-        *verdict = set_verdict(a, set, x, tolerance);
+        *verdict = wr_set_verdict(a, set, x, tolerance);
         return WR_OK;
     }
     /* Both: the smaller margin; outside when either is, inside when both are. */
-    wr_verdict goal = set_verdict(a, WR_SET_GOAL, x, tolerance);
+    wr_verdict goal = wr_set_verdict(a, WR_SET_GOAL, x, tolerance);
     if (goal == WR_VERDICT_OUTSIDE) {
         *verdict = goal;
         return WR_OK;
     }
-    wr_verdict strong = set_verdict(a, WR_SET_STRONG, x, tolerance);
+    wr_verdict strong = wr_set_verdict(a, WR_SET_STRONG, x, tolerance);
     *verdict = strong == WR_VERDICT_OUTSIDE ? strong
                : goal == WR_VERDICT_INSIDE  ? strong
                                             : goal;
     return WR_OK;
 }
 
-wr_status wr_classify(const wr_analysis *a, const double wrench[3], wr_set set,
-                      double tolerance, wr_answer *answer)
+/* wr_classify, and wr_classify_margin when `witness` is false. */
+static wr_status classify(const wr_analysis *a, const double wrench[3], wr_set set,
+                          double tolerance, bool witness, wr_answer *answer)
 {
     memset(answer, 0, sizeof *answer);
     answer->blocking = -1;
@@ -329,7 +330,7 @@ wr_status wr_classify(const wr_analysis *a, const double wrench[3], wr_set set,
     if (answer->verdict == WR_VERDICT_INSIDE)
         return WR_OK;
     answer->blocking = goal_decides ? goal_blocking : strong_blocking;
-    if (answer->blocking >= 0) {
+    if (answer->blocking >= 0 && witness) {
         const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
         /* The witness of the unit wrench, scaled back: the same numbers as
          * for g itself (cones are cones), and overflow only ever reaches
@@ -347,6 +348,18 @@ wr_status wr_classify(const wr_analysis *a, const double wrench[3], wr_set set,
                 w->force[i][k] *= scale;
     }
     return WR_OK;
+}
+
+wr_status wr_classify(const wr_analysis *a, const double wrench[3], wr_set set,
+                      double tolerance, wr_answer *answer)
+{
+    return classify(a, wrench, set, tolerance, true, answer);
+}
+
+wr_status wr_classify_margin(const wr_analysis *a, const double wrench[3], wr_set set,
+                             double tolerance, wr_answer *answer)
+{
+    return classify(a, wrench, set, tolerance, false, answer);
 }
 
 wr_status wr_analysis_lp_sets(const wr_analysis *a, wr_lp_env *env, wr_lp_set **goal,

@@ -102,12 +102,42 @@ typedef struct wr_answer {
 wr_status wr_classify(const wr_analysis *analysis, const double wrench[3], wr_set set,
                       double tolerance, wr_answer *answer);
 
+/* The same without the witness (answer->witness is zeroed): verdict,
+ * margin and blocking cone exactly as wr_classify's, for the cost of the
+ * margin alone. */
+wr_status wr_classify_margin(const wr_analysis *analysis, const double wrench[3], wr_set set,
+                             double tolerance, wr_answer *answer);
+
 /* The verdict alone: exactly wr_classify's, for a fraction of the work
  * (no margin is computed unless the wrench lies within the tolerance band
  * of some cone by its facets' bound, no witness ever).  WR_OK, or
  * WR_INVALID as wr_classify. */
 wr_status wr_classify_verdict(const wr_analysis *analysis, const double wrench[3], wr_set set,
                               double tolerance, wr_verdict *verdict);
+
+/* The verdicts of many wrenches at the cost of a look-up each: a map of
+ * the sphere of scaled directions (a cube's faces, cut into cells), in
+ * which a cell is decided once, for both sets, when every direction in it
+ * has the same verdict by a margin, and left to wr_classify_verdict when
+ * not.  Its answers are exactly wr_classify_verdict's at the tolerance it
+ * was built for.  Immutable once built: any number of threads may read
+ * it.  It borrows the analysis (complete: wr_analysis_new), which must
+ * outlive it. */
+typedef struct wr_verdict_map wr_verdict_map;
+
+/* Build the map.  WR_OK; WR_INVALID for a tolerance outside [0, 1) or an
+ * analysis without G_strong's cones; WR_NO_MEMORY. */
+wr_status wr_verdict_map_new(const wr_analysis *analysis, double tolerance,
+                             wr_verdict_map **out);
+void wr_verdict_map_free(wr_verdict_map *map);
+/* The bytes it holds. */
+size_t wr_verdict_map_bytes(const wr_verdict_map *map);
+/* wr_classify_verdict(analysis, wrench, set, tolerance, verdict), by the map. */
+wr_status wr_verdict_map_classify(const wr_verdict_map *map, const double wrench[3], wr_set set,
+                                  wr_verdict *verdict);
+/* The share of the sphere's cells the map decides, in [0, 1] (a figure
+ * for benchmarks: the rest are measured wrench by wrench). */
+double wr_verdict_map_decided(const wr_verdict_map *map);
 
 /* The same with GLPK LPs against every excluded cone (method "lp"): verdict
  * inside or outside, no margin.  `goal` and `strong` are LP sets over the

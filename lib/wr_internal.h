@@ -6,6 +6,7 @@
 #ifndef WR_INTERNAL_H
 #define WR_INTERNAL_H
 
+#include "wr_classify.h"
 #include "wr_fixture.h"
 
 #include <math.h>
@@ -132,6 +133,14 @@ struct wr_analysis {
  * smallest distance; 1 with no cone.  *blocking: the cone's index or -1. */
 double wr_set_margin(const struct wr_analysis *analysis, int set, const double x[3],
                      int *blocking);
+/* The verdict of the unit scaled wrench x for one set, exactly as the
+ * margin's would be (wr_classify_verdict), from the facets' bounds where
+ * they decide: a cone whose bound exceeds the tolerance by more than
+ * WR_VERDICT_REACH cannot bring the margin into the band, and only cones
+ * closer than that are measured. */
+#define WR_VERDICT_REACH 1e-7
+wr_verdict wr_set_verdict(const struct wr_analysis *analysis, int set, const double x[3],
+                          double tolerance);
 /* The push wrench along one edge of the outline (wr_regions.h), in scaled
  * space, as a combination of two fixed wrenches c1 and c2, so that a row
  * f of a cone meets it where a linear form in two coordinates vanishes:
