@@ -2,7 +2,7 @@
  * 3 and 5).  Prints figures; asserts nothing but that answers are answers.
  *
  *   socket --socket PATH [--fixture FILE] [--sequential N] [--pipelined N]
- *          [--depth D] [--batch N] [--json]
+ *          [--depth D] [--batch N] [--lean N] [--lp N] [--json]
  *
  *   sequential  N single-wrench wrench.classify requests, each sent when the
  *               previous answer is read: latency p50 / p99 / p999;
@@ -13,6 +13,14 @@
  *               read: wrenches per second end to end.  The request text is
  *               made before the clock starts; the answer is checked for N
  *               results but not parsed;
+ *   lean        one request of N wrenches (default 1,000,000; the daemon
+ *               needs --max-wrenches and --max-line for it) three times,
+ *               goal and strong, fields ["verdict"], ["verdict", "margin"]
+ *               and all five: wrenches per second end to end, as batch.
+ *               Every verdict of the three answers is compared: the
+ *               verdicts alone (by the verdict map) with the full path's;
+ *               then the first --lp of them (default 20,000) again by the
+ *               "lp" method, whose verdicts are compared with auto's;
  *   register    cold fixture.put of a disc with k = 2..8 fixels (a new id
  *               each time), median of 5, and the growth of server.status's
  *               cache_bytes per fixture;
@@ -237,10 +245,65 @@ static double floor_p50(long count, size_t request_bytes, size_t answer_bytes)
     return p50;
 }
 
+/* The verdict letters of a lean answer, goal's and strong's, joined over
+ * its pieces (each piece: "goal":{"verdicts":"...", then "strong":{...).
+ * Returns the wrenches found. */
+static long lean_verdicts(const char *answer, size_t length, char *goal, char *strong)
+{
+    static const char KEY[] = "\"verdicts\":\"";
+    long found[2] = {0, 0};
+    int set = 0;
+    const char *end = answer + length;
+    for (const char *p = answer; (p = memmem(p, (size_t)(end - p), KEY, sizeof KEY - 1));) {
+        p += sizeof KEY - 1;
+        const char *q = memchr(p, '"', (size_t)(end - p));
+        if (!q)
+            break;
+        memcpy((set ? strong : goal) + found[set], p, (size_t)(q - p));
+        found[set] += q - p;
+        set ^= 1;
+        p = q;
+    }
+    return found[0] == found[1] ? found[0] : -1;
+}
+
+/* One lean request's line: `count` wrenches from `wrenches`. */
+static size_t lean_line(char *line, size_t size, const char *id, const char *fields,
+                        const char *method, const double (*wrenches)[3], long count)
+{
+    size_t used = (size_t)snprintf(line, size,
+                                   "{\"jsonrpc\":\"2.0\",\"id\":\"lean\",\"method\":\"wrench."
+                                   "classify\",\"params\":{\"fixture\":\"%s\",\"fields\":%s%s"
+                                   ",\"wrenches\":[",
+                                   id, fields, method);
+    for (long i = 0; i < count; i++)
+        used += (size_t)snprintf(line + used, size - used, "%s[%.6f,%.6f,%.6f]", i ? "," : "",
+                                 wrenches[i][0], wrenches[i][1], wrenches[i][2]);
+    used += (size_t)snprintf(line + used, size - used, "]}}\n");
+    return used;
+}
+
+/* Make room for an answer of `bytes` in the connection's buffer, touched
+ * before the clock starts, so that the figure is wrenchd's. */
+static void room_for(connection *c, size_t bytes)
+{
+    if (c->capacity >= bytes)
+        return;
+    memmove(c->buffer, c->buffer + c->start, c->end - c->start);
+    c->end -= c->start;
+    c->start = 0;
+    c->buffer = realloc(c->buffer, bytes);
+    if (!c->buffer)
+        fail("out of memory");
+    c->capacity = bytes;
+    memset(c->buffer + c->end, 0, bytes - c->end);
+}
+
 int main(int argc, char **argv)
 {
     const char *path = NULL, *fixture_path = "examples/plate-3-2-1.json";
-    long sequential = 20000, pipelined = 20000, depth = 64, batch = 100000;
+    long sequential = 20000, pipelined = 20000, depth = 64, batch = 100000, lean = 1000000,
+         lp = 20000;
     int json = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -251,7 +314,7 @@ int main(int argc, char **argv)
         }
         if (!value) {
             fprintf(stderr, "usage: %s --socket PATH [--fixture FILE] [--sequential N] "
-                            "[--pipelined N] [--depth D] [--batch N] [--json]\n",
+                            "[--pipelined N] [--depth D] [--batch N] [--lean N] [--lp N] [--json]\n",
                     argv[0]);
             return 2;
         }
@@ -268,12 +331,17 @@ int main(int argc, char **argv)
             depth = atol(value);
         else if (strcmp(a, "--batch") == 0)
             batch = atol(value);
+        else if (strcmp(a, "--lean") == 0)
+            lean = atol(value);
+        else if (strcmp(a, "--lp") == 0)
+            lp = atol(value);
         else {
             fprintf(stderr, "%s: unknown option %s\n", argv[0], a);
             return 2;
         }
     }
-    if (!path || sequential < 1 || pipelined < 1 || depth < 1 || batch < 1) {
+    if (!path || sequential < 1 || pipelined < 1 || depth < 1 || batch < 1 || lean < 1 || lp < 1 ||
+        lp > lean) {
         fprintf(stderr, "%s: --socket is required; counts are positive\n", argv[0]);
         return 2;
     }
@@ -393,6 +461,71 @@ int main(int argc, char **argv)
     }
     size_t batch_answer_bytes = length;
 
+    /* Lean batches: verdicts alone, with margins, with every field. */
+    static const char *const LEAN_FIELDS[3] = {
+        "[\"verdict\"]", "[\"verdict\",\"margin\"]",
+        "[\"verdict\",\"margin\",\"blocking\",\"states\",\"witness\"]"};
+    double (*lean_wrenches)[3] = malloc((size_t)lean * sizeof *lean_wrenches);
+    seed = 0x853c49e6748fea9bULL;
+    for (long i = 0; i < lean; i++)
+        for (int k = 0; k < 3; k++)
+            lean_wrenches[i][k] = bench_uniform(&seed);
+    size_t lean_size = (size_t)lean * 40 + 512;
+    char *lean_text = malloc(lean_size);
+    char *letters[3][2];
+    double lean_per_s[3];
+    size_t lean_in = 0, lean_out[3];
+    for (int f = 0; f < 3; f++) {
+        size_t n = lean_line(lean_text, lean_size, id, LEAN_FIELDS[f], "",
+                             (const double(*)[3])lean_wrenches, lean);
+        lean_in = n;
+        room_for(&c, (size_t)lean * (f == 0 ? 4 : f == 1 ? 60 : 1600) + (1 << 20));
+        start = now_us();
+        send_all(&c, lean_text, n);
+        answer = read_line(&c, &length);
+        lean_per_s[f] = (double)lean / ((now_us() - start) / 1e6);
+        expect_result(answer, "a lean batch");
+        lean_out[f] = length;
+        letters[f][0] = malloc((size_t)lean + 1);
+        letters[f][1] = malloc((size_t)lean + 1);
+        if (lean_verdicts(answer, length, letters[f][0], letters[f][1]) != lean) {
+            fprintf(stderr, "socket bench: a lean batch (%s) did not answer %ld verdicts\n",
+                    LEAN_FIELDS[f], lean);
+            return 1;
+        }
+    }
+    /* Every verdict alone against the margin path's and the full path's. */
+    long lean_disagree = 0;
+    for (int set = 0; set < 2; set++)
+        for (long i = 0; i < lean; i++)
+            lean_disagree += (letters[0][set][i] != letters[1][set][i]) +
+                             (letters[0][set][i] != letters[2][set][i]);
+    /* The first `lp` wrenches by the lp method: inside or outside, against
+     * auto's (a boundary verdict of auto's is within the band, either). */
+    size_t n = lean_line(lean_text, lean_size, id, LEAN_FIELDS[0], ",\"method\":\"lp\"",
+                         (const double(*)[3])lean_wrenches, lp);
+    room_for(&c, (size_t)lp * 4 + (1 << 20));
+    start = now_us();
+    send_all(&c, lean_text, n);
+    answer = read_line(&c, &length);
+    double lp_per_s = (double)lp / ((now_us() - start) / 1e6);
+    expect_result(answer, "an lp batch");
+    char *lp_letters[2] = {malloc((size_t)lp + 1), malloc((size_t)lp + 1)};
+    if (lean_verdicts(answer, length, lp_letters[0], lp_letters[1]) != lp) {
+        fprintf(stderr, "socket bench: the lp batch did not answer %ld verdicts\n", lp);
+        return 1;
+    }
+    long lp_agree = 0;
+    for (int set = 0; set < 2; set++)
+        for (long i = 0; i < lp; i++)
+            lp_agree += letters[0][set][i] == 'b' || letters[0][set][i] == lp_letters[set][i];
+    for (int f = 0; f < 3; f++)
+        free(letters[f][0]), free(letters[f][1]);
+    free(lp_letters[0]);
+    free(lp_letters[1]);
+    free(lean_text);
+    free(lean_wrenches);
+
     /* Registration: a new disc each time (the radius moves the id). */
     double put_ms[9] = {0}, bytes_per_fixture[9] = {0};
     int serial = 0;
@@ -432,11 +565,17 @@ int main(int argc, char **argv)
                "\"pipelined_p50_us\": %.1f, \"pipelined_p99_us\": %.1f, "
                "\"pipelined_per_s\": %.0f, \"batch\": %ld, \"batch_s\": %.4f, "
                "\"batch_per_s\": %.0f, \"batch_request_bytes\": %zu, \"batch_answer_bytes\": %zu, "
-               "\"put_ms\": {",
+               "\"lean\": %ld, \"lean_verdict_per_s\": %.0f, \"lean_margin_per_s\": %.0f, "
+               "\"lean_all_per_s\": %.0f, \"lean_request_bytes\": %zu, "
+               "\"lean_answer_bytes\": [%zu, %zu, %zu], \"lean_disagree\": %ld, "
+               "\"lean_compared\": %ld, \"lp\": %ld, \"lp_per_s\": %.0f, \"lp_agree\": %ld, "
+               "\"lp_compared\": %ld, \"put_ms\": {",
                sequential, sequential_p50, sequential_p99, sequential_p999, floor_us, answer_bytes,
                pipelined, depth,
                pipelined_p50, pipelined_p99, (double)pipelined / pipelined_seconds, batch,
-               batch_seconds, (double)batch / batch_seconds, used, batch_answer_bytes);
+               batch_seconds, (double)batch / batch_seconds, used, batch_answer_bytes, lean,
+               lean_per_s[0], lean_per_s[1], lean_per_s[2], lean_in, lean_out[0], lean_out[1],
+               lean_out[2], lean_disagree, 4 * lean, lp, lp_per_s, lp_agree, 2 * lp);
         for (int k = 2; k <= 8; k++)
             printf("%s\"%d\": %.3f", k > 2 ? ", " : "", k, put_ms[k]);
         printf("}, \"cache_bytes_per_fixture\": {");
@@ -455,6 +594,16 @@ int main(int argc, char **argv)
         printf("batch of %ld wrenches        %.3f s, %.0f wrenches/s (%zu bytes in, %zu out)   "
                "target >= 1000000\n",
                batch, batch_seconds, (double)batch / batch_seconds, used, batch_answer_bytes);
+        printf("lean batch of %ld, verdicts       %.0f wrenches/s   target >= 2000000\n", lean,
+               lean_per_s[0]);
+        printf("lean batch, verdicts and margins  %.0f wrenches/s   target >= 1000000\n",
+               lean_per_s[1]);
+        printf("lean batch, every field           %.0f wrenches/s   target >= 400000\n",
+               lean_per_s[2]);
+        printf("verdicts alone differing from the margin and full paths: %ld of %ld\n",
+               lean_disagree, 4 * lean);
+        printf("lp batch of %ld, verdicts          %.0f wrenches/s; agrees with auto on %ld of %ld\n",
+               lp, lp_per_s, lp_agree, 2 * lp);
         for (int k = 2; k <= 8; k++)
             printf("fixture.put k = %d           %8.3f ms   %.0f cache bytes per fixture%s\n", k,
                    put_ms[k], bytes_per_fixture[k], k == 8 ? "   target < 100 ms" : "");

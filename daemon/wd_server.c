@@ -63,6 +63,12 @@
 #define ZERO_COPY_BYTES 65536
 /* After SIGTERM, answers in flight get this long before the daemon exits. */
 #define SHUTDOWN_GRACE_SECONDS 30
+/* Most bytes one read of a connection takes (a Unix socket holds a few
+ * hundred KiB). */
+#define READ_BYTES (1 << 20)
+/* A line without its end this long is moved out of the input as it comes,
+ * so that each byte is searched for the end once. */
+#define PARTIAL_BYTES 65536
 
 typedef struct wd_server wd_server;
 typedef struct connection connection;
@@ -95,9 +101,10 @@ struct connection {
     bool discarding;           /* skipping the rest of an over-long line */
     int light_answered;        /* light requests answered in the loop since
                                   the last read (at most WP_LIGHT_BURST) */
-    size_t scanned;            /* the first bytes of the input, known to hold no
-                                  "\n": a long line is searched once, not once
-                                  per read */
+    char *partial;             /* the start of a long line, moved out of the
+                                  input (malloc'd): the input then holds only
+                                  bytes not yet searched for its end */
+    size_t partial_length, partial_capacity;
     bool paused;               /* not reading: too many requests waiting */
     bool input_closed;         /* end of input, or shutting down */
     bool refusing;             /* turned away: one error line, then a lingering
@@ -153,6 +160,7 @@ static void free_connection(connection *c)
     }
     if (c->request_timer)
         event_free(c->request_timer);
+    free(c->partial);
     free(c);
     if (s->stopping && !s->connections)
         event_base_loopexit(s->base, NULL);
@@ -254,7 +262,7 @@ static bool write_response(connection *c, slot *x)
     size_t sent = 0;
     /* Not while more input waits (more requests, or part of one): the
      * answers go out together, in one writev, once the loop is done. */
-    if (!c->refusing && evbuffer_get_length(output) == 0 &&
+    if (!c->refusing && evbuffer_get_length(output) == 0 && c->partial_length == 0 &&
         evbuffer_get_length(bufferevent_get_input(c->bev)) == 0) {
         ssize_t n = send(bufferevent_getfd(c->bev), x->response, length,
                          MSG_DONTWAIT | MSG_NOSIGNAL);
@@ -454,6 +462,34 @@ static void submit(connection *c, char *line, size_t length)
     dispatch(c);
 }
 
+/* Forget the start of a long line. */
+static void drop_partial(connection *c)
+{
+    free(c->partial);
+    c->partial = NULL;
+    c->partial_length = c->partial_capacity = 0;
+}
+
+/* Move `length` bytes of the input to the end of the long line's start,
+ * with room for `spare` more; false when out of memory. */
+static bool move_to_partial(connection *c, struct evbuffer *input, size_t length, size_t spare)
+{
+    size_t need = c->partial_length + length + spare;
+    if (need > c->partial_capacity) {
+        size_t capacity = c->partial_capacity ? c->partial_capacity : PARTIAL_BYTES * 4;
+        while (capacity < need)
+            capacity *= 2;
+        char *grown = realloc(c->partial, capacity);
+        if (!grown)
+            return false;
+        c->partial = grown;
+        c->partial_capacity = capacity;
+    }
+    evbuffer_remove(input, c->partial + c->partial_length, length);
+    c->partial_length += length;
+    return true;
+}
+
 /* A request begun must arrive whole within --request-timeout of its first
  * byte: a client dripping a byte at a time holds no slot for ever. */
 static void watch_partial_request(connection *c, bool line_taken)
@@ -461,7 +497,8 @@ static void watch_partial_request(connection *c, bool line_taken)
     if (!c->bev || !c->request_timer)
         return;
     bool partial = c->discarding ||
-                   (!c->input_closed && evbuffer_get_length(bufferevent_get_input(c->bev)) > 0);
+                   (!c->input_closed && (c->partial_length > 0 ||
+                                         evbuffer_get_length(bufferevent_get_input(c->bev)) > 0));
     if (line_taken || !partial || c->paused)
         event_del(c->request_timer); /* a new request's clock, or none */
     if (partial && !c->paused && !evtimer_pending(c->request_timer, NULL)) {
@@ -485,7 +522,7 @@ static void on_request_timeout(evutil_socket_t fd, short events, void *argument)
              c->server->config->request_timeout);
     struct evbuffer *input = bufferevent_get_input(c->bev);
     evbuffer_drain(input, evbuffer_get_length(input));
-    c->scanned = 0;
+    drop_partial(c);
     c->discarding = false;
     c->input_closed = true;
     bufferevent_disable(c->bev, EV_READ);
@@ -502,23 +539,18 @@ static void process_input(connection *c)
     struct evbuffer *input = bufferevent_get_input(c->bev);
     if (c->refusing) { /* read and dropped: closing now would reset the line sent */
         evbuffer_drain(input, evbuffer_get_length(input));
-        c->scanned = 0;
+        drop_partial(c);
         return;
     }
     size_t max_line = c->server->config->max_line;
     bool line_taken = false;
     while (!c->paused && c->bev) {
-        struct evbuffer_ptr from;
-        bool resume = c->scanned > 0 &&
-                      evbuffer_ptr_set(input, &from, c->scanned, EVBUFFER_PTR_SET) == 0;
-        struct evbuffer_ptr eol = evbuffer_search(input, "\n", 1, resume ? &from : NULL);
-        /* Whatever happens below, a line found is consumed, or the input
-         * up to its end holds no "\n". */
-        c->scanned = eol.pos < 0 ? evbuffer_get_length(input) : 0;
+        /* The input holds no byte searched before: a long line's start is
+         * moved out of it (c->partial) once it is long. */
+        struct evbuffer_ptr eol = evbuffer_search(input, "\n", 1, NULL);
         if (c->discarding) {
             if (eol.pos < 0) {
                 evbuffer_drain(input, evbuffer_get_length(input));
-                c->scanned = 0;
                 break;
             }
             evbuffer_drain(input, (size_t)eol.pos + 1);
@@ -526,32 +558,52 @@ static void process_input(connection *c)
             line_taken = true;
             continue;
         }
-        size_t length = eol.pos < 0 ? evbuffer_get_length(input) : (size_t)eol.pos;
+        size_t available = evbuffer_get_length(input);
+        size_t tail = eol.pos < 0 ? available : (size_t)eol.pos; /* of the input */
+        size_t length = c->partial_length + tail;
         if (length > max_line) {
             char reason[128];
             snprintf(reason, sizeof reason, "the line is longer than %zu bytes (--max-line)",
                      max_line);
+            drop_partial(c);
             answer_now(c, WP_INVALID_REQUEST, reason);
             c->discarding = true;
             continue;
         }
         if (eol.pos < 0) {
-            if (!c->input_closed || length == 0)
+            if (!c->input_closed || length == 0) {
+                if (available >= PARTIAL_BYTES && !move_to_partial(c, input, available, 0)) {
+                    drop_partial(c);
+                    answer_now(c, WP_INTERNAL, "out of memory");
+                    c->discarding = true;
+                    continue;
+                }
                 break;
+            }
             /* The last line, without its "\n": answer it all the same. */
         }
-        char *line = malloc(length + 1);
-        if (!line) {
-            answer_now(c, WP_INTERNAL, "out of memory");
-            evbuffer_drain(input, length + (eol.pos >= 0));
-            c->scanned = 0;
-            continue;
+        char *line;
+        if (c->partial_length > 0) {
+            if (!move_to_partial(c, input, tail, 1)) {
+                drop_partial(c);
+                answer_now(c, WP_INTERNAL, "out of memory");
+                c->discarding = true;
+                continue;
+            }
+            line = c->partial; /* the line's, now */
+            c->partial = NULL;
+            c->partial_length = c->partial_capacity = 0;
+        } else {
+            line = malloc(length + 1);
+            if (!line) {
+                answer_now(c, WP_INTERNAL, "out of memory");
+                evbuffer_drain(input, length + (eol.pos >= 0));
+                continue;
+            }
+            evbuffer_remove(input, line, length);
         }
-        evbuffer_remove(input, line, length);
         if (eol.pos >= 0)
             evbuffer_drain(input, 1);
-        else
-            c->scanned = 0; /* the last line, all of the input */
         line[length] = 0;
         line_taken = true;
         submit(c, line, length);
@@ -695,6 +747,11 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     }
     c->request_timer = s->config->request_timeout > 0 ? evtimer_new(s->base, on_request_timeout, c)
                                                       : NULL;
+    /* A read takes what the socket holds, not libevent's 16 KiB: a long
+     * line then arrives in a few hundred chains rather than thousands, and
+     * the search for its end resumes past the chains it has seen (finding
+     * where to resume walks them from the first). */
+    bufferevent_set_max_single_read(bev, READ_BYTES);
     /* on_write comes when the output is down to half the bound: the next
      * piece is then made while the rest is still being sent. */
     bufferevent_setwatermark(bev, EV_WRITE, s->config->max_output / 2, 0);

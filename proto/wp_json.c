@@ -413,6 +413,12 @@ bool wp_utf8_valid(const char *text, size_t length)
     return true;
 }
 
+/* A byte a number token may hold (JSON's, and what strtod would take). */
+static bool number_char(char c)
+{
+    return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
+}
+
 /* The end of the number token starting at text[i] ('-' or a digit), and
  * what RFC 8259's grammar finds wrong with it (NULL: nothing):
  *   number = [ "-" ] int [ "." 1*DIGIT ] [ ("e" / "E") [ "+" / "-" ] 1*DIGIT ]
@@ -453,7 +459,7 @@ static size_t number_token(const char *text, size_t i, size_t length, const char
             k++;
     }
 #undef DIGIT_AT
-    while (k < length && text[k] && strchr("0123456789+-.eE", text[k]))
+    while (k < length && number_char(text[k]))
         k++;
     return k;
 }
@@ -737,14 +743,78 @@ bool wp_json_member(const char *text, size_t length, size_t object, const char *
 
 /* A number token as cJSON reads it (its characters, then strtod); false
  * unless the whole token is one finite number. */
+/* Exact powers of ten: every one up to 10^22 is a double. */
+static const double POWERS_OF_TEN[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+/* A JSON number at text[*i] (the scan has checked its form), as strtod
+ * reads it.  Most numbers written by programs have at most 15 significant
+ * digits and a small exponent: their digits m are then an exact double, as
+ * is 10^|e| for |e| <= 22, and m * 10^e or m / 10^-e is one correctly
+ * rounded operation -- the double nearest the decimal, which is what strtod
+ * returns (Clinger's fast path).  Anything else is left to strtod. */
 static bool read_number(const char *text, size_t length, size_t *i, double *out)
 {
+    size_t k = *i;
+    bool negative = k < length && text[k] == '-';
+    k += negative;
+    uint64_t digits = 0;
+    int significant = 0, exponent = 0;
+    bool fast = true;
+    size_t start_digits = k;
+    for (; k < length && text[k] >= '0' && text[k] <= '9'; k++) {
+        if (significant || text[k] != '0')
+            significant++;
+        if (significant <= 19)
+            digits = digits * 10 + (uint64_t)(text[k] - '0');
+        else
+            exponent++;
+    }
+    if (k == start_digits)
+        return false;
+    if (k < length && text[k] == '.') {
+        size_t fraction = ++k;
+        for (; k < length && text[k] >= '0' && text[k] <= '9'; k++) {
+            if (significant || text[k] != '0')
+                significant++;
+            if (significant <= 19) {
+                digits = digits * 10 + (uint64_t)(text[k] - '0');
+                exponent--;
+            }
+        }
+        if (k == fraction)
+            return false;
+    }
+    if (k < length && (text[k] == 'e' || text[k] == 'E')) {
+        k++;
+        bool minus = k < length && text[k] == '-';
+        if (k < length && (text[k] == '-' || text[k] == '+'))
+            k++;
+        size_t start = k;
+        int value = 0;
+        for (; k < length && text[k] >= '0' && text[k] <= '9'; k++) {
+            if (value < 100000)
+                value = value * 10 + (text[k] - '0');
+            else
+                fast = false;
+        }
+        if (k == start)
+            return false;
+        exponent += minus ? -value : value;
+    }
+    if (k < length && number_char(text[k]))
+        return false; /* more of a token than a number: not ours */
+    if (fast && significant <= 15 && exponent >= -22 && exponent <= 22) {
+        double value = (double)digits;
+        value = exponent < 0 ? value / POWERS_OF_TEN[-exponent] : value * POWERS_OF_TEN[exponent];
+        *out = negative ? -value : value;
+        *i = k;
+        return true;
+    }
     char token[64];
-    size_t n = 0;
-    while (*i + n < length && n < sizeof token - 1 && strchr("+-.0123456789eE", text[*i + n]) &&
-           text[*i + n])
-        n++;
-    if (n == 0 || n == sizeof token - 1)
+    size_t n = k - *i;
+    if (n >= sizeof token)
         return false;
     memcpy(token, text + *i, n);
     token[n] = 0;
@@ -752,7 +822,7 @@ static bool read_number(const char *text, size_t length, size_t *i, double *out)
     *out = strtod(token, &after);
     if (after != token + n || !isfinite(*out))
         return false;
-    *i += n;
+    *i = k;
     return true;
 }
 

@@ -4,7 +4,9 @@
 #include "wp_design.h"
 #include "wp_rpc.h"
 
+#include <assert.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -435,13 +437,45 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
 
 /* wrench.classify, written in pieces (wp_stream, wp_rpc.h): the wrenches
  * are read once, up front, so that a bad one is refused before any answer
- * is written; then each step answers the next few. */
+ * is written; then the answer is made in chunks of consecutive wrenches.
+ *
+ * A chunk's text is made by whichever thread claims it -- the step, or a
+ * helper on another worker (wp_streamer.work) -- into its own buffer, and
+ * the steps write the chunks into the answer in order as they are done.
+ * Chunk i lives in chunks[i % CLASSIFY_WINDOW]: at most that many are made
+ * ahead of the one being written, which bounds what waits in memory.  How
+ * many wrenches a chunk has depends on the request alone (the fields and
+ * the method), never on the threads, so the same request is answered the
+ * same bytes however many workers share it. */
+#define CLASSIFY_WINDOW 16
+/* A step ends after this much text (or its budget): a piece is where its
+ * helpers are forked and joined, and a few chunks a piece keep that cost
+ * small.  Still a sixteenth of the default --max-output. */
+#define CLASSIFY_PIECE_BYTES (4 * WP_PIECE_BYTES)
+/* Verdicts by the map (wr_verdict_map) from this many on: building it costs
+ * as much as about that many verdicts measured. */
+#define CLASSIFY_MAP_VERDICTS 100000
+
+typedef struct classify_chunk {
+    wp_buffer text;
+    bool done;
+    wr_status status;     /* not WR_OK: it failed at wrench `failed` */
+    size_t failed;
+} classify_chunk;
+
 typedef struct classify_state {
     classify_request request;
-    bool opened;        /* "[" written */
-    size_t next;        /* the next wrench to answer */
-    /* With fields, by column: the set and the column being written. */
-    int set, column;
+    wp_fixture_use *use;        /* held by the envelope until the stream's free */
+    pthread_mutex_t lock;       /* claims and completions; the text is the claimer's */
+    pthread_cond_t made;        /* a chunk is done */
+    size_t chunk_wrenches;      /* wrenches per chunk (the last may have fewer) */
+    size_t chunk_count;
+    size_t claimed;             /* chunks [0, claimed) are claimed, in order */
+    size_t written;             /* chunks [0, written) are in the answer */
+    classify_chunk chunks[CLASSIFY_WINDOW];
+    wr_verdict_map *map;        /* a long batch's verdicts, or NULL */
+    bool failing;               /* a chunk failed: nothing more is claimed */
+    bool opened;                /* the answer's opening text is written */
 } classify_state;
 
 /* push.regions, written an edge at a time (a finger with friction samples
@@ -482,7 +516,13 @@ static void classify_free(wp_stream *stream)
 {
     if (!stream)
         return;
-    free(stream->u.classify.request.wrenches);
+    classify_state *state = &stream->u.classify;
+    for (int i = 0; i < CLASSIFY_WINDOW; i++)
+        free(state->chunks[i].text.data);
+    wr_verdict_map_free(state->map);
+    free(state->request.wrenches);
+    pthread_mutex_destroy(&state->lock);
+    pthread_cond_destroy(&state->made);
     free(stream);
 }
 
@@ -499,13 +539,30 @@ static wp_stream *stream_with_fixture(wp_call *call, wp_fixture_use **use)
     return stream;
 }
 
+/* Wrenches per chunk: about half a millisecond of work and some tens of
+ * kilobytes of text, whatever is asked. */
+static size_t chunk_wrenches(const classify_request *r)
+{
+    if (r->lp)
+        return 16;
+    if (r->fields == (1u << FIELD_VERDICT))
+        return 16384;
+    if (!(r->fields & ~((1u << FIELD_VERDICT) | (1u << FIELD_MARGIN))) && r->fields)
+        return 1024;
+    return 256;
+}
+
 static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
 {
     wp_fixture_use *use;
     wp_stream *stream = stream_with_fixture(call, &use);
     if (!stream)
         return NULL;
-    if (!read_classify(call->limits, call->params, use->fixture, prepared, &stream->u.classify.request,
+    classify_state *state = &stream->u.classify;
+    pthread_mutex_init(&state->lock, NULL);
+    pthread_cond_init(&state->made, NULL);
+    state->use = use;
+    if (!read_classify(call->limits, call->params, use->fixture, prepared, &state->request,
                        call->error)) {
         classify_free(stream);
         return NULL;
@@ -513,154 +570,165 @@ static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
     /* Read: the tree of a hundred thousand wrenches (tens of megabytes of
      * nodes) need not live as long as the answer does. */
     cJSON_DeleteItemFromObjectCaseSensitive(call->params, "wrenches");
+    const classify_request *r = &state->request;
+    state->chunk_wrenches = chunk_wrenches(r);
+    state->chunk_count = (r->wrench_count + state->chunk_wrenches - 1) / state->chunk_wrenches;
+    /* Verdicts without margins, many of them: by the map.  Built here,
+     * before any helper can be reading it. */
+    size_t verdicts = r->fields == (1u << FIELD_VERDICT) && !r->lp
+                          ? r->wrench_count * (size_t)r->set_count
+                          : 0;
+    if (verdicts >= CLASSIFY_MAP_VERDICTS) {
+        wr_status status = wr_verdict_map_new(use->analysis, r->tolerance, &state->map);
+        if (status == WR_NO_MEMORY) {
+            wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+            classify_free(stream);
+            return NULL;
+        }
+        /* Otherwise (it cannot be made for this tolerance) each verdict is
+         * measured. */
+    }
     return stream;
 }
 
-/* The lean answer, by column: {"count": N, "sets": {"goal": {"verdicts":
- * "iob...", "margins": [...], ...}, ...}} (docs/PROTOCOL.md).  A column is
- * written a wrench at a time, and each computes what it needs: the
- * verdicts alone need no margin (wr_classify_verdict), the others the
- * whole answer. */
-static wp_step classify_columns(classify_state *state, const wr_analysis *a, wr_lp_set *goal,
-                                wr_lp_set *strong, const wp_host *host, wp_error *error,
-                                wp_buffer *out, unsigned long budget, unsigned long *used,
-                                unsigned long cost)
+/* One wrench's answer for one set, as much of it as the chunk writes. */
+static wr_status answer_one(const classify_state *state, const wr_analysis *a, wr_lp_set *goal,
+                            wr_lp_set *strong, size_t i, wr_set set, bool verdict_only,
+                            bool witness, wr_answer *answer)
 {
     const classify_request *r = &state->request;
-    size_t start = out->length;
-    if (!state->opened) {
-        state->opened = true;
-        state->column = -1;
-        WP_BUFFER_LITERAL(out, "{\"count\":");
-        char count[24];
-        snprintf(count, sizeof count, "%zu", r->wrench_count);
-        wp_buffer_puts(out, count);
-        WP_BUFFER_LITERAL(out, ",\"sets\":{");
+    if (r->lp)
+        return wr_classify_lp(a, goal, strong, r->wrenches[i], set, answer);
+    if (verdict_only) {
+        answer->has_margin = false;
+        return state->map ? wr_verdict_map_classify(state->map, r->wrenches[i], set, &answer->verdict)
+                          : wr_classify_verdict(a, r->wrenches[i], set, r->tolerance,
+                                                &answer->verdict);
     }
-    while (state->set < r->set_count && !out->failed) {
-        if (state->column < 0 || state->next >= r->wrench_count) {
-            /* Close the column written, open the next one asked. */
-            if (state->column >= 0)
-                wp_buffer_puts(out, state->column == FIELD_VERDICT ? "\"" : "]");
-            int next = state->column + 1;
-            while (next < FIELD_COUNT && !(r->fields & (1u << next)))
-                next++;
-            if (next == FIELD_COUNT) {
-                WP_BUFFER_LITERAL(out, "}");
-                state->set++;
-                state->column = -1;
-                state->next = 0;
-                continue;
-            }
-            if (state->column < 0) {
-                wp_buffer_puts(out, state->set ? ",\"" : "\"");
-                wp_buffer_puts(out, SET_NAMES[r->sets[state->set]]);
-                WP_BUFFER_LITERAL(out, "\":{\"");
-            } else {
-                WP_BUFFER_LITERAL(out, ",\"");
-            }
-            wp_buffer_puts(out, COLUMN_NAMES[next]);
-            wp_buffer_puts(out, next == FIELD_VERDICT ? "\":\"" : "\":[");
-            state->column = next;
-            state->next = 0;
-            continue;
-        }
-        if (out->length > start + 1 &&
-            (*used >= budget || out->length - start >= WP_PIECE_BYTES ||
-             wr_stop_requested(host->stop)))
-            return WP_STEP_MORE;
-        size_t i = state->next++;
-        wr_set set = r->sets[state->set];
-        wr_answer answer;
-        wr_status status;
-        if (state->column == FIELD_VERDICT && !r->lp) {
-            *used += 1 + cost / 8; /* facet bounds, mostly */
-            status = wr_classify_verdict(a, r->wrenches[i], set, r->tolerance, &answer.verdict);
-        } else {
-            *used += cost;
-            status = r->lp ? wr_classify_lp(a, goal, strong, r->wrenches[i], set, &answer)
-                           : wr_classify(a, r->wrenches[i], set, r->tolerance, &answer);
-        }
-        if (status != WR_OK) {
-            wp_error_status(error, status, "params.wrenches",
-                            "GLPK failed on wrench %zu; nothing was answered", i);
-            return WP_STEP_FAILED;
-        }
-        static const char LETTERS[] = {'i', 'b', 'o'};
-        if (state->column == FIELD_VERDICT) {
-            wp_buffer_append(out, &LETTERS[answer.verdict], 1);
-            continue;
-        }
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
-        if (state->column == FIELD_MARGIN) {
-            if (answer.has_margin)
-                wp_buffer_number(out, answer.margin);
-            else
-                WP_BUFFER_LITERAL(out, "null");
-        } else if (state->column == FIELD_BLOCKING) {
-            write_blocking(out, a, &answer);
-        } else if (state->column == FIELD_STATES) {
-            write_states(out, a, &answer);
-        } else {
-            write_witness(out, a, &answer);
-        }
-    }
-    WP_BUFFER_LITERAL(out, "}}");
-    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+    return witness ? wr_classify(a, r->wrenches[i], set, r->tolerance, answer)
+                   : wr_classify_margin(a, r->wrenches[i], set, r->tolerance, answer);
 }
 
-static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
-                             unsigned long budget, unsigned long *used)
+/* Wrenches between polls of the stop (a call through a pointer each). */
+#define STOP_POLL 64
+
+/* One set's columns of a lean chunk: {"verdicts": "...", "margins": [...],
+ * ...}, each column a pass over the chunk's answers, computed once. */
+static wr_status write_set_columns(const classify_state *state, const wr_analysis *a,
+                                   wr_lp_set *goal, wr_lp_set *strong, const wr_stop *stop,
+                                   wr_set set, size_t from, size_t to, wr_answer *answers,
+                                   wp_buffer *out, size_t *failed)
 {
-    const wp_host *host = call->host;
-    wp_error *error = call->error;
-    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
-    if (!use)
-        return WP_STEP_FAILED;
-    classify_request *r = &stream->u.classify.request;
-    const wr_analysis *a = use->analysis;
-    wr_lp_set *goal = NULL, *strong = NULL;
-    if (r->lp && !host->lp_sets(host->self, use, &goal, &strong, error))
-        return WP_STEP_FAILED;
-    unsigned long cost = 1;
-    for (int s = 0; s < r->set_count; s++)
-        cost += (unsigned long)(r->sets[s] == WR_SET_BOTH
-                                    ? wr_analysis_cone_count(a, WR_SET_GOAL) +
-                                          wr_analysis_cone_count(a, WR_SET_STRONG)
-                                    : wr_analysis_cone_count(a, r->sets[s]));
-    if (r->lp)
-        cost *= 64; /* an LP per cone, not a few dot products */
-    classify_state *state = &stream->u.classify;
-    size_t start = out->length;
-    if (r->fields)
-        return classify_columns(state, a, goal, strong, host, error, out, budget, used, cost);
-    if (!state->opened) {
-        state->opened = true;
-        wp_buffer_reserve(out, out->length + 64 +
-                                   (r->wrench_count < 1024 ? r->wrench_count : 1024) *
-                                       (size_t)r->set_count * 320);
-        WP_BUFFER_LITERAL(out, "{\"results\":[");
+    const classify_request *r = &state->request;
+    bool verdict_only = r->fields == (1u << FIELD_VERDICT) && !r->lp;
+    bool witness = r->fields & (1u << FIELD_WITNESS);
+    for (size_t i = from; i < to; i++) {
+        if ((i - from) % STOP_POLL == 0 && wr_stop_requested(stop)) {
+            *failed = i;
+            return WR_STOPPED;
+        }
+        wr_status status =
+            answer_one(state, a, goal, strong, i, set, verdict_only, witness, &answers[i - from]);
+        if (status != WR_OK) {
+            *failed = i;
+            return status;
+        }
     }
-    while (state->next < r->wrench_count && !out->failed) {
-        /* At least one wrench a step, whatever the piece spent before it:
-         * every step makes progress. */
-        if (out->length > start + 1 &&
-            (*used >= budget || out->length - start >= WP_PIECE_BYTES ||
-             wr_stop_requested(host->stop)))
-            return WP_STEP_MORE;
-        size_t i = state->next++;
-        *used += cost;
-        wp_buffer_puts(out, i ? ",{" : "{");
+    static const char LETTERS[] = {'i', 'b', 'o'};
+    bool first = true;
+    for (int column = 0; column < FIELD_COUNT; column++) {
+        if (!(r->fields & (1u << column)))
+            continue;
+        wp_buffer_puts(out, first ? "\"" : ",\"");
+        first = false;
+        wp_buffer_puts(out, COLUMN_NAMES[column]);
+        if (column == FIELD_VERDICT) {
+            WP_BUFFER_LITERAL(out, "\":\"");
+            size_t at = out->length;
+            wp_buffer_reserve(out, at + (to - from) + 64);
+            if (out->failed)
+                return WR_OK; /* the buffer says so */
+            for (size_t i = from; i < to; i++)
+                out->data[at + (i - from)] = LETTERS[answers[i - from].verdict];
+            out->length = at + (to - from);
+            out->data[out->length] = 0;
+            WP_BUFFER_LITERAL(out, "\"");
+            continue;
+        }
+        WP_BUFFER_LITERAL(out, "\":[");
+        for (size_t i = from; i < to; i++) {
+            const wr_answer *answer = &answers[i - from];
+            if (i > from)
+                WP_BUFFER_LITERAL(out, ",");
+            if (column == FIELD_MARGIN) {
+                if (answer->has_margin)
+                    wp_buffer_number(out, answer->margin);
+                else
+                    WP_BUFFER_LITERAL(out, "null");
+            } else if (column == FIELD_BLOCKING) {
+                write_blocking(out, a, answer);
+            } else if (column == FIELD_STATES) {
+                write_states(out, a, answer);
+            } else {
+                write_witness(out, a, answer);
+            }
+        }
+        WP_BUFFER_LITERAL(out, "]");
+    }
+    return WR_OK;
+}
+
+/* Chunk `index`'s text into `out` (empty), with the thread's own LP sets:
+ * rows joined by commas, or a lean piece {"count": n, "goal": {...}, ...};
+ * either preceded by a comma but for the first.  Not WR_OK: it failed at
+ * wrench *failed (WR_STOPPED: the client is gone). */
+static wr_status make_chunk(const classify_state *state, size_t index, const wp_host *host,
+                            wp_error *error, wp_buffer *out, size_t *failed)
+{
+    const classify_request *r = &state->request;
+    const wr_analysis *a = state->use->analysis;
+    wr_lp_set *goal = NULL, *strong = NULL;
+    *failed = 0;
+    if (r->lp && !host->lp_sets(host->self, state->use, &goal, &strong, error))
+        return WR_NO_MEMORY;
+    size_t from = index * state->chunk_wrenches;
+    size_t to = from + state->chunk_wrenches < r->wrench_count ? from + state->chunk_wrenches
+                                                               : r->wrench_count;
+    if (index)
+        WP_BUFFER_LITERAL(out, ",");
+    if (r->fields) {
+        wr_answer *answers = malloc((to - from) * sizeof *answers);
+        if (!answers)
+            return WR_NO_MEMORY;
+        char count[32];
+        snprintf(count, sizeof count, "{\"count\":%zu", to - from);
+        wp_buffer_puts(out, count);
+        wr_status status = WR_OK;
+        for (int s = 0; s < r->set_count && status == WR_OK; s++) {
+            WP_BUFFER_LITERAL(out, ",\"");
+            wp_buffer_puts(out, SET_NAMES[r->sets[s]]);
+            WP_BUFFER_LITERAL(out, "\":{");
+            status = write_set_columns(state, a, goal, strong, host->stop, r->sets[s], from, to,
+                                       answers, out, failed);
+            WP_BUFFER_LITERAL(out, "}");
+        }
+        WP_BUFFER_LITERAL(out, "}");
+        free(answers);
+        return status;
+    }
+    for (size_t i = from; i < to; i++) {
+        if ((i - from) % STOP_POLL == 0 && wr_stop_requested(host->stop)) {
+            *failed = i;
+            return WR_STOPPED;
+        }
+        wp_buffer_puts(out, i > from ? ",{" : "{");
         for (int s = 0; s < r->set_count; s++) {
             wr_answer answer;
-            wr_status status =
-                r->lp ? wr_classify_lp(a, goal, strong, r->wrenches[i], r->sets[s], &answer)
-                      : wr_classify(a, r->wrenches[i], r->sets[s], r->tolerance, &answer);
+            wr_status status = answer_one(state, a, goal, strong, i, r->sets[s], false, true,
+                                          &answer);
             if (status != WR_OK) {
-                wp_error_status(error, status, "params.wrenches",
-                                "GLPK failed on wrench %zu; nothing was answered", i);
-                return WP_STEP_FAILED;
+                *failed = i;
+                return status;
             }
             wp_buffer_puts(out, s ? ",\"" : "\"");
             wp_buffer_puts(out, SET_NAMES[r->sets[s]]);
@@ -669,18 +737,171 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
         }
         WP_BUFFER_LITERAL(out, "}");
     }
-    WP_BUFFER_LITERAL(out, "]}");
-    return WP_STEP_DONE;
+    return WR_OK;
+}
+
+/* Claim the next chunk and make it; false when none can be claimed now
+ * (all are, the window is full, or one failed).  Any thread.  A step
+ * passes its answer as `out`: the chunk next to be written is then made
+ * straight into it (nothing to copy, for a short batch nothing else).
+ * `error` only for an LP set that cannot be made. */
+static bool claim_and_make(classify_state *state, const wp_host *host, wp_error *error,
+                           wp_buffer *out)
+{
+    pthread_mutex_lock(&state->lock);
+    bool claimable = !state->failing && state->claimed < state->chunk_count &&
+                     state->claimed < state->written + CLASSIFY_WINDOW;
+    size_t index = state->claimed;
+    if (claimable)
+        state->claimed++;
+    bool direct = claimable && out && index == state->written;
+    pthread_mutex_unlock(&state->lock);
+    if (!claimable)
+        return false;
+    /* The slot is this thread's alone until done: the writer reads it only
+     * then, and it was emptied when its last chunk was written. */
+    classify_chunk *chunk = &state->chunks[index % CLASSIFY_WINDOW];
+    assert(!chunk->done && chunk->text.length == 0);
+    size_t failed;
+    wr_status status = make_chunk(state, index, host, error, direct ? out : &chunk->text, &failed);
+    if (status == WR_OK && !direct && chunk->text.failed)
+        status = WR_NO_MEMORY;
+    pthread_mutex_lock(&state->lock);
+    chunk->status = status;
+    chunk->failed = failed;
+    if (status != WR_OK)
+        state->failing = true; /* no more claims: the answer ends at this chunk */
+    if (direct && status == WR_OK)
+        state->written++; /* in the answer already */
+    else
+        chunk->done = true;
+    pthread_cond_broadcast(&state->made);
+    pthread_mutex_unlock(&state->lock);
+    return true;
+}
+
+static bool classify_parallel(wp_stream *stream)
+{
+    classify_state *state = &stream->u.classify;
+    pthread_mutex_lock(&state->lock);
+    bool more = !state->failing && state->claimed < state->chunk_count;
+    pthread_mutex_unlock(&state->lock);
+    return more;
+}
+
+static bool classify_work(wp_stream *stream, const wp_host *host)
+{
+    wp_error ignored = {0}; /* a helper's failure is the chunk's status, said by a step */
+    return claim_and_make(&stream->u.classify, host, &ignored, NULL);
+}
+
+/* Write the chunks that are done, in order, into the answer.  A failed
+ * chunk ends it: false with the error set. */
+static bool write_done(classify_state *state, wp_buffer *out, wp_error *error)
+{
+    pthread_mutex_lock(&state->lock);
+    for (;;) {
+        classify_chunk *chunk = &state->chunks[state->written % CLASSIFY_WINDOW];
+        if (state->written == state->claimed || !chunk->done)
+            break;
+        pthread_mutex_unlock(&state->lock);
+        if (chunk->status != WR_OK) {
+            if (chunk->status == WR_LP_FAILED)
+                wp_error_status(error, chunk->status, "params.wrenches",
+                                "GLPK failed on wrench %zu; nothing was answered", chunk->failed);
+            else
+                wp_error_status(error, chunk->status, "params.wrenches", "%s",
+                                wr_strerror(chunk->status));
+            return false;
+        }
+        wp_buffer_append(out, chunk->text.data, chunk->text.length);
+        chunk->text.length = 0;
+        /* A long batch's slots keep their capacity; a short one's go. */
+        if (state->chunk_count <= CLASSIFY_WINDOW) {
+            free(chunk->text.data);
+            memset(&chunk->text, 0, sizeof chunk->text);
+        }
+        pthread_mutex_lock(&state->lock);
+        chunk->done = false;
+        state->written++;
+    }
+    pthread_mutex_unlock(&state->lock);
+    return true;
+}
+
+static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
+                             unsigned long budget, unsigned long *used)
+{
+    classify_state *state = &stream->u.classify;
+    const classify_request *r = &state->request;
+    const wr_analysis *a = state->use->analysis;
+    /* Helpers may be making chunks until this step returns: it ends the
+     * answer only if none could be when it began (wp_streamer.parallel). */
+    bool shared = classify_parallel(stream);
+    size_t start = out->length;
+    if (!state->opened) {
+        state->opened = true;
+        if (r->fields) {
+            char count[48];
+            snprintf(count, sizeof count, "{\"count\":%zu,\"pieces\":[", r->wrench_count);
+            wp_buffer_puts(out, count);
+        } else {
+            WP_BUFFER_LITERAL(out, "{\"results\":[");
+        }
+    }
+    /* Work units per chunk, for the budget: a wrench against a cone is one,
+     * a verdict by the map about one, an LP sixty-four. */
+    unsigned long cones = 0;
+    for (int s = 0; s < r->set_count; s++)
+        cones += (unsigned long)(r->sets[s] == WR_SET_BOTH
+                                     ? wr_analysis_cone_count(a, WR_SET_GOAL) +
+                                           wr_analysis_cone_count(a, WR_SET_STRONG)
+                                     : wr_analysis_cone_count(a, r->sets[s]));
+    unsigned long per_wrench = state->map ? (unsigned long)r->set_count
+                               : r->lp    ? 64 * (cones + 1)
+                                          : cones + 1;
+    unsigned long chunk_cost = per_wrench * state->chunk_wrenches;
+    for (;;) {
+        if (!write_done(state, out, call->error))
+            return shared ? WP_STEP_MORE : WP_STEP_FAILED;
+        if (out->failed)
+            return shared ? WP_STEP_MORE : WP_STEP_FAILED;
+        if (state->written == state->chunk_count) {
+            if (shared)
+                return WP_STEP_MORE; /* the next step, alone, ends it */
+            WP_BUFFER_LITERAL(out, "]}");
+            return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+        }
+        if (out->length > start &&
+            (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES ||
+             wr_stop_requested(call->host->stop)))
+            return WP_STEP_MORE;
+        if (claim_and_make(state, call->host, call->error, out)) {
+            *used += chunk_cost;
+            continue;
+        }
+        /* Nothing to claim: the next chunk to write is a helper's, being
+         * made; wait for it (helpers never wait for a step). */
+        pthread_mutex_lock(&state->lock);
+        while (state->written < state->claimed &&
+               !state->chunks[state->written % CLASSIFY_WINDOW].done)
+            pthread_cond_wait(&state->made, &state->lock);
+        pthread_mutex_unlock(&state->lock);
+    }
 }
 
 static size_t classify_bytes(const wp_stream *stream)
 {
-    const classify_request *r = &stream->u.classify.request;
-    return sizeof *stream + r->wrench_count * sizeof *r->wrenches;
+    const classify_state *state = &stream->u.classify;
+    size_t bytes = sizeof *stream + state->request.wrench_count * sizeof *state->request.wrenches;
+    for (int i = 0; i < CLASSIFY_WINDOW; i++)
+        bytes += state->chunks[i].text.capacity;
+    return bytes + (state->map ? wr_verdict_map_bytes(state->map) : 0);
 }
 
-static const wp_streamer CLASSIFY_STREAM = {classify_begin, classify_step, classify_free,
-                                            classify_bytes, false, NULL, NULL};
+static const wp_streamer CLASSIFY_STREAM = {classify_begin,   classify_step, classify_free,
+                                            classify_bytes,   false,         classify_parallel,
+                                            classify_work};
 
 /* Light enough for an event loop: the explicit cones (no GLPK), and few
  * wrenches against few cones. */

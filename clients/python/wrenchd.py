@@ -463,6 +463,47 @@ def _classify_result(result: Any) -> List[Dict[str, Verdict]]:
     return out
 
 
+_COLUMN_NAMES = ("verdicts", "margins", "blocking", "states", "witness")
+
+
+def _columns_result(result: Any) -> Dict[str, Dict[str, Any]]:
+    """A lean wrench.classify answer's pieces joined: {set: {column: all
+    of it}}, "verdicts" a string of i/b/o, the others lists."""
+    pieces = result.get("pieces") if isinstance(result, dict) else None
+    count = result.get("count") if isinstance(result, dict) else None
+    if not isinstance(pieces, list) or not isinstance(count, int):
+        raise WrenchdProtocolError("wrench.classify: no count and pieces in %r" % (result,))
+    out: Dict[str, Dict[str, Any]] = {}
+    parts: Dict[str, Dict[str, list]] = {}
+    total = 0
+    for piece in pieces:
+        if not isinstance(piece, dict) or not isinstance(piece.get("count"), int):
+            raise WrenchdProtocolError("wrench.classify: a piece without a count: %r" % (piece,))
+        total += piece["count"]
+        for name, columns in piece.items():
+            if name == "count":
+                continue
+            if not isinstance(columns, dict):
+                raise WrenchdProtocolError("wrench.classify: set %s of a piece is %r"
+                                           % (name, columns))
+            for column, values in columns.items():
+                if column not in _COLUMN_NAMES or len(values) != piece["count"]:
+                    raise WrenchdProtocolError("wrench.classify: column %s of a piece is %r"
+                                               % (column, values))
+                parts.setdefault(name, {}).setdefault(column, []).append(values)
+    if total != count:
+        raise WrenchdProtocolError("wrench.classify: pieces of %d wrenches for %d"
+                                   % (total, count))
+    for name, columns in parts.items():
+        out[name] = {}
+        for column, lists in columns.items():
+            if column == "verdicts":
+                out[name][column] = "".join(lists)
+            else:
+                out[name][column] = [v for values in lists for v in values]
+    return out
+
+
 def _plan_result(result: Any) -> Plan:
     plan = _build(Plan, result, "plan.get")
     plan.states = [_build(PlanState, s, "plan.get state") for s in plan.states]
@@ -704,6 +745,23 @@ class _Methods:
         if tolerance is not None:
             params["tolerance"] = tolerance
         return self._invoke("wrench.classify", params, _classify_result, True, timeout)
+
+    def classify_columns(self, fixture: Any, wrenches: Iterable[Any],
+                         fields: Sequence[str] = ("verdict",),
+                         sets: Union[str, Sequence[str]] = ("goal", "strong"),
+                         method: str = "auto", tolerance: Optional[float] = None, *,
+                         timeout: Any = _DEFAULT):
+        """wrench.classify with "fields" (a lean answer, computed only as far
+        as asked): {set: {column: values}}, the pieces joined; "verdicts"
+        is a string with one letter per wrench (i inside, b boundary, o
+        outside), "margins", "blocking", "states" and "witness" are lists
+        as the full answer has them."""
+        params = {"fixture": _fixture_ref(fixture), "wrenches": [_wrench(w) for w in wrenches],
+                  "sets": [sets] if isinstance(sets, str) else list(sets), "method": method,
+                  "fields": list(fields)}
+        if tolerance is not None:
+            params["tolerance"] = tolerance
+        return self._invoke("wrench.classify", params, _columns_result, True, timeout)
 
     def cone(self, fixture: Any, constraints: str, *, timeout: Any = _DEFAULT):
         """cone.get: the explicit cone G_X of a constraint string ("smu")."""

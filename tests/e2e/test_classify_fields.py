@@ -9,6 +9,7 @@ import json
 import math
 import os
 import random
+import sys
 
 import pytest
 
@@ -37,12 +38,31 @@ def wrenches(seed, count):
     return out
 
 
+def joined(lean, sets, fields):
+    """The lean answer's pieces, checked for their shape, joined into one
+    set of columns per set: {"goal": {"verdicts": "...", ...}, ...}."""
+    assert list(lean) == ["count", "pieces"]
+    names = [COLUMNS[f] for f in FIELDS if f in fields]
+    out = {name: {c: ("" if c == "verdicts" else []) for c in names} for name in sets}
+    total = 0
+    for piece in lean["pieces"]:
+        assert list(piece) == ["count"] + sets
+        assert piece["count"] >= 1
+        total += piece["count"]
+        for name in sets:
+            assert list(piece[name]) == names
+            for c in names:
+                assert len(piece[name][c]) == piece["count"], (name, c)
+                out[name][c] += piece[name][c]
+    assert total == lean["count"]
+    return out
+
+
 def check_columns(rows, lean, sets, fields):
     assert lean["count"] == len(rows)
-    assert list(lean["sets"]) == sets
+    columns_of = joined(lean, sets, fields)
     for name in sets:
-        columns = lean["sets"][name]
-        assert list(columns) == [COLUMNS[f] for f in FIELDS if f in fields]
+        columns = columns_of[name]
         for field in fields:
             column = columns[COLUMNS[field]]
             assert len(column) == len(rows)
@@ -80,7 +100,8 @@ def test_lp_columns_equal_lp_rows(client):
     lean = client.result("wrench.classify", {"fixture": fixture, "wrenches": ws, "method": "lp",
                                              "fields": ["verdict", "margin", "blocking"]})
     check_columns(rows, lean, ["goal", "strong"], ["verdict", "margin", "blocking"])
-    assert all(m is None for m in lean["sets"]["goal"]["margins"])
+    margins = joined(lean, ["goal", "strong"], ["verdict", "margin", "blocking"])["goal"]["margins"]
+    assert len(margins) == len(ws) and all(m is None for m in margins)
 
 
 def test_verdicts_alone_agree_with_the_full_path(client):
@@ -109,8 +130,9 @@ def test_verdicts_alone_agree_with_the_full_path(client):
                 params["tolerance"] = tolerance
             full = client.result("wrench.classify", params)["results"]
             lean = client.result("wrench.classify", dict(params, fields=["verdict"]))
+            columns = joined(lean, ["goal", "strong", "both"], ["verdict"])
             for s in ("goal", "strong", "both"):
-                letters = lean["sets"][s]["verdicts"]
+                letters = columns[s]["verdicts"]
                 assert letters == "".join(LETTER[r[s]["verdict"]] for r in full), (name, s)
                 compared += len(letters)
     FIGURES["classify fields: verdicts alone compared with the full path"] = compared
@@ -136,7 +158,13 @@ def test_in_a_batch(client):
                          "fields": ["verdict"]}} for i in range(3)]
     client.send(batch)
     answers = json.loads(client.read_line(30))
-    assert [a["result"]["sets"]["goal"]["verdicts"] for a in answers] == ["io"] * 3
+    rows = client.result("wrench.classify", {"fixture": fixture,
+                                             "wrenches": [[-1, -1, 0], [1, 0, 0]]})["results"]
+    strong = "".join(LETTER[r["strong"]["verdict"]] for r in rows)
+    # The goal letters by the closed form (docs/MODEL.md section 7.1).
+    assert [a["result"] for a in answers] == [
+        {"count": 2, "pieces": [{"count": 2, "goal": {"verdicts": "io"},
+                                 "strong": {"verdicts": strong}}]}] * 3
 
 
 @pytest.mark.parametrize("fields,field", [
@@ -150,3 +178,79 @@ def test_refusals(client, fields, field):
     error = client.error("wrench.classify", {"fixture": example("disc-corner"),
                                              "wrenches": [[-1, -1, 0]], "fields": fields})
     assert error["code"] == -32602 and error["data"]["field"] == field, error
+
+
+def cell_edge_wrenches(put, mass, rng, count):
+    """Wrenches whose scaled direction (force, torque / rho) lies on an edge
+    of the verdict map's cells (128 to a cube face's side), or a hair off."""
+    rho = math.sqrt(put["inertia"] / mass)
+    out = []
+    for _ in range(count):
+        axis = rng.randrange(3)
+        h = [0.0, 0.0, 0.0]
+        h[axis] = rng.choice((-1.0, 1.0))
+        for k in (1, 2):
+            u = -1 + 2 * rng.randrange(129) / 128
+            if rng.random() < 0.3:
+                u = math.nextafter(u, rng.choice((-2.0, 2.0)))
+            h[(axis + k) % 3] = u
+        size = 10 ** rng.uniform(-2, 2)
+        out.append([h[0] * size, h[1] * size, h[2] * rho * size])
+    return out
+
+
+@pytest.mark.parametrize("name", ["plate-3-2-1", "bracket"])
+def test_long_verdicts_by_the_map(client, name):
+    """A batch of 100,000 verdicts or more is answered by the verdict map:
+    every one of them the same as the margin path's (wr_classify_margin,
+    which tests/unit/test_verdict.c holds to the full answer bit for bit),
+    random wrenches and wrenches on the map's cell edges, two tolerances;
+    and a sample against the full rows."""
+    fixture = example(name)
+    put = client.result("fixture.put", {"fixture": fixture})
+    rng = random.Random(name)
+    ws = (wrenches(len(name) + 100, 40000) +
+          cell_edge_wrenches(put, fixture["body"]["mass"], rng, 20000))
+    compared = 0
+    for tolerance in (None, 0.05):
+        params = {"fixture": put["id"], "wrenches": ws}
+        if tolerance is not None:
+            params["tolerance"] = tolerance
+        alone = joined(client.result("wrench.classify", dict(params, fields=["verdict"])),
+                       ["goal", "strong"], ["verdict"])
+        with_margins = joined(
+            client.result("wrench.classify", dict(params, fields=["margin", "verdict"])),
+            ["goal", "strong"], ["verdict", "margin"])
+        for s in ("goal", "strong"):
+            a, b = alone[s]["verdicts"], with_margins[s]["verdicts"]
+            assert len(a) == len(ws)
+            differ = [i for i in range(len(ws)) if a[i] != b[i]]
+            assert not differ, (s, tolerance, [(ws[i], a[i], b[i]) for i in differ[:5]])
+            compared += len(a)
+        sample = list(range(0, len(ws), 37))
+        rows = client.result("wrench.classify", dict(params, wrenches=[ws[i] for i in sample]))
+        for j, i in enumerate(sample):
+            for s in ("goal", "strong"):
+                assert alone[s]["verdicts"][i] == LETTER[rows["results"][j][s]["verdict"]]
+    FIGURES["classify fields: verdicts by the map compared"] = (
+        FIGURES.get("classify fields: verdicts by the map compared", 0) + compared)
+
+
+def test_python_client_columns(daemon):
+    """Client.classify_columns joins the pieces: the same columns as the
+    rows' values, over several pieces."""
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    fixture = example("bracket")
+    ws = wrenches(11, 3000)
+    client = daemon.client()
+    rows = client.result("wrench.classify", {"fixture": fixture, "wrenches": ws,
+                                             "sets": ["both", "goal"]})["results"]
+    with wrenchd.Client(daemon.path, timeout=60) as py:
+        columns = py.classify_columns(fixture, ws, fields=["verdict", "margin", "blocking"],
+                                      sets=["both", "goal"])
+    assert list(columns) == ["both", "goal"]
+    for s in ("both", "goal"):
+        assert columns[s]["verdicts"] == "".join(LETTER[r[s]["verdict"]] for r in rows)
+        assert columns[s]["margins"] == [r[s]["margin"] for r in rows]
+        assert columns[s]["blocking"] == [r[s]["blocking"] for r in rows]

@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "wp_json.h"
 #include "wp_number.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -440,6 +441,104 @@ static void number_near_ties(void **state)
     report("decimals half-way between doubles", &midpoints);
 }
 
+/* ---- reading: wp_json_triples against strtod ------------------------------- */
+
+/* One number's text of a random form: %g and %f and %e at every precision,
+ * random digit strings with and without a fraction and an exponent (up to
+ * 25 digits, exponents to +-40), zeros and negative zeros. */
+static void random_number_text(uint64_t *state, char *out, size_t size)
+{
+    uint64_t r = next_random(state);
+    double value;
+    memcpy(&value, &(uint64_t){next_random(state)}, sizeof value);
+    if (!isfinite(value))
+        value = 1.5;
+    double typical = ((double)(next_random(state) >> 11) / 9007199254740992.0 - 0.5) *
+                     pow(10, (int)(r % 13) - 6);
+    switch (r % 7) {
+    case 0:
+        snprintf(out, size, "%.*g", 1 + (int)((r >> 8) % 17), value);
+        break;
+    case 1:
+        snprintf(out, size, "%.*f", (int)((r >> 8) % 10), typical);
+        break;
+    case 2:
+        snprintf(out, size, "%.*e", (int)((r >> 8) % 17), typical);
+        break;
+    case 3:
+        snprintf(out, size, "%.17g", typical);
+        break;
+    case 4: {
+        /* Digits: an integer part (no leading zero), maybe a fraction,
+         * maybe an exponent. */
+        size_t n = 0;
+        if (r & 256)
+            out[n++] = '-';
+        int whole = 1 + (int)((r >> 10) % 12);
+        for (int k = 0; k < whole; k++)
+            out[n++] = (char)('0' + (k == 0 && whole > 1 ? 1 + next_random(state) % 9
+                                                       : next_random(state) % 10));
+        if (r & 512) {
+            out[n++] = '.';
+            int fraction = 1 + (int)((r >> 14) % 13);
+            for (int k = 0; k < fraction; k++)
+                out[n++] = (char)('0' + next_random(state) % 10);
+        }
+        if (r & 1024)
+            n += (size_t)snprintf(out + n, size - n, "%s%d", (r & 2048) ? "e" : "E",
+                                  (int)((r >> 20) % 81) - 40);
+        out[n] = 0;
+        break;
+    }
+    case 5:
+        snprintf(out, size, "%s", (const char *[]){"0", "-0", "0.0", "-0.000", "0e5", "-0E-3",
+                                                  "1e22", "1e23", "9007199254740993",
+                                                  "123456789012345678901234"}[(r >> 8) % 10]);
+        break;
+    default:
+        snprintf(out, size, "%.6f", typical * 1e6);
+        break;
+    }
+}
+
+static void number_reading(void **state)
+{
+    (void)state;
+    uint64_t seed = 0x1234abcd5678ef90ULL;
+    enum { TRIPLES = 100000 };
+    size_t size = (size_t)TRIPLES * 3 * 64 + 16;
+    char *text = malloc(size);
+    double(*expected)[3] = malloc(TRIPLES * sizeof *expected);
+    assert_non_null(text);
+    assert_non_null(expected);
+    size_t used = 0;
+    text[used++] = '[';
+    long count = SCALE(TRIPLES);
+    for (long i = 0; i < count; i++) {
+        used += (size_t)snprintf(text + used, size - used, "%s[", i ? "," : "");
+        for (int k = 0; k < 3; k++) {
+            char number[64];
+            do /* "2e+308", %.1g of the largest double, is refused as infinite */
+                random_number_text(&seed, number, sizeof number);
+            while (!isfinite(expected[i][k] = strtod(number, NULL)));
+            used += (size_t)snprintf(text + used, size - used, "%s%s", k ? ", " : "", number);
+        }
+        text[used++] = ']';
+    }
+    text[used++] = ']';
+    double(*read)[3];
+    assert_int_equal(wp_json_triples(text, used, &read), count);
+    for (long i = 0; i < count; i++)
+        for (int k = 0; k < 3; k++)
+            if (memcmp(&read[i][k], &expected[i][k], sizeof(double)) != 0)
+                fail_msg("wrench %ld, number %d: read %.17g, strtod %.17g", i, k, read[i][k],
+                         expected[i][k]);
+    print_message("reading: %ld numbers read as strtod reads them, bit for bit\n", 3 * count);
+    free(read);
+    free(text);
+    free(expected);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -450,6 +549,7 @@ int main(void)
         cmocka_unit_test(number_powers_and_extremes),
         cmocka_unit_test(number_integers),
         cmocka_unit_test(number_near_ties),
+        cmocka_unit_test(number_reading),
     };
     return cmocka_run_group_tests_name("number", tests, NULL, NULL);
 }
