@@ -484,6 +484,7 @@ static bool move_to_partial(connection *c, struct evbuffer *input, size_t length
             return false;
         c->partial = grown;
         c->partial_capacity = capacity;
+        wp_advise_huge(grown, capacity);
     }
     evbuffer_remove(input, c->partial + c->partial_length, length);
     c->partial_length += length;

@@ -230,18 +230,27 @@ void wp_buffer_reserve(wp_buffer *b, size_t bytes)
         grown[0] = 0;
     b->data = grown;
     b->capacity = bytes + 1;
+    wp_advise_huge(grown, bytes);
+}
+
+void wp_advise_huge(void *p, size_t bytes)
+{
 #ifdef MADV_HUGEPAGE
-    /* A buffer of megabytes (a batch's answer) is written once, front to
-     * back: in 2 MiB pages it takes a few dozen page faults instead of
-     * thousands, which on a virtual machine cost more than the writing.
-     * Only a hint (malloc mapped it; the kernel may decline). */
+    /* A buffer of megabytes (a batch's answer, a long line, its wrenches)
+     * is written once, front to back: in 2 MiB pages it takes a few dozen
+     * page faults instead of thousands, which on a virtual machine cost
+     * more than the writing.  Only a hint (malloc mapped it; the kernel may
+     * decline). */
     const uintptr_t huge = (uintptr_t)2 << 20;
     if (bytes >= 4 * huge) {
-        uintptr_t from = ((uintptr_t)grown + huge - 1) & ~(huge - 1);
-        uintptr_t to = ((uintptr_t)grown + bytes) & ~(huge - 1);
+        uintptr_t from = ((uintptr_t)p + huge - 1) & ~(huge - 1);
+        uintptr_t to = ((uintptr_t)p + bytes) & ~(huge - 1);
         if (to > from)
             madvise((void *)from, to - from, MADV_HUGEPAGE);
     }
+#else
+    (void)p;
+    (void)bytes;
 #endif
 }
 
@@ -706,8 +715,10 @@ static size_t span_value(const char *text, size_t length, size_t i)
     return 0;
 }
 
-bool wp_json_member(const char *text, size_t length, size_t object, const char *key,
-                    size_t *start, size_t *end)
+/* The member `key` of the object at `object`: true with where its value
+ * starts, and with `end` not NULL, where it ends. */
+static bool find_member(const char *text, size_t length, size_t object, const char *key,
+                        size_t *start, size_t *end)
 {
     size_t i = span_space(text, length, object);
     if (i >= length || text[i] != '{')
@@ -725,6 +736,10 @@ bool wp_json_member(const char *text, size_t length, size_t object, const char *
         if (i >= length || text[i] != ':')
             return false;
         i = span_space(text, length, i + 1);
+        if (match && !end) {
+            *start = i;
+            return i < length;
+        }
         size_t value_end = span_value(text, length, i);
         if (!value_end)
             return false;
@@ -741,8 +756,18 @@ bool wp_json_member(const char *text, size_t length, size_t object, const char *
     return false;
 }
 
-/* A number token as cJSON reads it (its characters, then strtod); false
- * unless the whole token is one finite number. */
+bool wp_json_member(const char *text, size_t length, size_t object, const char *key,
+                    size_t *start, size_t *end)
+{
+    return find_member(text, length, object, key, start, end);
+}
+
+bool wp_json_member_start(const char *text, size_t length, size_t object, const char *key,
+                          size_t *start)
+{
+    return find_member(text, length, object, key, start, NULL);
+}
+
 /* Exact powers of ten: every one up to 10^22 is a double. */
 static const double POWERS_OF_TEN[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
@@ -826,48 +851,53 @@ static bool read_number(const char *text, size_t length, size_t *i, double *out)
     return true;
 }
 
-long wp_json_triples(const char *text, size_t length, double (**out)[3])
+long wp_json_triples(const char *text, size_t length, double (**out)[3], size_t *end)
 {
     *out = NULL;
     size_t i = span_space(text, length, 0);
     if (i >= length || text[i] != '[')
         return -1;
-    size_t count = 0, capacity = 0;
-    double (*items)[3] = NULL;
+    /* Room for as many as the text could hold ("[0,0,0]," is 8 bytes):
+     * only the pages written are ever touched, and it is not regrown. */
+    size_t capacity = (length - i) / 8 + 1;
+    double(*items)[3] = malloc(capacity * sizeof *items);
+    if (!items)
+        return -1;
+    wp_advise_huge(items, capacity * sizeof *items);
+    size_t count = 0;
     i = span_space(text, length, i + 1);
     if (i < length && text[i] == ']') {
-        *out = malloc(sizeof *items);
-        return *out ? 0 : -1;
-    }
-    for (;;) {
-        if (count == capacity) {
-            capacity = capacity ? capacity * 2 : 1024;
-            double (*grown)[3] = realloc(items, capacity * sizeof *items);
-            if (!grown)
+        i++;
+    } else {
+        for (;;) {
+            if (count == capacity || i >= length || text[i] != '[')
                 goto refuse;
-            items = grown;
-        }
-        if (i >= length || text[i] != '[')
-            goto refuse;
-        for (int k = 0; k < 3; k++) {
+            for (int k = 0; k < 3; k++) {
+                i = span_space(text, length, i + 1);
+                if (!read_number(text, length, &i, &items[count][k]))
+                    goto refuse;
+                i = span_space(text, length, i);
+                if (i >= length || text[i] != (k < 2 ? ',' : ']'))
+                    goto refuse;
+            }
+            count++;
             i = span_space(text, length, i + 1);
-            if (!read_number(text, length, &i, &items[count][k]))
+            if (i < length && text[i] == ']') {
+                i++;
+                break;
+            }
+            if (i >= length || text[i] != ',')
                 goto refuse;
-            i = span_space(text, length, i);
-            if (i >= length || text[i] != (k < 2 ? ',' : ']'))
-                goto refuse;
+            i = span_space(text, length, i + 1);
         }
-        count++;
-        i = span_space(text, length, i + 1);
-        if (i < length && text[i] == ']')
-            break;
-        if (i >= length || text[i] != ',')
-            goto refuse;
-        i = span_space(text, length, i + 1);
     }
-    if (span_space(text, length, i + 1) != length)
+    if (end)
+        *end = i;
+    else if (span_space(text, length, i) != length)
         goto refuse;
-    *out = items;
+    /* Give back what the estimate took beyond the count. */
+    double(*fitted)[3] = realloc(items, (count ? count : 1) * sizeof *items);
+    *out = fitted ? fitted : items;
     return (long)count;
 refuse:
     free(items);

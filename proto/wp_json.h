@@ -141,10 +141,19 @@ wp_json_shape wp_json_scan(const char *text, size_t length, int limit);
  * found) or the text is not such an object. */
 bool wp_json_member(const char *text, size_t length, size_t object, const char *key,
                     size_t *start, size_t *end);
-/* An array of arrays of three finite numbers, each read as cJSON reads a
- * number: their count and *out (malloc'd), or -1 when the text is anything
- * else (the caller then reads it the ordinary way, and says what is wrong). */
-long wp_json_triples(const char *text, size_t length, double (**out)[3]);
+/* The same, with only where the value starts: its end is not looked for
+ * (a member holding megabytes is not read twice). */
+bool wp_json_member_start(const char *text, size_t length, size_t object, const char *key,
+                          size_t *start);
+/* An array of arrays of three finite numbers at the start of `text` (white
+ * space may precede it), each read as cJSON reads a number: their count and
+ * *out (malloc'd), or -1 when the text is anything else (the caller then
+ * reads it the ordinary way, and says what is wrong).  With `end` NULL
+ * only white space may follow the array; else *end is where it ends. */
+long wp_json_triples(const char *text, size_t length, double (**out)[3], size_t *end);
+/* A hint that the `bytes` at p, about to be written front to back, be
+ * backed by huge pages: a few page faults for megabytes, not thousands. */
+void wp_advise_huge(void *p, size_t bytes);
 
 /* Numeric ids echoed as written: JSON-RPC wants the id back as the client
  * sent it, and a double cannot hold 9007199254740993 or a 30-digit id.

@@ -836,9 +836,9 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
     const classify_request *r = &state->request;
     const wr_analysis *a = state->use->analysis;
     /* Helpers may be making chunks until this step returns: it ends the
-     * answer only if none could be when it began (wp_streamer.parallel). */
-    bool shared = classify_parallel(stream);
-    size_t start = out->length;
+     * answer only if none could be when it began (wp_streamer.parallel) --
+     * never in the first step, which began before the stream existed. */
+    bool shared = state->opened && classify_parallel(stream);
     if (!state->opened) {
         state->opened = true;
         if (r->fields) {
@@ -849,6 +849,10 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
             WP_BUFFER_LITERAL(out, "{\"results\":[");
         }
     }
+    /* At least one chunk a step, whatever the piece spent before it: every
+     * step makes progress (and a request's first chunk fails, if it does,
+     * while its text can still be taken back). */
+    size_t start = out->length;
     /* Work units per chunk, for the budget: a wrench against a cone is one,
      * a verdict by the map about one, an LP sixty-four. */
     unsigned long cones = 0;

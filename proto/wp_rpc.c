@@ -503,18 +503,22 @@ bool wp_answer_light(wp_answer *answer, const wp_host *host)
 static char *prepare_wrenches(const char *line, size_t length, wp_prepared *prepared,
                               size_t *copy_length)
 {
-    size_t method_start, method_end, params_start, params_end, start, end;
+    size_t method_start, method_end, params_start, start;
     static const char CLASSIFY[] = "\"wrench.classify\"";
+    /* Neither params nor its wrenches is spanned before it is read: a
+     * million wrenches are 30 MB of text. */
     if (length < PREPARE_BYTES || !wp_json_member(line, length, 0, "method", &method_start, &method_end) ||
         method_end - method_start != sizeof CLASSIFY - 1 ||
         memcmp(line + method_start, CLASSIFY, sizeof CLASSIFY - 1) != 0 ||
-        !wp_json_member(line, length, 0, "params", &params_start, &params_end) ||
-        !wp_json_member(line, params_end, params_start, "wrenches", &start, &end))
+        !wp_json_member_start(line, length, 0, "params", &params_start) ||
+        !wp_json_member_start(line, length, params_start, "wrenches", &start))
         return NULL;
     double (*wrenches)[3];
-    long count = wp_json_triples(line + start, end - start, &wrenches);
+    size_t read;
+    long count = wp_json_triples(line + start, length - start, &wrenches, &read);
     if (count < 0)
         return NULL;
+    size_t end = start + read;
     char *copy = malloc(length - (end - start) + 3);
     if (!copy) {
         free(wrenches);

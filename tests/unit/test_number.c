@@ -527,7 +527,7 @@ static void number_reading(void **state)
     }
     text[used++] = ']';
     double(*read)[3];
-    assert_int_equal(wp_json_triples(text, used, &read), count);
+    assert_int_equal(wp_json_triples(text, used, &read, NULL), count);
     for (long i = 0; i < count; i++)
         for (int k = 0; k < 3; k++)
             if (memcmp(&read[i][k], &expected[i][k], sizeof(double)) != 0)
