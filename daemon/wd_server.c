@@ -66,6 +66,10 @@
 /* Most bytes one read of a connection takes (a Unix socket holds a few
  * hundred KiB). */
 #define READ_BYTES (1 << 20)
+/* Most bytes one read takes otherwise: a request or several, and the first
+ * read into an empty input. */
+#define SHORT_READ_BYTES 65536
+#define FIRST_READ_BYTES 4000
 /* A line without its end this long is moved out of the input as it comes,
  * so that each byte is searched for the end once. */
 #define PARTIAL_BYTES 65536
@@ -101,6 +105,9 @@ struct connection {
     bool discarding;           /* skipping the rest of an over-long line */
     int light_answered;        /* light requests answered in the loop since
                                   the last read (at most WP_LIGHT_BURST) */
+    struct event *read_event;  /* the socket's reading (not the bufferevent's) */
+    struct timeval read_timeout; /* idle or linger; 0: none */
+    bool reading;              /* read_event is added */
     char *partial;             /* the start of a long line, moved out of the
                                   input (malloc'd): the input then holds only
                                   bytes not yet searched for its end */
@@ -193,6 +200,61 @@ static void cancel_work(connection *c)
     assert(c->queued_bytes == 0);
 }
 
+/* Reading is the daemon's own: a bufferevent reads 4 KiB at a time, each
+ * after an ioctl(FIONREAD) (libevent 2.1), so that a long line took a
+ * wake-up per 4 KiB and every request one system call more than it needs.
+ * The bufferevent keeps the writing (and its write timeout); read_event
+ * (persistent, with the idle or linger timeout, which each read restarts)
+ * puts what it reads into the bufferevent's input, where the rest of this
+ * file finds it. */
+static void reading_on(connection *c)
+{
+    if (!c->bev || !c->read_event)
+        return;
+    bool timed = c->read_timeout.tv_sec > 0 || c->read_timeout.tv_usec > 0;
+    event_add(c->read_event, timed ? &c->read_timeout : NULL);
+    c->reading = true;
+}
+
+static void reading_off(connection *c)
+{
+    if (c->read_event && c->reading)
+        event_del(c->read_event);
+    c->reading = false;
+}
+
+/* The idle (or linger) timeout of reading and of writing. */
+static void set_timeouts(connection *c, const struct timeval *timeout)
+{
+    c->read_timeout = *timeout;
+    bufferevent_set_timeouts(c->bev, NULL, timeout);
+    if (c->reading)
+        reading_on(c); /* again, with the new timeout */
+}
+
+/* One read of at most `most` bytes into the input: 0 when some were read,
+ * -1 when none were there, else BEV_EVENT_EOF or BEV_EVENT_ERROR. */
+static int read_input(connection *c, size_t most)
+{
+    struct evbuffer *input = bufferevent_get_input(c->bev);
+    struct evbuffer_iovec space;
+    if (evbuffer_reserve_space(input, (ev_ssize_t)most, &space, 1) < 1)
+        return BEV_EVENT_ERROR; /* no memory for it */
+    size_t room = space.iov_len < most ? space.iov_len : most;
+    ssize_t n = recv(bufferevent_getfd(c->bev), space.iov_base, room, MSG_DONTWAIT);
+    if (n > 0) {
+        space.iov_len = (size_t)n;
+        evbuffer_commit_space(input, &space, 1);
+        return 0;
+    }
+    int error = errno;
+    evbuffer_commit_space(input, &space, 0);
+    errno = error; /* for the log */
+    if (n == 0)
+        return BEV_EVENT_EOF;
+    return error == EAGAIN || error == EWOULDBLOCK || error == EINTR ? -1 : BEV_EVENT_ERROR;
+}
+
 static void close_socket(connection *c)
 {
     if (!c->bev)
@@ -205,6 +267,10 @@ static void close_socket(connection *c)
     char sink[4096];
     while (recv(fd, sink, sizeof sink, MSG_DONTWAIT) > 0)
         ;
+    if (c->read_event)
+        event_free(c->read_event);
+    c->read_event = NULL;
+    c->reading = false;
     bufferevent_free(c->bev);
     c->bev = NULL;
     atomic_fetch_sub(&c->server->stats.clients, 1);
@@ -295,7 +361,7 @@ static void answers_out(connection *c)
         /* Every answer is out: the idle clock starts now, not at the last
          * request (the time it took to answer was not the client's). */
         struct timeval idle = {(time_t)c->server->config->idle_timeout, 0};
-        bufferevent_set_timeouts(c->bev, &idle, &idle);
+        set_timeouts(c, &idle);
     }
 }
 
@@ -314,7 +380,7 @@ static void flush(connection *c)
         c->queued_bytes < c->server->config->max_line) {
         c->paused = false;
         if (!c->input_closed)
-            bufferevent_enable(c->bev, EV_READ);
+            reading_on(c);
         process_input(c); /* lines already buffered */
     }
     maybe_finish(c);
@@ -526,7 +592,7 @@ static void on_request_timeout(evutil_socket_t fd, short events, void *argument)
     drop_partial(c);
     c->discarding = false;
     c->input_closed = true;
-    bufferevent_disable(c->bev, EV_READ);
+    reading_off(c);
     answer_now(c, WP_INVALID_REQUEST, reason);
     c->busy--;
     maybe_finish(c);
@@ -610,7 +676,7 @@ static void process_input(connection *c)
         submit(c, line, length);
         if (c->bev && too_much_waiting(c) && !c->input_closed) {
             c->paused = true;
-            bufferevent_disable(c->bev, EV_READ);
+            reading_off(c);
         }
     }
     watch_partial_request(c, line_taken);
@@ -676,8 +742,8 @@ static void on_event(struct bufferevent *bev, short events, void *argument)
         close_socket(c);
     } else if ((events & BEV_EVENT_TIMEOUT) && !c->refusing &&
                (c->pending > 0 || evbuffer_get_length(bufferevent_get_output(c->bev)) > 0)) {
-        /* Not idle: a request is in flight or an answer is still going out. */
-        bufferevent_enable(c->bev, EV_READ);
+        /* Not idle: a request is in flight or an answer is still going out
+         * (reading goes on: its event persists). */
     } else if (events & (BEV_EVENT_ERROR | BEV_EVENT_TIMEOUT)) {
         if (events & BEV_EVENT_TIMEOUT)
             wd_log(c->refusing ? WD_LOG_DEBUG : WD_LOG_INFO, "client %lu: %s", c->number,
@@ -690,6 +756,32 @@ static void on_event(struct bufferevent *bev, short events, void *argument)
     }
     c->busy--;
     maybe_finish(c);
+}
+
+/* The socket is readable, or has been silent for the read timeout. */
+static void on_readable(evutil_socket_t fd, short what, void *argument)
+{
+    (void)fd;
+    connection *c = argument;
+    if (what & EV_TIMEOUT) {
+        on_event(c->bev, BEV_EVENT_TIMEOUT | BEV_EVENT_READING, c);
+        return;
+    }
+    /* A long line in the making takes what the socket holds at once; a
+     * read into an empty input takes a request's worth first (a small
+     * block from malloc's free lists, where 64 KiB would cost a trip to
+     * the top of the heap and back for every request); more takes more. */
+    struct evbuffer *input = bufferevent_get_input(c->bev);
+    size_t most = c->partial_length > 0                 ? READ_BYTES
+                  : evbuffer_get_length(input) == 0 ? FIRST_READ_BYTES
+                                                    : SHORT_READ_BYTES;
+    int result = read_input(c, most);
+    if (result == 0) {
+        on_read(c->bev, c);
+    } else if (result > 0) {
+        reading_off(c);
+        on_event(c->bev, (short)(result | BEV_EVENT_READING), c);
+    }
 }
 
 /* A refused client gets this long to read its error line and hang up. */
@@ -733,13 +825,25 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     s->connections = c;
     s->connection_count++;
     atomic_fetch_add(&s->stats.clients, 1);
-    bufferevent_setcb(bev, on_read, on_write, on_event, c);
-    bufferevent_enable(bev, EV_READ | EV_WRITE);
+    bufferevent_setcb(bev, NULL, on_write, on_event, c);
+    bufferevent_enable(bev, EV_WRITE);
+    /* A socket bufferevent freezes its input's end for its own reads:
+     * ours are the only ones now. */
+    evbuffer_unfreeze(bufferevent_get_input(bev), 0);
+    c->read_event = event_new(s->base, fd, EV_READ | EV_PERSIST, on_readable, c);
+    if (!c->read_event) {
+        wd_log(WD_LOG_ERROR, "out of memory accepting a client");
+        c->input_closed = true;
+        close_socket(c);
+        maybe_finish(c);
+        return;
+    }
+    reading_on(c);
     if (refusal) {
         c->refusing = true;
         s->refusing++;
         struct timeval linger = {LINGER_SECONDS, 0};
-        bufferevent_set_timeouts(bev, &linger, &linger);
+        set_timeouts(c, &linger);
         c->busy++;
         queue_error(c, refusal, reason);
         c->busy--;
@@ -748,18 +852,13 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     }
     c->request_timer = s->config->request_timeout > 0 ? evtimer_new(s->base, on_request_timeout, c)
                                                       : NULL;
-    /* A read takes what the socket holds, not libevent's 16 KiB: a long
-     * line then arrives in a few hundred chains rather than thousands, and
-     * the search for its end resumes past the chains it has seen (finding
-     * where to resume walks them from the first). */
-    bufferevent_set_max_single_read(bev, READ_BYTES);
     /* on_write comes when the output is down to half the bound: the next
      * piece is then made while the rest is still being sent. */
     bufferevent_setwatermark(bev, EV_WRITE, s->config->max_output / 2, 0);
     if (s->config->idle_timeout > 0) {
         /* Silence for so long closes it; so does output left unread. */
         struct timeval idle = {(time_t)s->config->idle_timeout, 0};
-        bufferevent_set_timeouts(bev, &idle, &idle);
+        set_timeouts(c, &idle);
     }
     wd_log(WD_LOG_DEBUG, "client %lu: connected", c->number);
 }
@@ -890,12 +989,12 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
         /* Complete lines that have arrived are in flight, even those still
          * in the kernel's buffer: read exactly what is there now. */
         int queued = 0;
-        if (c->bev && ioctl(bufferevent_getfd(c->bev), FIONREAD, &queued) == 0 && queued > 0)
-            evbuffer_read(bufferevent_get_input(c->bev), bufferevent_getfd(c->bev), queued);
+        if (c->bev && ioctl(bufferevent_getfd(c->bev), FIONREAD, &queued) == 0)
+            while (queued > 0 && read_input(c, (size_t)queued) == 0)
+                queued = ioctl(bufferevent_getfd(c->bev), FIONREAD, &queued) == 0 ? queued : 0;
         process_input(c);
         c->input_closed = true;
-        if (c->bev)
-            bufferevent_disable(c->bev, EV_READ);
+        reading_off(c);
         c->busy--;
         maybe_finish(c);
     }
