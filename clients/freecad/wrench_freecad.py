@@ -758,7 +758,7 @@ def _approximate(edge, u0, u1, p0, p1, frame, tolerance, size):
         p = point(u0 + (u1 - u0) * m / dense)
         worst = max(worst, min(s.nearest(p)[2] for s in segs))
     for s in segs:
-        for t in (0.25, 0.5, 0.75):
+        for t in (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875):
             q = s.point(t)
             vertex = Part.Vertex(frame.multVec(Vector(q[0], q[1], 0.0)))
             worst = max(worst, edge.distToShape(vertex)[0])
@@ -1722,8 +1722,19 @@ def _object_of_face(doc, face):
         if shape is None or shape.isNull() or _proxy_name(obj).startswith("Wrench"):
             continue
         for i, f in enumerate(shape.Faces):
-            if f.isSame(face):
+            if f.isSame(face) or f.isPartner(face):
                 return obj, "Face%d" % (i + 1)
+    # a face held before by a WrenchPart (a Part::Feature's shape is a copy)
+    size = face.BoundBox.DiagonalLength
+    for obj in doc.Objects:
+        if obj.TypeId == "Part::Feature" and obj.Name.startswith("WrenchPart") \
+                and len(obj.Shape.Faces) == 1:
+            f = obj.Shape.Faces[0]
+            if abs(f.Area - face.Area) <= 1e-12 * face.Area \
+                    and f.CenterOfMass.distanceToPoint(face.CenterOfMass) <= 1e-12 * size \
+                    and len(f.Edges) == len(face.Edges) \
+                    and f.BoundBox.isInside(face.BoundBox.Center):
+                return obj, ""
     part = doc.addObject("Part::Feature", "WrenchPart")
     part.Shape = face
     return part, ""
@@ -1834,7 +1845,7 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
     finally:
         if indicator is not None:
             indicator.stop()
-    lines = _design_lines(fixture, shape, result, h)
+    lines = _design_lines(count, shape, result, h)
     fixture.Designs = lines
     for line in lines:
         FreeCAD.Console.PrintMessage("Wrench: %s\n" % line)
@@ -1851,12 +1862,11 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
     return result
 
 
-def _design_lines(fixture, shape, result, spacing):
+def _design_lines(count, shape, result, spacing):
     counts = result.counts
     head = ("%d fixels from %d sites %s apart, %d candidates (%d without a seating push, "
             "%d unpinned, %d degenerate), ranked by %s" % (
-                fixture.DesignFixels if not result.designs else len(result.designs[0].fixels),
-                result.sites, _fmt(spacing), counts.get("candidates", 0),
+                count, result.sites, _fmt(spacing), counts.get("candidates", 0),
                 counts.get("no_seating_push", 0), counts.get("unpinned", 0),
                 counts.get("degenerate", 0),
                 {"margin": "the margin of the best push in both",
