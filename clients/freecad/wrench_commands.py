@@ -274,7 +274,8 @@ class GravityDialCommand(_Command):
             return
         dial = _run(doc, "Wrench gravity dial", lambda: wf.make_gravity_dial(fixture, "both"))
         if dial is not None and _recompute(doc, [dial]):
-            _say("%s (%s)" % (dial.Label, dial.Meaning))
+            _say("%s: %s. A direction on the dial, from the centre of mass, is the way gravity "
+                 "pulls in the outline's plane" % (dial.Label, dial.Meaning))
 
 
 class DesignCommand(_Command):

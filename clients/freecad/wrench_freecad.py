@@ -107,16 +107,26 @@ MEANING = {
     "both": "both: a push here seats the part from any contact state and then holds it "
             "still: push here and let go",
 }
+# The same for gravity alone, pulling along a direction of the dial.
+GRAVITY_MEANING = {
+    "goal": "goal: gravity pulling this way seats the part from any contact state, but may "
+            "then let it slide along its fixels; to tilt and let go, use both",
+    "strong": "strong: gravity pulling this way holds the seated part still, but may not seat "
+              "it; to tilt and let go, use both",
+    "both": "both: gravity pulling this way seats the part from any contact state and then "
+            "holds it still",
+}
 SHORT_MEANING = {
     "goal": "seats, may then slide: use both",
     "strong": "holds once seated: use both",
     "both": "push here and let go",
 }
 
-# Region colours (red, green, blue in [0, 1]); both, what to push with, the
-# boldest.
+# Region colours (red, green, blue in [0, 1]) and widths in pixels.  both is
+# goal and strong together, so only under both do regions of two sets lie
+# on one another: both, what to push with, is drawn the widest and on top.
 COLOURS = {"goal": (0.15, 0.40, 0.95), "strong": (1.00, 0.55, 0.00), "both": (0.00, 0.72, 0.20)}
-LINE_WIDTHS = {"goal": 9.0, "strong": 7.0, "both": 5.0}
+LINE_WIDTHS = {"goal": 5.0, "strong": 5.0, "both": 10.0}
 
 # The default approximation tolerance, relative to the face's bounding-box
 # diagonal.
@@ -149,8 +159,9 @@ class WrenchError(RuntimeError):
 # ---- numbers -----------------------------------------------------------------------
 
 def _fmt(x):
-    """A length for a message: 6 significant digits, no "-0"."""
-    text = "%.6g" % x
+    """A number for a message: 6 significant digits; below 1e-9 in size, 0
+    (a coordinate off by rounding)."""
+    text = "%.6g" % (x if abs(x) >= 1e-9 else 0.0)
     return "0" if text in ("-0", "0") else text
 
 
@@ -969,7 +980,8 @@ class WrenchFixture:
         _add(obj, "App::PropertyInteger", "DesignFixels", "Design",
              "Design: how many fixels to place", 3)
         _add(obj, "App::PropertyLength", "DesignSpacing", "Design",
-             "Design: candidate sites this far apart along the outline (0: the perimeter / 40)",
+             "Design: candidate sites this far apart along the outline (0: the perimeter / 40, "
+             "to two digits)",
              0.0)
         if "DesignObjective" not in obj.PropertiesList:
             obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",
@@ -1192,6 +1204,12 @@ class WrenchRegions:
                 ("App::PropertyVectorList", "RegionFrom", "Each region's start (document)"),
                 ("App::PropertyVectorList", "RegionTo", "Each region's end (document)")):
             _add(obj, kind, name, "Answer", doc, mode=1)
+        # How many WrenchRegion objects it has: set when they are made or
+        # removed, after a recompute, so that the tree claims them again;
+        # an output, so setting it does not touch the object.
+        _add(obj, "App::PropertyInteger", "RegionObjects", "Answer",
+             "How many WrenchRegion objects show the regions", mode=2)
+        obj.setPropertyStatus("RegionObjects", "Output")
 
     onDocumentRestored = _Dependent.onDocumentRestored
     __getstate__ = _Dependent.__getstate__
@@ -1346,6 +1364,8 @@ def sync_regions(regions):
         if "Touched" in child.State or child.Shape.isNull():
             child.Proxy.execute(child)
             child.purgeTouched()
+    if regions.RegionObjects != count:
+        regions.RegionObjects = count
     return children
 
 
@@ -1504,7 +1524,7 @@ class WrenchGravityDial(_Dependent):
                             "seated; both: it seats it and then holds it still")
             _set_enumeration(obj, "Set", SETS, "both")
         _add(obj, "App::PropertyLength", "Radius", "Dial",
-             "The dial's radius (0: 60 % of the part's size)", 0.0)
+             "The dial's radius (0: just around the part)", 0.0)
         for kind, name, doc in (
                 ("App::PropertyString", "Meaning", "What the set promises"),
                 ("App::PropertyFloatList", "Arcs", "The arcs, [from, to, from, to, ...] in "
@@ -1514,7 +1534,7 @@ class WrenchGravityDial(_Dependent):
 
     def _execute(self, obj):
         which = obj.Set
-        obj.Meaning = MEANING[which]
+        obj.Meaning = GRAVITY_MEANING[which]
         fixture = _Fixture(obj.Fixture, obj.Label)
         if not fixture.has_fixels:
             obj.Shape = Part.Shape()
@@ -1524,7 +1544,8 @@ class WrenchGravityDial(_Dependent):
         arcs = fixture.ask(lambda: fixture.client.gravity_sweep(fixture.fixture, which))
         outline = fixture.outline
         com = outline.to_2d(fixture.obj.CenterOfMass)
-        radius = float(obj.Radius) or 0.6 * outline.size
+        radius = float(obj.Radius) or 1.15 * max(
+            _norm(_sub(s.point(t), com[:2])) for s in outline.segments[0] for t in (0.0, 0.5))
         edges = []
         for a, b in arcs:
             circle = Part.Circle(outline.to_3d(com[:2]), outline.normal, radius)
@@ -1827,7 +1848,7 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
     edges = json.loads(fixture.EdgeTable) if fixture.EdgeTable else None
     shape = Outline.from_shape(data["body"]["shape"], fixture.Frame, edges)
     count = fixels or fixture.DesignFixels
-    h = spacing or float(fixture.DesignSpacing) or shape.perimeter() / 40.0
+    h = spacing or float(fixture.DesignSpacing) or float("%.2g" % (shape.perimeter() / 40.0))
     objective = objective or fixture.DesignObjective
     top = top or fixture.DesignTop
     path = socket_path(fixture.Socket)

@@ -290,7 +290,12 @@ def test_gravity_dial(client, doc):
     arcs = client.gravity_sweep(fixture.FixtureId, "goal")
     assert dial.Arcs == [x for arc in arcs for x in arc]
     assert dial.TotalDegrees > 0
-    radius = 0.6 * face.BoundBox.DiagonalLength
+    circles = [e for e in dial.Shape.Edges if type(e.Curve).__name__ == "Circle"]
+    radius = circles[0].Curve.Radius
+    # just around the part: every point of its outer boundary inside the dial
+    com = fixture.CenterOfMass
+    farthest = max(v.Point.distanceToPoint(com) for v in face.OuterWire.Vertexes)
+    assert farthest < radius < 1.3 * farthest
     measured = sum(math.degrees(e.Length / radius) for e in dial.Shape.Edges
                    if type(e.Curve).__name__ == "Circle")
     assert measured == pytest.approx(dial.TotalDegrees, rel=1e-9)
@@ -298,6 +303,7 @@ def test_gravity_dial(client, doc):
         if type(e.Curve).__name__ == "Circle":
             assert e.Curve.Center.distanceToPoint(fixture.CenterOfMass) <= 1e-9
             assert e.Curve.Radius == pytest.approx(radius, rel=1e-12)
+    assert dial.Meaning == wf.GRAVITY_MEANING["goal"] and "gravity pulling" in dial.Meaning
 
 
 def test_a_fixel_off_the_outline(client, doc):
