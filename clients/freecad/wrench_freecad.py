@@ -16,8 +16,9 @@ planar face: its outer wire first, then its holes, each a loop of vertices
 more than half a turn, and a full circle, is written as equal arcs of at
 most half a turn).  Every other curve -- B-spline, ellipse, Bezier, offset
 curve ... -- is replaced by arcs that meet tangentially (biarcs), no farther
-from it than `tolerance` (default: 1e-4 of the face's bounding-box
-diagonal).  The distance is measured both ways, from points of the curve to
+from it than `tolerance` (default: 1e-5 of the face's bounding-box
+diagonal, 1 micrometre on a part 100 mm across).  Pieces of them that are
+straight, or on one circle, become one line or one arc.  The distance is measured both ways, from points of the curve to
 the arcs and from points of the arcs to the curve, and the largest found is
 `shape.deviation`.
 
@@ -129,8 +130,11 @@ COLOURS = {"goal": (0.15, 0.40, 0.95), "strong": (1.00, 0.55, 0.00), "both": (0.
 LINE_WIDTHS = {"goal": 5.0, "strong": 5.0, "both": 10.0}
 
 # The default approximation tolerance, relative to the face's bounding-box
-# diagonal.
-DEFAULT_RELATIVE_TOLERANCE = 1e-4
+# diagonal: 1 micrometre on a part 100 mm across, a tenth of a fine machining
+# tolerance.  A position that close still turns a curve's normal, on which a
+# push region depends, by at most about sqrt(2 tolerance / radius of
+# curvature) between the arcs' joints (where it is exact).
+DEFAULT_RELATIVE_TOLERANCE = 1e-5
 
 # wrenchd takes at most this many outline vertices over all loops.
 MAX_VERTICES = 4096
@@ -700,7 +704,23 @@ def _approximate(edge, u0, u1, p0, p1, frame, tolerance, size):
     edge from parameter u0 to u1, each within `tolerance` of it, and the
     largest distance measured between them both ways: from points of the
     curve to the arcs, and (by FreeCAD's distToShape) from points of the
-    arcs to the edge."""
+    arcs to the edge.  Each piece is fitted to a fraction of the tolerance;
+    should the measure still find more than the tolerance, the fit is made
+    again, finer."""
+    fraction = 0.5
+    for _ in range(4):
+        arcs = _fit_arcs(edge, u0, u1, p0, p1, frame, fraction * tolerance, size)
+        worst = _measure(edge, u0, u1, arcs, p1, frame, tolerance)
+        if worst <= tolerance:
+            return arcs, worst
+        fraction /= 4.0
+    raise OutlineError("the arcs following the %s are %s from it, above the tolerance %s"
+                       % (_edge_kind(edge), _fmt(worst), _fmt(tolerance)))
+
+
+def _fit_arcs(edge, u0, u1, p0, p1, frame, tolerance, size):
+    """Biarcs along the edge, each within `tolerance` of it at 16 points;
+    then straight runs made one line and runs on one circle one arc."""
     inverse = frame.inverse()
     rotation = inverse.Rotation
     sign = 1.0 if u1 > u0 else -1.0
@@ -759,24 +779,63 @@ def _approximate(edge, u0, u1, p0, p1, frame, tolerance, size):
     ts = [tangent(u) for u in us]
     for k in range(count):
         piece(us[k], us[k + 1], ps[k], ps[k + 1], ts[k], ts[k + 1], 0)
+    return _merge(out, p1, size)
 
-    # Measure both ways.
-    segs = [Segment(0, k, s, out[k + 1][0] if k + 1 < len(out) else p1, bulge)
-            for k, (s, bulge) in enumerate(out)]
+
+def _merge(arcs, end, size):
+    """Consecutive pieces on one line, or on one circle turning one way (at
+    most half a turn together), made one: a B-spline that is straight or
+    circular becomes the line or the arc it is."""
+    close = 1e-9 * size
+    out = []
+    for k, (start, bulge) in enumerate(arcs):
+        stop = arcs[k + 1][0] if k + 1 < len(arcs) else end
+        if out:
+            first, first_bulge, last = out[-1]
+            joined = None
+            if bulge == 0.0 and first_bulge == 0.0:
+                # start lies on the line from first to stop
+                d = _sub(stop, first)
+                if _norm(d) > 0 and abs(_cross(d, _sub(start, first))) / _norm(d) <= close:
+                    joined = 0.0
+            elif bulge != 0.0 and first_bulge != 0.0 and (bulge > 0) == (first_bulge > 0):
+                a = Segment(0, 0, first, start, first_bulge)
+                b = Segment(0, 0, start, stop, bulge)
+                sweep = a.sweep + b.sweep
+                if _norm(_sub(a.centre, b.centre)) <= close and abs(a.radius - b.radius) <= close \
+                        and abs(sweep) <= math.pi:
+                    joined = math.tan(sweep / 4.0)
+            if joined is not None:
+                out[-1] = (first, joined, stop)
+                continue
+        out.append((start, bulge, stop))
+    return [(start, bulge) for start, bulge, _ in out]
+
+
+def _measure(edge, u0, u1, arcs, p1, frame, tolerance):
+    """The largest distance found between the edge and the arcs: from 8
+    points a piece (64 at least) of the curve to the arcs, and from 7 points
+    of each arc to the edge, by FreeCAD's distToShape."""
+    inverse = frame.inverse()
+    segs = [Segment(0, k, s, arcs[k + 1][0] if k + 1 < len(arcs) else p1, bulge)
+            for k, (s, bulge) in enumerate(arcs)]
     worst = 0.0
     dense = max(64, 8 * len(segs))
+    near = 0                     # the arc nearest the last sample: the next is near it
     for m in range(dense + 1):
-        p = point(u0 + (u1 - u0) * m / dense)
-        worst = max(worst, min(s.nearest(p)[2] for s in segs))
+        q = inverse.multVec(edge.valueAt(u0 + (u1 - u0) * m / dense))
+        p = (q.x, q.y)
+        window = range(max(0, near - 2), min(len(segs), near + 4))
+        d, near = min((segs[k].nearest(p)[2], k) for k in window)
+        if d > 0.5 * tolerance:  # far from the arcs about: ask them all
+            d, near = min((s.nearest(p)[2], k) for k, s in enumerate(segs))
+        worst = max(worst, d)
     for s in segs:
         for t in (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875):
             q = s.point(t)
             vertex = Part.Vertex(frame.multVec(Vector(q[0], q[1], 0.0)))
             worst = max(worst, edge.distToShape(vertex)[0])
-    if worst > tolerance * (1 + 1e-6) + 1e-12 * size:
-        raise OutlineError("the arcs following the %s are %s from it, above the tolerance %s"
-                           % (_edge_kind(edge), _fmt(worst), _fmt(tolerance)))
-    return out, worst
+    return worst
 
 
 # ---- talking to wrenchd ------------------------------------------------------------
@@ -960,7 +1019,7 @@ class WrenchFixture:
              "The planar face (object, FaceN) or the closed sketch the fixture holds")
         _add(obj, "App::PropertyLength", "Tolerance", "Part",
              "How far arcs replacing a curve that is not a line or a circle may be from it "
-             "(0: 1e-4 of the face's size)", 0.0)
+             "(0: 1e-5 of the face's size)", 0.0)
         _add(obj, "App::PropertyVectorList", "FixelPoints", "Fixels",
              "Where the fixels touch the part, in the document's coordinates")
         _add(obj, "App::PropertyVectorList", "FixelNormals", "Fixels",

@@ -162,6 +162,22 @@ def sketch_face(sketch):
     return Part.makeFace(sketch.Shape.Wires, "Part::FaceMakerBullseye")
 
 
+def sampled_area(face, points=20000):
+    """The face's area from its wires alone: each wire as FreeCAD samples it
+    (Wire.discretize, in order), by the shoelace formula; the outer wire's
+    less the holes'.  A reference for faces bounded by B-splines, whose
+    face.Area FreeCAD 0.20 integrates less precisely."""
+    def shoelace(wire):
+        pts = wire.discretize(Number=points)
+        if pts[0].distanceToPoint(pts[-1]) < 1e-12:
+            pts = pts[:-1]
+        n = len(pts)
+        return abs(0.5 * sum(pts[k].x * pts[(k + 1) % n].y - pts[(k + 1) % n].x * pts[k].y
+                             for k in range(n)))
+    outer = face.OuterWire
+    return shoelace(outer) - sum(shoelace(w) for w in face.Wires if not w.isSame(outer))
+
+
 def mass_properties(face, outline):
     """FreeCAD's area, centre of mass (in the outline's 2-D frame) and polar
     moment of inertia about it (per unit area: the moment about the face's

@@ -155,7 +155,7 @@ def test_sketch(client, doc):
 
 def test_curves_followed_by_arcs_within_the_tolerance(client):
     """A B-spline side and an ellipse hole are followed by tangent arcs within
-    the stated tolerance (1e-4 of the face's diagonal by default), the full
+    the stated tolerance (1e-5 of the face's diagonal by default), the full
     circle hole is exact.  Measured here with FreeCAD's distToShape, both
     ways, on arcs rebuilt from the bulges; the area differs from FreeCAD's
     by at most the deviation times the curves' length."""
@@ -163,7 +163,7 @@ def test_curves_followed_by_arcs_within_the_tolerance(client):
     size = face.BoundBox.DiagonalLength
     for tolerance in (None, 1e-3, 0.05):
         shape = outline(face, tolerance=tolerance)
-        stated = 1e-4 * size if tolerance is None else tolerance
+        stated = 1e-5 * size if tolerance is None else tolerance
         assert shape.tolerance == pytest.approx(stated, rel=1e-15)
         assert 0 < shape.deviation <= stated
         kinds = sorted(a["kind"] for a in shape.approximated)
@@ -175,8 +175,8 @@ def test_curves_followed_by_arcs_within_the_tolerance(client):
         curved = [e for e in face.Edges if type(e.Curve).__name__ in ("BSplineCurve", "Ellipse")]
         worst = 0.0
         for e in curved:
-            for k in range(401):
-                p = e.valueAt(e.FirstParameter + (e.LastParameter - e.FirstParameter) * k / 400)
+            for k in range(201):
+                p = e.valueAt(e.FirstParameter + (e.LastParameter - e.FirstParameter) * k / 200)
                 worst = max(worst, compound.distToShape(Part.Vertex(p))[0])
         curves = Part.Compound(curved)
         for e in approximating:
@@ -198,11 +198,34 @@ def test_curves_followed_by_arcs_within_the_tolerance(client):
         put = put_unit_density(client, shape)
         length = sum(e.Length for e in curved)
         assert abs(put.area - face.Area) <= shape.deviation * length
+        assert abs(put.area - parts.sampled_area(face)) <= shape.deviation * length + 1e-6 * face.Area
         # a tighter tolerance takes more arcs
         if tolerance == 1e-3:
             fine = sum(a["arcs"] for a in shape.approximated)
         if tolerance == 0.05:
             assert sum(a["arcs"] for a in shape.approximated) < fine
+
+
+def test_a_closed_bspline_hole(client):
+    """A hole bounded by one periodic B-spline: followed by arcs within the
+    tolerance; its area, against the area of FreeCAD's own samples of the
+    wires (FreeCAD 0.20's face.Area of it is off by about 2e-4 of itself,
+    more than the arcs are: the samples are the reference)."""
+    spline = Part.BSplineCurve()
+    spline.interpolate([V(100, 20, 0), V(120, 30, 0), V(110, 60, 0), V(90, 40, 0)],
+                       PeriodicFlag=True)
+    plate = Part.Face(Part.makePolygon([V(0, 0, 0), V(200, 0, 0), V(200, 100, 0), V(0, 100, 0),
+                                        V(0, 0, 0)]))
+    face = plate.cut(Part.Face(Part.Wire(spline.toShape()))).Faces[0]
+    for tolerance in (None, 1e-4):
+        shape = outline(face, tolerance=tolerance)
+        assert [a["kind"] for a in shape.approximated] == ["BSplineCurve"]
+        assert shape.deviation <= shape.tolerance
+        put = put_unit_density(client, shape)
+        length = spline.toShape().Length
+        reference = parts.sampled_area(face)
+        # the samples' own error: a chord's sagitta, below 1e-6 of the area here
+        assert abs(put.area - reference) <= shape.deviation * length + 1e-6 * reference
 
 
 def test_ellipse_alone_and_offset_plane(client):
