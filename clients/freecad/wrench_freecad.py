@@ -996,13 +996,19 @@ def _face_of_source(obj, sub):
 
 
 def _friction_values(friction):
-    """(static, kinetic) of a number, a (static, kinetic) pair or a dict."""
-    if isinstance(friction, dict):
-        static = float(friction["static"])
-        return static, float(friction.get("kinetic", static))
-    if isinstance(friction, (tuple, list)):
-        return float(friction[0]), float(friction[1])
-    return float(friction), float(friction)
+    """(static, kinetic) of a number, a (static, kinetic) pair or a dict
+    {"static", "kinetic"?}."""
+    try:
+        if isinstance(friction, dict):
+            static = float(friction["static"])
+            return static, float(friction.get("kinetic", static))
+        if isinstance(friction, (tuple, list)):
+            static, kinetic = friction
+            return float(static), float(kinetic)
+        return float(friction), float(friction)
+    except (KeyError, TypeError, ValueError):
+        raise ValueError("friction: a number, a (static, kinetic) pair or {\"static\", "
+                         "\"kinetic\"} of numbers, not %r" % (friction,)) from None
 
 
 class WrenchFixture:
@@ -1122,6 +1128,9 @@ class WrenchFixture:
                           if isinstance(error, OutlineError) else error)
 
     def _execute(self, obj):
+        if not obj.StaticFriction >= 0:
+            raise WrenchError("%s: StaticFriction %s must be at least 0"
+                              % (obj.Label, _fmt(obj.StaticFriction)), "friction.static", "negative")
         if obj.KineticFriction > obj.StaticFriction or obj.KineticFriction < 0:
             raise WrenchError("%s: KineticFriction %s must lie between 0 and StaticFriction %s"
                               % (obj.Label, _fmt(obj.KineticFriction), _fmt(obj.StaticFriction)),
@@ -1465,10 +1474,11 @@ class WrenchFixels(_Dependent):
             obj.Normals = []
             obj.Label = "Fixels (none yet)"
             return
-        explicit = fixture.ask(lambda: fixture.client.get_fixture(fixture.obj.FixtureId)) \
-            if fixture.obj.FixtureId else None
-        if explicit is None or explicit.get("fixels") is None:
-            raise WrenchError("%s: wrenchd has no fixture %s" % (obj.Label, fixture.obj.FixtureId))
+        # The normals as wrenchd uses them: its explicit form of the fixture
+        # (put again first: a daemon restarted without a state directory
+        # has forgotten it; putting is idempotent).
+        put = fixture.ask(lambda: fixture.client.put_fixture(fixture.fixture))
+        explicit = fixture.ask(lambda: fixture.client.get_fixture(put.id))
         r = float(obj.PinRadius) or 0.015 * outline.size
         plane_normal = outline.normal
         parts, normals = [], []

@@ -95,5 +95,7 @@ def client(daemon):
 def doc(request):
     name = "t_" + "".join(ch if ch.isalnum() else "_" for ch in request.node.name)[:40]
     d = FreeCAD.newDocument(name)
+    name = d.Name
     yield d
-    FreeCAD.closeDocument(d.Name)
+    if name in FreeCAD.listDocuments():      # a test may have closed it
+        FreeCAD.closeDocument(name)

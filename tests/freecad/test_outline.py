@@ -228,6 +228,34 @@ def test_a_closed_bspline_hole(client):
         assert abs(put.area - reference) <= shape.deviation * length + 1e-6 * reference
 
 
+def test_bsplines_that_are_lines_and_circles(client):
+    """A B-spline that is straight becomes one line, one that is a circle's
+    quarter one arc of that circle: the part is then exactly a quarter disc
+    of radius 30 on a 30 x 30 square (area 900 + 225 pi)."""
+    r = 30.0
+    # the rational quadratic B-spline of a quarter circle, exact (weights 1,
+    # sqrt(2)/2, 1 on the corners of its square)
+    quarter = Part.BSplineCurve()
+    quarter.buildFromPolesMultsKnots([V(60, 30, 0), V(60, 60, 0), V(30, 60, 0)], [3, 3], [0, 1],
+                                     False, 2, [1, math.sqrt(0.5), 1])
+    straight = Part.LineSegment(V(0, 0, 0), V(60, 0, 0)).toBSpline()
+    wire = Part.Wire(Part.__sortEdges__([
+        straight.toShape(), Part.LineSegment(V(60, 0, 0), V(60, 30, 0)).toShape(),
+        quarter.toShape(), Part.LineSegment(V(30, 60, 0), V(0, 60, 0)).toShape(),
+        Part.LineSegment(V(0, 60, 0), V(0, 0, 0)).toShape()]))
+    face = Part.Face(wire)
+    shape = outline(face)
+    assert sorted(a["kind"] for a in shape.approximated) == ["BSplineCurve", "BSplineCurve"]
+    assert [a["arcs"] for a in shape.approximated] == [1, 1]
+    (loop,) = shape.segments
+    arcs = [s for s in loop if s.is_arc]
+    assert len(loop) == 5 and len(arcs) == 1
+    assert arcs[0].radius == pytest.approx(r, rel=1e-9)
+    assert abs(arcs[0].sweep) == pytest.approx(math.pi / 2, rel=1e-9)
+    put = put_unit_density(client, shape)
+    assert put.area == pytest.approx(3600 - 900 + math.pi * r * r / 4, rel=1e-9)
+
+
 def test_ellipse_alone_and_offset_plane(client):
     """A whole ellipse (one closed edge, no line at all) in a tilted plane."""
     ellipse = Part.Face(Part.Wire(Part.Ellipse(V(0, 0, 0), 40, 15).toShape()))

@@ -364,3 +364,41 @@ def test_an_unreachable_daemon_says_how_to_start_one(doc, tmp_path):
     assert "wrenchd is not reachable at %s" % path in text
     assert "`wrenchd --socket %s`" % path in text
     assert "make run" in text and "$WRENCHD_SOCKET" in text and "Socket property" in text
+
+
+def test_saved_and_opened_again(client, doc, tmp_path):
+    """The objects are stored in the document: saved, closed and opened
+    again, they hold their shapes and numbers, and recompute as before."""
+    face = parts.bracket_face()
+    regions = wf.show_regions(doc, face, BRACKET_FIXELS, 0.25, "both", client)
+    fixture = regions[0].Regions.Fixture
+    wf.make_fixels(fixture)
+    wf.make_best_push(fixture)
+    wf.make_gravity_dial(fixture, "both")
+    doc.recompute()
+    before = {o.Name: (o.Label, round(o.Shape.Length, 9) if not o.Shape.isNull() else None)
+              for o in doc.Objects}
+    lengths = [r.Length for r in regions]
+    path = str(tmp_path / "bracket.FCStd")
+    doc.saveAs(path)
+    name = doc.Name
+    FreeCAD.closeDocument(name)
+    again = FreeCAD.openDocument(path)
+    try:
+        after = {o.Name: (o.Label, round(o.Shape.Length, 9) if not o.Shape.isNull() else None)
+                 for o in again.Objects}
+        assert after == before
+        kinds = sorted(wf._proxy_name(o) for o in again.Objects if wf._proxy_name(o))
+        assert kinds == sorted(["WrenchFixture", "WrenchRegions", "WrenchFixels", "WrenchBestPush",
+                                "WrenchGravityDial"] + ["WrenchRegion"] * len(regions))
+        parent = [o for o in again.Objects if wf._is(o, "WrenchRegions")][0]
+        assert [r.Length for r in wf.region_objects(parent)] == lengths
+        # still live: a lower friction, a recompute, the regions of wrenchd
+        fixture = parent.Fixture
+        fixture.StaticFriction = fixture.KineticFriction = 0.1
+        again.recompute()
+        assert all("Invalid" not in o.State for o in again.Objects)
+        answer = client.push_regions(fixture.FixtureId, "both")
+        assert [r.Length for r in wf.region_objects(parent)] == [r.length for r in answer.regions]
+    finally:
+        FreeCAD.closeDocument(again.Name)
