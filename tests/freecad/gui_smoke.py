@@ -5,7 +5,8 @@
 #
 # A bracket (a plate with filleted corners, a locating hole and a slot) is
 # made; the workbench activated; its top face selected; then the commands
-# Fixture from face, Design, Push regions and Gravity dial run as from the
+# Fixture from face, Add fixels (on points picked on edges and a vertex),
+# Clear fixels, Design, Push regions and Gravity dial run as from the
 # toolbar (Design with friction 0.25 and candidate sites 10 apart, as the
 # README designs this bracket with wrenchctl).  The 3-D view from the top is saved as DIR/view.png (1200 x 800)
 # and the whole window as DIR/window.png; DIR/result.json says what was
@@ -66,6 +67,31 @@ def main():
     fixtures = [o for o in doc.Objects if o.Name.startswith("WrenchFixture")]
     result["fixtures"] = len(fixtures)
     fixture = fixtures[0]
+
+    # Add fixels: points picked on two edges (a little off them, as a pick
+    # on the screen is) and a vertex; then Clear fixels.
+    def edge_at(p):
+        return "Edge%d" % (1 + min(range(len(part.Shape.Edges)), key=lambda i: part.Shape.Edges[i]
+                                   .distToShape(Part.Vertex(p))[0]))
+
+    def vertex_at(p):
+        return "Vertex%d" % (1 + min(range(len(part.Shape.Vertexes)),
+                                     key=lambda i: part.Shape.Vertexes[i].Point.distanceToPoint(p)))
+
+    Gui.Selection.clearSelection()
+    for p in (V(50, 0.01, 1), V(-0.01, 40, 1)):
+        Gui.Selection.addSelection(doc.Name, part.Name, edge_at(p), p.x, p.y, p.z)
+    Gui.Selection.addSelection(doc.Name, part.Name, vertex_at(V(112, 0, 1)))
+    Gui.Selection.addSelection(fixture)
+    Gui.runCommand("Wrench_AddFixels")
+    result["picked"] = [[p.x, p.y, p.z] for p in fixture.FixelPoints]
+    result["picked_normals"] = [[n.x, n.y, n.z] for n in fixture.FixelNormals]
+    result["picked_state"] = list(fixture.State)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(fixture)
+    Gui.runCommand("Wrench_ClearFixels")
+    result["cleared"] = len(fixture.FixelPoints)
+
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(fixture)
     # as the README's wrenchctl design of this bracket (examples/bracket.json)

@@ -63,6 +63,11 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
         if o["type"].startswith("Wrench"):
             assert o["view"] == "ViewProviderWrench", o
     assert result["fixtures"] == 1 and len(result["fixels"]) == 3
+    # Add fixels put them on the edges picked (a pick is a little off), and
+    # at the vertex where the bottom meets a fillet, no corner: no normal
+    assert numpy.allclose(result["picked"], [[50, 0, 1], [0, 40, 1], [112, 0, 1]], rtol=0, atol=1e-9)
+    assert result["picked_normals"] == [[0, 0, 0]] * 3
+    assert result["picked_state"] == ["Up-to-date"] and result["cleared"] == 0
     regions = result["regions"]
     assert set(regions) == set(wf.SETS)
     for which, r in regions.items():

@@ -402,3 +402,36 @@ def test_saved_and_opened_again(client, doc, tmp_path):
         assert [r.Length for r in wf.region_objects(parent)] == [r.length for r in answer.regions]
     finally:
         FreeCAD.closeDocument(again.Name)
+
+
+def test_fixels_picked_at_vertices_and_on_edges(client, doc):
+    """fixel_at, as Add fixels uses it: a point picked near an edge is moved
+    onto it (its normal left to wrenchd); a corner gets the inward bisector
+    of its two sides; a vertex where a line meets an arc tangentially is no
+    corner.  wrenchd then takes them all."""
+    box = doc.addObject("Part::Box", "Box")
+    box.Length, box.Width, box.Height = 50, 30, 4
+    doc.recompute()
+    top = "Face%d" % (parts.face_at(box.Shape, V(0, 0, 1), 4) + 1)
+    fixture = wf.make_fixture(doc, (box, top), [], 0.3, socket=client.socket_path)
+    doc.recompute()
+    p, n = wf.fixel_at(fixture, V(20, 0.004, 4.2))       # near the bottom edge, above the face
+    assert (p.x, p.y, p.z) == (20, 0, 4) and n.Length == 0
+    p, n = wf.fixel_at(fixture, V(0, 0, 4))              # the bottom-left corner
+    assert p == V(0, 0, 4) and n.getAngle(V(1, 1, 0)) < 1e-12
+    p2, n2 = wf.fixel_at(fixture, V(50, 30, 4))          # the top-right corner
+    assert n2.getAngle(V(-1, -1, 0)) < 1e-12
+    fixture.FixelPoints = [V(20, 0, 4), p, V(50, 15, 4)]
+    fixture.FixelNormals = [V(), n, V()]
+    doc.recompute()
+    assert "Invalid" not in fixture.State and fixture.Pinned
+    explicit = client.get_fixture(fixture.FixtureId)
+    assert explicit["fixels"][1]["normal"] == pytest.approx([math.sqrt(0.5), math.sqrt(0.5)])
+    # a tangent joint of the filleted plate: no corner, no normal given
+    plate = doc.addObject("Part::Feature", "Plate")
+    plate.Shape = parts.filleted_plate()
+    fixture2 = wf.make_fixture(doc, (plate, "Face%d" % (parts.face_at(plate.Shape, V(0, 0, 1), 10) + 1)),
+                               [], 0.3, socket=client.socket_path)
+    doc.recompute()
+    p, n = wf.fixel_at(fixture2, V(8, 0, 10))            # where the bottom line meets a fillet
+    assert p.distanceToPoint(V(8, 0, 10)) < 1e-12 and n.Length == 0
