@@ -17,10 +17,10 @@ more than half a turn, and a full circle, is written as equal arcs of at
 most half a turn).  Every other curve -- B-spline, ellipse, Bezier, offset
 curve ... -- is replaced by arcs that meet tangentially (biarcs), no farther
 from it than `tolerance` (default: 1e-5 of the face's bounding-box
-diagonal, 1 micrometre on a part 100 mm across).  Pieces of them that are
-straight, or on one circle, become one line or one arc.  The distance is measured both ways, from points of the curve to
-the arcs and from points of the arcs to the curve, and the largest found is
-`shape.deviation`.
+diagonal, 1 micrometre on a part 100 mm across); runs of them that are
+straight, or on one circle, become one line or one arc.  The distance is
+measured both ways, from points of the curve to the arcs and from points of
+the arcs to the curve, and the largest found is `shape.deviation`.
 
 The 2-D frame: a face in a plane z = const (its normal along +Z or -Z) is
 written in the document's x and y.  A face in any other plane is written in

@@ -26,7 +26,7 @@ sys.path.insert(0, HERE)
 
 import FreeCAD  # noqa: E402
 
-import wrench_freecad  # noqa: E402
+import wrench_freecad  # noqa: E402,F401  (first: it puts clients/python on the path)
 import wrenchd  # noqa: E402
 
 BINARY = os.environ.get("WRENCHD", os.path.join(REPO, "build", "wrenchd"))

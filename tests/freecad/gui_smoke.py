@@ -1,16 +1,19 @@
 # The Wrench workbench in FreeCAD's GUI, as a designer uses it: run by
 # test_gui.py (and make freecad-picture) under Xvfb,
 #
-#     WRENCHD_SOCKET=... WRENCH_GUI_OUT=DIR xvfb-run freecad -M clients/freecad gui_smoke.py
+#     WRENCHD_SOCKET=... WRENCH_GUI_OUT=DIR WRENCH_GUI_SCRIPT=this file \
+#         xvfb-run freecad tests/freecad/gui_smoke.py -M clients/freecad
 #
+# (FreeCAD 0.20 takes -M only after the file.)
 # A bracket (a plate with filleted corners, a locating hole and a slot) is
 # made; the workbench activated; its top face selected; then the commands
 # Fixture from face, Add fixels (on points picked on edges and a vertex),
 # Clear fixels, Design, Push regions and Gravity dial run as from the
 # toolbar (Design with friction 0.25 and candidate sites 10 apart, as the
-# README designs this bracket with wrenchctl).  The 3-D view from the top is saved as DIR/view.png (1200 x 800)
-# and the whole window as DIR/window.png; DIR/result.json says what was
-# found (the objects, their states and figures, the report view's lines).
+# README designs this bracket with wrenchctl).  The 3-D view from the top is
+# saved as DIR/view.png (1200 x 800) and the whole window as DIR/window.png;
+# DIR/result.json says what was found (the objects, their states and
+# figures, the tree, the report view's lines).
 # FreeCAD then exits with status 0 (the test reads result.json).
 import json
 import os
@@ -22,7 +25,9 @@ import FreeCAD
 import FreeCADGui as Gui
 
 OUT = os.environ["WRENCH_GUI_OUT"]
-HERE = os.path.dirname(os.path.abspath(os.environ.get("WRENCH_GUI_SCRIPT", "tests/freecad/gui_smoke.py")))
+# FreeCAD runs this file without __file__: its path comes in the environment.
+HERE = os.path.dirname(os.path.abspath(os.environ.get("WRENCH_GUI_SCRIPT",
+                                                      "tests/freecad/gui_smoke.py")))
 result = {"errors": [], "report": []}
 
 
