@@ -1254,7 +1254,8 @@ class WrenchRegions:
              "The pushing finger's radius: points it cannot reach drop out (0: a point)", 0.0)
         _add(obj, "App::PropertyBool", "SweepFriction", "Regions",
              "Also find the critical friction above which the region is empty "
-             "(friction.sweep over mu in [0, 2])", True)
+             "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8)",
+             True)
         for kind, name, doc in (
                 ("App::PropertyString", "Meaning", "What a push in this set promises"),
                 ("App::PropertyInteger", "Count", "How many regions"),

@@ -163,6 +163,22 @@ def main():
                       for i in range(document.childCount())]
     # the report view's text, as the designer reads it
     result["report"] = report_dock.widget().toPlainText().splitlines()
+
+    # After the picture, two mistakes and what the report view says of them:
+    # a fixel moved off the outline, and a socket where no wrenchd listens.
+    report_dock.widget().clear()
+    good = list(fixture.FixelPoints)
+    fixture.FixelPoints = [good[0] + V(0, 0.5, 0)] + good[1:]
+    doc.recompute()
+    settle()
+    fixture.FixelPoints = good
+    fixture.Socket = os.path.join(OUT, "nobody.sock")
+    doc.recompute()
+    settle()
+    result["mistakes"] = report_dock.widget().toPlainText().splitlines()
+    fixture.Socket = ""
+    doc.recompute()
+    result["after_mistakes"] = [o.Label for o in doc.Objects if "Invalid" in o.State]
     del Part
 
 

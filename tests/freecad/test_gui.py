@@ -90,6 +90,14 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
            "push here and let go" in report
     assert "to push and let go, use both" in report
 
+    # mistakes, in the report view: the fixel named, and how to start wrenchd
+    mistakes = "\n".join(result["mistakes"])
+    assert "Wrench: Fixture of Bracket: wrenchd refused fixel 1 (FixelPoints[0] = " in mistakes
+    assert "is not on the workpiece boundary: 0.5 away from it" in mistakes
+    assert "wrenchd is not reachable at %s" % (tmp_path / "nobody.sock") in mistakes
+    assert "Start one: `wrenchd --socket %s`" % (tmp_path / "nobody.sock") in mistakes
+    assert result["after_mistakes"] == []
+
     # the 3-D view from the top: its size, and what is drawn in it
     width, height, rows = read_png(tmp_path / "view.png")
     assert (width, height) == (1200, 800)

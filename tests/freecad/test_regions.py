@@ -39,9 +39,13 @@ def inward_normal(face, p):
     return n
 
 
-def push(p, n):
-    """A push at document point p along n, as a wrench of a face in an XY
-    plane (the outline's coordinates are the document's x and y)."""
+def push(p, n, frame=None):
+    """A push at document point p along n, as a wrench in the outline's
+    coordinates: for a face in an XY plane the document's x and y, else
+    those of `frame` (a sketch's own placement)."""
+    if frame is not None:
+        inverse = frame.inverse()
+        p, n = inverse.multVec(p), inverse.Rotation.multVec(n)
     return {"force": [n.x, n.y], "at": [p.x, p.y]}
 
 
@@ -54,7 +58,7 @@ def boundary_samples(face, per_edge=24):
     return out
 
 
-def check_regions(client, fixture, regions, which, face):
+def check_regions(client, fixture, regions, which, face, frame=None):
     """The region objects of one set, held against FreeCAD and wrenchd."""
     size = face.BoundBox.DiagonalLength
     answer = client.push_regions(fixture.FixtureId, which)
@@ -77,7 +81,7 @@ def check_regions(client, fixture, regions, which, face):
         assert min(ends[0].distanceToPoint(r.From), ends[-1].distanceToPoint(r.From)) <= 1e-9 * size
         assert min(ends[0].distanceToPoint(r.To), ends[-1].distanceToPoint(r.To)) <= 1e-9 * size
         mid = e.valueAt((e.FirstParameter + e.LastParameter) / 2)
-        inside.append(push(mid, inward_normal(face, mid)))
+        inside.append(push(mid, inward_normal(face, mid), frame))
         # the edge named is the part's edge under the region
         if r.Edge:
             part = fixture.Source[0]
@@ -90,8 +94,8 @@ def check_regions(client, fixture, regions, which, face):
     shapes = Part.Compound([r.Shape for r in regions]) if regions else None
     outside = [p for p in boundary_samples(face)
                if shapes is None or shapes.distToShape(Part.Vertex(p))[0] > 1e-6 * size]
-    verdicts = client.classify(fixture.FixtureId, [push(p, inward_normal(face, p)) for p in outside],
-                               sets=[which])
+    verdicts = client.classify(fixture.FixtureId,
+                               [push(p, inward_normal(face, p), frame) for p in outside], sets=[which])
     assert len(outside) > 100
     assert not any(v[which].inside for v in verdicts)
     return answer
@@ -189,6 +193,23 @@ def test_regions_follow_a_sketch(client, doc):
     assert regions.TotalLength != pytest.approx(first, rel=1e-6)
     # the edges are the sketch's
     assert all(r.Edge.endswith("of Sketch") for r in wf.region_objects(regions))
+
+
+def test_a_sketch_in_another_plane(client, doc):
+    """A sketch on a vertical plane: the outline is written in the sketch's
+    own coordinates, and the regions are where FreeCAD's geometry says."""
+    sketch = parts.sketch_part(doc)
+    sketch.Placement = FreeCAD.Placement(V(5, 7, 9), FreeCAD.Rotation(V(1, 0, 0), 90))
+    doc.recompute()
+    frame = sketch.getGlobalPlacement()
+    fixels = [frame.multVec(V(20, 0, 0)), frame.multVec(V(60, 0, 0)), frame.multVec(V(0, 25, 0))]
+    regions = wf.show_regions(doc, sketch, fixels, 0.2, "strong", client)
+    fixture = regions[0].Regions.Fixture
+    assert fixture.Frame.toMatrix() == frame.toMatrix()
+    face = parts.sketch_face(sketch)
+    assert fixture.Area == pytest.approx(face.Area, rel=1e-12)
+    assert fixture.CenterOfMass.distanceToPoint(face.CenterOfMass) <= 1e-9
+    check_regions(client, fixture, regions, "strong", face, frame)
 
 
 def test_friction_and_its_critical_value(client, doc):
