@@ -63,6 +63,7 @@ def main():
     doc.recompute()
     top = parts.face_at(part.Shape, V(0, 0, 1), 1) + 1
 
+    result["started_in"] = Gui.activeWorkbench().__class__.__name__
     Gui.activateWorkbench("WrenchWorkbench")
     result["workbench"] = Gui.activeWorkbench().__class__.__name__
     result["commands"] = [c for c in Gui.listCommands() if c.startswith("Wrench_")]
@@ -127,8 +128,8 @@ def main():
     fit(view)
     view.saveImage(os.path.join(OUT, "view.png"), 1200, 800, "White")
 
-    # The whole window: the start page closed, the tree wide enough for the
-    # labels, the report view open; the 3-D view (an OpenGL widget, which a
+    # The whole window: the start page closed, the tree (wide enough for the
+    # labels) and the report view shown, no other panel; the 3-D view (an OpenGL widget, which a
     # window grab leaves blank) drawn in from saveImage.
     mdi = window.findChild(QtWidgets.QMdiArea)
     for sub in mdi.subWindowList():
@@ -136,7 +137,12 @@ def main():
             sub.close()
     combo = window.findChild(QtWidgets.QDockWidget, "Combo View")
     report_dock = window.findChild(QtWidgets.QDockWidget, "Report view")
-    report_dock.show()
+    for dock in window.findChildren(QtWidgets.QDockWidget):
+        dock.setVisible(dock in (combo, report_dock))
+    window.addDockWidget(QtCore.Qt.LeftDockWidgetArea, combo)
+    window.addDockWidget(QtCore.Qt.BottomDockWidgetArea, report_dock)
+    for bottom in (QtCore.Qt.BottomLeftCorner, QtCore.Qt.BottomRightCorner):
+        window.setCorner(bottom, QtCore.Qt.BottomDockWidgetArea)    # the report view's, full width
     window.resizeDocks([combo], [470], QtCore.Qt.Horizontal)
     window.resizeDocks([report_dock], [190], QtCore.Qt.Vertical)
     settle()

@@ -17,6 +17,21 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 WORKBENCH = os.path.abspath(os.path.join(HERE, "..", "..", "clients", "freecad"))
 
 
+USER_CFG = """<?xml version="1.0" encoding="UTF-8" standalone="no" ?>
+<FCParameters>
+  <FCParamGroup Name="Root">
+    <FCParamGroup Name="BaseApp">
+      <FCParamGroup Name="Preferences">
+        <FCParamGroup Name="General">
+          <FCText Name="AutoloadModule">WrenchWorkbench</FCText>
+        </FCParamGroup>
+      </FCParamGroup>
+    </FCParamGroup>
+  </FCParamGroup>
+</FCParameters>
+"""
+
+
 def read_png(path):
     """(width, height, pixels: an array of rows of (r, g, b)) of a PNG, read
     by Qt."""
@@ -41,6 +56,11 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     freecad = shutil.which("freecad")
     assert xvfb, "xvfb-run is missing: make deps-freecad installs xvfb"
     assert freecad, "the FreeCAD GUI (freecad) is missing: make deps-freecad"
+    # A home of its own, whose FreeCAD starts in the Wrench workbench (not
+    # on the start page, a web view)
+    config = tmp_path / "home" / ".config" / "FreeCAD"
+    config.mkdir(parents=True)
+    (config / "user.cfg").write_text(USER_CFG)
     env = dict(os.environ, HOME=str(tmp_path / "home"), WRENCHD_SOCKET=daemon.socket,
                WRENCH_GUI_OUT=str(tmp_path), WRENCH_GUI_SCRIPT=os.path.join(HERE, "gui_smoke.py"),
                QTWEBENGINE_DISABLE_SANDBOX="1")
@@ -55,7 +75,7 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
         result = json.load(f)
     assert result["errors"] == [], result["errors"][0] + output[-2000:]
 
-    assert result["workbench"] == "WrenchWorkbench"
+    assert result["started_in"] == result["workbench"] == "WrenchWorkbench"
     assert set(result["commands"]) >= {"Wrench_Fixture", "Wrench_AddFixels", "Wrench_ClearFixels",
                                        "Wrench_Regions", "Wrench_GravityDial", "Wrench_Design"}
     for o in result["objects"]:
