@@ -695,7 +695,9 @@ def _biarc(p0, t0, p1, t1):
         half = _angle(tangent, chord) if at_start else _angle(chord, tangent)
         if abs(half) > math.pi / 2.0 - 1e-9:
             return None
-        out.append((start, math.tan(half / 2.0)))
+        # an arc bulging less than 1e-9 of its chord is that chord (a far
+        # centre would cost its points their digits)
+        out.append((start, math.tan(half / 2.0) if abs(half) > 4e-9 else 0.0))
     return out or None
 
 
@@ -772,14 +774,37 @@ def _fit_arcs(edge, u0, u1, p0, p1, frame, tolerance, size):
             raise OutlineError("following the %s within %s takes more than %d arcs: give a "
                                "larger tolerance" % (_edge_kind(edge), _fmt(tolerance), MAX_VERTICES))
 
-    # Start from pieces that each turn little: 8 of a closed curve, 4 of an open one.
+    def one_sided(u, toward):
+        """The tangent at a kink, as the piece from u toward `toward` has it."""
+        return tangent(u + 1e-9 * (toward - u))
+
+    # Start from pieces that each turn little (8 of a closed curve, 4 of an
+    # open one), split also where the curve may turn sharply (a B-spline's
+    # knot of multiplicity >= its degree): there each piece has its own
+    # tangent.
     count = 8 if edge.isClosed() else 4
-    us = [u0 + (u1 - u0) * k / count for k in range(count + 1)]
+    kinks = _kinks(edge, u0, u1)
+    us = sorted(set([u0 + (u1 - u0) * k / count for k in range(count + 1)] + kinks),
+                key=lambda u: (u - u0) / (u1 - u0))
     ps = [p0] + [point(u) for u in us[1:-1]] + [p1]
-    ts = [tangent(u) for u in us]
-    for k in range(count):
-        piece(us[k], us[k + 1], ps[k], ps[k + 1], ts[k], ts[k + 1], 0)
+    for k in range(len(us) - 1):
+        a, b = us[k], us[k + 1]
+        ta = one_sided(a, b) if a in kinks else tangent(a)
+        tb = one_sided(b, a) if b in kinks else tangent(b)
+        piece(a, b, ps[k], ps[k + 1], ta, tb, 0)
     return _merge(out, p1, size)
+
+
+def _kinks(edge, u0, u1):
+    """Parameters strictly between u0 and u1 where the edge's curve may have
+    a corner: a B-spline's knots of multiplicity at least its degree."""
+    curve = edge.Curve
+    if type(curve).__name__ != "BSplineCurve":
+        return []
+    lo, hi = min(u0, u1), max(u0, u1)
+    margin = 1e-12 * (hi - lo)
+    return [k for k, m in zip(curve.getKnots(), curve.getMultiplicities())
+            if m >= curve.Degree and lo + margin < k < hi - margin]
 
 
 def _merge(arcs, end, size):

@@ -256,6 +256,42 @@ def test_bsplines_that_are_lines_and_circles(client):
     assert put.area == pytest.approx(3600 - 900 + math.pi * r * r / 4, rel=1e-9)
 
 
+def test_bsplines_with_corners(client):
+    """A B-spline with corners (knots of multiplicity at least its degree) is
+    followed piece by piece: a polyline of degree 1 becomes its own lines,
+    a cubic with a corner stays within the tolerance, in few arcs."""
+    poles = [V(0, 0, 0), V(20, 5, 0), V(40, 0, 0), V(60, 8, 0), V(80, 0, 0)]
+    polyline = Part.BSplineCurve()
+    polyline.buildFromPoles(poles, False, 1)
+    wire = Part.Wire([polyline.toShape(), Part.LineSegment(V(80, 0, 0), V(80, 40, 0)).toShape(),
+                      Part.LineSegment(V(80, 40, 0), V(0, 40, 0)).toShape(),
+                      Part.LineSegment(V(0, 40, 0), V(0, 0, 0)).toShape()])
+    shape = outline(Part.Face(wire))
+    assert sorted((v[0], v[1]) for v in shape["loops"][0]) == \
+        sorted([(p.x, p.y) for p in poles] + [(80, 40), (0, 40)])
+    assert all(len(v) == 2 for v in shape["loops"][0])          # lines only
+    put = put_unit_density(client, shape)
+    polygon = [(p.x, p.y) for p in poles] + [(80, 40), (0, 40)]
+    area = 0.5 * abs(sum(polygon[k][0] * polygon[k - 1][1] - polygon[k - 1][0] * polygon[k][1]
+                         for k in range(len(polygon))))
+    assert put.area == pytest.approx(area, rel=1e-12)
+    cubic = Part.BSplineCurve()
+    cubic.buildFromPolesMultsKnots([V(0, 0, 0), V(10, 10, 0), V(20, 10, 0), V(30, 0, 0),
+                                    V(40, 10, 0), V(50, 10, 0), V(60, 0, 0)],
+                                   [4, 3, 4], [0, 1, 2], False, 3)
+    wire = Part.Wire([cubic.toShape(), Part.LineSegment(V(60, 0, 0), V(60, -30, 0)).toShape(),
+                      Part.LineSegment(V(60, -30, 0), V(0, -30, 0)).toShape(),
+                      Part.LineSegment(V(0, -30, 0), V(0, 0, 0)).toShape()])
+    face = Part.Face(wire)
+    shape = outline(face)
+    (curve,) = shape.approximated
+    assert curve["arcs"] < 200 and shape.deviation <= shape.tolerance
+    assert [30.0, 0.0] in [v[:2] for v in shape["loops"][0]]     # the corner is a vertex
+    put = put_unit_density(client, shape)
+    assert abs(put.area - parts.sampled_area(face)) <= \
+        shape.deviation * cubic.toShape().Length + 1e-6 * face.Area
+
+
 def test_ellipse_alone_and_offset_plane(client):
     """A whole ellipse (one closed edge, no line at all) in a tilted plane."""
     ellipse = Part.Face(Part.Wire(Part.Ellipse(V(0, 0, 0), 40, 15).toShape()))
