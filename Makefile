@@ -48,7 +48,8 @@ help:
 	@echo "make bench      the benchmarks, one table (docs/PERFORMANCE.md)"
 	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR;"
 	@echo "                the configuration in SYSCONFDIR (default PREFIX/etc); the FreeCAD"
-	@echo "                workbench in FREECAD_MODDIR/Wrench (default FreeCAD's own Mod directory)"
+	@echo "                workbench in FREECAD_MODDIR/Wrench (default FreeCAD's own Mod directory;"
+	@echo "                for a PREFIX other than /usr and /usr/local, PREFIX/share/FreeCAD/Mod)"
 	@echo "make freecad-link    the checkout's workbench linked into FreeCAD's user Mod directory"
 	@echo "make freecad-picture redraw docs/pictures/freecad-workbench.png (FreeCAD under Xvfb)"
 	@echo "make uninstall  remove what make install installed"
@@ -345,13 +346,16 @@ PYVERSION  = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[
 # Where Debian's python3 looks: /usr/lib/python3/dist-packages for /usr,
 # /usr/local/lib/python3.X/dist-packages for /usr/local.
 PYTHONDIR ?= $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$(PREFIX)/lib/python$(PYVERSION)/dist-packages)
-# The FreeCAD workbench goes to FREECAD_MODDIR/Wrench: by default the Mod
-# directory of the FreeCAD installed here (FreeCAD.getResourceDir(), Debian's:
-# /usr/share/freecad/Mod), which is where it looks whatever PREFIX is; without
-# FreeCAD, PREFIX/share/freecad/Mod.  The workbench holds its own copy of
-# wrenchd.py, so that it works whichever Python directory PREFIX gives.
-FREECAD_MODDIR ?= $(or $(shell $(FREECADCMD) -c 'import FreeCAD; print(FreeCAD.getResourceDir() + "Mod")' \
-                      2>/dev/null | tail -n 1),$(PREFIX)/share/freecad/Mod)
+# The FreeCAD workbench goes to FREECAD_MODDIR/Wrench.  For PREFIX /usr or
+# /usr/local, by default the Mod directory of the FreeCAD installed here (its
+# FreeCAD.getResourceDir(); Debian's: /usr/share/freecad/Mod), where it looks
+# whatever the prefix; for any other PREFIX, PREFIX/share/FreeCAD/Mod, which
+# for PREFIX=~/.local is FreeCAD's user Mod directory.  The workbench holds
+# its own copy of wrenchd.py, so that it works whichever Python directory
+# PREFIX gives.
+FREECAD_SYSTEM_MODDIR = $(or $(shell $(FREECADCMD) -c \
+    'import FreeCAD; print(FreeCAD.getResourceDir() + "Mod")' 2>/dev/null | tail -n 1),/usr/share/freecad/Mod)
+FREECAD_MODDIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(FREECAD_SYSTEM_MODDIR),$(PREFIX)/share/FreeCAD/Mod)
 WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \

@@ -35,9 +35,12 @@ def make(*args):
 
 
 def test_make_install_and_uninstall(tmp_path):
+    """The default PREFIX (/usr/local): into the Mod directory of the FreeCAD
+    running this test (FreeCAD.getResourceDir()), whatever the prefix."""
+    import FreeCAD
     destdir = tmp_path / "root"
-    moddir = "/usr/share/freecad/Mod"
-    make("install", "DESTDIR=%s" % destdir, "FREECAD_MODDIR=%s" % moddir)
+    moddir = FreeCAD.getResourceDir() + "Mod"
+    make("install", "DESTDIR=%s" % destdir)
     workbench = destdir / moddir.lstrip("/") / "Wrench"
     names = sorted(str(p.relative_to(workbench)) for p in workbench.rglob("*") if p.is_file())
     icons = sorted("Resources/icons/" + f
@@ -55,9 +58,30 @@ def test_make_install_and_uninstall(tmp_path):
     module, client, _ = freecadcmd("-c", PROBE, "-M", str(workbench), home=home)
     assert module == str(workbench / "wrench_freecad.py")
     assert client == str(workbench / "wrenchd.py")
-    make("uninstall", "DESTDIR=%s" % destdir, "FREECAD_MODDIR=%s" % moddir)
+    make("uninstall", "DESTDIR=%s" % destdir)
     assert not workbench.exists()
     assert [p for p in destdir.rglob("*") if p.is_file()] == []
+
+
+def test_make_install_for_a_user(tmp_path):
+    """PREFIX=~/.local: into ~/.local/share/FreeCAD/Mod, FreeCAD 0.20's user
+    Mod directory, where a FreeCAD of that home finds it at start.  (Staged
+    in DESTDIR, the home inside it; SYSCONFDIR kept as built, so that
+    build/wrenchd is not rebuilt for another configuration path.)"""
+    destdir = tmp_path / "root"
+    home = destdir / "home" / "user"
+    args = ["DESTDIR=%s" % destdir, "PREFIX=/home/user/.local", "SYSCONFDIR=/usr/local/etc"]
+    before = os.stat(os.path.join(REPO, "build", "wrenchd")).st_mtime_ns
+    make("install", *args)
+    assert os.stat(os.path.join(REPO, "build", "wrenchd")).st_mtime_ns == before
+    workbench = home / ".local" / "share" / "FreeCAD" / "Mod" / "Wrench"
+    assert (workbench / "InitGui.py").is_file() and (workbench / "wrenchd.py").is_file()
+    module, client, userdir = freecadcmd("-c", PROBE, home=home)
+    assert userdir == str(home / ".local" / "share" / "FreeCAD") + "/"
+    assert module == str(workbench / "wrench_freecad.py")
+    assert client == str(workbench / "wrenchd.py")
+    make("uninstall", *args)
+    assert not workbench.exists()
 
 
 def test_make_freecad_link(tmp_path):
