@@ -335,8 +335,8 @@ def test_a_fixel_off_the_outline(client, doc):
     with pytest.raises(wf.WrenchError) as raised:
         wf.show_regions(doc, face, fixels, 0.25, "both", client)
     text = str(raised.value)
-    assert "fixel 2 (FixelPoints[1] = (100, 0.5, 1))" in text
-    assert "not on the workpiece boundary" in text and "0.5 away" in text
+    assert "fixel 2 (FixelPoints[1] = (100, 0.5, 1)): (100, 0.5) is not on the workpiece " \
+           "boundary: 0.5 away from it" in text                # as the README quotes it
     assert "params.fixture.fixels[1].at" in text
     fixture = [o for o in doc.Objects if wf._is(o, "WrenchFixture")][0]
     assert "Invalid" in fixture.State and "fixel 2" in fixture.getStatusString()
