@@ -904,15 +904,19 @@ _INDEXED = re.compile(r"^(fixels|sites)\[(\d+)\](.*)$")
 _LOOP = re.compile(r"^body\.shape\.loops\[(\d+)\](?:\[(\d+)\])?(.*)$")
 
 
-def _refusal(error, what, outline=None, fixels3d=()):
-    """A WrenchError naming, in FreeCAD's terms, the field wrenchd refused."""
+def _refusal(error, what, outline=None, fixels3d=(), properties=None):
+    """A WrenchError naming, in FreeCAD's terms, the field wrenchd refused;
+    `properties` names the object's properties some fields come from
+    ({"spacing": "DesignSpacing", ...})."""
     field = error.field or ""
     reason = error.reason or error.message
     rest = _FIELD.match(field)
     rest = rest.group(1) if rest else field
     subject = field or "the request"
     m = _INDEXED.match(rest)
-    if m:
+    if properties and rest.split("[")[0].split(".")[0] in properties:
+        subject = properties[rest.split("[")[0].split(".")[0]]
+    elif m:
         i = int(m.group(2))
         if m.group(1) == "fixels":
             subject = "fixel %d" % (i + 1)
@@ -943,14 +947,14 @@ def _refusal(error, what, outline=None, fixels3d=()):
                        field, reason)
 
 
-def _ask(what, path, call, outline=None, fixels3d=()):
+def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
     """call(), with wrenchd's errors made WrenchErrors in FreeCAD's terms."""
     try:
         return call()
     except wrenchd.WrenchdUnavailable as error:
         raise _unreachable(error, path) from None
     except wrenchd.WrenchdError as error:
-        raise _refusal(error, what, outline, fixels3d) from None
+        raise _refusal(error, what, outline, fixels3d, properties) from None
 
 
 def _report_error(obj, error):
@@ -1957,7 +1961,11 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
     try:
         result = _ask(what, path, lambda: client.design(
             body, friction, fixels=count, spacing=h, objective=objective, top=top,
-            progress=callback), shape)
+            progress=callback), shape, properties={
+                "fixels": "DesignFixels (%s)" % count, "spacing": "DesignSpacing (%s)" % _fmt(h),
+                "objective": "DesignObjective (%s)" % objective, "top": "DesignTop (%s)" % top,
+                "friction": "the friction (StaticFriction, KineticFriction)",
+                "body": "the part (Mass, or its outline)"})
     finally:
         if indicator is not None:
             indicator.stop()

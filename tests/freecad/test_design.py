@@ -80,8 +80,12 @@ def test_design_refusals(client, doc):
     fixture = wf.make_fixture(doc, wf._object_of_face(doc, face), [], 0.25,
                               socket=client.socket_path)
     doc.recompute()
-    with pytest.raises(wf.WrenchError, match=r"design: wrenchd refused .*\[params.spacing\]"):
+    with pytest.raises(wf.WrenchError, match=r"design: wrenchd refused DesignSpacing \(-1\): "
+                                             r".*\[params.spacing\]"):
         wf.design(fixture, client, progress=None, spacing=-1)
+    with pytest.raises(wf.WrenchError, match=r"design: wrenchd refused DesignFixels \(9\): "
+                                             r".*\[params.fixels\]"):
+        wf.design(fixture, client, progress=None, spacing=20, fixels=9)
     # one fixel never pins the part: no design at all
     with pytest.raises(wf.WrenchError, match=r"no design: 1 fixels from .* 0 degenerate\)"):
         wf.design(fixture, client, progress=None, spacing=20, fixels=1)
