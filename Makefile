@@ -23,7 +23,7 @@ DAEMON_LINK = libwrenchd.a libwrenchproto.a libwrench.a
 
 .PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
-        fuzz-build links check-cluster FORCE
+        fuzz-build links check-cluster deps-freecad check-freecad freecad-link freecad-picture FORCE
 
 all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
@@ -39,15 +39,22 @@ help:
 	@echo "make e2e        the end-to-end tests; make e2e-asan: against build/asan/wrenchd"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
 	@echo "make check-cluster   a design as a Slurm job array on a one-node cluster it starts (root)"
+	@echo "make check-freecad   the FreeCAD workbench's tests in freecadcmd, and FreeCAD's GUI under"
+	@echo "                Xvfb (clients/freecad; make deps-freecad installs FreeCAD and Xvfb)"
 	@echo "make validate   the full physics validation against Box2D (docs/VALIDATION.md)"
 	@echo "make fuzz       each libFuzzer target for FUZZ_SECONDS (tests/fuzz/README.md);"
 	@echo "                make fuzz-build builds them (build/fuzz/), make fuzz-smoke runs them briefly"
 	@echo "make soak       ten minutes of mixed load, resident memory (bench/README.md)"
 	@echo "make bench      the benchmarks, one table (docs/PERFORMANCE.md)"
 	@echo "make install    install under PREFIX (default /usr/local), honouring DESTDIR;"
-	@echo "                the configuration in SYSCONFDIR (default PREFIX/etc)"
+	@echo "                the configuration in SYSCONFDIR (default PREFIX/etc); the FreeCAD"
+	@echo "                workbench in FREECAD_MODDIR/Wrench (default FreeCAD's own Mod directory;"
+	@echo "                for a PREFIX other than /usr and /usr/local, PREFIX/share/FreeCAD/Mod)"
+	@echo "make freecad-link    the checkout's workbench linked into FreeCAD's user Mod directory"
+	@echo "make freecad-picture redraw docs/pictures/freecad-workbench.png (FreeCAD under Xvfb)"
 	@echo "make uninstall  remove what make install installed"
 	@echo "make deps       install the Debian packages the project needs"
+	@echo "make deps-freecad    and those of check-freecad: FreeCAD (no recommends), Xvfb"
 	@echo "make clean      remove build/"
 
 # ---- variants ------------------------------------------------------------------
@@ -206,6 +213,34 @@ check: links unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
 check-cluster: $(plain_DIR)/wrenchctl
 	@tests/cluster/check-cluster
 
+# The FreeCAD workbench (clients/freecad): its tests run in FreeCAD's own
+# Python (freecadcmd) against build/wrenchd, and one starts FreeCAD's GUI
+# under Xvfb (tests/freecad).  make deps-freecad installs FreeCAD and Xvfb.
+# The last line printed is pytest's.
+FREECADCMD ?= freecadcmd
+
+check-freecad: $(BUILD)/wrenchd
+	@command -v $(FREECADCMD) >/dev/null || { \
+	    echo "make check-freecad: no $(FREECADCMD): make deps-freecad installs FreeCAD"; exit 2; }
+	$(FREECADCMD) tests/freecad/run.py
+
+# The README's screenshot of the workbench, from the GUI test.
+freecad-picture: $(BUILD)/wrenchd
+	WRENCH_PICTURE=$(CURDIR)/docs/pictures/freecad-workbench.png WRENCH_PYTEST_ARGS="-k gui" \
+	    $(FREECADCMD) tests/freecad/run.py
+
+# The checkout's workbench in FreeCAD's user Mod directory (FreeCAD 0.20:
+# ~/.local/share/FreeCAD/Mod), as a symbolic link: FreeCAD then loads it
+# from here at every start.
+FREECAD_USER_MODDIR ?= $(HOME)/.local/share/FreeCAD/Mod
+
+freecad-link:
+	@mkdir -p $(FREECAD_USER_MODDIR)
+	@if [ -e $(FREECAD_USER_MODDIR)/Wrench ] && [ ! -L $(FREECAD_USER_MODDIR)/Wrench ]; then \
+	    echo "make freecad-link: $(FREECAD_USER_MODDIR)/Wrench exists and is no link: remove it first"; \
+	    exit 1; fi
+	ln -sfn $(CURDIR)/clients/freecad $(FREECAD_USER_MODDIR)/Wrench
+
 # ---- running it ------------------------------------------------------------
 
 demo: all
@@ -311,6 +346,18 @@ PYVERSION  = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[
 # Where Debian's python3 looks: /usr/lib/python3/dist-packages for /usr,
 # /usr/local/lib/python3.X/dist-packages for /usr/local.
 PYTHONDIR ?= $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$(PREFIX)/lib/python$(PYVERSION)/dist-packages)
+# The FreeCAD workbench goes to FREECAD_MODDIR/Wrench.  For PREFIX /usr or
+# /usr/local, by default the Mod directory of the FreeCAD installed here (its
+# FreeCAD.getResourceDir(); Debian's: /usr/share/freecad/Mod), where it looks
+# whatever the prefix; for any other PREFIX, PREFIX/share/FreeCAD/Mod, which
+# for PREFIX=~/.local is FreeCAD's user Mod directory.  The workbench holds
+# its own copy of wrenchd.py, so that it works whichever Python directory
+# PREFIX gives.
+FREECAD_SYSTEM_MODDIR = $(or $(shell $(FREECADCMD) -c \
+    'import FreeCAD; print(FreeCAD.getResourceDir() + "Mod")' 2>/dev/null | tail -n 1),/usr/share/freecad/Mod)
+FREECAD_MODDIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(FREECAD_SYSTEM_MODDIR),$(PREFIX)/share/FreeCAD/Mod)
+WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
+                  $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
                  lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_design.h \
                  lib/wr_lattice.h \
@@ -354,9 +401,18 @@ install: all
 	memory_max=$$(systemd/memory-max $(BUILD)/wrenchd $(DESTDIR)$(CONFIG_FILE)) && \
 	sed -e 's|@SBINDIR@|$(PREFIX)/sbin|' -e "s|@MEMORY_MAX@|$$memory_max|" $(CONFIG_PATHS) \
 	    systemd/wrenchd.service > $(DESTDIR)$(PREFIX)/lib/systemd/system/wrenchd.service
+	@# The FreeCAD workbench, with its copy of the Python client.
+	workbench="$(DESTDIR)$(FREECAD_MODDIR)/Wrench" && \
+	install -d "$$workbench/Resources/icons" && \
+	for f in $(WORKBENCH_FILES); do install -m 0644 clients/freecad/$$f "$$workbench/$$f"; done && \
+	install -m 0644 clients/python/wrenchd.py "$$workbench/wrenchd.py"
 
 uninstall:
 	rm -f $(addprefix $(DESTDIR),$(INSTALLED))
+	workbench="$(DESTDIR)$(FREECAD_MODDIR)/Wrench" && \
+	for f in $(WORKBENCH_FILES) wrenchd.py; do rm -f "$$workbench/$$f"; done && \
+	rm -rf "$$workbench/__pycache__" && \
+	{ rmdir "$$workbench/Resources/icons" "$$workbench/Resources" "$$workbench" 2>/dev/null || true; }
 	-rmdir $(DESTDIR)$(PREFIX)/include/wrench $(DESTDIR)$(PREFIX)/share/wrenchd/examples \
 	    $(DESTDIR)$(PREFIX)/share/wrenchd 2>/dev/null
 	@# The configuration goes only if it is still the one shipped.
@@ -386,14 +442,28 @@ DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev 
                libcmocka-dev python3 python3-pytest libbox2d-dev systemd clang libclang-rt-14-dev python3-scipy \
                python3-ezdxf slurm-wlm munge
 
-deps:
-	@missing=""; for p in $(DEB_PACKAGES); do \
+# FreeCAD for make check-freecad, apart: make check does not need it.
+# freecadcmd and the GUI need no recommended package (about 1.5 minutes to
+# install); xvfb-run gives the GUI a display, xauth is what it needs.
+FREECAD_PACKAGES = freecad-python3 xvfb xauth
+
+# $(call apt_install,PACKAGES,APT-GET OPTIONS): install those missing, with
+# sudo unless root; on failure once more after apt-get update.
+define apt_install
+	@missing=""; for p in $(1); do \
 	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
-	if [ -z "$$missing" ]; then echo "make deps: every Debian package is present"; exit 0; fi; \
-	echo "make deps: installing$$missing"; \
+	if [ -z "$$missing" ]; then echo "make $@: every Debian package is present"; exit 0; fi; \
+	echo "make $@: installing$$missing"; \
 	sudo=""; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
-	$$sudo apt-get install -y $$missing || { $$sudo apt-get update && $$sudo apt-get install -y $$missing; }
+	$$sudo apt-get install -y $(2) $$missing || { $$sudo apt-get update && $$sudo apt-get install -y $(2) $$missing; }
+endef
+
+deps:
+	$(call apt_install,$(DEB_PACKAGES))
+
+deps-freecad:
+	$(call apt_install,$(FREECAD_PACKAGES),--no-install-recommends)
 
 clean:
 	rm -rf $(BUILD)

@@ -1,0 +1,2051 @@
+"""wrench_freecad -- wrenchd in FreeCAD: the outline of a planar face as
+wrenchd's `shape`, and the document objects of the Wrench workbench.
+
+Nothing here needs the GUI: FreeCAD and Part only at module level (FreeCADGui
+is imported inside the view providers and the commands), so that freecadcmd
+runs all of it.
+
+The outline
+-----------
+
+    shape = outline(face, tolerance=None)
+
+is wrenchd's `{"type": "outline", "loops": [...]}` (docs/PROTOCOL.md) for a
+planar face: its outer wire first, then its holes, each a loop of vertices
+`[x, y]` or `[x, y, bulge]`.  Lines and circular arcs are exact (an arc of
+more than half a turn, and a full circle, is written as equal arcs of at
+most half a turn).  Every other curve -- B-spline, ellipse, Bezier, offset
+curve ... -- is replaced by arcs that meet tangentially (biarcs), no farther
+from it than `tolerance` (default: 1e-5 of the face's bounding-box
+diagonal, 1 micrometre on a part 100 mm across); runs of them that are
+straight, or on one circle, become one line or one arc.  The distance is
+measured both ways, from points of the curve to the arcs and from points of
+the arcs to the curve, and the largest found is `shape.deviation`.
+
+The 2-D frame: a face in a plane z = const (its normal along +Z or -Z) is
+written in the document's x and y.  A face in any other plane is written in
+the plane's own frame: origin at the plane's Position, x along the plane's
+first parameter direction (u), y = normal x (x), the normal being the
+plane's axis.  A sketch out of the XY plane is written in its own
+coordinates.  `shape.frame` is that frame as a Placement: the outline's
+point (x, y) is `shape.frame.multVec(Vector(x, y, 0))` in the document.
+
+`shape` is a dict (json.dumps writes it as wrenchd wants) that also knows
+`frame`, `tolerance`, `deviation`, `size` (the bounding-box diagonal),
+`segments` (per loop, one Segment per wrenchd segment: its geometry and the
+FreeCAD edge it comes from) and `approximated` (the edges replaced by arcs).
+
+The document objects
+--------------------
+
+    fixture = make_fixture(doc, (part, "Face6"), fixels=[...], friction=0.3)
+    regions = make_regions(fixture, "both")
+    doc.recompute()
+
+A WrenchFixture links a face (or a sketch, or a shape of one planar face),
+holds the fixels, the friction, the mass and the daemon's socket, and puts
+the fixture in wrenchd; WrenchRegions (one per set: goal, strong, both),
+WrenchFixels, WrenchBestPush and WrenchGravityDial show what wrenchd answers
+for it, and recompute when the part, the fixels or the friction change.
+Each region of a WrenchRegions is a WrenchRegion object of its own, with its
+Shape (the line or arc) and its numbers.
+
+What each set promises: a push in `goal` reaches every fixel from any
+contact state, but the part may then slide along its fixels; one in
+`strong` holds the seated part still but may not seat it.  What to push with
+and let go is `both`.
+
+    show_regions(doc, face, fixels, friction, set, client)   -> [WrenchRegion objects]
+    design(fixture, client=None, progress=True)              -> wrenchd.DesignResult
+
+Errors: OutlineError (a ValueError) for a face that has no outline (not
+planar, an open wire); WrenchError for what wrenchd refuses or cannot be
+asked, its message naming the fixel, the loop (and the FreeCAD edges) or
+the property at fault, and for an unreachable daemon how to start one.
+"""
+
+import json
+import math
+import os
+import re
+import sys
+
+import FreeCAD
+import Part
+from FreeCAD import Vector
+
+
+def _client_module_paths():
+    """Where wrenchd.py may be: the checkout's clients/python beside this
+    workbench, then this directory (make install puts a copy here)."""
+    here = os.path.dirname(os.path.realpath(__file__))
+    return [os.path.normpath(os.path.join(here, "..", "python")), here]
+
+
+for _path in _client_module_paths():
+    if os.path.isfile(os.path.join(_path, "wrenchd.py")):
+        if _path not in sys.path:
+            sys.path.insert(0, _path)
+        break
+
+import wrenchd  # noqa: E402  (after its directory is on the path)
+
+__all__ = [
+    "outline", "Outline", "Segment", "OutlineError", "WrenchError",
+    "make_fixture", "make_regions", "make_fixels", "make_best_push", "make_gravity_dial",
+    "show_regions", "region_objects", "design", "fixel_at", "client_for",
+    "SETS", "MEANING", "COLOURS", "DEFAULT_RELATIVE_TOLERANCE",
+]
+
+SETS = ("goal", "strong", "both")
+
+# What a push in each set promises, in the words of docs/PROTOCOL.md.
+MEANING = {
+    "goal": "goal: a push here reaches every fixel from any contact state, but the part "
+            "may then slide along its fixels; to push and let go, use both",
+    "strong": "strong: a push here holds the seated part still, but may not seat it; "
+              "to push and let go, use both",
+    "both": "both: a push here seats the part from any contact state and then holds it "
+            "still: push here and let go",
+}
+# The same for gravity alone, pulling along a direction of the dial.
+GRAVITY_MEANING = {
+    "goal": "goal: gravity pulling this way seats the part from any contact state, but may "
+            "then let it slide along its fixels; to tilt and let go, use both",
+    "strong": "strong: gravity pulling this way holds the seated part still, but may not seat "
+              "it; to tilt and let go, use both",
+    "both": "both: gravity pulling this way seats the part from any contact state and then "
+            "holds it still",
+}
+SHORT_MEANING = {
+    "goal": "seats, may then slide: use both",
+    "strong": "holds once seated: use both",
+    "both": "push here and let go",
+}
+
+# Region colours (red, green, blue in [0, 1]) and widths in pixels.  both is
+# goal and strong together, so only under both do regions of two sets lie
+# on one another: both, what to push with, is drawn the widest and on top.
+COLOURS = {"goal": (0.15, 0.40, 0.95), "strong": (1.00, 0.55, 0.00), "both": (0.00, 0.72, 0.20)}
+LINE_WIDTHS = {"goal": 5.0, "strong": 5.0, "both": 10.0}
+
+# The default approximation tolerance, relative to the face's bounding-box
+# diagonal: 1 micrometre on a part 100 mm across, a tenth of a fine machining
+# tolerance.  A position that close still turns a curve's normal, on which a
+# push region depends, by at most about sqrt(2 tolerance / radius of
+# curvature) between the arcs' joints (where it is exact).
+DEFAULT_RELATIVE_TOLERANCE = 1e-5
+
+# wrenchd takes at most this many outline vertices over all loops.
+MAX_VERTICES = 4096
+
+# A fixel this close to the outline (relative to its size) counts as on it
+# before it is moved onto it; wrenchd itself allows 1e-9.
+ON_OUTLINE = 1e-7
+
+
+class OutlineError(ValueError):
+    """The face (or sketch) has no outline wrenchd can take; the message says
+    which entity and why."""
+
+
+class WrenchError(RuntimeError):
+    """wrenchd refused a request, or could not be reached; the message names
+    what is wrong in FreeCAD's terms.  `field` and `reason` are wrenchd's
+    (empty when it was not reached)."""
+
+    def __init__(self, message, field="", reason=""):
+        super().__init__(message)
+        self.field = field
+        self.reason = reason
+
+
+# ---- numbers -----------------------------------------------------------------------
+
+def _fmt(x):
+    """A number for a message: 6 significant digits; below 1e-9 in size, 0
+    (a coordinate off by rounding)."""
+    text = "%.6g" % (x if abs(x) >= 1e-9 else 0.0)
+    return "0" if text in ("-0", "0") else text
+
+
+def _fmt_point(p):
+    return "(" + ", ".join(_fmt(c) for c in p) + ")"
+
+
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1])
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def _cross(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _norm(a):
+    return math.hypot(a[0], a[1])
+
+
+def _unit(a):
+    n = _norm(a)
+    return (a[0] / n, a[1] / n)
+
+
+def _angle(a, b):
+    """The signed angle from direction a to direction b, counter-clockwise
+    positive, in (-pi, pi]."""
+    return math.atan2(_cross(a, b), _dot(a, b))
+
+
+# ---- segments ----------------------------------------------------------------------
+
+class Segment:
+    """Segment `index` of loop `loop` of an outline: from `start` to `end`
+    (2-D tuples), a straight line when `bulge` is 0, else an arc of included
+    angle 4 atan(bulge), counter-clockwise positive -- as wrenchd reads a
+    vertex [x, y, bulge].  `edge`: the name of the FreeCAD edge it comes from
+    ("Edge3"), `exact`: False where it approximates that edge by arcs.  `t`
+    along it is the fraction of its length (of an arc's included angle),
+    push.regions' t."""
+
+    def __init__(self, loop, index, start, end, bulge=0.0, edge="", exact=True):
+        self.loop, self.index = loop, index
+        self.start, self.end = (float(start[0]), float(start[1])), (float(end[0]), float(end[1]))
+        self.bulge = float(bulge)
+        self.edge, self.exact = edge, exact
+        chord = _sub(self.end, self.start)
+        self.chord = _norm(chord)
+        if self.bulge:
+            b = self.bulge
+            self.sweep = 4.0 * math.atan(b)
+            self.radius = self.chord * (1.0 + b * b) / (4.0 * abs(b))
+            # The centre is on the chord's perpendicular bisector, on its
+            # left by chord (1 - b^2) / (4 b) (right for b < 0).
+            h = (1.0 - b * b) / (4.0 * b)
+            mid = ((self.start[0] + self.end[0]) / 2.0, (self.start[1] + self.end[1]) / 2.0)
+            self.centre = (mid[0] - chord[1] * h, mid[1] + chord[0] * h)
+            self.start_angle = math.atan2(self.start[1] - self.centre[1],
+                                          self.start[0] - self.centre[0])
+        else:
+            self.sweep = 0.0
+            self.radius = math.inf
+            self.centre = None
+            self.start_angle = 0.0
+
+    @property
+    def is_arc(self):
+        return self.bulge != 0.0
+
+    @property
+    def length(self):
+        return self.radius * abs(self.sweep) if self.is_arc else self.chord
+
+    def point(self, t):
+        """The point at t (t = 0 at start, 1 at end)."""
+        if t == 0.0:
+            return self.start
+        if t == 1.0:
+            return self.end
+        if self.is_arc:
+            a = self.start_angle + t * self.sweep
+            return (self.centre[0] + self.radius * math.cos(a),
+                    self.centre[1] + self.radius * math.sin(a))
+        return (self.start[0] + t * (self.end[0] - self.start[0]),
+                self.start[1] + t * (self.end[1] - self.start[1]))
+
+    def tangent(self, t):
+        """The unit direction of travel at t."""
+        if self.is_arc:
+            a = self.start_angle + t * self.sweep
+            s = 1.0 if self.sweep > 0 else -1.0
+            return (-s * math.sin(a), s * math.cos(a))
+        return _unit(_sub(self.end, self.start))
+
+    def nearest(self, p):
+        """(t, point, distance): the point of the segment nearest p."""
+        if self.is_arc:
+            a = math.atan2(p[1] - self.centre[1], p[0] - self.centre[0])
+            turn = (a - self.start_angle) * (1.0 if self.sweep > 0 else -1.0)
+            turn = math.fmod(turn, 2.0 * math.pi)
+            if turn < 0:
+                turn += 2.0 * math.pi
+            if turn <= abs(self.sweep):
+                t = turn / abs(self.sweep)
+                q = self.point(t)
+                return t, q, _norm(_sub(p, q))
+            ends = [(0.0, self.start), (1.0, self.end)]
+        else:
+            d = _sub(self.end, self.start)
+            ll = _dot(d, d)
+            t = 0.0 if ll == 0 else min(1.0, max(0.0, _dot(_sub(p, self.start), d) / ll))
+            q = self.point(t)
+            return t, q, _norm(_sub(p, q))
+        t, q = min(ends, key=lambda e: _norm(_sub(p, e[1])))
+        return t, q, _norm(_sub(p, q))
+
+    def vertex(self):
+        """The segment's start vertex as wrenchd writes it."""
+        if self.bulge:
+            return [self.start[0], self.start[1], self.bulge]
+        return [self.start[0], self.start[1]]
+
+    def __repr__(self):
+        kind = "arc %.6g deg" % math.degrees(self.sweep) if self.is_arc else "line"
+        return "<Segment %d.%d %s %s -> %s%s>" % (self.loop, self.index, kind, _fmt_point(self.start),
+                                                   _fmt_point(self.end),
+                                                   " of " + self.edge if self.edge else "")
+
+
+# ---- the outline -------------------------------------------------------------------
+
+class Outline(dict):
+    """wrenchd's shape {"type": "outline", "loops": [...]}, with what maps
+    its answers back into the document (see the module's docstring)."""
+
+    def __init__(self, loops, frame, tolerance=0.0, deviation=0.0, approximated=(), size=None):
+        segments = [list(loop) for loop in loops]
+        super().__init__(type="outline", loops=[[s.vertex() for s in loop] for loop in segments])
+        self.segments = segments
+        self.frame = FreeCAD.Placement(frame)
+        self.tolerance = tolerance
+        self.deviation = deviation
+        self.approximated = list(approximated)
+        if size is None:
+            xs = [c for loop in segments for s in loop for c in (s.start[0], s.end[0])]
+            ys = [c for loop in segments for s in loop for c in (s.start[1], s.end[1])]
+            size = math.hypot(max(xs) - min(xs), max(ys) - min(ys)) if xs else 0.0
+        self.size = size
+        self._inverse = self.frame.inverse()
+        self._inward_left = [self._signed_area(i) > 0 if i == 0 else self._signed_area(i) < 0
+                             for i in range(len(segments))]
+
+    @classmethod
+    def from_shape(cls, shape, frame, edges=None, tolerance=0.0, deviation=0.0):
+        """The Outline of a shape dict as wrenchd takes it (the loops of
+        vertices with bulges); `edges`: per loop, per segment, the FreeCAD
+        edge it came from and whether exactly ([[name, exact], ...])."""
+        loops = []
+        for i, loop in enumerate(shape["loops"]):
+            segs = []
+            n = len(loop)
+            for j, v in enumerate(loop):
+                w = loop[(j + 1) % n]
+                name, exact = ("", True)
+                if edges is not None:
+                    name, exact = edges[i][j]
+                segs.append(Segment(i, j, v[:2], w[:2], v[2] if len(v) > 2 else 0.0, name, exact))
+            loops.append(segs)
+        return cls(loops, frame, tolerance, deviation)
+
+    def edge_table(self):
+        """Per loop, per segment: [FreeCAD edge name, exact]."""
+        return [[[s.edge, s.exact] for s in loop] for loop in self.segments]
+
+    def _signed_area(self, i):
+        """The signed area of loop i, counter-clockwise positive: the chord
+        polygon plus each arc's circular segment."""
+        area = 0.0
+        for s in self.segments[i]:
+            area += _cross(s.start, s.end) / 2.0
+            if s.is_arc:
+                theta = abs(s.sweep)
+                area += math.copysign(s.radius * s.radius / 2.0 * (theta - math.sin(theta)), s.sweep)
+        return area
+
+    # -- the frame --
+    def to_3d(self, p):
+        """The document point of the outline's point p = (x, y)."""
+        return self.frame.multVec(Vector(p[0], p[1], 0.0))
+
+    def direction_3d(self, d):
+        return self.frame.Rotation.multVec(Vector(d[0], d[1], 0.0))
+
+    def to_2d(self, v):
+        """(x, y, off): the outline's coordinates of document point v, and
+        its distance from the outline's plane."""
+        q = self._inverse.multVec(v)
+        return q.x, q.y, q.z
+
+    def direction_2d(self, v):
+        q = self._inverse.Rotation.multVec(v)
+        return q.x, q.y
+
+    @property
+    def normal(self):
+        """The plane's normal in the document (the frame's z axis)."""
+        return self.frame.Rotation.multVec(Vector(0, 0, 1))
+
+    # -- geometry --
+    def all_segments(self):
+        for loop in self.segments:
+            for s in loop:
+                yield s
+
+    def perimeter(self):
+        return sum(s.length for s in self.all_segments())
+
+    def nearest(self, p):
+        """(segment, t, point, distance): where the outline is nearest p."""
+        best = None
+        for s in self.all_segments():
+            t, q, d = s.nearest(p)
+            if best is None or d < best[3]:
+                best = (s, t, q, d)
+        return best
+
+    def inward_normal(self, segment, t):
+        """The unit normal at t of the segment, pointing into the material."""
+        tx, ty = segment.tangent(t)
+        if self._inward_left[segment.loop]:
+            return (-ty, tx)
+        return (ty, -tx)
+
+    def corner_normal(self, loop, index):
+        """At vertex `index` of `loop`, the inward bisector of the two
+        segments that meet there (a fixel at a corner needs a normal)."""
+        segs = self.segments[loop]
+        before, after = segs[index - 1], segs[index]
+        a = self.inward_normal(before, 1.0)
+        b = self.inward_normal(after, 0.0)
+        s = (a[0] + b[0], a[1] + b[1])
+        if _norm(s) < 1e-9:           # a cusp: the segments turn back
+            return b
+        return _unit(s)
+
+    def edge_3d(self, segment, t0=0.0, t1=1.0):
+        """The document edge of the segment from t0 to t1 (a line or an arc
+        on the segment's own circle)."""
+        if not segment.is_arc:
+            return Part.LineSegment(self.to_3d(segment.point(t0)), self.to_3d(segment.point(t1))).toShape()
+        a0 = segment.start_angle + t0 * segment.sweep
+        a1 = segment.start_angle + t1 * segment.sweep
+        lo, hi = min(a0, a1), max(a0, a1)
+        circle = Part.Circle(self.to_3d(segment.centre), self.normal, segment.radius)
+        circle.XAxis = self.direction_3d((1.0, 0.0))
+        return Part.ArcOfCircle(circle, lo, hi).toShape()
+
+    def shape_3d(self):
+        """Every segment in the document, as one compound of edges."""
+        return Part.Compound([self.edge_3d(s) for s in self.all_segments()])
+
+    def loop_words(self, i):
+        """"the outer boundary" or "hole 2", with the FreeCAD edges of loop i."""
+        what = "the outer boundary" if i == 0 else "hole %d" % i
+        names = []
+        for s in self.segments[i]:
+            if s.edge and s.edge not in names:
+                names.append(s.edge)
+        if names:
+            what += " (%s)" % ", ".join(names)
+        return what
+
+    def segment_words(self, i, j):
+        s = self.segments[i][j]
+        text = "segment %d of loop %d, a %s" % (j, i, "arc" if s.is_arc else "line")
+        if s.edge:
+            text += " %s %s" % ("on" if s.exact else "approximating", s.edge)
+        return text
+
+
+def _frame_of(plane, shape):
+    """The 2-D frame of a plane: the document's x, y when its normal is
+    along Z, else the plane's own frame (the module's docstring)."""
+    axis = Vector(plane.Axis)
+    axis.normalize()
+    if abs(axis.x) <= 1e-12 and abs(axis.y) <= 1e-12:
+        z = shape.Vertexes[0].Point.z if shape.Vertexes else plane.Position.z
+        return FreeCAD.Placement(Vector(0, 0, z), FreeCAD.Rotation())
+    origin = plane.value(0, 0)
+    u = plane.value(1, 0) - origin
+    u = u - axis * u.dot(axis)
+    u.normalize()
+    v = axis.cross(u)
+    m = FreeCAD.Matrix(u.x, v.x, axis.x, origin.x,
+                       u.y, v.y, axis.y, origin.y,
+                       u.z, v.z, axis.z, origin.z,
+                       0, 0, 0, 1)
+    return FreeCAD.Placement(m)
+
+
+def _edge_kind(edge):
+    try:
+        return type(edge.Curve).__name__
+    except Exception:             # an edge without a curve (degenerated)
+        return "degenerate edge"
+
+
+class _Namer:
+    """Names the FreeCAD edges of a wire: "Edge3" as FreeCAD's selection
+    calls them in `names_in` (the linked object's shape), else as the face's
+    own edges."""
+
+    def __init__(self, names_in, owner=""):
+        self.edges = list(names_in.Edges) if names_in is not None else []
+        self.owner = owner
+
+    def __call__(self, edge):
+        for i, e in enumerate(self.edges):
+            if e.isSame(edge):
+                return "Edge%d%s" % (i + 1, " of " + self.owner if self.owner else "")
+        # the same curve, another TopoDS edge (a face made from a sketch's wires)
+        mid = edge.valueAt((edge.FirstParameter + edge.LastParameter) / 2.0)
+        for i, e in enumerate(self.edges):
+            if abs(e.Length - edge.Length) <= 1e-7 * max(1.0, edge.Length) \
+                    and e.distToShape(Part.Vertex(mid))[0] <= 1e-7 * max(1.0, edge.Length):
+                return "Edge%d%s" % (i + 1, " of " + self.owner if self.owner else "")
+        return ""
+
+
+def outline(face, tolerance=None, frame=None, names=None, owner=""):
+    """wrenchd's shape of a planar face (see the module's docstring).
+
+    face: a Part.Face, or a shape whose faces are one planar face, or a
+    shape of closed planar wires (a sketch's): the wire enclosing the
+    others is the outer boundary.
+    tolerance: how far an approximating arc may be from a curve that is not
+    a line or a circle; default DEFAULT_RELATIVE_TOLERANCE times the face's
+    bounding-box diagonal.
+    frame: a Placement whose XY plane is the face's plane, to write the
+    outline in; default as the module's docstring says.
+    names, owner: the shape whose edges name the segments' edges ("Edge3")
+    and the name of the object it belongs to (for messages); default the
+    face itself.
+
+    Raises OutlineError naming what is wrong: not planar, an open wire,
+    no face, more vertices than wrenchd takes."""
+    shape = face
+    if not isinstance(shape, Part.Shape) or shape.isNull():
+        raise OutlineError("outline() takes a FreeCAD face (Part.Face), not %s"
+                           % type(face).__name__)
+    faces = shape.Faces
+    if len(faces) > 1:
+        raise OutlineError("the shape has %d faces: an outline is one planar face" % len(faces))
+    if faces:
+        the_face = faces[0]
+        outer = the_face.OuterWire
+        wires = [outer] + [w for w in the_face.Wires if not w.isSame(outer)]
+    else:
+        the_face = None
+        wires = list(shape.Wires)
+        loose = [e for e in shape.Edges if not any(w.isSame(e) or any(x.isSame(e) for x in w.Edges)
+                                                  for w in wires)]
+        if loose:
+            raise OutlineError("%d edge%s belong to no wire (the first at %s): close the outline"
+                               % (len(loose), "" if len(loose) == 1 else "s",
+                                  _fmt_point(loose[0].valueAt(loose[0].FirstParameter))))
+        if not wires:
+            raise OutlineError("the shape has no face and no wire: nothing to outline")
+    size = shape.BoundBox.DiagonalLength
+    if not size > 0:
+        raise OutlineError("the shape has no extent")
+    namer = _Namer(names if names is not None else (the_face if the_face is not None else shape), owner)
+
+    for w in wires:
+        if not w.isClosed():
+            a = w.OrderedVertexes[0].Point
+            b = w.OrderedVertexes[-1].Point
+            raise OutlineError("the wire through %s is open: its ends %s and %s are %s apart"
+                               % (", ".join(n for n in (namer(e) for e in w.OrderedEdges[:4]) if n)
+                                  or "%d edges" % len(w.Edges),
+                                  _fmt_point(a), _fmt_point(b), _fmt(a.distanceToPoint(b))))
+    plane = shape.findPlane() if the_face is None else the_face.findPlane()
+    if plane is None:
+        kind = type(the_face.Surface).__name__ if the_face is not None else "curve"
+        raise OutlineError("the %s is not planar (its surface is a %s): an outline is a planar face"
+                           % ("face" if the_face is not None else "wire", kind))
+    if frame is None:
+        frame = _frame_of(plane, shape)
+    else:
+        frame = FreeCAD.Placement(frame)
+        z = frame.Rotation.multVec(Vector(0, 0, 1))
+        axis = Vector(plane.Axis)
+        axis.normalize()
+        off = max(abs(frame.inverse().multVec(v.Point).z) for v in shape.Vertexes)
+        if abs(abs(z.dot(axis)) - 1.0) > 1e-9 or off > 1e-7 * size:
+            raise OutlineError("the frame given is not the face's plane (%s off it)" % _fmt(off))
+
+    if tolerance is None or tolerance == 0:
+        tol = DEFAULT_RELATIVE_TOLERANCE * size
+    else:
+        tol = float(tolerance)
+        if not (math.isfinite(tol) and tol > 0):
+            raise OutlineError("the tolerance is a positive length, not %r" % (tolerance,))
+
+    if the_face is None and len(wires) > 1:
+        # the outer boundary encloses the others: the largest enclosed area
+        def enclosed(w):
+            try:
+                return abs(Part.Face(w).Area)
+            except Part.OCCError:
+                return w.BoundBox.DiagonalLength ** 2
+        wires.sort(key=enclosed, reverse=True)
+
+    inverse = frame.inverse()
+
+    def to2d(v):
+        q = inverse.multVec(v)
+        return (q.x, q.y)
+
+    normal = frame.Rotation.multVec(Vector(0, 0, 1))
+    loops = []
+    approximated = []
+    deviation = 0.0
+    for i, w in enumerate(wires):
+        pieces = []           # (start point, bulge, edge name, exact)
+        edges = w.OrderedEdges
+        vertexes = w.OrderedVertexes
+        n = len(edges)
+        for k, e in enumerate(edges):
+            if e.Length <= 1e-12 * size:
+                continue
+            v0 = vertexes[k % len(vertexes)].Point
+            v1 = vertexes[(k + 1) % len(vertexes)].Point
+            first, last = e.FirstParameter, e.LastParameter
+            a, b = e.valueAt(first), e.valueAt(last)
+            if n == 1 or e.isClosed():
+                forward = True
+            else:
+                forward = a.distanceToPoint(v0) + b.distanceToPoint(v1) <= \
+                    b.distanceToPoint(v0) + a.distanceToPoint(v1)
+            u0, u1 = (first, last) if forward else (last, first)
+            gap = (e.valueAt(u1)).distanceToPoint(v1)
+            if gap > max(1e-7 * size, 10 * max(e.Tolerance, 1e-7)):
+                raise OutlineError("the wire is open after %s: its end %s is %s from the next vertex %s"
+                                   % (namer(e) or "an edge", _fmt_point(e.valueAt(u1)), _fmt(gap),
+                                      _fmt_point(v1)))
+            p0, p1 = to2d(v0), to2d(v1)
+            name = namer(e)
+            kind = _edge_kind(e)
+            if kind in ("Line", "LineSegment"):
+                pieces.append((p0, 0.0, name, True))
+            elif kind == "Circle" and abs(abs(Vector(e.Curve.Axis).normalize().dot(normal)) - 1) <= 1e-12:
+                sense = 1.0 if Vector(e.Curve.Axis).dot(normal) > 0 else -1.0
+                if not forward:
+                    sense = -sense
+                sweep = last - first
+                count = max(1, int(math.ceil(sweep / math.pi - 1e-9)))
+                if e.isClosed():
+                    count = max(count, 2)
+                bulge = math.tan(sense * sweep / count / 4.0)
+                for m in range(count):
+                    if m == 0:
+                        p = p0
+                    else:
+                        p = to2d(e.valueAt(u0 + (u1 - u0) * m / count))
+                    pieces.append((p, bulge, name, True))
+            else:
+                arcs, measured = _approximate(e, u0, u1, p0, p1, frame, tol, size)
+                deviation = max(deviation, measured)
+                approximated.append({"edge": name, "kind": kind, "arcs": len(arcs),
+                                     "deviation": measured})
+                for p, bulge in arcs:
+                    pieces.append((p, bulge, name, False))
+        if len(pieces) < 2:
+            raise OutlineError("the wire of %s encloses no area" % (
+                ", ".join(n for n in (namer(e) for e in edges) if n) or "%d edges" % n))
+        segs = []
+        for j, (p, bulge, name, exact) in enumerate(pieces):
+            q = pieces[(j + 1) % len(pieces)][0]
+            segs.append(Segment(i, j, p, q, bulge, name, exact))
+        loops.append(segs)
+    count = sum(len(loop) for loop in loops)
+    if count > MAX_VERTICES:
+        raise OutlineError("the outline has %d vertices, wrenchd takes at most %d%s"
+                           % (count, MAX_VERTICES,
+                              ": give a larger tolerance (%s now) for the curves approximated by arcs"
+                              % _fmt(tol) if approximated else ""))
+    return Outline(loops, frame, tol, deviation, approximated, size)
+
+
+# ---- curves by arcs ----------------------------------------------------------------
+
+def _biarc(p0, t0, p1, t1):
+    """Two arcs from p0 (unit tangent t0) to p1 (unit tangent t1) that meet
+    tangentially, each turning at most half a turn: [(p0, bulge), (joint,
+    bulge)], or None where none does (the piece is then split).  The joint
+    is where the arcs' tangent lines from p0 and p1 are equally long (the
+    equal-chord biarc)."""
+    v = _sub(p1, p0)
+    vv = _dot(v, v)
+    if vv == 0:
+        return None
+    t = (t0[0] + t1[0], t0[1] + t1[1])
+    vt = _dot(v, t)
+    room = 2.0 * (1.0 - _dot(t0, t1))           # 4 - |t|^2
+    if room < 1e-14:
+        if vt <= 0:
+            return None
+        d = vv / (2.0 * vt)
+    else:
+        d = (-vt + math.sqrt(vt * vt + room * vv)) / room
+    if not (d > 0) or d > 4.0 * math.sqrt(vv):
+        return None
+    q0 = (p0[0] + d * t0[0], p0[1] + d * t0[1])
+    q1 = (p1[0] - d * t1[0], p1[1] - d * t1[1])
+    joint = ((q0[0] + q1[0]) / 2.0, (q0[1] + q1[1]) / 2.0)
+    out = []
+    for start, tangent, end, at_start in ((p0, t0, joint, True), (joint, t1, p1, False)):
+        chord = _sub(end, start)
+        if _norm(chord) <= 1e-15 * math.sqrt(vv):
+            continue
+        # the included angle is twice the angle between a tangent and the chord
+        half = _angle(tangent, chord) if at_start else _angle(chord, tangent)
+        if abs(half) > math.pi / 2.0 - 1e-9:
+            return None
+        # an arc bulging less than 1e-9 of its chord is that chord (a far
+        # centre would cost its points their digits)
+        out.append((start, math.tan(half / 2.0) if abs(half) > 4e-9 else 0.0))
+    return out or None
+
+
+def _approximate(edge, u0, u1, p0, p1, frame, tolerance, size):
+    """Arcs [(start point, bulge)] from p0 to p1 (p1 not included) along the
+    edge from parameter u0 to u1, each within `tolerance` of it, and the
+    largest distance measured between them both ways: from points of the
+    curve to the arcs, and (by FreeCAD's distToShape) from points of the
+    arcs to the edge.  Each piece is fitted to a fraction of the tolerance;
+    should the measure still find more than the tolerance, the fit is made
+    again, finer."""
+    fraction = 0.5
+    for _ in range(4):
+        arcs = _fit_arcs(edge, u0, u1, p0, p1, frame, fraction * tolerance, size)
+        worst = _measure(edge, u0, u1, arcs, p1, frame, tolerance)
+        if worst <= tolerance:
+            return arcs, worst
+        fraction /= 4.0
+    raise OutlineError("the arcs following the %s are %s from it, above the tolerance %s"
+                       % (_edge_kind(edge), _fmt(worst), _fmt(tolerance)))
+
+
+def _fit_arcs(edge, u0, u1, p0, p1, frame, tolerance, size):
+    """Biarcs along the edge, each within `tolerance` of it at 16 points;
+    then straight runs made one line and runs on one circle one arc."""
+    inverse = frame.inverse()
+    rotation = inverse.Rotation
+    sign = 1.0 if u1 > u0 else -1.0
+
+    def point(u):
+        q = inverse.multVec(edge.valueAt(u))
+        return (q.x, q.y)
+
+    def tangent(u):
+        try:
+            d = rotation.multVec(edge.tangentAt(u))
+            n = math.hypot(d.x, d.y)
+            if n > 0.5:
+                return (sign * d.x / n, sign * d.y / n)
+        except Part.OCCError:
+            pass
+        h = 1e-7 * (u1 - u0)         # where the derivative vanishes: a difference
+        a, b = point(u - h if u != u0 else u), point(u + h if u != u1 else u)
+        return _unit(_sub(b, a))
+
+    def within(arcs, a, b, pb):
+        segs = [Segment(0, k, s, arcs[k + 1][0] if k + 1 < len(arcs) else pb, bulge)
+                for k, (s, bulge) in enumerate(arcs)]
+        samples = 16
+        for m in range(1, samples):
+            p = point(a + (b - a) * m / samples)
+            if min(s.nearest(p)[2] for s in segs) > tolerance:
+                return False
+        return True
+
+    out = []
+
+    def piece(a, b, pa, pb, ta, tb, depth):
+        arcs = _biarc(pa, ta, pb, tb)
+        if arcs is not None and within(arcs, a, b, pb):
+            out.extend(arcs)
+            return
+        if depth >= 40 or abs(b - a) <= 1e-12 * max(1.0, abs(u1 - u0)):
+            if _norm(_sub(pb, pa)) <= tolerance:
+                out.append((pa, 0.0))
+                return
+            raise OutlineError("cannot follow the %s within %s by arcs near %s"
+                               % (_edge_kind(edge), _fmt(tolerance), _fmt_point(pa)))
+        m = (a + b) / 2.0
+        pm, tm = point(m), tangent(m)
+        piece(a, m, pa, pm, ta, tm, depth + 1)
+        piece(m, b, pm, pb, tm, tb, depth + 1)
+        if len(out) > MAX_VERTICES:
+            raise OutlineError("following the %s within %s takes more than %d arcs: give a "
+                               "larger tolerance" % (_edge_kind(edge), _fmt(tolerance), MAX_VERTICES))
+
+    def one_sided(u, toward):
+        """The tangent at a kink, as the piece from u toward `toward` has it."""
+        return tangent(u + 1e-9 * (toward - u))
+
+    # Start from pieces that each turn little (8 of a closed curve, 4 of an
+    # open one), split also where the curve may turn sharply (a B-spline's
+    # knot of multiplicity >= its degree): there each piece has its own
+    # tangent.
+    count = 8 if edge.isClosed() else 4
+    kinks = _kinks(edge, u0, u1)
+    us = sorted(set([u0 + (u1 - u0) * k / count for k in range(count + 1)] + kinks),
+                key=lambda u: (u - u0) / (u1 - u0))
+    ps = [p0] + [point(u) for u in us[1:-1]] + [p1]
+    for k in range(len(us) - 1):
+        a, b = us[k], us[k + 1]
+        ta = one_sided(a, b) if a in kinks else tangent(a)
+        tb = one_sided(b, a) if b in kinks else tangent(b)
+        piece(a, b, ps[k], ps[k + 1], ta, tb, 0)
+    return _merge(out, p1, size)
+
+
+def _kinks(edge, u0, u1):
+    """Parameters strictly between u0 and u1 where the edge's curve may have
+    a corner: a B-spline's knots of multiplicity at least its degree."""
+    curve = edge.Curve
+    if type(curve).__name__ != "BSplineCurve":
+        return []
+    lo, hi = min(u0, u1), max(u0, u1)
+    margin = 1e-12 * (hi - lo)
+    return [k for k, m in zip(curve.getKnots(), curve.getMultiplicities())
+            if m >= curve.Degree and lo + margin < k < hi - margin]
+
+
+def _merge(arcs, end, size):
+    """Consecutive pieces on one line, or on one circle turning one way (at
+    most half a turn together), made one: a B-spline that is straight or
+    circular becomes the line or the arc it is."""
+    close = 1e-9 * size
+    out = []
+    for k, (start, bulge) in enumerate(arcs):
+        stop = arcs[k + 1][0] if k + 1 < len(arcs) else end
+        if out:
+            first, first_bulge, last = out[-1]
+            joined = None
+            if bulge == 0.0 and first_bulge == 0.0:
+                # start lies on the line from first to stop
+                d = _sub(stop, first)
+                if _norm(d) > 0 and abs(_cross(d, _sub(start, first))) / _norm(d) <= close:
+                    joined = 0.0
+            elif bulge != 0.0 and first_bulge != 0.0 and (bulge > 0) == (first_bulge > 0):
+                a = Segment(0, 0, first, start, first_bulge)
+                b = Segment(0, 0, start, stop, bulge)
+                sweep = a.sweep + b.sweep
+                if _norm(_sub(a.centre, b.centre)) <= close and abs(a.radius - b.radius) <= close \
+                        and abs(sweep) <= math.pi:
+                    joined = math.tan(sweep / 4.0)
+            if joined is not None:
+                out[-1] = (first, joined, stop)
+                continue
+        out.append((start, bulge, stop))
+    return [(start, bulge) for start, bulge, _ in out]
+
+
+def _measure(edge, u0, u1, arcs, p1, frame, tolerance):
+    """The largest distance found between the edge and the arcs: from 8
+    points a piece (64 at least) of the curve to the arcs, and from 7 points
+    of each arc to the edge, by FreeCAD's distToShape."""
+    inverse = frame.inverse()
+    segs = [Segment(0, k, s, arcs[k + 1][0] if k + 1 < len(arcs) else p1, bulge)
+            for k, (s, bulge) in enumerate(arcs)]
+    worst = 0.0
+    dense = max(64, 8 * len(segs))
+    near = 0                     # the arc nearest the last sample: the next is near it
+    for m in range(dense + 1):
+        q = inverse.multVec(edge.valueAt(u0 + (u1 - u0) * m / dense))
+        p = (q.x, q.y)
+        window = range(max(0, near - 2), min(len(segs), near + 4))
+        d, near = min((segs[k].nearest(p)[2], k) for k in window)
+        if d > 0.5 * tolerance:  # far from the arcs about: ask them all
+            d, near = min((s.nearest(p)[2], k) for k, s in enumerate(segs))
+        worst = max(worst, d)
+    for s in segs:
+        for t in (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875):
+            q = s.point(t)
+            vertex = Part.Vertex(frame.multVec(Vector(q[0], q[1], 0.0)))
+            worst = max(worst, edge.distToShape(vertex)[0])
+    return worst
+
+
+# ---- talking to wrenchd ------------------------------------------------------------
+
+_CLIENTS = {}
+
+
+def socket_path(socket=""):
+    """The socket a fixture uses: its own, else $WRENCHD_SOCKET, else
+    ./run/wrenchd.sock (as an absolute path)."""
+    return os.path.abspath(socket or wrenchd.default_socket_path())
+
+
+def client_for(socket="", timeout=60.0):
+    """One wrenchd.Client per socket path, shared by the objects using it."""
+    path = socket_path(socket)
+    client = _CLIENTS.get(path)
+    if client is None:
+        client = _CLIENTS[path] = wrenchd.Client(path, timeout=timeout)
+    client.timeout = timeout
+    return client
+
+
+def _use_client(client):
+    """Make `client` the one its socket path's objects use."""
+    _CLIENTS[os.path.abspath(client.socket_path)] = client
+
+
+def how_to_start(path):
+    return ("Start one: `wrenchd --socket %s` (in a wrenchd checkout, `make run` serves "
+            "./run/wrenchd.sock), or set the fixture's Socket property, or $WRENCHD_SOCKET "
+            "before starting FreeCAD, to the socket of a running wrenchd." % path)
+
+
+def _unreachable(error, path):
+    return WrenchError("wrenchd is not reachable at %s (%s). %s" % (path, error, how_to_start(path)))
+
+
+_FIELD = re.compile(r"^params\.(?:fixture\.)?(.*)$")
+_INDEXED = re.compile(r"^(fixels|sites)\[(\d+)\](.*)$")
+_LOOP = re.compile(r"^body\.shape\.loops\[(\d+)\](?:\[(\d+)\])?(.*)$")
+
+
+def _refusal(error, what, outline=None, fixels3d=(), properties=None):
+    """A WrenchError naming, in FreeCAD's terms, the field wrenchd refused;
+    `properties` names the object's properties some fields come from
+    ({"spacing": "DesignSpacing", ...})."""
+    field = error.field or ""
+    reason = error.reason or error.message
+    rest = _FIELD.match(field)
+    rest = rest.group(1) if rest else field
+    subject = field or "the request"
+    m = _INDEXED.match(rest)
+    if properties and rest.split("[")[0].split(".")[0] in properties:
+        subject = properties[rest.split("[")[0].split(".")[0]]
+    elif m:
+        i = int(m.group(2))
+        if m.group(1) == "fixels":
+            subject = "fixel %d" % (i + 1)
+            if i < len(fixels3d):
+                subject += " (FixelPoints[%d] = %s)" % (i, _fmt_point(fixels3d[i]))
+        else:
+            subject = "candidate site %d" % (i + 1)
+        if m.group(3).startswith(".normal"):
+            subject += "'s normal (FixelNormals[%d])" % i
+        elif m.group(3).startswith(".friction"):
+            subject += "'s friction"
+    else:
+        m = _LOOP.match(rest)
+        if m and outline is not None and int(m.group(1)) < len(outline.segments):
+            i = int(m.group(1))
+            subject = "loop %d of the outline, %s" % (i, outline.loop_words(i))
+            if m.group(2) is not None and int(m.group(2)) < len(outline.segments[i]):
+                subject = "the start of %s" % outline.segment_words(i, int(m.group(2)))
+            others = [int(k) for k in re.findall(r"loops\[(\d+)\]", reason)]
+            for k in others:
+                if k != i and k < len(outline.segments):
+                    reason += "; loop %d is %s" % (k, outline.loop_words(k))
+        elif rest.startswith("friction"):
+            subject = "the friction (StaticFriction, KineticFriction)"
+        elif rest.startswith("body.mass"):
+            subject = "the Mass"
+    return WrenchError("%s: wrenchd refused %s: %s [%s]" % (what, subject, reason, field),
+                       field, reason)
+
+
+def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
+    """call(), with wrenchd's errors made WrenchErrors in FreeCAD's terms."""
+    try:
+        return call()
+    except wrenchd.WrenchdUnavailable as error:
+        raise _unreachable(error, path) from None
+    except wrenchd.WrenchdError as error:
+        raise _refusal(error, what, outline, fixels3d, properties) from None
+
+
+def _report_error(obj, error):
+    FreeCAD.Console.PrintError("Wrench: %s\n" % error)
+    raise error
+
+
+# ---- the objects ------------------------------------------------------------------
+
+def _add(obj, kind, name, group, doc, value=None, mode=0):
+    """Add a property unless the object has it (0 editable, 1 read-only,
+    2 hidden)."""
+    if name not in obj.PropertiesList:
+        obj.addProperty(kind, name, group, doc)
+        if value is not None:
+            setattr(obj, name, value)
+    obj.setEditorMode(name, mode)
+
+
+def _proxy_name(obj):
+    proxy = getattr(obj, "Proxy", None)
+    return type(proxy).__name__ if proxy is not None else ""
+
+
+def _is(obj, kind):
+    return obj is not None and _proxy_name(obj) == kind
+
+
+def _document_source(source):
+    """(object, subelement or "") of a link value or an (object, name) pair."""
+    if isinstance(source, (tuple, list)):
+        obj = source[0]
+        sub = source[1] if len(source) > 1 else ""
+        if isinstance(sub, (list, tuple)):
+            sub = sub[0] if sub else ""
+        return obj, sub or ""
+    return source, ""
+
+
+def _face_of_source(obj, sub):
+    """(shape to outline, frame or None, shape naming the edges, owner
+    label) of a linked object and subelement."""
+    if obj is None:
+        raise OutlineError("the fixture links no part: set its Source to a face (object, FaceN) "
+                           "or a sketch")
+    shape = obj.Shape
+    if sub:
+        if not sub.startswith("Face"):
+            raise OutlineError("%s of %s is not a face: link a face (FaceN) or a sketch"
+                               % (sub, obj.Label))
+        try:
+            face = shape.getElement(sub)
+        except Exception:
+            raise OutlineError("%s has no %s (it has %d faces): the part changed; link a face "
+                               "again" % (obj.Label, sub, len(shape.Faces))) from None
+        return face, None, shape, obj.Label
+    if obj.TypeId.startswith("Sketcher::"):
+        placement = obj.getGlobalPlacement()
+        z = placement.Rotation.multVec(Vector(0, 0, 1))
+        frame = None if abs(z.x) <= 1e-12 and abs(z.y) <= 1e-12 else placement
+        return shape, frame, shape, obj.Label
+    if len(shape.Faces) == 1:
+        return shape.Faces[0], None, shape, obj.Label
+    if not shape.Faces and shape.Wires:
+        return shape, None, shape, obj.Label
+    raise OutlineError("%s has %d faces: link one of them (object, FaceN)"
+                       % (obj.Label, len(shape.Faces)))
+
+
+def _friction_values(friction):
+    """(static, kinetic) of a number, a (static, kinetic) pair or a dict
+    {"static", "kinetic"?}."""
+    try:
+        if isinstance(friction, dict):
+            static = float(friction["static"])
+            return static, float(friction.get("kinetic", static))
+        if isinstance(friction, (tuple, list)):
+            static, kinetic = friction
+            return float(static), float(kinetic)
+        return float(friction), float(friction)
+    except (KeyError, TypeError, ValueError):
+        raise ValueError("friction: a number, a (static, kinetic) pair or {\"static\", "
+                         "\"kinetic\"} of numbers, not %r" % (friction,)) from None
+
+
+class WrenchFixture:
+    """The fixture: a part's face (or a sketch), the fixels, the friction and
+    the mass; its Shape is the outline as wrenchd sees it (the curves
+    approximated by arcs).  Its execute puts the fixture in wrenchd."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.setup(obj)
+
+    def setup(self, obj):
+        _add(obj, "App::PropertyLinkSub", "Source", "Part",
+             "The planar face (object, FaceN) or the closed sketch the fixture holds")
+        _add(obj, "App::PropertyLength", "Tolerance", "Part",
+             "How far arcs replacing a curve that is not a line or a circle may be from it "
+             "(0: 1e-5 of the face's size)", 0.0)
+        _add(obj, "App::PropertyVectorList", "FixelPoints", "Fixels",
+             "Where the fixels touch the part, in the document's coordinates")
+        _add(obj, "App::PropertyVectorList", "FixelNormals", "Fixels",
+             "Each fixel's contact normal, pointing into the part; (0, 0, 0) or none: the "
+             "outline's inward normal there (required at a corner)")
+        _add(obj, "App::PropertyFloat", "StaticFriction", "Friction",
+             "Coulomb friction between the part and every fixel, static", 0.3)
+        _add(obj, "App::PropertyFloat", "KineticFriction", "Friction",
+             "Kinetic friction, at most the static one", 0.3)
+        _add(obj, "App::PropertyFloat", "Mass", "Friction",
+             "The part's mass (a uniform lamina: its centre of mass and inertia follow "
+             "from the outline)", 1.0)
+        _add(obj, "App::PropertyString", "Socket", "wrenchd",
+             "wrenchd's socket; empty: $WRENCHD_SOCKET, else ./run/wrenchd.sock")
+        _add(obj, "App::PropertyFloat", "Timeout", "wrenchd",
+             "Seconds to wait for wrenchd's answer", 60.0)
+        _add(obj, "App::PropertyInteger", "DesignFixels", "Design",
+             "Design: how many fixels to place", 3)
+        _add(obj, "App::PropertyLength", "DesignSpacing", "Design",
+             "Design: candidate sites this far apart along the outline (0: the perimeter / 40, "
+             "to two digits)",
+             0.0)
+        if "DesignObjective" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",
+                            "Design: rank by the margin of the best push in both (margin), the "
+                            "length of the both region (region), or the gravity arc (gravity)")
+            obj.DesignObjective = ["margin", "region", "gravity"]
+            obj.DesignObjective = "margin"
+        _add(obj, "App::PropertyInteger", "DesignTop", "Design", "Design: designs to list", 5)
+        _add(obj, "App::PropertyStringList", "Designs", "Design",
+             "The last design's ranking, best first (its fixels were placed)", mode=1)
+        for kind, name, doc in (
+                ("App::PropertyString", "FixtureId", "The fixture's id in wrenchd"),
+                ("App::PropertyFloat", "Area", "The outline's area, as wrenchd computes it"),
+                ("App::PropertyVector", "CenterOfMass", "The centre of mass wrenchd uses"),
+                ("App::PropertyFloat", "Inertia", "The moment of inertia about it wrenchd uses"),
+                ("App::PropertyBool", "Pinned", "Whether the fixels pin the part"),
+                ("App::PropertyInteger", "Loops", "The outline's loops (1 + holes)"),
+                ("App::PropertyInteger", "Segments", "The outline's lines and arcs"),
+                ("App::PropertyFloat", "ToleranceUsed", "The tolerance the curves were followed to"),
+                ("App::PropertyFloat", "Deviation",
+                 "The largest distance measured between a curve and its arcs (0: all exact)"),
+                ("App::PropertyStringList", "Approximated", "The edges replaced by arcs"),
+                ("App::PropertyStringList", "FixelsMoved",
+                 "Fixels moved onto the outline (they were off it by less than the tolerance)"),
+                ("App::PropertyPlacement", "Frame",
+                 "The outline's 2-D frame: its (x, y) is Frame applied to (x, y, 0)")):
+            _add(obj, kind, name, "Outline", doc, mode=1)
+        _add(obj, "App::PropertyString", "FixtureJson", "Outline",
+             "The fixture as sent to wrenchd (the outline's coordinates)", mode=2)
+        _add(obj, "App::PropertyString", "EdgeTable", "Outline",
+             "Per loop and segment, the FreeCAD edge it comes from", mode=2)
+
+    def onDocumentRestored(self, obj):
+        self.setup(obj)
+        _attach_view(obj)
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    def outline(self, obj):
+        source, sub = _document_source(obj.Source)
+        shape, frame, names, owner = _face_of_source(source, sub)
+        return outline(shape, float(obj.Tolerance) or None, frame, names, owner)
+
+    def fixels(self, obj, shape):
+        """wrenchd's fixels from FixelPoints and FixelNormals, each moved onto
+        the outline when it is off it by less than the tolerance."""
+        normals = list(obj.FixelNormals)
+        fixels, moved = [], []
+        near = max(shape.tolerance, ON_OUTLINE * shape.size)
+        for i, p in enumerate(obj.FixelPoints):
+            x, y, off = shape.to_2d(p)
+            if abs(off) > near:
+                raise WrenchError("%s: fixel %d (FixelPoints[%d] = %s) is %s off the face's plane"
+                                  % (obj.Label, i + 1, i, _fmt_point(p), _fmt(abs(off))),
+                                  "fixels[%d].at" % i, "off the plane")
+            segment, t, q, d = shape.nearest((x, y))
+            at = [x, y]
+            if 1e-9 * shape.size < d <= near:
+                at = [q[0], q[1]]
+                moved.append("fixel %d moved %s onto %s" % (i + 1, _fmt(d),
+                                                           shape.segment_words(segment.loop,
+                                                                               segment.index)))
+            fixel = {"at": at}
+            if i < len(normals) and normals[i].Length > 0:
+                fixel["normal"] = list(shape.direction_2d(normals[i]))
+            fixels.append(fixel)
+        return fixels, moved
+
+    def execute(self, obj):
+        try:
+            self._execute(obj)
+        except (OutlineError, WrenchError) as error:
+            obj.FixtureJson = ""
+            _report_error(obj, WrenchError("%s: %s" % (obj.Label, error))
+                          if isinstance(error, OutlineError) else error)
+
+    def _execute(self, obj):
+        if not obj.StaticFriction >= 0:
+            raise WrenchError("%s: StaticFriction %s must be at least 0"
+                              % (obj.Label, _fmt(obj.StaticFriction)), "friction.static", "negative")
+        if obj.KineticFriction > obj.StaticFriction or obj.KineticFriction < 0:
+            raise WrenchError("%s: KineticFriction %s must lie between 0 and StaticFriction %s"
+                              % (obj.Label, _fmt(obj.KineticFriction), _fmt(obj.StaticFriction)),
+                              "friction.kinetic", "above static")
+        shape = self.outline(obj)
+        obj.Shape = shape.shape_3d()
+        obj.Frame = shape.frame
+        obj.Loops = len(shape.segments)
+        obj.Segments = sum(len(loop) for loop in shape.segments)
+        obj.ToleranceUsed = shape.tolerance
+        obj.Deviation = shape.deviation
+        obj.Approximated = ["%s (%s): %d arcs, %s from it at most" % (
+            a["edge"] or "an edge", a["kind"], a["arcs"], _fmt(a["deviation"]))
+            for a in shape.approximated]
+        obj.EdgeTable = json.dumps(shape.edge_table())
+        fixels, moved = self.fixels(obj, shape)
+        obj.FixelsMoved = moved
+        fixture = {"name": obj.Label, "body": {"mass": obj.Mass, "shape": shape},
+                   "friction": {"static": obj.StaticFriction, "kinetic": obj.KineticFriction},
+                   "fixels": fixels}
+        if not fixels:
+            obj.FixtureId = ""
+            obj.Pinned = False
+            obj.FixtureJson = json.dumps(fixture)
+            return
+        path = socket_path(obj.Socket)
+        client = client_for(obj.Socket, obj.Timeout)
+        put = _ask(obj.Label, path, lambda: client.put_fixture(fixture), shape, obj.FixelPoints)
+        obj.FixtureId = put.id
+        obj.Area = float(put.area)
+        obj.CenterOfMass = shape.to_3d(put.com)
+        obj.Inertia = float(put.inertia)
+        obj.Pinned = bool(put.pinned)
+        obj.FixtureJson = json.dumps(fixture)
+
+
+class _Fixture:
+    """What a fixture's dependent objects read of it: the fixture dict, its
+    outline (rebuilt from the dict and the frame), the client."""
+
+    def __init__(self, fixture_obj, what):
+        if fixture_obj is None or not _is(fixture_obj, "WrenchFixture"):
+            raise WrenchError("%s: link a WrenchFixture (its Fixture property)" % what)
+        if not fixture_obj.FixtureJson:
+            raise WrenchError("%s: %s has no outline (see its error)" % (what, fixture_obj.Label))
+        self.obj = fixture_obj
+        self.fixture = json.loads(fixture_obj.FixtureJson)
+        edges = json.loads(fixture_obj.EdgeTable) if fixture_obj.EdgeTable else None
+        self.outline = Outline.from_shape(self.fixture["body"]["shape"], fixture_obj.Frame, edges,
+                                          fixture_obj.ToleranceUsed, fixture_obj.Deviation)
+        self.fixture["body"]["shape"] = self.outline
+        self.path = socket_path(fixture_obj.Socket)
+        self.client = client_for(fixture_obj.Socket, fixture_obj.Timeout)
+        self.what = what
+
+    @property
+    def has_fixels(self):
+        return bool(self.fixture["fixels"])
+
+    def ask(self, call):
+        return _ask(self.what, self.path, call, self.outline, self.obj.FixelPoints)
+
+    def friction(self):
+        return self.fixture["friction"]
+
+
+class _Dependent:
+    """A proxy whose object links a WrenchFixture (its Fixture property)."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.setup(obj)
+
+    def setup(self, obj):
+        _add(obj, "App::PropertyLink", "Fixture", "Fixture", "The WrenchFixture shown")
+
+    def onDocumentRestored(self, obj):
+        self.setup(obj)
+        _attach_view(obj)
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    def execute(self, obj):
+        try:
+            self._execute(obj)
+        except (OutlineError, WrenchError) as error:
+            self.failed(obj)
+            _report_error(obj, error)
+
+    def failed(self, obj):
+        obj.Shape = Part.Shape()
+
+
+def _set_enumeration(obj, name, values, value):
+    setattr(obj, name, list(values))
+    setattr(obj, name, value)
+
+
+class WrenchRegions:
+    """The push regions of one set (goal, strong or both) on the fixture's
+    outline: its Shape is every region's line or arc; each region is also a
+    WrenchRegion object of its own (its children)."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.setup(obj)
+
+    def setup(self, obj):
+        _Dependent.setup(self, obj)
+        if "Set" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyEnumeration", "Set", "Regions",
+                            "goal: seats the part from any contact state, may then let it slide; "
+                            "strong: holds it still once seated; both: seats it and then holds "
+                            "it still (push here and let go)")
+            _set_enumeration(obj, "Set", SETS, "both")
+        _add(obj, "App::PropertyLength", "FingerRadius", "Regions",
+             "The pushing finger's radius: points it cannot reach drop out (0: a point)", 0.0)
+        _add(obj, "App::PropertyBool", "SweepFriction", "Regions",
+             "Also find the critical friction above which the region is empty "
+             "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8)",
+             True)
+        for kind, name, doc in (
+                ("App::PropertyString", "Meaning", "What a push in this set promises"),
+                ("App::PropertyInteger", "Count", "How many regions"),
+                ("App::PropertyFloat", "TotalLength", "The regions' total length (push.regions)"),
+                ("App::PropertyFloat", "Fraction", "Of the outline's perimeter"),
+                ("App::PropertyFloat", "CriticalMu",
+                 "The friction above which the region is empty (-1: not empty at 2; "
+                 "-2: not computed)"),
+                ("App::PropertyIntegerList", "RegionLoops", "Each region's loop"),
+                ("App::PropertyIntegerList", "RegionSegments", "Each region's segment"),
+                ("App::PropertyStringList", "RegionEdges", "Each region's FreeCAD edge"),
+                ("App::PropertyFloatList", "RegionT0", "Each region's start t on its segment"),
+                ("App::PropertyFloatList", "RegionT1", "Each region's end t on its segment"),
+                ("App::PropertyFloatList", "RegionLengths", "Each region's length"),
+                ("App::PropertyVectorList", "RegionFrom", "Each region's start (document)"),
+                ("App::PropertyVectorList", "RegionTo", "Each region's end (document)")):
+            _add(obj, kind, name, "Answer", doc, mode=1)
+        # How many WrenchRegion objects it has: set when they are made or
+        # removed, after a recompute, so that the tree claims them again;
+        # an output, so setting it does not touch the object.
+        _add(obj, "App::PropertyInteger", "RegionObjects", "Answer",
+             "How many WrenchRegion objects show the regions", mode=2)
+        obj.setPropertyStatus("RegionObjects", "Output")
+
+    onDocumentRestored = _Dependent.onDocumentRestored
+    __getstate__ = _Dependent.__getstate__
+    __setstate__ = _Dependent.__setstate__
+
+    def execute(self, obj):
+        try:
+            self._execute(obj)
+        except (OutlineError, WrenchError) as error:
+            self.failed(obj)
+            _report_error(obj, error)
+        finally:
+            _schedule_sync(obj)
+
+    def failed(self, obj):
+        obj.Shape = Part.Shape()
+        for name in ("RegionLoops", "RegionSegments", "RegionEdges", "RegionT0", "RegionT1",
+                     "RegionLengths", "RegionFrom", "RegionTo"):
+            setattr(obj, name, [])
+        obj.Count = 0
+        obj.TotalLength = 0.0
+
+    def _execute(self, obj):
+        which = obj.Set
+        obj.Meaning = MEANING[which]
+        fixture = _Fixture(obj.Fixture, obj.Label)
+        if not fixture.has_fixels:
+            self.failed(obj)
+            obj.Label = "Regions %s (no fixels yet)" % which
+            return
+        answer = fixture.ask(lambda: fixture.client.push_regions(
+            fixture.fixture, which, finger_radius=float(obj.FingerRadius)))
+        outline = fixture.outline
+        edges, loops, segs, names, t0, t1, lengths, starts, ends = [], [], [], [], [], [], [], [], []
+        for r in answer.regions:
+            segment = outline.segments[r.loop][r.segment]
+            edges.append(outline.edge_3d(segment, r.t0, r.t1))
+            loops.append(r.loop)
+            segs.append(r.segment)
+            names.append(segment.edge)
+            t0.append(r.t0)
+            t1.append(r.t1)
+            lengths.append(r.length)
+            starts.append(outline.to_3d(r.from_point))
+            ends.append(outline.to_3d(r.to_point))
+        obj.Shape = Part.Compound(edges) if edges else Part.Shape()
+        obj.RegionLoops, obj.RegionSegments, obj.RegionEdges = loops, segs, names
+        obj.RegionT0, obj.RegionT1, obj.RegionLengths = t0, t1, lengths
+        obj.RegionFrom, obj.RegionTo = starts, ends
+        obj.Count = len(edges)
+        obj.TotalLength = answer.total_length
+        obj.Fraction = answer.fraction
+        obj.CriticalMu = -2.0
+        if obj.SweepFriction:
+            friction = fixture.friction()
+            ratio = friction["kinetic"] / friction["static"] if friction["static"] > 0 else 1.0
+            push = {"set": which}
+            if float(obj.FingerRadius) > 0:
+                push["finger_radius"] = float(obj.FingerRadius)
+            sweep = fixture.ask(lambda: fixture.client.friction_sweep(
+                fixture.fixture, push=push, kinetic_ratio=min(1.0, max(ratio, 1e-9))))
+            obj.CriticalMu = -1.0 if sweep.critical is None else float(sweep.critical)
+        obj.Label = "Regions %s: %d, %s long (%s)" % (which, obj.Count, _fmt(obj.TotalLength),
+                                                       SHORT_MEANING[which])
+
+
+class WrenchRegion:
+    """One push region: its Shape is the line or arc, its properties the
+    region's numbers (push.regions'), read from its WrenchRegions."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.setup(obj)
+
+    def setup(self, obj):
+        _add(obj, "App::PropertyLink", "Regions", "Region", "The WrenchRegions this is one of",
+             mode=1)
+        _add(obj, "App::PropertyInteger", "Index", "Region", "Which of its regions", mode=1)
+        for kind, name, doc in (
+                ("App::PropertyString", "Set", "goal, strong or both"),
+                ("App::PropertyString", "Meaning", "What a push in this set promises"),
+                ("App::PropertyInteger", "Loop", "The outline's loop (0: the outer boundary)"),
+                ("App::PropertyInteger", "Segment", "The loop's segment"),
+                ("App::PropertyString", "Edge", "The FreeCAD edge the segment lies on or follows"),
+                ("App::PropertyFloat", "T0", "Where the region starts on the segment (fraction "
+                                             "of its length, of an arc's angle)"),
+                ("App::PropertyFloat", "T1", "Where it ends"),
+                ("App::PropertyFloat", "Length", "Its length (push.regions)"),
+                ("App::PropertyVector", "From", "Its start (document)"),
+                ("App::PropertyVector", "To", "Its end (document)")):
+            _add(obj, kind, name, "Region", doc, mode=1)
+
+    onDocumentRestored = _Dependent.onDocumentRestored
+    __getstate__ = _Dependent.__getstate__
+    __setstate__ = _Dependent.__setstate__
+
+    def execute(self, obj):
+        parent = obj.Regions
+        i = obj.Index
+        if parent is None or i >= len(parent.RegionLengths):
+            obj.Shape = Part.Shape()
+            obj.Length = 0.0
+            obj.Label = "%s region %d (gone)" % (parent.Set if parent else "", i + 1)
+            return
+        data = _Fixture(parent.Fixture, parent.Label)
+        segment = data.outline.segments[parent.RegionLoops[i]][parent.RegionSegments[i]]
+        obj.Shape = data.outline.edge_3d(segment, parent.RegionT0[i], parent.RegionT1[i])
+        obj.Set = parent.Set
+        obj.Meaning = MEANING[parent.Set]
+        obj.Loop, obj.Segment = parent.RegionLoops[i], parent.RegionSegments[i]
+        obj.Edge = parent.RegionEdges[i]
+        obj.T0, obj.T1 = parent.RegionT0[i], parent.RegionT1[i]
+        obj.Length = parent.RegionLengths[i]
+        obj.From, obj.To = parent.RegionFrom[i], parent.RegionTo[i]
+        obj.Label = "%s region %d: loop %d segment %d%s, %s long" % (
+            obj.Set, i + 1, obj.Loop, obj.Segment, " (%s)" % obj.Edge if obj.Edge else "",
+            _fmt(obj.Length))
+
+
+def region_objects(regions):
+    """The WrenchRegion objects of a WrenchRegions, in order."""
+    children = [o for o in regions.InList if _is(o, "WrenchRegion") and o.Regions == regions]
+    return sorted(children, key=lambda o: o.Index)
+
+
+_PENDING = set()
+
+
+def _schedule_sync(regions):
+    if len(region_objects(regions)) != len(regions.RegionLengths) or \
+            any(o.Index >= len(regions.RegionLengths) for o in region_objects(regions)):
+        _PENDING.add((regions.Document.Name, regions.Name))
+
+
+def sync_regions(regions):
+    """Give a WrenchRegions one WrenchRegion per region (run after a
+    recompute: objects are not added or removed during one)."""
+    doc = regions.Document
+    count = len(regions.RegionLengths)
+    children = region_objects(regions)
+    for child in children[count:]:
+        doc.removeObject(child.Name)
+    children = children[:count]
+    for i in range(len(children), count):
+        child = doc.addObject("Part::FeaturePython", "WrenchRegion")
+        WrenchRegion(child)
+        child.Regions = regions
+        child.Index = i
+        _attach_view(child)
+        children.append(child)
+    for child in children:
+        if "Touched" in child.State or child.Shape.isNull():
+            child.Proxy.execute(child)
+            child.purgeTouched()
+    if regions.RegionObjects != count:
+        regions.RegionObjects = count
+    return children
+
+
+class _Observer:
+    """After a document's recompute, the WrenchRegions whose number of
+    regions changed get their WrenchRegion objects."""
+
+    def slotRecomputedDocument(self, doc):
+        for key in sorted(k for k in _PENDING if k[0] == doc.Name):
+            _PENDING.discard(key)
+            regions = doc.getObject(key[1])
+            if regions is not None and _is(regions, "WrenchRegions"):
+                sync_regions(regions)
+
+
+if not getattr(FreeCAD, "_wrench_observer", None):
+    FreeCAD._wrench_observer = _Observer()
+    FreeCAD.addDocumentObserver(FreeCAD._wrench_observer)
+
+
+class WrenchFixels(_Dependent):
+    """The fixels as small locator pins, each touching the part from outside
+    at its point, with its friction cone (two lines at atan(mu_s) from the
+    normal, closed by an arc)."""
+
+    def setup(self, obj):
+        _Dependent.setup(self, obj)
+        _add(obj, "App::PropertyLength", "PinRadius", "Fixels",
+             "The locator pins' radius (0: 1.5 % of the part's size)", 0.0)
+        _add(obj, "App::PropertyVectorList", "Normals", "Fixels",
+             "Each fixel's contact normal as wrenchd uses it (document)", mode=1)
+
+    def _execute(self, obj):
+        fixture = _Fixture(obj.Fixture, obj.Label)
+        outline = fixture.outline
+        if not fixture.has_fixels:
+            obj.Shape = Part.Shape()
+            obj.Normals = []
+            obj.Label = "Fixels (none yet)"
+            return
+        # The normals as wrenchd uses them: its explicit form of the fixture
+        # (put again first: a daemon restarted without a state directory
+        # has forgotten it; putting is idempotent).
+        put = fixture.ask(lambda: fixture.client.put_fixture(fixture.fixture))
+        explicit = fixture.ask(lambda: fixture.client.get_fixture(put.id))
+        r = float(obj.PinRadius) or 0.015 * outline.size
+        plane_normal = outline.normal
+        parts, normals = [], []
+        for fixel in explicit["fixels"]:
+            p, n = fixel["at"], fixel["normal"]
+            mu = fixel["friction"]["static"]
+            mu = mu[1] if isinstance(mu, list) else mu
+            centre = outline.to_3d((p[0] - r * n[0], p[1] - r * n[1]))
+            pin = Part.makeCylinder(r, 2 * r, centre - plane_normal * r, plane_normal)
+            parts.append(pin)
+            half = math.atan(mu)
+            apex = outline.to_3d(p)
+            reach = 4 * r
+            sides = []
+            for s in (-1.0, 1.0):
+                a = math.atan2(n[1], n[0]) + s * half
+                sides.append(outline.to_3d((p[0] + reach * math.cos(a), p[1] + reach * math.sin(a))))
+            mid = outline.to_3d((p[0] + reach * n[0], p[1] + reach * n[1]))
+            parts.append(Part.LineSegment(apex, sides[0]).toShape())
+            parts.append(Part.LineSegment(apex, sides[1]).toShape())
+            parts.append(Part.Arc(sides[0], mid, sides[1]).toShape())
+            normals.append(outline.direction_3d(n))
+        obj.Shape = Part.Compound(parts)
+        obj.Normals = normals
+        obj.Label = "Fixels: %d, friction cones at mu %s" % (len(normals),
+                                                            _fmt(fixture.friction()["static"]))
+
+
+class WrenchBestPush(_Dependent):
+    """The push of the both region with the largest margin, as an arrow:
+    push there, along the arrow, and let go (fixture.design of this fixture's
+    own fixels: its best push, maximised to 1e-9)."""
+
+    def setup(self, obj):
+        _Dependent.setup(self, obj)
+        _add(obj, "App::PropertyLength", "ArrowLength", "Push",
+             "The arrow's length (0: 15 % of the part's size)", 0.0)
+        for kind, name, doc in (
+                ("App::PropertyString", "Meaning", "What the push promises"),
+                ("App::PropertyFloat", "Margin", "The push's margin in both (its distance to "
+                                                  "every cone that would stop it seating or let "
+                                                  "it move), in [-1, 1]; 0 when there is none"),
+                ("App::PropertyBool", "Found", "Whether some push seats the part and holds it"),
+                ("App::PropertyVector", "At", "Where to push (document)"),
+                ("App::PropertyVector", "Direction", "Along what (the inward normal there)"),
+                ("App::PropertyInteger", "Loop", "The outline's loop"),
+                ("App::PropertyInteger", "Segment", "The loop's segment"),
+                ("App::PropertyFloat", "T", "Where on the segment"),
+                ("App::PropertyFloat", "GoalLength", "The goal region's total length"),
+                ("App::PropertyFloat", "BothLength", "The both region's total length"),
+                ("App::PropertyFloat", "GravityGoalDegrees",
+                 "The longest arc of tilts under which gravity seats the part"),
+                ("App::PropertyFloat", "CriticalMu",
+                 "The friction above which no push seats the part (-1: none up to 2)")):
+            _add(obj, kind, name, "Answer", doc, mode=1)
+
+    def _execute(self, obj):
+        obj.Meaning = MEANING["both"]
+        fixture = _Fixture(obj.Fixture, obj.Label)
+        outline = fixture.outline
+        obj.Found = False
+        obj.Margin = 0.0
+        if not fixture.has_fixels:
+            obj.Shape = Part.Shape()
+            obj.Label = "Best push (no fixels yet)"
+            return
+        fixels = fixture.fixture["fixels"]
+        result = fixture.ask(lambda: fixture.client.design(
+            fixture.fixture["body"], fixture.friction(), fixels=len(fixels), sites=fixels, top=1))
+        design = result.designs[0] if result.designs else None
+        if design is not None:
+            obj.GoalLength, obj.BothLength = design.goal_length, design.both_length
+            obj.GravityGoalDegrees = design.gravity_goal_deg
+            obj.CriticalMu = -1.0 if design.critical_mu is None else design.critical_mu
+        push = design.best_push if design is not None else None
+        if push is None:
+            obj.Shape = Part.Shape()
+            counts = result.counts
+            why = ("the fixels do not pin the part" if counts.get("unpinned") else
+                   "the fixels are degenerate" if counts.get("degenerate") else
+                   "no push seats the part from every contact state" if counts.get("no_seating_push")
+                   else "the both region is empty")
+            obj.Label = "Best push: none (%s)" % why
+            return
+        at, direction = push["at"], push["direction"]
+        length = float(obj.ArrowLength) or 0.15 * outline.size
+        tip = outline.to_3d(at)
+        d3 = outline.direction_3d(direction)
+        head = length * 0.3
+        shaft_start = tip - d3 * length
+        shaft = Part.makeCylinder(length * 0.04, length - head, shaft_start, d3)
+        cone = Part.makeCone(length * 0.11, 0.0, head, tip - d3 * head, d3)
+        obj.Shape = shaft.fuse(cone)
+        obj.Found = True
+        obj.Margin = push["margin"]
+        obj.At, obj.Direction = tip, d3
+        obj.Loop, obj.Segment, obj.T = push.get("loop", 0), push.get("segment", push.get("edge", 0)), \
+            push["t"]
+        obj.Label = "Best push (both): margin %.4g, push here and let go" % obj.Margin
+
+
+class WrenchGravityDial(_Dependent):
+    """The tilts under which gravity alone does the set's job, as arcs of a
+    dial around the centre of mass: a direction on the dial is the
+    direction gravity pulls, in the outline's plane (gravity.sweep)."""
+
+    def setup(self, obj):
+        _Dependent.setup(self, obj)
+        if "Set" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyEnumeration", "Set", "Dial",
+                            "goal: gravity seats the part; strong: it holds it still once "
+                            "seated; both: it seats it and then holds it still")
+            _set_enumeration(obj, "Set", SETS, "both")
+        _add(obj, "App::PropertyLength", "Radius", "Dial",
+             "The dial's radius (0: just around the part)", 0.0)
+        for kind, name, doc in (
+                ("App::PropertyString", "Meaning", "What the set promises"),
+                ("App::PropertyFloatList", "Arcs", "The arcs, [from, to, from, to, ...] in "
+                                                   "degrees counter-clockwise from the outline's x"),
+                ("App::PropertyFloat", "TotalDegrees", "Their total")):
+            _add(obj, kind, name, "Answer", doc, mode=1)
+
+    def _execute(self, obj):
+        which = obj.Set
+        obj.Meaning = GRAVITY_MEANING[which]
+        fixture = _Fixture(obj.Fixture, obj.Label)
+        if not fixture.has_fixels:
+            obj.Shape = Part.Shape()
+            obj.Arcs, obj.TotalDegrees = [], 0.0
+            obj.Label = "Gravity %s (no fixels yet)" % which
+            return
+        arcs = fixture.ask(lambda: fixture.client.gravity_sweep(fixture.fixture, which))
+        outline = fixture.outline
+        com = outline.to_2d(fixture.obj.CenterOfMass)
+        radius = float(obj.Radius) or 1.15 * max(
+            _norm(_sub(s.point(t), com[:2])) for s in outline.segments[0] for t in (0.0, 0.5))
+        edges = []
+        for a, b in arcs:
+            circle = Part.Circle(outline.to_3d(com[:2]), outline.normal, radius)
+            circle.XAxis = outline.direction_3d((1.0, 0.0))
+            edges.append(Part.ArcOfCircle(circle, math.radians(a), math.radians(b)).toShape())
+        for k in range(4):                     # ticks at 0, 90, 180 and 270 degrees
+            a = k * math.pi / 2
+            inner = (com[0] + 0.93 * radius * math.cos(a), com[1] + 0.93 * radius * math.sin(a))
+            outer = (com[0] + 1.07 * radius * math.cos(a), com[1] + 1.07 * radius * math.sin(a))
+            edges.append(Part.LineSegment(outline.to_3d(inner), outline.to_3d(outer)).toShape())
+        obj.Shape = Part.Compound(edges)
+        obj.Arcs = [x for arc in arcs for x in arc]
+        obj.TotalDegrees = sum(b - a for a, b in arcs)
+        obj.Label = "Gravity %s: %s degrees of tilt" % (which, _fmt(obj.TotalDegrees))
+
+
+# ---- view providers ---------------------------------------------------------------
+
+ICONS = os.path.join(os.path.dirname(os.path.realpath(__file__)), "Resources", "icons")
+
+
+def icon(name):
+    return os.path.join(ICONS, name + ".svg")
+
+
+class ViewProviderWrench:
+    """Colours and icons; the regions' objects as children of their set."""
+
+    ICON = "Wrench"
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+        self.style(vobj)
+
+    def style(self, vobj):
+        obj = vobj.Object
+        kind = _proxy_name(obj)
+        if kind in ("WrenchRegions", "WrenchRegion"):
+            which = obj.Set if kind == "WrenchRegions" else \
+                (obj.Regions.Set if obj.Regions is not None else "both")
+            which = which if which in COLOURS else "both"
+            vobj.LineColor = COLOURS[which]
+            vobj.PointColor = COLOURS[which]
+            vobj.LineWidth = LINE_WIDTHS[which]
+            vobj.PointSize = 1.0
+        elif kind == "WrenchGravityDial":
+            vobj.LineColor = COLOURS[obj.Set if obj.Set in COLOURS else "both"]
+            vobj.LineWidth = 4.0
+            vobj.PointSize = 1.0
+        elif kind == "WrenchFixture":
+            vobj.LineColor = (0.1, 0.1, 0.1)
+            vobj.LineWidth = 1.0
+            vobj.PointSize = 1.0
+        elif kind == "WrenchFixels":
+            vobj.ShapeColor = (0.25, 0.25, 0.28)
+            vobj.LineColor = (0.85, 0.1, 0.1)
+            vobj.LineWidth = 2.0
+            vobj.PointSize = 1.0
+        elif kind == "WrenchBestPush":
+            vobj.ShapeColor = (0.85, 0.0, 0.55)
+            vobj.LineColor = (0.5, 0.0, 0.3)
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def updateData(self, obj, prop):
+        if prop == "Set" and getattr(obj, "ViewObject", None) is not None:
+            self.style(obj.ViewObject)
+
+    def claimChildren(self):
+        obj = getattr(self, "Object", None)
+        if obj is not None and _is(obj, "WrenchRegions"):
+            return region_objects(obj)
+        return []
+
+    def onDelete(self, vobj, subelements):
+        obj = vobj.Object
+        if _is(obj, "WrenchRegions"):
+            for child in region_objects(obj):
+                obj.Document.removeObject(child.Name)
+        return True
+
+    def getIcon(self):
+        obj = getattr(self, "Object", None)
+        name = {"WrenchFixture": "WrenchFixture", "WrenchRegions": "WrenchRegions",
+                "WrenchRegion": "WrenchRegions", "WrenchFixels": "WrenchFixels",
+                "WrenchBestPush": "WrenchBestPush", "WrenchGravityDial": "WrenchGravityDial"
+                }.get(_proxy_name(obj) if obj is not None else "", "Wrench")
+        return icon(name)
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+
+def _attach_view(obj):
+    """A view provider for the object when the GUI is up and it has none."""
+    if not FreeCAD.GuiUp:
+        return
+    vobj = getattr(obj, "ViewObject", None)
+    if vobj is not None and not isinstance(getattr(vobj, "Proxy", None), ViewProviderWrench):
+        ViewProviderWrench(vobj)
+
+
+# ---- making objects ---------------------------------------------------------------
+
+def _fixel_vectors(outline_shape, fixels):
+    """(points, normals) in the document of fixels given as document
+    Vectors, (point, normal) pairs of Vectors, or wrenchd's dicts
+    {"at": [x, y], "normal"?: [nx, ny]} in the outline's coordinates."""
+    points, normals = [], []
+    for i, f in enumerate(fixels):
+        if isinstance(f, Vector):
+            points.append(Vector(f))
+            normals.append(Vector())
+        elif isinstance(f, dict):
+            if outline_shape is None:
+                raise ValueError("fixels[%d]: a fixel in the outline's coordinates needs the outline"
+                                 % i)
+            points.append(outline_shape.to_3d(f["at"]))
+            n = f.get("normal")
+            normals.append(outline_shape.direction_3d(n) if n is not None else Vector())
+        elif isinstance(f, (tuple, list)) and len(f) == 2 and isinstance(f[0], Vector):
+            points.append(Vector(f[0]))
+            normals.append(Vector(f[1]) if f[1] is not None else Vector())
+        else:
+            raise ValueError("fixels[%d]: a fixel is a Vector, a (point, normal) pair of Vectors "
+                             "or {\"at\": [x, y], \"normal\": [nx, ny]}, not %r" % (i, f))
+    return points, normals
+
+
+def make_fixture(doc, source, fixels=(), friction=0.3, mass=1.0, socket="", tolerance=0.0,
+                 label="WrenchFixture"):
+    """A WrenchFixture on `source`: (object, "FaceN"), a sketch, or an object
+    of one planar face.  fixels: see _fixel_vectors; friction: a number, a
+    (static, kinetic) pair or {"static", "kinetic"}."""
+    obj = doc.addObject("Part::FeaturePython", "WrenchFixture")
+    WrenchFixture(obj)
+    obj.Label = label
+    source_obj, sub = _document_source(source)
+    obj.Source = (source_obj, [sub] if sub else [])
+    obj.Tolerance = tolerance
+    obj.StaticFriction, obj.KineticFriction = _friction_values(friction)
+    obj.Mass = mass
+    obj.Socket = socket or ""
+    if fixels:
+        shape = None
+        if any(isinstance(f, dict) for f in fixels):
+            shape = obj.Proxy.outline(obj)
+        obj.FixelPoints, obj.FixelNormals = _fixel_vectors(shape, fixels)
+    _attach_view(obj)
+    return obj
+
+
+def _dependent(kind, fixture, label, **values):
+    doc = fixture.Document
+    obj = doc.addObject("Part::FeaturePython", kind)
+    globals()[kind](obj)
+    obj.Fixture = fixture
+    for name, value in values.items():
+        setattr(obj, name, value)
+    obj.Label = label
+    _attach_view(obj)
+    return obj
+
+
+def make_regions(fixture, set="both"):
+    """A WrenchRegions of `set` (goal, strong or both) for the fixture."""
+    if set not in SETS:
+        raise ValueError("set: one of goal, strong, both, not %r" % (set,))
+    return _dependent("WrenchRegions", fixture, "Regions %s" % set, Set=set)
+
+
+def make_fixels(fixture):
+    return _dependent("WrenchFixels", fixture, "Fixels")
+
+
+def make_best_push(fixture):
+    return _dependent("WrenchBestPush", fixture, "Best push (both)")
+
+
+def make_gravity_dial(fixture, set="both"):
+    if set not in SETS:
+        raise ValueError("set: one of goal, strong, both, not %r" % (set,))
+    return _dependent("WrenchGravityDial", fixture, "Gravity %s" % set, Set=set)
+
+
+def _object_of_face(doc, face):
+    """(object, "FaceN") of the document object whose shape holds `face`, or
+    a new Part::Feature holding it."""
+    for obj in doc.Objects:
+        shape = getattr(obj, "Shape", None)
+        if shape is None or shape.isNull() or _proxy_name(obj).startswith("Wrench"):
+            continue
+        for i, f in enumerate(shape.Faces):
+            if f.isSame(face) or f.isPartner(face):
+                return obj, "Face%d" % (i + 1)
+    # a face held before by a WrenchPart (a Part::Feature's shape is a copy)
+    size = face.BoundBox.DiagonalLength
+    for obj in doc.Objects:
+        if obj.TypeId == "Part::Feature" and obj.Name.startswith("WrenchPart") \
+                and len(obj.Shape.Faces) == 1:
+            f = obj.Shape.Faces[0]
+            if abs(f.Area - face.Area) <= 1e-12 * face.Area \
+                    and f.CenterOfMass.distanceToPoint(face.CenterOfMass) <= 1e-12 * size \
+                    and len(f.Edges) == len(face.Edges) \
+                    and f.BoundBox.isInside(face.BoundBox.Center):
+                return obj, ""
+    part = doc.addObject("Part::Feature", "WrenchPart")
+    part.Shape = face
+    return part, ""
+
+
+def _raise_failures(objects):
+    for obj in objects:
+        if "Invalid" in obj.State or "Error" in obj.State:
+            raise WrenchError(obj.getStatusString())
+
+
+def show_regions(doc, face, fixels, friction, set, client):
+    """The push regions of `set` for the part's `face` held by `fixels`:
+    creates a WrenchFixture and a WrenchRegions in `doc`, recomputes them,
+    and returns the WrenchRegion objects, one per region, each with its
+    Shape (the line or arc) and its numbers (Loop, Segment, T0, T1, From,
+    To, Length, Edge, Set and Meaning).
+
+    face: a Part.Face (of a document object, which the fixture then links,
+    so that it follows the part; else a Part::Feature holding it is made),
+    an (object, "FaceN") pair, a sketch, or an object of one planar face.
+    fixels: document Vectors, (point, normal) pairs, or wrenchd's fixel
+    dicts in the outline's coordinates.  friction: a number, (static,
+    kinetic) or {"static", "kinetic"}.  client: a wrenchd.Client (None:
+    $WRENCHD_SOCKET or ./run/wrenchd.sock).  Raises WrenchError (what
+    wrenchd refused, or how to start it) or OutlineError."""
+    if set not in SETS:
+        raise ValueError("set: one of goal, strong, both, not %r" % (set,))
+    if isinstance(face, Part.Shape):
+        source = _object_of_face(doc, face)
+    else:
+        source = face
+    socket = ""
+    if client is not None:
+        _use_client(client)
+        socket = client.socket_path
+    fixture = make_fixture(doc, source, fixels, friction, socket=socket)
+    regions = make_regions(fixture, set)
+    doc.recompute()
+    _raise_failures([fixture, regions])
+    return sync_regions(regions)
+
+
+# ---- designing ---------------------------------------------------------------------
+
+class _Progress:
+    """design.progress notifications on FreeCAD's progress indicator (the
+    status bar's in the GUI, the console's in freecadcmd)."""
+
+    def __init__(self, text):
+        self.text = text
+        self.indicator = None
+        self.shown = 0
+        # the status bar's bar in percent; the console's line in tenths
+        self.steps = 100 if FreeCAD.GuiUp else 10
+
+    def __call__(self, params):
+        total = params.get("total") or 0
+        done = params.get("done") or 0
+        if self.indicator is None:
+            self.indicator = FreeCAD.Base.ProgressIndicator()
+            self.indicator.start("%s: %d %s" % (self.text, total, params.get("stage", "candidates")),
+                                 self.steps)
+        step = int(self.steps * done / total) if total else self.steps
+        while self.shown < step:
+            self.shown += 1
+            self.indicator.next(True)      # raises when the user stops it
+
+    def stop(self):
+        if self.indicator is not None:
+            self.indicator.stop()
+            self.indicator = None
+
+
+def design(fixture, client=None, progress=True, spacing=None, fixels=None, objective=None,
+           top=None, place=True):
+    """fixture.design on the fixture's face: `fixels` (default the fixture's
+    DesignFixels) among candidate sites `spacing` apart (DesignSpacing; 0:
+    the perimeter / 40), ranked by `objective` (DesignObjective), with
+    FreeCAD's progress indicator (progress=True) or a callable.  With
+    place=True the best design's fixels become the fixture's and the
+    document is recomputed.  The ranking goes to the fixture's Designs and
+    to the report view.  Returns the wrenchd.DesignResult."""
+    doc = fixture.Document
+    if not fixture.FixtureJson:
+        fixture.recompute()
+        if not fixture.FixtureJson:
+            raise WrenchError(fixture.getStatusString() or "%s has no outline" % fixture.Label)
+    data = json.loads(fixture.FixtureJson)
+    edges = json.loads(fixture.EdgeTable) if fixture.EdgeTable else None
+    shape = Outline.from_shape(data["body"]["shape"], fixture.Frame, edges)
+    count = fixels or fixture.DesignFixels
+    h = spacing or float(fixture.DesignSpacing) or float("%.2g" % (shape.perimeter() / 40.0))
+    objective = objective or fixture.DesignObjective
+    top = top or fixture.DesignTop
+    path = socket_path(fixture.Socket)
+    if client is None:
+        client = client_for(fixture.Socket, fixture.Timeout)
+    friction = {"static": fixture.StaticFriction, "kinetic": fixture.KineticFriction}
+    body = {"mass": fixture.Mass, "shape": shape}
+    indicator = _Progress("Designing %s" % fixture.Label) if progress is True else None
+    callback = indicator if indicator is not None else (progress or None)
+    what = "%s: design" % fixture.Label
+    try:
+        result = _ask(what, path, lambda: client.design(
+            body, friction, fixels=count, spacing=h, objective=objective, top=top,
+            progress=callback), shape, properties={
+                "fixels": "DesignFixels (%s)" % count, "spacing": "DesignSpacing (%s)" % _fmt(h),
+                "objective": "DesignObjective (%s)" % objective, "top": "DesignTop (%s)" % top,
+                "friction": "the friction (StaticFriction, KineticFriction)",
+                "body": "the part (Mass, or its outline)"})
+    finally:
+        if indicator is not None:
+            indicator.stop()
+    lines = _design_lines(count, shape, result, h)
+    fixture.Designs = lines
+    for line in lines:
+        FreeCAD.Console.PrintMessage("Wrench: %s\n" % line)
+    if not result.designs:
+        raise WrenchError("%s: no design: %s" % (what, lines[0]))
+    if place:
+        best = result.designs[0]
+        points, normals = _fixel_vectors(shape, best.fixels)
+        fixture.FixelPoints, fixture.FixelNormals = points, normals
+        doc.recompute()
+        for obj in [fixture] + [o for o in fixture.InList if _proxy_name(o).startswith("Wrench")]:
+            if "Invalid" in obj.State:
+                raise WrenchError(obj.getStatusString())
+    return result
+
+
+def _design_lines(count, shape, result, spacing):
+    counts = result.counts
+    head = ("%d fixels from %d sites %s apart, %d candidates (%d without a seating push, "
+            "%d unpinned, %d degenerate), ranked by %s" % (
+                count, result.sites, _fmt(spacing), counts.get("candidates", 0),
+                counts.get("no_seating_push", 0), counts.get("unpinned", 0),
+                counts.get("degenerate", 0),
+                {"margin": "the margin of the best push in both",
+                 "region": "the length of the both region",
+                 "gravity": "the longest arc of tilts under which gravity seats the part"
+                 }.get(result.objective, result.objective)))
+    lines = [head]
+    for d in result.designs:
+        at = " ".join(_fmt_point(shape.to_3d(f["at"])) for f in d.fixels)
+        if d.best_push:
+            push = "push at %s along %s, margin %.4g" % (
+                _fmt_point(shape.to_3d(d.best_push["at"])),
+                _fmt_point(shape.direction_3d(d.best_push["direction"])), d.best_push["margin"])
+        else:
+            push = "no push seats and holds it"
+        lines.append("%d. score %.6g: fixels at %s; %s; goal %s, both %s long; gravity %s deg; "
+                     "critical mu %s" % (d.rank, d.score, at, push, _fmt(d.goal_length),
+                                         _fmt(d.both_length), _fmt(d.gravity_goal_deg),
+                                         "none up to 2" if d.critical_mu is None
+                                         else _fmt(d.critical_mu)))
+    if result.designs:
+        lines.append("design 1's fixels placed. Push at its best push (the arrow) and let go: "
+                     "it lies in both, which seats the part from any contact state and then "
+                     "holds it still; a push in goal alone seats it but may leave it sliding "
+                     "along its fixels.")
+    return lines
+
+
+# ---- picking fixels ----------------------------------------------------------------
+
+def fixel_at(fixture, point, corner=None):
+    """(point, normal) of a fixel at the document point: the point moved
+    onto the fixture's outline; the normal (0, 0, 0) (the outline's own)
+    except at a corner (a vertex where the outline turns: `corner` True, or
+    None to find out), where it is the inward bisector."""
+    if not fixture.FixtureJson:
+        fixture.recompute()
+    data = json.loads(fixture.FixtureJson)
+    shape = Outline.from_shape(data["body"]["shape"], fixture.Frame)
+    x, y, _ = shape.to_2d(point)
+    segment, t, q, d = shape.nearest((x, y))
+    at_vertex = t in (0.0, 1.0) or min(_norm(_sub(q, segment.start)), _norm(_sub(q, segment.end))) \
+        <= 1e-9 * shape.size
+    if corner is None:
+        corner = False
+        if at_vertex:
+            index = segment.index if _norm(_sub(q, segment.start)) <= _norm(_sub(q, segment.end)) \
+                else (segment.index + 1) % len(shape.segments[segment.loop])
+            before = shape.segments[segment.loop][index - 1]
+            after = shape.segments[segment.loop][index]
+            corner = abs(_angle(before.tangent(1.0), after.tangent(0.0))) > 1e-9
+    if corner:
+        index = segment.index if _norm(_sub(q, segment.start)) <= _norm(_sub(q, segment.end)) \
+            else (segment.index + 1) % len(shape.segments[segment.loop])
+        vertex = shape.segments[segment.loop][index].start
+        n = shape.corner_normal(segment.loop, index)
+        return shape.to_3d(vertex), shape.direction_3d(n)
+    return shape.to_3d(q), Vector()

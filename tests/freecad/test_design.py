@@ -1,0 +1,92 @@
+"""design(): fixture.design on a FreeCAD face, its best design placed."""
+
+import pytest
+from FreeCAD import Vector as V
+
+import parts
+import wrench_freecad as wf
+
+
+def test_a_design_is_placed(client, doc):
+    """The bracket with no fixels: design() ranks every choice of three sites
+    10 apart, places the best, and the regions and the best push recompute
+    with them -- the design's own figures.  The README's run of the same
+    bracket (wrenchctl design examples/bracket.json --spacing 10) found 40
+    sites, 9880 candidates and a best margin of 0.318277."""
+    face = parts.bracket_face()
+    fixture = wf.make_fixture(doc, wf._object_of_face(doc, face), [], 0.25,
+                              socket=client.socket_path)
+    both = wf.make_regions(fixture, "both")
+    best = wf.make_best_push(fixture)
+    doc.recompute()
+    assert both.Count == 0 and "no fixels yet" in both.Label and not best.Found
+    seen = []
+    result = wf.design(fixture, client, progress=seen.append, spacing=10, top=3)
+    assert result.sites == 40 and result.counts["candidates"] == 9880
+    top = result.designs[0]
+    assert top.score == pytest.approx(0.318277, abs=5e-7)
+    # the same question asked of wrenchd directly, of this test's own outline
+    direct = client.design({"mass": 1.0, "shape": wf.outline(face)},
+                           {"static": 0.25, "kinetic": 0.25}, fixels=3, spacing=10, top=3)
+    assert [d.fixels for d in result.designs] == [d.fixels for d in direct.designs]
+    # placed: the fixels are the design's, in the document (the face is at z = 1)
+    assert [(p.x, p.y, p.z) for p in fixture.FixelPoints] == \
+        [(f["at"][0], f["at"][1], 1.0) for f in top.fixels]
+    assert [(n.x, n.y, n.z) for n in fixture.FixelNormals] == \
+        [(f["normal"][0], f["normal"][1], 0.0) for f in top.fixels]
+    # the objects recomputed with them
+    assert both.TotalLength == pytest.approx(top.both_length, rel=1e-9)
+    assert sum(r.Shape.Length for r in wf.region_objects(both)) == \
+        pytest.approx(top.both_length, rel=1e-9)
+    assert best.Found and best.Margin == pytest.approx(top.best_push["margin"], abs=1e-9)
+    at = top.best_push["at"]
+    assert best.At.distanceToPoint(V(at[0], at[1], 1)) <= 1e-9
+    # progress reached the end
+    assert seen and seen[-1]["done"] == seen[-1]["total"] == 9880
+    # the ranking, in the fixture and the report view, says to push with both
+    assert fixture.Designs[0].startswith("3 fixels from 40 sites 10 apart, 9880 candidates")
+    assert "the margin of the best push in both" in fixture.Designs[0]
+    assert fixture.Designs[1].startswith("1. score 0.318277")
+    assert "it lies in both" in fixture.Designs[-1] and "let go" in fixture.Designs[-1]
+    assert "goal alone" in fixture.Designs[-1]
+
+
+def test_design_with_the_progress_indicator(client, doc):
+    """FreeCAD's own progress indicator (the console's, here), the fixture's
+    Design properties, and a design whose fixels are then placed on a part
+    in a tilted plane: they lie on the face."""
+    import FreeCAD
+    solid = parts.l_bracket()
+    solid.Placement = FreeCAD.Placement(V(5, -7, 11), FreeCAD.Rotation(V(1, 2, 3), 37))
+    normal = solid.Placement.Rotation.multVec(V(0, 0, 1))
+    index = parts.face_at(solid, normal, solid.Placement.multVec(V(0, 0, 6)).dot(normal))
+    holder = doc.addObject("Part::Feature", "Bracket")
+    holder.Shape = solid
+    fixture = wf.make_fixture(doc, (holder, "Face%d" % (index + 1)), [], 0.2,
+                              socket=client.socket_path)
+    fixture.DesignSpacing = 12
+    fixture.DesignObjective = "region"
+    doc.recompute()
+    result = wf.design(fixture, client, progress=True)
+    assert result.objective == "region" and result.designs
+    face = holder.Shape.Faces[index]
+    for p in fixture.FixelPoints:
+        assert face.distToShape(__import__("Part").Vertex(p))[0] <= 1e-9 * face.BoundBox.DiagonalLength
+    assert fixture.FixtureId and "Invalid" not in fixture.State
+
+
+def test_design_refusals(client, doc):
+    face = parts.bracket_face()
+    fixture = wf.make_fixture(doc, wf._object_of_face(doc, face), [], 0.25,
+                              socket=client.socket_path)
+    doc.recompute()
+    with pytest.raises(wf.WrenchError, match=r"design: wrenchd refused DesignSpacing \(-1\): "
+                                             r".*\[params.spacing\]"):
+        wf.design(fixture, client, progress=None, spacing=-1)
+    with pytest.raises(wf.WrenchError, match=r"design: wrenchd refused DesignFixels \(9\): "
+                                             r".*\[params.fixels\]"):
+        wf.design(fixture, client, progress=None, spacing=20, fixels=9)
+    # one fixel never pins the part: no design at all
+    with pytest.raises(wf.WrenchError, match=r"no design: 1 fixels from .* 0 degenerate\)"):
+        wf.design(fixture, client, progress=None, spacing=20, fixels=1)
+    assert list(fixture.FixelPoints) == []

@@ -1,0 +1,136 @@
+"""The workbench in FreeCAD's GUI under Xvfb (gui_smoke.py): activated from
+the checkout, its commands run on a bracket, a screenshot taken and read
+back here: the right size, and the colours of the regions, the best push
+and the locators in it."""
+
+import json
+import os
+import shutil
+import subprocess
+
+import numpy
+import pytest
+
+import wrench_freecad as wf
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+WORKBENCH = os.path.abspath(os.path.join(HERE, "..", "..", "clients", "freecad"))
+
+
+USER_CFG = """<?xml version="1.0" encoding="UTF-8" standalone="no" ?>
+<FCParameters>
+  <FCParamGroup Name="Root">
+    <FCParamGroup Name="BaseApp">
+      <FCParamGroup Name="Preferences">
+        <FCParamGroup Name="General">
+          <FCText Name="AutoloadModule">WrenchWorkbench</FCText>
+        </FCParamGroup>
+      </FCParamGroup>
+    </FCParamGroup>
+  </FCParamGroup>
+</FCParameters>
+"""
+
+
+def read_png(path):
+    """(width, height, pixels: an array of rows of (r, g, b)) of a PNG, read
+    by Qt."""
+    from PySide2 import QtGui
+    image = QtGui.QImage(str(path))
+    assert not image.isNull(), "%s is not an image Qt reads" % path
+    image = image.convertToFormat(QtGui.QImage.Format_RGB888)
+    data = numpy.frombuffer(bytes(image.constBits())[:image.sizeInBytes()], dtype=numpy.uint8)
+    rows = data.reshape(image.height(), image.bytesPerLine())[:, :image.width() * 3]
+    return image.width(), image.height(), rows.reshape(image.height(), image.width(), 3)
+
+
+def count_near(pixels, colour, within=60):
+    """How many pixels lie within `within` (of 255 per channel) of colour."""
+    target = numpy.array([round(255 * c) for c in colour], dtype=float)
+    distance = numpy.sqrt(((pixels.astype(float) - target) ** 2).sum(axis=2))
+    return int((distance <= within).sum())
+
+
+def test_the_workbench_in_freecad_gui(daemon, tmp_path):
+    xvfb = shutil.which("xvfb-run")
+    freecad = shutil.which("freecad")
+    assert xvfb, "xvfb-run is missing: make deps-freecad installs xvfb"
+    assert freecad, "the FreeCAD GUI (freecad) is missing: make deps-freecad"
+    # A home of its own, whose FreeCAD starts in the Wrench workbench (not
+    # on the start page, a web view)
+    config = tmp_path / "home" / ".config" / "FreeCAD"
+    config.mkdir(parents=True)
+    (config / "user.cfg").write_text(USER_CFG)
+    env = dict(os.environ, HOME=str(tmp_path / "home"), WRENCHD_SOCKET=daemon.socket,
+               WRENCH_GUI_OUT=str(tmp_path), WRENCH_GUI_SCRIPT=os.path.join(HERE, "gui_smoke.py"),
+               QTWEBENGINE_DISABLE_SANDBOX="1")
+    # FreeCAD 0.20 takes -M (a module directory: the checkout's workbench)
+    # after the file only.
+    proc = subprocess.run([xvfb, "-a", "-s", "-screen 0 1600x1000x24", freecad,
+                           os.path.join(HERE, "gui_smoke.py"), "-M", WORKBENCH],
+                          env=env, stdin=subprocess.DEVNULL, capture_output=True, timeout=180)
+    output = proc.stdout.decode(errors="replace") + proc.stderr.decode(errors="replace")
+    assert proc.returncode == 0, output[-4000:]
+    with open(tmp_path / "result.json") as f:
+        result = json.load(f)
+    assert result["errors"] == [], result["errors"][0] + output[-2000:]
+
+    assert result["started_in"] == result["workbench"] == "WrenchWorkbench"
+    assert set(result["commands"]) >= {"Wrench_Fixture", "Wrench_AddFixels", "Wrench_ClearFixels",
+                                       "Wrench_Regions", "Wrench_GravityDial", "Wrench_Design"}
+    for o in result["objects"]:
+        assert o["state"] == ["Up-to-date"], o
+        if o["type"].startswith("Wrench"):
+            assert o["view"] == "ViewProviderWrench", o
+    assert result["fixtures"] == 1 and len(result["fixels"]) == 3
+    # Add fixels put them on the edges picked (a pick is a little off), and
+    # at the vertex where the bottom meets a fillet, no corner: no normal
+    assert numpy.allclose(result["picked"], [[50, 0, 1], [0, 40, 1], [112, 0, 1]], rtol=0, atol=1e-9)
+    assert result["picked_normals"] == [[0, 0, 0]] * 3
+    assert result["picked_state"] == ["Up-to-date"] and result["cleared"] == 0
+    regions = result["regions"]
+    assert set(regions) == set(wf.SETS)
+    for which, r in regions.items():
+        assert r["colour"] == pytest.approx(wf.COLOURS[which], abs=1e-6)
+        assert r["width"] == wf.LINE_WIDTHS[which]
+    assert regions["both"]["count"] > 0 and result["best_push"]["found"]
+    # each set's regions are its children in the tree
+    tree = {label.split(":")[0]: children for label, children in result["tree"]}
+    for which in wf.SETS:
+        assert tree["Regions " + which] == regions[which]["count"]
+    # the report view: the design ranked, what to push with said
+    report = "\n".join(result["report"])
+    # the README's bracket, designed as wrenchctl designs it there
+    assert "Wrench: 3 fixels from 40 sites 10 apart, 9880 candidates" in report
+    assert "ranked by the margin of the best push in both" in report
+    assert "Wrench: 1. score 0.318277: fixels at (25, 0, 1) (105, 0, 1) (100, 30, 1)" in report
+    assert "it lies in both, which seats the part from any contact state and then holds it still" \
+        in report
+    assert "both: a push here seats the part from any contact state and then holds it still: " \
+           "push here and let go" in report
+    assert "to push and let go, use both" in report
+
+    # mistakes, in the report view: the fixel named, and how to start wrenchd
+    mistakes = "\n".join(result["mistakes"])
+    assert "Wrench: Fixture of Bracket: wrenchd refused fixel 1 (FixelPoints[0] = " in mistakes
+    assert "is not on the workpiece boundary: 0.5 away from it" in mistakes
+    assert "wrenchd is not reachable at %s" % (tmp_path / "nobody.sock") in mistakes
+    assert "Start one: `wrenchd --socket %s`" % (tmp_path / "nobody.sock") in mistakes
+    assert result["after_mistakes"] == []
+
+    # the 3-D view from the top: its size, and what is drawn in it
+    width, height, rows = read_png(tmp_path / "view.png")
+    assert (width, height) == (1200, 800)
+    colours = {tuple(p) for p in rows[::4, ::4].reshape(-1, 3)}
+    assert len(colours) > 20, "a blank picture"
+    assert count_near(rows, wf.COLOURS["both"]) > 50
+    assert count_near(rows, wf.COLOURS["strong"]) > 500
+    assert count_near(rows, (0.85, 0.0, 0.55)) > 200          # the best push's arrow
+    assert count_near(rows, (0.25, 0.25, 0.28), 40) > 50      # the locator pins
+    width, height, rows = read_png(tmp_path / "window.png")
+    assert width >= 1200 and height >= 800
+    assert count_near(rows, wf.COLOURS["both"]) > 50
+    # make freecad-picture keeps it
+    keep = os.environ.get("WRENCH_PICTURE")
+    if keep:
+        shutil.copyfile(tmp_path / "window.png", keep)
