@@ -634,8 +634,36 @@ static request *add_get(table *t, const fixture *f)
     return r;
 }
 
+static const char *const FIELDS[5] = {"verdict", "margin", "blocking", "states", "witness"};
+
+/* "fields": a random non-empty subset, in a random order; with `witness`,
+ * one that holds "witness" (chunks of 256: a long batch is answered by
+ * several workers at once). */
+static void add_fields(uint64_t *stream, cJSON *params, bool witness)
+{
+    int mask = 1 + random_pick(stream, 31);
+    if (witness)
+        mask |= 1 << 4;
+    cJSON *fields = cJSON_AddArrayToObject(params, "fields");
+    int start = random_pick(stream, 5);
+    for (int k = 0; k < 5; k++)
+        if (mask & (1 << ((start + k) % 5)))
+            cJSON_AddItemToArray(fields, cJSON_CreateString(FIELDS[(start + k) % 5]));
+}
+
+static void add_classify_lean(table *t, uint64_t *stream, const fixture *f, bool stored,
+                              int wrenches, int category, int lean);
+
 static void add_classify(table *t, uint64_t *stream, const fixture *f, bool stored, int wrenches,
                          int category)
+{
+    add_classify_lean(t, stream, f, stored, wrenches, category, 0);
+}
+
+/* lean: 0 a quarter of the auto ones with random "fields", 2 always with
+ * "fields" holding "witness" (and never by LP, whose witnesses differ). */
+static void add_classify_lean(table *t, uint64_t *stream, const fixture *f, bool stored,
+                              int wrenches, int category, int lean)
 {
     cJSON *p = params_on();
     cJSON *list = cJSON_AddArrayToObject(p, "wrenches");
@@ -643,12 +671,15 @@ static void add_classify(table *t, uint64_t *stream, const fixture *f, bool stor
         cJSON_AddItemToArray(list, wrench_json(stream, f));
     add_sets(stream, p);
     int check = CHECK_EXACT;
-    int method = random_pick(stream, 100);
+    int method = lean ? 100 : random_pick(stream, 100);
     if (method < t->settings.lp_percent) { /* GLPK: the verdicts are compared, not the witnesses */
         cJSON_AddStringToObject(p, "method", "lp");
         check = CHECK_NO_WITNESS;
-    } else if (method < t->settings.lp_percent + (100 - t->settings.lp_percent) / 4) {
-        cJSON_AddStringToObject(p, "method", "auto");
+    } else {
+        if (method < t->settings.lp_percent + (100 - t->settings.lp_percent) / 4)
+            cJSON_AddStringToObject(p, "method", "auto");
+        if (lean || random_pick(stream, 4) == 0)
+            add_fields(stream, p, lean == 2);
     }
     if (random_pick(stream, 10) == 0)
         cJSON_AddNumberToObject(p, "tolerance", random_pick(stream, 2) ? 0 : 1e-6);
@@ -660,6 +691,8 @@ static void add_queries(table *t, uint64_t *stream, const fixture *f, bool store
     add_classify(t, stream, f, stored, 1, CATEGORY_CLASSIFY);
     add_classify(t, stream, f, stored, 1 + random_pick(stream, 3), CATEGORY_CLASSIFY);
     add_classify(t, stream, f, stored, 1 + random_pick(stream, 50), CATEGORY_BATCH_CLASSIFY);
+    add_classify_lean(t, stream, f, stored, 257 + random_pick(stream, 600), CATEGORY_BATCH_CLASSIFY,
+                      2);
 
     static const char LETTERS[] = "saulrnm";
     for (int n = 0; n < 2; n++) {
