@@ -42,6 +42,7 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <sys/un.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -303,6 +304,39 @@ static void room_for(connection *c, size_t bytes)
     memset(c->buffer + c->end, 0, bytes - c->end);
 }
 
+
+/* CPU seconds (user, system) a process has used, from /proc; 0 when it
+ * cannot be read. */
+static void process_cpu(pid_t pid, double *user, double *system)
+{
+    *user = *system = 0;
+    char path[64], text[1024];
+    snprintf(path, sizeof path, "/proc/%d/stat", (int)pid);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return;
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    const char *p = strrchr(text, ')'); /* the name may hold spaces */
+    unsigned long utime, stime;
+    if (p && sscanf(p + 2, "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %lu %lu", &utime,
+                    &stime) == 2) {
+        double tick = (double)sysconf(_SC_CLK_TCK);
+        *user = utime / tick;
+        *system = stime / tick;
+    }
+}
+
+/* The pid of the process at the other end of a Unix socket. */
+static pid_t peer_pid(int fd)
+{
+    struct ucred credentials;
+    socklen_t length = sizeof credentials;
+    return getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &credentials, &length) == 0 ? credentials.pid
+                                                                               : 0;
+}
+
 /* The echo floor of issue 19: a server -- another process, listening on a
  * Unix socket as wrenchd does -- that answers each line with a line of
  * `answer_bytes` and does nothing else.  The sequential figure alternates
@@ -443,6 +477,13 @@ int main(int argc, char **argv)
         send_all(&echo, echo_request, request_bytes);
         read_line(&echo, &length);
     }
+    /* CPU per exchange, each side's: wrenchd's from /proc (its pid from
+     * the socket), the echo server's from its rusage once reaped. */
+    pid_t daemon_pid = peer_pid(c.fd);
+    double daemon_user0, daemon_system0, daemon_user1, daemon_system1;
+    process_cpu(daemon_pid, &daemon_user0, &daemon_system0);
+    struct rusage children0, children1;
+    getrusage(RUSAGE_CHILDREN, &children0);
     for (long i = 0; i < sequential; i++) {
         double start = now_us();
         answer = call(&c, lines[i], &length);
@@ -454,8 +495,19 @@ int main(int argc, char **argv)
         read_line(&echo, &length);
         echo_latency[i] = now_us() - start;
     }
+    process_cpu(daemon_pid, &daemon_user1, &daemon_system1);
     close(echo.fd);
     waitpid(echo_pid, NULL, 0);
+    getrusage(RUSAGE_CHILDREN, &children1);
+#define SECONDS(t) ((double)(t).tv_sec + (t).tv_usec * 1e-6)
+    /* The echo server's figures include its 200 warm-up exchanges. */
+    double echo_user_us = (SECONDS(children1.ru_utime) - SECONDS(children0.ru_utime)) * 1e6 /
+                          (double)(sequential + 200),
+           echo_system_us = (SECONDS(children1.ru_stime) - SECONDS(children0.ru_stime)) * 1e6 /
+                            (double)(sequential + 200),
+           daemon_user_us = (daemon_user1 - daemon_user0) * 1e6 / (double)sequential,
+           daemon_system_us = (daemon_system1 - daemon_system0) * 1e6 / (double)sequential;
+#undef SECONDS
     free(echo.buffer);
     free(echo_request);
     qsort(latency, (size_t)sequential, sizeof *latency, compare_doubles);
@@ -635,6 +687,7 @@ int main(int argc, char **argv)
     if (json) {
         printf("{\"sequential\": %ld, \"sequential_p50_us\": %.1f, \"sequential_p99_us\": %.1f, "
                "\"sequential_p999_us\": %.1f, \"floor_p50_us\": %.1f, \"server_floor_p50_us\": %.1f, "
+               "\"daemon_cpu_us\": [%.2f, %.2f], \"echo_cpu_us\": [%.2f, %.2f], "
                "\"answer_bytes\": %zu, "
                "\"pipelined\": %ld, \"depth\": %ld, "
                "\"pipelined_p50_us\": %.1f, \"pipelined_p99_us\": %.1f, "
@@ -646,7 +699,7 @@ int main(int argc, char **argv)
                "\"lean_compared\": %ld, \"lp\": %ld, \"lp_per_s\": %.0f, \"lp_agree\": %ld, "
                "\"lp_compared\": %ld, \"put_ms\": {",
                sequential, sequential_p50, sequential_p99, sequential_p999, floor_us, server_floor_us,
-               answer_bytes,
+               daemon_user_us, daemon_system_us, echo_user_us, echo_system_us, answer_bytes,
                pipelined, depth,
                pipelined_p50, pipelined_p99, (double)pipelined / pipelined_seconds, batch,
                batch_seconds, (double)batch / batch_seconds, used, batch_answer_bytes, lean,
@@ -666,6 +719,9 @@ int main(int argc, char **argv)
                "target <= 1.25)\n",
                server_floor_us, answer_bytes, sequential_p50 / server_floor_us);
         printf("  a thread of this process   p50 %7.1f us  (socketpair)\n", floor_us);
+        printf("CPU per exchange, user + system: wrenchd %.2f + %.2f us, the echo server %.2f + "
+               "%.2f us\n",
+               daemon_user_us, daemon_system_us, echo_user_us, echo_system_us);
         printf("pipelined %ld deep, %ld      p50 %7.1f us  p99 %7.1f us  %.0f requests/s\n", depth,
                pipelined, pipelined_p50, pipelined_p99, (double)pipelined / pipelined_seconds);
         printf("batch of %ld wrenches        %.3f s, %.0f wrenches/s (%zu bytes in, %zu out)   "
