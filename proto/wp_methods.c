@@ -853,13 +853,6 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
      * step makes progress (and a request's first chunk fails, if it does,
      * while its text can still be taken back). */
     size_t start = out->length;
-    /* A long batch's piece fills its room at once: reserved, it is not
-     * regrown (and recopied) on the way. */
-    size_t room = start + CLASSIFY_PIECE_BYTES + CLASSIFY_PIECE_BYTES / 4;
-    if (state->chunk_count > 1 && out->capacity < room)
-        /* Doubling at least: a whole answer (wp_answer_whole) is one
-         * buffer over every step, and must not be recopied at each. */
-        wp_buffer_reserve(out, room > 2 * out->capacity ? room : 2 * out->capacity);
     /* Work units per chunk, for the budget: a wrench against a cone is one,
      * a verdict by the map about one, an LP sixty-four. */
     unsigned long cones = 0;
