@@ -271,9 +271,10 @@ wr_status wr_verdict_map_classify(const wr_verdict_map *m, const double wrench[3
 {
     double h[3] = {wrench[0], wrench[1], wrench[2] * m->inverse_gyration};
     double largest = fmax(fabs(h[0]), fmax(fabs(h[1]), fabs(h[2])));
-    /* NaN fails both comparisons: zero, huge, tiny and non-finite wrenches
-     * take the general path, which answers or refuses them. */
-    if (!(largest >= FAST_LOW && largest <= FAST_HIGH))
+    /* Zero, huge, tiny and non-finite wrenches take the general path, which
+     * answers or refuses them.  fmax drops a NaN beside a number, so a NaN
+     * component is looked for in the sum (no overflow in the fast range). */
+    if (!(largest >= FAST_LOW && largest <= FAST_HIGH) || isnan(h[0] + h[1] + h[2]))
         return wr_classify_verdict(m->analysis, wrench, set, m->tolerance, verdict);
     unsigned cell = m->cells[cell_of(h)];
     double x[3];

@@ -475,6 +475,9 @@ typedef struct classify_state {
     classify_chunk chunks[CLASSIFY_WINDOW];
     wr_verdict_map *map;        /* a long batch's verdicts, or NULL */
     bool failing;               /* a chunk failed: nothing more is claimed */
+    bool forked;                /* classify_parallel said yes since the last
+                                   step began: helpers may be in classify_work
+                                   until the next step returns */
     bool opened;                /* the answer's opening text is written */
 } classify_state;
 
@@ -785,6 +788,10 @@ static bool classify_parallel(wp_stream *stream)
     classify_state *state = &stream->u.classify;
     pthread_mutex_lock(&state->lock);
     bool more = !state->failing && state->claimed < state->chunk_count;
+    /* The host opens a fork on a yes and runs the step after it: its
+     * helpers may claim every chunk left before that step begins, so the
+     * step cannot tell from the claims alone that it shares. */
+    state->forked = state->forked || more;
     pthread_mutex_unlock(&state->lock);
     return more;
 }
@@ -836,9 +843,13 @@ static wp_step classify_step(wp_stream *stream, wp_call *call, wp_buffer *out,
     const classify_request *r = &state->request;
     const wr_analysis *a = state->use->analysis;
     /* Helpers may be making chunks until this step returns: it ends the
-     * answer only if none could be when it began (wp_streamer.parallel) --
-     * never in the first step, which began before the stream existed. */
-    bool shared = state->opened && classify_parallel(stream);
+     * answer only if the host was told of none before it began
+     * (wp_streamer.parallel; helpers come only after a yes) -- never in the
+     * first step, which began before the stream existed. */
+    pthread_mutex_lock(&state->lock);
+    bool shared = state->opened && state->forked;
+    state->forked = false;
+    pthread_mutex_unlock(&state->lock);
     if (!state->opened) {
         state->opened = true;
         if (r->fields) {

@@ -715,6 +715,125 @@ static void pieces_join_to_the_whole_answer(void **state)
     free(objects);
 }
 
+/* The daemon's worker (wd_worker.c run_piece) asks wp_answer_parallel,
+ * opens a fork when there is work to share, queues the helpers, and only
+ * then runs the step; a helper may claim chunks before the step begins,
+ * and may be inside wp_answer_work until the step returns (the fork is
+ * closed after it).  So a step that follows a "yes" from
+ * wp_answer_parallel must not end the answer (wp_rpc.h, wp_streamer):
+ * ending it frees the stream (its lock, its chunks, the fixture held)
+ * under a helper -- even when the helpers had claimed every chunk left
+ * by the time the step began.  Here the helpers' turns run, in this
+ * thread, between the question and the step, as they may in the daemon. */
+static void a_step_after_parallel_does_not_end_the_answer(void **state)
+{
+    harness *h = *state;
+    const wp_host *host = wd_thread_host_wp(h->thread);
+    wp_limits limits = {16, 100000, 16};
+    char line[8192];
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
+             DISC);
+    cJSON *put = ask(h, line);
+    char id[WP_ID_LENGTH + 1];
+    snprintf(id, sizeof id, "%s", cJSON_GetObjectItem(cJSON_GetObjectItem(put, "result"), "id")->valuestring);
+    cJSON_Delete(put);
+    /* By rows (256 wrenches a chunk) and lean (1,024 a chunk with margins):
+     * three chunks each. */
+    char *rows = classify_line(id, 600, false, "wrenches");
+    char *plain = classify_line(id, 2100, false, "wrenches");
+    const char *params = strstr(plain, "\"params\":{") + strlen("\"params\":{");
+    char *lean = malloc(strlen(plain) + 64);
+    sprintf(lean, "%.*s\"fields\":[\"verdict\",\"margin\"],%s", (int)(params - plain), plain,
+            params);
+    const char *lines[] = {rows, lean};
+    for (int l = 0; l < 2; l++) {
+        wp_counts counts = {0, 0};
+        char *whole = wp_answer_line(host, &limits, lines[l], strlen(lines[l]), &counts);
+        wp_answer *answer = wp_answer_begin(&limits, lines[l], strlen(lines[l]));
+        assert_non_null(answer);
+        wp_answer_pieces(answer, 1, 1); /* a chunk a step */
+        wp_buffer joined = {0};
+        assert_int_equal(wp_answer_step(answer, host, &joined, &counts), WP_STEP_MORE);
+        /* Chunks are left to share: a fork is opened, its helper queued. */
+        assert_true(wp_answer_parallel(answer));
+        /* The helper's turns come before the step's: it claims the rest. */
+        int made = 0;
+        while (wp_answer_work(answer, host))
+            made++;
+        assert_int_equal(made, 2);
+        /* The step the fork was opened for: the helper may still be in
+         * wp_answer_work (its next turn) until it returns. */
+        wp_step step = wp_answer_step(answer, host, &joined, &counts);
+        if (step != WP_STEP_MORE)
+            fail_msg("line %d: the step after wp_answer_parallel said yes returned %s: the "
+                     "stream is freed while a helper may be in it",
+                     l, step == WP_STEP_DONE ? "DONE" : "FAILED");
+        /* No fork for the rest (wp_answer_parallel is not asked): it ends. */
+        while (step == WP_STEP_MORE)
+            step = wp_answer_step(answer, host, &joined, &counts);
+        assert_int_equal(step, WP_STEP_DONE);
+        wp_answer_free(answer, host);
+        char *text = wp_buffer_take(&joined);
+        assert_string_equal(text, whole);
+        free(text);
+        free(whole);
+    }
+    free(rows);
+    free(plain);
+    free(lean);
+}
+
+/* A long line's wrenches are read from the text (wp_json_triples), each
+ * number "as cJSON reads a number": numbers of more than 63 characters
+ * (valid JSON, such as 1 with a 67-digit exponent 0...01, or
+ * 0.000...1e71, both of which Clinger's fast path would take) are left to
+ * the tree, and the line must be answered as the tree reads it ("wr\u0065nches",
+ * which the text reader does not match, makes the tree read the same
+ * request).  A guard on read_number's hand-over to strtod and cJSON. */
+static void long_numbers_read_as_the_tree_reads_them(void **state)
+{
+    harness *h = *state;
+    const wp_host *host = wd_thread_host_wp(h->thread);
+    wp_limits limits = {16, 100000, 16};
+    char line[8192];
+    snprintf(line, sizeof line,
+             "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
+             DISC);
+    cJSON *put = ask(h, line);
+    char id[WP_ID_LENGTH + 1];
+    snprintf(id, sizeof id, "%s", cJSON_GetObjectItem(cJSON_GetObjectItem(put, "result"), "id")->valuestring);
+    cJSON_Delete(put);
+    char exponent[128], fraction[128], long_ok[128];
+    /* 1e000...01 (70 characters) and 0.000...01e71 (76): Clinger's fast
+     * path takes both (1 digit, exponent 1 and 0). */
+    snprintf(exponent, sizeof exponent, "1e%067d", 1);
+    snprintf(fraction, sizeof fraction, "0.%070de71", 1);
+    /* 63 characters: cJSON reads it whole. */
+    snprintf(long_ok, sizeof long_ok, "1e%060d", 1);
+    const char *numbers[] = {exponent, fraction, long_ok};
+    for (int n = 0; n < 3; n++) {
+        char *texts[2];
+        for (int k = 0; k < 2; k++) {
+            char *base = classify_line(id, 2000, false, k ? "wr\\u0065nches" : "wrenches");
+            assert_true(strlen(base) >= 65536);
+            const char *at = strstr(base, "\": [") + strlen("\": [");
+            char *edited = malloc(strlen(base) + 256);
+            sprintf(edited, "%.*s[%s,0,0],%s", (int)(at - base), base, numbers[n], at);
+            wp_counts counts = {0, 0};
+            texts[k] = wp_answer_line(host, &limits, edited, strlen(edited), &counts);
+            free(edited);
+            free(base);
+        }
+        if (strcmp(texts[0], texts[1]) != 0)
+            fail_msg("%s (%zu characters): read from the text %.100s..., through the tree "
+                     "%.100s...",
+                     numbers[n], strlen(numbers[n]), texts[0], texts[1]);
+        free(texts[0]);
+        free(texts[1]);
+    }
+}
+
 static int polls;
 static bool stop_after_three(void *argument)
 {
@@ -758,6 +877,10 @@ int main(void)
         cmocka_unit_test_setup_teardown(light_lines_answer_as_any_other, setup, teardown),
         cmocka_unit_test_setup_teardown(pieces_join_to_the_whole_answer, setup, teardown),
         cmocka_unit_test_setup_teardown(a_stop_ends_long_work, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_step_after_parallel_does_not_end_the_answer, setup,
+                                        teardown),
+        cmocka_unit_test_setup_teardown(long_numbers_read_as_the_tree_reads_them, setup,
+                                        teardown),
     };
     return cmocka_run_group_tests_name("proto", tests, NULL, NULL);
 }

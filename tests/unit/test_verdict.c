@@ -171,11 +171,41 @@ static void refusals(void **state)
     wr_fixture_free(f);
 }
 
+/* A NaN among finite components: fmax drops a NaN, so the map's size check
+ * must not be the only guard; wr_classify_verdict refuses every such
+ * wrench, and so must the map (its answers are wr_classify_verdict's). */
+static void map_refuses_partial_nan(void **state)
+{
+    (void)state;
+    wr_fixture *f = test_disc_corner(0.5);
+    wr_analysis *a = test_analysis_new(f);
+    wr_verdict_map *map;
+    assert_int_equal(wr_verdict_map_new(a, 1e-9, &map), WR_OK);
+    const double wrenches[][3] = {{NAN, -1, 0}, {-1, NAN, 0}, {-1, -1, NAN},
+                                  {NAN, NAN, 1}, {1, NAN, NAN}, {-NAN, 1e-3, 0}};
+    for (size_t i = 0; i < sizeof wrenches / sizeof wrenches[0]; i++)
+        for (int set = 0; set < 3; set++) {
+            wr_verdict v = WR_VERDICT_INSIDE, mapped = WR_VERDICT_INSIDE;
+            wr_status lean = wr_classify_verdict(a, wrenches[i], (wr_set)set, 1e-9, &v);
+            wr_status by_map = wr_verdict_map_classify(map, wrenches[i], (wr_set)set, &mapped);
+            if (by_map != lean)
+                print_message("wrench %zu (%g, %g, %g), set %d: wr_classify_verdict %d, map %d\n",
+                              i, wrenches[i][0], wrenches[i][1], wrenches[i][2], set, lean,
+                              by_map);
+            assert_int_equal(lean, WR_INVALID);
+            assert_int_equal(by_map, WR_INVALID);
+        }
+    wr_verdict_map_free(map);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(verdict_alone_agrees),
         cmocka_unit_test(refusals),
+        cmocka_unit_test(map_refuses_partial_nan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
