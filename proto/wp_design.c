@@ -30,6 +30,11 @@ struct wp_design_stream {
     bool search_reported; /* the notification at the search's end is sent */
     double last_report;   /* monotonic seconds; < 0 before the first */
     wr_status failure;    /* a failure seen in a shared step, said in the next */
+    /* wp_design_parallel said yes since the last step began: the host may
+     * have helpers in wp_design_work until the next step returns, even if
+     * they have claimed every chunk by the time it begins.  Only the
+     * steps' thread reads and writes it. */
+    bool forked;
     /* A lattice: its designs are enumerated first, then they are the
      * candidates (their fixels the sites, three each). */
     wr_lattice_job *lattice;
@@ -575,11 +580,19 @@ static void note_failure(wp_design_stream *s, wr_status status)
     pthread_mutex_unlock(&s->lock);
 }
 
-bool wp_design_parallel(wp_design_stream *s)
+/* Are chunks left to claim? */
+static bool claimable(wp_design_stream *s)
 {
     pthread_mutex_lock(&s->lock);
     bool more = s->job ? wr_design_job_claimable(s->job) : wr_lattice_job_claimable(s->lattice);
     pthread_mutex_unlock(&s->lock);
+    return more;
+}
+
+bool wp_design_parallel(wp_design_stream *s)
+{
+    bool more = claimable(s);
+    s->forked = s->forked || more;
     return more;
 }
 
@@ -598,10 +611,17 @@ bool wp_design_work(wp_design_stream *s, const wp_host *host)
 wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsigned long budget,
                        unsigned long *used)
 {
+    /* Helpers may be in wp_design_work until this step returns only if the
+     * host was told there was work to share before it began (asking now
+     * would miss helpers that have claimed the last chunks meanwhile). */
+    bool shared = s->forked;
+    s->forked = false;
     pthread_mutex_lock(&s->lock);
     wr_status failure = s->failure;
     pthread_mutex_unlock(&s->lock);
     if (failure != WR_OK) {
+        if (shared)
+            return WP_STEP_MORE; /* said by a step that shares nothing */
         wp_error_status(call->error, failure, "params", "%s", wr_strerror(failure));
         return WP_STEP_FAILED;
     }
@@ -611,7 +631,6 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
         /* A lattice: its designs first, in chunks of hole pairs that
          * helpers share; the search begins in a step that shares nothing,
          * so that no helper is in a chunk when s->job appears. */
-        bool shared = wp_design_parallel(s);
         wr_status status = WR_OK;
         unsigned long start = *used;
         while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
@@ -649,7 +668,6 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
      * other threads may be in wp_design_work until it returns
      * (wp_streamer.work), so the figures and the answer come in a later
      * step, when the search is over. */
-    bool shared = wp_design_parallel(s);
     while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
            status == WR_OK)
         continue;

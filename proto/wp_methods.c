@@ -458,6 +458,8 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
 
 typedef struct classify_chunk {
     wp_buffer text;
+    wr_answer *answers;   /* room for a chunk's answers (columns other than the
+                             verdicts), kept for the slot's next chunk */
     bool done;
     wr_status status;     /* not WR_OK: it failed at wrench `failed` */
     size_t failed;
@@ -520,8 +522,10 @@ static void classify_free(wp_stream *stream)
     if (!stream)
         return;
     classify_state *state = &stream->u.classify;
-    for (int i = 0; i < CLASSIFY_WINDOW; i++)
+    for (int i = 0; i < CLASSIFY_WINDOW; i++) {
         free(state->chunks[i].text.data);
+        free(state->chunks[i].answers);
+    }
     wr_verdict_map_free(state->map);
     free(state->request.wrenches);
     pthread_mutex_destroy(&state->lock);
@@ -625,6 +629,32 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
     const classify_request *r = &state->request;
     bool verdict_only = r->fields == (1u << FIELD_VERDICT) && !r->lp;
     bool witness = r->fields & (1u << FIELD_WITNESS);
+    static const char LETTERS[] = {'i', 'b', 'o'};
+    if (verdict_only) {
+        /* The letters straight into the text: nothing else is kept. */
+        WP_BUFFER_LITERAL(out, "\"verdicts\":\"");
+        size_t at = out->length;
+        wp_buffer_reserve(out, at + (to - from) + 64);
+        if (out->failed)
+            return WR_OK; /* the buffer says so */
+        for (size_t i = from; i < to; i++) {
+            if ((i - from) % STOP_POLL == 0 && wr_stop_requested(stop)) {
+                *failed = i;
+                return WR_STOPPED;
+            }
+            wr_answer answer;
+            wr_status status = answer_one(state, a, goal, strong, i, set, true, false, &answer);
+            if (status != WR_OK) {
+                *failed = i;
+                return status;
+            }
+            out->data[at + (i - from)] = LETTERS[answer.verdict];
+        }
+        out->length = at + (to - from);
+        out->data[out->length] = 0;
+        WP_BUFFER_LITERAL(out, "\"");
+        return WR_OK;
+    }
     for (size_t i = from; i < to; i++) {
         if ((i - from) % STOP_POLL == 0 && wr_stop_requested(stop)) {
             *failed = i;
@@ -637,7 +667,6 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
             return status;
         }
     }
-    static const char LETTERS[] = {'i', 'b', 'o'};
     bool first = true;
     for (int column = 0; column < FIELD_COUNT; column++) {
         if (!(r->fields & (1u << column)))
@@ -685,7 +714,8 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
  * rows joined by commas, or a lean piece {"count": n, "goal": {...}, ...};
  * either preceded by a comma but for the first.  Not WR_OK: it failed at
  * wrench *failed (WR_STOPPED: the client is gone). */
-static wr_status make_chunk(const classify_state *state, size_t index, const wp_host *host,
+static wr_status make_chunk(const classify_state *state, size_t index, wr_answer **answers,
+                            const wp_host *host,
                             wp_error *error, wp_buffer *out, size_t *failed)
 {
     const classify_request *r = &state->request;
@@ -700,8 +730,9 @@ static wr_status make_chunk(const classify_state *state, size_t index, const wp_
     if (index)
         WP_BUFFER_LITERAL(out, ",");
     if (r->fields) {
-        wr_answer *answers = malloc((to - from) * sizeof *answers);
-        if (!answers)
+        bool verdict_only = r->fields == (1u << FIELD_VERDICT) && !r->lp;
+        if (!verdict_only && !*answers &&
+            !(*answers = malloc(state->chunk_wrenches * sizeof **answers)))
             return WR_NO_MEMORY;
         char count[32];
         snprintf(count, sizeof count, "{\"count\":%zu", to - from);
@@ -712,11 +743,10 @@ static wr_status make_chunk(const classify_state *state, size_t index, const wp_
             wp_buffer_puts(out, SET_NAMES[r->sets[s]]);
             WP_BUFFER_LITERAL(out, "\":{");
             status = write_set_columns(state, a, goal, strong, host->stop, r->sets[s], from, to,
-                                       answers, out, failed);
+                                       *answers, out, failed);
             WP_BUFFER_LITERAL(out, "}");
         }
         WP_BUFFER_LITERAL(out, "}");
-        free(answers);
         return status;
     }
     for (size_t i = from; i < to; i++) {
@@ -766,7 +796,8 @@ static bool claim_and_make(classify_state *state, const wp_host *host, wp_error 
     classify_chunk *chunk = &state->chunks[index % CLASSIFY_WINDOW];
     assert(!chunk->done && chunk->text.length == 0);
     size_t failed;
-    wr_status status = make_chunk(state, index, host, error, direct ? out : &chunk->text, &failed);
+    wr_status status = make_chunk(state, index, &chunk->answers, host, error,
+                                  direct ? out : &chunk->text, &failed);
     if (status == WR_OK && !direct && chunk->text.failed)
         status = WR_NO_MEMORY;
     pthread_mutex_lock(&state->lock);

@@ -782,6 +782,40 @@ static void a_step_after_parallel_does_not_end_the_answer(void **state)
     free(rows);
     free(plain);
     free(lean);
+
+    /* The same for fixture.design, whose chunks of candidates helpers share
+     * the same way (2,024 candidates: 64 chunks). */
+    const char *design =
+        "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.design\",\"params\":{\"body\":{\"mass\":1,"
+        "\"shape\":{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],[4,2],[0,2]]}},"
+        "\"friction\":0.3,\"spacing\":0.5,\"top\":3},\"id\":7}";
+    wp_counts counts = {0, 0};
+    char *whole = wp_answer_line(host, &limits, design, strlen(design), &counts);
+    wp_answer *answer = wp_answer_begin(&limits, design, strlen(design));
+    assert_non_null(answer);
+    wp_answer_pieces(answer, 1, 1);
+    wp_buffer joined = {0};
+    wp_step step = wp_answer_step(answer, host, &joined, &counts);
+    int shared = 0;
+    while (step == WP_STEP_MORE) {
+        bool parallel = wp_answer_parallel(answer);
+        while (parallel && wp_answer_work(answer, host))
+            continue; /* the helpers claim every chunk before the step begins */
+        /* A step with budget enough to finish what is left: it must not. */
+        wp_answer_pieces(answer, parallel ? 1ul << 40 : 1, parallel ? (size_t)1 << 40 : 1);
+        step = wp_answer_step(answer, host, &joined, &counts);
+        if (parallel && step != WP_STEP_MORE)
+            fail_msg("fixture.design: the step after wp_answer_parallel said yes returned %s",
+                     step == WP_STEP_DONE ? "DONE" : "FAILED");
+        shared += parallel;
+    }
+    assert_true(shared > 0);
+    assert_int_equal(step, WP_STEP_DONE);
+    wp_answer_free(answer, host);
+    char *text = wp_buffer_take(&joined);
+    assert_string_equal(text, whole);
+    free(text);
+    free(whole);
 }
 
 /* A long line's wrenches are read from the text (wp_json_triples), each
