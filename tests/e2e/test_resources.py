@@ -85,6 +85,20 @@ def report(text):
     print("[resources] " + text)
 
 
+def busy_threads(pid, seconds, what):
+    """Over `seconds`: the cores the process kept busy, and the CPU seconds
+    of its threads, busiest first (reported)."""
+    before, threads_before = cpu_seconds(pid), thread_cpu(pid)
+    time.sleep(seconds)
+    cores = (cpu_seconds(pid) - before) / seconds
+    threads_after = thread_cpu(pid)
+    used = sorted((threads_after[t] - threads_before.get(t, 0) for t in threads_after),
+                  reverse=True)
+    report("%s on two workers: %.2f cores busy; its busiest threads %s s"
+           % (what, cores, ", ".join("%.2f" % u for u in used[:3])))
+    return cores, used
+
+
 # ---- raw connections ----------------------------------------------------------
 
 def raw_socket(path, rcvbuf=None, timeout=None):
@@ -839,14 +853,7 @@ def test_a_design_uses_every_worker_shares_them_and_stops_with_its_client(harnes
         busy = raw_socket(d.path)
         busy.sendall(design_request(2, spacing=0.25))  # about a minute of one core
         time.sleep(0.5)
-        before, threads_before = cpu_seconds(d.pid), thread_cpu(d.pid)
-        time.sleep(3.0)
-        cores = (cpu_seconds(d.pid) - before) / 3.0
-        threads_after = thread_cpu(d.pid)
-        used = sorted((threads_after[t] - threads_before.get(t, 0) for t in threads_after),
-                      reverse=True)
-        report("one design on two workers: %.2f cores busy; its busiest threads %s s"
-               % (cores, ", ".join("%.2f" % u for u in used[:3])))
+        cores, used = busy_threads(d.pid, 3.0, "one design")
         FIGURES["design: CPU percent with one design on 2 workers"] = int(100 * cores)
         # Both workers work on it: the second busiest thread used at least
         # half what the busiest did (on a quiet machine the two add up to
@@ -958,14 +965,7 @@ def test_a_batch_uses_every_worker_and_answers_the_same_bytes(harness):
         for i in range(batches):
             busy.sendall(classify_request(100 + i, 20000, ["verdict"], "lp", seed=i))
         wait_for_cpu(d.pid, 0.3, 30 * SLOW)
-        before, threads_before = cpu_seconds(d.pid), thread_cpu(d.pid)
-        time.sleep(1.5)
-        cores = (cpu_seconds(d.pid) - before) / 1.5
-        threads_after = thread_cpu(d.pid)
-        used = sorted((threads_after[t] - threads_before.get(t, 0) for t in threads_after),
-                      reverse=True)
-        report("one classify batch on two workers: %.2f cores busy; its busiest threads %s s"
-               % (cores, ", ".join("%.2f" % u for u in used[:3])))
+        cores, used = busy_threads(d.pid, 1.5, "one classify batch")
         FIGURES["classify: CPU percent with one batch on 2 workers"] = int(100 * cores)
         # Both workers on it: the second busiest thread used at least half
         # what the busiest did (a connection's requests are answered one at
