@@ -941,7 +941,8 @@ static size_t classify_bytes(const wp_stream *stream)
     const classify_state *state = &stream->u.classify;
     size_t bytes = sizeof *stream + state->request.wrench_count * sizeof *state->request.wrenches;
     for (int i = 0; i < CLASSIFY_WINDOW; i++)
-        bytes += state->chunks[i].text.capacity;
+        bytes += state->chunks[i].text.capacity +
+                 (state->chunks[i].answers ? state->chunk_wrenches * sizeof(wr_answer) : 0);
     return bytes + (state->map ? wr_verdict_map_bytes(state->map) : 0);
 }
 

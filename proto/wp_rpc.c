@@ -634,7 +634,16 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
     return WP_STEP_DONE;
 }
 
-size_t wp_answer_bytes(const wp_answer *answer) { return answer ? answer->bytes : 0; }
+size_t wp_answer_bytes(const wp_answer *answer)
+{
+    if (!answer)
+        return 0;
+    /* A stream's holdings change as it goes (a batch's chunks made ahead
+     * of their turn): asked anew, between steps, when no helper is in it. */
+    if (answer->stream && answer->streamer->bytes)
+        return 4096 + answer->streamer->bytes(answer->stream);
+    return answer->bytes;
+}
 
 bool wp_answer_parallel(wp_answer *answer)
 {

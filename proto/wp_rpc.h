@@ -170,7 +170,8 @@ void wp_answer_pieces(wp_answer *answer, unsigned long budget, size_t bytes);
  * none left. */
 bool wp_answer_parallel(wp_answer *answer);
 bool wp_answer_work(wp_answer *answer, const wp_host *host);
-/* Bytes the answer holds between steps (its parsed request, wrenches). */
+/* Bytes the answer holds between steps (its parsed request, wrenches, a
+ * stream's work in hand).  Between steps only: not while helpers work. */
 size_t wp_answer_bytes(const wp_answer *answer);
 /* Free it, finished or not (a fixture it holds is released through `host`). */
 void wp_answer_free(wp_answer *answer, const wp_host *host);

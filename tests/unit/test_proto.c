@@ -758,10 +758,14 @@ static void a_step_after_parallel_does_not_end_the_answer(void **state)
         /* Chunks are left to share: a fork is opened, its helper queued. */
         assert_true(wp_answer_parallel(answer));
         /* The helper's turns come before the step's: it claims the rest. */
+        size_t held = wp_answer_bytes(answer);
         int made = 0;
         while (wp_answer_work(answer, host))
             made++;
         assert_int_equal(made, 2);
+        /* What they made waits for its turn, and counts as held (the
+         * daemon's --max-output bound asks between pieces). */
+        assert_true(wp_answer_bytes(answer) > held);
         /* The step the fork was opened for: the helper may still be in
          * wp_answer_work (its next turn) until it returns. */
         wp_step step = wp_answer_step(answer, host, &joined, &counts);
