@@ -546,6 +546,12 @@ static wp_stream *stream_with_fixture(wp_call *call, wp_fixture_use **use)
     return stream;
 }
 
+/* The verdicts alone, by the explicit cones: no margin, no answer kept. */
+static bool verdicts_alone(const classify_request *r)
+{
+    return r->fields == (1u << FIELD_VERDICT) && !r->lp;
+}
+
 /* Wrenches per chunk: about half a millisecond of work and some tens of
  * kilobytes of text, whatever is asked. */
 static size_t chunk_wrenches(const classify_request *r)
@@ -582,9 +588,7 @@ static wp_stream *classify_begin(wp_call *call, wp_prepared *prepared)
     state->chunk_count = (r->wrench_count + state->chunk_wrenches - 1) / state->chunk_wrenches;
     /* Verdicts without margins, many of them: by the map.  Built here,
      * before any helper can be reading it. */
-    size_t verdicts = r->fields == (1u << FIELD_VERDICT) && !r->lp
-                          ? r->wrench_count * (size_t)r->set_count
-                          : 0;
+    size_t verdicts = verdicts_alone(r) ? r->wrench_count * (size_t)r->set_count : 0;
     if (verdicts >= CLASSIFY_MAP_VERDICTS) {
         wr_status status = wr_verdict_map_new(use->analysis, r->tolerance, &state->map);
         if (status == WR_NO_MEMORY) {
@@ -627,10 +631,9 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
                                    wp_buffer *out, size_t *failed)
 {
     const classify_request *r = &state->request;
-    bool verdict_only = r->fields == (1u << FIELD_VERDICT) && !r->lp;
     bool witness = r->fields & (1u << FIELD_WITNESS);
     static const char LETTERS[] = {'i', 'b', 'o'};
-    if (verdict_only) {
+    if (verdicts_alone(r)) {
         /* The letters straight into the text: nothing else is kept. */
         WP_BUFFER_LITERAL(out, "\"verdicts\":\"");
         size_t at = out->length;
@@ -661,7 +664,7 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
             return WR_STOPPED;
         }
         wr_status status =
-            answer_one(state, a, goal, strong, i, set, verdict_only, witness, &answers[i - from]);
+            answer_one(state, a, goal, strong, i, set, false, witness, &answers[i - from]);
         if (status != WR_OK) {
             *failed = i;
             return status;
@@ -730,8 +733,7 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
     if (index)
         WP_BUFFER_LITERAL(out, ",");
     if (r->fields) {
-        bool verdict_only = r->fields == (1u << FIELD_VERDICT) && !r->lp;
-        if (!verdict_only && !*answers &&
+        if (!verdicts_alone(r) && !*answers &&
             !(*answers = malloc(state->chunk_wrenches * sizeof **answers)))
             return WR_NO_MEMORY;
         char count[32];

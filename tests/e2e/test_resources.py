@@ -85,6 +85,23 @@ def report(text):
     print("[resources] " + text)
 
 
+def answers_of_one_worker(harness, requests, timeout):
+    """Each request's answer line, in turn, from a daemon with one worker
+    (what a daemon with more must answer byte for byte)."""
+    one = harness.start("--threads", "1")
+    try:
+        s = raw_socket(one.path)
+        reader = LineReader(s)
+        answers = []
+        for r in requests:
+            s.sendall(r)
+            answers.append(reader.line(timeout * SLOW))
+        s.close()
+        return answers
+    finally:
+        one.stop()
+
+
 def busy_threads(pid, seconds, what):
     """Over `seconds`: the cores the process kept busy, and the CPU seconds
     of its threads, busiest first (reported)."""
@@ -835,14 +852,7 @@ def test_a_design_uses_every_worker_shares_them_and_stops_with_its_client(harnes
     single worker gives, byte for byte; and when the client leaves, the
     work stops (under 0.3 s of CPU in the 2 s from 1 s after)."""
     smaller = design_request(1, spacing=1)
-    one = harness.start("--threads", "1")
-    try:
-        s = raw_socket(one.path)
-        s.sendall(smaller)
-        alone = LineReader(s).line(60 * SLOW)
-        s.close()
-    finally:
-        one.stop()
+    alone, = answers_of_one_worker(harness, [smaller], 60)
     d = harness.start("--threads", "2")
     try:
         s = raw_socket(d.path)
@@ -938,17 +948,7 @@ def test_a_batch_uses_every_worker_and_answers_the_same_bytes(harness):
                 # By LP only the verdicts: a witness is whichever vertex the
                 # thread's warm simplex reaches first.
                 classify_request(4, 300, ["verdict", "blocking"], "lp")]
-    answers = []
-    one = harness.start("--threads", "1")
-    try:
-        s = raw_socket(one.path)
-        reader = LineReader(s)
-        for r in requests:
-            s.sendall(r)
-            answers.append(reader.line(120 * SLOW))
-        s.close()
-    finally:
-        one.stop()
+    answers = answers_of_one_worker(harness, requests, 120)
     d = harness.start("--threads", "2")
     try:
         s = raw_socket(d.path)
