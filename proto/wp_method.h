@@ -92,11 +92,11 @@ bool wp_call_may_notify(const wp_call *call);
 #define WP_READY 4u   /* as cheap when its fixture is a stored one whose
                          derived data is ready (and `light` agrees, if set) */
 
-/* The method table: every method name, served or announced. */
+/* The method table: a row per method.  Every row has a handler or a
+ * stream. */
 typedef struct wp_method {
     const char *name;
-    /* Returns the result, or NULL with call->error set.  A method with
-     * neither handler nor stream is announced but not served yet (-32601). */
+    /* Returns the result, or NULL with call->error set. */
     cJSON *(*handler)(wp_call *call);
     const wp_streamer *stream;    /* or a result written in pieces */
     const char *const *fields;    /* params it accepts, NULL-ended */
@@ -109,7 +109,6 @@ typedef struct wp_method {
      * [x, y, z] numbers: read straight from the text, without a tree node
      * per number (wp_prepared), for the stream's begin.  NULL: none. */
     const char *raw_array;
-    const char *summary;          /* one line, for --help and the README */
 } wp_method;
 
 extern const wp_method wp_methods[];   /* ends with a zeroed entry */

@@ -147,10 +147,6 @@ static const wp_method *find_method(const cJSON *request, const cJSON *params, w
                      method->valuestring);
         return NULL;
     }
-    if (!m->handler && !m->stream) {
-        wp_error_set(error, WP_NO_METHOD, "method", "%s is not served yet", m->name);
-        return NULL;
-    }
     if (!wp_check_object(params, "params", m->fields, error))
         return NULL;
     for (const char *const *name = m->required; *name; name++)
