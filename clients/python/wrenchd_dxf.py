@@ -361,12 +361,15 @@ class _DxfCurve:
         self.kind, self.where = kind, where
         if kind == "SPLINE":
             self.tool = e.construction_tool()
-            self.u0, self.u1 = 0.0, float(self.tool.max_t)
+            # the curve is defined between the degree-th knot from either
+            # end (the whole range of a clamped B-spline; a closed uniform
+            # one's knots reach beyond it)
+            degree = self.tool.degree
+            knots = [float(k) for k in self.tool.knots()]
+            self.u0, self.u1 = knots[degree], knots[-degree - 1]
             self.wrap = False
             self._point = self.tool.point
             self._kinks = []
-            degree = self.tool.degree
-            knots = list(self.tool.knots())
             for k in sorted(set(knots)):
                 if self.u0 < k < self.u1 and knots.count(k) >= degree:
                     self._kinks.append(float(k))
@@ -677,21 +680,32 @@ def _merge_duplicates(segs, tol):
     return kept, merged
 
 
+def _on_carrier(s, p, tol):
+    """Whether p lies on the line or the circle s is a piece of."""
+    if not s.bulge:
+        dx, dy = s.p1[0] - s.p0[0], s.p1[1] - s.p0[1]
+        ll = math.hypot(dx, dy)
+        return ll > 0 and abs(dx * (p[1] - s.p0[1]) - dy * (p[0] - s.p0[0])) / ll <= tol
+    c, r, _ = _arc_of(s.p0, s.p1, s.bulge)
+    return abs(math.hypot(p[0] - c[0], p[1] - c[1]) - r) <= tol
+
+
 def _split_at_ends(segs, nodes, tol, extent):
-    """Segments cut where a node that is not a simple joint (not exactly two
-    ends) lies on them, away from their ends: overlapping pieces of one line
-    or circle then share nodes.  Returns the segments and whether any was
+    """Segments cut where an end of an overlapping segment lies on them,
+    away from their ends: the other segment, of the same kind, runs along
+    the same line or circle (its midpoint on it).  Overlapping pieces then
+    share nodes, and are merged as duplicates.  (An end of another kind of
+    segment on one -- a centreline through a circle's quadrant point, a
+    T-junction -- cuts nothing.)  Returns the segments and whether any was
     cut."""
-    degree = [0] * len(nodes.points)
+    at = {}
     for s in segs:
-        degree[s.n0] += 1
-        degree[s.n1] += 1
-    odd = [k for k, d in enumerate(degree) if d != 2]
-    if not odd:
-        return segs, False
+        at.setdefault(s.n0, []).append(s)
+        at.setdefault(s.n1, []).append(s)
+    every = range(len(nodes.points))
     cell = max(extent / 256.0, 4.0 * tol, 1e-300)
     grid = {}
-    for k in odd:
+    for k in every:
         p = nodes.points[k]
         grid.setdefault((math.floor(p[0] / cell), math.floor(p[1] / cell)), []).append(k)
     out, cut = [], False
@@ -705,7 +719,9 @@ def _split_at_ends(segs, nodes, tol, extent):
                         continue
                     p = nodes.points[k]
                     t, d = s.locate(p)
-                    if d <= tol and 0.0 < t < 1.0:
+                    if d <= tol and 0.0 < t < 1.0 and any(
+                            o is not s and bool(o.bulge) == bool(s.bulge) and
+                            _on_carrier(s, o.point(0.5), tol) for o in at.get(k, ())):
                         q0, q1 = s.p0, s.p1
                         if math.hypot(p[0] - q0[0], p[1] - q0[1]) > tol and \
                                 math.hypot(p[0] - q1[0], p[1] - q1[1]) > tol:
@@ -1060,7 +1076,7 @@ def read_dxf(path, layers=None, tolerance=None, units=None, curve_tolerance=None
     for chain in chains:
         cb = _box_of([s.point(k / 4.0) for s in chain for k in range(5)])
         for _, _, lp, _ in clean:
-            lb = _box_of(lp)
+            lb = _extent(lp)
             if cb[0] <= lb[0] and cb[1] <= lb[1] and cb[2] >= lb[2] and cb[3] >= lb[3]:
                 raise DxfShapeError(_dangling_message(chain, reader.segs, tol))
 
