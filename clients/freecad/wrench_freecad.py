@@ -61,9 +61,11 @@ and let go is `both`.
 Errors: OutlineError (a ValueError) for a face that has no outline (not
 planar, an open wire); WrenchError for what wrenchd refuses or cannot be
 asked, its message naming the fixel, the loop (and the FreeCAD edges) or
-the property at fault, and for an unreachable daemon how to start one.
+the property at fault; a busy daemon (no answer in time, too many
+clients) is said to be busy, and for an unreachable one how to start one.
 """
 
+import errno
 import json
 import math
 import os
@@ -648,6 +650,28 @@ def _unreachable(error, path):
     return WrenchError("wrenchd is not reachable at %s (%s). %s" % (path, error, how_to_start(path)))
 
 
+def _busy(error, path):
+    """A daemon that is running but cannot take this request now: its
+    workers on other work (no answer in time), too many clients, or its
+    queue of connections full.  Starting another would not help."""
+    return WrenchError("wrenchd at %s is busy (%s): it is running, but cannot answer now. Ask "
+                       "again when its other work is done (a design or a sweep may take "
+                       "minutes), or give the fixture's Socket property another daemon's "
+                       "socket." % (path, str(error).replace("wrenchd at %s: " % path, "")))
+
+
+def _is_busy(error):
+    """Whether wrenchd's error says it is busy rather than gone: no answer in
+    time (WrenchdTimeout), too many clients (LIMIT_EXCEEDED on the
+    connection as a whole, no field), a full queue of connections
+    (EAGAIN when connecting)."""
+    if isinstance(error, wrenchd.WrenchdTimeout):
+        return True
+    if isinstance(error, wrenchd.WrenchdError):
+        return error.code == wrenchd.LIMIT_EXCEEDED and not error.field and "clients" in error.reason
+    return isinstance(error, wrenchd.WrenchdUnavailable) and os.strerror(errno.EAGAIN) in str(error)
+
+
 _FIELD = re.compile(r"^params\.(?:fixture\.)?(.*)$")
 _INDEXED = re.compile(r"^(fixels|sites)\[(\d+)\](.*)$")
 _LOOP = re.compile(r"^body\.shape\.loops\[(\d+)\](?:\[(\d+)\])?(.*)$")
@@ -700,9 +724,11 @@ def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
     """call(), with wrenchd's errors made WrenchErrors in FreeCAD's terms."""
     try:
         return call()
-    except wrenchd.WrenchdUnavailable as error:
-        raise _unreachable(error, path) from None
-    except wrenchd.WrenchdError as error:
+    except (wrenchd.WrenchdUnavailable, wrenchd.WrenchdError) as error:
+        if _is_busy(error):
+            raise _busy(error, path) from None
+        if isinstance(error, wrenchd.WrenchdUnavailable):
+            raise _unreachable(error, path) from None
         raise _refusal(error, what, outline, fixels3d, properties) from None
 
 
@@ -1627,9 +1653,10 @@ def show_regions(doc, face, fixels, friction, set, client):
     an (object, "FaceN") pair, a sketch, or an object of one planar face.
     fixels: document Vectors, (point, normal) pairs, or wrenchd's fixel
     dicts in the outline's coordinates.  friction: a number, (static,
-    kinetic) or {"static", "kinetic"}.  client: a wrenchd.Client (None:
-    $WRENCHD_SOCKET or ./run/wrenchd.sock).  Raises WrenchError (what
-    wrenchd refused, or how to start it) or OutlineError."""
+    kinetic) or {"static", "kinetic"}.  client: a wrenchd.Client, its socket
+    and timeout the fixture's (None: $WRENCHD_SOCKET or ./run/wrenchd.sock,
+    60 s).  Raises WrenchError (what wrenchd refused, that it is busy, or
+    how to start it) or OutlineError."""
     if set not in SETS:
         raise ValueError("set: one of goal, strong, both, not %r" % (set,))
     if isinstance(face, Part.Shape):
@@ -1641,6 +1668,8 @@ def show_regions(doc, face, fixels, friction, set, client):
         _use_client(client)
         socket = client.socket_path
     fixture = make_fixture(doc, source, fixels, friction, socket=socket)
+    if client is not None and client.timeout:
+        fixture.Timeout = float(client.timeout)   # the client's, as given
     regions = make_regions(fixture, set)
     doc.recompute()
     _raise_failures([fixture, regions])
