@@ -289,3 +289,35 @@ def distance_to_loops(p, parts):
                 else:
                     best = min(best, math.hypot(p[0] - x0, p[1] - y0), math.hypot(p[0] - x1, p[1] - y1))
             yield best
+
+
+# ---- the drawing's unit in the fixture, and in wrenchctl's tables and pictures ----
+
+WRENCHCTL = os.path.join(REPO, "build", "wrenchctl")
+
+
+@pytest.mark.parametrize("with_units", [True, False])
+def test_units_into_the_fixture_and_wrenchctl(corpus, tmp_path, with_units, client):
+    """The inch plate's shape and its unit (fixture_units) make a fixture
+    the daemon takes, units and all; wrenchctl's table and picture name the
+    unit, and say nothing of units for the same fixture without them."""
+    shape, report = wrenchd_dxf.shape_from_dxf(os.path.join(corpus, "inches.dxf"))
+    fixture = {"name": "inch-plate", "body": {"mass": 0.2, "shape": shape},
+               "friction": {"static": 0.3},
+               "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1.25]}]}
+    if with_units:
+        fixture["units"] = wrenchd_dxf.fixture_units(report)
+        assert fixture["units"] == {"length": "in", "force": "N"}
+    stored = client.result("fixture.get", {"id": client.result("fixture.put", {"fixture": fixture})["id"]})
+    assert stored.get("units") == fixture.get("units")
+    path = tmp_path / "plate.json"
+    path.write_text(json.dumps(fixture))
+    svg = tmp_path / "plate.svg"
+    import subprocess
+    p = subprocess.run([WRENCHCTL, "--local", "push", str(path), "--set", "goal", "--svg", str(svg)],
+                       capture_output=True, text=True, timeout=60)
+    assert p.returncode in (0, 1) and "region" in p.stdout, p.stderr     # 1: no region
+    line = "units: lengths in in, forces in N (the fixture's)"
+    assert (p.stdout.splitlines()[0] == line) == with_units and (line in p.stdout) == with_units
+    picture = svg.read_text()
+    assert ('<text class="units"' in picture and ">lengths in in</text>" in picture) == with_units
