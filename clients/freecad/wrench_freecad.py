@@ -102,6 +102,10 @@ __all__ = [
 
 SETS = ("goal", "strong", "both")
 
+# The unit of every length the workbench reports: FreeCAD's own, whatever
+# unit schema its preferences show.
+UNIT = "mm"
+
 # What a push in each set promises, in the words of docs/PROTOCOL.md.
 MEANING = {
     "goal": "goal: a push here reaches every fixel from any contact state, but the part "
@@ -224,6 +228,8 @@ class Outline(dict):
         self.tolerance = tolerance
         self.deviation = deviation
         self.approximated = list(approximated)
+        # what outline() left out of a shape of wires: other parts, stray open geometry
+        self.other_parts, self.ignored = [], []
         if size is None:
             xs = [c for loop in segments for s in loop for c in (s.start[0], s.end[0])]
             ys = [c for loop in segments for s in loop for c in (s.start[1], s.end[1])]
@@ -407,8 +413,11 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
     """wrenchd's shape of a planar face (see the module's docstring).
 
     face: a Part.Face, or a shape whose faces are one planar face, or a
-    shape of closed planar wires (a sketch's): the wire enclosing the
-    others is the outer boundary.
+    shape of planar wires (a sketch's): as the DXF reader does, open wires
+    and loose edges are left out (listed in `shape.ignored`) while a closed
+    wire remains; a wire inside another is its hole, one inside a hole the
+    outer boundary of another part; the largest part is taken and the
+    others listed in `shape.other_parts`.
     tolerance: how far an approximating arc may be from a curve that is not
     a line or a circle; default DEFAULT_RELATIVE_TOLERANCE times the face's
     bounding-box diagonal.
@@ -421,6 +430,7 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
     Raises OutlineError naming what is wrong: not planar, an open wire,
     no face, more vertices than wrenchd takes."""
     shape = face
+    ignored, others = [], []
     if not isinstance(shape, Part.Shape) or shape.isNull():
         raise OutlineError("outline() takes a FreeCAD face (Part.Face), not %s"
                            % type(face).__name__)
@@ -436,12 +446,24 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
         wires = list(shape.Wires)
         loose = [e for e in shape.Edges if not any(w.isSame(e) or any(x.isSame(e) for x in w.Edges)
                                                   for w in wires)]
-        if loose:
+        if not wires and not loose:
+            raise OutlineError("the shape has no face and no wire: nothing to outline")
+        # Stray open geometry (open wires, loose edges) is left out and
+        # reported while a closed wire remains (the DXF reader's rule).
+        closed = [w for w in wires if w.isClosed()]
+        if closed:
+            for w in wires:
+                if not w.isClosed():
+                    ignored.append("an open wire of %d edge%s from %s to %s" % (
+                        len(w.Edges), "" if len(w.Edges) == 1 else "s",
+                        _fmt_point(w.OrderedVertexes[0].Point), _fmt_point(w.OrderedVertexes[-1].Point)))
+            for e in loose:
+                ignored.append("an edge in no wire at %s" % _fmt_point(e.valueAt(e.FirstParameter)))
+            wires = closed
+        elif loose:
             raise OutlineError("%d edge%s belong to no wire (the first at %s): close the outline"
                                % (len(loose), "" if len(loose) == 1 else "s",
                                   _fmt_point(loose[0].valueAt(loose[0].FirstParameter))))
-        if not wires:
-            raise OutlineError("the shape has no face and no wire: nothing to outline")
     size = shape.BoundBox.DiagonalLength
     if not size > 0:
         raise OutlineError("the shape has no extent")
@@ -479,13 +501,7 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
             raise OutlineError("the tolerance is a positive length, not %r" % (tolerance,))
 
     if the_face is None and len(wires) > 1:
-        # the outer boundary encloses the others: the largest enclosed area
-        def enclosed(w):
-            try:
-                return abs(Part.Face(w).Area)
-            except Part.OCCError:
-                return w.BoundBox.DiagonalLength ** 2
-        wires.sort(key=enclosed, reverse=True)
+        wires, others = _largest_part(wires, size)
 
     inverse = frame.inverse()
 
@@ -561,7 +577,50 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
                            % (count, MAX_VERTICES,
                               ": give a larger tolerance (%s now) for the curves approximated by arcs"
                               % _fmt(tol) if approximated else ""))
-    return Outline(loops, frame, tol, deviation, approximated, size)
+    result = Outline(loops, frame, tol, deviation, approximated, size)
+    result.other_parts, result.ignored = others, ignored
+    return result
+
+
+def _largest_part(wires, size):
+    """The closed wires of a shape without a face, as the DXF reader takes
+    its loops: a wire inside an odd number of others is a hole of the
+    innermost, inside an even number the outer boundary of a part (an
+    island in a hole is a part of its own).  Returns the largest part's
+    wires (outer first) and the others' descriptions, largest first."""
+    def enclosed(w):
+        try:
+            return abs(Part.Face(w).Area)
+        except Part.OCCError:
+            return w.BoundBox.DiagonalLength ** 2
+    areas = [enclosed(w) for w in wires]
+    faces = []
+    for w in wires:
+        try:
+            faces.append(Part.Face(w))
+        except Part.OCCError:
+            faces.append(None)
+
+    def probe(w):
+        e = w.Edges[0]
+        return e.valueAt((e.FirstParameter + e.LastParameter) / 2.0)
+    inside = [[i for i in range(len(wires)) if i != j and faces[i] is not None and areas[i] > areas[j]
+               and faces[i].isInside(probe(wires[j]), 1e-9 * size, True)] for j in range(len(wires))]
+    depth = [len(x) for x in inside]
+    parts = {j: [] for j in range(len(wires)) if depth[j] % 2 == 0}
+    for j in range(len(wires)):
+        if depth[j] % 2:
+            parts[max(inside[j], key=lambda i: depth[i])].append(j)
+    ranked = sorted(parts, key=lambda j: (-(areas[j] - sum(areas[h] for h in parts[j])), j))
+    others = []
+    for j in ranked[1:]:
+        box = wires[j].BoundBox
+        others.append("a part of area %s mm^2 with %d hole%s, x %s to %s, y %s to %s, z %s" % (
+            _fmt(areas[j] - sum(areas[h] for h in parts[j])), len(parts[j]),
+            "" if len(parts[j]) == 1 else "s", _fmt(box.XMin), _fmt(box.XMax), _fmt(box.YMin),
+            _fmt(box.YMax), _fmt(box.ZMin)))
+    best = ranked[0]
+    return [wires[best]] + [wires[h] for h in sorted(parts[best])], others
 
 
 # ---- curves by arcs ----------------------------------------------------------------
@@ -873,6 +932,10 @@ class WrenchFixture:
                 ("App::PropertyFloat", "Deviation",
                  "The largest distance measured between a curve and its arcs (0: all exact)"),
                 ("App::PropertyStringList", "Approximated", "The edges replaced by arcs"),
+                ("App::PropertyStringList", "OtherParts",
+                 "Other parts in the sketch, not read (the largest part is)"),
+                ("App::PropertyStringList", "Ignored",
+                 "Open wires and loose edges left out of the sketch's outline"),
                 ("App::PropertyStringList", "FixelsMoved",
                  "Fixels moved onto the outline (they were off it by less than the tolerance)"),
                 ("App::PropertyPlacement", "Frame",
@@ -949,6 +1012,8 @@ class WrenchFixture:
         obj.Approximated = ["%s (%s): %d arcs, %s from it at most" % (
             a["edge"] or "an edge", a["kind"], a["arcs"], _fmt(a["deviation"]))
             for a in shape.approximated]
+        obj.OtherParts = shape.other_parts
+        obj.Ignored = shape.ignored
         obj.EdgeTable = json.dumps(shape.edge_table())
         fixels, moved = self.fixels(obj, shape)
         obj.FixelsMoved = moved
@@ -1766,15 +1831,15 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
 
 def _design_lines(count, shape, result, spacing):
     counts = result.counts
-    head = ("%d fixels from %d sites %s apart, %d candidates (%d without a seating push, "
-            "%d unpinned, %d degenerate), ranked by %s" % (
-                count, result.sites, _fmt(spacing), counts.get("candidates", 0),
+    head = ("%d fixels from %d sites %s %s apart, %d candidates (%d without a seating push, "
+            "%d unpinned, %d degenerate), ranked by %s; lengths in %s" % (
+                count, result.sites, _fmt(spacing), UNIT, counts.get("candidates", 0),
                 counts.get("no_seating_push", 0), counts.get("unpinned", 0),
                 counts.get("degenerate", 0),
                 {"margin": "the margin of the best push in both",
                  "region": "the length of the both region",
                  "gravity": "the longest arc of tilts under which gravity seats the part"
-                 }.get(result.objective, result.objective)))
+                 }.get(result.objective, result.objective), UNIT))
     lines = [head]
     for d in result.designs:
         at = " ".join(_fmt_point(shape.to_3d(f["at"])) for f in d.fixels)
