@@ -321,3 +321,68 @@ def test_units_into_the_fixture_and_wrenchctl(corpus, tmp_path, with_units, clie
     assert (p.stdout.splitlines()[0] == line) == with_units and (line in p.stdout) == with_units
     picture = svg.read_text()
     assert ('<text class="units"' in picture and ">lengths in in</text>" in picture) == with_units
+
+
+# ---- the README's walk-through --------------------------------------------------------
+
+def readme_blocks(after):
+    """The fenced blocks of README.md's walk-through section after the line
+    holding `after`, in order."""
+    with open(os.path.join(REPO, "README.md")) as fh:
+        text = fh.read()
+    text = text[text.index("### From a drawing to a fixture: a walk-through"):]
+    text = text[text.index(after):]
+    blocks, inside, lines = [], False, []
+    for line in text.splitlines():
+        if line.startswith("```"):
+            if inside:
+                blocks.append(lines)
+                lines = []
+            inside = not inside
+        elif inside:
+            lines.append(line)
+    return blocks
+
+
+def test_readme_walkthrough(tmp_path):
+    """The README's walk-through, its commands as written (build/ and
+    examples/ from the checkout): what it quotes of the reader's report and
+    of the design is what they print, word for word, and the picture is
+    docs/pictures/sheet-bracket-push-both.svg (make pictures)."""
+    import shlex
+    import subprocess
+    blocks = readme_blocks("[`examples/sheet_dxf.py`]")
+    commands = [b for b in blocks if b and b[0].startswith(("/usr/bin/python3", "build/"))]
+    quoted = [b for b in blocks if b not in commands]
+    outputs = []
+    for block in commands:
+        for line in block:
+            words = shlex.split(line)
+            out_file = None
+            if ">" in words:
+                out_file = words[words.index(">") + 1]
+                words = words[:words.index(">")]
+            words = [os.path.join(REPO, w) if w.startswith(("examples/", "clients/", "build/")) else w
+                     for w in words]
+            p = subprocess.run(words, cwd=str(tmp_path), capture_output=True, text=True, timeout=120)
+            assert p.returncode == 0, (line, p.stderr)
+            if out_file:
+                (tmp_path / out_file).write_text(p.stdout)
+            outputs.append((line, p.stdout, p.stderr))
+    report = [o for o in outputs if "wrenchd_dxf.py sheet.dxf" in o[0]][0][2]
+    assert quoted[0] == report.splitlines()
+    design = [o for o in outputs if " design " in o[0]][0][1].splitlines()
+    assert [line for line in quoted[1] if line != "..."] == design[:len(quoted[1]) - 1]
+    # the README's words on the both region: 1.46 mm of the lower left
+    # fillet (loop 0), 1.76 mm inside the right M4 hole (loop 2)
+    push = [o for o in outputs if " push " in o[0]][0][1].splitlines()
+    assert push[0] == "units: lengths in mm, forces in N (the fixture's)"
+    assert push[2].split()[:2] == ["0", "67"] and push[2].split()[-1] == "1.456614"
+    assert push[3].split()[:2] == ["2", "0"] and push[3].split()[-1] == "1.758163"
+    shape = json.loads((tmp_path / "bracket-shape.json").read_text())
+    fixture = json.loads((tmp_path / "bracket.json").read_text())
+    assert fixture["body"]["shape"] == shape and fixture["units"] == {"length": "mm", "force": "N"}
+    assert len(fixture["fixels"]) == 3
+    with open(os.path.join(REPO, "docs", "pictures", "sheet-bracket-push-both.svg")) as fh:
+        assert (tmp_path / "bracket-push-both.svg").read_text() == fh.read(), \
+            "run 'make pictures' and commit docs/pictures"
