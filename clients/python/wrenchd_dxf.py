@@ -170,27 +170,24 @@ def _inside(loop, p):
     return inside
 
 
-def _distance(loop, p):
-    """Distance from p to the loop's boundary."""
-    best = math.inf
-    for p0, p1, b in _segments(loop):
-        if not b:
-            dx, dy = p1[0] - p0[0], p1[1] - p0[1]
-            ll = dx * dx + dy * dy
-            t = 0.0 if ll == 0 else max(0.0, min(1.0, ((p[0] - p0[0]) * dx + (p[1] - p0[1]) * dy) / ll))
-            d = math.hypot(p[0] - p0[0] - t * dx, p[1] - p0[1] - t * dy)
-        else:
-            c, r, theta = _arc_of(p0, p1, b)
-            start = p0 if b > 0 else p1          # counter-clockwise from start
-            a0 = math.atan2(start[1] - c[1], start[0] - c[0])
-            ap = math.atan2(p[1] - c[1], p[0] - c[0])
-            if (ap - a0) % (2 * math.pi) <= abs(theta):
-                d = abs(math.hypot(p[0] - c[0], p[1] - c[1]) - r)
-            else:
-                d = min(math.hypot(p[0] - p0[0], p[1] - p0[1]),
-                        math.hypot(p[0] - p1[0], p[1] - p1[1]))
-        best = min(best, d)
-    return best
+def _prepared(loop, near):
+    """A loop's segments as wrenchd_arcs.Segments, each with its box widened
+    by `near`: what the containment test asks of it many times."""
+    out = []
+    for k, (p0, p1, b) in enumerate(_segments(loop)):
+        seg = wrenchd_arcs.Segment(0, k, p0, p1, b)
+        pts = [seg.point(t / 8.0) for t in range(9)]
+        margin = near + (seg.radius * (1.0 - math.cos(abs(seg.sweep) / 16.0)) if b else 0.0)
+        out.append((min(q[0] for q in pts) - margin, min(q[1] for q in pts) - margin,
+                    max(q[0] for q in pts) + margin, max(q[1] for q in pts) + margin, seg))
+    return out
+
+
+def _near(prepared, p, near):
+    """Whether p is within `near` of the boundary of a _prepared loop."""
+    x, y = p
+    return any(x0 <= x <= x1 and y0 <= y <= y1 and seg.nearest(p)[2] <= near
+               for x0, y0, x1, y1, seg in prepared)
 
 
 def _box(loop, margin):
@@ -424,14 +421,14 @@ class _DxfCurve:
         def d(u):
             q = self.point(u)
             return math.hypot(q[0] - p[0], q[1] - p[1])
-        n = 24
+        n = 12
         us = [lo + (hi - lo) * k / n for k in range(n + 1)]
         k = min(range(n + 1), key=lambda i: d(us[i]))
         x0, x1 = us[max(0, k - 1)], us[min(n, k + 1)]
         g = (math.sqrt(5.0) - 1.0) / 2.0
         c, e = x1 - g * (x1 - x0), x0 + g * (x1 - x0)
         dc, de = d(c), d(e)
-        for _ in range(40):
+        for _ in range(32):          # the bracket shrinks to 1e-7 of the window
             if dc < de:
                 x1, e, de = e, c, dc
                 c = x1 - g * (x1 - x0)
@@ -1111,6 +1108,7 @@ def _parts(clean, tol, extent, report):
     near = max(tol, 1e-9 * extent)       # probes nearer A's boundary do not count
     inside_of = [[] for _ in range(n)]
     boxes = [_box(lp, near) for _, _, lp, _ in clean]
+    prepared = [_prepared(lp, near) for _, _, lp, _ in clean]
     gone = set()
     for i in range(n):
         for j in range(n):
@@ -1119,7 +1117,7 @@ def _parts(clean, tol, extent, report):
             a, b = clean[i][2], clean[j][2]
             votes = set()
             for p in _probes(b):
-                if _distance(a, p) > near:
+                if not _near(prepared[i], p, near):
                     votes.add(_inside(a, _off_chords(a, p, near / 2)))
             if votes == {True, False}:
                 raise DxfShapeError("the loops of %s and of %s cross" % (clean[i][1], clean[j][1]))
