@@ -29,6 +29,7 @@
 #include "wr_design.h"
 #include "wr_finger.h"
 #include "wr_lattice.h"
+#include "wr_locate.h"
 #include "wr_fixture.h"
 #include "wr_lp.h"
 #include "wr_outline.h"

@@ -19,6 +19,8 @@ static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spa
                                      "objective", "top", "finger_radius", "finger_friction",
                                      "progress", "shard", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
+static const char *const LOCATING[] = {"fixture", "tolerance", "features", "sigma_ratio", NULL};
+static const char *const LOCATING_REQUIRED[] = {"fixture", "tolerance", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", NULL};
 
@@ -52,6 +54,8 @@ const wp_method wp_methods[] = {
      .required = MARGIN, .flags = WP_FIXTURE},
     {.name = "friction.sweep", .stream = &wp_sweep_stream, .fields = FRICTION_SWEEP,
      .required = FIXTURE, .flags = WP_FIXTURE},
+    {.name = "fixture.locating", .handler = wp_handle_fixture_locating, .fields = LOCATING,
+     .required = LOCATING_REQUIRED, .flags = WP_FIXTURE | WP_READY},
     {.name = "fixture.design", .stream = &wp_design_stream, .fields = DESIGN,
      .required = DESIGN_REQUIRED},
     {0},

@@ -64,8 +64,10 @@ enum {
     WC_OPT_INTERVAL = 1 << 15,  /* --friction LO:HI (or MU): the fixels' friction */
     WC_OPT_SWEEP = 1 << 16,     /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
                                    --range LO:HI, --kinetic-ratio R */
-    WC_OPT_DESIGN = 1 << 17     /* --spacing H, --lattice P,R,NXxNY, --fixels K,
+    WC_OPT_DESIGN = 1 << 17,    /* --spacing H, --lattice P,R,NXxNY, --fixels K,
                                    --objective O, --top N, --shard I/N */
+    WC_OPT_LOCATE = 1 << 18     /* --tolerance T|T1,T2,T3, --feature [NAME=]X,Y (repeated),
+                                   --sigma-ratio R */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -108,6 +110,12 @@ typedef struct wc_run {
     /* kept by a request function for its answer (sweep: --wrench, as read) */
     cJSON *wrenches;
     cJSON *bias;
+    /* locate: --tolerance (a number or an array), --feature ({"name"?, "at"}
+       objects), --sigma-ratio */
+    cJSON *locate_tolerance;
+    cJSON *features;
+    double sigma_ratio;
+    bool sigma_ratio_given;
 } wc_run;
 
 /* Adds the command's params to `params` (the fixture is already there for

@@ -38,6 +38,8 @@ int wc_sweep_request(wc_run *run, cJSON *params); /* friction.sweep */
 int wc_sweep_answer(wc_run *run, const cJSON *result);
 int wc_design_request(wc_run *run, cJSON *params); /* fixture.design */
 int wc_design_answer(wc_run *run, const cJSON *result);
+int wc_locate_request(wc_run *run, cJSON *params); /* fixture.locating */
+int wc_locate_answer(wc_run *run, const cJSON *result);
 int wc_design_merge_request(wc_run *run, cJSON *params); /* no method: the whole command */
 
 #endif

@@ -591,3 +591,185 @@ int wc_sweep_answer(wc_run *run, const cJSON *result)
     cJSON_ArrayForEach(set, r) if (cJSON_GetArraySize(set) == 0) return EXIT_NOT_INSIDE;
     return EXIT_INSIDE;
 }
+
+/* ---- locate (fixture.locating) ------------------------------------------------ */
+
+int wc_locate_request(wc_run *run, cJSON *params)
+{
+    if (!run->locate_tolerance)
+        return wc_usage_error("locate wants --tolerance T (or T1,T2,T3: one per fixel)");
+    cJSON_AddItemToObject(params, "tolerance", cJSON_Duplicate(run->locate_tolerance, true));
+    if (run->features)
+        cJSON_AddItemToObject(params, "features", cJSON_Duplicate(run->features, true));
+    if (run->sigma_ratio_given)
+        cJSON_AddNumberToObject(params, "sigma_ratio", run->sigma_ratio);
+    return -1;
+}
+
+static double item(const cJSON *array, int i)
+{
+    const cJSON *v = cJSON_GetArrayItem(array, i);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+/* The fixture's length unit as " [mm]", or "" (a stored fixture by id, or
+ * none named). */
+static void length_label(const wc_run *run, char *out, size_t size)
+{
+    const cJSON *units = cJSON_GetObjectItem(run->fixture, "units");
+    const char *length = cJSON_GetStringValue(cJSON_GetObjectItem(units, "length"));
+    snprintf(out, size, length ? " [%s]" : "", length);
+}
+
+/* Tolerance of locator i as asked: one number for all, or one each. */
+static double tolerance_of(const wc_run *run, int i)
+{
+    return cJSON_IsNumber(run->locate_tolerance) ? run->locate_tolerance->valuedouble
+                                                 : item(run->locate_tolerance, i);
+}
+
+static void print_locate(const wc_run *run, const cJSON *result)
+{
+    char unit[24];
+    length_label(run, unit, sizeof unit);
+    const cJSON *motion = cJSON_GetObjectItem(result, "free_motion");
+    if (!cJSON_IsTrue(cJSON_GetObjectItem(result, "deterministic"))) {
+        const cJSON *twist = cJSON_GetObjectItem(motion, "twist");
+        const cJSON *about = cJSON_GetObjectItem(motion, "about");
+        printf("not deterministic: the fixels leave the part free to ");
+        if (cJSON_IsArray(about))
+            printf("turn about (%.6g, %.6g)", item(about, 0), item(about, 1));
+        else
+            printf("slide along (%.6g, %.6g)", item(twist, 0), item(twist, 1));
+        printf("\ntwist     (%.6g, %.6g, %.6g)  (vx, vy, w)\n", item(twist, 0), item(twist, 1),
+               item(twist, 2));
+        return;
+    }
+    const cJSON *s = cJSON_GetObjectItem(result, "sensitivity");
+    int k = cJSON_GetArraySize(cJSON_GetArrayItem(s, 0));
+    printf("deterministic: yes, condition number %.6g (scaled locating matrix)\n",
+           cJSON_GetObjectItem(result, "condition")->valuedouble);
+    printf("sensitivity G^-1: the pose's change per unit move of each locator\n%-14s", "");
+    for (int i = 0; i < k; i++)
+        printf("  %12s%d", "fixel ", i + 1);
+    printf("\n");
+    static const char *const rows[3] = {"dx", "dy", "dtheta"};
+    for (int j = 0; j < 3; j++) {
+        printf("  %-12s", rows[j]);
+        for (int i = 0; i < k; i++)
+            printf("  %13.6g", item(cJSON_GetArrayItem(s, j), i));
+        printf("\n");
+    }
+    const cJSON *pose = cJSON_GetObjectItem(result, "pose_error");
+    const cJSON *linear = cJSON_GetObjectItem(pose, "linear"), *exact = cJSON_GetObjectItem(pose, "exact");
+    printf("pose error: the worst over the tolerance box (locators off by");
+    for (int i = 0; i < k; i++)
+        printf("%s +-%g", i ? "," : "", tolerance_of(run, i));
+    printf(")\n%-14s  %13s  %13s\n", "", "linear", "exact");
+    for (int j = 0; j < 3; j++) {
+        char label[40];
+        snprintf(label, sizeof label, "%s%s", rows[j], j < 2 ? unit : " [rad]");
+        printf("  %-12s  %13.6g  %13.6g\n", label, item(linear, j), item(exact, j));
+    }
+    const cJSON *features = cJSON_GetObjectItem(result, "features");
+    if (cJSON_GetArraySize(features) == 0)
+        return;
+    printf("features%s: worst displacement (linear, exact) and the 99.73 %% ellipse, sigma = "
+           "tolerance / %g\n", unit, run->sigma_ratio_given ? run->sigma_ratio : 3.0);
+    printf("  %-10s %-22s %-32s %-32s %s\n", "name", "at", "linear", "exact",
+           "ellipse semi-axes, angle");
+    int n = 1;
+    for (const cJSON *f = features->child; f; f = f->next, n++) {
+        const char *name = cJSON_GetStringValue(cJSON_GetObjectItem(f, "name"));
+        char label[32], at[48], lin[64], ex[64];
+        snprintf(label, sizeof label, "%s", name ? name : "");
+        if (!name)
+            snprintf(label, sizeof label, "%d", n);
+        const cJSON *a = cJSON_GetObjectItem(f, "at");
+        snprintf(at, sizeof at, "(%g, %g)", item(a, 0), item(a, 1));
+        const cJSON *l = cJSON_GetObjectItem(f, "linear"), *e = cJSON_GetObjectItem(f, "exact");
+        const cJSON *lv = cJSON_GetObjectItem(l, "vector"), *ev = cJSON_GetObjectItem(e, "vector");
+        snprintf(lin, sizeof lin, "%.6g (%.4g, %.4g)", cJSON_GetObjectItem(l, "length")->valuedouble,
+                 item(lv, 0), item(lv, 1));
+        snprintf(ex, sizeof ex, "%.6g (%.4g, %.4g)", cJSON_GetObjectItem(e, "length")->valuedouble,
+                 item(ev, 0), item(ev, 1));
+        const cJSON *el = cJSON_GetObjectItem(f, "ellipse");
+        const cJSON *axes = cJSON_GetObjectItem(el, "axes");
+        printf("  %-10s %-22s %-32s %-32s %.6g, %.6g at %.4g deg\n", label, at, lin, ex,
+               item(axes, 0), item(axes, 1), cJSON_GetObjectItem(el, "angle_deg")->valuedouble);
+    }
+}
+
+/* A 1, 2 or 5 times a power of ten, at most x (x > 0). */
+static double nice_below(double x)
+{
+    double p = pow(10, floor(log10(x)));
+    return x >= 5 * p ? 5 * p : x >= 2 * p ? 2 * p : p;
+}
+
+static bool draw_locate(const wc_run *run, const cJSON *result, FILE *out,
+                        const wr_fixture *geometry, const char *name)
+{
+    const cJSON *s = cJSON_GetObjectItem(result, "sensitivity");
+    const cJSON *features = cJSON_GetObjectItem(result, "features");
+    int k = cJSON_GetArraySize(cJSON_GetArrayItem(s, 0)), count = cJSON_GetArraySize(features);
+    /* The corner of the box that moves the part most (scaled metric). */
+    double pose[3] = {0, 0, 0}, largest = -1;
+    for (unsigned v = 0; cJSON_IsArray(s) && v < 1u << k; v++) {
+        double q[3] = {0, 0, 0};
+        for (int j = 0; j < 3; j++)
+            for (int i = 0; i < k; i++)
+                q[j] += item(cJSON_GetArrayItem(s, j), i) *
+                        ((v >> i & 1u) ? tolerance_of(run, i) : -tolerance_of(run, i));
+        double size = hypot(hypot(q[0], q[1]), geometry->gyration_radius * q[2]);
+        if (size > largest) {
+            largest = size;
+            memcpy(pose, q, sizeof pose);
+        }
+    }
+    wc_locate_mark *marks = calloc((size_t)count + 1, sizeof *marks);
+    if (!marks)
+        return false;
+    double biggest = hypot(pose[0], pose[1]) + fabs(pose[2]) * geometry->size / 2;
+    int n = 0;
+    for (const cJSON *f = features ? features->child : NULL; f; f = f->next, n++) {
+        wc_locate_mark *m = &marks[n];
+        m->name = cJSON_GetStringValue(cJSON_GetObjectItem(f, "name"));
+        const cJSON *at = cJSON_GetObjectItem(f, "at");
+        const cJSON *worst = cJSON_GetObjectItem(cJSON_GetObjectItem(f, "exact"), "vector");
+        const cJSON *el = cJSON_GetObjectItem(f, "ellipse");
+        for (int c = 0; c < 2; c++) {
+            m->at[c] = item(at, c);
+            m->worst[c] = item(worst, c);
+            m->axes[c] = item(cJSON_GetObjectItem(el, "axes"), c);
+        }
+        m->angle_deg = cJSON_GetObjectItem(el, "angle_deg")->valuedouble;
+        biggest = fmax(biggest, fmax(hypot(m->worst[0], m->worst[1]), m->axes[0]));
+    }
+    /* Errors drawn at about a twelfth of the part's size. */
+    double magnification = biggest > 0 ? nice_below(geometry->size / 12 / biggest) : 1;
+    char tolerance[96] = "";
+    for (int i = 0; i < k; i++) {
+        size_t used = strlen(tolerance);
+        snprintf(tolerance + used, sizeof tolerance - used, "%s+-%g", i ? ", " : "",
+                 tolerance_of(run, i));
+        if (cJSON_IsNumber(run->locate_tolerance))
+            break;
+    }
+    wc_svg_locate(out, geometry, name, marks, count, pose, magnification, tolerance);
+    free(marks);
+    return true;
+}
+
+int wc_locate_answer(wc_run *run, const cJSON *result)
+{
+    bool deterministic = cJSON_IsTrue(cJSON_GetObjectItem(result, "deterministic"));
+    if (!run->o->json)
+        print_locate(run, result);
+    if (deterministic) {
+        int status = picture(run, result, draw_locate);
+        if (status >= 0)
+            return status;
+    }
+    return deterministic ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}

@@ -920,3 +920,73 @@ void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], doub
         legend(out, 2 + i, wc_set_promise(sets[i]));
     end(out);
 }
+
+/* ---- locating accuracy -------------------------------------------------------- */
+
+/* The part moved by `pose` (dx, dy, dtheta about the centre of mass), dashed:
+ * a rotation by dtheta in the fixture's frame is one by -dtheta on the page
+ * (y down), about the centre of mass, then the translation. */
+static void displaced_outline(FILE *out, const frame *f, const wr_fixture *fx, const double pose[3])
+{
+    double cx = page_x(f, fx->com[0]), cy = page_y(f, fx->com[1]);
+    fprintf(out, "<g transform=\"translate(%.4f %.4f) rotate(%.6f %.4f %.4f)\">",
+            pose[0] * f->scale, -pose[1] * f->scale, -pose[2] * 180 / PI, cx, cy);
+    const char *style = "fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" "
+                        "stroke-dasharray=\"6 4\"";
+    if (fx->shape == WR_SHAPE_CIRCLE) {
+        fprintf(out, "<circle class=\"displaced\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" %s/>",
+                page_x(f, fx->center[0]), page_y(f, fx->center[1]), fx->radius * f->scale, style);
+    } else if (fx->outline) {
+        fputs("<path class=\"displaced\" d=\"", out);
+        outline_path(out, f, fx->outline);
+        fprintf(out, "\" fill-rule=\"evenodd\" %s/>", style);
+    }
+    fputs("</g>\n", out);
+}
+
+void wc_svg_locate(FILE *out, const wr_fixture *fx, const char *name, const wc_locate_mark *marks,
+                   int count, const double pose[3], double magnification, const char *tolerance)
+{
+    frame f = frame_for(fx, 0.15, 4);
+    char text[256];
+    snprintf(text, sizeof text, "%s: where the part ends up", name);
+    begin(out, &f, text, fx);
+    outline(out, &f, fx);
+    double moved[3] = {magnification * pose[0], magnification * pose[1],
+                       magnification * pose[2]};
+    displaced_outline(out, &f, fx, moved);
+    fixels(out, &f, fx);
+    centre_of_mass(out, &f, fx);
+    for (int i = 0; i < count; i++) {
+        const wc_locate_mark *m = &marks[i];
+        double x = page_x(&f, m->at[0]), y = page_y(&f, m->at[1]);
+        fprintf(out,
+                "<ellipse class=\"error-ellipse\" cx=\"%.2f\" cy=\"%.2f\" rx=\"%.3f\" ry=\"%.3f\" "
+                "transform=\"rotate(%.4f %.2f %.2f)\" fill=\"#1f4e9c\" fill-opacity=\"0.15\" "
+                "stroke=\"#1f4e9c\" stroke-width=\"1.5\"/>\n",
+                x, y, m->axes[0] * magnification * f.scale, m->axes[1] * magnification * f.scale,
+                -m->angle_deg, x, y);
+        double tip[2] = {x + m->worst[0] * magnification * f.scale,
+                         y - m->worst[1] * magnification * f.scale};
+        if (hypot(tip[0] - x, tip[1] - y) >= 1)
+            fprintf(out,
+                    "<line class=\"worst\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+                    "stroke=\"#c0392b\" stroke-width=\"2\" marker-end=\"url(#arrow-c0392b)\"/>\n",
+                    x, y, tip[0], tip[1]);
+        fprintf(out, "<circle class=\"feature\" cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"black\"/>\n",
+                x, y);
+        if (m->name) {
+            fprintf(out, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\">", x + 8, y - 8);
+            text_escaped(out, m->name);
+            fputs("</text>\n", out);
+        }
+    }
+    snprintf(text, sizeof text, "%s, locators off by %s along their normals", name, tolerance);
+    legend(out, 0, text);
+    snprintf(text, sizeof text,
+             "errors magnified %g times: blue, each feature's 99.73 %% ellipse", magnification);
+    legend(out, 1, text);
+    legend(out, 2, "red arrow: its worst displacement (exact pose, corners of the tolerance box)");
+    legend(out, 3, "dashed red: the part at the box's corner that moves it most");
+    end(out);
+}

@@ -106,4 +106,23 @@ void wc_svg_designs(FILE *out, const char *name, const char *objective,
  * push with and let go. */
 const char *wc_set_promise(const char *set);
 
+/* One feature of fixture.locating, for wc_svg_locate. */
+typedef struct wc_locate_mark {
+    const char *name;      /* NULL: unnamed */
+    double at[2];
+    double worst[2];       /* the exact worst displacement */
+    double axes[2];        /* the 99.73 % ellipse's semi-axes, major first */
+    double angle_deg;      /* of the major axis */
+} wc_locate_mark;
+
+/* Where locator errors put the part (fixture.locating): each feature a dot
+ * with its 99.73 % ellipse (<ellipse class="error-ellipse">) and its worst
+ * displacement as an arrow (<line class="worst">), and the part at the
+ * pose `pose` (dx, dy, dtheta: one corner of the tolerance box) dashed
+ * (<path class="displaced">), all magnified `magnification` times, which
+ * the legend states with `tolerance`, the tolerances in words. */
+void wc_svg_locate(FILE *out, const wr_fixture *fixture, const char *name,
+                   const wc_locate_mark *marks, int count, const double pose[3],
+                   double magnification, const char *tolerance);
+
 #endif

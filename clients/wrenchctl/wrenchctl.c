@@ -304,6 +304,67 @@ static int take_svg(wc_run *run, const char *value)
     return 0;
 }
 
+/* locate --tolerance T or T1,T2,...: numbers >= 0, one for every locator
+ * or one each (the daemon checks the count against the fixels). */
+static int take_locate_tolerance(wc_run *run, const char *value)
+{
+    cJSON *list = cJSON_CreateArray();
+    const char *p = value;
+    for (;;) {
+        char *end;
+        double t = strtod(p, &end);
+        if (end == p || !(t >= 0) || !isfinite(t) || (*end && *end != ',')) {
+            cJSON_Delete(list);
+            return wc_usage_error("--tolerance wants T or T1,T2,T3 (numbers >= 0), not '%s'",
+                                  value);
+        }
+        cJSON_AddItemToArray(list, cJSON_CreateNumber(t));
+        if (!*end)
+            break;
+        p = end + 1;
+    }
+    cJSON_Delete(run->locate_tolerance);
+    if (cJSON_GetArraySize(list) == 1) {
+        run->locate_tolerance = cJSON_DetachItemFromArray(list, 0);
+        cJSON_Delete(list);
+    } else {
+        run->locate_tolerance = list;
+    }
+    return 0;
+}
+
+/* locate --feature [NAME=]X,Y, repeated. */
+static int take_feature(wc_run *run, const char *value)
+{
+    const char *equals = strchr(value, '=');
+    const char *xy = equals ? equals + 1 : value;
+    double at[2];
+    char tail;
+    if (sscanf(xy, "%lf,%lf%c", &at[0], &at[1], &tail) != 2 || !isfinite(at[0]) ||
+        !isfinite(at[1]) || (equals && equals == value))
+        return wc_usage_error("--feature wants NAME=X,Y or X,Y (hole=60,30), not '%s'", value);
+    if (!run->features)
+        run->features = cJSON_CreateArray();
+    cJSON *f = cJSON_CreateObject();
+    if (equals) {
+        char name[128];
+        snprintf(name, sizeof name, "%.*s", (int)(equals - value), value);
+        cJSON_AddStringToObject(f, "name", name);
+    }
+    cJSON_AddItemToObject(f, "at", cJSON_CreateDoubleArray(at, 2));
+    cJSON_AddItemToArray(run->features, f);
+    return 0;
+}
+
+static int take_sigma_ratio(wc_run *run, const char *value)
+{
+    if (!take_number("sigma-ratio", value, &run->sigma_ratio) || !(run->sigma_ratio > 0))
+        return run->sigma_ratio == 0 ? wc_usage_error("--sigma-ratio wants a number above 0")
+                                     : EXIT_USAGE;
+    run->sigma_ratio_given = true;
+    return 0;
+}
+
 /* The options a command may take (its row's WC_OPT_* say which); each
  * takes a value. */
 typedef struct command_option {
@@ -332,6 +393,9 @@ static const command_option COMMAND_OPTIONS[] = {
     {"top", WC_OPT_DESIGN, take_top},
     {"objective", WC_OPT_DESIGN, take_objective},
     {"shard", WC_OPT_DESIGN, take_shard},
+    {"tolerance", WC_OPT_LOCATE, take_locate_tolerance},
+    {"feature", WC_OPT_LOCATE, take_feature},
+    {"sigma-ratio", WC_OPT_LOCATE, take_sigma_ratio},
     {NULL, 0, NULL},
 };
 
@@ -435,6 +499,8 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
     cJSON_Delete(run.sets);
     cJSON_Delete(run.wrenches);
     cJSON_Delete(run.bias);
+    cJSON_Delete(run.locate_tolerance);
+    cJSON_Delete(run.features);
     return status;
 }
 
@@ -571,6 +637,24 @@ const wc_command wc_commands[] = {
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu), 1 when not."},
+    {"locate", "FIXTURE --tolerance T[,T2,T3] [--feature [NAME=]X,Y]... [--sigma-ratio R]\n"
+     "       [--svg FILE]",
+     WC_FIXTURE | WC_OPT_LOCATE | WC_OPT_SVG, 1, 1,
+     "fixture.locating", wc_locate_request, wc_locate_answer,
+     "where locator errors put the part, and its features",
+     "Locating accuracy: each locator may be off by +-T along its normal (one T for all, or\n"
+     "one per fixel).  Prints whether the fixels determine the pose (else the motion left\n"
+     "free), G^-1 (the pose's change per unit locator error) and its condition number, the\n"
+     "worst pose error over the tolerance box, linear and exact (the pose solved on the\n"
+     "outline), and for each feature its worst displacement, linear and exact, and its\n"
+     "99.73 % error ellipse under normal errors of sigma = T / R.  Lengths in the fixture's\n"
+     "unit, angles in radians.\n"
+     "  --tolerance T       how far each locator may be off (T1,T2,T3: one per fixel)\n"
+     "  --feature NAME=X,Y  a point of the part (a hole to drill), repeated for more\n"
+     "  --sigma-ratio R     sigma = T / R for the ellipses (default 3)\n"
+     "  --svg FILE          also draw the ellipses, the worst displacements and the part at\n"
+     "                      the worst corner of the box, magnified (the scale stated)\n"
+     "Exit status 0 when the fixels determine the pose, 1 when they do not."},
     {"design",
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K] [--objective margin|region|gravity]\n"
      "       [--top N] [--friction LO:HI] [--finger-radius R] [--finger-friction MU]\n"

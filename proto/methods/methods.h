@@ -27,6 +27,9 @@ cJSON *wp_handle_stability_margin(wp_call *call);
 /* sweep.c */
 extern const wp_streamer wp_sweep_stream;
 
+/* locate.c */
+cJSON *wp_handle_fixture_locating(wp_call *call);
+
 /* design.c */
 extern const wp_streamer wp_design_stream;
 
