@@ -22,7 +22,7 @@ extern "C" {
 
 /* The 99.73 % ellipse: chi-square of 2 degrees of freedom at that
  * probability, -2 ln(1 - 0.9973). */
-#define WR_LOCATE_CHI2 11.829231538550285
+#define WR_LOCATE_CHI2 11.829007011943707
 /* A feature farther than this fraction of the part's size outside its
  * outer boundary is refused (no point of the part lies there). */
 #define WR_LOCATE_FEATURE_REACH 0.1

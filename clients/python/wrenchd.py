@@ -26,6 +26,8 @@ Methods of Client (and of Batch, see below):
                                            -> PushRegions push.regions
     gravity_sweep(fixture, set="goal")     -> [[a, b]]    gravity.sweep (degrees)
     stability_margin(fixture, bias)        -> Disturbance stability.margin
+    locating(fixture, tolerance, features=None, sigma_ratio=None)
+                                           -> Locating    fixture.locating
     friction_sweep(fixture, range=(0, 2), kinetic_ratio=1.0, wrenches=None, sets=None,
                    push=None, gravity=None) -> FrictionSweep  friction.sweep
     status()                               -> Status      server.status
@@ -348,6 +350,23 @@ class Disturbance:
     margin: Optional[float]            # < 0: the bias itself moves the part
     blocking: Optional[str]            # the mode the worst disturbance starts
     worst_direction: Optional[List[float]]  # a wrench of unit scaled length
+
+
+@dataclass
+class Locating:
+    """fixture.locating: where the part ends up when each locator is off
+    along its normal within its tolerance.  Lengths in the fixture's unit,
+    angles in radians.  When not `deterministic`, `free_motion` names the
+    motion left free ({"twist": [vx, vy, w], "kind": "translation" |
+    "rotation", "about": [x, y] | None}) and the rest is None."""
+    deterministic: bool
+    free_motion: Optional[Dict[str, Any]]
+    sensitivity: Optional[List[List[float]]]  # G^-1: 3 rows (dx, dy, dtheta), one column per fixel
+    condition: Optional[float]                # of the scaled locating matrix
+    pose_error: Optional[Dict[str, List[float]]]  # {"linear", "exact"}: worst |dx|, |dy|, |dtheta|
+    # Per feature: {"name", "at", "linear": {"vector", "length"}, "exact": {...},
+    # "covariance": [[a, b], [b, d]], "ellipse": {"axes": [a1, a2], "angle_deg"}}
+    features: Optional[List[Dict[str, Any]]]
 
 
 @dataclass
@@ -805,6 +824,30 @@ class _Methods:
         return self._invoke("stability.margin", {"fixture": _fixture_ref(fixture),
                                                  "bias": _wrench(bias)},
                             lambda r: _build(Disturbance, r, "stability.margin"), True, timeout)
+
+    def locating(self, fixture: Any, tolerance: Union[float, Sequence[float]],
+                 features: Optional[Iterable[Any]] = None, sigma_ratio: Optional[float] = None,
+                 *, timeout: Any = _DEFAULT):
+        """fixture.locating: locating accuracy (Locating).  `tolerance` is one
+        number for every locator or one per fixel; a feature is (x, y), or
+        {"name": ..., "at": (x, y)}, or a (name, (x, y)) pair."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture),
+                                  "tolerance": tolerance if isinstance(tolerance, (int, float))
+                                  else list(tolerance)}
+        if features is not None:
+            listed = []
+            for f in features:
+                if isinstance(f, Mapping):
+                    listed.append(dict(f))
+                elif len(f) == 2 and isinstance(f[0], str):
+                    listed.append({"name": f[0], "at": list(f[1])})
+                else:
+                    listed.append({"at": list(f)})
+            params["features"] = listed
+        if sigma_ratio is not None:
+            params["sigma_ratio"] = sigma_ratio
+        return self._invoke("fixture.locating", params,
+                            lambda r: _build(Locating, r, "fixture.locating"), True, timeout)
 
     def friction_sweep(self, fixture: Any, *, range: Sequence[float] = (0, 2),
                        kinetic_ratio: float = 1.0, wrenches: Optional[Iterable[Any]] = None,

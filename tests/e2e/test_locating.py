@@ -1,0 +1,391 @@
+"""fixture.locating against numbers derived here, independently of the
+daemon: the 3-2-1 plate's G^-1 worked by hand, the rotation t/L when one
+locator moves by t, Monte Carlo over 100,000 perturbed fixtures (each pose
+solved exactly, vectorised) against the covariance, the ellipses and the
+linear worst case, the exact worst case against a pose solved here from
+three distance equations written in the fixture's frame (the part moved,
+not the locators moved back as the daemon does), the free motion of
+fixtures that do not locate, and every refusal with its field."""
+
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+from conftest import REPO
+
+WRENCHCTL = os.path.join(REPO, "build", "wrenchctl")
+CHI2 = -2 * math.log(0.0027)
+
+# The 3-2-1 plate: a 4 x 2 rectangle, fixels 1 and 2 under it at x = 1 and
+# x = 3, fixel 3 against its left side at y = 1; centre of mass (2, 1).
+PLATE = {
+    "body": {"mass": 2.0, "shape": {"type": "polygon",
+                                    "vertices": [[0, 0], [4, 0], [4, 2], [0, 2]]}},
+    "friction": {"static": 0.3},
+    "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}],
+}
+# G's rows (n_i, (p_i - c) x n_i) by hand: fixel 1 (0, 1, -1), fixel 2
+# (0, 1, 1), fixel 3 (1, 0, 0).  So e_3 = dx, e_1 = dy - dtheta,
+# e_2 = dy + dtheta, and
+#   dx = e_3,  dy = (e_1 + e_2) / 2,  dtheta = (e_2 - e_1) / 2:
+PLATE_INVERSE = [[0, 0, 1], [0.5, 0.5, 0], [-0.5, 0.5, 0]]
+
+with open(os.path.join(REPO, "examples", "bracket.json")) as f:
+    BRACKET = json.load(f)
+
+
+def locating(client, fixture, tolerance, features=None, **extra):
+    params = {"fixture": fixture, "tolerance": tolerance}
+    if features is not None:
+        params["features"] = features
+    params.update(extra)
+    return client.result("fixture.locating", params)
+
+
+def refusal(client, params, field):
+    error = client.error("fixture.locating", params)
+    assert error["code"] == -32602 and error["data"]["field"] == field, error
+    return error["data"]["reason"]
+
+
+# ---- the pose solved here ----------------------------------------------------------
+
+def rot(theta):
+    c, s = math.cos(theta), math.sin(theta)
+    return np.array([[c, -s], [s, c]])
+
+
+def moved(pose, com, x):
+    """The part point x at pose (dx, dy, dtheta) about com."""
+    return com + pose[:2] + rot(pose[2]) @ (np.asarray(x, float) - com)
+
+
+def solve_pose(contacts, com, e, normals, points):
+    """The pose putting each moved locator L_i = p_i + e_i n_i on the moved
+    part: for a line through a (unit normal m), the moved line's distance
+    to L_i; for a circle (centre C, radius r), |L_i - moved C| - r.  Newton
+    with a central-difference Jacobian, from the nominal pose."""
+    com = np.asarray(com, float)
+
+    def residual(z):
+        out = []
+        for (kind, a, b), p, n, ei in zip(contacts, points, normals, e):
+            L = np.asarray(p, float) + ei * np.asarray(n, float)
+            if kind == "line":
+                m = rot(z[2]) @ np.asarray(b, float)
+                out.append(m @ (L - moved(z, com, a)))
+            else:
+                out.append(np.linalg.norm(L - moved(z, com, a)) - b)
+        return np.array(out)
+
+    z = np.zeros(3)
+    for _ in range(50):
+        f = residual(z)
+        if np.max(np.abs(f)) < 1e-15:
+            break
+        jac = np.zeros((3, 3))
+        for j in range(3):
+            h = np.zeros(3)
+            h[j] = 1e-7
+            jac[:, j] = (residual(z + h) - residual(z - h)) / 2e-7
+        z = z - np.linalg.solve(jac, f)
+    assert np.max(np.abs(residual(z))) < 1e-13
+    return z
+
+
+def vertices(tolerance):
+    k = len(tolerance)
+    for v in range(1 << k):
+        yield np.array([tolerance[i] if v >> i & 1 else -tolerance[i] for i in range(k)])
+
+
+# ---- closed forms ------------------------------------------------------------------
+
+def test_plate_inverse_by_hand(client):
+    r = locating(client, PLATE, 0.01, [{"name": "corner", "at": [4, 2]}])
+    assert r["deterministic"] is True and r["free_motion"] is None
+    assert np.allclose(r["sensitivity"], PLATE_INVERSE, atol=1e-15)
+    # The condition number of the scaled matrix, rho = sqrt(I / m) =
+    # sqrt((4^2 + 2^2) / 12): its singular values by numpy.
+    rho = math.sqrt(20 / 12)
+    scaled = np.array([[0, 1, -1 / rho], [0, 1, 1 / rho], [1, 0, 0]])
+    s = np.linalg.svd(scaled, compute_uv=False)
+    assert r["condition"] == pytest.approx(s[0] / s[-1], rel=1e-12)
+    # Linear worst over the box: sum of |G^-1_ji| t.
+    assert r["pose_error"]["linear"] == pytest.approx([0.01, 0.01, 0.01], rel=1e-14)
+    # The corner (4, 2) moves by (dx - dtheta * 1, dy + dtheta * 2):
+    # (e3 - (e2 - e1)/2, (e1 + e2)/2 + (e2 - e1)) = (e3 + e1/2 - e2/2, -e1/2 + 3 e2/2),
+    # worst at e = (-t, t, -t) or its negative: |(-2t, 2t)| = 2 sqrt(2) t.
+    f = r["features"][0]
+    assert f["linear"]["length"] == pytest.approx(2 * math.sqrt(2) * 0.01, rel=1e-14)
+    sigma2 = (0.01 / 3) ** 2
+    cov = np.array([[1 + 0.25 + 0.25, -0.25 - 0.75], [-0.25 - 0.75, 0.25 + 2.25]]) * sigma2
+    assert np.allclose(f["covariance"], cov, rtol=1e-13, atol=0)
+
+
+@pytest.mark.parametrize("t", [1e-3, 0.02, 0.1])
+def test_rotation_t_over_l(client, t):
+    """Fixel 1, the left one under the plate, moves by t, the others by
+    nothing: the plate turns by t / L linearly, L = 2 between the bottom
+    locators, and by atan(t / L) exactly (its bottom edge passes through
+    (1, t) and (3, 0))."""
+    r = locating(client, PLATE, [t, 0, 0])
+    assert r["pose_error"]["linear"][2] == pytest.approx(t / 2, rel=1e-14)
+    assert r["pose_error"]["exact"][2] == pytest.approx(math.atan(t / 2), rel=1e-12)
+    assert r["pose_error"]["exact"][2] != pytest.approx(t / 2, rel=1e-6) or t < 2e-3
+
+
+def test_disc_with_two_fixels(client):
+    """The disc in the corner: G = I on (dx, dy), dtheta 0; exactly, the
+    centre moves so that each moved locator is 1 from it."""
+    with open(os.path.join(REPO, "examples", "disc-corner.json")) as f:
+        disc = json.load(f)
+    r = locating(client, disc, [0.05, 0.1], [{"at": [0, 1]}])
+    assert np.allclose(r["sensitivity"], [[1, 0], [0, 1], [0, 0]], atol=1e-15)
+    assert r["pose_error"]["linear"] == pytest.approx([0.05, 0.1, 0], abs=1e-15)
+    worst = np.zeros(2)
+    for e in vertices([0.05, 0.1]):
+        # |(-1 + e1, 0) - d| = 1 and |(0, -1 + e2) - d| = 1, near d = e.
+        d = np.array(e, float)
+        for _ in range(50):
+            a = np.array([-1 + e[0], 0.0]) - d
+            b = np.array([0.0, -1 + e[1]]) - d
+            f = np.array([np.linalg.norm(a) - 1, np.linalg.norm(b) - 1])
+            jac = -np.array([a / np.linalg.norm(a), b / np.linalg.norm(b)])
+            d = d - np.linalg.solve(jac, f)
+        worst = np.maximum(worst, np.abs(d))
+    assert r["pose_error"]["exact"][:2] == pytest.approx(list(worst), rel=1e-11)
+    assert r["pose_error"]["exact"][2] == 0
+
+
+# ---- statistics -----------------------------------------------------------------
+
+def test_monte_carlo_plate(client):
+    """100,000 fixtures with locators perturbed by independent normal errors
+    (sigma = t / 3), each pose solved exactly (vectorised Newton on the three
+    line equations): the feature's sample covariance against the daemon's,
+    the share inside its 99.73 % ellipse, and uniform errors in the box never
+    beyond the linear worst case (and coming close to it)."""
+    t = np.array([0.01, 0.02, 0.015])
+    feature = np.array([3.5, 1.8])
+    r = locating(client, PLATE, list(t), [{"at": list(feature)}])
+    f = r["features"][0]
+    rng = np.random.default_rng(31)
+    n = 100_000
+    com = np.array([2.0, 1.0])
+
+    def poses(e):
+        # Locators L_i = p_i + e_i n_i; lines of the part y = 0 (fixels 1, 2)
+        # and x = 0 (fixel 3).  Moved: a point x goes to com + d + R (x - com);
+        # L on the moved line y = 0 iff (R^T (L - com - d))_y + com_y = 0.
+        z = np.zeros((len(e), 3))
+        L = np.stack([np.stack([1 + 0 * e[:, 0], e[:, 0]], 1),
+                      np.stack([3 + 0 * e[:, 1], e[:, 1]], 1),
+                      np.stack([e[:, 2], 1 + 0 * e[:, 2]], 1)], 1)
+        for _ in range(8):
+            c, s = np.cos(z[:, 2]), np.sin(z[:, 2])
+            y = L - com - z[:, None, :2]
+            # back in the part's frame: R^T y
+            qx = c[:, None] * y[..., 0] + s[:, None] * y[..., 1] + com[0]
+            qy = -s[:, None] * y[..., 0] + c[:, None] * y[..., 1] + com[1]
+            dqx = np.stack([-c[:, None] + 0 * qx, -s[:, None] + 0 * qx,
+                            -s[:, None] * y[..., 0] + c[:, None] * y[..., 1]], -1)
+            dqy = np.stack([s[:, None] + 0 * qy, -c[:, None] + 0 * qy,
+                            -c[:, None] * y[..., 0] - s[:, None] * y[..., 1]], -1)
+            res = np.stack([qy[:, 0], qy[:, 1], qx[:, 2]], 1)
+            jac = np.stack([dqy[:, 0], dqy[:, 1], dqx[:, 2]], 1)
+            z = z - np.linalg.solve(jac, res[..., None])[..., 0]
+        return z
+
+    def displacement(z):
+        c, s = np.cos(z[:, 2]), np.sin(z[:, 2])
+        w = feature - com
+        return np.stack([z[:, 0] + c * w[0] - s * w[1] - w[0],
+                         z[:, 1] + s * w[0] + c * w[1] - w[1]], 1)
+
+    u = displacement(poses(rng.normal(0, t / 3, size=(n, 3))))
+    sample = np.cov(u.T)
+    cov = np.array(f["covariance"])
+    assert np.allclose(sample, cov, rtol=0.02, atol=0.02 * np.max(np.abs(cov)))
+    # The share inside the 99.73 % ellipse: u^T cov^-1 u <= chi2.
+    inside = np.mean(np.einsum("ni,ij,nj->n", u, np.linalg.inv(cov), u) <= CHI2)
+    assert abs(inside - 0.9973) < 0.001, inside
+    # The ellipse's axes and angle are those of cov's eigenvectors.
+    lam, vec = np.linalg.eigh(cov)
+    assert f["ellipse"]["axes"] == pytest.approx(list(np.sqrt(CHI2 * lam[::-1])), rel=1e-12)
+    major = vec[:, 1]
+    angle = math.degrees(math.atan2(major[1], major[0]))
+    angle = angle - 180 if angle > 90 else angle + 180 if angle <= -90 else angle
+    assert f["ellipse"]["angle_deg"] == pytest.approx(angle, abs=1e-9)
+    # Uniform errors in the box: no displacement beyond the linear worst
+    # case (up to the exact model's second order), and the sample's largest
+    # within 3 % of it.
+    box = displacement(poses(rng.uniform(-t, t, size=(n, 3))))
+    largest = np.max(np.hypot(box[:, 0], box[:, 1]))
+    assert largest <= f["linear"]["length"] * (1 + 1e-3)
+    assert largest >= 0.97 * f["linear"]["length"]
+    linear = np.array(r["sensitivity"]) @ rng.uniform(-t, t, size=(n, 3)).T
+    assert np.all(np.max(np.abs(linear), axis=1) <= np.array(r["pose_error"]["linear"]) * (1 + 1e-12))
+
+
+# ---- exact poses ------------------------------------------------------------------
+
+def bracket_contacts(com):
+    """The bracket's fixels: a pin in the hole of radius 6 about (30, 30),
+    the bottom edge y = 0, the left edge x = 0."""
+    del com
+    return [("circle", (30, 30), 6.0), ("line", (0, 0), (0, 1)), ("line", (0, 0), (1, 0))]
+
+
+@pytest.mark.parametrize("tolerance", [0.02, [0.05, 0.01, 0.2], 0.5])
+def test_exact_worst_case_bracket(client, tolerance):
+    put = client.result("fixture.put", {"fixture": BRACKET})
+    com = np.array(put["com"], float)
+    hole, slot = [30.0, 30.0], [85.0, 30.0]
+    r = locating(client, put["id"], tolerance, [{"name": "hole", "at": hole}, {"at": slot}])
+    t = [tolerance] * 3 if not isinstance(tolerance, list) else tolerance
+    points = [f["at"] for f in BRACKET["fixels"]]
+    normals = [np.subtract(points[0], (30, 30)) / 6, (0, 1), (1, 0)]
+    contacts = bracket_contacts(com)
+    worst = np.zeros(3)
+    features = [[0.0, None], [0.0, None]]
+    for e in vertices(t):
+        z = solve_pose(contacts, com, e, normals, points)
+        worst = np.maximum(worst, np.abs(z))
+        for i, x in enumerate((hole, slot)):
+            u = moved(z, com, x) - np.asarray(x)
+            if np.linalg.norm(u) > features[i][0]:
+                features[i] = [np.linalg.norm(u), u]
+    exact = r["pose_error"]["exact"]
+    assert exact == pytest.approx(list(worst), rel=1e-9, abs=1e-14)
+    for i in range(2):
+        got = r["features"][i]["exact"]
+        assert got["length"] == pytest.approx(features[i][0], rel=1e-9)
+    # The exact pose differs from the linear one by more than the check's
+    # tolerance: it is not the linear answer again.
+    assert abs(exact[1] - r["pose_error"]["linear"][1]) > 1e-6 * exact[1]
+
+
+def test_units_lengths_in_the_fixtures_unit(client):
+    plate_mm = dict(PLATE, units={"length": "mm", "force": "N"})
+    a = locating(client, PLATE, 0.02, [{"at": [4, 2]}])
+    b = locating(client, plate_mm, 0.02, [{"at": [4, 2]}])
+    assert a == b
+
+
+# ---- fixtures that do not locate ---------------------------------------------------
+
+def test_free_rotation(client):
+    """Normals through one point (2, 1): the plate may turn about it."""
+    fixture = dict(PLATE, fixels=[{"at": [2, 0]}, {"at": [0, 1]}, {"at": [2, 2]}])
+    r = locating(client, fixture, 0.01, [{"at": [1, 1]}])
+    assert r["deterministic"] is False
+    m = r["free_motion"]
+    assert m["kind"] == "rotation" and m["about"] == pytest.approx([2, 1], abs=1e-12)
+    rho = math.sqrt(20 / 12)
+    assert m["twist"] == pytest.approx([0, 0, 1 / rho], abs=1e-12)
+    assert r["sensitivity"] is None and r["pose_error"] is None and r["features"] is None
+
+
+def test_free_translation(client):
+    fixture = dict(PLATE, fixels=[{"at": [1, 0]}, {"at": [2, 0]}, {"at": [3, 0]}])
+    r = locating(client, fixture, 0.01)
+    m = r["free_motion"]
+    assert r["deterministic"] is False and m["kind"] == "translation" and m["about"] is None
+    assert m["twist"] == pytest.approx([1, 0, 0], abs=1e-12)
+
+
+# ---- refusals ------------------------------------------------------------------
+
+@pytest.mark.parametrize("params, field, words", [
+    ({"tolerance": -0.01}, "params.tolerance", "negative"),
+    ({"tolerance": [0.01, -1, 0]}, "params.tolerance[1]", "negative"),
+    ({"tolerance": [0.01, 0.01]}, "params.tolerance", "3 fixels"),
+    ({"tolerance": "0.1"}, "params.tolerance", "number"),
+    ({"tolerance": [0.01, "x", 0]}, "params.tolerance[1]", ""),
+    ({"tolerance": 0.01, "sigma_ratio": 0}, "params.sigma_ratio", "above 0"),
+    ({"tolerance": 0.01, "sigma_ratio": -3}, "params.sigma_ratio", "above 0"),
+    ({"tolerance": 0.01, "features": [{"at": [104, 2]}]}, "params.features[0].at",
+     "lies 100 outside"),
+    ({"tolerance": 0.01, "features": [{"at": [2, 1]}, {"at": [1]}]}, "params.features[1].at", ""),
+    ({"tolerance": 0.01, "features": [{"at": [2, 1], "size": 3}]}, "params.features[0].size", ""),
+    ({"tolerance": 0.01, "features": {"at": [2, 1]}}, "params.features", "array"),
+])
+def test_bad_input(client, params, field, words):
+    reason = refusal(client, dict(params, fixture=PLATE), field)
+    assert words in reason, reason
+
+
+def test_non_finite_tolerance(client):
+    client.send_line('{"jsonrpc":"2.0","id":7,"method":"fixture.locating","params":'
+                     '{"fixture":%s,"tolerance":1e999}}' % json.dumps(PLATE))
+    resp = client.read_json()
+    assert "error" in resp and resp["error"]["data"]["field"].startswith("params"), resp
+
+
+@pytest.mark.parametrize("fixels, words", [
+    ([{"at": [1, 0]}, {"at": [0, 1]}], "1 more is missing"),
+    ([{"at": [1, 0]}], "2 more are missing"),
+    ([{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}, {"at": [4, 1]}], "over-constrain"),
+])
+def test_out_of_scope(client, fixels, words):
+    reason = refusal(client, {"fixture": dict(PLATE, fixels=fixels), "tolerance": 0.01},
+                     "params.fixture.fixels")
+    assert words in reason, reason
+
+
+def test_two_fixels_name_the_motion_left(client):
+    # Under the plate at x = 1 and against its left side at y = 1: normals
+    # meet at (1, 1), about which it may still turn.
+    reason = refusal(client, {"fixture": dict(PLATE, fixels=[{"at": [1, 0]}, {"at": [0, 1]}]),
+                              "tolerance": 0.01}, "params.fixture.fixels")
+    assert "turn about (1, 1)" in reason, reason
+
+
+def test_tilted_normal_on_an_edge(client):
+    fixture = dict(PLATE, fixels=[{"at": [1, 0], "normal": [0.1, 1]}, {"at": [3, 0]},
+                                  {"at": [0, 1]}])
+    reason = refusal(client, {"fixture": fixture, "tolerance": 0.01},
+                     "params.fixture.fixels[0].normal")
+    assert "degrees off" in reason
+
+
+def test_no_shape(client):
+    fixture = {"body": {"mass": 1, "inertia": 1, "com": [0, 0]}, "friction": {"static": 0.3},
+               "fixels": [{"at": [1, 0], "normal": [-1, 0]}, {"at": [0, 1], "normal": [0, -1]},
+                          {"at": [-1, 0], "normal": [1, 0]}]}
+    refusal(client, {"fixture": fixture, "tolerance": 0.01}, "params.fixture.body.shape")
+
+
+# ---- clients ---------------------------------------------------------------------
+
+def test_python_client(daemon):
+    import sys
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    with wrenchd.Client(daemon.path) as c:
+        r = c.locating(PLATE, 0.01, [("corner", (4, 2))], sigma_ratio=3)
+    assert r.deterministic and np.allclose(r.sensitivity, PLATE_INVERSE, atol=1e-15)
+    assert r.features[0]["name"] == "corner"
+
+
+def test_wrenchctl_table_and_picture(tmp_path):
+    fixture = dict(BRACKET, units={"length": "mm", "force": "N"})
+    path = tmp_path / "bracket.json"
+    path.write_text(json.dumps(fixture))
+    svg = tmp_path / "b.svg"
+    out = subprocess.run([WRENCHCTL, "--local", "locate", str(path), "--tolerance", "0.02",
+                          "--feature", "hole=30,30", "--feature", "85,30", "--svg", str(svg)],
+                         capture_output=True, text=True, check=True).stdout
+    assert "units: lengths in mm" in out and "dx [mm]" in out and "dtheta [rad]" in out
+    assert "hole" in out and "features [mm]" in out
+    picture = svg.read_text()
+    assert picture.count('class="error-ellipse"') == 2
+    assert 'class="displaced"' in picture and "magnified" in picture
+    bad = subprocess.run([WRENCHCTL, "--local", "locate", str(path), "--tolerance", "-1"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "--tolerance" in bad.stderr
