@@ -544,6 +544,108 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
     return WRC_OK;
 }
 
+/* n numbers of a JSON array at p ("[a,b,...]"); false if it is not one. */
+static bool read_numbers(const char *p, double *out, int n)
+{
+    if (!p || *p != '[')
+        return false;
+    p++;
+    for (int i = 0; i < n; i++) {
+        char *end;
+        out[i] = strtod(p, &end);
+        if (end == p)
+            return false;
+        p = end + 1;
+    }
+    return true;
+}
+
+int wrc_locating_get(wrc_client *c, const char *fixture_id, const double *tolerance,
+                     int tolerance_count, double sigma_ratio, wrc_locate_feature *features,
+                     int feature_count, wrc_locating *out)
+{
+    if (!c || !fixture_id || !tolerance || tolerance_count < 1 || tolerance_count > 8 || !out ||
+        feature_count < 0 || feature_count > WRC_LOCATE_FEATURES ||
+        (feature_count > 0 && !features))
+        return WRC_EINVAL;
+    for (const char *p = fixture_id; *p; p++)
+        if (*p == '"' || *p == '\\' || (unsigned char)*p < 32)
+            return fail(c, WRC_EINVAL, "a fixture id has no quotes, backslashes or controls");
+    bool finite = isfinite(sigma_ratio);
+    for (int i = 0; i < tolerance_count; i++)
+        finite = finite && isfinite(tolerance[i]);
+    for (int i = 0; i < feature_count; i++)
+        finite = finite && isfinite(features[i].at[0]) && isfinite(features[i].at[1]);
+    if (!finite)
+        return fail(c, WRC_EINVAL, "a number of the request is not finite");
+    unsigned long id = ++c->next_id;
+    size_t n = 0, size = c->buffer_bytes;
+    char *q = c->request;
+#define PUT(...)                                                                                   \
+    do {                                                                                           \
+        int written = snprintf(q + (n < size ? n : size), n < size ? size - n : 0, __VA_ARGS__);  \
+        n += written > 0 ? (size_t)written : 0;                                                    \
+    } while (0)
+    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.locating\",\"params\":{\"fixture\":\"%s\","
+        "\"tolerance\":", fixture_id);
+    if (tolerance_count == 1)
+        PUT("%.17g", tolerance[0]);
+    for (int i = 0; tolerance_count > 1 && i < tolerance_count; i++)
+        PUT("%s%.17g%s", i ? "," : "[", tolerance[i], i + 1 == tolerance_count ? "]" : "");
+    if (sigma_ratio != 0)
+        PUT(",\"sigma_ratio\":%.17g", sigma_ratio);
+    PUT(",\"features\":[");
+    for (int i = 0; i < feature_count; i++)
+        PUT("%s{\"at\":[%.17g,%.17g]}", i ? "," : "", features[i].at[0], features[i].at[1]);
+    PUT("]},\"id\":%lu}\n", id);
+#undef PUT
+    if (n >= size)
+        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
+    size_t capacity = c->buffer_bytes;
+    int status = exchange(c, c->request, n, &c->answer, &capacity, false, NULL, NULL);
+    if (status != WRC_OK)
+        return status;
+    const char *text = c->answer;
+    if (read_server_error(c, text))
+        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
+    /* The result's members in the order the daemon writes them
+     * (docs/PROTOCOL.md): each looked for after the one before. */
+    memset(out, 0, sizeof *out);
+    const char *p = value_of(text, "deterministic");
+    if (!p)
+        return fail(c, WRC_EPROTO, "the answer has no \"deterministic\"");
+    out->deterministic = strncmp(p, "true", 4) == 0;
+    if (!out->deterministic) {
+        if (!read_numbers(value_of(p, "twist"), out->twist, 3))
+            return fail(c, WRC_EPROTO, "the answer has no free motion");
+        return WRC_OK;
+    }
+    const char *condition = value_of(p, "condition");
+    const char *linear = condition ? value_of(condition, "linear") : NULL;
+    const char *exact = linear ? value_of(linear, "exact") : NULL;
+    if (!exact || !read_numbers(linear, out->pose_linear, 3) ||
+        !read_numbers(exact, out->pose_exact, 3))
+        return fail(c, WRC_EPROTO, "the answer has no pose error");
+    out->condition = strtod(condition, NULL);
+    p = value_of(exact, "features");
+    for (int i = 0; i < feature_count; i++) {
+        wrc_locate_feature *f = &features[i];
+        const char *l = p ? value_of(p, "linear") : NULL;
+        const char *ll = l ? value_of(l, "length") : NULL;
+        const char *e = ll ? value_of(ll, "exact") : NULL;
+        const char *el = e ? value_of(e, "length") : NULL;
+        const char *axes = el ? value_of(el, "axes") : NULL;
+        const char *angle = axes ? value_of(axes, "angle_deg") : NULL;
+        if (!angle || !read_numbers(axes, f->axes, 2))
+            return fail(c, WRC_EPROTO, "the answer has no feature %d", i + 1);
+        f->linear = strtod(ll, NULL);
+        f->exact = strtod(el, NULL);
+        f->angle_deg = strtod(angle, NULL);
+        p = angle;
+    }
+    return WRC_OK;
+}
+
 int wrc_call(wrc_client *c, const char *request, char **answer)
 {
     return wrc_call_notified(c, request, answer, NULL, NULL);

@@ -117,6 +117,36 @@ typedef struct wrc_sweep {
 int wrc_friction_sweep(wrc_client *client, const char *fixture_id,
                        const wrc_sweep_request *request, wrc_sweep *sweep);
 
+/* fixture.locating, for a stored fixture: each locator off by up to
+ * +-tolerance along its normal (tolerance_count 1: one number for every
+ * fixel; else one per fixel), sigma = tolerance / sigma_ratio (0: the
+ * daemon's default, 3).  Each feature's `at` is read, the rest written.
+ * Lengths in the fixture's unit, angles in radians (the ellipse's in
+ * degrees).  Allocates nothing; the answer must fit the client's buffer
+ * (WRC_ETOOBIG otherwise).  Returns WRC_OK, or an error code (WRC_ESERVER
+ * for a refusal: wrc_server_error names the field). */
+#define WRC_LOCATE_FEATURES 256
+
+typedef struct wrc_locate_feature {
+    double at[2];
+    double linear;          /* the worst displacement's length, linear model */
+    double exact;           /* ... the exact pose's */
+    double axes[2];         /* the 99.73 % ellipse's semi-axes, major first */
+    double angle_deg;       /* its major axis from +x */
+} wrc_locate_feature;
+
+typedef struct wrc_locating {
+    int deterministic;      /* 0: the rest but twist is not set */
+    double twist[3];        /* not deterministic: the motion left free (vx, vy, w) */
+    double condition;
+    double pose_linear[3];  /* worst |dx|, |dy|, |dtheta| over the tolerance box */
+    double pose_exact[3];
+} wrc_locating;
+
+int wrc_locating_get(wrc_client *client, const char *fixture_id, const double *tolerance,
+                     int tolerance_count, double sigma_ratio, wrc_locate_feature *features,
+                     int feature_count, wrc_locating *out);
+
 /* Send one JSON-RPC request (a JSON text without "\n") and return its
  * answer line, malloc'd (the caller frees it).  For notifications nothing
  * comes back: do not send them here. */

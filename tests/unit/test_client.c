@@ -395,6 +395,53 @@ static void friction_sweep_reads_intervals_without_allocating(void **state)
     stop(&f);
 }
 
+/* fixture.locating of the 3-2-1 plate, as the daemon writes it (the
+ * members in its order), and a fixture that does not locate. */
+static const char LOCATING[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"deterministic\":true,\"free_motion\":null,"
+    "\"sensitivity\":[[0,0,1],[0.5,0.5,0],[-0.5,0.5,0]],\"condition\":2.5,"
+    "\"pose_error\":{\"linear\":[0.01,0.01,0.01],\"exact\":[0.0100001,0.01,0.00999967]},"
+    "\"features\":[{\"name\":null,\"at\":[4,2],\"linear\":{\"vector\":[-0.02,0.02],"
+    "\"length\":0.0282843},\"exact\":{\"vector\":[-0.02,0.02],\"length\":0.0282846},"
+    "\"covariance\":[[1,-1],[-1,2.5]],\"ellipse\":{\"axes\":[0.02,0.01],\"angle_deg\":-60}}]},"
+    "\"id\":%ID%}";
+static const char NOT_LOCATING[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"deterministic\":false,\"free_motion\":{\"twist\":"
+    "[0,0,0.7746],\"kind\":\"rotation\",\"about\":[2,1]},\"sensitivity\":null,"
+    "\"condition\":null,\"pose_error\":null,\"features\":null},\"id\":%ID%}";
+
+static void locating_reads_the_answer_without_allocating(void **state)
+{
+    (void)state;
+    const char *const answers[] = {LOCATING, NOT_LOCATING, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    wrc_locating r;
+    wrc_locate_feature corner = {.at = {4, 2}};
+    const double t[3] = {0.01, 0.02, 0.01};
+    long before = atomic_load(&allocations);
+    assert_int_equal(wrc_locating_get(c, ID, t, 3, 0, &corner, 1, &r), WRC_OK);
+    assert_int_equal(atomic_load(&allocations) - before, 0);
+    assert_non_null(strstr(f.last_request, "\"tolerance\":[0.01,0.02,0.01]"));
+    assert_non_null(strstr(f.last_request, "\"features\":[{\"at\":[4,2]}]"));
+    assert_null(strstr(f.last_request, "sigma_ratio"));
+    assert_true(r.deterministic && r.condition == 2.5);
+    assert_true(r.pose_linear[2] == 0.01 && r.pose_exact[0] == 0.0100001);
+    assert_true(corner.linear == 0.0282843 && corner.exact == 0.0282846);
+    assert_true(corner.axes[0] == 0.02 && corner.axes[1] == 0.01 && corner.angle_deg == -60);
+    assert_int_equal(wrc_locating_get(c, ID, t, 1, 2, NULL, 0, &r), WRC_OK);
+    assert_non_null(strstr(f.last_request, "\"tolerance\":0.01,\"sigma_ratio\":2"));
+    assert_true(!r.deterministic && r.twist[2] == 0.7746);
+    const double bad[1] = {NAN};
+    assert_int_equal(wrc_locating_get(c, ID, bad, 1, 0, NULL, 0, &r), WRC_EINVAL);
+    assert_int_equal(wrc_locating_get(c, ID, t, 0, 0, NULL, 0, &r), WRC_EINVAL);
+    assert_int_equal(f.requests, 2);
+    wrc_close(c);
+    stop(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -406,6 +453,7 @@ int main(void)
         cmocka_unit_test(connect_failures_name_their_cause),
         cmocka_unit_test(a_small_buffer_refuses_a_big_answer),
         cmocka_unit_test(friction_sweep_reads_intervals_without_allocating),
+        cmocka_unit_test(locating_reads_the_answer_without_allocating),
     };
     return cmocka_run_group_tests_name("client", tests, NULL, NULL);
 }
