@@ -142,6 +142,12 @@ def requests_for(name, f):
         "margin-force": request("stability.margin", {
             "fixture": f, "bias": {"force": [-1, -1], "at": [0.1, 0.2]}}),
     }
+    at = f["fixels"][0]["at"]
+    lines["locate"] = request("fixture.locating", {
+        "fixture": f, "tolerance": 0.01, "features": [{"name": "hole", "at": at}, {"at": at}],
+        "sigma_ratio": 3})
+    lines["locate-each"] = request("fixture.locating", {
+        "fixture": f, "tolerance": [0.01 * (i + 1) for i in range(k)]})
     if small:
         lines["push-friction"] = request("push.regions", {
             "fixture": f, "set": "strong", "finger_friction": 0.2})
