@@ -278,6 +278,7 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/notched-plate.json --set strong --finger-radius 4 --svg docs/pictures/notched-plate-push-strong-r4.svg >/dev/null
 	$(BUILD)/wrenchctl --local sweep examples/plate-chamfered.json --push both --range 0:1 --svg docs/pictures/plate-chamfered-sweep-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local design examples/bracket.json --spacing 10 --top 3 --svg docs/pictures/bracket-designs.svg >/dev/null
+	$(BUILD)/wrenchctl --local locate examples/bracket.json --tolerance 0.02 --feature hole=30,30 --feature slot=85,30 --feature drill=110,50 --svg docs/pictures/bracket-locate.svg >/dev/null
 	@# the README's walk-through from a DXF sheet (ezdxf)
 	$(PYTHON) examples/sheet_dxf.py $(BUILD)/sheet.dxf
 	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json \

@@ -746,8 +746,8 @@ static bool draw_locate(const wc_run *run, const cJSON *result, FILE *out,
         m->angle_deg = cJSON_GetObjectItem(el, "angle_deg")->valuedouble;
         biggest = fmax(biggest, fmax(hypot(m->worst[0], m->worst[1]), m->axes[0]));
     }
-    /* Errors drawn at about a twelfth of the part's size. */
-    double magnification = biggest > 0 ? nice_below(geometry->size / 12 / biggest) : 1;
+    /* Errors drawn at about an eighth of the part's size. */
+    double magnification = biggest > 0 ? nice_below(geometry->size / 8 / biggest) : 1;
     char tolerance[96] = "";
     for (int i = 0; i < k; i++) {
         size_t used = strlen(tolerance);
