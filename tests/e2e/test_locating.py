@@ -389,3 +389,21 @@ def test_wrenchctl_table_and_picture(tmp_path):
     bad = subprocess.run([WRENCHCTL, "--local", "locate", str(path), "--tolerance", "-1"],
                          capture_output=True, text=True)
     assert bad.returncode == 2 and "--tolerance" in bad.stderr
+
+
+def test_readme_quotes_wrenchctl():
+    """README.md's "Where the part ends up": the command's table as it
+    prints today, word for word."""
+    with open(os.path.join(REPO, "README.md")) as f:
+        text = f.read()
+    section = text.split("## Where the part ends up", 1)[1].split("\n## ", 1)[0]
+    block = section.split("```\n", 2)[1]
+    command, quoted = block.split("\n", 1)
+    argv = command[2:].split()
+    assert argv[0] == "build/wrenchctl"
+    argv = [os.path.join(REPO, argv[0])] + argv[1:argv.index("--svg")]
+    out = subprocess.run(argv, cwd=REPO, capture_output=True, text=True, check=True).stdout
+    assert out == quoted
+    assert "at most 0.0479 " in section and "0.0477 by the" in section and "0.86 mrad" in section
+    hole = [line for line in out.splitlines() if line.strip().startswith("hole")][0].split()
+    assert hole[3] == "0.0476815" and hole[6] == "0.047874"

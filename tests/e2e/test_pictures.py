@@ -80,6 +80,9 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-chamfered-sweep-both.svg", ["sweep", "plate-chamfered.json", "--push", "both",
                                         "--range", "0:1"]),
     ("bracket-designs.svg", ["design", "bracket.json", "--spacing", "10", "--top", "3"]),
+    ("bracket-locate.svg", ["locate", "bracket.json", "--tolerance", "0.02", "--feature",
+                            "hole=30,30", "--feature", "slot=85,30", "--feature",
+                            "drill=110,50"]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
