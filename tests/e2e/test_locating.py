@@ -407,3 +407,75 @@ def test_readme_quotes_wrenchctl():
     assert "at most 0.0479 " in section and "0.0477 by the" in section and "0.86 mrad" in section
     hole = [line for line in out.splitlines() if line.strip().startswith("hole")][0].split()
     assert hole[3] == "0.0476815" and hole[6] == "0.047874"
+
+
+def test_locator_passes_onto_the_next_segment(client):
+    """Fixel 2 under the bracket 0.1 before its bottom edge ends in the
+    rounded corner (an arc of radius 8 about (112, 8)): with +-0.5 the
+    part slides along it far enough that the locator's foot passes onto
+    the arc, which the solve here decides by itself (line first, then the
+    arc if the foot lies beyond x = 112)."""
+    fixture = dict(BRACKET, fixels=[BRACKET["fixels"][0], {"at": [111.9, 0]}, {"at": [0, 40]}])
+    put = client.result("fixture.put", {"fixture": fixture})
+    com = np.array(put["com"], float)
+    t = [0.5, 0.5, 0.5]
+    r = locating(client, put["id"], t)
+    points = [f["at"] for f in fixture["fixels"]]
+    normals = [np.subtract(points[0], (30, 30)) / 6, (0, 1), (1, 0)]
+    worst = np.zeros(3)
+    passed = 0
+    for e in vertices(t):
+        contacts = [("circle", (30, 30), 6.0), ("line", (0, 0), (0, 1)), ("line", (0, 0), (1, 0))]
+        z = solve_pose(contacts, com, e, normals, points)
+        # The locator's foot in the part's frame.
+        L = np.asarray(points[1]) + e[1] * np.asarray(normals[1])
+        foot = com + rot(-z[2]) @ (L - com - z[:2])
+        if foot[0] > 112:
+            passed += 1
+            contacts[1] = ("circle", (112, 8), 8.0)
+            z = solve_pose(contacts, com, e, normals, points)
+        worst = np.maximum(worst, np.abs(z))
+    assert passed > 0
+    assert r["pose_error"]["exact"] == pytest.approx(list(worst), rel=1e-9, abs=1e-14)
+
+
+def test_locator_at_a_corner(client):
+    """A locator face against a corner of the chamfered plate (its top
+    left corner (0, 2), normal (1, -0.5) normalised): the corner stays on
+    the moved face, n . (moved corner - L) = 0."""
+    n3 = np.array([1, -0.5]) / math.hypot(1, 0.5)
+    fixture = {"body": {"mass": 2, "shape": {"type": "polygon", "vertices":
+                                             [[0, 0], [4, 0], [4, 1], [3, 2], [0, 2]]}},
+               "friction": {"static": 0.1},
+               "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 2], "normal": list(n3)}]}
+    put = client.result("fixture.put", {"fixture": fixture})
+    com = np.array(put["com"], float)
+    t = [0.05, 0.02, 0.1]
+    r = locating(client, put["id"], t)
+    points = [f["at"] for f in fixture["fixels"]]
+    normals = [(0, 1), (0, 1), n3]
+
+    def solve(e):
+        def residual(z):
+            out = []
+            for i in range(2):
+                L = np.asarray(points[i], float) + e[i] * np.asarray(normals[i], float)
+                m = rot(z[2]) @ np.array([0.0, 1.0])
+                out.append(m @ (L - moved(z, com, (0, 0))))
+            L = np.asarray(points[2], float) + e[2] * n3
+            out.append(n3 @ (moved(z, com, (0, 2)) - L))
+            return np.array(out)
+        z = np.zeros(3)
+        for _ in range(50):
+            f = residual(z)
+            jac = np.zeros((3, 3))
+            for j in range(3):
+                h = np.zeros(3)
+                h[j] = 1e-7
+                jac[:, j] = (residual(z + h) - residual(z - h)) / 2e-7
+            z = z - np.linalg.solve(jac, f)
+        assert np.max(np.abs(residual(z))) < 1e-13
+        return z
+
+    worst = np.max([np.abs(solve(e)) for e in vertices(t)], axis=0)
+    assert r["pose_error"]["exact"] == pytest.approx(list(worst), rel=1e-9, abs=1e-14)
