@@ -311,8 +311,48 @@ class DesignCommand(_Command):
         doc.commitTransaction()
 
 
+def _feature_points():
+    """Features picked for locating: a selected vertex, the centre of a
+    selected circular edge (a hole), or the point picked on another edge or
+    on a face."""
+    out = []
+    for s in FreeCADGui.Selection.getSelectionEx():
+        if wf._proxy_name(s.Object).startswith("Wrench"):
+            continue
+        picked = list(s.PickedPoints)
+        for k, (name, sub) in enumerate(zip(s.SubElementNames, s.SubObjects)):
+            if name.startswith("Vertex"):
+                out.append(sub.Point)
+            elif name.startswith("Edge") and isinstance(getattr(sub, "Curve", None), Part.Circle):
+                out.append(sub.Curve.Center)
+            elif k < len(picked):
+                out.append(picked[k])
+    return out
+
+
+class LocateCommand(_Command):
+    NAME = "Wrench_Locate"
+    ICON = "Wrench"
+    MENU = "Locating accuracy"
+    TIP = ("fixture.locating: with each locator off by up to Tolerance along its normal, where "
+           "the selected features (vertices, holes' edges, picked points) end up: their 99.73 % "
+           "error ellipses drawn magnified, the worst errors listed in the report view")
+
+    def Activated(self):
+        doc = FreeCAD.ActiveDocument
+        fixture = _fixture_in_selection(doc)
+        if fixture is None:
+            return
+        points = _feature_points()
+        obj = _run(doc, "Wrench locating", lambda: wf.make_locating(fixture, 0.02, points))
+        if obj is not None and _recompute(doc, [obj]):
+            _say("%s: change its Tolerance, Features and SigmaRatio in the property view"
+                 % obj.Label)
+
+
 COMMANDS = [FixtureCommand, AddFixelsCommand, ClearFixelsCommand, RegionsCommand,
             GravityDialCommand, DesignCommand]
+COMMANDS.append(LocateCommand)
 for _command in COMMANDS:
     FreeCADGui.addCommand(_command.NAME, _command())
 

@@ -1377,6 +1377,124 @@ class WrenchFixels(_Dependent):
                                                             _fmt(fixture.friction()["static"]))
 
 
+class WrenchLocating(_Dependent):
+    """Locating accuracy (fixture.locating): with each locator off by up to
+    Tolerance along its normal, each picked feature's 99.73 % error ellipse
+    and its worst displacement, drawn on the part magnified, and the table
+    in Report (and the report view)."""
+
+    def setup(self, obj):
+        _Dependent.setup(self, obj)
+        _add(obj, "App::PropertyLength", "Tolerance", "Locating",
+             "How far each locator may be off along its normal, +-", 0.02)
+        _add(obj, "App::PropertyVectorList", "Features", "Locating",
+             "Points of the part whose error is wanted (a hole to drill), in the document's "
+             "coordinates")
+        _add(obj, "App::PropertyStringList", "FeatureNames", "Locating",
+             "The features' names, in order (missing: their numbers)")
+        _add(obj, "App::PropertyFloat", "SigmaRatio", "Locating",
+             "sigma = Tolerance / SigmaRatio for the ellipses (3: the tolerance is 3 sigma)", 3.0)
+        _add(obj, "App::PropertyFloat", "Magnification", "Locating",
+             "How many times the errors are drawn larger (0: an eighth of the part's size)", 0.0)
+        _add(obj, "App::PropertyBool", "Deterministic", "Locating",
+             "Whether the fixels determine the part's pose", mode=1)
+        _add(obj, "App::PropertyStringList", "Report", "Locating",
+             "The answer, as listed in the report view", mode=1)
+
+    def _execute(self, obj):
+        fixture = _Fixture(obj.Fixture, obj.Label)
+        outline = fixture.outline
+        unit = UNIT
+        features = []
+        names = list(obj.FeatureNames)
+        for i, p in enumerate(obj.Features):
+            x, y, off = outline.to_2d(p)
+            if abs(off) > max(outline.tolerance, ON_OUTLINE * outline.size):
+                raise WrenchError("%s: feature %d (Features[%d] = %s) is %s off the face's plane"
+                                  % (obj.Label, i + 1, i, _fmt_point(p), _fmt(abs(off))),
+                                  "features[%d].at" % i, "off the plane")
+            feature = {"at": [x, y]}
+            feature["name"] = names[i] if i < len(names) and names[i] else "feature %d" % (i + 1)
+            features.append(feature)
+        tolerance = float(obj.Tolerance)
+        answer = fixture.ask(lambda: fixture.client.locating(
+            fixture.fixture, tolerance, features, sigma_ratio=obj.SigmaRatio))
+        lines = locating_lines(answer, tolerance, obj.SigmaRatio, unit)
+        obj.Deterministic = bool(answer.deterministic)
+        obj.Report = lines
+        for line in lines:
+            FreeCAD.Console.PrintMessage("Wrench: %s\n" % line)
+        if not answer.deterministic:
+            obj.Shape = Part.Shape()
+            obj.Label = "Locating: not deterministic"
+            return
+        largest = max([f["exact"]["length"] for f in answer.features] +
+                      [f["ellipse"]["axes"][0] for f in answer.features] + [0.0])
+        scale = float(obj.Magnification) or (
+            _nice_below(outline.size / 8 / largest) if largest > 0 else 1.0)
+        parts = []
+        for f in answer.features:
+            parts.extend(_error_marks(outline, f, scale))
+        obj.Shape = Part.Compound(parts) if parts else Part.Shape()
+        obj.Label = "Locating +-%s %s: errors x%s" % (_fmt(tolerance), unit, _fmt(scale))
+
+
+def _nice_below(x):
+    """1, 2 or 5 times a power of ten, at most x > 0."""
+    p = 10 ** math.floor(math.log10(x))
+    return 5 * p if x >= 5 * p else 2 * p if x >= 2 * p else p
+
+
+def _error_marks(outline, feature, scale):
+    """A feature's 99.73 % ellipse and worst (exact) displacement, magnified
+    `scale` times, in the outline's plane."""
+    x, y = feature["at"]
+    a, b = [scale * v for v in feature["ellipse"]["axes"]]
+    phi = math.radians(feature["ellipse"]["angle_deg"])
+    major = (math.cos(phi), math.sin(phi))
+    minor = (-major[1], major[0])
+    centre = outline.to_3d((x, y))
+    marks = []
+    if a > 0 and b > 1e-9 * a and a - b > 1e-9 * a:
+        s1 = outline.to_3d((x + a * major[0], y + a * major[1]))
+        s2 = outline.to_3d((x + b * minor[0], y + b * minor[1]))
+        marks.append(Part.Ellipse(s1, s2, centre).toShape())
+    elif a > 0 and b > 1e-9 * a:
+        marks.append(Part.makeCircle(a, centre, outline.normal))
+    elif a > 0:
+        marks.append(Part.LineSegment(outline.to_3d((x - a * major[0], y - a * major[1])),
+                                      outline.to_3d((x + a * major[0], y + a * major[1]))).toShape())
+    u = feature["exact"]["vector"]
+    if feature["exact"]["length"] > 0:
+        marks.append(Part.LineSegment(centre, outline.to_3d((x + scale * u[0],
+                                                             y + scale * u[1]))).toShape())
+    return marks
+
+
+def locating_lines(answer, tolerance, sigma_ratio, unit):
+    """fixture.locating's answer as lines for the report view."""
+    if not answer.deterministic:
+        m = answer.free_motion
+        motion = ("turn about (%s, %s)" % (_fmt(m["about"][0]), _fmt(m["about"][1]))
+                  if m["kind"] == "rotation" else
+                  "slide along (%s, %s)" % (_fmt(m["twist"][0]), _fmt(m["twist"][1])))
+        return ["not deterministic: the fixels leave the part free to %s" % motion]
+    lin, ex = answer.pose_error["linear"], answer.pose_error["exact"]
+    lines = ["locators off by +-%s %s along their normals; condition number %s"
+             % (_fmt(tolerance), unit, _fmt(answer.condition)),
+             "pose error, worst: dx %s, dy %s %s, dtheta %s rad (linear %s, %s, %s)"
+             % (_fmt(ex[0]), _fmt(ex[1]), unit, _fmt(ex[2]), _fmt(lin[0]), _fmt(lin[1]),
+                _fmt(lin[2]))]
+    for f in answer.features:
+        axes = f["ellipse"]["axes"]
+        lines.append("%s at (%s, %s): worst %s %s (linear %s); 99.73 %% ellipse (sigma = "
+                     "tolerance / %s) %s by %s %s at %s deg"
+                     % (f["name"], _fmt(f["at"][0]), _fmt(f["at"][1]), _fmt(f["exact"]["length"]),
+                        unit, _fmt(f["linear"]["length"]), _fmt(sigma_ratio), _fmt(axes[0]),
+                        _fmt(axes[1]), unit, _fmt(f["ellipse"]["angle_deg"])))
+    return lines
+
+
 class WrenchBestPush(_Dependent):
     """The push of the both region with the largest margin, as an arrow:
     push there, along the arrow, and let go (fixture.design of this fixture's
@@ -1666,6 +1784,13 @@ def make_fixels(fixture):
 
 def make_best_push(fixture):
     return _dependent("WrenchBestPush", fixture, "Best push (both)")
+
+
+def make_locating(fixture, tolerance=0.02, features=(), names=()):
+    """A WrenchLocating of the fixture: each locator off by +-tolerance, the
+    document points `features` (named `names`)."""
+    return _dependent("WrenchLocating", fixture, "Locating", Tolerance=tolerance,
+                      Features=list(features), FeatureNames=list(names))
 
 
 def make_gravity_dial(fixture, set="both"):
