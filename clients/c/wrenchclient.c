@@ -466,6 +466,14 @@ static const char *read_intervals(const char *p, wrc_sweep *sweep)
     }
 }
 
+/* Append to a request being written into q (size bytes, n used so far):
+ * n counts on past the end, so that n >= size says it did not fit. */
+#define PUT(...)                                                                                   \
+    do {                                                                                           \
+        int written = snprintf(q + (n < size ? n : size), n < size ? size - n : 0, __VA_ARGS__);  \
+        n += written > 0 ? (size_t)written : 0;                                                    \
+    } while (0)
+
 int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_request *r,
                        wrc_sweep *sweep)
 {
@@ -491,11 +499,6 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
     unsigned long id = ++c->next_id;
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
-#define PUT(...)                                                                                   \
-    do {                                                                                           \
-        int written = snprintf(q + (n < size ? n : size), n < size ? size - n : 0, __VA_ARGS__);  \
-        n += written > 0 ? (size_t)written : 0;                                                    \
-    } while (0)
     PUT("{\"jsonrpc\":\"2.0\",\"method\":\"friction.sweep\",\"params\":{\"fixture\":\"%s\"",
         fixture_id);
     if (r->range[0] != 0 || r->range[1] != 0)
@@ -514,7 +517,6 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
         PUT("}");
     }
     PUT("},\"id\":%lu}\n", id);
-#undef PUT
     if (n >= size)
         return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
     size_t capacity = c->buffer_bytes;
@@ -581,11 +583,6 @@ int wrc_locating_get(wrc_client *c, const char *fixture_id, const double *tolera
     unsigned long id = ++c->next_id;
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
-#define PUT(...)                                                                                   \
-    do {                                                                                           \
-        int written = snprintf(q + (n < size ? n : size), n < size ? size - n : 0, __VA_ARGS__);  \
-        n += written > 0 ? (size_t)written : 0;                                                    \
-    } while (0)
     PUT("{\"jsonrpc\":\"2.0\",\"method\":\"fixture.locating\",\"params\":{\"fixture\":\"%s\","
         "\"tolerance\":", fixture_id);
     if (tolerance_count == 1)
@@ -598,7 +595,6 @@ int wrc_locating_get(wrc_client *c, const char *fixture_id, const double *tolera
     for (int i = 0; i < feature_count; i++)
         PUT("%s{\"at\":[%.17g,%.17g]}", i ? "," : "", features[i].at[0], features[i].at[1]);
     PUT("]},\"id\":%lu}\n", id);
-#undef PUT
     if (n >= size)
         return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
     size_t capacity = c->buffer_bytes;

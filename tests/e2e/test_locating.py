@@ -82,6 +82,12 @@ def solve_pose(contacts, com, e, normals, points):
                 out.append(np.linalg.norm(L - moved(z, com, a)) - b)
         return np.array(out)
 
+    return newton(residual)
+
+
+def newton(residual):
+    """The root of three equations near the nominal pose: Newton with a
+    central-difference Jacobian, its residual checked."""
     z = np.zeros(3)
     for _ in range(50):
         f = residual(z)
@@ -465,17 +471,7 @@ def test_locator_at_a_corner(client):
             L = np.asarray(points[2], float) + e[2] * n3
             out.append(n3 @ (moved(z, com, (0, 2)) - L))
             return np.array(out)
-        z = np.zeros(3)
-        for _ in range(50):
-            f = residual(z)
-            jac = np.zeros((3, 3))
-            for j in range(3):
-                h = np.zeros(3)
-                h[j] = 1e-7
-                jac[:, j] = (residual(z + h) - residual(z - h)) / 2e-7
-            z = z - np.linalg.solve(jac, f)
-        assert np.max(np.abs(residual(z))) < 1e-13
-        return z
+        return newton(residual)
 
     worst = np.max([np.abs(solve(e)) for e in vertices(t)], axis=0)
     assert r["pose_error"]["exact"] == pytest.approx(list(worst), rel=1e-9, abs=1e-14)
