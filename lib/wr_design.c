@@ -2,10 +2,12 @@
  * and bound, and the search over candidates (wr_design.h). */
 #include "wr_design.h"
 #include "wr_internal.h"
+#include "wr_locate.h"
 #include "wr_outline.h"
 
 #include <assert.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -435,6 +437,43 @@ static wr_status place(const wr_design_job *job, const int *sites, wr_fixture *o
                             &job->spec.friction, out, &error);
 }
 
+/* WR_OBJECTIVE_ACCURACY's score of a placed candidate: minus its worst
+ * locating error (wr_design.h).  Fixels that leave a motion free are
+ * unpinned; a fixture wr_locate refuses (a locator passing a corner within
+ * the tolerance) degenerate. */
+static wr_status accuracy_score(const wr_design_job *job, const wr_fixture *fixture,
+                                outcome *result, double *score)
+{
+    const wr_design_spec *spec = &job->spec;
+    double tolerance[WR_MAX_FIXELS];
+    wr_locate_feature features[WR_DESIGN_MAX_FEATURES];
+    for (int i = 0; i < WR_MAX_FIXELS; i++)
+        tolerance[i] = spec->tolerance;
+    for (int j = 0; j < spec->feature_count; j++) {
+        features[j].at[0] = spec->features[j][0];
+        features[j].at[1] = spec->features[j][1];
+    }
+    wr_locating locating;
+    wr_error error;
+    wr_status status = wr_locate(fixture, tolerance, 3, features, (size_t)spec->feature_count,
+                                 &locating, &error);
+    if (status == WR_NO_MEMORY)
+        return status;
+    if (status != WR_OK) {
+        *result = OUTCOME_DEGENERATE;
+        return WR_OK;
+    }
+    if (!locating.deterministic) {
+        *result = OUTCOME_UNPINNED;
+        return WR_OK;
+    }
+    double worst = spec->feature_count > 0 ? 0 : locating.pose_scaled;
+    for (int j = 0; j < spec->feature_count; j++)
+        worst = fmax(worst, features[j].exact_length);
+    *score = -worst;
+    return WR_OK;
+}
+
 /* Score one candidate, giving up (OUTCOME_BOUNDED) once its score is
  * certainly below `threshold`.  *units: about the work done. */
 static wr_status score_candidate(const wr_design_job *job, const int *sites, double threshold,
@@ -470,7 +509,10 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         cones += wr_analysis_cone_count(analysis, WR_SET_STRONG);
         *units += (unsigned long)cones * 40;
         *result = OUTCOME_SCORED;
-        if (spec->objective == WR_OBJECTIVE_GRAVITY) {
+        if (spec->objective == WR_OBJECTIVE_ACCURACY) {
+            status = accuracy_score(job, &fixture, result, score);
+            *units += 2000;
+        } else if (spec->objective == WR_OBJECTIVE_GRAVITY) {
             wr_regions arcs;
             status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
             if (status == WR_OK)
@@ -538,6 +580,40 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
     if (!(spec->finger.radius >= 0) || !isfinite(spec->finger.radius)) {
         wr_error_set(error, "finger_radius", "must be a non-negative number");
         return WR_INVALID;
+    }
+    if (spec->objective == WR_OBJECTIVE_ACCURACY) {
+        /* A disc's 2 locating fixels leave it free to turn: never pinned. */
+        if (spec->body->shape == WR_SHAPE_CIRCLE) {
+            wr_error_set(error, "objective", "accuracy designs 3 fixels on a part with an "
+                         "outline: a disc is located by 2, which never pin it");
+            return WR_INVALID;
+        }
+        if (spec->fixel_count != 3) {
+            wr_error_set(error, "fixels", "must be 3 for objective accuracy (locating accuracy "
+                         "is answered for 3 fixels), got %d", spec->fixel_count);
+            return WR_INVALID;
+        }
+        if (!(spec->tolerance >= 0) || !isfinite(spec->tolerance)) {
+            wr_error_set(error, "tolerance", "must be a finite number >= 0");
+            return WR_INVALID;
+        }
+        if (spec->feature_count < 0 || spec->feature_count > WR_DESIGN_MAX_FEATURES ||
+            (spec->feature_count > 0 && !spec->features)) {
+            wr_error_set(error, "features", "at most %d", WR_DESIGN_MAX_FEATURES);
+            return WR_INVALID;
+        }
+        for (int j = 0; j < spec->feature_count; j++) {
+            double outside = wr_locate_outside(spec->body, spec->features[j]);
+            if (!isfinite(spec->features[j][0]) || !isfinite(spec->features[j][1]) ||
+                outside > WR_LOCATE_FEATURE_REACH * spec->body->size) {
+                char field[40];
+                snprintf(field, sizeof field, "features[%d].at", j);
+                wr_error_set(error, field, "must be finite and no farther than a tenth of the "
+                             "part's size (%.6g) outside it; it lies %.6g outside",
+                             spec->body->size, outside);
+                return WR_INVALID;
+            }
+        }
     }
     uint64_t candidates = spec->candidates
                               ? spec->candidate_count

@@ -19,7 +19,14 @@
  *                             region: it ranks after every design with one);
  *       WR_OBJECTIVE_REGION   the total length of the `both` push region;
  *       WR_OBJECTIVE_GRAVITY  the longest arc of gravity tilts in G_goal, in
- *                             degrees.
+ *                             degrees;
+ *       WR_OBJECTIVE_ACCURACY minus the worst locating error (wr_locate.h)
+ *                             with every locator off by +-tolerance: the
+ *                             largest exact worst displacement of the
+ *                             features, or without features the largest
+ *                             exact pose in the scaled metric; a candidate
+ *                             whose fixels do not determine the pose is
+ *                             unpinned, one wr_locate refuses degenerate.
  * Designs rank by score, higher first, ties by candidate number, lower
  * first.  A candidate's score depends on nothing but the candidate, so the
  * ranking is the same however the candidates are split (shards, threads).
@@ -69,8 +76,12 @@ extern "C" {
 typedef enum wr_objective {
     WR_OBJECTIVE_MARGIN,
     WR_OBJECTIVE_REGION,
-    WR_OBJECTIVE_GRAVITY
+    WR_OBJECTIVE_GRAVITY,
+    WR_OBJECTIVE_ACCURACY
 } wr_objective;
+
+/* With WR_OBJECTIVE_ACCURACY, at most this many features. */
+#define WR_DESIGN_MAX_FEATURES 64
 
 /* A candidate site: a boundary point and its unit inward normal, as a
  * fixel there would have them. */
@@ -132,6 +143,12 @@ typedef struct wr_design_spec {
      * combination of the sites. */
     const int (*candidates)[WR_MAX_FIXELS];
     uint64_t candidate_count;
+    /* WR_OBJECTIVE_ACCURACY: each locator off by +-tolerance (finite,
+     * >= 0), and the features whose error counts (borrowed; none: the
+     * pose's). */
+    double tolerance;
+    const double (*features)[2];
+    int feature_count;
 } wr_design_spec;
 
 /* A ranked design. */

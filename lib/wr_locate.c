@@ -620,6 +620,8 @@ wr_status wr_locate(const wr_fixture *f, const double *tolerance, double sigma_r
             out->pose_linear[j] = fmax(out->pose_linear[j], fabs(linear[vx][j]));
             out->pose_exact[j] = fmax(out->pose_exact[j], fabs(exact[vx][j]));
         }
+        out->pose_scaled = fmax(out->pose_scaled, hypot(hypot(exact[vx][0], exact[vx][1]),
+                                                        f->gyration_radius * exact[vx][2]));
     }
 
     for (size_t j = 0; j < count; j++) {

@@ -71,6 +71,9 @@ typedef struct wr_locating {
     double condition;
     double pose_linear[3];  /* worst |dx|, |dy|, |dtheta| over the box */
     double pose_exact[3];
+    /* The largest exact pose over the box's vertices in the scaled metric,
+     * |(dx, dy, rho dtheta)|: one length for the pose's error. */
+    double pose_scaled;
 } wr_locating;
 
 /* Vertex v of the tolerance box, 0 <= v < 2^k: e_i = +t_i where bit i of

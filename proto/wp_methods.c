@@ -17,7 +17,7 @@ static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
-                                     "progress", "shard", NULL};
+                                     "progress", "shard", "tolerance", "features", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const LOCATING[] = {"fixture", "tolerance", "features", "sigma_ratio", NULL};
 static const char *const LOCATING_REQUIRED[] = {"fixture", "tolerance", NULL};

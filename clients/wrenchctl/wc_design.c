@@ -128,6 +128,10 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(params, "top", run->top);
     if (run->objective)
         cJSON_AddStringToObject(params, "objective", run->objective);
+    if (run->locate_tolerance) /* objective accuracy: one number for every locator */
+        cJSON_AddItemToObject(params, "tolerance", cJSON_Duplicate(run->locate_tolerance, true));
+    if (run->features)
+        cJSON_AddItemToObject(params, "features", cJSON_Duplicate(run->features, true));
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
     if (run->friction_given)
@@ -318,6 +322,10 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     printf("; %.0f without a seating push, %.0f unpinned, %.0f degenerate; ranked by %s\n",
            number(counts, "no_seating_push"), number(counts, "unpinned"),
            number(counts, "degenerate"), objective ? objective : "margin");
+    if (objective && strcmp(objective, "accuracy") == 0)
+        printf("score: minus the worst locating error, locators off by +-%g (the features' worst "
+               "displacement, else the pose's in the scaled metric)\n",
+               cJSON_IsNumber(run->locate_tolerance) ? run->locate_tolerance->valuedouble : NAN);
     printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
     cJSON_ArrayForEach(d, designs)

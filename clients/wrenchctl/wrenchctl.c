@@ -258,8 +258,9 @@ static int take_top(wc_run *run, const char *value)
 static int take_objective(wc_run *run, const char *value)
 {
     if (strcmp(value, "margin") != 0 && strcmp(value, "region") != 0 &&
-        strcmp(value, "gravity") != 0)
-        return wc_usage_error("--objective is margin, region or gravity, not '%s'", value);
+        strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0)
+        return wc_usage_error("--objective is margin, region, gravity or accuracy, not '%s'",
+                              value);
     run->objective = value;
     return 0;
 }
@@ -659,7 +660,8 @@ const wc_command wc_commands[] = {
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K] [--objective margin|region|gravity]\n"
      "       [--top N] [--friction LO:HI] [--finger-radius R] [--finger-friction MU]\n"
      "       [--shard I/N] [--svg FILE]",
-     WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG, 1, 1,
+     WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
+         WC_OPT_LOCATE, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
      "where to put the fixels, and where to push",
      "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
@@ -674,7 +676,9 @@ const wc_command wc_commands[] = {
      "                     NX by NY holes; every pose of the part touching three pegs\n"
      "  --fixels K         fixels per design (default 3)\n"
      "  --objective O      margin (the best push's; default), region (the both region's\n"
-     "                     length) or gravity (the longest goal arc of tilts)\n"
+     "                     length), gravity (the longest goal arc of tilts) or accuracy (the\n"
+     "                     smallest worst locating error with --tolerance T and the --feature\n"
+     "                     points, as for locate; without features the pose's, scaled)\n"
      "  --top N            how many designs (default 10)\n"
      "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
      "  --finger-radius R, --finger-friction MU\n"

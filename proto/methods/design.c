@@ -13,7 +13,7 @@
  * of the search). */
 #define PROGRESS_INTERVAL_S 0.25
 
-static const char *const OBJECTIVES[] = {"margin", "region", "gravity"};
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "accuracy"};
 
 typedef struct design_state design_state;
 
@@ -41,6 +41,7 @@ struct design_state {
      * candidates (their fixels the sites, three each). */
     wr_lattice_job *lattice;
     const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
+    double (*features)[2]; /* objective accuracy: params.features' points (spec.features) */
     int (*listed)[WR_MAX_FIXELS];
 };
 
@@ -175,6 +176,62 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
     return true;
 }
 
+/* params.tolerance and params.features, which objective accuracy needs
+ * (and nothing else takes): each locator off by +-tolerance, and the
+ * points whose error counts ([{"name"?, "at"}], as fixture.locating's). */
+static bool read_accuracy(const cJSON *params, design_state *s, wp_error *error)
+{
+    wr_design_spec *spec = &s->spec;
+    const cJSON *tolerance = cJSON_GetObjectItemCaseSensitive(params, "tolerance");
+    const cJSON *features = cJSON_GetObjectItemCaseSensitive(params, "features");
+    if (spec->objective != WR_OBJECTIVE_ACCURACY) {
+        if (tolerance || features)
+            wp_error_set(error, WP_INVALID_PARAMS, tolerance ? "params.tolerance" : "params.features",
+                         "is for objective \"accuracy\"");
+        return !(tolerance || features);
+    }
+    if (!tolerance) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance",
+                     "required with objective \"accuracy\": how far each locator may be off");
+        return false;
+    }
+    if (!wp_number(tolerance, "params.tolerance", &spec->tolerance, error))
+        return false;
+    if (!(spec->tolerance >= 0)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance", "must not be negative, not %g",
+                     spec->tolerance);
+        return false;
+    }
+    if (!features)
+        return true;
+    if (!cJSON_IsArray(features) || cJSON_GetArraySize(features) > WR_DESIGN_MAX_FEATURES) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.features",
+                     "must be an array of at most %d {\"name\", \"at\": [x, y]}",
+                     WR_DESIGN_MAX_FEATURES);
+        return false;
+    }
+    int n = cJSON_GetArraySize(features);
+    s->features = calloc((size_t)n + 1, sizeof *s->features);
+    if (!s->features) {
+        wp_error_status(error, WR_NO_MEMORY, "", "out of memory");
+        return false;
+    }
+    static const char *const FEATURE[] = {"name", "at", NULL};
+    int i = 0;
+    for (const cJSON *f = features->child; f; f = f->next, i++) {
+        char path[WP_FIELD_MAX];
+        const char *name;
+        wp_path_index(path, "params.features", (size_t)i);
+        if (!wp_check_object(f, path, FEATURE, error) ||
+            !wp_member_vector2(f, path, "at", true, s->features[i], NULL, error) ||
+            !wp_member_string(f, path, "name", false, &name, error))
+            return false;
+    }
+    spec->features = (const double(*)[2])s->features;
+    spec->feature_count = n;
+    return true;
+}
+
 static bool read_params(const cJSON *params, design_state *s, wp_error *error)
 {
     wr_design_spec *spec = &s->spec;
@@ -199,16 +256,18 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     if (objective) {
         int found = -1;
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 4; i++)
             if (strcmp(objective, OBJECTIVES[i]) == 0)
                 found = i;
         if (found < 0) {
             wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
-                         "must be \"margin\", \"region\" or \"gravity\"");
+                         "must be \"margin\", \"region\", \"gravity\" or \"accuracy\"");
             return false;
         }
         spec->objective = (wr_objective)found;
     }
+    if (!read_accuracy(params, s, error))
+        return false;
     bool present;
     if (!wp_member_number(params, "params", "finger_friction", false, &spec->finger.friction,
                           NULL, error) ||
@@ -400,6 +459,7 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
 
 static void write_design(design_state *s, wp_buffer *out, const wr_design *d, int rank)
 {
+    bool accuracy = s->spec.objective == WR_OBJECTIVE_ACCURACY;
     wr_fixture fixture;
     wr_design_job_fixture(s->job, d, &fixture);
     WP_BUFFER_LITERAL(out, "{\"rank\":");
@@ -480,6 +540,10 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
         WP_BUFFER_LITERAL(out, "null");
     WP_BUFFER_LITERAL(out, ",\"score\":");
     wp_buffer_number(out, d->score);
+    if (accuracy) { /* the worst locating error, whose negative is the score */
+        WP_BUFFER_LITERAL(out, ",\"accuracy\":");
+        wp_buffer_number(out, -d->score + 0.0);
+    }
     WP_BUFFER_LITERAL(out, "}");
 }
 
@@ -722,6 +786,7 @@ static void design_free(void *stream)
     wr_design_job_free(s->job);
     wr_lattice_job_free(s->lattice);
     free(s->listed);
+    free(s->features);
     free(s->sites);
     wr_fixture_free(s->body);
     pthread_mutex_destroy(&s->lock);

@@ -475,3 +475,118 @@ def test_locator_at_a_corner(client):
 
     worst = np.max([np.abs(solve(e)) for e in vertices(t)], axis=0)
     assert r["pose_error"]["exact"] == pytest.approx(list(worst), rel=1e-9, abs=1e-14)
+
+
+# ---- design for accuracy -----------------------------------------------------------
+
+CHAMFERED = {"mass": 2, "shape": {"type": "polygon",
+                                  "vertices": [[0, 0], [4, 0], [4, 1], [3, 2], [0, 2]]}}
+SITES = [[0.5, 0], [1.5, 0], [2.5, 0], [3.5, 0], [4, 0.5], [3.5, 1.5], [1.5, 2], [0, 1.5],
+         [0, 0.5]]
+
+
+@pytest.mark.parametrize("features", [[{"name": "hole", "at": [2.5, 1.2]}, {"at": [1, 1.8]}],
+                                      None])
+def test_design_accuracy_against_brute_force(client, features):
+    """fixture.design with objective accuracy against every candidate judged
+    here: put (refused: degenerate; not pinned: unpinned), push.regions of
+    goal (empty: no seating push), then the worst error -- the features'
+    largest exact length by fixture.locating, or without features the
+    largest exact pose in the scaled metric, each corner's pose solved
+    here -- ranked by it, ties by candidate number."""
+    from itertools import combinations
+    t = 0.01
+    params = {"body": CHAMFERED, "friction": 0.1, "sites": [{"at": s} for s in SITES],
+              "objective": "accuracy", "tolerance": t, "top": 6}
+    if features:
+        params["features"] = features
+    answer = client.result("fixture.design", params)
+    rho = math.sqrt(locate_rho_squared(client))
+    judged, counts = [], {"degenerate": 0, "unpinned": 0, "no_seating_push": 0}
+    for number, chosen in enumerate(combinations(range(len(SITES)), 3)):
+        fixture = {"body": CHAMFERED, "friction": {"static": 0.1},
+                   "fixels": [{"at": SITES[i]} for i in chosen]}
+        put = client.call("fixture.put", {"fixture": fixture})
+        if "error" in put:
+            counts["degenerate"] += 1
+            continue
+        if not put["result"]["pinned"]:
+            counts["unpinned"] += 1
+            continue
+        if not client.result("push.regions", {"fixture": fixture, "set": "goal"})["regions"]:
+            counts["no_seating_push"] += 1
+            continue
+        if features:
+            r = locating(client, fixture, t, features)
+            worst = max(f["exact"]["length"] for f in r["features"])
+        else:
+            # The pose's worst in the scaled metric: each corner of the box
+            # alone (a box of one point: tolerance 0 there), its exact pose.
+            worst = 0
+            for e in vertices([t, t, t]):
+                worst = max(worst, corner_pose_scaled(client, fixture, e, rho))
+        judged.append((-worst, number, [SITES[i] for i in chosen]))
+    judged.sort(key=lambda j: (-j[0], j[1]))
+    for key in counts:
+        assert answer["counts"][key] == counts[key], (key, answer["counts"])
+    designs = answer["designs"]
+    assert len(designs) == 6
+    for d, (score, number, fixels) in zip(designs, judged):
+        assert d["candidate"] == number
+        assert [f["at"] for f in d["fixels"]] == fixels
+        assert d["score"] == pytest.approx(score, rel=1e-9, abs=1e-15)
+        assert d["accuracy"] == pytest.approx(-score, rel=1e-9, abs=1e-15)
+
+
+def locate_rho_squared(client):
+    put = client.result("fixture.put", {"fixture": {"body": CHAMFERED,
+                                                    "friction": {"static": 0.1},
+                                                    "fixels": [{"at": [1, 0]}]}})
+    return put["inertia"] / CHAMFERED["mass"]
+
+
+def corner_pose_scaled(client, fixture, e, rho):
+    """|(dx, dy, rho dtheta)| of the exact pose, solved here from the three
+    line equations, when locator i is off by e_i (a corner of the box)."""
+    put = client.result("fixture.put", {"fixture": fixture})
+    com = np.array(put["com"], float)
+    got = client.result("fixture.get", {"id": put["id"]})
+    points = [f["at"] for f in got["fixels"]]
+    normals = [f["normal"] for f in got["fixels"]]
+    vertices_ = CHAMFERED["shape"]["vertices"]
+    contacts = []
+    for p, n in zip(points, normals):
+        # the edge holding p: its start and its unit normal
+        for a, b in zip(vertices_, vertices_[1:] + vertices_[:1]):
+            d = np.subtract(b, a)
+            if abs(np.cross(d, np.subtract(p, a))) < 1e-12 and \
+                    -1e-12 <= np.dot(np.subtract(p, a), d) <= np.dot(d, d) + 1e-12:
+                contacts.append(("line", a, np.array([-d[1], d[0]]) / np.linalg.norm(d)))
+                break
+    z = solve_pose(contacts, com, e, normals, points)
+    return math.hypot(math.hypot(z[0], z[1]), rho * z[2])
+
+
+@pytest.mark.parametrize("extra, field, words", [
+    ({"objective": "accuracy"}, "params.tolerance", "required"),
+    ({"objective": "accuracy", "tolerance": -1}, "params.tolerance", "negative"),
+    ({"tolerance": 0.01}, "params.tolerance", "objective \"accuracy\""),
+    ({"objective": "accuracy", "tolerance": 0.01, "fixels": 4}, "params.fixels", "must be 3"),
+    ({"objective": "accuracy", "tolerance": 0.01, "features": [{"at": [40, 1]}]},
+     "params.features[0].at", "lies 36 outside"),
+    ({"objective": "accuracy", "tolerance": 0.01, "features": [{"at": [1, 1], "x": 1}]},
+     "params.features[0].x", ""),
+])
+def test_design_accuracy_refusals(client, extra, field, words):
+    params = dict({"body": CHAMFERED, "friction": 0.1, "sites": [{"at": s} for s in SITES]},
+                  **extra)
+    error = client.error("fixture.design", params)
+    assert error["code"] == -32602 and error["data"]["field"] == field, error
+    assert words in error["data"]["reason"], error
+
+
+def test_design_accuracy_refuses_a_disc(client):
+    body = {"mass": 1, "shape": {"type": "circle", "center": [0, 0], "radius": 1}}
+    error = client.error("fixture.design", {"body": body, "friction": 0.1, "spacing": 0.5,
+                                            "objective": "accuracy", "tolerance": 0.01})
+    assert error["data"]["field"] == "params.objective" and "disc" in error["data"]["reason"]
