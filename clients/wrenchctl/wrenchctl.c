@@ -657,9 +657,10 @@ const wc_command wc_commands[] = {
      "                      the worst corner of the box, magnified (the scale stated)\n"
      "Exit status 0 when the fixels determine the pose, 1 when they do not."},
     {"design",
-     "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K] [--objective margin|region|gravity]\n"
-     "       [--top N] [--friction LO:HI] [--finger-radius R] [--finger-friction MU]\n"
-     "       [--shard I/N] [--svg FILE]",
+     "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K]\n"
+     "       [--objective margin|region|gravity|accuracy] [--top N] [--friction LO:HI]\n"
+     "       [--finger-radius R] [--finger-friction MU]\n"
+     "       [--tolerance T [--feature NAME=X,Y]...] [--shard I/N] [--svg FILE]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
          WC_OPT_LOCATE, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
