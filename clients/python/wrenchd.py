@@ -408,6 +408,7 @@ class Design:
     sites: Optional[List[int]] = None          # the sites chosen (not on a lattice)
     pegs: Optional[List[List[int]]] = None     # a lattice: the pegs' holes
     pose: Optional[List[float]] = None         # a lattice: [x, y, theta in degrees]
+    accuracy: Optional[float] = None           # objective accuracy: the worst locating error
 
 
 @dataclass
@@ -886,10 +887,12 @@ class _Methods:
                top: int = 10, finger_radius: float = 0.0, finger_friction: float = 0.0,
                shard: Optional[Sequence[int]] = None,
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
+               tolerance: Optional[float] = None, features: Optional[Iterable[Any]] = None,
                timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
         [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
+        Objective "accuracy" takes `tolerance` and `features` (as locating).
         `progress`, a callable, receives each design.progress notification's
         params ({"id", "done", "total", "best"}) as it arrives; the timeout
         is then the longest silence.  `shard` = (i, n): shard i of n."""
@@ -913,6 +916,11 @@ class _Methods:
             params["finger_friction"] = finger_friction
         if shard is not None:
             params["shard"] = [int(shard[0]), int(shard[1])]
+        if tolerance is not None:
+            params["tolerance"] = tolerance
+        if features is not None:
+            params["features"] = [dict(f) if isinstance(f, Mapping) else {"at": list(f)}
+                                  for f in features]
         if progress is not None:
             params["progress"] = True
         return self._invoke("fixture.design", params, _design_result, True, timeout,

@@ -590,3 +590,17 @@ def test_design_accuracy_refuses_a_disc(client):
     error = client.error("fixture.design", {"body": body, "friction": 0.1, "spacing": 0.5,
                                             "objective": "accuracy", "tolerance": 0.01})
     assert error["data"]["field"] == "params.objective" and "disc" in error["data"]["reason"]
+
+
+def test_python_client_design_accuracy(daemon, client):
+    import sys
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    direct = client.result("fixture.design", {
+        "body": CHAMFERED, "friction": 0.1, "sites": [{"at": s} for s in SITES],
+        "objective": "accuracy", "tolerance": 0.01, "features": [{"at": [2.5, 1.2]}], "top": 2})
+    with wrenchd.Client(daemon.path) as c:
+        r = c.design(CHAMFERED, 0.1, sites=SITES, objective="accuracy", tolerance=0.01,
+                     features=[(2.5, 1.2)], top=2)
+    assert [d.accuracy for d in r.designs] == [d["accuracy"] for d in direct["designs"]]
+    assert r.designs[0].accuracy == -r.designs[0].score > 0
