@@ -55,7 +55,7 @@ const wp_method wp_methods[] = {
     {.name = "friction.sweep", .stream = &wp_sweep_stream, .fields = FRICTION_SWEEP,
      .required = FIXTURE, .flags = WP_FIXTURE},
     {.name = "fixture.locating", .handler = wp_handle_fixture_locating, .fields = LOCATING,
-     .required = LOCATING_REQUIRED, .flags = WP_FIXTURE | WP_READY},
+     .required = LOCATING_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = wp_locating_light},
     {.name = "fixture.design", .stream = &wp_design_stream, .fields = DESIGN,
      .required = DESIGN_REQUIRED},
     {0},

@@ -201,6 +201,17 @@ static cJSON *result_json(const wr_locating *m, const wr_locate_feature *feature
     return r;
 }
 
+/* Light on an event loop (a stored, derived fixture) with few features:
+ * eight pose solves and a few microseconds a feature. */
+#define LOCATE_LIGHT_FEATURES 64
+
+bool wp_locating_light(const cJSON *params, int cones)
+{
+    (void)cones; /* the cones are not used */
+    const cJSON *features = cJSON_GetObjectItemCaseSensitive(params, "features");
+    return !cJSON_IsArray(features) || cJSON_GetArraySize(features) <= LOCATE_LIGHT_FEATURES;
+}
+
 /* Params: fixture, tolerance (a number or one per fixel), features?,
  * sigma_ratio? (default 3).  Lengths in the fixture's length unit. */
 cJSON *wp_handle_fixture_locating(wp_call *call)

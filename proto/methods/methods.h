@@ -29,6 +29,7 @@ extern const wp_streamer wp_sweep_stream;
 
 /* locate.c */
 cJSON *wp_handle_fixture_locating(wp_call *call);
+bool wp_locating_light(const cJSON *params, int cones);
 
 /* design.c */
 extern const wp_streamer wp_design_stream;
