@@ -19,7 +19,10 @@ LIB_INCLUDES    = -Ilib
 PROTO_INCLUDES  = $(LIB_INCLUDES) -Iproto
 DAEMON_INCLUDES = $(PROTO_INCLUDES) -Idaemon
 INCLUDES = $(DAEMON_INCLUDES)
-UNIT_SRC = $(wildcard tests/unit/test_*.c)
+# The unit tests, a directory per layer they test (tests/unit/LAYER/test_X.c
+# -> build/tests/test_X); test_util.h, beside them, is shared.
+UNIT_LAYERS = lib proto daemon client
+UNIT_SRC = $(wildcard $(UNIT_LAYERS:%=tests/unit/%/test_*.c))
 LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
@@ -134,13 +137,23 @@ $$($(1)_DIR)/wrenchctl: $$(WRENCHCTL_SRC:%.c=$$($(1)_DIR)/%.o) \
         $$(addprefix $$($(1)_DIR)/,libwrenchclient.a libwrenchproto.a libwrench.a)
 	$$($(1)_CC) $$($(1)_FLAGS) $$^ -lcjson -lglpk -lm -o $$@
 
-# The unit tests (cmocka), compiled and linked in one step.
-$$($(1)_DIR)/tests/%: tests/unit/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+# The unit tests (cmocka), compiled and linked in one step, each layer's
+# with what that layer sees: lib's tests lib alone; proto's and the
+# daemon's every layer (test_proto drives proto through the daemon's host).
+$$($(1)_DIR)/tests/%: tests/unit/lib/%.c $$($(1)_DIR)/libwrench.a
 	@mkdir -p $$(@D)
-	$$(call compile,$(1)) $$(INCLUDES) $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
+	$$(call compile,$(1)) $$(LIB_INCLUDES) -Itests/unit $$< $$(filter %.a,$$^) $$(LIBS) $$(TEST_LIBS) -o $$@
+
+$$($(1)_DIR)/tests/%: tests/unit/proto/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(DAEMON_INCLUDES) -Itests/unit $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
+
+$$($(1)_DIR)/tests/%: tests/unit/daemon/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(DAEMON_INCLUDES) -Itests/unit $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
 
 # The client's tests link the client alone (WRAP_ALLOC above).
-$$($(1)_DIR)/tests/test_client: tests/unit/test_client.c $$($(1)_DIR)/libwrenchclient.a
+$$($(1)_DIR)/tests/test_client: tests/unit/client/test_client.c $$($(1)_DIR)/libwrenchclient.a
 	@mkdir -p $$(@D)
 	$$(call compile,$(1)) -Iclients/c $$< $$(filter %.a,$$^) $$(WRAP_ALLOC) -lcmocka -lpthread -lm -o $$@
 endef
@@ -175,8 +188,8 @@ $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
 	$(call compile,plain) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
 
 # ---- unit tests ------------------------------------------------------------------
-UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(plain_DIR)/tests/%)
-ASAN_BIN = $(UNIT_SRC:tests/unit/%.c=$(asan_DIR)/tests/%)
+UNIT_BIN = $(patsubst %.c,$(plain_DIR)/tests/%,$(notdir $(UNIT_SRC)))
+ASAN_BIN = $(patsubst %.c,$(asan_DIR)/tests/%,$(notdir $(UNIT_SRC)))
 
 # An LD_PRELOAD library the fault tests use to fail writes to a directory.
 $(BUILD)/tests/libfail_storage.so: tests/faults/fail_storage.c
