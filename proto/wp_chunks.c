@@ -6,19 +6,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Chunk i lives in slot i % window from its claim until it is merged. */
-typedef struct slot {
+/* Chunk i has states[i % window] and the method's record i % window from
+ * its claim until it is merged. */
+typedef struct chunk_state {
     bool done;              /* made (or failed): the step may merge it */
     wr_status status;       /* not WR_OK: the answer ends at this chunk */
     wp_error error;         /* what to say then */
-} slot;
+} chunk_state;
 
 struct wp_chunks {
     const wp_chunk_ops *ops;
     void *method;
     size_t window;
-    /* Guards everything below, the slots' records and each merge.  A
-     * chunk's record and its method slot are its claimer's alone from the
+    /* Guards everything below, the chunks' states and each merge.  A
+     * chunk's state and its method record are its claimer's alone from the
      * claim until `done`: the step reads them only then. */
     pthread_mutex_t lock;
     pthread_cond_t made;     /* a chunk is done */
@@ -29,13 +30,13 @@ struct wp_chunks {
     /* wp_chunks_parallel said yes since the last step began: helpers may be
      * in make until the next step returns. */
     bool forked;
-    slot *slots;             /* window records */
-    unsigned char *data;     /* window method slots of ops->slot_size */
+    chunk_state *states;     /* window of them */
+    unsigned char *data;     /* window method records of ops->record_size */
 };
 
 static void *data_of(wp_chunks *c, size_t index)
 {
-    return c->data + (index % c->window) * c->ops->slot_size;
+    return c->data + (index % c->window) * c->ops->record_size;
 }
 
 wp_chunks *wp_chunks_new(const wp_chunk_ops *ops, void *method, size_t count)
@@ -47,10 +48,10 @@ wp_chunks *wp_chunks_new(const wp_chunk_ops *ops, void *method, size_t count)
     c->method = method;
     c->window = ops->window ? ops->window : 1;
     c->count = count;
-    c->slots = calloc(c->window, sizeof *c->slots);
-    c->data = calloc(c->window, ops->slot_size ? ops->slot_size : 1);
-    if (!c->slots || !c->data) {
-        free(c->slots);
+    c->states = calloc(c->window, sizeof *c->states);
+    c->data = calloc(c->window, ops->record_size ? ops->record_size : 1);
+    if (!c->states || !c->data) {
+        free(c->states);
         free(c->data);
         free(c);
         return NULL;
@@ -66,10 +67,10 @@ void wp_chunks_free(wp_chunks *c)
         return;
     if (c->ops->release)
         for (size_t i = 0; i < c->window; i++)
-            c->ops->release(c->data + i * c->ops->slot_size);
+            c->ops->release(c->data + i * c->ops->record_size);
     pthread_mutex_destroy(&c->lock);
     pthread_cond_destroy(&c->made);
-    free(c->slots);
+    free(c->states);
     free(c->data);
     free(c);
 }
@@ -99,7 +100,7 @@ static bool claim_and_make(wp_chunks *c, const wp_host *host, wp_buffer *out,
     pthread_mutex_unlock(&c->lock);
     if (!claimable)
         return false;
-    slot *s = &c->slots[index % c->window];
+    chunk_state *s = &c->states[index % c->window];
     assert(!s->done);
     wp_error error = {0};
     unsigned long spent = 0;
@@ -156,7 +157,7 @@ static wr_status merge_done(wp_chunks *c, wp_buffer *out, bool *merged_any, wp_e
     wr_status status = WR_OK;
     pthread_mutex_lock(&c->lock);
     while (c->merged < c->claimed && status == WR_OK) {
-        slot *s = &c->slots[c->merged % c->window];
+        chunk_state *s = &c->states[c->merged % c->window];
         if (!s->done)
             break;
         if (s->status != WR_OK) {
@@ -203,7 +204,7 @@ wp_step wp_chunks_run(wp_chunks *c, bool shared, const wp_host *host, wp_buffer 
         /* Nothing to claim now: the next chunk to merge is a helper's,
          * being made; wait for it (helpers never wait for a step). */
         pthread_mutex_lock(&c->lock);
-        while (c->merged < c->claimed && !c->slots[c->merged % c->window].done)
+        while (c->merged < c->claimed && !c->states[c->merged % c->window].done)
             pthread_cond_wait(&c->made, &c->lock);
         pthread_mutex_unlock(&c->lock);
     }
@@ -219,9 +220,9 @@ bool wp_chunks_done(wp_chunks *c)
 
 size_t wp_chunks_bytes(const wp_chunks *c)
 {
-    size_t bytes = sizeof *c + c->window * (sizeof *c->slots + c->ops->slot_size);
+    size_t bytes = sizeof *c + c->window * (sizeof *c->states + c->ops->record_size);
     if (c->ops->bytes)
         for (size_t i = 0; i < c->window; i++)
-            bytes += c->ops->bytes(c->data + i * c->ops->slot_size);
+            bytes += c->ops->bytes(c->data + i * c->ops->record_size);
     return bytes;
 }

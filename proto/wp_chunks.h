@@ -22,30 +22,30 @@
 typedef struct wp_chunks wp_chunks;
 
 typedef struct wp_chunk_ops {
-    /* Bytes of a chunk's slot: the method's own record, zeroed at first and
+    /* Bytes of a chunk's record: the method's own record, zeroed at first and
      * kept from one chunk to the next that uses it (room reused). */
-    size_t slot_size;
+    size_t record_size;
     /* Optional, under the engine's lock as chunk `index` is claimed (in
-     * order): copy into the slot what make needs of the state merge
+     * order): copy into the record what make needs of the state merge
      * changes.  False: there is no chunk `index`, nor any after it (for a
      * method whose count of chunks is not known up front). */
-    bool (*claim)(void *method, size_t index, void *slot);
-    /* Make chunk `index` into its slot, outside the lock, in any thread with
+    bool (*claim)(void *method, size_t index, void *record);
+    /* Make chunk `index` into its record, outside the lock, in any thread with
      * that thread's host; add the units spent to *used.  `direct`, when the
      * method allows it (`direct` below), is the answer itself: the chunk is
      * next in order and made by a step, so it is written there and never
      * merged.  Not WR_OK: the answer ends at this chunk, with `error` said
      * (by a step that shares nothing) when its turn comes. */
-    wr_status (*make)(void *method, size_t index, void *slot, wp_buffer *direct,
+    wr_status (*make)(void *method, size_t index, void *record, wp_buffer *direct,
                       const wp_host *host, unsigned long *used, wp_error *error);
     /* Merge chunk `index`, in order, under the lock, in a step's thread:
      * text into `out`, or results into the method's state.  Not WR_OK: the
      * answer ends here. */
-    wr_status (*merge)(void *method, size_t index, void *slot, wp_buffer *out, wp_error *error);
-    /* Free what a slot holds (its room), at the end. */
-    void (*release)(void *slot);
-    /* Optional: bytes a slot holds beyond slot_size. */
-    size_t (*bytes)(const void *slot);
+    wr_status (*merge)(void *method, size_t index, void *record, wp_buffer *out, wp_error *error);
+    /* Free what a record holds (its room), at the end. */
+    void (*release)(void *record);
+    /* Optional: bytes a record holds beyond record_size. */
+    size_t (*bytes)(const void *record);
     bool direct;       /* make may write the next chunk straight into the answer */
     size_t window;     /* chunks made ahead of the one next merged, at most */
 } wp_chunk_ops;
@@ -53,7 +53,7 @@ typedef struct wp_chunk_ops {
 /* `count` chunks (SIZE_MAX: until claim says there are no more).  NULL
  * when out of memory.  `method` is the caller's, passed to each op. */
 wp_chunks *wp_chunks_new(const wp_chunk_ops *ops, void *method, size_t count);
-/* Free it and every slot's holdings.  No helper may be in it. */
+/* Free it and every record's holdings.  No helper may be in it. */
 void wp_chunks_free(wp_chunks *chunks);
 
 /* The streamer's `parallel`: is a chunk left to claim?  A yes marks the
@@ -80,7 +80,7 @@ wp_step wp_chunks_run(wp_chunks *chunks, bool shared, const wp_host *host, wp_bu
 
 /* Are all chunks merged?  Between steps, or in one. */
 bool wp_chunks_done(wp_chunks *chunks);
-/* Bytes held: the slots and what they hold.  Between steps only. */
+/* Bytes held: the records and what they hold.  Between steps only. */
 size_t wp_chunks_bytes(const wp_chunks *chunks);
 
 #endif

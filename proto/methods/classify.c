@@ -179,7 +179,7 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
  * are read once, up front, so that a bad one is refused before any answer
  * is written; then the answer is made in chunks of consecutive wrenches by
  * the engine (wp_chunks.h): a chunk's text is made by whichever thread
- * claims it into its slot's buffer (or, next in order and made by a step,
+ * claims it into its record's buffer (or, next in order and made by a step,
  * straight into the answer), and merged into the answer in order.  At most
  * CLASSIFY_WINDOW are made ahead of the one being merged, which bounds what
  * waits in memory.  How many wrenches a chunk has depends on the request
@@ -194,11 +194,11 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
  * as much as about that many verdicts measured. */
 #define CLASSIFY_MAP_VERDICTS 100000
 
-/* A chunk's slot in the engine. */
+/* A chunk's record in the engine. */
 typedef struct classify_chunk {
     wp_buffer text;
     wr_answer *answers;   /* room for a chunk's answers (columns other than the
-                             verdicts), kept for the slot's next chunk */
+                             verdicts), kept for the record's next chunk */
     size_t answers_bytes;
 } classify_chunk;
 
@@ -472,13 +472,13 @@ static unsigned long wrench_cost(const classify_state *state)
     return state->map ? (unsigned long)r->set_count : r->lp ? 64 * (cones + 1) : cones + 1;
 }
 
-/* The engine's make: chunk `index` into its slot's text, or straight into
+/* The engine's make: chunk `index` into its record's text, or straight into
  * the answer (`direct`).  A failure is said as the chunk's turn comes. */
-static wr_status classify_make(void *method, size_t index, void *slot, wp_buffer *direct,
+static wr_status classify_make(void *method, size_t index, void *record, wp_buffer *direct,
                                const wp_host *host, unsigned long *used, wp_error *error)
 {
     const classify_state *state = method;
-    classify_chunk *chunk = slot;
+    classify_chunk *chunk = record;
     assert(chunk->text.length == 0);
     size_t failed;
     wr_status status = make_chunk(state, index, &chunk->answers, host, error,
@@ -495,17 +495,17 @@ static wr_status classify_make(void *method, size_t index, void *slot, wp_buffer
     return status;
 }
 
-/* The engine's merge: the slot's text into the answer. */
-static wr_status classify_merge(void *method, size_t index, void *slot, wp_buffer *out,
+/* The engine's merge: the record's text into the answer. */
+static wr_status classify_merge(void *method, size_t index, void *record, wp_buffer *out,
                                 wp_error *error)
 {
     (void)index;
     (void)error;
     const classify_state *state = method;
-    classify_chunk *chunk = slot;
+    classify_chunk *chunk = record;
     wp_buffer_append(out, chunk->text.data, chunk->text.length);
     chunk->text.length = 0;
-    /* A long batch's slots keep their capacity; a short one's go. */
+    /* A long batch's records keep their capacity; a short one's go. */
     if (state->chunk_count <= CLASSIFY_WINDOW) {
         free(chunk->text.data);
         memset(&chunk->text, 0, sizeof chunk->text);
@@ -513,22 +513,22 @@ static wr_status classify_merge(void *method, size_t index, void *slot, wp_buffe
     return WR_OK;
 }
 
-static void classify_chunk_release(void *slot)
+static void classify_chunk_release(void *record)
 {
-    classify_chunk *chunk = slot;
+    classify_chunk *chunk = record;
     free(chunk->text.data);
     free(chunk->answers);
 }
 
 /* The text's room and the answers' (state->chunk_wrenches of them). */
-static size_t classify_chunk_bytes(const void *slot)
+static size_t classify_chunk_bytes(const void *record)
 {
-    const classify_chunk *chunk = slot;
+    const classify_chunk *chunk = record;
     return chunk->text.capacity + chunk->answers_bytes;
 }
 
 static const wp_chunk_ops CLASSIFY_CHUNKS = {
-    .slot_size = sizeof(classify_chunk),
+    .record_size = sizeof(classify_chunk),
     .make = classify_make,
     .merge = classify_merge,
     .release = classify_chunk_release,

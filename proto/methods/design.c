@@ -533,26 +533,26 @@ static void write_answer(design_state *s, wp_buffer *out)
 
 /* The lattice's chunks of hole pairs, by the engine (wp_chunks.h): claimed
  * by the job in order, made by any thread, merged in order. */
-typedef struct lattice_slot {
+typedef struct lattice_record {
     size_t first, count;
     wr_lattice_chunk chunk;
-} lattice_slot;
+} lattice_record;
 
-static bool lattice_claim(void *method, size_t index, void *slot)
+static bool lattice_claim(void *method, size_t index, void *record)
 {
     (void)index;
     design_state *s = method;
-    lattice_slot *l = slot;
+    lattice_record *l = record;
     return wr_lattice_job_claim(s->lattice, &l->first, &l->count);
 }
 
-static wr_status lattice_make(void *method, size_t index, void *slot, wp_buffer *direct,
+static wr_status lattice_make(void *method, size_t index, void *record, wp_buffer *direct,
                               const wp_host *host, unsigned long *used, wp_error *error)
 {
     (void)index;
     (void)direct;
     const design_state *s = method;
-    lattice_slot *l = slot;
+    lattice_record *l = record;
     wr_status status = wr_lattice_chunk_run(s->lattice, l->first, l->count, host->stop,
                                             &l->chunk, used);
     if (status != WR_OK)
@@ -560,23 +560,23 @@ static wr_status lattice_make(void *method, size_t index, void *slot, wp_buffer 
     return status;
 }
 
-static wr_status lattice_merge(void *method, size_t index, void *slot, wp_buffer *out,
+static wr_status lattice_merge(void *method, size_t index, void *record, wp_buffer *out,
                                wp_error *error)
 {
     (void)index;
     (void)out;
     design_state *s = method;
-    lattice_slot *l = slot;
+    lattice_record *l = record;
     wr_status status = wr_lattice_job_merge(s->lattice, &l->chunk); /* takes its designs */
     if (status != WR_OK)
         wp_error_status(error, status, "params", "%s", wr_strerror(status));
     return status;
 }
 
-static void lattice_release(void *slot) { wr_lattice_chunk_release(&((lattice_slot *)slot)->chunk); }
+static void lattice_release(void *record) { wr_lattice_chunk_release(&((lattice_record *)record)->chunk); }
 
 static const wp_chunk_ops LATTICE_CHUNKS = {
-    .slot_size = sizeof(lattice_slot),
+    .record_size = sizeof(lattice_record),
     .claim = lattice_claim,
     .make = lattice_make,
     .merge = lattice_merge,
@@ -586,27 +586,27 @@ static const wp_chunk_ops LATTICE_CHUNKS = {
 
 /* The search's chunks of candidates, likewise; a chunk's threshold is the
  * top-th score merged when it is claimed. */
-typedef struct search_slot {
+typedef struct search_record {
     uint64_t first, count;
     double threshold;
     wr_design_chunk chunk;
-} search_slot;
+} search_record;
 
-static bool search_claim(void *method, size_t index, void *slot)
+static bool search_claim(void *method, size_t index, void *record)
 {
     (void)index;
     design_state *s = method;
-    search_slot *c = slot;
+    search_record *c = record;
     return wr_design_job_claim(s->job, &c->first, &c->count, &c->threshold);
 }
 
-static wr_status search_make(void *method, size_t index, void *slot, wp_buffer *direct,
+static wr_status search_make(void *method, size_t index, void *record, wp_buffer *direct,
                              const wp_host *host, unsigned long *used, wp_error *error)
 {
     (void)index;
     (void)direct;
     const design_state *s = method;
-    search_slot *c = slot;
+    search_record *c = record;
     wr_status status = wr_design_chunk_run(s->job, c->first, c->count, c->threshold,
                                            host->stop, &c->chunk, used);
     if (status != WR_OK)
@@ -614,23 +614,23 @@ static wr_status search_make(void *method, size_t index, void *slot, wp_buffer *
     return status;
 }
 
-static wr_status search_merge(void *method, size_t index, void *slot, wp_buffer *out,
+static wr_status search_merge(void *method, size_t index, void *record, wp_buffer *out,
                               wp_error *error)
 {
     (void)index;
     (void)out;
     (void)error;
     design_state *s = method;
-    search_slot *c = slot;
+    search_record *c = record;
     wr_design_job_merge(s->job, &c->chunk);
     wr_design_chunk_release(&c->chunk);
     return WR_OK;
 }
 
-static void search_release(void *slot) { wr_design_chunk_release(&((search_slot *)slot)->chunk); }
+static void search_release(void *record) { wr_design_chunk_release(&((search_record *)record)->chunk); }
 
 static const wp_chunk_ops SEARCH_CHUNKS = {
-    .slot_size = sizeof(search_slot),
+    .record_size = sizeof(search_record),
     .claim = search_claim,
     .make = search_make,
     .merge = search_merge,

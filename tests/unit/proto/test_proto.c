@@ -806,7 +806,7 @@ static void pieces_join_to_the_whole_answer(void **state)
  * then runs the step; a helper may claim chunks before the step begins,
  * and may be inside wp_answer_work until the step returns (the fork is
  * closed after it).  So a step that follows a "yes" from
- * wp_answer_parallel must not end the answer (wp_rpc.h, wp_streamer):
+ * wp_answer_parallel must not end the answer (the rule in wp_chunks.h):
  * ending it frees the stream (its lock, its chunks, the fixture held)
  * under a helper -- even when the helpers had claimed every chunk left
  * by the time the step began.  Here the helpers' turns run, in this
@@ -996,11 +996,11 @@ typedef struct toy {
     atomic_int claimed; /* chunks a make has begun */
 } toy;
 
-typedef struct toy_slot {
+typedef struct toy_record {
     char text[24];
-} toy_slot;
+} toy_record;
 
-static wr_status toy_make(void *method, size_t index, void *slot, wp_buffer *direct,
+static wr_status toy_make(void *method, size_t index, void *record, wp_buffer *direct,
                           const wp_host *host, unsigned long *used, wp_error *error)
 {
     (void)host;
@@ -1019,22 +1019,22 @@ static wr_status toy_make(void *method, size_t index, void *slot, wp_buffer *dir
     if (direct)
         wp_buffer_puts(direct, text);
     else
-        snprintf(((toy_slot *)slot)->text, sizeof text, "%s", text);
+        snprintf(((toy_record *)record)->text, sizeof text, "%s", text);
     *used += 1;
     return WR_OK;
 }
 
-static wr_status toy_merge(void *method, size_t index, void *slot, wp_buffer *out,
+static wr_status toy_merge(void *method, size_t index, void *record, wp_buffer *out,
                            wp_error *error)
 {
     (void)method;
     (void)index;
     (void)error;
-    wp_buffer_puts(out, ((toy_slot *)slot)->text);
+    wp_buffer_puts(out, ((toy_record *)record)->text);
     return WR_OK;
 }
 
-static const wp_chunk_ops TOY = {.slot_size = sizeof(toy_slot), .make = toy_make,
+static const wp_chunk_ops TOY = {.record_size = sizeof(toy_record), .make = toy_make,
                                  .merge = toy_merge, .window = 4};
 
 typedef struct toy_helper {
