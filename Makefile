@@ -32,7 +32,7 @@ WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc
 # tests and the fuzzers link it.
 DAEMON_LINK = libwrenchd.a libwrenchproto.a libwrench.a
 
-.PHONY: all check unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
+.PHONY: all check check-tests unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
         fuzz-build links check-cluster deps-freecad check-freecad freecad-link freecad-picture FORCE
 
@@ -41,10 +41,12 @@ all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrench
 
 help:
 	@echo "make            build the library, wrenchd, wrenchctl, the C client and the examples in build/"
-	@echo "make demo       build, start wrenchd, put the examples, classify, stop"
+	@echo "make demo       install what is missing (deps), build, start wrenchd, put the examples,"
+	@echo "                classify, stop"
 	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
 	@echo "make pictures   redraw docs/pictures (the README's figures)"
-	@echo "make check      every test: links, unit (plain, ASan+UBSan), physics, load, fuzz smoke, end to end"
+	@echo "make check      install what is missing (deps), then every test: links, unit (plain,"
+	@echo "                ASan+UBSan), physics, load, fuzz smoke, end to end (make check-tests: the tests alone)"
 	@echo "make links      every relative link of the Markdown files resolves (also in make check)"
 	@echo "make unit       the unit tests (build/tests/); make unit-asan: under ASan+UBSan (build/asan/tests/)"
 	@echo "make e2e        the end-to-end tests; make e2e-asan: against build/asan/wrenchd"
@@ -64,7 +66,7 @@ help:
 	@echo "make freecad-link    the checkout's workbench linked into FreeCAD's user Mod directory"
 	@echo "make freecad-picture redraw docs/pictures/freecad-workbench.png (FreeCAD under Xvfb)"
 	@echo "make uninstall  remove what make install installed"
-	@echo "make deps       install the Debian packages the project needs"
+	@echo "make deps       install the Debian packages the project needs (demo and check do it first)"
 	@echo "make deps-freecad    and those of check-freecad: FreeCAD (no recommends), Xvfb"
 	@echo "make clean      remove build/"
 
@@ -225,8 +227,12 @@ check-valgrind: all $(BUILD)/tests/libfail_storage.so
 links:
 	@$(PYTHON) tests/check-links
 
-# The last line printed is the test runner's closing line (CI reads it).
-check: links unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
+# make check installs what is missing first (deps), then runs every test;
+# the last line printed is the test runner's closing line (CI reads it).
+check: deps
+	@$(MAKE) --no-print-directory check-tests
+
+check-tests: links unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
 
 # A single-node Slurm cluster started by the test itself runs a design as a
 # job array (examples/design-array.sbatch); the merged shards must equal one
@@ -264,7 +270,10 @@ freecad-link:
 
 # ---- running it ------------------------------------------------------------
 
-demo: all
+# make demo installs what is missing first (deps), so that it is the one
+# command a fresh checkout needs.
+demo: deps
+	@$(MAKE) --no-print-directory all
 	@$(PYTHON) examples/demo.py
 
 run: all
@@ -282,6 +291,11 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/notched-plate.json --set strong --finger-radius 4 --svg docs/pictures/notched-plate-push-strong-r4.svg >/dev/null
 	$(BUILD)/wrenchctl --local sweep examples/plate-chamfered.json --push both --range 0:1 --svg docs/pictures/plate-chamfered-sweep-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local design examples/bracket.json --spacing 10 --top 3 --svg docs/pictures/bracket-designs.svg >/dev/null
+	@# the README's walk-through from a DXF sheet (ezdxf)
+	$(PYTHON) examples/sheet_dxf.py $(BUILD)/sheet.dxf
+	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json \
+	    --fixel 15,0 --fixel 100,43 --fixel 60,32 2>/dev/null
+	$(BUILD)/wrenchctl --local push $(BUILD)/bracket.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.
@@ -377,6 +391,11 @@ PYTHONDIR ?= $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$
 FREECAD_SYSTEM_MODDIR = $(or $(shell $(FREECADCMD) -c \
     'import FreeCAD; print(FreeCAD.getResourceDir() + "Mod")' 2>/dev/null | tail -n 1),/usr/share/freecad/Mod)
 FREECAD_MODDIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(FREECAD_SYSTEM_MODDIR),$(PREFIX)/share/FreeCAD/Mod)
+# The Python client's modules; the workbench's copy holds those it imports
+# (wrenchd_arcs.py: the bulges and curves by arcs it shares with the DXF
+# reader).
+PYTHON_MODULES = wrenchd.py wrenchd_dxf.py wrenchd_arcs.py
+WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
 WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
@@ -390,7 +409,7 @@ INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
     $(PREFIX)/lib/systemd/system/wrenchd.service $(PREFIX)/lib/systemd/system/wrenchd.socket \
     $(PREFIX)/lib/sysusers.d/wrenchd.conf \
     $(PREFIX)/share/man/man1/wrenchctl.1 $(PREFIX)/share/man/man8/wrenchd.8 \
-    $(PYTHONDIR)/wrenchd.py $(PYTHONDIR)/wrenchd_dxf.py \
+    $(addprefix $(PYTHONDIR)/,$(PYTHON_MODULES)) \
     $(addprefix $(PREFIX)/share/wrenchd/examples/,$(notdir $(wildcard examples/*.json)))
 # The installed configuration file, and the shipped one with its paths.
 CONFIG_FILE = $(SYSCONFDIR)/wrenchd/wrenchd.conf
@@ -413,7 +432,7 @@ install: all
 	install -m 0644 systemd/wrenchd.sysusers $(DESTDIR)$(PREFIX)/lib/sysusers.d/wrenchd.conf
 	install -m 0644 clients/wrenchctl/wrenchctl.1 $(DESTDIR)$(PREFIX)/share/man/man1/
 	install -m 0644 daemon/wrenchd.8 $(DESTDIR)$(PREFIX)/share/man/man8/
-	install -m 0644 clients/python/wrenchd.py clients/python/wrenchd_dxf.py $(DESTDIR)$(PYTHONDIR)/
+	install -m 0644 $(addprefix clients/python/,$(PYTHON_MODULES)) $(DESTDIR)$(PYTHONDIR)/
 	install -m 0644 examples/*.json $(DESTDIR)$(PREFIX)/share/wrenchd/examples/
 	@# The configuration is the administrator's: never overwritten.
 	test -e $(DESTDIR)$(CONFIG_FILE) || { sed $(CONFIG_PATHS) systemd/wrenchd.conf \
@@ -422,16 +441,16 @@ install: all
 	memory_max=$$(systemd/memory-max $(BUILD)/wrenchd $(DESTDIR)$(CONFIG_FILE)) && \
 	sed -e 's|@SBINDIR@|$(PREFIX)/sbin|' -e "s|@MEMORY_MAX@|$$memory_max|" $(CONFIG_PATHS) \
 	    systemd/wrenchd.service > $(DESTDIR)$(PREFIX)/lib/systemd/system/wrenchd.service
-	@# The FreeCAD workbench, with its copy of the Python client.
+	@# The FreeCAD workbench, with its copy of the Python client's modules.
 	workbench="$(DESTDIR)$(FREECAD_MODDIR)/Wrench" && \
 	install -d "$$workbench/Resources/icons" && \
 	for f in $(WORKBENCH_FILES); do install -m 0644 clients/freecad/$$f "$$workbench/$$f"; done && \
-	install -m 0644 clients/python/wrenchd.py "$$workbench/wrenchd.py"
+	for f in $(WORKBENCH_CLIENT); do install -m 0644 clients/python/$$f "$$workbench/$$f"; done
 
 uninstall:
 	rm -f $(addprefix $(DESTDIR),$(INSTALLED))
 	workbench="$(DESTDIR)$(FREECAD_MODDIR)/Wrench" && \
-	for f in $(WORKBENCH_FILES) wrenchd.py; do rm -f "$$workbench/$$f"; done && \
+	for f in $(WORKBENCH_FILES) $(WORKBENCH_CLIENT); do rm -f "$$workbench/$$f"; done && \
 	rm -rf "$$workbench/__pycache__" && \
 	{ rmdir "$$workbench/Resources/icons" "$$workbench/Resources" "$$workbench" 2>/dev/null || true; }
 	-rmdir $(DESTDIR)$(PREFIX)/include/wrench $(DESTDIR)$(PREFIX)/share/wrenchd/examples \
@@ -469,10 +488,17 @@ DEB_PACKAGES = build-essential pkg-config libglpk-dev libevent-dev libcjson-dev 
 FREECAD_PACKAGES = freecad-python3 xvfb xauth
 
 # $(call apt_install,PACKAGES,APT-GET OPTIONS): install those missing, with
-# sudo unless root; on failure once more after apt-get update.
+# sudo unless root; on failure once more after apt-get update.  One
+# dpkg-query asks for all of them (when all are present, that is all it
+# costs: make demo and make check begin with it).  Without dpkg-query (not
+# Debian) it says what to install and goes on.
 define apt_install
-	@missing=""; for p in $(1); do \
-	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	@if ! command -v dpkg-query >/dev/null; then \
+	    echo "make $@: no dpkg-query (not Debian): install the equivalents of $(strip $(1))"; exit 0; fi; \
+	installed=" $$(dpkg-query -W -f='$${Package} $${Status}\n' $(1) 2>/dev/null | \
+	    awk '/ install ok installed$$/ {print $$1}' | tr '\n' ' ') "; \
+	missing=""; for p in $(1); do \
+	    case "$$installed" in *" $$p "*) ;; *) missing="$$missing $$p";; esac; \
 	done; \
 	if [ -z "$$missing" ]; then echo "make $@: every Debian package is present"; exit 0; fi; \
 	echo "make $@: installing$$missing"; \

@@ -109,11 +109,15 @@ int wc_design_request(wc_run *run, cJSON *params)
         return wc_usage_error("design: no candidate sites: give --spacing H, or a fixture whose "
                               "fixels are the sites");
     }
-    cJSON_Delete(json);
-    /* For --svg: the body and friction, to draw each design as a fixture. */
+    /* For --svg: the body and friction, to draw each design as a fixture;
+     * and the file's units, which the table and the pictures name. */
     run->fixture = cJSON_CreateObject();
     cJSON_AddStringToObject(run->fixture, "name", name ? name : "design");
     free(name);
+    if (body && cJSON_GetObjectItem(json, "units"))
+        cJSON_AddItemToObject(run->fixture, "units",
+                              cJSON_Duplicate(cJSON_GetObjectItem(json, "units"), true));
+    cJSON_Delete(json);
     cJSON_AddItemToObject(run->fixture, "body",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
     cJSON_AddItemToObject(run->fixture, "friction",
@@ -180,6 +184,9 @@ static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
     cJSON_AddItemToObject(json, "friction", form);
     cJSON_AddItemToObject(json, "fixels",
                           cJSON_Duplicate(cJSON_GetObjectItem(design, "fixels"), true));
+    if (cJSON_GetObjectItem(run->fixture, "units"))
+        cJSON_AddItemToObject(json, "units",
+                              cJSON_Duplicate(cJSON_GetObjectItem(run->fixture, "units"), true));
     wp_fixture_doc doc;
     wp_error error;
     bool ok = wp_fixture_read(json, "fixture", &doc, &error);
