@@ -328,7 +328,7 @@ $(BENCH_MICRO): BENCH_LIBS = -lcjson -lglpk -lm
 $(BENCH_NUMBER): BENCH_LIBS = -lm
 $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
-# Issue 9's benchmarks, one table (docs/PERFORMANCE.md); figures, never a
+# The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
 bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER)
 	@bench/run

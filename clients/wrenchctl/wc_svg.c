@@ -142,7 +142,7 @@ static void legend(FILE *out, int line, const char *text)
     fputs("</text>\n", out);
 }
 
-/* ---- outlines of lines and arcs (issue 16) ------------------------------------ */
+/* ---- outlines of lines and arcs ---------------------------------------------- */
 
 /* Which loop and segment an outline's edge is: the edges count the
  * segments of every loop in order, loop 0's first (wr_region).  False for

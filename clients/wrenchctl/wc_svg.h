@@ -2,7 +2,7 @@
  * 8: the part's outline in grey, the fixels as small wedges with their
  * friction cones, the centre of mass, the answer in thick black, a legend.
  *
- * An outline of lines and arcs (issue 16) is one <path class="outline">,
+ * An outline of lines and arcs is one <path class="outline">,
  * each loop a closed subpath, straight segments as lines and arcs as SVG
  * arcs, with fill-rule evenodd so that holes are holes; a push region on an
  * arc is an arc.  A fixel on a hole's boundary is a pin in the hole (a

@@ -1,4 +1,4 @@
-"""wrench.classify with "fields" (issue 19): the lean answer by column
+"""wrench.classify with "fields": the lean answer by column
 against the full answer by row for the same wrenches, every subset of the
 fields, every set, both methods; the verdicts alone (computed without
 margins, wr_classify_verdict) against the full path's on many wrenches,

@@ -1,7 +1,7 @@
 """wrenchctl's pictures (--svg): well-formed XML, one region path per region
 of the answer, and the part drawn (outline, fixels, friction cones, centre
 of mass).  The README's pictures in docs/ are what wrenchctl draws now.
-Outlines of lines and arcs (issue 16): arcs drawn as arcs, holes as holes,
+Outlines of lines and arcs: arcs drawn as arcs, holes as holes,
 regions on arcs as arcs, pins in holes, checked against geometry worked out
 here (svg_geometry.py)."""
 
@@ -90,7 +90,7 @@ def test_readme_pictures_are_current(harness, picture, command):
         assert a.read() == b.read(), "run 'make pictures' and commit docs/pictures"
 
 
-# ---- outlines of lines and arcs (issue 16) -----------------------------------
+# ---- outlines of lines and arcs ---------------------------------------------
 #
 # Each picture is read back with xml.etree and checked against the outline's
 # geometry worked out in svg_geometry.py from the wire's description of a

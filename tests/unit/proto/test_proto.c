@@ -145,7 +145,7 @@ static void assert_same_fixture(const wr_fixture *a, const wr_fixture *b)
     assert_memory_equal(a->fixels, b->fixels, (size_t)a->fixel_count * sizeof *a->fixels);
 }
 
-/* Issue 14: the id hashes the explicit form (every default written out), so
+/* The id hashes the explicit form (every default written out), so
  * writing out a default keeps it; the stored text reads back to the same
  * fixture, bit for bit, and to the same text and id. */
 static void explicit_form_reads_back_to_the_same_fixture(void **state)
