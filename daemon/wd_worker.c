@@ -28,14 +28,14 @@ struct wd_thread_host {
 };
 
 static bool host_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
-                       wp_error *error)
+                       wp_host_failure *failure)
 {
-    return wd_cache_adopt(((wd_thread_host *)self)->cache, doc, store, use, error);
+    return wd_cache_adopt(((wd_thread_host *)self)->cache, doc, store, use, failure);
 }
 
-static bool host_use(void *self, const char *id, wp_fixture_use *use, wp_error *error)
+static bool host_use(void *self, const char *id, wp_fixture_use *use, wp_host_failure *failure)
 {
-    return wd_cache_use(((wd_thread_host *)self)->cache, id, use, error);
+    return wd_cache_use(((wd_thread_host *)self)->cache, id, use, failure);
 }
 
 static void host_release(void *self, wp_fixture_use *use)
@@ -43,9 +43,9 @@ static void host_release(void *self, wp_fixture_use *use)
     wd_cache_release(((wd_thread_host *)self)->cache, use);
 }
 
-static bool host_delete(void *self, const char *id, wp_error *error)
+static bool host_delete(void *self, const char *id, wp_host_failure *failure)
 {
-    return wd_cache_delete(((wd_thread_host *)self)->cache, id, error);
+    return wd_cache_delete(((wd_thread_host *)self)->cache, id, failure);
 }
 
 static int host_use_ready(void *self, const char *id, wp_fixture_use *use)
@@ -53,19 +53,19 @@ static int host_use_ready(void *self, const char *id, wp_fixture_use *use)
     return wd_cache_use_ready(((wd_thread_host *)self)->cache, id, use);
 }
 
-static bool host_list(void *self, wp_fixture_listing *listing, wp_error *error)
+static bool host_list(void *self, wp_fixture_listing *listing, wp_host_failure *failure)
 {
     if (wd_cache_list(((wd_thread_host *)self)->cache, listing))
         return true;
-    wp_error_set(error, WP_INTERNAL, "", "out of memory");
+    *failure = (wp_host_failure){WP_HOST_NO_MEMORY, "out of memory"};
     return false;
 }
 
 /* The daemon's counters and the cache's figures, as data: proto writes
  * the JSON. */
-static bool host_state(void *self, wp_server_state *state, wp_error *error)
+static bool host_state(void *self, wp_server_state *state, wp_host_failure *failure)
 {
-    (void)error;
+    (void)failure;
     wd_thread_host *thread = self;
     wd_cache_stats cache;
     wd_cache_stats_get(thread->cache, &cache);
@@ -93,8 +93,8 @@ static void slot_clear(lp_slot *slot)
     memset(slot, 0, sizeof *slot);
 }
 
-static bool host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
-                         wp_error *error)
+static wr_status host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal,
+                              wr_lp_set **strong)
 {
     wd_thread_host *thread = self;
     uint64_t serial = wd_cache_serial(use);
@@ -113,16 +113,14 @@ static bool host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_l
         slot_clear(slot);
         wr_status status =
             wr_analysis_lp_sets(use->analysis, thread->solver, &slot->goal, &slot->strong);
-        if (status != WR_OK) {
-            wp_error_status(error, status, "", "%s", wr_strerror(status));
-            return false;
-        }
+        if (status != WR_OK)
+            return status;
         slot->serial = serial;
     }
     slot->last_used = ++thread->clock;
     *goal = slot->goal;
     *strong = slot->strong;
-    return true;
+    return WR_OK;
 }
 
 wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)

@@ -15,6 +15,7 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
     const wp_host *host = call->host;
     wp_error *error = call->error;
     const cJSON *value = cJSON_GetObjectItemCaseSensitive(call->params, "fixture");
+    wp_host_failure failure = {WP_HOST_OK, ""};
     bool ok;
     if (cJSON_IsString(value)) {
         if (!wp_fixture_id_valid(value->valuestring)) {
@@ -22,19 +23,19 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
                          "not a fixture id (32 hexadecimal digits) nor a fixture object");
             return NULL;
         }
-        ok = host->fixture_use(host->self, value->valuestring, &hold->use, error);
+        ok = host->fixture_use(host->self, value->valuestring, &hold->use, &failure);
     } else if (cJSON_IsObject(value)) {
         wp_fixture_doc doc;
         if (!wp_fixture_read(value, "params.fixture", &doc, error))
             return NULL;
-        ok = host->fixture_adopt(host->self, &doc, false, &hold->use, error);
+        ok = host->fixture_adopt(host->self, &doc, false, &hold->use, &failure);
     } else {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
                      "must be a fixture id or a fixture object, not %s", wp_type_name(value));
         return NULL;
     }
-    if (!ok && !error->field[0])
-        snprintf(error->field, sizeof error->field, "params.fixture");
+    if (!ok)
+        wp_error_host(error, &failure, "params.fixture");
     hold->holding = ok;
     return ok ? &hold->use : NULL;
 }

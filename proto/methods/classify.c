@@ -407,8 +407,11 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
     const wr_analysis *a = state->use->analysis;
     wr_lp_set *goal = NULL, *strong = NULL;
     *failed = 0;
-    if (r->lp && !host->lp_sets(host->self, state->use, &goal, &strong, error))
+    wr_status sets = r->lp ? host->lp_sets(host->self, state->use, &goal, &strong) : WR_OK;
+    if (sets != WR_OK) {
+        wp_error_status(error, sets, "", "%s", wr_strerror(sets));
         return WR_NO_MEMORY;
+    }
     size_t from = index * state->chunk_wrenches;
     size_t to = from + state->chunk_wrenches < r->wrench_count ? from + state->chunk_wrenches
                                                                : r->wrench_count;
