@@ -356,6 +356,14 @@ def test_units_into_the_fixture_and_wrenchctl(corpus, tmp_path, with_units, clie
     assert (p.stdout.splitlines()[0] == line) == with_units and (line in p.stdout) == with_units
     picture = svg.read_text()
     assert ('<text class="units"' in picture and ">lengths in in</text>" in picture) == with_units
+    # the friction sweep's plot: its axis of lengths in inches
+    p = subprocess.run([WRENCHCTL, "--local", "sweep", str(path), "--push", "both", "--range", "0:1",
+                        "--svg", str(svg)], capture_output=True, text=True, timeout=60)
+    assert p.returncode in (0, 1), p.stderr
+    assert (p.stdout.splitlines()[0] == line) == with_units
+    picture = svg.read_text()
+    assert ("push region length (in)</text>" in picture) == with_units
+    assert ("push region length</text>" in picture) != with_units
 
 
 # ---- the README's walk-through --------------------------------------------------------
