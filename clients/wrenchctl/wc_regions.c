@@ -459,7 +459,6 @@ static void print_region_sweep(const wc_run *run, const cJSON *result)
 static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
                               const wr_fixture *geometry, const char *name)
 {
-    (void)geometry;
     const cJSON *curve = cJSON_GetObjectItem(result, "curve");
     int points = cJSON_GetArraySize(curve);
     double(*xy)[2] = calloc((size_t)(points ? points : 1), sizeof *xy);
@@ -476,6 +475,7 @@ static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
         .critical = cJSON_IsNumber(critical) ? critical->valuedouble : NAN,
         .curve = (const double(*)[2])xy,
         .curve_count = points,
+        .fixture = geometry,
     };
     wc_interval *intervals = intervals_of(cJSON_GetObjectItem(result, "intervals"),
                                           &plot.interval_count);

@@ -787,7 +787,7 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
     char text[512], spans[256];
     snprintf(text, sizeof text, "%s: friction sweep of the %s of G_%s", p->name,
              push ? "push region" : "gravity arcs", p->set);
-    begin(out, &f, text, NULL);
+    begin(out, &f, text, p->fixture);
     double top = f.top + 20, bottom = top + PLOT_HEIGHT;
     axis x = {p->range[0], p->range[1], PLOT_LEFT, WIDTH - PLOT_RIGHT};
     double most = 0;
@@ -816,11 +816,14 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
                 "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"end\">%g</text>\n",
                 x.from - 5, py, x.from, py, x.from - 8, py + 4, k * y_step);
     }
+    char axis[64] = "push region length";
+    if (length_unit(p->fixture))
+        snprintf(axis, sizeof axis, "push region length (%s)", length_unit(p->fixture));
     fprintf(out,
             "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" "
             "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n",
             22.0, (top + bottom) / 2, 22.0, (top + bottom) / 2,
-            push ? "push region length" : "gravity arcs (\xc2\xb0)");
+            push ? axis : "gravity arcs (\xc2\xb0)");
     mu_axis(out, &x, bottom, p->kinetic_ratio);
     /* The curve. */
     if (p->curve_count > 0) {

@@ -53,6 +53,7 @@ typedef struct wc_sweep_plot {
     double critical;       /* the mu above which it is empty; NAN: none */
     const double (*curve)[2]; /* (mu, length), increasing in mu */
     int curve_count;
+    const wr_fixture *fixture; /* the unit of its lengths, when it names one; may be NULL */
 } wc_sweep_plot;
 
 /* The region's size against mu: the curve (a <polyline class="curve">),
