@@ -9,110 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- sites ------------------------------------------------------------------------- */
-
-wr_status wr_site_new(const wr_fixture *body, const double at[2], const double *normal,
-                      wr_site *out, wr_error *error)
-{
-    wr_fixel_spec fixel;
-    memset(&fixel, 0, sizeof fixel);
-    fixel.at[0] = at[0];
-    fixel.at[1] = at[1];
-    if (normal) {
-        fixel.normal_given = true;
-        fixel.normal[0] = normal[0];
-        fixel.normal[1] = normal[1];
-    }
-    /* Friction does not place a fixel; any valid value does. */
-    wr_friction_spec friction = {.given = true};
-    wr_fixture placed;
-    wr_status status = wr_fixture_place(body, &fixel, 1, &friction, &placed, error);
-    if (status != WR_OK)
-        return status;
-    memcpy(out->at, placed.fixels[0].at, sizeof out->at);
-    memcpy(out->normal, placed.fixels[0].normal, sizeof out->normal);
-    return WR_OK;
-}
-
-static wr_status site_append(const wr_fixture *body, const double point[2], wr_site **sites,
-                             int *count, int *capacity, wr_error *error)
-{
-    if (*count >= WR_DESIGN_MAX_SITES) {
-        wr_error_set(error, "", "more than %d sites", WR_DESIGN_MAX_SITES);
-        return WR_INVALID;
-    }
-    if (*count == *capacity) {
-        int grown = *capacity ? 2 * *capacity : 64;
-        wr_site *more = realloc(*sites, (size_t)grown * sizeof *more);
-        if (!more) {
-            wr_error_set(error, "", "out of memory");
-            return WR_NO_MEMORY;
-        }
-        *sites = more;
-        *capacity = grown;
-    }
-    /* The normal is derived as a fixel's there would be: the site is the
-     * fixel fixture.put would make of the point. */
-    wr_status status = wr_site_new(body, point, NULL, &(*sites)[*count], error);
-    if (status == WR_OK)
-        (*count)++;
-    return status;
-}
-
-wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **sites, int *count,
-                          wr_error *error)
-{
-    if (!(spacing > 0) || !isfinite(spacing)) {
-        wr_error_set(error, "", "must be a positive number, got %g", spacing);
-        return WR_INVALID;
-    }
-    wr_site *list = *sites;
-    int n = *count, capacity = *count;
-    wr_status status = WR_OK;
-    if (body->shape == WR_SHAPE_CIRCLE) {
-        double circumference = 2 * WR_PI * body->radius;
-        double steps = floor(circumference / spacing + 1e-9);
-        if (steps > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.3g sites, more than %d", steps, WR_DESIGN_MAX_SITES);
-            return WR_INVALID;
-        }
-        for (int i = 0; i < (int)steps && status == WR_OK; i++) {
-            double angle = 2 * WR_PI * i / steps;
-            double p[2] = {body->center[0] + body->radius * cos(angle),
-                           body->center[1] + body->radius * sin(angle)};
-            status = site_append(body, p, &list, &n, &capacity, error);
-        }
-    } else if (body->outline) {
-        const wr_outline *o = body->outline;
-        double total = 0;
-        for (size_t l = 0; l < o->loop_count; l++)
-            for (size_t s = 0; s < o->loops[l].segment_count; s++)
-                total += floor(o->loops[l].segments[s].length / spacing + 1e-9);
-        if (total > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.3g sites, more than %d", total, WR_DESIGN_MAX_SITES);
-            return WR_INVALID;
-        }
-        for (size_t l = 0; l < o->loop_count && status == WR_OK; l++)
-            for (size_t s = 0; s < o->loops[l].segment_count && status == WR_OK; s++) {
-                double length = o->loops[l].segments[s].length;
-                int steps = (int)floor(length / spacing + 1e-9);
-                double first = (length - (steps - 1) * spacing) / 2;
-                for (int i = 0; i < steps && status == WR_OK; i++) {
-                    double p[2], normal[2];
-                    wr_outline_boundary(o, l, s, (first + i * spacing) / length, p, normal);
-                    status = site_append(body, p, &list, &n, &capacity, error);
-                }
-            }
-    }
-    if (status != WR_OK && n > *count) {
-        /* Nothing appended after all: the caller's array keeps its items. */
-        n = *count;
-    }
-    *sites = list;
-    *count = n;
-    return status;
-}
-
 /* ---- margins along an edge ----------------------------------------------------------- */
 
 /* Every excluded cone of both sets must be met: the margin of the push at
@@ -354,8 +250,21 @@ typedef enum outcome {
     OUTCOME_DEGENERATE,
     OUTCOME_UNPINNED,
     OUTCOME_NO_SEATING_PUSH,
-    OUTCOME_BOUNDED
+    OUTCOME_BOUNDED,
+    OUTCOME_SHARED_HOLE
 } outcome;
+
+/* Two of the candidate's sites in one hole (wr_sites.h: a pin is one
+ * fixel; two pins in one hole are not a design). */
+static bool shares_hole(const wr_design_spec *spec, const int *sites)
+{
+    for (int i = 0; i < spec->fixel_count; i++)
+        for (int j = 0; j < i; j++)
+            if (spec->sites[sites[i]].loop > 0 &&
+                spec->sites[sites[i]].loop == spec->sites[sites[j]].loop)
+                return true;
+    return false;
+}
 
 static double regions_length(const wr_fixture *fixture, const wr_regions *regions)
 {
@@ -443,6 +352,10 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     const wr_design_spec *spec = &job->spec;
     wr_fixture fixture;
     *units += 100;
+    if (shares_hole(spec, sites)) {
+        *result = OUTCOME_SHARED_HOLE;
+        return WR_OK;
+    }
     if (place(job, sites, &fixture) != WR_OK) {
         *result = OUTCOME_DEGENERATE;
         return WR_OK;
@@ -694,6 +607,7 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
             case OUTCOME_DEGENERATE: out->counts.degenerate++; break;
             case OUTCOME_UNPINNED: out->counts.unpinned++; break;
             case OUTCOME_NO_SEATING_PUSH: out->counts.no_seating_push++; break;
+            case OUTCOME_SHARED_HOLE: out->counts.shared_hole++; break;
             case OUTCOME_BOUNDED: out->counts.bounded++; break;
             case OUTCOME_SCORED: {
                 wr_design d;
@@ -728,6 +642,7 @@ void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk)
     job->counts.degenerate += chunk->counts.degenerate;
     job->counts.unpinned += chunk->counts.unpinned;
     job->counts.no_seating_push += chunk->counts.no_seating_push;
+    job->counts.shared_hole += chunk->counts.shared_hole;
     job->counts.bounded += chunk->counts.bounded;
 }
 

@@ -972,6 +972,25 @@ void wr_outline_boundary(const wr_outline *outline, size_t loop, size_t segment,
     }
 }
 
+double wr_outline_nearest_on_loop(const wr_outline *outline, size_t loop, const double p[2],
+                                  size_t *segment, double *t, double point[2])
+{
+    const wr_loop *l = &outline->loops[loop];
+    double best = INFINITY;
+    for (size_t j = 0; j < l->segment_count; j++) {
+        double tj, nearest[2];
+        double d = segment_distance(&l->segments[j], p, &tj, nearest);
+        if (d < best) {
+            best = d;
+            *segment = j;
+            *t = tj;
+            point[0] = nearest[0];
+            point[1] = nearest[1];
+        }
+    }
+    return best;
+}
+
 bool wr_outline_locate(const wr_outline *outline, const double p[2], double tolerance,
                        wr_outline_place *place)
 {

@@ -2,6 +2,7 @@
  * handlers and parameters, and the handlers, which read params, call
  * libwrench and write results. */
 #include "wp_design.h"
+#include "wp_push_on.h"
 #include "wp_rpc.h"
 
 #include <assert.h>
@@ -487,7 +488,8 @@ typedef struct classify_state {
  * every edge: a long outline is seconds of work). */
 typedef struct push_state {
     wr_set set;
-    wr_finger finger;    /* its friction and radius */
+    wr_finger finger;    /* its friction and radius; its push_on: */
+    bool *push_on;       /* owned */
     int edges, next;     /* the outline's edges; the next to answer */
     unsigned long edge_cost;
     bool opened, any;    /* "{"regions":[" written; a region written */
@@ -1110,7 +1112,7 @@ static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
 static bool read_finger(const cJSON *object, const char *path, wr_finger *finger,
                         wp_error *error)
 {
-    *finger = (wr_finger){0, 0};
+    *finger = (wr_finger){.friction = 0};
     if (!wp_member_number(object, path, "finger_friction", false, &finger->friction, NULL,
                           error) ||
         !wp_member_number(object, path, "finger_radius", false, &finger->radius, NULL, error))
@@ -1124,7 +1126,11 @@ static bool read_finger(const cJSON *object, const char *path, wr_finger *finger
     return true;
 }
 
-static void stream_free(wp_stream *stream) { free(stream); }
+static void push_free(wp_stream *stream)
+{
+    free(stream->u.push.push_on);
+    free(stream);
+}
 
 static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
 {
@@ -1150,7 +1156,13 @@ static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
     }
     push_state *state = &stream->u.push;
     state->set = set;
-    state->finger = (wr_finger){friction, radius};
+    state->finger = (wr_finger){.friction = friction, .radius = radius};
+    if (!wp_read_push_on(call->params, "params", use->fixture, &state->push_on,
+                         &state->finger.push_on_count, call->error)) {
+        free(stream);
+        return NULL;
+    }
+    state->finger.push_on = state->push_on;
     state->edges = wr_push_edge_count(use->fixture);
     /* An edge against every cone: a few dot products each, or, with a
      * finger's friction, a segment test at every sample and bisection. */
@@ -1246,7 +1258,7 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
     return WP_STEP_DONE;
 }
 
-static const wp_streamer PUSH_STREAM = {push_begin, push_step, stream_free, NULL, false, NULL, NULL};
+static const wp_streamer PUSH_STREAM = {push_begin, push_step, push_free, NULL, false, NULL, NULL};
 
 static cJSON *gravity_sweep(wp_call *call)
 {
@@ -1624,12 +1636,14 @@ static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", 
                                        "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
-static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
+static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", "push_on",
+                                   NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
-                                     "progress", "shard", NULL};
+                                     "progress", "shard", "push_on", "corner_clearance",
+                                     "pin_diameter", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", NULL};

@@ -216,8 +216,8 @@ static int design_pictures(const wc_run *run, const cJSON *result)
             break;
         }
         wr_analysis *analysis;
-        wr_finger finger = {run->friction_given ? run->finger_friction : 0,
-                            run->radius_given ? run->finger_radius : 0};
+        wr_finger finger = {.friction = run->friction_given ? run->finger_friction : 0,
+                            .radius = run->radius_given ? run->finger_radius : 0};
         if (wr_analysis_new(fixtures[count], &analysis) != WR_OK ||
             wr_push_regions_finger(analysis, WR_SET_BOTH, &finger, NULL, &regions[count]) !=
                 WR_OK) {

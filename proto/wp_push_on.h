@@ -1,0 +1,18 @@
+/* wp_push_on.h -- the push_on parameter of fixture.design and push.regions
+ * (docs/PROTOCOL.md, "Where a push may be made: push_on"): which loops of
+ * the part's boundary a finger may push on. */
+#ifndef WP_PUSH_ON_H
+#define WP_PUSH_ON_H
+
+#include "wp_json.h"
+#include "wrench.h"
+
+/* path.push_on of `object` for a body or fixture `shape`: absent or "all"
+ * gives *mask NULL (every loop); "outer" loop 0; a list of loop numbers
+ * those.  *mask is malloc'd (the caller frees it), *count entries, one per
+ * loop of the shape (1 for a polygon or a circle).  False with `error` at
+ * path.push_on or path.push_on[i]. */
+bool wp_read_push_on(const cJSON *object, const char *path, const wr_fixture *shape, bool **mask,
+                     size_t *count, wp_error *error);
+
+#endif
