@@ -168,6 +168,7 @@ typedef struct wr_design_chunk {
     wr_design *designs;      /* at most `top`, best first (malloc'd) */
     int design_count;
     wr_design_counts counts;
+    uint64_t *why;           /* as wr_design_job_why's (malloc'd) */
 } wr_design_chunk;
 
 /* False when no candidate is left to claim (or the job failed). */
@@ -190,6 +191,16 @@ void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *
 /* When done: the designs, best first (at most `top`), and the counts. */
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count);
 const wr_design_counts *wr_design_job_counts(const wr_design_job *job);
+/* Why candidates have no seating push: each is asked about the push at one
+ * point, the middle of the longest edge the finger may push on (*edge, *t
+ * as wr_region's; a circle: 180 degrees), and counted under the goal cone
+ * that blocks it there: an array of (*plan)->kept_count + 1 counts, index
+ * i for the plan's kept string i (its contact states in origins[i]), the
+ * last for a push there that is in G_goal (the finger cannot push there,
+ * or the region was cut by rounding).  The counts sum to no_seating_push.
+ * Valid while the job is. */
+const uint64_t *wr_design_job_why(const wr_design_job *job, const struct wr_plan **plan,
+                                  int *edge, double *t);
 /* The fixture of a design (a shallow copy of the body, valid while the
  * job is). */
 void wr_design_job_fixture(const wr_design_job *job, const wr_design *design, wr_fixture *out);

@@ -88,6 +88,10 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddItemToObject(lattice, "extent", cJSON_CreateIntArray(run->lattice_extent, 2));
     } else if (run->spacing > 0) {
         cJSON_AddNumberToObject(params, "spacing", run->spacing);
+        if (run->corner_clearance > 0)
+            cJSON_AddNumberToObject(params, "corner_clearance", run->corner_clearance);
+        if (run->pin_diameter_given)
+            cJSON_AddNumberToObject(params, "pin_diameter", run->pin_diameter);
     } else if (body && cJSON_IsArray(cJSON_GetObjectItem(json, "fixels"))) {
         /* The fixture's fixels are the candidate sites. */
         cJSON *sites = cJSON_AddArrayToObject(params, "sites");
@@ -109,8 +113,16 @@ int wc_design_request(wc_run *run, cJSON *params)
         return wc_usage_error("design: no candidate sites: give --spacing H, or a fixture whose "
                               "fixels are the sites");
     }
+    if ((run->corner_clearance > 0 || run->pin_diameter_given) && !cJSON_GetObjectItem(params, "spacing")) {
+        cJSON_Delete(json);
+        free(name);
+        return wc_usage_error("design: --corner-clearance and --pin-diameter go with --spacing");
+    }
+    const cJSON *units = cJSON_GetObjectItem(json, "units");
+    cJSON *units_copy = units ? cJSON_Duplicate(units, true) : NULL;
     cJSON_Delete(json);
-    /* For --svg: the body and friction, to draw each design as a fixture. */
+    /* For --svg and --emit-fixture: the body and friction, to draw each
+     * design as a fixture and to write one. */
     run->fixture = cJSON_CreateObject();
     cJSON_AddStringToObject(run->fixture, "name", name ? name : "design");
     free(name);
@@ -118,6 +130,13 @@ int wc_design_request(wc_run *run, cJSON *params)
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
     cJSON_AddItemToObject(run->fixture, "friction",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "friction"), true));
+    if (units_copy)
+        cJSON_AddItemToObject(run->fixture, "units", units_copy);
+    int reach = wc_push_on(run, cJSON_GetObjectItem(params, "body"), params);
+    if (reach >= 0)
+        return reach;
+    if (run->emit_design && run->shard_given)
+        return wc_usage_error("design: --emit-fixture needs the whole answer, not a --shard");
     if (run->fixels)
         cJSON_AddNumberToObject(params, "fixels", run->fixels);
     if (run->top)
@@ -166,9 +185,10 @@ static void shard_lines(const wc_run *run, const cJSON *result)
     cJSON_Delete(rest);
 }
 
-/* A design as a fixture: the request's body and friction with its fixels
- * (friction as a number or an interval becomes the fixture's form). */
-static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
+/* A design as a fixture's JSON: the request's body and friction with its
+ * fixels (friction as a number or an interval becomes the fixture's
+ * form). */
+static cJSON *design_fixture_json(const wc_run *run, const cJSON *design)
 {
     cJSON *json = cJSON_CreateObject();
     cJSON_AddItemToObject(json, "body",
@@ -180,6 +200,51 @@ static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
     cJSON_AddItemToObject(json, "friction", form);
     cJSON_AddItemToObject(json, "fixels",
                           cJSON_Duplicate(cJSON_GetObjectItem(design, "fixels"), true));
+    return json;
+}
+
+/* --emit-fixture N FILE: design N as a fixture file, named after the
+ * part and the design.  -1, or an exit status after saying why not. */
+static int emit_fixture(const wc_run *run, const cJSON *result)
+{
+    const cJSON *designs = cJSON_GetObjectItem(result, "designs");
+    int count = cJSON_GetArraySize(designs);
+    if (run->emit_design > count)
+        return wc_usage_error("design: --emit-fixture %d: the answer has %d design%s",
+                              run->emit_design, count, count == 1 ? "" : "s");
+    const cJSON *design = cJSON_GetArrayItem(designs, run->emit_design - 1);
+    cJSON *body = design_fixture_json(run, design);
+    cJSON *json = cJSON_CreateObject();
+    char name[256];
+    snprintf(name, sizeof name, "%s, design %d",
+             cJSON_GetStringValue(cJSON_GetObjectItem(run->fixture, "name")), run->emit_design);
+    cJSON_AddStringToObject(json, "name", name);
+    const char *keys[] = {"body", "friction", "fixels"};
+    for (int k = 0; k < 3; k++)
+        cJSON_AddItemToObject(json, keys[k], cJSON_DetachItemFromObject(body, keys[k]));
+    cJSON_Delete(body);
+    const cJSON *units = cJSON_GetObjectItem(run->fixture, "units");
+    if (units)
+        cJSON_AddItemToObject(json, "units", cJSON_Duplicate(units, true));
+    /* Every number as read (cJSON_Print would round some to 15 digits,
+     * and a fixel could then leave the boundary). */
+    char *text = wp_canonical(json, NULL);
+    cJSON_Delete(json);
+    FILE *out = fopen(run->emit_file, "w");
+    int status = -1;
+    if (!out || !text || fprintf(out, "%s\n", text) < 0)
+        status = wc_usage_error("--emit-fixture %s: %s", run->emit_file,
+                                out ? "cannot write" : strerror(errno));
+    if (out && fclose(out) != 0 && status < 0)
+        status = wc_usage_error("--emit-fixture %s: %s", run->emit_file, strerror(errno));
+    free(text);
+    return status;
+}
+
+/* A design as a fixture, read as the daemon reads one. */
+static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
+{
+    cJSON *json = design_fixture_json(run, design);
     wp_fixture_doc doc;
     wp_error error;
     bool ok = wp_fixture_read(json, "fixture", &doc, &error);
@@ -231,6 +296,15 @@ static int design_pictures(const wc_run *run, const cJSON *result)
         p->regions = regions[count].items;
         p->region_count = regions[count].count;
         p->rank = (int)number(d, "rank");
+        for (int k = 0; k < WR_MAX_FIXELS; k++)
+            p->pin_diameter[k] = -1;
+        const cJSON *pin;
+        cJSON_ArrayForEach(pin, cJSON_GetObjectItem(d, "pins"))
+        {
+            int fixel = (int)number(pin, "fixel");
+            if (fixel >= 0 && fixel < WR_MAX_FIXELS)
+                p->pin_diameter[fixel] = number(pin, "diameter");
+        }
         p->score = number(d, "score");
         const cJSON *push = cJSON_GetObjectItem(d, "best_push");
         if (cJSON_IsObject(push)) {
@@ -294,8 +368,18 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     {
         any_push = any_push || cJSON_IsObject(cJSON_GetObjectItem(d, "best_push"));
     }
-    if (run->o->json)
+    if (run->emit_design) {
+        int status = emit_fixture(run, result);
+        if (status >= 0)
+            return status;
+    }
+    if (run->o->json) {
+        /* --json --svg: the picture too. */
+        int status = run->svg && run->fixture ? design_pictures(run, result) : -1;
+        if (status >= 0)
+            return status;
         return any_push ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+    }
     const char *objective = cJSON_GetStringValue(cJSON_GetObjectItem(result, "objective"));
     if (cJSON_GetObjectItem(result, "poses"))
         printf("design: 3 pegs on the lattice, %.0f poses of the part touching three",
@@ -388,9 +472,10 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
 {
     (void)params;
     cJSON *designs = cJSON_CreateArray(), *first = NULL;
-    double counts[5] = {0};
-    static const char *const COUNT_NAMES[5] = {"candidates", "examined", "degenerate", "unpinned",
-                                               "no_seating_push"};
+    enum { COUNTS = 6 };
+    double counts[COUNTS] = {0};
+    static const char *const COUNT_NAMES[COUNTS] = {"candidates", "examined", "degenerate",
+                                                    "unpinned", "no_seating_push", "shared_hole"};
     int shard_count = 0, summaries = 0;
     bool *seen = NULL;
     int status = EXIT_INSIDE;
@@ -460,7 +545,7 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
             }
             seen[index] = true;
             summaries++;
-            for (int k = 1; k < 5; k++)
+            for (int k = 1; k < COUNTS; k++)
                 counts[k] += number(cJSON_GetObjectItem(json, "counts"), COUNT_NAMES[k]);
             if (json != first)
                 cJSON_Delete(json);
@@ -503,7 +588,7 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         }
         free(all);
         cJSON *total = cJSON_AddObjectToObject(result, "counts");
-        for (int c = 0; c < 5; c++)
+        for (int c = 0; c < COUNTS; c++)
             cJSON_AddNumberToObject(total, COUNT_NAMES[c], counts[c]);
         const char *source = cJSON_GetObjectItem(first, "poses") ? "poses" : "sites";
         cJSON_AddItemToObject(result, source,

@@ -106,7 +106,10 @@ int wc_push_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
-    return -1;
+    return wc_push_on(run,
+                      cJSON_IsString(run->fixture) ? run->fixture
+                                                   : cJSON_GetObjectItem(run->fixture, "body"),
+                      params);
 }
 
 /* Does the answer name its regions by loop and segment (an outline)? */
