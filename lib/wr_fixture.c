@@ -696,6 +696,19 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
             return false;
         }
     }
+    if (spec->units.given &&
+        !(isfinite(spec->units.length_m) && spec->units.length_m > 0 &&
+          isnormal(spec->units.length_m))) {
+        wr_error_set(error, "units.length", "must be a positive number of metres, got %g",
+                     spec->units.length_m);
+        return false;
+    }
+    if (spec->units.given &&
+        !(isfinite(spec->units.force_n) && spec->units.force_n > 0 && isnormal(spec->units.force_n))) {
+        wr_error_set(error, "units.force", "must be a positive number of newtons, got %g",
+                     spec->units.force_n);
+        return false;
+    }
     return check_friction(&spec->friction, "friction", error);
 }
 
@@ -751,6 +764,7 @@ static wr_fixture *validate(const wr_fixture_spec *spec, bool body_only, wr_erro
     }
     f->shape = spec->shape;
     f->mass = spec->mass;
+    f->units = spec->units.given ? spec->units : (wr_units){false, 1.0, 1.0};
     double area = 0, centroid[2] = {0, 0}, polar_moment = 0;
     if (spec->shape == WR_SHAPE_OUTLINE) {
         wr_error outline_error;
@@ -987,6 +1001,11 @@ void wr_fixture_unscale_row(const wr_fixture *fixture, const double scaled_row[3
     row[1] = scaled_row[1];
     row[2] = scaled_row[2] / fixture->gyration_radius;
     wr_normalize3(row);
+}
+
+double wr_fixture_force_factor(const wr_fixture *fixture)
+{
+    return fixture->units.force_n / fixture->units.length_m;
 }
 
 void wr_fixture_edge_normal(const wr_fixture *fixture, size_t edge, double normal[2])

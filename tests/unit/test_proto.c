@@ -190,6 +190,87 @@ static void explicit_form_reads_back_to_the_same_fixture(void **state)
     }
 }
 
+/* The fixture's units: part of the canonical text and the id only when
+ * given, so a fixture written without them keeps the id it has always had
+ * (the disc's, stored in tests/e2e/test_outline.py's OLD_IDS, computed
+ * before units existed); each unit's size in SI is its definition, and
+ * every bad spelling is refused at its field. */
+static void fixture_units_are_in_the_id_only_when_given(void **state)
+{
+    (void)state;
+    wp_error error;
+    cJSON *disc = cJSON_Parse(DISC);
+    wp_fixture_doc plain;
+    assert_true(wp_fixture_read(disc, "params.fixture", &plain, &error));
+    assert_string_equal(plain.id, "e0d7a1a0bd6e8bf16fe5845da1960ed9");
+    assert_null(strstr(plain.canonical, "units"));
+    assert_false(plain.fixture->units.given);
+    assert_true(wr_fixture_force_factor(plain.fixture) == 1.0);
+
+    static const struct {
+        const char *length, *force;
+        double factor; /* kg * length / s^2 per force unit */
+    } systems[] = {
+        {"mm", "N", 1000.0},          /* 1 N = 1 kg m/s^2 = 1000 kg mm/s^2 */
+        {"m", "N", 1.0},
+        {"m", "mN", 1e-3},
+        {"in", "lbf", 4.4482216152605 / 0.0254}, /* 0.45359237 kg * 9.80665 m/s^2 per inch */
+    };
+    char ids[4][WP_ID_LENGTH + 1];
+    for (size_t i = 0; i < 4; i++) {
+        cJSON *units = cJSON_CreateObject();
+        cJSON_AddStringToObject(units, "length", systems[i].length);
+        cJSON_AddStringToObject(units, "force", systems[i].force);
+        cJSON_DeleteItemFromObject(disc, "units");
+        cJSON_AddItemToObject(disc, "units", units);
+        wp_fixture_doc doc, again;
+        assert_true(wp_fixture_read(disc, "params.fixture", &doc, &error));
+        assert_true(doc.fixture->units.given);
+        assert_true(fabs(wr_fixture_force_factor(doc.fixture) / systems[i].factor - 1) < 1e-15);
+        assert_string_not_equal(doc.id, plain.id);
+        strcpy(ids[i], doc.id);
+        for (size_t j = 0; j < i; j++)
+            assert_string_not_equal(ids[i], ids[j]);
+        char expect[96];
+        snprintf(expect, sizeof expect, "\"units\":{\"force\":\"%s\",\"length\":\"%s\"}",
+                 systems[i].force, systems[i].length);
+        assert_non_null(strstr(doc.canonical, expect));
+        /* The stored text reads back to the same fixture, text and id. */
+        cJSON *stored = cJSON_Parse(doc.canonical);
+        assert_true(wp_fixture_read(stored, "params.fixture", &again, &error));
+        assert_string_equal(doc.id, again.id);
+        assert_string_equal(doc.canonical, again.canonical);
+        assert_same_fixture(doc.fixture, again.fixture);
+        assert_memory_equal(&doc.fixture->units, &again.fixture->units, sizeof doc.fixture->units);
+        cJSON_Delete(stored);
+        wp_fixture_doc_release(&doc);
+        wp_fixture_doc_release(&again);
+    }
+
+    static const struct {
+        const char *units, *field, *reason;
+    } bad[] = {
+        {"\"mm\"", "params.fixture.units", "object"},
+        {"{\"length\":\"cm\",\"force\":\"N\"}", "params.fixture.units.length", "\"cm\""},
+        {"{\"length\":\"mm\",\"force\":\"kN\"}", "params.fixture.units.force", "\"kN\""},
+        {"{\"length\":\"mm\"}", "params.fixture.units.force", "required"},
+        {"{\"force\":\"N\"}", "params.fixture.units.length", "required"},
+        {"{\"length\":1,\"force\":\"N\"}", "params.fixture.units.length", "string"},
+        {"{\"length\":\"mm\",\"force\":\"N\",\"mass\":\"kg\"}", "params.fixture.units.mass", ""},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        cJSON_DeleteItemFromObject(disc, "units");
+        cJSON_AddItemToObject(disc, "units", cJSON_Parse(bad[i].units));
+        wp_fixture_doc doc;
+        assert_false(wp_fixture_read(disc, "params.fixture", &doc, &error));
+        assert_int_equal(error.code, WP_INVALID_PARAMS);
+        assert_string_equal(error.field, bad[i].field);
+        assert_non_null(strstr(error.reason, bad[i].reason));
+    }
+    wp_fixture_doc_release(&plain);
+    cJSON_Delete(disc);
+}
+
 /* ---- the envelope, against the real cache -------------------------------- */
 
 typedef struct harness {
@@ -907,6 +988,7 @@ int main(void)
         cmocka_unit_test(numbers_round_trip_shortest),
         cmocka_unit_test(fixture_id_ignores_order_spelling_and_name),
         cmocka_unit_test(explicit_form_reads_back_to_the_same_fixture),
+        cmocka_unit_test(fixture_units_are_in_the_id_only_when_given),
         cmocka_unit_test_setup_teardown(envelope_errors_name_the_field, setup, teardown),
         cmocka_unit_test_setup_teardown(notifications_and_batches, setup, teardown),
         cmocka_unit_test_setup_teardown(numeric_ids_are_echoed_as_written, setup, teardown),
