@@ -424,6 +424,76 @@ static void write_pair(wp_buffer *out, const double v[2])
     WP_BUFFER_LITERAL(out, "]");
 }
 
+/* Where a design's answer says a push is, as push.regions names places:
+ * {"loop", "segment"} on an outline, {"edge"} otherwise, then "t". */
+static void write_place(wp_buffer *out, const wr_fixture *body, int edge, double t)
+{
+    double at[2], normal[2];
+    wr_boundary_point(body, edge, t, at, normal);
+    WP_BUFFER_LITERAL(out, "{\"at\":");
+    write_pair(out, at);
+    if (body->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(body, edge, &loop, &segment);
+        WP_BUFFER_LITERAL(out, ",\"loop\":");
+        wp_buffer_number(out, (double)loop);
+        WP_BUFFER_LITERAL(out, ",\"segment\":");
+        wp_buffer_number(out, (double)segment);
+    } else {
+        WP_BUFFER_LITERAL(out, ",\"edge\":");
+        wp_buffer_number(out, edge);
+    }
+    WP_BUFFER_LITERAL(out, ",\"t\":");
+    wp_buffer_number(out, t);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+/* "why_no_seating_push" (docs/PROTOCOL.md): where the push was asked
+ * about, and the reasons with their counts, most first (ties in the plan's
+ * order, the push in G_goal last). */
+static void write_why(wp_design_stream *s, wp_buffer *out)
+{
+    const wr_plan *plan;
+    int edge;
+    double t;
+    const uint64_t *why = wr_design_job_why(s->job, &plan, &edge, &t);
+    WP_BUFFER_LITERAL(out, ",\"why_no_seating_push\":{\"asked_at\":");
+    write_place(out, s->body, edge, t);
+    WP_BUFFER_LITERAL(out, ",\"reasons\":[");
+    int n = plan->kept_count + 1;
+    bool *written = calloc((size_t)n, sizeof *written);
+    for (int round = 0; written && round < n; round++) {
+        int most = -1;
+        for (int i = 0; i < n; i++)
+            if (!written[i] && why[i] > 0 && (most < 0 || why[i] > why[most]))
+                most = i;
+        if (most < 0)
+            break;
+        written[most] = true;
+        wp_buffer_puts(out, round ? ",{\"blocking\":" : "{\"blocking\":");
+        if (most == plan->kept_count) {
+            WP_BUFFER_LITERAL(out, "null,\"states\":[]");
+        } else {
+            char text[WR_CONSTRAINT_TEXT], state[WR_STATE_TEXT];
+            wr_constraint_format(&plan->kept[most], text);
+            wp_buffer_string(out, text);
+            WP_BUFFER_LITERAL(out, ",\"states\":[");
+            for (int j = 0; j < plan->origins[most].count; j++) {
+                wr_state_format(plan->origins[most].states[j], plan->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+            WP_BUFFER_LITERAL(out, "]");
+        }
+        WP_BUFFER_LITERAL(out, ",\"candidates\":");
+        write_count(out, why[most]);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    free(written);
+    WP_BUFFER_LITERAL(out, "]}");
+}
+
 static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
 {
     uint64_t done = 0, total = 0;
@@ -586,11 +656,13 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
     write_count(out, c->no_seating_push);
     WP_BUFFER_LITERAL(out, ",\"shared_hole\":");
     write_count(out, c->shared_hole);
+    WP_BUFFER_LITERAL(out, "}");
+    write_why(s, out);
     if (s->poses) {
-        WP_BUFFER_LITERAL(out, "},\"poses\":");
+        WP_BUFFER_LITERAL(out, ",\"poses\":");
         write_count(out, s->spec.candidate_count);
     } else {
-        WP_BUFFER_LITERAL(out, "},\"sites\":");
+        WP_BUFFER_LITERAL(out, ",\"sites\":");
         wp_buffer_number(out, s->site_count);
     }
     WP_BUFFER_LITERAL(out, ",\"objective\":\"");

@@ -111,7 +111,7 @@ __all__ = [
     "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
     "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
     "FixtureInfo", "FrictionSweep", "explain", "explain_goal", "explain_strong", "default_socket_path",
-    "default_push_on", "loop_width",
+    "default_push_on", "loop_width", "explain_no_design",
     "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
     "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
 ]
@@ -407,6 +407,44 @@ class DesignResult:
     poses: int = 0                     # a lattice: the poses found
     objective: str = "margin"
     shard: List[int] = dataclasses_field(default_factory=lambda: [0, 1])
+    # Why candidates have no seating push: {"asked_at", "reasons": [{"blocking",
+    # "states", "candidates"}]} (docs/PROTOCOL.md); see explain_no_design
+    why_no_seating_push: Optional[Dict[str, Any]] = None
+
+
+_NO_DESIGN_REASONS = ("shared_hole", "degenerate", "unpinned", "no_seating_push")
+
+
+def explain_no_design(result: Union["DesignResult", Mapping[str, Any]]) -> List[str]:
+    """Why a design found nothing, as lines, wrenchctl's: each reason with
+    its count ("1,001 of 1,001 candidates"), and for the candidates without
+    a seating push why the push asked about does not seat them, in the
+    words of explain_goal ("from contact state 1010 fixel 3 may break
+    away")."""
+    if not isinstance(result, DesignResult):
+        result = _design_result(dict(result))
+    counts = result.counts
+    lines = [_W["no_design"] % "{:,}".format(counts.get("examined", 0))]
+    for key in _NO_DESIGN_REASONS:
+        if counts.get(key, 0) > 0:
+            lines.append("  {:,} {}".format(counts[key], _W["no_design_" + key]))
+    why = result.why_no_seating_push or {}
+    asked, reasons = why.get("asked_at") or {}, why.get("reasons") or []
+    if reasons and asked.get("at"):
+        if "loop" in asked:
+            place = ", loop %d segment %d" % (asked["loop"], asked["segment"])
+        elif "edge" in asked:
+            place = ", edge %d" % asked["edge"]
+        else:
+            place = ""
+        lines.append("  " + _W["no_design_asked"] % ("(%.6g, %.6g)%s" % (
+            asked["at"][0], asked["at"][1], place)))
+        for r in reasons:
+            words = (explain_goal(r["blocking"], r["states"]) if r.get("blocking") is not None
+                     else _W["no_design_unreached"])
+            lines.append("    {:,} of {:,}: {}".format(r["candidates"],
+                                                       counts.get("no_seating_push", 0), words))
+    return lines
 
 
 def _design_result(result: Any) -> DesignResult:
@@ -581,6 +619,14 @@ _EXPLAIN_WORDS = {
     "inside_goal": "seats the part from every contact state",
     "inside_strong": "once seated, it does not move",
     "inside_both": "seats the part from every contact state and, once seated, it does not move",
+    # an empty design (explain_no_design); counts preformatted ("1,001")
+    "no_design": "no design: no candidate has a push that seats the part.  Of %s candidates:",
+    "no_design_shared_hole": "put two fixels in one hole (a pin is one fixel)",
+    "no_design_degenerate": "are degenerate (fixels at one point with one normal, or too close)",
+    "no_design_unpinned": "do not pin the part (it turns about a point with every contact kept)",
+    "no_design_no_seating_push": "have no seating push",
+    "no_design_asked": "why, for a push at %s, the middle of the longest segment pushed on:",
+    "no_design_unreached": "that push seats the part, but the finger cannot push there",
 }
 _W = _EXPLAIN_WORDS
 

@@ -5,6 +5,7 @@
 #include "wc_print.h"
 #include "wc_svg.h"
 
+#include "wc_explain.h" /* generated from clients/python/wrenchd.py */
 #include "wp_fixture.h"
 
 #include <errno.h>
@@ -354,6 +355,71 @@ static int design_pictures(const wc_run *run, const cJSON *result)
     return status;
 }
 
+/* n with a comma every three digits: "1,001". */
+static void grouped(double n, char *out, size_t size)
+{
+    char digits[32];
+    snprintf(digits, sizeof digits, "%.0f", n);
+    size_t length = strlen(digits), k = 0;
+    for (size_t i = 0; i < length && k + 2 < size; i++) {
+        if (i > 0 && (length - i) % 3 == 0)
+            out[k++] = ',';
+        out[k++] = digits[i];
+    }
+    out[k] = 0;
+}
+
+/* Why no candidate is a design: each reason with its count, and for those
+ * without a seating push, why the push asked about does not seat them
+ * (why_no_seating_push, in the words of classify's explanations). */
+static void explain_no_design(const cJSON *result)
+{
+    const cJSON *counts = cJSON_GetObjectItem(result, "counts");
+    char of[32], n[32];
+    grouped(number(counts, "examined"), of, sizeof of);
+    printf(WC_EXPLAIN_NO_DESIGN "\n", of);
+    static const char *const REASONS[][2] = {
+        {"shared_hole", WC_EXPLAIN_NO_DESIGN_SHARED_HOLE},
+        {"degenerate", WC_EXPLAIN_NO_DESIGN_DEGENERATE},
+        {"unpinned", WC_EXPLAIN_NO_DESIGN_UNPINNED},
+        {"no_seating_push", WC_EXPLAIN_NO_DESIGN_NO_SEATING_PUSH}};
+    for (size_t i = 0; i < sizeof REASONS / sizeof *REASONS; i++) {
+        double count = number(counts, REASONS[i][0]);
+        if (count > 0) {
+            grouped(count, n, sizeof n);
+            printf("  %s %s\n", n, REASONS[i][1]);
+        }
+    }
+    const cJSON *why = cJSON_GetObjectItem(result, "why_no_seating_push");
+    const cJSON *asked = cJSON_GetObjectItem(why, "asked_at");
+    const cJSON *at = cJSON_GetObjectItem(asked, "at");
+    if (cJSON_GetArraySize(cJSON_GetObjectItem(why, "reasons")) == 0 || cJSON_GetArraySize(at) != 2)
+        return;
+    char place[64] = "";
+    if (cJSON_GetObjectItem(asked, "loop"))
+        snprintf(place, sizeof place, ", loop %.0f segment %.0f", number(asked, "loop"),
+                 number(asked, "segment"));
+    else if (cJSON_GetObjectItem(asked, "edge"))
+        snprintf(place, sizeof place, ", edge %.0f", number(asked, "edge"));
+    grouped(number(counts, "no_seating_push"), of, sizeof of);
+    char where[128];
+    snprintf(where, sizeof where, "(%.6g, %.6g)%s", cJSON_GetArrayItem(at, 0)->valuedouble,
+             cJSON_GetArrayItem(at, 1)->valuedouble, place);
+    printf("  " WC_EXPLAIN_NO_DESIGN_ASKED "\n", where);
+    const cJSON *reason;
+    cJSON_ArrayForEach(reason, cJSON_GetObjectItem(why, "reasons"))
+    {
+        char words[512];
+        const char *blocking = cJSON_GetStringValue(cJSON_GetObjectItem(reason, "blocking"));
+        if (blocking)
+            wc_explain_goal(blocking, cJSON_GetObjectItem(reason, "states"), words, sizeof words);
+        else
+            snprintf(words, sizeof words, "%s", WC_EXPLAIN_NO_DESIGN_UNREACHED);
+        grouped(number(reason, "candidates"), n, sizeof n);
+        printf("    %s of %s: %s\n", n, of, words);
+    }
+}
+
 int wc_design_answer(wc_run *run, const cJSON *result)
 {
     if (run->shard_given) {
@@ -392,10 +458,14 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     if (cJSON_GetArraySize(shard) == 2 && cJSON_GetArrayItem(shard, 1)->valuedouble > 1)
         printf(" (shard %.0f of %.0f: %.0f of them)", cJSON_GetArrayItem(shard, 0)->valuedouble,
                cJSON_GetArrayItem(shard, 1)->valuedouble, number(counts, "examined"));
-    printf("; %.0f without a seating push, %.0f unpinned, %.0f degenerate; ranked by %s\n",
+    printf("; %.0f without a seating push, %.0f unpinned, %.0f degenerate", 
            number(counts, "no_seating_push"), number(counts, "unpinned"),
-           number(counts, "degenerate"), objective ? objective : "margin");
-    printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
+           number(counts, "degenerate"));
+    if (number(counts, "shared_hole") > 0)
+        printf(", %.0f with two fixels in one hole", number(counts, "shared_hole"));
+    printf("; ranked by %s\n", objective ? objective : "margin");
+    if (cJSON_GetArraySize(designs) > 0)
+        printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
     cJSON_ArrayForEach(d, designs)
     {
@@ -445,7 +515,7 @@ int wc_design_answer(wc_run *run, const cJSON *result)
             return status;
     }
     if (cJSON_GetArraySize(designs) == 0)
-        printf("no design: no candidate has a push that seats the part\n");
+        explain_no_design(result);
     else
         printf("Push at the best push and let go: it is in the both region (goal seats the part,\n"
                "strong then holds it); a goal push alone may leave it sliding along its fixels.\n");
@@ -453,6 +523,57 @@ int wc_design_answer(wc_run *run, const cJSON *result)
 }
 
 /* ---- design-merge -------------------------------------------------------------------- */
+
+/* Adds a shard's why_no_seating_push reasons to `into` ({"asked_at",
+ * "reasons"}), summing the candidates of equal blocking strings; the
+ * reasons are sorted again, most first, when the last is in. */
+static void merge_why(cJSON *into, const cJSON *why)
+{
+    if (!cJSON_GetObjectItem(into, "asked_at") && cJSON_GetObjectItem(why, "asked_at"))
+        cJSON_AddItemToObject(into, "asked_at",
+                              cJSON_Duplicate(cJSON_GetObjectItem(why, "asked_at"), true));
+    cJSON *reasons = cJSON_GetObjectItem(into, "reasons");
+    if (!reasons)
+        reasons = cJSON_AddArrayToObject(into, "reasons");
+    const cJSON *r;
+    cJSON_ArrayForEach(r, cJSON_GetObjectItem(why, "reasons"))
+    {
+        const char *blocking = cJSON_GetStringValue(cJSON_GetObjectItem(r, "blocking"));
+        cJSON *same = NULL, *mine;
+        cJSON_ArrayForEach(mine, reasons)
+        {
+            const char *other = cJSON_GetStringValue(cJSON_GetObjectItem(mine, "blocking"));
+            if ((!blocking && !other) || (blocking && other && strcmp(blocking, other) == 0))
+                same = mine;
+        }
+        if (same)
+            cJSON_ReplaceItemInObject(same, "candidates",
+                                      cJSON_CreateNumber(number(same, "candidates") +
+                                                         number(r, "candidates")));
+        else
+            cJSON_AddItemToArray(reasons, cJSON_Duplicate(r, true));
+    }
+}
+
+/* The merged reasons, most candidates first (stable: insertion). */
+static void sort_why(cJSON *why)
+{
+    cJSON *reasons = cJSON_GetObjectItem(why, "reasons");
+    int n = cJSON_GetArraySize(reasons);
+    cJSON **all = calloc((size_t)(n ? n : 1), sizeof *all);
+    for (int k = 0; all && k < n; k++)
+        all[k] = cJSON_DetachItemViaPointer(reasons, reasons->child);
+    for (int a = 1; all && a < n; a++)
+        for (int b = a; b > 0 && number(all[b], "candidates") > number(all[b - 1], "candidates");
+             b--) {
+            cJSON *swap = all[b];
+            all[b] = all[b - 1];
+            all[b - 1] = swap;
+        }
+    for (int k = 0; all && k < n; k++)
+        cJSON_AddItemToArray(reasons, all[k]);
+    free(all);
+}
 
 static bool same_number(const cJSON *a, const cJSON *b)
 {
@@ -471,7 +592,7 @@ static bool ranks_before(const cJSON *a, const cJSON *b)
 int wc_design_merge_request(wc_run *run, cJSON *params)
 {
     (void)params;
-    cJSON *designs = cJSON_CreateArray(), *first = NULL;
+    cJSON *designs = cJSON_CreateArray(), *first = NULL, *why = cJSON_CreateObject();
     enum { COUNTS = 6 };
     double counts[COUNTS] = {0};
     static const char *const COUNT_NAMES[COUNTS] = {"candidates", "examined", "degenerate",
@@ -547,6 +668,7 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
             summaries++;
             for (int k = 1; k < COUNTS; k++)
                 counts[k] += number(cJSON_GetObjectItem(json, "counts"), COUNT_NAMES[k]);
+            merge_why(why, cJSON_GetObjectItem(json, "why_no_seating_push"));
             if (json != first)
                 cJSON_Delete(json);
         }
@@ -590,6 +712,9 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         cJSON *total = cJSON_AddObjectToObject(result, "counts");
         for (int c = 0; c < COUNTS; c++)
             cJSON_AddNumberToObject(total, COUNT_NAMES[c], counts[c]);
+        sort_why(why);
+        cJSON_AddItemToObject(result, "why_no_seating_push", why);
+        why = NULL;
         const char *source = cJSON_GetObjectItem(first, "poses") ? "poses" : "sites";
         cJSON_AddItemToObject(result, source,
                               cJSON_Duplicate(cJSON_GetObjectItem(first, source), true));
@@ -603,6 +728,7 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         cJSON_Delete(result);
     }
     free(seen);
+    cJSON_Delete(why);
     cJSON_Delete(first);
     cJSON_Delete(designs);
     return status;
