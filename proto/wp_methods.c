@@ -1254,6 +1254,8 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
     wp_buffer_puts(out, state->resolution == 0 ? ",\"exact\":true" : ",\"exact\":false");
     WP_BUFFER_LITERAL(out, ",\"resolution\":");
     wp_buffer_number(out, state->resolution);
+    if (!state->any)
+        wp_write_push_why(out, use->analysis, state->set, &state->finger);
     WP_BUFFER_LITERAL(out, "}");
     return WP_STEP_DONE;
 }

@@ -52,3 +52,77 @@ bool wp_read_push_on(const cJSON *object, const char *path, const wr_fixture *sh
     *count = loops;
     return true;
 }
+
+/* One reason: the blocking cone (set and index; index -1: none). */
+typedef struct reason {
+    wr_set set;
+    int index;
+    int edges;
+} reason;
+
+void wp_write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set set,
+                       const wr_finger *finger)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    int edges = wr_push_edge_count(f);
+    reason *reasons = calloc((size_t)edges + 1, sizeof *reasons);
+    int count = 0;
+    for (int e = 0; reasons && e < edges; e++) {
+        if (!wr_finger_pushes_on(f, finger, e))
+            continue;
+        double wrench[3];
+        wr_push_wrench(f, e, f->shape == WR_SHAPE_CIRCLE ? 180 : 0.5, wrench);
+        wr_answer answer;
+        if (wr_classify_margin(analysis, wrench, set, WR_DEFAULT_TOLERANCE, &answer) != WR_OK)
+            continue;
+        reason r = {answer.blocking >= 0 ? answer.blocking_set : set, answer.blocking, 1};
+        int i = 0;
+        while (i < count && (reasons[i].set != r.set || reasons[i].index != r.index))
+            i++;
+        if (i < count)
+            reasons[i].edges++;
+        else
+            reasons[count++] = r;
+    }
+    /* Most edges first; equal counts in the order first met (insertion). */
+    for (int a = 1; a < count; a++)
+        for (int b = a; b > 0 && reasons[b].edges > reasons[b - 1].edges; b--) {
+            reason swap = reasons[b];
+            reasons[b] = reasons[b - 1];
+            reasons[b - 1] = swap;
+        }
+    WP_BUFFER_LITERAL(out, ",\"why_empty\":{\"reasons\":[");
+    for (int i = 0; i < count; i++) {
+        wp_buffer_puts(out, i ? ",{\"blocking\":" : "{\"blocking\":");
+        if (reasons[i].index < 0) {
+            WP_BUFFER_LITERAL(out, "null");
+        } else {
+            char text[WR_CONSTRAINT_TEXT];
+            wr_constraint_format(&wr_analysis_cone(analysis, reasons[i].set, reasons[i].index)
+                                      ->constraint,
+                                 text);
+            wp_buffer_string(out, text);
+        }
+        WP_BUFFER_LITERAL(out, ",\"set\":");
+        wp_buffer_string(out, reasons[i].set == WR_SET_GOAL     ? "goal"
+                              : reasons[i].set == WR_SET_STRONG ? "strong"
+                                                                : "both");
+        WP_BUFFER_LITERAL(out, ",\"states\":[");
+        if (reasons[i].index >= 0 && reasons[i].set == WR_SET_GOAL) {
+            const wr_plan_origins *origins =
+                &wr_analysis_plan(analysis)->origins[reasons[i].index];
+            for (int j = 0; j < origins->count; j++) {
+                char state[WR_STATE_TEXT];
+                wr_state_format(origins->states[j], f->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+        }
+        WP_BUFFER_LITERAL(out, "],\"edges\":");
+        wp_buffer_number(out, reasons[i].edges);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    WP_BUFFER_LITERAL(out, "]}");
+    free(reasons);
+}

@@ -15,4 +15,12 @@
 bool wp_read_push_on(const cJSON *object, const char *path, const wr_fixture *shape, bool **mask,
                      size_t *count, wp_error *error);
 
+/* An empty push.regions answer's ,"why_empty":{...} (docs/PROTOCOL.md):
+ * the push at the middle of every edge the finger may push on, classified
+ * in `set`; the reasons (the blocking cone's string, its set and contact
+ * states; null when the push there is in the set but the finger cannot
+ * push there) with the number of edges each, most first. */
+void wp_write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set set,
+                       const wr_finger *finger);
+
 #endif

@@ -627,6 +627,8 @@ _EXPLAIN_WORDS = {
     "no_design_no_seating_push": "have no seating push",
     "no_design_asked": "why, for a push at %s, the middle of the longest segment pushed on:",
     "no_design_unreached": "that push seats the part, but the finger cannot push there",
+    # an empty push region (explain_empty_regions)
+    "empty_region": "no region: the push at the middle of each of the %d edges pushed on:",
 }
 _W = _EXPLAIN_WORDS
 

@@ -98,6 +98,7 @@ typedef struct wc_run {
     bool range_given;
     double kinetic_ratio;   /* --kinetic-ratio */
     bool ratio_given;
+    bool table_full;        /* --table full: every row, not a summary */
     double spacing;         /* --spacing; 0 when not given */
     int fixels, top;        /* --fixels, --top; 0 when not given */
     const char *objective;  /* --objective */

@@ -467,23 +467,25 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     if (cJSON_GetArraySize(designs) > 0)
         printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
+    /* Points to the drawing's precision (wc_drawing_decimals). */
+    int decimals = wc_drawing_decimals(
+        cJSON_GetObjectItem(cJSON_GetObjectItem(run->fixture, "body"), "shape"));
     cJSON_ArrayForEach(d, designs)
     {
-        char fixels[256] = "", push[128] = "none", cell[64];
+        char fixels[512] = "", push[160] = "none", cell[96];
         const cJSON *f;
         cJSON_ArrayForEach(f, cJSON_GetObjectItem(d, "fixels"))
         {
-            const cJSON *at = cJSON_GetObjectItem(f, "at");
-            snprintf(cell, sizeof cell, "%s(%.4g, %.4g)", fixels[0] ? " " : "",
-                     cJSON_GetArrayItem(at, 0)->valuedouble, cJSON_GetArrayItem(at, 1)->valuedouble);
+            if (fixels[0])
+                strncat(fixels, " ", sizeof fixels - strlen(fixels) - 1);
+            wc_point_text(cJSON_GetObjectItem(f, "at"), decimals, cell, sizeof cell);
             strncat(fixels, cell, sizeof fixels - strlen(fixels) - 1);
         }
         const cJSON *best = cJSON_GetObjectItem(d, "best_push");
         if (cJSON_IsObject(best)) {
-            const cJSON *at = cJSON_GetObjectItem(best, "at");
             const cJSON *direction = cJSON_GetObjectItem(best, "direction");
-            snprintf(push, sizeof push, "(%.4g, %.4g) -> (%.3g, %.3g)",
-                     cJSON_GetArrayItem(at, 0)->valuedouble, cJSON_GetArrayItem(at, 1)->valuedouble,
+            wc_point_text(cJSON_GetObjectItem(best, "at"), decimals, cell, sizeof cell);
+            snprintf(push, sizeof push, "%s -> (%.3f, %.3f)", cell,
                      cJSON_GetArrayItem(direction, 0)->valuedouble + 0.0,
                      cJSON_GetArrayItem(direction, 1)->valuedouble + 0.0);
         }

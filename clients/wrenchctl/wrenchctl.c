@@ -226,6 +226,15 @@ static int take_ratio(wc_run *run, const char *value)
     return 0;
 }
 
+/* --table full|summary: a sweep's curve whole, or summarised (default). */
+static int take_table(wc_run *run, const char *value)
+{
+    if (strcmp(value, "full") != 0 && strcmp(value, "summary") != 0)
+        return wc_usage_error("--table is full or summary, not '%s'", value);
+    run->table_full = strcmp(value, "full") == 0;
+    return 0;
+}
+
 static int take_spacing(wc_run *run, const char *value)
 {
     if (!take_number("spacing", value, &run->spacing) || !(run->spacing > 0))
@@ -350,6 +359,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"wrench", WC_OPT_SWEEP, take_wrench},
     {"range", WC_OPT_SWEEP, take_range},
     {"kinetic-ratio", WC_OPT_SWEEP, take_ratio},
+    {"table", WC_OPT_SWEEP, take_table},
     {"spacing", WC_OPT_DESIGN, take_spacing},
     {"lattice", WC_OPT_DESIGN, take_lattice},
     {"fixels", WC_OPT_DESIGN, take_fixels},
@@ -594,7 +604,8 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
     {"sweep",
      "FIXTURE (--push SET | --gravity SET | --wrench FX,FY,TAU... [--set SET]) [--range LO:HI]\n"
-     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]",
+     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]\n"
+     "       [--table full|summary]",
      WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
@@ -611,6 +622,8 @@ const wc_command wc_commands[] = {
      "  --kinetic-ratio R   mu_k = R mu, 0 < R <= 1 (default 1)\n"
      "  --finger-friction MU, --finger-radius R\n"
      "                      with --push: the finger, as for push\n"
+     "  --table full        every point of the curve (default: a summary, the points nearest\n"
+     "                      9 evenly spaced mu and those at the intervals' ends)\n"
      "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
