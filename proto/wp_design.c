@@ -449,8 +449,9 @@ static void write_place(wp_buffer *out, const wr_fixture *body, int edge, double
 }
 
 /* "why_no_seating_push" (docs/PROTOCOL.md): where the push was asked
- * about, and the reasons with their counts, most first (ties in the plan's
- * order, the push in G_goal last). */
+ * about, and the reasons with their counts, most first, equal counts by
+ * their blocking strings (strcmp), the push in G_goal (null) last: an
+ * order design-merge can keep. */
 static void write_why(wp_design_stream *s, wp_buffer *out)
 {
     const wr_plan *plan;
@@ -464,9 +465,23 @@ static void write_why(wp_design_stream *s, wp_buffer *out)
     bool *written = calloc((size_t)n, sizeof *written);
     for (int round = 0; written && round < n; round++) {
         int most = -1;
-        for (int i = 0; i < n; i++)
-            if (!written[i] && why[i] > 0 && (most < 0 || why[i] > why[most]))
+        char a[WR_CONSTRAINT_TEXT], b[WR_CONSTRAINT_TEXT];
+        for (int i = 0; i < n; i++) {
+            if (written[i] || why[i] == 0)
+                continue;
+            bool before = most < 0 || why[i] > why[most];
+            if (!before && why[i] == why[most] && i < plan->kept_count) {
+                wr_constraint_format(&plan->kept[i], a);
+                if (most == plan->kept_count)
+                    before = true;
+                else {
+                    wr_constraint_format(&plan->kept[most], b);
+                    before = strcmp(a, b) < 0;
+                }
+            }
+            if (before)
                 most = i;
+        }
         if (most < 0)
             break;
         written[most] = true;

@@ -113,6 +113,8 @@ typedef struct wc_run {
     int emit_design;         /* --emit-fixture N FILE: design N (from 1); 0: none */
     const char *emit_file;
     cJSON *push_on;          /* --push-on, as sent; NULL: the clients' default */
+    int decimals;            /* design-merge: the shards' drawing precision (their
+                                summary lines say it); -1: not known */
     /* WC_FIXTURE: the fixture as sent (an object, or an id string) */
     cJSON *fixture;
     /* kept by a request function for its answer (sweep: --wrench, as read) */

@@ -179,6 +179,10 @@ static void shard_lines(const wc_run *run, const cJSON *result)
     cJSON *rest = cJSON_Duplicate(result, true);
     cJSON_DeleteItemFromObject(rest, "designs");
     cJSON_AddNumberToObject(rest, "top", run->top ? run->top : 10);
+    /* The merged table prints points as this one would. */
+    cJSON_AddNumberToObject(rest, "decimals", wc_drawing_decimals(cJSON_GetObjectItem(
+                                                  cJSON_GetObjectItem(run->fixture, "body"),
+                                                  "shape")));
     char *line = cJSON_PrintUnformatted(rest);
     if (line)
         printf("%s\n", line);
@@ -468,8 +472,9 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
     /* Points to the drawing's precision (wc_drawing_decimals). */
-    int decimals = wc_drawing_decimals(
-        cJSON_GetObjectItem(cJSON_GetObjectItem(run->fixture, "body"), "shape"));
+    int decimals = run->fixture ? wc_drawing_decimals(cJSON_GetObjectItem(
+                                      cJSON_GetObjectItem(run->fixture, "body"), "shape"))
+                                : run->decimals;
     cJSON_ArrayForEach(d, designs)
     {
         char fixels[512] = "", push[160] = "none", cell[96];
@@ -557,7 +562,19 @@ static void merge_why(cJSON *into, const cJSON *why)
     }
 }
 
-/* The merged reasons, most candidates first (stable: insertion). */
+/* Does reason a come before b: more candidates, then by blocking string,
+ * null last (as the daemon orders them)? */
+static bool reason_before(const cJSON *a, const cJSON *b)
+{
+    double na = number(a, "candidates"), nb = number(b, "candidates");
+    if (na != nb)
+        return na > nb;
+    const char *sa = cJSON_GetStringValue(cJSON_GetObjectItem(a, "blocking"));
+    const char *sb = cJSON_GetStringValue(cJSON_GetObjectItem(b, "blocking"));
+    return sa && (!sb || strcmp(sa, sb) < 0);
+}
+
+/* The merged reasons in the daemon's order. */
 static void sort_why(cJSON *why)
 {
     cJSON *reasons = cJSON_GetObjectItem(why, "reasons");
@@ -566,8 +583,7 @@ static void sort_why(cJSON *why)
     for (int k = 0; all && k < n; k++)
         all[k] = cJSON_DetachItemViaPointer(reasons, reasons->child);
     for (int a = 1; all && a < n; a++)
-        for (int b = a; b > 0 && number(all[b], "candidates") > number(all[b - 1], "candidates");
-             b--) {
+        for (int b = a; b > 0 && reason_before(all[b], all[b - 1]); b--) {
             cJSON *swap = all[b];
             all[b] = all[b - 1];
             all[b - 1] = swap;
@@ -637,6 +653,8 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
             }
             if (!first) {
                 first = json;
+                const cJSON *decimals = cJSON_GetObjectItem(json, "decimals");
+                run->decimals = cJSON_IsNumber(decimals) ? (int)decimals->valuedouble : -1;
                 shard_count = (int)n->valuedouble;
                 seen = calloc((size_t)shard_count, sizeof *seen);
                 counts[0] = number(cJSON_GetObjectItem(json, "counts"), "candidates");
