@@ -257,7 +257,7 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/plate-3-2-1.json --set strong --svg docs/pictures/plate-3-2-1-push-strong.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/plate-chamfered.json --set both --svg docs/pictures/plate-chamfered-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/disc-corner.json --set goal --svg docs/pictures/disc-corner-push-goal.svg >/dev/null
-	$(BUILD)/wrenchctl --local push examples/bracket.json --set both --svg docs/pictures/bracket-push-both.svg >/dev/null
+	$(BUILD)/wrenchctl --local push examples/bracket.json --set both --push-on all --svg docs/pictures/bracket-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/notched-plate.json --set strong --finger-radius 4 --svg docs/pictures/notched-plate-push-strong-r4.svg >/dev/null
 	$(BUILD)/wrenchctl --local sweep examples/plate-chamfered.json --push both --range 0:1 --svg docs/pictures/plate-chamfered-sweep-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local design examples/bracket.json --spacing 10 --top 3 --svg docs/pictures/bracket-designs.svg >/dev/null

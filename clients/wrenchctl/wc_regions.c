@@ -258,9 +258,11 @@ static void print_push(const wc_run *run, const cJSON *result)
     int row_count = order && rows ? push_rows(regions, fixture, outline, circle, order, rows) : 0;
 /* No regions, no table: an outline's empty answer does not say it is
      * one, so no header could be the right one. */
+    if (row_count > 0 && outline)
+        printf("%4s  ", "loop");
     if (row_count > 0)
-        printf("%4s  %-9s  %-26s  %-26s  %12s\n", outline ? "loop" : "", outline ? "segments" : "edges",
-               "from", "to", "length");
+        printf("%-9s  %-26s  %-26s  %12s\n", outline ? "segments" : "edges", "from", "to",
+               "length");
     for (int k = 0; k < row_count; k++) {
         const cJSON *first = cJSON_GetArrayItem(regions, order[rows[k].first]);
         const cJSON *last = cJSON_GetArrayItem(regions, order[rows[k].first + rows[k].count - 1]);
@@ -276,12 +278,10 @@ static void print_push(const wc_run *run, const cJSON *result)
             snprintf(which, sizeof which, "%d-%d", s0, s1);
         if (outline)
             printf("%4d  ", (int)cJSON_GetNumberValue(cJSON_GetObjectItem(first, "loop")));
-        else
-            printf("%4s  ", "");
         printf("%-9s  %-26s  %-26s  %12.*f\n", which, a_text, b_text, decimals < 0 ? 6 : decimals,
                rows[k].length);
         /* Its pieces, each segment's t0 and t1 as the answer gives them. */
-        printf("      pieces:");
+        printf("%s  pieces:", outline ? "    " : "");
         for (int p = 0; p < rows[k].count; p++) {
             const cJSON *r = cJSON_GetArrayItem(regions, order[rows[k].first + p]);
             printf("%s %s %d t %.6g-%.6g", p ? "," : "", key,
