@@ -74,7 +74,7 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-3-2-1-push-strong.svg", ["push", "plate-3-2-1.json", "--set", "strong"]),
     ("plate-chamfered-push-both.svg", ["push", "plate-chamfered.json", "--set", "both"]),
     ("disc-corner-push-goal.svg", ["push", "disc-corner.json", "--set", "goal"]),
-    ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both"]),
+    ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both", "--push-on", "all"]),
     ("notched-plate-push-strong-r4.svg", ["push", "notched-plate.json", "--set", "strong",
                                           "--finger-radius", "4"]),
     ("plate-chamfered-sweep-both.svg", ["sweep", "plate-chamfered.json", "--push", "both",
