@@ -111,7 +111,7 @@ __all__ = [
     "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
     "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
     "FixtureInfo", "FrictionSweep", "explain", "explain_goal", "explain_strong", "default_socket_path",
-    "default_push_on", "loop_width", "explain_no_design",
+    "default_push_on", "loop_width", "explain_no_design", "explain_empty_regions",
     "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
     "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
 ]
@@ -340,6 +340,8 @@ class PushRegions:
     fraction: float                    # of the perimeter
     exact: bool                        # False: sampled (a finger with friction)
     resolution: float                  # the sampling step (t, or degrees); 0 when exact
+    # An empty answer: why ({"reasons": [...]}, explain_empty_regions)
+    why_empty: Optional[Dict[str, Any]] = None
 
 
 @dataclass
@@ -444,6 +446,30 @@ def explain_no_design(result: Union["DesignResult", Mapping[str, Any]]) -> List[
                      else _W["no_design_unreached"])
             lines.append("    {:,} of {:,}: {}".format(r["candidates"],
                                                        counts.get("no_seating_push", 0), words))
+    return lines
+
+
+def explain_empty_regions(answer: Mapping[str, Any]) -> List[str]:
+    """Why push.regions found no region (its why_empty), as lines,
+    wrenchctl's: each reason with the number of edges whose middle it
+    blocks.  [] when there are regions.  `answer` is the raw result
+    (Client.call) or a PushRegions."""
+    why = getattr(answer, "why_empty", None)
+    if why is None and isinstance(answer, Mapping):
+        why = answer.get("why_empty")
+    reasons = (why or {}).get("reasons") or []
+    edges = sum(r["edges"] for r in reasons)
+    if not edges:
+        return []
+    lines = [_W["empty_region"] % edges]
+    for r in reasons:
+        if r.get("blocking") is None:
+            words = _W["no_design_unreached"]
+        elif r.get("set") == "goal":
+            words = explain_goal(r["blocking"], r["states"])
+        else:
+            words = explain_strong(r["blocking"])
+        lines.append("  %d of %d: %s" % (r["edges"], edges, words))
     return lines
 
 
