@@ -40,7 +40,7 @@ void wc_explain_strong(const char *blocking, char *out, size_t size);
  * most): as many as the finest number of `shape` (a body's "shape": its
  * vertices, centre, radius; not bulges) has in its shortest exact decimal
  * form, and never fewer than show 1/10,000 of the shape's size.  What
- * tables print points to (docs/PROTOCOL.md, "Tables"); -1 for no shape (a
+ * tables print points to (wrenchctl(1), push); -1 for no shape (a
  * stored fixture not at hand): then %g. */
 #define WC_MAX_DECIMALS 6
 int wc_drawing_decimals(const cJSON *shape);
