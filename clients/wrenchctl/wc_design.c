@@ -114,25 +114,26 @@ int wc_design_request(wc_run *run, cJSON *params)
         return wc_usage_error("design: no candidate sites: give --spacing H, or a fixture whose "
                               "fixels are the sites");
     }
-    if ((run->corner_clearance > 0 || run->pin_diameter_given) && !cJSON_GetObjectItem(params, "spacing")) {
+    if ((run->corner_clearance > 0 || run->pin_diameter_given) &&
+        !cJSON_GetObjectItem(params, "spacing")) {
         cJSON_Delete(json);
         free(name);
         return wc_usage_error("design: --corner-clearance and --pin-diameter go with --spacing");
     }
-    const cJSON *units = cJSON_GetObjectItem(json, "units");
-    cJSON *units_copy = units ? cJSON_Duplicate(units, true) : NULL;
-    cJSON_Delete(json);
     /* For --svg and --emit-fixture: the body and friction, to draw each
-     * design as a fixture and to write one. */
+     * design as a fixture and to write one; and the file's units, which the
+     * table and the pictures name and the fixture written keeps. */
     run->fixture = cJSON_CreateObject();
     cJSON_AddStringToObject(run->fixture, "name", name ? name : "design");
     free(name);
+    if (body && cJSON_GetObjectItem(json, "units"))
+        cJSON_AddItemToObject(run->fixture, "units",
+                              cJSON_Duplicate(cJSON_GetObjectItem(json, "units"), true));
+    cJSON_Delete(json);
     cJSON_AddItemToObject(run->fixture, "body",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
     cJSON_AddItemToObject(run->fixture, "friction",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "friction"), true));
-    if (units_copy)
-        cJSON_AddItemToObject(run->fixture, "units", units_copy);
     int reach = wc_push_on(run, cJSON_GetObjectItem(params, "body"), params);
     if (reach >= 0)
         return reach;
@@ -205,6 +206,9 @@ static cJSON *design_fixture_json(const wc_run *run, const cJSON *design)
     cJSON_AddItemToObject(json, "friction", form);
     cJSON_AddItemToObject(json, "fixels",
                           cJSON_Duplicate(cJSON_GetObjectItem(design, "fixels"), true));
+    if (cJSON_GetObjectItem(run->fixture, "units"))
+        cJSON_AddItemToObject(json, "units",
+                              cJSON_Duplicate(cJSON_GetObjectItem(run->fixture, "units"), true));
     return json;
 }
 

@@ -21,6 +21,12 @@ void wc_print_rows(const char *label, const cJSON *rows, const cJSON *flags,
  * below are robust: each holds for every friction in the interval. */
 void wc_print_friction(double low, double high);
 
+/* The units a fixture names (its "units" member, docs/PROTOCOL.md), as one
+ * line above a table: "units: lengths in mm, forces in N (the fixture's)".
+ * Nothing for a fixture without units (its tables are as they always
+ * were) or for a stored one given by id. */
+void wc_print_units(const cJSON *fixture);
+
 /* The strings of a list, each after a space, and a newline. */
 void wc_print_strings(const cJSON *list);
 

@@ -85,7 +85,36 @@ static void text_escaped(FILE *out, const char *text)
     }
 }
 
-static void begin(FILE *out, const frame *f, const char *title)
+/* The unit of a fixture's lengths, from its size in metres (those a
+ * fixture may name: docs/PROTOCOL.md), or NULL without units. */
+static const char *length_unit(const wr_fixture *fx)
+{
+    if (!fx || !fx->units.given)
+        return NULL;
+    static const struct {
+        double m;
+        const char *name;
+    } names[] = {{1e-3, "mm"}, {1.0, "m"}, {0.0254, "in"}};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (fx->units.length_m == names[i].m)
+            return names[i].name;
+    return NULL;
+}
+
+/* With a fixture that names its units, the unit of its coordinates, ending
+ * at (x, y): <text class="units">. */
+static void units_note(FILE *out, double x, double y, const wr_fixture *fx)
+{
+    const char *unit = length_unit(fx);
+    if (unit)
+        fprintf(out,
+                "<text class=\"units\" x=\"%.0f\" y=\"%.0f\" text-anchor=\"end\" "
+                "font-size=\"12\" fill=\"#666\">lengths in %s</text>\n",
+                x, y, unit);
+}
+
+/* The picture's start, and units_note at the bottom right. */
+static void begin(FILE *out, const frame *f, const char *title, const wr_fixture *fx)
 {
     fprintf(out,
             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -103,6 +132,7 @@ static void begin(FILE *out, const frame *f, const char *title)
                 "<path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#%s\"/></marker>",
                 colours[i], colours[i]);
     fputs("</defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", out);
+    units_note(out, WIDTH - 12, f->height - 8, fx);
 }
 
 static void legend(FILE *out, int line, const char *text)
@@ -380,7 +410,7 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
     frame f = frame_for(fx, 0.2, 4);
     char text[256], mu[96];
     snprintf(text, sizeof text, "%s: push region of G_%s", name, set);
-    begin(out, &f, text);
+    begin(out, &f, text, fx);
     outline(out, &f, fx);
     for (int i = 0; i < count; i++) {
         const wr_region *r = &regions[i];
@@ -442,7 +472,7 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fx, const char *name, const cha
     double radius = 0.5 * hypot(hi[0] - lo[0], hi[1] - lo[1]) + 0.2 * f.size;
     char text[256], mu[96];
     snprintf(text, sizeof text, "%s: gravity sweep of G_%s", name, set);
-    begin(out, &f, text);
+    begin(out, &f, text, fx);
     fprintf(out,
             "<circle class=\"dial\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"none\" "
             "stroke=\"#a0a0a0\" stroke-width=\"3\"/>\n",
@@ -520,7 +550,7 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
     frame f = frame_for(fx, 0.5, 3);
     char text[256], mu[96];
     snprintf(text, sizeof text, "%s: disturbance margin", name);
-    begin(out, &f, text);
+    begin(out, &f, text, fx);
     outline(out, &f, fx);
     fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
@@ -625,6 +655,7 @@ void wc_svg_designs(FILE *out, const char *name, const char *objective,
           "<path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#c0392b\"/></marker>",
           out);
     fputs("</defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", out);
+    units_note(out, width - 12, height - 4, count > 0 ? panels[0].fixture : NULL);
     char text[256];
     snprintf(text, sizeof text, "%s: the best %d design%s by %s, best first", name, count,
              count == 1 ? "" : "s", objective);
@@ -747,7 +778,7 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
     char text[512], spans[256];
     snprintf(text, sizeof text, "%s: friction sweep of the %s of G_%s", p->name,
              push ? "push region" : "gravity arcs", p->set);
-    begin(out, &f, text);
+    begin(out, &f, text, NULL);
     double top = f.top + 20, bottom = top + PLOT_HEIGHT;
     axis x = {p->range[0], p->range[1], PLOT_LEFT, WIDTH - PLOT_RIGHT};
     double most = 0;
@@ -842,7 +873,7 @@ void wc_svg_sweep_bands(FILE *out, const char *name, const double range[2], doub
     f.height = f.top + 20 + BAND_HEIGHT * count + PLOT_BOTTOM;
     char text[256];
     snprintf(text, sizeof text, "%s: friction sweep of wrenches", name);
-    begin(out, &f, text);
+    begin(out, &f, text, NULL);
     double top = f.top + 20, bottom = top + BAND_HEIGHT * count;
     size_t longest = 0;
     for (int i = 0; i < count; i++) {

@@ -472,6 +472,8 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
     if (result) {
         if (o->json || (c->flags & WC_JSON))
             wc_print_json(result);
+        else if (c->answer && run.fixture)
+            wc_print_units(run.fixture);
         status = c->answer ? c->answer(&run, result) : EXIT_INSIDE;
     }
     cJSON_Delete(result);
