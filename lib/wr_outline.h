@@ -175,6 +175,20 @@ void wr_outline_boundary(const wr_outline *outline, size_t loop, size_t segment,
 bool wr_outline_locate(const wr_outline *outline, const double p[2], double tolerance,
                        wr_outline_place *place);
 
+/* The point of loop `loop` nearest p (the first of equals in segment
+ * order): its segment, its fraction t of that segment's length, the point,
+ * and (returned) the distance.  loop must be in range; p finite. */
+double wr_outline_nearest_on_loop(const wr_outline *outline, size_t loop, const double p[2],
+                                  size_t *segment, double *t, double point[2]);
+
+/* A loop's width: the least distance between two parallel lines that
+ * hold it between them, over WR_WIDTH_STEPS directions (every 1 degree of
+ * a half turn), arcs' bulges included.  A circle's is its diameter.  What
+ * the clients compare with a finger's diameter to push in a hole by
+ * default (docs/PROTOCOL.md, push_on). */
+#define WR_WIDTH_STEPS 180
+double wr_outline_loop_width(const wr_outline *outline, size_t loop);
+
 /* The distance from p to the nearest point of the boundary. */
 double wr_outline_distance(const wr_outline *outline, const double p[2]);
 

@@ -231,18 +231,6 @@ static size_t hole_at(const wr_fixture *fx, const double p[2])
     return place.loop;
 }
 
-/* The smaller side of a loop's bounding box. */
-static double loop_width(const wr_loop *l)
-{
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (size_t j = 0; j < l->segment_count; j++)
-        for (int k = 0; k < 2; k++) {
-            lo[k] = fmin(lo[k], l->segments[j].box_min[k]);
-            hi[k] = fmax(hi[k], l->segments[j].box_max[k]);
-        }
-    return fmin(hi[0] - lo[0], hi[1] - lo[1]);
-}
-
 /* The outline, filled light and stroked grey: the boundary outside any
  * region. */
 static void outline(FILE *out, const frame *f, const wr_fixture *fx)
@@ -286,18 +274,21 @@ static void friction_cone(FILE *out, const frame *f, const wr_fixel *x, double c
             page_y(f, b[1]));
 }
 
+/* A pin's disc when its diameter is not known (or 0, a point), in page
+ * units: a dot, not a size it does not have. */
+#define PIN_DOT 7.0
+
 /* A fixel on a hole's boundary: a pin in the hole, a dark disc touching the
- * boundary at the contact (its radius the wedge's size, or 0.35 of the
- * hole's narrower side if that is less, so that it shows its clearance),
- * its friction cone, and an arrow from its centre along the normal, its
- * head half the pin's radius into the material (short: the wall beyond a
- * hole may be thin); its number on it. */
-static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t hole,
-                double wedge, double cone)
+ * boundary at the contact, at its diameter when known (`diameter` > 0),
+ * else a dot; its friction cone, and an arrow from its centre along the
+ * normal, its head half the pin's radius into the material (short: the
+ * wall beyond a hole may be thin); its number on it. */
+static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, double diameter,
+                double cone)
 {
     const wr_fixel *x = &fx->fixels[i];
     const double *p = x->at, *n = x->normal;
-    double radius = fmin(wedge, 0.35 * loop_width(&fx->outline->loops[hole]));
+    double radius = diameter > 0 ? diameter / 2 : PIN_DOT / f->scale;
     double c[2] = {p[0] - radius * n[0], p[1] - radius * n[1]};
     fprintf(out, "<circle class=\"fixel pin\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#444\"/>\n",
             page_x(f, c[0]), page_y(f, c[1]), radius * f->scale);
@@ -314,15 +305,15 @@ static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t h
 }
 
 /* Each fixel: a dark wedge outside the part, its apex at the contact, and
- * its friction cone opening into the part; on a hole's boundary, a pin. */
-static void fixels(FILE *out, const frame *f, const wr_fixture *fx)
+ * its friction cone opening into the part; on a hole's boundary, a pin of
+ * pin_diameters[i] (NULL or < 0: not known). */
+static void fixels(FILE *out, const frame *f, const wr_fixture *fx, const double *pin_diameters)
 {
     double wedge = 0.06 * f->size, cone = 0.16 * f->size;
     for (int i = 0; i < fx->fixel_count; i++) {
         const wr_fixel *x = &fx->fixels[i];
-        size_t hole = hole_at(fx, x->at);
-        if (hole > 0) {
-            pin(out, f, fx, i, hole, wedge, cone);
+        if (hole_at(fx, x->at) > 0) {
+            pin(out, f, fx, i, pin_diameters ? pin_diameters[i] : -1, cone);
             continue;
         }
         const double *p = x->at, *n = x->normal, *t = x->tangent;
@@ -445,7 +436,7 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
         }
         fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"7\"/>\n", out);
     }
-    fixels(out, &f, fx);
+    fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
     friction_text(fx, mu, sizeof mu);
     snprintf(text, sizeof text, "%s, set %s: push here (thick black) with a %s finger", name, set,
@@ -506,7 +497,7 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fx, const char *name, const cha
         fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"9\"/>\n", out);
     }
     outline(out, &f, fx);
-    fixels(out, &f, fx);
+    fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
     friction_text(fx, mu, sizeof mu);
     snprintf(text, sizeof text, "%s, set %s, %s", name, set, mu);
@@ -561,7 +552,7 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
     snprintf(text, sizeof text, "%s: disturbance margin", name);
     begin(out, &f, text, fx);
     outline(out, &f, fx);
-    fixels(out, &f, fx);
+    fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
     wrench_arrow(out, &f, fx, bias, "1f4e9c", "");
     if (blocking)
@@ -624,7 +615,7 @@ static void design_panel(FILE *out, const frame *f, const wc_design_panel *p)
                 "stroke=\"#444\" stroke-width=\"2\"/>\n",
                 page_x(f, p->pegs[m][0]), page_y(f, p->pegs[m][1]),
                 fmax(3, p->peg_radius * f->scale));
-    fixels(out, f, fx);
+    fixels(out, f, fx, p->pin_diameter);
     centre_of_mass(out, f, fx);
     if (p->has_push) {
         /* The finger's push: an arrow ending at the point, along the push. */
@@ -787,7 +778,7 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
     char text[512], spans[256];
     snprintf(text, sizeof text, "%s: friction sweep of the %s of G_%s", p->name,
              push ? "push region" : "gravity arcs", p->set);
-    begin(out, &f, text, NULL);
+    begin(out, &f, text, p->fixture);
     double top = f.top + 20, bottom = top + PLOT_HEIGHT;
     axis x = {p->range[0], p->range[1], PLOT_LEFT, WIDTH - PLOT_RIGHT};
     double most = 0;
@@ -816,11 +807,14 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
                 "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"end\">%g</text>\n",
                 x.from - 5, py, x.from, py, x.from - 8, py + 4, k * y_step);
     }
+    char axis[64] = "push region length";
+    if (length_unit(p->fixture))
+        snprintf(axis, sizeof axis, "push region length (%s)", length_unit(p->fixture));
     fprintf(out,
             "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" "
             "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n",
             22.0, (top + bottom) / 2, 22.0, (top + bottom) / 2,
-            push ? "push region length" : "gravity arcs (\xc2\xb0)");
+            push ? axis : "gravity arcs (\xc2\xb0)");
     mu_axis(out, &x, bottom, p->kinetic_ratio);
     /* The curve. */
     if (p->curve_count > 0) {

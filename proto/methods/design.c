@@ -1,5 +1,6 @@
 /* design.c -- fixture.design: parameters, progress, the answer; the search
  * run a budget at a time (lib/wr_design.h), its chunks shared with helpers. */
+#include "common.h"
 #include "methods.h"
 #include "wp_chunks.h"
 
@@ -25,6 +26,7 @@ struct design_state {
     wr_site *sites;
     int site_count;
     wr_design_spec spec;
+    bool *push_on;        /* spec.finger.push_on, owned */
     wr_design_job *job;
     uint64_t candidates;  /* of every shard */
     bool progress;
@@ -85,7 +87,43 @@ static void site_error(wp_error *error, size_t index, const wr_error *invalid)
     wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid->reason);
 }
 
-static const char *const SITE_FIELDS[] = {"at", "normal", NULL};
+static const char *const SITE_FIELDS[] = {"at", "normal", "pin", NULL};
+static const char *const PIN_FIELDS[] = {"hole", "diameter", NULL};
+
+/* params.sites[i].pin: {"hole": L, "diameter": D}, the site where that pin
+ * touches the hole's wall (wr_site_pin). */
+static bool read_pin(const cJSON *pin, const char *field, const double at[2], bool has_normal,
+                     design_state *s, wr_site *out, wp_error *error)
+{
+    char path[WP_FIELD_MAX], at_field[WP_FIELD_MAX];
+    wp_path_key(path, field, "pin");
+    double hole, diameter;
+    if (!wp_check_object(pin, path, PIN_FIELDS, error) ||
+        !wp_member_number(pin, path, "hole", true, &hole, NULL, error) ||
+        !wp_member_number(pin, path, "diameter", true, &diameter, NULL, error))
+        return false;
+    if (has_normal) {
+        wp_path_key(at_field, field, "normal");
+        wp_error_set(error, WP_INVALID_PARAMS, at_field,
+                     "not with a pin: its normal is the hole wall's where the pin touches");
+        return false;
+    }
+    if (hole != floor(hole) || fabs(hole) > 1e9)
+        hole = -1; /* refused below, with the hole numbers allowed */
+    wr_error invalid;
+    wr_status status = wr_site_pin(s->body, (int)hole, diameter, at, out, &invalid);
+    if (status == WR_OK)
+        return true;
+    if (strcmp(invalid.field, "at") == 0)
+        wp_path_key(at_field, field, "at");
+    else if (invalid.field[0])
+        wp_path_key(at_field, path, invalid.field);
+    else
+        snprintf(at_field, sizeof at_field, "%s", status == WR_INVALID ? path : "");
+    wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL, at_field, "%s",
+                 invalid.reason);
+    return false;
+}
 
 static bool read_sites(const cJSON *list, design_state *s, wp_error *error)
 {
@@ -116,6 +154,12 @@ static bool read_sites(const cJSON *list, design_state *s, wp_error *error)
             !wp_member_vector2(item, field, "at", true, at, NULL, error) ||
             !wp_member_vector2(item, field, "normal", false, normal, &has_normal, error))
             return false;
+        const cJSON *pin = cJSON_GetObjectItemCaseSensitive(item, "pin");
+        if (pin) {
+            if (!read_pin(pin, field, at, has_normal, s, &s->sites[i], error))
+                return false;
+            continue;
+        }
         wr_error invalid;
         wr_status status =
             wr_site_new(s->body, at, has_normal ? normal : NULL, &s->sites[i], &invalid);
@@ -227,6 +271,10 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                      "must not be negative");
         return false;
     }
+    if (!wp_read_push_on(params, "params", s->body, &s->push_on, &spec->finger.push_on_count,
+                         error))
+        return false;
+    spec->finger.push_on = s->push_on;
     const cJSON *progress = cJSON_GetObjectItemCaseSensitive(params, "progress");
     if (progress && !cJSON_IsBool(progress)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.progress", "must be true or false, not %s",
@@ -268,18 +316,35 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                              : "candidate sites are required: sites, spacing or lattice");
         return false;
     }
+    const char *spacing_only[] = {"corner_clearance", "pin_diameter"};
+    for (int i = 0; i < 2 && !spacing; i++)
+        if (cJSON_GetObjectItemCaseSensitive(params, spacing_only[i])) {
+            char field[WP_FIELD_MAX];
+            wp_path_key(field, "params", spacing_only[i]);
+            wp_error_set(error, WP_INVALID_PARAMS, field, "only with spacing");
+            return false;
+        }
     if (lattice)
         return read_lattice(params, lattice, s, error);
     if (sites)
         return read_sites(sites, s, error);
-    double h;
-    if (!wp_member_number(params, "params", "spacing", true, &h, &present, error))
+    wr_spacing rule = {0, 0, 0};
+    bool clearance_given;
+    if (!wp_member_number(params, "params", "spacing", true, &rule.spacing, &present, error) ||
+        !wp_member_number(params, "params", "corner_clearance", false, &rule.corner_clearance,
+                          &clearance_given, error) ||
+        !wp_member_number(params, "params", "pin_diameter", false, &rule.pin_diameter, NULL,
+                          error))
         return false;
+    if (!clearance_given)
+        rule.corner_clearance = rule.spacing / 2;
     wr_error invalid;
-    wr_status status = wr_sites_spaced(s->body, h, &s->sites, &s->site_count, &invalid);
+    wr_status status = wr_sites_spaced(s->body, &rule, &s->sites, &s->site_count, &invalid);
     if (status != WR_OK) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, "params", invalid.field);
         wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? "params.spacing" : "", "%s", invalid.reason);
+                     status == WR_INVALID ? field : "", "%s", invalid.reason);
         return false;
     }
     return true;
@@ -377,6 +442,91 @@ static void write_pair(wp_buffer *out, const double v[2])
     WP_BUFFER_LITERAL(out, "]");
 }
 
+/* Where a design's answer says a push is, as push.regions names places:
+ * {"loop", "segment"} on an outline, {"edge"} otherwise, then "t". */
+static void write_place(wp_buffer *out, const wr_fixture *body, int edge, double t)
+{
+    double at[2], normal[2];
+    wr_boundary_point(body, edge, t, at, normal);
+    WP_BUFFER_LITERAL(out, "{\"at\":");
+    write_pair(out, at);
+    if (body->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(body, edge, &loop, &segment);
+        WP_BUFFER_LITERAL(out, ",\"loop\":");
+        wp_buffer_number(out, (double)loop);
+        WP_BUFFER_LITERAL(out, ",\"segment\":");
+        wp_buffer_number(out, (double)segment);
+    } else {
+        WP_BUFFER_LITERAL(out, ",\"edge\":");
+        wp_buffer_number(out, edge);
+    }
+    WP_BUFFER_LITERAL(out, ",\"t\":");
+    wp_buffer_number(out, t);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+/* "why_no_seating_push" (docs/PROTOCOL.md): where the push was asked
+ * about, and the reasons with their counts, most first, equal counts by
+ * their blocking strings (strcmp), the push in G_goal (null) last: an
+ * order design-merge can keep. */
+static void write_why(design_state *s, wp_buffer *out)
+{
+    const wr_plan *plan;
+    int edge;
+    double t;
+    const uint64_t *why = wr_design_job_why(s->job, &plan, &edge, &t);
+    WP_BUFFER_LITERAL(out, ",\"why_no_seating_push\":{\"asked_at\":");
+    write_place(out, s->body, edge, t);
+    WP_BUFFER_LITERAL(out, ",\"reasons\":[");
+    int n = plan->kept_count + 1;
+    bool *written = calloc((size_t)n, sizeof *written);
+    for (int round = 0; written && round < n; round++) {
+        int most = -1;
+        char a[WR_CONSTRAINT_TEXT], b[WR_CONSTRAINT_TEXT];
+        for (int i = 0; i < n; i++) {
+            if (written[i] || why[i] == 0)
+                continue;
+            bool before = most < 0 || why[i] > why[most];
+            if (!before && why[i] == why[most] && i < plan->kept_count) {
+                wr_constraint_format(&plan->kept[i], a);
+                if (most == plan->kept_count)
+                    before = true;
+                else {
+                    wr_constraint_format(&plan->kept[most], b);
+                    before = strcmp(a, b) < 0;
+                }
+            }
+            if (before)
+                most = i;
+        }
+        if (most < 0)
+            break;
+        written[most] = true;
+        wp_buffer_puts(out, round ? ",{\"blocking\":" : "{\"blocking\":");
+        if (most == plan->kept_count) {
+            WP_BUFFER_LITERAL(out, "null,\"states\":[]");
+        } else {
+            char text[WR_CONSTRAINT_TEXT], state[WR_STATE_TEXT];
+            wr_constraint_format(&plan->kept[most], text);
+            wp_buffer_string(out, text);
+            WP_BUFFER_LITERAL(out, ",\"states\":[");
+            for (int j = 0; j < plan->origins[most].count; j++) {
+                wr_state_format(plan->origins[most].states[j], plan->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+            WP_BUFFER_LITERAL(out, "]");
+        }
+        WP_BUFFER_LITERAL(out, ",\"candidates\":");
+        write_count(out, why[most]);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    free(written);
+    WP_BUFFER_LITERAL(out, "]}");
+}
+
 static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
 {
     uint64_t done = 0, total = 0;
@@ -435,6 +585,26 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
         WP_BUFFER_LITERAL(out, "}");
     }
     WP_BUFFER_LITERAL(out, "]");
+    if (!s->poses) {
+        /* The fixels on holes: pins, each where one of its diameter touches
+         * the wall (wr_sites.h); its centre is at - diameter / 2 normal. */
+        WP_BUFFER_LITERAL(out, ",\"pins\":[");
+        bool any = false;
+        for (int i = 0; i < s->spec.fixel_count; i++) {
+            const wr_site *site = &s->sites[d->sites[i]];
+            if (site->loop <= 0)
+                continue;
+            wp_buffer_puts(out, any ? ",{\"fixel\":" : "{\"fixel\":");
+            any = true;
+            wp_buffer_number(out, i);
+            WP_BUFFER_LITERAL(out, ",\"hole\":");
+            wp_buffer_number(out, site->loop);
+            WP_BUFFER_LITERAL(out, ",\"diameter\":");
+            wp_buffer_number(out, site->pin_diameter);
+            WP_BUFFER_LITERAL(out, "}");
+        }
+        WP_BUFFER_LITERAL(out, "]");
+    }
     if (s->poses) {
         const wr_lattice_design *pose = &s->poses[d->candidate];
         WP_BUFFER_LITERAL(out, ",\"pegs\":[");
@@ -515,11 +685,15 @@ static void write_answer(design_state *s, wp_buffer *out)
     write_count(out, c->unpinned);
     WP_BUFFER_LITERAL(out, ",\"no_seating_push\":");
     write_count(out, c->no_seating_push);
+    WP_BUFFER_LITERAL(out, ",\"shared_hole\":");
+    write_count(out, c->shared_hole);
+    WP_BUFFER_LITERAL(out, "}");
+    write_why(s, out);
     if (s->poses) {
-        WP_BUFFER_LITERAL(out, "},\"poses\":");
+        WP_BUFFER_LITERAL(out, ",\"poses\":");
         write_count(out, s->spec.candidate_count);
     } else {
-        WP_BUFFER_LITERAL(out, "},\"sites\":");
+        WP_BUFFER_LITERAL(out, ",\"sites\":");
         wp_buffer_number(out, s->site_count);
     }
     WP_BUFFER_LITERAL(out, ",\"objective\":\"");
@@ -724,6 +898,7 @@ static void design_free(void *stream)
     wr_lattice_job_free(s->lattice);
     free(s->listed);
     free(s->sites);
+    free(s->push_on);
     wr_fixture_free(s->body);
     free(s);
 }

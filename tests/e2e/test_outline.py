@@ -151,7 +151,8 @@ def check_outline_answer(ol, res):
     """The form of push.regions on an outline: every region's from / to /
     length recomputed from the geometry, ordered, disjoint; total_length the
     sum; fraction total over the perimeter of every loop."""
-    assert set(res) == {"regions", "total_length", "fraction", "exact", "resolution"}, res
+    assert set(res) == {"regions", "total_length", "fraction", "exact", "resolution"} | (
+        set() if res["regions"] else {"why_empty"}), res
     size = max(1.0, math.sqrt(abs(ol.area)))
     out = []
     total = 0.0
