@@ -1,9 +1,11 @@
 /* wp_call.c -- what a method's call offers it (wp_method.h): its fixture,
  * acquired through the host into the envelope's hold, its id, and whether
- * it may send notifications. */
+ * it may send notifications; and the release of a host's listing
+ * (wp_host.h). */
 #include "wp_method.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 
 /* params.fixture, held for the call: a stored id, or an inline fixture
  * object (validated, then cached under its id). */
@@ -49,3 +51,12 @@ void wp_call_open_result(wp_call *call, wp_buffer *out)
 const char *wp_call_id_text(const wp_call *call) { return call->id_text; }
 
 bool wp_call_may_notify(const wp_call *call) { return call->may_notify; }
+
+void wp_fixture_listing_release(wp_fixture_listing *listing)
+{
+    for (size_t i = 0; i < listing->count; i++)
+        free(listing->entries[i].name);
+    free(listing->entries);
+    listing->entries = NULL;
+    listing->count = 0;
+}

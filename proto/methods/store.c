@@ -145,12 +145,3 @@ cJSON *wp_handle_server_status(wp_call *call)
         return wp_out_of_memory(result, call->error);
     return result;
 }
-
-void wp_fixture_listing_release(wp_fixture_listing *listing)
-{
-    for (size_t i = 0; i < listing->count; i++)
-        free(listing->entries[i].name);
-    free(listing->entries);
-    listing->entries = NULL;
-    listing->count = 0;
-}
