@@ -2,6 +2,7 @@
  * handlers and parameters, and the handlers, which read params, call
  * libwrench and write results. */
 #include "wp_design.h"
+#include "wp_force.h"
 #include "wp_rpc.h"
 
 #include <assert.h>
@@ -1631,6 +1632,9 @@ static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spa
                                      "objective", "top", "finger_radius", "finger_friction",
                                      "progress", "shard", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
+static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
+                                          NULL};
+static const char *const FORCE_RANGE_REQUIRED[] = {"fixture", "cases", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", NULL};
 
@@ -1669,6 +1673,9 @@ const wp_method wp_methods[] = {
     {.name = "friction.sweep", .stream = &SWEEP_STREAM, .fields = FRICTION_SWEEP,
      .required = FIXTURE, .flags = WP_FIXTURE,
      .summary = "where wrenches, push regions and gravity arcs hold, against a common friction"},
+    {.name = "force.range", .handler = wp_force_range, .fields = FORCE_RANGE,
+     .required = FORCE_RANGE_REQUIRED, .flags = WP_FIXTURE,
+     .summary = "the magnitudes of a push that do a set's job under load cases"},
     {.name = "fixture.design", .stream = &DESIGN_STREAM, .fields = DESIGN,
      .required = DESIGN_REQUIRED,
      .summary = "the best fixel sites and push for a body: ranked designs"},

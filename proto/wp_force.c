@@ -1,0 +1,275 @@
+/* wp_force.c -- force.range (docs/PROTOCOL.md): the maximal intervals of a
+ * push's magnitude that do goal's, strong's or both's job under each load
+ * case (wr_force_range), and their intersection over the cases. */
+#include "wp_force.h"
+#include "wp_loads.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const SET_NAMES[] = {"goal", "strong", "both"};
+static const char *const PUSH_FIELDS[] = {"at", "direction", NULL};
+
+/* params.sets: names of sets, each once; all three when left out. */
+static bool read_sets(const cJSON *params, bool sets[3], wp_error *error)
+{
+    const cJSON *list = cJSON_GetObjectItemCaseSensitive(params, "sets");
+    sets[0] = sets[1] = sets[2] = list == NULL;
+    if (!list)
+        return true;
+    if (!cJSON_IsArray(list) || cJSON_GetArraySize(list) == 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.sets",
+                     "must be a non-empty array of \"goal\", \"strong\", \"both\"");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *item = list->child; item; item = item->next, i++) {
+        char field[WP_FIELD_MAX];
+        wp_path_index(field, "params.sets", i);
+        int s = 0;
+        while (s < 3 && !(cJSON_IsString(item) && strcmp(item->valuestring, SET_NAMES[s]) == 0))
+            s++;
+        if (s == 3 || sets[s]) {
+            wp_error_set(error, WP_INVALID_PARAMS, field,
+                         s == 3 ? "must be \"goal\", \"strong\" or \"both\"" : "given twice");
+            return false;
+        }
+        sets[s] = true;
+    }
+    return true;
+}
+
+/* The unit push, a physical wrench of the model system: params.push (a
+ * unit force at a point, along the inward normal there or a direction) or
+ * params.wrench (a direction of wrench, of unit length in the scaled metric
+ * of docs/MODEL.md section 5). */
+static bool read_push(const cJSON *params, const wr_fixture *f, double push[3], wp_error *error)
+{
+    const cJSON *at_push = cJSON_GetObjectItemCaseSensitive(params, "push");
+    const cJSON *wrench = cJSON_GetObjectItemCaseSensitive(params, "wrench");
+    if ((at_push != NULL) == (wrench != NULL)) {
+        wp_error_set(error, WP_INVALID_PARAMS, at_push ? "params.wrench" : "params.push",
+                     at_push ? "give \"push\" or \"wrench\", not both"
+                             : "required: a push {\"at\", \"direction\"?} or a \"wrench\"");
+        return false;
+    }
+    if (wrench) {
+        double w[3], unit[3];
+        if (!cJSON_IsArray(wrench) || cJSON_GetArraySize(wrench) != 3) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.wrench",
+                         "a wrench is [f_x, f_y, tau]: 3 numbers");
+            return false;
+        }
+        const cJSON *item = wrench->child;
+        for (int k = 0; k < 3; k++, item = item->next) {
+            char field[WP_FIELD_MAX];
+            wp_path_index(field, "params.wrench", (size_t)k);
+            if (!wp_number(item, field, &w[k], error))
+                return false;
+        }
+        /* Its direction is the same in the fixture's units and the model
+         * system (forces and torques convert by one factor). */
+        if (!(wr_fixture_unit_wrench(f, w, unit) > 0)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.wrench",
+                         "must not be zero: it is the push's direction");
+            return false;
+        }
+        wr_fixture_unscale_wrench(f, unit, push);
+        return true;
+    }
+    double at[2], direction[2];
+    bool directed = false;
+    if (!wp_check_object(at_push, "params.push", PUSH_FIELDS, error) ||
+        !wp_member_vector2(at_push, "params.push", "at", true, at, NULL, error) ||
+        !wp_member_vector2(at_push, "params.push", "direction", false, direction, &directed,
+                           error))
+        return false;
+    if (directed) {
+        double length = hypot(direction[0], direction[1]);
+        if (!(length > 0) || !isfinite(length)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.push.direction",
+                         "must be a non-zero finite vector");
+            return false;
+        }
+        if (!wp_point_near_part(f, at, "params.push.at", error))
+            return false;
+        direction[0] /= length;
+        direction[1] /= length;
+    } else {
+        if (f->shape == WR_SHAPE_NONE) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.push.direction",
+                         "required: the fixture has no shape, so no inward normal");
+            return false;
+        }
+        /* The inward normal there, by the rule a fixel's is found by: at
+         * must be on the boundary, off its corners. */
+        wr_fixel_spec fixel;
+        memset(&fixel, 0, sizeof fixel);
+        fixel.at[0] = at[0];
+        fixel.at[1] = at[1];
+        wr_friction_spec frictionless;
+        memset(&frictionless, 0, sizeof frictionless);
+        frictionless.given = true;
+        wr_fixture placed;
+        wr_error invalid;
+        if (wr_fixture_place(f, &fixel, 1, &frictionless, &placed, &invalid) != WR_OK) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.push.at",
+                         "%s (or give \"direction\")", invalid.reason);
+            return false;
+        }
+        direction[0] = placed.fixels[0].normal[0];
+        direction[1] = placed.fixels[0].normal[1];
+    }
+    wr_fixture_force_wrench(f, direction, at, push);
+    return true;
+}
+
+/* params.range [lo, hi] in the fixture's force unit, into the model
+ * system; [0, inf) when left out. */
+static bool read_range(const cJSON *params, const wr_fixture *f, double range[2],
+                       wp_error *error)
+{
+    bool given = false;
+    range[0] = 0;
+    range[1] = INFINITY;
+    if (!wp_member_vector2(params, "params", "range", false, range, &given, error))
+        return false;
+    if (!given) {
+        range[1] = INFINITY;
+        return true;
+    }
+    if (range[0] < 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.range[0]",
+                     "must not be negative (a push's magnitude), got %g", range[0]);
+        return false;
+    }
+    if (range[1] < range[0]) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.range",
+                     "upside down: [%g, %g] (give [lo, hi] with lo <= hi)", range[0], range[1]);
+        return false;
+    }
+    double factor = wr_fixture_force_factor(f);
+    range[0] *= factor;
+    range[1] *= factor;
+    return true;
+}
+
+/* S = {"intervals": [[a, b], ...], "least": a0}, b null without an upper
+ * end, least null without an interval; in the fixture's force unit. */
+static cJSON *force_set(const wr_fixture *f, const wr_forces *good)
+{
+    cJSON *set = cJSON_CreateObject(), *list = cJSON_CreateArray();
+    if (!set || !list) {
+        cJSON_Delete(set);
+        cJSON_Delete(list);
+        return NULL;
+    }
+    cJSON_AddItemToObject(set, "intervals", list);
+    bool ok = true;
+    for (int i = 0; ok && i < good->count; i++) {
+        cJSON *pair = cJSON_CreateArray();
+        ok = pair != NULL;
+        if (!ok)
+            break;
+        cJSON_AddItemToArray(list, pair);
+        cJSON_AddItemToArray(pair, cJSON_CreateNumber(wp_force_out(f, good->items[i].lo)));
+        cJSON_AddItemToArray(pair, isfinite(good->items[i].hi)
+                                       ? cJSON_CreateNumber(wp_force_out(f, good->items[i].hi))
+                                       : cJSON_CreateNull());
+        ok = cJSON_GetArraySize(pair) == 2;
+    }
+    cJSON *least = good->count ? cJSON_CreateNumber(wp_force_out(f, good->items[0].lo))
+                               : cJSON_CreateNull();
+    ok = ok && least;
+    if (least)
+        cJSON_AddItemToObject(set, "least", least);
+    if (!ok) {
+        cJSON_Delete(set);
+        return NULL;
+    }
+    return set;
+}
+
+cJSON *wp_force_range(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    bool sets[3];
+    if (!read_sets(params, sets, error))
+        return NULL;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    const wr_fixture *f = use->fixture;
+    double push[3], range[2];
+    wp_cases cases;
+    if (!read_push(params, f, push, error) || !read_range(params, f, range, error) ||
+        !wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
+                       &cases, error))
+        return NULL;
+    cJSON *result = cJSON_CreateObject();
+    cJSON *list = result ? cJSON_AddArrayToObject(result, "cases") : NULL;
+    cJSON *all = result ? cJSON_AddObjectToObject(result, "all") : NULL;
+    wr_forces every[3] = {{0}}, good = {0}, meet = {0};
+    wr_status status = list && all ? WR_OK : WR_NO_MEMORY;
+    for (int c = 0; status == WR_OK && c < cases.count; c++) {
+        cJSON *item = cJSON_CreateObject();
+        if (!item) {
+            status = WR_NO_MEMORY;
+            break;
+        }
+        cJSON_AddItemToArray(list, item);
+        cJSON_AddItemToObject(item, "name", cases.items[c].name
+                                                ? cJSON_CreateString(cases.items[c].name)
+                                                : cJSON_CreateNull());
+        for (int s = 0; status == WR_OK && s < 3; s++) {
+            if (!sets[s])
+                continue;
+            status = wr_force_range(use->analysis, (wr_set)s, cases.items[c].load, push,
+                                    range[0], range[1], &good);
+            if (status != WR_OK)
+                break;
+            cJSON *set = force_set(f, &good);
+            if (!set) {
+                status = WR_NO_MEMORY;
+                break;
+            }
+            cJSON_AddItemToObject(item, SET_NAMES[s], set);
+            /* One magnitude for every case: the intersection. */
+            if (c == 0) {
+                every[s] = good;
+                memset(&good, 0, sizeof good);
+            } else {
+                status = wr_forces_intersect(&every[s], &good, &meet);
+                wr_forces swap = every[s];
+                every[s] = meet;
+                meet = swap;
+            }
+        }
+    }
+    for (int s = 0; status == WR_OK && s < 3; s++) {
+        if (!sets[s])
+            continue;
+        cJSON *set = force_set(f, &every[s]);
+        if (!set)
+            status = WR_NO_MEMORY;
+        else
+            cJSON_AddItemToObject(all, SET_NAMES[s], set);
+    }
+    for (int s = 0; s < 3; s++)
+        wr_forces_release(&every[s]);
+    wr_forces_release(&good);
+    wr_forces_release(&meet);
+    wp_cases_release(&cases);
+    if (status != WR_OK) {
+        cJSON_Delete(result);
+        /* The inputs were checked: what is left is memory, or a push too
+         * large for doubles. */
+        wp_error_status(error, status, status == WR_INVALID ? "params" : "", "%s",
+                        status == WR_INVALID ? "the push or a load is too large to compute with"
+                                             : wr_strerror(status));
+        return NULL;
+    }
+    return result;
+}

@@ -1,0 +1,298 @@
+"""Forces and loads with magnitudes (docs/PROTOCOL.md, "force.range",
+"Loads and cases", push.regions' "force" and "cases").
+
+Nothing here echoes the daemon: closed forms derived below, every interval
+end re-checked by wrench.classify just inside and just outside with both
+methods (the explicit cones and the LPs), push.regions under a force against
+force.range at 10,000 points, and one fixture written in three systems of
+units giving the same answers converted."""
+
+import math
+
+import pytest
+
+import fixtures as FX
+
+G = 9.81
+R2 = math.sqrt(2)
+
+
+def error_of(client, method, params):
+    e = client.error(method, params)
+    assert e["code"] == -32602, e
+    assert set(e["data"]) == {"field", "reason"}, e
+    return e["data"]["field"], e["data"]["reason"]
+
+
+def gravity(g=G, phi=270.0, name=None):
+    load = {"gravity": {"g": g, "direction_deg": phi}}
+    if name:
+        load["name"] = name
+    return load
+
+
+def case(*loads, name=None):
+    c = {"loads": list(loads)}
+    if name:
+        c["name"] = name
+    return c
+
+
+def force_range(client, fixture, cases, push=None, wrench=None, sets=None, rng=None):
+    params = {"fixture": fixture, "cases": cases}
+    if push is not None:
+        params["push"] = push
+    if wrench is not None:
+        params["wrench"] = wrench
+    if sets is not None:
+        params["sets"] = sets
+    if rng is not None:
+        params["range"] = rng
+    return client.result("force.range", params)
+
+
+def plate_321(mu=0.0, units=None):
+    f = FX.rectangle_321(mu)
+    if units:
+        f["units"] = units
+    return f
+
+
+# ---- closed forms ---------------------------------------------------------------------
+#
+# The disc in a corner (docs/MODEL.md section 7): G_goal = {f_x < 0, f_y < 0,
+# |f_x| > mu |f_y|, |f_y| > mu |f_x|}, any torque.  Gravity along +x (phi = 0)
+# and a push at boundary angle 45 degrees (the point (cos 45, sin 45), force
+# -F (1, 1) / sqrt 2): f_x = m G - F / sqrt 2, f_y = -F / sqrt 2, seated
+# exactly when F > sqrt 2 m G / (1 - mu) (f_x < 0 is implied; |f_y| >
+# mu |f_x| holds then).
+#
+# The frictionless 3-2-1 plate (4 x 2, com (2, 1), fixels (1, 0), (3, 0),
+# (0, 1)) under gravity straight down, pushed at (4, y) along -x: g = (-F,
+# -m G, F (y - 1)).  Its goal cones (one s, the rest m or u) hold (-a, -b,
+# tau), a, b > 0, exactly when tau <= -b (smm, smu: the part turns about
+# (3, 1), alpha = (tau + b) / (I + m) <= 0) or tau >= b (msm, msu, about
+# (1, 1)); the cones with s at fixel 3 need a_x >= 0, impossible as only
+# fixel 3 pushes along x.  (The derivation in full: tests/unit/test_force.c.)
+# So the push seats it exactly for 0 < F < m G / |y - 1|.
+
+
+def test_disc_in_a_corner_closed_form(client):
+    mu = 0.5
+    f = FX.disc_corner(mu)
+    r = force_range(client, f, [case({"wrench": [G, 0, 0]}, name="pull +x")],
+                    push={"at": [1 / R2, 1 / R2]}, sets=["goal"])
+    assert set(r) == {"cases", "all"}
+    assert r["cases"][0]["name"] == "pull +x" and set(r["cases"][0]) == {"name", "goal"}
+    goal = r["cases"][0]["goal"]
+    least = R2 * G / (1 - mu)
+    assert len(goal["intervals"]) == 1 and goal["intervals"][0][1] is None, goal
+    assert abs(goal["intervals"][0][0] - least) < 1e-12 * least
+    assert goal["least"] == goal["intervals"][0][0]
+    assert r["all"]["goal"] == goal
+    # Gravity the same way, as a gravity load: m = 1, phi = 0.
+    r2 = force_range(client, f, [case(gravity(G, 0))], push={"at": [1 / R2, 1 / R2]},
+                     sets=["goal"])
+    assert abs(r2["all"]["goal"]["least"] - least) < 1e-12 * least
+    assert r2["cases"][0]["name"] is None
+
+
+def test_plate_321_under_gravity_closed_form(client):
+    f = plate_321(0.0)
+    for y in (1.5, 0.25, 1.9):
+        r = force_range(client, f, [case(gravity())], push={"at": [4, y]}, sets=["goal"])
+        goal = r["all"]["goal"]
+        top = G / abs(y - 1)
+        assert len(goal["intervals"]) == 1, goal
+        assert goal["intervals"][0][0] == 0 and goal["least"] == 0
+        assert abs(goal["intervals"][0][1] - top) < 1e-12 * top, (y, goal)
+    r = force_range(client, f, [case(gravity())], push={"at": [4, 1]}, sets=["goal"])
+    assert r["all"]["goal"]["intervals"] == [[0, None]]
+
+
+def test_all_is_the_intersection_over_cases(client):
+    f = plate_321(0.0)
+    cases = [case(gravity(), name="y=%g" % y) for y in (1, 2, 3)]
+    # The same gravity in every case, but a cutter force along the top edge
+    # in two of them: the intersection is what every case allows.
+    cases[1]["loads"].append({"force": [-5, 0], "at": [3, 2], "name": "cutter"})
+    cases[2]["loads"].append({"force": [0, -20], "at": [3.5, 2]})
+    r = force_range(client, f, cases, push={"at": [4, 1.5]})
+    for s in ("goal", "strong", "both"):
+        inter = None
+        for c in r["cases"]:
+            iv = [(a, math.inf if b is None else b) for a, b in c[s]["intervals"]]
+            if inter is None:
+                inter = iv
+            else:
+                inter = [(max(a, c2), min(b, d)) for a, b in inter for c2, d in iv
+                         if max(a, c2) < min(b, d)]
+        got = [(a, math.inf if b is None else b) for a, b in r["all"][s]["intervals"]]
+        assert got == inter, (s, got, inter)
+
+
+# ---- every end re-checked by wrench.classify, both methods ----------------------------
+
+
+def classify(client, fixture, wrenches, sets, method):
+    r = client.result("wrench.classify", {"fixture": fixture, "wrenches": wrenches,
+                                          "sets": sets, "method": method})
+    return r["results"]
+
+
+def push_wrench(fixture_obj, at, direction):
+    """(d, (at - com) x d) for the 4 x 2 plate or a disc at the origin."""
+    com = fixture_obj["body"].get("com")
+    if com is None:  # the plate's centroid
+        xs = [v[0] for v in fixture_obj["body"]["shape"]["vertices"]]
+        ys = [v[1] for v in fixture_obj["body"]["shape"]["vertices"]]
+        com = [(min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2]
+    r = (at[0] - com[0], at[1] - com[1])
+    return (direction[0], direction[1], r[0] * direction[1] - r[1] * direction[0])
+
+
+PROBES = [
+    # fixture, push point, inward normal, cases
+    ("plate", [4, 1.5], [-1, 0], [[gravity()], [gravity(), {"force": [-3, -2], "at": [2, 2]}]]),
+    ("plate", [2.5, 2], [0, -1], [[gravity(phi=200)], [{"wrench": [1, -4, 0.5]}]]),
+    ("plate", [4, 0.4], [-1, 0], [[gravity(phi=240)], [gravity(phi=300)]]),
+    ("disc", [math.cos(0.7), math.sin(0.7)], [-math.cos(0.7), -math.sin(0.7)],
+     [[gravity(phi=0)], [gravity(phi=225)], [{"wrench": [2, 1, 3]}]]),
+]
+
+
+@pytest.mark.parametrize("probe", range(len(PROBES)))
+def test_every_end_agrees_with_classify_both_methods(client, probe):
+    kind, at, normal, case_loads = PROBES[probe]
+    f = plate_321(0.2) if kind == "plate" else FX.disc_corner(0.3)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    u = push_wrench(f, at, normal)
+    r = force_range(client, fid, [case(*loads) for loads in case_loads], push={"at": at})
+    # Each case's load as a wrench: the same case alone, pushed with F = 0,
+    # is the load; the load's wrench is read from the case's definition.
+    checked = lp_checked = 0
+    for ci, loads in enumerate(case_loads):
+        load = [0.0, 0.0, 0.0]
+        for ld in loads:
+            if "gravity" in ld:
+                phi = math.radians(ld["gravity"]["direction_deg"])
+                load[0] += ld["gravity"]["g"] * math.cos(phi)  # mass 1
+                load[1] += ld["gravity"]["g"] * math.sin(phi)
+            elif "wrench" in ld:
+                load = [load[k] + ld["wrench"][k] for k in range(3)]
+            else:
+                w = push_wrench(f, ld["at"], ld["force"])
+                load = [load[k] + w[k] for k in range(3)]
+        for s in ("goal", "strong", "both"):
+            iv = r["cases"][ci][s]["intervals"]
+            probes = []  # (F, expected inside)
+            for i, (a, b) in enumerate(iv):
+                width = (b - a) if b is not None else math.inf
+                step = 1e-6 * max(1.0, a)
+                probes.append((a + min(step, width / 4), True))
+                if a > 0:
+                    probes.append((a - step, False))
+                if b is not None:
+                    step = 1e-6 * max(1.0, b)
+                    probes.append((b - min(step, width / 4), True))
+                    probes.append((b + step, False))
+            if not probes:
+                continue
+            wrenches = [[load[k] + F * u[k] for k in range(3)] for F, _ in probes]
+            cones = classify(client, fid, wrenches, [s], "auto")
+            lp = classify(client, fid, wrenches, [s], "lp")
+            for (F, want), c, l in zip(probes, cones, lp):
+                got = c[s]["verdict"]
+                assert (got == "inside") == want, (s, F, want, c[s])
+                checked += 1
+                # The methods agree where the margin is beyond 1e-6.
+                if abs(c[s]["margin"]) > 1e-6:
+                    assert (l[s]["verdict"] == "inside") == want, (s, F, l[s], c[s])
+                    lp_checked += 1
+    assert checked > 0
+
+
+# ---- units: one fixture in three systems -------------------------------------------
+
+
+def scaled_fixture(length_scale, units):
+    """The 3-2-1 plate with lengths multiplied by length_scale (mass in kg)."""
+    f = plate_321(0.2)
+    f["body"]["shape"]["vertices"] = [[x * length_scale, y * length_scale]
+                                      for x, y in f["body"]["shape"]["vertices"]]
+    for fx in f["fixels"]:
+        fx["at"] = [c * length_scale for c in fx["at"]]
+    f["units"] = units
+    return f
+
+
+def test_units_give_the_same_answers_converted(client):
+    # The plate 4 m x 2 m, mass 1 kg, in metres and newtons; in millimetres
+    # (coordinates x1000, g in mm/s^2) and newtons; in inches and pounds-force.
+    lbf = 4.4482216152605
+    systems = [
+        (1.0, {"length": "m", "force": "N"}, 1.0),
+        (1000.0, {"length": "mm", "force": "N"}, 1.0),
+        (1 / 0.0254, {"length": "in", "force": "lbf"}, 1 / lbf),
+    ]
+    answers = []
+    for scale, units, per_newton in systems:
+        f = scaled_fixture(scale, units)
+        loads = [gravity(G * scale),
+                 {"force": [-3 * per_newton, -2 * per_newton], "at": [2 * scale, 2 * scale]},
+                 {"wrench": [0.5 * per_newton, -1 * per_newton, 0.7 * per_newton * scale]}]
+        r = force_range(client, f, [case(*loads)], push={"at": [4 * scale, 1.5 * scale]},
+                        rng=[0, 1000 * per_newton])
+        answers.append((per_newton, r))
+    base = answers[0][1]
+    for per_newton, r in answers[1:]:
+        for s in ("goal", "strong", "both"):
+            want = base["all"][s]["intervals"]
+            got = r["all"][s]["intervals"]
+            assert len(got) == len(want), (s, got, want)
+            for (a, b), (c, d) in zip(want, got):
+                assert abs(c / per_newton - a) <= 1e-9 * max(1, a), (s, got, want)
+                assert abs(d / per_newton - b) <= 1e-9 * max(1, b), (s, got, want)
+    assert any(base["all"][s]["intervals"] for s in ("goal", "strong", "both"))
+
+
+# ---- bad input ------------------------------------------------------------------------
+
+
+def test_bad_input_is_refused_at_its_field(client):
+    f = plate_321(0.2)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    ok_case = [case(gravity())]
+    bad = [
+        ({"cases": ok_case}, "params.push", "required"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "wrench": [1, 0, 0]}, "params.wrench", "not both"),
+        ({"cases": [], "push": {"at": [4, 1]}}, "params.cases", "empty"),
+        ({"cases": [{"loads": []}], "push": {"at": [4, 1]}}, "params.cases[0].loads", "empty"),
+        ({"cases": [case(gravity(g=-9.81))], "push": {"at": [4, 1]}},
+         "params.cases[0].loads[0].gravity.g", "negative"),
+        ({"cases": [case({"force": [1, 0], "at": [400, 1]})], "push": {"at": [4, 1]}},
+         "params.cases[0].loads[0].at", "beyond"),
+        ({"cases": [case({"torque": 1})], "push": {"at": [4, 1]}},
+         "params.cases[0].loads[0]", "gravity"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "range": [5, 1]}, "params.range",
+         "upside down"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "range": [-1, 1]}, "params.range[0]",
+         "negative"),
+        ({"cases": ok_case, "push": {"at": [5, 1]}}, "params.push.at", "boundary"),
+        ({"cases": ok_case, "push": {"at": [4, 0]}}, "params.push.at", ""),
+        ({"cases": ok_case, "push": {"at": [4, 1], "direction": [0, 0]}},
+         "params.push.direction", "non-zero"),
+        ({"cases": ok_case, "wrench": [0, 0, 0]}, "params.wrench", "zero"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "sets": ["goal", "goal"]}, "params.sets[1]",
+         "twice"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "sets": ["all"]}, "params.sets[0]", "goal"),
+        ({"cases": [case(gravity())] * 1001, "push": {"at": [4, 1]}}, "params.cases", "1000"),
+        ({"cases": [case(*([gravity()] * 101))], "push": {"at": [4, 1]}},
+         "params.cases[0].loads", "100"),
+        ({"cases": [{"loads": [gravity()], "extra": 1}], "push": {"at": [4, 1]}},
+         "params.cases[0].extra", ""),
+    ]
+    for params, field, word in bad:
+        params = dict(params, fixture=fid)
+        got = error_of(client, "force.range", params)
+        assert got[0] == field and word in got[1], (params, got)
