@@ -273,3 +273,57 @@ cJSON *wp_force_range(wp_call *call)
     }
     return result;
 }
+
+bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_friction,
+                       wp_push_load *out, wp_error *error)
+{
+    memset(out, 0, sizeof *out);
+    const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    double force;
+    if (!wp_member_number(params, "params", "force", false, &force, &out->given, error))
+        return false;
+    if (!out->given) {
+        if (cases_json) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+                         "required with \"cases\": the push's magnitude");
+            return false;
+        }
+        return true;
+    }
+    if (!(force > 0)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+                     "must be positive (a push's magnitude), got %g", force);
+        return false;
+    }
+    if (finger_friction > 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "not with \"force\": regions under a force are exact, for a frictionless "
+                     "finger");
+        return false;
+    }
+    out->force = force * wr_fixture_force_factor(f);
+    if (!isfinite(out->force)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.force", "too large to compute with");
+        return false;
+    }
+    wp_cases cases = {0};
+    if (cases_json && !wp_cases_read(cases_json, "params.cases", f, &cases, error))
+        return false;
+    out->count = cases_json ? cases.count : 1;
+    out->loads = calloc((size_t)out->count, sizeof *out->loads);
+    if (!out->loads) {
+        wp_cases_release(&cases);
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    for (int c = 0; c < cases.count; c++)
+        memcpy(out->loads[c], cases.items[c].load, sizeof out->loads[c]);
+    wp_cases_release(&cases);
+    return true;
+}
+
+void wp_push_load_release(wp_push_load *load)
+{
+    free(load->loads);
+    memset(load, 0, sizeof *load);
+}

@@ -493,6 +493,7 @@ typedef struct push_state {
     unsigned long edge_cost;
     bool opened, any;    /* "{"regions":[" written; a region written */
     double total, resolution;
+    wp_push_load load;   /* "force" and "cases": regions under them */
 } push_state;
 
 /* friction.sweep, a job's budget at a time (wr_sweep.h). */
@@ -1125,7 +1126,6 @@ static bool read_finger(const cJSON *object, const char *path, wr_finger *finger
     return true;
 }
 
-static void stream_free(wp_stream *stream) { free(stream); }
 
 static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
 {
@@ -1144,12 +1144,17 @@ static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
                      "push regions need the part's outline: the fixture has no shape");
         return NULL;
     }
+    wp_push_load load;
+    if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
+        return NULL;
     wp_stream *stream = calloc(1, sizeof *stream);
     if (!stream) {
+        wp_push_load_release(&load);
         wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
     }
     push_state *state = &stream->u.push;
+    state->load = load;
     state->set = set;
     state->finger = (wr_finger){friction, radius};
     state->edges = wr_push_edge_count(use->fixture);
@@ -1161,9 +1166,15 @@ static wp_stream *push_begin(wp_call *call, wp_prepared *prepared)
                                                                  : wr_analysis_cone_count(a, WR_SET_GOAL) +
                                                                        wr_analysis_cone_count(a, WR_SET_STRONG));
     /* A finger with a size is tested against every segment of the outline. */
-    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) +
+    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) * (unsigned long)(load.count + 1) +
                        (radius > 0 ? 8 * (unsigned long)state->edges : 0);
     return stream;
+}
+
+static void push_free(wp_stream *stream)
+{
+    wp_push_load_release(&stream->u.push.load);
+    free(stream);
 }
 
 static void write_region(wp_buffer *out, const wr_fixture *f, const wr_region *r, double length)
@@ -1215,8 +1226,15 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
         if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
-        wr_status status = wr_push_regions_part(use->analysis, state->set, &state->finger,
-                                                state->next, 1, call->host->stop, &part);
+        const wp_push_load *load = &state->load;
+        wr_status status =
+            load->given
+                ? wr_push_regions_loaded(use->analysis, state->set, load->force,
+                                         (const double (*)[3])load->loads, load->count,
+                                         state->finger.radius, state->next, 1, call->host->stop,
+                                         &part)
+                : wr_push_regions_part(use->analysis, state->set, &state->finger, state->next, 1,
+                                       call->host->stop, &part);
         if (status != WR_OK) {
             wr_regions_release(&part);
             wp_error_status(call->error, status, "", "%s", wr_strerror(status));
@@ -1247,7 +1265,7 @@ static wp_step push_step(wp_stream *stream, wp_call *call, wp_buffer *out, unsig
     return WP_STEP_DONE;
 }
 
-static const wp_streamer PUSH_STREAM = {push_begin, push_step, stream_free, NULL, false, NULL, NULL};
+static const wp_streamer PUSH_STREAM = {push_begin, push_step, push_free, NULL, false, NULL, NULL};
 
 static cJSON *gravity_sweep(wp_call *call)
 {
@@ -1625,7 +1643,8 @@ static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", 
                                        "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
-static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
+static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", "force",
+                                   "cases", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",

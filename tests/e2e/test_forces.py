@@ -296,3 +296,135 @@ def test_bad_input_is_refused_at_its_field(client):
         params = dict(params, fixture=fid)
         got = error_of(client, "force.range", params)
         assert got[0] == field and word in got[1], (params, got)
+
+
+# ---- push.regions under a force, against force.range at 10,000 points ----------------
+
+import outline_model as OM  # noqa: E402
+
+
+def rounded_plate(mu=0.1):
+    """A 4 x 2 plate with corners rounded to radius 0.5 (arcs), located by
+    two fixels on its bottom edge and one on its left."""
+    loop = OM.rounded_rectangle(4, 2, 0.5, center=(2, 1))
+    return {"body": {"mass": 1.0, "shape": {"type": "outline", "loops": [loop]}},
+            "friction": {"static": mu},
+            "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]}
+
+
+def boundary_samples(fixture, n):
+    """n points of the outline away from its vertices: (key, t, point,
+    inward normal), key the region's edge (or (loop, segment))."""
+    shape = fixture["body"]["shape"]
+    out = []
+    if shape["type"] == "circle":
+        c, r = shape["center"], shape["radius"]
+        for i in range(n):
+            t = 360.0 * (i + 0.5) / n
+            a = math.radians(t)
+            out.append((0, t, (c[0] + r * math.cos(a), c[1] + r * math.sin(a)),
+                        (-math.cos(a), -math.sin(a))))
+        return out
+    if shape["type"] == "polygon":
+        segs = OM.segments([list(v) + [0] for v in shape["vertices"]])
+        keys = list(range(len(segs)))
+    else:
+        segs = OM.segments(shape["loops"][0])
+        keys = [(0, j) for j in range(len(segs))]
+    per = n // len(segs)
+    for key, s in zip(keys, segs):
+        for i in range(per):
+            t = (i + 0.5) / per
+            d = s.direction(t)
+            out.append((key, t, s.point(t), (-d[1], d[0])))  # counter-clockwise: left is in
+    return out
+
+
+def region_key(region):
+    return (region["loop"], region["segment"]) if "loop" in region else region["edge"]
+
+
+def batched(client, requests, size=500):
+    """Answers of many requests, sent as JSON-RPC batches."""
+    out = []
+    for i in range(0, len(requests), size):
+        chunk = [{"jsonrpc": "2.0", "id": i + k, "method": m, "params": p}
+                 for k, (m, p) in enumerate(requests[i:i + size])]
+        client.send(chunk)
+        answers = sorted(client.read_json(), key=lambda a: a["id"])
+        assert all("result" in a for a in answers), [a for a in answers if "result" not in a][:1]
+        out.extend(a["result"] for a in answers)
+    return out
+
+
+REGION_CASES = [
+    ("chamfered plate", lambda: FX.chamfered_plate(0.05), 12.0, "both",
+     [[gravity()], [gravity(), {"force": [-4, -1], "at": [2, 2], "name": "cutter"}]]),
+    ("disc in a corner", lambda: FX.disc_corner(0.3), 15.0, "goal",
+     [[gravity(phi=200)], [gravity(phi=250), {"wrench": [1, 0, 2]}]]),
+    ("rounded plate", lambda: rounded_plate(0.1), 20.0, "both",
+     [[gravity()], [gravity(), {"force": [-3, 0], "at": [2, 2]}]]),
+]
+
+
+@pytest.mark.parametrize("which", range(len(REGION_CASES)))
+def test_regions_under_a_force_agree_with_force_range(client, which):
+    name, make, F, s, case_loads = REGION_CASES[which]
+    f = make()
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    cases = [case(*loads) for loads in case_loads]
+    regions = client.result("push.regions", {"fixture": fid, "set": s, "force": F,
+                                             "cases": cases})
+    assert regions["exact"] is True and regions["resolution"] == 0
+    top = 360.0 if f["body"]["shape"]["type"] == "circle" else 1.0
+    # Without loads the answer is today's (to rounding: another arithmetic
+    # path): a force alone changes nothing.
+    alone = client.result("push.regions", {"fixture": fid, "set": s, "force": F})["regions"]
+    today = client.result("push.regions", {"fixture": fid, "set": s})["regions"]
+    assert len(alone) == len(today), (alone, today)
+    for a, b in zip(alone, today):
+        assert region_key(a) == region_key(b)
+        assert abs(a["t0"] - b["t0"]) < 1e-12 * top and abs(a["t1"] - b["t1"]) < 1e-12 * top
+    samples = boundary_samples(f, 10000)
+    assert len(samples) == 10000
+    requests = [("force.range", {"fixture": fid, "cases": cases, "sets": [s],
+                                 "push": {"at": list(p), "direction": list(nu)}})
+                for _, _, p, nu in samples]
+    answers = batched(client, requests)
+    agree = inside = skipped = 0
+    for (key, t, _, _), answer in zip(samples, answers):
+        near = False
+        in_region = False
+        for reg in regions["regions"]:
+            if region_key(reg) != key:
+                continue
+            in_region |= reg["t0"] < t < reg["t1"]
+            near |= abs(t - reg["t0"]) < 1e-7 * top or abs(t - reg["t1"]) < 1e-7 * top
+        in_range = False
+        for a, b in answer["all"][s]["intervals"]:
+            b = math.inf if b is None else b
+            in_range |= a < F < b
+            near |= abs(F - a) < 1e-7 * F or abs(F - b) < 1e-7 * F
+        if near:
+            skipped += 1
+            continue
+        assert in_region == in_range, (name, key, t, answer["all"][s], regions["regions"])
+        agree += 1
+        inside += in_region
+    assert agree >= 9990 and inside > 50 and agree - inside > 50, (agree, inside, skipped)
+
+
+def test_regions_under_a_force_refuse_bad_input(client):
+    fid = client.result("fixture.put", {"fixture": FX.chamfered_plate(0.05)})["id"]
+    bad = [
+        ({"cases": [case(gravity())]}, "params.force", "required"),
+        ({"force": 0}, "params.force", "positive"),
+        ({"force": -2, "cases": [case(gravity())]}, "params.force", "positive"),
+        ({"force": 5, "cases": []}, "params.cases", "empty"),
+        ({"force": 5, "finger_friction": 0.2}, "params.finger_friction", "force"),
+        ({"force": 5, "cases": [case(gravity(g=-1))]}, "params.cases[0].loads[0].gravity.g",
+         "negative"),
+    ]
+    for params, field, word in bad:
+        got = error_of(client, "push.regions", dict(params, fixture=fid))
+        assert got[0] == field and word in got[1], (params, got)
