@@ -428,3 +428,512 @@ wr_status wr_push_regions_loaded(const wr_analysis *a, wr_set set, double force,
     }
     return WR_OK;
 }
+
+/* ---- the least force at a point, and its minimum over the outline ----------------- */
+
+/* The closed spans of F >= 0 where load + F push is in some excluded cone
+ * of the set, appended to `bad` in magnitudes; *unit_gap (may be NULL)
+ * receives the magnitude that 1e-9 of is a sliver (|L| / |u|, scaled).
+ * False for a zero or non-finite push. */
+static bool bad_forces(const wr_analysis *a, wr_set set, const double load[3],
+                       const double push[3], spanlist *bad, double *unit_gap)
+{
+    const wr_fixture *f = wr_analysis_fixture(a);
+    double hl[3], hu[3];
+    scaled(f, load, hl);
+    scaled(f, push, hu);
+    double nl = wr_normalize3(hl), nu = wr_normalize3(hu);
+    if (!(nu > 0) || !isfinite(nl) || !isfinite(nu))
+        return false;
+    double k = nl > 0 ? nu / nl : nu; /* as wr_force_range: s = F k */
+    if (unit_gap)
+        *unit_gap = 1 / k;
+    int count = set_cone_count(a, set);
+    for (int i = 0; i < count; i++) {
+        const wr_cone *cone = set_cone(a, set, i);
+        if (cone->empty)
+            continue;
+        double s0, s1;
+        wr_line_in_cone(cone, hl, hu, 2, &s0, &s1);
+        if (s1 >= 0 && s0 <= s1)
+            span_add(bad, fmax(s0, 0) / k, s1 / k);
+    }
+    if (!(nl > 0))
+        span_add(bad, 0, 0);
+    return true;
+}
+
+/* The end of the component of the union of `bad` (sorted here) that holds
+ * 0, gaps no wider than 1e-9 of max(gap end, unit) closed; 0 when 0 is not
+ * covered. */
+static double covered_from_zero(spanlist *bad, double unit)
+{
+    if (bad->count > 0)
+        qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_lo);
+    double end = 0;
+    bool covered = false;
+    for (int i = 0; i < bad->count; i++) {
+        double lo = bad->items[i].lo, hi = bad->items[i].hi;
+        double sliver = 1e-9 * fmax(isfinite(lo) ? lo : 0, unit);
+        if (!covered) {
+            if (lo > 0)
+                break;
+            covered = true;
+            end = hi;
+            continue;
+        }
+        if (lo > end + sliver)
+            break;
+        end = fmax(end, hi);
+    }
+    return end;
+}
+
+wr_status wr_least_force_at(const wr_analysis *a, wr_set set, const double (*loads)[3],
+                            int case_count, const double push[3], double *force)
+{
+    spanlist bad = {0};
+    double unit = 0;
+    for (int c = 0; c < case_count; c++) {
+        double gap;
+        if (!finite3(loads[c]) || !bad_forces(a, set, loads[c], push, &bad, &gap)) {
+            free(bad.items);
+            return WR_INVALID;
+        }
+        unit = fmax(unit, gap);
+    }
+    if (bad.failed) {
+        free(bad.items);
+        return WR_NO_MEMORY;
+    }
+    /* An upper end at infinity: no magnitude is good. */
+    *force = covered_from_zero(&bad, unit);
+    free(bad.items);
+    return WR_OK;
+}
+
+/* An edge's push, per unit force, as P cos phi + Q sin phi (arcs and the
+ * circle, phi = (t - shift) * scale in radians, rows' values multiplied
+ * by `s` > 0) or c1 + t c2 (lines). */
+typedef struct edge_push {
+    int edge;
+    int kind;
+    double c1[3], c2[3]; /* lines */
+    double p[3], q[3], s; /* arcs and the circle */
+    double shift, scale;  /* t -> phi */
+    double size;          /* |c1| + |c2|: what counts as zero */
+} edge_push;
+
+static void edge_push_of(const wr_fixture *f, int edge, edge_push *e)
+{
+    wr_edge_frame frame;
+    wr_edge_frame_of(f, edge, &frame);
+    memset(e, 0, sizeof *e);
+    e->edge = edge;
+    e->kind = frame.kind;
+    e->size = wr_norm3(frame.c1) + wr_norm3(frame.c2);
+    if (frame.kind == WR_EDGE_LINE) {
+        wr_copy3(frame.c1, e->c1);
+        wr_copy3(frame.c2, e->c2);
+    } else if (frame.kind == WR_EDGE_CIRCLE) {
+        wr_copy3(frame.c1, e->p);
+        wr_copy3(frame.c2, e->q);
+        e->s = 1;
+        e->shift = 0;
+        e->scale = WR_PI / 180;
+    } else {
+        /* w = c1 sin(phi) / s + c2 cos(phi), phi = (2 t - 1) a: times s,
+         * s c2 cos + c1 sin. */
+        e->s = frame.half_angle_sin;
+        for (int k = 0; k < 3; k++) {
+            e->p[k] = e->s * frame.c2[k];
+            e->q[k] = frame.c1[k];
+        }
+        e->shift = 0.5;
+        e->scale = 2 * frame.half_angle;
+    }
+}
+
+/* The range of the row f . (push per unit force, times s) over [t0, t1]. */
+static void row_range(const edge_push *e, const double row[3], double t0, double t1, double *lo,
+                      double *hi)
+{
+    if (e->kind == WR_EDGE_LINE) {
+        double a = wr_dot3(row, e->c1), b = wr_dot3(row, e->c2);
+        double x = a + b * t0, y = a + b * t1;
+        *lo = fmin(x, y);
+        *hi = fmax(x, y);
+        return;
+    }
+    double P = wr_dot3(row, e->p), Q = wr_dot3(row, e->q);
+    double f0 = (t0 - e->shift) * e->scale, f1 = (t1 - e->shift) * e->scale;
+    double x = P * cos(f0) + Q * sin(f0), y = P * cos(f1) + Q * sin(f1);
+    *lo = fmin(x, y);
+    *hi = fmax(x, y);
+    /* Turning points: where -P sin + Q cos = 0, a half turn apart, with
+     * values +-hypot(P, Q). */
+    double turn = atan2(Q, P), R = hypot(P, Q);
+    for (int k = -3; k <= 3; k++) {
+        double phi = turn + k * WR_PI;
+        if (phi > f0 && phi < f1) {
+            *lo = fmin(*lo, k % 2 == 0 ? R : -R);
+            *hi = fmax(*hi, k % 2 == 0 ? R : -R);
+        }
+    }
+}
+
+/* A cone's magnitudes covered at every t of an interval T: [lo, hi]. */
+typedef struct sure_span {
+    double lo, hi;
+    int c, i; /* case, cone */
+} sure_span;
+
+typedef struct bound_work {
+    int count, capacity;
+    sure_span *items;
+    bool failed;
+} bound_work;
+
+static int compare_sure(const void *a, const void *b)
+{
+    double x = ((const sure_span *)a)->lo, y = ((const sure_span *)b)->lo;
+    return (x > y) - (x < y);
+}
+
+typedef struct bound_context {
+    const wr_analysis *a;
+    wr_set set;
+    const double (*hl)[3];
+    int cases;
+    const edge_push *e;
+    double t0, t1, s, zero, unit;
+} bound_context;
+
+/* Over T, the least of row r's upper bound -alpha / beta(t) (as an upper
+ * row: INFINITY where it bounds nothing) and the greatest of its lower
+ * bound (as a lower row: 0 where it bounds nothing).  False when somewhere
+ * on T the row admits no F >= 0 at all (the cone holds nothing there). */
+static bool row_bounds(const bound_context *x, int c, const double row[3], double *upper,
+                       double *lower)
+{
+    double alpha = wr_dot3(row, x->hl[c]) * x->s, b0, b1;
+    double zero_load = 1e-12 * wr_norm3(x->hl[c]) * x->s;
+    row_range(x->e, row, x->t0, x->t1, &b0, &b1);
+    *upper = INFINITY;
+    *lower = 0;
+    if (alpha <= zero_load) {
+        /* The load meets the row: F <= |alpha| / beta where beta > 0,
+         * nothing where beta <= 0 (a pole inside T harms nothing). */
+        if (b1 > x->zero)
+            *upper = fmax(-alpha, 0) / b1;
+        return true;
+    }
+    if (b1 < -x->zero) {
+        /* F >= alpha / |beta|: at most alpha / |b1| over T. */
+        *lower = alpha / -b1;
+        return true;
+    }
+    return false;
+}
+
+/* May cone A's and cone B's covered magnitudes be joined over T: at every
+ * t is A's upper end at or above B's lower end?  Yes when each upper row of
+ * A stays above each lower row of B over T, or the two are one plane met
+ * from both sides (the same case, opposite rows: equal at every t). */
+static bool bridge(const bound_context *x, const sure_span *A, const sure_span *B)
+{
+    const wr_cone *ca = set_cone(x->a, x->set, A->i), *cb = set_cone(x->a, x->set, B->i);
+    for (int r = 0; r < ca->facet_count; r++) {
+        double upper, unused;
+        if (!row_bounds(x, A->c, ca->facets[r], &upper, &unused))
+            return false;
+        if (!(upper < INFINITY))
+            continue;
+        for (int q = 0; q < cb->facet_count; q++) {
+            double lower, unused_upper;
+            if (!row_bounds(x, B->c, cb->facets[q], &unused_upper, &lower))
+                return false;
+            if (upper >= lower)
+                continue;
+            if (A->c == B->c && wr_dot3(ca->facets[r], cb->facets[q]) <= -1 + 1e-12)
+                continue;
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The end of the component holding 0 of what is covered at every t of T,
+ * the spans sorted here; bridges join cones that meet along one plane. */
+static double covered_surely(const bound_context *x, bound_work *w)
+{
+    if (w->count > 0)
+        qsort(w->items, (size_t)w->count, sizeof *w->items, compare_sure);
+    if (w->count == 0 || w->items[0].lo > 0)
+        return 0;
+    double end = 0;
+    int members = 0; /* w->items[0, members) are in the component */
+    for (;;) {
+        /* Merge what overlaps (up to a sliver) the component. */
+        bool grew = false;
+        for (int i = members; i < w->count; i++) {
+            double sliver = 1e-9 * fmax(w->items[i].lo, x->unit);
+            if (w->items[i].lo > end + sliver)
+                break;
+            end = fmax(end, w->items[i].hi);
+            members = i + 1;
+            grew = true;
+        }
+        if (members == w->count)
+            return end;
+        /* A bridge from a member to a later span: the nearest few. */
+        for (int j = members; j < w->count && j < members + 8 && !grew; j++)
+            for (int m = 0; m < members && !grew; m++) {
+                if (!bridge(x, &w->items[m], &w->items[j]))
+                    continue;
+                end = fmax(end, w->items[j].hi);
+                /* j joins: moved next to the members, order kept after. */
+                sure_span joined = w->items[j];
+                memmove(&w->items[members + 1], &w->items[members],
+                        (size_t)(j - members) * sizeof *w->items);
+                w->items[members++] = joined;
+                grew = true;
+            }
+        if (!grew)
+            return end;
+    }
+}
+
+static double bound_over(const wr_analysis *a, wr_set set, const double (*hl)[3], int cases,
+                         const edge_push *e, double t0, double t1, double unit, bound_work *w)
+{
+    bound_context x = {a, set, hl, cases, e, t0, t1, e->kind == WR_EDGE_LINE ? 1 : e->s,
+                       1e-12 * e->size, unit};
+    w->count = 0;
+    int count = set_cone_count(a, set);
+    for (int c = 0; c < cases; c++)
+        for (int i = 0; i < count; i++) {
+            const wr_cone *cone = set_cone(a, set, i);
+            if (cone->empty || cone->dimension < 3)
+                continue;
+            double lo = 0, hi = INFINITY;
+            bool holds = true;
+            for (int r = 0; r < cone->facet_count && holds && lo <= hi; r++) {
+                double upper, lower;
+                holds = row_bounds(&x, c, cone->facets[r], &upper, &lower);
+                hi = fmin(hi, upper);
+                lo = fmax(lo, lower);
+            }
+            if (!holds || !(lo <= hi))
+                continue;
+            if (w->count == w->capacity) {
+                int capacity = w->capacity ? 2 * w->capacity : 64;
+                sure_span *grown = realloc(w->items, (size_t)capacity * sizeof *grown);
+                if (!grown) {
+                    w->failed = true;
+                    return 0;
+                }
+                w->items = grown;
+                w->capacity = capacity;
+            }
+            w->items[w->count++] = (sure_span){lo, hi, c, i};
+        }
+    return covered_surely(&x, w);
+}
+
+typedef struct bb_item {
+    double bound;
+    int edge;
+    double t0, t1;
+} bb_item;
+
+typedef struct bb_heap {
+    int count, capacity;
+    bb_item *items;
+} bb_heap;
+
+static bool heap_push(bb_heap *h, bb_item item)
+{
+    if (h->count == h->capacity) {
+        int capacity = h->capacity ? 2 * h->capacity : 64;
+        bb_item *grown = realloc(h->items, (size_t)capacity * sizeof *grown);
+        if (!grown)
+            return false;
+        h->items = grown;
+        h->capacity = capacity;
+    }
+    int i = h->count++;
+    while (i > 0 && h->items[(i - 1) / 2].bound > item.bound) {
+        h->items[i] = h->items[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    h->items[i] = item;
+    return true;
+}
+
+static bb_item heap_pop(bb_heap *h)
+{
+    bb_item top = h->items[0], last = h->items[--h->count];
+    int i = 0;
+    for (;;) {
+        int child = 2 * i + 1;
+        if (child >= h->count)
+            break;
+        if (child + 1 < h->count && h->items[child + 1].bound < h->items[child].bound)
+            child++;
+        if (h->items[child].bound >= last.bound)
+            break;
+        h->items[i] = h->items[child];
+        i = child;
+    }
+    if (h->count > 0)
+        h->items[i] = last;
+    return top;
+}
+
+/* A bound at least this close to the best F* found needs no more work
+ * (none while nothing finite is found). */
+static double enough(double best)
+{
+    return isfinite(best) ? best - WR_FORCE_TOLERANCE * best : INFINITY;
+}
+
+/* Initial intervals per reachable span of an edge. */
+#define BB_START 8
+
+wr_status wr_least_force_find(const wr_analysis *a, wr_set set, const double (*loads)[3],
+                              int case_count, double finger_radius, const wr_stop *stop,
+                              wr_least_force *out)
+{
+    memset(out, 0, sizeof *out);
+    out->force = out->lower = INFINITY;
+    const wr_fixture *f = wr_analysis_fixture(a);
+    if (f->shape == WR_SHAPE_NONE)
+        return WR_NO_SHAPE;
+    if (case_count < 1 || !(finger_radius >= 0) || !isfinite(finger_radius))
+        return WR_INVALID;
+    double (*hl)[3] = malloc((size_t)case_count * sizeof *hl);
+    if (!hl)
+        return WR_NO_MEMORY;
+    double unit = 0;
+    for (int c = 0; c < case_count; c++) {
+        if (!finite3(loads[c])) {
+            free(hl);
+            return WR_INVALID;
+        }
+        scaled(f, loads[c], hl[c]);
+        unit = fmax(unit, wr_norm3(hl[c]));
+    }
+    unit = unit > 0 ? unit : 1;
+    int edges = wr_push_edge_count(f);
+    edge_push *pushes = calloc((size_t)edges, sizeof *pushes);
+    bb_heap heap = {0};
+    bound_work sure = {0};
+    wr_status status = pushes ? WR_OK : WR_NO_MEMORY;
+    double best = INFINITY;
+    /* F* at (edge, t): the upper bound, and the answer where it is least. */
+#define EVALUATE(E, T)                                                                       \
+    do {                                                                                     \
+        double w_[3], least_;                                                                \
+        wr_push_wrench(f, (E), (T), w_);                                                     \
+        wr_status s_ = wr_least_force_at(a, set, (const double (*)[3])loads, case_count, w_,  \
+                                         &least_);                                           \
+        out->evaluations++;                                                                  \
+        if (s_ != WR_OK)                                                                     \
+            status = s_;                                                                     \
+        else if (least_ < best) {                                                            \
+            best = least_;                                                                   \
+            out->edge = (E);                                                                 \
+            out->t = (T);                                                                    \
+        }                                                                                    \
+    } while (0)
+    double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
+    for (int e = 0; status == WR_OK && e < edges; e++) {
+        edge_push_of(f, e, &pushes[e]);
+        spanlist reach = {0};
+        if (finger_radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
+            size_t loop, segment;
+            wr_push_edge_place(f, e, &loop, &segment);
+            wr_span *items = NULL;
+            int n = 0;
+            status = wr_finger_blocked(f->outline, loop, segment, finger_radius, stop, &items, &n);
+            spanlist blocked = {0};
+            for (int i = 0; i < n; i++)
+                span_add(&blocked, items[i].lo, items[i].hi);
+            free(items);
+            if (status == WR_OK)
+                gaps(&blocked, 0, 1, range_sliver, 1, &reach);
+            if (blocked.failed)
+                status = WR_NO_MEMORY;
+            free(blocked.items);
+        } else {
+            span_add(&reach, 0, top);
+        }
+        if (reach.failed)
+            status = WR_NO_MEMORY;
+        for (int r = 0; status == WR_OK && r < reach.count; r++) {
+            double lo = reach.items[r].lo, hi = reach.items[r].hi;
+            for (int i = 0; status == WR_OK && i < BB_START; i++) {
+                double t0 = lo + (hi - lo) * i / BB_START, t1 = lo + (hi - lo) * (i + 1) / BB_START;
+                EVALUATE(e, (t0 + t1) / 2);
+                double bound = bound_over(a, set, (const double (*)[3])hl, case_count, &pushes[e],
+                                          t0, t1, unit, &sure);
+                if (!heap_push(&heap, (bb_item){bound, e, t0, t1}))
+                    status = WR_NO_MEMORY;
+            }
+        }
+        free(reach.items);
+    }
+    bool converged = true;
+    while (status == WR_OK && heap.count > 0) {
+        if (sure.failed) {
+            status = WR_NO_MEMORY;
+            break;
+        }
+        bb_item item = heap_pop(&heap);
+        if (item.bound >= enough(best) || !(item.bound < INFINITY)) {
+            heap_push(&heap, item); /* the lowest bound left: the certificate */
+            break;
+        }
+        if (out->evaluations >= WR_FORCE_MAX_EVALUATIONS ||
+            item.t1 - item.t0 <= 1e-15 * top) {
+            converged = false;
+            heap_push(&heap, item);
+            break;
+        }
+        if ((out->evaluations & 255) == 0 && wr_stop_requested(stop)) {
+            status = WR_STOPPED;
+            break;
+        }
+        double mid = (item.t0 + item.t1) / 2;
+        EVALUATE(item.edge, mid);
+        for (int half = 0; status == WR_OK && half < 2; half++) {
+            double t0 = half ? mid : item.t0, t1 = half ? item.t1 : mid;
+            double bound = bound_over(a, set, (const double (*)[3])hl, case_count,
+                                      &pushes[item.edge], t0, t1, unit, &sure);
+            bound = fmax(bound, item.bound); /* a part's bound is at least its whole's */
+            if (bound < enough(best) &&
+                !heap_push(&heap, (bb_item){bound, item.edge, t0, t1}))
+                status = WR_NO_MEMORY;
+        }
+    }
+#undef EVALUATE
+    if (status == WR_OK) {
+        /* Pruned intervals are certified down to enough(best). */
+        double lower = fmin(best, enough(best));
+        for (int i = 0; i < heap.count; i++)
+            lower = fmin(lower, heap.items[i].bound);
+        out->found = isfinite(best);
+        out->force = best;
+        out->lower = lower;
+        out->converged = converged;
+        if (out->found) {
+            wr_boundary_point(f, out->edge, out->t, out->at, out->direction);
+        }
+    }
+    free(heap.items);
+    free(sure.items);
+    free(pushes);
+    free(hl);
+    return status;
+}

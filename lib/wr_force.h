@@ -79,6 +79,60 @@ wr_status wr_push_regions_loaded(const wr_analysis *analysis, wr_set set, double
                                  int first_edge, int edge_count, const wr_stop *stop,
                                  wr_regions *regions);
 
+/* The least magnitude F*(p) with which a push at p along the inward normal
+ * does the set's job under every case: the lower end of the first interval
+ * of the intersection of the cases' good magnitudes (INFINITY when there is
+ * none; 0 when the loads alone do the job).  `push` as wr_force_range's.
+ * WR_OK, WR_INVALID (as wr_force_range), WR_NO_MEMORY. */
+wr_status wr_least_force_at(const wr_analysis *analysis, wr_set set, const double (*loads)[3],
+                            int case_count, const double push[3], double *force);
+
+/* The point of the outline where the smallest push suffices: the minimum
+ * of F*(p) over the outline (a finger of `finger_radius` reaching it), by
+ * branch and bound over intervals of each edge, which cannot miss it.
+ *
+ * The bound.  Over an interval T of an edge, each row f of an excluded
+ * cone (of full dimension; thinner ones cover single magnitudes, which do
+ * not move an infimum) is f . h(L) + F f . h(u(t)) <= 0, with f . h(u(t))
+ * affine in t on a line and A cos phi + B sin phi on an arc or a circle:
+ * its range [b0, b1] over T is exact (the ends, and the one turning point
+ * per half turn).  A row the load meets (f . h(L) = alpha <= 0) allows
+ * F <= -alpha / b where b > 0 and every F where b <= 0: at every t of T
+ * at least F <= -alpha / b1.  A row the load breaks (alpha > 0) allows
+ * F >= alpha / |b| where b < 0 and nothing where b >= 0: if b1 < 0, at
+ * every t at most F >= alpha / |b1| is needed; otherwise the cone holds
+ * nothing at some t and is left out (which only lowers the bound).  So
+ * [max of the lower ends, min of the upper ends] is covered at every t of
+ * T, and the component of the union of those (over every cone of every
+ * case) that holds 0 ends at or below F*(t) for every t in T.  F* at the middle of an interval is an upper
+ * bound on the minimum.  The interval with the lowest bound is split until
+ * that bound is within WR_FORCE_TOLERANCE (relative) of the least F* found
+ * at a point; on pieces where F* keeps its form the bound is exact, so
+ * splitting stops there at once.
+ *
+ * WR_OK; WR_NO_SHAPE; WR_INVALID (a negative radius, no case, a
+ * non-finite load); WR_NO_MEMORY; WR_STOPPED. */
+#define WR_FORCE_TOLERANCE 1e-9
+/* Intervals evaluated at most; beyond, the answer says it did not converge
+ * and gives its certified lower bound. */
+#define WR_FORCE_MAX_EVALUATIONS 200000
+
+typedef struct wr_least_force {
+    bool found;            /* some reachable point has a finite F* */
+    int edge;
+    double t;              /* as wr_region's t */
+    double at[2];          /* the boundary point */
+    double direction[2];   /* the push: the inward normal there */
+    double force;          /* F* there: the minimum to the tolerance */
+    double lower;          /* certified: no point has F* below this */
+    bool converged;        /* force - lower <= WR_FORCE_TOLERANCE * force */
+    unsigned long evaluations; /* F* computed at points */
+} wr_least_force;
+
+wr_status wr_least_force_find(const wr_analysis *analysis, wr_set set, const double (*loads)[3],
+                              int case_count, double finger_radius, const wr_stop *stop,
+                              wr_least_force *out);
+
 #ifdef __cplusplus
 }
 #endif
