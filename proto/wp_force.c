@@ -327,3 +327,141 @@ void wp_push_load_release(wp_push_load *load)
     free(load->loads);
     memset(load, 0, sizeof *load);
 }
+
+/* params.set: one name (default "both": what a user pushes with). */
+static bool read_one_set(const cJSON *params, wr_set *set, wp_error *error)
+{
+    const char *name = NULL;
+    if (!wp_member_string(params, "params", "set", false, &name, error))
+        return false;
+    *set = WR_SET_BOTH;
+    if (!name)
+        return true;
+    for (int s = 0; s < 3; s++)
+        if (strcmp(name, SET_NAMES[s]) == 0) {
+            *set = (wr_set)s;
+            return true;
+        }
+    wp_error_set(error, WP_INVALID_PARAMS, "params.set", "must be \"goal\", \"strong\" or \"both\"");
+    return false;
+}
+
+/* Where an edge is, on the wire: {"edge"} or, on an outline, {"loop",
+ * "segment"}, added to `object`. */
+static void add_place(cJSON *object, const wr_fixture *f, int edge)
+{
+    if (f->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(f, edge, &loop, &segment);
+        cJSON_AddNumberToObject(object, "loop", (double)loop);
+        cJSON_AddNumberToObject(object, "segment", (double)segment);
+    } else {
+        cJSON_AddNumberToObject(object, "edge", edge);
+    }
+}
+
+static cJSON *force_or_null(const wr_fixture *f, double force)
+{
+    return isfinite(force) ? cJSON_CreateNumber(wp_force_out(f, force)) : cJSON_CreateNull();
+}
+
+cJSON *wp_push_force(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    wr_set set;
+    double radius = 0, samples_given = WP_FORCE_SAMPLES;
+    bool have_samples = false;
+    if (!read_one_set(params, &set, error) ||
+        !wp_member_number(params, "params", "finger_radius", false, &radius, NULL, error) ||
+        !wp_member_number(params, "params", "samples", false, &samples_given, &have_samples,
+                          error))
+        return NULL;
+    if (radius < 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_radius", "must not be negative");
+        return NULL;
+    }
+    if (have_samples && !(samples_given >= 1 && samples_given <= WP_FORCE_MAX_SAMPLES &&
+                          samples_given == floor(samples_given))) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.samples",
+                     "must be a whole number from 1 to %d", WP_FORCE_MAX_SAMPLES);
+        return NULL;
+    }
+    int samples = (int)samples_given;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    const wr_fixture *f = use->fixture;
+    if (f->shape == WR_SHAPE_NONE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                     "a push force needs the part's outline: the fixture has no shape");
+        return NULL;
+    }
+    wp_cases cases;
+    if (!wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
+                       &cases, error))
+        return NULL;
+    double (*loads)[3] = malloc((size_t)cases.count * sizeof *loads);
+    cJSON *result = cJSON_CreateObject();
+    wr_status status = loads && result ? WR_OK : WR_NO_MEMORY;
+    for (int c = 0; loads && c < cases.count; c++)
+        memcpy(loads[c], cases.items[c].load, sizeof loads[c]);
+    wr_least_force least;
+    if (status == WR_OK)
+        status = wr_least_force_find(use->analysis, set, (const double (*)[3])loads, cases.count,
+                                     radius, call->host->stop, &least);
+    if (status == WR_OK) {
+        cJSON *best = least.found ? cJSON_AddObjectToObject(result, "least")
+                                  : cJSON_AddNullToObject(result, "least");
+        if (least.found && best) {
+            add_place(best, f, least.edge);
+            cJSON_AddNumberToObject(best, "t", least.t + 0.0);
+            const double at[2] = {least.at[0] + 0.0, least.at[1] + 0.0};
+            const double direction[2] = {least.direction[0] + 0.0, least.direction[1] + 0.0};
+            cJSON_AddItemToObject(best, "at", cJSON_CreateDoubleArray(at, 2));
+            cJSON_AddItemToObject(best, "direction", cJSON_CreateDoubleArray(direction, 2));
+            cJSON_AddItemToObject(best, "force", force_or_null(f, least.force));
+            cJSON_AddItemToObject(best, "lower_bound", force_or_null(f, least.lower));
+            cJSON_AddBoolToObject(best, "converged", least.converged);
+        }
+        cJSON_AddNumberToObject(result, "evaluations", (double)least.evaluations);
+        cJSON_AddNumberToObject(result, "samples", samples);
+    }
+    /* F* at evenly spaced points of every edge (off its ends), each exact. */
+    cJSON *segments = status == WR_OK ? cJSON_AddArrayToObject(result, "segments") : NULL;
+    int edges = wr_push_edge_count(f);
+    double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
+    for (int e = 0; status == WR_OK && e < edges; e++) {
+        cJSON *segment = cJSON_CreateObject();
+        cJSON *ts = cJSON_CreateArray(), *forces = cJSON_CreateArray();
+        if (!segments || !segment || !ts || !forces) {
+            cJSON_Delete(segment);
+            cJSON_Delete(ts);
+            cJSON_Delete(forces);
+            status = WR_NO_MEMORY;
+            break;
+        }
+        cJSON_AddItemToArray(segments, segment);
+        add_place(segment, f, e);
+        cJSON_AddItemToObject(segment, "t", ts);
+        cJSON_AddItemToObject(segment, "force", forces);
+        for (int j = 0; status == WR_OK && j < samples; j++) {
+            double t = top * (j + 0.5) / samples, push[3], value;
+            wr_push_wrench(f, e, t, push);
+            status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
+                                       cases.count, push, &value);
+            cJSON_AddItemToArray(ts, cJSON_CreateNumber(t));
+            cJSON_AddItemToArray(forces, force_or_null(f, value));
+        }
+        if (wr_stop_requested(call->host->stop))
+            status = WR_STOPPED;
+    }
+    free(loads);
+    wp_cases_release(&cases);
+    if (status != WR_OK) {
+        cJSON_Delete(result);
+        wp_error_status(error, status, "", "%s", wr_strerror(status));
+        return NULL;
+    }
+    return result;
+}

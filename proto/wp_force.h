@@ -14,6 +14,14 @@ extern "C" {
  * each case, and under all of them. */
 cJSON *wp_force_range(wp_call *call);
 
+/* push.force: the least force F*(p) along the outline, sampled exactly,
+ * and its minimum over the outline (wr_least_force_find). */
+cJSON *wp_push_force(wp_call *call);
+
+/* Samples of F* per segment: the default and the most. */
+#define WP_FORCE_SAMPLES 64
+#define WP_FORCE_MAX_SAMPLES 4096
+
 /* push.regions' "force" F and "cases": the regions where a push of
  * magnitude F does the set's job under every case (wr_push_regions_loaded).
  * Without "force" there is nothing to do (given false) and push.regions is

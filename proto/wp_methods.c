@@ -1654,6 +1654,8 @@ static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};
 static const char *const FORCE_RANGE_REQUIRED[] = {"fixture", "cases", NULL};
+static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples",
+                                         NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", NULL};
 
@@ -1695,6 +1697,9 @@ const wp_method wp_methods[] = {
     {.name = "force.range", .handler = wp_force_range, .fields = FORCE_RANGE,
      .required = FORCE_RANGE_REQUIRED, .flags = WP_FIXTURE,
      .summary = "the magnitudes of a push that do a set's job under load cases"},
+    {.name = "push.force", .handler = wp_push_force, .fields = PUSH_FORCE,
+     .required = FORCE_RANGE_REQUIRED, .flags = WP_FIXTURE,
+     .summary = "the least push force along the outline, and where it is least"},
     {.name = "fixture.design", .stream = &DESIGN_STREAM, .fields = DESIGN,
      .required = DESIGN_REQUIRED,
      .summary = "the best fixel sites and push for a body: ranked designs"},

@@ -428,3 +428,78 @@ def test_regions_under_a_force_refuse_bad_input(client):
     for params, field, word in bad:
         got = error_of(client, "push.regions", dict(params, fixture=fid))
         assert got[0] == field and word in got[1], (params, got)
+
+
+# ---- push.force: the least force along the outline ------------------------------------
+
+
+@pytest.mark.parametrize("which", range(len(REGION_CASES)))
+def test_push_force_minimum_against_brute_force(client, which):
+    name, make, _, s, case_loads = REGION_CASES[which]
+    f = make()
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    cases = [case(*loads) for loads in case_loads]
+    r = client.result("push.force", {"fixture": fid, "set": s, "cases": cases})
+    assert set(r) == {"least", "segments", "samples", "evaluations"}
+    # Brute force: force.range (the intersection of each case's intervals,
+    # another path than the search's union of excluded intervals) at 4,000
+    # points of the outline, each pushing along its own inward normal.
+    samples = boundary_samples(f, 4000)
+    answers = batched(client, [("force.range", {"fixture": fid, "cases": cases, "sets": [s],
+                                                "push": {"at": list(p), "direction": list(nu)}})
+                               for _, _, p, nu in samples])
+    brute = min((a["all"][s]["least"] for a in answers if a["all"][s]["least"] is not None),
+                default=None)
+    least = r["least"]
+    print(name, "least", least and least["force"], "brute", brute, "evaluations", r["evaluations"])
+    # Each of these fixtures has a push that does the job.
+    assert brute is not None
+    assert least is not None and least["converged"], least
+    assert least["force"] <= brute * (1 + 1e-9) + 1e-12, (least, brute)
+    assert least["lower_bound"] <= brute + 1e-12, (least, brute)
+    # F* where the search says it is least: force.range agrees.
+    at_least = force_range(client, fid, cases, push={"at": least["at"],
+                                                     "direction": least["direction"]},
+                           sets=[s])
+    assert abs(at_least["all"][s]["least"] - least["force"]) <= 1e-9 * least["force"] + 1e-12
+    # The samples are F* at their points, exactly: three checked.
+    seg = r["segments"][0]
+    assert len(seg["t"]) == r["samples"] == 64
+
+
+def test_push_force_closed_forms(client):
+    # The disc in a corner, gravity along +x: F*(theta) = m G / (cos - mu sin)
+    # on the goal side, least as theta -> 0, approaching m G (derived in
+    # tests/unit/test_force.c).
+    r = client.result("push.force", {"fixture": FX.disc_corner(0.5), "set": "goal",
+                                     "cases": [case(gravity(G, 0))]})
+    assert G <= r["least"]["force"] < G * (1 + 1e-8), r["least"]
+    assert r["least"]["lower_bound"] <= G * (1 + 1e-12)
+    # The frictionless 3-2-1 plate under gravity: any push on the right edge
+    # at a height y != 1 seats it for 0 < F < m G / |y - 1|: the least is 0
+    # (approached: the answer is an infimum).
+    r = client.result("push.force", {"fixture": plate_321(0.0), "set": "goal",
+                                     "cases": [case(gravity())]})
+    assert r["least"]["force"] == 0, r["least"]
+
+
+def test_push_force_units_and_refusals(client):
+    lbf = 4.4482216152605
+    answers = []
+    for scale, units, per_newton in ((1.0, {"length": "m", "force": "N"}, 1.0),
+                                     (1 / 0.0254, {"length": "in", "force": "lbf"}, 1 / lbf)):
+        f = scaled_fixture(scale, units)
+        loads = [gravity(G * scale), {"force": [-3 * per_newton, -2 * per_newton],
+                                      "at": [2 * scale, 2 * scale]}]
+        r = client.result("push.force", {"fixture": f, "set": "strong", "cases": [case(*loads)]})
+        answers.append((per_newton, r["least"]))
+    (_, a), (k, b) = answers
+    assert a is not None and abs(b["force"] / k - a["force"]) <= 1e-9 * a["force"], (a, b)
+    fid = client.result("fixture.put", {"fixture": plate_321(0.2)})["id"]
+    for params, field in (({}, "params.cases"), ({"cases": []}, "params.cases"),
+                          ({"cases": [case(gravity())], "samples": 0}, "params.samples"),
+                          ({"cases": [case(gravity())], "set": "all"}, "params.set"),
+                          ({"cases": [case(gravity())], "finger_radius": -1},
+                           "params.finger_radius")):
+        got = error_of(client, "push.force", dict(params, fixture=fid))
+        assert got[0] == field, (params, got)
