@@ -1649,7 +1649,7 @@ static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
-                                     "progress", "shard", NULL};
+                                     "progress", "shard", "cases", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};

@@ -503,3 +503,52 @@ def test_push_force_units_and_refusals(client):
                            "params.finger_radius")):
         got = error_of(client, "push.force", dict(params, fixture=fid))
         assert got[0] == field, (params, got)
+
+
+# ---- fixture.design with objective "force", against a brute force -------------------
+
+
+def test_design_objective_force_against_brute_force(client):
+    import itertools
+    body = {"mass": 1.0, "shape": {"type": "polygon",
+                                   "vertices": [[0, 0], [4, 0], [4, 1], [3, 2], [0, 2]]}}
+    sites = [{"at": [0.8, 0]}, {"at": [2, 0]}, {"at": [3.2, 0]}, {"at": [0, 0.6]},
+             {"at": [0, 1.4]}, {"at": [1.5, 2]}]
+    cases = [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})]
+    r = client.result("fixture.design", {"body": body, "friction": 0.05, "sites": sites,
+                                         "objective": "force", "cases": cases, "top": 20})
+    designs = r["designs"]
+    # Brute force: every combination of three sites put as a fixture and
+    # asked push.force (both, the same cases); those with a finite least.
+    brute = {}
+    for combo in itertools.combinations(range(len(sites)), 3):
+        f = {"body": body, "friction": {"static": 0.05},
+             "fixels": [dict(sites[i]) for i in combo]}
+        try:
+            fid = client.result("fixture.put", {"fixture": f})["id"]
+        except Exception:
+            continue  # degenerate: the design refuses it too
+        if not client.result("fixture.put", {"fixture": f}).get("pinned", True):
+            continue
+        least = client.result("push.force", {"fixture": fid, "set": "both", "cases": cases,
+                                             "samples": 1})["least"]
+        if least is not None:
+            brute[combo] = least["force"]
+    assert brute, "no candidate has a push that works"
+    ranked = sorted(brute.items(), key=lambda kv: (kv[1], kv[0]))
+    assert len(designs) == min(20, len(ranked)), (len(designs), len(ranked))
+    for d, (combo, force) in zip(designs, ranked):
+        assert abs(d["least_push"]["force"] - force) <= 1e-9 * force, (d, combo, force)
+        assert abs(-d["score"] - force) <= 1e-9 * force
+    assert tuple(designs[0]["sites"]) == ranked[0][0]
+    # The other objectives report the least push too when cases are given.
+    m = client.result("fixture.design", {"body": body, "friction": 0.05, "sites": sites,
+                                         "cases": cases, "top": 3})
+    for d in m["designs"]:
+        assert "least_push" in d
+        combo = tuple(d["sites"])
+        if d["least_push"] is not None:
+            assert abs(d["least_push"]["force"] - brute[combo]) <= 1e-9 * brute[combo]
+    e = client.error("fixture.design", {"body": body, "friction": 0.05, "sites": sites,
+                                        "objective": "force"})
+    assert e["data"]["field"] == "params.cases", e
