@@ -64,8 +64,11 @@ enum {
     WC_OPT_INTERVAL = 1 << 15,  /* --friction LO:HI (or MU): the fixels' friction */
     WC_OPT_SWEEP = 1 << 16,     /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
                                    --range LO:HI, --kinetic-ratio R */
-    WC_OPT_DESIGN = 1 << 17     /* --spacing H, --lattice P,R,NXxNY, --fixels K,
+    WC_OPT_DESIGN = 1 << 17,    /* --spacing H, --lattice P,R,NXxNY, --fixels K,
                                    --objective O, --top N, --shard I/N */
+    WC_OPT_CASE = 1 << 18,      /* --case SPEC (repeated): load cases (wc_force.c) */
+    WC_OPT_FORCE = 1 << 19,     /* force: --push X,Y[@DX,DY], --wrench FX,FY,TAU, --range */
+    WC_OPT_PUSH_FORCE = 1 << 20 /* push: --force F */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -108,6 +111,12 @@ typedef struct wc_run {
     /* kept by a request function for its answer (sweep: --wrench, as read) */
     cJSON *wrenches;
     cJSON *bias;
+    /* WC_OPT_CASE, WC_OPT_FORCE, WC_OPT_PUSH_FORCE */
+    cJSON *cases;           /* the cases, as sent */
+    cJSON *force_push;      /* force --push: {"at", "direction"?} */
+    cJSON *force_wrench;    /* force --wrench: [fx, fy, tau] */
+    double push_force;      /* push --force */
+    bool push_force_given;
 } wc_run;
 
 /* Adds the command's params to `params` (the fixture is already there for
