@@ -389,6 +389,9 @@ class Design:
     sites: Optional[List[int]] = None          # the sites chosen (not on a lattice)
     pegs: Optional[List[List[int]]] = None     # a lattice: the pegs' holes
     pose: Optional[List[float]] = None         # a lattice: [x, y, theta in degrees]
+    # With load cases: the least push doing both under every case ({"at",
+    # "direction", "force", "lower_bound", ...}, None when none does).
+    least_push: Optional[Dict[str, Any]] = None
 
 
 @dataclass
@@ -694,6 +697,12 @@ def _fixture_id(fixture_id: Any) -> str:
     return fixture_id
 
 
+def _cases(cases: Iterable[Any]) -> List[Dict[str, Any]]:
+    """Cases as the protocol takes them: a case given as a bare list of
+    loads becomes {"loads": [...]}."""
+    return [dict(c) if isinstance(c, Mapping) else {"loads": list(c)} for c in cases]
+
+
 def _wrench(w: Any) -> Any:
     if isinstance(w, Mapping):
         return dict(w)
@@ -780,18 +789,64 @@ class _Methods:
                             lambda r: _build(Modes, r, "modes.get"), True, timeout)
 
     def push_regions(self, fixture: Any, set: str = "goal", finger_friction: float = 0.0, *,
-                     finger_radius: float = 0.0, timeout: Any = _DEFAULT):
+                     finger_radius: float = 0.0, force: Optional[float] = None,
+                     cases: Optional[Iterable[Any]] = None, timeout: Any = _DEFAULT):
         """push.regions: where a finger pushing along the inward normal gives
         a wrench in the set (PushRegions).  finger_friction > 0: every force
         of the finger's friction cone must be in it (sampled).  finger_radius
         > 0: only where a disc of that radius touching the boundary from
-        outside overlaps no part of the workpiece."""
-        params = {"fixture": _fixture_ref(fixture), "set": set}
+        outside overlaps no part of the workpiece.  force F (and cases, see
+        force_range): where a push of magnitude F does the set's job under
+        every case (exact, a frictionless finger)."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "set": set}
         if finger_friction:
             params["finger_friction"] = finger_friction
         if finger_radius:
             params["finger_radius"] = finger_radius
+        if force is not None:
+            params["force"] = force
+        if cases is not None:
+            params["cases"] = _cases(cases)
         return self._invoke("push.regions", params, _push_result, True, timeout)
+
+    def force_range(self, fixture: Any, cases: Iterable[Any], *,
+                    push: Optional[Mapping[str, Any]] = None, wrench: Any = None,
+                    sets: Optional[Sequence[str]] = None,
+                    range: Optional[Sequence[float]] = None, timeout: Any = _DEFAULT):
+        """force.range: the magnitudes F of one push (push={"at": [x, y],
+        "direction"?: [dx, dy]}, or a wrench direction) that do each set's
+        job under each case and under all of them, as the daemon's answer
+        {"cases": [...], "all": {...}} (S = {"intervals", "least"}, None for
+        no upper end), in the fixture's force unit.  A case is {"name"?,
+        "loads": [...]} or a list of loads; a load {"gravity": {"g",
+        "direction_deg"}}, {"force", "at"} or {"wrench"}."""
+        if (push is None) == (wrench is None):
+            raise ValueError("force_range takes push or wrench, one of them")
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "cases": _cases(cases)}
+        if push is not None:
+            params["push"] = dict(push)
+        else:
+            params["wrench"] = list(wrench)
+        if sets is not None:
+            params["sets"] = list(sets)
+        if range is not None:
+            params["range"] = [range[0], range[1]]
+        return self._invoke("force.range", params, _object_result, True, timeout)
+
+    def push_force(self, fixture: Any, cases: Iterable[Any], *, set: str = "both",
+                   finger_radius: float = 0.0, samples: Optional[int] = None,
+                   timeout: Any = _DEFAULT):
+        """push.force: the least force F*(p) of a push along the inward
+        normal that does the set's job under every case, sampled exactly
+        along every segment, and its minimum over the outline ("least":
+        {"at", "direction", "force", "lower_bound", ...} or None)."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "cases": _cases(cases),
+                                  "set": set}
+        if finger_radius:
+            params["finger_radius"] = finger_radius
+        if samples is not None:
+            params["samples"] = samples
+        return self._invoke("push.force", params, _object_result, True, timeout)
 
     def gravity_sweep(self, fixture: Any, set: str = "goal", *, timeout: Any = _DEFAULT):
         """gravity.sweep: the arcs [a, b] of tilt (degrees, the direction
@@ -843,6 +898,7 @@ class _Methods:
                top: int = 10, finger_radius: float = 0.0, finger_friction: float = 0.0,
                shard: Optional[Sequence[int]] = None,
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
+               cases: Optional[Iterable[Any]] = None,
                timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
@@ -872,6 +928,8 @@ class _Methods:
             params["shard"] = [int(shard[0]), int(shard[1])]
         if progress is not None:
             params["progress"] = True
+        if cases is not None:
+            params["cases"] = _cases(cases)
         return self._invoke("fixture.design", params, _design_result, True, timeout,
                             notify=progress)
 

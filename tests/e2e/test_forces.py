@@ -8,10 +8,12 @@ force.range at 10,000 points, and one fixture written in three systems of
 units giving the same answers converted."""
 
 import math
+import os
 
 import pytest
 
 import fixtures as FX
+from conftest import REPO
 
 G = 9.81
 R2 = math.sqrt(2)
@@ -552,3 +554,32 @@ def test_design_objective_force_against_brute_force(client):
     e = client.error("fixture.design", {"body": body, "friction": 0.05, "sites": sites,
                                         "objective": "force"})
     assert e["data"]["field"] == "params.cases", e
+
+
+# ---- the Python client ---------------------------------------------------------------
+
+
+def test_python_client_functions(daemon, client):
+    import sys
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    f = plate_321(0.0)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    with wrenchd.Client(daemon.path) as c:
+        r = c.force_range(fid, [[gravity()]], push={"at": [4, 1.5]}, sets=["goal"])
+        assert r == client.result("force.range", {"fixture": fid, "cases": [case(gravity())],
+                                                  "push": {"at": [4, 1.5]}, "sets": ["goal"]})
+        assert abs(r["all"]["goal"]["intervals"][0][1] - 2 * G) < 1e-12 * G
+        p = c.push_force(fid, [{"name": "g", "loads": [gravity()]}], set="strong", samples=8)
+        assert p == client.result("push.force", {"fixture": fid, "set": "strong", "samples": 8,
+                                                 "cases": [case(gravity(), name="g")]})
+        regions = c.push_regions(fid, "goal", force=5.0, cases=[[gravity()]])
+        want = client.result("push.regions", {"fixture": fid, "set": "goal", "force": 5.0,
+                                              "cases": [case(gravity())]})
+        assert [[x.t0, x.t1] for x in regions.regions] == [[x["t0"], x["t1"]]
+                                                           for x in want["regions"]]
+        d = c.design(FX.chamfered_plate()["body"], 0.05, spacing=0.9, objective="force",
+                     cases=[[gravity()]], top=2)
+        assert d.designs and d.designs[0].least_push is not None
+        with pytest.raises(ValueError):
+            c.force_range(fid, [[gravity()]])
