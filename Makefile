@@ -261,6 +261,7 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/notched-plate.json --set strong --finger-radius 4 --svg docs/pictures/notched-plate-push-strong-r4.svg >/dev/null
 	$(BUILD)/wrenchctl --local sweep examples/plate-chamfered.json --push both --range 0:1 --svg docs/pictures/plate-chamfered-sweep-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local design examples/bracket.json --spacing 10 --top 3 --svg docs/pictures/bracket-designs.svg >/dev/null
+	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.

@@ -583,3 +583,22 @@ def test_python_client_functions(daemon, client):
         assert d.designs and d.designs[0].least_push is not None
         with pytest.raises(ValueError):
             c.force_range(fid, [[gravity()]])
+
+
+def test_readme_how_hard_to_push(client):
+    """The README's numbers (section "How hard to push"), as the daemon
+    gives them today."""
+    with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+        import json
+        f = json.load(fh)
+    cuts = [case(gravity(9810, 180), {"force": [30, -40], "at": [x, 60]}, name="x%d" % x)
+            for x in (20, 40, 60, 80, 100)]
+    alone = client.result("push.force", {"fixture": f, "cases": [case(gravity(9810, 180))]})
+    assert "%.9g" % alone["least"]["force"] == "3.96122186"
+    r = force_range(client, f, cuts, push={"at": [30, 60]}, sets=["strong", "both"])
+    assert "%.9g" % r["all"]["strong"]["least"] == "23.4403564"
+    assert "%.9g" % r["all"]["both"]["least"] == "199.844546"
+    best = client.result("push.force", {"fixture": f, "cases": cuts})["least"]
+    assert "%.8g" % best["force"] == "47.702833"
+    finger = client.result("push.force", {"fixture": f, "cases": cuts, "finger_radius": 8})
+    assert "%.9g" % finger["least"]["force"] == "168.925751"
