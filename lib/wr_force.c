@@ -112,10 +112,14 @@ static double force_sliver(double from, double to, double unused)
     return 1e-9 * fmax(1, isfinite(to) ? fabs(to) : 1);
 }
 
+/* Spans held on the stack before a call needs the heap: a set's cones for
+ * up to four fixels. */
+#define STACK_SPANS 64
+
 wr_status wr_force_range(const wr_analysis *a, wr_set set, const double load[3],
                          const double push[3], double lo, double hi, wr_forces *out)
 {
-    wr_forces_release(out);
+    out->count = 0; /* its array is reused */
     if (!finite3(load) || !finite3(push) || !(lo >= 0) || !isfinite(lo) || !(hi >= lo))
         return WR_INVALID;
     const wr_fixture *f = wr_analysis_fixture(a);
@@ -128,8 +132,15 @@ wr_status wr_force_range(const wr_analysis *a, wr_set set, const double load[3],
     /* The line is nl (x_L + s x_u) with s = F nu / nl: unit vectors, so the
      * rows' zero is absolute.  Without a load, s = F nu. */
     double k = nl > 0 ? nu / nl : nu;
-    spanlist bad = {0}, good = {0};
+    wr_force_interval stack[STACK_SPANS];
     int count = set_cone_count(a, set);
+    spanlist bad = {0, STACK_SPANS, stack, false};
+    if (count + 1 > STACK_SPANS) {
+        bad.items = malloc((size_t)(count + 1) * sizeof *bad.items);
+        bad.capacity = count + 1;
+        if (!bad.items)
+            return WR_NO_MEMORY;
+    }
     for (int i = 0; i < count; i++) {
         const wr_cone *cone = set_cone(a, set, i);
         if (cone->empty)
@@ -141,11 +152,16 @@ wr_status wr_force_range(const wr_analysis *a, wr_set set, const double load[3],
     /* s = 0 without a load is the zero wrench: on every cone's boundary. */
     if (!(nl > 0))
         span_add(&bad, 0, 0);
+    assert(!bad.failed); /* room for every cone and the zero wrench */
     double s_lo = lo * k, s_hi = hi * k;
+    spanlist good = {0, out->capacity, out->items, false};
     gaps(&bad, s_lo, s_hi, force_sliver, 0, &good);
-    free(bad.items);
+    if (bad.items != stack)
+        free(bad.items);
+    out->items = good.items;
+    out->capacity = good.capacity;
     if (good.failed) {
-        free(good.items);
+        wr_forces_release(out);
         return WR_NO_MEMORY;
     }
     /* Back to magnitudes: the range's own ends exactly as given. */
@@ -154,9 +170,7 @@ wr_status wr_force_range(const wr_analysis *a, wr_set set, const double load[3],
         g->lo = g->lo == s_lo ? lo : g->lo / k;
         g->hi = g->hi == s_hi ? hi : g->hi / k;
     }
-    out->items = good.items;
     out->count = good.count;
-    out->capacity = good.capacity;
     return WR_OK;
 }
 

@@ -48,7 +48,8 @@ typedef struct wr_forces {
 void wr_forces_release(wr_forces *forces);
 
 /* The magnitudes F in [lo, hi] (hi may be INFINITY) with `load` + F `push`
- * inside `set`, into `out` (emptied first).  `load` and `push` are physical
+ * inside `set`, into `out` (emptied first; its array is reused, so one
+ * wr_forces serves many calls).  `load` and `push` are physical
  * wrenches of the model system; `push` is the wrench of a unit push (a unit
  * force at its point: wr_fixture_force_wrench), any non-zero wrench.
  * WR_OK; WR_INVALID for a non-finite or zero push, a non-finite load, or a

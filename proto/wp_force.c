@@ -157,40 +157,29 @@ static bool read_range(const cJSON *params, const wr_fixture *f, double range[2]
 
 /* S = {"intervals": [[a, b], ...], "least": a0}, b null without an upper
  * end, least null without an interval; in the fixture's force unit. */
-static cJSON *force_set(const wr_fixture *f, const wr_forces *good)
+static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *good)
 {
-    cJSON *set = cJSON_CreateObject(), *list = cJSON_CreateArray();
-    if (!set || !list) {
-        cJSON_Delete(set);
-        cJSON_Delete(list);
-        return NULL;
+    WP_BUFFER_LITERAL(b, "{\"intervals\":[");
+    for (int i = 0; i < good->count; i++) {
+        wp_buffer_puts(b, i ? ",[" : "[");
+        wp_buffer_number(b, wp_force_out(f, good->items[i].lo));
+        WP_BUFFER_LITERAL(b, ",");
+        if (isfinite(good->items[i].hi))
+            wp_buffer_number(b, wp_force_out(f, good->items[i].hi));
+        else
+            WP_BUFFER_LITERAL(b, "null");
+        WP_BUFFER_LITERAL(b, "]");
     }
-    cJSON_AddItemToObject(set, "intervals", list);
-    bool ok = true;
-    for (int i = 0; ok && i < good->count; i++) {
-        cJSON *pair = cJSON_CreateArray();
-        ok = pair != NULL;
-        if (!ok)
-            break;
-        cJSON_AddItemToArray(list, pair);
-        cJSON_AddItemToArray(pair, cJSON_CreateNumber(wp_force_out(f, good->items[i].lo)));
-        cJSON_AddItemToArray(pair, isfinite(good->items[i].hi)
-                                       ? cJSON_CreateNumber(wp_force_out(f, good->items[i].hi))
-                                       : cJSON_CreateNull());
-        ok = cJSON_GetArraySize(pair) == 2;
-    }
-    cJSON *least = good->count ? cJSON_CreateNumber(wp_force_out(f, good->items[0].lo))
-                               : cJSON_CreateNull();
-    ok = ok && least;
-    if (least)
-        cJSON_AddItemToObject(set, "least", least);
-    if (!ok) {
-        cJSON_Delete(set);
-        return NULL;
-    }
-    return set;
+    WP_BUFFER_LITERAL(b, "],\"least\":");
+    if (good->count)
+        wp_buffer_number(b, wp_force_out(f, good->items[0].lo));
+    else
+        WP_BUFFER_LITERAL(b, "null");
+    WP_BUFFER_LITERAL(b, "}");
 }
 
+/* The answer is written as text (a raw result): a hundred cases are three
+ * hundred small objects, which a tree would allocate one by one. */
 cJSON *wp_force_range(wp_call *call)
 {
     const cJSON *params = call->params;
@@ -208,21 +197,16 @@ cJSON *wp_force_range(wp_call *call)
         !wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
                        &cases, error))
         return NULL;
-    cJSON *result = cJSON_CreateObject();
-    cJSON *list = result ? cJSON_AddArrayToObject(result, "cases") : NULL;
-    cJSON *all = result ? cJSON_AddObjectToObject(result, "all") : NULL;
+    wp_buffer b = {0};
+    WP_BUFFER_LITERAL(&b, "{\"cases\":[");
     wr_forces every[3] = {{0}}, good = {0}, meet = {0};
-    wr_status status = list && all ? WR_OK : WR_NO_MEMORY;
+    wr_status status = WR_OK;
     for (int c = 0; status == WR_OK && c < cases.count; c++) {
-        cJSON *item = cJSON_CreateObject();
-        if (!item) {
-            status = WR_NO_MEMORY;
-            break;
-        }
-        cJSON_AddItemToArray(list, item);
-        cJSON_AddItemToObject(item, "name", cases.items[c].name
-                                                ? cJSON_CreateString(cases.items[c].name)
-                                                : cJSON_CreateNull());
+        wp_buffer_puts(&b, c ? ",{\"name\":" : "{\"name\":");
+        if (cases.items[c].name)
+            wp_buffer_string(&b, cases.items[c].name);
+        else
+            WP_BUFFER_LITERAL(&b, "null");
         for (int s = 0; status == WR_OK && s < 3; s++) {
             if (!sets[s])
                 continue;
@@ -230,16 +214,15 @@ cJSON *wp_force_range(wp_call *call)
                                     range[0], range[1], &good);
             if (status != WR_OK)
                 break;
-            cJSON *set = force_set(f, &good);
-            if (!set) {
-                status = WR_NO_MEMORY;
-                break;
-            }
-            cJSON_AddItemToObject(item, SET_NAMES[s], set);
+            WP_BUFFER_LITERAL(&b, ",\"");
+            wp_buffer_puts(&b, SET_NAMES[s]);
+            WP_BUFFER_LITERAL(&b, "\":");
+            write_force_set(&b, f, &good);
             /* One magnitude for every case: the intersection. */
             if (c == 0) {
+                wr_forces swap = every[s];
                 every[s] = good;
-                memset(&good, 0, sizeof good);
+                good = swap;
             } else {
                 status = wr_forces_intersect(&every[s], &good, &meet);
                 wr_forces swap = every[s];
@@ -247,25 +230,32 @@ cJSON *wp_force_range(wp_call *call)
                 meet = swap;
             }
         }
+        WP_BUFFER_LITERAL(&b, "}");
     }
-    for (int s = 0; status == WR_OK && s < 3; s++) {
+    WP_BUFFER_LITERAL(&b, "],\"all\":{");
+    for (int s = 0, first = 1; status == WR_OK && s < 3; s++) {
         if (!sets[s])
             continue;
-        cJSON *set = force_set(f, &every[s]);
-        if (!set)
-            status = WR_NO_MEMORY;
-        else
-            cJSON_AddItemToObject(all, SET_NAMES[s], set);
+        wp_buffer_puts(&b, first ? "\"" : ",\"");
+        first = 0;
+        wp_buffer_puts(&b, SET_NAMES[s]);
+        WP_BUFFER_LITERAL(&b, "\":");
+        write_force_set(&b, f, &every[s]);
     }
+    WP_BUFFER_LITERAL(&b, "}}");
     for (int s = 0; s < 3; s++)
         wr_forces_release(&every[s]);
     wr_forces_release(&good);
     wr_forces_release(&meet);
     wp_cases_release(&cases);
-    if (status != WR_OK) {
-        cJSON_Delete(result);
+    char *text = wp_buffer_take(&b);
+    cJSON *result = status == WR_OK && text ? cJSON_CreateRaw(text) : NULL;
+    free(text);
+    if (!result) {
         /* The inputs were checked: what is left is memory, or a push too
          * large for doubles. */
+        if (status == WR_OK)
+            status = WR_NO_MEMORY;
         wp_error_status(error, status, status == WR_INVALID ? "params" : "", "%s",
                         status == WR_INVALID ? "the push or a load is too large to compute with"
                                              : wr_strerror(status));
