@@ -7,10 +7,18 @@ BUILD    = build
 PYTHON   = /usr/bin/python3
 
 LIB_SRC  = $(wildcard lib/*.c)
-PROTO_SRC = $(wildcard proto/*.c)
+PROTO_SRC = $(wildcard proto/*.c proto/methods/*.c)
 DAEMON_SRC = $(filter-out daemon/wd_main.c,$(wildcard daemon/*.c))
 WRENCHCTL_SRC = $(wildcard clients/wrenchctl/*.c)
-INCLUDES = -Ilib -Iproto -Idaemon
+# Each layer sees its own headers and those of the layers below it, no
+# others: proto cannot include a daemon header, even by accident.  (lib/
+# compiles alone: it sees no other directory's headers.)  The tests, the
+# fuzzers and the physics checks see every layer; a client or a benchmark
+# what it uses (proto's in-process host, wp_local.h, and below).
+LIB_INCLUDES    = -Ilib
+PROTO_INCLUDES  = $(LIB_INCLUDES) -Iproto
+DAEMON_INCLUDES = $(PROTO_INCLUDES) -Idaemon
+INCLUDES = $(DAEMON_INCLUDES)
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
@@ -92,7 +100,7 @@ $(WC_EXPLAIN): clients/python/wrenchd.py clients/wrenchctl/wc_explain_gen.py
 	$(PYTHON) clients/wrenchctl/wc_explain_gen.py clients/python/wrenchd.py $@.tmp && mv $@.tmp $@
 
 # $(call variant,VARIANT): the rules of VARIANT, one pattern rule a kind of
-# source.  (lib/ compiles alone: it sees no other directory's headers.)
+# source, each with its layer's include flags (above).
 define variant
 $$($(1)_DIR)/lib/%.o: lib/%.c
 	@mkdir -p $$(@D)
@@ -100,11 +108,11 @@ $$($(1)_DIR)/lib/%.o: lib/%.c
 
 $$($(1)_DIR)/proto/%.o: proto/%.c
 	@mkdir -p $$(@D)
-	$$(call compile,$(1)) $$(INCLUDES) -c $$< -o $$@
+	$$(call compile,$(1)) $$(PROTO_INCLUDES) -c $$< -o $$@
 
 $$($(1)_DIR)/daemon/%.o: daemon/%.c
 	@mkdir -p $$(@D)
-	$$(call compile,$(1)) $$(INCLUDES) -c $$< -o $$@
+	$$(call compile,$(1)) $$(DAEMON_INCLUDES) -c $$< -o $$@
 
 $$($(1)_DIR)/clients/%.o: clients/c/%.c
 	@mkdir -p $$(@D)
@@ -112,7 +120,7 @@ $$($(1)_DIR)/clients/%.o: clients/c/%.c
 
 $$($(1)_DIR)/clients/wrenchctl/%.o: clients/wrenchctl/%.c $$(WC_EXPLAIN)
 	@mkdir -p $$(@D)
-	$$(call compile,$(1)) $$(INCLUDES) -Iclients/c -I$$(dir $$(WC_EXPLAIN)) -c $$< -o $$@
+	$$(call compile,$(1)) $$(PROTO_INCLUDES) -Iclients/c -I$$(dir $$(WC_EXPLAIN)) -c $$< -o $$@
 
 $$($(1)_DIR)/libwrench.a: $$(LIB_SRC:%.c=$$($(1)_DIR)/%.o)
 $$($(1)_DIR)/libwrenchproto.a: $$(PROTO_SRC:%.c=$$($(1)_DIR)/%.o)
@@ -274,7 +282,7 @@ BENCH_LOAD   = $(BUILD)/bench/load
 BENCH_LOAD_SRC = bench/load.c bench/load_requests.c bench/load_client.c bench/load_util.c
 $(BENCH_LOAD): $(BENCH_LOAD_SRC) $(wildcard bench/*.h proto/*.h lib/*.h)
 	@mkdir -p $(dir $@)
-	$(CC) $(WARN) $(CFLAGS) $(INCLUDES) $(BENCH_LOAD_SRC) $(filter %.a,$^) $(BENCH_LIBS) -o $@
+	$(CC) $(WARN) $(CFLAGS) $(PROTO_INCLUDES) $(BENCH_LOAD_SRC) $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
 BENCH_NUMBER = $(BUILD)/bench/number
 BENCH_MICRO  = $(BUILD)/bench/micro
@@ -285,7 +293,7 @@ BENCH_SOCKET = $(BUILD)/bench/socket
 # (proto/wp_number.c): prints figures, asserts nothing.
 $(BUILD)/bench/%: bench/%.c
 	@mkdir -p $(dir $@)
-	$(call compile,plain) $(INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
+	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
 $(BENCH_LOAD) $(BENCH_MICRO): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a

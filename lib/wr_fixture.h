@@ -42,12 +42,6 @@ extern "C" {
  * of the part's size of each other). */
 #define WR_FIXEL_SPREAD 1e-3
 
-/* An error: which field, and why.  Both NUL-terminated, possibly truncated. */
-typedef struct wr_error {
-    char field[96];   /* "fixels[2].normal"; empty when no field is to blame */
-    char reason[192]; /* a sentence for a person */
-} wr_error;
-
 typedef enum wr_shape_type {
     WR_SHAPE_NONE = 0, /* no outline: com and inertia are then required */
     WR_SHAPE_CIRCLE,

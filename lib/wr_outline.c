@@ -72,6 +72,28 @@ static const double moment_series[SERIES_TERMS] = {
     1890912728.0 / 2926370608170384375.0,
     2631724.0 / 34136867618555625.0,
 };
+/* Orientation of c relative to the directed line a->b: >0 left, <0 right. */
+static double orient(const double a[2], const double b[2], const double c[2])
+{
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
+                       double point[2])
+{
+    double o1 = orient(a, b, c), o2 = orient(a, b, d);
+    double o3 = orient(c, d, a), o4 = orient(c, d, b);
+    if (!((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) ||
+        !((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+        return false;
+    /* a + t (b - a) with t = o3 / (o3 - o4): the orientations are the
+     * signed distances of a and b from cd, times |cd|. */
+    double t = o3 / (o3 - o4);
+    point[0] = a[0] + t * (b[0] - a[0]);
+    point[1] = a[1] + t * (b[1] - a[1]);
+    return true;
+}
+
 /* (a (1/2 + c^2) - 3/2 s c) / s^4 = a * sum polar_series[k] a^(2k) */
 static const double polar_series[SERIES_TERMS] = {
     2.0 / 15.0,

@@ -35,7 +35,6 @@
 #ifndef WR_OUTLINE_H
 #define WR_OUTLINE_H
 
-#include "wr_fixture.h"
 #include "wr_status.h"
 
 #include <stdbool.h>

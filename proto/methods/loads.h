@@ -1,13 +1,12 @@
-/* wp_loads.h -- loads and load cases as JSON (docs/PROTOCOL.md, "Loads and
+/* loads.h -- loads and load cases as JSON (docs/PROTOCOL.md, "Loads and
  * cases"), read into the fixture's model system: the one place where a
  * force, a torque or a gravity of a request is converted
  * (wr_fixture_force_factor), and wp_force_out the one where a magnitude
  * goes back. */
-#ifndef WP_LOADS_H
-#define WP_LOADS_H
+#ifndef WP_METHODS_LOADS_H
+#define WP_METHODS_LOADS_H
 
-#include "wp_json.h"
-#include "wrench.h"
+#include "wp_method.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -55,6 +54,25 @@ static inline double wp_force_out(const wr_fixture *fixture, double force)
 {
     return force / wr_fixture_force_factor(fixture) + 0.0;
 }
+
+/* push.regions' "force" F and "cases" (force.c): the regions where a push
+ * of magnitude F does the set's job under every case
+ * (wr_push_regions_loaded).  Without "force" there is nothing to do (given
+ * false) and push.regions is what it always was; "cases" needs "force",
+ * and "force" without cases is the push alone. */
+typedef struct wp_push_load {
+    bool given;
+    double force;       /* model system */
+    int count;          /* cases: at least 1 (a zero load without cases) */
+    double (*loads)[3]; /* malloc'd, model system */
+} wp_push_load;
+
+/* Read params.force and params.cases; a finger with friction is refused
+ * with them (the loaded regions are exact, for a frictionless finger).
+ * False with nothing allocated on error. */
+bool wp_push_load_read(const cJSON *params, const wr_fixture *fixture, double finger_friction,
+                       wp_push_load *out, wp_error *error);
+void wp_push_load_release(wp_push_load *load);
 
 #ifdef __cplusplus
 }

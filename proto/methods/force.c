@@ -1,14 +1,21 @@
-/* wp_force.c -- force.range (docs/PROTOCOL.md): the maximal intervals of a
+/* force.c -- force.range (docs/PROTOCOL.md): the maximal intervals of a
  * push's magnitude that do goal's, strong's or both's job under each load
- * case (wr_force_range), and their intersection over the cases. */
-#include "wp_force.h"
-#include "wp_loads.h"
+ * case (wr_force_range), and their intersection over the cases;
+ * push.force, the least push force along the outline; and push.regions'
+ * force and cases, read for analysis.c. */
+#include "common.h"
+#include "loads.h"
+#include "methods.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const SET_NAMES[] = {"goal", "strong", "both"};
+#define SET_NAMES wp_set_names
+
+/* push.force's samples of F* per segment: the default and the most. */
+#define WP_FORCE_SAMPLES 64
+#define WP_FORCE_MAX_SAMPLES 4096
 static const char *const PUSH_FIELDS[] = {"at", "direction", NULL};
 
 /* params.sets: names of sets, each once; all three when left out. */
@@ -180,7 +187,7 @@ static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *
 
 /* The answer is written as text (a raw result): a hundred cases are three
  * hundred small objects, which a tree would allocate one by one. */
-cJSON *wp_force_range(wp_call *call)
+cJSON *wp_handle_force_range(wp_call *call)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
@@ -355,7 +362,7 @@ static cJSON *force_or_null(const wr_fixture *f, double force)
     return isfinite(force) ? cJSON_CreateNumber(wp_force_out(f, force)) : cJSON_CreateNull();
 }
 
-cJSON *wp_push_force(wp_call *call)
+cJSON *wp_handle_push_force(wp_call *call)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;

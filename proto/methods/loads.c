@@ -1,5 +1,5 @@
-/* wp_loads.c -- loads and cases from JSON into the model system. */
-#include "wp_loads.h"
+/* loads.c -- loads and cases from JSON into the model system. */
+#include "loads.h"
 
 #include <math.h>
 #include <stdlib.h>

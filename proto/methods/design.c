@@ -1,7 +1,7 @@
-/* wp_design.c -- fixture.design: parameters, progress, the answer. */
-#include "wp_design.h"
-#include "wp_fixture.h"
-#include "wp_loads.h"
+/* design.c -- fixture.design: parameters, progress, the answer; the search
+ * run a budget at a time (lib/wr_design.h), its chunks shared with helpers. */
+#include "loads.h"
+#include "methods.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -16,8 +16,10 @@
 
 static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force"};
 
-struct wp_design_stream {
-    /* Steps (one thread at a time) and wp_design_work (any number of
+typedef struct design_state design_state;
+
+struct design_state {
+    /* Steps (one thread at a time) and design_work (any number of
      * threads beside them) share the job: claims and merges under it. */
     pthread_mutex_t lock;
     wr_fixture *body;
@@ -31,8 +33,8 @@ struct wp_design_stream {
     bool search_reported; /* the notification at the search's end is sent */
     double last_report;   /* monotonic seconds; < 0 before the first */
     wr_status failure;    /* a failure seen in a shared step, said in the next */
-    /* wp_design_parallel said yes since the last step began: the host may
-     * have helpers in wp_design_work until the next step returns, even if
+    /* design_parallel said yes since the last step began: the host may
+     * have helpers in design_work until the next step returns, even if
      * they have claimed every chunk by the time it begins.  Only the
      * steps' thread reads and writes it. */
     bool forked;
@@ -88,7 +90,7 @@ static void site_error(wp_error *error, size_t index, const wr_error *invalid)
 
 static const char *const SITE_FIELDS[] = {"at", "normal", NULL};
 
-static bool read_sites(const cJSON *list, wp_design_stream *s, wp_error *error)
+static bool read_sites(const cJSON *list, design_state *s, wp_error *error)
 {
     if (!cJSON_IsArray(list)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.sites",
@@ -132,7 +134,7 @@ static bool read_sites(const cJSON *list, wp_design_stream *s, wp_error *error)
 static const char *const LATTICE_FIELDS[] = {"pitch", "peg_radius", "extent", NULL};
 
 /* {"pitch", "peg_radius", "extent": [nx, ny]}: the lattice job, made here. */
-static bool read_lattice(const cJSON *params, const cJSON *json, wp_design_stream *s,
+static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s,
                          wp_error *error)
 {
     const char *path = "params.lattice";
@@ -175,7 +177,7 @@ static bool read_lattice(const cJSON *params, const cJSON *json, wp_design_strea
     return true;
 }
 
-static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *error)
+static bool read_params(const cJSON *params, design_state *s, wp_error *error)
 {
     wr_design_spec *spec = &s->spec;
     spec->fixel_count = 3;
@@ -304,7 +306,7 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
 
 /* The search's job, over the sites (or the lattice's designs, once
  * enumerated: their contacts are the sites, three a candidate). */
-static bool start_search(wp_design_stream *s, wp_error *error)
+static bool start_search(design_state *s, wp_error *error)
 {
     if (s->lattice) {
         size_t count;
@@ -343,9 +345,12 @@ static bool start_search(wp_design_stream *s, wp_error *error)
     return true;
 }
 
-wp_design_stream *wp_design_begin(wp_call *call)
+static void design_free(void *stream);
+
+static void *design_begin(wp_call *call, wp_prepared *prepared)
 {
-    wp_design_stream *s = calloc(1, sizeof *s);
+    (void)prepared;
+    design_state *s = calloc(1, sizeof *s);
     if (!s) {
         wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
@@ -353,7 +358,7 @@ wp_design_stream *wp_design_begin(wp_call *call)
     s->last_report = -1;
     pthread_mutex_init(&s->lock, NULL);
     if (!read_params(call->params, s, call->error)) {
-        wp_design_free(s);
+        design_free(s);
         return NULL;
     }
     if (s->progress && !wp_call_may_notify(call)) {
@@ -361,7 +366,7 @@ wp_design_stream *wp_design_begin(wp_call *call)
         s->progress = false;
     }
     if (!s->lattice && !start_search(s, call->error)) {
-        wp_design_free(s);
+        design_free(s);
         return NULL;
     }
     return s;
@@ -384,7 +389,7 @@ static void write_pair(wp_buffer *out, const double v[2])
     WP_BUFFER_LITERAL(out, "]");
 }
 
-static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
+static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
 {
     uint64_t done = 0, total = 0;
     bool has_best = false;
@@ -418,7 +423,7 @@ static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
     s->last_report = now_s();
 }
 
-static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d, int rank)
+static void write_design(design_state *s, wp_buffer *out, const wr_design *d, int rank)
 {
     wr_fixture fixture;
     wr_design_job_fixture(s->job, d, &fixture);
@@ -534,7 +539,7 @@ static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d
     WP_BUFFER_LITERAL(out, "}");
 }
 
-static void write_answer(wp_design_stream *s, wp_buffer *out)
+static void write_answer(design_state *s, wp_buffer *out)
 {
     int count;
     const wr_design *designs = wr_design_job_designs(s->job, &count);
@@ -573,7 +578,7 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
 
 /* Claim a chunk, run it outside the lock, merge it.  False when none was
  * left; WR_OK or the failure in *status. */
-static bool run_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
+static bool run_chunk(design_state *s, const wr_stop *stop, unsigned long *used,
                       wr_status *status)
 {
     uint64_t first, count;
@@ -597,7 +602,7 @@ static bool run_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *u
 }
 
 /* A lattice's chunk of hole pairs, as run_chunk does the search's. */
-static bool run_lattice_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
+static bool run_lattice_chunk(design_state *s, const wr_stop *stop, unsigned long *used,
                               wr_status *status)
 {
     size_t first, count;
@@ -620,7 +625,7 @@ static bool run_lattice_chunk(wp_design_stream *s, const wr_stop *stop, unsigned
 
 /* The next chunk of whichever stage is on: the lattice's poses, then the
  * search's candidates. */
-static bool run_some(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
+static bool run_some(design_state *s, const wr_stop *stop, unsigned long *used,
                      wr_status *status)
 {
     return s->job ? run_chunk(s, stop, used, status) : run_lattice_chunk(s, stop, used, status);
@@ -628,7 +633,7 @@ static bool run_some(wp_design_stream *s, const wr_stop *stop, unsigned long *us
 
 /* Keep the first failure, for the step that can say it (helpers, or a
  * step that shares, cannot end the answer). */
-static void note_failure(wp_design_stream *s, wr_status status)
+static void note_failure(design_state *s, wr_status status)
 {
     pthread_mutex_lock(&s->lock);
     if (s->failure == WR_OK)
@@ -637,7 +642,7 @@ static void note_failure(wp_design_stream *s, wr_status status)
 }
 
 /* Are chunks left to claim? */
-static bool claimable(wp_design_stream *s)
+static bool claimable(design_state *s)
 {
     pthread_mutex_lock(&s->lock);
     bool more = s->job ? wr_design_job_claimable(s->job) : wr_lattice_job_claimable(s->lattice);
@@ -645,15 +650,17 @@ static bool claimable(wp_design_stream *s)
     return more;
 }
 
-bool wp_design_parallel(wp_design_stream *s)
+static bool design_parallel(void *stream)
 {
+    design_state *s = stream;
     bool more = claimable(s);
     s->forked = s->forked || more;
     return more;
 }
 
-bool wp_design_work(wp_design_stream *s, const wp_host *host)
+static bool design_work(void *stream, const wp_host *host)
 {
+    design_state *s = stream;
     unsigned long used = 0;
     wr_status status;
     /* s->job is set only by a step that shares nothing (below): it does
@@ -664,10 +671,11 @@ bool wp_design_work(wp_design_stream *s, const wp_host *host)
     return ran && status == WR_OK;
 }
 
-wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsigned long budget,
-                       unsigned long *used)
+static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                           unsigned long *used)
 {
-    /* Helpers may be in wp_design_work until this step returns only if the
+    design_state *s = stream;
+    /* Helpers may be in design_work until this step returns only if the
      * host was told there was work to share before it began (asking now
      * would miss helpers that have claimed the last chunks meanwhile). */
     bool shared = s->forked;
@@ -721,7 +729,7 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
     wr_status status = WR_OK;
     unsigned long start = *used;
     /* A step that begins with chunks to share never ends the answer:
-     * other threads may be in wp_design_work until it returns
+     * other threads may be in design_work until it returns
      * (wp_streamer.work), so the figures and the answer come in a later
      * step, when the search is over. */
     while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
@@ -762,8 +770,9 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
     return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
-void wp_design_free(wp_design_stream *s)
+static void design_free(void *stream)
 {
+    design_state *s = stream;
     if (!s)
         return;
     wr_design_job_free(s->job);
@@ -776,8 +785,9 @@ void wp_design_free(wp_design_stream *s)
     free(s);
 }
 
-size_t wp_design_bytes(const wp_design_stream *s)
+static size_t design_bytes(const void *stream)
 {
+    const design_state *s = stream;
     size_t poses = 0;
     if (s->lattice)
         wr_lattice_job_designs(s->lattice, &poses);
@@ -785,3 +795,6 @@ size_t wp_design_bytes(const wp_design_stream *s)
            (s->job ? wr_design_job_bytes(s->job) : 0) +
            poses * (sizeof(wr_lattice_design) + sizeof *s->listed);
 }
+
+const wp_streamer wp_design_stream = {design_begin, design_step,     design_free,    design_bytes,
+                                     true,         design_parallel, design_work};
