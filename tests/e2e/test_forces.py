@@ -602,3 +602,38 @@ def test_readme_how_hard_to_push(client):
     assert "%.8g" % best["force"] == "47.702833"
     finger = client.result("push.force", {"fixture": f, "cases": cuts, "finger_radius": 8})
     assert "%.9g" % finger["least"]["force"] == "168.925751"
+
+
+# ---- friction.sweep: the least force against mu ---------------------------------------
+
+
+def test_friction_sweep_least_force_against_push_force(client):
+    import copy
+    f = FX.chamfered_plate(0.05)
+    cases = [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})]
+    r = client.result("friction.sweep", {"fixture": f, "range": [0, 0.4], "kinetic_ratio": 0.8,
+                                         "force": {"set": "both"}, "cases": cases})
+    assert set(r) == {"curve", "exact", "resolution"} and r["exact"] is False
+    curve = r["curve"]
+    assert len(curve) == 128 and curve[0][0] == 0 and curve[-1][0] == 0.4
+    assert abs(r["resolution"] - 0.4 / 127) < 1e-15
+    finite = [p for p in curve if p[1] is not None]
+    assert finite and len(finite) < len(curve), "the push stops working as mu grows"
+    # Each sample is push.force's least on the fixture at that mu.
+    for mu, least in curve[::16] + [curve[-1]]:
+        g = copy.deepcopy(f)
+        g["friction"] = {"static": mu, "kinetic": 0.8 * mu}
+        want = client.result("push.force", {"fixture": g, "set": "both", "cases": cases,
+                                            "samples": 1})["least"]
+        if want is None:
+            assert least is None, (mu, least)
+        else:
+            assert least is not None and abs(least - want["force"]) <= 1e-12 * want["force"], (
+                mu, least, want)
+    for params, field in (({"force": {}}, "params.cases"),
+                          ({"push": {"set": "both"}, "cases": cases}, "params.cases"),
+                          ({"force": {"set": "all"}, "cases": cases}, "params.force.set"),
+                          ({"force": {"finger_friction": 0.1}, "cases": cases},
+                           "params.force.finger_friction")):
+        got = error_of(client, "friction.sweep", dict(params, fixture=f))
+        assert got[0] == field, (params, got)
