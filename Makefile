@@ -299,6 +299,7 @@ pictures: $(BUILD)/wrenchctl
 	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json \
 	    --fixel 15,0 --fixel 100,43 --fixel 60,32 2>/dev/null
 	$(BUILD)/wrenchctl --local push $(BUILD)/bracket.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
+	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.
@@ -402,7 +403,7 @@ WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
 WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
-                 lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_sites.h lib/wr_design.h \
+                 lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_force.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_sites.h lib/wr_design.h \
                  lib/wr_lattice.h \
                  clients/c/wrenchclient.h
 INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \

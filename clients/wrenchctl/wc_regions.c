@@ -91,6 +91,11 @@ static int picture(wc_run *run, const cJSON *result, drawing draw)
     return drawn ? -1 : EXIT_USAGE;
 }
 
+int wc_picture(wc_run *run, const cJSON *result, wc_drawing draw)
+{
+    return picture(run, result, draw);
+}
+
 /* The set asked, for the tables and pictures. */
 static const char *set_name(const wc_run *run)
 {
@@ -107,10 +112,11 @@ int wc_push_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
-    return wc_push_on(run,
-                      cJSON_IsString(run->fixture) ? run->fixture
-                                                   : cJSON_GetObjectItem(run->fixture, "body"),
-                      params);
+    int status = wc_push_on(run,
+                            cJSON_IsString(run->fixture) ? run->fixture
+                                                         : cJSON_GetObjectItem(run->fixture, "body"),
+                            params);
+    return status >= 0 ? status : wc_push_loads(run, params);
 }
 
 /* Does the answer name its regions by loop and segment (an outline)? */

@@ -27,6 +27,22 @@ void wc_svg_push(FILE *out, const wr_fixture *fixture, const char *name, const c
                  const wr_region *regions, int count, double fraction, double finger_friction,
                  double finger_radius);
 
+/* push.force's samples of the least force F* along one edge (as
+ * wr_region's edge): t and F* (NAN where no push does the job). */
+typedef struct wc_force_band {
+    int edge;
+    int count;
+    const double *t, *force;
+} wc_force_band;
+
+/* F* as a coloured band along the outline (each sample's stretch, blue at
+ * the least force drawn to red at the most; grey where none works), the
+ * least push as an arrow, and a legend with the colour scale in `unit`.
+ * `least` NAN: no push does the job. */
+void wc_svg_push_force(FILE *out, const wr_fixture *fixture, const char *name, const char *set,
+                       const wc_force_band *bands, int band_count, const double at[2],
+                       const double direction[2], double least, const char *unit);
+
 /* The gravity sweep as a dial around the part: arcs of tilt, in degrees. */
 void wc_svg_gravity(FILE *out, const wr_fixture *fixture, const char *name, const char *set,
                     const wr_region *arcs, int count);

@@ -1,6 +1,7 @@
 /* design.c -- fixture.design: parameters, progress, the answer; the search
  * run a budget at a time (lib/wr_design.h), its chunks shared with helpers. */
 #include "common.h"
+#include "loads.h"
 #include "methods.h"
 #include "wp_chunks.h"
 
@@ -14,7 +15,7 @@
  * of the search). */
 #define PROGRESS_INTERVAL_S 0.25
 
-static const char *const OBJECTIVES[] = {"margin", "region", "gravity"};
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force"};
 
 typedef struct design_state design_state;
 
@@ -41,6 +42,7 @@ struct design_state {
     wr_lattice_job *lattice;
     const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
     int (*listed)[WR_MAX_FIXELS];
+    double (*loads)[3];   /* params.cases, summed (spec.loads points here) */
 };
 
 static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
@@ -249,15 +251,38 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     if (objective) {
         int found = -1;
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 4; i++)
             if (strcmp(objective, OBJECTIVES[i]) == 0)
                 found = i;
         if (found < 0) {
             wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
-                         "must be \"margin\", \"region\" or \"gravity\"");
+                         "must be \"margin\", \"region\", \"gravity\" or \"force\"");
             return false;
         }
         spec->objective = (wr_objective)found;
+    }
+    /* Load cases, on the body (its mass, centre of mass and size). */
+    const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    if (!cases_json && spec->objective == WR_OBJECTIVE_FORCE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.cases",
+                     "required with the objective \"force\": the loads the push works against");
+        return false;
+    }
+    if (cases_json) {
+        wp_cases cases;
+        if (!wp_cases_read(cases_json, "params.cases", s->body, &cases, error))
+            return false;
+        s->loads = malloc((size_t)cases.count * sizeof *s->loads);
+        if (!s->loads) {
+            wp_cases_release(&cases);
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        for (int c = 0; c < cases.count; c++)
+            memcpy(s->loads[c], cases.items[c].load, sizeof s->loads[c]);
+        spec->loads = (const double (*)[3])s->loads;
+        spec->case_count = cases.count;
+        wp_cases_release(&cases);
     }
     bool present;
     if (!wp_member_number(params, "params", "finger_friction", false, &spec->finger.friction,
@@ -648,6 +673,37 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
     } else {
         WP_BUFFER_LITERAL(out, "null");
     }
+    if (s->spec.case_count > 0) {
+        /* The least push doing both under every case (wr_force.h). */
+        const wr_least_force *least = &d->least_force;
+        WP_BUFFER_LITERAL(out, ",\"least_push\":");
+        if (least->found) {
+            WP_BUFFER_LITERAL(out, "{\"at\":");
+            write_pair(out, least->at);
+            WP_BUFFER_LITERAL(out, ",\"direction\":");
+            write_pair(out, least->direction);
+            WP_BUFFER_LITERAL(out, ",\"force\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->force));
+            WP_BUFFER_LITERAL(out, ",\"lower_bound\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->lower));
+            if (fixture.shape == WR_SHAPE_OUTLINE) {
+                size_t loop, segment;
+                wr_push_edge_place(&fixture, least->edge, &loop, &segment);
+                WP_BUFFER_LITERAL(out, ",\"loop\":");
+                wp_buffer_number(out, (double)loop);
+                WP_BUFFER_LITERAL(out, ",\"segment\":");
+                wp_buffer_number(out, (double)segment);
+            } else {
+                WP_BUFFER_LITERAL(out, ",\"edge\":");
+                wp_buffer_number(out, least->edge);
+            }
+            WP_BUFFER_LITERAL(out, ",\"t\":");
+            wp_buffer_number(out, least->t);
+            WP_BUFFER_LITERAL(out, "}");
+        } else {
+            WP_BUFFER_LITERAL(out, "null");
+        }
+    }
     WP_BUFFER_LITERAL(out, ",\"goal_length\":");
     wp_buffer_number(out, d->goal_length);
     WP_BUFFER_LITERAL(out, ",\"both_length\":");
@@ -897,6 +953,7 @@ static void design_free(void *stream)
     wr_design_job_free(s->job);
     wr_lattice_job_free(s->lattice);
     free(s->listed);
+    free(s->loads);
     free(s->sites);
     free(s->push_on);
     wr_fixture_free(s->body);

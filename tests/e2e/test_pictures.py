@@ -80,6 +80,10 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-chamfered-sweep-both.svg", ["sweep", "plate-chamfered.json", "--push", "both",
                                         "--range", "0:1"]),
     ("bracket-designs.svg", ["design", "bracket.json", "--spacing", "10", "--top", "3"]),
+    ("bracket-upright-push-force.svg",
+     ["push-force", "bracket-upright.json"] +
+     [a for x in (20, 40, 60, 80, 100)
+      for a in ("--case", "x%d:gravity=9810@180;force=30,-40@%d,60" % (x, x))]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
