@@ -12,13 +12,14 @@ static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", 
                                        "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
-static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", "force",
-                                   "cases", NULL};
+static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", "push_on",
+                                   "force", "cases", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
-                                     "progress", "shard", "cases", NULL};
+                                     "progress", "shard", "push_on", "corner_clearance",
+                                     "pin_diameter", "cases", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};

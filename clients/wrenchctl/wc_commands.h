@@ -42,6 +42,14 @@ int wc_design_request(wc_run *run, cJSON *params); /* fixture.design */
 int wc_design_answer(wc_run *run, const cJSON *result);
 int wc_design_merge_request(wc_run *run, cJSON *params); /* no method: the whole command */
 
+/* wc_reach.c: where the finger may push (push, design) */
+int wc_take_push_on(wc_run *run, const char *value); /* --push-on: 0, or an exit status */
+/* Adds params.push_on: --push-on's, else the clients' default for `body`
+ * (a body's JSON, or a stored fixture's id string, whose body is fetched)
+ * and --finger-radius; nothing when every loop is taken anyway.  -1 to go
+ * on, or an exit status. */
+int wc_push_on(wc_run *run, const cJSON *body, cJSON *params);
+
 /* With --svg, the picture `draw` makes of the answer on the part (its
  * geometry read from the file or the store): -1, or EXIT_USAGE after
  * saying why there is none (wc_regions.c). */

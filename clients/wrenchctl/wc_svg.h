@@ -2,12 +2,13 @@
  * 8: the part's outline in grey, the fixels as small wedges with their
  * friction cones, the centre of mass, the answer in thick black, a legend.
  *
- * An outline of lines and arcs (issue 16) is one <path class="outline">,
+ * An outline of lines and arcs is one <path class="outline">,
  * each loop a closed subpath, straight segments as lines and arcs as SVG
  * arcs, with fill-rule evenodd so that holes are holes; a push region on an
  * arc is an arc.  A fixel on a hole's boundary is a pin in the hole (a
- * <circle class="fixel pin">), with an arrow (class "fixel-normal") along
- * its normal into the material.
+ * <circle class="fixel pin">) at its diameter where the picture knows it
+ * (a design's pins), else a dot, with an arrow (class "fixel-normal")
+ * along its normal into the material.
  *
  * Every region (a push region, a gravity arc) is one <path class="region">,
  * so a reader (or a test) can count them; nothing else is a path of that
@@ -69,6 +70,7 @@ typedef struct wc_sweep_plot {
     double critical;       /* the mu above which it is empty; NAN: none */
     const double (*curve)[2]; /* (mu, length), increasing in mu */
     int curve_count;
+    const wr_fixture *fixture; /* the unit of its lengths, when it names one; may be NULL */
 } wc_sweep_plot;
 
 /* The region's size against mu: the curve (a <polyline class="curve">),
@@ -106,6 +108,7 @@ typedef struct wc_design_panel {
     double pegs[3][2];
     int holes[3][2];
     double peg_radius;
+    double pin_diameter[WR_MAX_FIXELS]; /* a pin's (the design's "pins"); -1 elsewhere */
 } wc_design_panel;
 
 /* The best designs side by side, three to a row: each part with its

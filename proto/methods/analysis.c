@@ -142,7 +142,8 @@ static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
  * every edge: a long outline is seconds of work). */
 typedef struct push_state {
     wr_set set;
-    wr_finger finger;    /* its friction and radius */
+    wr_finger finger;    /* its friction and radius; its push_on: */
+    bool *push_on;       /* owned */
     int edges, next;     /* the outline's edges; the next to answer */
     unsigned long edge_cost;
     bool opened, any;    /* "{"regions":[" written; a region written */
@@ -152,8 +153,84 @@ typedef struct push_state {
 
 static void push_free(void *stream)
 {
-    wp_push_load_release(&((push_state *)stream)->load);
-    free(stream);
+    push_state *state = stream;
+    free(state->push_on);
+    wp_push_load_release(&state->load);
+    free(state);
+}
+
+/* One reason: the blocking cone (set and index; index -1: none). */
+typedef struct reason {
+    wr_set set;
+    int index;
+    int edges;
+} reason;
+
+static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set set,
+                       const wr_finger *finger)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    int edges = wr_push_edge_count(f);
+    reason *reasons = calloc((size_t)edges + 1, sizeof *reasons);
+    int count = 0;
+    for (int e = 0; reasons && e < edges; e++) {
+        if (!wr_finger_pushes_on(f, finger, e))
+            continue;
+        double wrench[3];
+        wr_push_wrench(f, e, f->shape == WR_SHAPE_CIRCLE ? 180 : 0.5, wrench);
+        wr_answer answer;
+        if (wr_classify_margin(analysis, wrench, set, WR_DEFAULT_TOLERANCE, &answer) != WR_OK)
+            continue;
+        reason r = {answer.blocking >= 0 ? answer.blocking_set : set, answer.blocking, 1};
+        int i = 0;
+        while (i < count && (reasons[i].set != r.set || reasons[i].index != r.index))
+            i++;
+        if (i < count)
+            reasons[i].edges++;
+        else
+            reasons[count++] = r;
+    }
+    /* Most edges first; equal counts in the order first met (insertion). */
+    for (int a = 1; a < count; a++)
+        for (int b = a; b > 0 && reasons[b].edges > reasons[b - 1].edges; b--) {
+            reason swap = reasons[b];
+            reasons[b] = reasons[b - 1];
+            reasons[b - 1] = swap;
+        }
+    WP_BUFFER_LITERAL(out, ",\"why_empty\":{\"reasons\":[");
+    for (int i = 0; i < count; i++) {
+        wp_buffer_puts(out, i ? ",{\"blocking\":" : "{\"blocking\":");
+        if (reasons[i].index < 0) {
+            WP_BUFFER_LITERAL(out, "null");
+        } else {
+            char text[WR_CONSTRAINT_TEXT];
+            wr_constraint_format(&wr_analysis_cone(analysis, reasons[i].set, reasons[i].index)
+                                      ->constraint,
+                                 text);
+            wp_buffer_string(out, text);
+        }
+        WP_BUFFER_LITERAL(out, ",\"set\":");
+        wp_buffer_string(out, reasons[i].set == WR_SET_GOAL     ? "goal"
+                              : reasons[i].set == WR_SET_STRONG ? "strong"
+                                                                : "both");
+        WP_BUFFER_LITERAL(out, ",\"states\":[");
+        if (reasons[i].index >= 0 && reasons[i].set == WR_SET_GOAL) {
+            const wr_plan_origins *origins =
+                &wr_analysis_plan(analysis)->origins[reasons[i].index];
+            for (int j = 0; j < origins->count; j++) {
+                char state[WR_STATE_TEXT];
+                wr_state_format(origins->states[j], f->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+        }
+        WP_BUFFER_LITERAL(out, "],\"edges\":");
+        wp_buffer_number(out, reasons[i].edges);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    WP_BUFFER_LITERAL(out, "]}");
+    free(reasons);
 }
 
 static void *push_begin(wp_call *call, wp_prepared *prepared)
@@ -184,7 +261,14 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
     }
     state->load = load;
     state->set = set;
-    state->finger = (wr_finger){friction, radius};
+    state->finger = (wr_finger){.friction = friction, .radius = radius};
+    if (!wp_read_push_on(call->params, "params", use->fixture, &state->push_on,
+                         &state->finger.push_on_count, call->error)) {
+        wp_push_load_release(&state->load);
+        free(state);
+        return NULL;
+    }
+    state->finger.push_on = state->push_on;
     state->edges = wr_push_edge_count(use->fixture);
     /* An edge against every cone: a few dot products each, or, with a
      * finger's friction, a segment test at every sample and bisection. */
@@ -249,8 +333,11 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
             return WP_STEP_MORE;
         wr_regions part = {0};
         const wp_push_load *load = &state->load;
+        /* Under loads, only the edges the finger may push on (push_on). */
+        bool skip = load->given && !wr_finger_pushes_on(f, &state->finger, state->next);
         wr_status status =
-            load->given
+            skip ? WR_OK
+            : load->given
                 ? wr_push_regions_loaded(use->analysis, state->set, load->force,
                                          (const double (*)[3])load->loads, load->count,
                                          state->finger.radius, state->next, 1, call->host->stop,
@@ -283,6 +370,10 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
     wp_buffer_puts(out, state->resolution == 0 ? ",\"exact\":true" : ",\"exact\":false");
     WP_BUFFER_LITERAL(out, ",\"resolution\":");
     wp_buffer_number(out, state->resolution);
+    /* Why there is none: the blocking cones of the push alone (without
+     * loads; under loads force.range says it per point). */
+    if (!state->any && !state->load.given)
+        write_push_why(out, use->analysis, state->set, &state->finger);
     WP_BUFFER_LITERAL(out, "}");
     return WP_STEP_DONE;
 }
