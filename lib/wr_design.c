@@ -412,10 +412,12 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
             status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
                                          spec->finger.radius, NULL, &least);
             *units += least.evaluations * (unsigned long)cones * (unsigned long)spec->case_count;
-            if (status == WR_OK && !least.found)
+            if (status == WR_OK && !least.found) {
                 *result = OUTCOME_NO_SEATING_PUSH;
-            else if (status == WR_OK)
+                *why = why_no_seating_push(job, &fixture, analysis, units);
+            } else if (status == WR_OK) {
                 *score = -least.force;
+            }
         } else if (spec->objective == WR_OBJECTIVE_GRAVITY) {
             wr_regions arcs;
             status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);

@@ -903,6 +903,17 @@ class WrenchFixture:
         _add(obj, "App::PropertyFloat", "Mass", "Friction",
              "The part's mass in kg (a uniform lamina: its centre of mass and inertia "
              "follow from the outline)", 1.0)
+        _add(obj, "App::PropertyFloat", "Gravity", "Loads",
+             "Gravity's acceleration in mm/s^2 (9810 on earth), pulling the part along "
+             "GravityDirection; 0: none.  With Gravity or Loads the fixture is sent in mm and N, "
+             "and the best push says how hard to push", 0.0)
+        _add(obj, "App::PropertyFloat", "GravityDirection", "Loads",
+             "Where gravity pulls, in degrees counter-clockwise from the outline's x axis "
+             "(270: along -y)", 270.0)
+        _add(obj, "App::PropertyStringList", "Loads", "Loads",
+             "Load cases, one a line, each with gravity: NAME: FX,FY @ X,Y,Z -- a force in N along "
+             "the document's X and Y at a point of the part (document mm); several forces of one "
+             "case separated by ';'")
         _add(obj, "App::PropertyString", "Socket", "wrenchd",
              "wrenchd's socket; empty: $WRENCHD_SOCKET, else ./run/wrenchd.sock")
         _add(obj, "App::PropertyFloat", "Timeout", "wrenchd",
@@ -1023,6 +1034,8 @@ class WrenchFixture:
         fixture = {"name": obj.Label, "body": {"mass": obj.Mass, "shape": shape},
                    "friction": {"static": obj.StaticFriction, "kinetic": obj.KineticFriction},
                    "fixels": fixels, "units": dict(UNITS)}
+        if obj.Gravity != 0 or list(obj.Loads):
+            load_cases(obj, shape)  # refused here, at the property, when malformed
         if not fixels:
             obj.FixtureId = ""
             obj.Pinned = False
@@ -1037,6 +1050,49 @@ class WrenchFixture:
         obj.Inertia = float(put.inertia)
         obj.Pinned = bool(put.pinned)
         obj.FixtureJson = json.dumps(fixture)
+
+
+def load_cases(fixture_obj, outline_shape):
+    """The fixture's load cases as wrenchd takes them (docs/PROTOCOL.md,
+    "Loads and cases"): each line of Loads with gravity added, or gravity
+    alone; [] with neither.  Forces along the document's X and Y are turned
+    into the outline's plane, points taken into its coordinates."""
+    gravity = []
+    if fixture_obj.Gravity:
+        if fixture_obj.Gravity < 0:
+            raise WrenchError("%s: Gravity %s must not be negative (GravityDirection says where it "
+                              "pulls)" % (fixture_obj.Label, _fmt(fixture_obj.Gravity)),
+                              "cases[0].loads[0].gravity.g", "negative")
+        gravity = [{"gravity": {"g": fixture_obj.Gravity,
+                                "direction_deg": fixture_obj.GravityDirection}, "name": "gravity"}]
+    cases = []
+    for i, line in enumerate(fixture_obj.Loads):
+        name, _, text = line.rpartition(":") if ":" in line else ("", "", line)
+        loads = list(gravity)
+        for part in [p for p in text.split(";") if p.strip()]:
+            try:
+                force_text, at_text = part.split("@")
+                fx, fy = [float(v) for v in force_text.split(",")]
+                x, y, z = [float(v) for v in at_text.split(",")]
+            except ValueError:
+                raise WrenchError("%s: Loads[%d] %r: a force is FX,FY @ X,Y,Z (N, document mm)"
+                                  % (fixture_obj.Label, i, line), "Loads[%d]" % i, "malformed")
+            f2 = outline_shape.direction_2d(Vector(fx, fy, 0)) if (fx or fy) else (0.0, 0.0)
+            scale = math.hypot(fx, fy)
+            norm = math.hypot(f2[0], f2[1])
+            force = [f2[0] * scale / norm, f2[1] * scale / norm] if norm else [0.0, 0.0]
+            ax, ay, _ = outline_shape.to_2d(Vector(x, y, z))
+            loads.append({"force": force, "at": [ax, ay]})
+        if not loads:
+            raise WrenchError("%s: Loads[%d] %r has no force" % (fixture_obj.Label, i, line),
+                              "Loads[%d]" % i, "empty")
+        case = {"loads": loads}
+        if name.strip():
+            case["name"] = name.strip()
+        cases.append(case)
+    if not cases and gravity:
+        cases = [{"name": "gravity", "loads": gravity}]
+    return cases
 
 
 class _Fixture:
@@ -1405,7 +1461,13 @@ class WrenchBestPush(_Dependent):
                 ("App::PropertyFloat", "GravityGoalDegrees",
                  "The longest arc of tilts under which gravity seats the part"),
                 ("App::PropertyFloat", "CriticalMu",
-                 "The friction above which no push seats the part (-1: none up to 2)")):
+                 "The friction above which no push seats the part (-1: none up to 2)"),
+                ("App::PropertyFloat", "PushForce",
+                 "With the fixture's Gravity or Loads: the least force in N of this push that "
+                 "seats the part and holds it under every case (-1: none does; 0 without loads)"),
+                ("App::PropertyFloat", "LeastForce",
+                 "With loads: the least push force anywhere on the outline, in N (-1: none)"),
+                ("App::PropertyVector", "LeastForceAt", "Where that least push is (document)")):
             _add(obj, kind, name, "Answer", doc, mode=1)
 
     def _execute(self, obj):
@@ -1451,6 +1513,98 @@ class WrenchBestPush(_Dependent):
         obj.Loop, obj.Segment, obj.T = push.get("loop", 0), push.get("segment", push.get("edge", 0)), \
             push["t"]
         obj.Label = "Best push (both): margin %.4g, push here and let go" % obj.Margin
+        cases = load_cases(fixture.obj, outline)
+        obj.PushForce = obj.LeastForce = 0.0
+        if cases:
+            # How hard: this push's least force under every case, and the
+            # least push anywhere (force.range, push.force; N).
+            fid = fixture.obj.FixtureId
+            here = fixture.ask(lambda: fixture.client.force_range(
+                fid, cases, push={"at": at, "direction": direction}, sets=["both"]))
+            least = here["all"]["both"]["least"]
+            obj.PushForce = -1.0 if least is None else least
+            anywhere = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=1))["least"]
+            obj.LeastForce = -1.0 if anywhere is None else anywhere["force"]
+            if anywhere is not None:
+                obj.LeastForceAt = outline.to_3d(anywhere["at"])
+            obj.Label = ("Best push (both): margin %.4g, %s" % (
+                obj.Margin, "at least %.4g N under every load case" % least if least is not None
+                else "no force does it under every load case"))
+
+
+class WrenchLeastForce(_Dependent):
+    """The least push force F*(p) along the outline under the fixture's
+    load cases (push.force, set both): the outline cut into a piece per
+    sample, each coloured from blue (the least) to red (the most), grey
+    where no force does the job; and where the smallest push suffices."""
+
+    def setup(self, obj):
+        _Dependent.setup(self, obj)
+        _add(obj, "App::PropertyInteger", "Samples", "Force",
+             "Samples of F* per segment of the outline", 32)
+        for kind, name, doc in (
+                ("App::PropertyFloatList", "Forces",
+                 "F* at each piece's sample, in N (-1: no force does the job there)"),
+                ("App::PropertyFloat", "Least", "The least push force over the outline, N (-1: none)"),
+                ("App::PropertyVector", "LeastAt", "Where it is (document)"),
+                ("App::PropertyVector", "LeastDirection", "Along what (the inward normal there)")):
+            _add(obj, kind, name, "Answer", doc, mode=1)
+
+    def _execute(self, obj):
+        fixture = _Fixture(obj.Fixture, obj.Label)
+        outline = fixture.outline
+        cases = load_cases(fixture.obj, outline)
+        if not cases or not fixture.has_fixels:
+            obj.Shape = Part.Shape()
+            obj.Forces, obj.Least = [], -1.0
+            obj.Label = "Least force (%s)" % ("set the fixture's Gravity or Loads" if not cases
+                                              else "no fixels yet")
+            return
+        fid = fixture.obj.FixtureId
+        samples = max(1, min(int(obj.Samples), 4096))
+        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples))
+        pieces, forces = [], []
+        for seg in r["segments"]:
+            segment = outline.segments[seg.get("loop", 0)][seg.get("segment", seg.get("edge", 0))]
+            ts = seg["t"]
+            for j, (t, f) in enumerate(zip(ts, seg["force"])):
+                t0 = 0.0 if j == 0 else (ts[j - 1] + t) / 2
+                t1 = 1.0 if j + 1 == len(ts) else (t + ts[j + 1]) / 2
+                pieces.append(outline.edge_3d(segment, t0, t1))
+                forces.append(-1.0 if f is None else f)
+        obj.Shape = Part.Compound(pieces)
+        obj.Forces = forces
+        least = r["least"]
+        obj.Least = -1.0 if least is None else least["force"]
+        if least is not None:
+            obj.LeastAt = outline.to_3d(least["at"])
+            obj.LeastDirection = outline.direction_3d(least["direction"])
+            obj.Label = "Least force: %.4g N at %s" % (obj.Least, _fmt_point(obj.LeastAt))
+        else:
+            obj.Label = "Least force: no push does the job under every load case"
+        colour_least_force(obj)
+
+
+def least_force_colours(forces):
+    """Per piece: blue at the least F*, red at the most, grey where none."""
+    finite = [f for f in forces if f >= 0]
+    lo, hi = (min(finite), max(finite)) if finite else (0.0, 0.0)
+    out = []
+    for f in forces:
+        if f < 0:
+            out.append((0.8, 0.8, 0.8))
+            continue
+        x = (f - lo) / (hi - lo) if hi > lo else 0.0
+        out.append((0.12 + x * (0.75 - 0.12), 0.31 + x * (0.22 - 0.31), 0.61 + x * (0.17 - 0.61)))
+    return out
+
+
+def colour_least_force(obj):
+    """The pieces' colours, when the GUI shows the object."""
+    vobj = getattr(obj, "ViewObject", None)
+    if FreeCAD.GuiUp and vobj is not None and hasattr(vobj, "LineColorArray"):
+        vobj.LineWidth = 6.0
+        vobj.LineColorArray = least_force_colours(list(obj.Forces))
 
 
 class WrenchGravityDial(_Dependent):
@@ -1574,8 +1728,8 @@ class ViewProviderWrench:
         obj = getattr(self, "Object", None)
         name = {"WrenchFixture": "WrenchFixture", "WrenchRegions": "WrenchRegions",
                 "WrenchRegion": "WrenchRegions", "WrenchFixels": "WrenchFixels",
-                "WrenchBestPush": "WrenchBestPush", "WrenchGravityDial": "WrenchGravityDial"
-                }.get(_proxy_name(obj) if obj is not None else "", "Wrench")
+                "WrenchBestPush": "WrenchBestPush", "WrenchGravityDial": "WrenchGravityDial",
+                "WrenchLeastForce": "WrenchRegions"}.get(_proxy_name(obj) if obj is not None else "", "Wrench")
         return icon(name)
 
     def __getstate__(self):
@@ -1669,6 +1823,10 @@ def make_fixels(fixture):
 
 def make_best_push(fixture):
     return _dependent("WrenchBestPush", fixture, "Best push (both)")
+
+
+def make_least_force(fixture, samples=32):
+    return _dependent("WrenchLeastForce", fixture, "Least force", Samples=samples)
 
 
 def make_gravity_dial(fixture, set="both"):

@@ -932,17 +932,17 @@ class _Methods:
 
     def push_regions(self, fixture: Any, set: str = "goal", finger_friction: float = 0.0, *,
                      finger_radius: float = 0.0, push_on: Any = None,
-                     force: Optional[float] = None,
-                     cases: Optional[Iterable[Any]] = None, timeout: Any = _DEFAULT):
+                     force: Optional[float] = None, cases: Optional[Iterable[Any]] = None,
+                     timeout: Any = _DEFAULT):
         """push.regions: where a finger pushing along the inward normal gives
         a wrench in the set (PushRegions).  finger_friction > 0: every force
         of the finger's friction cone must be in it (sampled).  finger_radius
         > 0: only where a disc of that radius touching the boundary from
         outside overlaps no part of the workpiece.  push_on: "outer", "all"
         or a list of loops; None: default_push_on of the fixture's body (a
-        stored fixture's is fetched).  force F (and cases, see
-        force_range): where a push of magnitude F does the set's job under
-        every case (exact, a frictionless finger)."""
+        stored fixture's is fetched).  force F (and cases, see force_range):
+        where a push of magnitude F does the set's job under every case
+        (exact, a frictionless finger)."""
         params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "set": set}
         if finger_friction:
             params["finger_friction"] = finger_friction

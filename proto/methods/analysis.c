@@ -264,6 +264,7 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
     state->finger = (wr_finger){.friction = friction, .radius = radius};
     if (!wp_read_push_on(call->params, "params", use->fixture, &state->push_on,
                          &state->finger.push_on_count, call->error)) {
+        wp_push_load_release(&state->load);
         free(state);
         return NULL;
     }
@@ -332,8 +333,11 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
             return WP_STEP_MORE;
         wr_regions part = {0};
         const wp_push_load *load = &state->load;
+        /* Under loads, only the edges the finger may push on (push_on). */
+        bool skip = load->given && !wr_finger_pushes_on(f, &state->finger, state->next);
         wr_status status =
-            load->given
+            skip ? WR_OK
+            : load->given
                 ? wr_push_regions_loaded(use->analysis, state->set, load->force,
                                          (const double (*)[3])load->loads, load->count,
                                          state->finger.radius, state->next, 1, call->host->stop,
@@ -366,7 +370,9 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
     wp_buffer_puts(out, state->resolution == 0 ? ",\"exact\":true" : ",\"exact\":false");
     WP_BUFFER_LITERAL(out, ",\"resolution\":");
     wp_buffer_number(out, state->resolution);
-    if (!state->any)
+    /* Why there is none: the blocking cones of the push alone (without
+     * loads; under loads force.range says it per point). */
+    if (!state->any && !state->load.given)
         write_push_why(out, use->analysis, state->set, &state->finger);
     WP_BUFFER_LITERAL(out, "}");
     return WP_STEP_DONE;
