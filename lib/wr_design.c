@@ -398,7 +398,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     wr_regions goal, both = {0};
     status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
     *units += (unsigned long)cones * (unsigned long)edges * 4;
-    if (status == WR_OK && goal.count == 0) {
+    if (status == WR_OK && goal.count == 0 && spec->objective != WR_OBJECTIVE_FORCE) {
         *result = OUTCOME_NO_SEATING_PUSH;
         *why = why_no_seating_push(job, &fixture, analysis, units);
     }
@@ -407,7 +407,16 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         cones += wr_analysis_cone_count(analysis, WR_SET_STRONG);
         *units += (unsigned long)cones * 40;
         *result = OUTCOME_SCORED;
-        if (spec->objective == WR_OBJECTIVE_GRAVITY) {
+        if (spec->objective == WR_OBJECTIVE_FORCE) {
+            wr_least_force least;
+            status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
+                                         spec->finger.radius, NULL, &least);
+            *units += least.evaluations * (unsigned long)cones * (unsigned long)spec->case_count;
+            if (status == WR_OK && !least.found)
+                *result = OUTCOME_NO_SEATING_PUSH;
+            else if (status == WR_OK)
+                *score = -least.force;
+        } else if (spec->objective == WR_OBJECTIVE_GRAVITY) {
             wr_regions arcs;
             status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
             if (status == WR_OK)
@@ -493,6 +502,11 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
     }
     if (!(spec->finger.radius >= 0) || !isfinite(spec->finger.radius)) {
         wr_error_set(error, "finger_radius", "must be a non-negative number");
+        return WR_INVALID;
+    }
+    if (spec->case_count < 0 || (spec->case_count > 0 && !spec->loads) ||
+        (spec->objective == WR_OBJECTIVE_FORCE && spec->case_count == 0)) {
+        wr_error_set(error, "cases", "required with the objective force");
         return WR_INVALID;
     }
     uint64_t candidates = spec->candidates
@@ -733,6 +747,11 @@ static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
     bool below;
     if (status == WR_OK)
         status = wr_best_push_find(analysis, &both, -INFINITY, NULL, &d->best_push, &below);
+    if (status == WR_OK && spec->case_count > 0) {
+        status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
+                                     spec->finger.radius, NULL, &d->least_force);
+        *units += d->least_force.evaluations * (unsigned long)spec->case_count * 40;
+    }
     if (status == WR_OK) {
         d->goal_length = regions_length(fixture, &goal);
         d->both_length = regions_length(fixture, &both);

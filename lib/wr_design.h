@@ -20,7 +20,14 @@
  *                             region: it ranks after every design with one);
  *       WR_OBJECTIVE_REGION   the total length of the `both` push region;
  *       WR_OBJECTIVE_GRAVITY  the longest arc of gravity tilts in G_goal, in
- *                             degrees.
+ *                             degrees;
+ *       WR_OBJECTIVE_FORCE    minus the least force of a frictionless push
+ *                             that does `both` under every load case
+ *                             (wr_least_force_find: smaller first); a
+ *                             candidate where no magnitude does counts as
+ *                             having no seating push.  Its goal region
+ *                             without loads is not asked first: gravity
+ *                             may seat a part no push alone does.
  * Designs rank by score, higher first, ties by candidate number, lower
  * first.  A candidate's score depends on nothing but the candidate, so the
  * ranking is the same however the candidates are split (shards, threads).
@@ -49,6 +56,7 @@
 #ifndef WR_DESIGN_H
 #define WR_DESIGN_H
 
+#include "wr_force.h"
 #include "wr_regions.h"
 #include "wr_sites.h"
 #include "wr_sweep.h"
@@ -70,7 +78,8 @@ extern "C" {
 typedef enum wr_objective {
     WR_OBJECTIVE_MARGIN,
     WR_OBJECTIVE_REGION,
-    WR_OBJECTIVE_GRAVITY
+    WR_OBJECTIVE_GRAVITY,
+    WR_OBJECTIVE_FORCE
 } wr_objective;
 
 /* The best push of a set of regions (wr_push_regions_finger of
@@ -110,6 +119,11 @@ typedef struct wr_design_spec {
      * combination of the sites. */
     const int (*candidates)[WR_MAX_FIXELS];
     uint64_t candidate_count;
+    /* Load cases (wr_force.h), each one summed wrench of the model system;
+     * borrowed.  Required (at least one) for WR_OBJECTIVE_FORCE; with any
+     * objective, each design kept reports its least push force. */
+    const double (*loads)[3];
+    int case_count;
 } wr_design_spec;
 
 /* A ranked design. */
@@ -123,6 +137,8 @@ typedef struct wr_design {
     bool has_critical;               /* false: the goal region is not empty
                                         at mu = WR_DESIGN_SWEEP_HIGH */
     double critical_mu;
+    wr_least_force least_force;      /* with load cases: the least push
+                                        doing `both` under all of them */
 } wr_design;
 
 typedef struct wr_design_counts {

@@ -1,4 +1,4 @@
-/* wr_outline.h -- a part's outline as CAD writes it (issue 16): loops of
+/* wr_outline.h -- a part's outline as CAD writes it: loops of
  * straight segments and circular arcs, the first loop the outer boundary,
  * the others holes; its validation, the exact mass properties of the
  * uniform lamina it bounds, and its boundary geometry (points, normals

@@ -217,6 +217,14 @@ static span line_in_cone(const wr_cone *cone, const double h0[3], const double h
     return s;
 }
 
+void wr_line_in_cone(const wr_cone *cone, const double h0[3], const double h1[3], double scale,
+                     double *lo, double *hi)
+{
+    span s = line_in_cone(cone, h0, h1, scale);
+    *lo = s.lo;
+    *hi = s.hi;
+}
+
 static void scale_wrench(const wr_fixture *f, const double w[3], double h[3])
 {
     h[0] = w[0];

@@ -29,6 +29,7 @@
 #include "wr_design.h"
 #include "wr_sites.h"
 #include "wr_finger.h"
+#include "wr_force.h"
 #include "wr_lattice.h"
 #include "wr_fixture.h"
 #include "wr_lp.h"

@@ -103,8 +103,10 @@ __all__ = [
 SETS = ("goal", "strong", "both")
 
 # The unit of every length the workbench reports: FreeCAD's own, whatever
-# unit schema its preferences show.
+# unit schema its preferences show; the fixtures it puts name it (with
+# forces in N, and so the Mass in kg).
 UNIT = "mm"
+UNITS = {"length": UNIT, "force": "N"}
 
 # What a push in each set promises, in the words of docs/PROTOCOL.md.
 MEANING = {
@@ -899,8 +901,8 @@ class WrenchFixture:
         _add(obj, "App::PropertyFloat", "KineticFriction", "Friction",
              "Kinetic friction, at most the static one", 0.3)
         _add(obj, "App::PropertyFloat", "Mass", "Friction",
-             "The part's mass (a uniform lamina: its centre of mass and inertia follow "
-             "from the outline)", 1.0)
+             "The part's mass in kg (a uniform lamina: its centre of mass and inertia "
+             "follow from the outline)", 1.0)
         _add(obj, "App::PropertyString", "Socket", "wrenchd",
              "wrenchd's socket; empty: $WRENCHD_SOCKET, else ./run/wrenchd.sock")
         _add(obj, "App::PropertyFloat", "Timeout", "wrenchd",
@@ -1020,7 +1022,7 @@ class WrenchFixture:
         obj.FixelsMoved = moved
         fixture = {"name": obj.Label, "body": {"mass": obj.Mass, "shape": shape},
                    "friction": {"static": obj.StaticFriction, "kinetic": obj.KineticFriction},
-                   "fixels": fixels}
+                   "fixels": fixels, "units": dict(UNITS)}
         if not fixels:
             obj.FixtureId = ""
             obj.Pinned = False

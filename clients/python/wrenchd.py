@@ -395,6 +395,9 @@ class Design:
     # The fixels on holes: pins, [{"fixel", "hole", "diameter"}] (not on a lattice)
     pins: Optional[List[Dict[str, Any]]] = None
     pose: Optional[List[float]] = None         # a lattice: [x, y, theta in degrees]
+    # With load cases: the least push doing both under every case ({"at",
+    # "direction", "force", "lower_bound", ...}, None when none does).
+    least_push: Optional[Dict[str, Any]] = None
 
 
 @dataclass
@@ -832,6 +835,12 @@ def _fixture_id(fixture_id: Any) -> str:
     return fixture_id
 
 
+def _cases(cases: Iterable[Any]) -> List[Dict[str, Any]]:
+    """Cases as the protocol takes them: a case given as a bare list of
+    loads becomes {"loads": [...]}."""
+    return [dict(c) if isinstance(c, Mapping) else {"loads": list(c)} for c in cases]
+
+
 def _wrench(w: Any) -> Any:
     if isinstance(w, Mapping):
         return dict(w)
@@ -923,15 +932,18 @@ class _Methods:
 
     def push_regions(self, fixture: Any, set: str = "goal", finger_friction: float = 0.0, *,
                      finger_radius: float = 0.0, push_on: Any = None,
-                     timeout: Any = _DEFAULT):
+                     force: Optional[float] = None,
+                     cases: Optional[Iterable[Any]] = None, timeout: Any = _DEFAULT):
         """push.regions: where a finger pushing along the inward normal gives
         a wrench in the set (PushRegions).  finger_friction > 0: every force
         of the finger's friction cone must be in it (sampled).  finger_radius
         > 0: only where a disc of that radius touching the boundary from
         outside overlaps no part of the workpiece.  push_on: "outer", "all"
         or a list of loops; None: default_push_on of the fixture's body (a
-        stored fixture's is fetched)."""
-        params = {"fixture": _fixture_ref(fixture), "set": set}
+        stored fixture's is fetched).  force F (and cases, see
+        force_range): where a push of magnitude F does the set's job under
+        every case (exact, a frictionless finger)."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "set": set}
         if finger_friction:
             params["finger_friction"] = finger_friction
         if finger_radius:
@@ -942,7 +954,50 @@ class _Methods:
             push_on = default_push_on(body, finger_radius)
         if push_on is not None:
             params["push_on"] = push_on
+        if force is not None:
+            params["force"] = force
+        if cases is not None:
+            params["cases"] = _cases(cases)
         return self._invoke("push.regions", params, _push_result, True, timeout)
+
+    def force_range(self, fixture: Any, cases: Iterable[Any], *,
+                    push: Optional[Mapping[str, Any]] = None, wrench: Any = None,
+                    sets: Optional[Sequence[str]] = None,
+                    range: Optional[Sequence[float]] = None, timeout: Any = _DEFAULT):
+        """force.range: the magnitudes F of one push (push={"at": [x, y],
+        "direction"?: [dx, dy]}, or a wrench direction) that do each set's
+        job under each case and under all of them, as the daemon's answer
+        {"cases": [...], "all": {...}} (S = {"intervals", "least"}, None for
+        no upper end), in the fixture's force unit.  A case is {"name"?,
+        "loads": [...]} or a list of loads; a load {"gravity": {"g",
+        "direction_deg"}}, {"force", "at"} or {"wrench"}."""
+        if (push is None) == (wrench is None):
+            raise ValueError("force_range takes push or wrench, one of them")
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "cases": _cases(cases)}
+        if push is not None:
+            params["push"] = dict(push)
+        else:
+            params["wrench"] = list(wrench)
+        if sets is not None:
+            params["sets"] = list(sets)
+        if range is not None:
+            params["range"] = [range[0], range[1]]
+        return self._invoke("force.range", params, _object_result, True, timeout)
+
+    def push_force(self, fixture: Any, cases: Iterable[Any], *, set: str = "both",
+                   finger_radius: float = 0.0, samples: Optional[int] = None,
+                   timeout: Any = _DEFAULT):
+        """push.force: the least force F*(p) of a push along the inward
+        normal that does the set's job under every case, sampled exactly
+        along every segment, and its minimum over the outline ("least":
+        {"at", "direction", "force", "lower_bound", ...} or None)."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "cases": _cases(cases),
+                                  "set": set}
+        if finger_radius:
+            params["finger_radius"] = finger_radius
+        if samples is not None:
+            params["samples"] = samples
+        return self._invoke("push.force", params, _object_result, True, timeout)
 
     def gravity_sweep(self, fixture: Any, set: str = "goal", *, timeout: Any = _DEFAULT):
         """gravity.sweep: the arcs [a, b] of tilt (degrees, the direction
@@ -995,6 +1050,7 @@ class _Methods:
                push_on: Any = None, corner_clearance: Optional[float] = None,
                pin_diameter: Optional[float] = None, shard: Optional[Sequence[int]] = None,
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
+               cases: Optional[Iterable[Any]] = None,
                timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
@@ -1036,6 +1092,8 @@ class _Methods:
             params["shard"] = [int(shard[0]), int(shard[1])]
         if progress is not None:
             params["progress"] = True
+        if cases is not None:
+            params["cases"] = _cases(cases)
         return self._invoke("fixture.design", params, _design_result, True, timeout,
                             notify=progress)
 

@@ -68,7 +68,10 @@ enum {
                                    --objective O, --top N, --shard I/N,
                                    --corner-clearance C, --pin-diameter D,
                                    --emit-fixture N FILE */
-    WC_OPT_PUSH_ON = 1 << 18    /* --push-on outer|all|L,L,... */
+    WC_OPT_PUSH_ON = 1 << 18,   /* --push-on outer|all|L,L,... */
+    WC_OPT_CASE = 1 << 19,      /* --case SPEC (repeated): load cases (wc_force.c) */
+    WC_OPT_FORCE = 1 << 20,     /* force: --push X,Y[@DX,DY], --wrench FX,FY,TAU, --range */
+    WC_OPT_PUSH_FORCE = 1 << 21 /* push: --force F */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -120,6 +123,12 @@ typedef struct wc_run {
     /* kept by a request function for its answer (sweep: --wrench, as read) */
     cJSON *wrenches;
     cJSON *bias;
+    /* WC_OPT_CASE, WC_OPT_FORCE, WC_OPT_PUSH_FORCE */
+    cJSON *cases;           /* the cases, as sent */
+    cJSON *force_push;      /* force --push: {"at", "direction"?} */
+    cJSON *force_wrench;    /* force --wrench: [fx, fy, tau] */
+    double push_force;      /* push --force */
+    bool push_force_given;
 } wc_run;
 
 /* Adds the command's params to `params` (the fixture is already there for

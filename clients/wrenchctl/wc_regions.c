@@ -91,6 +91,11 @@ static int picture(wc_run *run, const cJSON *result, drawing draw)
     return drawn ? -1 : EXIT_USAGE;
 }
 
+int wc_picture(wc_run *run, const cJSON *result, wc_drawing draw)
+{
+    return picture(run, result, draw);
+}
+
 /* The set asked, for the tables and pictures. */
 static const char *set_name(const wc_run *run)
 {
@@ -107,10 +112,11 @@ int wc_push_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
-    return wc_push_on(run,
-                      cJSON_IsString(run->fixture) ? run->fixture
-                                                   : cJSON_GetObjectItem(run->fixture, "body"),
-                      params);
+    int status = wc_push_on(run,
+                            cJSON_IsString(run->fixture) ? run->fixture
+                                                         : cJSON_GetObjectItem(run->fixture, "body"),
+                            params);
+    return status >= 0 ? status : wc_push_loads(run, params);
 }
 
 /* Does the answer name its regions by loop and segment (an outline)? */
@@ -646,7 +652,6 @@ static void print_region_sweep(const wc_run *run, const cJSON *result)
 static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
                               const wr_fixture *geometry, const char *name)
 {
-    (void)geometry;
     const cJSON *curve = cJSON_GetObjectItem(result, "curve");
     int points = cJSON_GetArraySize(curve);
     double(*xy)[2] = calloc((size_t)(points ? points : 1), sizeof *xy);
@@ -663,6 +668,7 @@ static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
         .critical = cJSON_IsNumber(critical) ? critical->valuedouble : NAN,
         .curve = (const double(*)[2])xy,
         .curve_count = points,
+        .fixture = geometry,
     };
     wc_interval *intervals = intervals_of(cJSON_GetObjectItem(result, "intervals"),
                                           &plot.interval_count);

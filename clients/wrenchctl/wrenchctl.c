@@ -370,6 +370,11 @@ static const command_option COMMAND_OPTIONS[] = {
     {"pin-diameter", WC_OPT_DESIGN, take_pin_diameter},
     {"emit-fixture", WC_OPT_DESIGN, take_emit},
     {"push-on", WC_OPT_PUSH_ON, wc_take_push_on},
+    {"case", WC_OPT_CASE, wc_take_case},
+    {"push", WC_OPT_FORCE, wc_take_force_push},
+    {"wrench", WC_OPT_FORCE, wc_take_force_wrench},
+    {"range", WC_OPT_FORCE, take_range},
+    {"force", WC_OPT_PUSH_FORCE, wc_take_push_force},
     {NULL, 0, NULL},
 };
 
@@ -482,6 +487,9 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
     cJSON_Delete(run.wrenches);
     cJSON_Delete(run.bias);
     cJSON_Delete(run.push_on);
+    cJSON_Delete(run.cases);
+    cJSON_Delete(run.force_push);
+    cJSON_Delete(run.force_wrench);
     return status;
 }
 
@@ -562,9 +570,9 @@ const wc_command wc_commands[] = {
      "The kinematically feasible moving contact modes, and whether the fixels pin the part."},
     {"push",
      "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--push-on LOOPS]\n"
-     "       [--friction LO:HI] [--svg FILE]",
+     "       [--friction LO:HI] [--svg FILE] [--force F --case SPEC...]",
      WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_INTERVAL |
-         WC_OPT_PUSH_ON,
+         WC_OPT_PUSH_ON | WC_OPT_CASE | WC_OPT_PUSH_FORCE,
      1, 1,
      "push.regions", wc_push_request, wc_push_answer,
      "where a finger's push seats the part",
@@ -581,8 +589,41 @@ const wc_command wc_commands[] = {
      "                         fits against the part without overlapping it\n"
      PUSH_ON_HELP("      ")
      "  --svg FILE             also draw the part, its fixels and the region\n"
+     "  --force F              the region of a push of magnitude F (the fixture's force unit)\n"
+     "                         under every --case (exact; a frictionless finger)\n"
+     "  --case SPEC            a load case, repeated: see 'wrenchctl force --help'\n"
      FRICTION_HELP("       ")
      "Exit status 0 when there is a region, 1 when there is none."},
+    {"force",
+     "FIXTURE (--push X,Y[@DX,DY] | --wrench FX,FY,TAU) --case SPEC... [--sets LIST]\n"
+     "       [--range LO:HI]",
+     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS, 1, 1,
+     "force.range", wc_force_request, wc_force_answer,
+     "how hard to push: the magnitudes that do a set's job under load cases",
+     "The magnitudes F of one push that seat the part (goal), hold it (strong) or both, under\n"
+     "each load case and under all of them (one force for the whole sequence): exact intervals,\n"
+     "in the fixture's force unit.\n"
+     "  --push X,Y          a unit force at (X, Y) on the outline, along the inward normal;\n"
+     "                      X,Y@DX,DY along (DX, DY) instead\n"
+     "  --wrench FX,FY,TAU  or a direction of wrench (scaled to unit length)\n"
+     "  --case SPEC         a case, repeated: [NAME:]LOAD[;LOAD...] with LOAD one of\n"
+     "                      gravity=G@DEG (m G pulling along DEG degrees: 270 is down),\n"
+     "                      force=FX,FY@X,Y (a force at a point), wrench=FX,FY,TAU\n"
+     "  --sets LIST         comma-separated: goal, strong, both (default all three)\n"
+     "  --range LO:HI       only magnitudes in [LO, HI]\n"
+     "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
+    {"push-force", "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+     "push.force", wc_push_force_request, wc_push_force_answer,
+     "the least push force along the outline, and where it is least",
+     "F*(p), the least force of a push along the inward normal at p that does the set's job\n"
+     "(default both) under every case, sampled exactly along every segment, and its minimum\n"
+     "over the outline (branch and bound: the point where the smallest push suffices).\n"
+     "  --case SPEC         a load case, repeated (see 'wrenchctl force --help')\n"
+     "  --set SET           goal, strong or both (default)\n"
+     "  --finger-radius R   only where a round finger of radius R fits\n"
+     "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
+     "Exit status 0 when some push does the job, 1 when none does."},
     {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--svg FILE]",
      WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL, 1, 1,
      "gravity.sweep", wc_gravity_request, wc_gravity_answer,

@@ -2,6 +2,7 @@
  * modes.get, push.regions (written an edge at a time), gravity.sweep and
  * stability.margin. */
 #include "common.h"
+#include "loads.h"
 #include "methods.h"
 
 #include <math.h>
@@ -147,12 +148,14 @@ typedef struct push_state {
     unsigned long edge_cost;
     bool opened, any;    /* "{"regions":[" written; a region written */
     double total, resolution;
+    wp_push_load load;   /* "force" and "cases": regions under them */
 } push_state;
 
 static void push_free(void *stream)
 {
     push_state *state = stream;
     free(state->push_on);
+    wp_push_load_release(&state->load);
     free(state);
 }
 
@@ -247,11 +250,16 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
                      "push regions need the part's outline: the fixture has no shape");
         return NULL;
     }
+    wp_push_load load;
+    if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
+        return NULL;
     push_state *state = calloc(1, sizeof *state);
     if (!state) {
+        wp_push_load_release(&load);
         wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
     }
+    state->load = load;
     state->set = set;
     state->finger = (wr_finger){.friction = friction, .radius = radius};
     if (!wp_read_push_on(call->params, "params", use->fixture, &state->push_on,
@@ -269,7 +277,7 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
                                                                  : wr_analysis_cone_count(a, WR_SET_GOAL) +
                                                                        wr_analysis_cone_count(a, WR_SET_STRONG));
     /* A finger with a size is tested against every segment of the outline. */
-    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) +
+    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) * (unsigned long)(load.count + 1) +
                        (radius > 0 ? 8 * (unsigned long)state->edges : 0);
     return state;
 }
@@ -323,8 +331,15 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
         if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
-        wr_status status = wr_push_regions_part(use->analysis, state->set, &state->finger,
-                                                state->next, 1, call->host->stop, &part);
+        const wp_push_load *load = &state->load;
+        wr_status status =
+            load->given
+                ? wr_push_regions_loaded(use->analysis, state->set, load->force,
+                                         (const double (*)[3])load->loads, load->count,
+                                         state->finger.radius, state->next, 1, call->host->stop,
+                                         &part)
+                : wr_push_regions_part(use->analysis, state->set, &state->finger, state->next, 1,
+                                       call->host->stop, &part);
         if (status != WR_OK) {
             wr_regions_release(&part);
             wp_error_status(call->error, status, "", "%s", wr_strerror(status));

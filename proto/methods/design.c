@@ -1,10 +1,11 @@
 /* design.c -- fixture.design: parameters, progress, the answer; the search
  * run a budget at a time (lib/wr_design.h), its chunks shared with helpers. */
 #include "common.h"
+#include "loads.h"
 #include "methods.h"
+#include "wp_chunks.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,14 +15,14 @@
  * of the search). */
 #define PROGRESS_INTERVAL_S 0.25
 
-static const char *const OBJECTIVES[] = {"margin", "region", "gravity"};
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force"};
 
 typedef struct design_state design_state;
 
+/* Chunks made ahead of the one merged, at most, in each stage. */
+#define DESIGN_WINDOW 16
+
 struct design_state {
-    /* Steps (one thread at a time) and design_work (any number of
-     * threads beside them) share the job: claims and merges under it. */
-    pthread_mutex_t lock;
     wr_fixture *body;
     wr_site *sites;
     int site_count;
@@ -33,18 +34,18 @@ struct design_state {
     bool opened;          /* the response is open */
     bool search_reported; /* the notification at the search's end is sent */
     double last_report;   /* monotonic seconds; < 0 before the first */
-    wr_status failure;    /* a failure seen in a shared step, said in the next */
-    /* design_parallel said yes since the last step began: the host may
-     * have helpers in design_work until the next step returns, even if
-     * they have claimed every chunk by the time it begins.  Only the
-     * steps' thread reads and writes it. */
-    bool forked;
+    /* The engine of each stage (wp_chunks.h); the job's claims and merges
+     * are made under its lock, the job's progress read by the steps. */
+    wp_chunks *poses_chunks, *search;
     /* A lattice: its designs are enumerated first, then they are the
      * candidates (their fixels the sites, three each). */
     wr_lattice_job *lattice;
     const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
     int (*listed)[WR_MAX_FIXELS];
+    double (*loads)[3];   /* params.cases, summed (spec.loads points here) */
 };
+
+static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
 
 static double now_s(void)
 {
@@ -216,6 +217,13 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
                      invalid.reason);
         return false;
     }
+    size_t pairs, total;
+    wr_lattice_job_progress(s->lattice, &pairs, &total);
+    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, (total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK);
+    if (!s->poses_chunks) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
     return true;
 }
 
@@ -243,15 +251,38 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     if (objective) {
         int found = -1;
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 4; i++)
             if (strcmp(objective, OBJECTIVES[i]) == 0)
                 found = i;
         if (found < 0) {
             wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
-                         "must be \"margin\", \"region\" or \"gravity\"");
+                         "must be \"margin\", \"region\", \"gravity\" or \"force\"");
             return false;
         }
         spec->objective = (wr_objective)found;
+    }
+    /* Load cases, on the body (its mass, centre of mass and size). */
+    const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    if (!cases_json && spec->objective == WR_OBJECTIVE_FORCE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.cases",
+                     "required with the objective \"force\": the loads the push works against");
+        return false;
+    }
+    if (cases_json) {
+        wp_cases cases;
+        if (!wp_cases_read(cases_json, "params.cases", s->body, &cases, error))
+            return false;
+        s->loads = malloc((size_t)cases.count * sizeof *s->loads);
+        if (!s->loads) {
+            wp_cases_release(&cases);
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        for (int c = 0; c < cases.count; c++)
+            memcpy(s->loads[c], cases.items[c].load, sizeof s->loads[c]);
+        spec->loads = (const double (*)[3])s->loads;
+        spec->case_count = cases.count;
+        wp_cases_release(&cases);
     }
     bool present;
     if (!wp_member_number(params, "params", "finger_friction", false, &spec->finger.friction,
@@ -382,6 +413,14 @@ static bool start_search(design_state *s, wp_error *error)
                      status == WR_INVALID ? field : "", "%s", invalid.reason);
         return false;
     }
+    /* The job claims WR_DESIGN_CHUNK candidates of this shard at a time:
+     * that many of every shard's. */
+    uint64_t span = (uint64_t)WR_DESIGN_CHUNK * (uint64_t)s->spec.shard_count;
+    s->search = wp_chunks_new(&SEARCH_CHUNKS, s, (size_t)((s->candidates + span - 1) / span));
+    if (!s->search) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
     return true;
 }
 
@@ -396,7 +435,6 @@ static void *design_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     }
     s->last_report = -1;
-    pthread_mutex_init(&s->lock, NULL);
     if (!read_params(call->params, s, call->error)) {
         design_free(s);
         return NULL;
@@ -519,8 +557,7 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
     uint64_t done = 0, total = 0;
     bool has_best = false;
     double best = 0;
-    /* Helpers may be merging meanwhile. */
-    pthread_mutex_lock(&s->lock);
+    /* Merges are the steps' own (wp_chunks_run): nothing to lock. */
     if (s->job) {
         wr_design_job_progress(s->job, &done, &total, &has_best, &best);
     } else {
@@ -529,7 +566,6 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
         done = pairs;
         total = of;
     }
-    pthread_mutex_unlock(&s->lock);
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
@@ -637,6 +673,37 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
     } else {
         WP_BUFFER_LITERAL(out, "null");
     }
+    if (s->spec.case_count > 0) {
+        /* The least push doing both under every case (wr_force.h). */
+        const wr_least_force *least = &d->least_force;
+        WP_BUFFER_LITERAL(out, ",\"least_push\":");
+        if (least->found) {
+            WP_BUFFER_LITERAL(out, "{\"at\":");
+            write_pair(out, least->at);
+            WP_BUFFER_LITERAL(out, ",\"direction\":");
+            write_pair(out, least->direction);
+            WP_BUFFER_LITERAL(out, ",\"force\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->force));
+            WP_BUFFER_LITERAL(out, ",\"lower_bound\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->lower));
+            if (fixture.shape == WR_SHAPE_OUTLINE) {
+                size_t loop, segment;
+                wr_push_edge_place(&fixture, least->edge, &loop, &segment);
+                WP_BUFFER_LITERAL(out, ",\"loop\":");
+                wp_buffer_number(out, (double)loop);
+                WP_BUFFER_LITERAL(out, ",\"segment\":");
+                wp_buffer_number(out, (double)segment);
+            } else {
+                WP_BUFFER_LITERAL(out, ",\"edge\":");
+                wp_buffer_number(out, least->edge);
+            }
+            WP_BUFFER_LITERAL(out, ",\"t\":");
+            wp_buffer_number(out, least->t);
+            WP_BUFFER_LITERAL(out, "}");
+        } else {
+            WP_BUFFER_LITERAL(out, "null");
+        }
+    }
     WP_BUFFER_LITERAL(out, ",\"goal_length\":");
     wp_buffer_number(out, d->goal_length);
     WP_BUFFER_LITERAL(out, ",\"both_length\":");
@@ -694,143 +761,142 @@ static void write_answer(design_state *s, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "]}");
 }
 
-/* Claim a chunk, run it outside the lock, merge it.  False when none was
- * left; WR_OK or the failure in *status. */
-static bool run_chunk(design_state *s, const wr_stop *stop, unsigned long *used,
-                      wr_status *status)
+/* The lattice's chunks of hole pairs, by the engine (wp_chunks.h): claimed
+ * by the job in order, made by any thread, merged in order. */
+typedef struct lattice_record {
+    size_t first, count;
+    wr_lattice_chunk chunk;
+} lattice_record;
+
+static bool lattice_claim(void *method, size_t index, void *record)
 {
+    (void)index;
+    design_state *s = method;
+    lattice_record *l = record;
+    return wr_lattice_job_claim(s->lattice, &l->first, &l->count);
+}
+
+static wr_status lattice_make(void *method, size_t index, void *record, wp_buffer *direct,
+                              const wp_host *host, unsigned long *used, wp_error *error)
+{
+    (void)index;
+    (void)direct;
+    const design_state *s = method;
+    lattice_record *l = record;
+    wr_status status = wr_lattice_chunk_run(s->lattice, l->first, l->count, host->stop,
+                                            &l->chunk, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static wr_status lattice_merge(void *method, size_t index, void *record, wp_buffer *out,
+                               wp_error *error)
+{
+    (void)index;
+    (void)out;
+    design_state *s = method;
+    lattice_record *l = record;
+    wr_status status = wr_lattice_job_merge(s->lattice, &l->chunk); /* takes its designs */
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static void lattice_release(void *record) { wr_lattice_chunk_release(&((lattice_record *)record)->chunk); }
+
+static const wp_chunk_ops LATTICE_CHUNKS = {
+    .record_size = sizeof(lattice_record),
+    .claim = lattice_claim,
+    .make = lattice_make,
+    .merge = lattice_merge,
+    .release = lattice_release,
+    .window = DESIGN_WINDOW,
+};
+
+/* The search's chunks of candidates, likewise; a chunk's threshold is the
+ * top-th score merged when it is claimed. */
+typedef struct search_record {
     uint64_t first, count;
     double threshold;
-    pthread_mutex_lock(&s->lock);
-    bool claimed = wr_design_job_claim(s->job, &first, &count, &threshold);
-    pthread_mutex_unlock(&s->lock);
-    *status = WR_OK;
-    if (!claimed)
-        return false;
     wr_design_chunk chunk;
-    *status = wr_design_chunk_run(s->job, first, count, threshold, stop, &chunk, used);
-    pthread_mutex_lock(&s->lock);
-    if (*status == WR_OK)
-        wr_design_job_merge(s->job, &chunk);
-    else
-        wr_design_job_abandon(s->job);
-    pthread_mutex_unlock(&s->lock);
-    wr_design_chunk_release(&chunk);
-    return true;
+} search_record;
+
+static bool search_claim(void *method, size_t index, void *record)
+{
+    (void)index;
+    design_state *s = method;
+    search_record *c = record;
+    return wr_design_job_claim(s->job, &c->first, &c->count, &c->threshold);
 }
 
-/* A lattice's chunk of hole pairs, as run_chunk does the search's. */
-static bool run_lattice_chunk(design_state *s, const wr_stop *stop, unsigned long *used,
-                              wr_status *status)
+static wr_status search_make(void *method, size_t index, void *record, wp_buffer *direct,
+                             const wp_host *host, unsigned long *used, wp_error *error)
 {
-    size_t first, count;
-    pthread_mutex_lock(&s->lock);
-    bool claimed = wr_lattice_job_claim(s->lattice, &first, &count);
-    pthread_mutex_unlock(&s->lock);
-    *status = WR_OK;
-    if (!claimed)
-        return false;
-    wr_lattice_chunk chunk;
-    *status = wr_lattice_chunk_run(s->lattice, first, count, stop, &chunk, used);
-    pthread_mutex_lock(&s->lock);
-    if (*status == WR_OK)
-        *status = wr_lattice_job_merge(s->lattice, &chunk);
-    else
-        wr_lattice_job_abandon(s->lattice);
-    pthread_mutex_unlock(&s->lock);
-    return true;
+    (void)index;
+    (void)direct;
+    const design_state *s = method;
+    search_record *c = record;
+    wr_status status = wr_design_chunk_run(s->job, c->first, c->count, c->threshold,
+                                           host->stop, &c->chunk, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
 }
 
-/* The next chunk of whichever stage is on: the lattice's poses, then the
- * search's candidates. */
-static bool run_some(design_state *s, const wr_stop *stop, unsigned long *used,
-                     wr_status *status)
+static wr_status search_merge(void *method, size_t index, void *record, wp_buffer *out,
+                              wp_error *error)
 {
-    return s->job ? run_chunk(s, stop, used, status) : run_lattice_chunk(s, stop, used, status);
+    (void)index;
+    (void)out;
+    (void)error;
+    design_state *s = method;
+    search_record *c = record;
+    wr_design_job_merge(s->job, &c->chunk);
+    wr_design_chunk_release(&c->chunk);
+    return WR_OK;
 }
 
-/* Keep the first failure, for the step that can say it (helpers, or a
- * step that shares, cannot end the answer). */
-static void note_failure(design_state *s, wr_status status)
-{
-    pthread_mutex_lock(&s->lock);
-    if (s->failure == WR_OK)
-        s->failure = status;
-    pthread_mutex_unlock(&s->lock);
-}
+static void search_release(void *record) { wr_design_chunk_release(&((search_record *)record)->chunk); }
 
-/* Are chunks left to claim? */
-static bool claimable(design_state *s)
-{
-    pthread_mutex_lock(&s->lock);
-    bool more = s->job ? wr_design_job_claimable(s->job) : wr_lattice_job_claimable(s->lattice);
-    pthread_mutex_unlock(&s->lock);
-    return more;
-}
+static const wp_chunk_ops SEARCH_CHUNKS = {
+    .record_size = sizeof(search_record),
+    .claim = search_claim,
+    .make = search_make,
+    .merge = search_merge,
+    .release = search_release,
+    .window = DESIGN_WINDOW,
+};
 
-static bool design_parallel(void *stream)
-{
-    design_state *s = stream;
-    bool more = claimable(s);
-    s->forked = s->forked || more;
-    return more;
-}
+/* The stage on: the lattice's poses, then the search's candidates. */
+static wp_chunks *stage(design_state *s) { return s->job ? s->search : s->poses_chunks; }
+
+static bool design_parallel(void *stream) { return wp_chunks_parallel(stage(stream)); }
 
 static bool design_work(void *stream, const wp_host *host)
 {
-    design_state *s = stream;
-    unsigned long used = 0;
-    wr_status status;
-    /* s->job is set only by a step that shares nothing (below): it does
-     * not change while this runs. */
-    bool ran = run_some(s, host->stop, &used, &status);
-    if (ran && status != WR_OK)
-        note_failure(s, status); /* the step says it, as it is */
-    return ran && status == WR_OK;
+    return wp_chunks_work(stage(stream), host);
 }
 
 static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
                            unsigned long *used)
 {
     design_state *s = stream;
-    /* Helpers may be in design_work until this step returns only if the
-     * host was told there was work to share before it began (asking now
-     * would miss helpers that have claimed the last chunks meanwhile). */
-    bool shared = s->forked;
-    s->forked = false;
-    pthread_mutex_lock(&s->lock);
-    wr_status failure = s->failure;
-    pthread_mutex_unlock(&s->lock);
-    if (failure != WR_OK) {
-        if (shared)
-            return WP_STEP_MORE; /* said by a step that shares nothing */
-        wp_error_status(call->error, failure, "params", "%s", wr_strerror(failure));
-        return WP_STEP_FAILED;
-    }
+    bool shared = wp_chunks_shared(stage(s));
     if (s->progress && s->last_report < 0)
         write_progress(s, call, out);
     if (!s->job) {
         /* A lattice: its designs first, in chunks of hole pairs that
          * helpers share; the search begins in a step that shares nothing,
          * so that no helper is in a chunk when s->job appears. */
-        wr_status status = WR_OK;
-        unsigned long start = *used;
-        while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
-               status == WR_OK)
-            continue;
-        if (status != WR_OK && shared) {
-            note_failure(s, status);
-            return WP_STEP_MORE;
-        }
-        if (status != WR_OK) {
-            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+        wp_step step = wp_chunks_run(s->poses_chunks, shared, call->host, out, budget, used,
+                                     (size_t)-1, call->error);
+        if (step == WP_STEP_FAILED)
             return WP_STEP_FAILED;
-        }
-        bool enumerated = false;
-        if (!shared) {
-            pthread_mutex_lock(&s->lock);
-            status = wr_lattice_job_run(s->lattice, 1, used, call->host->stop, &enumerated);
-            pthread_mutex_unlock(&s->lock);
+        if (step == WP_STEP_DONE) {
+            bool enumerated = false;
+            wr_status status = wr_lattice_job_run(s->lattice, 1, used, call->host->stop,
+                                                  &enumerated);
             if (status != WR_OK) {
                 wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
                 return WP_STEP_FAILED;
@@ -842,38 +908,27 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
             write_progress(s, call, out);
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
-    /* The search: chunks while the budget lasts (helpers may run others
-     * meanwhile); then the rest (the designs' figures) by the job itself. */
-    wr_status status = WR_OK;
+    /* The search: chunks while the budget lasts (helpers may make others
+     * meanwhile); then, in steps that share nothing, the rest (the
+     * designs' figures) by the job itself. */
     unsigned long start = *used;
-    /* A step that begins with chunks to share never ends the answer:
-     * other threads may be in design_work until it returns
-     * (wp_streamer.work), so the figures and the answer come in a later
-     * step, when the search is over. */
-    while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
-           status == WR_OK)
-        continue;
-    bool done = false;
-    if (status == WR_OK && !shared && *used - start < budget) {
-        pthread_mutex_lock(&s->lock);
-        status = wr_design_job_run(s->job, budget - (*used - start), used, call->host->stop,
-                                   &done);
-        pthread_mutex_unlock(&s->lock);
-    }
-    if (status != WR_OK && shared) {
-        note_failure(s, status); /* helpers may still be working: end in the next step */
-        return WP_STEP_MORE;
-    }
-    if (status != WR_OK) {
-        wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+    wp_step step = wp_chunks_run(s->search, shared, call->host, out, budget, used, (size_t)-1,
+                                 call->error);
+    if (step == WP_STEP_FAILED)
         return WP_STEP_FAILED;
+    bool done = false;
+    if (step == WP_STEP_DONE && *used - start < budget) {
+        wr_status status = wr_design_job_run(s->job, budget - (*used - start), used,
+                                             call->host->stop, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
     }
     uint64_t examined, total;
     bool has_best;
     double best;
-    pthread_mutex_lock(&s->lock);
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
-    pthread_mutex_unlock(&s->lock);
     if (s->progress && !s->search_reported &&
         (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
         s->search_reported = examined == total;
@@ -893,13 +948,15 @@ static void design_free(void *stream)
     design_state *s = stream;
     if (!s)
         return;
+    wp_chunks_free(s->search);
+    wp_chunks_free(s->poses_chunks);
     wr_design_job_free(s->job);
     wr_lattice_job_free(s->lattice);
     free(s->listed);
+    free(s->loads);
     free(s->sites);
     free(s->push_on);
     wr_fixture_free(s->body);
-    pthread_mutex_destroy(&s->lock);
     free(s);
 }
 
@@ -911,7 +968,9 @@ static size_t design_bytes(const void *stream)
         wr_lattice_job_designs(s->lattice, &poses);
     return sizeof *s + (size_t)s->site_count * sizeof *s->sites +
            (s->job ? wr_design_job_bytes(s->job) : 0) +
-           poses * (sizeof(wr_lattice_design) + sizeof *s->listed);
+           poses * (sizeof(wr_lattice_design) + sizeof *s->listed) +
+           (s->poses_chunks ? wp_chunks_bytes(s->poses_chunks) : 0) +
+           (s->search ? wp_chunks_bytes(s->search) : 0);
 }
 
 const wp_streamer wp_design_stream = {design_begin, design_step,     design_free,    design_bytes,

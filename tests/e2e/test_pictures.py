@@ -1,7 +1,7 @@
 """wrenchctl's pictures (--svg): well-formed XML, one region path per region
 of the answer, and the part drawn (outline, fixels, friction cones, centre
 of mass).  The README's pictures in docs/ are what wrenchctl draws now.
-Outlines of lines and arcs (issue 16): arcs drawn as arcs, holes as holes,
+Outlines of lines and arcs: arcs drawn as arcs, holes as holes,
 regions on arcs as arcs, pins in holes, checked against geometry worked out
 here (svg_geometry.py)."""
 
@@ -80,6 +80,10 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-chamfered-sweep-both.svg", ["sweep", "plate-chamfered.json", "--push", "both",
                                         "--range", "0:1"]),
     ("bracket-designs.svg", ["design", "bracket.json", "--spacing", "10", "--top", "3"]),
+    ("bracket-upright-push-force.svg",
+     ["push-force", "bracket-upright.json"] +
+     [a for x in (20, 40, 60, 80, 100)
+      for a in ("--case", "x%d:gravity=9810@180;force=30,-40@%d,60" % (x, x))]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
@@ -90,7 +94,7 @@ def test_readme_pictures_are_current(harness, picture, command):
         assert a.read() == b.read(), "run 'make pictures' and commit docs/pictures"
 
 
-# ---- outlines of lines and arcs (issue 16) -----------------------------------
+# ---- outlines of lines and arcs ---------------------------------------------
 #
 # Each picture is read back with xml.etree and checked against the outline's
 # geometry worked out in svg_geometry.py from the wire's description of a

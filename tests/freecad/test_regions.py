@@ -394,6 +394,17 @@ def test_an_unreachable_daemon_says_how_to_start_one(doc, tmp_path):
     assert "make run" in text and "$WRENCHD_SOCKET" in text and "Socket property" in text
 
 
+def test_the_fixture_names_its_units(client, doc):
+    """The workbench's fixture says its lengths are FreeCAD's mm (and forces
+    N, the Mass kg), and wrenchd keeps them."""
+    import json
+    regions = wf.show_regions(doc, parts.bracket_face(), BRACKET_FIXELS, 0.3, "both", client)
+    fixture = regions[0].Regions.Fixture
+    sent = json.loads(fixture.FixtureJson)
+    assert sent["units"] == {"length": "mm", "force": "N"} == wf.UNITS
+    assert client.get_fixture(fixture.FixtureId)["units"] == sent["units"]
+
+
 def test_a_busy_daemon_is_busy(doc, tmp_path):
     """A daemon that answers nothing in time (a socket that accepts and never
     answers, as a daemon whose workers are on a long design), and one with
