@@ -296,9 +296,10 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local design examples/bracket.json --spacing 10 --top 3 --svg docs/pictures/bracket-designs.svg >/dev/null
 	@# the README's walk-through from a DXF sheet (ezdxf)
 	$(PYTHON) examples/sheet_dxf.py $(BUILD)/sheet.dxf
-	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json \
-	    --fixel 15,0 --fixel 100,43 --fixel 60,32 2>/dev/null
-	$(BUILD)/wrenchctl --local push $(BUILD)/bracket.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
+	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json 2>/dev/null
+	cd $(BUILD) && ./wrenchctl --local design bracket.json --spacing 10 --top 3 \
+	    --emit-fixture 1 bracket-design.json >/dev/null
+	$(BUILD)/wrenchctl --local push $(BUILD)/bracket-design.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
 
 # ---- load and soak (bench) ----

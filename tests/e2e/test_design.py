@@ -42,6 +42,7 @@ Readings of the contract where it is not explicit (see the report):
    notifications, as it gets no answer.
 """
 
+import collections
 import itertools
 import json
 import math
@@ -466,7 +467,10 @@ DESIGN_KEYS = {"rank", "candidate", "sites", "fixels", "pins", "best_push", "goa
 
 
 def check_shape_of_answer(ans, n_sites, objective, shard=(0, 1)):
-    assert set(ans) == {"designs", "counts", "sites", "objective", "shard"}, ans.keys()
+    assert set(ans) == {"designs", "counts", "sites", "objective", "shard",
+                        "why_no_seating_push"}, ans.keys()
+    assert sum(r["candidates"] for r in ans["why_no_seating_push"]["reasons"]) == \
+        ans["counts"]["no_seating_push"]
     assert ans["sites"] == n_sites, (ans["sites"], n_sites)
     assert ans["objective"] == objective, ans["objective"]
     assert ans["shard"] == list(shard), ans["shard"]
@@ -602,6 +606,36 @@ BRUTE_CASES = [
 
 # ---- 1. brute force: counts, ranking, scores and best pushes -------------------------------
 
+def check_why(client, brute, base):
+    """why_no_seating_push against wrench.classify: each candidate without a
+    seating push, its fixture classified (set goal) for the push at the
+    point the answer names (its inward normal there, computed here), counted
+    by blocking string; a push inside G_goal counts as null.  The design is
+    asked with our sites given, to the bit: a push at a point of symmetry
+    (HOLED's (5, 0)) meets mirror-image candidates whose two cones tie to
+    the last bit, and sites equal only to 1e-12 would break the tie
+    either way."""
+    sites = [{"at": list(s[0]), "normal": list(s[1])} for s in brute.sites]
+    params = {k: v for k, v in base.items() if k != "spacing"}
+    ans = design(client, dict(params, sites=sites, top=1))
+    assert ans["counts"] == brute.counts(), (ans["counts"], brute.counts())
+    why = ans["why_no_seating_push"]
+    asked = why["asked_at"]
+    where = {k: asked[k] for k in ("edge", "loop", "segment") if k in asked}
+    p, n = boundary_point(brute.body["shape"], where, asked["t"])
+    assert max(abs(p[0] - asked["at"][0]), abs(p[1] - asked["at"][1])) <= 1e-9, (p, asked)
+    rs = [r for r in range(len(brute.combos)) if brute.kind[r] == "no_seating_push"]
+    calls = [("wrench.classify", {"fixture": brute.ids[r], "sets": ["goal"],
+                                  "wrenches": [{"force": list(n), "at": list(p)}]}) for r in rs]
+    tally = collections.Counter()
+    for res in results(brute.client, calls):
+        v = res["results"][0]["goal"]
+        tally[None if v["inside"] else v["blocking"]] += 1
+    got = {r["blocking"]: r["candidates"] for r in why["reasons"]}
+    assert got == dict(tally), (got, tally)
+    figure("design why reasons recounted", len(rs))
+
+
 def check_figures_against_brute(ans, brute):
     """goal_length, both_length and gravity_goal_deg of every design, against
     push.regions and gravity.sweep of our own candidate fixture."""
@@ -640,6 +674,8 @@ def test_brute_force(client, name, body, friction, spacing, k):
         for d in ans["designs"]:
             check_best_push(client, brute, d, body, fr, objective)
         check_figures_against_brute(ans, brute)
+        if objective == "margin":
+            check_why(client, brute, base)
         figure("design rankings compared")
 
 

@@ -416,16 +416,19 @@ def test_readme_walkthrough(tmp_path):
     assert quoted[0] == report.splitlines()
     design = [o for o in outputs if " design " in o[0]][0][1].splitlines()
     assert [line for line in quoted[1] if line != "..."] == design[:len(quoted[1]) - 1]
-    # the README's words on the both region: 1.46 mm of the lower left
-    # fillet (loop 0), 1.76 mm inside the right M4 hole (loop 2)
+    # the design written as a fixture, and its push table as quoted: the
+    # both region 15.6 mm of the left edge (loop 0), none in a hole (a point
+    # finger pushes on the outer boundary only)
     push = [o for o in outputs if " push " in o[0]][0][1].splitlines()
+    assert quoted[2] == push
     assert push[0] == "units: lengths in mm, forces in N (the fixture's)"
-    assert push[2].split()[:2] == ["0", "67"] and push[2].split()[-1] == "1.456614"
-    assert push[3].split()[:2] == ["2", "0"] and push[3].split()[-1] == "1.758163"
+    assert push[2].split()[:2] == ["0", "66"] and push[2].split()[-1] == "15.648774"
     shape = json.loads((tmp_path / "bracket-shape.json").read_text())
     fixture = json.loads((tmp_path / "bracket.json").read_text())
     assert fixture["body"]["shape"] == shape and fixture["units"] == {"length": "mm", "force": "N"}
-    assert len(fixture["fixels"]) == 3
+    designed = json.loads((tmp_path / "bracket-design.json").read_text())
+    assert designed["body"] == fixture["body"] and designed["units"] == fixture["units"]
+    assert len(designed["fixels"]) == 3
     with open(os.path.join(REPO, "docs", "pictures", "sheet-bracket-push-both.svg")) as fh:
         assert (tmp_path / "bracket-push-both.svg").read_text() == fh.read(), \
             "run 'make pictures' and commit docs/pictures"

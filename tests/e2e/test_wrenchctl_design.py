@@ -62,20 +62,30 @@ def close(a, b):
 
 
 def drawing_decimals(shape):
-    """The drawing's precision (docs/PROTOCOL.md, "Tables"), computed here:
-    the most decimals a coordinate of the shape has in its shortest exact
+    """The drawing's precision (wrenchctl(1), push), computed here: the
+    median of the decimals its coordinates have in their shortest exact
     form, at least those that show 1/10,000 of the shape's box diagonal, at
     most 6."""
-    xs, ys, places = [], [], 0
+    xs, ys, places = [], [], []
     for loop in shape["loops"]:
         for v in loop:
             xs.append(v[0])
             ys.append(v[1])
             for x in v[:2]:
-                places = max(places, next(p for p in range(7)
-                                          if p == 6 or float("%.*f" % (p, x)) == x))
+                places.append(next(p for p in range(7)
+                                   if p == 6 or float("%.*f" % (p, x)) == x))
+    median = sorted(places)[len(places) // 2]
     size = math.hypot(max(xs) - min(xs), max(ys) - min(ys))
-    return min(6, max(places, math.ceil(-math.log10(1e-4 * size))))
+    return min(6, max(median, math.ceil(-math.log10(1e-4 * size))))
+
+
+def trimmed(x, places):
+    """x rounded to `places` decimals, trailing zeros dropped, as the tables
+    print a coordinate."""
+    text = "%.*f" % (places, x)
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return "0" if text == "-0" else text
 
 
 def test_table_is_the_daemons_answer(daemon):
@@ -100,7 +110,7 @@ def test_table_is_the_daemons_answer(daemon):
         push = d["best_push"]
         places = drawing_decimals(b["body"]["shape"])
         assert places == 2
-        assert "(%.*f, %.*f)" % (places, push["at"][0], places, push["at"][1]) in row
+        assert "(%s, %s)" % (trimmed(push["at"][0], places), trimmed(push["at"][1], places)) in row
         assert push["loop"] == 0
     assert "let go" in r.stdout and "both" in r.stdout
     # --json: the daemon's answer itself (cJSON prints some numbers a last
