@@ -31,6 +31,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -261,13 +262,28 @@ static void fill_use(entry *e, texts *t, wp_fixture_use *use)
     use->handle[1] = t;
 }
 
+/* Fill *failure (the cache's status and words; proto makes the JSON-RPC
+ * error of them, wp_error_host) and return false. */
+static bool fail(wp_host_failure *failure, wp_host_status status, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static bool fail(wp_host_failure *failure, wp_host_status status, const char *format, ...)
+{
+    failure->status = status;
+    va_list args;
+    va_start(args, format);
+    vsnprintf(failure->reason, sizeof failure->reason, format, args);
+    va_end(args);
+    return false;
+}
+
 /* With e held (refs counted), derive its analysis unless it exists, and
  * fill `use` (with the texts `t`, see fill_use; a reference to them is
  * passed in and consumed).  The analysis is built without the lock; if two
  * threads race, one keeps its result and the other's is freed.  (Not to be
  * confused with wd_cache_ready, which asks whether it exists.) */
 static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
-                           wp_error *error)
+                           wp_host_failure *failure)
 {
     pthread_mutex_lock(&c->lock);
     e->last_used = ++c->clock;
@@ -286,7 +302,7 @@ static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
         e->refs--;
         texts_drop(t);
         pthread_mutex_unlock(&c->lock);
-        wp_error_set(error, WP_INTERNAL, "", "out of memory deriving the fixture's cones");
+        fail(failure, WP_HOST_NO_MEMORY, "out of memory deriving the fixture's cones");
         return false;
     }
     if (!e->analysis) {
@@ -331,7 +347,7 @@ static const char *const store_step_verbs[] = {"create", "write", "sync", "close
                                                "sync the directory of"};
 
 static bool write_fixture_file(const wd_cache *c, const char *id, const char *text,
-                               wp_error *error)
+                               wp_host_failure *failure)
 {
     char final_path[4096], temporary[4096];
     snprintf(final_path, sizeof final_path, "%s/%s.json", c->dir, id);
@@ -374,20 +390,20 @@ static bool write_fixture_file(const wd_cache *c, const char *id, const char *te
     if (fd >= 0)
         close(fd);
     unlink(temporary);
-    wp_error_set(error, WP_STORAGE, "", "could not %s %s: %s; the fixture is not stored",
-                 store_step_verbs[step], final_path, strerror(saved));
-    wd_log(WD_LOG_ERROR, "%s", error->reason);
+    fail(failure, WP_HOST_STORAGE, "could not %s %s: %s; the fixture is not stored",
+         store_step_verbs[step], final_path, strerror(saved));
+    wd_log(WD_LOG_ERROR, "%s", failure->reason);
     return false;
 }
 
-static bool remove_fixture_file(const wd_cache *c, const char *id, wp_error *error)
+static bool remove_fixture_file(const wd_cache *c, const char *id, wp_host_failure *failure)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/%s.json", c->dir, id);
     if ((unlink(path) != 0 && errno != ENOENT) || !sync_directory(c->dir)) {
-        wp_error_set(error, WP_STORAGE, "", "could not remove %s: %s; the fixture is still stored",
-                     path, strerror(errno));
-        wd_log(WD_LOG_ERROR, "%s", error->reason);
+        fail(failure, WP_HOST_STORAGE, "could not remove %s: %s; the fixture is still stored",
+             path, strerror(errno));
+        wd_log(WD_LOG_ERROR, "%s", failure->reason);
         return false;
     }
     return true;
@@ -458,13 +474,13 @@ static bool add_loaded(wd_cache *c, wp_fixture_doc *doc)
 static bool rekey(wd_cache *c, const char *path, const char *old_id, wp_fixture_doc *doc,
                   bool *loaded)
 {
-    wp_error error = {0};
+    wp_host_failure failure;
     *loaded = false;
     if (find(c, doc->id)) {
         wd_log(WD_LOG_INFO, "%s is stored already as %s (another spelling of it); removing %s",
                old_id, doc->id, path);
     } else {
-        if (!write_fixture_file(c, doc->id, doc->canonical, &error))
+        if (!write_fixture_file(c, doc->id, doc->canonical, &failure))
             return false; /* logged */
         wd_log(WD_LOG_INFO, "re-keyed the fixture %s to %s (ids now hash the explicit fixture)",
                old_id, doc->id);
@@ -683,9 +699,14 @@ bool wd_cache_load_file(wd_cache *c, const char *path, size_t limit)
         return false;
     }
     wp_fixture_use use;
-    if (read != FILE_FIXTURE || !wd_cache_adopt(c, &doc, true, &use, &error)) {
+    wp_host_failure failure;
+    if (read != FILE_FIXTURE) {
         wd_log(WD_LOG_ERROR, "--load %s: %s%s%s", path, error.field, error.field[0] ? ": " : "",
                read == FILE_NOT_JSON ? "not a JSON text" : error.reason);
+        return false;
+    }
+    if (!wd_cache_adopt(c, &doc, true, &use, &failure)) {
+        wd_log(WD_LOG_ERROR, "--load %s: %s", path, failure.reason);
         return false;
     }
     wd_log(WD_LOG_INFO, "loaded %s as %s (%s)", path, use.id, use.name);
@@ -694,7 +715,7 @@ bool wd_cache_load_file(wd_cache *c, const char *path, size_t limit)
 }
 
 bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
-                    wp_error *error)
+                    wp_host_failure *failure)
 {
     if (store)
         pthread_mutex_lock(&c->store_lock);
@@ -716,7 +737,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
                 free(e);
             }
             wp_fixture_doc_release(doc);
-            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            fail(failure, WP_HOST_NO_MEMORY, "out of memory");
             return false;
         }
         e->texts = t;
@@ -734,9 +755,9 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
 
     if (over_limit) {
         /* stored_count changes only under store_lock, held here. */
-        wp_error_set(error, WP_LIMIT, "params.fixture",
-                     "%zu fixtures are stored, the most --max-fixtures allows; delete one first",
-                     c->stored_count);
+        fail(failure, WP_HOST_LIMIT,
+             "%zu fixtures are stored, the most --max-fixtures allows; delete one first",
+             c->stored_count);
         pthread_mutex_unlock(&c->store_lock);
         wp_fixture_use refused = {.handle = {e, NULL}};
         wd_cache_release(c, &refused);
@@ -745,7 +766,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
     }
 
     if (write) {
-        if (c->dir && !write_fixture_file(c, e->id, text, error)) {
+        if (c->dir && !write_fixture_file(c, e->id, text, failure)) {
             pthread_mutex_unlock(&c->store_lock);
             wp_fixture_use failed = {.handle = {e, NULL}};
             wd_cache_release(c, &failed);
@@ -774,21 +795,21 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
     if (store)
         pthread_mutex_unlock(&c->store_lock);
     wp_fixture_doc_release(doc);
-    return derive_for_use(c, e, answered, use, error);
+    return derive_for_use(c, e, answered, use, failure);
 }
 
-bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *error)
+bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_host_failure *failure)
 {
     pthread_mutex_lock(&c->lock);
     entry *e = find(c, id);
     if (!e || !e->stored) {
         pthread_mutex_unlock(&c->lock);
-        wp_error_set(error, WP_NO_FIXTURE, "", "no stored fixture has the id %s", id);
+        fail(failure, WP_HOST_NO_FIXTURE, "no stored fixture has the id %s", id);
         return false;
     }
     e->refs++;
     pthread_mutex_unlock(&c->lock);
-    return derive_for_use(c, e, NULL, use, error);
+    return derive_for_use(c, e, NULL, use, failure);
 }
 
 int wd_cache_ready(wd_cache *c, const char *id)
@@ -836,7 +857,7 @@ void wd_cache_release(wd_cache *c, wp_fixture_use *use)
     memset(use, 0, sizeof *use);
 }
 
-bool wd_cache_delete(wd_cache *c, const char *id, wp_error *error)
+bool wd_cache_delete(wd_cache *c, const char *id, wp_host_failure *failure)
 {
     pthread_mutex_lock(&c->store_lock);
     pthread_mutex_lock(&c->lock);
@@ -845,8 +866,8 @@ bool wd_cache_delete(wd_cache *c, const char *id, wp_error *error)
     pthread_mutex_unlock(&c->lock);
     bool ok = false;
     if (!stored)
-        wp_error_set(error, WP_NO_FIXTURE, "", "no stored fixture has the id %s", id);
-    else if (!c->dir || remove_fixture_file(c, id, error)) {
+        fail(failure, WP_HOST_NO_FIXTURE, "no stored fixture has the id %s", id);
+    else if (!c->dir || remove_fixture_file(c, id, failure)) {
         /* It stays as a cached fixture until its derived data is evicted. */
         pthread_mutex_lock(&c->lock);
         assert(e->stored && c->stored_count > 0);

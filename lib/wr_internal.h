@@ -160,6 +160,14 @@ typedef struct wr_edge_frame {
 } wr_edge_frame;
 void wr_edge_frame_of(const wr_fixture *fixture, int edge, wr_edge_frame *out);
 
+/* The closed interval [*lo, *hi] of t where the scaled wrench h0 + t h1
+ * lies in the cone's closure (*lo > *hi: nowhere): one linear condition
+ * per facet, a point per equality.  `scale` (|h0| + |h1|) sizes what
+ * counts as zero.  wr_regions.c: the push regions' lines and the force
+ * lines of wr_force.c are cut by the same rule. */
+void wr_line_in_cone(const struct wr_cone *cone, const double h0[3], const double h1[3],
+                     double scale, double *lo, double *hi);
+
 /* Is there an acceleration satisfying the constraint's acceleration rows,
  * strict rows strictly (kinematic feasibility, docs/MODEL.md section 4)? */
 bool wr_constraint_kinematically_feasible(const wr_fixture *fixture,

@@ -12,15 +12,22 @@ static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", 
                                        "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
-static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
+static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", "push_on",
+                                   "force", "cases", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
-                                     "progress", "shard", NULL};
+                                     "progress", "shard", "push_on", "corner_clearance",
+                                     "pin_diameter", "cases", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
+static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
+                                          NULL};
+static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
+static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples",
+                                         NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
-                                             "push", "gravity", NULL};
+                                             "push", "gravity", "force", "cases", NULL};
 
 /* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
  * one piece, and the event loop may answer it.  The rest end their piece
@@ -52,6 +59,10 @@ const wp_method wp_methods[] = {
      .required = MARGIN, .flags = WP_FIXTURE},
     {.name = "friction.sweep", .stream = &wp_sweep_stream, .fields = FRICTION_SWEEP,
      .required = FIXTURE, .flags = WP_FIXTURE},
+    {.name = "force.range", .handler = wp_handle_force_range, .fields = FORCE_RANGE,
+     .required = FORCE_REQUIRED, .flags = WP_FIXTURE},
+    {.name = "push.force", .handler = wp_handle_push_force, .fields = PUSH_FORCE,
+     .required = FORCE_REQUIRED, .flags = WP_FIXTURE},
     {.name = "fixture.design", .stream = &wp_design_stream, .fields = DESIGN,
      .required = DESIGN_REQUIRED},
     {0},

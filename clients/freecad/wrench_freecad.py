@@ -910,8 +910,9 @@ class WrenchFixture:
         _add(obj, "App::PropertyInteger", "DesignFixels", "Design",
              "Design: how many fixels to place", 3)
         _add(obj, "App::PropertyLength", "DesignSpacing", "Design",
-             "Design: candidate sites this far apart along the outline (0: the perimeter / 40, "
-             "to two digits)",
+             "Design: candidate sites this far apart along each loop's length, across the joints "
+             "of faceted curves, clear of corners by half of it (0: the perimeter / 40, to two "
+             "digits); pushes on the outer boundary only (a point finger)",
              0.0)
         if "DesignObjective" not in obj.PropertiesList:
             obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",

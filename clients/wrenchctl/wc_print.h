@@ -40,4 +40,17 @@ void wc_explain_goal(const char *blocking, const cJSON *states, char *out, size_
 /* The motion a strong-set blocking mode allows, in words. */
 void wc_explain_strong(const char *blocking, char *out, size_t size);
 
+/* ---- coordinates to the drawing's precision ---------------------------------- */
+
+/* The most decimals a coordinate of the drawing needs (WC_MAX_DECIMALS at
+ * most): as many as the finest number of `shape` (a body's "shape": its
+ * vertices, centre, radius; not bulges) has in its shortest exact decimal
+ * form, and never fewer than show 1/10,000 of the shape's size.  What
+ * tables print points to (wrenchctl(1), push); -1 for no shape (a
+ * stored fixture not at hand): then %g. */
+#define WC_MAX_DECIMALS 6
+int wc_drawing_decimals(const cJSON *shape);
+/* "(x, y)" to `decimals` places (-1: 6 significant digits). */
+void wc_point_text(const cJSON *point, int decimals, char *out, size_t size);
+
 #endif

@@ -30,8 +30,11 @@ cJSON *wp_handle_fixture_put(wp_call *call)
                          &doc, error))
         return NULL;
     wp_fixture_use use;
-    if (!host->fixture_adopt(host->self, &doc, true, &use, error))
+    wp_host_failure failure;
+    if (!host->fixture_adopt(host->self, &doc, true, &use, &failure)) {
+        wp_error_host(error, &failure, "");
         return NULL;
+    }
     cJSON *result = cJSON_CreateObject();
     if (result) {
         cJSON_AddStringToObject(result, "id", use.id);
@@ -61,9 +64,11 @@ cJSON *wp_handle_fixture_get(wp_call *call)
     wp_error *error = call->error;
     const char *id = read_id(params, error);
     wp_fixture_use use;
-    if (!id || !host->fixture_use(host->self, id, &use, error)) {
-        if (id && !error->field[0])
-            snprintf(error->field, sizeof error->field, "params.id");
+    wp_host_failure failure;
+    if (!id)
+        return NULL;
+    if (!host->fixture_use(host->self, id, &use, &failure)) {
+        wp_error_host(error, &failure, "params.id");
         return NULL;
     }
     cJSON *result = cJSON_CreateRaw(use.canonical);
@@ -77,9 +82,11 @@ cJSON *wp_handle_fixture_delete(wp_call *call)
     const cJSON *params = call->params;
     wp_error *error = call->error;
     const char *id = read_id(params, error);
-    if (!id || !host->fixture_delete(host->self, id, error)) {
-        if (id && !error->field[0])
-            snprintf(error->field, sizeof error->field, "params.id");
+    wp_host_failure failure;
+    if (!id)
+        return NULL;
+    if (!host->fixture_delete(host->self, id, &failure)) {
+        wp_error_host(error, &failure, "params.id");
         return NULL;
     }
     cJSON *result = cJSON_CreateObject();
@@ -91,8 +98,11 @@ cJSON *wp_handle_fixture_delete(wp_call *call)
 cJSON *wp_handle_fixture_list(wp_call *call)
 {
     wp_fixture_listing listing = {0, NULL};
-    if (!call->host->fixture_list(call->host->self, &listing, call->error))
+    wp_host_failure failure;
+    if (!call->host->fixture_list(call->host->self, &listing, &failure)) {
+        wp_error_host(call->error, &failure, "");
         return NULL;
+    }
     cJSON *result = cJSON_CreateObject();
     cJSON *list = cJSON_AddArrayToObject(result, "fixtures");
     bool ok = list != NULL;
@@ -112,8 +122,11 @@ cJSON *wp_handle_fixture_list(wp_call *call)
 cJSON *wp_handle_server_status(wp_call *call)
 {
     wp_server_state state;
-    if (!call->host->state(call->host->self, &state, call->error))
+    wp_host_failure failure;
+    if (!call->host->state(call->host->self, &state, &failure)) {
+        wp_error_host(call->error, &failure, "");
         return NULL;
+    }
     cJSON *result = cJSON_CreateObject();
     if (!result)
         return wp_out_of_memory(NULL, call->error);
@@ -131,13 +144,4 @@ cJSON *wp_handle_server_status(wp_call *call)
     if (!cJSON_AddNumberToObject(result, "errors", (double)state.errors))
         return wp_out_of_memory(result, call->error);
     return result;
-}
-
-void wp_fixture_listing_release(wp_fixture_listing *listing)
-{
-    for (size_t i = 0; i < listing->count; i++)
-        free(listing->entries[i].name);
-    free(listing->entries);
-    listing->entries = NULL;
-    listing->count = 0;
 }

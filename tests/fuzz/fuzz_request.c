@@ -274,14 +274,15 @@ static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edge
     const cJSON *value = param(r, "fixture");
     wp_fixture_use use;
     wp_error error;
+    wp_host_failure failure;
     bool ok;
     if (cJSON_IsString(value)) {
         ok = wp_fixture_id_valid(value->valuestring) &&
-             host->fixture_use(host->self, value->valuestring, &use, &error);
+             host->fixture_use(host->self, value->valuestring, &use, &failure);
     } else if (cJSON_IsObject(value)) {
         wp_fixture_doc doc;
         ok = wp_fixture_read(value, "params.fixture", &doc, &error) &&
-             host->fixture_adopt(host->self, &doc, false, &use, &error);
+             host->fixture_adopt(host->self, &doc, false, &use, &failure);
     } else {
         ok = false;
     }
@@ -859,11 +860,11 @@ static void bound_store(void)
     if (s.stored <= STORE_BOUND)
         return;
     wp_fixture_listing listing;
-    wp_error error;
-    FUZZ_CHECK(host->fixture_list(host->self, &listing, &error), "fixture_list failed");
+    wp_host_failure failure;
+    FUZZ_CHECK(host->fixture_list(host->self, &listing, &failure), "fixture_list failed");
     FUZZ_CHECK(listing.count == s.stored, "%zu listed, %zu stored", listing.count, s.stored);
     for (size_t i = 0; i < listing.count; i++)
-        FUZZ_CHECK(host->fixture_delete(host->self, listing.entries[i].id, &error),
+        FUZZ_CHECK(host->fixture_delete(host->self, listing.entries[i].id, &failure),
                    "deleting a listed fixture failed");
     wp_fixture_listing_release(&listing);
     wd_cache_stats_get(cache, &s);
