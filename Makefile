@@ -297,7 +297,7 @@ pictures: $(BUILD)/wrenchctl
 	@# the README's walk-through from a DXF sheet (ezdxf)
 	$(PYTHON) examples/sheet_dxf.py $(BUILD)/sheet.dxf
 	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json \
-	    --fixel 15,0 --fixel 100,43 --fixel 60,32 2>/dev/null
+	    --fixel 90,0 --fixel 35.408642,59.19126 --fixel 82.8,15 2>/dev/null
 	$(BUILD)/wrenchctl --local push $(BUILD)/bracket.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
 

@@ -416,12 +416,13 @@ def test_readme_walkthrough(tmp_path):
     assert quoted[0] == report.splitlines()
     design = [o for o in outputs if " design " in o[0]][0][1].splitlines()
     assert [line for line in quoted[1] if line != "..."] == design[:len(quoted[1]) - 1]
-    # the README's words on the both region: 1.46 mm of the lower left
-    # fillet (loop 0), 1.76 mm inside the right M4 hole (loop 2)
+    # the README's words on the both region: the top 15.65 mm of the left
+    # side (loop 0, from (0, 50) down)
     push = [o for o in outputs if " push " in o[0]][0][1].splitlines()
     assert push[0] == "units: lengths in mm, forces in N (the fixture's)"
-    assert push[2].split()[:2] == ["0", "67"] and push[2].split()[-1] == "1.456614"
-    assert push[3].split()[:2] == ["2", "0"] and push[3].split()[-1] == "1.758163"
+    assert push[2].split()[:4] == ["0", "66", "(0.000000,", "50.000000)"]
+    assert push[2].split()[-1] == "15.648774"
+    assert push[-1].startswith("set both: 1 region (1 piece), length 15.6488")
     shape = json.loads((tmp_path / "bracket-shape.json").read_text())
     fixture = json.loads((tmp_path / "bracket.json").read_text())
     assert fixture["body"]["shape"] == shape and fixture["units"] == {"length": "mm", "force": "N"}
