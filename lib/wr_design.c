@@ -381,6 +381,11 @@ static double longest_arc(const wr_regions *arcs)
 struct wr_design_job {
     wr_design_spec spec;
     wr_plan *plan;             /* for spec.fixel_count: shared by every candidate */
+    wr_push_index *index;      /* the body's edges for spec.finger; NULL when
+                                  exhaustive, or for a shape or finger it does
+                                  not serve (a circle, a finger with friction) */
+    wr_fixel *site_fixels;     /* place_sites; NULL when exhaustive */
+    bool *site_ok;
     bool failed;
     uint64_t total;            /* candidates of the shard */
     uint64_t candidates;       /* of all shards */
@@ -418,8 +423,48 @@ bool wr_design_before(const wr_design *a, const wr_design *b)
     return a->candidate < b->candidate;
 }
 
+/* Each site's fixel, placed alone once (site_fixels[i]), or marked
+ * unplaceable (site_ok[i] false): a candidate is placed from them with
+ * only the list's checks, which is wr_fixture_place's answer, bit for bit
+ * (wr_fixture.h), without locating every fixel on the outline again. */
+static wr_status place_sites(wr_design_job *job)
+{
+    const wr_design_spec *spec = &job->spec;
+    size_t n = spec->site_count > 0 ? (size_t)spec->site_count : 1;
+    job->site_fixels = malloc(n * sizeof *job->site_fixels);
+    job->site_ok = calloc(n, sizeof *job->site_ok);
+    if (!job->site_fixels || !job->site_ok)
+        return WR_NO_MEMORY;
+    for (int i = 0; i < spec->site_count; i++) {
+        wr_fixel_spec fixel;
+        memset(&fixel, 0, sizeof fixel);
+        const wr_site *site = &spec->sites[i];
+        memcpy(fixel.at, site->at, sizeof fixel.at);
+        fixel.normal_given = true;
+        memcpy(fixel.normal, site->normal, sizeof fixel.normal);
+        wr_fixture alone;
+        wr_error error;
+        if (wr_fixture_place(spec->body, &fixel, 1, &spec->friction, &alone, &error) == WR_OK) {
+            job->site_fixels[i] = alone.fixels[0];
+            job->site_ok[i] = true;
+        }
+    }
+    return WR_OK;
+}
+
 static wr_status place(const wr_design_job *job, const int *sites, wr_fixture *out)
 {
+    if (job->site_fixels) {
+        wr_fixel fixels[WR_MAX_FIXELS];
+        for (int i = 0; i < job->spec.fixel_count; i++) {
+            if (!job->site_ok[sites[i]])
+                return WR_INVALID;
+            fixels[i] = job->site_fixels[sites[i]];
+        }
+        wr_error error;
+        return wr_fixture_place_placed(job->spec.body, fixels, (size_t)job->spec.fixel_count, out,
+                                       &error);
+    }
     wr_fixel_spec fixels[WR_MAX_FIXELS];
     memset(fixels, 0, sizeof fixels);
     for (int i = 0; i < job->spec.fixel_count; i++) {
@@ -433,6 +478,16 @@ static wr_status place(const wr_design_job *job, const int *sites, wr_fixture *o
     wr_error error;
     return wr_fixture_place(job->spec.body, fixels, (size_t)job->spec.fixel_count,
                             &job->spec.friction, out, &error);
+}
+
+/* The push regions of a set for the search's finger: by the job's index
+ * when it has one (the same answer, bit for bit: wr_regions.h). */
+static wr_status push_regions(const wr_design_job *job, const wr_analysis *analysis, wr_set set,
+                              wr_regions *out)
+{
+    if (job->index)
+        return wr_push_regions_indexed(analysis, set, job->index, NULL, out);
+    return wr_push_regions_finger(analysis, set, &job->spec.finger, NULL, out);
 }
 
 /* Score one candidate, giving up (OUTCOME_BOUNDED) once its score is
@@ -461,7 +516,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     int edges = wr_push_edge_count(&fixture);
     *units += (unsigned long)cones * 40;
     wr_regions goal, both = {0};
-    status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
+    status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     *units += (unsigned long)cones * (unsigned long)edges * 4;
     if (status == WR_OK && goal.count == 0)
         *result = OUTCOME_NO_SEATING_PUSH;
@@ -482,7 +537,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
             /* The both region lies inside the goal region. */
             *result = OUTCOME_BOUNDED;
         } else {
-            status = wr_push_regions_finger(analysis, WR_SET_BOTH, &spec->finger, NULL, &both);
+            status = push_regions(job, analysis, WR_SET_BOTH, &both);
             *units += (unsigned long)cones * (unsigned long)edges * 4;
             if (status == WR_OK && spec->objective == WR_OBJECTIVE_REGION) {
                 *score = regions_length(&fixture, &both);
@@ -568,6 +623,18 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
     if (wr_plan_new(spec->fixel_count, &job->plan) != WR_OK) {
         free(designs);
         free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (!spec->exhaustive && place_sites(job) != WR_OK) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (!spec->exhaustive && spec->finger.friction == 0 &&
+        (spec->body->shape == WR_SHAPE_OUTLINE || spec->body->shape == WR_SHAPE_POLYGON) &&
+        wr_push_index_new(spec->body, &spec->finger, &job->index) != WR_OK) {
+        wr_design_job_free(job);
         wr_error_set(error, "", "out of memory");
         return WR_NO_MEMORY;
     }
@@ -741,7 +808,6 @@ void wr_design_job_abandon(wr_design_job *job)
 /* One design's figures but its critical mu (which the sweep job finds). */
 static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
 {
-    const wr_design_spec *spec = &job->spec;
     if (place(job, d->sites, &job->detail_fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
     wr_fixture *fixture = &job->detail_fixture;
@@ -750,9 +816,9 @@ static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
     if (status != WR_OK)
         return status;
     wr_regions goal = {0}, both = {0}, arcs = {0};
-    status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
+    status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     if (status == WR_OK)
-        status = wr_push_regions_finger(analysis, WR_SET_BOTH, &spec->finger, NULL, &both);
+        status = push_regions(job, analysis, WR_SET_BOTH, &both);
     if (status == WR_OK)
         status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
     bool below;
@@ -868,7 +934,11 @@ void wr_design_job_fixture(const wr_design_job *job, const wr_design *design, wr
 
 size_t wr_design_job_bytes(const wr_design_job *job)
 {
-    return sizeof *job + (size_t)job->spec.top * sizeof *job->designs;
+    return sizeof *job + (size_t)job->spec.top * sizeof *job->designs +
+           (job->index ? wr_push_index_bytes(job->index) : 0) +
+           (job->site_fixels ? (size_t)job->spec.site_count *
+                                   (sizeof *job->site_fixels + sizeof *job->site_ok)
+                             : 0);
 }
 
 void wr_design_job_free(wr_design_job *job)
@@ -878,6 +948,9 @@ void wr_design_job_free(wr_design_job *job)
     wr_sweep_job_free(job->sweep);
     wr_sweeper_free(job->sweeper);
     wr_plan_free(job->plan);
+    wr_push_index_free(job->index);
+    free(job->site_fixels);
+    free(job->site_ok);
     free(job->designs);
     free(job);
 }

@@ -132,6 +132,11 @@ typedef struct wr_design_spec {
      * combination of the sites. */
     const int (*candidates)[WR_MAX_FIXELS];
     uint64_t candidate_count;
+    /* True: every segment's push regions tested against every cone, as
+     * wr_push_regions_finger does, without the job's wr_push_index: the
+     * reference the index is checked and measured against.  The answer is
+     * the same either way, bit for bit. */
+    bool exhaustive;
 } wr_design_spec;
 
 /* A ranked design. */
