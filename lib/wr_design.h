@@ -57,6 +57,8 @@
 extern "C" {
 #endif
 
+struct wr_symmetry;
+
 /* The best push's margin is the maximum to within this. */
 #define WR_DESIGN_TOLERANCE 1e-9
 /* At most this many candidate sites, and designs kept (`top`). */
@@ -137,6 +139,14 @@ typedef struct wr_design_spec {
      * reference the index is checked and measured against.  The answer is
      * the same either way, bit for bit. */
     bool exhaustive;
+    /* The part's symmetries (wr_symmetry_find on the body and these
+     * sites); NULL or 0: none.  Candidates that a symmetry maps onto each
+     * other (their sites onto each other's, wr_symmetry_site_map) are one
+     * design: only the lowest-numbered is scored, and it says how many it
+     * stands for (wr_design.copies; counts.symmetric the others).  So is a
+     * listed candidate whose sites repeat an earlier one's. */
+    const struct wr_symmetry *symmetries;
+    int symmetry_count;
 } wr_design_spec;
 
 /* A ranked design. */
@@ -150,6 +160,9 @@ typedef struct wr_design {
     bool has_critical;               /* false: the goal region is not empty
                                         at mu = WR_DESIGN_SWEEP_HIGH */
     double critical_mu;
+    int copies;                      /* the candidates it stands for, itself
+                                        included: its images under the
+                                        symmetries (1 without) */
 } wr_design;
 
 typedef struct wr_design_counts {
@@ -157,6 +170,9 @@ typedef struct wr_design_counts {
     uint64_t degenerate;
     uint64_t unpinned;
     uint64_t no_seating_push;
+    uint64_t symmetric;              /* images of a lower-numbered candidate
+                                        under a symmetry: not scored, counted
+                                        in that one's copies */
     uint64_t bounded;                /* ended early by the bound: below the
                                         top designs so far (depends on the
                                         order of work; not part of the answer) */
