@@ -1096,6 +1096,13 @@ void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *
     *best = *has_best ? job->designs[0].score : 0;
 }
 
+void wr_design_job_figures_progress(const wr_design_job *job, int *done, int *total)
+{
+    bool searched = job->next >= job->candidates && job->outstanding == 0;
+    *done = searched ? job->detailing : 0;
+    *total = searched ? job->design_count : 0;
+}
+
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count)
 {
     *count = job->design_count;

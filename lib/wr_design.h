@@ -229,6 +229,9 @@ void wr_design_chunk_release(wr_design_chunk *chunk);
  * score so far (has_best false before any). */
 void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *total,
                             bool *has_best, double *best);
+/* The designs' figures, after the search: how many of the designs kept
+ * have them, of how many (0 of 0 while the search goes on). */
+void wr_design_job_figures_progress(const wr_design_job *job, int *done, int *total);
 /* When done: the designs, best first (at most `top`), and the counts. */
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count);
 const wr_design_counts *wr_design_job_counts(const wr_design_job *job);

@@ -13,8 +13,21 @@
 #include <string.h>
 #include <unistd.h>
 
-/* design.progress on stderr, redrawn in place: a bar, the count, the best
- * score so far. */
+/* Seconds as a person reads them: "40 s", "3 min 5 s", "2 h 10 min". */
+static void format_eta(double seconds, char *out, size_t size)
+{
+    double s = floor(seconds + 0.5);
+    if (s < 60)
+        snprintf(out, size, "%.0f s", s);
+    else if (s < 3600)
+        snprintf(out, size, "%.0f min %.0f s", floor(s / 60), fmod(s, 60));
+    else
+        snprintf(out, size, "%.0f h %.0f min", floor(s / 3600), floor(fmod(s, 3600) / 60));
+}
+
+/* design.progress on stderr, redrawn in place: a bar, the count of the
+ * stage (a lattice's poses, the candidates, the designs' figures), the
+ * estimated time left of it (eta_s), the best score so far. */
 static void progress_bar(const char *line, void *context)
 {
     (void)context;
@@ -23,6 +36,11 @@ static void progress_bar(const char *line, void *context)
     double done = cJSON_GetNumberValue(cJSON_GetObjectItem(params, "done"));
     double total = cJSON_GetNumberValue(cJSON_GetObjectItem(params, "total"));
     const cJSON *best = cJSON_GetObjectItem(params, "best");
+    const cJSON *eta = cJSON_GetObjectItem(params, "eta_s");
+    const char *stage = cJSON_GetStringValue(cJSON_GetObjectItem(params, "stage"));
+    const char *unit = !stage || strcmp(stage, "candidates") == 0 ? "candidates"
+                       : strcmp(stage, "poses") == 0           ? "hole pairs"
+                                                               : "designs' figures";
     if (json && total > 0 && done >= 0) {
         enum { WIDTH = 30 };
         int filled = (int)(WIDTH * done / total);
@@ -30,11 +48,17 @@ static void progress_bar(const char *line, void *context)
         for (int i = 0; i < WIDTH; i++)
             bar[i] = i < filled ? '#' : '.';
         bar[WIDTH] = 0;
-        fprintf(stderr, "\r[%s] %3.0f%% %.0f/%.0f candidates", bar, 100 * done / total, done,
-                total);
+        fprintf(stderr, "\r[%s] %3.0f%% %.0f/%.0f %s", bar, 100 * done / total, done, total,
+                unit);
+        if (cJSON_IsNumber(eta) && done < total) {
+            char text[32];
+            format_eta(eta->valuedouble, text, sizeof text);
+            fprintf(stderr, ", about %s left", text);
+        }
         if (cJSON_IsNumber(best))
             fprintf(stderr, ", best %.6g", best->valuedouble);
-        fputs(done >= total ? "\n" : "  ", stderr);
+        /* Spaces over what a longer line before left. */
+        fputs(done >= total ? "\n" : "          ", stderr);
         fflush(stderr);
     }
     cJSON_Delete(json);
@@ -311,6 +335,11 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     printf("; %.0f without a seating push, %.0f unpinned, %.0f degenerate; ranked by %s\n",
            number(counts, "no_seating_push"), number(counts, "unpinned"),
            number(counts, "degenerate"), objective ? objective : "margin");
+    int symmetries = cJSON_GetArraySize(cJSON_GetObjectItem(result, "symmetries"));
+    if (symmetries > 1)
+        printf("the part has %d symmetries (the identity among them): designs one maps onto "
+               "another are listed once, with how many more it stands for\n",
+               symmetries);
     printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
     cJSON_ArrayForEach(d, designs)
@@ -340,6 +369,9 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("%-4.0f  %-10.6g  %-34s  %-30s  %-9.4g  %-9.4g  %-7.3g  %s\n", number(d, "rank"),
                number(d, "score"), fixels, push, number(d, "goal_length"),
                number(d, "both_length"), number(d, "gravity_goal_deg"), critical_text);
+        if (number(d, "copies") > 1)
+            printf("      and %.0f more: its images under the part's symmetries\n",
+                   number(d, "copies") - 1);
         const cJSON *pegs = cJSON_GetObjectItem(d, "pegs"), *pose = cJSON_GetObjectItem(d, "pose");
         if (cJSON_GetArraySize(pegs) == 3 && cJSON_GetArraySize(pose) == 3) {
             printf("      pegs in holes");
@@ -388,9 +420,9 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
 {
     (void)params;
     cJSON *designs = cJSON_CreateArray(), *first = NULL;
-    double counts[5] = {0};
-    static const char *const COUNT_NAMES[5] = {"candidates", "examined", "degenerate", "unpinned",
-                                               "no_seating_push"};
+    double counts[6] = {0};
+    static const char *const COUNT_NAMES[6] = {"candidates", "examined", "degenerate", "unpinned",
+                                               "no_seating_push", "symmetric"};
     int shard_count = 0, summaries = 0;
     bool *seen = NULL;
     int status = EXIT_INSIDE;
@@ -460,7 +492,7 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
             }
             seen[index] = true;
             summaries++;
-            for (int k = 1; k < 5; k++)
+            for (int k = 1; k < 6; k++)
                 counts[k] += number(cJSON_GetObjectItem(json, "counts"), COUNT_NAMES[k]);
             if (json != first)
                 cJSON_Delete(json);
@@ -503,8 +535,11 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         }
         free(all);
         cJSON *total = cJSON_AddObjectToObject(result, "counts");
-        for (int c = 0; c < 5; c++)
+        for (int c = 0; c < 6; c++)
             cJSON_AddNumberToObject(total, COUNT_NAMES[c], counts[c]);
+        const cJSON *symmetries = cJSON_GetObjectItem(first, "symmetries");
+        if (symmetries)
+            cJSON_AddItemToObject(result, "symmetries", cJSON_Duplicate(symmetries, true));
         const char *source = cJSON_GetObjectItem(first, "poses") ? "poses" : "sites";
         cJSON_AddItemToObject(result, source,
                               cJSON_Duplicate(cJSON_GetObjectItem(first, source), true));

@@ -223,6 +223,10 @@ def results(client, calls):
 
 
 def design(client, params):
+    """The brute force here scores every candidate: symmetric duplicates are
+    kept (test_design_symmetry.py tests their collapse)."""
+    params = dict(params)
+    params.setdefault("collapse_symmetric", False)
     return client.result("fixture.design", params)
 
 
@@ -304,7 +308,8 @@ class Brute:
         kinds = [self.kind[r] for r in rs]
         return {"candidates": len(self.combos), "examined": len(rs),
                 "degenerate": kinds.count("degenerate"), "unpinned": kinds.count("unpinned"),
-                "no_seating_push": kinds.count("no_seating_push")}
+                "no_seating_push": kinds.count("no_seating_push"),
+                "symmetric": 0}  # design() keeps symmetric duplicates
 
     # -- the best push margin, by sampling ------------------------------------------------
     def _classify(self, points_by_r):
@@ -386,7 +391,7 @@ class Brute:
 # ---- checks -----------------------------------------------------------------------------
 
 DESIGN_KEYS = {"rank", "candidate", "sites", "fixels", "best_push", "goal_length",
-               "both_length", "gravity_goal_deg", "critical_mu", "score"}
+               "both_length", "gravity_goal_deg", "critical_mu", "score", "copies"}
 
 
 def check_shape_of_answer(ans, n_sites, objective, shard=(0, 1)):
@@ -669,7 +674,7 @@ def test_disc_closed_forms_and_critical_mu(client):
     ans = design(client, {"body": DISC, "friction": mu, "fixels": 2, "sites": sites,
                           "objective": "region", "top": 10})
     assert ans["counts"] == {"candidates": 3, "examined": 3, "degenerate": 0, "unpinned": 0,
-                             "no_seating_push": 0}, ans["counts"]
+                             "no_seating_push": 0, "symmetric": 0}, ans["counts"]
     by_sites = {tuple(d["sites"]): d for d in ans["designs"]}
     assert sorted(by_sites) == [(0, 1), (0, 2), (1, 2)], by_sites.keys()
     am = math.atan(mu)
@@ -695,7 +700,7 @@ def merged(answers, top):
     designs = [d for a in answers for d in a["designs"]]
     designs.sort(key=lambda d: (-d["score"], d["candidate"]))
     counts = {k: sum(a["counts"][k] for a in answers)
-              for k in ("examined", "degenerate", "unpinned", "no_seating_push")}
+              for k in ("examined", "degenerate", "unpinned", "no_seating_push", "symmetric")}
     counts["candidates"] = answers[0]["counts"]["candidates"]
     return designs[:top], counts
 
@@ -788,7 +793,7 @@ def test_spacing_rectangle_clockwise_and_odd_spacing(client):
     assert ans["sites"] == 4, ans
     # one fixel is a pivot: every candidate is unpinned
     assert ans["counts"] == {"candidates": 4, "examined": 4, "degenerate": 0, "unpinned": 4,
-                             "no_seating_push": 0}, ans["counts"]
+                             "no_seating_push": 0, "symmetric": 0}, ans["counts"]
     assert ans["designs"] == []
     ans = design(client, {"body": body, "friction": 0.0, "spacing": 4.5, "fixels": 3,
                           "objective": "region", "top": 10})
@@ -873,13 +878,24 @@ def check_notifications(notes, resp, id, total):
     assert len(notes) >= 2, notes
     last_done = -1
     last_best = None
+    # The designs' figures come after the candidates (stage "figures").
+    figures = [n for n in notes if n[1]["params"].get("stage") == "figures"]
+    notes = [n for n in notes if n[1]["params"].get("stage") != "figures"]
+    for _, n in figures:
+        p = n["params"]
+        assert set(p) == {"id", "stage", "done", "total", "best", "eta_s"}, p
+        assert 0 <= p["done"] <= p["total"] == len(resp["result"]["designs"]), p
     for _, n in notes:
         assert set(n) == {"jsonrpc", "method", "params"}, n       # a notification: no id
         assert n["jsonrpc"] == "2.0" and n["method"] == "design.progress", n
         p = n["params"]
         # "stage": "candidates" (a lattice's "poses" come first; none here)
-        assert set(p) == {"id", "stage", "done", "total", "best"}, p
+        assert set(p) == {"id", "stage", "done", "total", "best", "eta_s"}, p
         assert p["stage"] == "candidates", p
+        # the seconds left: unknown before any is done, 0 at the end
+        assert p["eta_s"] is None or p["eta_s"] >= 0, p
+        if p["done"] == total:
+            assert p["eta_s"] == 0, p
         assert p["id"] == id, (p, id)
         assert p["total"] == total, (p, total)
         assert isinstance(p["done"], int) and 0 <= p["done"] <= total, p
@@ -955,7 +971,8 @@ def test_progress_without_designs(client):
     verts = [[math.cos(2 * math.pi * k / 12), math.sin(2 * math.pi * k / 12)] for k in range(12)]
     body = {"mass": 1.0, "shape": {"type": "polygon", "vertices": verts}}
     notes, resp, _ = call_with_progress(client, {"body": body, "friction": 0.2, "spacing": 0.4,
-                                                 "progress": True}, "none")
+                                                 "progress": True, "collapse_symmetric": False},
+                                        "none")
     assert resp["result"]["counts"]["no_seating_push"] == 220, resp["result"]["counts"]
     assert resp["result"]["designs"] == []
     check_notifications(notes, resp, "none", 220)
@@ -977,7 +994,8 @@ def test_no_progress_when_false_or_absent(client):
 
 
 def test_no_progress_in_a_batch(client):
-    params = {"body": CHAMFER, "friction": 0.1, "spacing": 0.7, "top": 2, "progress": True}
+    params = {"body": CHAMFER, "friction": 0.1, "spacing": 0.7, "top": 2, "progress": True,
+              "collapse_symmetric": False}
     reqs = [client.request("fixture.design", params), client.request("server.status", {}),
             client.request("fixture.design", dict(params, shard=[0, 2]))]
     client.send(reqs)
@@ -1341,7 +1359,7 @@ def test_empty_shard(client):
     # 2 + 0 + 0 + 1 + 1 sites: C(4, 3) = 4 candidates, numbered 0..3
     assert ans["sites"] == 4
     assert ans["counts"] == {"candidates": 4, "examined": 0, "degenerate": 0, "unpinned": 0,
-                             "no_seating_push": 0}, ans["counts"]
+                             "no_seating_push": 0, "symmetric": 0}, ans["counts"]
     assert ans["designs"] == [] and ans["shard"] == [7, 10]
 
 
