@@ -956,6 +956,39 @@ def test_progress_long_run(daemon):
     figure("design progress notifications", len(notes))
 
 
+def test_progress_eta(client):
+    """eta_s, the seconds left of the stage at its rate so far, against the
+    time the stage then took, measured here: within a factor of three once
+    a fifth of it is done (a shared machine's rate varies), and the Python
+    client's bar and wrenchctl's print it."""
+    import io
+    import os
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                    "clients", "python"))
+    import wrenchd
+    params = {"body": CHAMFER, "friction": 0.1, "spacing": LONG_SPACING, "top": 2,
+              "progress": True, "collapse_symmetric": False}
+    notes, resp, elapsed = call_with_progress(client, params, "eta")
+    search = [(t, n["params"]) for t, n in notes if n["params"]["stage"] == "candidates"]
+    end = search[-1][0]                       # the notification at done == total
+    assert search[-1][1]["done"] == search[-1][1]["total"] and search[-1][1]["eta_s"] == 0
+    assert search[0][1]["eta_s"] is None      # nothing done yet: no rate
+    checked = 0
+    for t, p in search[1:-1]:
+        assert p["eta_s"] is not None and p["eta_s"] >= 0, p
+        if p["done"] >= p["total"] / 5:
+            left = end - t
+            assert left / 3 - 0.3 <= p["eta_s"] <= 3 * left + 0.3, (p, left)
+            checked += 1
+    assert checked >= 1, search
+    bar = io.StringIO()
+    for _, n in notes:
+        wrenchd.progress_bar(bar)(n["params"])
+    text = bar.getvalue()
+    assert "left" in text and "100%" in text and "candidates" in text, text
+
+
 def test_progress_shard_total_and_numeric_id(client):
     params = {"body": CHAMFER, "friction": 0.1, "spacing": 0.5, "top": 3, "progress": True,
               "shard": [1, 3]}
