@@ -1058,6 +1058,8 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
             status = wr_sweeper_new(&job->detail_fixture, WR_SET_GOAL, &range, &job->sweeper);
             if (status == WR_OK)
                 status = wr_sweep_job_push(job->sweeper, &spec->finger, &job->sweep);
+            if (status == WR_OK && job->index)
+                wr_sweep_job_use_index(job->sweep, job->index);
             continue;
         }
         bool finished = false;

@@ -1024,6 +1024,14 @@ size_t wr_push_index_bytes(const wr_push_index *index)
            (size_t)index->edge_count * (sizeof *index->leaves + 2 * sizeof *index->nodes);
 }
 
+void wr_push_index_blocked(const wr_push_index *index, int edge, const wr_span **spans,
+                           int *count)
+{
+    assert(edge >= 0 && edge < index->edge_count);
+    *spans = index->spans + index->offsets[edge];
+    *count = index->offsets[edge + 1] - index->offsets[edge];
+}
+
 /* The regions of the node's edges, in edge order, against the cones left
  * (count of them; room holds what the node's descendants need). */
 static bool index_visit(const wr_push_index *x, int n, const wr_fixture *f, const wr_cone **cones,

@@ -20,6 +20,7 @@
 #define WR_REGIONS_H
 
 #include "wr_classify.h"
+#include "wr_finger.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -110,6 +111,10 @@ wr_status wr_push_index_new(const wr_fixture *body, const wr_finger *finger,
                             wr_push_index **out);
 void wr_push_index_free(wr_push_index *index);
 size_t wr_push_index_bytes(const wr_push_index *index);
+/* The finger's blocked spans of one edge (wr_finger_blocked's, found when
+ * the index was built): *count of them at *spans, owned by the index. */
+void wr_push_index_blocked(const wr_push_index *index, int edge, const wr_span **spans,
+                           int *count);
 /* wr_push_regions_finger(a, set, index's finger, stop, regions) by the
  * index.  WR_OK; WR_NO_MEMORY; WR_STOPPED (`regions` empty unless WR_OK). */
 wr_status wr_push_regions_indexed(const wr_analysis *analysis, wr_set set,
