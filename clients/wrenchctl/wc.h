@@ -65,7 +65,8 @@ enum {
     WC_OPT_SWEEP = 1 << 16,     /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
                                    --range LO:HI, --kinetic-ratio R */
     WC_OPT_DESIGN = 1 << 17     /* --spacing H, --lattice P,R,NXxNY, --fixels K,
-                                   --objective O, --top N, --shard I/N */
+                                   --objective O, --top N, --shard I/N,
+                                   --symmetric collapse|all */
 };
 
 /* One run of one command: its arguments, its options once read, and what
@@ -100,6 +101,7 @@ typedef struct wc_run {
     const char *objective;  /* --objective */
     int shard[2];           /* --shard I/N */
     bool shard_given;
+    bool symmetric_all;     /* --symmetric all: collapse_symmetric false */
     double lattice[2];      /* --lattice PITCH,RADIUS,NXxNY: pitch, peg radius */
     int lattice_extent[2];
     bool lattice_given;

@@ -150,6 +150,8 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "objective", run->objective);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
+    if (run->symmetric_all)
+        cJSON_AddBoolToObject(params, "collapse_symmetric", false);
     if (run->friction_given)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->shard_given)

@@ -279,6 +279,14 @@ static int take_lattice(wc_run *run, const char *value)
 }
 
 /* --shard I/N: shard I of N, 0 <= I < N. */
+static int take_symmetric(wc_run *run, const char *value)
+{
+    if (strcmp(value, "collapse") != 0 && strcmp(value, "all") != 0)
+        return wc_usage_error("--symmetric wants collapse or all, not '%s'", value);
+    run->symmetric_all = strcmp(value, "all") == 0;
+    return 0;
+}
+
 static int take_shard(wc_run *run, const char *value)
 {
     char *end;
@@ -332,6 +340,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"top", WC_OPT_DESIGN, take_top},
     {"objective", WC_OPT_DESIGN, take_objective},
     {"shard", WC_OPT_DESIGN, take_shard},
+    {"symmetric", WC_OPT_DESIGN, take_symmetric},
     {NULL, 0, NULL},
 };
 
@@ -572,14 +581,14 @@ const wc_command wc_commands[] = {
     {"design",
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K] [--objective margin|region|gravity]\n"
      "       [--top N] [--friction LO:HI] [--finger-radius R] [--finger-friction MU]\n"
-     "       [--shard I/N] [--svg FILE]",
+     "       [--shard I/N] [--symmetric collapse|all] [--svg FILE]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
      "where to put the fixels, and where to push",
      "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
      "are ranked, each with its best push (the point of the both region whose push has the\n"
      "largest margin: push there and let go), its push regions' lengths, its longest gravity\n"
-     "arc and its critical mu.  A progress bar on a terminal.\n"
+     "arc and its critical mu.  A progress bar on a terminal, with the time left.\n"
      "  BODY               a JSON file: a fixture (its body and friction are used, and its\n"
      "                     fixels are the candidate sites unless --spacing is given) or a\n"
      "                     body alone\n"
@@ -595,6 +604,9 @@ const wc_command wc_commands[] = {
      "                     the finger that pushes, as for push\n"
      "  --shard I/N        evaluate shard I of N of the candidates only, and write JSON lines\n"
      "                     for design-merge (examples/design-array.sbatch runs it on Slurm)\n"
+     "  --symmetric collapse|all  designs that a symmetry of the part (a turn or a mirror)\n"
+     "                     maps onto each other: listed once with how many more it stands\n"
+     "                     for (collapse, the default), or every one (all)\n"
      "  --svg FILE         also draw the best designs side by side: the part, its fixels\n"
      "                     (pegs on a lattice), the both region and the best push\n"
      "Exit status 0 when some design has a push that seats and holds the part, 1 when none."},
