@@ -19,18 +19,8 @@
 
 static wr_fixture *outline_body(const wr_loop_spec *loops, size_t count)
 {
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.shape = WR_SHAPE_OUTLINE;
-    spec.loops = loops;
-    spec.loop_count = count;
-    wr_fixture *body = NULL;
-    wr_error error;
-    wr_status status = wr_fixture_body_new(&spec, &body, &error);
-    if (status != WR_OK)
-        fprintf(stderr, "%s: %s\n", error.field, error.reason);
-    assert_int_equal(status, WR_OK);
+    wr_fixture *body = test_outline_body(loops, count, NULL);
+    assert_non_null(body);
     return body;
 }
 
@@ -246,15 +236,6 @@ static void placed_alone_equals_whole(void **state)
     wr_fixture_free(body);
 }
 
-static void run_design(const wr_design_spec *spec, wr_design_job **out)
-{
-    wr_error error;
-    assert_int_equal(wr_design_job_new(spec, out, &error), WR_OK);
-    bool done = false;
-    while (!done)
-        assert_int_equal(wr_design_job_run(*out, 1000000, NULL, NULL, &done), WR_OK);
-}
-
 /* A design search with the index and sites placed once against one
  * without: the same designs, every figure bit for bit, the same counts. */
 static void design_indexed_equals_exhaustive(void **state)
@@ -284,9 +265,9 @@ static void design_indexed_equals_exhaustive(void **state)
             spec.finger.radius = r ? 0.3 : 0;
             spec.shard_count = 1;
             wr_design_job *indexed, *exhaustive;
-            run_design(&spec, &indexed);
+            assert_int_equal(test_design_run(&spec, &indexed), WR_OK);
             spec.exhaustive = true;
-            run_design(&spec, &exhaustive);
+            assert_int_equal(test_design_run(&spec, &exhaustive), WR_OK);
             int n1, n2;
             const wr_design *d1 = wr_design_job_designs(indexed, &n1);
             const wr_design *d2 = wr_design_job_designs(exhaustive, &n2);

@@ -20,25 +20,8 @@
 
 static wr_fixture *outline_body(const wr_loop_spec *loops, size_t count, const double *com)
 {
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 2;
-    spec.shape = WR_SHAPE_OUTLINE;
-    spec.loops = loops;
-    spec.loop_count = count;
-    if (com) {
-        spec.com_given = true;
-        spec.com[0] = com[0];
-        spec.com[1] = com[1];
-        spec.inertia_given = true;
-        spec.inertia = 50;
-    }
-    wr_fixture *body = NULL;
-    wr_error error;
-    wr_status status = wr_fixture_body_new(&spec, &body, &error);
-    if (status != WR_OK)
-        fprintf(stderr, "%s: %s\n", error.field, error.reason);
-    assert_int_equal(status, WR_OK);
+    wr_fixture *body = test_outline_body(loops, count, com);
+    assert_non_null(body);
     return body;
 }
 
@@ -227,15 +210,6 @@ static void asymmetric_bracket_identity(void **state)
     wr_fixture_free(body);
 }
 
-static void run_design(const wr_design_spec *spec, wr_design_job **out)
-{
-    wr_error error;
-    assert_int_equal(wr_design_job_new(spec, out, &error), WR_OK);
-    bool done = false;
-    while (!done)
-        assert_int_equal(wr_design_job_run(*out, 1000000, NULL, NULL, &done), WR_OK);
-}
-
 /* Does the test's transform take design a's fixels onto design b's? */
 static bool maps_design(const wr_symmetry *g, const wr_site *sites, int k, const wr_design *a,
                         const wr_design *b, double eps)
@@ -287,10 +261,10 @@ static void check_collapse(const wr_fixture *body, double spacing, int k, wr_obj
     spec.top = WR_DESIGN_MAX_TOP;
     spec.shard_count = 1;
     wr_design_job *all, *collapsed;
-    run_design(&spec, &all);
+    assert_int_equal(test_design_run(&spec, &all), WR_OK);
     spec.symmetries = symmetries;
     spec.symmetry_count = symmetry_count;
-    run_design(&spec, &collapsed);
+    assert_int_equal(test_design_run(&spec, &collapsed), WR_OK);
     int n_all, n_collapsed;
     const wr_design *every = wr_design_job_designs(all, &n_all);
     const wr_design *kept = wr_design_job_designs(collapsed, &n_collapsed);
