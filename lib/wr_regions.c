@@ -995,6 +995,9 @@ wr_status wr_push_index_new(const wr_fixture *body, const wr_finger *finger,
         free(blocked.items);
         wr_regions_release(&reach);
     }
+    /* Never NULL, so that an edge's spans are always at spans + offset. */
+    if (status == WR_OK && !x->spans && !(x->spans = malloc(sizeof *x->spans)))
+        status = WR_NO_MEMORY;
     if (status == WR_OK && x->leaf_count > 0)
         index_build(x, leaf_caps, 0, x->leaf_count);
     free(leaf_caps);

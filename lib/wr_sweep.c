@@ -726,9 +726,9 @@ static wr_status edge_begin(wr_sweep_job *job)
                 const wr_span *found;
                 wr_push_index_blocked(job->push_index, e, &found, &count);
                 spans = malloc((size_t)(count > 0 ? count : 1) * sizeof *spans);
-                if (spans)
+                if (spans && count > 0)
                     memcpy(spans, found, (size_t)count * sizeof *spans);
-                else
+                if (!spans)
                     status = WR_NO_MEMORY;
             } else {
                 status = wr_finger_blocked(f->outline, loop, segment, job->finger.radius,
