@@ -6,7 +6,7 @@
 #ifndef WD_CACHE_H
 #define WD_CACHE_H
 
-#include "wp_rpc.h"
+#include "wp_host.h"
 
 #include <stdint.h>
 
@@ -28,7 +28,7 @@ void wd_cache_free(wd_cache *cache);
  * `limit` bytes of it.  Logs "loaded FILE as ID (NAME)", or the error. */
 bool wd_cache_load_file(wd_cache *cache, const char *path, size_t limit);
 
-/* The wp_host fixture functions (docs in wp_rpc.h), on the shared cache. */
+/* The wp_host fixture functions (docs in wp_host.h), on the shared cache. */
 bool wd_cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                     wp_error *error);
 bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use, wp_error *error);

@@ -191,7 +191,7 @@ static bool task_cancelled(void *argument)
  * wp_answer_work only while registered in `active`, and registers only
  * while `open`; the piece's worker closes the fork and waits for `active`
  * to reach 0 as soon as its step returns, so no helper touches the answer
- * after that (wp_rpc.h: the next step may end it).  Freed by the last of
+ * after that (wp_chunks.h: the next step may end it).  Freed by the last of
  * the piece's worker and its helpers to let go of it. */
 typedef struct wd_fork {
     pthread_mutex_t lock;

@@ -5,6 +5,7 @@
 #define WD_WORKER_H
 
 #include "wd_cache.h"
+#include "wp_rpc.h"
 
 #include <stdatomic.h>
 #include <stdbool.h>

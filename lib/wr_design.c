@@ -10,110 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- sites ------------------------------------------------------------------------- */
-
-wr_status wr_site_new(const wr_fixture *body, const double at[2], const double *normal,
-                      wr_site *out, wr_error *error)
-{
-    wr_fixel_spec fixel;
-    memset(&fixel, 0, sizeof fixel);
-    fixel.at[0] = at[0];
-    fixel.at[1] = at[1];
-    if (normal) {
-        fixel.normal_given = true;
-        fixel.normal[0] = normal[0];
-        fixel.normal[1] = normal[1];
-    }
-    /* Friction does not place a fixel; any valid value does. */
-    wr_friction_spec friction = {.given = true};
-    wr_fixture placed;
-    wr_status status = wr_fixture_place(body, &fixel, 1, &friction, &placed, error);
-    if (status != WR_OK)
-        return status;
-    memcpy(out->at, placed.fixels[0].at, sizeof out->at);
-    memcpy(out->normal, placed.fixels[0].normal, sizeof out->normal);
-    return WR_OK;
-}
-
-static wr_status site_append(const wr_fixture *body, const double point[2], wr_site **sites,
-                             int *count, int *capacity, wr_error *error)
-{
-    if (*count >= WR_DESIGN_MAX_SITES) {
-        wr_error_set(error, "", "more than %d sites", WR_DESIGN_MAX_SITES);
-        return WR_INVALID;
-    }
-    if (*count == *capacity) {
-        int grown = *capacity ? 2 * *capacity : 64;
-        wr_site *more = realloc(*sites, (size_t)grown * sizeof *more);
-        if (!more) {
-            wr_error_set(error, "", "out of memory");
-            return WR_NO_MEMORY;
-        }
-        *sites = more;
-        *capacity = grown;
-    }
-    /* The normal is derived as a fixel's there would be: the site is the
-     * fixel fixture.put would make of the point. */
-    wr_status status = wr_site_new(body, point, NULL, &(*sites)[*count], error);
-    if (status == WR_OK)
-        (*count)++;
-    return status;
-}
-
-wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **sites, int *count,
-                          wr_error *error)
-{
-    if (!(spacing > 0) || !isfinite(spacing)) {
-        wr_error_set(error, "", "must be a positive number, got %g", spacing);
-        return WR_INVALID;
-    }
-    wr_site *list = *sites;
-    int n = *count, capacity = *count;
-    wr_status status = WR_OK;
-    if (body->shape == WR_SHAPE_CIRCLE) {
-        double circumference = 2 * WR_PI * body->radius;
-        double steps = floor(circumference / spacing + 1e-9);
-        if (steps > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.3g sites, more than %d", steps, WR_DESIGN_MAX_SITES);
-            return WR_INVALID;
-        }
-        for (int i = 0; i < (int)steps && status == WR_OK; i++) {
-            double angle = 2 * WR_PI * i / steps;
-            double p[2] = {body->center[0] + body->radius * cos(angle),
-                           body->center[1] + body->radius * sin(angle)};
-            status = site_append(body, p, &list, &n, &capacity, error);
-        }
-    } else if (body->outline) {
-        const wr_outline *o = body->outline;
-        double total = 0;
-        for (size_t l = 0; l < o->loop_count; l++)
-            for (size_t s = 0; s < o->loops[l].segment_count; s++)
-                total += floor(o->loops[l].segments[s].length / spacing + 1e-9);
-        if (total > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.3g sites, more than %d", total, WR_DESIGN_MAX_SITES);
-            return WR_INVALID;
-        }
-        for (size_t l = 0; l < o->loop_count && status == WR_OK; l++)
-            for (size_t s = 0; s < o->loops[l].segment_count && status == WR_OK; s++) {
-                double length = o->loops[l].segments[s].length;
-                int steps = (int)floor(length / spacing + 1e-9);
-                double first = (length - (steps - 1) * spacing) / 2;
-                for (int i = 0; i < steps && status == WR_OK; i++) {
-                    double p[2], normal[2];
-                    wr_outline_boundary(o, l, s, (first + i * spacing) / length, p, normal);
-                    status = site_append(body, p, &list, &n, &capacity, error);
-                }
-            }
-    }
-    if (status != WR_OK && n > *count) {
-        /* Nothing appended after all: the caller's array keeps its items. */
-        n = *count;
-    }
-    *sites = list;
-    *count = n;
-    return status;
-}
-
 /* ---- margins along an edge ----------------------------------------------------------- */
 
 /* Every excluded cone of both sets must be met: the margin of the push at
@@ -355,8 +251,21 @@ typedef enum outcome {
     OUTCOME_DEGENERATE,
     OUTCOME_UNPINNED,
     OUTCOME_NO_SEATING_PUSH,
-    OUTCOME_BOUNDED
+    OUTCOME_BOUNDED,
+    OUTCOME_SHARED_HOLE
 } outcome;
+
+/* Two of the candidate's sites in one hole (wr_sites.h: a pin is one
+ * fixel; two pins in one hole are not a design). */
+static bool shares_hole(const wr_design_spec *spec, const int *sites)
+{
+    for (int i = 0; i < spec->fixel_count; i++)
+        for (int j = 0; j < i; j++)
+            if (spec->sites[sites[i]].loop > 0 &&
+                spec->sites[sites[i]].loop == spec->sites[sites[j]].loop)
+                return true;
+    return false;
+}
 
 static double regions_length(const wr_fixture *fixture, const wr_regions *regions)
 {
@@ -402,6 +311,12 @@ struct wr_design_job {
     wr_design_counts counts;
     wr_design *designs;        /* spec.top, best first */
     int design_count;
+    /* Why candidates have no seating push (wr_design_job_why): where the
+     * push is asked about, and the count per blocking goal cone, the last
+     * for a push there that is in G_goal. */
+    int why_edge;
+    double why_t;
+    uint64_t *why;             /* plan->kept_count + 1 */
     /* After the search: the designs' figures, one at a time. */
     int detailing;             /* the design being detailed */
     wr_fixture detail_fixture;
@@ -498,14 +413,34 @@ static wr_status push_regions(const wr_design_job *job, const wr_analysis *analy
     return wr_push_regions_finger(analysis, set, &job->spec.finger, NULL, out);
 }
 
+/* The goal cone that blocks the push at the job's point of asking (the
+ * plan's kept string index), or the plan's kept_count when none does. */
+static int why_no_seating_push(const wr_design_job *job, const wr_fixture *fixture,
+                               const wr_analysis *analysis, unsigned long *units)
+{
+    double wrench[3];
+    wr_push_wrench(fixture, job->why_edge, job->why_t, wrench);
+    wr_answer answer;
+    *units += (unsigned long)wr_analysis_cone_count(analysis, WR_SET_GOAL) * 40;
+    if (wr_classify_margin(analysis, wrench, WR_SET_GOAL, WR_DEFAULT_TOLERANCE, &answer) != WR_OK ||
+        answer.blocking < 0 || answer.blocking >= job->plan->kept_count)
+        return job->plan->kept_count;
+    return answer.blocking;
+}
+
 /* Score one candidate, giving up (OUTCOME_BOUNDED) once its score is
- * certainly below `threshold`.  *units: about the work done. */
+ * certainly below `threshold`.  *units: about the work done.  Without a
+ * seating push, *why says why (why_no_seating_push). */
 static wr_status score_candidate(const wr_design_job *job, const int *sites, double threshold,
-                                 outcome *result, double *score, unsigned long *units)
+                                 outcome *result, double *score, unsigned long *units, int *why)
 {
     const wr_design_spec *spec = &job->spec;
     wr_fixture fixture;
     *units += 100;
+    if (shares_hole(spec, sites)) {
+        *result = OUTCOME_SHARED_HOLE;
+        return WR_OK;
+    }
     if (place(job, sites, &fixture) != WR_OK) {
         *result = OUTCOME_DEGENERATE;
         return WR_OK;
@@ -526,14 +461,25 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     wr_regions goal, both = {0};
     status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     *units += (unsigned long)cones * (unsigned long)edges * 4;
-    if (status == WR_OK && goal.count == 0)
+    if (status == WR_OK && goal.count == 0 && spec->objective != WR_OBJECTIVE_FORCE) {
         *result = OUTCOME_NO_SEATING_PUSH;
+        *why = why_no_seating_push(job, &fixture, analysis, units);
+    }
     else if (status == WR_OK && (spec->objective == WR_OBJECTIVE_GRAVITY ||
                                  (status = wr_analysis_complete(analysis)) == WR_OK)) {
         cones += wr_analysis_cone_count(analysis, WR_SET_STRONG);
         *units += (unsigned long)cones * 40;
         *result = OUTCOME_SCORED;
-        if (spec->objective == WR_OBJECTIVE_GRAVITY) {
+        if (spec->objective == WR_OBJECTIVE_FORCE) {
+            wr_least_force least;
+            status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
+                                         spec->finger.radius, NULL, &least);
+            *units += least.evaluations * (unsigned long)cones * (unsigned long)spec->case_count;
+            if (status == WR_OK && !least.found)
+                *result = OUTCOME_NO_SEATING_PUSH;
+            else if (status == WR_OK)
+                *score = -least.force;
+        } else if (spec->objective == WR_OBJECTIVE_GRAVITY) {
             wr_regions arcs;
             status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
             if (status == WR_OK)
@@ -720,6 +666,25 @@ static bool representative(const wr_design_job *job, uint64_t r, const int *site
     return lowest;
 }
 
+/* Where a candidate without a seating push is asked why: the middle of
+ * the longest edge the finger may push on (the first of equals; a circle:
+ * at 180 degrees, the middle of its range). */
+static void why_point(const wr_design_spec *spec, int *edge, double *t)
+{
+    *edge = 0;
+    *t = spec->body->shape == WR_SHAPE_CIRCLE ? 180 : 0.5;
+    double longest = -1;
+    int edges = wr_push_edge_count(spec->body);
+    for (int e = 0; spec->body->shape != WR_SHAPE_CIRCLE && e < edges; e++) {
+        wr_region whole = {e, 0, 1};
+        double length = wr_region_length(spec->body, &whole);
+        if (wr_finger_pushes_on(spec->body, &spec->finger, e) && length > longest) {
+            longest = length;
+            *edge = e;
+        }
+    }
+}
+
 /* ---- the job --------------------------------------------------------------------------- */
 
 wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_error *error)
@@ -751,6 +716,11 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
     }
     if (!(spec->finger.radius >= 0) || !isfinite(spec->finger.radius)) {
         wr_error_set(error, "finger_radius", "must be a non-negative number");
+        return WR_INVALID;
+    }
+    if (spec->case_count < 0 || (spec->case_count > 0 && !spec->loads) ||
+        (spec->objective == WR_OBJECTIVE_FORCE && spec->case_count == 0)) {
+        wr_error_set(error, "cases", "required with the objective force");
         return WR_INVALID;
     }
     uint64_t candidates = spec->candidates
@@ -803,6 +773,13 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
         return WR_NO_MEMORY;
     }
     job->candidates = candidates;
+    job->why = calloc((size_t)job->plan->kept_count + 1, sizeof *job->why);
+    if (!job->why) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    why_point(spec, &job->why_edge, &job->why_t);
     uint64_t n = (uint64_t)spec->shard_count, i = (uint64_t)spec->shard_index;
     job->total = candidates > i ? (candidates - i + n - 1) / n : 0;
     *out = job;
@@ -886,6 +863,7 @@ bool wr_design_job_claimable(const wr_design_job *job)
 void wr_design_chunk_release(wr_design_chunk *chunk)
 {
     free(chunk->designs);
+    free(chunk->why);
     memset(chunk, 0, sizeof *chunk);
 }
 
@@ -896,8 +874,11 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
     const wr_design_spec *spec = &job->spec;
     memset(out, 0, sizeof *out);
     out->designs = calloc((size_t)spec->top, sizeof *out->designs);
-    if (!out->designs)
+    out->why = calloc((size_t)job->plan->kept_count + 1, sizeof *out->why);
+    if (!out->designs || !out->why) {
+        wr_design_chunk_release(out);
         return WR_NO_MEMORY;
+    }
     int combination[WR_MAX_FIXELS];
     if (spec->candidates)
         memcpy(combination, spec->candidates[first], sizeof combination);
@@ -929,14 +910,19 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
             double bar = fmax(threshold, threshold_of(out->designs, out->design_count, spec->top));
             outcome result;
             double score = 0;
-            status = score_candidate(job, combination, bar, &result, &score, &spent);
+            int why = 0;
+            status = score_candidate(job, combination, bar, &result, &score, &spent, &why);
             if (status != WR_OK)
                 break;
             out->counts.examined++;
             switch (result) {
             case OUTCOME_DEGENERATE: out->counts.degenerate++; break;
             case OUTCOME_UNPINNED: out->counts.unpinned++; break;
-            case OUTCOME_NO_SEATING_PUSH: out->counts.no_seating_push++; break;
+            case OUTCOME_NO_SEATING_PUSH:
+                out->counts.no_seating_push++;
+                out->why[why]++;
+                break;
+            case OUTCOME_SHARED_HOLE: out->counts.shared_hole++; break;
             case OUTCOME_BOUNDED: out->counts.bounded++; break;
             case OUTCOME_SCORED: {
                 wr_design d;
@@ -973,8 +959,11 @@ void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk)
     job->counts.degenerate += chunk->counts.degenerate;
     job->counts.unpinned += chunk->counts.unpinned;
     job->counts.no_seating_push += chunk->counts.no_seating_push;
+    job->counts.shared_hole += chunk->counts.shared_hole;
     job->counts.bounded += chunk->counts.bounded;
     job->counts.symmetric += chunk->counts.symmetric;
+    for (int i = 0; i <= job->plan->kept_count; i++)
+        job->why[i] += chunk->why[i];
 }
 
 void wr_design_job_abandon(wr_design_job *job)
@@ -989,6 +978,7 @@ static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
 {
     if (place(job, d->sites, &job->detail_fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
+    const wr_design_spec *spec = &job->spec;
     wr_fixture *fixture = &job->detail_fixture;
     wr_analysis *analysis;
     wr_status status = wr_analysis_new(fixture, &analysis);
@@ -1003,6 +993,11 @@ static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
     bool below;
     if (status == WR_OK)
         status = wr_best_push_find(analysis, &both, -INFINITY, NULL, &d->best_push, &below);
+    if (status == WR_OK && spec->case_count > 0) {
+        status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
+                                     spec->finger.radius, NULL, &d->least_force);
+        *units += d->least_force.evaluations * (unsigned long)spec->case_count * 40;
+    }
     if (status == WR_OK) {
         d->goal_length = regions_length(fixture, &goal);
         d->both_length = regions_length(fixture, &both);
@@ -1120,6 +1115,15 @@ void wr_design_job_fixture(const wr_design_job *job, const wr_design *design, wr
     (void)status;
 }
 
+const uint64_t *wr_design_job_why(const wr_design_job *job, const wr_plan **plan, int *edge,
+                                  double *t)
+{
+    *plan = job->plan;
+    *edge = job->why_edge;
+    *t = job->why_t;
+    return job->why;
+}
+
 size_t wr_design_job_bytes(const wr_design_job *job)
 {
     return sizeof *job + (size_t)job->spec.top * sizeof *job->designs +
@@ -1142,5 +1146,6 @@ void wr_design_job_free(wr_design_job *job)
     free(job->site_maps);
     free(job->tuples);
     free(job->designs);
+    free(job->why);
     free(job);
 }

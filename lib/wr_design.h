@@ -7,6 +7,7 @@
  * from 0.  Each is judged as the fixture of the body with fixels at its
  * sites, the design's friction on every fixel:
  *
+ *   - shared hole: two of its sites lie in one hole (a pin is one fixel);
  *   - degenerate: the fixels are refused as a fixture's would be (two at
  *     one point with one normal, all within WR_FIXEL_SPREAD);
  *   - unpinned: the fixels let the seated part turn about a point with
@@ -19,7 +20,14 @@
  *                             region: it ranks after every design with one);
  *       WR_OBJECTIVE_REGION   the total length of the `both` push region;
  *       WR_OBJECTIVE_GRAVITY  the longest arc of gravity tilts in G_goal, in
- *                             degrees.
+ *                             degrees;
+ *       WR_OBJECTIVE_FORCE    minus the least force of a frictionless push
+ *                             that does `both` under every load case
+ *                             (wr_least_force_find: smaller first); a
+ *                             candidate where no magnitude does counts as
+ *                             having no seating push.  Its goal region
+ *                             without loads is not asked first: gravity
+ *                             may seat a part no push alone does.
  * Designs rank by score, higher first, ties by candidate number, lower
  * first.  A candidate's score depends on nothing but the candidate, so the
  * ranking is the same however the candidates are split (shards, threads).
@@ -48,7 +56,9 @@
 #ifndef WR_DESIGN_H
 #define WR_DESIGN_H
 
+#include "wr_force.h"
 #include "wr_regions.h"
+#include "wr_sites.h"
 #include "wr_sweep.h"
 
 #include <stdint.h>
@@ -61,8 +71,7 @@ struct wr_symmetry;
 
 /* The best push's margin is the maximum to within this. */
 #define WR_DESIGN_TOLERANCE 1e-9
-/* At most this many candidate sites, and designs kept (`top`). */
-#define WR_DESIGN_MAX_SITES 100000
+/* At most this many designs kept (`top`); sites: wr_sites.h. */
 #define WR_DESIGN_MAX_TOP 1000
 /* The range of common friction the critical mu of a design is sought in
  * (friction.sweep's default). */
@@ -71,31 +80,9 @@ struct wr_symmetry;
 typedef enum wr_objective {
     WR_OBJECTIVE_MARGIN,
     WR_OBJECTIVE_REGION,
-    WR_OBJECTIVE_GRAVITY
+    WR_OBJECTIVE_GRAVITY,
+    WR_OBJECTIVE_FORCE
 } wr_objective;
-
-/* A candidate site: a boundary point and its unit inward normal, as a
- * fixel there would have them. */
-typedef struct wr_site {
-    double at[2];
-    double normal[2];
-} wr_site;
-
-/* The site at `at` on `body` (from wr_fixture_body_new), with `normal`
- * (NULL: the boundary's, required at a corner): checked as a fixel there
- * would be.  WR_OK, or WR_INVALID with `error` ("fixels[0].at" and the
- * like: the caller renames the field). */
-wr_status wr_site_new(const wr_fixture *body, const double at[2], const double *normal,
-                      wr_site *out, wr_error *error);
-
-/* Sites every `spacing` along every segment of every loop (a circle: the
- * whole circle), none closer than spacing / 2 to a segment's ends: on a
- * segment of length L, n = floor(L / spacing) sites, spacing apart,
- * centred.  Appended to *sites (malloc'd, *count items).  WR_OK;
- * WR_INVALID for a spacing that is not positive and finite, or that gives
- * more than WR_DESIGN_MAX_SITES sites; WR_NO_MEMORY (*sites as it was). */
-wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **sites, int *count,
-                          wr_error *error);
 
 /* The best push of a set of regions (wr_push_regions_finger of
  * WR_SET_BOTH on the analysis's fixture), or none. */
@@ -147,6 +134,11 @@ typedef struct wr_design_spec {
      * listed candidate whose sites repeat an earlier one's. */
     const struct wr_symmetry *symmetries;
     int symmetry_count;
+    /* Load cases (wr_force.h), each one summed wrench of the model system;
+     * borrowed.  Required (at least one) for WR_OBJECTIVE_FORCE; with any
+     * objective, each design kept reports its least push force. */
+    const double (*loads)[3];
+    int case_count;
 } wr_design_spec;
 
 /* A ranked design. */
@@ -163,6 +155,8 @@ typedef struct wr_design {
     int copies;                      /* the candidates it stands for, itself
                                         included: its images under the
                                         symmetries (1 without) */
+    wr_least_force least_force;      /* with load cases: the least push
+                                        doing `both` under all of them */
 } wr_design;
 
 typedef struct wr_design_counts {
@@ -173,6 +167,7 @@ typedef struct wr_design_counts {
     uint64_t symmetric;              /* images of a lower-numbered candidate
                                         under a symmetry: not scored, counted
                                         in that one's copies */
+    uint64_t shared_hole;            /* two sites in one hole */
     uint64_t bounded;                /* ended early by the bound: below the
                                         top designs so far (depends on the
                                         order of work; not part of the answer) */
@@ -210,6 +205,7 @@ typedef struct wr_design_chunk {
     wr_design *designs;      /* at most `top`, best first (malloc'd) */
     int design_count;
     wr_design_counts counts;
+    uint64_t *why;           /* as wr_design_job_why's (malloc'd) */
 } wr_design_chunk;
 
 /* False when no candidate is left to claim (or the job failed). */
@@ -235,6 +231,16 @@ void wr_design_job_figures_progress(const wr_design_job *job, int *done, int *to
 /* When done: the designs, best first (at most `top`), and the counts. */
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count);
 const wr_design_counts *wr_design_job_counts(const wr_design_job *job);
+/* Why candidates have no seating push: each is asked about the push at one
+ * point, the middle of the longest edge the finger may push on (*edge, *t
+ * as wr_region's; a circle: 180 degrees), and counted under the goal cone
+ * that blocks it there: an array of (*plan)->kept_count + 1 counts, index
+ * i for the plan's kept string i (its contact states in origins[i]), the
+ * last for a push there that is in G_goal (the finger cannot push there,
+ * or the region was cut by rounding).  The counts sum to no_seating_push.
+ * Valid while the job is. */
+const uint64_t *wr_design_job_why(const wr_design_job *job, const struct wr_plan **plan,
+                                  int *edge, double *t);
 /* The fixture of a design (a shallow copy of the body, valid while the
  * job is). */
 void wr_design_job_fixture(const wr_design_job *job, const wr_design *design, wr_fixture *out);

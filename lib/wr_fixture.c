@@ -6,7 +6,6 @@
 
 #include <float.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,17 +22,6 @@
 /* A given normal whose angle to the boundary is below this (its cosine with
  * the inward normal, in radians near tangency) is tangent to it. */
 #define TANGENT_TOLERANCE 1e-9
-
-void wr_error_set(wr_error *error, const char *field, const char *format, ...)
-{
-    if (!error)
-        return;
-    snprintf(error->field, sizeof error->field, "%s", field ? field : "");
-    va_list args;
-    va_start(args, format);
-    vsnprintf(error->reason, sizeof error->reason, format, args);
-    va_end(args);
-}
 
 /* Report the first non-finite component of a 2-vector as "path[i]". */
 static bool check_finite2(const double v[2], const char *path, wr_error *error)
@@ -150,22 +138,6 @@ static bool on_segment(const double a[2], const double b[2], const double c[2])
 {
     return fmin(a[0], b[0]) <= c[0] && c[0] <= fmax(a[0], b[0]) &&
            fmin(a[1], b[1]) <= c[1] && c[1] <= fmax(a[1], b[1]);
-}
-
-bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
-                       double point[2])
-{
-    double o1 = orient(a, b, c), o2 = orient(a, b, d);
-    double o3 = orient(c, d, a), o4 = orient(c, d, b);
-    if (!((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) ||
-        !((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
-        return false;
-    /* a + t (b - a) with t = o3 / (o3 - o4): the orientations are the
-     * signed distances of a and b from cd, times |cd|. */
-    double t = o3 / (o3 - o4);
-    point[0] = a[0] + t * (b[0] - a[0]);
-    point[1] = a[1] + t * (b[1] - a[1]);
-    return true;
 }
 
 /* Closed segments ab and cd share a point?  If so, *point receives one:
@@ -696,6 +668,19 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
             return false;
         }
     }
+    if (spec->units.given &&
+        !(isfinite(spec->units.length_m) && spec->units.length_m > 0 &&
+          isnormal(spec->units.length_m))) {
+        wr_error_set(error, "units.length", "must be a positive number of metres, got %g",
+                     spec->units.length_m);
+        return false;
+    }
+    if (spec->units.given &&
+        !(isfinite(spec->units.force_n) && spec->units.force_n > 0 && isnormal(spec->units.force_n))) {
+        wr_error_set(error, "units.force", "must be a positive number of newtons, got %g",
+                     spec->units.force_n);
+        return false;
+    }
     return check_friction(&spec->friction, "friction", error);
 }
 
@@ -751,6 +736,7 @@ static wr_fixture *validate(const wr_fixture_spec *spec, bool body_only, wr_erro
     }
     f->shape = spec->shape;
     f->mass = spec->mass;
+    f->units = spec->units.given ? spec->units : (wr_units){false, 1.0, 1.0};
     double area = 0, centroid[2] = {0, 0}, polar_moment = 0;
     if (spec->shape == WR_SHAPE_OUTLINE) {
         wr_error outline_error;
@@ -1011,6 +997,11 @@ void wr_fixture_unscale_row(const wr_fixture *fixture, const double scaled_row[3
     row[1] = scaled_row[1];
     row[2] = scaled_row[2] / fixture->gyration_radius;
     wr_normalize3(row);
+}
+
+double wr_fixture_force_factor(const wr_fixture *fixture)
+{
+    return fixture->units.force_n / fixture->units.length_m;
 }
 
 void wr_fixture_edge_normal(const wr_fixture *fixture, size_t edge, double normal[2])

@@ -7,7 +7,8 @@
  * mirror the JSON of docs/PROTOCOL.md ("fixels[2].normal", "body.mass"), so the
  * protocol layer only has to prefix them.
  *
- * Units: any consistent set.  Angles nowhere.  The frame is the fixture's. */
+ * Units: any consistent set, or those a fixture names (wr_units).  Angles
+ * nowhere.  The frame is the fixture's. */
 #ifndef WR_FIXTURE_H
 #define WR_FIXTURE_H
 
@@ -41,12 +42,6 @@ extern "C" {
  * of the part's size of each other). */
 #define WR_FIXEL_SPREAD 1e-3
 
-/* An error: which field, and why.  Both NUL-terminated, possibly truncated. */
-typedef struct wr_error {
-    char field[96];   /* "fixels[2].normal"; empty when no field is to blame */
-    char reason[192]; /* a sentence for a person */
-} wr_error;
-
 typedef enum wr_shape_type {
     WR_SHAPE_NONE = 0, /* no outline: com and inertia are then required */
     WR_SHAPE_CIRCLE,
@@ -76,6 +71,23 @@ typedef struct wr_friction_spec {
     double kinetic_min;
 } wr_friction_spec;
 
+/* The units a fixture names (docs/MODEL.md section 1, "Units"): what one of
+ * its length units is in metres and one of its force units in newtons; mass
+ * is always in kilograms.  Not given: the numbers are one consistent system
+ * (a force is a mass times a length per s^2) and both factors are 1.
+ *
+ * libwrench computes in the fixture's model system: mass kg, the fixture's
+ * length unit, force kg * length / s^2.  Inertia is already in it (kg *
+ * length^2) and so is G (length / s^2); a force or torque in the fixture's
+ * units becomes one of the model system when multiplied by
+ * wr_fixture_force_factor().  The protocol layer does that, once, where the
+ * number comes in, and divides by it where a force goes out. */
+typedef struct wr_units {
+    bool given;
+    double length_m; /* metres per length unit, > 0 */
+    double force_n;  /* newtons per force unit, > 0 */
+} wr_units;
+
 typedef struct wr_fixel_spec {
     double at[2];              /* contact point, on the workpiece boundary */
     bool normal_given;
@@ -100,6 +112,7 @@ typedef struct wr_fixture_spec {
     wr_friction_spec friction;      /* global friction */
     size_t fixel_count;
     const wr_fixel_spec *fixels;    /* borrowed */
+    wr_units units;                 /* not given: both factors 1 */
 } wr_fixture_spec;
 
 /* A validated fixel.  t = n turned +90 degrees: (-n_y, n_x). */
@@ -151,6 +164,7 @@ typedef struct wr_fixture {
     struct wr_outline *outline;
     int fixel_count;
     wr_fixel fixels[WR_MAX_FIXELS];
+    wr_units units;               /* as given; not given: both factors 1 */
 } wr_fixture;
 
 /* Validate `spec` and build a fixture into *out.  WR_INVALID when anything
@@ -203,6 +217,11 @@ void wr_fixture_unscale_wrench(const wr_fixture *fixture, const double scaled[3]
  * physical units (f_1, f_2, f_3 / rho), normalised. */
 void wr_fixture_unscale_row(const wr_fixture *fixture, const double scaled_row[3],
                             double row[3]);
+
+/* Model-system force (kg * length / s^2) per force unit of the fixture:
+ * force_n / length_m (1 without units).  A torque converts by the same
+ * factor, its length being the fixture's own. */
+double wr_fixture_force_factor(const wr_fixture *fixture);
 
 /* The inward unit normal of polygon edge i (vertex i to vertex i+1). */
 void wr_fixture_edge_normal(const wr_fixture *fixture, size_t edge, double normal[2]);

@@ -22,6 +22,8 @@
  * edges per fixel plus the acceleration cone's generators, with room. */
 #define WR_HULL_MAX 96
 
+/* Fill *error (NULL: nothing), the field copied and the reason formatted
+ * (wr_status.c). */
 void wr_error_set(wr_error *error, const char *field, const char *format, ...)
     __attribute__((format(printf, 3, 4)));
 
@@ -102,14 +104,14 @@ double wr_hull_depth(const wr_hull_view *cone, const double x[3]);
 
 /* Non-negative least squares: lambda >= 0 minimising |sum lambda_j a_j - y|.
  * Returns the residual norm. */
+double wr_nnls3(const double (*columns)[3], int count, const double y[3], double *lambda);
+
 /* Do the segments ab and cd cross properly, each line separating the
  * other's ends (a touch or an overlap is not a crossing)?  If so, *point
- * receives where.  Polygons (wr_fixture.c) and outlines (wr_outline.c)
- * check their edges with it. */
+ * receives where.  Defined with the outline's geometry (wr_outline.c);
+ * polygons (wr_fixture.c) and outlines check their edges with it. */
 bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
                        double point[2]);
-
-double wr_nnls3(const double (*columns)[3], int count, const double y[3], double *lambda);
 
 struct wr_constraint;
 struct wr_plan;
@@ -157,6 +159,14 @@ typedef struct wr_edge_frame {
     double half_angle, half_angle_sin; /* an arc's */
 } wr_edge_frame;
 void wr_edge_frame_of(const wr_fixture *fixture, int edge, wr_edge_frame *out);
+
+/* The closed interval [*lo, *hi] of t where the scaled wrench h0 + t h1
+ * lies in the cone's closure (*lo > *hi: nowhere): one linear condition
+ * per facet, a point per equality.  `scale` (|h0| + |h1|) sizes what
+ * counts as zero.  wr_regions.c: the push regions' lines and the force
+ * lines of wr_force.c are cut by the same rule. */
+void wr_line_in_cone(const struct wr_cone *cone, const double h0[3], const double h1[3],
+                     double scale, double *lo, double *hi);
 
 /* Is there an acceleration satisfying the constraint's acceleration rows,
  * strict rows strictly (kinematic feasibility, docs/MODEL.md section 4)? */

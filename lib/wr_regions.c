@@ -217,6 +217,14 @@ static span line_in_cone(const wr_cone *cone, const double h0[3], const double h
     return s;
 }
 
+void wr_line_in_cone(const wr_cone *cone, const double h0[3], const double h1[3], double scale,
+                     double *lo, double *hi)
+{
+    span s = line_in_cone(cone, h0, h1, scale);
+    *lo = s.lo;
+    *hi = s.hi;
+}
+
 static void scale_wrench(const wr_fixture *f, const double w[3], double h[3])
 {
     h[0] = w[0];
@@ -651,6 +659,16 @@ static bool edge_regions_blocked(const wr_fixture *f, const wr_cone **cones, int
     return ok;
 }
 
+bool wr_finger_pushes_on(const wr_fixture *fixture, const wr_finger *finger, int edge)
+{
+    if (!finger->push_on)
+        return true;
+    size_t loop = 0, segment;
+    if (fixture->shape == WR_SHAPE_OUTLINE)
+        wr_push_edge_place(fixture, edge, &loop, &segment);
+    return loop < finger->push_on_count && finger->push_on[loop];
+}
+
 wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger *finger,
                                int first_edge, int edge_count, const wr_stop *stop,
                                wr_regions *out)
@@ -674,7 +692,9 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
     wr_status failure = WR_NO_MEMORY; /* what a failure is unless said */
     if (finger->friction > 0)
         out->resolution = f->shape == WR_SHAPE_CIRCLE ? 360.0 / SAMPLES : 1.0 / SAMPLES;
-    if (f->shape == WR_SHAPE_CIRCLE) {
+    if (edge_count > 0 && !wr_finger_pushes_on(f, finger, 0) && f->shape != WR_SHAPE_OUTLINE) {
+        /* A circle's or a polygon's only loop, not pushed on: no region. */
+    } else if (f->shape == WR_SHAPE_CIRCLE) {
         /* A disc is convex: a finger of any radius reaches all of it. */
         if (finger->friction > 0) {
             ok = edge_count == 0 ||
@@ -688,7 +708,8 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
         }
     } else {
         for (int e = first_edge; e < first_edge + edge_count && ok; e++)
-            ok = edge_regions(f, cones, count, finger, e, stop, &stopped, &failure, out);
+            if (wr_finger_pushes_on(f, finger, e))
+                ok = edge_regions(f, cones, count, finger, e, stop, &stopped, &failure, out);
     }
     free(cones);
     if (!ok) {
@@ -712,7 +733,7 @@ wr_status wr_push_regions_finger(const wr_analysis *a, wr_set set, const wr_fing
 wr_status wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction,
                           const wr_stop *stop, wr_regions *out)
 {
-    wr_finger finger = {finger_friction, 0};
+    wr_finger finger = {.friction = finger_friction};
     return wr_push_regions_finger(a, set, &finger, stop, out);
 }
 
@@ -985,7 +1006,8 @@ wr_status wr_push_index_new(const wr_fixture *body, const wr_finger *finger,
             add_span(&blocked, x->spans[i].lo, x->spans[i].hi);
         wr_regions reach = {0};
         if (!blocked.failed && complement(&blocked, 0, 1, e, &reach)) {
-            if (reach.count > 0) {
+            /* An edge not pushed on (push_on) has no region either. */
+            if (reach.count > 0 && wr_finger_pushes_on(body, finger, e)) {
                 leaf_caps[x->leaf_count] = edge_cap(body, e);
                 x->leaves[x->leaf_count++] = e;
             }

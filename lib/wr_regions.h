@@ -66,7 +66,16 @@ wr_status wr_push_regions(const wr_analysis *analysis, wr_set set, double finger
 typedef struct wr_finger {
     double friction;
     double radius;
+    /* The loops it may push on (push_on): push_on[l] for loop l of an
+     * outline, push_on_count of them (a loop past them: not pushed on).
+     * NULL: every loop.  Borrowed.  A polygon's and a circle's boundary is
+     * loop 0.  A loop not pushed on has no push region at all. */
+    const bool *push_on;
+    size_t push_on_count;
 } wr_finger;
+
+/* May `finger` push on edge `edge` of the fixture (its loop in push_on)? */
+bool wr_finger_pushes_on(const wr_fixture *fixture, const wr_finger *finger, int edge);
 
 /* wr_push_regions with a finger of any size: WR_INVALID also for a
  * negative or infinite radius. */
@@ -97,7 +106,8 @@ wr_status wr_push_regions_part(const wr_analysis *analysis, wr_set set, const wr
  * holding the cap changes nothing in the exact answer, since it is decided
  * with far more room than the exact test's rounding allowance.  The
  * finger's blocked spans depend on the outline alone and are found once;
- * edges the finger reaches nowhere are left out.  A finger with friction is
+ * edges the finger reaches nowhere, or may not push on (push_on), are
+ * left out.  A finger with friction is
  * sampled, not indexed: its regions are wr_push_regions_finger's own.
  *
  * Built from a body of outline or polygon shape (wr_fixture_body_new) and

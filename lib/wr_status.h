@@ -54,6 +54,12 @@ typedef enum wr_status {
     WR_NO_SHAPE
 } wr_status;
 
+/* An error: which field, and why.  Both NUL-terminated, possibly truncated. */
+typedef struct wr_error {
+    char field[96];   /* "fixels[2].normal"; empty when no field is to blame */
+    char reason[192]; /* a sentence for a person */
+} wr_error;
+
 /* A short English phrase for the status ("out of memory"), constant and
  * never NULL; "unknown status" for a value outside the enum. */
 const char *wr_strerror(wr_status status);

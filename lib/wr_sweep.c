@@ -951,6 +951,10 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
             fixed_roots(s, h, &job->roots);
             *spent += (unsigned long)s->plane_count * 4 + 1;
             job->edge = job->edge_count;
+        } else if (job->edge < job->edge_count &&
+                   !wr_finger_pushes_on(s->fixture, &job->finger, job->edge)) {
+            /* Not pushed on: no region there, nothing changes there. */
+            job->edge++;
         } else if (job->edge < job->edge_count) {
             if (job->row < 0) {
                 status = edge_begin(job);

@@ -371,18 +371,70 @@ wr_status wr_symmetry_find(const wr_fixture *body, const wr_site *sites, int sit
     return WR_OK;
 }
 
+/* ---- the rest of a design's question ------------------------------------------------ */
+
+/* The loop of the outline that g maps loop l onto (a point of its first
+ * segment, located), or -1. */
+static int loop_image(const wr_fixture *body, const wr_symmetry *g, size_t l)
+{
+    double p[2], q[2], normal[2];
+    wr_outline_boundary(body->outline, l, 0, 0.5, p, normal);
+    wr_symmetry_point(g, p, q);
+    wr_outline_place place;
+    if (!wr_outline_locate(body->outline, q, WR_SYMMETRY_TOLERANCE * body->size, &place))
+        return -1;
+    return (int)place.loop;
+}
+
+static bool keeps(const wr_fixture *body, const wr_finger *finger, const double (*loads)[3],
+                  int case_count, const wr_symmetry *g)
+{
+    if (finger && finger->push_on && body->outline)
+        for (size_t l = 0; l < body->outline->loop_count; l++) {
+            int m = loop_image(body, g, l);
+            bool here = l < finger->push_on_count && finger->push_on[l];
+            bool there = m >= 0 && (size_t)m < finger->push_on_count && finger->push_on[m];
+            if (m < 0 || here != there)
+                return false;
+        }
+    for (int c = 0; c < case_count; c++) {
+        double f[2], size = fabs(loads[c][0]) + fabs(loads[c][1]) +
+                            fabs(loads[c][2]) / (body->gyration_radius > 0 ? body->gyration_radius : 1);
+        wr_symmetry_direction(g, loads[c], f);
+        double tau = g->reflection ? -loads[c][2] : loads[c][2];
+        double off = fabs(f[0] - loads[c][0]) + fabs(f[1] - loads[c][1]) +
+                     fabs(tau - loads[c][2]) / (body->gyration_radius > 0 ? body->gyration_radius : 1);
+        if (off > WR_SYMMETRY_TOLERANCE * size)
+            return false;
+    }
+    return true;
+}
+
+int wr_symmetry_filter(const wr_fixture *body, const wr_finger *finger, const double (*loads)[3],
+                       int case_count, wr_symmetry *list, int count)
+{
+    int kept = 0;
+    for (int i = 0; i < count; i++)
+        if (i == 0 || keeps(body, finger, loads, case_count, &list[i]))
+            list[kept++] = list[i];
+    return kept;
+}
+
 /* ---- sites ------------------------------------------------------------------------ */
 
 typedef struct normal_match {
     const wr_site *sites;
     double normal[2];
+    double pin_diameter;
 } normal_match;
 
 static bool normal_agrees(const void *context, int index)
 {
     const normal_match *m = context;
     const double *n = m->sites[index].normal;
-    return hypot(n[0] - m->normal[0], n[1] - m->normal[1]) <= WR_SYMMETRY_TOLERANCE;
+    /* A pin's image is a pin of the same diameter. */
+    return hypot(n[0] - m->normal[0], n[1] - m->normal[1]) <= WR_SYMMETRY_TOLERANCE &&
+           m->sites[index].pin_diameter == m->pin_diameter;
 }
 
 wr_status wr_symmetry_site_map(const wr_symmetry *g, const wr_site *sites, int site_count,
@@ -397,7 +449,7 @@ wr_status wr_symmetry_site_map(const wr_symmetry *g, const wr_site *sites, int s
     double eps = WR_SYMMETRY_TOLERANCE * size;
     for (int i = 0; i < site_count; i++) {
         double p[2];
-        normal_match m = {sites, {0, 0}};
+        normal_match m = {sites, {0, 0}, sites[i].pin_diameter};
         wr_symmetry_point(g, sites[i].at, p);
         wr_symmetry_direction(g, sites[i].normal, m.normal);
         map[i] = find_near(sorted, site_count, p, eps, normal_agrees, &m);

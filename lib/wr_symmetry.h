@@ -62,6 +62,17 @@ typedef struct wr_symmetry {
 wr_status wr_symmetry_find(const wr_fixture *body, const wr_site *sites, int site_count,
                            wr_symmetry **out, int *count);
 
+/* Keep, of `count` symmetries in `list`, those that also map the rest of a
+ * design's question onto itself: every loop the finger may push on onto a
+ * loop it may push on (push_on), and every load case (a physical wrench
+ * (f_x, f_y, tau), tau about the centre of mass) onto itself: its force
+ * turned by g and its torque, about the fixed centre, kept by a rotation
+ * and negated by a reflection (within WR_SYMMETRY_TOLERANCE of the
+ * wrench's size).  In place, in order; returns how many are kept (the
+ * identity always is). */
+int wr_symmetry_filter(const wr_fixture *body, const wr_finger *finger, const double (*loads)[3],
+                       int case_count, wr_symmetry *list, int count);
+
 /* g(p), and g's linear part applied to a direction (a normal). */
 void wr_symmetry_point(const wr_symmetry *g, const double p[2], double out[2]);
 void wr_symmetry_direction(const wr_symmetry *g, const double v[2], double out[2]);

@@ -7,7 +7,65 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const FIXTURE_FIELDS[] = {"name", "body", "friction", "fixels", NULL};
+static const char *const FIXTURE_FIELDS[] = {"name", "body", "friction", "fixels", "units",
+                                             NULL};
+static const char *const UNITS_FIELDS[] = {"length", "force", NULL};
+
+/* The units a fixture may name (docs/PROTOCOL.md, "Units"), each with its
+ * size in SI: exact by definition (the inch is 25.4 mm, the pound-force
+ * 0.45359237 kg times 9.80665 m/s^2). */
+typedef struct unit_name {
+    const char *name;
+    double si;
+} unit_name;
+static const unit_name LENGTH_UNITS[] = {{"mm", 1e-3}, {"m", 1.0}, {"in", 0.0254}, {NULL, 0}};
+static const unit_name FORCE_UNITS[] = {{"N", 1.0}, {"mN", 1e-3}, {"lbf", 4.4482216152605},
+                                        {NULL, 0}};
+
+/* The member `key` of a units object: one of `table`'s names. */
+static bool read_unit(const cJSON *json, const char *path, const char *key,
+                      const unit_name *table, double *si, wp_error *error)
+{
+    const char *text = NULL;
+    if (!wp_member_string(json, path, key, true, &text, error))
+        return false;
+    for (const unit_name *unit = table; unit->name; unit++)
+        if (strcmp(unit->name, text) == 0) {
+            *si = unit->si;
+            return true;
+        }
+    char field[WP_FIELD_MAX], known[64] = "";
+    wp_path_key(field, path, key);
+    for (const unit_name *unit = table; unit->name; unit++)
+        snprintf(known + strlen(known), sizeof known - strlen(known), "%s\"%s\"",
+                 unit == table ? "" : ", ", unit->name);
+    wp_error_set(error, WP_INVALID_PARAMS, field, "unknown unit \"%.40s\": one of %s", text,
+                 known);
+    return false;
+}
+
+/* {"length": "mm" | "m" | "in", "force": "N" | "mN" | "lbf"}, both required:
+ * a force's size depends on both. */
+static bool read_units(const cJSON *json, const char *path, wr_units *out, wp_error *error)
+{
+    if (!json)
+        return true; /* not given: out->given stays false */
+    if (!wp_check_object(json, path, UNITS_FIELDS, error) ||
+        !read_unit(json, path, "length", LENGTH_UNITS, &out->length_m, error) ||
+        !read_unit(json, path, "force", FORCE_UNITS, &out->force_n, error))
+        return false;
+    out->given = true;
+    return true;
+}
+
+/* The name of the unit of `table` of size `si` (one read_unit gave). */
+static const char *unit_text(const unit_name *table, double si)
+{
+    for (const unit_name *unit = table; unit->name; unit++)
+        if (unit->si == si)
+            return unit->name;
+    return NULL;
+}
 static const char *const BODY_FIELDS[] = {"mass", "inertia", "com", "shape", NULL};
 static const char *const CIRCLE_FIELDS[] = {"type", "center", "radius", NULL};
 static const char *const POLYGON_FIELDS[] = {"type", "vertices", NULL};
@@ -418,6 +476,13 @@ static cJSON *explicit_fixture(const wr_fixture *f)
         ok = false;
     else if (!ok)
         cJSON_Delete(fixels);
+    if (ok && f->units.given) {
+        /* Only when given: a fixture without units keeps the id it had. */
+        cJSON *units = cJSON_CreateObject();
+        ok = add(root, "units", units) &&
+             add(units, "length", cJSON_CreateString(unit_text(LENGTH_UNITS, f->units.length_m))) &&
+             add(units, "force", cJSON_CreateString(unit_text(FORCE_UNITS, f->units.force_n)));
+    }
     ok = ok && add(body, "mass", cJSON_CreateNumber(f->mass)) &&
          add(body, "inertia", cJSON_CreateNumber(f->inertia)) &&
          add(body, "com", vector2(f->com)) &&
@@ -492,6 +557,11 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
         wp_path_key(field, path, "friction");
         ok = read_friction(cJSON_GetObjectItemCaseSensitive(json, "friction"), field,
                            &spec.friction, error);
+    }
+    if (ok) {
+        wp_path_key(field, path, "units");
+        ok = read_units(cJSON_GetObjectItemCaseSensitive(json, "units"), field, &spec.units,
+                        error);
     }
     if (ok) {
         const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "fixels");

@@ -1,5 +1,11 @@
-/* wp_json.h -- JSON helpers of the protocol layer: errors that name a field,
- * strict typed access to request members, canonical text, a string buffer. */
+/* wp_json.h -- JSON helpers of the protocol layer, one header for a file
+ * per topic:
+ *   wp_error.c      errors that name a field; lib statuses as JSON-RPC codes
+ *   wp_read.c       strict typed access to request members
+ *   wp_buffer.c     the text buffer answers are written into
+ *   wp_canonical.c  canonical text, a tree written into a buffer
+ *   wp_scan.c       a text read without a tree: checked before parsing, ids
+ *                   as written, spans of members, long arrays of triples */
 #ifndef WP_JSON_H
 #define WP_JSON_H
 
@@ -96,9 +102,6 @@ void wp_buffer_string(wp_buffer *buffer, const char *text); /* quoted, escaped *
  * wp_format_number; a raw item (cJSON_Raw) is copied verbatim but for
  * leading spaces. */
 void wp_buffer_json(wp_buffer *buffer, const cJSON *value);
-/* Make the malloc'd, NUL-terminated `text` the contents of an empty buffer
- * (which then owns it). */
-void wp_buffer_adopt(wp_buffer *buffer, char *text);
 
 /* The NUL-terminated text (malloc'd, the caller frees), or NULL. */
 char *wp_buffer_take(wp_buffer *buffer);

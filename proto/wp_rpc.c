@@ -1,5 +1,5 @@
 /* wp_rpc.c -- the JSON-RPC 2.0 envelope: one line in, one line out. */
-#include "wp_rpc.h"
+#include "wp_method.h"
 
 #include <assert.h>
 #include <ctype.h>
@@ -66,14 +66,10 @@ struct wp_answer {
     size_t stream_written;   /* bytes the current stream's steps have written */
     bool done;
     wp_prepared prepared;    /* a long classify's wrenches, read from the text */
-    /* The fixture of the request in hand, held (invariant: `holding` iff
-     * use.handle[0] is the host's): from the light check on, or for the
-     * call, or until a streamed result's last piece. */
-    wp_fixture_use use;
-    bool holding;
+    wp_fixture_hold hold;    /* the request in hand's fixture (wp_method.h) */
     /* The request in progress, when its result is written in pieces. */
     const wp_streamer *streamer;
-    wp_stream *stream;
+    void *stream;            /* the streamer's own state */
     cJSON *params;           /* its params (in `json`, or `empty`) */
     cJSON *empty;            /* {} for a request without params */
     char *id_text;           /* its id as answered (malloc'd) */
@@ -82,41 +78,9 @@ struct wp_answer {
 
 static void release_fixture(wp_answer *answer, const wp_host *host)
 {
-    if (answer->holding)
-        host->fixture_release(host->self, &answer->use);
-    answer->holding = false;
-}
-
-/* params.fixture, held for the call: a stored id, or an inline fixture
- * object (validated, then cached under its id). */
-static bool acquire_fixture(wp_answer *answer, const wp_host *host, const cJSON *params,
-                            wp_error *error)
-{
-    if (answer->holding)
-        return true; /* held since the light check, or an earlier piece */
-    const cJSON *value = cJSON_GetObjectItemCaseSensitive(params, "fixture");
-    bool ok;
-    if (cJSON_IsString(value)) {
-        if (!wp_fixture_id_valid(value->valuestring)) {
-            wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
-                         "not a fixture id (32 hexadecimal digits) nor a fixture object");
-            return false;
-        }
-        ok = host->fixture_use(host->self, value->valuestring, &answer->use, error);
-    } else if (cJSON_IsObject(value)) {
-        wp_fixture_doc doc;
-        if (!wp_fixture_read(value, "params.fixture", &doc, error))
-            return false;
-        ok = host->fixture_adopt(host->self, &doc, false, &answer->use, error);
-    } else {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
-                     "must be a fixture id or a fixture object, not %s", wp_type_name(value));
-        return false;
-    }
-    if (!ok && !error->field[0])
-        snprintf(error->field, sizeof error->field, "params.fixture");
-    answer->holding = ok;
-    return ok;
+    if (answer->hold.holding)
+        host->fixture_release(host->self, &answer->hold.use);
+    answer->hold.holding = false;
 }
 
 /* What the envelope of one request says: an error found in it, its id as
@@ -183,10 +147,6 @@ static const wp_method *find_method(const cJSON *request, const cJSON *params, w
                      method->valuestring);
         return NULL;
     }
-    if (!m->handler && !m->stream) {
-        wp_error_set(error, WP_NO_METHOD, "method", "%s is not served yet", m->name);
-        return NULL;
-    }
     if (!wp_check_object(params, "params", m->fields, error))
         return NULL;
     for (const char *const *name = m->required; *name; name++)
@@ -226,26 +186,13 @@ static void write_error_answer(wp_answer *answer, wp_buffer *out, const wp_error
     write_error(out, error, id_text ? id_text : "null");
 }
 
-wp_fixture_use *wp_call_fixture(wp_call *call)
+/* The call of the request in hand, for its handler or stream. */
+static wp_call call_of(wp_answer *answer, const wp_host *host, cJSON *params, wp_error *error,
+                       const char *id_text)
 {
-    wp_answer *answer = call->answer;
-    if (!acquire_fixture(answer, call->host, call->params, call->error))
-        return NULL;
-    return &answer->use;
+    return (wp_call){host, &answer->limits, params, error, &answer->hold,
+                     id_text ? id_text : "null", !answer->batch && !answer->whole};
 }
-
-void wp_call_open_result(wp_call *call, wp_buffer *out)
-{
-    (void)call;
-    wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
-}
-
-const char *wp_call_id_text(const wp_call *call)
-{
-    return call->answer->id_text ? call->answer->id_text : "null";
-}
-
-bool wp_call_may_notify(const wp_call *call) { return !call->answer->batch && !call->answer->whole; }
 
 static void end_stream(wp_answer *answer, const wp_host *host)
 {
@@ -268,7 +215,7 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
                                size_t start, bool mine, unsigned long *used, wp_counts *counts)
 {
     wp_error error = {0};
-    wp_call call = {host, &answer->limits, answer->params, &error, answer};
+    wp_call call = call_of(answer, host, answer->params, &error, answer->id_text);
     unsigned long budget = answer->whole ? (unsigned long)-1 : answer->budget;
     size_t before = out->length;
     wp_step step = answer->streamer->step(answer->stream, &call, out, budget, used);
@@ -332,9 +279,9 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             m = find_method(request, params, &error);
     }
     bool cheap = !m || (m->flags & WP_CHEAP);
-    wp_call call = {host, &answer->limits, params, &error, answer};
+    wp_call call = call_of(answer, host, params, &error, id_text);
     if (m && m->stream) {
-        wp_stream *stream = m->stream->begin(&call, answer->batch ? NULL : &answer->prepared);
+        void *stream = m->stream->begin(&call, answer->batch ? NULL : &answer->prepared);
         if (stream && notification) {
             /* Nobody will read it: nothing to compute. */
             m->stream->free(stream);
@@ -487,9 +434,9 @@ bool wp_answer_light(wp_answer *answer, const wp_host *host)
     const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
     if (!cJSON_IsString(id) || !wp_fixture_id_valid(id->valuestring))
         return false;
-    assert(!answer->holding);
-    int cones = host->fixture_use_ready(host->self, id->valuestring, &answer->use);
-    answer->holding = cones >= 0;
+    assert(!answer->hold.holding);
+    int cones = host->fixture_use_ready(host->self, id->valuestring, &answer->hold.use);
+    answer->hold.holding = cones >= 0;
     return cones >= 0 && (!m->light || m->light(params, cones));
 }
 
@@ -497,21 +444,33 @@ bool wp_answer_light(wp_answer *answer, const wp_host *host)
 /* Lines from this long on are worth reading without a tree node per number. */
 #define PREPARE_BYTES 65536
 
-/* A long wrench.classify: read params.wrenches straight from the text when
- * it is the common shape (arrays of three numbers), and return a copy of
- * the line with [] in its place for the tree; NULL for the ordinary way. */
+/* The method a line names, if its row has a raw_array: found from the
+ * text, the name quoted as written (an escaped name takes the ordinary
+ * way). */
+static const wp_method *raw_array_method(const char *quoted, size_t length)
+{
+    for (const wp_method *m = wp_methods; m->name; m++)
+        if (m->raw_array && length == strlen(m->name) + 2 && quoted[0] == '"' &&
+            quoted[length - 1] == '"' && memcmp(quoted + 1, m->name, length - 2) == 0)
+            return m;
+    return NULL;
+}
+
+/* A long line of a method with a raw_array (wp_method.h): read that member
+ * of params straight from the text when it is the common shape (arrays of
+ * three numbers), and return a copy of the line with [] in its place for
+ * the tree; NULL for the ordinary way. */
 static char *prepare_wrenches(const char *line, size_t length, wp_prepared *prepared,
                               size_t *copy_length)
 {
     size_t method_start, method_end, params_start, start;
-    static const char CLASSIFY[] = "\"wrench.classify\"";
-    /* Neither params nor its wrenches is spanned before it is read: a
+    const wp_method *m;
+    /* Neither params nor its array is spanned before it is read: a
      * million wrenches are 30 MB of text. */
     if (length < PREPARE_BYTES || !wp_json_member(line, length, 0, "method", &method_start, &method_end) ||
-        method_end - method_start != sizeof CLASSIFY - 1 ||
-        memcmp(line + method_start, CLASSIFY, sizeof CLASSIFY - 1) != 0 ||
+        !(m = raw_array_method(line + method_start, method_end - method_start)) ||
         !wp_json_member_start(line, length, 0, "params", &params_start) ||
-        !wp_json_member_start(line, length, params_start, "wrenches", &start))
+        !wp_json_member_start(line, length, params_start, m->raw_array, &start))
         return NULL;
     double (*wrenches)[3];
     size_t read;

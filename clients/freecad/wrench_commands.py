@@ -144,12 +144,16 @@ class FixtureCommand(_Command):
         fixture = _run(doc, "Wrench fixture", make)
         if fixture is None:
             return
-        _say("%s: the outline of %s%s, %d loop%s, %d segments%s" % (
+        _say("%s: the outline of %s%s, %d loop%s, %d segments, lengths in %s%s" % (
             fixture.Label, source[0].Label, " " + source[1] if source[1] else "", fixture.Loops,
-            "" if fixture.Loops == 1 else "s", fixture.Segments,
-            "; curves followed by arcs within %s (at most %s off): %s" % (
-                wf._fmt(fixture.ToleranceUsed), wf._fmt(fixture.Deviation),
+            "" if fixture.Loops == 1 else "s", fixture.Segments, wf.UNIT,
+            "; curves followed by arcs within %s %s (at most %s off): %s" % (
+                wf._fmt(fixture.ToleranceUsed), wf.UNIT, wf._fmt(fixture.Deviation),
                 "; ".join(fixture.Approximated)) if fixture.Approximated else ""))
+        if fixture.OtherParts:
+            _say("the largest part is taken; not read: %s" % "; ".join(fixture.OtherParts))
+        if fixture.Ignored:
+            _say("left out (open): %s" % "; ".join(fixture.Ignored))
         if not fixture.FixelPoints:
             _say("now place the fixels: select vertices or points on the part's edges and run Add "
                  "fixels, or run Design to have wrenchd place them")
@@ -162,7 +166,7 @@ def _add_fixels(fixture, picks):
         p, n = wf.fixel_at(fixture, point, None if is_vertex else False)
         points.append(p)
         normals.append(n)
-        _say("fixel %d at %s%s" % (len(points), wf._fmt_point(p),
+        _say("fixel %d at %s %s%s" % (len(points), wf._fmt_point(p), wf.UNIT,
                                    ", normal %s (the corner's inward bisector)" % wf._fmt_point(n)
                                    if n.Length > 0 else ""))
     fixture.FixelPoints, fixture.FixelNormals = points, normals
@@ -245,16 +249,17 @@ class RegionsCommand(_Command):
             _say("%s has no fixels yet: add some (Add fixels) or run Design" % fixture.Label)
             return
         for regions in sorted(_dependents(fixture, "WrenchRegions"), key=lambda o: wf.SETS.index(o.Set)):
-            _say("%s: %d region%s, %s long (%.2f %% of the outline)%s. %s" % (
+            _say("%s: %d region%s, %s %s long (%.2f %% of the outline)%s. %s" % (
                 regions.Set, regions.Count, "" if regions.Count == 1 else "s",
-                wf._fmt(regions.TotalLength), 100 * regions.Fraction,
+                wf._fmt(regions.TotalLength), wf.UNIT, 100 * regions.Fraction,
                 "" if regions.CriticalMu == -2 else
                 ", none above mu %s" % wf._fmt(regions.CriticalMu) if regions.CriticalMu >= 0
                 else ", not empty up to mu 2", regions.Meaning))
         for push in _dependents(fixture, "WrenchBestPush"):
             if push.Found:
-                _say("best push at %s along %s, margin %.4g: push there and let go (it is in both)"
-                     % (wf._fmt_point(push.At), wf._fmt_point(push.Direction), push.Margin))
+                _say("best push at %s %s along %s, margin %.4g: push there and let go (it is in "
+                     "both)" % (wf._fmt_point(push.At), wf.UNIT, wf._fmt_point(push.Direction),
+                                push.Margin))
             else:
                 _say(push.Label)
 

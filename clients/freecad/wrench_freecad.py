@@ -61,9 +61,11 @@ and let go is `both`.
 Errors: OutlineError (a ValueError) for a face that has no outline (not
 planar, an open wire); WrenchError for what wrenchd refuses or cannot be
 asked, its message naming the fixel, the loop (and the FreeCAD edges) or
-the property at fault, and for an unreachable daemon how to start one.
+the property at fault; a busy daemon (no answer in time, too many
+clients) is said to be busy, and for an unreachable one how to start one.
 """
 
+import errno
 import json
 import math
 import os
@@ -89,6 +91,7 @@ for _path in _client_module_paths():
         break
 
 import wrenchd  # noqa: E402  (after its directory is on the path)
+import wrenchd_arcs  # noqa: E402
 
 __all__ = [
     "outline", "Outline", "Segment", "OutlineError", "WrenchError",
@@ -98,6 +101,12 @@ __all__ = [
 ]
 
 SETS = ("goal", "strong", "both")
+
+# The unit of every length the workbench reports: FreeCAD's own, whatever
+# unit schema its preferences show; the fixtures it puts name it (with
+# forces in N, and so the Mass in kg).
+UNIT = "mm"
+UNITS = {"length": UNIT, "force": "N"}
 
 # What a push in each set promises, in the words of docs/PROTOCOL.md.
 MEANING = {
@@ -202,101 +211,9 @@ def _angle(a, b):
 
 # ---- segments ----------------------------------------------------------------------
 
-class Segment:
-    """Segment `index` of loop `loop` of an outline: from `start` to `end`
-    (2-D tuples), a straight line when `bulge` is 0, else an arc of included
-    angle 4 atan(bulge), counter-clockwise positive -- as wrenchd reads a
-    vertex [x, y, bulge].  `edge`: the name of the FreeCAD edge it comes from
-    ("Edge3"), `exact`: False where it approximates that edge by arcs.  `t`
-    along it is the fraction of its length (of an arc's included angle),
-    push.regions' t."""
-
-    def __init__(self, loop, index, start, end, bulge=0.0, edge="", exact=True):
-        self.loop, self.index = loop, index
-        self.start, self.end = (float(start[0]), float(start[1])), (float(end[0]), float(end[1]))
-        self.bulge = float(bulge)
-        self.edge, self.exact = edge, exact
-        chord = _sub(self.end, self.start)
-        self.chord = _norm(chord)
-        if self.bulge:
-            b = self.bulge
-            self.sweep = 4.0 * math.atan(b)
-            self.radius = self.chord * (1.0 + b * b) / (4.0 * abs(b))
-            # The centre is on the chord's perpendicular bisector, on its
-            # left by chord (1 - b^2) / (4 b) (right for b < 0).
-            h = (1.0 - b * b) / (4.0 * b)
-            mid = ((self.start[0] + self.end[0]) / 2.0, (self.start[1] + self.end[1]) / 2.0)
-            self.centre = (mid[0] - chord[1] * h, mid[1] + chord[0] * h)
-            self.start_angle = math.atan2(self.start[1] - self.centre[1],
-                                          self.start[0] - self.centre[0])
-        else:
-            self.sweep = 0.0
-            self.radius = math.inf
-            self.centre = None
-            self.start_angle = 0.0
-
-    @property
-    def is_arc(self):
-        return self.bulge != 0.0
-
-    @property
-    def length(self):
-        return self.radius * abs(self.sweep) if self.is_arc else self.chord
-
-    def point(self, t):
-        """The point at t (t = 0 at start, 1 at end)."""
-        if t == 0.0:
-            return self.start
-        if t == 1.0:
-            return self.end
-        if self.is_arc:
-            a = self.start_angle + t * self.sweep
-            return (self.centre[0] + self.radius * math.cos(a),
-                    self.centre[1] + self.radius * math.sin(a))
-        return (self.start[0] + t * (self.end[0] - self.start[0]),
-                self.start[1] + t * (self.end[1] - self.start[1]))
-
-    def tangent(self, t):
-        """The unit direction of travel at t."""
-        if self.is_arc:
-            a = self.start_angle + t * self.sweep
-            s = 1.0 if self.sweep > 0 else -1.0
-            return (-s * math.sin(a), s * math.cos(a))
-        return _unit(_sub(self.end, self.start))
-
-    def nearest(self, p):
-        """(t, point, distance): the point of the segment nearest p."""
-        if self.is_arc:
-            a = math.atan2(p[1] - self.centre[1], p[0] - self.centre[0])
-            turn = (a - self.start_angle) * (1.0 if self.sweep > 0 else -1.0)
-            turn = math.fmod(turn, 2.0 * math.pi)
-            if turn < 0:
-                turn += 2.0 * math.pi
-            if turn <= abs(self.sweep):
-                t = turn / abs(self.sweep)
-                q = self.point(t)
-                return t, q, _norm(_sub(p, q))
-            ends = [(0.0, self.start), (1.0, self.end)]
-        else:
-            d = _sub(self.end, self.start)
-            ll = _dot(d, d)
-            t = 0.0 if ll == 0 else min(1.0, max(0.0, _dot(_sub(p, self.start), d) / ll))
-            q = self.point(t)
-            return t, q, _norm(_sub(p, q))
-        t, q = min(ends, key=lambda e: _norm(_sub(p, e[1])))
-        return t, q, _norm(_sub(p, q))
-
-    def vertex(self):
-        """The segment's start vertex as wrenchd writes it."""
-        if self.bulge:
-            return [self.start[0], self.start[1], self.bulge]
-        return [self.start[0], self.start[1]]
-
-    def __repr__(self):
-        kind = "arc %.6g deg" % math.degrees(self.sweep) if self.is_arc else "line"
-        return "<Segment %d.%d %s %s -> %s%s>" % (self.loop, self.index, kind, _fmt_point(self.start),
-                                                   _fmt_point(self.end),
-                                                   " of " + self.edge if self.edge else "")
+# One segment of an outline, its arithmetic written once for the workbench and
+# the DXF reader (clients/python/wrenchd_arcs.py).
+Segment = wrenchd_arcs.Segment
 
 
 # ---- the outline -------------------------------------------------------------------
@@ -313,6 +230,8 @@ class Outline(dict):
         self.tolerance = tolerance
         self.deviation = deviation
         self.approximated = list(approximated)
+        # what outline() left out of a shape of wires: other parts, stray open geometry
+        self.other_parts, self.ignored = [], []
         if size is None:
             xs = [c for loop in segments for s in loop for c in (s.start[0], s.end[0])]
             ys = [c for loop in segments for s in loop for c in (s.start[1], s.end[1])]
@@ -345,15 +264,8 @@ class Outline(dict):
         return [[[s.edge, s.exact] for s in loop] for loop in self.segments]
 
     def _signed_area(self, i):
-        """The signed area of loop i, counter-clockwise positive: the chord
-        polygon plus each arc's circular segment."""
-        area = 0.0
-        for s in self.segments[i]:
-            area += _cross(s.start, s.end) / 2.0
-            if s.is_arc:
-                theta = abs(s.sweep)
-                area += math.copysign(s.radius * s.radius / 2.0 * (theta - math.sin(theta)), s.sweep)
-        return area
+        """The signed area of loop i, counter-clockwise positive."""
+        return sum(s.area for s in self.segments[i])
 
     # -- the frame --
     def to_3d(self, p):
@@ -503,8 +415,11 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
     """wrenchd's shape of a planar face (see the module's docstring).
 
     face: a Part.Face, or a shape whose faces are one planar face, or a
-    shape of closed planar wires (a sketch's): the wire enclosing the
-    others is the outer boundary.
+    shape of planar wires (a sketch's): as the DXF reader does, open wires
+    and loose edges are left out (listed in `shape.ignored`) while a closed
+    wire remains; a wire inside another is its hole, one inside a hole the
+    outer boundary of another part; the largest part is taken and the
+    others listed in `shape.other_parts`.
     tolerance: how far an approximating arc may be from a curve that is not
     a line or a circle; default DEFAULT_RELATIVE_TOLERANCE times the face's
     bounding-box diagonal.
@@ -517,6 +432,7 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
     Raises OutlineError naming what is wrong: not planar, an open wire,
     no face, more vertices than wrenchd takes."""
     shape = face
+    ignored, others = [], []
     if not isinstance(shape, Part.Shape) or shape.isNull():
         raise OutlineError("outline() takes a FreeCAD face (Part.Face), not %s"
                            % type(face).__name__)
@@ -532,12 +448,24 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
         wires = list(shape.Wires)
         loose = [e for e in shape.Edges if not any(w.isSame(e) or any(x.isSame(e) for x in w.Edges)
                                                   for w in wires)]
-        if loose:
+        if not wires and not loose:
+            raise OutlineError("the shape has no face and no wire: nothing to outline")
+        # Stray open geometry (open wires, loose edges) is left out and
+        # reported while a closed wire remains (the DXF reader's rule).
+        closed = [w for w in wires if w.isClosed()]
+        if closed:
+            for w in wires:
+                if not w.isClosed():
+                    ignored.append("an open wire of %d edge%s from %s to %s" % (
+                        len(w.Edges), "" if len(w.Edges) == 1 else "s",
+                        _fmt_point(w.OrderedVertexes[0].Point), _fmt_point(w.OrderedVertexes[-1].Point)))
+            for e in loose:
+                ignored.append("an edge in no wire at %s" % _fmt_point(e.valueAt(e.FirstParameter)))
+            wires = closed
+        elif loose:
             raise OutlineError("%d edge%s belong to no wire (the first at %s): close the outline"
                                % (len(loose), "" if len(loose) == 1 else "s",
                                   _fmt_point(loose[0].valueAt(loose[0].FirstParameter))))
-        if not wires:
-            raise OutlineError("the shape has no face and no wire: nothing to outline")
     size = shape.BoundBox.DiagonalLength
     if not size > 0:
         raise OutlineError("the shape has no extent")
@@ -575,13 +503,7 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
             raise OutlineError("the tolerance is a positive length, not %r" % (tolerance,))
 
     if the_face is None and len(wires) > 1:
-        # the outer boundary encloses the others: the largest enclosed area
-        def enclosed(w):
-            try:
-                return abs(Part.Face(w).Area)
-            except Part.OCCError:
-                return w.BoundBox.DiagonalLength ** 2
-        wires.sort(key=enclosed, reverse=True)
+        wires, others = _largest_part(wires, size)
 
     inverse = frame.inverse()
 
@@ -629,7 +551,7 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
                 count = max(1, int(math.ceil(sweep / math.pi - 1e-9)))
                 if e.isClosed():
                     count = max(count, 2)
-                bulge = math.tan(sense * sweep / count / 4.0)
+                bulge = wrenchd_arcs.bulge_of_sweep(sense * sweep / count)
                 for m in range(count):
                     if m == 0:
                         p = p0
@@ -657,210 +579,100 @@ def outline(face, tolerance=None, frame=None, names=None, owner=""):
                            % (count, MAX_VERTICES,
                               ": give a larger tolerance (%s now) for the curves approximated by arcs"
                               % _fmt(tol) if approximated else ""))
-    return Outline(loops, frame, tol, deviation, approximated, size)
+    result = Outline(loops, frame, tol, deviation, approximated, size)
+    result.other_parts, result.ignored = others, ignored
+    return result
+
+
+def _largest_part(wires, size):
+    """The closed wires of a shape without a face, as the DXF reader takes
+    its loops: a wire inside an odd number of others is a hole of the
+    innermost, inside an even number the outer boundary of a part (an
+    island in a hole is a part of its own).  Returns the largest part's
+    wires (outer first) and the others' descriptions, largest first."""
+    def enclosed(w):
+        try:
+            return abs(Part.Face(w).Area)
+        except Part.OCCError:
+            return w.BoundBox.DiagonalLength ** 2
+    areas = [enclosed(w) for w in wires]
+    faces = []
+    for w in wires:
+        try:
+            faces.append(Part.Face(w))
+        except Part.OCCError:
+            faces.append(None)
+
+    def probe(w):
+        e = w.Edges[0]
+        return e.valueAt((e.FirstParameter + e.LastParameter) / 2.0)
+    inside = [[i for i in range(len(wires)) if i != j and faces[i] is not None and areas[i] > areas[j]
+               and faces[i].isInside(probe(wires[j]), 1e-9 * size, True)] for j in range(len(wires))]
+    depth = [len(x) for x in inside]
+    parts = {j: [] for j in range(len(wires)) if depth[j] % 2 == 0}
+    for j in range(len(wires)):
+        if depth[j] % 2:
+            parts[max(inside[j], key=lambda i: depth[i])].append(j)
+    ranked = sorted(parts, key=lambda j: (-(areas[j] - sum(areas[h] for h in parts[j])), j))
+    others = []
+    for j in ranked[1:]:
+        box = wires[j].BoundBox
+        others.append("a part of area %s mm^2 with %d hole%s, x %s to %s, y %s to %s, z %s" % (
+            _fmt(areas[j] - sum(areas[h] for h in parts[j])), len(parts[j]),
+            "" if len(parts[j]) == 1 else "s", _fmt(box.XMin), _fmt(box.XMax), _fmt(box.YMin),
+            _fmt(box.YMax), _fmt(box.ZMin)))
+    best = ranked[0]
+    return [wires[best]] + [wires[h] for h in sorted(parts[best])], others
 
 
 # ---- curves by arcs ----------------------------------------------------------------
 
-def _biarc(p0, t0, p1, t1):
-    """Two arcs from p0 (unit tangent t0) to p1 (unit tangent t1) that meet
-    tangentially, each turning at most half a turn: [(p0, bulge), (joint,
-    bulge)], or None where none does (the piece is then split).  The joint
-    is where the arcs' tangent lines from p0 and p1 are equally long (the
-    equal-chord biarc)."""
-    v = _sub(p1, p0)
-    vv = _dot(v, v)
-    if vv == 0:
-        return None
-    t = (t0[0] + t1[0], t0[1] + t1[1])
-    vt = _dot(v, t)
-    room = 2.0 * (1.0 - _dot(t0, t1))           # 4 - |t|^2
-    if room < 1e-14:
-        if vt <= 0:
+class _EdgeCurve:
+    """A FreeCAD edge as wrenchd_arcs.follow takes a curve: its points and
+    tangents in the outline's frame, its distance by FreeCAD's distToShape."""
+
+    def __init__(self, edge, frame):
+        self.edge, self.frame = edge, frame
+        self.inverse = frame.inverse()
+        self.rotation = self.inverse.Rotation
+        self.closed = edge.isClosed()
+
+    def point(self, u):
+        q = self.inverse.multVec(self.edge.valueAt(u))
+        return (q.x, q.y)
+
+    def tangent(self, u):
+        try:
+            d = self.rotation.multVec(self.edge.tangentAt(u))
+        except Part.OCCError:
             return None
-        d = vv / (2.0 * vt)
-    else:
-        d = (-vt + math.sqrt(vt * vt + room * vv)) / room
-    if not (d > 0) or d > 4.0 * math.sqrt(vv):
-        return None
-    q0 = (p0[0] + d * t0[0], p0[1] + d * t0[1])
-    q1 = (p1[0] - d * t1[0], p1[1] - d * t1[1])
-    joint = ((q0[0] + q1[0]) / 2.0, (q0[1] + q1[1]) / 2.0)
-    out = []
-    for start, tangent, end, at_start in ((p0, t0, joint, True), (joint, t1, p1, False)):
-        chord = _sub(end, start)
-        if _norm(chord) <= 1e-15 * math.sqrt(vv):
-            continue
-        # the included angle is twice the angle between a tangent and the chord
-        half = _angle(tangent, chord) if at_start else _angle(chord, tangent)
-        if abs(half) > math.pi / 2.0 - 1e-9:
-            return None
-        # an arc bulging less than 1e-9 of its chord is that chord (a far
-        # centre would cost its points their digits)
-        out.append((start, math.tan(half / 2.0) if abs(half) > 4e-9 else 0.0))
-    return out or None
+        return (d.x, d.y) if math.hypot(d.x, d.y) > 0.5 else None
+
+    def distance(self, p, a, b):
+        vertex = Part.Vertex(self.frame.multVec(Vector(p[0], p[1], 0.0)))
+        return self.edge.distToShape(vertex)[0]
+
+    def kinks(self, u0, u1):
+        """A B-spline's knots of multiplicity at least its degree, strictly
+        between u0 and u1: where the curve may have a corner."""
+        curve = self.edge.Curve
+        if type(curve).__name__ != "BSplineCurve":
+            return []
+        lo, hi = min(u0, u1), max(u0, u1)
+        margin = 1e-12 * (hi - lo)
+        return [k for k, m in zip(curve.getKnots(), curve.getMultiplicities())
+                if m >= curve.Degree and lo + margin < k < hi - margin]
 
 
 def _approximate(edge, u0, u1, p0, p1, frame, tolerance, size):
     """Arcs [(start point, bulge)] from p0 to p1 (p1 not included) along the
-    edge from parameter u0 to u1, each within `tolerance` of it, and the
-    largest distance measured between them both ways: from points of the
-    curve to the arcs, and (by FreeCAD's distToShape) from points of the
-    arcs to the edge.  Each piece is fitted to a fraction of the tolerance;
-    should the measure still find more than the tolerance, the fit is made
-    again, finer."""
-    fraction = 0.5
-    for _ in range(4):
-        arcs = _fit_arcs(edge, u0, u1, p0, p1, frame, fraction * tolerance, size)
-        worst = _measure(edge, u0, u1, arcs, p1, frame, tolerance)
-        if worst <= tolerance:
-            return arcs, worst
-        fraction /= 4.0
-    raise OutlineError("the arcs following the %s are %s from it, above the tolerance %s"
-                       % (_edge_kind(edge), _fmt(worst), _fmt(tolerance)))
-
-
-def _fit_arcs(edge, u0, u1, p0, p1, frame, tolerance, size):
-    """Biarcs along the edge, each within `tolerance` of it at 16 points;
-    then straight runs made one line and runs on one circle one arc."""
-    inverse = frame.inverse()
-    rotation = inverse.Rotation
-    sign = 1.0 if u1 > u0 else -1.0
-
-    def point(u):
-        q = inverse.multVec(edge.valueAt(u))
-        return (q.x, q.y)
-
-    def tangent(u):
-        try:
-            d = rotation.multVec(edge.tangentAt(u))
-            n = math.hypot(d.x, d.y)
-            if n > 0.5:
-                return (sign * d.x / n, sign * d.y / n)
-        except Part.OCCError:
-            pass
-        h = 1e-7 * (u1 - u0)         # where the derivative vanishes: a difference
-        a, b = point(u - h if u != u0 else u), point(u + h if u != u1 else u)
-        return _unit(_sub(b, a))
-
-    def within(arcs, a, b, pb):
-        segs = [Segment(0, k, s, arcs[k + 1][0] if k + 1 < len(arcs) else pb, bulge)
-                for k, (s, bulge) in enumerate(arcs)]
-        samples = 16
-        for m in range(1, samples):
-            p = point(a + (b - a) * m / samples)
-            if min(s.nearest(p)[2] for s in segs) > tolerance:
-                return False
-        return True
-
-    out = []
-
-    def piece(a, b, pa, pb, ta, tb, depth):
-        arcs = _biarc(pa, ta, pb, tb)
-        if arcs is not None and within(arcs, a, b, pb):
-            out.extend(arcs)
-            return
-        if depth >= 40 or abs(b - a) <= 1e-12 * max(1.0, abs(u1 - u0)):
-            if _norm(_sub(pb, pa)) <= tolerance:
-                out.append((pa, 0.0))
-                return
-            raise OutlineError("cannot follow the %s within %s by arcs near %s"
-                               % (_edge_kind(edge), _fmt(tolerance), _fmt_point(pa)))
-        m = (a + b) / 2.0
-        pm, tm = point(m), tangent(m)
-        piece(a, m, pa, pm, ta, tm, depth + 1)
-        piece(m, b, pm, pb, tm, tb, depth + 1)
-        if len(out) > MAX_VERTICES:
-            raise OutlineError("following the %s within %s takes more than %d arcs: give a "
-                               "larger tolerance" % (_edge_kind(edge), _fmt(tolerance), MAX_VERTICES))
-
-    def one_sided(u, toward):
-        """The tangent at a kink, as the piece from u toward `toward` has it."""
-        return tangent(u + 1e-9 * (toward - u))
-
-    # Start from pieces that each turn little (8 of a closed curve, 4 of an
-    # open one), split also where the curve may turn sharply (a B-spline's
-    # knot of multiplicity >= its degree): there each piece has its own
-    # tangent.
-    count = 8 if edge.isClosed() else 4
-    kinks = _kinks(edge, u0, u1)
-    us = sorted(set([u0 + (u1 - u0) * k / count for k in range(count + 1)] + kinks),
-                key=lambda u: (u - u0) / (u1 - u0))
-    ps = [p0] + [point(u) for u in us[1:-1]] + [p1]
-    for k in range(len(us) - 1):
-        a, b = us[k], us[k + 1]
-        ta = one_sided(a, b) if a in kinks else tangent(a)
-        tb = one_sided(b, a) if b in kinks else tangent(b)
-        piece(a, b, ps[k], ps[k + 1], ta, tb, 0)
-    return _merge(out, p1, size)
-
-
-def _kinks(edge, u0, u1):
-    """Parameters strictly between u0 and u1 where the edge's curve may have
-    a corner: a B-spline's knots of multiplicity at least its degree."""
-    curve = edge.Curve
-    if type(curve).__name__ != "BSplineCurve":
-        return []
-    lo, hi = min(u0, u1), max(u0, u1)
-    margin = 1e-12 * (hi - lo)
-    return [k for k, m in zip(curve.getKnots(), curve.getMultiplicities())
-            if m >= curve.Degree and lo + margin < k < hi - margin]
-
-
-def _merge(arcs, end, size):
-    """Consecutive pieces on one line, or on one circle turning one way (at
-    most half a turn together), made one: a B-spline that is straight or
-    circular becomes the line or the arc it is."""
-    close = 1e-9 * size
-    out = []
-    for k, (start, bulge) in enumerate(arcs):
-        stop = arcs[k + 1][0] if k + 1 < len(arcs) else end
-        if out:
-            first, first_bulge, last = out[-1]
-            joined = None
-            if bulge == 0.0 and first_bulge == 0.0:
-                # start lies on the line from first to stop
-                d = _sub(stop, first)
-                if _norm(d) > 0 and abs(_cross(d, _sub(start, first))) / _norm(d) <= close:
-                    joined = 0.0
-            elif bulge != 0.0 and first_bulge != 0.0 and (bulge > 0) == (first_bulge > 0):
-                a = Segment(0, 0, first, start, first_bulge)
-                b = Segment(0, 0, start, stop, bulge)
-                sweep = a.sweep + b.sweep
-                if _norm(_sub(a.centre, b.centre)) <= close and abs(a.radius - b.radius) <= close \
-                        and abs(sweep) <= math.pi:
-                    joined = math.tan(sweep / 4.0)
-            if joined is not None:
-                out[-1] = (first, joined, stop)
-                continue
-        out.append((start, bulge, stop))
-    return [(start, bulge) for start, bulge, _ in out]
-
-
-def _measure(edge, u0, u1, arcs, p1, frame, tolerance):
-    """The largest distance found between the edge and the arcs: from 8
-    points a piece (64 at least) of the curve to the arcs, and from 7 points
-    of each arc to the edge, by FreeCAD's distToShape."""
-    inverse = frame.inverse()
-    segs = [Segment(0, k, s, arcs[k + 1][0] if k + 1 < len(arcs) else p1, bulge)
-            for k, (s, bulge) in enumerate(arcs)]
-    worst = 0.0
-    dense = max(64, 8 * len(segs))
-    near = 0                     # the arc nearest the last sample: the next is near it
-    for m in range(dense + 1):
-        q = inverse.multVec(edge.valueAt(u0 + (u1 - u0) * m / dense))
-        p = (q.x, q.y)
-        window = range(max(0, near - 2), min(len(segs), near + 4))
-        d, near = min((segs[k].nearest(p)[2], k) for k in window)
-        if d > 0.5 * tolerance:  # far from the arcs about: ask them all
-            d, near = min((s.nearest(p)[2], k) for k, s in enumerate(segs))
-        worst = max(worst, d)
-    for s in segs:
-        for t in (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875):
-            q = s.point(t)
-            vertex = Part.Vertex(frame.multVec(Vector(q[0], q[1], 0.0)))
-            worst = max(worst, edge.distToShape(vertex)[0])
-    return worst
+    edge from parameter u0 to u1, within `tolerance` of it, and the largest
+    distance measured between them both ways (wrenchd_arcs.follow)."""
+    try:
+        return wrenchd_arcs.follow(_EdgeCurve(edge, frame), u0, u1, p0, p1, tolerance, size,
+                                   _edge_kind(edge))
+    except wrenchd_arcs.ArcFitError as error:
+        raise OutlineError(str(error)) from None
 
 
 # ---- talking to wrenchd ------------------------------------------------------------
@@ -897,6 +709,28 @@ def how_to_start(path):
 
 def _unreachable(error, path):
     return WrenchError("wrenchd is not reachable at %s (%s). %s" % (path, error, how_to_start(path)))
+
+
+def _busy(error, path):
+    """A daemon that is running but cannot take this request now: its
+    workers on other work (no answer in time), too many clients, or its
+    queue of connections full.  Starting another would not help."""
+    return WrenchError("wrenchd at %s is busy (%s): it is running, but cannot answer now. Ask "
+                       "again when its other work is done (a design or a sweep may take "
+                       "minutes), or give the fixture's Socket property another daemon's "
+                       "socket." % (path, str(error).replace("wrenchd at %s: " % path, "")))
+
+
+def _is_busy(error):
+    """Whether wrenchd's error says it is busy rather than gone: no answer in
+    time (WrenchdTimeout), too many clients (LIMIT_EXCEEDED on the
+    connection as a whole, no field), a full queue of connections
+    (EAGAIN when connecting)."""
+    if isinstance(error, wrenchd.WrenchdTimeout):
+        return True
+    if isinstance(error, wrenchd.WrenchdError):
+        return error.code == wrenchd.LIMIT_EXCEEDED and not error.field and "clients" in error.reason
+    return isinstance(error, wrenchd.WrenchdUnavailable) and os.strerror(errno.EAGAIN) in str(error)
 
 
 _FIELD = re.compile(r"^params\.(?:fixture\.)?(.*)$")
@@ -951,9 +785,11 @@ def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
     """call(), with wrenchd's errors made WrenchErrors in FreeCAD's terms."""
     try:
         return call()
-    except wrenchd.WrenchdUnavailable as error:
-        raise _unreachable(error, path) from None
-    except wrenchd.WrenchdError as error:
+    except (wrenchd.WrenchdUnavailable, wrenchd.WrenchdError) as error:
+        if _is_busy(error):
+            raise _busy(error, path) from None
+        if isinstance(error, wrenchd.WrenchdUnavailable):
+            raise _unreachable(error, path) from None
         raise _refusal(error, what, outline, fixels3d, properties) from None
 
 
@@ -1065,8 +901,8 @@ class WrenchFixture:
         _add(obj, "App::PropertyFloat", "KineticFriction", "Friction",
              "Kinetic friction, at most the static one", 0.3)
         _add(obj, "App::PropertyFloat", "Mass", "Friction",
-             "The part's mass (a uniform lamina: its centre of mass and inertia follow "
-             "from the outline)", 1.0)
+             "The part's mass in kg (a uniform lamina: its centre of mass and inertia "
+             "follow from the outline)", 1.0)
         _add(obj, "App::PropertyString", "Socket", "wrenchd",
              "wrenchd's socket; empty: $WRENCHD_SOCKET, else ./run/wrenchd.sock")
         _add(obj, "App::PropertyFloat", "Timeout", "wrenchd",
@@ -1074,8 +910,9 @@ class WrenchFixture:
         _add(obj, "App::PropertyInteger", "DesignFixels", "Design",
              "Design: how many fixels to place", 3)
         _add(obj, "App::PropertyLength", "DesignSpacing", "Design",
-             "Design: candidate sites this far apart along the outline (0: the perimeter / 40, "
-             "to two digits)",
+             "Design: candidate sites this far apart along each loop's length, across the joints "
+             "of faceted curves, clear of corners by half of it (0: the perimeter / 40, to two "
+             "digits); pushes on the outer boundary only (a point finger)",
              0.0)
         if "DesignObjective" not in obj.PropertiesList:
             obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",
@@ -1098,6 +935,10 @@ class WrenchFixture:
                 ("App::PropertyFloat", "Deviation",
                  "The largest distance measured between a curve and its arcs (0: all exact)"),
                 ("App::PropertyStringList", "Approximated", "The edges replaced by arcs"),
+                ("App::PropertyStringList", "OtherParts",
+                 "Other parts in the sketch, not read (the largest part is)"),
+                ("App::PropertyStringList", "Ignored",
+                 "Open wires and loose edges left out of the sketch's outline"),
                 ("App::PropertyStringList", "FixelsMoved",
                  "Fixels moved onto the outline (they were off it by less than the tolerance)"),
                 ("App::PropertyPlacement", "Frame",
@@ -1174,12 +1015,14 @@ class WrenchFixture:
         obj.Approximated = ["%s (%s): %d arcs, %s from it at most" % (
             a["edge"] or "an edge", a["kind"], a["arcs"], _fmt(a["deviation"]))
             for a in shape.approximated]
+        obj.OtherParts = shape.other_parts
+        obj.Ignored = shape.ignored
         obj.EdgeTable = json.dumps(shape.edge_table())
         fixels, moved = self.fixels(obj, shape)
         obj.FixelsMoved = moved
         fixture = {"name": obj.Label, "body": {"mass": obj.Mass, "shape": shape},
                    "friction": {"static": obj.StaticFriction, "kinetic": obj.KineticFriction},
-                   "fixels": fixels}
+                   "fixels": fixels, "units": dict(UNITS)}
         if not fixels:
             obj.FixtureId = ""
             obj.Pinned = False
@@ -1878,9 +1721,10 @@ def show_regions(doc, face, fixels, friction, set, client):
     an (object, "FaceN") pair, a sketch, or an object of one planar face.
     fixels: document Vectors, (point, normal) pairs, or wrenchd's fixel
     dicts in the outline's coordinates.  friction: a number, (static,
-    kinetic) or {"static", "kinetic"}.  client: a wrenchd.Client (None:
-    $WRENCHD_SOCKET or ./run/wrenchd.sock).  Raises WrenchError (what
-    wrenchd refused, or how to start it) or OutlineError."""
+    kinetic) or {"static", "kinetic"}.  client: a wrenchd.Client, its socket
+    and timeout the fixture's (None: $WRENCHD_SOCKET or ./run/wrenchd.sock,
+    60 s).  Raises WrenchError (what wrenchd refused, that it is busy, or
+    how to start it) or OutlineError."""
     if set not in SETS:
         raise ValueError("set: one of goal, strong, both, not %r" % (set,))
     if isinstance(face, Part.Shape):
@@ -1892,6 +1736,8 @@ def show_regions(doc, face, fixels, friction, set, client):
         _use_client(client)
         socket = client.socket_path
     fixture = make_fixture(doc, source, fixels, friction, socket=socket)
+    if client is not None and client.timeout:
+        fixture.Timeout = float(client.timeout)   # the client's, as given
     regions = make_regions(fixture, set)
     doc.recompute()
     _raise_failures([fixture, regions])
@@ -2015,15 +1861,15 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
 
 def _design_lines(count, shape, result, spacing):
     counts = result.counts
-    head = ("%d fixels from %d sites %s apart, %d candidates (%d without a seating push, "
-            "%d unpinned, %d degenerate), ranked by %s" % (
-                count, result.sites, _fmt(spacing), counts.get("candidates", 0),
+    head = ("%d fixels from %d sites %s %s apart, %d candidates (%d without a seating push, "
+            "%d unpinned, %d degenerate), ranked by %s; lengths in %s" % (
+                count, result.sites, _fmt(spacing), UNIT, counts.get("candidates", 0),
                 counts.get("no_seating_push", 0), counts.get("unpinned", 0),
                 counts.get("degenerate", 0),
                 {"margin": "the margin of the best push in both",
                  "region": "the length of the both region",
                  "gravity": "the longest arc of tilts under which gravity seats the part"
-                 }.get(result.objective, result.objective)))
+                 }.get(result.objective, result.objective), UNIT))
     lines = [head]
     for d in result.designs:
         at = " ".join(_fmt_point(shape.to_3d(f["at"])) for f in d.fixels)

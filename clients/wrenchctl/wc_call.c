@@ -35,7 +35,10 @@ cJSON *wc_call(wc_options *o, const char *method, cJSON *params, int *status)
     cJSON_AddStringToObject(request, "method", method);
     cJSON_AddItemToObject(request, "params", params);
     cJSON_AddNumberToObject(request, "id", 1);
-    char *line = cJSON_PrintUnformatted(request);
+    /* Every number exactly as read: cJSON's own printer writes some doubles
+     * to 15 digits (a bulge of tan(pi/8) moves by 1e-16), and the daemon
+     * would answer for another drawing. */
+    char *line = wp_canonical(request, NULL);
     cJSON_Delete(request);
     if (!line) {
         *status = EXIT_SERVER;

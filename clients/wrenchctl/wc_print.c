@@ -33,6 +33,15 @@ void wc_print_rows(const char *label, const cJSON *rows, const cJSON *flags,
         printf("  %-11s none\n", label);
 }
 
+void wc_print_units(const cJSON *fixture)
+{
+    const cJSON *units = cJSON_GetObjectItem(fixture, "units");
+    const char *length = cJSON_GetStringValue(cJSON_GetObjectItem(units, "length"));
+    const char *force = cJSON_GetStringValue(cJSON_GetObjectItem(units, "force"));
+    if (length && force)
+        printf("units: lengths in %s, forces in %s (the fixture's)\n", length, force);
+}
+
 void wc_print_strings(const cJSON *list)
 {
     const cJSON *item;

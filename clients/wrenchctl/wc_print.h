@@ -21,6 +21,12 @@ void wc_print_rows(const char *label, const cJSON *rows, const cJSON *flags,
  * below are robust: each holds for every friction in the interval. */
 void wc_print_friction(double low, double high);
 
+/* The units a fixture names (its "units" member, docs/PROTOCOL.md), as one
+ * line above a table: "units: lengths in mm, forces in N (the fixture's)".
+ * Nothing for a fixture without units (its tables are as they always
+ * were) or for a stored one given by id. */
+void wc_print_units(const cJSON *fixture);
+
 /* The strings of a list, each after a space, and a newline. */
 void wc_print_strings(const cJSON *list);
 
@@ -33,5 +39,18 @@ void wc_explain_goal(const char *blocking, const cJSON *states, char *out, size_
 
 /* The motion a strong-set blocking mode allows, in words. */
 void wc_explain_strong(const char *blocking, char *out, size_t size);
+
+/* ---- coordinates to the drawing's precision ---------------------------------- */
+
+/* The most decimals a coordinate of the drawing needs (WC_MAX_DECIMALS at
+ * most): as many as the finest number of `shape` (a body's "shape": its
+ * vertices, centre, radius; not bulges) has in its shortest exact decimal
+ * form, and never fewer than show 1/10,000 of the shape's size.  What
+ * tables print points to (wrenchctl(1), push); -1 for no shape (a
+ * stored fixture not at hand): then %g. */
+#define WC_MAX_DECIMALS 6
+int wc_drawing_decimals(const cJSON *shape);
+/* "(x, y)" to `decimals` places (-1: 6 significant digits). */
+void wc_point_text(const cJSON *point, int decimals, char *out, size_t size);
 
 #endif

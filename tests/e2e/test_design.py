@@ -6,12 +6,17 @@ push.regions, wrench.classify, gravity.sweep, friction.sweep), or from
 closed forms derived here (site positions and normals); never from
 fixture.design's own answer.
 
-Brute force.  Sites are computed here from the spacing rule (a segment of
-length L gets n = floor(L / h) sites h apart, centred; a circle
-floor(2 pi R / h) at angles 2 pi k / n), numbered loop by loop, segment by
-segment, along each segment.  Every combination of `fixels` of them, in
-lexicographic order, is put (fixture.put: refused -> degenerate, "pinned":
-false -> unpinned), then push.regions goal (empty -> no seating push),
+Brute force.  Sites are computed here from the spacing rule, by arc length
+(spacing_sites: each loop measured along its segments, cut at its corners
+-- joints turning by more than 20 degrees -- into runs; a run of length L
+gets floor((L - 2c) / h) + 1 sites h apart, centred, c clear of its ends; a
+loop without corners floor(P / h) sites P / n apart from vertex 0; a circle
+floor(2 pi R / h) at angles 2 pi k / n), numbered loop by loop, along each
+loop.  Every combination of `fixels` of them, in lexicographic order, is
+judged: two sites on one hole -> shared hole (a pin is one fixel); put
+(fixture.put: refused -> degenerate, "pinned": false -> unpinned), then
+push.regions goal, less the loops the finger may not push on (push_on,
+filtered here by the regions' loops; empty -> no seating push),
 push.regions both and gravity.sweep goal.  The margin objective's best push
 is searched here by dense sampling of every both-region interval with
 wrench.classify (set both, the frictionless push along the inward normal),
@@ -150,8 +155,60 @@ def loops_of(shape):
     raise AssertionError("no loops for " + shape["type"])
 
 
-def spacing_sites(shape, h):
-    """[(at, normal)] by the spacing rule, in the contract's order."""
+CORNER_DEG = 20.0   # a joint turning by more than this is a corner
+
+
+def turn_deg(n0, n1):
+    """The angle between two unit normals, in degrees."""
+    return math.degrees(math.atan2(abs(n0[0] * n1[1] - n0[1] * n1[0]),
+                                   n0[0] * n1[0] + n0[1] * n1[1]))
+
+
+def loop_positions(lp, h, c):
+    """Distances along a loop (from vertex 0, in the direction written) of
+    its sites: the rule of the docstring, on the loop's own lengths."""
+    segs = lp.segments
+    starts = [0.0]
+    for seg in segs:
+        starts.append(starts[-1] + seg.length)
+    perimeter = starts[-1]
+    corners = [starts[j] for j in range(len(segs))
+               if turn_deg(lp.normal(segs[j - 1], 1.0), lp.normal(segs[j], 0.0)) > CORNER_DEG]
+    if not corners:
+        n = int(math.floor(perimeter / h + 1e-9))
+        return [perimeter * k / n for k in range(n)], corners, starts
+    out = []
+    for i, c0 in enumerate(corners):
+        c1 = corners[i + 1] if i + 1 < len(corners) else corners[0] + perimeter
+        usable = c1 - c0 - 2 * c
+        if usable < -1e-9 * h:
+            continue
+        usable = max(usable, 0.0)
+        n = int(math.floor(usable / h + 1e-9)) + 1
+        first = c0 + c + (usable - (n - 1) * h) / 2
+        out += [(first + k * h) % perimeter for k in range(n)]
+    return sorted(out), corners, starts
+
+
+def loop_site(lp, starts, s):
+    """(at, normal) at distance s along the loop; at a joint the vertex and
+    the bisector of the two segments' normals."""
+    segs = lp.segments
+    j = 0
+    while j + 1 < len(segs) and starts[j + 1] <= s:
+        j += 1
+    u = min(1.0, max(0.0, (s - starts[j]) / segs[j].length))
+    if u < 1e-9 or u > 1 - 1e-9:
+        after = j if u < 1e-9 else (j + 1) % len(segs)
+        n0, n1 = lp.normal(segs[after - 1], 1.0), lp.normal(segs[after], 0.0)
+        return segs[after].point(0.0), _unit((n0[0] + n1[0], n0[1] + n1[1]))
+    return segs[j].point(u), lp.normal(segs[j], u)
+
+
+def spacing_sites(shape, h, clearance=None, pin_diameter=0.0, pin_fits=None):
+    """[(at, normal, loop)] by the spacing rule, in the contract's order.
+    pin_fits(loop, at, normal) says whether a pin of pin_diameter fits at a
+    hole's site (the caller's geometry); None: every one does."""
     if shape["type"] == "circle":
         cx, cy = shape["center"]
         r = shape["radius"]
@@ -160,16 +217,17 @@ def spacing_sites(shape, h):
         for k in range(n):
             a = 2 * math.pi * k / n
             out.append(((cx + r * math.cos(a), cy + r * math.sin(a)),
-                        (-math.cos(a), -math.sin(a))))
+                        (-math.cos(a), -math.sin(a)), 0))
         return out
+    c = h / 2 if clearance is None else clearance
     out = []
-    for lp in loops_of(shape):
-        for seg in lp.segments:
-            n = int(math.floor(seg.length / h))
-            start = (seg.length - (n - 1) * h) / 2.0
-            for k in range(n):
-                u = (start + k * h) / seg.length
-                out.append((seg.point(u), lp.normal(seg, u)))
+    for li, lp in enumerate(loops_of(shape)):
+        positions, _, starts = loop_positions(lp, h, c)
+        for s in positions:
+            at, nrm = loop_site(lp, starts, s)
+            if li > 0 and pin_fits is not None and not pin_fits(li, at, nrm):
+                continue
+            out.append((at, nrm, li))
     return out
 
 
@@ -259,9 +317,12 @@ class Brute:
     KEEP = 3            # local maxima refined per candidate
 
     def __init__(self, client, body, friction, sites, k, finger_radius=0.0,
-                 finger_friction=0.0, gravity=True):
+                 finger_friction=0.0, gravity=True, push_on=None):
+        """sites: (at, normal) or (at, normal, loop); push_on: the loops the
+        finger may push on (None: all), applied here to the regions."""
         self.client, self.body, self.friction, self.sites, self.k = (
             client, body, friction, sites, k)
+        self.push_on = push_on
         self.finger = {}
         if finger_radius:
             self.finger["finger_radius"] = finger_radius
@@ -271,8 +332,14 @@ class Brute:
         self.fixtures = [fixture_of(body, friction, site_fixels(sites, c)) for c in self.combos]
         self.kind = {}
         self.ids = {}
-        puts = batch(client, [("fixture.put", {"fixture": f}) for f in self.fixtures])
-        for r, resp in enumerate(puts):
+        loops = [site[2] if len(site) > 2 else 0 for site in sites]
+        for r, combo in enumerate(self.combos):
+            holes = [loops[i] for i in combo if loops[i] > 0]
+            if len(holes) != len(set(holes)):
+                self.kind[r] = "shared_hole"
+        puts = batch(client, [("fixture.put", {"fixture": f}) for r, f in enumerate(self.fixtures)
+                              if r not in self.kind])
+        for r, resp in zip([r for r in range(len(self.combos)) if r not in self.kind], puts):
             if "error" in resp:
                 assert resp["error"]["code"] == -32602, resp
                 self.kind[r] = "degenerate"
@@ -284,6 +351,7 @@ class Brute:
         goal = results(client, [("push.regions", dict(self.finger, fixture=self.ids[r], set="goal"))
                                 for r in live])
         self.goal = {}
+        goal = [self.reachable(g) for g in goal]
         for r, g in zip(live, goal):
             if g["regions"]:
                 self.kind[r] = "scored"
@@ -293,7 +361,7 @@ class Brute:
         self.scored = sorted(self.goal)
         both = results(client, [("push.regions", dict(self.finger, fixture=self.ids[r], set="both"))
                                 for r in self.scored])
-        self.both = dict(zip(self.scored, both))
+        self.both = dict(zip(self.scored, [self.reachable(b) for b in both]))
         self.gravity = {}
         if gravity:
             grav = results(client, [("gravity.sweep", {"fixture": self.ids[r], "set": "goal"})
@@ -303,12 +371,20 @@ class Brute:
         self._margin = None
         figure("design candidates brute-forced", len(self.combos))
 
+    def reachable(self, answer):
+        """A push.regions answer less its regions on loops not in push_on."""
+        if self.push_on is None:
+            return answer
+        kept = [g for g in answer["regions"] if g.get("loop", 0) in self.push_on]
+        return dict(answer, regions=kept, total_length=sum(g["length"] for g in kept))
+
     def counts(self, shard=(0, 1)):
         rs = [r for r in range(len(self.combos)) if r % shard[1] == shard[0]]
         kinds = [self.kind[r] for r in rs]
         return {"candidates": len(self.combos), "examined": len(rs),
                 "degenerate": kinds.count("degenerate"), "unpinned": kinds.count("unpinned"),
                 "no_seating_push": kinds.count("no_seating_push"),
+                "shared_hole": kinds.count("shared_hole"),
                 "symmetric": 0}  # design() keeps symmetric duplicates
 
     # -- the best push margin, by sampling ------------------------------------------------
@@ -390,7 +466,7 @@ class Brute:
 
 # ---- checks -----------------------------------------------------------------------------
 
-DESIGN_KEYS = {"rank", "candidate", "sites", "fixels", "best_push", "goal_length",
+DESIGN_KEYS = {"rank", "candidate", "sites", "fixels", "pins", "best_push", "goal_length",
                "both_length", "gravity_goal_deg", "critical_mu", "score", "copies"}
 
 
@@ -408,16 +484,20 @@ def check_shape_of_answer(ans, n_sites, objective, shard=(0, 1)):
                                              and a["candidate"] < b["candidate"]), (a, b)
 
 
-def check_candidate_identity(ans, brute):
-    """Each design's number, site list and fixels are those of our combination."""
+def check_candidate_identity(ans, brute, pin_diameter=0.0):
+    """Each design's number, site list and fixels are those of our
+    combination; its pins, those of its sites on holes."""
     for d in ans["designs"]:
+        loops = [brute.sites[i][2] if len(brute.sites[i]) > 2 else 0 for i in d["sites"]]
+        assert d["pins"] == [{"fixel": f, "hole": l, "diameter": pin_diameter}
+                             for f, l in enumerate(loops) if l > 0], (d["pins"], loops)
         r = d["candidate"]
         assert isinstance(r, int) and 0 <= r < len(brute.combos), d
         assert d["sites"] == list(brute.combos[r]), (r, d["sites"], brute.combos[r])
         assert len(d["fixels"]) == brute.k, d
         for fx, i in zip(d["fixels"], brute.combos[r]):
             assert set(fx) == {"at", "normal"}, fx
-            at, nrm = brute.sites[i]
+            at, nrm = brute.sites[i][:2]
             assert max(abs(fx["at"][0] - at[0]), abs(fx["at"][1] - at[1])) <= 1e-9, (i, fx, at)
             assert max(abs(fx["normal"][0] - nrm[0]), abs(fx["normal"][1] - nrm[1])) <= 1e-9, (
                 i, fx, nrm)
@@ -674,7 +754,8 @@ def test_disc_closed_forms_and_critical_mu(client):
     ans = design(client, {"body": DISC, "friction": mu, "fixels": 2, "sites": sites,
                           "objective": "region", "top": 10})
     assert ans["counts"] == {"candidates": 3, "examined": 3, "degenerate": 0, "unpinned": 0,
-                             "no_seating_push": 0, "symmetric": 0}, ans["counts"]
+                             "no_seating_push": 0, "shared_hole": 0,
+                             "symmetric": 0}, ans["counts"]
     by_sites = {tuple(d["sites"]): d for d in ans["designs"]}
     assert sorted(by_sites) == [(0, 1), (0, 2), (1, 2)], by_sites.keys()
     am = math.atan(mu)
@@ -700,7 +781,8 @@ def merged(answers, top):
     designs = [d for a in answers for d in a["designs"]]
     designs.sort(key=lambda d: (-d["score"], d["candidate"]))
     counts = {k: sum(a["counts"][k] for a in answers)
-              for k in ("examined", "degenerate", "unpinned", "no_seating_push", "symmetric")}
+              for k in ("examined", "degenerate", "unpinned", "no_seating_push", "shared_hole",
+                        "symmetric")}
     counts["candidates"] = answers[0]["counts"]["candidates"]
     return designs[:top], counts
 
@@ -793,7 +875,8 @@ def test_spacing_rectangle_clockwise_and_odd_spacing(client):
     assert ans["sites"] == 4, ans
     # one fixel is a pivot: every candidate is unpinned
     assert ans["counts"] == {"candidates": 4, "examined": 4, "degenerate": 0, "unpinned": 4,
-                             "no_seating_push": 0, "symmetric": 0}, ans["counts"]
+                             "no_seating_push": 0, "shared_hole": 0,
+                             "symmetric": 0}, ans["counts"]
     assert ans["designs"] == []
     ans = design(client, {"body": body, "friction": 0.0, "spacing": 4.5, "fixels": 3,
                           "objective": "region", "top": 10})
@@ -829,23 +912,27 @@ D_PLATE = {"mass": 1.0, "shape": {"type": "outline", "loops": [
 def test_spacing_outline_arc_sites(client):
     """D_PLATE: counter-clockwise, a line (0,0)->(4,0), a half circle about
     (4, 2), R = 2, through (6, 2) (2 pi long), lines (4,4)->(0,4)->(0,0).
-    h = 2: 2 sites on each line (at 1 and 3 from its start), 3 on the arc,
-    centred: at arc lengths (2 pi - 4) / 2 + 2 k, i.e. angles -90 degrees +
-    s / R about (4, 2), radial normals towards the centre."""
-    expected = [((1, 0), (0, 1)), ((3, 0), (0, 1))]
-    for k in range(3):
-        a = -math.pi / 2 + ((2 * math.pi - 4) / 2 + 2 * k) / 2
+    The half circle meets both lines tangentially: one run from the corner
+    (0, 0) to the corner (0, 4), 8 + 2 pi long; h = 2, c = 1: floor((6 +
+    2 pi) / 2) + 1 = 7 sites from pi - 2 along it, 2 apart: (pi - 2, 0),
+    (pi, 0); on the arc at angles -1, 0, 1 radian about (4, 2), radial
+    normals towards the centre; (pi, 4), (pi - 2, 4).  The left side, 4
+    long: 2 sites, at 1 and 3 from (0, 4)."""
+    pi = math.pi
+    expected = [((pi - 2, 0), (0, 1)), ((pi, 0), (0, 1))]
+    for a in (-1.0, 0.0, 1.0):
         expected.append(((4 + 2 * math.cos(a), 2 + 2 * math.sin(a)),
                          (-math.cos(a), -math.sin(a))))
-    expected += [((3, 4), (0, -1)), ((1, 4), (0, -1)), ((0, 3), (1, 0)), ((0, 1), (1, 0))]
+    expected += [((pi, 4), (0, -1)), ((pi - 2, 4), (0, -1)), ((0, 3), (1, 0)), ((0, 1), (1, 0))]
     ans = design(client, {"body": D_PLATE, "friction": 0.1, "spacing": 2.0, "fixels": 2,
                           "objective": "region", "top": 1000})
     assert ans["sites"] == 9, ans["sites"]
     assert_sites(sites_read_back(ans), expected)
     # and our geometry agrees (it is what the brute force builds on)
     mine = spacing_sites(D_PLATE["shape"], 2.0)
-    for (at, nrm), (a2, n2) in zip(expected, mine):
-        assert max(abs(a - b) for a, b in zip(at + nrm, a2 + n2)) <= 1e-12
+    assert len(mine) == len(expected)
+    for (at, nrm), (a2, n2, loop) in zip(expected, mine):
+        assert loop == 0 and max(abs(a - b) for a, b in zip(at + nrm, a2 + n2)) <= 1e-12
 
 
 # ---- 5. progress notifications ------------------------------------------------------------
@@ -1392,7 +1479,8 @@ def test_empty_shard(client):
     # 2 + 0 + 0 + 1 + 1 sites: C(4, 3) = 4 candidates, numbered 0..3
     assert ans["sites"] == 4
     assert ans["counts"] == {"candidates": 4, "examined": 0, "degenerate": 0, "unpinned": 0,
-                             "no_seating_push": 0, "symmetric": 0}, ans["counts"]
+                             "no_seating_push": 0, "shared_hole": 0,
+                             "symmetric": 0}, ans["counts"]
     assert ans["designs"] == [] and ans["shard"] == [7, 10]
 
 

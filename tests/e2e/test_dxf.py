@@ -1,5 +1,5 @@
-"""clients/python/wrenchd_dxf.py: the outline of a part from a DXF drawing
-(issue 16).  The drawings are written here with ezdxf (and one by FreeCAD,
+"""clients/python/wrenchd_dxf.py: the outline of a part from a DXF drawing.
+The drawings are written here with ezdxf (and one by FreeCAD,
 tests/e2e/data/); the expected loops, areas and centroids come from the
 drawing's own numbers and closed forms, with an area and centroid routine of
 this file's own (chord polygon plus circular segments), not from the tool."""
@@ -358,12 +358,21 @@ def test_a_gap_above_the_tolerance_is_an_open_chain(tmp_path):
     assert len(shape["loops"]) == 3
 
 
-def test_three_ends_at_a_point_is_a_branch(tmp_path):
+def test_a_dangling_line_is_stray_a_chord_is_a_branch(tmp_path):
     doc = new_doc()
     msp = doc.modelspace()
     for p, q in [((0, 0), (10, 0)), ((10, 0), (10, 10)), ((10, 10), (0, 0)), ((10, 0), (20, 0))]:
         msp.add_line(p, q)
-    refused(save(doc, tmp_path), "3 ends meet at (10.0, 0.0)")
+    shape, report = wrenchd_dxf.shape_from_dxf(save(doc, tmp_path))
+    same_loop(shape["loops"][0], [[0, 0], [10, 0], [10, 10]])
+    assert len(report["stray"]) == 1 and report["stray"][0]["segments"] == 1
+    assert report["stray"][0]["extent"] == [10.0, 0.0, 20.0, 0.0]
+    # a line between two corners of a square: three ends at each
+    doc = new_doc()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], format="xy", close=True)
+    msp.add_line((0, 0), (10, 10))
+    refused(save(doc, tmp_path), "3 ends meet at", "a branch", "LINE (handle")
 
 
 # ---- layers, units ----------------------------------------------------------------
@@ -371,22 +380,31 @@ def test_three_ends_at_a_point_is_a_branch(tmp_path):
 def test_layers(tmp_path):
     doc = new_doc()
     msp = doc.modelspace()
-    msp.add_lwpolyline([(0, 0), (10, 0), (10, 10)], format="xy", close=True, dxfattribs={"layer": "Part"})
+    msp.add_lwpolyline([(200, 0), (210, 0), (210, 10)], format="xy", close=True, dxfattribs={"layer": "Part"})
     add_plate(msp, layer="PLATE")
     msp.add_text("PART 7", dxfattribs={"layer": "Part"})
-    msp.add_spline([(0, 0), (5, 5), (10, 0)], dxfattribs={"layer": "Notes"})
+    msp.add_spline([(0, 70), (5, 75), (10, 70)], dxfattribs={"layer": "Notes"})
     path = save(doc, tmp_path)
     shape, report = wrenchd_dxf.shape_from_dxf(path, layer="PLATE")
     same_shape(shape, PLATE)
     assert report["ignored"] == {"on another layer": {"LWPOLYLINE": 1, "TEXT": 1, "SPLINE": 1}}
     shape, report = wrenchd_dxf.shape_from_dxf(path, layer="part")           # any case
-    assert shape["loops"] == [[[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]]
+    assert shape["loops"] == [[[200.0, 0.0], [210.0, 0.0], [210.0, 10.0]]]
     assert report["ignored"]["annotation, not geometry"] == {"TEXT": 1}
     refused(path, "no entity on layer 'nope'", "'PLATE' (10)", layer="nope")
     code, out, err = run(path, "--layer", "PLATE")
     assert code == 0 and json.loads(out) == wrenchd_dxf.shape_from_dxf(path, layer="PLATE")[0]
-    # every layer: the SPLINE is refused, where it is
-    refused(path, "SPLINE (handle", "layer 'Notes'", "at (0.0, 0.0)", "not supported")
+    # --layer repeated: both layers, two parts, the plate the larger
+    parts, report = wrenchd_dxf.read_dxf(path, layers=["PLATE", "part"])
+    assert [p["area"] for p in parts] == [pytest.approx(PLATE_AREA, rel=1e-14), 50.0]
+    assert report["ignored"]["on another layer"] == {"SPLINE": 1}
+    code, out, err = run(path, "--layer", "PLATE", "--layer", "Part", "--part", "2")
+    assert code == 0 and json.loads(out) == parts[1]["shape"]
+    assert "part 2 of 2" in err and "part 1: area %.6g mm^2" % PLATE_AREA in err
+    # every layer: the open SPLINE is stray, ignored and reported
+    shape, report = wrenchd_dxf.shape_from_dxf(path)
+    same_shape(shape, PLATE)
+    assert [c["entities"][0].split(" ")[0] for c in report["stray"]] == ["SPLINE"]
 
 
 @pytest.mark.parametrize("code,name,mm", [(4, "mm", 1.0), (1, "inch", 25.4), (0, "unitless", None),
@@ -399,12 +417,50 @@ def test_units(tmp_path, code, name, mm):
     assert shape["loops"] == [[[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0]]]
     assert report["units"]["code"] == code and report["units"]["name"] == name
     assert report["units"]["mm_per_unit"] == mm
+    unit = {4: "mm", 1: "in", 0: "mm", 6: "m"}[code]
+    assert report["units"]["unit"] == unit and report["units"]["scale"] == 1.0
+    assert wrenchd_dxf.fixture_units(report) == {"length": unit, "force": "N"}
     c, out, err = run(path, *(["--report"] if code == 6 else []))
     assert c == 0 and json.loads(out) == shape
     if code == 6:
         assert json.loads(err)["units"] == report["units"]
+    elif code:
+        assert "unit: %s ($INSUNITS %d (%s))" % (unit, code, name) in err
     else:
-        assert "units: %s ($INSUNITS %d)" % (name, code) in err
+        assert "unit: mm (not stated ($INSUNITS 0): taken as mm; give --units" in err
+
+
+@pytest.mark.parametrize("measurement", [0, 1])
+def test_measurement_is_not_the_unit(tmp_path, measurement):
+    """$INSUNITS 0 with $MEASUREMENT 0 (imperial), as some exporters write
+    drawings in mm: taken as mm, $MEASUREMENT reported only; --units in
+    says otherwise, nothing scaled."""
+    doc = new_doc(units=0)
+    doc.header["$MEASUREMENT"] = measurement
+    doc.modelspace().add_circle((0, 0), 1)
+    path = save(doc, tmp_path)
+    shape, report = wrenchd_dxf.shape_from_dxf(path)
+    assert report["units"]["unit"] == "mm"
+    assert report["units"]["measurement"] == ("metric" if measurement else "imperial")
+    shape2, report = wrenchd_dxf.shape_from_dxf(path, units="in")
+    assert shape2 == shape and report["units"]["unit"] == "in"
+    assert report["units"]["rule"] == "given (--units)"
+    code, out, err = run(path, "--units", "in")
+    assert code == 0 and json.loads(out) == shape and "unit: in (given (--units))" in err
+    code, out, err = run(path, "--units", "ft")
+    assert code == 2 and "invalid choice" in err
+
+
+@pytest.mark.parametrize("code,factor,unit", [(5, 10.0, "mm"), (2, 12.0, "in"), (14, 100.0, "mm")])
+def test_other_units_are_scaled_to_a_fixtures(tmp_path, code, factor, unit):
+    """cm, feet, dm: written in mm or inches, the numbers scaled."""
+    doc = new_doc(units=code)
+    doc.modelspace().add_lwpolyline([(0, 0), (3, 0), (3, 2), (0, 2)], format="xy", close=True)
+    parts, report = wrenchd_dxf.read_dxf(save(doc, tmp_path))
+    assert report["units"]["unit"] == unit and report["units"]["scale"] == factor
+    assert parts[0]["shape"]["loops"][0] == [[0.0, 0.0], [3 * factor, 0.0], [3 * factor, 2 * factor],
+                                             [0.0, 2 * factor]]
+    assert parts[0]["area"] == pytest.approx(6 * factor ** 2, rel=1e-15)
 
 
 # ---- round trip ----------------------------------------------------------------------
@@ -449,18 +505,38 @@ def test_round_trip(tmp_path, want, mirrored):
 def test_two_disjoint_parts(tmp_path):
     doc = new_doc()
     msp = doc.modelspace()
-    msp.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], format="xy", close=True)
     msp.add_circle((30, 5), 4)
-    refused(save(doc, tmp_path), "2 outermost loops", "disjoint parts", "--layer")
+    msp.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], format="xy", close=True)
+    path = save(doc, tmp_path)
+    parts, report = wrenchd_dxf.read_dxf(path)
+    assert [p["number"] for p in parts] == [1, 2]
+    assert parts[0]["area"] == 100.0 and parts[1]["area"] == pytest.approx(16 * math.pi, rel=1e-15)
+    assert parts[1]["extent"] == [26.0, 1.0, 34.0, 9.0]
+    shape, report = wrenchd_dxf.shape_from_dxf(path)
+    assert shape == parts[0]["shape"] and report["part"] == 1
+    assert wrenchd_dxf.shape_from_dxf(path, part=2)[0] == parts[1]["shape"]
+    refused(path, "--part 3: the drawing holds 2 parts", part=3)
+    code, out, err = run(path)
+    assert code == 0 and json.loads(out) == parts[0]["shape"]
+    assert "1 other part" in err and "part 2: area 50.2655 mm^2, 0 holes, x 26 to 34, y 1 to 9" in err
+    code, out, err = run(path, "--part", "all")
+    assert code == 0 and json.loads(out) == [p["shape"] for p in parts]
+    code, out, err = run(path, "--part", "two")
+    assert code == 1 and "'two' is not a part" in err
 
 
 def test_an_island_in_a_hole(tmp_path):
+    """A washer drawn inside its bore: a part of its own."""
     doc = new_doc()
     msp = doc.modelspace()
     msp.add_lwpolyline([(0, 0), (50, 0), (50, 50), (0, 50)], format="xy", close=True)
     msp.add_circle((25, 25), 20)
     msp.add_circle((25, 25), 5)
-    refused(save(doc, tmp_path), "lies inside the hole", "a second part")
+    msp.add_circle((25, 25), 2)
+    parts, report = wrenchd_dxf.read_dxf(save(doc, tmp_path))
+    assert [p["holes"] for p in parts] == [1, 1]
+    assert parts[0]["area"] == pytest.approx(2500 - 400 * math.pi, rel=1e-14)
+    assert parts[1]["area"] == pytest.approx(21 * math.pi, rel=1e-14)
 
 
 def test_crossing_loops(tmp_path):
@@ -493,20 +569,39 @@ def test_no_closed_loop(tmp_path):
     assert code == 1 and out == "" and "no closed loop" in err
 
 
-@pytest.mark.parametrize("kind", ["SPLINE", "ELLIPSE"])
-def test_unsupported_kinds(tmp_path, kind):
+def test_kinds_not_read_are_ignored_and_counted(tmp_path):
     doc = new_doc()
     msp = doc.modelspace()
     msp.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], format="xy", close=True)
-    if kind == "SPLINE":
-        msp.add_spline([(2, 2), (5, 8), (8, 2)])
-        where = "at (2.0, 2.0)"
-    else:
-        msp.add_ellipse((5, 5), major_axis=(3, 0, 0), ratio=0.5)
-        where = "at (5.0, 5.0)"
-    message = refused(save(doc, tmp_path), kind, "not supported", where, "FreeCAD")
-    code, out, err = run(save(doc, tmp_path))
-    assert code == 1 and kind in err and where in err
+    msp.add_3dface([(0, 0, 0), (1, 0, 0), (1, 1, 0)])
+    msp.add_solid([(20, 0), (21, 0), (20, 1)])
+    shape, report = wrenchd_dxf.shape_from_dxf(save(doc, tmp_path))
+    assert len(shape["loops"]) == 1
+    assert report["ignored"] == {"a kind of entity not read": {"3DFACE": 1, "SOLID": 1}}
+
+
+def test_an_ellipse_hole_and_a_spline_side(tmp_path):
+    """An ELLIPSE hole and a SPLINE closing a chain of LINEs: followed by
+    tangent arcs within the curve tolerance, measured both ways; the areas
+    against ezdxf's own flattening of the curves."""
+    doc = new_doc()
+    msp = doc.modelspace()
+    msp.add_line((0, 0), (40, 0))
+    msp.add_line((40, 0), (40, 30))
+    msp.add_line((0, 30), (0, 0))
+    spline = msp.add_spline(fit_points=[(40, 30), (30, 38), (20, 31), (10, 36), (0, 30)])
+    msp.add_ellipse((20, 15), major_axis=(8, 3, 0), ratio=0.4)
+    path = save(doc, tmp_path)
+    shape, report = wrenchd_dxf.shape_from_dxf(path, curve_tolerance=1e-4)
+    assert report["holes"] == 1 and len(report["curves"]) == 2
+    assert 0 < report["curve_deviation"] <= 1e-4
+    top = [(v.x, v.y) for v in spline.flattening(1e-7)]
+    poly = [(0, 0), (40, 0)] + top
+    want = abs(loop_moments([list(p) for p in poly])[0]) - math.pi * math.hypot(8, 3) ** 2 * 0.4
+    got = area_centroid(shape)[0]
+    # the arcs are within 1e-4 of a curve 60 long: the areas within 60e-4
+    assert abs(got - want) <= 60e-4 + 1e-9, (got, want)
+    assert wrenchd_dxf.read_dxf(path)[0][0]["area"] == pytest.approx(want, rel=1e-6)
 
 
 def test_out_of_the_xy_plane(tmp_path):
@@ -575,10 +670,12 @@ def test_freecad_drawing_through_wrenchd(client):
 
 
 def test_imports():
-    """wrenchd_dxf.py: Python 3.8 syntax, the standard library and ezdxf; the
-    client wrenchd.py does not import it (test_python_client.py checks the
-    client is standard library only)."""
-    for name, allowed in (("wrenchd_dxf.py", {"ezdxf"}), ("wrenchd.py", set())):
+    """wrenchd_dxf.py: Python 3.8 syntax, the standard library, ezdxf and
+    wrenchd_arcs.py (standard library only: the FreeCAD workbench imports
+    it); the client wrenchd.py does not import it (test_python_client.py
+    checks the client is standard library only)."""
+    for name, allowed in (("wrenchd_dxf.py", {"ezdxf", "wrenchd_arcs"}), ("wrenchd.py", set()),
+                          ("wrenchd_arcs.py", set())):
         with open(os.path.join(REPO, "clients", "python", name)) as fh:
             tree = ast.parse(fh.read(), name, feature_version=(3, 8))
         names = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import)

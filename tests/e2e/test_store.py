@@ -441,7 +441,7 @@ def test_storage_failure_changes_nothing(harness):
     assert c.result("server.status", {})["fixtures"] == 1
 
 
-# ---- ids of the explicit form (issue 14) ------------------------------------------
+# ---- ids of the explicit form ----------------------------------------------------
 
 def spellings():
     """Pairs of fixtures that differ only in writing out a default."""
@@ -466,7 +466,7 @@ def spellings():
 
 @pytest.mark.parametrize("pair", range(4))
 def test_writing_out_a_default_keeps_the_id(client, pair):
-    """Issue 14: "kinetic" equal to "static", a com equal to the shape's, a
+    """A "kinetic" equal to "static", a com equal to the shape's, a
     normal equal to the derived one, the fixture's friction written in every
     fixel, a normal written at unit length: one fixture, one id."""
     a, b = spellings()[pair]
@@ -525,7 +525,7 @@ def test_get_put_gives_the_id_back_and_the_id_is_its_hash(client):
 # ---- the state directory ---------------------------------------------------------
 
 def test_second_daemon_on_the_same_state_dir_refused(harness):
-    """Issue 14: a second daemon on the same --state-dir is refused (exit
+    """A second daemon on the same --state-dir is refused (exit
     status 1) with a message naming the directory and the holder's pid; once
     the first has stopped, the directory can be used again."""
     state = harness.path("state")
@@ -544,7 +544,7 @@ def test_second_daemon_on_the_same_state_dir_refused(harness):
 
 
 def test_a_file_named_otherwise_is_refused_and_a_delete_sticks(harness):
-    """Issue 14: a file whose name and content disagree is not loaded (a log
+    """A file whose name and content disagree is not loaded (a log
     line says why; the file is left in place), so deleting the fixture it
     holds leaves nothing on disk to come back at the next start."""
     state = harness.path("state")
@@ -569,7 +569,7 @@ def test_a_file_named_otherwise_is_refused_and_a_delete_sticks(harness):
 
 
 def test_files_of_older_ids_are_re_keyed(harness):
-    """Issue 14: fixtures stored under the older ids (the hash of the text
+    """Fixtures stored under the older ids (the hash of the text
     as written) keep loading, under their new id, re-keyed on disk with a
     log line; afterwards one file is left per fixture, and a delete
     sticks."""
@@ -610,7 +610,7 @@ def test_files_of_older_ids_are_re_keyed(harness):
 # ---- --max-fixtures ------------------------------------------------------------
 
 def test_max_fixtures(harness):
-    """Issue 14: --max-fixtures caps the stored fixtures: a put of a new one
+    """--max-fixtures caps the stored fixtures: a put of a new one
     past it answers -32003 (data.field "params.fixture", naming the option)
     and stores nothing; a put of a stored one (even renamed) still succeeds;
     after a delete there is room again."""

@@ -62,10 +62,30 @@ def close(a, b):
     return a == b
 
 
+def drawing_decimals(shape):
+    """The drawing's precision (docs/PROTOCOL.md, "Tables"), computed here:
+    the most decimals a coordinate of the shape has in its shortest exact
+    form, at least those that show 1/10,000 of the shape's box diagonal, at
+    most 6."""
+    xs, ys, places = [], [], 0
+    for loop in shape["loops"]:
+        for v in loop:
+            xs.append(v[0])
+            ys.append(v[1])
+            for x in v[:2]:
+                places = max(places, next(p for p in range(7)
+                                          if p == 6 or float("%.*f" % (p, x)) == x))
+    size = math.hypot(max(xs) - min(xs), max(ys) - min(ys))
+    return min(6, max(places, math.ceil(-math.log10(1e-4 * size))))
+
+
 def test_table_is_the_daemons_answer(daemon):
     b = bracket()
+    # The bracket has holes and the finger is a point: the clients push on
+    # the outer boundary only (docs/PROTOCOL.md, push_on).
     answer = daemon.client().result("fixture.design", {
-        "body": b["body"], "friction": b["friction"], "spacing": 12, "top": 4})
+        "body": b["body"], "friction": b["friction"], "spacing": 12, "top": 4,
+        "push_on": "outer"})
     r = run("design", BRACKET, "--spacing", "12", "--top", "4", socket_path=daemon.path)
     assert r.returncode == 0, r.stderr
     lines = r.stdout.splitlines()
@@ -79,7 +99,10 @@ def test_table_is_the_daemons_answer(daemon):
         assert int(cells[0]) == d["rank"]
         assert float(cells[1]) == pytest.approx(d["score"], rel=1e-5)
         push = d["best_push"]
-        assert "(%.4g, %.4g)" % tuple(push["at"]) in row
+        places = drawing_decimals(b["body"]["shape"])
+        assert places == 2
+        assert "(%.*f, %.*f)" % (places, push["at"][0], places, push["at"][1]) in row
+        assert push["loop"] == 0
     assert "let go" in r.stdout and "both" in r.stdout
     # --json: the daemon's answer itself (cJSON prints some numbers a last
     # digit short: to 1e-14).
@@ -301,7 +324,7 @@ def test_python_client_design_and_progress(daemon):
         result = client.design(b["body"], b["friction"], spacing=8, top=3, progress=seen.append)
         again = client.design(b["body"], b["friction"], spacing=8, top=3)
         raw = client.call("fixture.design", {"body": b["body"], "friction": b["friction"],
-                                             "spacing": 8, "top": 3})
+                                             "spacing": 8, "top": 3, "push_on": "outer"})
     assert [d.candidate for d in result.designs] == [d["candidate"] for d in raw["designs"]]
     assert result.counts == raw["counts"] and again.counts == raw["counts"]
     # the candidates, then perhaps the designs' figures

@@ -33,7 +33,7 @@ BINARY = os.environ.get("WRENCHD", os.path.join(REPO, "build", "wrenchd"))
 
 
 class Daemon:
-    def __init__(self):
+    def __init__(self, *options):
         if not (os.path.isfile(BINARY) and os.access(BINARY, os.X_OK)):
             pytest.fail("no daemon binary at %s (run make, or set WRENCHD)" % BINARY,
                         pytrace=False)
@@ -41,7 +41,7 @@ class Daemon:
         self.socket = os.path.join(self.dir, "wrenchd.sock")
         self.stderr = open(os.path.join(self.dir, "stderr"), "wb")
         self.proc = subprocess.Popen([BINARY, "--config", "/dev/null", "--log-level", "warn",
-                                      "--socket", self.socket], stdin=subprocess.DEVNULL,
+                                      "--socket", self.socket] + list(options), stdin=subprocess.DEVNULL,
                                      stdout=subprocess.DEVNULL, stderr=self.stderr, cwd=self.dir)
         deadline = time.monotonic() + 10
         while True:

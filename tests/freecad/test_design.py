@@ -44,7 +44,8 @@ def test_a_design_is_placed(client, doc):
     # progress reached the end
     assert seen and seen[-1]["done"] == seen[-1]["total"] == 9880
     # the ranking, in the fixture and the report view, says to push with both
-    assert fixture.Designs[0].startswith("3 fixels from 40 sites 10 apart, 9880 candidates")
+    assert fixture.Designs[0].startswith("3 fixels from 40 sites 10 mm apart, 9880 candidates")
+    assert fixture.Designs[0].endswith("; lengths in mm")
     assert "the margin of the best push in both" in fixture.Designs[0]
     assert fixture.Designs[1].startswith("1. score 0.318277")
     assert "it lies in both" in fixture.Designs[-1] and "let go" in fixture.Designs[-1]

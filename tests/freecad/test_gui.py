@@ -101,8 +101,9 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     # the report view: the design ranked, what to push with said
     report = "\n".join(result["report"])
     # the README's bracket, designed as wrenchctl designs it there
-    assert "Wrench: 3 fixels from 40 sites 10 apart, 9880 candidates" in report
+    assert "Wrench: 3 fixels from 40 sites 10 mm apart, 9880 candidates" in report
     assert "ranked by the margin of the best push in both" in report
+    assert "; lengths in mm" in report                     # the report names the unit
     assert "Wrench: 1. score 0.318277: fixels at (25, 0, 1) (105, 0, 1) (100, 30, 1)" in report
     assert "it lies in both, which seats the part from any contact state and then holds it still" \
         in report

@@ -1,5 +1,5 @@
 """make install puts the workbench in FreeCAD's Mod directory, whole (with
-its copy of the Python client); make freecad-link makes the checkout's the
+its copy of the Python client's modules); make freecad-link makes the checkout's the
 one FreeCAD loads; make uninstall removes what install put.  Each is then
 loaded by a FreeCAD of its own (freecadcmd) and asked where it found the
 modules."""
@@ -46,10 +46,11 @@ def test_make_install_and_uninstall(tmp_path):
     icons = sorted("Resources/icons/" + f
                    for f in os.listdir(os.path.join(REPO, "clients", "freecad", "Resources", "icons")))
     assert names == sorted(["Init.py", "InitGui.py", "wrench_commands.py", "wrench_freecad.py",
-                            "wrenchd.py"] + icons)
+                            "wrenchd.py", "wrenchd_arcs.py"] + icons)
     # the same files as the checkout's
     for name in names:
-        source = os.path.join(REPO, "clients", "python" if name == "wrenchd.py" else "freecad", name)
+        client_side = name in ("wrenchd.py", "wrenchd_arcs.py")
+        source = os.path.join(REPO, "clients", "python" if client_side else "freecad", name)
         with open(source, "rb") as a, open(workbench / name, "rb") as b:
             assert a.read() == b.read(), name
     # FreeCAD loads it from there, the client too (not from the checkout)
@@ -76,6 +77,7 @@ def test_make_install_for_a_user(tmp_path):
     assert os.stat(os.path.join(REPO, "build", "wrenchd")).st_mtime_ns == before
     workbench = home / ".local" / "share" / "FreeCAD" / "Mod" / "Wrench"
     assert (workbench / "InitGui.py").is_file() and (workbench / "wrenchd.py").is_file()
+    assert (workbench / "wrenchd_arcs.py").is_file()
     module, client, userdir = freecadcmd("-c", PROBE, home=home)
     assert userdir == str(home / ".local" / "share" / "FreeCAD") + "/"
     assert module == str(workbench / "wrench_freecad.py")

@@ -18,6 +18,7 @@ import pytest
 from FreeCAD import Vector as V
 
 import parts
+import wrench_freecad as wf
 from wrench_freecad import OutlineError, outline
 
 
@@ -324,3 +325,39 @@ def test_refusals(doc):
     # too fine a tolerance for wrenchd's 4096 vertices
     with pytest.raises(OutlineError, match="wrenchd takes at most 4096|larger tolerance"):
         outline(parts.curved_face(), tolerance=1e-9)
+
+
+def test_a_sketch_of_several_parts_and_stray_lines(client):
+    """A shape of wires as a sketch holds them, read by the DXF reader's
+    rules: a plate with a bore, a washer drawn in the bore (a part of its
+    own), a small tab, an open construction line and a loose edge.  The
+    largest part is taken, its area FreeCAD's own; the others are listed
+    with their areas, the open geometry left out and listed."""
+    def rect(x0, y0, x1, y1):
+        return Part.makePolygon([V(x0, y0, 0), V(x1, y0, 0), V(x1, y1, 0), V(x0, y1, 0), V(x0, y0, 0)])
+
+    def circle(x, y, r):
+        return Part.Wire(Part.makeCircle(r, V(x, y, 0)))
+    plate, bore = rect(0, 0, 100, 60), circle(40, 30, 20)
+    washer, washer_hole = circle(40, 30, 15), circle(40, 30, 7)
+    tab = rect(120, 0, 150, 20)
+    construction = Part.Wire([Part.LineSegment(V(-10, 70, 0), V(160, 70, 0)).toShape(),
+                              Part.LineSegment(V(160, 70, 0), V(160, 80, 0)).toShape()])
+    loose = Part.LineSegment(V(0, -10, 0), V(50, -10, 0)).toShape()
+    compound = Part.Compound([tab, washer_hole, construction, washer, plate, loose, bore])
+    shape = outline(compound)
+    assert len(shape["loops"]) == 2                       # the plate and its bore
+    want = Part.Face(plate).Area - Part.Face(bore).Area   # FreeCAD's areas
+    put = put_unit_density(client, shape)
+    assert put.area == pytest.approx(want, rel=1e-12)
+    washer_area = Part.Face(washer).Area - Part.Face(washer_hole).Area
+    assert len(shape.other_parts) == 2
+    # largest first: the tab (600), the washer (553)
+    assert shape.other_parts[0].startswith("a part of area 600 mm^2 with 0 holes, x 120 to 150")
+    assert shape.other_parts[1].startswith("a part of area %s mm^2 with 1 hole, x 25 to 55" % wf._fmt(washer_area))
+    assert len(shape.ignored) == 2
+    assert "an open wire of 2 edges" in shape.ignored[0]
+    assert shape.ignored[1] == "an edge in no wire at (0, -10, 0)"
+    # nothing closed: refused as before
+    with pytest.raises(OutlineError, match="open"):
+        outline(Part.Compound([construction]))

@@ -387,6 +387,61 @@ def test_an_unreachable_daemon_says_how_to_start_one(doc, tmp_path):
     assert "make run" in text and "$WRENCHD_SOCKET" in text and "Socket property" in text
 
 
+def test_the_fixture_names_its_units(client, doc):
+    """The workbench's fixture says its lengths are FreeCAD's mm (and forces
+    N, the Mass kg), and wrenchd keeps them."""
+    import json
+    regions = wf.show_regions(doc, parts.bracket_face(), BRACKET_FIXELS, 0.3, "both", client)
+    fixture = regions[0].Regions.Fixture
+    sent = json.loads(fixture.FixtureJson)
+    assert sent["units"] == {"length": "mm", "force": "N"} == wf.UNITS
+    assert client.get_fixture(fixture.FixtureId)["units"] == sent["units"]
+
+
+def test_a_busy_daemon_is_busy(doc, tmp_path):
+    """A daemon that answers nothing in time (a socket that accepts and never
+    answers, as a daemon whose workers are on a long design), and one with
+    too many clients: each is said to be busy, not unreachable."""
+    import socket
+    import time
+    import wrenchd
+    from conftest import Daemon
+    face = parts.bracket_face()
+    path = str(tmp_path / "busy.sock")
+    server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    server.bind(path)
+    server.listen(8)
+    try:
+        with pytest.raises(wf.WrenchError) as raised:
+            wf.show_regions(doc, face, BRACKET_FIXELS, 0.3, "both", wrenchd.Client(path, timeout=0.5))
+    finally:
+        server.close()
+    text = str(raised.value)
+    assert "wrenchd at %s is busy (" % path in text and "it is running" in text
+    assert "not reachable" not in text and "Start one" not in text
+    daemon = Daemon("--max-clients", "1")
+    holder = wrenchd.Client(daemon.socket, timeout=10)
+    try:
+        # connected: the one client it takes (once the daemon has seen
+        # its start-up probe's connection close)
+        deadline = time.monotonic() + 5
+        while True:
+            try:
+                holder.status()
+                break
+            except wrenchd.WrenchdError:
+                assert time.monotonic() < deadline
+                time.sleep(0.05)
+        with pytest.raises(wf.WrenchError) as raised:
+            wf.show_regions(doc, face, BRACKET_FIXELS, 0.3, "both", wrenchd.Client(daemon.socket, timeout=10))
+        text = str(raised.value)
+        assert "wrenchd at %s is busy (" % daemon.socket in text and "too many clients" in text
+        assert "not reachable" not in text
+    finally:
+        holder.close()
+        daemon.stop()
+
+
 def test_saved_and_opened_again(client, doc, tmp_path):
     """The objects are stored in the document: saved, closed and opened
     again, they hold their shapes and numbers, and recompute as before."""

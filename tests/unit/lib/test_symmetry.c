@@ -244,7 +244,8 @@ static void check_collapse(const wr_fixture *body, double spacing, int k, wr_obj
     wr_site *sites = NULL;
     int site_count = 0;
     wr_error error;
-    assert_int_equal(wr_sites_spaced(body, spacing, &sites, &site_count, &error), WR_OK);
+    wr_spacing rule = {spacing, spacing / 2, 0};
+    assert_int_equal(wr_sites_spaced(body, &rule, &sites, &site_count, &error), WR_OK);
     wr_symmetry *symmetries;
     int symmetry_count;
     assert_int_equal(wr_symmetry_find(body, sites, site_count, &symmetries, &symmetry_count),
@@ -347,7 +348,8 @@ static void disc_from_sites(void **state)
     assert_int_equal(wr_fixture_body_new(&spec, &body, &error), WR_OK);
     wr_site *sites = NULL;
     int n = 0;
-    assert_int_equal(wr_sites_spaced(body, 2 * TEST_PI * 5 / 12, &sites, &n, &error), WR_OK);
+    wr_spacing rule = {2 * TEST_PI * 5 / 12, TEST_PI * 5 / 12, 0};
+    assert_int_equal(wr_sites_spaced(body, &rule, &sites, &n, &error), WR_OK);
     assert_int_equal(n, 12);
     wr_symmetry *list;
     int count;

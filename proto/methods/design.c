@@ -1,9 +1,11 @@
-/* wp_design.c -- fixture.design: parameters, progress, the answer. */
-#include "wp_design.h"
-#include "wp_fixture.h"
+/* design.c -- fixture.design: parameters, progress, the answer; the search
+ * run a budget at a time (lib/wr_design.h), its chunks shared with helpers. */
+#include "common.h"
+#include "loads.h"
+#include "methods.h"
+#include "wp_chunks.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,28 +15,28 @@
  * of the search). */
 #define PROGRESS_INTERVAL_S 0.25
 
-static const char *const OBJECTIVES[] = {"margin", "region", "gravity"};
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force"};
 
-struct wp_design_stream {
-    /* Steps (one thread at a time) and wp_design_work (any number of
-     * threads beside them) share the job: claims and merges under it. */
-    pthread_mutex_t lock;
+typedef struct design_state design_state;
+
+/* Chunks made ahead of the one merged, at most, in each stage. */
+#define DESIGN_WINDOW 16
+
+struct design_state {
     wr_fixture *body;
     wr_site *sites;
     int site_count;
     wr_design_spec spec;
+    bool *push_on;        /* spec.finger.push_on, owned */
     wr_design_job *job;
     uint64_t candidates;  /* of every shard */
     bool progress;
     bool opened;          /* the response is open */
     bool search_reported; /* the notification at the search's end is sent */
     double last_report;   /* monotonic seconds; < 0 before the first */
-    wr_status failure;    /* a failure seen in a shared step, said in the next */
-    /* wp_design_parallel said yes since the last step began: the host may
-     * have helpers in wp_design_work until the next step returns, even if
-     * they have claimed every chunk by the time it begins.  Only the
-     * steps' thread reads and writes it. */
-    bool forked;
+    /* The engine of each stage (wp_chunks.h); the job's claims and merges
+     * are made under its lock, the job's progress read by the steps. */
+    wp_chunks *poses_chunks, *search;
     /* A lattice: its designs are enumerated first, then they are the
      * candidates (their fixels the sites, three each). */
     wr_lattice_job *lattice;
@@ -52,7 +54,10 @@ struct wp_design_stream {
     int stage;
     double stage_started;
     uint64_t stage_done;
+    double (*loads)[3];   /* params.cases, summed (spec.loads points here) */
 };
+
+static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
 
 static double now_s(void)
 {
@@ -96,9 +101,45 @@ static void site_error(wp_error *error, size_t index, const wr_error *invalid)
     wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid->reason);
 }
 
-static const char *const SITE_FIELDS[] = {"at", "normal", NULL};
+static const char *const SITE_FIELDS[] = {"at", "normal", "pin", NULL};
+static const char *const PIN_FIELDS[] = {"hole", "diameter", NULL};
 
-static bool read_sites(const cJSON *list, wp_design_stream *s, wp_error *error)
+/* params.sites[i].pin: {"hole": L, "diameter": D}, the site where that pin
+ * touches the hole's wall (wr_site_pin). */
+static bool read_pin(const cJSON *pin, const char *field, const double at[2], bool has_normal,
+                     design_state *s, wr_site *out, wp_error *error)
+{
+    char path[WP_FIELD_MAX], at_field[WP_FIELD_MAX];
+    wp_path_key(path, field, "pin");
+    double hole, diameter;
+    if (!wp_check_object(pin, path, PIN_FIELDS, error) ||
+        !wp_member_number(pin, path, "hole", true, &hole, NULL, error) ||
+        !wp_member_number(pin, path, "diameter", true, &diameter, NULL, error))
+        return false;
+    if (has_normal) {
+        wp_path_key(at_field, field, "normal");
+        wp_error_set(error, WP_INVALID_PARAMS, at_field,
+                     "not with a pin: its normal is the hole wall's where the pin touches");
+        return false;
+    }
+    if (hole != floor(hole) || fabs(hole) > 1e9)
+        hole = -1; /* refused below, with the hole numbers allowed */
+    wr_error invalid;
+    wr_status status = wr_site_pin(s->body, (int)hole, diameter, at, out, &invalid);
+    if (status == WR_OK)
+        return true;
+    if (strcmp(invalid.field, "at") == 0)
+        wp_path_key(at_field, field, "at");
+    else if (invalid.field[0])
+        wp_path_key(at_field, path, invalid.field);
+    else
+        snprintf(at_field, sizeof at_field, "%s", status == WR_INVALID ? path : "");
+    wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL, at_field, "%s",
+                 invalid.reason);
+    return false;
+}
+
+static bool read_sites(const cJSON *list, design_state *s, wp_error *error)
 {
     if (!cJSON_IsArray(list)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.sites",
@@ -127,6 +168,12 @@ static bool read_sites(const cJSON *list, wp_design_stream *s, wp_error *error)
             !wp_member_vector2(item, field, "at", true, at, NULL, error) ||
             !wp_member_vector2(item, field, "normal", false, normal, &has_normal, error))
             return false;
+        const cJSON *pin = cJSON_GetObjectItemCaseSensitive(item, "pin");
+        if (pin) {
+            if (!read_pin(pin, field, at, has_normal, s, &s->sites[i], error))
+                return false;
+            continue;
+        }
         wr_error invalid;
         wr_status status =
             wr_site_new(s->body, at, has_normal ? normal : NULL, &s->sites[i], &invalid);
@@ -142,7 +189,7 @@ static bool read_sites(const cJSON *list, wp_design_stream *s, wp_error *error)
 static const char *const LATTICE_FIELDS[] = {"pitch", "peg_radius", "extent", NULL};
 
 /* {"pitch", "peg_radius", "extent": [nx, ny]}: the lattice job, made here. */
-static bool read_lattice(const cJSON *params, const cJSON *json, wp_design_stream *s,
+static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s,
                          wp_error *error)
 {
     const char *path = "params.lattice";
@@ -182,10 +229,17 @@ static bool read_lattice(const cJSON *params, const cJSON *json, wp_design_strea
                      invalid.reason);
         return false;
     }
+    size_t pairs, total;
+    wr_lattice_job_progress(s->lattice, &pairs, &total);
+    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, (total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK);
+    if (!s->poses_chunks) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
     return true;
 }
 
-static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *error)
+static bool read_params(const cJSON *params, design_state *s, wp_error *error)
 {
     wr_design_spec *spec = &s->spec;
     spec->fixel_count = 3;
@@ -209,15 +263,38 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
         return false;
     if (objective) {
         int found = -1;
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 4; i++)
             if (strcmp(objective, OBJECTIVES[i]) == 0)
                 found = i;
         if (found < 0) {
             wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
-                         "must be \"margin\", \"region\" or \"gravity\"");
+                         "must be \"margin\", \"region\", \"gravity\" or \"force\"");
             return false;
         }
         spec->objective = (wr_objective)found;
+    }
+    /* Load cases, on the body (its mass, centre of mass and size). */
+    const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    if (!cases_json && spec->objective == WR_OBJECTIVE_FORCE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.cases",
+                     "required with the objective \"force\": the loads the push works against");
+        return false;
+    }
+    if (cases_json) {
+        wp_cases cases;
+        if (!wp_cases_read(cases_json, "params.cases", s->body, &cases, error))
+            return false;
+        s->loads = malloc((size_t)cases.count * sizeof *s->loads);
+        if (!s->loads) {
+            wp_cases_release(&cases);
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        for (int c = 0; c < cases.count; c++)
+            memcpy(s->loads[c], cases.items[c].load, sizeof s->loads[c]);
+        spec->loads = (const double (*)[3])s->loads;
+        spec->case_count = cases.count;
+        wp_cases_release(&cases);
     }
     bool present;
     if (!wp_member_number(params, "params", "finger_friction", false, &spec->finger.friction,
@@ -231,6 +308,10 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
                      "must not be negative");
         return false;
     }
+    if (!wp_read_push_on(params, "params", s->body, &s->push_on, &spec->finger.push_on_count,
+                         error))
+        return false;
+    spec->finger.push_on = s->push_on;
     const cJSON *progress = cJSON_GetObjectItemCaseSensitive(params, "progress");
     if (progress && !cJSON_IsBool(progress)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.progress", "must be true or false, not %s",
@@ -279,18 +360,35 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
                              : "candidate sites are required: sites, spacing or lattice");
         return false;
     }
+    const char *spacing_only[] = {"corner_clearance", "pin_diameter"};
+    for (int i = 0; i < 2 && !spacing; i++)
+        if (cJSON_GetObjectItemCaseSensitive(params, spacing_only[i])) {
+            char field[WP_FIELD_MAX];
+            wp_path_key(field, "params", spacing_only[i]);
+            wp_error_set(error, WP_INVALID_PARAMS, field, "only with spacing");
+            return false;
+        }
     if (lattice)
         return read_lattice(params, lattice, s, error);
     if (sites)
         return read_sites(sites, s, error);
-    double h;
-    if (!wp_member_number(params, "params", "spacing", true, &h, &present, error))
+    wr_spacing rule = {0, 0, 0};
+    bool clearance_given;
+    if (!wp_member_number(params, "params", "spacing", true, &rule.spacing, &present, error) ||
+        !wp_member_number(params, "params", "corner_clearance", false, &rule.corner_clearance,
+                          &clearance_given, error) ||
+        !wp_member_number(params, "params", "pin_diameter", false, &rule.pin_diameter, NULL,
+                          error))
         return false;
+    if (!clearance_given)
+        rule.corner_clearance = rule.spacing / 2;
     wr_error invalid;
-    wr_status status = wr_sites_spaced(s->body, h, &s->sites, &s->site_count, &invalid);
+    wr_status status = wr_sites_spaced(s->body, &rule, &s->sites, &s->site_count, &invalid);
     if (status != WR_OK) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, "params", invalid.field);
         wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? "params.spacing" : "", "%s", invalid.reason);
+                     status == WR_INVALID ? field : "", "%s", invalid.reason);
         return false;
     }
     return true;
@@ -298,7 +396,7 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
 
 /* The search's job, over the sites (or the lattice's designs, once
  * enumerated: their contacts are the sites, three a candidate). */
-static bool start_search(wp_design_stream *s, wp_error *error)
+static bool start_search(design_state *s, wp_error *error)
 {
     if (s->lattice) {
         size_t count;
@@ -329,6 +427,11 @@ static bool start_search(wp_design_stream *s, wp_error *error)
             wp_error_set(error, WP_INTERNAL, "", "out of memory");
             return false;
         }
+        /* The part's symmetries that the push_on loops and the load cases
+         * allow: a copy must be the same question, not only the same part. */
+        s->symmetry_count = wr_symmetry_filter(s->body, &s->spec.finger, s->spec.loads,
+                                               s->spec.case_count, s->symmetries,
+                                               s->symmetry_count);
         s->spec.symmetries = s->symmetries;
         s->spec.symmetry_count = s->symmetry_count;
     }
@@ -343,20 +446,30 @@ static bool start_search(wp_design_stream *s, wp_error *error)
                      status == WR_INVALID ? field : "", "%s", invalid.reason);
         return false;
     }
+    /* The job claims WR_DESIGN_CHUNK candidates of this shard at a time:
+     * that many of every shard's. */
+    uint64_t span = (uint64_t)WR_DESIGN_CHUNK * (uint64_t)s->spec.shard_count;
+    s->search = wp_chunks_new(&SEARCH_CHUNKS, s, (size_t)((s->candidates + span - 1) / span));
+    if (!s->search) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
     return true;
 }
 
-wp_design_stream *wp_design_begin(wp_call *call)
+static void design_free(void *stream);
+
+static void *design_begin(wp_call *call, wp_prepared *prepared)
 {
-    wp_design_stream *s = calloc(1, sizeof *s);
+    (void)prepared;
+    design_state *s = calloc(1, sizeof *s);
     if (!s) {
         wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
     }
     s->last_report = -1;
-    pthread_mutex_init(&s->lock, NULL);
     if (!read_params(call->params, s, call->error)) {
-        wp_design_free(s);
+        design_free(s);
         return NULL;
     }
     if (s->progress && !wp_call_may_notify(call)) {
@@ -364,7 +477,7 @@ wp_design_stream *wp_design_begin(wp_call *call)
         s->progress = false;
     }
     if (!s->lattice && !start_search(s, call->error)) {
-        wp_design_free(s);
+        design_free(s);
         return NULL;
     }
     return s;
@@ -389,14 +502,98 @@ static void write_pair(wp_buffer *out, const double v[2])
 
 static const char *const STAGES[] = {"poses", "candidates", "figures"};
 
-static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
+/* Where a design's answer says a push is, as push.regions names places:
+ * {"loop", "segment"} on an outline, {"edge"} otherwise, then "t". */
+static void write_place(wp_buffer *out, const wr_fixture *body, int edge, double t)
+{
+    double at[2], normal[2];
+    wr_boundary_point(body, edge, t, at, normal);
+    WP_BUFFER_LITERAL(out, "{\"at\":");
+    write_pair(out, at);
+    if (body->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(body, edge, &loop, &segment);
+        WP_BUFFER_LITERAL(out, ",\"loop\":");
+        wp_buffer_number(out, (double)loop);
+        WP_BUFFER_LITERAL(out, ",\"segment\":");
+        wp_buffer_number(out, (double)segment);
+    } else {
+        WP_BUFFER_LITERAL(out, ",\"edge\":");
+        wp_buffer_number(out, edge);
+    }
+    WP_BUFFER_LITERAL(out, ",\"t\":");
+    wp_buffer_number(out, t);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+/* "why_no_seating_push" (docs/PROTOCOL.md): where the push was asked
+ * about, and the reasons with their counts, most first, equal counts by
+ * their blocking strings (strcmp), the push in G_goal (null) last: an
+ * order design-merge can keep. */
+static void write_why(design_state *s, wp_buffer *out)
+{
+    const wr_plan *plan;
+    int edge;
+    double t;
+    const uint64_t *why = wr_design_job_why(s->job, &plan, &edge, &t);
+    WP_BUFFER_LITERAL(out, ",\"why_no_seating_push\":{\"asked_at\":");
+    write_place(out, s->body, edge, t);
+    WP_BUFFER_LITERAL(out, ",\"reasons\":[");
+    int n = plan->kept_count + 1;
+    bool *written = calloc((size_t)n, sizeof *written);
+    for (int round = 0; written && round < n; round++) {
+        int most = -1;
+        char a[WR_CONSTRAINT_TEXT], b[WR_CONSTRAINT_TEXT];
+        for (int i = 0; i < n; i++) {
+            if (written[i] || why[i] == 0)
+                continue;
+            bool before = most < 0 || why[i] > why[most];
+            if (!before && why[i] == why[most] && i < plan->kept_count) {
+                wr_constraint_format(&plan->kept[i], a);
+                if (most == plan->kept_count)
+                    before = true;
+                else {
+                    wr_constraint_format(&plan->kept[most], b);
+                    before = strcmp(a, b) < 0;
+                }
+            }
+            if (before)
+                most = i;
+        }
+        if (most < 0)
+            break;
+        written[most] = true;
+        wp_buffer_puts(out, round ? ",{\"blocking\":" : "{\"blocking\":");
+        if (most == plan->kept_count) {
+            WP_BUFFER_LITERAL(out, "null,\"states\":[]");
+        } else {
+            char text[WR_CONSTRAINT_TEXT], state[WR_STATE_TEXT];
+            wr_constraint_format(&plan->kept[most], text);
+            wp_buffer_string(out, text);
+            WP_BUFFER_LITERAL(out, ",\"states\":[");
+            for (int j = 0; j < plan->origins[most].count; j++) {
+                wr_state_format(plan->origins[most].states[j], plan->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+            WP_BUFFER_LITERAL(out, "]");
+        }
+        WP_BUFFER_LITERAL(out, ",\"candidates\":");
+        write_count(out, why[most]);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    free(written);
+    WP_BUFFER_LITERAL(out, "]}");
+}
+
+static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
 {
     uint64_t done = 0, total = 0;
     bool has_best = false;
     double best = 0;
     int stage = 0;
-    /* Helpers may be merging meanwhile. */
-    pthread_mutex_lock(&s->lock);
+    /* Merges are the steps' own (wp_chunks_run): nothing to lock. */
     if (s->job) {
         wr_design_job_progress(s->job, &done, &total, &has_best, &best);
         stage = 1;
@@ -413,7 +610,6 @@ static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
         done = pairs;
         total = of;
     }
-    pthread_mutex_unlock(&s->lock);
     double now = now_s();
     if (s->last_report < 0 || stage != s->stage) {
         s->stage = stage;
@@ -450,7 +646,7 @@ static void write_progress(wp_design_stream *s, wp_call *call, wp_buffer *out)
     s->last_report = now;
 }
 
-static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d, int rank)
+static void write_design(design_state *s, wp_buffer *out, const wr_design *d, int rank)
 {
     wr_fixture fixture;
     wr_design_job_fixture(s->job, d, &fixture);
@@ -476,6 +672,26 @@ static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d
         WP_BUFFER_LITERAL(out, "}");
     }
     WP_BUFFER_LITERAL(out, "]");
+    if (!s->poses) {
+        /* The fixels on holes: pins, each where one of its diameter touches
+         * the wall (wr_sites.h); its centre is at - diameter / 2 normal. */
+        WP_BUFFER_LITERAL(out, ",\"pins\":[");
+        bool any = false;
+        for (int i = 0; i < s->spec.fixel_count; i++) {
+            const wr_site *site = &s->sites[d->sites[i]];
+            if (site->loop <= 0)
+                continue;
+            wp_buffer_puts(out, any ? ",{\"fixel\":" : "{\"fixel\":");
+            any = true;
+            wp_buffer_number(out, i);
+            WP_BUFFER_LITERAL(out, ",\"hole\":");
+            wp_buffer_number(out, site->loop);
+            WP_BUFFER_LITERAL(out, ",\"diameter\":");
+            wp_buffer_number(out, site->pin_diameter);
+            WP_BUFFER_LITERAL(out, "}");
+        }
+        WP_BUFFER_LITERAL(out, "]");
+    }
     if (s->poses) {
         const wr_lattice_design *pose = &s->poses[d->candidate];
         WP_BUFFER_LITERAL(out, ",\"pegs\":[");
@@ -519,6 +735,37 @@ static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d
     } else {
         WP_BUFFER_LITERAL(out, "null");
     }
+    if (s->spec.case_count > 0) {
+        /* The least push doing both under every case (wr_force.h). */
+        const wr_least_force *least = &d->least_force;
+        WP_BUFFER_LITERAL(out, ",\"least_push\":");
+        if (least->found) {
+            WP_BUFFER_LITERAL(out, "{\"at\":");
+            write_pair(out, least->at);
+            WP_BUFFER_LITERAL(out, ",\"direction\":");
+            write_pair(out, least->direction);
+            WP_BUFFER_LITERAL(out, ",\"force\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->force));
+            WP_BUFFER_LITERAL(out, ",\"lower_bound\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->lower));
+            if (fixture.shape == WR_SHAPE_OUTLINE) {
+                size_t loop, segment;
+                wr_push_edge_place(&fixture, least->edge, &loop, &segment);
+                WP_BUFFER_LITERAL(out, ",\"loop\":");
+                wp_buffer_number(out, (double)loop);
+                WP_BUFFER_LITERAL(out, ",\"segment\":");
+                wp_buffer_number(out, (double)segment);
+            } else {
+                WP_BUFFER_LITERAL(out, ",\"edge\":");
+                wp_buffer_number(out, least->edge);
+            }
+            WP_BUFFER_LITERAL(out, ",\"t\":");
+            wp_buffer_number(out, least->t);
+            WP_BUFFER_LITERAL(out, "}");
+        } else {
+            WP_BUFFER_LITERAL(out, "null");
+        }
+    }
     WP_BUFFER_LITERAL(out, ",\"goal_length\":");
     wp_buffer_number(out, d->goal_length);
     WP_BUFFER_LITERAL(out, ",\"both_length\":");
@@ -539,7 +786,7 @@ static void write_design(wp_design_stream *s, wp_buffer *out, const wr_design *d
 
 /* [{"kind": "rotation"|"reflection", "angle_deg", "center"}], the identity
  * first: what collapsed the designs. */
-static void write_symmetries(wp_design_stream *s, wp_buffer *out)
+static void write_symmetries(design_state *s, wp_buffer *out)
 {
     WP_BUFFER_LITERAL(out, ",\"symmetries\":[");
     for (int i = 0; i < s->symmetry_count; i++) {
@@ -555,7 +802,7 @@ static void write_symmetries(wp_design_stream *s, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "]");
 }
 
-static void write_answer(wp_design_stream *s, wp_buffer *out)
+static void write_answer(design_state *s, wp_buffer *out)
 {
     int count;
     const wr_design *designs = wr_design_job_designs(s->job, &count);
@@ -578,11 +825,15 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
     write_count(out, c->no_seating_push);
     WP_BUFFER_LITERAL(out, ",\"symmetric\":");
     write_count(out, c->symmetric);
+    WP_BUFFER_LITERAL(out, ",\"shared_hole\":");
+    write_count(out, c->shared_hole);
+    WP_BUFFER_LITERAL(out, "}");
+    write_why(s, out);
     if (s->poses) {
-        WP_BUFFER_LITERAL(out, "},\"poses\":");
+        WP_BUFFER_LITERAL(out, ",\"poses\":");
         write_count(out, s->spec.candidate_count);
     } else {
-        WP_BUFFER_LITERAL(out, "},\"sites\":");
+        WP_BUFFER_LITERAL(out, ",\"sites\":");
         wp_buffer_number(out, s->site_count);
     }
     WP_BUFFER_LITERAL(out, ",\"objective\":\"");
@@ -597,140 +848,142 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "]}");
 }
 
-/* Claim a chunk, run it outside the lock, merge it.  False when none was
- * left; WR_OK or the failure in *status. */
-static bool run_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
-                      wr_status *status)
+/* The lattice's chunks of hole pairs, by the engine (wp_chunks.h): claimed
+ * by the job in order, made by any thread, merged in order. */
+typedef struct lattice_record {
+    size_t first, count;
+    wr_lattice_chunk chunk;
+} lattice_record;
+
+static bool lattice_claim(void *method, size_t index, void *record)
 {
+    (void)index;
+    design_state *s = method;
+    lattice_record *l = record;
+    return wr_lattice_job_claim(s->lattice, &l->first, &l->count);
+}
+
+static wr_status lattice_make(void *method, size_t index, void *record, wp_buffer *direct,
+                              const wp_host *host, unsigned long *used, wp_error *error)
+{
+    (void)index;
+    (void)direct;
+    const design_state *s = method;
+    lattice_record *l = record;
+    wr_status status = wr_lattice_chunk_run(s->lattice, l->first, l->count, host->stop,
+                                            &l->chunk, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static wr_status lattice_merge(void *method, size_t index, void *record, wp_buffer *out,
+                               wp_error *error)
+{
+    (void)index;
+    (void)out;
+    design_state *s = method;
+    lattice_record *l = record;
+    wr_status status = wr_lattice_job_merge(s->lattice, &l->chunk); /* takes its designs */
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static void lattice_release(void *record) { wr_lattice_chunk_release(&((lattice_record *)record)->chunk); }
+
+static const wp_chunk_ops LATTICE_CHUNKS = {
+    .record_size = sizeof(lattice_record),
+    .claim = lattice_claim,
+    .make = lattice_make,
+    .merge = lattice_merge,
+    .release = lattice_release,
+    .window = DESIGN_WINDOW,
+};
+
+/* The search's chunks of candidates, likewise; a chunk's threshold is the
+ * top-th score merged when it is claimed. */
+typedef struct search_record {
     uint64_t first, count;
     double threshold;
-    pthread_mutex_lock(&s->lock);
-    bool claimed = wr_design_job_claim(s->job, &first, &count, &threshold);
-    pthread_mutex_unlock(&s->lock);
-    *status = WR_OK;
-    if (!claimed)
-        return false;
     wr_design_chunk chunk;
-    *status = wr_design_chunk_run(s->job, first, count, threshold, stop, &chunk, used);
-    pthread_mutex_lock(&s->lock);
-    if (*status == WR_OK)
-        wr_design_job_merge(s->job, &chunk);
-    else
-        wr_design_job_abandon(s->job);
-    pthread_mutex_unlock(&s->lock);
-    wr_design_chunk_release(&chunk);
-    return true;
+} search_record;
+
+static bool search_claim(void *method, size_t index, void *record)
+{
+    (void)index;
+    design_state *s = method;
+    search_record *c = record;
+    return wr_design_job_claim(s->job, &c->first, &c->count, &c->threshold);
 }
 
-/* A lattice's chunk of hole pairs, as run_chunk does the search's. */
-static bool run_lattice_chunk(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
-                              wr_status *status)
+static wr_status search_make(void *method, size_t index, void *record, wp_buffer *direct,
+                             const wp_host *host, unsigned long *used, wp_error *error)
 {
-    size_t first, count;
-    pthread_mutex_lock(&s->lock);
-    bool claimed = wr_lattice_job_claim(s->lattice, &first, &count);
-    pthread_mutex_unlock(&s->lock);
-    *status = WR_OK;
-    if (!claimed)
-        return false;
-    wr_lattice_chunk chunk;
-    *status = wr_lattice_chunk_run(s->lattice, first, count, stop, &chunk, used);
-    pthread_mutex_lock(&s->lock);
-    if (*status == WR_OK)
-        *status = wr_lattice_job_merge(s->lattice, &chunk);
-    else
-        wr_lattice_job_abandon(s->lattice);
-    pthread_mutex_unlock(&s->lock);
-    return true;
+    (void)index;
+    (void)direct;
+    const design_state *s = method;
+    search_record *c = record;
+    wr_status status = wr_design_chunk_run(s->job, c->first, c->count, c->threshold,
+                                           host->stop, &c->chunk, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
 }
 
-/* The next chunk of whichever stage is on: the lattice's poses, then the
- * search's candidates. */
-static bool run_some(wp_design_stream *s, const wr_stop *stop, unsigned long *used,
-                     wr_status *status)
+static wr_status search_merge(void *method, size_t index, void *record, wp_buffer *out,
+                              wp_error *error)
 {
-    return s->job ? run_chunk(s, stop, used, status) : run_lattice_chunk(s, stop, used, status);
+    (void)index;
+    (void)out;
+    (void)error;
+    design_state *s = method;
+    search_record *c = record;
+    wr_design_job_merge(s->job, &c->chunk);
+    wr_design_chunk_release(&c->chunk);
+    return WR_OK;
 }
 
-/* Keep the first failure, for the step that can say it (helpers, or a
- * step that shares, cannot end the answer). */
-static void note_failure(wp_design_stream *s, wr_status status)
+static void search_release(void *record) { wr_design_chunk_release(&((search_record *)record)->chunk); }
+
+static const wp_chunk_ops SEARCH_CHUNKS = {
+    .record_size = sizeof(search_record),
+    .claim = search_claim,
+    .make = search_make,
+    .merge = search_merge,
+    .release = search_release,
+    .window = DESIGN_WINDOW,
+};
+
+/* The stage on: the lattice's poses, then the search's candidates. */
+static wp_chunks *stage(design_state *s) { return s->job ? s->search : s->poses_chunks; }
+
+static bool design_parallel(void *stream) { return wp_chunks_parallel(stage(stream)); }
+
+static bool design_work(void *stream, const wp_host *host)
 {
-    pthread_mutex_lock(&s->lock);
-    if (s->failure == WR_OK)
-        s->failure = status;
-    pthread_mutex_unlock(&s->lock);
+    return wp_chunks_work(stage(stream), host);
 }
 
-/* Are chunks left to claim? */
-static bool claimable(wp_design_stream *s)
+static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                           unsigned long *used)
 {
-    pthread_mutex_lock(&s->lock);
-    bool more = s->job ? wr_design_job_claimable(s->job) : wr_lattice_job_claimable(s->lattice);
-    pthread_mutex_unlock(&s->lock);
-    return more;
-}
-
-bool wp_design_parallel(wp_design_stream *s)
-{
-    bool more = claimable(s);
-    s->forked = s->forked || more;
-    return more;
-}
-
-bool wp_design_work(wp_design_stream *s, const wp_host *host)
-{
-    unsigned long used = 0;
-    wr_status status;
-    /* s->job is set only by a step that shares nothing (below): it does
-     * not change while this runs. */
-    bool ran = run_some(s, host->stop, &used, &status);
-    if (ran && status != WR_OK)
-        note_failure(s, status); /* the step says it, as it is */
-    return ran && status == WR_OK;
-}
-
-wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsigned long budget,
-                       unsigned long *used)
-{
-    /* Helpers may be in wp_design_work until this step returns only if the
-     * host was told there was work to share before it began (asking now
-     * would miss helpers that have claimed the last chunks meanwhile). */
-    bool shared = s->forked;
-    s->forked = false;
-    pthread_mutex_lock(&s->lock);
-    wr_status failure = s->failure;
-    pthread_mutex_unlock(&s->lock);
-    if (failure != WR_OK) {
-        if (shared)
-            return WP_STEP_MORE; /* said by a step that shares nothing */
-        wp_error_status(call->error, failure, "params", "%s", wr_strerror(failure));
-        return WP_STEP_FAILED;
-    }
+    design_state *s = stream;
+    bool shared = wp_chunks_shared(stage(s));
     if (s->progress && s->last_report < 0)
         write_progress(s, call, out);
     if (!s->job) {
         /* A lattice: its designs first, in chunks of hole pairs that
          * helpers share; the search begins in a step that shares nothing,
          * so that no helper is in a chunk when s->job appears. */
-        wr_status status = WR_OK;
-        unsigned long start = *used;
-        while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
-               status == WR_OK)
-            continue;
-        if (status != WR_OK && shared) {
-            note_failure(s, status);
-            return WP_STEP_MORE;
-        }
-        if (status != WR_OK) {
-            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+        wp_step step = wp_chunks_run(s->poses_chunks, shared, call->host, out, budget, used,
+                                     (size_t)-1, call->error);
+        if (step == WP_STEP_FAILED)
             return WP_STEP_FAILED;
-        }
-        bool enumerated = false;
-        if (!shared) {
-            pthread_mutex_lock(&s->lock);
-            status = wr_lattice_job_run(s->lattice, 1, used, call->host->stop, &enumerated);
-            pthread_mutex_unlock(&s->lock);
+        if (step == WP_STEP_DONE) {
+            bool enumerated = false;
+            wr_status status = wr_lattice_job_run(s->lattice, 1, used, call->host->stop,
+                                                  &enumerated);
             if (status != WR_OK) {
                 wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
                 return WP_STEP_FAILED;
@@ -742,38 +995,27 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
             write_progress(s, call, out);
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
-    /* The search: chunks while the budget lasts (helpers may run others
-     * meanwhile); then the rest (the designs' figures) by the job itself. */
-    wr_status status = WR_OK;
+    /* The search: chunks while the budget lasts (helpers may make others
+     * meanwhile); then, in steps that share nothing, the rest (the
+     * designs' figures) by the job itself. */
     unsigned long start = *used;
-    /* A step that begins with chunks to share never ends the answer:
-     * other threads may be in wp_design_work until it returns
-     * (wp_streamer.work), so the figures and the answer come in a later
-     * step, when the search is over. */
-    while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
-           status == WR_OK)
-        continue;
-    bool done = false;
-    if (status == WR_OK && !shared && *used - start < budget) {
-        pthread_mutex_lock(&s->lock);
-        status = wr_design_job_run(s->job, budget - (*used - start), used, call->host->stop,
-                                   &done);
-        pthread_mutex_unlock(&s->lock);
-    }
-    if (status != WR_OK && shared) {
-        note_failure(s, status); /* helpers may still be working: end in the next step */
-        return WP_STEP_MORE;
-    }
-    if (status != WR_OK) {
-        wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+    wp_step step = wp_chunks_run(s->search, shared, call->host, out, budget, used, (size_t)-1,
+                                 call->error);
+    if (step == WP_STEP_FAILED)
         return WP_STEP_FAILED;
+    bool done = false;
+    if (step == WP_STEP_DONE && *used - start < budget) {
+        wr_status status = wr_design_job_run(s->job, budget - (*used - start), used,
+                                             call->host->stop, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
     }
     uint64_t examined, total;
     bool has_best;
     double best;
-    pthread_mutex_lock(&s->lock);
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
-    pthread_mutex_unlock(&s->lock);
     if (s->progress && !s->search_reported &&
         (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
         write_progress(s, call, out);
@@ -790,26 +1032,36 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
     return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
-void wp_design_free(wp_design_stream *s)
+static void design_free(void *stream)
 {
+    design_state *s = stream;
     if (!s)
         return;
+    wp_chunks_free(s->search);
+    wp_chunks_free(s->poses_chunks);
     wr_design_job_free(s->job);
     wr_lattice_job_free(s->lattice);
     free(s->symmetries);
     free(s->listed);
+    free(s->loads);
     free(s->sites);
+    free(s->push_on);
     wr_fixture_free(s->body);
-    pthread_mutex_destroy(&s->lock);
     free(s);
 }
 
-size_t wp_design_bytes(const wp_design_stream *s)
+static size_t design_bytes(const void *stream)
 {
+    const design_state *s = stream;
     size_t poses = 0;
     if (s->lattice)
         wr_lattice_job_designs(s->lattice, &poses);
     return sizeof *s + (size_t)s->site_count * sizeof *s->sites +
            (s->job ? wr_design_job_bytes(s->job) : 0) +
-           poses * (sizeof(wr_lattice_design) + sizeof *s->listed);
+           poses * (sizeof(wr_lattice_design) + sizeof *s->listed) +
+           (s->poses_chunks ? wp_chunks_bytes(s->poses_chunks) : 0) +
+           (s->search ? wp_chunks_bytes(s->search) : 0);
 }
+
+const wp_streamer wp_design_stream = {design_begin, design_step,     design_free,    design_bytes,
+                                     true,         design_parallel, design_work};

@@ -6,10 +6,15 @@
 #include <stdint.h>
 #include <cmocka.h>
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdatomic.h>
+#include <time.h>
 #include <stdio.h>
 
 #include "test_util.h"
 #include "wd_worker.h"
+#include "wp_chunks.h"
 #include "wp_rpc.h"
 #include "wp_sha256.h"
 
@@ -140,7 +145,7 @@ static void assert_same_fixture(const wr_fixture *a, const wr_fixture *b)
     assert_memory_equal(a->fixels, b->fixels, (size_t)a->fixel_count * sizeof *a->fixels);
 }
 
-/* Issue 14: the id hashes the explicit form (every default written out), so
+/* The id hashes the explicit form (every default written out), so
  * writing out a default keeps it; the stored text reads back to the same
  * fixture, bit for bit, and to the same text and id. */
 static void explicit_form_reads_back_to_the_same_fixture(void **state)
@@ -188,6 +193,87 @@ static void explicit_form_reads_back_to_the_same_fixture(void **state)
         cJSON_Delete(stored);
         cJSON_Delete(given);
     }
+}
+
+/* The fixture's units: part of the canonical text and the id only when
+ * given, so a fixture written without them keeps the id it has always had
+ * (the disc's, stored in tests/e2e/test_outline.py's OLD_IDS, computed
+ * before units existed); each unit's size in SI is its definition, and
+ * every bad spelling is refused at its field. */
+static void fixture_units_are_in_the_id_only_when_given(void **state)
+{
+    (void)state;
+    wp_error error;
+    cJSON *disc = cJSON_Parse(DISC);
+    wp_fixture_doc plain;
+    assert_true(wp_fixture_read(disc, "params.fixture", &plain, &error));
+    assert_string_equal(plain.id, "e0d7a1a0bd6e8bf16fe5845da1960ed9");
+    assert_null(strstr(plain.canonical, "units"));
+    assert_false(plain.fixture->units.given);
+    assert_true(wr_fixture_force_factor(plain.fixture) == 1.0);
+
+    static const struct {
+        const char *length, *force;
+        double factor; /* kg * length / s^2 per force unit */
+    } systems[] = {
+        {"mm", "N", 1000.0},          /* 1 N = 1 kg m/s^2 = 1000 kg mm/s^2 */
+        {"m", "N", 1.0},
+        {"m", "mN", 1e-3},
+        {"in", "lbf", 4.4482216152605 / 0.0254}, /* 0.45359237 kg * 9.80665 m/s^2 per inch */
+    };
+    char ids[4][WP_ID_LENGTH + 1];
+    for (size_t i = 0; i < 4; i++) {
+        cJSON *units = cJSON_CreateObject();
+        cJSON_AddStringToObject(units, "length", systems[i].length);
+        cJSON_AddStringToObject(units, "force", systems[i].force);
+        cJSON_DeleteItemFromObject(disc, "units");
+        cJSON_AddItemToObject(disc, "units", units);
+        wp_fixture_doc doc, again;
+        assert_true(wp_fixture_read(disc, "params.fixture", &doc, &error));
+        assert_true(doc.fixture->units.given);
+        assert_true(fabs(wr_fixture_force_factor(doc.fixture) / systems[i].factor - 1) < 1e-15);
+        assert_string_not_equal(doc.id, plain.id);
+        strcpy(ids[i], doc.id);
+        for (size_t j = 0; j < i; j++)
+            assert_string_not_equal(ids[i], ids[j]);
+        char expect[96];
+        snprintf(expect, sizeof expect, "\"units\":{\"force\":\"%s\",\"length\":\"%s\"}",
+                 systems[i].force, systems[i].length);
+        assert_non_null(strstr(doc.canonical, expect));
+        /* The stored text reads back to the same fixture, text and id. */
+        cJSON *stored = cJSON_Parse(doc.canonical);
+        assert_true(wp_fixture_read(stored, "params.fixture", &again, &error));
+        assert_string_equal(doc.id, again.id);
+        assert_string_equal(doc.canonical, again.canonical);
+        assert_same_fixture(doc.fixture, again.fixture);
+        assert_memory_equal(&doc.fixture->units, &again.fixture->units, sizeof doc.fixture->units);
+        cJSON_Delete(stored);
+        wp_fixture_doc_release(&doc);
+        wp_fixture_doc_release(&again);
+    }
+
+    static const struct {
+        const char *units, *field, *reason;
+    } bad[] = {
+        {"\"mm\"", "params.fixture.units", "object"},
+        {"{\"length\":\"cm\",\"force\":\"N\"}", "params.fixture.units.length", "\"cm\""},
+        {"{\"length\":\"mm\",\"force\":\"kN\"}", "params.fixture.units.force", "\"kN\""},
+        {"{\"length\":\"mm\"}", "params.fixture.units.force", "required"},
+        {"{\"force\":\"N\"}", "params.fixture.units.length", "required"},
+        {"{\"length\":1,\"force\":\"N\"}", "params.fixture.units.length", "string"},
+        {"{\"length\":\"mm\",\"force\":\"N\",\"mass\":\"kg\"}", "params.fixture.units.mass", ""},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        cJSON_DeleteItemFromObject(disc, "units");
+        cJSON_AddItemToObject(disc, "units", cJSON_Parse(bad[i].units));
+        wp_fixture_doc doc;
+        assert_false(wp_fixture_read(disc, "params.fixture", &doc, &error));
+        assert_int_equal(error.code, WP_INVALID_PARAMS);
+        assert_string_equal(error.field, bad[i].field);
+        assert_non_null(strstr(error.reason, bad[i].reason));
+    }
+    wp_fixture_doc_release(&plain);
+    cJSON_Delete(disc);
 }
 
 /* ---- the envelope, against the real cache -------------------------------- */
@@ -720,7 +806,7 @@ static void pieces_join_to_the_whole_answer(void **state)
  * then runs the step; a helper may claim chunks before the step begins,
  * and may be inside wp_answer_work until the step returns (the fork is
  * closed after it).  So a step that follows a "yes" from
- * wp_answer_parallel must not end the answer (wp_rpc.h, wp_streamer):
+ * wp_answer_parallel must not end the answer (the rule in wp_chunks.h):
  * ending it frees the stream (its lock, its chunks, the fixture held)
  * under a helper -- even when the helpers had claimed every chunk left
  * by the time the step began.  Here the helpers' turns run, in this
@@ -900,6 +986,172 @@ static void a_stop_ends_long_work(void **state)
     free(text);
 }
 
+/* ---- the engine of chunked work (wp_chunks.h), alone -------------------- */
+
+/* A method of the engine's tests: chunk i is the text "<i>"; `fail_at`
+ * fails its make (WR_STOPPED), `slow_at` makes it take a while (a helper
+ * still inside make while the step goes on). */
+typedef struct toy {
+    size_t fail_at, slow_at;
+    atomic_int claimed; /* chunks a make has begun */
+} toy;
+
+typedef struct toy_record {
+    char text[24];
+} toy_record;
+
+static wr_status toy_make(void *method, size_t index, void *record, wp_buffer *direct,
+                          const wp_host *host, unsigned long *used, wp_error *error)
+{
+    (void)host;
+    toy *t = method;
+    atomic_fetch_add(&t->claimed, 1);
+    if (index == t->slow_at) {
+        struct timespec pause = {0, 100 * 1000 * 1000};
+        nanosleep(&pause, NULL);
+    }
+    if (index == t->fail_at) {
+        wp_error_set(error, WP_INTERNAL, "", "chunk %zu failed", index);
+        return WR_STOPPED;
+    }
+    char text[24];
+    snprintf(text, sizeof text, "<%zu>", index);
+    if (direct)
+        wp_buffer_puts(direct, text);
+    else
+        snprintf(((toy_record *)record)->text, sizeof text, "%s", text);
+    *used += 1;
+    return WR_OK;
+}
+
+static wr_status toy_merge(void *method, size_t index, void *record, wp_buffer *out,
+                           wp_error *error)
+{
+    (void)method;
+    (void)index;
+    (void)error;
+    wp_buffer_puts(out, ((toy_record *)record)->text);
+    return WR_OK;
+}
+
+static const wp_chunk_ops TOY = {.record_size = sizeof(toy_record), .make = toy_make,
+                                 .merge = toy_merge, .window = 4};
+
+typedef struct toy_helper {
+    wp_chunks *chunks;
+    const wp_host *host;
+    int turns;
+} toy_helper;
+
+/* A helper of the daemon's pool: its turns of wp_chunks_work. */
+static void *toy_helper_main(void *argument)
+{
+    toy_helper *helper = argument;
+    for (int i = 0; i < helper->turns; i++)
+        wp_chunks_work(helper->chunks, helper->host);
+    return NULL;
+}
+
+/* The rule: a step that begins after wp_chunks_parallel said yes does not
+ * end the answer, though every chunk is merged by the time it returns: a
+ * helper claimed the last chunk before the step began and is still inside
+ * make while it runs (the classify case, a step that asked for chunks left
+ * at its start, and the design case, a step that asked again, both ended
+ * the answer here, freeing what the helper was using). */
+static void a_shared_step_never_ends_the_answer(void **state)
+{
+    (void)state;
+    wp_host host = {0};
+    toy t = {.fail_at = SIZE_MAX, .slow_at = 0};
+    wp_chunks *chunks = wp_chunks_new(&TOY, &t, 1);
+    assert_non_null(chunks);
+    assert_true(wp_chunks_parallel(chunks));
+    toy_helper helper = {chunks, &host, 1};
+    pthread_t thread;
+    assert_int_equal(pthread_create(&thread, NULL, toy_helper_main, &helper), 0);
+    while (atomic_load(&t.claimed) == 0) /* the helper holds the only chunk */
+        sched_yield();
+    wp_buffer out = {0};
+    wp_error error = {0};
+    unsigned long used = 0;
+    bool shared = wp_chunks_shared(chunks);
+    assert_true(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_MORE);
+    assert_true(wp_chunks_done(chunks));
+    pthread_join(thread, NULL);
+    /* The next step shares nothing (nothing was left to share): it ends it. */
+    assert_false(wp_chunks_parallel(chunks));
+    shared = wp_chunks_shared(chunks);
+    assert_false(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_DONE);
+    assert_string_equal(out.data, "<0>");
+    free(out.data);
+    wp_chunks_free(chunks);
+}
+
+/* Chunks made out of order, by helpers and the step, are merged in order;
+ * no more than the window are made ahead of the one next merged. */
+static void chunks_merge_in_order_within_the_window(void **state)
+{
+    (void)state;
+    wp_host host = {0};
+    toy t = {.fail_at = SIZE_MAX, .slow_at = 0};
+    wp_chunks *chunks = wp_chunks_new(&TOY, &t, 9);
+    assert_true(wp_chunks_parallel(chunks));
+    toy_helper slow = {chunks, &host, 1}, fast = {chunks, &host, 8};
+    pthread_t first, second;
+    assert_int_equal(pthread_create(&first, NULL, toy_helper_main, &slow), 0);
+    while (atomic_load(&t.claimed) == 0) /* chunk 0 is the slow helper's */
+        sched_yield();
+    assert_int_equal(pthread_create(&second, NULL, toy_helper_main, &fast), 0);
+    pthread_join(second, NULL);
+    /* Chunk 0 is not merged: the window (4) stopped the fast helper. */
+    assert_true(atomic_load(&t.claimed) <= 4);
+    wp_buffer out = {0};
+    wp_error error = {0};
+    unsigned long used = 0;
+    bool shared = wp_chunks_shared(chunks);
+    while (wp_chunks_run(chunks, shared, &host, &out, 1000, &used, 1 << 20, &error) !=
+           WP_STEP_DONE)
+        shared = wp_chunks_shared(chunks);
+    pthread_join(first, NULL);
+    assert_string_equal(out.data, "<0><1><2><3><4><5><6><7><8>");
+    free(out.data);
+    wp_chunks_free(chunks);
+}
+
+/* A helper's failure is kept: the chunks before it are merged, a step that
+ * shares goes on, and the next step that shares nothing says it. */
+static void a_failure_is_said_by_a_step_that_shares_nothing(void **state)
+{
+    (void)state;
+    wp_host host = {0};
+    toy t = {.fail_at = 1, .slow_at = SIZE_MAX};
+    wp_chunks *chunks = wp_chunks_new(&TOY, &t, 3);
+    assert_true(wp_chunks_parallel(chunks));
+    assert_true(wp_chunks_work(chunks, &host));  /* chunk 0 */
+    assert_true(wp_chunks_work(chunks, &host));  /* chunk 1: fails */
+    assert_false(wp_chunks_work(chunks, &host)); /* nothing more is claimed */
+    assert_false(wp_chunks_parallel(chunks));
+    wp_buffer out = {0};
+    wp_error error = {0};
+    unsigned long used = 0;
+    bool shared = wp_chunks_shared(chunks);
+    assert_true(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_MORE);
+    shared = wp_chunks_shared(chunks);
+    assert_false(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_FAILED);
+    assert_string_equal(error.reason, "chunk 1 failed");
+    assert_string_equal(out.data, "<0>");
+    free(out.data);
+    wp_chunks_free(chunks);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -907,6 +1159,7 @@ int main(void)
         cmocka_unit_test(numbers_round_trip_shortest),
         cmocka_unit_test(fixture_id_ignores_order_spelling_and_name),
         cmocka_unit_test(explicit_form_reads_back_to_the_same_fixture),
+        cmocka_unit_test(fixture_units_are_in_the_id_only_when_given),
         cmocka_unit_test_setup_teardown(envelope_errors_name_the_field, setup, teardown),
         cmocka_unit_test_setup_teardown(notifications_and_batches, setup, teardown),
         cmocka_unit_test_setup_teardown(numeric_ids_are_echoed_as_written, setup, teardown),
@@ -915,6 +1168,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(light_lines_answer_as_any_other, setup, teardown),
         cmocka_unit_test_setup_teardown(pieces_join_to_the_whole_answer, setup, teardown),
         cmocka_unit_test_setup_teardown(a_stop_ends_long_work, setup, teardown),
+        cmocka_unit_test(a_shared_step_never_ends_the_answer),
+        cmocka_unit_test(chunks_merge_in_order_within_the_window),
+        cmocka_unit_test(a_failure_is_said_by_a_step_that_shares_nothing),
         cmocka_unit_test_setup_teardown(a_step_after_parallel_does_not_end_the_answer, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(long_numbers_read_as_the_tree_reads_them, setup,

@@ -95,7 +95,7 @@ static void assert_same_regions(const wr_regions *a, const wr_regions *b)
  * of empty answers alone). */
 static int compare_on(const wr_fixture *body, double radius, int trials, uint64_t seed)
 {
-    wr_finger finger = {0, radius};
+    wr_finger finger = {.friction = 0, .radius = radius};
     wr_push_index *index;
     assert_int_equal(wr_push_index_new(body, &finger, &index), WR_OK);
     test_rng rng = {seed};
@@ -146,7 +146,7 @@ static void indexed_against_sampling(void **state)
 {
     (void)state;
     wr_fixture *bodies[2] = {gear_body(400, 8), bracket_body()};
-    wr_finger point = {0, 0};
+    wr_finger point = {.radius = 0};
     test_rng rng = {7};
     int inside = 0, outside = 0;
     for (int b = 0; b < 2; b++) {

@@ -105,6 +105,9 @@ MUTATION(shapeless_lever_too_long,
 MUTATION(no_shape_no_normal, (b->spec.shape = WR_SHAPE_NONE, b->spec.com_given = true,
                               b->spec.inertia_given = true, b->spec.inertia = 1))
 
+MUTATION(units_no_length, (b->spec.units = (wr_units){true, 0.0, 1.0}))
+MUTATION(units_nan_force, (b->spec.units = (wr_units){true, 1e-3, NAN}))
+
 static const mutation mutations[] = {
     {"nan mass", nan_mass, "body.mass"},
     {"negative mass", negative_mass, "body.mass"},
@@ -145,6 +148,8 @@ static const mutation mutations[] = {
     {"radius of gyration too large", gyration_too_large, "body.inertia"},
     {"radius of gyration too small", gyration_too_small, "body.inertia"},
     {"shapeless, lever arm too long", shapeless_lever_too_long, "body.inertia"},
+    {"a length unit of no size", units_no_length, "units.length"},
+    {"a force unit not a number", units_nan_force, "units.force"},
 };
 
 static void every_invalid_field_is_named(void **state)
@@ -324,3 +329,5 @@ int main(void)
     };
     return cmocka_run_group_tests_name("fixture", tests, NULL, NULL);
 }
+
+

@@ -1,0 +1,441 @@
+/* analysis.c -- questions about one fixture: cone.get, plan.get,
+ * modes.get, push.regions (written an edge at a time), gravity.sweep and
+ * stability.margin. */
+#include "common.h"
+#include "loads.h"
+#include "methods.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static cJSON *vector3(const double v[3])
+{
+    /* + 0.0 turns -0 into 0, which cJSON would print as "-0". */
+    const double w[3] = {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0};
+    return cJSON_CreateDoubleArray(w, 3);
+}
+
+/* ---- cone.get, plan.get, modes.get --------------------------------------- */
+
+cJSON *wp_handle_cone_get(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    const char *text;
+    if (!wp_member_string(params, "params", "constraints", true, &text, error))
+        return NULL;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    const wr_fixture *f = use->fixture;
+    wr_constraint constraint;
+    wr_error invalid;
+    wr_cone cone;
+    cJSON *result = NULL;
+    wr_status status = wr_constraint_parse(text, f->fixel_count, &constraint, &invalid);
+    if (status != WR_OK) {
+        wp_error_status(error, status, "params.constraints", "%s", invalid.reason);
+        goto done;
+    }
+    status = wr_cone_build(&cone, f, &constraint);
+    if (status != WR_OK) {
+        wr_cone_release(&cone);
+        wp_error_status(error, status, "params.constraints", "%s", wr_strerror(status));
+        goto done;
+    }
+    result = cJSON_CreateObject();
+    cJSON_AddStringToObject(result, "constraints", text);
+    cJSON_AddBoolToObject(result, "empty", cone.empty);
+    cJSON_AddNumberToObject(result, "dimension", cone.dimension);
+    cJSON *halfspaces = cJSON_AddArrayToObject(result, "halfspaces");
+    cJSON *strict = cJSON_AddArrayToObject(result, "strict");
+    cJSON *equalities = cJSON_AddArrayToObject(result, "equalities");
+    cJSON *generators = cJSON_AddArrayToObject(result, "generators");
+    if (!result || !halfspaces || !strict || !equalities || !generators) {
+        wr_cone_release(&cone);
+        result = wp_out_of_memory(result, error);
+        goto done;
+    }
+    double row[3];
+    for (int i = 0; i < cone.facet_count; i++) {
+        wr_fixture_unscale_row(f, cone.facets[i], row);
+        cJSON_AddItemToArray(halfspaces, vector3(row));
+        cJSON_AddItemToArray(strict, cJSON_CreateBool(cone.facet_open[i]));
+    }
+    for (int i = 0; i < cone.equality_count && !cone.empty; i++) {
+        wr_fixture_unscale_row(f, cone.equalities[i], row);
+        cJSON_AddItemToArray(equalities, vector3(row));
+    }
+    for (int i = 0; i < cone.ray_count; i++) {
+        wr_fixture_unscale_wrench(f, cone.rays[i], row);
+        double length = sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
+        for (int k = 0; k < 3; k++)
+            row[k] /= length;
+        cJSON_AddItemToArray(generators, vector3(row));
+    }
+    wr_cone_release(&cone);
+done:
+    return result;
+}
+
+cJSON *wp_handle_plan_get(wp_call *call)
+{
+    wp_error *error = call->error;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    const wr_plan *plan = wr_analysis_plan(use->analysis);
+    int k = plan->fixel_count;
+    cJSON *result = cJSON_CreateObject();
+    cJSON *states = cJSON_AddArrayToObject(result, "states");
+    cJSON *cones = cJSON_AddArrayToObject(result, "cones");
+    for (int s = 0; states && s < plan->state_count; s++) {
+        const wr_plan_state *ps = &plan->states[s];
+        char text[WR_STATE_TEXT];
+        wr_state_format(ps->state, k, text);
+        cJSON *state = cJSON_CreateObject();
+        cJSON_AddStringToObject(state, "state", text);
+        cJSON *excluded = cJSON_AddArrayToObject(state, "excluded");
+        for (int e = 0; excluded && e < ps->excluded_count; e++)
+            cJSON_AddItemToArray(excluded,
+                                 cJSON_CreateString(plan->excluded[ps->excluded_first + e].letters));
+        cJSON_AddItemToArray(states, state);
+    }
+    for (int i = 0; cones && i < plan->kept_count; i++)
+        cJSON_AddItemToArray(cones, cJSON_CreateString(plan->kept[i].letters));
+    if (!states || !cones)
+        return wp_out_of_memory(result, error);
+    return result;
+}
+
+cJSON *wp_handle_modes_get(wp_call *call)
+{
+    wp_error *error = call->error;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    const wr_analysis *a = use->analysis;
+    cJSON *result = cJSON_CreateObject();
+    cJSON *feasible = cJSON_AddArrayToObject(result, "feasible");
+    const wr_constraint *modes = wr_analysis_constraints(a, WR_SET_STRONG);
+    for (int i = 0; feasible && i < wr_analysis_cone_count(a, WR_SET_STRONG); i++) {
+        char text[WR_CONSTRAINT_TEXT];
+        wr_constraint_format(&modes[i], text);
+        cJSON_AddItemToArray(feasible, cJSON_CreateString(text));
+    }
+    cJSON_AddBoolToObject(result, "pinned", wr_analysis_pinned(a));
+    if (!feasible)
+        return wp_out_of_memory(result, error);
+    return result;
+}
+
+/* ---- push.regions, gravity.sweep, stability.margin ----------------------- */
+
+static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
+{
+    return wp_read_set_at(params, "params", set, error);
+}
+
+/* push.regions, written an edge at a time (a finger with friction samples
+ * every edge: a long outline is seconds of work). */
+typedef struct push_state {
+    wr_set set;
+    wr_finger finger;    /* its friction and radius; its push_on: */
+    bool *push_on;       /* owned */
+    int edges, next;     /* the outline's edges; the next to answer */
+    unsigned long edge_cost;
+    bool opened, any;    /* "{"regions":[" written; a region written */
+    double total, resolution;
+    wp_push_load load;   /* "force" and "cases": regions under them */
+} push_state;
+
+static void push_free(void *stream)
+{
+    push_state *state = stream;
+    free(state->push_on);
+    wp_push_load_release(&state->load);
+    free(state);
+}
+
+/* One reason: the blocking cone (set and index; index -1: none). */
+typedef struct reason {
+    wr_set set;
+    int index;
+    int edges;
+} reason;
+
+static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set set,
+                       const wr_finger *finger)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    int edges = wr_push_edge_count(f);
+    reason *reasons = calloc((size_t)edges + 1, sizeof *reasons);
+    int count = 0;
+    for (int e = 0; reasons && e < edges; e++) {
+        if (!wr_finger_pushes_on(f, finger, e))
+            continue;
+        double wrench[3];
+        wr_push_wrench(f, e, f->shape == WR_SHAPE_CIRCLE ? 180 : 0.5, wrench);
+        wr_answer answer;
+        if (wr_classify_margin(analysis, wrench, set, WR_DEFAULT_TOLERANCE, &answer) != WR_OK)
+            continue;
+        reason r = {answer.blocking >= 0 ? answer.blocking_set : set, answer.blocking, 1};
+        int i = 0;
+        while (i < count && (reasons[i].set != r.set || reasons[i].index != r.index))
+            i++;
+        if (i < count)
+            reasons[i].edges++;
+        else
+            reasons[count++] = r;
+    }
+    /* Most edges first; equal counts in the order first met (insertion). */
+    for (int a = 1; a < count; a++)
+        for (int b = a; b > 0 && reasons[b].edges > reasons[b - 1].edges; b--) {
+            reason swap = reasons[b];
+            reasons[b] = reasons[b - 1];
+            reasons[b - 1] = swap;
+        }
+    WP_BUFFER_LITERAL(out, ",\"why_empty\":{\"reasons\":[");
+    for (int i = 0; i < count; i++) {
+        wp_buffer_puts(out, i ? ",{\"blocking\":" : "{\"blocking\":");
+        if (reasons[i].index < 0) {
+            WP_BUFFER_LITERAL(out, "null");
+        } else {
+            char text[WR_CONSTRAINT_TEXT];
+            wr_constraint_format(&wr_analysis_cone(analysis, reasons[i].set, reasons[i].index)
+                                      ->constraint,
+                                 text);
+            wp_buffer_string(out, text);
+        }
+        WP_BUFFER_LITERAL(out, ",\"set\":");
+        wp_buffer_string(out, reasons[i].set == WR_SET_GOAL     ? "goal"
+                              : reasons[i].set == WR_SET_STRONG ? "strong"
+                                                                : "both");
+        WP_BUFFER_LITERAL(out, ",\"states\":[");
+        if (reasons[i].index >= 0 && reasons[i].set == WR_SET_GOAL) {
+            const wr_plan_origins *origins =
+                &wr_analysis_plan(analysis)->origins[reasons[i].index];
+            for (int j = 0; j < origins->count; j++) {
+                char state[WR_STATE_TEXT];
+                wr_state_format(origins->states[j], f->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+        }
+        WP_BUFFER_LITERAL(out, "],\"edges\":");
+        wp_buffer_number(out, reasons[i].edges);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    WP_BUFFER_LITERAL(out, "]}");
+    free(reasons);
+}
+
+static void *push_begin(wp_call *call, wp_prepared *prepared)
+{
+    (void)prepared;
+    wr_set set;
+    wr_finger finger;
+    if (!read_set(call->params, &set, call->error) ||
+        !wp_read_finger(call->params, "params", &finger, call->error))
+        return NULL;
+    double friction = finger.friction, radius = finger.radius;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    if (use->fixture->shape == WR_SHAPE_NONE) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                     "push regions need the part's outline: the fixture has no shape");
+        return NULL;
+    }
+    wp_push_load load;
+    if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
+        return NULL;
+    push_state *state = calloc(1, sizeof *state);
+    if (!state) {
+        wp_push_load_release(&load);
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return NULL;
+    }
+    state->load = load;
+    state->set = set;
+    state->finger = (wr_finger){.friction = friction, .radius = radius};
+    if (!wp_read_push_on(call->params, "params", use->fixture, &state->push_on,
+                         &state->finger.push_on_count, call->error)) {
+        free(state);
+        return NULL;
+    }
+    state->finger.push_on = state->push_on;
+    state->edges = wr_push_edge_count(use->fixture);
+    /* An edge against every cone: a few dot products each, or, with a
+     * finger's friction, a segment test at every sample and bisection. */
+    const wr_analysis *a = use->analysis;
+    unsigned long cones = (unsigned long)(set == WR_SET_GOAL     ? wr_analysis_cone_count(a, WR_SET_GOAL)
+                                          : set == WR_SET_STRONG ? wr_analysis_cone_count(a, WR_SET_STRONG)
+                                                                 : wr_analysis_cone_count(a, WR_SET_GOAL) +
+                                                                       wr_analysis_cone_count(a, WR_SET_STRONG));
+    /* A finger with a size is tested against every segment of the outline. */
+    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) * (unsigned long)(load.count + 1) +
+                       (radius > 0 ? 8 * (unsigned long)state->edges : 0);
+    return state;
+}
+
+static void write_region(wp_buffer *out, const wr_fixture *f, const wr_region *r, double length)
+{
+    double from[2], to[2], normal[2];
+    wr_boundary_point(f, r->edge, r->t0, from, normal);
+    wr_boundary_point(f, r->edge, r->t1, to, normal);
+    /* + 0.0: a -0 is written 0. */
+    const double ends[2][2] = {{from[0] + 0.0, from[1] + 0.0}, {to[0] + 0.0, to[1] + 0.0}};
+    if (f->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(f, r->edge, &loop, &segment);
+        WP_BUFFER_LITERAL(out, "{\"loop\":");
+        wp_buffer_number(out, (double)loop);
+        WP_BUFFER_LITERAL(out, ",\"segment\":");
+        wp_buffer_number(out, (double)segment);
+    } else {
+        WP_BUFFER_LITERAL(out, "{\"edge\":");
+        wp_buffer_number(out, r->edge);
+    }
+    WP_BUFFER_LITERAL(out, ",\"from\":");
+    wp_write_vector(out, ends[0], 2);
+    WP_BUFFER_LITERAL(out, ",\"to\":");
+    wp_write_vector(out, ends[1], 2);
+    WP_BUFFER_LITERAL(out, ",\"t0\":");
+    wp_buffer_number(out, r->t0);
+    WP_BUFFER_LITERAL(out, ",\"t1\":");
+    wp_buffer_number(out, r->t1);
+    WP_BUFFER_LITERAL(out, ",\"length\":");
+    wp_buffer_number(out, length);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                         unsigned long *used)
+{
+    push_state *state = stream;
+    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
+    if (!use)
+        return WP_STEP_FAILED;
+    const wr_fixture *f = use->fixture;
+    size_t start = out->length;
+    if (!state->opened) {
+        state->opened = true;
+        WP_BUFFER_LITERAL(out, "{\"regions\":[");
+    }
+    /* At least one edge a step: every step makes progress. */
+    for (bool first = true; state->next < state->edges && !out->failed; first = false) {
+        if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
+            return WP_STEP_MORE;
+        wr_regions part = {0};
+        const wp_push_load *load = &state->load;
+        wr_status status =
+            load->given
+                ? wr_push_regions_loaded(use->analysis, state->set, load->force,
+                                         (const double (*)[3])load->loads, load->count,
+                                         state->finger.radius, state->next, 1, call->host->stop,
+                                         &part)
+                : wr_push_regions_part(use->analysis, state->set, &state->finger, state->next, 1,
+                                       call->host->stop, &part);
+        if (status != WR_OK) {
+            wr_regions_release(&part);
+            wp_error_status(call->error, status, "", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        for (int i = 0; i < part.count; i++) {
+            /* Summed in the order written, as the whole answer always was. */
+            double length = wr_region_length(f, &part.items[i]);
+            state->total += length;
+            if (state->any)
+                WP_BUFFER_LITERAL(out, ",");
+            state->any = true;
+            write_region(out, f, &part.items[i], length);
+        }
+        state->resolution = part.resolution;
+        wr_regions_release(&part);
+        state->next++;
+        *used += state->edge_cost;
+    }
+    WP_BUFFER_LITERAL(out, "],\"total_length\":");
+    wp_buffer_number(out, state->total);
+    WP_BUFFER_LITERAL(out, ",\"fraction\":");
+    wp_buffer_number(out, state->total / wr_perimeter(f));
+    wp_buffer_puts(out, state->resolution == 0 ? ",\"exact\":true" : ",\"exact\":false");
+    WP_BUFFER_LITERAL(out, ",\"resolution\":");
+    wp_buffer_number(out, state->resolution);
+    if (!state->any)
+        write_push_why(out, use->analysis, state->set, &state->finger);
+    WP_BUFFER_LITERAL(out, "}");
+    return WP_STEP_DONE;
+}
+
+const wp_streamer wp_push_stream = {push_begin, push_step, push_free, NULL, false, NULL, NULL};
+
+cJSON *wp_handle_gravity_sweep(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    wr_set set;
+    if (!read_set(params, &set, error))
+        return NULL;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    cJSON *result = NULL;
+    wr_regions arcs;
+    wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
+    if (status != WR_OK) {
+        wp_error_status(error, status, "params.set", "%s", wr_strerror(status));
+    } else {
+        result = cJSON_CreateObject();
+        cJSON *list = cJSON_AddArrayToObject(result, "intervals_deg");
+        for (int i = 0; list && i < arcs.count; i++) {
+            const double arc[2] = {arcs.items[i].t0 + 0.0, arcs.items[i].t1 + 0.0};
+            cJSON_AddItemToArray(list, cJSON_CreateDoubleArray(arc, 2));
+        }
+        if (!list)
+            result = wp_out_of_memory(result, error);
+        wr_regions_release(&arcs);
+    }
+    return result;
+}
+
+cJSON *wp_handle_stability_margin(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    double bias[3];
+    cJSON *result = NULL;
+    wr_disturbance d;
+    bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",
+                               use->fixture, bias, error);
+    wr_status status = read ? wr_disturbance_margin(use->analysis, bias, &d) : WR_OK;
+    if (status != WR_OK)
+        wp_error_status(error, status, "params.bias",
+                        "so large that its margin is beyond the largest number");
+    else if (read) {
+        result = cJSON_CreateObject();
+        if (d.bounded) {
+            char text[WR_CONSTRAINT_TEXT];
+            wr_constraint_format(&wr_analysis_constraints(use->analysis, WR_SET_STRONG)[d.blocking],
+                                 text);
+            cJSON_AddNumberToObject(result, "margin", d.margin + 0.0);
+            cJSON_AddStringToObject(result, "blocking", text);
+            cJSON_AddItemToObject(result, "worst_direction", vector3(d.worst_direction));
+        } else {
+            /* No moving mode at all: no disturbance moves the part. */
+            cJSON_AddNullToObject(result, "margin");
+            cJSON_AddNullToObject(result, "blocking");
+            cJSON_AddNullToObject(result, "worst_direction");
+        }
+        if (!cJSON_GetObjectItem(result, "worst_direction"))
+            result = wp_out_of_memory(result, error);
+    }
+    return result;
+}

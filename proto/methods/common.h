@@ -1,0 +1,66 @@
+/* common.h -- what several families of methods share: the names of the
+ * sets, the wrenches and sets a request asks about, the readers of a set
+ * and a finger, a stream's zeroed state with its fixture, and small
+ * writers.  Each is used by two families or more; a family's own readers
+ * and writers stay in its file. */
+#ifndef WP_METHODS_COMMON_H
+#define WP_METHODS_COMMON_H
+
+#include "wp_method.h"
+
+/* "goal", "strong", "both": wr_set's values, as the protocol spells them. */
+extern const char *const wp_set_names[3];
+
+/* The wrenches and sets a request asks about (wrench.classify,
+ * friction.sweep), and how classify answers them. */
+typedef struct wp_classify_request {
+    wr_set sets[3];
+    int set_count;
+    bool lp;
+    double tolerance;
+    size_t wrench_count;
+    double (*wrenches)[3];
+    unsigned fields;   /* 1 << FIELD_*; 0: not given, every field in rows */
+} wp_classify_request;
+
+/* params.sets: distinct names of wp_set_names (default goal and strong). */
+bool wp_read_sets(const cJSON *params, wp_classify_request *r, wp_error *error);
+/* params.wrenches: each read into r->wrenches (or taken from `prepared`,
+ * which may be NULL), no more than --max-wrenches of them. */
+bool wp_read_wrenches(const wp_limits *limits, const cJSON *params, const wr_fixture *fixture,
+                      wp_prepared *prepared, wp_classify_request *r, wp_error *error);
+/* path.set: one of goal, strong, both (default goal). */
+bool wp_read_set_at(const cJSON *object, const char *path, wr_set *set, wp_error *error);
+/* path.finger_friction and path.finger_radius: not negative (default 0). */
+bool wp_read_finger(const cJSON *object, const char *path, wr_finger *finger, wp_error *error);
+
+/* The call's fixture (held until the stream's free) and a zeroed state of
+ * `size` bytes; NULL with the error set when either fails. */
+void *wp_stream_with_fixture(wp_call *call, size_t size, wp_fixture_use **use);
+
+/* [v0, v1, ...]: n numbers.  Inline: a classify row writes several per
+ * wrench. */
+static inline void wp_write_vector(wp_buffer *b, const double *v, int n)
+{
+    WP_BUFFER_LITERAL(b, "[");
+    for (int i = 0; i < n; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(b, ",");
+        wp_buffer_number(b, v[i]);
+    }
+    WP_BUFFER_LITERAL(b, "]");
+}
+
+/* Frees `partial` and says "out of memory": NULL, for a handler to return. */
+cJSON *wp_out_of_memory(cJSON *partial, wp_error *error);
+
+/* path.push_on of `object` for a body or fixture `shape` (fixture.design,
+ * push.regions; docs/PROTOCOL.md, push_on): absent or "all" gives *mask
+ * NULL (every loop); "outer" loop 0; a list of loop numbers those.  *mask
+ * is malloc'd (the caller frees it), *count entries, one per loop of the
+ * shape (1 for a polygon or a circle).  False with `error` at path.push_on
+ * or path.push_on[i]. */
+bool wp_read_push_on(const cJSON *object, const char *path, const wr_fixture *shape, bool **mask,
+                     size_t *count, wp_error *error);
+
+#endif

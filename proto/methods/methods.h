@@ -1,0 +1,39 @@
+/* methods.h -- each family's handlers and streams, for the method table
+ * (wp_methods.c), one section per file of proto/methods/. */
+#ifndef WP_METHODS_METHODS_H
+#define WP_METHODS_METHODS_H
+
+#include "wp_method.h"
+
+/* store.c */
+cJSON *wp_handle_fixture_put(wp_call *call);
+cJSON *wp_handle_fixture_get(wp_call *call);
+cJSON *wp_handle_fixture_delete(wp_call *call);
+cJSON *wp_handle_fixture_list(wp_call *call);
+cJSON *wp_handle_server_status(wp_call *call);
+
+/* classify.c */
+extern const wp_streamer wp_classify_stream;
+bool wp_classify_light(const cJSON *params, int cones);
+
+/* analysis.c */
+cJSON *wp_handle_cone_get(wp_call *call);
+cJSON *wp_handle_plan_get(wp_call *call);
+cJSON *wp_handle_modes_get(wp_call *call);
+extern const wp_streamer wp_push_stream;
+cJSON *wp_handle_gravity_sweep(wp_call *call);
+cJSON *wp_handle_stability_margin(wp_call *call);
+
+/* sweep.c */
+extern const wp_streamer wp_sweep_stream;
+
+/* design.c */
+extern const wp_streamer wp_design_stream;
+
+/* force.c: force.range (the magnitudes of one push that do each set's job
+ * under each load case, and under all of them) and push.force (the least
+ * push force along the outline, and where it is least) */
+cJSON *wp_handle_force_range(wp_call *call);
+cJSON *wp_handle_push_force(wp_call *call);
+
+#endif

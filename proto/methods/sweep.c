@@ -1,0 +1,404 @@
+/* sweep.c -- friction.sweep: wrenches, push regions or gravity arcs
+ * against a common coefficient of friction, a job's budget at a time. */
+#include "common.h"
+#include "loads.h"
+#include "methods.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* friction.sweep, a job's budget at a time (wr_sweep.h). */
+enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY, SWEEP_FORCE };
+
+/* The least push force against mu is sampled at this many coefficients,
+ * each sample exact (wr_least_force_find on the fixture at that mu). */
+#define FORCE_SAMPLES 128
+typedef struct sweep_state {
+    int what;                   /* SWEEP_* */
+    wr_sweep_range range;
+    wp_classify_request request;   /* the sets (one for push and gravity), the wrenches */
+    wr_finger finger;
+    wr_sweeper *sweepers[3];    /* one per set */
+    wr_sweep_job *job;          /* the current one */
+    size_t next;                /* wrenches: the next to answer, */
+    int set;                    /* and its next set */
+    bool opened;                /* "{"results":[" written */
+    /* force: the cases' loads (model system), the next sample of mu, and
+     * the fixture's fixels as specs, to place them again at each mu */
+    wp_cases cases;
+    double (*loads)[3];
+    int sample;
+    bool any;
+    wr_fixel_spec fixels[WR_MAX_FIXELS];
+} sweep_state;
+
+static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
+static const char *const SWEEP_GRAVITY_FIELDS[] = {"set", NULL};
+static const char *const SWEEP_FORCE_FIELDS[] = {"set", "finger_radius", NULL};
+
+/* params.range: [low, high], 0 <= low < high <= WR_MAX_FRICTION (default
+ * [0, 2]); params.kinetic_ratio in (0, 1] (default 1). */
+static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_error *error)
+{
+    *range = (wr_sweep_range){0, 2, 1};
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(params, "range");
+    if (value) {
+        if (!cJSON_IsArray(value) || cJSON_GetArraySize(value) != 2) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range",
+                         "must be [low, high]: two coefficients of friction");
+            return false;
+        }
+        double ends[2];
+        for (int i = 0; i < 2; i++) {
+            char field[WP_FIELD_MAX];
+            wp_path_index(field, "params.range", (size_t)i);
+            const cJSON *end = cJSON_GetArrayItem(value, i);
+            if (!cJSON_IsNumber(end) || !isfinite(end->valuedouble)) {
+                wp_error_set(error, WP_INVALID_PARAMS, field, "must be a number, not %s",
+                             wp_type_name(end));
+                return false;
+            }
+            ends[i] = end->valuedouble;
+        }
+        if (ends[0] < 0) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range[0]",
+                         "a coefficient of friction is not negative");
+            return false;
+        }
+        if (ends[1] > WR_MAX_FRICTION) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range[1]",
+                         "at most %g: no contact has more friction", WR_MAX_FRICTION);
+            return false;
+        }
+        if (!(ends[0] < ends[1])) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.range",
+                         "the low end must be below the high end");
+            return false;
+        }
+        range->low = ends[0] + 0.0;
+        range->high = ends[1];
+    }
+    bool given;
+    if (!wp_member_number(params, "params", "kinetic_ratio", false, &range->kinetic_ratio, &given,
+                          error))
+        return false;
+    if (!(range->kinetic_ratio > 0 && range->kinetic_ratio <= 1)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.kinetic_ratio",
+                     "must be in (0, 1]: kinetic friction is positive and not above static");
+        return false;
+    }
+    return true;
+}
+
+static void write_intervals(wp_buffer *out, const wr_intervals *list)
+{
+    WP_BUFFER_LITERAL(out, "[");
+    for (int i = 0; i < list->count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
+        const double pair[2] = {list->items[i][0] + 0.0, list->items[i][1] + 0.0};
+        wp_write_vector(out, pair, 2);
+    }
+    WP_BUFFER_LITERAL(out, "]");
+}
+
+/* {"intervals", "critical", "curve", "exact", "resolution"} */
+static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
+{
+    WP_BUFFER_LITERAL(out, "{\"intervals\":");
+    write_intervals(out, &curve->intervals);
+    WP_BUFFER_LITERAL(out, ",\"critical\":");
+    if (curve->has_critical)
+        wp_buffer_number(out, curve->critical + 0.0);
+    else
+        WP_BUFFER_LITERAL(out, "null");
+    WP_BUFFER_LITERAL(out, ",\"curve\":[");
+    for (int i = 0; i < curve->point_count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
+        const double point[2] = {curve->points[i][0] + 0.0, curve->points[i][1] + 0.0};
+        wp_write_vector(out, point, 2);
+    }
+    wp_buffer_puts(out, curve->exact ? "],\"exact\":true" : "],\"exact\":false");
+    WP_BUFFER_LITERAL(out, ",\"resolution\":");
+    wp_buffer_number(out, curve->resolution);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+/* The sweep's reading of params: which question, the range, and the
+ * wrenches and sets or the set and finger. */
+static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *state)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    const char *names[4] = {"wrenches", "push", "gravity", "force"};
+    int given = 0;
+    for (int i = 0; i < 4; i++)
+        if (cJSON_GetObjectItemCaseSensitive(params, names[i])) {
+            given++;
+            state->what = i;
+        }
+    if (given != 1) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params",
+                     "give exactly one of \"wrenches\", \"push\", \"gravity\" and \"force\" "
+                     "(%d given)",
+                     given);
+        return false;
+    }
+    const cJSON *cases = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    if ((cases != NULL) != (state->what == SWEEP_FORCE)) {
+        wp_error_set(error, WP_INVALID_PARAMS, cases ? "params.cases" : "params.cases",
+                     cases ? "only with \"force\": the loads a push works against"
+                           : "required with \"force\": the loads a push works against");
+        return false;
+    }
+    if (state->what != SWEEP_WRENCHES && cJSON_GetObjectItemCaseSensitive(params, "sets")) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.sets",
+                     "only with \"wrenches\": a push or gravity sweep takes its \"set\"");
+        return false;
+    }
+    if (!read_sweep_range(params, &state->range, error))
+        return false;
+    if (state->what == SWEEP_WRENCHES) {
+        wp_classify_request *r = &state->request;
+        if (!wp_read_sets(params, r, error))
+            return false;
+        return wp_read_wrenches(call->limits, params, fixture, NULL, r, error);
+    }
+    if (state->what == SWEEP_FORCE) {
+        /* {"set"? (default both), "finger_radius"?} and the cases. */
+        const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, "force");
+        state->request.set_count = 1;
+        if (!wp_check_object(what, "params.force", SWEEP_FORCE_FIELDS, error) ||
+            !wp_read_set_at(what, "params.force", &state->request.sets[0], error) ||
+            !wp_read_finger(what, "params.force", &state->finger, error) ||
+            !wp_cases_read(cases, "params.cases", fixture, &state->cases, error))
+            return false;
+        if (!cJSON_GetObjectItemCaseSensitive(what, "set"))
+            state->request.sets[0] = WR_SET_BOTH;
+        if (fixture->shape == WR_SHAPE_NONE) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                         "a push force needs the part's outline: the fixture has no shape");
+            return false;
+        }
+        state->loads = malloc((size_t)state->cases.count * sizeof *state->loads);
+        if (!state->loads) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        for (int c = 0; c < state->cases.count; c++)
+            memcpy(state->loads[c], state->cases.items[c].load, sizeof state->loads[c]);
+        /* The fixels as they are, to be placed again with each mu. */
+        for (int i = 0; i < fixture->fixel_count; i++) {
+            const wr_fixel *x = &fixture->fixels[i];
+            state->fixels[i] = (wr_fixel_spec){.at = {x->at[0], x->at[1]}, .normal_given = true,
+                                               .normal = {x->normal[0], x->normal[1]}};
+        }
+        return true;
+    }
+    bool push = state->what == SWEEP_PUSH;
+    const char *path = push ? "params.push" : "params.gravity";
+    const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, push ? "push" : "gravity");
+    state->request.set_count = 1;
+    if (!wp_check_object(what, path, push ? SWEEP_PUSH_FIELDS : SWEEP_GRAVITY_FIELDS, error) ||
+        !wp_read_set_at(what, path, &state->request.sets[0], error) ||
+        (push && !wp_read_finger(what, path, &state->finger, error)))
+        return false;
+    if (push && fixture->shape == WR_SHAPE_NONE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                     "push regions need the part's outline: the fixture has no shape");
+        return false;
+    }
+    return true;
+}
+
+static void sweep_free(void *stream)
+{
+    if (!stream)
+        return;
+    sweep_state *state = stream;
+    wr_sweep_job_free(state->job);
+    for (int s = 0; s < 3; s++)
+        wr_sweeper_free(state->sweepers[s]);
+    free(state->request.wrenches);
+    free(state->loads);
+    wp_cases_release(&state->cases);
+    free(stream);
+}
+
+/* friction.sweep: one of wrenches, push, gravity, against a common mu.
+ * Everything is read and the sweepers made before any answer is written;
+ * then each step runs the current job for its budget (wr_sweep.h). */
+static void *sweep_begin(wp_call *call, wp_prepared *prepared)
+{
+    (void)prepared;
+    wp_fixture_use *use;
+    sweep_state *state = wp_stream_with_fixture(call, sizeof *state, &use);
+    if (!state)
+        return NULL;
+    if (!read_sweep(call, use->fixture, state)) {
+        sweep_free(state);
+        return NULL;
+    }
+    wr_status status = WR_OK;
+    if (state->what == SWEEP_FORCE)
+        return state; /* sampled a mu at a time by sweep_force_step */
+    for (int s = 0; status == WR_OK && s < state->request.set_count; s++)
+        status = wr_sweeper_new(use->fixture, state->request.sets[s], &state->range,
+                                &state->sweepers[s]);
+    if (status == WR_OK && state->what == SWEEP_PUSH)
+        status = wr_sweep_job_push(state->sweepers[0], &state->finger, &state->job);
+    else if (status == WR_OK && state->what == SWEEP_GRAVITY)
+        status = wr_sweep_job_gravity(state->sweepers[0], &state->job);
+    if (status != WR_OK) {
+        wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+        sweep_free(state);
+        return NULL;
+    }
+    return state;
+}
+
+/* The least push force at one mu: the fixture's fixels placed again with
+ * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
+ * point [mu, F] (F null when no push does the job) is written. */
+static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
+                              unsigned long *used, wp_buffer *out)
+{
+    wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
+                                 .kinetic_mu = mu * state->range.kinetic_ratio};
+    wr_fixture placed;
+    wr_error invalid;
+    wr_status status = wr_fixture_place(f, state->fixels, (size_t)f->fixel_count, &friction,
+                                        &placed, &invalid);
+    wr_analysis *analysis = NULL;
+    if (status == WR_OK)
+        status = wr_analysis_new(&placed, &analysis);
+    wr_least_force least = {0};
+    if (status == WR_OK)
+        status = wr_least_force_find(analysis, state->request.sets[0],
+                                     (const double (*)[3])state->loads, state->cases.count,
+                                     state->finger.radius, NULL, &least);
+    wr_analysis_free(analysis);
+    if (status != WR_OK)
+        return status;
+    *used += 1000 + least.evaluations * 40 * (unsigned long)state->cases.count;
+    WP_BUFFER_LITERAL(out, "[");
+    wp_buffer_number(out, mu + 0.0);
+    WP_BUFFER_LITERAL(out, ",");
+    if (least.found)
+        wp_buffer_number(out, wp_force_out(f, least.force));
+    else
+        WP_BUFFER_LITERAL(out, "null");
+    WP_BUFFER_LITERAL(out, "]");
+    return WR_OK;
+}
+
+/* friction.sweep "force": {"curve": [[mu, F], ...], "exact": false,
+ * "resolution": step}, a sample of mu at a time. */
+static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *out,
+                                unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
+    if (!use)
+        return WP_STEP_FAILED;
+    const double step = (state->range.high - state->range.low) / (FORCE_SAMPLES - 1);
+    if (!state->opened) {
+        state->opened = true;
+        WP_BUFFER_LITERAL(out, "{\"curve\":[");
+    }
+    for (bool first = true; state->sample < FORCE_SAMPLES && !out->failed; first = false) {
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        if (wr_stop_requested(call->host->stop)) {
+            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+            return WP_STEP_FAILED;
+        }
+        double mu = state->sample + 1 == FORCE_SAMPLES ? state->range.high
+                                                       : state->range.low + state->sample * step;
+        if (state->any)
+            WP_BUFFER_LITERAL(out, ",");
+        state->any = true;
+        wr_status status = force_sample(state, use->fixture, mu, used, out);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        state->sample++;
+    }
+    WP_BUFFER_LITERAL(out, "],\"exact\":false,\"resolution\":");
+    wp_buffer_number(out, step);
+    WP_BUFFER_LITERAL(out, "}");
+    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
+static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                          unsigned long *used)
+{
+    sweep_state *state = stream;
+    if (state->what == SWEEP_FORCE)
+        return sweep_force_step(state, call, out, budget, used);
+    const wp_classify_request *r = &state->request;
+    const wr_stop *stop = call->host->stop;
+    size_t start = out->length;
+    for (bool first = true; !out->failed; first = false) {
+        if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
+            return WP_STEP_MORE;
+        if (state->what == SWEEP_WRENCHES) {
+            if (!state->opened) {
+                state->opened = true;
+                WP_BUFFER_LITERAL(out, "{\"results\":[");
+            }
+            if (state->next >= r->wrench_count) {
+                WP_BUFFER_LITERAL(out, "]}");
+                return WP_STEP_DONE;
+            }
+            if (!state->job) {
+                wr_status status = wr_sweep_job_wrench(state->sweepers[state->set],
+                                                       r->wrenches[state->next], &state->job);
+                if (status != WR_OK) {
+                    wp_error_status(call->error, status, "params.wrenches", "%s",
+                                    wr_strerror(status));
+                    return WP_STEP_FAILED;
+                }
+            }
+        }
+        bool done;
+        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1, used,
+                                            stop, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        if (!done)
+            continue;
+        if (state->what != SWEEP_WRENCHES) {
+            write_curve(out, wr_sweep_job_curve(state->job));
+            return WP_STEP_DONE;
+        }
+        /* A wrench's set answered: {"goal": [...], ...} as its sets end. */
+        if (state->set == 0)
+            wp_buffer_puts(out, state->next ? ",{\"" : "{\"");
+        else
+            WP_BUFFER_LITERAL(out, ",\"");
+        wp_buffer_puts(out, wp_set_names[r->sets[state->set]]);
+        WP_BUFFER_LITERAL(out, "\":");
+        write_intervals(out, wr_sweep_job_intervals(state->job));
+        wr_sweep_job_free(state->job);
+        state->job = NULL;
+        if (++state->set == r->set_count) {
+            WP_BUFFER_LITERAL(out, "}");
+            state->set = 0;
+            state->next++;
+        }
+    }
+    return WP_STEP_FAILED; /* out of memory: the buffer says so */
+}
+
+static size_t sweep_bytes(const void *stream)
+{
+    const sweep_state *state = stream;
+    return sizeof *state + state->request.wrench_count * sizeof(double[3]);
+}
+
+const wp_streamer wp_sweep_stream = {sweep_begin, sweep_step, sweep_free, sweep_bytes, false, NULL, NULL};

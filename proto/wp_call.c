@@ -1,0 +1,50 @@
+/* wp_call.c -- what a method's call offers it (wp_method.h): its fixture,
+ * acquired through the host into the envelope's hold, its id, and whether
+ * it may send notifications. */
+#include "wp_method.h"
+
+#include <stdio.h>
+
+/* params.fixture, held for the call: a stored id, or an inline fixture
+ * object (validated, then cached under its id). */
+wp_fixture_use *wp_call_fixture(wp_call *call)
+{
+    wp_fixture_hold *hold = call->fixture;
+    if (hold->holding)
+        return &hold->use; /* held since the light check, or an earlier piece */
+    const wp_host *host = call->host;
+    wp_error *error = call->error;
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(call->params, "fixture");
+    bool ok;
+    if (cJSON_IsString(value)) {
+        if (!wp_fixture_id_valid(value->valuestring)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
+                         "not a fixture id (32 hexadecimal digits) nor a fixture object");
+            return NULL;
+        }
+        ok = host->fixture_use(host->self, value->valuestring, &hold->use, error);
+    } else if (cJSON_IsObject(value)) {
+        wp_fixture_doc doc;
+        if (!wp_fixture_read(value, "params.fixture", &doc, error))
+            return NULL;
+        ok = host->fixture_adopt(host->self, &doc, false, &hold->use, error);
+    } else {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
+                     "must be a fixture id or a fixture object, not %s", wp_type_name(value));
+        return NULL;
+    }
+    if (!ok && !error->field[0])
+        snprintf(error->field, sizeof error->field, "params.fixture");
+    hold->holding = ok;
+    return ok ? &hold->use : NULL;
+}
+
+void wp_call_open_result(wp_call *call, wp_buffer *out)
+{
+    (void)call;
+    wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
+}
+
+const char *wp_call_id_text(const wp_call *call) { return call->id_text; }
+
+bool wp_call_may_notify(const wp_call *call) { return call->may_notify; }

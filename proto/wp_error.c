@@ -1,0 +1,73 @@
+/* wp_error.c -- errors that name the field at fault: setting them, the
+ * one mapping of lib statuses to JSON-RPC codes, field paths, type names. */
+#include "wp_json.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+
+static void error_vset(wp_error *error, int code, const char *field, const char *format,
+                       va_list args) __attribute__((format(printf, 4, 0)));
+
+static void error_vset(wp_error *error, int code, const char *field, const char *format,
+                       va_list args)
+{
+    if (!error)
+        return;
+    error->code = code;
+    snprintf(error->field, sizeof error->field, "%s", field ? field : "");
+    vsnprintf(error->reason, sizeof error->reason, format, args);
+}
+
+void wp_error_set(wp_error *error, int code, const char *field, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    error_vset(error, code, field, format, args);
+    va_end(args);
+}
+
+void wp_error_status(wp_error *error, wr_status status, const char *field, const char *format,
+                     ...)
+{
+    if (status == WR_NO_MEMORY || status == WR_STOPPED) {
+        wp_error_set(error, WP_INTERNAL, "", "%s",
+                     status == WR_NO_MEMORY ? "out of memory" : "stopped: the client is gone");
+        return;
+    }
+    va_list args;
+    va_start(args, format);
+    error_vset(error, status == WR_LP_FAILED ? WP_SOLVER : WP_INVALID_PARAMS, field, format, args);
+    va_end(args);
+}
+
+void wp_path_key(char out[WP_FIELD_MAX], const char *prefix, const char *key)
+{
+    if (!prefix || !*prefix)
+        snprintf(out, WP_FIELD_MAX, "%s", key);
+    else
+        snprintf(out, WP_FIELD_MAX, "%.*s.%s", WP_FIELD_MAX / 2, prefix, key);
+}
+
+void wp_path_index(char out[WP_FIELD_MAX], const char *prefix, size_t index)
+{
+    snprintf(out, WP_FIELD_MAX, "%.*s[%zu]", WP_FIELD_MAX - 24, prefix, index);
+}
+
+const char *wp_type_name(const cJSON *value)
+{
+    if (!value)
+        return "nothing";
+    if (cJSON_IsNumber(value))
+        return "a number";
+    if (cJSON_IsString(value))
+        return "a string";
+    if (cJSON_IsBool(value))
+        return "a boolean";
+    if (cJSON_IsNull(value))
+        return "null";
+    if (cJSON_IsArray(value))
+        return "an array";
+    if (cJSON_IsObject(value))
+        return "an object";
+    return "an unknown value";
+}

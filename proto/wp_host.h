@@ -1,0 +1,85 @@
+/* wp_host.h -- what the daemon implements for proto: the fixture store and
+ * the solver state a request needs, handed over as data.  proto calls it;
+ * it never calls proto (docs/ARCHITECTURE.md, "The seam between proto and
+ * the daemon"). */
+#ifndef WP_HOST_H
+#define WP_HOST_H
+
+#include "wp_fixture.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+
+/* A fixture held for the length of one request. */
+typedef struct wp_fixture_use {
+    const char *id;
+    const char *name;
+    const char *canonical;       /* the stored JSON text */
+    const wr_fixture *fixture;
+    const wr_analysis *analysis; /* derived data, built if it had been evicted */
+    void *handle[2];             /* the host's */
+} wp_fixture_use;
+
+/* One stored fixture, as fixture.list shows it. */
+typedef struct wp_fixture_entry {
+    char id[WP_ID_LENGTH + 1];
+    char *name;                  /* malloc'd */
+    int fixels;
+} wp_fixture_entry;
+
+/* The stored fixtures, by id. */
+typedef struct wp_fixture_listing {
+    size_t count;
+    wp_fixture_entry *entries;   /* malloc'd */
+} wp_fixture_listing;
+void wp_fixture_listing_release(wp_fixture_listing *listing);
+
+/* What server.status reports. */
+typedef struct wp_server_state {
+    double uptime_s;
+    size_t fixtures;             /* stored */
+    size_t cached;               /* with derived data in memory */
+    size_t cache_bytes, cache_limit_bytes;
+    int threads;
+    unsigned long clients, refused, denied, requests, errors;
+} wp_server_state;
+
+/* The daemon's side of the seam: the fixture store and the solver state a
+ * request needs, as data.  One per thread (so `self` may hold that thread's
+ * GLPK environment).  The envelope acquires and releases a request's
+ * fixture; handlers only read what it holds. */
+typedef struct wp_host {
+    void *self;
+    /* Keep a validated fixture and hold it: stored (persisted, listed) when
+     * `store`, else only cached under its id (an inline fixture).  Takes
+     * the doc's contents whatever the outcome. */
+    bool (*fixture_adopt)(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
+                          wp_error *error);
+    /* Hold the stored fixture `id`; WP_NO_FIXTURE when there is none. */
+    bool (*fixture_use)(void *self, const char *id, wp_fixture_use *use, wp_error *error);
+    /* Hold the stored fixture `id` only if its derived data is ready (using
+     * it then costs no derivation): its number of cones (goal + strong), or
+     * -1 with nothing held.  May be NULL: never ready. */
+    int (*fixture_use_ready)(void *self, const char *id, wp_fixture_use *use);
+    void (*fixture_release)(void *self, wp_fixture_use *use);
+    /* Forget the stored fixture `id` (and its file); WP_NO_FIXTURE, WP_STORAGE. */
+    bool (*fixture_delete)(void *self, const char *id, wp_error *error);
+    /* The stored fixtures, and the server's state. */
+    bool (*fixture_list)(void *self, wp_fixture_listing *listing, wp_error *error);
+    bool (*state)(void *self, wp_server_state *state, wp_error *error);
+    /* This thread's warm LP sets for a fixture in use. */
+    bool (*lp_sets)(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
+                    wp_error *error);
+    /* Polled by long work between bounded units (wrenches, edges): set by
+     * the host to the request's own stop before each piece of work, so that
+     * work for a client that hung up ends.  NULL: never stops. */
+    const wr_stop *stop;
+} wp_host;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
