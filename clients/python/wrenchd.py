@@ -1091,7 +1091,7 @@ class _Methods:
                push_on: Any = None, corner_clearance: Optional[float] = None,
                pin_diameter: Optional[float] = None, shard: Optional[Sequence[int]] = None,
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
-               cases: Optional[Iterable[Any]] = None,
+               cases: Optional[Iterable[Any]] = None, collapse_symmetric: bool = True,
                timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of

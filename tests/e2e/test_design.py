@@ -471,7 +471,8 @@ DESIGN_KEYS = {"rank", "candidate", "sites", "fixels", "pins", "best_push", "goa
 
 
 def check_shape_of_answer(ans, n_sites, objective, shard=(0, 1)):
-    assert set(ans) == {"designs", "counts", "sites", "objective", "shard"}, ans.keys()
+    assert set(ans) == {"designs", "counts", "why_no_seating_push", "sites", "objective",
+                        "shard"}, ans.keys()
     assert ans["sites"] == n_sites, (ans["sites"], n_sites)
     assert ans["objective"] == objective, ans["objective"]
     assert ans["shard"] == list(shard), ans["shard"]

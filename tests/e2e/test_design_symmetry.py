@@ -152,13 +152,19 @@ def check_collapse(client, params, group, size):
     return len(groups), len(every["designs"])
 
 
-@pytest.mark.parametrize("name,body,group,size,spacing,fixels", [
-    ("rectangle", RECTANGLE, RECTANGLE_GROUP, math.hypot(10, 4), 2.0, 3),
-    ("square with holes", SQUARE, SQUARE_GROUP, math.hypot(20, 20), 8.0, 3),
+# The square's sites: its straight sides' middles and 4 either side of them
+# (the holes' own sites would start where each hole was drawn).
+SQUARE_SITES = [{"at": p} for x in (6, 10, 14)
+                for p in ([x, 0], [20, x], [x, 20], [0, x])]
+
+
+@pytest.mark.parametrize("name,params,group,size", [
+    ("rectangle", {"body": RECTANGLE, "spacing": 2.0}, RECTANGLE_GROUP, math.hypot(10, 4)),
+    ("square with holes", {"body": SQUARE, "sites": SQUARE_SITES}, SQUARE_GROUP,
+     math.hypot(20, 20)),
 ])
-def test_collapse_against_own_grouping(client, name, body, group, size, spacing, fixels):
-    distinct, every = check_collapse(client, {"body": body, "friction": FRICTION,
-                                              "spacing": spacing, "fixels": fixels},
+def test_collapse_against_own_grouping(client, name, params, group, size):
+    distinct, every = check_collapse(client, dict(params, friction=FRICTION, fixels=3),
                                      group, size)
     assert distinct < every, (name, distinct, every)
 
