@@ -318,6 +318,7 @@ $(BENCH_LOAD): $(BENCH_LOAD_SRC) $(wildcard bench/*.h proto/*.h lib/*.h)
 BENCH_NUMBER = $(BUILD)/bench/number
 BENCH_MICRO  = $(BUILD)/bench/micro
 BENCH_SOCKET = $(BUILD)/bench/socket
+BENCH_SEGMENTS = $(BUILD)/bench/segments
 
 # bench/X.c -> build/bench/X, linked with the libraries it lists below.
 # number: the cost of writing a number, old (snprintf + strtod) against new
@@ -327,6 +328,8 @@ $(BUILD)/bench/%: bench/%.c
 	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
 $(BENCH_LOAD) $(BENCH_MICRO): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BENCH_SEGMENTS): $(BUILD)/libwrench.a
+$(BENCH_SEGMENTS): BENCH_LIBS = -lglpk -lm
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
 $(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
 $(BENCH_MICRO): BENCH_LIBS = -lcjson -lglpk -lm
@@ -335,7 +338,7 @@ $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
 # The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
-bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER)
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS)
 	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,

@@ -3,6 +3,7 @@
 #include "wr_design.h"
 #include "wr_internal.h"
 #include "wr_outline.h"
+#include "wr_symmetry.h"
 
 #include <assert.h>
 #include <math.h>
@@ -290,6 +291,18 @@ static double longest_arc(const wr_regions *arcs)
 struct wr_design_job {
     wr_design_spec spec;
     wr_plan *plan;             /* for spec.fixel_count: shared by every candidate */
+    wr_push_index *index;      /* the body's edges for spec.finger; NULL when
+                                  exhaustive, or for a shape or finger it does
+                                  not serve (a circle, a finger with friction) */
+    wr_fixel *site_fixels;     /* place_sites; NULL when exhaustive */
+    bool *site_ok;
+    /* The symmetries' site maps (symmetry_count rows of site_count: each
+     * site's image, as the lowest of equal sites, or -1), and for listed
+     * candidates their site lists sorted (tuples): NULL without symmetries. */
+    int *site_maps;
+    int symmetry_count;
+    struct tuple *tuples;
+    size_t tuple_count;
     bool failed;
     uint64_t total;            /* candidates of the shard */
     uint64_t candidates;       /* of all shards */
@@ -333,8 +346,48 @@ bool wr_design_before(const wr_design *a, const wr_design *b)
     return a->candidate < b->candidate;
 }
 
+/* Each site's fixel, placed alone once (site_fixels[i]), or marked
+ * unplaceable (site_ok[i] false): a candidate is placed from them with
+ * only the list's checks, which is wr_fixture_place's answer, bit for bit
+ * (wr_fixture.h), without locating every fixel on the outline again. */
+static wr_status place_sites(wr_design_job *job)
+{
+    const wr_design_spec *spec = &job->spec;
+    size_t n = spec->site_count > 0 ? (size_t)spec->site_count : 1;
+    job->site_fixels = malloc(n * sizeof *job->site_fixels);
+    job->site_ok = calloc(n, sizeof *job->site_ok);
+    if (!job->site_fixels || !job->site_ok)
+        return WR_NO_MEMORY;
+    for (int i = 0; i < spec->site_count; i++) {
+        wr_fixel_spec fixel;
+        memset(&fixel, 0, sizeof fixel);
+        const wr_site *site = &spec->sites[i];
+        memcpy(fixel.at, site->at, sizeof fixel.at);
+        fixel.normal_given = true;
+        memcpy(fixel.normal, site->normal, sizeof fixel.normal);
+        wr_fixture alone;
+        wr_error error;
+        if (wr_fixture_place(spec->body, &fixel, 1, &spec->friction, &alone, &error) == WR_OK) {
+            job->site_fixels[i] = alone.fixels[0];
+            job->site_ok[i] = true;
+        }
+    }
+    return WR_OK;
+}
+
 static wr_status place(const wr_design_job *job, const int *sites, wr_fixture *out)
 {
+    if (job->site_fixels) {
+        wr_fixel fixels[WR_MAX_FIXELS];
+        for (int i = 0; i < job->spec.fixel_count; i++) {
+            if (!job->site_ok[sites[i]])
+                return WR_INVALID;
+            fixels[i] = job->site_fixels[sites[i]];
+        }
+        wr_error error;
+        return wr_fixture_place_placed(job->spec.body, fixels, (size_t)job->spec.fixel_count, out,
+                                       &error);
+    }
     wr_fixel_spec fixels[WR_MAX_FIXELS];
     memset(fixels, 0, sizeof fixels);
     for (int i = 0; i < job->spec.fixel_count; i++) {
@@ -348,6 +401,16 @@ static wr_status place(const wr_design_job *job, const int *sites, wr_fixture *o
     wr_error error;
     return wr_fixture_place(job->spec.body, fixels, (size_t)job->spec.fixel_count,
                             &job->spec.friction, out, &error);
+}
+
+/* The push regions of a set for the search's finger: by the job's index
+ * when it has one (the same answer, bit for bit: wr_regions.h). */
+static wr_status push_regions(const wr_design_job *job, const wr_analysis *analysis, wr_set set,
+                              wr_regions *out)
+{
+    if (job->index)
+        return wr_push_regions_indexed(analysis, set, job->index, NULL, out);
+    return wr_push_regions_finger(analysis, set, &job->spec.finger, NULL, out);
 }
 
 /* The goal cone that blocks the push at the job's point of asking (the
@@ -396,7 +459,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     int edges = wr_push_edge_count(&fixture);
     *units += (unsigned long)cones * 40;
     wr_regions goal, both = {0};
-    status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
+    status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     *units += (unsigned long)cones * (unsigned long)edges * 4;
     if (status == WR_OK && goal.count == 0 && spec->objective != WR_OBJECTIVE_FORCE) {
         *result = OUTCOME_NO_SEATING_PUSH;
@@ -430,7 +493,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
             /* The both region lies inside the goal region. */
             *result = OUTCOME_BOUNDED;
         } else {
-            status = wr_push_regions_finger(analysis, WR_SET_BOTH, &spec->finger, NULL, &both);
+            status = push_regions(job, analysis, WR_SET_BOTH, &both);
             *units += (unsigned long)cones * (unsigned long)edges * 4;
             if (status == WR_OK && spec->objective == WR_OBJECTIVE_REGION) {
                 *score = regions_length(&fixture, &both);
@@ -452,6 +515,157 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     wr_regions_release(&goal);
     wr_analysis_free(analysis);
     return status;
+}
+
+/* ---- symmetric candidates ------------------------------------------------------------- */
+
+/* A listed candidate's sites as equal sites' lowest, sorted: the key that
+ * its images are looked up by. */
+typedef struct tuple {
+    int sites[WR_MAX_FIXELS];
+    uint64_t candidate;        /* the lowest listed with these sites */
+    uint64_t repeats;          /* how many are listed with them */
+} tuple;
+
+static int compare_sites(const int *a, const int *b, int k)
+{
+    for (int i = 0; i < k; i++)
+        if (a[i] != b[i])
+            return a[i] < b[i] ? -1 : 1;
+    return 0;
+}
+
+static int compare_tuples(const void *a, const void *b)
+{
+    const tuple *x = a, *y = b;
+    int c = compare_sites(x->sites, y->sites, WR_MAX_FIXELS);
+    if (c != 0)
+        return c;
+    return (x->candidate > y->candidate) - (x->candidate < y->candidate);
+}
+
+/* The image of k sites under map (NULL: the identity, as given), sorted;
+ * false when a site has no image or two share one. */
+static bool image_of(const int *map, const int *sites, int k, int *out)
+{
+    for (int i = 0; i < k; i++) {
+        int v = map ? map[sites[i]] : sites[i];
+        if (v < 0)
+            return false;
+        int j = i;
+        while (j > 0 && out[j - 1] > v) {
+            out[j] = out[j - 1];
+            j--;
+        }
+        out[j] = v;
+    }
+    for (int i = 1; i < k; i++)
+        if (out[i] == out[i - 1])
+            return false;
+    return true;
+}
+
+/* The listed tuple of these sorted sites, or NULL. */
+static const tuple *listed_tuple(const wr_design_job *job, const int *sites)
+{
+    tuple key;
+    memset(&key, 0, sizeof key);
+    memcpy(key.sites, sites, (size_t)job->spec.fixel_count * sizeof *sites);
+    size_t a = 0, b = job->tuple_count;
+    while (a < b) {
+        size_t m = a + (b - a) / 2;
+        int c = compare_sites(job->tuples[m].sites, key.sites, WR_MAX_FIXELS);
+        if (c == 0)
+            return &job->tuples[m];
+        if (c < 0)
+            a = m + 1;
+        else
+            b = m;
+    }
+    return NULL;
+}
+
+/* The site maps (the identity's first: each site as the lowest site equal
+ * to it), and for listed candidates their tuples, one per distinct site
+ * list (the lowest candidate with it and how many). */
+static wr_status symmetric_setup(wr_design_job *job)
+{
+    const wr_design_spec *spec = &job->spec;
+    size_t n = spec->site_count > 0 ? (size_t)spec->site_count : 1;
+    job->symmetry_count = spec->symmetry_count + 1;
+    job->site_maps = malloc((size_t)job->symmetry_count * n * sizeof *job->site_maps);
+    if (!job->site_maps)
+        return WR_NO_MEMORY;
+    wr_symmetry identity;
+    memset(&identity, 0, sizeof identity);
+    identity.linear[0][0] = identity.linear[1][1] = 1;
+    for (int g = 0; g < job->symmetry_count; g++)
+        if (wr_symmetry_site_map(g ? &spec->symmetries[g - 1] : &identity, spec->sites,
+                                 spec->site_count, spec->body->size,
+                                 job->site_maps + (size_t)g * n) != WR_OK)
+            return WR_NO_MEMORY;
+    if (!spec->candidates)
+        return WR_OK;
+    job->tuples = calloc(spec->candidate_count + 1, sizeof *job->tuples);
+    if (!job->tuples)
+        return WR_NO_MEMORY;
+    size_t count = 0;
+    for (uint64_t r = 0; r < spec->candidate_count; r++) {
+        tuple *t = &job->tuples[count];
+        if (image_of(job->site_maps, spec->candidates[r], spec->fixel_count, t->sites)) {
+            t->candidate = r;
+            t->repeats = 1;
+            count++;
+        }
+    }
+    qsort(job->tuples, count, sizeof *job->tuples, compare_tuples);
+    size_t kept = 0;
+    for (size_t i = 0; i < count; i++) {
+        if (kept > 0 && compare_sites(job->tuples[kept - 1].sites, job->tuples[i].sites,
+                                      WR_MAX_FIXELS) == 0)
+            job->tuples[kept - 1].repeats++;
+        else
+            job->tuples[kept++] = job->tuples[i];
+    }
+    job->tuple_count = kept;
+    return WR_OK;
+}
+
+/* Is candidate r (its sites) the lowest-numbered of the candidates that
+ * the symmetries map it onto?  *copies: how many those are, itself
+ * included.  `seen` has room for symmetry_count site lists. */
+static bool representative(const wr_design_job *job, uint64_t r, const int *sites, int *seen,
+                           int *copies)
+{
+    const wr_design_spec *spec = &job->spec;
+    int k = spec->fixel_count;
+    size_t n = spec->site_count > 0 ? (size_t)spec->site_count : 1;
+    int distinct = 0;
+    uint64_t total = 0;
+    bool lowest = true;
+    for (int g = 0; g < job->symmetry_count; g++) {
+        int *image = seen + (size_t)distinct * (size_t)k;
+        if (!image_of(job->site_maps + (size_t)g * n, sites, k, image))
+            continue;
+        bool again = false;
+        for (int i = 0; i < distinct && !again; i++)
+            again = compare_sites(seen + (size_t)i * (size_t)k, image, k) == 0;
+        if (again)
+            continue;
+        if (spec->candidates) {
+            const tuple *t = listed_tuple(job, image);
+            if (!t)
+                continue;
+            lowest &= t->candidate >= r;
+            total += t->repeats;
+        } else {
+            lowest &= compare_sites(image, sites, k) >= 0;
+            total++;
+        }
+        distinct++;
+    }
+    *copies = total > 0 ? (int)total : 1;
+    return lowest;
 }
 
 /* Where a candidate without a seating push is asked why: the middle of
@@ -540,6 +754,23 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
     if (wr_plan_new(spec->fixel_count, &job->plan) != WR_OK) {
         free(designs);
         free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (spec->symmetries && spec->symmetry_count > 0 && symmetric_setup(job) != WR_OK) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (!spec->exhaustive && place_sites(job) != WR_OK) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (!spec->exhaustive && spec->finger.friction == 0 &&
+        (spec->body->shape == WR_SHAPE_OUTLINE || spec->body->shape == WR_SHAPE_POLYGON) &&
+        wr_push_index_new(spec->body, &spec->finger, &job->index) != WR_OK) {
+        wr_design_job_free(job);
         wr_error_set(error, "", "out of memory");
         return WR_NO_MEMORY;
     }
@@ -658,8 +889,20 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
     uint64_t n = (uint64_t)spec->shard_count, shard = (uint64_t)spec->shard_index;
     unsigned long spent = 0;
     wr_status status = WR_OK;
+    int *seen = NULL;
+    if (job->site_maps) {
+        seen = malloc((size_t)job->symmetry_count * (size_t)spec->fixel_count * sizeof *seen);
+        if (!seen) {
+            wr_design_chunk_release(out);
+            return WR_NO_MEMORY;
+        }
+    }
     for (uint64_t r = first; r < first + count; r++) {
-        if (r % n == shard) {
+        int copies = 1;
+        if (r % n == shard && seen && !representative(job, r, combination, seen, &copies)) {
+            out->counts.examined++;
+            out->counts.symmetric++;
+        } else if (r % n == shard) {
             if (wr_stop_requested(stop)) {
                 status = WR_STOPPED;
                 break;
@@ -689,6 +932,7 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
                 d.candidate = r;
                 memcpy(d.sites, combination, (size_t)spec->fixel_count * sizeof *combination);
                 d.score = score;
+                d.copies = copies;
                 keep(out->designs, &out->design_count, spec->top, &d);
                 break;
             }
@@ -699,6 +943,7 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
         else if (r + 1 < first + count)
             next_combination(combination, spec->fixel_count, spec->site_count);
     }
+    free(seen);
     if (used)
         *used += spent;
     if (status != WR_OK)
@@ -718,6 +963,7 @@ void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk)
     job->counts.no_seating_push += chunk->counts.no_seating_push;
     job->counts.shared_hole += chunk->counts.shared_hole;
     job->counts.bounded += chunk->counts.bounded;
+    job->counts.symmetric += chunk->counts.symmetric;
     for (int i = 0; i <= job->plan->kept_count; i++)
         job->why[i] += chunk->why[i];
 }
@@ -732,18 +978,18 @@ void wr_design_job_abandon(wr_design_job *job)
 /* One design's figures but its critical mu (which the sweep job finds). */
 static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
 {
-    const wr_design_spec *spec = &job->spec;
     if (place(job, d->sites, &job->detail_fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
+    const wr_design_spec *spec = &job->spec;
     wr_fixture *fixture = &job->detail_fixture;
     wr_analysis *analysis;
     wr_status status = wr_analysis_new(fixture, &analysis);
     if (status != WR_OK)
         return status;
     wr_regions goal = {0}, both = {0}, arcs = {0};
-    status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
+    status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     if (status == WR_OK)
-        status = wr_push_regions_finger(analysis, WR_SET_BOTH, &spec->finger, NULL, &both);
+        status = push_regions(job, analysis, WR_SET_BOTH, &both);
     if (status == WR_OK)
         status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
     bool below;
@@ -809,6 +1055,8 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
             status = wr_sweeper_new(&job->detail_fixture, WR_SET_GOAL, &range, &job->sweeper);
             if (status == WR_OK)
                 status = wr_sweep_job_push(job->sweeper, &spec->finger, &job->sweep);
+            if (status == WR_OK && job->index)
+                wr_sweep_job_use_index(job->sweep, job->index);
             continue;
         }
         bool finished = false;
@@ -847,6 +1095,13 @@ void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *
     *best = *has_best ? job->designs[0].score : 0;
 }
 
+void wr_design_job_figures_progress(const wr_design_job *job, int *done, int *total)
+{
+    bool searched = job->next >= job->candidates && job->outstanding == 0;
+    *done = searched ? job->detailing : 0;
+    *total = searched ? job->design_count : 0;
+}
+
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count)
 {
     *count = job->design_count;
@@ -873,7 +1128,11 @@ const uint64_t *wr_design_job_why(const wr_design_job *job, const wr_plan **plan
 
 size_t wr_design_job_bytes(const wr_design_job *job)
 {
-    return sizeof *job + (size_t)job->spec.top * sizeof *job->designs;
+    return sizeof *job + (size_t)job->spec.top * sizeof *job->designs +
+           (job->index ? wr_push_index_bytes(job->index) : 0) +
+           (job->site_fixels ? (size_t)job->spec.site_count *
+                                   (sizeof *job->site_fixels + sizeof *job->site_ok)
+                             : 0);
 }
 
 void wr_design_job_free(wr_design_job *job)
@@ -883,6 +1142,11 @@ void wr_design_job_free(wr_design_job *job)
     wr_sweep_job_free(job->sweep);
     wr_sweeper_free(job->sweeper);
     wr_plan_free(job->plan);
+    wr_push_index_free(job->index);
+    free(job->site_fixels);
+    free(job->site_ok);
+    free(job->site_maps);
+    free(job->tuples);
     free(job->designs);
     free(job->why);
     free(job);

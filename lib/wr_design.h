@@ -67,6 +67,8 @@
 extern "C" {
 #endif
 
+struct wr_symmetry;
+
 /* The best push's margin is the maximum to within this. */
 #define WR_DESIGN_TOLERANCE 1e-9
 /* At most this many designs kept (`top`); sites: wr_sites.h. */
@@ -119,6 +121,19 @@ typedef struct wr_design_spec {
      * combination of the sites. */
     const int (*candidates)[WR_MAX_FIXELS];
     uint64_t candidate_count;
+    /* True: every segment's push regions tested against every cone, as
+     * wr_push_regions_finger does, without the job's wr_push_index: the
+     * reference the index is checked and measured against.  The answer is
+     * the same either way, bit for bit. */
+    bool exhaustive;
+    /* The part's symmetries (wr_symmetry_find on the body and these
+     * sites); NULL or 0: none.  Candidates that a symmetry maps onto each
+     * other (their sites onto each other's, wr_symmetry_site_map) are one
+     * design: only the lowest-numbered is scored, and it says how many it
+     * stands for (wr_design.copies; counts.symmetric the others).  So is a
+     * listed candidate whose sites repeat an earlier one's. */
+    const struct wr_symmetry *symmetries;
+    int symmetry_count;
     /* Load cases (wr_force.h), each one summed wrench of the model system;
      * borrowed.  Required (at least one) for WR_OBJECTIVE_FORCE; with any
      * objective, each design kept reports its least push force. */
@@ -137,6 +152,9 @@ typedef struct wr_design {
     bool has_critical;               /* false: the goal region is not empty
                                         at mu = WR_DESIGN_SWEEP_HIGH */
     double critical_mu;
+    int copies;                      /* the candidates it stands for, itself
+                                        included: its images under the
+                                        symmetries (1 without) */
     wr_least_force least_force;      /* with load cases: the least push
                                         doing `both` under all of them */
 } wr_design;
@@ -146,6 +164,9 @@ typedef struct wr_design_counts {
     uint64_t degenerate;
     uint64_t unpinned;
     uint64_t no_seating_push;
+    uint64_t symmetric;              /* images of a lower-numbered candidate
+                                        under a symmetry: not scored, counted
+                                        in that one's copies */
     uint64_t shared_hole;            /* two sites in one hole */
     uint64_t bounded;                /* ended early by the bound: below the
                                         top designs so far (depends on the
@@ -204,6 +225,9 @@ void wr_design_chunk_release(wr_design_chunk *chunk);
  * score so far (has_best false before any). */
 void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *total,
                             bool *has_best, double *best);
+/* The designs' figures, after the search: how many of the designs kept
+ * have them, of how many (0 of 0 while the search goes on). */
+void wr_design_job_figures_progress(const wr_design_job *job, int *done, int *total);
 /* When done: the designs, best first (at most `top`), and the counts. */
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count);
 const wr_design_counts *wr_design_job_counts(const wr_design_job *job);

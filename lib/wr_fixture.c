@@ -834,6 +834,8 @@ static wr_fixture *validate(const wr_fixture_spec *spec, bool body_only, wr_erro
     return f;
 }
 
+static bool check_placed_list(const wr_fixture *f, wr_error *error);
+
 static bool place_fixels(wr_fixture *f, const wr_fixture_spec *spec, wr_error *error)
 {
     f->fixel_count = (int)spec->fixel_count;
@@ -843,6 +845,14 @@ static bool place_fixels(wr_fixture *f, const wr_fixture_spec *spec, wr_error *e
         }
         fixel_wrenches(f, &f->fixels[i]);
     }
+    return check_placed_list(f, error);
+}
+
+/* The checks of the fixels as a list, once each is built: each fixel is
+ * built from its own spec alone, so these are all that differ between
+ * placing a list and placing its fixels one at a time. */
+static bool check_placed_list(const wr_fixture *f, wr_error *error)
+{
     /* Fixels spread over less than WR_FIXEL_SPREAD of the radius of
      * gyration have torque rows (r x n) / rho that differ by less than that
      * fraction: the cones' rank decisions and witnesses then rest on the
@@ -917,6 +927,20 @@ wr_status wr_fixture_place(const wr_fixture *body, const wr_fixel_spec *fixels, 
     if (!place_fixels(out, &spec, error))
         return WR_INVALID;
     return WR_OK;
+}
+
+wr_status wr_fixture_place_placed(const wr_fixture *body, const wr_fixel *fixels, size_t count,
+                                  wr_fixture *out, wr_error *error)
+{
+    if (count == 0 || count > WR_MAX_FIXELS) {
+        wr_error_set(error, "fixels", "from 1 to %d fixels, got %zu", WR_MAX_FIXELS, count);
+        return WR_INVALID;
+    }
+    *out = *body;
+    memset(out->fixels, 0, sizeof out->fixels);
+    out->fixel_count = (int)count;
+    memcpy(out->fixels, fixels, count * sizeof *fixels);
+    return check_placed_list(out, error) ? WR_OK : WR_INVALID;
 }
 
 void wr_fixture_free(wr_fixture *fixture)

@@ -190,6 +190,15 @@ wr_status wr_fixture_body_new(const wr_fixture_spec *spec, wr_fixture **out, wr_
 wr_status wr_fixture_place(const wr_fixture *body, const wr_fixel_spec *fixels, size_t count,
                            const wr_friction_spec *friction, wr_fixture *out, wr_error *error);
 
+/* wr_fixture_place of fixels each already placed alone on `body` (the
+ * fixels[0] of a wr_fixture_place of it by itself, with the friction the
+ * list would have): only the checks of the list as a whole are made (the
+ * spread, duplicates), since a fixel is built from its own spec alone.
+ * The same fixture as wr_fixture_place of their specs, bit for bit, and
+ * the same verdict.  WR_OK, or WR_INVALID with `error` set. */
+wr_status wr_fixture_place_placed(const wr_fixture *body, const wr_fixel *fixels, size_t count,
+                                  wr_fixture *out, wr_error *error);
+
 /* The unit direction, in the scaled metric, of a physical wrench, and the
  * length of its scaled form (docs/MODEL.md section 5).  Exact for any finite wrench,
  * however large or small: it divides by the largest component first.  The

@@ -38,6 +38,7 @@
 #include "wr_regions.h"
 #include "wr_status.h"
 #include "wr_sweep.h"
+#include "wr_symmetry.h"
 
 #ifdef __cplusplus
 extern "C" {

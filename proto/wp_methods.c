@@ -19,7 +19,7 @@ static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
                                      "progress", "shard", "push_on", "corner_clearance",
-                                     "pin_diameter", "cases", NULL};
+                                     "pin_diameter", "cases", "collapse_symmetric", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};

@@ -1906,23 +1906,50 @@ def show_regions(doc, face, fixels, friction, set, client):
 
 class _Progress:
     """design.progress notifications on FreeCAD's progress indicator (the
-    status bar's in the GUI, the console's in freecadcmd)."""
+    status bar's in the GUI, the console's in freecadcmd): one run of the
+    indicator per stage (a lattice's hole pairs, the candidates, the
+    designs' figures), and the estimated time left (eta_s) beside it: on the
+    status bar in the GUI, a console line at each tenth without it."""
+
+    UNITS = {"poses": "hole pairs", "candidates": "candidates", "figures": "designs' figures"}
 
     def __init__(self, text):
         self.text = text
         self.indicator = None
+        self.stage = None
         self.shown = 0
         # the status bar's bar in percent; the console's line in tenths
         self.steps = 100 if FreeCAD.GuiUp else 10
 
+    def _eta(self, params):
+        eta = params.get("eta_s")
+        if eta is None or (params.get("done") or 0) >= (params.get("total") or 0):
+            return ""
+        return ", about %s left" % wrenchd._eta_text(eta)
+
     def __call__(self, params):
         total = params.get("total") or 0
         done = params.get("done") or 0
-        if self.indicator is None:
+        stage = params.get("stage", "candidates")
+        unit = self.UNITS.get(stage, stage)
+        if self.indicator is None or stage != self.stage:
+            self.stop()
+            self.stage = stage
+            self.shown = 0
             self.indicator = FreeCAD.Base.ProgressIndicator()
-            self.indicator.start("%s: %d %s" % (self.text, total, params.get("stage", "candidates")),
-                                 self.steps)
+            self.indicator.start("%s: %d %s" % (self.text, total, unit), self.steps)
         step = int(self.steps * done / total) if total else self.steps
+        eta = self._eta(params)
+        if eta and FreeCAD.GuiUp:
+            try:
+                import FreeCADGui
+                FreeCADGui.getMainWindow().statusBar().showMessage(
+                    "%s: %d of %d %s%s" % (self.text, done, total, unit, eta))
+            except Exception:                # no main window: the bar alone
+                pass
+        elif eta and step > self.shown:
+            FreeCAD.Console.PrintMessage("%s: %d of %d %s%s\n" % (self.text, done, total, unit,
+                                                                  eta))
         while self.shown < step:
             self.shown += 1
             self.indicator.next(True)      # raises when the user stops it
@@ -2015,6 +2042,9 @@ def _design_lines(count, shape, result, spacing):
                                          _fmt(d.both_length), _fmt(d.gravity_goal_deg),
                                          "none up to 2" if d.critical_mu is None
                                          else _fmt(d.critical_mu)))
+        if getattr(d, "copies", 1) > 1:
+            lines[-1] += "; and %d more like it, turned or mirrored by the part's symmetries" % (
+                d.copies - 1)
     if result.designs:
         lines.append("design 1's fixels placed. Push at its best push (the arrow) and let go: "
                      "it lies in both, which seats the part from any contact state and then "

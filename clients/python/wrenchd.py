@@ -395,6 +395,8 @@ class Design:
     # The fixels on holes: pins, [{"fixel", "hole", "diameter"}] (not on a lattice)
     pins: Optional[List[Dict[str, Any]]] = None
     pose: Optional[List[float]] = None         # a lattice: [x, y, theta in degrees]
+    copies: int = 1                            # the candidates it stands for: its
+                                               # images under the part's symmetries
     # With load cases: the least push doing both under every case ({"at",
     # "direction", "force", "lower_bound", ...}, None when none does).
     least_push: Optional[Dict[str, Any]] = None
@@ -403,9 +405,11 @@ class Design:
 @dataclass
 class DesignResult:
     """fixture.design: `designs` best first; `counts` {"candidates",
-    "examined", "degenerate", "unpinned", "no_seating_push", "shared_hole"}; the number of
-    `sites` (or, on a lattice, of `poses`), the `objective` and the `shard`
-    [i, n]."""
+    "examined", "degenerate", "unpinned", "no_seating_push", "shared_hole",
+    "symmetric"}; the number of `sites` (or, on a lattice, of `poses`), the
+    `objective`, the `shard` [i, n], and the part's `symmetries` ([{"kind":
+    "rotation" | "reflection", "angle_deg", "center"}], the identity first;
+    None when collapse_symmetric=False)."""
     designs: List[Design]
     counts: Dict[str, int]
     sites: int = 0                     # candidate sites (0 on a lattice)
@@ -415,6 +419,43 @@ class DesignResult:
     # Why candidates have no seating push: {"asked_at", "reasons": [{"blocking",
     # "states", "candidates"}]} (docs/PROTOCOL.md); see explain_no_design
     why_no_seating_push: Optional[Dict[str, Any]] = None
+    symmetries: Optional[List[Dict[str, Any]]] = None
+
+
+def _eta_text(seconds: float) -> str:
+    s = int(seconds + 0.5)
+    if s < 60:
+        return "%d s" % s
+    if s < 3600:
+        return "%d min %d s" % (s // 60, s % 60)
+    return "%d h %d min" % (s // 3600, s % 3600 // 60)
+
+
+def progress_bar(stream: Any = None, width: int = 30) -> Callable[[Dict[str, Any]], None]:
+    """A progress callable for Client.design(progress=...): a bar redrawn in
+    place on `stream` (default sys.stderr), as wrenchctl draws it: the stage
+    (a lattice's hole pairs, the candidates, the designs' figures), done of
+    total, the estimated time left of the stage (eta_s) and the best score
+    so far; a new line when a stage is done."""
+    import sys
+    out = stream if stream is not None else sys.stderr
+    units = {"poses": "hole pairs", "candidates": "candidates", "figures": "designs' figures"}
+
+    def show(params: Dict[str, Any]) -> None:
+        done, total = params.get("done") or 0, params.get("total") or 0
+        if total <= 0:
+            return
+        filled = int(width * done / total)
+        line = "\r[%s%s] %3.0f%% %d/%d %s" % ("#" * filled, "." * (width - filled),
+                                              100.0 * done / total, done, total,
+                                              units.get(params.get("stage"), "candidates"))
+        if params.get("eta_s") is not None and done < total:
+            line += ", about %s left" % _eta_text(params["eta_s"])
+        if params.get("best") is not None:
+            line += ", best %.6g" % params["best"]
+        out.write(line + ("\n" if done >= total else " " * 10))
+        out.flush()
+    return show
 
 
 _NO_DESIGN_REASONS = ("shared_hole", "degenerate", "unpinned", "no_seating_push")
@@ -1050,18 +1091,21 @@ class _Methods:
                push_on: Any = None, corner_clearance: Optional[float] = None,
                pin_diameter: Optional[float] = None, shard: Optional[Sequence[int]] = None,
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
-               cases: Optional[Iterable[Any]] = None,
+               cases: Optional[Iterable[Any]] = None, collapse_symmetric: bool = True,
                timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
         [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
         `progress`, a callable, receives each design.progress notification's
-        params ({"id", "done", "total", "best"}) as it arrives; the timeout
-        is then the longest silence.  `shard` = (i, n): shard i of n.
+        params ({"id", "stage", "done", "total", "best", "eta_s"}) as it
+        arrives (progress_bar() draws them); the timeout is then the longest
+        silence.  `shard` = (i, n): shard i of n.
         With `spacing`, `corner_clearance` (default spacing / 2) and
         `pin_diameter` (sites on holes are pins of that diameter).
         `push_on`: "outer", "all" or a list of loops; None: default_push_on
-        (the outer boundary and the holes wider than the finger)."""
+        (the outer boundary and the holes wider than the finger).  Designs
+        that a symmetry of the part maps onto each other come once, with
+        their `copies`; collapse_symmetric=False lists every one."""
         given = [name for name, value in (("sites", sites), ("spacing", spacing),
                                           ("lattice", lattice)) if value is not None]
         if len(given) != 1:
@@ -1090,6 +1134,8 @@ class _Methods:
             params["push_on"] = push_on
         if shard is not None:
             params["shard"] = [int(shard[0]), int(shard[1])]
+        if not collapse_symmetric:
+            params["collapse_symmetric"] = False
         if progress is not None:
             params["progress"] = True
         if cases is not None:

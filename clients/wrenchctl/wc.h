@@ -67,7 +67,8 @@ enum {
     WC_OPT_DESIGN = 1 << 17,    /* --spacing H, --lattice P,R,NXxNY, --fixels K,
                                    --objective O, --top N, --shard I/N,
                                    --corner-clearance C, --pin-diameter D,
-                                   --emit-fixture N FILE */
+                                   --emit-fixture N FILE,
+                                   --symmetric collapse|all */
     WC_OPT_PUSH_ON = 1 << 18,   /* --push-on outer|all|L,L,... */
     WC_OPT_CASE = 1 << 19,      /* --case SPEC (repeated): load cases (wc_force.c) */
     WC_OPT_FORCE = 1 << 20,     /* force: --push X,Y[@DX,DY], --wrench FX,FY,TAU, --range */
@@ -107,6 +108,7 @@ typedef struct wc_run {
     const char *objective;  /* --objective */
     int shard[2];           /* --shard I/N */
     bool shard_given;
+    bool symmetric_all;     /* --symmetric all: collapse_symmetric false */
     double lattice[2];      /* --lattice PITCH,RADIUS,NXxNY: pitch, peg radius */
     int lattice_extent[2];
     bool lattice_given;

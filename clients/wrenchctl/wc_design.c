@@ -14,8 +14,21 @@
 #include <string.h>
 #include <unistd.h>
 
-/* design.progress on stderr, redrawn in place: a bar, the count, the best
- * score so far. */
+/* Seconds as a person reads them: "40 s", "3 min 5 s", "2 h 10 min". */
+static void format_eta(double seconds, char *out, size_t size)
+{
+    double s = floor(seconds + 0.5);
+    if (s < 60)
+        snprintf(out, size, "%.0f s", s);
+    else if (s < 3600)
+        snprintf(out, size, "%.0f min %.0f s", floor(s / 60), fmod(s, 60));
+    else
+        snprintf(out, size, "%.0f h %.0f min", floor(s / 3600), floor(fmod(s, 3600) / 60));
+}
+
+/* design.progress on stderr, redrawn in place: a bar, the count of the
+ * stage (a lattice's poses, the candidates, the designs' figures), the
+ * estimated time left of it (eta_s), the best score so far. */
 static void progress_bar(const char *line, void *context)
 {
     (void)context;
@@ -24,6 +37,11 @@ static void progress_bar(const char *line, void *context)
     double done = cJSON_GetNumberValue(cJSON_GetObjectItem(params, "done"));
     double total = cJSON_GetNumberValue(cJSON_GetObjectItem(params, "total"));
     const cJSON *best = cJSON_GetObjectItem(params, "best");
+    const cJSON *eta = cJSON_GetObjectItem(params, "eta_s");
+    const char *stage = cJSON_GetStringValue(cJSON_GetObjectItem(params, "stage"));
+    const char *unit = !stage || strcmp(stage, "candidates") == 0 ? "candidates"
+                       : strcmp(stage, "poses") == 0           ? "hole pairs"
+                                                               : "designs' figures";
     if (json && total > 0 && done >= 0) {
         enum { WIDTH = 30 };
         int filled = (int)(WIDTH * done / total);
@@ -31,11 +49,17 @@ static void progress_bar(const char *line, void *context)
         for (int i = 0; i < WIDTH; i++)
             bar[i] = i < filled ? '#' : '.';
         bar[WIDTH] = 0;
-        fprintf(stderr, "\r[%s] %3.0f%% %.0f/%.0f candidates", bar, 100 * done / total, done,
-                total);
+        fprintf(stderr, "\r[%s] %3.0f%% %.0f/%.0f %s", bar, 100 * done / total, done, total,
+                unit);
+        if (cJSON_IsNumber(eta) && done < total) {
+            char text[32];
+            format_eta(eta->valuedouble, text, sizeof text);
+            fprintf(stderr, ", about %s left", text);
+        }
         if (cJSON_IsNumber(best))
             fprintf(stderr, ", best %.6g", best->valuedouble);
-        fputs(done >= total ? "\n" : "  ", stderr);
+        /* Spaces over what a longer line before left. */
+        fputs(done >= total ? "\n" : "          ", stderr);
         fflush(stderr);
     }
     cJSON_Delete(json);
@@ -147,6 +171,8 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "objective", run->objective);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
+    if (run->symmetric_all)
+        cJSON_AddBoolToObject(params, "collapse_symmetric", false);
     if (run->friction_given)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->shard_given)
@@ -472,6 +498,11 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     if (number(counts, "shared_hole") > 0)
         printf(", %.0f with two fixels in one hole", number(counts, "shared_hole"));
     printf("; ranked by %s\n", objective ? objective : "margin");
+    int symmetries = cJSON_GetArraySize(cJSON_GetObjectItem(result, "symmetries"));
+    if (symmetries > 1)
+        printf("the part has %d symmetries (the identity among them): designs one maps onto "
+               "another are listed once, with how many more it stands for\n",
+               symmetries);
     if (cJSON_GetArraySize(designs) > 0)
         printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
@@ -505,6 +536,9 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("%-4.0f  %-10.6g  %-34s  %-30s  %-9.4g  %-9.4g  %-7.3g  %s\n", number(d, "rank"),
                number(d, "score"), fixels, push, number(d, "goal_length"),
                number(d, "both_length"), number(d, "gravity_goal_deg"), critical_text);
+        if (number(d, "copies") > 1)
+            printf("      and %.0f more: its images under the part's symmetries\n",
+                   number(d, "copies") - 1);
         const cJSON *pegs = cJSON_GetObjectItem(d, "pegs"), *pose = cJSON_GetObjectItem(d, "pose");
         if (cJSON_GetArraySize(pegs) == 3 && cJSON_GetArraySize(pose) == 3) {
             printf("      pegs in holes");
@@ -615,10 +649,11 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
 {
     (void)params;
     cJSON *designs = cJSON_CreateArray(), *first = NULL, *why = cJSON_CreateObject();
-    enum { COUNTS = 6 };
+    enum { COUNTS = 7 };
     double counts[COUNTS] = {0};
     static const char *const COUNT_NAMES[COUNTS] = {"candidates", "examined", "degenerate",
-                                                    "unpinned", "no_seating_push", "shared_hole"};
+                                                    "unpinned", "no_seating_push", "shared_hole",
+                                                    "symmetric"};
     int shard_count = 0, summaries = 0;
     bool *seen = NULL;
     int status = EXIT_INSIDE;
@@ -739,6 +774,9 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         sort_why(why);
         cJSON_AddItemToObject(result, "why_no_seating_push", why);
         why = NULL;
+        const cJSON *symmetries = cJSON_GetObjectItem(first, "symmetries");
+        if (symmetries)
+            cJSON_AddItemToObject(result, "symmetries", cJSON_Duplicate(symmetries, true));
         const char *source = cJSON_GetObjectItem(first, "poses") ? "poses" : "sites";
         cJSON_AddItemToObject(result, source,
                               cJSON_Duplicate(cJSON_GetObjectItem(first, source), true));

@@ -312,6 +312,14 @@ static int take_emit(wc_run *run, const char *value)
 }
 
 /* --shard I/N: shard I of N, 0 <= I < N. */
+static int take_symmetric(wc_run *run, const char *value)
+{
+    if (strcmp(value, "collapse") != 0 && strcmp(value, "all") != 0)
+        return wc_usage_error("--symmetric wants collapse or all, not '%s'", value);
+    run->symmetric_all = strcmp(value, "all") == 0;
+    return 0;
+}
+
 static int take_shard(wc_run *run, const char *value)
 {
     char *end;
@@ -369,6 +377,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"corner-clearance", WC_OPT_DESIGN, take_clearance},
     {"pin-diameter", WC_OPT_DESIGN, take_pin_diameter},
     {"emit-fixture", WC_OPT_DESIGN, take_emit},
+    {"symmetric", WC_OPT_DESIGN, take_symmetric},
     {"push-on", WC_OPT_PUSH_ON, wc_take_push_on},
     {"case", WC_OPT_CASE, wc_take_case},
     {"push", WC_OPT_FORCE, wc_take_force_push},
@@ -675,7 +684,7 @@ const wc_command wc_commands[] = {
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K] [--objective margin|region|gravity]\n"
      "       [--top N] [--friction LO:HI] [--finger-radius R] [--finger-friction MU]\n"
      "       [--push-on LOOPS] [--corner-clearance C] [--pin-diameter D]\n"
-     "       [--shard I/N] [--svg FILE] [--emit-fixture N FILE]",
+     "       [--shard I/N] [--symmetric collapse|all] [--svg FILE] [--emit-fixture N FILE]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
          WC_OPT_PUSH_ON, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
@@ -683,7 +692,7 @@ const wc_command wc_commands[] = {
      "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
      "are ranked, each with its best push (the point of the both region whose push has the\n"
      "largest margin: push there and let go), its push regions' lengths, its longest gravity\n"
-     "arc and its critical mu.  A progress bar on a terminal.\n"
+     "arc and its critical mu.  A progress bar on a terminal, with the time left.\n"
      "  BODY               a JSON file: a fixture (its body and friction are used, and its\n"
      "                     fixels are the candidate sites unless --spacing is given) or a\n"
      "                     body alone\n"
@@ -703,6 +712,9 @@ const wc_command wc_commands[] = {
      PUSH_ON_HELP("  ")
      "  --shard I/N        evaluate shard I of N of the candidates only, and write JSON lines\n"
      "                     for design-merge (examples/design-array.sbatch runs it on Slurm)\n"
+     "  --symmetric collapse|all  designs that a symmetry of the part (a turn or a mirror)\n"
+     "                     maps onto each other: listed once with how many more it stands\n"
+     "                     for (collapse, the default), or every one (all)\n"
      "  --svg FILE         also draw the best designs side by side: the part, its fixels\n"
      "                     (pegs on a lattice, pins at their diameter), the both region and\n"
      "                     the best push (with --json too)\n"

@@ -42,6 +42,18 @@ struct design_state {
     wr_lattice_job *lattice;
     const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
     int (*listed)[WR_MAX_FIXELS];
+    /* The part's symmetries (start_search), unless collapse_symmetric is
+     * false: NULL then. */
+    bool collapse;
+    wr_symmetry *symmetries;
+    int symmetry_count;
+    /* The stage the last notification was of (0 poses, 1 candidates, 2
+     * figures), when it began and what was done then: the rate that
+     * eta_s is estimated from.  Only the steps' thread reads and writes
+     * them. */
+    int stage;
+    double stage_started;
+    uint64_t stage_done;
     double (*loads)[3];   /* params.cases, summed (spec.loads points here) */
 };
 
@@ -307,6 +319,13 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     }
     s->progress = progress && cJSON_IsTrue(progress);
+    const cJSON *collapse = cJSON_GetObjectItemCaseSensitive(params, "collapse_symmetric");
+    if (collapse && !cJSON_IsBool(collapse)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.collapse_symmetric",
+                     "must be true or false, not %s", wp_type_name(collapse));
+        return false;
+    }
+    s->collapse = !collapse || cJSON_IsTrue(collapse);
     const cJSON *shard = cJSON_GetObjectItemCaseSensitive(params, "shard");
     if (shard) {
         double pair[2];
@@ -402,6 +421,20 @@ static bool start_search(design_state *s, wp_error *error)
     }
     s->spec.sites = s->sites;
     s->spec.site_count = s->site_count;
+    if (s->collapse) {
+        if (wr_symmetry_find(s->body, s->sites, s->site_count, &s->symmetries,
+                             &s->symmetry_count) != WR_OK) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        /* The part's symmetries that the push_on loops and the load cases
+         * allow: a copy must be the same question, not only the same part. */
+        s->symmetry_count = wr_symmetry_filter(s->body, &s->spec.finger, s->spec.loads,
+                                               s->spec.case_count, s->symmetries,
+                                               s->symmetry_count);
+        s->spec.symmetries = s->symmetries;
+        s->spec.symmetry_count = s->symmetry_count;
+    }
     s->candidates = s->lattice ? s->spec.candidate_count
                                : wr_design_candidates(s->site_count, s->spec.fixel_count);
     wr_error invalid;
@@ -466,6 +499,8 @@ static void write_pair(wp_buffer *out, const double v[2])
     wp_buffer_number(out, v[1] + 0.0);
     WP_BUFFER_LITERAL(out, "]");
 }
+
+static const char *const STAGES[] = {"poses", "candidates", "figures"};
 
 /* Where a design's answer says a push is, as push.regions names places:
  * {"loop", "segment"} on an outline, {"edge"} otherwise, then "t". */
@@ -557,21 +592,38 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
     uint64_t done = 0, total = 0;
     bool has_best = false;
     double best = 0;
+    int stage = 0;
     /* Merges are the steps' own (wp_chunks_run): nothing to lock. */
     if (s->job) {
         wr_design_job_progress(s->job, &done, &total, &has_best, &best);
+        stage = 1;
+        if (done == total && s->search_reported) {
+            int figured, of;
+            wr_design_job_figures_progress(s->job, &figured, &of);
+            done = (uint64_t)figured;
+            total = (uint64_t)of;
+            stage = 2;
+        }
     } else {
         size_t pairs, of;
         wr_lattice_job_progress(s->lattice, &pairs, &of);
         done = pairs;
         total = of;
     }
+    double now = now_s();
+    if (s->last_report < 0 || stage != s->stage) {
+        s->stage = stage;
+        s->stage_started = now;
+        s->stage_done = done;
+    }
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
-     * total count its hole pairs), then "candidates". */
-    wp_buffer_puts(out, s->job ? ",\"stage\":\"candidates\"" : ",\"stage\":\"poses\"");
-    WP_BUFFER_LITERAL(out, ",\"done\":");
+     * total count its hole pairs), then "candidates", then "figures" (the
+     * designs kept). */
+    WP_BUFFER_LITERAL(out, ",\"stage\":\"");
+    wp_buffer_puts(out, STAGES[stage]);
+    WP_BUFFER_LITERAL(out, "\",\"done\":");
     write_count(out, done);
     WP_BUFFER_LITERAL(out, ",\"total\":");
     write_count(out, total);
@@ -580,8 +632,18 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
         wp_buffer_number(out, best);
     else
         WP_BUFFER_LITERAL(out, "null");
+    /* The stage's seconds left at its rate so far (docs/PROTOCOL.md):
+     * unknown until some of it is done. */
+    WP_BUFFER_LITERAL(out, ",\"eta_s\":");
+    if (done >= total)
+        WP_BUFFER_LITERAL(out, "0");
+    else if (done > s->stage_done && now > s->stage_started)
+        wp_buffer_number(out, round((now - s->stage_started) / (double)(done - s->stage_done) *
+                                    (double)(total - done) * 10) / 10);
+    else
+        WP_BUFFER_LITERAL(out, "null");
     WP_BUFFER_LITERAL(out, "}}\n");
-    s->last_report = now_s();
+    s->last_report = now;
 }
 
 static void write_design(design_state *s, wp_buffer *out, const wr_design *d, int rank)
@@ -717,7 +779,27 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
         WP_BUFFER_LITERAL(out, "null");
     WP_BUFFER_LITERAL(out, ",\"score\":");
     wp_buffer_number(out, d->score);
+    WP_BUFFER_LITERAL(out, ",\"copies\":");
+    wp_buffer_number(out, d->copies);
     WP_BUFFER_LITERAL(out, "}");
+}
+
+/* [{"kind": "rotation"|"reflection", "angle_deg", "center"}], the identity
+ * first: what collapsed the designs. */
+static void write_symmetries(design_state *s, wp_buffer *out)
+{
+    WP_BUFFER_LITERAL(out, ",\"symmetries\":[");
+    for (int i = 0; i < s->symmetry_count; i++) {
+        const wr_symmetry *g = &s->symmetries[i];
+        wp_buffer_puts(out, i ? ",{\"kind\":\"" : "{\"kind\":\"");
+        wp_buffer_puts(out, g->reflection ? "reflection" : "rotation");
+        WP_BUFFER_LITERAL(out, "\",\"angle_deg\":");
+        wp_buffer_number(out, g->angle_deg);
+        WP_BUFFER_LITERAL(out, ",\"center\":");
+        write_pair(out, g->center);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    WP_BUFFER_LITERAL(out, "]");
 }
 
 static void write_answer(design_state *s, wp_buffer *out)
@@ -741,6 +823,8 @@ static void write_answer(design_state *s, wp_buffer *out)
     write_count(out, c->unpinned);
     WP_BUFFER_LITERAL(out, ",\"no_seating_push\":");
     write_count(out, c->no_seating_push);
+    WP_BUFFER_LITERAL(out, ",\"symmetric\":");
+    write_count(out, c->symmetric);
     WP_BUFFER_LITERAL(out, ",\"shared_hole\":");
     write_count(out, c->shared_hole);
     WP_BUFFER_LITERAL(out, "}");
@@ -754,7 +838,10 @@ static void write_answer(design_state *s, wp_buffer *out)
     }
     WP_BUFFER_LITERAL(out, ",\"objective\":\"");
     wp_buffer_puts(out, OBJECTIVES[s->spec.objective]);
-    WP_BUFFER_LITERAL(out, "\",\"shard\":[");
+    WP_BUFFER_LITERAL(out, "\"");
+    if (s->symmetries)
+        write_symmetries(s, out);
+    WP_BUFFER_LITERAL(out, ",\"shard\":[");
     wp_buffer_number(out, s->spec.shard_index);
     WP_BUFFER_LITERAL(out, ",");
     wp_buffer_number(out, s->spec.shard_count);
@@ -931,8 +1018,10 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
     if (s->progress && !s->search_reported &&
         (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
-        s->search_reported = examined == total;
         write_progress(s, call, out);
+        s->search_reported = examined == total;
+    } else if (s->progress && !done && now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
+        write_progress(s, call, out); /* the designs' figures */
     }
     /* A shared step never ends the answer, not even for a piece that did
      * not fit in memory: the caller sees that in the buffer. */
@@ -952,6 +1041,7 @@ static void design_free(void *stream)
     wp_chunks_free(s->poses_chunks);
     wr_design_job_free(s->job);
     wr_lattice_job_free(s->lattice);
+    free(s->symmetries);
     free(s->listed);
     free(s->loads);
     free(s->sites);

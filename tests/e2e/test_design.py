@@ -282,6 +282,10 @@ def results(client, calls):
 
 
 def design(client, params):
+    """The brute force here scores every candidate: symmetric duplicates are
+    kept (test_design_symmetry.py tests their collapse)."""
+    params = dict(params)
+    params.setdefault("collapse_symmetric", False)
     return client.result("fixture.design", params)
 
 
@@ -381,7 +385,8 @@ class Brute:
         return {"candidates": len(self.combos), "examined": len(rs),
                 "degenerate": kinds.count("degenerate"), "unpinned": kinds.count("unpinned"),
                 "no_seating_push": kinds.count("no_seating_push"),
-                "shared_hole": kinds.count("shared_hole")}
+                "shared_hole": kinds.count("shared_hole"),
+                "symmetric": 0}  # design() keeps symmetric duplicates
 
     # -- the best push margin, by sampling ------------------------------------------------
     def _classify(self, points_by_r):
@@ -463,7 +468,7 @@ class Brute:
 # ---- checks -----------------------------------------------------------------------------
 
 DESIGN_KEYS = {"rank", "candidate", "sites", "fixels", "pins", "best_push", "goal_length",
-               "both_length", "gravity_goal_deg", "critical_mu", "score"}
+               "both_length", "gravity_goal_deg", "critical_mu", "score", "copies"}
 
 
 def check_shape_of_answer(ans, n_sites, objective, shard=(0, 1)):
@@ -785,7 +790,8 @@ def test_disc_closed_forms_and_critical_mu(client):
     ans = design(client, {"body": DISC, "friction": mu, "fixels": 2, "sites": sites,
                           "objective": "region", "top": 10})
     assert ans["counts"] == {"candidates": 3, "examined": 3, "degenerate": 0, "unpinned": 0,
-                             "no_seating_push": 0, "shared_hole": 0}, ans["counts"]
+                             "no_seating_push": 0, "shared_hole": 0,
+                             "symmetric": 0}, ans["counts"]
     by_sites = {tuple(d["sites"]): d for d in ans["designs"]}
     assert sorted(by_sites) == [(0, 1), (0, 2), (1, 2)], by_sites.keys()
     am = math.atan(mu)
@@ -811,7 +817,8 @@ def merged(answers, top):
     designs = [d for a in answers for d in a["designs"]]
     designs.sort(key=lambda d: (-d["score"], d["candidate"]))
     counts = {k: sum(a["counts"][k] for a in answers)
-              for k in ("examined", "degenerate", "unpinned", "no_seating_push", "shared_hole")}
+              for k in ("examined", "degenerate", "unpinned", "no_seating_push", "shared_hole",
+                        "symmetric")}
     counts["candidates"] = answers[0]["counts"]["candidates"]
     return designs[:top], counts
 
@@ -904,7 +911,8 @@ def test_spacing_rectangle_clockwise_and_odd_spacing(client):
     assert ans["sites"] == 4, ans
     # one fixel is a pivot: every candidate is unpinned
     assert ans["counts"] == {"candidates": 4, "examined": 4, "degenerate": 0, "unpinned": 4,
-                             "no_seating_push": 0, "shared_hole": 0}, ans["counts"]
+                             "no_seating_push": 0, "shared_hole": 0,
+                             "symmetric": 0}, ans["counts"]
     assert ans["designs"] == []
     ans = design(client, {"body": body, "friction": 0.0, "spacing": 4.5, "fixels": 3,
                           "objective": "region", "top": 10})
@@ -993,13 +1001,24 @@ def check_notifications(notes, resp, id, total):
     assert len(notes) >= 2, notes
     last_done = -1
     last_best = None
+    # The designs' figures come after the candidates (stage "figures").
+    figures = [n for n in notes if n[1]["params"].get("stage") == "figures"]
+    notes = [n for n in notes if n[1]["params"].get("stage") != "figures"]
+    for _, n in figures:
+        p = n["params"]
+        assert set(p) == {"id", "stage", "done", "total", "best", "eta_s"}, p
+        assert 0 <= p["done"] <= p["total"] == len(resp["result"]["designs"]), p
     for _, n in notes:
         assert set(n) == {"jsonrpc", "method", "params"}, n       # a notification: no id
         assert n["jsonrpc"] == "2.0" and n["method"] == "design.progress", n
         p = n["params"]
         # "stage": "candidates" (a lattice's "poses" come first; none here)
-        assert set(p) == {"id", "stage", "done", "total", "best"}, p
+        assert set(p) == {"id", "stage", "done", "total", "best", "eta_s"}, p
         assert p["stage"] == "candidates", p
+        # the seconds left: unknown before any is done, 0 at the end
+        assert p["eta_s"] is None or p["eta_s"] >= 0, p
+        if p["done"] == total:
+            assert p["eta_s"] == 0, p
         assert p["id"] == id, (p, id)
         assert p["total"] == total, (p, total)
         assert isinstance(p["done"], int) and 0 <= p["done"] <= total, p
@@ -1060,6 +1079,39 @@ def test_progress_long_run(daemon):
     figure("design progress notifications", len(notes))
 
 
+def test_progress_eta(client):
+    """eta_s, the seconds left of the stage at its rate so far, against the
+    time the stage then took, measured here: within a factor of three once
+    a fifth of it is done (a shared machine's rate varies), and the Python
+    client's bar and wrenchctl's print it."""
+    import io
+    import os
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                    "clients", "python"))
+    import wrenchd
+    params = {"body": CHAMFER, "friction": 0.1, "spacing": LONG_SPACING, "top": 2,
+              "progress": True, "collapse_symmetric": False}
+    notes, resp, elapsed = call_with_progress(client, params, "eta")
+    search = [(t, n["params"]) for t, n in notes if n["params"]["stage"] == "candidates"]
+    end = search[-1][0]                       # the notification at done == total
+    assert search[-1][1]["done"] == search[-1][1]["total"] and search[-1][1]["eta_s"] == 0
+    assert search[0][1]["eta_s"] is None      # nothing done yet: no rate
+    checked = 0
+    for t, p in search[1:-1]:
+        assert p["eta_s"] is not None and p["eta_s"] >= 0, p
+        if p["done"] >= p["total"] / 5:
+            left = end - t
+            assert left / 3 - 0.3 <= p["eta_s"] <= 3 * left + 0.3, (p, left)
+            checked += 1
+    assert checked >= 1, search
+    bar = io.StringIO()
+    for _, n in notes:
+        wrenchd.progress_bar(bar)(n["params"])
+    text = bar.getvalue()
+    assert "left" in text and "100%" in text and "candidates" in text, text
+
+
 def test_progress_shard_total_and_numeric_id(client):
     params = {"body": CHAMFER, "friction": 0.1, "spacing": 0.5, "top": 3, "progress": True,
               "shard": [1, 3]}
@@ -1075,7 +1127,8 @@ def test_progress_without_designs(client):
     verts = [[math.cos(2 * math.pi * k / 12), math.sin(2 * math.pi * k / 12)] for k in range(12)]
     body = {"mass": 1.0, "shape": {"type": "polygon", "vertices": verts}}
     notes, resp, _ = call_with_progress(client, {"body": body, "friction": 0.2, "spacing": 0.4,
-                                                 "progress": True}, "none")
+                                                 "progress": True, "collapse_symmetric": False},
+                                        "none")
     assert resp["result"]["counts"]["no_seating_push"] == 220, resp["result"]["counts"]
     assert resp["result"]["designs"] == []
     check_notifications(notes, resp, "none", 220)
@@ -1097,7 +1150,8 @@ def test_no_progress_when_false_or_absent(client):
 
 
 def test_no_progress_in_a_batch(client):
-    params = {"body": CHAMFER, "friction": 0.1, "spacing": 0.7, "top": 2, "progress": True}
+    params = {"body": CHAMFER, "friction": 0.1, "spacing": 0.7, "top": 2, "progress": True,
+              "collapse_symmetric": False}
     reqs = [client.request("fixture.design", params), client.request("server.status", {}),
             client.request("fixture.design", dict(params, shard=[0, 2]))]
     client.send(reqs)
@@ -1461,7 +1515,8 @@ def test_empty_shard(client):
     # 2 + 0 + 0 + 1 + 1 sites: C(4, 3) = 4 candidates, numbered 0..3
     assert ans["sites"] == 4
     assert ans["counts"] == {"candidates": 4, "examined": 0, "degenerate": 0, "unpinned": 0,
-                             "no_seating_push": 0, "shared_hole": 0}, ans["counts"]
+                             "no_seating_push": 0, "shared_hole": 0,
+                             "symmetric": 0}, ans["counts"]
     assert ans["designs"] == [] and ans["shard"] == [7, 10]
 
 

@@ -11,6 +11,7 @@ import json
 import math
 import os
 import pty
+import re
 import select
 import subprocess
 import sys
@@ -336,8 +337,12 @@ def test_python_client_design_and_progress(daemon):
                                              "spacing": 8, "top": 3, "push_on": "outer"})
     assert [d.candidate for d in result.designs] == [d["candidate"] for d in raw["designs"]]
     assert result.counts == raw["counts"] and again.counts == raw["counts"]
+    # the candidates, then perhaps the designs' figures
+    stages = [p["stage"] for p in seen]
+    assert stages == sorted(stages, key=["candidates", "figures"].index), stages
+    seen = [p for p in seen if p["stage"] == "candidates"]
     assert seen and seen[0]["done"] == 0 and seen[-1]["done"] == seen[-1]["total"]
-    assert all(p["stage"] == "candidates" for p in seen)
+    assert seen[-1]["eta_s"] == 0
     assert [p["done"] for p in seen] == sorted(p["done"] for p in seen)
     assert result.designs[0].best_push["margin"] == result.designs[0].score
     with pytest.raises(ValueError):
@@ -355,8 +360,8 @@ def test_python_client_lattice_design(daemon):
     assert all(d.pegs[0] == [0, 0] and len(d.pose) == 3 and d.sites is None
                for d in result.designs)
     stages = [p["stage"] for p in seen]
-    assert stages[0] == "poses" and stages[-1] == "candidates"
-    assert stages == sorted(stages, key=["poses", "candidates"].index)
+    assert stages[0] == "poses" and "candidates" in stages
+    assert stages == sorted(stages, key=["poses", "candidates", "figures"].index)
 
 
 def test_python_client_progress_callback_that_raises_spends_the_connection(daemon):
@@ -381,3 +386,32 @@ def test_python_client_batch_refuses_progress(daemon):
         batch = client.batch()
         with pytest.raises(ValueError):
             batch.design(b["body"], b["friction"], spacing=8, progress=print)
+
+
+def test_symmetric_designs_collapsed_and_all(daemon, tmp_path):
+    """The square's designs: by default each once, saying how many more it
+    stands for; --symmetric all lists every one; the counts agree with the
+    daemon's own answers, asked both ways."""
+    path = tmp_path / "square.json"
+    path.write_text(json.dumps(SQUARE))
+    collapsed = run("design", str(path), "--spacing", "1", "--top", "1000",
+                    socket_path=daemon.path)
+    every = run("design", str(path), "--spacing", "1", "--top", "1000", "--symmetric", "all",
+                socket_path=daemon.path)
+    assert collapsed.returncode == every.returncode == 0, (collapsed.stderr, every.stderr)
+    with wrenchd.Client(daemon.path, timeout=60) as client:
+        one = client.design(SQUARE["body"], SQUARE["friction"], spacing=1, top=1000)
+        all_ = client.design(SQUARE["body"], SQUARE["friction"], spacing=1, top=1000,
+                             collapse_symmetric=False)
+    assert len(one.symmetries) == 8 and all_.symmetries is None
+    assert sum(d.copies for d in one.designs) == len(all_.designs) > len(one.designs)
+    assert "the part has 8 symmetries" in collapsed.stdout
+    rows = [l for l in collapsed.stdout.splitlines() if re.match(r"^\d+ ", l)]
+    assert len(rows) == len(one.designs)
+    more = [l for l in collapsed.stdout.splitlines() if "more: its images" in l]
+    assert len(more) == sum(1 for d in one.designs if d.copies > 1)
+    assert len([l for l in every.stdout.splitlines() if re.match(r"^\d+ ", l)]) == \
+        len(all_.designs)
+    bad = run("design", str(path), "--spacing", "1", "--symmetric", "some",
+              socket_path=daemon.path)
+    assert bad.returncode != 0 and "--symmetric" in bad.stderr

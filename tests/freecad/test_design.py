@@ -45,8 +45,12 @@ def test_a_design_is_placed(client, doc):
     assert best.Found and best.Margin == pytest.approx(top.best_push["margin"], abs=1e-9)
     at = top.best_push["at"]
     assert best.At.distanceToPoint(V(at[0], at[1], 1)) <= 1e-9
-    # progress reached the end
-    assert seen and seen[-1]["done"] == seen[-1]["total"] == 13244
+    # progress reached the end of the candidates (the designs' figures may
+    # follow, stage "figures"), with the time left said on the way
+    search = [p for p in seen if p["stage"] == "candidates"]
+    assert search and search[-1]["done"] == search[-1]["total"] == 13244
+    assert search[-1]["eta_s"] == 0
+    assert all(p["stage"] == "figures" for p in seen[len(search):])
     # the ranking, in the fixture and the report view, says to push with both
     assert fixture.Designs[0].startswith("3 fixels from 44 sites 10 mm apart, 13244 candidates")
     assert fixture.Designs[0].endswith("; lengths in mm")
