@@ -15,4 +15,12 @@
  * the log and the refusal. */
 bool wd_peer_allowed(const wd_config *config, int fd, char *who, size_t who_size);
 
+/* Does the configuration admit anyone who can open the socket (no list,
+ * or "any")? */
+bool wd_peer_anyone(const wd_config *config);
+
+/* The effective allow lists, for the log: "anyone ..." or "uids 0, 1000;
+ * no gid". */
+void wd_peer_describe(const wd_config *config, char *text, size_t size);
+
 #endif

@@ -138,6 +138,7 @@ struct wd_server {
     unsigned long connection_count, numbers;
     unsigned long refusing;         /* of the connections, those being turned away */
     bool stopping;
+    wd_listen_file socket_file;     /* the socket file made, removed at exit */
 };
 
 static void process_input(connection *c);
@@ -978,8 +979,7 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
     if (s->listener) {
         evconnlistener_free(s->listener);
         s->listener = NULL;
-        if (s->config->listen_fd < 0) /* systemd's socket is systemd's to remove */
-            unlink(s->config->socket_path);
+        wd_listen_remove(s->config->socket_path, &s->socket_file); /* none: systemd's */
     }
     struct timeval grace = {SHUTDOWN_GRACE_SECONDS, 0};
     event_add(s->grace_timer, &grace);
@@ -1046,7 +1046,7 @@ int wd_server_run(const wd_config *config)
     }
     event_add(s->signal_events[0], NULL);
     event_add(s->signal_events[1], NULL);
-    fd = config->listen_fd >= 0 ? config->listen_fd : wd_listen_open(config->socket_path, why, sizeof why);
+    fd = config->listen_fd >= 0 ? config->listen_fd : wd_listen_open(config->socket_path, &s->socket_file, why, sizeof why);
     if (fd < 0) {
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;
@@ -1054,8 +1054,7 @@ int wd_server_run(const wd_config *config)
     s->listener = evconnlistener_new(s->base, on_accept, s, LEV_OPT_CLOSE_ON_FREE, -1, fd);
     if (!s->listener) {
         close(fd);
-        if (config->listen_fd < 0)
-            unlink(config->socket_path);
+        wd_listen_remove(config->socket_path, &s->socket_file);
         wd_log(WD_LOG_ERROR, "cannot listen on %s: out of memory", config->socket_path);
         goto out;
     }
@@ -1063,6 +1062,11 @@ int wd_server_run(const wd_config *config)
            WR_VERSION, config->listen_fd >= 0 ? "the socket systemd passed" : config->socket_path,
            config->threads, config->state_dir ? config->state_dir : "in memory only",
            config->cache_bytes >> 20);
+    {
+        char admitted[WD_MAX_ALLOWED * 24 + 64];
+        wd_peer_describe(config, admitted, sizeof admitted);
+        wd_log(WD_LOG_INFO, "admitted: %s", admitted);
+    }
     {
         wd_cache_stats held;
         wd_cache_stats_get(s->cache, &held);
@@ -1091,8 +1095,7 @@ out:
     wd_thread_host_free(s->light);
     if (s->listener) {
         evconnlistener_free(s->listener);
-        if (config->listen_fd < 0)
-            unlink(config->socket_path);
+        wd_listen_remove(config->socket_path, &s->socket_file);
     }
     for (int i = 0; i < 2; i++)
         if (s->signal_events[i])

@@ -3,6 +3,7 @@
 #ifndef WD_SERVER_H
 #define WD_SERVER_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 typedef struct wd_config {
@@ -29,6 +30,8 @@ typedef struct wd_config {
     int allow_uid_count;
     const unsigned *allow_gids; /* ... or by primary or supplementary group */
     int allow_gid_count;
+    bool allow_any_uid;         /* "any" given for a list: everyone is admitted */
+    bool allow_any_gid;
     int listen_fd;              /* a socket systemd passed, or -1 to bind socket_path */
 } wd_config;
 
