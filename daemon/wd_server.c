@@ -139,6 +139,8 @@ struct wd_server {
     unsigned long refusing;         /* of the connections, those being turned away */
     bool stopping;
     wd_listen_file socket_file;     /* the socket file made, removed at exit */
+    struct event *accept_timer;     /* accepting again after running out of descriptors */
+    wd_log_limit denied_log, refused_log, accept_log;
 };
 
 static void process_input(connection *c);
@@ -785,8 +787,74 @@ static void on_readable(evutil_socket_t fd, short what, void *argument)
     }
 }
 
-/* A refused client gets this long to read its error line and hang up. */
+/* A refused client gets this long to read its error line and hang up,
+ * counted from the refusal: what it sends meanwhile is read and dropped
+ * and does not extend it, so a refused peer holds a descriptor at most
+ * this long. */
 #define LINGER_SECONDS 2
+/* At most this many refused connections linger at once; beyond, the error
+ * line is sent as the socket takes it and the connection closed at once
+ * (a flood of refused peers then costs an accept and a close each, never
+ * the daemon's descriptors). */
+#define MAX_LINGERING 64
+/* After accept(2) runs out of descriptors (or memory), accepting pauses for
+ * this long: the waiting connections stay in the listen backlog until
+ * descriptors are free, instead of the loop retrying accept at once. */
+#define ACCEPT_PAUSE_MS 100
+/* Floods (peers denied or refused, accept failing) log a line per this
+ * many seconds. */
+#define FLOOD_LOG_SECONDS 10
+
+static void on_linger_over(evutil_socket_t fd, short events, void *argument)
+{
+    (void)fd;
+    (void)events;
+    connection *c = argument;
+    c->busy++;
+    wd_log(WD_LOG_DEBUG, "client %lu: turned away, its linger over: closed", c->number);
+    c->input_closed = true;
+    close_socket(c);
+    c->busy--;
+    maybe_finish(c);
+}
+
+/* Turn a peer away without a connection of ours: the error line as the
+ * socket takes it, then close. */
+static void refuse_at_once(evutil_socket_t fd, int code, const char *reason)
+{
+    char *line = wp_error_line(code, "", reason);
+    if (line) {
+        ssize_t sent = send(fd, line, strlen(line), MSG_DONTWAIT | MSG_NOSIGNAL);
+        (void)sent;
+        free(line);
+    }
+    shutdown(fd, SHUT_WR);
+    close(fd);
+}
+
+static void on_accept_again(evutil_socket_t fd, short events, void *argument)
+{
+    (void)fd;
+    (void)events;
+    wd_server *s = argument;
+    if (s->listener)
+        evconnlistener_enable(s->listener);
+}
+
+/* accept(2) failed (libevent retries EINTR and EAGAIN itself).  Out of
+ * descriptors or memory, retrying at once would spin the loop and the log:
+ * pause accepting a moment, log once per FLOOD_LOG_SECONDS. */
+static void on_accept_error(struct evconnlistener *listener, void *argument)
+{
+    wd_server *s = argument;
+    int error = EVUTIL_SOCKET_ERROR();
+    wd_log_limited(&s->accept_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                   "cannot accept a client: %s; accepting paused for %d ms", strerror(error),
+                   ACCEPT_PAUSE_MS);
+    evconnlistener_disable(listener);
+    struct timeval pause = {0, ACCEPT_PAUSE_MS * 1000};
+    event_add(s->accept_timer, &pause);
+}
 
 static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struct sockaddr *address,
                       int length, void *argument)
@@ -801,13 +869,19 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
         refusal = WP_ACCESS;
         snprintf(reason, sizeof reason, "%s may not use this daemon (allow-uid, allow-gid)", who);
         atomic_fetch_add(&s->stats.denied, 1);
-        wd_log(WD_LOG_WARN, "denied %s: not in the allow lists", who);
+        wd_log_limited(&s->denied_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                       "denied %s: not in the allow lists", who);
     } else if (atomic_load(&s->stats.clients) - s->refusing >= s->config->max_clients) {
         refusal = WP_LIMIT;
         snprintf(reason, sizeof reason, "too many clients (--max-clients); try again later");
         atomic_fetch_add(&s->stats.refused, 1);
-        wd_log(WD_LOG_WARN, "refused a client: %lu already connected (--max-clients)",
-               (unsigned long)(atomic_load(&s->stats.clients) - s->refusing));
+        wd_log_limited(&s->refused_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                       "refused a client: %lu already connected (--max-clients)",
+                       (unsigned long)(atomic_load(&s->stats.clients) - s->refusing));
+    }
+    if (refusal && s->refusing >= MAX_LINGERING) {
+        refuse_at_once(fd, refusal, reason);
+        return;
     }
     connection *c = calloc(1, sizeof *c);
     struct bufferevent *bev = c ? bufferevent_socket_new(s->base, fd, BEV_OPT_CLOSE_ON_FREE) : NULL;
@@ -839,18 +913,24 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
         maybe_finish(c);
         return;
     }
-    reading_on(c);
     if (refusal) {
         c->refusing = true;
         s->refusing++;
+        /* The write's timeout is the linger too; reading has none (input
+         * would restart it): the timer ends the linger. */
         struct timeval linger = {LINGER_SECONDS, 0};
-        set_timeouts(c, &linger);
+        bufferevent_set_timeouts(c->bev, NULL, &linger);
+        reading_on(c);
+        c->request_timer = evtimer_new(s->base, on_linger_over, c);
+        if (c->request_timer)
+            evtimer_add(c->request_timer, &linger);
         c->busy++;
         queue_error(c, refusal, reason);
         c->busy--;
         maybe_finish(c);
         return;
     }
+    reading_on(c);
     c->request_timer = s->config->request_timeout > 0 ? evtimer_new(s->base, on_request_timeout, c)
                                                       : NULL;
     /* on_write comes when the output is down to half the bound: the next
@@ -1036,10 +1116,12 @@ int wd_server_run(const wd_config *config)
     s->signal_events[0] = evsignal_new(s->base, SIGTERM, on_signal, s);
     s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
     s->grace_timer = evtimer_new(s->base, on_grace_over, s);
+    s->accept_timer = evtimer_new(s->base, on_accept_again, s);
     s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, task_done, s);
     s->light = wd_thread_host_new(s->cache, &s->stats);
     s->loop_host = s->light ? wd_thread_host_wp(s->light) : NULL;
     if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
+        !s->accept_timer ||
         !s->pool || !s->light) {
         wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
         goto out;
@@ -1058,6 +1140,7 @@ int wd_server_run(const wd_config *config)
         wd_log(WD_LOG_ERROR, "cannot listen on %s: out of memory", config->socket_path);
         goto out;
     }
+    evconnlistener_set_error_cb(s->listener, on_accept_error);
     wd_log(WD_LOG_INFO, "wrenchd %s listening on %s (%d threads, state %s, cache %zu MiB)",
            WR_VERSION, config->listen_fd >= 0 ? "the socket systemd passed" : config->socket_path,
            config->threads, config->state_dir ? config->state_dir : "in memory only",
@@ -1104,6 +1187,8 @@ out:
         event_free(s->done_event);
     if (s->grace_timer)
         event_free(s->grace_timer);
+    if (s->accept_timer)
+        event_free(s->accept_timer);
     if (s->base)
         event_base_free(s->base);
     wd_cache_free(s->cache);

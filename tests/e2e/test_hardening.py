@@ -9,6 +9,7 @@ it holds) with wide margins, not of how loaded the machine is."""
 
 import json
 import os
+import struct
 import resource
 import shutil
 import socket
@@ -35,10 +36,14 @@ def status_line(i=1):
 
 
 def ask_status(path, timeout):
-    """Connect, ask server.status, return the answer (raises on failure)."""
+    """Connect, ask server.status, return the answer (raises on failure).
+    The connect blocks (at most `timeout`, SO_SNDTIMEO) while the listen
+    backlog is full, as a blocking client's does."""
     with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as s:
-        s.settimeout(timeout)
+        whole, part = int(timeout), int((timeout - int(timeout)) * 1e6)
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_SNDTIMEO, struct.pack("ll", whole, part))
         s.connect(path)
+        s.settimeout(timeout)
         s.sendall(status_line())
         return json.loads(s.makefile("rb").readline())
 
@@ -132,3 +137,137 @@ def test_a_replaced_socket_file_is_left_to_its_maker(harness):
     assert "result" in ask_status(path, 10 * SLOW)
     b.stop()
     assert not os.path.exists(path), "a daemon leaves its own socket file behind"
+
+
+# ---- descriptors ---------------------------------------------------------------------
+
+# Run as nobody: hold up to COUNT connections to the daemon, each dripping a
+# byte every 0.7 s (which restarted a refused connection's linger), opening
+# new ones for those closed every 0.7 s, for SECONDS.
+DRIPPER = r"""
+import os, resource, select, socket, sys, time
+path, count, seconds = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+os.setgroups([]); os.setgid(65534); os.setuid(65534)
+soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+resource.setrlimit(resource.RLIMIT_NOFILE, (min(hard, count + 64), hard))
+socks, opened, end = [], 0, time.monotonic() + seconds
+last_drip = 0.0
+while time.monotonic() < end:
+    while len(socks) < count and time.monotonic() - last_drip >= 0.7:
+        s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        s.setblocking(False)
+        try:
+            s.connect(path)
+        except (BlockingIOError, InterruptedError):
+            pass
+        except OSError:
+            s.close()
+            break
+        socks.append(s)
+        opened += 1
+    if time.monotonic() - last_drip >= 0.7:
+        last_drip = time.monotonic()
+        alive = []
+        for s in socks:
+            try:
+                s.send(b"x")
+                alive.append(s)
+            except OSError:
+                s.close()
+        socks = alive
+    poller = select.poll()
+    for s in socks:
+        poller.register(s, select.POLLIN)
+    byfd = {s.fileno(): s for s in socks}
+    for fd, _ in poller.poll(50):
+        s = byfd[fd]
+        try:
+            data = s.recv(4096)
+        except OSError:
+            data = b""
+        if not data:
+            socks.remove(s)
+            s.close()
+print(opened)
+"""
+
+
+@needs_root
+@pytest.mark.skipif(shutil.which("prlimit") is None, reason="needs prlimit")
+@pytest.mark.skipif(SANITIZED, reason="timing of connections under a sanitizer")
+def test_denied_peers_cannot_exhaust_descriptors(harness):
+    """1,300 connections from a denied uid, each dripping a byte every 0.7 s,
+    against a daemon limited to 1,024 descriptors: the daemon never holds
+    more than 200 descriptors, an allowed client (root) connects and is
+    answered within 1 s on every one of 24 tries, and the log stays under
+    100 lines."""
+    d = harness.start("--allow-uid", "0")
+    open_to_everyone(harness, d)
+    subprocess.run(["prlimit", "--pid", str(d.pid), "--nofile=1024:1024"], check=True)
+    attacker = subprocess.Popen([sys.executable, "-c", DRIPPER, d.path, "1300", "14"],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        time.sleep(3)  # the attack at full strength
+        slow, descriptors = [], []
+        for attempt in range(24):
+            descriptors.append(len(os.listdir("/proc/%d/fd" % d.pid)))
+            start = time.monotonic()
+            try:
+                answer = ask_status(d.path, 1.0)
+                assert "result" in answer, answer
+            except (OSError, ValueError) as e:
+                slow.append("try %d: %r" % (attempt, e))
+            else:
+                took = time.monotonic() - start
+                if took >= 1.0:
+                    slow.append("try %d: %.2f s" % (attempt, took))
+            time.sleep(0.3)
+    finally:
+        out, err = attacker.communicate(timeout=60)
+    assert attacker.returncode == 0, err
+    assert int(out) > 1300, "the attack opened only %s connections" % out
+    assert not slow, "the allowed client was kept out: %s" % slow
+    # Refused peers hold few descriptors (at most 64 linger), not the limit.
+    assert max(descriptors) < 200, descriptors
+    status = ask_status(d.path, 10 * SLOW)["result"]
+    assert status["denied"] > 1300
+    lines = d.stderr().count("\n")
+    assert lines < 100, "%d log lines:\n%s" % (lines, d.stderr()[-2000:])
+
+
+@pytest.mark.skipif(shutil.which("prlimit") is None, reason="needs prlimit")
+def test_out_of_descriptors_accepting_pauses_and_logs_once(harness):
+    """A daemon limited to 64 descriptors with 120 clients connected (the
+    rest wait in the listen backlog): it neither spins on accept (under 0.5
+    CPU-seconds in 3 s) nor floods the log (under 10 lines); once clients
+    leave, a waiting one is answered."""
+    d = harness.start("--max-clients", "1000")
+    subprocess.run(["prlimit", "--pid", str(d.pid), "--nofile=64:64"], check=True)
+    held = []
+    for _ in range(120):
+        s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        s.setblocking(False)
+        try:
+            s.connect(d.path)
+        except BlockingIOError:
+            s.close()
+            break
+        held.append(s)
+    assert len(held) >= 100
+    time.sleep(0.5)
+    before = cpu_seconds(d.pid)
+    time.sleep(3)
+    spent = cpu_seconds(d.pid) - before
+    assert spent < 0.5 * SLOW, "%.2f CPU-seconds while out of descriptors" % spent
+    lines = d.stderr().count("\n")
+    assert lines < 10, d.stderr()[-2000:]
+    assert "Too many open files" in d.stderr()
+    for s in held[:80]:
+        s.close()
+    # The last one waited in the backlog all along: it is accepted now.
+    held[-1].setblocking(True)
+    held[-1].settimeout(10 * SLOW)
+    held[-1].sendall(status_line())
+    assert "result" in json.loads(held[-1].makefile("rb").readline())
+    for s in held[80:]:
+        s.close()
