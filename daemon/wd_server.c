@@ -26,7 +26,8 @@
  * Cancellation: a client that is gone (its socket closed, or hung up
  * while answers were still to come) has its waiting requests dropped and
  * its running one stopped at the next poll (wr_stop: between wrenches,
- * edges, samples). */
+ * edges, samples).  A hang-up is noticed whether or not its connection is
+ * being read (pause_reading). */
 /* SO_PEERCRED, SO_PEERGROUPS and struct ucred are Linux's. */
 #define _GNU_SOURCE
 #include "wd_server.h"
@@ -113,6 +114,9 @@ struct connection {
                                   bytes not yet searched for its end */
     size_t partial_length, partial_capacity;
     bool paused;               /* not reading: too many requests waiting */
+    struct event *hangup_event; /* while paused: the peer's hang-up (EV_CLOSED,
+                                  epoll's EPOLLRDHUP), which reading would
+                                  have seen */
     bool input_closed;         /* end of input, or shutting down */
     bool refusing;             /* turned away: one error line, then a lingering
                                   close (its input is read and dropped) */
@@ -235,6 +239,30 @@ static void set_timeouts(connection *c, const struct timeval *timeout)
         reading_on(c); /* again, with the new timeout */
 }
 
+static void on_hangup(evutil_socket_t fd, short what, void *argument);
+
+/* Reading paused (too many requests waiting), a hang-up would go unseen
+ * until reading resumes, and the work asked would run for nobody: the
+ * hang-up is watched on its own meanwhile (EV_CLOSED, where the backend
+ * has it), and each piece made asks too (piece_done). */
+static void pause_reading(connection *c)
+{
+    c->paused = true;
+    reading_off(c);
+    if (!c->hangup_event)
+        c->hangup_event = event_new(c->server->base, bufferevent_getfd(c->bev), EV_CLOSED,
+                                    on_hangup, c);
+    if (c->hangup_event)
+        event_add(c->hangup_event, NULL);
+}
+
+static void unpause(connection *c)
+{
+    c->paused = false;
+    if (c->hangup_event)
+        event_del(c->hangup_event);
+}
+
 /* One read of at most `most` bytes into the input: 0 when some were read,
  * -1 when none were there, else BEV_EVENT_EOF or BEV_EVENT_ERROR. */
 static int read_input(connection *c, size_t most)
@@ -274,6 +302,9 @@ static void close_socket(connection *c)
         event_free(c->read_event);
     c->read_event = NULL;
     c->reading = false;
+    if (c->hangup_event)
+        event_free(c->hangup_event);
+    c->hangup_event = NULL;
     bufferevent_free(c->bev);
     c->bev = NULL;
     atomic_fetch_sub(&c->server->stats.clients, 1);
@@ -381,7 +412,7 @@ static void flush(connection *c)
         answers_out(c);
     if (c->bev && c->paused && c->pending < MAX_PENDING / 2 &&
         c->queued_bytes < c->server->config->max_line) {
-        c->paused = false;
+        unpause(c);
         if (!c->input_closed)
             reading_on(c);
         process_input(c); /* lines already buffered */
@@ -677,10 +708,8 @@ static void process_input(connection *c)
         line[length] = 0;
         line_taken = true;
         submit(c, line, length);
-        if (c->bev && too_much_waiting(c) && !c->input_closed) {
-            c->paused = true;
-            reading_off(c);
-        }
+        if (c->bev && too_much_waiting(c) && !c->input_closed)
+            pause_reading(c);
     }
     watch_partial_request(c, line_taken);
 }
@@ -722,6 +751,25 @@ static bool peer_gone(connection *c)
 {
     struct pollfd p = {.fd = bufferevent_getfd(c->bev), .events = POLLOUT};
     return poll(&p, 1, 0) == 1 && (p.revents & (POLLHUP | POLLERR));
+}
+
+/* The peer shut its sending side (or hung up) while reading was paused. */
+static void on_hangup(evutil_socket_t fd, short what, void *argument)
+{
+    (void)fd;
+    (void)what;
+    connection *c = argument;
+    if (!c->bev)
+        return;
+    c->busy++;
+    if (peer_gone(c)) {
+        wd_log(WD_LOG_DEBUG, "client %lu: hung up while its reading was paused; its requests "
+                             "are cancelled", c->number);
+        c->input_closed = true;
+        close_socket(c);
+    } /* else only its sending side: it may still read; pieces ask again */
+    c->busy--;
+    maybe_finish(c);
 }
 
 static void on_event(struct bufferevent *bev, short events, void *argument)
@@ -981,9 +1029,12 @@ static void piece_done(wd_server *s, wd_task *task)
     assert(c->running == x && x->task == task && !c->parked);
     assert(c->head == x); /* every earlier answer written */
     c->busy++;
-    if (c->bev && c->input_closed && task->step == WP_STEP_MORE && peer_gone(c)) {
-        /* It closed its sending side first, then hung up entirely: no
-         * event says so (the input ended long ago), so each piece asks. */
+    if (c->bev && (c->input_closed || c->paused) && task->step == WP_STEP_MORE &&
+        peer_gone(c)) {
+        /* It closed its sending side first, then hung up entirely, or hung
+         * up while its reading was paused: no event may say so (the input
+         * ended long ago; EV_CLOSED fires once, at the first half), so
+         * each piece asks. */
         wd_log(WD_LOG_DEBUG, "client %lu: hung up after closing its input; its requests are "
                              "cancelled", c->number);
         close_socket(c);

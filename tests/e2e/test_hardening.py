@@ -271,3 +271,62 @@ def test_out_of_descriptors_accepting_pauses_and_logs_once(harness):
     assert "result" in json.loads(held[-1].makefile("rb").readline())
     for s in held[80:]:
         s.close()
+
+
+# ---- hang-ups while reading is paused ------------------------------------------------
+
+def long_request(kind, put_id):
+    """A request that takes a core for a minute or more."""
+    from test_resources import design_request, sweep_batch
+    if kind == "design":
+        return design_request(1, spacing=0.25)
+    return sweep_batch(put_id, 1, count=4)
+
+
+def many_lines(count=1100):
+    return b"".join(status_line(100 + i) for i in range(count))
+
+
+def two_long_lines():
+    pad = b"x" * (9 << 20)
+    return b"".join(b'{"jsonrpc":"2.0","method":"server.status","params":{"pad":"' + pad +
+                    b'"},"id":%d}\n' % i for i in (7, 8))
+
+
+@pytest.mark.parametrize("kind,then", [("design", "lines"), ("design", "long lines"),
+                                       ("sweep", "lines"), ("sweep", "long lines")])
+def test_a_hang_up_is_noticed_while_reading_is_paused(harness, kind, then):
+    """A long design or friction.sweep, then 1,100 more lines (or two 9 MiB
+    lines), so that reading pauses; then the client hangs up.  The work
+    stops: under 0.1 CPU-seconds in the 2 s from 0.3 s after the hang-up."""
+    from test_resources import eight_fixels
+    d = harness.start("--threads", "2")
+    setup = d.client()
+    eight = setup.result("fixture.put", {"fixture": eight_fixels()})["id"]
+    setup.close()
+    s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    s.settimeout(30 * SLOW)
+    s.connect(d.path)
+    s.sendall(long_request(kind, eight))
+    time.sleep(0.3)
+    more = many_lines() if then == "lines" else two_long_lines()
+    s.setblocking(False)
+    sent = 0
+    deadline = time.monotonic() + 10 * SLOW
+    while sent < len(more) and time.monotonic() < deadline:
+        try:
+            sent += s.send(more[sent:sent + (1 << 20)])
+        except BlockingIOError:
+            time.sleep(0.01)
+    assert sent > 0
+    time.sleep(0.5)
+    start = cpu_seconds(d.pid)
+    assert start > 0.2, "the long request did not start"
+    s.close()
+    time.sleep(0.3)
+    before = cpu_seconds(d.pid)
+    time.sleep(2.0)
+    used = cpu_seconds(d.pid) - before
+    assert used < 0.1 * SLOW, "%.2f CPU-seconds after the hang-up" % used
+    status = ask_status(d.path, 10 * SLOW)["result"]
+    assert status["clients"] == 1, status
