@@ -4,6 +4,7 @@
 #include <assert.h>
 #include <ctype.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -380,6 +381,54 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
     return cheap;
 }
 
+/* A parse that fails for want of memory is not a line that is not JSON:
+ * cJSON says neither, so its allocations go through this, which notes a
+ * failure for the thread that parses (cJSON's hooks are process-wide,
+ * installed once). */
+static _Thread_local bool parse_out_of_memory;
+
+static void *noting_malloc(size_t size)
+{
+    void *p = malloc(size);
+    if (!p)
+        parse_out_of_memory = true;
+    return p;
+}
+
+static void install_hooks(void)
+{
+    cJSON_Hooks hooks = {noting_malloc, free};
+    cJSON_InitHooks(&hooks);
+}
+
+/* The refusal of a line that ran out of memory while it was parsed: -32603
+ * (documented for it), under the request's id when the line is one request
+ * whose id can be read from the text (a string or a number, echoed as
+ * written), else under null. */
+static cJSON *refuse_out_of_memory(char **refusal, const char *text, size_t length)
+{
+    size_t start, end;
+    const char *id = "null";
+    char *written = NULL;
+    if (wp_json_member(text, length, 0, "id", &start, &end) && end > start &&
+        (text[start] == '"' || text[start] == '-' || isdigit((unsigned char)text[start]))) {
+        written = malloc(end - start + 1);
+        if (written) {
+            memcpy(written, text + start, end - start);
+            written[end - start] = 0;
+            id = written;
+        }
+    }
+    wp_error error;
+    wp_error_set(&error, WP_INTERNAL, "", "out of memory while reading the request");
+    wp_buffer b = {0};
+    write_error(&b, &error, id);
+    wp_buffer_puts(&b, "\n");
+    free(written);
+    *refusal = wp_buffer_take(&b);
+    return NULL;
+}
+
 /* parse_line's refusal: the answer in *refusal, no JSON. */
 static cJSON *refuse(char **refusal, int code, const char *reason)
 {
@@ -436,8 +485,16 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
         return refuse(refusal, WP_INVALID_REQUEST,
                       "a string holds \\u0000 (U+0000), which wrenchd does not accept");
     }
+    static pthread_once_t hooks_installed = PTHREAD_ONCE_INIT;
+    pthread_once(&hooks_installed, install_hooks);
+    parse_out_of_memory = false;
     const char *end = NULL;
     cJSON *json = cJSON_ParseWithLengthOpts(line + start, length - start, &end, false);
+    if (!json && parse_out_of_memory) {
+        counts->requests++;
+        counts->errors++;
+        return refuse_out_of_memory(refusal, line + start, length - start);
+    }
     if (json && end == line + length && shape.number_problem) {
         /* cJSON read it, but RFC 8259 does not allow it (a leading zero
          * would be octal to some readers): not JSON. */

@@ -330,3 +330,41 @@ def test_a_hang_up_is_noticed_while_reading_is_paused(harness, kind, then):
     assert used < 0.1 * SLOW, "%.2f CPU-seconds after the hang-up" % used
     status = ask_status(d.path, 10 * SLOW)["result"]
     assert status["clients"] == 1, status
+
+
+# ---- out of memory while parsing -------------------------------------------------------
+
+def vm_size(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmSize:"):
+                return int(line.split()[1]) << 10
+    return 0
+
+
+@pytest.mark.skipif(shutil.which("prlimit") is None, reason="needs prlimit")
+@pytest.mark.skipif(SANITIZED, reason="a sanitizer's allocator reserves its own address space")
+@pytest.mark.parametrize("id_text", [b'"big"', b"12345678901234567890", None])
+def test_a_valid_line_out_of_memory_while_parsed_is_an_internal_error(harness, id_text):
+    """With its address space capped (prlimit --as) 64 MiB above what it
+    uses, the daemon is sent a valid line whose tree needs more (server.status
+    with 1.5 million numbers in params, a 3 MB line): -32603, under the
+    request's id as written (null when it has none), not -32700; the next
+    request is answered."""
+    d = harness.start("--threads", "1")
+    c = d.client()
+    c.result("server.status")
+    limit = vm_size(d.pid) + (64 << 20)
+    subprocess.run(["prlimit", "--pid", str(d.pid), "--as=%d:%d" % (limit, limit)], check=True)
+    numbers = b",".join([b"0"] * 1500000)
+    line = b'{"jsonrpc":"2.0","method":"server.status","params":[' + numbers + b"]"
+    line += (b',"id":' + id_text if id_text else b"") + b"}"
+    c.send_line(line)
+    answer = c.read_json()
+    assert answer["error"]["code"] == -32603, answer
+    assert "out of memory" in answer["error"]["data"]["reason"]
+    expected = json.loads(id_text) if id_text else None
+    assert answer["id"] == expected, answer
+    if id_text and id_text[0:1] != b'"':
+        assert c.buf == b"" and json.dumps(answer["id"]).encode() == id_text
+    assert "result" in c.call("server.status")
