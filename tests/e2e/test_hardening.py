@@ -8,6 +8,7 @@ Thresholds are properties of the daemon (lines logged, CPU it spends, bytes
 it holds) with wide margins, not of how loaded the machine is."""
 
 import json
+import math
 import os
 import struct
 import resource
@@ -368,3 +369,68 @@ def test_a_valid_line_out_of_memory_while_parsed_is_an_internal_error(harness, i
     if id_text and id_text[0:1] != b'"':
         assert c.buf == b"" and json.dumps(answer["id"]).encode() == id_text
     assert "result" in c.call("server.status")
+
+
+# ---- numerical edges -------------------------------------------------------------------
+
+def disc_with_normal(normal):
+    f = json.loads(json.dumps(DISC))
+    f["fixels"][0]["normal"] = normal
+    return f
+
+
+@pytest.mark.parametrize("normal", [[1.3e308, 1.3e308], [1.7e308, 1.7e308], [5e-324, 5e-324],
+                                    [1e-310, 1e-310], [3e-200, 3e-200], [1.2e308, 1.2e308]])
+def test_a_normal_is_scaled_before_it_is_normalised(harness, normal):
+    """Huge, tiny and subnormal normals along (1, 1) are accepted and stored
+    unit, along (1, 1) to an ulp; the id follows the stored value: the
+    stored fixture put again has the same id, and one whose stored normal
+    is the same bits as (1, 1)'s has (1, 1)'s id."""
+    d = harness.start()
+    c = d.client()
+    # The disc's fixel at (-1, 0) takes any normal into the disc.
+    reference = c.result("fixture.put", {"fixture": disc_with_normal([1, 1])})
+    reference_normal = c.result("fixture.get", {"id": reference["id"]})["fixels"][0]["normal"]
+    answer = c.call("fixture.put", {"fixture": disc_with_normal(normal)})
+    assert "result" in answer, answer
+    stored = c.result("fixture.get", {"id": answer["result"]["id"]})
+    n = stored["fixels"][0]["normal"]
+    assert abs(n[0] - 2 ** -0.5) < 2e-16 and abs(n[1] - 2 ** -0.5) < 2e-16, n
+    assert abs(math.hypot(*n) - 1) < 4e-16, n
+    again = c.result("fixture.put", {"fixture": stored})
+    assert again["id"] == answer["result"]["id"]
+    assert (answer["result"]["id"] == reference["id"]) == (n == reference_normal), (n, reference_normal)
+
+
+def test_a_witness_of_a_wrench_near_the_largest_double_is_finite(harness):
+    """A wrench (1.7e308, 1.7e308, 1.7e308), outside the disc's cones: its
+    witness is the witness of (1, 1, 1) times 1.7e308 (cones are cones),
+    numbers, not nulls; by cones and by LP."""
+    d = harness.start()
+    c = d.client()
+    for method in ("auto", "lp"):
+        params = {"fixture": DISC, "sets": ["goal"], "method": method}
+        big = c.result("wrench.classify", dict(params, wrenches=[[1.7e308] * 3]))["results"][0]["goal"]
+        one = c.result("wrench.classify", dict(params, wrenches=[[1, 1, 1]]))["results"][0]["goal"]
+        assert big["verdict"] == one["verdict"], (big, one)
+        if "witness" not in one:
+            continue
+
+        def numbers(w):
+            out = []
+            for key in sorted(w):
+                v = w[key]
+                if isinstance(v, list):
+                    out += [x for item in v for x in (item if isinstance(item, list) else [item])]
+            return out
+        wb, wo = numbers(big["witness"]), numbers(one["witness"])
+        assert len(wb) == len(wo)
+        finite = 0
+        for x, y in zip(wb, wo):
+            if y is None or abs(1.7e308 * y) > 1.797e308:
+                assert x is None, (method, x, y)   # beyond a double, or none for (1, 1, 1)
+            else:
+                assert x is not None and abs(x - 1.7e308 * y) <= 1e-9 * 1.7e308 * max(1.0, abs(y)), (
+                    method, x, y, big["witness"])
+                finite += 1
+        assert finite >= 4, big["witness"]
