@@ -79,6 +79,16 @@ struct wp_answer {
     cJSON *empty;            /* {} for a request without params */
     char *id_text;           /* its id as answered (malloc'd) */
     size_t bytes;            /* wp_answer_bytes */
+    /* A long batch is read a request at a time (after the whole line was
+     * parsed once, to refuse it whole if it is not JSON, and the tree
+     * freed): its text, the spans of the requests not yet begun, and the
+     * tree of the one in hand.  So a batch whose answer waits on a slow
+     * reader holds its text and one request's tree, not the tree of every
+     * request in it (forty times the text). */
+    char *text;
+    size_t (*spans)[2];
+    size_t span_count, span_next;
+    cJSON *member;
 };
 
 static void release_fixture(wp_answer *answer, const wp_host *host)
@@ -591,6 +601,70 @@ static char *prepare_wrenches(const char *line, size_t length, wp_prepared *prep
     return copy;
 }
 
+/* Keep a long batch as text and spans (wp_answer's `text`), its tree
+ * freed; left as a tree when out of memory. */
+static void read_lazily(wp_answer *answer, const char *line, size_t length, size_t members)
+{
+    char *text = malloc(length + 1);
+    size_t (*spans)[2] = malloc(members * sizeof *spans);
+    if (!text || !spans) {
+        free(text);
+        free(spans);
+        return;
+    }
+    memcpy(text, line, length);
+    text[length] = 0;
+    size_t i = wp_json_skip_space(text, 0, length);
+    assert(text[i] == '[');
+    i = wp_json_skip_space(text, i + 1, length);
+    size_t n = 0;
+    while (i < length && text[i] != ']' && n < members) {
+        spans[n][0] = i;
+        i = wp_json_skip_value(text, i, length);
+        spans[n++][1] = i;
+        i = wp_json_skip_space(text, i, length);
+        if (i < length && text[i] == ',')
+            i = wp_json_skip_space(text, i + 1, length);
+    }
+    assert(n == members);
+    cJSON_Delete(answer->json);
+    answer->json = NULL;
+    answer->next = NULL;
+    answer->text = text;
+    answer->spans = spans;
+    answer->span_count = n;
+    answer->bytes = length + (members * sizeof *spans);
+}
+
+/* A lazily read batch: the next request's tree in answer->next (the one
+ * before it freed: its stream is over), or its error answer written when
+ * it cannot be read for want of memory.  False when none is left. */
+static bool next_member(wp_answer *answer, wp_buffer *out, wp_counts *counts)
+{
+    while (!answer->next && answer->text && answer->span_next < answer->span_count) {
+        cJSON_Delete(answer->member);
+        answer->member = NULL;
+        size_t start = answer->spans[answer->span_next][0];
+        size_t end = answer->spans[answer->span_next][1];
+        answer->span_next++;
+        cJSON *member = cJSON_ParseWithLengthOpts(answer->text + start, end - start, NULL, false);
+        if (member && !wp_json_keep_id_text(member, answer->text + start, end - start)) {
+            cJSON_Delete(member);
+            member = NULL;
+        }
+        if (!member) {
+            counts->requests++;
+            counts->errors++;
+            wp_error error;
+            wp_error_set(&error, WP_INTERNAL, "", "out of memory while reading the request");
+            write_error_answer(answer, out, &error, NULL);
+            continue;
+        }
+        answer->member = answer->next = member;
+    }
+    return answer->next != NULL;
+}
+
 wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t length)
 {
     wp_answer *answer = calloc(1, sizeof *answer);
@@ -644,6 +718,8 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
         }
         answer->batch = true;
         answer->next = json->child;
+        if (length >= PREPARE_BYTES)
+            read_lazily(answer, line, length, members);
     } else {
         answer->next = json;
     }
@@ -671,7 +747,7 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
             return step;
         }
     }
-    while (answer->next) {
+    while (answer->next || next_member(answer, out, counts)) {
         if (!answer->whole && out->length > start &&
             (used >= answer->budget || out->length - start >= answer->piece_bytes))
             return WP_STEP_MORE;
@@ -697,8 +773,9 @@ size_t wp_answer_bytes(const wp_answer *answer)
         return 0;
     /* A stream's holdings change as it goes (a batch's chunks made ahead
      * of their turn): asked anew, between steps, when no helper is in it. */
+    size_t text = answer->text ? answer->spans[answer->span_count - 1][1] : 0;
     if (answer->stream && answer->streamer->bytes)
-        return 4096 + answer->streamer->bytes(answer->stream);
+        return 4096 + text + answer->streamer->bytes(answer->stream);
     return answer->bytes;
 }
 
@@ -726,6 +803,9 @@ void wp_answer_free(wp_answer *answer, const wp_host *host)
         return;
     end_stream(answer, host); /* and the fixture held, if any */
     cJSON_Delete(answer->json);
+    cJSON_Delete(answer->member);
+    free(answer->text);
+    free(answer->spans);
     free(answer->refusal);
     free(answer->prepared.wrenches);
     free(answer);

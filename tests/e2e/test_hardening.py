@@ -434,3 +434,108 @@ def test_a_witness_of_a_wrench_near_the_largest_double_is_finite(harness):
                     method, x, y, big["witness"])
                 finite += 1
         assert finite >= 4, big["witness"]
+
+
+# ---- memory: parse trees of answers waiting on slow readers ---------------------------------
+
+def memory_max_mib(*options):
+    """systemd/memory-max's bound for these options (the formula's one place)."""
+    config = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "systemd",
+                          "memory-max")
+    import tempfile
+    with tempfile.NamedTemporaryFile("w", suffix=".conf", delete=False) as f:
+        for name, value in zip(options[::2], options[1::2]):
+            f.write("%s = %s\n" % (name.lstrip("-"), value))
+        path = f.name
+    try:
+        from conftest import BINARY
+        out = subprocess.run([config, BINARY, path], capture_output=True, text=True, check=True)
+    finally:
+        os.unlink(path)
+    return int(out.stdout.strip().rstrip("M"))
+
+
+def test_a_long_batch_is_answered_request_by_request_as_before(harness):
+    """A batch line over 64 KiB (read a request at a time) is answered as
+    the same requests one by one: ids as written, errors in their places."""
+    d = harness.start()
+    c = d.client()
+    requests = []
+    for i in range(300):
+        if i % 50 == 7:
+            requests.append('{"jsonrpc":"2.0","method":"no.such","id":%d}' % i)
+        elif i % 50 == 9:
+            requests.append('{"jsonrpc":"2.0","method":"wrench.classify","params":{"fixture":%s,'
+                            '"wrenches":[[1,2,3]]}}' % json.dumps(DISC))   # a notification
+        else:
+            requests.append('{"jsonrpc":"2.0","method":"wrench.classify","params":{"fixture":%s,'
+                            '"wrenches":[[%d,-1,0.5],[0,1,0]]},"id":1%02d.50e0}'
+                            % (json.dumps(DISC), i, i % 100))
+    line = "[" + " , ".join(requests) + "]"
+    assert len(line) > 65536
+    c.send_line(line)
+    whole = c.read_line()
+    singles = []
+    for r in requests:
+        c.send_line(r)
+        if '"id"' in r:
+            singles.append(c.read_line())
+    assert whole == b"[" + b",".join(singles) + b"]"
+    assert b'"id":100.50e0' in whole and b'"id":7}' in whole
+
+
+@pytest.mark.skipif(SANITIZED, reason="resident memory under a sanitizer measures its allocator")
+def test_the_memory_bound_holds_for_batches_whose_answers_wait(harness):
+    """Twelve clients (--max-clients) each send a 4 MiB batch line -- a
+    10,000-wrench classify, then server.status whose params is a huge array
+    -- and never read.  Peak resident memory stays within systemd/memory-max's
+    bound for the options (each waiting answer holds its text and one
+    request's tree, not the whole batch's tree)."""
+    options = ["--threads", "2", "--max-clients", "13", "--max-line", str(4 << 20),
+               "--max-output", str(1 << 20), "--cache-mb", "16"]
+    bound = memory_max_mib(*options)
+    d = harness.start(*options)
+    wrenches = ",".join("[%d,-1,0.5]" % (i % 97) for i in range(10000))
+    classify = ('{"jsonrpc":"2.0","method":"wrench.classify","params":{"fixture":%s,"wrenches":[%s]},'
+                '"id":1}' % (json.dumps(DISC), wrenches))
+    room = (4 << 20) - len(classify) - 200
+    status = '{"jsonrpc":"2.0","method":"server.status","params":[%s],"id":2}' % ",".join(
+        ["0"] * (room // 2))
+    line = ("[" + classify + "," + status + "]\n").encode()
+    assert len(line) < 4 << 20
+    clients, peak = [], 0
+    try:
+        for _ in range(12):
+            s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+            s.connect(d.path)
+            s.sendall(line)
+            clients.append(s)
+            peak = max(peak, peak_rss_mib(d.pid))
+        deadline = time.monotonic() + 20 * SLOW
+        while time.monotonic() < deadline:
+            peak = max(peak, peak_rss_mib(d.pid))
+            if idle_cpu(d.pid):
+                break
+        peak = max(peak, peak_rss_mib(d.pid))
+    finally:
+        for s in clients:
+            s.close()
+    print("peak resident %d MiB, bound %d MiB" % (peak, bound))
+    assert peak < bound, "peak resident %d MiB over the bound %d MiB" % (peak, bound)
+    assert "result" in ask_status(d.path, 20 * SLOW)
+
+
+def peak_rss_mib(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) >> 10
+    return 0
+
+
+def idle_cpu(pid, seconds=1.0):
+    """True when the process used under 5% of a core over `seconds`."""
+    before = cpu_seconds(pid)
+    time.sleep(seconds)
+    return cpu_seconds(pid) - before < 0.05 * seconds
