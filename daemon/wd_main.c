@@ -88,6 +88,7 @@ NUMBER_SETTER(set_max_depth, max_depth, int, 4, 10000, 1)
 NUMBER_SETTER(set_max_wrenches, max_wrenches, size_t, 1, 100000000, 1)
 NUMBER_SETTER(set_max_output, max_output, size_t, 4096, 1ULL << 40, 1)
 NUMBER_SETTER(set_max_clients, max_clients, unsigned long, 1, 1000000, 1)
+NUMBER_SETTER(set_max_clients_per_uid, max_clients_per_uid, unsigned long, 0, 1000000, 1)
 NUMBER_SETTER(set_max_batch, max_batch, size_t, 1, 1000000, 1)
 NUMBER_SETTER(set_idle_timeout, idle_timeout, unsigned, 0, 86400 * 7, 1)
 NUMBER_SETTER(set_request_timeout, request_timeout, unsigned, 0, 86400, 1)
@@ -240,6 +241,11 @@ static const option_spec OPTIONS[] = {
                             "work pauses above it until it reads\n"
                             "(default 16777216)", set_max_output},
     {"max-clients", "N", "most clients connected at once (default 256)", set_max_clients},
+    {"max-clients-per-uid", "N", "most clients of one user connected at once\n"
+                                 "(default 0: no cap but max-clients); the\n"
+                                 "workers serve users in turn whatever the\n"
+                                 "number of connections each holds",
+     set_max_clients_per_uid},
     {"max-batch", "N", "most requests in one batch (default 1000)", set_max_batch},
     {"idle-timeout", "SECONDS", "close a connection with nothing in flight\n"
                                 "after this long without a request, or one\n"

@@ -106,3 +106,13 @@ void wd_peer_describe(const wd_config *config, char *text, size_t size)
         at += (size_t)snprintf(text + at, size - at, "; ");
     describe_list(text, size, at, "gid", config->allow_gids, config->allow_gid_count);
 }
+
+bool wd_peer_uid(int fd, unsigned *uid)
+{
+    struct ucred credentials;
+    socklen_t length = sizeof credentials;
+    if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &credentials, &length) != 0)
+        return false;
+    *uid = (unsigned)credentials.uid;
+    return true;
+}

@@ -19,9 +19,11 @@
  * Waiting request lines are held up to --max-line bytes; beyond that the
  * connection is not read.
  *
- * Fairness: the workers take tasks first come first served and each task
- * goes back to the tail of the queue after each piece, so connections
- * share the workers round-robin, a piece each.
+ * Fairness: each task carries its peer's uid; the workers take users in
+ * turn and each user's tasks in order, each task going back to the tail of
+ * its user's queue after each piece (wd_pool), so users share the workers
+ * round-robin, a piece each, however many connections each holds;
+ * --max-clients-per-uid caps those connections.
  *
  * Cancellation: a client that is gone (its socket closed, or hung up
  * while answers were still to come) has its waiting requests dropped and
@@ -123,6 +125,8 @@ struct connection {
     bool write_shut;           /* refusing: shutdown(SHUT_WR) done */
     int busy;                  /* callbacks running on it: not freed meanwhile */
     unsigned long number;      /* for the log */
+    unsigned uid;              /* the peer's user (SO_PEERCRED); its tasks
+                                  are served in that user's turn */
 };
 
 struct wd_server {
@@ -532,6 +536,7 @@ static void dispatch(connection *c)
     }
     atomic_init(&task->cancelled, false);
     task->owner = x;
+    task->uid = c->uid;
     task->answer = parsed;
     task->line = x->line; /* NULL when parsed already */
     task->length = x->length;
@@ -904,6 +909,15 @@ static void on_accept_error(struct evconnlistener *listener, void *argument)
     event_add(s->accept_timer, &pause);
 }
 
+/* Connections of user `uid` now (those being turned away aside). */
+static unsigned long clients_of(const wd_server *s, unsigned uid)
+{
+    unsigned long count = 0;
+    for (const connection *c = s->connections; c; c = c->next)
+        count += c->bev && !c->refusing && c->uid == uid;
+    return count;
+}
+
 static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struct sockaddr *address,
                       int length, void *argument)
 {
@@ -913,12 +927,24 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     wd_server *s = argument;
     char who[64], reason[128];
     int refusal = 0;
+    unsigned uid = 0;
+    bool have_uid = wd_peer_uid(fd, &uid);
     if (!wd_peer_allowed(s->config, fd, who, sizeof who)) {
         refusal = WP_ACCESS;
         snprintf(reason, sizeof reason, "%s may not use this daemon (allow-uid, allow-gid)", who);
         atomic_fetch_add(&s->stats.denied, 1);
         wd_log_limited(&s->denied_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
                        "denied %s: not in the allow lists", who);
+    } else if (s->config->max_clients_per_uid > 0 && have_uid &&
+               clients_of(s, uid) >= s->config->max_clients_per_uid) {
+        refusal = WP_LIMIT;
+        snprintf(reason, sizeof reason,
+                 "too many clients of uid %u (--max-clients-per-uid %lu); try again later", uid,
+                 s->config->max_clients_per_uid);
+        atomic_fetch_add(&s->stats.refused, 1);
+        wd_log_limited(&s->refused_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                       "refused a client of uid %u: %lu of its clients already connected "
+                       "(--max-clients-per-uid)", uid, s->config->max_clients_per_uid);
     } else if (atomic_load(&s->stats.clients) - s->refusing >= s->config->max_clients) {
         refusal = WP_LIMIT;
         snprintf(reason, sizeof reason, "too many clients (--max-clients); try again later");
@@ -941,6 +967,7 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     }
     c->server = s;
     c->bev = bev;
+    c->uid = uid;
     c->number = ++s->numbers;
     c->next = s->connections;
     if (s->connections)

@@ -20,6 +20,8 @@ typedef struct wd_config {
     size_t max_output;          /* most unsent output per client, bytes: its
                                    work pauses above it */
     unsigned long max_clients;  /* most concurrent clients */
+    unsigned long max_clients_per_uid; /* most concurrent clients of one user;
+                                   0: no cap but max_clients */
     size_t max_batch;           /* most requests in one batch */
     unsigned idle_timeout;      /* seconds without a request in flight, or with
                                    answers left unread, before a connection is
