@@ -111,15 +111,42 @@ static cJSON *fixture_delete(wp_call *call)
     return result;
 }
 
+/* A page of fixture.list: at most this many fixtures (the default), each
+ * name at most WP_NAME_MAX bytes, so that a page is about a megabyte. */
+#define LIST_PAGE 1000
+
+/* The stored fixtures, sorted by id, a page at a time: those after
+ * params.after (an id; none: from the first), at most params.limit;
+ * "more" says whether any follow the page's last. */
 static cJSON *fixture_list(wp_call *call)
 {
+    const char *after = NULL;
+    double limit = LIST_PAGE;
+    bool given = false;
+    if (!wp_member_string(call->params, "params", "after", false, &after, call->error) ||
+        !wp_member_number(call->params, "params", "limit", false, &limit, &given, call->error))
+        return NULL;
+    if (after && !wp_fixture_id_valid(after)) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.after",
+                     "not a fixture id (32 hexadecimal digits)");
+        return NULL;
+    }
+    if (given && !(limit >= 1 && limit <= LIST_PAGE && limit == floor(limit))) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.limit",
+                     "must be a whole number from 1 to %d", LIST_PAGE);
+        return NULL;
+    }
     wp_fixture_listing listing = {0, NULL};
     if (!call->host->fixture_list(call->host->self, &listing, call->error))
         return NULL;
+    size_t first = 0;
+    while (after && first < listing.count && strcmp(listing.entries[first].id, after) <= 0)
+        first++;
+    size_t end = first + (size_t)limit < listing.count ? first + (size_t)limit : listing.count;
     cJSON *result = cJSON_CreateObject();
     cJSON *list = cJSON_AddArrayToObject(result, "fixtures");
     bool ok = list != NULL;
-    for (size_t i = 0; ok && i < listing.count; i++) {
+    for (size_t i = first; ok && i < end; i++) {
         const wp_fixture_entry *e = &listing.entries[i];
         cJSON *item = cJSON_CreateObject();
         ok = item && cJSON_AddStringToObject(item, "id", e->id) &&
@@ -128,6 +155,7 @@ static cJSON *fixture_list(wp_call *call)
         if (item)
             cJSON_AddItemToArray(list, item);
     }
+    ok = ok && cJSON_AddBoolToObject(result, "more", end < listing.count);
     wp_fixture_listing_release(&listing);
     return ok ? result : out_of_memory(result, call->error);
 }
@@ -1618,6 +1646,7 @@ static const wp_streamer DESIGN_STREAM = {design_begin,  design_step,     design
 static const char *const NONE[] = {NULL};
 static const char *const FIXTURE[] = {"fixture", NULL};
 static const char *const ID[] = {"id", NULL};
+static const char *const LIST[] = {"after", "limit", NULL};
 static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance",
                                        "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
@@ -1644,7 +1673,7 @@ const wp_method wp_methods[] = {
      .flags = WP_CHEAP, .summary = "the stored fixture"},
     {.name = "fixture.delete", .handler = fixture_delete, .fields = ID, .required = ID,
      .summary = "forget a stored fixture"},
-    {.name = "fixture.list", .handler = fixture_list, .fields = NONE, .required = NONE,
+    {.name = "fixture.list", .handler = fixture_list, .fields = LIST, .required = NONE,
      .flags = WP_CHEAP, .summary = "the stored fixtures"},
     {.name = "wrench.classify", .stream = &CLASSIFY_STREAM, .fields = CLASSIFY,
      .required = CLASSIFY_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = classify_light,

@@ -642,3 +642,64 @@ def test_a_user_may_hold_at_most_max_clients_per_uid(harness):
     fourth = d.client()
     fourth.send(fourth.request("server.status"))
     assert "uid 0 (--max-clients-per-uid 3)" in fourth.read_json()["error"]["data"]["reason"]
+
+
+# ---- names and fixture.list ------------------------------------------------------------
+
+def test_a_name_longer_than_1024_bytes_is_refused_at_its_field(harness):
+    d = harness.start()
+    c = d.client()
+    assert "result" in c.call("fixture.put", {"fixture": dict(DISC, name="é" * 512)})
+    e = c.error("fixture.put", {"fixture": dict(DISC, name="n" * 1025)})
+    assert e["code"] == -32602 and e["data"]["field"] == "params.fixture.name", e
+    assert "1025 bytes" in e["data"]["reason"] and "1024" in e["data"]["reason"]
+    e = c.error("wrench.classify", {"fixture": dict(DISC, name="n" * (8 << 20)),
+                                    "wrenches": [[1, 0, 0]]})
+    assert e["data"]["field"] == "params.fixture.name", e
+
+
+def put_many(c, count):
+    """`count` distinct stored fixtures (pipelined puts); their ids."""
+    lines = []
+    for i in range(count):
+        fixture = json.loads(json.dumps(DISC))
+        fixture["name"] = "many-%d" % i
+        fixture["body"]["mass"] = 1 + i / 1024.0   # a distinct id each
+        lines.append(json.dumps({"jsonrpc": "2.0", "method": "fixture.put",
+                                 "params": {"fixture": fixture}, "id": i}))
+    c.send_raw(("\n".join(lines) + "\n").encode())
+    return [c.read_json()["result"]["id"] for _ in range(count)]
+
+
+def test_fixture_list_pages_by_after_and_limit(harness):
+    """Pages of at most `limit` (default and most 1000) sorted by id, from
+    after `after`; `more` says whether any follow.  Both clients gather
+    every page: the Python client's list_fixtures and wrenchctl list."""
+    d = harness.start()
+    c = d.client()
+    ids = sorted(put_many(c, 1005))
+    first = c.result("fixture.list")
+    assert [f["id"] for f in first["fixtures"]] == ids[:1000] and first["more"] is True
+    second = c.result("fixture.list", {"after": ids[999]})
+    assert [f["id"] for f in second["fixtures"]] == ids[1000:] and second["more"] is False
+    page = c.result("fixture.list", {"after": ids[10], "limit": 3})
+    assert [f["id"] for f in page["fixtures"]] == ids[11:14] and page["more"] is True
+    assert c.result("fixture.list", {"after": ids[-1]}) == {"fixtures": [], "more": False}
+    for bad, field in (({"limit": 0}, "params.limit"), ({"limit": 1001}, "params.limit"),
+                       ({"limit": 2.5}, "params.limit"), ({"after": "x"}, "params.after"),
+                       ({"after": 3}, "params.after"), ({"page": 1}, "params.page")):
+        assert c.error("fixture.list", bad)["data"]["field"] == field, bad
+
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                    "clients", "python"))
+    import wrenchd
+    with wrenchd.Client(d.path) as client:
+        assert [f.id for f in client.list_fixtures()] == ids
+        page = client.list_fixtures(after=ids[0], limit=2)
+        assert [f.id for f in page] == ids[1:3] and page.more
+    from conftest import REPO
+    out = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "--socket", d.path, "list"],
+                         capture_output=True, text=True, timeout=60 * SLOW)
+    assert out.returncode == 0, out.stderr
+    assert "(1005 stored)" in out.stdout
+    assert [line.split()[0] for line in out.stdout.splitlines()[1:-1]] == ids
