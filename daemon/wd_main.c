@@ -90,6 +90,7 @@ NUMBER_SETTER(set_max_output, max_output, size_t, 4096, 1ULL << 40, 1)
 NUMBER_SETTER(set_max_clients, max_clients, unsigned long, 1, 1000000, 1)
 NUMBER_SETTER(set_max_clients_per_uid, max_clients_per_uid, unsigned long, 0, 1000000, 1)
 NUMBER_SETTER(set_max_batch, max_batch, size_t, 1, 1000000, 1)
+NUMBER_SETTER(set_max_candidates, max_candidates, unsigned long long, 1, 1ULL << 62, 1)
 NUMBER_SETTER(set_idle_timeout, idle_timeout, unsigned, 0, 86400 * 7, 1)
 NUMBER_SETTER(set_request_timeout, request_timeout, unsigned, 0, 86400, 1)
 
@@ -247,6 +248,10 @@ static const option_spec OPTIONS[] = {
                                  "number of connections each holds",
      set_max_clients_per_uid},
     {"max-batch", "N", "most requests in one batch (default 1000)", set_max_batch},
+    {"max-candidates", "N", "most candidates one fixture.design (or its\n"
+                            "shard) may examine; more are refused at the\n"
+                            "field giving them, with the count\n"
+                            "(default 100000000)", set_max_candidates},
     {"idle-timeout", "SECONDS", "close a connection with nothing in flight\n"
                                 "after this long without a request, or one\n"
                                 "that leaves answers unread this long\n"
@@ -385,6 +390,7 @@ int main(int argc, char **argv)
         .max_output = (size_t)16 << 20,
         .max_clients = 256,
         .max_batch = 1000,
+        .max_candidates = 100000000,
         .idle_timeout = 300,
         .request_timeout = 30,
         .listen_fd = -1,

@@ -1166,7 +1166,8 @@ int wd_server_run(const wd_config *config)
     memset(&server, 0, sizeof server);
     wd_server *s = &server;
     s->config = config;
-    s->limits = (wp_limits){config->max_depth, config->max_wrenches, config->max_batch};
+    s->limits = (wp_limits){config->max_depth, config->max_wrenches, config->max_batch,
+                            config->max_candidates};
     s->stats.started = time(NULL);
     s->stats.threads = config->threads;
     pthread_mutex_init(&s->done_lock, NULL);

@@ -23,6 +23,7 @@ typedef struct wd_config {
     unsigned long max_clients_per_uid; /* most concurrent clients of one user;
                                    0: no cap but max_clients */
     size_t max_batch;           /* most requests in one batch */
+    unsigned long long max_candidates; /* most candidates of one design */
     unsigned idle_timeout;      /* seconds without a request in flight, or with
                                    answers left unread, before a connection is
                                    closed; 0: never */

@@ -40,6 +40,13 @@ struct wp_design_stream {
     wr_lattice_job *lattice;
     const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
     int (*listed)[WR_MAX_FIXELS];
+    const char *source;   /* the field giving the candidates: for refusals */
+    uint64_t max_candidates; /* wp_limits' */
+    /* params.deadline_s: the monotonic second after which the search takes
+     * no more candidates and the answer is the best so far, "partial"
+     * (0: none); `cut` once it has. */
+    double deadline;
+    bool cut;
 };
 
 static double now_s(void)
@@ -226,6 +233,15 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
         return false;
     }
     s->progress = progress && cJSON_IsTrue(progress);
+    double deadline_s = 0;
+    if (!wp_member_number(params, "params", "deadline_s", false, &deadline_s, &present, error))
+        return false;
+    if (present && !(deadline_s > 0 && deadline_s <= 1e9)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.deadline_s",
+                     "must be a number of seconds above 0 (at most 1e9), got %g", deadline_s);
+        return false;
+    }
+    s->deadline = present ? now_s() + deadline_s : 0;
     const cJSON *shard = cJSON_GetObjectItemCaseSensitive(params, "shard");
     if (shard) {
         double pair[2];
@@ -260,6 +276,7 @@ static bool read_params(const cJSON *params, wp_design_stream *s, wp_error *erro
                              : "candidate sites are required: sites, spacing or lattice");
         return false;
     }
+    s->source = lattice ? "params.lattice" : sites ? "params.sites" : "params.spacing";
     if (lattice)
         return read_lattice(params, lattice, s, error);
     if (sites)
@@ -306,6 +323,16 @@ static bool start_search(wp_design_stream *s, wp_error *error)
     s->spec.site_count = s->site_count;
     s->candidates = s->lattice ? s->spec.candidate_count
                                : wr_design_candidates(s->site_count, s->spec.fixel_count);
+    /* The cap counts this request's work: its shard's share. */
+    uint64_t share = s->candidates / (uint64_t)(s->spec.shard_count > 0 ? s->spec.shard_count : 1);
+    if (s->max_candidates > 0 && share > s->max_candidates) {
+        wp_error_set(error, WP_INVALID_PARAMS, s->source,
+                     "gives %llu candidates%s; the limit is %llu (--max-candidates): fewer sites "
+                     "or fixels, a coarser spacing, or shards",
+                     (unsigned long long)share, s->spec.shard_count > 1 ? " in this shard" : "",
+                     (unsigned long long)s->max_candidates);
+        return false;
+    }
     wr_error invalid;
     wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
     if (status != WR_OK) {
@@ -326,6 +353,7 @@ wp_design_stream *wp_design_begin(wp_call *call)
         return NULL;
     }
     s->last_report = -1;
+    s->max_candidates = call->limits->max_candidates;
     pthread_mutex_init(&s->lock, NULL);
     if (!read_params(call->params, s, call->error)) {
         wp_design_free(s);
@@ -489,7 +517,10 @@ static void write_answer(wp_design_stream *s, wp_buffer *out)
         write_design(s, out, &designs[i], i + 1);
     }
     const wr_design_counts *c = wr_design_job_counts(s->job);
-    WP_BUFFER_LITERAL(out, "],\"counts\":{\"candidates\":");
+    WP_BUFFER_LITERAL(out, "],");
+    if (s->cut && c->examined < wr_design_job_total(s->job))
+        WP_BUFFER_LITERAL(out, "\"partial\":true,");
+    WP_BUFFER_LITERAL(out, "\"counts\":{\"candidates\":");
     write_count(out, s->candidates);
     WP_BUFFER_LITERAL(out, ",\"examined\":");
     write_count(out, c->examined);
@@ -591,7 +622,9 @@ static bool claimable(wp_design_stream *s)
 
 bool wp_design_parallel(wp_design_stream *s)
 {
-    bool more = claimable(s);
+    /* Past the deadline, the next step shares nothing, so that it may cut
+     * the search (wp_design_step). */
+    bool more = claimable(s) && !(s->deadline > 0 && !s->cut && now_s() >= s->deadline);
     s->forked = s->forked || more;
     return more;
 }
@@ -659,6 +692,15 @@ wp_step wp_design_step(wp_design_stream *s, wp_call *call, wp_buffer *out, unsig
         if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
             write_progress(s, call, out);
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
+    }
+    /* The deadline: no candidate is claimed after it (in a step that
+     * shares nothing, so no helper is in a chunk): the chunks running end,
+     * then the figures of the best so far make the answer, "partial". */
+    if (s->deadline > 0 && !s->cut && !shared && now_s() >= s->deadline) {
+        pthread_mutex_lock(&s->lock);
+        wr_design_job_cut(s->job);
+        pthread_mutex_unlock(&s->lock);
+        s->cut = true;
     }
     /* The search: chunks while the budget lasts (helpers may run others
      * meanwhile); then the rest (the designs' figures) by the job itself. */

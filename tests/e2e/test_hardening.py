@@ -703,3 +703,58 @@ def test_fixture_list_pages_by_after_and_limit(harness):
     assert out.returncode == 0, out.stderr
     assert "(1005 stored)" in out.stdout
     assert [line.split()[0] for line in out.stdout.splitlines()[1:-1]] == ids
+
+
+# ---- bounded work: --max-candidates and deadline_s ------------------------------------------
+
+def design_params(spacing, **more):
+    from test_resources import design_request
+    params = json.loads(design_request(1, spacing=spacing))["params"]
+    params.update(more)
+    return params
+
+
+def test_max_candidates_refuses_at_the_field_with_the_count(harness):
+    """Eight fixels at spacing 0.1 (about 1e16 candidates) are refused by
+    the default cap; --max-candidates 50000 refuses spacing 0.5 (about
+    82,000) naming the count, and takes spacing 1."""
+    d = harness.start()
+    c = d.client()
+    e = c.error("fixture.design", design_params(0.1, fixels=8))
+    assert e["code"] == -32602 and e["data"]["field"] == "params.spacing", e
+    assert "the limit is 100000000 (--max-candidates)" in e["data"]["reason"], e
+    count = int(e["data"]["reason"].split("gives ")[1].split(" ")[0])
+    assert count > 1e16
+    d2 = harness.start("--max-candidates", "50000", socket_path=harness.path("b.sock"))
+    c2 = d2.client()
+    e = c2.error("fixture.design", design_params(0.5))
+    assert e["data"]["field"] == "params.spacing", e
+    count = int(e["data"]["reason"].split("gives ")[1].split(" ")[0])
+    assert 50000 < count < 200000 and "(--max-candidates)" in e["data"]["reason"], e
+    shard = c2.error("fixture.design", design_params(0.25, shard=[0, 2]))
+    assert "candidates in this shard" in shard["data"]["reason"], shard
+    assert "designs" in c2.result("fixture.design", design_params(0.5, shard=[0, 2]))
+    assert "designs" in c2.result("fixture.design", design_params(1))
+
+
+def test_a_design_with_a_deadline_answers_the_best_so_far_as_partial(harness):
+    """A design of about 680,000 candidates (a minute of a core) with
+    deadline_s 1 answers within 20 s: "partial": true, fewer examined than
+    candidates, designs ranked from those; without the deadline a small
+    design is whole (no "partial")."""
+    d = harness.start("--threads", "2")
+    c = d.client(timeout=60 * SLOW)
+    start = time.monotonic()
+    result = c.result("fixture.design", design_params(0.25, deadline_s=1))
+    took = time.monotonic() - start
+    assert took < 20 * SLOW, took
+    assert result["partial"] is True
+    counts = result["counts"]
+    assert 0 < counts["examined"] < counts["candidates"], counts
+    assert result["designs"], result
+    whole = c.result("fixture.design", design_params(1))
+    assert "partial" not in whole
+    assert whole["counts"]["examined"] == whole["counts"]["candidates"]
+    for bad in (0, -1, "1", 2e9):
+        e = c.error("fixture.design", design_params(1, deadline_s=bad))
+        assert e["data"]["field"] == "params.deadline_s", (bad, e)
