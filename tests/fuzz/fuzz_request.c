@@ -52,7 +52,10 @@
 #define FRICTION_BUDGET 4e6   /* sample x cone tests per request */
 #define LP_BUDGET 4096.0      /* LPs per wrench.classify request */
 
-static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 64, .max_batch = 16};
+/* A design of more candidates than max_candidates is refused (as the
+ * daemon's --max-candidates refuses it): designs stay fast enough to fuzz. */
+static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 64, .max_batch = 16,
+                                 .max_candidates = 400};
 
 static wd_cache *cache;
 static wd_stats stats;
@@ -625,6 +628,46 @@ static void check_result(const cJSON *request, const cJSON *result, const char *
         const cJSON *version = cJSON_GetObjectItemCaseSensitive(result, "version");
         FUZZ_CHECK(cJSON_IsString(version) && strcmp(version->valuestring, WR_VERSION) == 0,
                    "server.status: version for %s", line);
+    } else if (strcmp(method, "fixture.list") == 0) {
+        /* A page: sorted ids after params.after, at most params.limit
+         * (1000 by default), names at most WP_NAME_MAX bytes, `more` a
+         * boolean. */
+        const cJSON *list = cJSON_GetObjectItemCaseSensitive(result, "fixtures");
+        const cJSON *limit = param(request, "limit");
+        const cJSON *after = param(request, "after");
+        FUZZ_CHECK(cJSON_IsArray(list) && cJSON_IsBool(cJSON_GetObjectItemCaseSensitive(result, "more")),
+                   "fixture.list: fixtures and more for %s", line);
+        FUZZ_CHECK(cJSON_GetArraySize(list) <= (cJSON_IsNumber(limit) ? limit->valuedouble : 1000),
+                   "fixture.list: a page over its limit for %s", line);
+        const char *previous = cJSON_IsString(after) ? after->valuestring : "";
+        const cJSON *item;
+        cJSON_ArrayForEach(item, list) {
+            const cJSON *id = cJSON_GetObjectItemCaseSensitive(item, "id");
+            const cJSON *name = cJSON_GetObjectItemCaseSensitive(item, "name");
+            FUZZ_CHECK(cJSON_IsString(id) && strcmp(id->valuestring, previous) > 0,
+                       "fixture.list: ids not sorted after params.after for %s", line);
+            FUZZ_CHECK(!cJSON_IsString(name) || strlen(name->valuestring) <= WP_NAME_MAX,
+                       "fixture.list: a name over %d bytes for %s", WP_NAME_MAX, line);
+            previous = id->valuestring;
+        }
+    } else if (strcmp(method, "fixture.design") == 0) {
+        /* Within --max-candidates, and "partial" only as true, with fewer
+         * examined than candidates. */
+        const cJSON *counts = cJSON_GetObjectItemCaseSensitive(result, "counts");
+        const cJSON *candidates = cJSON_GetObjectItemCaseSensitive(counts, "candidates");
+        const cJSON *examined = cJSON_GetObjectItemCaseSensitive(counts, "examined");
+        const cJSON *partial = cJSON_GetObjectItemCaseSensitive(result, "partial");
+        FUZZ_CHECK(is_number_in(candidates, 0, 1e18) && is_number_in(examined, 0, 1e18),
+                   "fixture.design: counts for %s", line);
+        FUZZ_CHECK(!partial || (cJSON_IsTrue(partial) &&
+                                examined->valuedouble < candidates->valuedouble),
+                   "fixture.design: partial for %s", line);
+        const cJSON *shard = cJSON_GetObjectItemCaseSensitive(result, "shard");
+        const cJSON *shards = cJSON_IsArray(shard) ? cJSON_GetArrayItem(shard, 1) : NULL;
+        FUZZ_CHECK(partial || examined->valuedouble == candidates->valuedouble ||
+                       (cJSON_IsNumber(shards) && shards->valuedouble > 1),
+                   "fixture.design: a whole answer examined %g of %g for %s",
+                   examined->valuedouble, candidates->valuedouble, line);
     }
 }
 
