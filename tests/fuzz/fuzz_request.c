@@ -30,7 +30,9 @@
  * Skipped (not answered, counted): push.regions with a finger_friction
  * above 0 whose sampled work (SAMPLES points per edge, each against every
  * excluded cone) exceeds FRICTION_BUDGET, and wrench.classify with method
- * "lp" whose LP count exceeds LP_BUDGET.  Both are legitimate requests
+ * "lp" whose LP count exceeds LP_BUDGET, and friction.sweep's push with a
+ * finger_friction above 0 whose sampled work over SWEEP_STEPS values of mu
+ * exceeds FRICTION_BUDGET.  All are legitimate requests
  * that take seconds to minutes under the sanitizers; they would only make
  * the fuzzer time out.  Set FUZZ_REQUEST_NO_SKIP=1 to answer them anyway,
  * FUZZ_REQUEST_VERBOSE=1 to see each line and its answer on stderr. */
@@ -51,6 +53,7 @@
 #define SAMPLES_PER_EDGE 2049.0
 #define FRICTION_BUDGET 4e6   /* sample x cone tests per request */
 #define LP_BUDGET 4096.0      /* LPs per wrench.classify request */
+#define SWEEP_STEPS 256.0     /* values of mu a friction.sweep samples (wr_sweep.h) */
 
 /* A design of more candidates than max_candidates is refused (as the
  * daemon's --max-candidates refuses it): designs stay fast enough to fuzz. */
@@ -315,6 +318,16 @@ static bool slow_request(const cJSON *r)
                 s = (wr_set)i;
         return fixture_work(r, s, &cones, &edges) &&
                edges * SAMPLES_PER_EDGE * cones > FRICTION_BUDGET;
+    }
+    if (strcmp(method, "friction.sweep") == 0) {
+        /* A push sweep with a finger with friction: push regions so sampled
+         * at each of SWEEP_STEPS values of mu. */
+        const cJSON *push = param(r, "push");
+        const cJSON *friction = cJSON_GetObjectItemCaseSensitive(push, "finger_friction");
+        if (!cJSON_IsNumber(friction) || !(friction->valuedouble > 0))
+            return false;
+        return fixture_work(r, WR_SET_GOAL, &cones, &edges) &&
+               edges * SAMPLES_PER_EDGE * cones * SWEEP_STEPS > FRICTION_BUDGET;
     }
     if (strcmp(method, "wrench.classify") == 0) {
         const cJSON *how = param(r, "method");
