@@ -716,8 +716,8 @@ def design_params(spacing, **more):
 
 def test_max_candidates_refuses_at_the_field_with_the_count(harness):
     """Eight fixels at spacing 0.1 (about 1e16 candidates) are refused by
-    the default cap; --max-candidates 50000 refuses spacing 0.5 (about
-    82,000) naming the count, and takes spacing 1."""
+    the default cap; --max-candidates 5000 refuses spacing 1 (about 10,000)
+    naming the count, and takes half of it as a shard, and spacing 2."""
     d = harness.start()
     c = d.client()
     e = c.error("fixture.design", design_params(0.1, fixels=8))
@@ -725,23 +725,23 @@ def test_max_candidates_refuses_at_the_field_with_the_count(harness):
     assert "the limit is 100000000 (--max-candidates)" in e["data"]["reason"], e
     count = int(e["data"]["reason"].split("gives ")[1].split(" ")[0])
     assert count > 1e16
-    d2 = harness.start("--max-candidates", "50000", socket_path=harness.path("b.sock"))
+    d2 = harness.start("--max-candidates", "5000", socket_path=harness.path("b.sock"))
     c2 = d2.client()
-    e = c2.error("fixture.design", design_params(0.5))
+    e = c2.error("fixture.design", design_params(1))
     assert e["data"]["field"] == "params.spacing", e
     count = int(e["data"]["reason"].split("gives ")[1].split(" ")[0])
-    assert 50000 < count < 200000 and "(--max-candidates)" in e["data"]["reason"], e
-    shard = c2.error("fixture.design", design_params(0.25, shard=[0, 2]))
+    assert 5000 < count < 20000 and "(--max-candidates)" in e["data"]["reason"], e
+    shard = c2.error("fixture.design", design_params(0.5, shard=[0, 2]))
     assert "candidates in this shard" in shard["data"]["reason"], shard
-    assert "designs" in c2.result("fixture.design", design_params(0.5, shard=[0, 2]))
-    assert "designs" in c2.result("fixture.design", design_params(1))
+    assert "designs" in c2.result("fixture.design", design_params(1, shard=[0, 2]))
+    assert "designs" in c2.result("fixture.design", design_params(2))
 
 
 def test_a_design_with_a_deadline_answers_the_best_so_far_as_partial(harness):
     """A design of about 680,000 candidates (a minute of a core) with
     deadline_s 1 answers within 20 s: "partial": true, fewer examined than
-    candidates, designs ranked from those; without the deadline a small
-    design is whole (no "partial")."""
+    candidates, designs ranked from those; without the deadline a design is
+    whole (no "partial")."""
     d = harness.start("--threads", "2")
     c = d.client(timeout=60 * SLOW)
     start = time.monotonic()
@@ -751,10 +751,13 @@ def test_a_design_with_a_deadline_answers_the_best_so_far_as_partial(harness):
     assert result["partial"] is True
     counts = result["counts"]
     assert 0 < counts["examined"] < counts["candidates"], counts
-    assert result["designs"], result
-    whole = c.result("fixture.design", design_params(1))
+    # The best of those examined (how many of them seat the part depends on
+    # how far the machine got): at most top, ranked.
+    assert len(result["designs"]) <= 3
+    assert [d["rank"] for d in result["designs"]] == list(range(1, len(result["designs"]) + 1))
+    whole = c.result("fixture.design", design_params(2))
     assert "partial" not in whole
     assert whole["counts"]["examined"] == whole["counts"]["candidates"]
     for bad in (0, -1, "1", 2e9):
-        e = c.error("fixture.design", design_params(1, deadline_s=bad))
+        e = c.error("fixture.design", design_params(2, deadline_s=bad))
         assert e["data"]["field"] == "params.deadline_s", (bad, e)
