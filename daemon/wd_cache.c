@@ -10,8 +10,8 @@
  * renamed over DIR/fixtures/<id>.json, and the directory is synced, before
  * the put is acknowledged; a delete unlinks and syncs the directory.
  *
- * The state directory: one daemon at a time holds DIR/lock (flock, for the
- * daemon's life; the file holds its pid).  Invariant: every stored fixture
+ * The state directory: one daemon at a time holds a lock on it (flock of
+ * the directory itself, for the daemon's life; DIR/lock holds its pid).  Invariant: every stored fixture
  * has exactly one file, DIR/fixtures/<id>.json with <id> its id, and no
  * other file there is loaded -- so a delete, which unlinks that file,
  * leaves nothing to come back at the next start.  Files named by an older
@@ -75,7 +75,7 @@ struct wd_cache {
     size_t derived_bytes, derived_limit;
     uint64_t clock, serial;
     char *dir;                /* DIR/fixtures, or NULL for memory only */
-    int lock_fd;              /* DIR/lock, held while the cache lives; -1 without DIR */
+    int lock_fd;              /* DIR, locked while the cache lives; -1 without DIR */
 };
 
 /* ---- texts and entries --------------------------------------------------- */
@@ -581,41 +581,52 @@ static void load_directory(wd_cache *c)
                c->stored_count, c->max_stored);
 }
 
-/* Take DIR/lock for the daemon's life: a second daemon on the same state
- * directory would serve fixtures the first one deletes, and the two would
- * overwrite each other's files.  flock, not fcntl: it is released only when
- * the descriptor is closed (or the process dies), never by an unrelated
- * close of the same file. */
+/* Lock the state directory for the daemon's life: a second daemon on the
+ * same directory would serve fixtures the first one deletes, and the two
+ * would overwrite each other's files.  The lock is on the directory's own
+ * descriptor, not on a file in it: a file can be deleted and made anew (a
+ * second daemon would then lock the new one), the directory it names
+ * cannot while a descriptor holds it.  flock, not fcntl: it is released
+ * only when the descriptor is closed (or the process dies), never by an
+ * unrelated close of the same file.  DIR/lock only says who holds it (the
+ * pid), for the refusal. */
 static int lock_state_directory(const char *state_dir, char *why, size_t why_size)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/lock", state_dir);
-    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0640);
+    int fd = open(state_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0) {
-        snprintf(why, why_size, "cannot use the state directory %s: cannot open %s: %s",
-                 state_dir, path, strerror(errno));
+        snprintf(why, why_size, "cannot use the state directory %s: %s", state_dir,
+                 strerror(errno));
         return -1;
     }
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
         int saved = errno;
         char holder[32] = "";
-        ssize_t n = pread(fd, holder, sizeof holder - 1, 0);
+        int pid_fd = open(path, O_RDONLY | O_CLOEXEC);
+        ssize_t n = pid_fd >= 0 ? pread(pid_fd, holder, sizeof holder - 1, 0) : -1;
+        if (pid_fd >= 0)
+            close(pid_fd);
         holder[n > 0 ? n : 0] = 0;
         holder[strcspn(holder, "\n")] = 0;
         close(fd);
         if (saved == EWOULDBLOCK)
             snprintf(why, why_size,
-                     "the state directory %s is in use by another wrenchd (pid %s, holding %s)",
-                     state_dir, holder[0] ? holder : "unknown", path);
+                     "the state directory %s is in use by another wrenchd (pid %s, which "
+                     "holds a lock on the directory)",
+                     state_dir, holder[0] ? holder : "unknown");
         else
-            snprintf(why, why_size, "cannot lock the state directory %s (%s): %s", state_dir,
-                     path, strerror(saved));
+            snprintf(why, why_size, "cannot lock the state directory %s: %s", state_dir,
+                     strerror(saved));
         return -1;
     }
     char pid[32];
     int length = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
-    if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)length, 0) != length)
+    int pid_fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0640);
+    if (pid_fd < 0 || write(pid_fd, pid, (size_t)length) != length)
         wd_log(WD_LOG_WARN, "could not write the pid into %s: %s", path, strerror(errno));
+    if (pid_fd >= 0)
+        close(pid_fd);
     return fd;
 }
 
@@ -681,7 +692,7 @@ void wd_cache_free(wd_cache *c)
     free(c->buckets);
     free(c->dir);
     if (c->lock_fd >= 0)
-        close(c->lock_fd); /* releases the lock; the file stays, harmless */
+        close(c->lock_fd); /* releases the lock; DIR/lock stays, harmless */
     pthread_mutex_destroy(&c->lock);
     pthread_mutex_destroy(&c->store_lock);
     free(c);

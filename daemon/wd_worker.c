@@ -12,11 +12,23 @@
 
 /* ---- the pool ------------------------------------------------------------- */
 
+/* One user's queued tasks (helpers of its pieces included), in order. */
+typedef struct user_queue {
+    struct user_queue *next;   /* in the pool's round */
+    unsigned uid;
+    wd_task *head, *tail;
+} user_queue;
+
 struct wd_pool {
-    pthread_mutex_t lock;
+    pthread_mutex_t lock;      /* guards everything below but the constants */
     pthread_cond_t ready;      /* a task was queued, or stop was set */
-    wd_task *head, *tail;      /* FIFO: every task runs one piece, then queues
-                                  again at the tail (round-robin) */
+    /* The round: the users with tasks queued, each once, served from the
+     * head: one task taken, the user back at the tail if it has more.  So
+     * fairness is by user, whatever the number of connections each holds,
+     * and every task runs one piece, then queues again at its user's tail.
+     * Invariant: a user is in the round iff its queue is not empty. */
+    user_queue *first, *last;
+    user_queue spare;          /* used when no memory is left for a queue */
     bool stop;
     int thread_count;
     pthread_t *threads;
@@ -59,14 +71,62 @@ static void fork_release(wd_fork *fork)
     }
 }
 
+static void round_append(wd_pool *pool, user_queue *user)
+{
+    user->next = NULL;
+    if (pool->last)
+        pool->last->next = user;
+    else
+        pool->first = user;
+    pool->last = user;
+}
+
 static void queue_locked(wd_pool *pool, wd_task *task)
 {
+    unsigned uid = task->fork ? task->fork->task->uid : task->uid;
+    user_queue *user = pool->first;
+    while (user && (user == &pool->spare || user->uid != uid))
+        user = user->next;
+    if (!user) {
+        user = calloc(1, sizeof *user);
+        if (!user) {
+            user = &pool->spare; /* shared, out of memory: fair to none, lost to none */
+            if (!user->head) {
+                user->uid = uid;
+                round_append(pool, user);
+            }
+        } else {
+            user->uid = uid;
+            round_append(pool, user);
+        }
+    }
     task->next = NULL;
-    if (pool->tail)
-        pool->tail->next = task;
+    if (user->tail)
+        user->tail->next = task;
     else
-        pool->head = task;
-    pool->tail = task;
+        user->head = task;
+    user->tail = task;
+}
+
+/* The next task in the round, or NULL. */
+static wd_task *take_locked(wd_pool *pool)
+{
+    user_queue *user = pool->first;
+    if (!user)
+        return NULL;
+    wd_task *task = user->head;
+    user->head = task->next;
+    if (!user->head)
+        user->tail = NULL;
+    pool->first = user->next;
+    if (!pool->first)
+        pool->last = NULL;
+    if (user->head)
+        round_append(pool, user);
+    else if (user != &pool->spare)
+        free(user);
+    task->next = NULL;
+    return task;
 }
 
 /* Queue a helper for every other worker; NULL when there is no memory for
@@ -206,14 +266,9 @@ static void *worker_main(void *argument)
         wd_log(WD_LOG_ERROR, "a worker could not start: out of memory");
     for (;;) {
         pthread_mutex_lock(&pool->lock);
-        while (!pool->head && !pool->stop)
+        while (!pool->first && !pool->stop)
             pthread_cond_wait(&pool->ready, &pool->lock);
-        wd_task *task = pool->head;
-        if (task) {
-            pool->head = task->next;
-            if (!pool->head)
-                pool->tail = NULL;
-        }
+        wd_task *task = take_locked(pool);
         pthread_mutex_unlock(&pool->lock);
         if (!task)
             break; /* stopping, and nothing left */

@@ -16,8 +16,10 @@
  * it; a worker takes it, writes one piece of its answer (a bounded amount
  * of work: wp_answer_step) and hands it back; the loop sends the piece and,
  * when more follow and the client keeps reading, submits it again, at the
- * tail of the queue.  So the workers take connections' work round-robin,
- * a piece each, and a request never runs ahead of its client's reading.
+ * tail of its user's queue.  The workers take the users in turn, a piece
+ * each, and each user's tasks in order: a user with a hundred connections
+ * gets one piece a round, as a user with one does; and a request never
+ * runs ahead of its client's reading.
  * A piece with work to share (a design's candidates) also queues a helper
  * for every other worker: each takes a bounded share at a time, queueing
  * again at the tail, until the piece is made; so one request uses every
@@ -28,6 +30,8 @@
 typedef struct wd_task {
     struct wd_task *next;   /* queue link */
     void *owner;            /* the connection's slot; opaque to workers */
+    unsigned uid;           /* its client's user: the workers serve users in
+                               turn (wd_pool), not connections */
     char *line;             /* malloc'd, without its "\n"; freed once parsed */
     size_t length;
     wp_answer *answer;      /* NULL until the first piece */

@@ -857,6 +857,13 @@ bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
     return true;
 }
 
+void wr_design_job_cut(wr_design_job *job)
+{
+    job->candidates = job->next; /* nothing more to claim */
+}
+
+uint64_t wr_design_job_total(const wr_design_job *job) { return job->total; }
+
 bool wr_design_job_claimable(const wr_design_job *job)
 {
     return job->next < job->candidates && !job->failed;

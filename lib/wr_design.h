@@ -218,6 +218,12 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
 void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk);
 /* Is a chunk left to claim? */
 bool wr_design_job_claimable(const wr_design_job *job);
+/* End the search where it stands: no candidate is claimed from now on;
+ * the chunks claimed are merged as usual, then the designs kept so far get
+ * their figures (a time limit's answer).  Under the job's lock. */
+void wr_design_job_cut(wr_design_job *job);
+/* The candidates of the job's shard (examined reaches it when not cut). */
+uint64_t wr_design_job_total(const wr_design_job *job);
 void wr_design_job_abandon(wr_design_job *job);
 void wr_design_chunk_release(wr_design_chunk *chunk);
 

@@ -8,6 +8,7 @@
 static const char *const NONE[] = {NULL};
 static const char *const FIXTURE[] = {"fixture", NULL};
 static const char *const ID[] = {"id", NULL};
+static const char *const LIST[] = {"after", "limit", NULL};
 static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance",
                                        "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
@@ -19,7 +20,7 @@ static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
                                      "progress", "shard", "push_on", "corner_clearance",
-                                     "pin_diameter", "cases", "collapse_symmetric", NULL};
+                                     "pin_diameter", "cases", "collapse_symmetric", "deadline_s", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};
@@ -39,7 +40,7 @@ const wp_method wp_methods[] = {
     {.name = "fixture.get", .handler = wp_handle_fixture_get, .fields = ID, .required = ID,
      .flags = WP_CHEAP},
     {.name = "fixture.delete", .handler = wp_handle_fixture_delete, .fields = ID, .required = ID},
-    {.name = "fixture.list", .handler = wp_handle_fixture_list, .fields = NONE, .required = NONE,
+    {.name = "fixture.list", .handler = wp_handle_fixture_list, .fields = LIST, .required = NONE,
      .flags = WP_CHEAP},
     {.name = "wrench.classify", .stream = &wp_classify_stream, .fields = CLASSIFY,
      .required = CLASSIFY_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = wp_classify_light,

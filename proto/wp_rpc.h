@@ -17,6 +17,8 @@ typedef struct wp_limits {
     int max_depth;        /* deepest nesting of arrays and objects */
     size_t max_wrenches;  /* most wrenches in one wrench.classify */
     size_t max_batch;     /* most requests in one batch */
+    uint64_t max_candidates; /* most candidates of one fixture.design (its
+                              shard's); 0: no cap */
 } wp_limits;
 
 typedef struct wp_counts {

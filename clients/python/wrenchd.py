@@ -16,7 +16,9 @@ Methods of Client (and of Batch, see below):
     put_fixture(fixture)                   -> PutResult   fixture.put
     get_fixture(fixture_id)                -> dict        fixture.get (the explicit form)
     delete_fixture(fixture_id, missing_ok=False) -> bool  fixture.delete
-    list_fixtures()                        -> [FixtureInfo]  fixture.list
+    list_fixtures(after=None, limit=None)  -> FixturePage [FixtureInfo]  fixture.list
+                                              (a Client gathers every page
+                                              unless after or limit is given)
     classify(fixture, wrenches, sets=("goal", "strong"), method="auto",
              tolerance=None)               -> [{set name: Verdict}]  wrench.classify
     cone(fixture, constraints)             -> Cone        cone.get
@@ -622,11 +624,19 @@ def _plan_result(result: Any) -> Plan:
     return plan
 
 
-def _list_result(result: Any) -> List[FixtureInfo]:
+class FixturePage(list):
+    """A page of fixture.list: its FixtureInfo, and `more`: whether
+    fixtures follow its last (ask again with after=page[-1].id)."""
+    more = False
+
+
+def _list_result(result: Any) -> "FixturePage":
     items = result.get("fixtures") if isinstance(result, dict) else None
     if not isinstance(items, list):
         raise WrenchdProtocolError("fixture.list: no fixtures array in %r" % (result,))
-    return [_build(FixtureInfo, f, "fixture.list") for f in items]
+    page = FixturePage(_build(FixtureInfo, f, "fixture.list") for f in items)
+    page.more = result.get("more") is True
+    return page
 
 
 def _object_result(result: Any) -> Dict[str, Any]:
@@ -924,9 +934,18 @@ class _Methods:
         return self._invoke("fixture.delete", {"id": _fixture_id(fixture_id)}, _deleted_result,
                             False, timeout, _missing_is_false if missing_ok else None)
 
-    def list_fixtures(self, *, timeout: Any = _DEFAULT):
-        """fixture.list: [FixtureInfo], sorted by id."""
-        return self._invoke("fixture.list", {}, _list_result, True, timeout)
+    def list_fixtures(self, *, after: Optional[str] = None, limit: Optional[int] = None,
+                      timeout: Any = _DEFAULT):
+        """fixture.list, one page: a FixturePage of FixtureInfo sorted by
+        id, those after the id `after`, at most `limit` (the daemon's
+        default 1000); its `more` says whether others follow.  A Client
+        asked without after or limit gathers every page."""
+        params: Dict[str, Any] = {}
+        if after is not None:
+            params["after"] = _fixture_id(after)
+        if limit is not None:
+            params["limit"] = limit
+        return self._invoke("fixture.list", params, _list_result, True, timeout)
 
     def classify(self, fixture: Any, wrenches: Iterable[Any],
                  sets: Union[str, Sequence[str]] = ("goal", "strong"), method: str = "auto",
@@ -1177,6 +1196,17 @@ class Client(_Methods):
     """One connection to wrenchd at socket_path (default: $WRENCHD_SOCKET or
     ./run/wrenchd.sock).  timeout: seconds for each call (connecting,
     sending, answering); None waits forever.  See the module's docstring."""
+
+    def list_fixtures(self, *, after: Optional[str] = None, limit: Optional[int] = None,
+                      timeout: Any = _DEFAULT):
+        page = _Methods.list_fixtures(self, after=after, limit=limit, timeout=timeout)
+        if after is not None or limit is not None:
+            return page
+        every = FixturePage(page)
+        while page.more and page:
+            page = _Methods.list_fixtures(self, after=page[-1].id, timeout=timeout)
+            every.extend(page)
+        return every
 
     def __init__(self, socket_path: Optional[Union[str, "os.PathLike[str]"]] = None,
                  timeout: Optional[float] = DEFAULT_TIMEOUT):

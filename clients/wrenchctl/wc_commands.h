@@ -16,6 +16,7 @@ int wc_put_request(wc_run *run, cJSON *params);
 int wc_put_answer(wc_run *run, const cJSON *result);
 int wc_id_request(wc_run *run, cJSON *params);         /* get, delete: {"id"} */
 int wc_delete_answer(wc_run *run, const cJSON *result);
+int wc_list_request(wc_run *run, cJSON *params);
 int wc_list_answer(wc_run *run, const cJSON *result);
 int wc_status_answer(wc_run *run, const cJSON *result);
 

@@ -536,7 +536,7 @@ const wc_command wc_commands[] = {
      "Print the stored fixture ID as JSON."},
     {"list", "",
      WC_DAEMON, 0, 0,
-     "fixture.list", NULL, wc_list_answer,
+     "fixture.list", wc_list_request, NULL,
      "list the stored fixtures",
      "List the stored fixtures."},
     {"delete", "ID",

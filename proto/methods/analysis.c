@@ -70,9 +70,7 @@ cJSON *wp_handle_cone_get(wp_call *call)
     }
     for (int i = 0; i < cone.ray_count; i++) {
         wr_fixture_unscale_wrench(f, cone.rays[i], row);
-        double length = sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
-        for (int k = 0; k < 3; k++)
-            row[k] /= length;
+        wr_fixture_unit_direction(row);
         cJSON_AddItemToArray(generators, vector3(row));
     }
     wr_cone_release(&cone);

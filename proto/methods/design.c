@@ -42,6 +42,15 @@ struct design_state {
     wr_lattice_job *lattice;
     const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
     int (*listed)[WR_MAX_FIXELS];
+    const char *source;      /* the field giving the candidates: for refusals */
+    uint64_t max_candidates; /* wp_limits' (0: no cap) */
+    /* params.deadline_s: the monotonic second after which the search claims
+     * no more candidates and the answer is the best so far, "partial" (0:
+     * none); `cut` once it has.  Both read and written under the search
+     * engine's lock (search_claim), `cut` read by the steps after the
+     * search's last merge. */
+    double deadline;
+    bool cut;
     /* The part's symmetries (start_search), unless collapse_symmetric is
      * false: NULL then. */
     bool collapse;
@@ -319,6 +328,15 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     }
     s->progress = progress && cJSON_IsTrue(progress);
+    double deadline_s = 0;
+    if (!wp_member_number(params, "params", "deadline_s", false, &deadline_s, &present, error))
+        return false;
+    if (present && !(deadline_s > 0 && deadline_s <= 1e9)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.deadline_s",
+                     "must be a number of seconds above 0 (at most 1e9), got %g", deadline_s);
+        return false;
+    }
+    s->deadline = present ? now_s() + deadline_s : 0;
     const cJSON *collapse = cJSON_GetObjectItemCaseSensitive(params, "collapse_symmetric");
     if (collapse && !cJSON_IsBool(collapse)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.collapse_symmetric",
@@ -368,6 +386,7 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
             wp_error_set(error, WP_INVALID_PARAMS, field, "only with spacing");
             return false;
         }
+    s->source = lattice ? "params.lattice" : sites ? "params.sites" : "params.spacing";
     if (lattice)
         return read_lattice(params, lattice, s, error);
     if (sites)
@@ -437,6 +456,16 @@ static bool start_search(design_state *s, wp_error *error)
     }
     s->candidates = s->lattice ? s->spec.candidate_count
                                : wr_design_candidates(s->site_count, s->spec.fixel_count);
+    /* The cap counts this request's work: its shard's share. */
+    uint64_t share = s->candidates / (uint64_t)(s->spec.shard_count > 0 ? s->spec.shard_count : 1);
+    if (s->max_candidates > 0 && share > s->max_candidates) {
+        wp_error_set(error, WP_INVALID_PARAMS, s->source,
+                     "gives %llu candidates%s; the limit is %llu (--max-candidates): fewer sites "
+                     "or fixels, a coarser spacing, or shards",
+                     (unsigned long long)share, s->spec.shard_count > 1 ? " in this shard" : "",
+                     (unsigned long long)s->max_candidates);
+        return false;
+    }
     wr_error invalid;
     wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
     if (status != WR_OK) {
@@ -468,6 +497,7 @@ static void *design_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     }
     s->last_report = -1;
+    s->max_candidates = call->limits->max_candidates;
     if (!read_params(call->params, s, call->error)) {
         design_free(s);
         return NULL;
@@ -813,7 +843,10 @@ static void write_answer(design_state *s, wp_buffer *out)
         write_design(s, out, &designs[i], i + 1);
     }
     const wr_design_counts *c = wr_design_job_counts(s->job);
-    WP_BUFFER_LITERAL(out, "],\"counts\":{\"candidates\":");
+    WP_BUFFER_LITERAL(out, "],");
+    if (s->cut && c->examined < wr_design_job_total(s->job))
+        WP_BUFFER_LITERAL(out, "\"partial\":true,");
+    WP_BUFFER_LITERAL(out, "\"counts\":{\"candidates\":");
     write_count(out, s->candidates);
     WP_BUFFER_LITERAL(out, ",\"examined\":");
     write_count(out, c->examined);
@@ -914,6 +947,13 @@ static bool search_claim(void *method, size_t index, void *record)
     (void)index;
     design_state *s = method;
     search_record *c = record;
+    /* The deadline: no candidate is claimed after it.  The chunks claimed
+     * are merged as usual, then the designs kept so far get their figures
+     * and the answer is "partial". */
+    if (s->deadline > 0 && !s->cut && now_s() >= s->deadline) {
+        wr_design_job_cut(s->job);
+        s->cut = true;
+    }
     return wr_design_job_claim(s->job, &c->first, &c->count, &c->threshold);
 }
 

@@ -6,6 +6,7 @@ import copy
 import glob
 import hashlib
 import json
+import math
 import os
 import random
 import re
@@ -254,7 +255,7 @@ def test_list_sorted_with_counts(client):
     for f in fs:
         ids[client.result("fixture.put", {"fixture": f})["id"]] = f
     listed = client.result("fixture.list", {})
-    assert set(listed) == {"fixtures"}
+    assert set(listed) == {"fixtures", "more"} and listed["more"] is False
     rows = listed["fixtures"]
     assert [r["id"] for r in rows] == sorted(ids), rows
     for r in rows:
@@ -282,7 +283,7 @@ def test_inline_fixture_cached_but_not_visible(harness):
     assert e["code"] == -32001 and e["data"]["field"] == "params.fixture", e
     e = c.error("fixture.delete", {"id": fid})
     assert e["code"] == -32001, e
-    assert c.result("fixture.list", {}) == {"fixtures": []}
+    assert c.result("fixture.list", {}) == {"fixtures": [], "more": False}
 
 
 def test_fixtures_shared_between_clients(daemon):
@@ -511,7 +512,10 @@ def test_get_put_gives_the_id_back_and_the_id_is_its_hash(client):
     for f in every_fixture():
         fid = client.result("fixture.put", {"fixture": f})["id"]
         got = client.result("fixture.get", {"id": fid})
-        assert set(got) <= {"name", "body", "fixels"} and "friction" not in got, got
+        # units: only a fixture that names them has them (docs/PROTOCOL.md,
+        # "Units"), the same as it was given
+        assert set(got) <= {"name", "body", "fixels", "units"} and "friction" not in got, got
+        assert got.get("units") == f.get("units"), (f.get("units"), got)
         assert {"mass", "inertia", "com"} <= set(got["body"]), got
         for fixel in got["fixels"]:
             assert set(fixel) == {"at", "normal", "friction"}, got
@@ -654,12 +658,16 @@ def test_inline_fixtures_stay_within_the_cache_bound(harness):
     c = d.client()
     c.result("server.status")
     before = resident_kib(d.pid)
-    padding = "x" * (200 << 10)
-    for i in range(300):
-        f = FX.disc_one_fixel(name="%d %s" % (i, padding))
-        f["body"]["mass"] = 1 + i / 1024
+    # A disc as a 4000-gon: 170 KB of text each (names are at most 1 KiB).
+    n = 4000
+    vertices = [[math.cos(-math.pi / 2 + 2 * math.pi * k / n),
+                 math.sin(-math.pi / 2 + 2 * math.pi * k / n)] for k in range(n)]
+    for i in range(150):
+        f = {"name": "%d" % i, "body": {"mass": 1 + i / 1024, "inertia": 0.5, "com": [0, 0],
+                                        "shape": {"type": "polygon", "vertices": vertices}},
+             "friction": {"static": 0.5}, "fixels": [{"at": vertices[0], "normal": [0, 1]}]}
         c.result("wrench.classify", {"fixture": f, "wrenches": [[0, -1, 0]]})
     status = c.result("server.status")
     assert status["cache_bytes"] <= status["cache_limit_bytes"], status
     growth = resident_kib(d.pid) - before
-    assert growth < 16 * 1024, (growth, status)  # KiB; 300 x 200 KiB held would be 60 MiB
+    assert growth < 14 * 1024, (growth, status)  # KiB; 150 x 170 KB held would be 25 MB

@@ -565,7 +565,7 @@ static void put_is_durable_in_order(void **state)
 }
 
 /* One cache at a time on a state directory: the second is refused, with
- * the holder's pid. */
+ * the holder's pid, also once DIR/lock is deleted. */
 static void state_directory_is_locked(void **state)
 {
     (void)state;
@@ -575,9 +575,17 @@ static void state_directory_is_locked(void **state)
     assert_null(wd_cache_new(dir, SIZE_MAX, 100, why, sizeof why));
     char expected[512];
     snprintf(expected, sizeof expected,
-             "the state directory %s is in use by another wrenchd (pid %ld, holding %s/lock)", dir,
-             (long)getpid(), dir);
+             "the state directory %s is in use by another wrenchd (pid %ld, which holds a lock on "
+             "the directory)",
+             dir, (long)getpid());
     assert_string_equal(why, expected);
+    /* The lock is the directory's: deleting DIR/lock (or replacing it)
+     * frees nothing. */
+    char lock_path[PATH_MAX + 16];
+    snprintf(lock_path, sizeof lock_path, "%s/lock", dir);
+    assert_int_equal(unlink(lock_path), 0);
+    assert_null(wd_cache_new(dir, SIZE_MAX, 100, why, sizeof why));
+    assert_non_null(strstr(why, "is in use by another wrenchd (pid unknown"));
     wd_cache_free(first);
     wd_cache *second = wd_cache_new(dir, SIZE_MAX, 100, why, sizeof why);
     assert_non_null(second); /* released with the first */
