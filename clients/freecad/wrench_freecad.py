@@ -48,7 +48,9 @@ the fixture in wrenchd; WrenchRegions (one per set: goal, strong, both),
 WrenchFixels, WrenchBestPush and WrenchGravityDial show what wrenchd answers
 for it, and recompute when the part, the fixels or the friction change.
 Each region of a WrenchRegions is a WrenchRegion object of its own, with its
-Shape (the line or arc) and its numbers.
+Shape (the line or arc) and its numbers.  A WrenchRegions' PushOn is the
+push_on it asks with (push_on_of: empty, the clients' default); PushOnLoops
+and the report view say which loops that took.
 
 What each set promises: a push in `goal` reaches every fixel from any
 contact state, but the part may then slide along its fixels; one in
@@ -1161,6 +1163,66 @@ def _set_enumeration(obj, name, values, value):
     setattr(obj, name, value)
 
 
+def _loop_count(body):
+    shape = body.get("shape") or {}
+    return len(shape.get("loops") or []) if shape.get("type") == "outline" else 1
+
+
+def push_on_of(text, body, finger_radius):
+    """The push_on a WrenchRegions' PushOn property asks for: "" the
+    clients' default (wrenchd.default_push_on, docs/PROTOCOL.md push_on),
+    "outer", "all", or loop numbers ("0, 2"); an OutlineError naming PushOn
+    for anything else, or a loop the outline does not have."""
+    text = (text or "").strip()
+    if not text:
+        return wrenchd.default_push_on(body, finger_radius)
+    if text.lower() in ("outer", "all"):
+        return text.lower()
+    n = _loop_count(body)
+    loops = []
+    for word in text.replace(",", " ").replace(";", " ").split():
+        try:
+            loop = int(word)
+        except ValueError:
+            raise OutlineError("PushOn: %r is neither outer, all nor a list of loop numbers "
+                               "(0 is the outer boundary)" % text) from None
+        if not 0 <= loop < n:
+            raise OutlineError("PushOn: loop %d is not one of the outline's loops (0 to %d)"
+                               % (loop, n - 1))
+        if loop not in loops:
+            loops.append(loop)
+    return sorted(loops)
+
+
+def pushed_loops(push_on, body):
+    """The loop numbers a push_on names (None and "all": every loop)."""
+    if push_on == "outer":
+        return [0]
+    if push_on is None or push_on == "all":
+        return list(range(_loop_count(body)))
+    return list(push_on)
+
+
+def describe_push_on(loops, body, finger_radius, chosen):
+    """The report view's line on where the regions were looked for: which
+    loops, which holes were left out and why (the clients' default)."""
+    n = _loop_count(body)
+    left = [i for i in range(1, n) if i not in loops]
+    names = ", ".join("the outer boundary" if i == 0 else "hole %d" % i for i in loops)
+    text = "pushes on %s" % names
+    if left:
+        text += "; not on hole%s %s" % ("s" if len(left) > 1 else "",
+                                         ", ".join(str(i) for i in left))
+        if chosen:
+            text += " (PushOn)"
+        elif finger_radius > 0:
+            text += " (no wider than the finger, %s across)" % _fmt(2 * finger_radius)
+        else:
+            text += (" (a point finger has no size to compare with a hole's: set FingerRadius, "
+                     "or PushOn to all)")
+    return text
+
+
 class WrenchRegions:
     """The push regions of one set (goal, strong or both) on the fixture's
     outline: its Shape is every region's line or arc; each region is also a
@@ -1180,6 +1242,10 @@ class WrenchRegions:
             _set_enumeration(obj, "Set", SETS, "both")
         _add(obj, "App::PropertyLength", "FingerRadius", "Regions",
              "The pushing finger's radius: points it cannot reach drop out (0: a point)", 0.0)
+        _add(obj, "App::PropertyString", "PushOn", "Regions",
+             "The loops the finger may push on: empty, the clients' default (the outer "
+             "boundary and every hole wider than the finger; a point finger: the outer "
+             "boundary only); outer; all; or loop numbers, 0 the outer boundary (0, 2)", "")
         _add(obj, "App::PropertyBool", "SweepFriction", "Regions",
              "Also find the critical friction above which the region is empty "
              "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8)",
@@ -1190,8 +1256,11 @@ class WrenchRegions:
                 ("App::PropertyFloat", "TotalLength", "The regions' total length (push.regions)"),
                 ("App::PropertyFloat", "Fraction", "Of the outline's perimeter"),
                 ("App::PropertyFloat", "CriticalMu",
-                 "The friction above which the region is empty (-1: not empty at 2; "
+                 "The friction above which the region is empty, on every loop whatever "
+                 "PushOn says: friction.sweep has no push_on (-1: not empty at 2; "
                  "-2: not computed)"),
+                ("App::PropertyIntegerList", "PushOnLoops",
+                 "The loops the regions were looked for on (PushOn resolved)"),
                 ("App::PropertyIntegerList", "RegionLoops", "Each region's loop"),
                 ("App::PropertyIntegerList", "RegionSegments", "Each region's segment"),
                 ("App::PropertyStringList", "RegionEdges", "Each region's FreeCAD edge"),
@@ -1237,8 +1306,14 @@ class WrenchRegions:
             self.failed(obj)
             obj.Label = "Regions %s (no fixels yet)" % which
             return
+        radius = float(obj.FingerRadius)
+        push_on = push_on_of(obj.PushOn, fixture.fixture["body"], radius)
         answer = fixture.ask(lambda: fixture.client.push_regions(
-            fixture.fixture, which, finger_radius=float(obj.FingerRadius)))
+            fixture.fixture, which, finger_radius=radius, push_on=push_on))
+        obj.PushOnLoops = pushed_loops(push_on, fixture.fixture["body"])
+        FreeCAD.Console.PrintMessage("Wrench: regions %s %s\n" % (
+            which, describe_push_on(obj.PushOnLoops, fixture.fixture["body"], radius,
+                                    bool(obj.PushOn.strip()))))
         outline = fixture.outline
         edges, loops, segs, names, t0, t1, lengths, starts, ends = [], [], [], [], [], [], [], [], []
         for r in answer.regions:
@@ -1810,11 +1885,15 @@ def _dependent(kind, fixture, label, **values):
     return obj
 
 
-def make_regions(fixture, set="both"):
-    """A WrenchRegions of `set` (goal, strong or both) for the fixture."""
+def make_regions(fixture, set="both", push_on=""):
+    """A WrenchRegions of `set` (goal, strong or both) for the fixture;
+    push_on its PushOn: "" (the clients' default), "outer", "all" or a list
+    of loop numbers."""
     if set not in SETS:
         raise ValueError("set: one of goal, strong, both, not %r" % (set,))
-    return _dependent("WrenchRegions", fixture, "Regions %s" % set, Set=set)
+    if not isinstance(push_on, str):
+        push_on = ", ".join(str(int(i)) for i in push_on)
+    return _dependent("WrenchRegions", fixture, "Regions %s" % set, Set=set, PushOn=push_on)
 
 
 def make_fixels(fixture):

@@ -111,6 +111,11 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     assert "both: a push here seats the part from any contact state and then holds it still: " \
            "push here and let go" in report
     assert "to push and let go, use both" in report
+    # where the regions were looked for: the bracket's hole and slot left out
+    # by the clients' default for a point finger, and how to take them
+    assert "Wrench: regions both pushes on the outer boundary; not on holes 1, 2 (a point " \
+           "finger has no size to compare with a hole's: set FingerRadius, or PushOn to all)" \
+        in report
 
     # mistakes, in the report view: the fixel named, and how to start wrenchd
     mistakes = "\n".join(result["mistakes"])

@@ -8,6 +8,7 @@ inward normal (the face's normal crossed with the edge's tangent, turned
 into the face by face.isInside) is inside the set, while a push at any
 other sampled point of the boundary is not."""
 
+import json
 import math
 
 import FreeCAD
@@ -58,13 +59,14 @@ def boundary_samples(face, per_edge=24):
     return out
 
 
-def check_regions(client, fixture, regions, which, face, frame=None):
+def check_regions(client, fixture, regions, which, face, frame=None, every_loop=False):
     """The region objects of one set, held against FreeCAD and wrenchd.  The
     finger is a point: it pushes on the face's outer wire only (the
     clients' default, docs/PROTOCOL.md push_on), so only there is every
-    other sampled point not inside."""
+    other sampled point not inside; every_loop: on every wire (PushOn all)."""
     size = face.BoundBox.DiagonalLength
-    answer = client.push_regions(fixture.FixtureId, which)
+    answer = client.push_regions(fixture.FixtureId, which,
+                                 push_on="all" if every_loop else None)
     assert len(regions) == len(answer.regions)
     # lengths: FreeCAD's Shape.Length of each object, summed, is push.regions' total
     total = sum(r.Shape.Length for r in regions)
@@ -98,7 +100,7 @@ def check_regions(client, fixture, regions, which, face, frame=None):
     outer = face.OuterWire
     outside = [p for p in boundary_samples(face)
                if (shapes is None or shapes.distToShape(Part.Vertex(p))[0] > 1e-6 * size)
-               and outer.distToShape(Part.Vertex(p))[0] <= 1e-9 * size]
+               and (every_loop or outer.distToShape(Part.Vertex(p))[0] <= 1e-9 * size)]
     verdicts = client.classify(fixture.FixtureId,
                                [push(p, inward_normal(face, p), frame) for p in outside], sets=[which])
     assert len(outside) > 60
@@ -134,6 +136,49 @@ def test_show_regions_on_the_bracket(client, doc):
     assert totals["both"] <= min(totals["goal"], totals["strong"]) + 1e-9
     assert "push here and let go" in wf.MEANING["both"]
     assert "use both" in wf.MEANING["goal"] and "use both" in wf.MEANING["strong"]
+
+
+def test_push_on_every_loop(client, doc):
+    """PushOn: empty pushes where the clients' default does (a point finger:
+    the outer boundary only, and the report view says the holes are left
+    out and how to take them); all adds the hole and the slot, and the
+    regions then hold against FreeCAD's boundary and wrench.classify on
+    every wire; a finger 2 across reaches both holes by default; a loop the
+    outline lacks is refused naming PushOn."""
+    face = parts.bracket_face()
+    regions = wf.show_regions(doc, face, BRACKET_FIXELS, 0.25, "both", client)
+    parent = regions[0].Regions
+    fixture = parent.Fixture
+    assert list(parent.PushOnLoops) == [0] and set(r.Loop for r in regions) == {0}
+    said = wf.describe_push_on([0], json.loads(fixture.FixtureJson)["body"], 0.0, False)
+    assert "not on holes 1, 2" in said and "PushOn to all" in said
+    # every loop: the hole (loop 1) and the slot (loop 2) as FreeCAD sees them
+    every = wf.make_regions(fixture, "both", "all")
+    doc.recompute()
+    shown = [o for o in doc.Objects if wf._is(o, "WrenchRegion") and o.Regions == every]
+    assert list(every.PushOnLoops) == [0, 1, 2] and len(shown) == every.Count
+    answer = check_regions(client, fixture, shown, "both", face, every_loop=True)
+    assert any(r.Loop > 0 for r in shown)
+    # on the holes: the regions whose ends lie on the hole's and the slot's wires
+    holes = Part.Compound([w for w in face.Wires if not w.isSame(face.OuterWire)])
+    for r in shown:
+        on_hole = holes.distToShape(Part.Vertex(r.From))[0] <= 1e-9 * face.BoundBox.DiagonalLength
+        assert on_hole == (r.Loop > 0)
+    assert answer.total_length > parent.TotalLength
+    # the README's figure on every loop, push --push-on all
+    assert every.TotalLength == pytest.approx(39.4847, abs=1e-4)
+    # a list of loops: the outer boundary and the hole
+    some = wf.make_regions(fixture, "both", [0, 1])
+    doc.recompute()
+    assert list(some.PushOnLoops) == [0, 1] and set(some.RegionLoops) <= {0, 1}
+    # a finger 2 across is narrower than the hole (12) and the slot (10)
+    parent.FingerRadius = 1.0
+    doc.recompute()
+    assert list(parent.PushOnLoops) == [0, 1, 2]
+    with pytest.raises(wf.OutlineError, match="PushOn: loop 3"):
+        wf.push_on_of("0, 3", json.loads(fixture.FixtureJson)["body"], 0.0)
+    with pytest.raises(wf.OutlineError, match="PushOn"):
+        wf.push_on_of("inner", json.loads(fixture.FixtureJson)["body"], 0.0)
 
 
 def test_regions_follow_the_part(client, doc):
