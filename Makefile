@@ -19,7 +19,13 @@ LIB_INCLUDES    = -Ilib
 PROTO_INCLUDES  = $(LIB_INCLUDES) -Iproto
 DAEMON_INCLUDES = $(PROTO_INCLUDES) -Idaemon
 INCLUDES = $(DAEMON_INCLUDES)
-UNIT_SRC = $(wildcard tests/unit/test_*.c)
+# The unit tests, a directory per layer they test (tests/unit/LAYER/test_X.c
+# -> build/tests/test_X); test_util.h, beside them, is shared.
+UNIT_LAYERS = lib proto daemon client
+UNIT_SRC = $(wildcard $(UNIT_LAYERS:%=tests/unit/%/test_*.c))
+# Where the tests were before (build/*/tests/*.d of an older build may
+# name them): nothing to make, the test is rebuilt from its new place.
+tests/unit/test_%.c: ;
 LIBS     = -lglpk -lm
 SERVER_LIBS = -levent_pthreads -levent -lcjson -lglpk -lpthread -lm
 TEST_LIBS = -lcmocka -lpthread
@@ -136,13 +142,23 @@ $$($(1)_DIR)/wrenchctl: $$(WRENCHCTL_SRC:%.c=$$($(1)_DIR)/%.o) \
         $$(addprefix $$($(1)_DIR)/,libwrenchclient.a libwrenchproto.a libwrench.a)
 	$$($(1)_CC) $$($(1)_FLAGS) $$^ -lcjson -lglpk -lm -o $$@
 
-# The unit tests (cmocka), compiled and linked in one step.
-$$($(1)_DIR)/tests/%: tests/unit/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+# The unit tests (cmocka), compiled and linked in one step, each layer's
+# with what that layer sees: lib's tests lib alone; proto's and the
+# daemon's every layer (test_proto drives proto through the daemon's host).
+$$($(1)_DIR)/tests/%: tests/unit/lib/%.c $$($(1)_DIR)/libwrench.a
 	@mkdir -p $$(@D)
-	$$(call compile,$(1)) $$(INCLUDES) $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
+	$$(call compile,$(1)) $$(LIB_INCLUDES) -Itests/unit $$< $$(filter %.a,$$^) $$(LIBS) $$(TEST_LIBS) -o $$@
+
+$$($(1)_DIR)/tests/%: tests/unit/proto/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(DAEMON_INCLUDES) -Itests/unit $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
+
+$$($(1)_DIR)/tests/%: tests/unit/daemon/%.c $$(addprefix $$($(1)_DIR)/,$$(DAEMON_LINK))
+	@mkdir -p $$(@D)
+	$$(call compile,$(1)) $$(DAEMON_INCLUDES) -Itests/unit $$< $$(filter %.a,$$^) $$(SERVER_LIBS) $$(TEST_LIBS) -o $$@
 
 # The client's tests link the client alone (WRAP_ALLOC above).
-$$($(1)_DIR)/tests/test_client: tests/unit/test_client.c $$($(1)_DIR)/libwrenchclient.a
+$$($(1)_DIR)/tests/test_client: tests/unit/client/test_client.c $$($(1)_DIR)/libwrenchclient.a
 	@mkdir -p $$(@D)
 	$$(call compile,$(1)) -Iclients/c $$< $$(filter %.a,$$^) $$(WRAP_ALLOC) -lcmocka -lpthread -lm -o $$@
 endef
@@ -177,8 +193,8 @@ $(BUILD)/libwrench-example: examples/libwrench_example.c $(BUILD)/libwrench.a
 	$(call compile,plain) -Ilib $< $(BUILD)/libwrench.a $(LIBS) -o $@
 
 # ---- unit tests ------------------------------------------------------------------
-UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(plain_DIR)/tests/%)
-ASAN_BIN = $(UNIT_SRC:tests/unit/%.c=$(asan_DIR)/tests/%)
+UNIT_BIN = $(patsubst %.c,$(plain_DIR)/tests/%,$(notdir $(UNIT_SRC)))
+ASAN_BIN = $(patsubst %.c,$(asan_DIR)/tests/%,$(notdir $(UNIT_SRC)))
 
 # An LD_PRELOAD library the fault tests use to fail writes to a directory.
 $(BUILD)/tests/libfail_storage.so: tests/faults/fail_storage.c
@@ -274,16 +290,18 @@ pictures: $(BUILD)/wrenchctl
 	$(BUILD)/wrenchctl --local push examples/plate-3-2-1.json --set strong --svg docs/pictures/plate-3-2-1-push-strong.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/plate-chamfered.json --set both --svg docs/pictures/plate-chamfered-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/disc-corner.json --set goal --svg docs/pictures/disc-corner-push-goal.svg >/dev/null
-	$(BUILD)/wrenchctl --local push examples/bracket.json --set both --svg docs/pictures/bracket-push-both.svg >/dev/null
+	$(BUILD)/wrenchctl --local push examples/bracket.json --set both --push-on all --svg docs/pictures/bracket-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push examples/notched-plate.json --set strong --finger-radius 4 --svg docs/pictures/notched-plate-push-strong-r4.svg >/dev/null
 	$(BUILD)/wrenchctl --local sweep examples/plate-chamfered.json --push both --range 0:1 --svg docs/pictures/plate-chamfered-sweep-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local design examples/bracket.json --spacing 10 --top 3 --svg docs/pictures/bracket-designs.svg >/dev/null
 	$(BUILD)/wrenchctl --local locate examples/bracket.json --tolerance 0.02 --feature hole=30,30 --feature slot=85,30 --feature drill=110,50 --svg docs/pictures/bracket-locate.svg >/dev/null
 	@# the README's walk-through from a DXF sheet (ezdxf)
 	$(PYTHON) examples/sheet_dxf.py $(BUILD)/sheet.dxf
-	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json \
-	    --fixel 15,0 --fixel 100,43 --fixel 60,32 2>/dev/null
-	$(BUILD)/wrenchctl --local push $(BUILD)/bracket.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
+	$(PYTHON) examples/dxf_fixture.py $(BUILD)/sheet.dxf $(BUILD)/bracket.json 2>/dev/null
+	cd $(BUILD) && ./wrenchctl --local design bracket.json --spacing 10 --top 3 \
+	    --emit-fixture 1 bracket-design.json >/dev/null
+	$(BUILD)/wrenchctl --local push $(BUILD)/bracket-design.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
+	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.
@@ -302,6 +320,7 @@ BENCH_NUMBER = $(BUILD)/bench/number
 BENCH_MICRO  = $(BUILD)/bench/micro
 BENCH_SOCKET = $(BUILD)/bench/socket
 BENCH_LOCATE = $(BUILD)/bench/locate
+BENCH_SEGMENTS = $(BUILD)/bench/segments
 
 # bench/X.c -> build/bench/X, linked with the libraries it lists below.
 # number: the cost of writing a number, old (snprintf + strtod) against new
@@ -311,15 +330,17 @@ $(BUILD)/bench/%: bench/%.c
 	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
 $(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BENCH_SEGMENTS): $(BUILD)/libwrench.a
+$(BENCH_SEGMENTS): BENCH_LIBS = -lglpk -lm
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
 $(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
 $(BENCH_MICRO) $(BENCH_LOCATE): BENCH_LIBS = -lcjson -lglpk -lm
 $(BENCH_NUMBER): BENCH_LIBS = -lm
 $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
-# Issue 9's benchmarks, one table (docs/PERFORMANCE.md); figures, never a
+# The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
-bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_LOCATE)
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE)
 	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
@@ -388,7 +409,7 @@ WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
 WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
-                 lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_design.h \
+                 lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_force.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_sites.h lib/wr_design.h \
                  lib/wr_lattice.h lib/wr_locate.h \
                  clients/c/wrenchclient.h
 INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \

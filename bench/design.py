@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """bench/design.py -- fixture.design's speed, beside the same design done as a
-user would script it with the Python client (issue 18).
+user would script it with the Python client.
 
     bench/design.py [--quick] [--json]
 

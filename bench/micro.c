@@ -1,4 +1,4 @@
-/* micro.c -- in-process costs of classifying one wrench (issue 9, part 1)
+/* micro.c -- in-process costs of classifying one wrench
  * and of deriving a fixture (part 5).  Prints figures; asserts nothing.
  *
  *   micro [FIXTURE.json] [--wrenches N] [--lp-wrenches N] [--json]

@@ -1,5 +1,4 @@
-/* socket.c -- wrenchd through its socket, one connection (issue 9, parts 2,
- * 3 and 5).  Prints figures; asserts nothing but that answers are answers.
+/* socket.c -- wrenchd through its socket, one connection.  Prints figures; asserts nothing but that answers are answers.
  *
  *   socket --socket PATH [--fixture FILE] [--sequential N] [--pipelined N]
  *          [--depth D] [--batch N] [--lean N] [--lp N] [--json]
@@ -26,7 +25,7 @@
  *               cache_bytes per fixture;
  *   floor       the same sequential exchange (a 190-byte line out, the
  *               size of a single-wrench answer back) with a server that
- *               only echoes (issue 19's echo floor: another process on a
+ *               only echoes (the echo floor: another process on a
  *               Unix socket), alternated with wrenchd's exchanges request
  *               by request; and with a thread of this program over a
  *               socketpair (no process switch): what the machine's kernel
@@ -337,7 +336,7 @@ static pid_t peer_pid(int fd)
                                                                                : 0;
 }
 
-/* The echo floor of issue 19: a server -- another process, listening on a
+/* The echo floor: a server -- another process, listening on a
  * Unix socket as wrenchd does -- that answers each line with a line of
  * `answer_bytes` and does nothing else.  The sequential figure alternates
  * its exchanges with wrenchd's and this server's, request by request, so

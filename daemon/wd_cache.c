@@ -10,8 +10,8 @@
  * renamed over DIR/fixtures/<id>.json, and the directory is synced, before
  * the put is acknowledged; a delete unlinks and syncs the directory.
  *
- * The state directory: one daemon at a time holds DIR/lock (flock, for the
- * daemon's life; the file holds its pid).  Invariant: every stored fixture
+ * The state directory: one daemon at a time holds a lock on it (flock of
+ * the directory itself, for the daemon's life; DIR/lock holds its pid).  Invariant: every stored fixture
  * has exactly one file, DIR/fixtures/<id>.json with <id> its id, and no
  * other file there is loaded -- so a delete, which unlinks that file,
  * leaves nothing to come back at the next start.  Files named by an older
@@ -31,6 +31,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,7 +75,7 @@ struct wd_cache {
     size_t derived_bytes, derived_limit;
     uint64_t clock, serial;
     char *dir;                /* DIR/fixtures, or NULL for memory only */
-    int lock_fd;              /* DIR/lock, held while the cache lives; -1 without DIR */
+    int lock_fd;              /* DIR, locked while the cache lives; -1 without DIR */
 };
 
 /* ---- texts and entries --------------------------------------------------- */
@@ -261,13 +262,28 @@ static void fill_use(entry *e, texts *t, wp_fixture_use *use)
     use->handle[1] = t;
 }
 
+/* Fill *failure (the cache's status and words; proto makes the JSON-RPC
+ * error of them, wp_error_host) and return false. */
+static bool fail(wp_host_failure *failure, wp_host_status status, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static bool fail(wp_host_failure *failure, wp_host_status status, const char *format, ...)
+{
+    failure->status = status;
+    va_list args;
+    va_start(args, format);
+    vsnprintf(failure->reason, sizeof failure->reason, format, args);
+    va_end(args);
+    return false;
+}
+
 /* With e held (refs counted), derive its analysis unless it exists, and
  * fill `use` (with the texts `t`, see fill_use; a reference to them is
  * passed in and consumed).  The analysis is built without the lock; if two
  * threads race, one keeps its result and the other's is freed.  (Not to be
  * confused with wd_cache_ready, which asks whether it exists.) */
 static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
-                           wp_error *error)
+                           wp_host_failure *failure)
 {
     pthread_mutex_lock(&c->lock);
     e->last_used = ++c->clock;
@@ -286,7 +302,7 @@ static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
         e->refs--;
         texts_drop(t);
         pthread_mutex_unlock(&c->lock);
-        wp_error_set(error, WP_INTERNAL, "", "out of memory deriving the fixture's cones");
+        fail(failure, WP_HOST_NO_MEMORY, "out of memory deriving the fixture's cones");
         return false;
     }
     if (!e->analysis) {
@@ -331,7 +347,7 @@ static const char *const store_step_verbs[] = {"create", "write", "sync", "close
                                                "sync the directory of"};
 
 static bool write_fixture_file(const wd_cache *c, const char *id, const char *text,
-                               wp_error *error)
+                               wp_host_failure *failure)
 {
     char final_path[4096], temporary[4096];
     snprintf(final_path, sizeof final_path, "%s/%s.json", c->dir, id);
@@ -374,20 +390,20 @@ static bool write_fixture_file(const wd_cache *c, const char *id, const char *te
     if (fd >= 0)
         close(fd);
     unlink(temporary);
-    wp_error_set(error, WP_STORAGE, "", "could not %s %s: %s; the fixture is not stored",
-                 store_step_verbs[step], final_path, strerror(saved));
-    wd_log(WD_LOG_ERROR, "%s", error->reason);
+    fail(failure, WP_HOST_STORAGE, "could not %s %s: %s; the fixture is not stored",
+         store_step_verbs[step], final_path, strerror(saved));
+    wd_log(WD_LOG_ERROR, "%s", failure->reason);
     return false;
 }
 
-static bool remove_fixture_file(const wd_cache *c, const char *id, wp_error *error)
+static bool remove_fixture_file(const wd_cache *c, const char *id, wp_host_failure *failure)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/%s.json", c->dir, id);
     if ((unlink(path) != 0 && errno != ENOENT) || !sync_directory(c->dir)) {
-        wp_error_set(error, WP_STORAGE, "", "could not remove %s: %s; the fixture is still stored",
-                     path, strerror(errno));
-        wd_log(WD_LOG_ERROR, "%s", error->reason);
+        fail(failure, WP_HOST_STORAGE, "could not remove %s: %s; the fixture is still stored",
+             path, strerror(errno));
+        wd_log(WD_LOG_ERROR, "%s", failure->reason);
         return false;
     }
     return true;
@@ -458,13 +474,13 @@ static bool add_loaded(wd_cache *c, wp_fixture_doc *doc)
 static bool rekey(wd_cache *c, const char *path, const char *old_id, wp_fixture_doc *doc,
                   bool *loaded)
 {
-    wp_error error = {0};
+    wp_host_failure failure;
     *loaded = false;
     if (find(c, doc->id)) {
         wd_log(WD_LOG_INFO, "%s is stored already as %s (another spelling of it); removing %s",
                old_id, doc->id, path);
     } else {
-        if (!write_fixture_file(c, doc->id, doc->canonical, &error))
+        if (!write_fixture_file(c, doc->id, doc->canonical, &failure))
             return false; /* logged */
         wd_log(WD_LOG_INFO, "re-keyed the fixture %s to %s (ids now hash the explicit fixture)",
                old_id, doc->id);
@@ -565,41 +581,52 @@ static void load_directory(wd_cache *c)
                c->stored_count, c->max_stored);
 }
 
-/* Take DIR/lock for the daemon's life: a second daemon on the same state
- * directory would serve fixtures the first one deletes, and the two would
- * overwrite each other's files.  flock, not fcntl: it is released only when
- * the descriptor is closed (or the process dies), never by an unrelated
- * close of the same file. */
+/* Lock the state directory for the daemon's life: a second daemon on the
+ * same directory would serve fixtures the first one deletes, and the two
+ * would overwrite each other's files.  The lock is on the directory's own
+ * descriptor, not on a file in it: a file can be deleted and made anew (a
+ * second daemon would then lock the new one), the directory it names
+ * cannot while a descriptor holds it.  flock, not fcntl: it is released
+ * only when the descriptor is closed (or the process dies), never by an
+ * unrelated close of the same file.  DIR/lock only says who holds it (the
+ * pid), for the refusal. */
 static int lock_state_directory(const char *state_dir, char *why, size_t why_size)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/lock", state_dir);
-    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0640);
+    int fd = open(state_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0) {
-        snprintf(why, why_size, "cannot use the state directory %s: cannot open %s: %s",
-                 state_dir, path, strerror(errno));
+        snprintf(why, why_size, "cannot use the state directory %s: %s", state_dir,
+                 strerror(errno));
         return -1;
     }
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
         int saved = errno;
         char holder[32] = "";
-        ssize_t n = pread(fd, holder, sizeof holder - 1, 0);
+        int pid_fd = open(path, O_RDONLY | O_CLOEXEC);
+        ssize_t n = pid_fd >= 0 ? pread(pid_fd, holder, sizeof holder - 1, 0) : -1;
+        if (pid_fd >= 0)
+            close(pid_fd);
         holder[n > 0 ? n : 0] = 0;
         holder[strcspn(holder, "\n")] = 0;
         close(fd);
         if (saved == EWOULDBLOCK)
             snprintf(why, why_size,
-                     "the state directory %s is in use by another wrenchd (pid %s, holding %s)",
-                     state_dir, holder[0] ? holder : "unknown", path);
+                     "the state directory %s is in use by another wrenchd (pid %s, which "
+                     "holds a lock on the directory)",
+                     state_dir, holder[0] ? holder : "unknown");
         else
-            snprintf(why, why_size, "cannot lock the state directory %s (%s): %s", state_dir,
-                     path, strerror(saved));
+            snprintf(why, why_size, "cannot lock the state directory %s: %s", state_dir,
+                     strerror(saved));
         return -1;
     }
     char pid[32];
     int length = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
-    if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)length, 0) != length)
+    int pid_fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0640);
+    if (pid_fd < 0 || write(pid_fd, pid, (size_t)length) != length)
         wd_log(WD_LOG_WARN, "could not write the pid into %s: %s", path, strerror(errno));
+    if (pid_fd >= 0)
+        close(pid_fd);
     return fd;
 }
 
@@ -665,7 +692,7 @@ void wd_cache_free(wd_cache *c)
     free(c->buckets);
     free(c->dir);
     if (c->lock_fd >= 0)
-        close(c->lock_fd); /* releases the lock; the file stays, harmless */
+        close(c->lock_fd); /* releases the lock; DIR/lock stays, harmless */
     pthread_mutex_destroy(&c->lock);
     pthread_mutex_destroy(&c->store_lock);
     free(c);
@@ -683,9 +710,14 @@ bool wd_cache_load_file(wd_cache *c, const char *path, size_t limit)
         return false;
     }
     wp_fixture_use use;
-    if (read != FILE_FIXTURE || !wd_cache_adopt(c, &doc, true, &use, &error)) {
+    wp_host_failure failure;
+    if (read != FILE_FIXTURE) {
         wd_log(WD_LOG_ERROR, "--load %s: %s%s%s", path, error.field, error.field[0] ? ": " : "",
                read == FILE_NOT_JSON ? "not a JSON text" : error.reason);
+        return false;
+    }
+    if (!wd_cache_adopt(c, &doc, true, &use, &failure)) {
+        wd_log(WD_LOG_ERROR, "--load %s: %s", path, failure.reason);
         return false;
     }
     wd_log(WD_LOG_INFO, "loaded %s as %s (%s)", path, use.id, use.name);
@@ -694,7 +726,7 @@ bool wd_cache_load_file(wd_cache *c, const char *path, size_t limit)
 }
 
 bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
-                    wp_error *error)
+                    wp_host_failure *failure)
 {
     if (store)
         pthread_mutex_lock(&c->store_lock);
@@ -716,7 +748,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
                 free(e);
             }
             wp_fixture_doc_release(doc);
-            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            fail(failure, WP_HOST_NO_MEMORY, "out of memory");
             return false;
         }
         e->texts = t;
@@ -734,9 +766,9 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
 
     if (over_limit) {
         /* stored_count changes only under store_lock, held here. */
-        wp_error_set(error, WP_LIMIT, "params.fixture",
-                     "%zu fixtures are stored, the most --max-fixtures allows; delete one first",
-                     c->stored_count);
+        fail(failure, WP_HOST_LIMIT,
+             "%zu fixtures are stored, the most --max-fixtures allows; delete one first",
+             c->stored_count);
         pthread_mutex_unlock(&c->store_lock);
         wp_fixture_use refused = {.handle = {e, NULL}};
         wd_cache_release(c, &refused);
@@ -745,7 +777,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
     }
 
     if (write) {
-        if (c->dir && !write_fixture_file(c, e->id, text, error)) {
+        if (c->dir && !write_fixture_file(c, e->id, text, failure)) {
             pthread_mutex_unlock(&c->store_lock);
             wp_fixture_use failed = {.handle = {e, NULL}};
             wd_cache_release(c, &failed);
@@ -774,21 +806,21 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
     if (store)
         pthread_mutex_unlock(&c->store_lock);
     wp_fixture_doc_release(doc);
-    return derive_for_use(c, e, answered, use, error);
+    return derive_for_use(c, e, answered, use, failure);
 }
 
-bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_error *error)
+bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_host_failure *failure)
 {
     pthread_mutex_lock(&c->lock);
     entry *e = find(c, id);
     if (!e || !e->stored) {
         pthread_mutex_unlock(&c->lock);
-        wp_error_set(error, WP_NO_FIXTURE, "", "no stored fixture has the id %s", id);
+        fail(failure, WP_HOST_NO_FIXTURE, "no stored fixture has the id %s", id);
         return false;
     }
     e->refs++;
     pthread_mutex_unlock(&c->lock);
-    return derive_for_use(c, e, NULL, use, error);
+    return derive_for_use(c, e, NULL, use, failure);
 }
 
 int wd_cache_ready(wd_cache *c, const char *id)
@@ -836,7 +868,7 @@ void wd_cache_release(wd_cache *c, wp_fixture_use *use)
     memset(use, 0, sizeof *use);
 }
 
-bool wd_cache_delete(wd_cache *c, const char *id, wp_error *error)
+bool wd_cache_delete(wd_cache *c, const char *id, wp_host_failure *failure)
 {
     pthread_mutex_lock(&c->store_lock);
     pthread_mutex_lock(&c->lock);
@@ -845,8 +877,8 @@ bool wd_cache_delete(wd_cache *c, const char *id, wp_error *error)
     pthread_mutex_unlock(&c->lock);
     bool ok = false;
     if (!stored)
-        wp_error_set(error, WP_NO_FIXTURE, "", "no stored fixture has the id %s", id);
-    else if (!c->dir || remove_fixture_file(c, id, error)) {
+        fail(failure, WP_HOST_NO_FIXTURE, "no stored fixture has the id %s", id);
+    else if (!c->dir || remove_fixture_file(c, id, failure)) {
         /* It stays as a cached fixture until its derived data is evicted. */
         pthread_mutex_lock(&c->lock);
         assert(e->stored && c->stored_count > 0);

@@ -28,10 +28,13 @@ void wd_cache_free(wd_cache *cache);
  * `limit` bytes of it.  Logs "loaded FILE as ID (NAME)", or the error. */
 bool wd_cache_load_file(wd_cache *cache, const char *path, size_t limit);
 
-/* The wp_host fixture functions (docs in wp_host.h), on the shared cache. */
+/* The wp_host fixture functions (docs in wp_host.h), on the shared cache.
+ * A failure is the cache's own status and words (wp_host_failure): proto
+ * makes the JSON-RPC error of it. */
 bool wd_cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
-                    wp_error *error);
-bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use, wp_error *error);
+                    wp_host_failure *failure);
+bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use,
+                  wp_host_failure *failure);
 /* Hold the stored fixture `id` if its derived data is there (so that using
  * it derives nothing): its number of cones (goal + strong), or -1 with
  * nothing held. */
@@ -40,7 +43,7 @@ int wd_cache_use_ready(wd_cache *cache, const char *id, wp_fixture_use *use);
  * would move it in the least-recently-used order): for inspection. */
 int wd_cache_ready(wd_cache *cache, const char *id);
 void wd_cache_release(wd_cache *cache, wp_fixture_use *use);
-bool wd_cache_delete(wd_cache *cache, const char *id, wp_error *error);
+bool wd_cache_delete(wd_cache *cache, const char *id, wp_host_failure *failure);
 /* The stored fixtures, by id (false: out of memory, nothing held). */
 bool wd_cache_list(wd_cache *cache, wp_fixture_listing *listing);
 

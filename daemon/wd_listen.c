@@ -11,8 +11,9 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-int wd_listen_open(const char *path, char *why, size_t why_size)
+int wd_listen_open(const char *path, wd_listen_file *file, char *why, size_t why_size)
 {
+    *file = (wd_listen_file){0, 0, 0};
     struct sockaddr_un address = {.sun_family = AF_UNIX};
     if (strlen(path) >= sizeof address.sun_path) {
         snprintf(why, why_size, "the socket path %s is longer than %zu bytes", path,
@@ -49,10 +50,25 @@ int wd_listen_open(const char *path, char *why, size_t why_size)
     mode_t old = umask(0117);
     int bound = bind(fd, (struct sockaddr *)&address, sizeof address);
     umask(old);
+    if (bound == 0 && lstat(path, &st) == 0)
+        *file = (wd_listen_file){st.st_dev, st.st_ino, 1};
     if (bound != 0 || chmod(path, 0660) != 0 || listen(fd, 256) != 0) {
         snprintf(why, why_size, "cannot listen on %s: %s", path, strerror(errno));
         close(fd);
+        wd_listen_remove(path, file);
         return -1;
     }
     return fd;
+}
+
+void wd_listen_remove(const char *path, const wd_listen_file *file)
+{
+    struct stat st;
+    if (!file->made || lstat(path, &st) != 0)
+        return;
+    if (st.st_dev != file->device || st.st_ino != file->inode) {
+        wd_log(WD_LOG_INFO, "%s is no longer the socket this daemon made: left in place", path);
+        return;
+    }
+    unlink(path);
 }

@@ -10,4 +10,15 @@ void wd_log_set_level(int level);
 int wd_log_level_named(const char *name);
 void wd_log(int level, const char *format, ...) __attribute__((format(printf, 2, 3)));
 
+/* Events that can come in floods (a peer denied, accept failing): at most
+ * one line per interval for each kind, the next line saying how many were
+ * left out.  One per kind of event, zeroed; used by one thread only. */
+typedef struct wd_log_limit {
+    long long last;              /* monotonic seconds of the last line; 0: none */
+    unsigned long left_out;      /* events since that line, not logged */
+} wd_log_limit;
+
+void wd_log_limited(wd_log_limit *limit, int interval_s, int level, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+
 #endif

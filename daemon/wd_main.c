@@ -88,7 +88,9 @@ NUMBER_SETTER(set_max_depth, max_depth, int, 4, 10000, 1)
 NUMBER_SETTER(set_max_wrenches, max_wrenches, size_t, 1, 100000000, 1)
 NUMBER_SETTER(set_max_output, max_output, size_t, 4096, 1ULL << 40, 1)
 NUMBER_SETTER(set_max_clients, max_clients, unsigned long, 1, 1000000, 1)
+NUMBER_SETTER(set_max_clients_per_uid, max_clients_per_uid, unsigned long, 0, 1000000, 1)
 NUMBER_SETTER(set_max_batch, max_batch, size_t, 1, 1000000, 1)
+NUMBER_SETTER(set_max_candidates, max_candidates, unsigned long long, 1, 1ULL << 62, 1)
 NUMBER_SETTER(set_idle_timeout, idle_timeout, unsigned, 0, 86400 * 7, 1)
 NUMBER_SETTER(set_request_timeout, request_timeout, unsigned, 0, 86400, 1)
 
@@ -131,19 +133,31 @@ static bool set_log_level(settings *s, const char *value, origin from, char *why
     return true;
 }
 
-/* A comma-separated list of users (or groups): names or numbers. */
-static bool set_ids(unsigned *ids, int *count, int *list_from, origin from, const char *value,
-                    bool groups, char *why, size_t size)
+/* A comma-separated list of users (or groups): names or numbers, or the
+ * one word "any" for anyone.  A list with no entry is refused: read as "no
+ * check" it would open the daemon to everyone by a slip of the pen (an
+ * unset variable, a stray comma), so "anyone" must be said as "any" or by
+ * leaving the option out. */
+static bool set_ids(unsigned *ids, int *count, bool *any, int *list_from, origin from,
+                    const char *value, bool groups, char *why, size_t size)
 {
-    if ((int)from != *list_from)
+    if ((int)from != *list_from) {
         *count = 0;
+        *any = false;
+    }
     *list_from = (int)from;
+    if (strcmp(value + strspn(value, " \t"), "any") == 0) {
+        *count = 0;
+        *any = true;
+        return true;
+    }
     char *copy = strdup(value);
     if (!copy) {
         snprintf(why, size, "out of memory");
         return false;
     }
     bool ok = true;
+    int given = 0;
     char *saved;
     for (char *item = strtok_r(copy, ", ", &saved); item && ok;
          item = strtok_r(NULL, ", ", &saved)) {
@@ -152,7 +166,11 @@ static bool set_ids(unsigned *ids, int *count, int *list_from, origin from, cons
         errno = 0;
         number = strtoull(item, &end, 10);
         unsigned id;
-        if (!errno && end != item && !*end && number < 0xffffffffULL) {
+        if (strcmp(item, "any") == 0) {
+            snprintf(why, size, "takes 'any' alone, not among %s", groups ? "groups" : "users");
+            ok = false;
+            break;
+        } else if (!errno && end != item && !*end && number < 0xffffffffULL) {
             id = (unsigned)number;
         } else if (groups) {
             struct group *g = getgrnam(item);
@@ -177,21 +195,27 @@ static bool set_ids(unsigned *ids, int *count, int *list_from, origin from, cons
             break;
         }
         ids[(*count)++] = id;
+        given++;
     }
     free(copy);
+    if (ok && given == 0) {
+        snprintf(why, size, "is an empty list: name %s, or say 'any' for anyone (or leave the "
+                            "option out)", groups ? "groups" : "users");
+        ok = false;
+    }
     return ok;
 }
 
 static bool set_allow_uid(settings *s, const char *value, origin from, char *why, size_t size)
 {
-    return set_ids(s->uids, &s->config.allow_uid_count, &s->uids_from, from, value, false, why,
-                   size);
+    return set_ids(s->uids, &s->config.allow_uid_count, &s->config.allow_any_uid, &s->uids_from,
+                   from, value, false, why, size);
 }
 
 static bool set_allow_gid(settings *s, const char *value, origin from, char *why, size_t size)
 {
-    return set_ids(s->gids, &s->config.allow_gid_count, &s->gids_from, from, value, true, why,
-                   size);
+    return set_ids(s->gids, &s->config.allow_gid_count, &s->config.allow_any_gid, &s->gids_from,
+                   from, value, true, why, size);
 }
 
 /* ---- the table ---------------------------------------------------------------- */
@@ -218,7 +242,16 @@ static const option_spec OPTIONS[] = {
                             "work pauses above it until it reads\n"
                             "(default 16777216)", set_max_output},
     {"max-clients", "N", "most clients connected at once (default 256)", set_max_clients},
+    {"max-clients-per-uid", "N", "most clients of one user connected at once\n"
+                                 "(default 0: no cap but max-clients); the\n"
+                                 "workers serve users in turn whatever the\n"
+                                 "number of connections each holds",
+     set_max_clients_per_uid},
     {"max-batch", "N", "most requests in one batch (default 1000)", set_max_batch},
+    {"max-candidates", "N", "most candidates one fixture.design (or its\n"
+                            "shard) may examine; more are refused at the\n"
+                            "field giving them, with the count\n"
+                            "(default 100000000)", set_max_candidates},
     {"idle-timeout", "SECONDS", "close a connection with nothing in flight\n"
                                 "after this long without a request, or one\n"
                                 "that leaves answers unread this long\n"
@@ -229,10 +262,11 @@ static const option_spec OPTIONS[] = {
                                    "0: no limit)", set_request_timeout},
     {"allow-uid", "LIST", "only these users (names or numbers, comma-\n"
                           "separated) may connect; with allow-gid,\n"
-                          "either list admits (default: anyone who can\n"
-                          "open the socket)", set_allow_uid},
+                          "either list admits; 'any': anyone who can\n"
+                          "open the socket (the default); an empty\n"
+                          "list is an error", set_allow_uid},
     {"allow-gid", "LIST", "only members of these groups (primary or\n"
-                          "supplementary) may connect", set_allow_gid},
+                          "supplementary) may connect; 'any' as above", set_allow_gid},
     {"log-level", "LEVEL", "error, warn, info or debug (default info);\n"
                            "logs go to stderr, one line per event, none\n"
                            "per request below debug", set_log_level},
@@ -356,6 +390,7 @@ int main(int argc, char **argv)
         .max_output = (size_t)16 << 20,
         .max_clients = 256,
         .max_batch = 1000,
+        .max_candidates = 100000000,
         .idle_timeout = 300,
         .request_timeout = 30,
         .listen_fd = -1,

@@ -56,7 +56,7 @@ static bool supplementary_group_listed(const wd_config *config, int fd)
 
 bool wd_peer_allowed(const wd_config *config, int fd, char *who, size_t who_size)
 {
-    if (config->allow_uid_count == 0 && config->allow_gid_count == 0)
+    if (wd_peer_anyone(config))
         return true;
     struct ucred credentials;
     socklen_t length = sizeof credentials;
@@ -72,4 +72,47 @@ bool wd_peer_allowed(const wd_config *config, int fd, char *who, size_t who_size
     if (config->allow_gid_count == 0)
         return false;
     return gid_listed(config, credentials.gid) || supplementary_group_listed(config, fd);
+}
+
+bool wd_peer_anyone(const wd_config *config)
+{
+    return config->allow_any_uid || config->allow_any_gid ||
+           (config->allow_uid_count == 0 && config->allow_gid_count == 0);
+}
+
+/* One list, "uids 0, 1000" or "no uid", appended at `at`. */
+static size_t describe_list(char *text, size_t size, size_t at, const char *what,
+                            const unsigned *ids, int count)
+{
+    if (at >= size)
+        return at;
+    if (count == 0)
+        return at + (size_t)snprintf(text + at, size - at, "no %s", what);
+    at += (size_t)snprintf(text + at, size - at, "%ss", what);
+    for (int i = 0; i < count && at < size; i++)
+        at += (size_t)snprintf(text + at, size - at, "%s%u", i ? ", " : " ", ids[i]);
+    return at;
+}
+
+void wd_peer_describe(const wd_config *config, char *text, size_t size)
+{
+    if (wd_peer_anyone(config)) {
+        snprintf(text, size, "anyone who can open the socket%s",
+                 config->allow_any_uid || config->allow_any_gid ? " ('any' given)" : "");
+        return;
+    }
+    size_t at = describe_list(text, size, 0, "uid", config->allow_uids, config->allow_uid_count);
+    if (at < size)
+        at += (size_t)snprintf(text + at, size - at, "; ");
+    describe_list(text, size, at, "gid", config->allow_gids, config->allow_gid_count);
+}
+
+bool wd_peer_uid(int fd, unsigned *uid)
+{
+    struct ucred credentials;
+    socklen_t length = sizeof credentials;
+    if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &credentials, &length) != 0)
+        return false;
+    *uid = (unsigned)credentials.uid;
+    return true;
 }

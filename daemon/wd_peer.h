@@ -15,4 +15,15 @@
  * the log and the refusal. */
 bool wd_peer_allowed(const wd_config *config, int fd, char *who, size_t who_size);
 
+/* The peer's user id (SO_PEERCRED); false when the kernel does not say. */
+bool wd_peer_uid(int fd, unsigned *uid);
+
+/* Does the configuration admit anyone who can open the socket (no list,
+ * or "any")? */
+bool wd_peer_anyone(const wd_config *config);
+
+/* The effective allow lists, for the log: "anyone ..." or "uids 0, 1000;
+ * no gid". */
+void wd_peer_describe(const wd_config *config, char *text, size_t size);
+
 #endif

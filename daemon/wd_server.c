@@ -19,14 +19,17 @@
  * Waiting request lines are held up to --max-line bytes; beyond that the
  * connection is not read.
  *
- * Fairness: the workers take tasks first come first served and each task
- * goes back to the tail of the queue after each piece, so connections
- * share the workers round-robin, a piece each.
+ * Fairness: each task carries its peer's uid; the workers take users in
+ * turn and each user's tasks in order, each task going back to the tail of
+ * its user's queue after each piece (wd_pool), so users share the workers
+ * round-robin, a piece each, however many connections each holds;
+ * --max-clients-per-uid caps those connections.
  *
  * Cancellation: a client that is gone (its socket closed, or hung up
  * while answers were still to come) has its waiting requests dropped and
  * its running one stopped at the next poll (wr_stop: between wrenches,
- * edges, samples). */
+ * edges, samples).  A hang-up is noticed whether or not its connection is
+ * being read (pause_reading). */
 /* SO_PEERCRED, SO_PEERGROUPS and struct ucred are Linux's. */
 #define _GNU_SOURCE
 #include "wd_server.h"
@@ -113,12 +116,17 @@ struct connection {
                                   bytes not yet searched for its end */
     size_t partial_length, partial_capacity;
     bool paused;               /* not reading: too many requests waiting */
+    struct event *hangup_event; /* while paused: the peer's hang-up (EV_CLOSED,
+                                  epoll's EPOLLRDHUP), which reading would
+                                  have seen */
     bool input_closed;         /* end of input, or shutting down */
     bool refusing;             /* turned away: one error line, then a lingering
                                   close (its input is read and dropped) */
     bool write_shut;           /* refusing: shutdown(SHUT_WR) done */
     int busy;                  /* callbacks running on it: not freed meanwhile */
     unsigned long number;      /* for the log */
+    unsigned uid;              /* the peer's user (SO_PEERCRED); its tasks
+                                  are served in that user's turn */
 };
 
 struct wd_server {
@@ -138,6 +146,9 @@ struct wd_server {
     unsigned long connection_count, numbers;
     unsigned long refusing;         /* of the connections, those being turned away */
     bool stopping;
+    wd_listen_file socket_file;     /* the socket file made, removed at exit */
+    struct event *accept_timer;     /* accepting again after running out of descriptors */
+    wd_log_limit denied_log, refused_log, accept_log;
 };
 
 static void process_input(connection *c);
@@ -232,6 +243,30 @@ static void set_timeouts(connection *c, const struct timeval *timeout)
         reading_on(c); /* again, with the new timeout */
 }
 
+static void on_hangup(evutil_socket_t fd, short what, void *argument);
+
+/* Reading paused (too many requests waiting), a hang-up would go unseen
+ * until reading resumes, and the work asked would run for nobody: the
+ * hang-up is watched on its own meanwhile (EV_CLOSED, where the backend
+ * has it), and each piece made asks too (piece_done). */
+static void pause_reading(connection *c)
+{
+    c->paused = true;
+    reading_off(c);
+    if (!c->hangup_event)
+        c->hangup_event = event_new(c->server->base, bufferevent_getfd(c->bev), EV_CLOSED,
+                                    on_hangup, c);
+    if (c->hangup_event)
+        event_add(c->hangup_event, NULL);
+}
+
+static void unpause(connection *c)
+{
+    c->paused = false;
+    if (c->hangup_event)
+        event_del(c->hangup_event);
+}
+
 /* One read of at most `most` bytes into the input: 0 when some were read,
  * -1 when none were there, else BEV_EVENT_EOF or BEV_EVENT_ERROR. */
 static int read_input(connection *c, size_t most)
@@ -271,6 +306,9 @@ static void close_socket(connection *c)
         event_free(c->read_event);
     c->read_event = NULL;
     c->reading = false;
+    if (c->hangup_event)
+        event_free(c->hangup_event);
+    c->hangup_event = NULL;
     bufferevent_free(c->bev);
     c->bev = NULL;
     atomic_fetch_sub(&c->server->stats.clients, 1);
@@ -378,7 +416,7 @@ static void flush(connection *c)
         answers_out(c);
     if (c->bev && c->paused && c->pending < MAX_PENDING / 2 &&
         c->queued_bytes < c->server->config->max_line) {
-        c->paused = false;
+        unpause(c);
         if (!c->input_closed)
             reading_on(c);
         process_input(c); /* lines already buffered */
@@ -498,6 +536,7 @@ static void dispatch(connection *c)
     }
     atomic_init(&task->cancelled, false);
     task->owner = x;
+    task->uid = c->uid;
     task->answer = parsed;
     task->line = x->line; /* NULL when parsed already */
     task->length = x->length;
@@ -674,10 +713,8 @@ static void process_input(connection *c)
         line[length] = 0;
         line_taken = true;
         submit(c, line, length);
-        if (c->bev && too_much_waiting(c) && !c->input_closed) {
-            c->paused = true;
-            reading_off(c);
-        }
+        if (c->bev && too_much_waiting(c) && !c->input_closed)
+            pause_reading(c);
     }
     watch_partial_request(c, line_taken);
 }
@@ -719,6 +756,25 @@ static bool peer_gone(connection *c)
 {
     struct pollfd p = {.fd = bufferevent_getfd(c->bev), .events = POLLOUT};
     return poll(&p, 1, 0) == 1 && (p.revents & (POLLHUP | POLLERR));
+}
+
+/* The peer shut its sending side (or hung up) while reading was paused. */
+static void on_hangup(evutil_socket_t fd, short what, void *argument)
+{
+    (void)fd;
+    (void)what;
+    connection *c = argument;
+    if (!c->bev)
+        return;
+    c->busy++;
+    if (peer_gone(c)) {
+        wd_log(WD_LOG_DEBUG, "client %lu: hung up while its reading was paused; its requests "
+                             "are cancelled", c->number);
+        c->input_closed = true;
+        close_socket(c);
+    } /* else only its sending side: it may still read; pieces ask again */
+    c->busy--;
+    maybe_finish(c);
 }
 
 static void on_event(struct bufferevent *bev, short events, void *argument)
@@ -784,8 +840,83 @@ static void on_readable(evutil_socket_t fd, short what, void *argument)
     }
 }
 
-/* A refused client gets this long to read its error line and hang up. */
+/* A refused client gets this long to read its error line and hang up,
+ * counted from the refusal: what it sends meanwhile is read and dropped
+ * and does not extend it, so a refused peer holds a descriptor at most
+ * this long. */
 #define LINGER_SECONDS 2
+/* At most this many refused connections linger at once; beyond, the error
+ * line is sent as the socket takes it and the connection closed at once
+ * (a flood of refused peers then costs an accept and a close each, never
+ * the daemon's descriptors). */
+#define MAX_LINGERING 64
+/* After accept(2) runs out of descriptors (or memory), accepting pauses for
+ * this long: the waiting connections stay in the listen backlog until
+ * descriptors are free, instead of the loop retrying accept at once. */
+#define ACCEPT_PAUSE_MS 100
+/* Floods (peers denied or refused, accept failing) log a line per this
+ * many seconds. */
+#define FLOOD_LOG_SECONDS 10
+
+static void on_linger_over(evutil_socket_t fd, short events, void *argument)
+{
+    (void)fd;
+    (void)events;
+    connection *c = argument;
+    c->busy++;
+    wd_log(WD_LOG_DEBUG, "client %lu: turned away, its linger over: closed", c->number);
+    c->input_closed = true;
+    close_socket(c);
+    c->busy--;
+    maybe_finish(c);
+}
+
+/* Turn a peer away without a connection of ours: the error line as the
+ * socket takes it, then close. */
+static void refuse_at_once(evutil_socket_t fd, int code, const char *reason)
+{
+    char *line = wp_error_line(code, "", reason);
+    if (line) {
+        ssize_t sent = send(fd, line, strlen(line), MSG_DONTWAIT | MSG_NOSIGNAL);
+        (void)sent;
+        free(line);
+    }
+    shutdown(fd, SHUT_WR);
+    close(fd);
+}
+
+static void on_accept_again(evutil_socket_t fd, short events, void *argument)
+{
+    (void)fd;
+    (void)events;
+    wd_server *s = argument;
+    if (s->listener)
+        evconnlistener_enable(s->listener);
+}
+
+/* accept(2) failed (libevent retries EINTR and EAGAIN itself).  Out of
+ * descriptors or memory, retrying at once would spin the loop and the log:
+ * pause accepting a moment, log once per FLOOD_LOG_SECONDS. */
+static void on_accept_error(struct evconnlistener *listener, void *argument)
+{
+    wd_server *s = argument;
+    int error = EVUTIL_SOCKET_ERROR();
+    wd_log_limited(&s->accept_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                   "cannot accept a client: %s; accepting paused for %d ms", strerror(error),
+                   ACCEPT_PAUSE_MS);
+    evconnlistener_disable(listener);
+    struct timeval pause = {0, ACCEPT_PAUSE_MS * 1000};
+    event_add(s->accept_timer, &pause);
+}
+
+/* Connections of user `uid` now (those being turned away aside). */
+static unsigned long clients_of(const wd_server *s, unsigned uid)
+{
+    unsigned long count = 0;
+    for (const connection *c = s->connections; c; c = c->next)
+        count += c->bev && !c->refusing && c->uid == uid;
+    return count;
+}
 
 static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struct sockaddr *address,
                       int length, void *argument)
@@ -796,17 +927,35 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     wd_server *s = argument;
     char who[64], reason[128];
     int refusal = 0;
+    unsigned uid = 0;
+    bool have_uid = wd_peer_uid(fd, &uid);
     if (!wd_peer_allowed(s->config, fd, who, sizeof who)) {
         refusal = WP_ACCESS;
         snprintf(reason, sizeof reason, "%s may not use this daemon (allow-uid, allow-gid)", who);
         atomic_fetch_add(&s->stats.denied, 1);
-        wd_log(WD_LOG_WARN, "denied %s: not in the allow lists", who);
+        wd_log_limited(&s->denied_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                       "denied %s: not in the allow lists", who);
+    } else if (s->config->max_clients_per_uid > 0 && have_uid &&
+               clients_of(s, uid) >= s->config->max_clients_per_uid) {
+        refusal = WP_LIMIT;
+        snprintf(reason, sizeof reason,
+                 "too many clients of uid %u (--max-clients-per-uid %lu); try again later", uid,
+                 s->config->max_clients_per_uid);
+        atomic_fetch_add(&s->stats.refused, 1);
+        wd_log_limited(&s->refused_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                       "refused a client of uid %u: %lu of its clients already connected "
+                       "(--max-clients-per-uid)", uid, s->config->max_clients_per_uid);
     } else if (atomic_load(&s->stats.clients) - s->refusing >= s->config->max_clients) {
         refusal = WP_LIMIT;
         snprintf(reason, sizeof reason, "too many clients (--max-clients); try again later");
         atomic_fetch_add(&s->stats.refused, 1);
-        wd_log(WD_LOG_WARN, "refused a client: %lu already connected (--max-clients)",
-               (unsigned long)(atomic_load(&s->stats.clients) - s->refusing));
+        wd_log_limited(&s->refused_log, FLOOD_LOG_SECONDS, WD_LOG_WARN,
+                       "refused a client: %lu already connected (--max-clients)",
+                       (unsigned long)(atomic_load(&s->stats.clients) - s->refusing));
+    }
+    if (refusal && s->refusing >= MAX_LINGERING) {
+        refuse_at_once(fd, refusal, reason);
+        return;
     }
     connection *c = calloc(1, sizeof *c);
     struct bufferevent *bev = c ? bufferevent_socket_new(s->base, fd, BEV_OPT_CLOSE_ON_FREE) : NULL;
@@ -818,6 +967,7 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
     }
     c->server = s;
     c->bev = bev;
+    c->uid = uid;
     c->number = ++s->numbers;
     c->next = s->connections;
     if (s->connections)
@@ -838,18 +988,24 @@ static void on_accept(struct evconnlistener *listener, evutil_socket_t fd, struc
         maybe_finish(c);
         return;
     }
-    reading_on(c);
     if (refusal) {
         c->refusing = true;
         s->refusing++;
+        /* The write's timeout is the linger too; reading has none (input
+         * would restart it): the timer ends the linger. */
         struct timeval linger = {LINGER_SECONDS, 0};
-        set_timeouts(c, &linger);
+        bufferevent_set_timeouts(c->bev, NULL, &linger);
+        reading_on(c);
+        c->request_timer = evtimer_new(s->base, on_linger_over, c);
+        if (c->request_timer)
+            evtimer_add(c->request_timer, &linger);
         c->busy++;
         queue_error(c, refusal, reason);
         c->busy--;
         maybe_finish(c);
         return;
     }
+    reading_on(c);
     c->request_timer = s->config->request_timeout > 0 ? evtimer_new(s->base, on_request_timeout, c)
                                                       : NULL;
     /* on_write comes when the output is down to half the bound: the next
@@ -900,9 +1056,12 @@ static void piece_done(wd_server *s, wd_task *task)
     assert(c->running == x && x->task == task && !c->parked);
     assert(c->head == x); /* every earlier answer written */
     c->busy++;
-    if (c->bev && c->input_closed && task->step == WP_STEP_MORE && peer_gone(c)) {
-        /* It closed its sending side first, then hung up entirely: no
-         * event says so (the input ended long ago), so each piece asks. */
+    if (c->bev && (c->input_closed || c->paused) && task->step == WP_STEP_MORE &&
+        peer_gone(c)) {
+        /* It closed its sending side first, then hung up entirely, or hung
+         * up while its reading was paused: no event may say so (the input
+         * ended long ago; EV_CLOSED fires once, at the first half), so
+         * each piece asks. */
         wd_log(WD_LOG_DEBUG, "client %lu: hung up after closing its input; its requests are "
                              "cancelled", c->number);
         close_socket(c);
@@ -978,8 +1137,7 @@ static void on_signal(evutil_socket_t signal_number, short events, void *argumen
     if (s->listener) {
         evconnlistener_free(s->listener);
         s->listener = NULL;
-        if (s->config->listen_fd < 0) /* systemd's socket is systemd's to remove */
-            unlink(s->config->socket_path);
+        wd_listen_remove(s->config->socket_path, &s->socket_file); /* none: systemd's */
     }
     struct timeval grace = {SHUTDOWN_GRACE_SECONDS, 0};
     event_add(s->grace_timer, &grace);
@@ -1008,7 +1166,8 @@ int wd_server_run(const wd_config *config)
     memset(&server, 0, sizeof server);
     wd_server *s = &server;
     s->config = config;
-    s->limits = (wp_limits){config->max_depth, config->max_wrenches, config->max_batch};
+    s->limits = (wp_limits){config->max_depth, config->max_wrenches, config->max_batch,
+                            config->max_candidates};
     s->stats.started = time(NULL);
     s->stats.threads = config->threads;
     pthread_mutex_init(&s->done_lock, NULL);
@@ -1036,17 +1195,19 @@ int wd_server_run(const wd_config *config)
     s->signal_events[0] = evsignal_new(s->base, SIGTERM, on_signal, s);
     s->signal_events[1] = evsignal_new(s->base, SIGINT, on_signal, s);
     s->grace_timer = evtimer_new(s->base, on_grace_over, s);
+    s->accept_timer = evtimer_new(s->base, on_accept_again, s);
     s->pool = wd_pool_new(config->threads, s->cache, &s->limits, &s->stats, task_done, s);
     s->light = wd_thread_host_new(s->cache, &s->stats);
     s->loop_host = s->light ? wd_thread_host_wp(s->light) : NULL;
     if (!s->done_event || !s->signal_events[0] || !s->signal_events[1] || !s->grace_timer ||
+        !s->accept_timer ||
         !s->pool || !s->light) {
         wd_log(WD_LOG_ERROR, "cannot start: out of memory or threads");
         goto out;
     }
     event_add(s->signal_events[0], NULL);
     event_add(s->signal_events[1], NULL);
-    fd = config->listen_fd >= 0 ? config->listen_fd : wd_listen_open(config->socket_path, why, sizeof why);
+    fd = config->listen_fd >= 0 ? config->listen_fd : wd_listen_open(config->socket_path, &s->socket_file, why, sizeof why);
     if (fd < 0) {
         wd_log(WD_LOG_ERROR, "%s", why);
         goto out;
@@ -1054,15 +1215,20 @@ int wd_server_run(const wd_config *config)
     s->listener = evconnlistener_new(s->base, on_accept, s, LEV_OPT_CLOSE_ON_FREE, -1, fd);
     if (!s->listener) {
         close(fd);
-        if (config->listen_fd < 0)
-            unlink(config->socket_path);
+        wd_listen_remove(config->socket_path, &s->socket_file);
         wd_log(WD_LOG_ERROR, "cannot listen on %s: out of memory", config->socket_path);
         goto out;
     }
+    evconnlistener_set_error_cb(s->listener, on_accept_error);
     wd_log(WD_LOG_INFO, "wrenchd %s listening on %s (%d threads, state %s, cache %zu MiB)",
            WR_VERSION, config->listen_fd >= 0 ? "the socket systemd passed" : config->socket_path,
            config->threads, config->state_dir ? config->state_dir : "in memory only",
            config->cache_bytes >> 20);
+    {
+        char admitted[WD_MAX_ALLOWED * 24 + 64];
+        wd_peer_describe(config, admitted, sizeof admitted);
+        wd_log(WD_LOG_INFO, "admitted: %s", admitted);
+    }
     {
         wd_cache_stats held;
         wd_cache_stats_get(s->cache, &held);
@@ -1091,8 +1257,7 @@ out:
     wd_thread_host_free(s->light);
     if (s->listener) {
         evconnlistener_free(s->listener);
-        if (config->listen_fd < 0)
-            unlink(config->socket_path);
+        wd_listen_remove(config->socket_path, &s->socket_file);
     }
     for (int i = 0; i < 2; i++)
         if (s->signal_events[i])
@@ -1101,6 +1266,8 @@ out:
         event_free(s->done_event);
     if (s->grace_timer)
         event_free(s->grace_timer);
+    if (s->accept_timer)
+        event_free(s->accept_timer);
     if (s->base)
         event_base_free(s->base);
     wd_cache_free(s->cache);

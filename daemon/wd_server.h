@@ -3,6 +3,7 @@
 #ifndef WD_SERVER_H
 #define WD_SERVER_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 typedef struct wd_config {
@@ -19,7 +20,10 @@ typedef struct wd_config {
     size_t max_output;          /* most unsent output per client, bytes: its
                                    work pauses above it */
     unsigned long max_clients;  /* most concurrent clients */
+    unsigned long max_clients_per_uid; /* most concurrent clients of one user;
+                                   0: no cap but max_clients */
     size_t max_batch;           /* most requests in one batch */
+    unsigned long long max_candidates; /* most candidates of one design */
     unsigned idle_timeout;      /* seconds without a request in flight, or with
                                    answers left unread, before a connection is
                                    closed; 0: never */
@@ -29,6 +33,8 @@ typedef struct wd_config {
     int allow_uid_count;
     const unsigned *allow_gids; /* ... or by primary or supplementary group */
     int allow_gid_count;
+    bool allow_any_uid;         /* "any" given for a list: everyone is admitted */
+    bool allow_any_gid;
     int listen_fd;              /* a socket systemd passed, or -1 to bind socket_path */
 } wd_config;
 

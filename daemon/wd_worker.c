@@ -1,4 +1,7 @@
-/* wd_worker.c -- worker threads and the per-thread wp_host. */
+/* wd_worker.c -- the worker pool: tasks queued round-robin, a piece at a
+ * time, and the helpers that make a piece's chunks on the other workers
+ * (docs/ARCHITECTURE.md, "Parallel work").  Each worker answers with its
+ * own wp_host (wd_host.c). */
 #include "wd_worker.h"
 #include "wd_log.h"
 
@@ -7,171 +10,25 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Warm LP sets of one fixture's derived data, in one thread. */
-typedef struct lp_slot {
-    uint64_t serial;       /* wd_cache_serial of the analysis they were built on */
-    uint64_t last_used;
-    wr_lp_set *goal, *strong;
-} lp_slot;
-
-/* A thread keeps warm LPs for this many fixtures, least recently used out. */
-#define LP_SLOTS 16
-
-struct wd_thread_host {
-    wp_host host;
-    wd_cache *cache;
-    wd_stats *stats;
-    wr_lp_env *solver;
-    lp_slot slots[LP_SLOTS];
-    uint64_t clock;
-    wr_stop stop;         /* the task in hand's: host.stop points here */
-};
-
-static bool host_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
-                       wp_error *error)
-{
-    return wd_cache_adopt(((wd_thread_host *)self)->cache, doc, store, use, error);
-}
-
-static bool host_use(void *self, const char *id, wp_fixture_use *use, wp_error *error)
-{
-    return wd_cache_use(((wd_thread_host *)self)->cache, id, use, error);
-}
-
-static void host_release(void *self, wp_fixture_use *use)
-{
-    wd_cache_release(((wd_thread_host *)self)->cache, use);
-}
-
-static bool host_delete(void *self, const char *id, wp_error *error)
-{
-    return wd_cache_delete(((wd_thread_host *)self)->cache, id, error);
-}
-
-static int host_use_ready(void *self, const char *id, wp_fixture_use *use)
-{
-    return wd_cache_use_ready(((wd_thread_host *)self)->cache, id, use);
-}
-
-static bool host_list(void *self, wp_fixture_listing *listing, wp_error *error)
-{
-    if (wd_cache_list(((wd_thread_host *)self)->cache, listing))
-        return true;
-    wp_error_set(error, WP_INTERNAL, "", "out of memory");
-    return false;
-}
-
-/* The daemon's counters and the cache's figures, as data: proto writes
- * the JSON. */
-static bool host_state(void *self, wp_server_state *state, wp_error *error)
-{
-    (void)error;
-    wd_thread_host *thread = self;
-    wd_cache_stats cache;
-    wd_cache_stats_get(thread->cache, &cache);
-    const wd_stats *s = thread->stats;
-    *state = (wp_server_state){
-        .uptime_s = (double)(time(NULL) - s->started),
-        .fixtures = cache.stored,
-        .cached = cache.cached,
-        .cache_bytes = cache.derived_bytes,
-        .cache_limit_bytes = cache.derived_limit,
-        .threads = s->threads,
-        .clients = atomic_load(&s->clients),
-        .refused = atomic_load(&s->refused),
-        .denied = atomic_load(&s->denied),
-        .requests = atomic_load(&s->requests),
-        .errors = atomic_load(&s->errors),
-    };
-    return true;
-}
-
-static void slot_clear(lp_slot *slot)
-{
-    wr_lp_set_free(slot->goal);
-    wr_lp_set_free(slot->strong);
-    memset(slot, 0, sizeof *slot);
-}
-
-static bool host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
-                         wp_error *error)
-{
-    wd_thread_host *thread = self;
-    uint64_t serial = wd_cache_serial(use);
-    lp_slot *slot = &thread->slots[0];
-    for (int i = 0; i < LP_SLOTS; i++) {
-        if (thread->slots[i].serial == serial && thread->slots[i].goal) {
-            slot = &thread->slots[i];
-            break;
-        }
-        if (thread->slots[i].last_used < slot->last_used)
-            slot = &thread->slots[i];
-    }
-    if (slot->serial != serial || !slot->goal) {
-        /* A slot of stale derived data only ever gets freed: its sets are
-         * never used again. */
-        slot_clear(slot);
-        wr_status status =
-            wr_analysis_lp_sets(use->analysis, thread->solver, &slot->goal, &slot->strong);
-        if (status != WR_OK) {
-            wp_error_status(error, status, "", "%s", wr_strerror(status));
-            return false;
-        }
-        slot->serial = serial;
-    }
-    slot->last_used = ++thread->clock;
-    *goal = slot->goal;
-    *strong = slot->strong;
-    return true;
-}
-
-wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
-{
-    wd_thread_host *thread = calloc(1, sizeof *thread);
-    if (!thread)
-        return NULL;
-    if (wr_lp_env_new(&thread->solver) != WR_OK) {
-        free(thread);
-        return NULL;
-    }
-    /* A test hook (wrenchd(8), ENVIRONMENT): make this thread's GLPK fail
-     * fatally after N solves, to see the failure answered, not fatal. */
-    const char *failure = getenv("WRENCHD_TEST_GLPK_FAILURE");
-    if (failure && *failure)
-        wr_lp_env_inject_failure(thread->solver, atoi(failure));
-    thread->cache = cache;
-    thread->stats = stats;
-    thread->host = (wp_host){.self = thread,
-                             .fixture_adopt = host_adopt,
-                             .fixture_use = host_use,
-                             .fixture_use_ready = host_use_ready,
-                             .fixture_release = host_release,
-                             .fixture_delete = host_delete,
-                             .fixture_list = host_list,
-                             .state = host_state,
-                             .lp_sets = host_lp_sets};
-    return thread;
-}
-
-const wp_host *wd_thread_host_wp(wd_thread_host *thread) { return &thread->host; }
-
-void wd_thread_host_free(wd_thread_host *thread)
-{
-    if (!thread)
-        return;
-    for (int i = 0; i < LP_SLOTS; i++)
-        slot_clear(&thread->slots[i]);
-    wr_lp_env_free(thread->solver);
-    free(thread);
-}
-
 /* ---- the pool ------------------------------------------------------------- */
 
+/* One user's queued tasks (helpers of its pieces included), in order. */
+typedef struct user_queue {
+    struct user_queue *next;   /* in the pool's round */
+    unsigned uid;
+    wd_task *head, *tail;
+} user_queue;
+
 struct wd_pool {
-    pthread_mutex_t lock;
+    pthread_mutex_t lock;      /* guards everything below but the constants */
     pthread_cond_t ready;      /* a task was queued, or stop was set */
-    wd_task *head, *tail;      /* FIFO: every task runs one piece, then queues
-                                  again at the tail (round-robin) */
+    /* The round: the users with tasks queued, each once, served from the
+     * head: one task taken, the user back at the tail if it has more.  So
+     * fairness is by user, whatever the number of connections each holds,
+     * and every task runs one piece, then queues again at its user's tail.
+     * Invariant: a user is in the round iff its queue is not empty. */
+    user_queue *first, *last;
+    user_queue spare;          /* used when no memory is left for a queue */
     bool stop;
     int thread_count;
     pthread_t *threads;
@@ -191,7 +48,7 @@ static bool task_cancelled(void *argument)
  * wp_answer_work only while registered in `active`, and registers only
  * while `open`; the piece's worker closes the fork and waits for `active`
  * to reach 0 as soon as its step returns, so no helper touches the answer
- * after that (wp_rpc.h: the next step may end it).  Freed by the last of
+ * after that (wp_chunks.h: the next step may end it).  Freed by the last of
  * the piece's worker and its helpers to let go of it. */
 typedef struct wd_fork {
     pthread_mutex_t lock;
@@ -214,14 +71,62 @@ static void fork_release(wd_fork *fork)
     }
 }
 
+static void round_append(wd_pool *pool, user_queue *user)
+{
+    user->next = NULL;
+    if (pool->last)
+        pool->last->next = user;
+    else
+        pool->first = user;
+    pool->last = user;
+}
+
 static void queue_locked(wd_pool *pool, wd_task *task)
 {
+    unsigned uid = task->fork ? task->fork->task->uid : task->uid;
+    user_queue *user = pool->first;
+    while (user && (user == &pool->spare || user->uid != uid))
+        user = user->next;
+    if (!user) {
+        user = calloc(1, sizeof *user);
+        if (!user) {
+            user = &pool->spare; /* shared, out of memory: fair to none, lost to none */
+            if (!user->head) {
+                user->uid = uid;
+                round_append(pool, user);
+            }
+        } else {
+            user->uid = uid;
+            round_append(pool, user);
+        }
+    }
     task->next = NULL;
-    if (pool->tail)
-        pool->tail->next = task;
+    if (user->tail)
+        user->tail->next = task;
     else
-        pool->head = task;
-    pool->tail = task;
+        user->head = task;
+    user->tail = task;
+}
+
+/* The next task in the round, or NULL. */
+static wd_task *take_locked(wd_pool *pool)
+{
+    user_queue *user = pool->first;
+    if (!user)
+        return NULL;
+    wd_task *task = user->head;
+    user->head = task->next;
+    if (!user->head)
+        user->tail = NULL;
+    pool->first = user->next;
+    if (!pool->first)
+        pool->last = NULL;
+    if (user->head)
+        round_append(pool, user);
+    else if (user != &pool->spare)
+        free(user);
+    task->next = NULL;
+    return task;
 }
 
 /* Queue a helper for every other worker; NULL when there is no memory for
@@ -276,10 +181,9 @@ static void run_helper(wd_pool *pool, wd_thread_host *thread, wd_task *helper)
         fork->active++;
     pthread_mutex_unlock(&fork->lock);
     if (go) {
-        thread->stop = (wr_stop){task_cancelled, fork->task};
-        thread->host.stop = &thread->stop;
-        bool more = wp_answer_work(fork->task->answer, &thread->host);
-        thread->host.stop = NULL;
+        wd_thread_host_stop(thread, &(wr_stop){task_cancelled, fork->task});
+        bool more = wp_answer_work(fork->task->answer, wd_thread_host_wp(thread));
+        wd_thread_host_stop(thread, NULL);
         pthread_mutex_lock(&fork->lock);
         if (--fork->active == 0)
             pthread_cond_broadcast(&fork->idle);
@@ -312,8 +216,7 @@ static void run_piece(wd_pool *pool, wd_thread_host *thread, wd_task *task)
         task->step = WP_STEP_DONE;
         counts.requests = counts.errors = 1;
     } else {
-        thread->stop = (wr_stop){task_cancelled, task};
-        thread->host.stop = &thread->stop;
+        wd_thread_host_stop(thread, &(wr_stop){task_cancelled, task});
         if (!task->answer) {
             task->answer = wp_answer_begin(&pool->limits, task->line, task->length);
             free(task->line); /* parsed: the line is not needed again */
@@ -328,7 +231,7 @@ static void run_piece(wd_pool *pool, wd_thread_host *thread, wd_task *task)
             wd_fork *fork = pool->thread_count > 1 && wp_answer_parallel(task->answer)
                                 ? fork_open(pool, task)
                                 : NULL;
-            task->step = wp_answer_step(task->answer, &thread->host, &piece, &counts);
+            task->step = wp_answer_step(task->answer, wd_thread_host_wp(thread), &piece, &counts);
             if (fork)
                 fork_close(fork);
             if (piece.failed) {
@@ -345,10 +248,10 @@ static void run_piece(wd_pool *pool, wd_thread_host *thread, wd_task *task)
             }
         }
         if (task->step != WP_STEP_MORE) {
-            wp_answer_free(task->answer, &thread->host);
+            wp_answer_free(task->answer, wd_thread_host_wp(thread));
             task->answer = NULL;
         }
-        thread->host.stop = NULL;
+        wd_thread_host_stop(thread, NULL);
     }
     task->held = wp_answer_bytes(task->answer);
     atomic_fetch_add(&pool->stats->requests, counts.requests);
@@ -363,14 +266,9 @@ static void *worker_main(void *argument)
         wd_log(WD_LOG_ERROR, "a worker could not start: out of memory");
     for (;;) {
         pthread_mutex_lock(&pool->lock);
-        while (!pool->head && !pool->stop)
+        while (!pool->first && !pool->stop)
             pthread_cond_wait(&pool->ready, &pool->lock);
-        wd_task *task = pool->head;
-        if (task) {
-            pool->head = task->next;
-            if (!pool->head)
-                pool->tail = NULL;
-        }
+        wd_task *task = take_locked(pool);
         pthread_mutex_unlock(&pool->lock);
         if (!task)
             break; /* stopping, and nothing left */

@@ -1,33 +1,25 @@
-/* wd_worker.h -- the worker threads: they take request lines from a queue,
- * answer them (wp_answer_line) against the fixture cache, and hand the
- * answers back.  Each worker has its own GLPK environment and warm LPs. */
+/* wd_worker.h -- the worker pool: threads that take tasks from a queue,
+ * make a piece of each answer (wp_answer_step) against the fixture cache,
+ * and hand it back; helpers share a piece's chunks.  Each worker answers
+ * with its own wp_host (wd_host.h). */
 #ifndef WD_WORKER_H
 #define WD_WORKER_H
 
-#include "wd_cache.h"
-#include "wp_rpc.h"
+#include "wd_host.h"
 
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <time.h>
 
-/* Counters shared by the event loop and the workers. */
-typedef struct wd_stats {
-    atomic_ulong requests;      /* requests answered, batch members included */
-    atomic_ulong errors;        /* of them, errors */
-    atomic_ulong clients;       /* connections open now */
-    atomic_ulong refused;       /* connections refused (over --max-clients) */
-    atomic_ulong denied;        /* connections denied (peer not in the allow lists) */
-    time_t started;
-    int threads;
-} wd_stats;
 
 /* One request line being answered, a piece at a time.  The loop submits
  * it; a worker takes it, writes one piece of its answer (a bounded amount
  * of work: wp_answer_step) and hands it back; the loop sends the piece and,
  * when more follow and the client keeps reading, submits it again, at the
- * tail of the queue.  So the workers take connections' work round-robin,
- * a piece each, and a request never runs ahead of its client's reading.
+ * tail of its user's queue.  The workers take the users in turn, a piece
+ * each, and each user's tasks in order: a user with a hundred connections
+ * gets one piece a round, as a user with one does; and a request never
+ * runs ahead of its client's reading.
  * A piece with work to share (a design's candidates) also queues a helper
  * for every other worker: each takes a bounded share at a time, queueing
  * again at the tail, until the piece is made; so one request uses every
@@ -38,6 +30,8 @@ typedef struct wd_stats {
 typedef struct wd_task {
     struct wd_task *next;   /* queue link */
     void *owner;            /* the connection's slot; opaque to workers */
+    unsigned uid;           /* its client's user: the workers serve users in
+                               turn (wd_pool), not connections */
     char *line;             /* malloc'd, without its "\n"; freed once parsed */
     size_t length;
     wp_answer *answer;      /* NULL until the first piece */
@@ -73,13 +67,5 @@ void wd_pool_free(wd_pool *pool);
  * (a fixture, released through `host`). */
 void wd_task_free(wd_task *task, const wp_host *host);
 
-/* What one thread needs to answer requests: a wp_host on the shared cache,
- * with that thread's GLPK environment and warm LPs.  Workers make one each;
- * anything else answering lines in a thread of its own (a test, a fuzzer)
- * may too.  Create, use and free it in the same thread. */
-typedef struct wd_thread_host wd_thread_host;
-wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats);
-const wp_host *wd_thread_host_wp(wd_thread_host *thread);
-void wd_thread_host_free(wd_thread_host *thread);
 
 #endif

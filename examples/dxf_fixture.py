@@ -2,7 +2,8 @@
 """A fixture from a DXF drawing: the part read by wrenchd_dxf (the largest,
 or --part N), its mass from its area, a thickness and a density, its unit
 the drawing's, and no fixels yet (wrenchctl design places them; or give
---fixel X,Y for each).  The README's walk-through uses it.
+--fixel X,Y for each: moved onto the outline when within 1e-4 of it, as a
+table's digits leave it).  The README's walk-through uses it.
 
     /usr/bin/python3 examples/dxf_fixture.py sheet.dxf bracket.json \\
         [--part N] [--thickness 3] [--density 2.7e-6] [--friction 0.3] [--fixel X,Y ...]
@@ -16,7 +17,24 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "clients", "python"))
+import wrenchd_arcs  # noqa: E402
 import wrenchd_dxf  # noqa: E402
+
+
+def on_outline(shape, point, within):
+    """The point of the shape's boundary nearest `point` (a fixel typed with
+    the digits a table prints), when within `within` of it."""
+    best = None
+    for loop in shape["loops"]:
+        for k, v in enumerate(loop):
+            w = loop[(k + 1) % len(loop)]
+            seg = wrenchd_arcs.Segment(0, k, v[:2], w[:2], v[2] if len(v) > 2 else 0.0)
+            _, q, d = seg.nearest(point)
+            if best is None or d < best[1]:
+                best = (q, d)
+    if best[1] > within:
+        raise ValueError("--fixel %g,%g is %g from the outline" % (point[0], point[1], best[1]))
+    return [best[0][0], best[0][1]]
 
 
 def main(argv=None):
@@ -46,7 +64,14 @@ def main(argv=None):
                "units": wrenchd_dxf.fixture_units(report),
                "body": {"mass": part["area"] * args.thickness * args.density, "shape": part["shape"]},
                "friction": {"static": args.friction},
-               "fixels": [{"at": [float(c) for c in f.split(",")]} for f in args.fixel]}
+               "fixels": []}
+    for f in args.fixel:
+        try:
+            at = on_outline(part["shape"], [float(c) for c in f.split(",")], 1e-4)
+        except ValueError as error:
+            sys.stderr.write("dxf_fixture: %s\n" % error)
+            return 1
+        fixture["fixels"].append({"at": at})
     with open(args.fixture, "w") as fh:
         json.dump(fixture, fh, indent=1)
         fh.write("\n")

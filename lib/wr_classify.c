@@ -339,13 +339,14 @@ static wr_status classify(const wr_analysis *a, const double wrench[3], wr_set s
         wr_cone_signed_distance(cone, x, projection);
         wr_witness *w = &answer->witness;
         wr_cone_witness(cone, a->fixture, projection, w);
+        const wr_fixture *f = a->fixture;
         for (int k = 0; k < 3; k++) {
-            w->acceleration[k] *= scale;
-            w->wrench[k] *= scale;
+            w->acceleration[k] = wr_fixture_scale_back(f, wrench, scale, w->acceleration[k]);
+            w->wrench[k] = wr_fixture_scale_back(f, wrench, scale, w->wrench[k]);
         }
-        for (int i = 0; i < a->fixture->fixel_count; i++)
+        for (int i = 0; i < f->fixel_count; i++)
             for (int k = 0; k < 2; k++)
-                w->force[i][k] *= scale;
+                w->force[i][k] = wr_fixture_scale_back(f, wrench, scale, w->force[i][k]);
     }
     return WR_OK;
 }

@@ -4,116 +4,13 @@
 #include "wr_internal.h"
 #include "wr_locate.h"
 #include "wr_outline.h"
+#include "wr_symmetry.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ---- sites ------------------------------------------------------------------------- */
-
-wr_status wr_site_new(const wr_fixture *body, const double at[2], const double *normal,
-                      wr_site *out, wr_error *error)
-{
-    wr_fixel_spec fixel;
-    memset(&fixel, 0, sizeof fixel);
-    fixel.at[0] = at[0];
-    fixel.at[1] = at[1];
-    if (normal) {
-        fixel.normal_given = true;
-        fixel.normal[0] = normal[0];
-        fixel.normal[1] = normal[1];
-    }
-    /* Friction does not place a fixel; any valid value does. */
-    wr_friction_spec friction = {.given = true};
-    wr_fixture placed;
-    wr_status status = wr_fixture_place(body, &fixel, 1, &friction, &placed, error);
-    if (status != WR_OK)
-        return status;
-    memcpy(out->at, placed.fixels[0].at, sizeof out->at);
-    memcpy(out->normal, placed.fixels[0].normal, sizeof out->normal);
-    return WR_OK;
-}
-
-static wr_status site_append(const wr_fixture *body, const double point[2], wr_site **sites,
-                             int *count, int *capacity, wr_error *error)
-{
-    if (*count >= WR_DESIGN_MAX_SITES) {
-        wr_error_set(error, "", "more than %d sites", WR_DESIGN_MAX_SITES);
-        return WR_INVALID;
-    }
-    if (*count == *capacity) {
-        int grown = *capacity ? 2 * *capacity : 64;
-        wr_site *more = realloc(*sites, (size_t)grown * sizeof *more);
-        if (!more) {
-            wr_error_set(error, "", "out of memory");
-            return WR_NO_MEMORY;
-        }
-        *sites = more;
-        *capacity = grown;
-    }
-    /* The normal is derived as a fixel's there would be: the site is the
-     * fixel fixture.put would make of the point. */
-    wr_status status = wr_site_new(body, point, NULL, &(*sites)[*count], error);
-    if (status == WR_OK)
-        (*count)++;
-    return status;
-}
-
-wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **sites, int *count,
-                          wr_error *error)
-{
-    if (!(spacing > 0) || !isfinite(spacing)) {
-        wr_error_set(error, "", "must be a positive number, got %g", spacing);
-        return WR_INVALID;
-    }
-    wr_site *list = *sites;
-    int n = *count, capacity = *count;
-    wr_status status = WR_OK;
-    if (body->shape == WR_SHAPE_CIRCLE) {
-        double circumference = 2 * WR_PI * body->radius;
-        double steps = floor(circumference / spacing + 1e-9);
-        if (steps > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.3g sites, more than %d", steps, WR_DESIGN_MAX_SITES);
-            return WR_INVALID;
-        }
-        for (int i = 0; i < (int)steps && status == WR_OK; i++) {
-            double angle = 2 * WR_PI * i / steps;
-            double p[2] = {body->center[0] + body->radius * cos(angle),
-                           body->center[1] + body->radius * sin(angle)};
-            status = site_append(body, p, &list, &n, &capacity, error);
-        }
-    } else if (body->outline) {
-        const wr_outline *o = body->outline;
-        double total = 0;
-        for (size_t l = 0; l < o->loop_count; l++)
-            for (size_t s = 0; s < o->loops[l].segment_count; s++)
-                total += floor(o->loops[l].segments[s].length / spacing + 1e-9);
-        if (total > WR_DESIGN_MAX_SITES) {
-            wr_error_set(error, "", "gives %.3g sites, more than %d", total, WR_DESIGN_MAX_SITES);
-            return WR_INVALID;
-        }
-        for (size_t l = 0; l < o->loop_count && status == WR_OK; l++)
-            for (size_t s = 0; s < o->loops[l].segment_count && status == WR_OK; s++) {
-                double length = o->loops[l].segments[s].length;
-                int steps = (int)floor(length / spacing + 1e-9);
-                double first = (length - (steps - 1) * spacing) / 2;
-                for (int i = 0; i < steps && status == WR_OK; i++) {
-                    double p[2], normal[2];
-                    wr_outline_boundary(o, l, s, (first + i * spacing) / length, p, normal);
-                    status = site_append(body, p, &list, &n, &capacity, error);
-                }
-            }
-    }
-    if (status != WR_OK && n > *count) {
-        /* Nothing appended after all: the caller's array keeps its items. */
-        n = *count;
-    }
-    *sites = list;
-    *count = n;
-    return status;
-}
 
 /* ---- margins along an edge ----------------------------------------------------------- */
 
@@ -356,8 +253,21 @@ typedef enum outcome {
     OUTCOME_DEGENERATE,
     OUTCOME_UNPINNED,
     OUTCOME_NO_SEATING_PUSH,
-    OUTCOME_BOUNDED
+    OUTCOME_BOUNDED,
+    OUTCOME_SHARED_HOLE
 } outcome;
+
+/* Two of the candidate's sites in one hole (wr_sites.h: a pin is one
+ * fixel; two pins in one hole are not a design). */
+static bool shares_hole(const wr_design_spec *spec, const int *sites)
+{
+    for (int i = 0; i < spec->fixel_count; i++)
+        for (int j = 0; j < i; j++)
+            if (spec->sites[sites[i]].loop > 0 &&
+                spec->sites[sites[i]].loop == spec->sites[sites[j]].loop)
+                return true;
+    return false;
+}
 
 static double regions_length(const wr_fixture *fixture, const wr_regions *regions)
 {
@@ -383,6 +293,18 @@ static double longest_arc(const wr_regions *arcs)
 struct wr_design_job {
     wr_design_spec spec;
     wr_plan *plan;             /* for spec.fixel_count: shared by every candidate */
+    wr_push_index *index;      /* the body's edges for spec.finger; NULL when
+                                  exhaustive, or for a shape or finger it does
+                                  not serve (a circle, a finger with friction) */
+    wr_fixel *site_fixels;     /* place_sites; NULL when exhaustive */
+    bool *site_ok;
+    /* The symmetries' site maps (symmetry_count rows of site_count: each
+     * site's image, as the lowest of equal sites, or -1), and for listed
+     * candidates their site lists sorted (tuples): NULL without symmetries. */
+    int *site_maps;
+    int symmetry_count;
+    struct tuple *tuples;
+    size_t tuple_count;
     bool failed;
     uint64_t total;            /* candidates of the shard */
     uint64_t candidates;       /* of all shards */
@@ -391,6 +313,12 @@ struct wr_design_job {
     wr_design_counts counts;
     wr_design *designs;        /* spec.top, best first */
     int design_count;
+    /* Why candidates have no seating push (wr_design_job_why): where the
+     * push is asked about, and the count per blocking goal cone, the last
+     * for a push there that is in G_goal. */
+    int why_edge;
+    double why_t;
+    uint64_t *why;             /* plan->kept_count + 1 */
     /* After the search: the designs' figures, one at a time. */
     int detailing;             /* the design being detailed */
     wr_fixture detail_fixture;
@@ -420,8 +348,48 @@ bool wr_design_before(const wr_design *a, const wr_design *b)
     return a->candidate < b->candidate;
 }
 
+/* Each site's fixel, placed alone once (site_fixels[i]), or marked
+ * unplaceable (site_ok[i] false): a candidate is placed from them with
+ * only the list's checks, which is wr_fixture_place's answer, bit for bit
+ * (wr_fixture.h), without locating every fixel on the outline again. */
+static wr_status place_sites(wr_design_job *job)
+{
+    const wr_design_spec *spec = &job->spec;
+    size_t n = spec->site_count > 0 ? (size_t)spec->site_count : 1;
+    job->site_fixels = malloc(n * sizeof *job->site_fixels);
+    job->site_ok = calloc(n, sizeof *job->site_ok);
+    if (!job->site_fixels || !job->site_ok)
+        return WR_NO_MEMORY;
+    for (int i = 0; i < spec->site_count; i++) {
+        wr_fixel_spec fixel;
+        memset(&fixel, 0, sizeof fixel);
+        const wr_site *site = &spec->sites[i];
+        memcpy(fixel.at, site->at, sizeof fixel.at);
+        fixel.normal_given = true;
+        memcpy(fixel.normal, site->normal, sizeof fixel.normal);
+        wr_fixture alone;
+        wr_error error;
+        if (wr_fixture_place(spec->body, &fixel, 1, &spec->friction, &alone, &error) == WR_OK) {
+            job->site_fixels[i] = alone.fixels[0];
+            job->site_ok[i] = true;
+        }
+    }
+    return WR_OK;
+}
+
 static wr_status place(const wr_design_job *job, const int *sites, wr_fixture *out)
 {
+    if (job->site_fixels) {
+        wr_fixel fixels[WR_MAX_FIXELS];
+        for (int i = 0; i < job->spec.fixel_count; i++) {
+            if (!job->site_ok[sites[i]])
+                return WR_INVALID;
+            fixels[i] = job->site_fixels[sites[i]];
+        }
+        wr_error error;
+        return wr_fixture_place_placed(job->spec.body, fixels, (size_t)job->spec.fixel_count, out,
+                                       &error);
+    }
     wr_fixel_spec fixels[WR_MAX_FIXELS];
     memset(fixels, 0, sizeof fixels);
     for (int i = 0; i < job->spec.fixel_count; i++) {
@@ -474,14 +442,44 @@ static wr_status accuracy_score(const wr_design_job *job, const wr_fixture *fixt
     return WR_OK;
 }
 
+/* The push regions of a set for the search's finger: by the job's index
+ * when it has one (the same answer, bit for bit: wr_regions.h). */
+static wr_status push_regions(const wr_design_job *job, const wr_analysis *analysis, wr_set set,
+                              wr_regions *out)
+{
+    if (job->index)
+        return wr_push_regions_indexed(analysis, set, job->index, NULL, out);
+    return wr_push_regions_finger(analysis, set, &job->spec.finger, NULL, out);
+}
+
+/* The goal cone that blocks the push at the job's point of asking (the
+ * plan's kept string index), or the plan's kept_count when none does. */
+static int why_no_seating_push(const wr_design_job *job, const wr_fixture *fixture,
+                               const wr_analysis *analysis, unsigned long *units)
+{
+    double wrench[3];
+    wr_push_wrench(fixture, job->why_edge, job->why_t, wrench);
+    wr_answer answer;
+    *units += (unsigned long)wr_analysis_cone_count(analysis, WR_SET_GOAL) * 40;
+    if (wr_classify_margin(analysis, wrench, WR_SET_GOAL, WR_DEFAULT_TOLERANCE, &answer) != WR_OK ||
+        answer.blocking < 0 || answer.blocking >= job->plan->kept_count)
+        return job->plan->kept_count;
+    return answer.blocking;
+}
+
 /* Score one candidate, giving up (OUTCOME_BOUNDED) once its score is
- * certainly below `threshold`.  *units: about the work done. */
+ * certainly below `threshold`.  *units: about the work done.  Without a
+ * seating push, *why says why (why_no_seating_push). */
 static wr_status score_candidate(const wr_design_job *job, const int *sites, double threshold,
-                                 outcome *result, double *score, unsigned long *units)
+                                 outcome *result, double *score, unsigned long *units, int *why)
 {
     const wr_design_spec *spec = &job->spec;
     wr_fixture fixture;
     *units += 100;
+    if (shares_hole(spec, sites)) {
+        *result = OUTCOME_SHARED_HOLE;
+        return WR_OK;
+    }
     if (place(job, sites, &fixture) != WR_OK) {
         *result = OUTCOME_DEGENERATE;
         return WR_OK;
@@ -500,10 +498,12 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     int edges = wr_push_edge_count(&fixture);
     *units += (unsigned long)cones * 40;
     wr_regions goal, both = {0};
-    status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
+    status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     *units += (unsigned long)cones * (unsigned long)edges * 4;
-    if (status == WR_OK && goal.count == 0)
+    if (status == WR_OK && goal.count == 0 && spec->objective != WR_OBJECTIVE_FORCE) {
         *result = OUTCOME_NO_SEATING_PUSH;
+        *why = why_no_seating_push(job, &fixture, analysis, units);
+    }
     else if (status == WR_OK && (spec->objective == WR_OBJECTIVE_GRAVITY ||
                                  (status = wr_analysis_complete(analysis)) == WR_OK)) {
         cones += wr_analysis_cone_count(analysis, WR_SET_STRONG);
@@ -512,6 +512,17 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         if (spec->objective == WR_OBJECTIVE_ACCURACY) {
             status = accuracy_score(job, &fixture, result, score);
             *units += 2000;
+        } else if (spec->objective == WR_OBJECTIVE_FORCE) {
+            wr_least_force least;
+            status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
+                                         spec->finger.radius, NULL, &least);
+            *units += least.evaluations * (unsigned long)cones * (unsigned long)spec->case_count;
+            if (status == WR_OK && !least.found) {
+                *result = OUTCOME_NO_SEATING_PUSH;
+                *why = why_no_seating_push(job, &fixture, analysis, units);
+            } else if (status == WR_OK) {
+                *score = -least.force;
+            }
         } else if (spec->objective == WR_OBJECTIVE_GRAVITY) {
             wr_regions arcs;
             status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
@@ -524,7 +535,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
             /* The both region lies inside the goal region. */
             *result = OUTCOME_BOUNDED;
         } else {
-            status = wr_push_regions_finger(analysis, WR_SET_BOTH, &spec->finger, NULL, &both);
+            status = push_regions(job, analysis, WR_SET_BOTH, &both);
             *units += (unsigned long)cones * (unsigned long)edges * 4;
             if (status == WR_OK && spec->objective == WR_OBJECTIVE_REGION) {
                 *score = regions_length(&fixture, &both);
@@ -546,6 +557,176 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
     wr_regions_release(&goal);
     wr_analysis_free(analysis);
     return status;
+}
+
+/* ---- symmetric candidates ------------------------------------------------------------- */
+
+/* A listed candidate's sites as equal sites' lowest, sorted: the key that
+ * its images are looked up by. */
+typedef struct tuple {
+    int sites[WR_MAX_FIXELS];
+    uint64_t candidate;        /* the lowest listed with these sites */
+    uint64_t repeats;          /* how many are listed with them */
+} tuple;
+
+static int compare_sites(const int *a, const int *b, int k)
+{
+    for (int i = 0; i < k; i++)
+        if (a[i] != b[i])
+            return a[i] < b[i] ? -1 : 1;
+    return 0;
+}
+
+static int compare_tuples(const void *a, const void *b)
+{
+    const tuple *x = a, *y = b;
+    int c = compare_sites(x->sites, y->sites, WR_MAX_FIXELS);
+    if (c != 0)
+        return c;
+    return (x->candidate > y->candidate) - (x->candidate < y->candidate);
+}
+
+/* The image of k sites under map (NULL: the identity, as given), sorted;
+ * false when a site has no image or two share one. */
+static bool image_of(const int *map, const int *sites, int k, int *out)
+{
+    for (int i = 0; i < k; i++) {
+        int v = map ? map[sites[i]] : sites[i];
+        if (v < 0)
+            return false;
+        int j = i;
+        while (j > 0 && out[j - 1] > v) {
+            out[j] = out[j - 1];
+            j--;
+        }
+        out[j] = v;
+    }
+    for (int i = 1; i < k; i++)
+        if (out[i] == out[i - 1])
+            return false;
+    return true;
+}
+
+/* The listed tuple of these sorted sites, or NULL. */
+static const tuple *listed_tuple(const wr_design_job *job, const int *sites)
+{
+    tuple key;
+    memset(&key, 0, sizeof key);
+    memcpy(key.sites, sites, (size_t)job->spec.fixel_count * sizeof *sites);
+    size_t a = 0, b = job->tuple_count;
+    while (a < b) {
+        size_t m = a + (b - a) / 2;
+        int c = compare_sites(job->tuples[m].sites, key.sites, WR_MAX_FIXELS);
+        if (c == 0)
+            return &job->tuples[m];
+        if (c < 0)
+            a = m + 1;
+        else
+            b = m;
+    }
+    return NULL;
+}
+
+/* The site maps (the identity's first: each site as the lowest site equal
+ * to it), and for listed candidates their tuples, one per distinct site
+ * list (the lowest candidate with it and how many). */
+static wr_status symmetric_setup(wr_design_job *job)
+{
+    const wr_design_spec *spec = &job->spec;
+    size_t n = spec->site_count > 0 ? (size_t)spec->site_count : 1;
+    job->symmetry_count = spec->symmetry_count + 1;
+    job->site_maps = malloc((size_t)job->symmetry_count * n * sizeof *job->site_maps);
+    if (!job->site_maps)
+        return WR_NO_MEMORY;
+    wr_symmetry identity;
+    memset(&identity, 0, sizeof identity);
+    identity.linear[0][0] = identity.linear[1][1] = 1;
+    for (int g = 0; g < job->symmetry_count; g++)
+        if (wr_symmetry_site_map(g ? &spec->symmetries[g - 1] : &identity, spec->sites,
+                                 spec->site_count, spec->body->size,
+                                 job->site_maps + (size_t)g * n) != WR_OK)
+            return WR_NO_MEMORY;
+    if (!spec->candidates)
+        return WR_OK;
+    job->tuples = calloc(spec->candidate_count + 1, sizeof *job->tuples);
+    if (!job->tuples)
+        return WR_NO_MEMORY;
+    size_t count = 0;
+    for (uint64_t r = 0; r < spec->candidate_count; r++) {
+        tuple *t = &job->tuples[count];
+        if (image_of(job->site_maps, spec->candidates[r], spec->fixel_count, t->sites)) {
+            t->candidate = r;
+            t->repeats = 1;
+            count++;
+        }
+    }
+    qsort(job->tuples, count, sizeof *job->tuples, compare_tuples);
+    size_t kept = 0;
+    for (size_t i = 0; i < count; i++) {
+        if (kept > 0 && compare_sites(job->tuples[kept - 1].sites, job->tuples[i].sites,
+                                      WR_MAX_FIXELS) == 0)
+            job->tuples[kept - 1].repeats++;
+        else
+            job->tuples[kept++] = job->tuples[i];
+    }
+    job->tuple_count = kept;
+    return WR_OK;
+}
+
+/* Is candidate r (its sites) the lowest-numbered of the candidates that
+ * the symmetries map it onto?  *copies: how many those are, itself
+ * included.  `seen` has room for symmetry_count site lists. */
+static bool representative(const wr_design_job *job, uint64_t r, const int *sites, int *seen,
+                           int *copies)
+{
+    const wr_design_spec *spec = &job->spec;
+    int k = spec->fixel_count;
+    size_t n = spec->site_count > 0 ? (size_t)spec->site_count : 1;
+    int distinct = 0;
+    uint64_t total = 0;
+    bool lowest = true;
+    for (int g = 0; g < job->symmetry_count; g++) {
+        int *image = seen + (size_t)distinct * (size_t)k;
+        if (!image_of(job->site_maps + (size_t)g * n, sites, k, image))
+            continue;
+        bool again = false;
+        for (int i = 0; i < distinct && !again; i++)
+            again = compare_sites(seen + (size_t)i * (size_t)k, image, k) == 0;
+        if (again)
+            continue;
+        if (spec->candidates) {
+            const tuple *t = listed_tuple(job, image);
+            if (!t)
+                continue;
+            lowest &= t->candidate >= r;
+            total += t->repeats;
+        } else {
+            lowest &= compare_sites(image, sites, k) >= 0;
+            total++;
+        }
+        distinct++;
+    }
+    *copies = total > 0 ? (int)total : 1;
+    return lowest;
+}
+
+/* Where a candidate without a seating push is asked why: the middle of
+ * the longest edge the finger may push on (the first of equals; a circle:
+ * at 180 degrees, the middle of its range). */
+static void why_point(const wr_design_spec *spec, int *edge, double *t)
+{
+    *edge = 0;
+    *t = spec->body->shape == WR_SHAPE_CIRCLE ? 180 : 0.5;
+    double longest = -1;
+    int edges = wr_push_edge_count(spec->body);
+    for (int e = 0; spec->body->shape != WR_SHAPE_CIRCLE && e < edges; e++) {
+        wr_region whole = {e, 0, 1};
+        double length = wr_region_length(spec->body, &whole);
+        if (wr_finger_pushes_on(spec->body, &spec->finger, e) && length > longest) {
+            longest = length;
+            *edge = e;
+        }
+    }
 }
 
 /* ---- the job --------------------------------------------------------------------------- */
@@ -615,6 +796,11 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
             }
         }
     }
+    if (spec->case_count < 0 || (spec->case_count > 0 && !spec->loads) ||
+        (spec->objective == WR_OBJECTIVE_FORCE && spec->case_count == 0)) {
+        wr_error_set(error, "cases", "required with the objective force");
+        return WR_INVALID;
+    }
     uint64_t candidates = spec->candidates
                               ? spec->candidate_count
                               : wr_design_candidates(spec->site_count, spec->fixel_count);
@@ -647,7 +833,31 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
         wr_error_set(error, "", "out of memory");
         return WR_NO_MEMORY;
     }
+    if (spec->symmetries && spec->symmetry_count > 0 && symmetric_setup(job) != WR_OK) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (!spec->exhaustive && place_sites(job) != WR_OK) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (!spec->exhaustive && spec->finger.friction == 0 &&
+        (spec->body->shape == WR_SHAPE_OUTLINE || spec->body->shape == WR_SHAPE_POLYGON) &&
+        wr_push_index_new(spec->body, &spec->finger, &job->index) != WR_OK) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
     job->candidates = candidates;
+    job->why = calloc((size_t)job->plan->kept_count + 1, sizeof *job->why);
+    if (!job->why) {
+        wr_design_job_free(job);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    why_point(spec, &job->why_edge, &job->why_t);
     uint64_t n = (uint64_t)spec->shard_count, i = (uint64_t)spec->shard_index;
     job->total = candidates > i ? (candidates - i + n - 1) / n : 0;
     *out = job;
@@ -723,6 +933,13 @@ bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
     return true;
 }
 
+void wr_design_job_cut(wr_design_job *job)
+{
+    job->candidates = job->next; /* nothing more to claim */
+}
+
+uint64_t wr_design_job_total(const wr_design_job *job) { return job->total; }
+
 bool wr_design_job_claimable(const wr_design_job *job)
 {
     return job->next < job->candidates && !job->failed;
@@ -731,6 +948,7 @@ bool wr_design_job_claimable(const wr_design_job *job)
 void wr_design_chunk_release(wr_design_chunk *chunk)
 {
     free(chunk->designs);
+    free(chunk->why);
     memset(chunk, 0, sizeof *chunk);
 }
 
@@ -741,8 +959,11 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
     const wr_design_spec *spec = &job->spec;
     memset(out, 0, sizeof *out);
     out->designs = calloc((size_t)spec->top, sizeof *out->designs);
-    if (!out->designs)
+    out->why = calloc((size_t)job->plan->kept_count + 1, sizeof *out->why);
+    if (!out->designs || !out->why) {
+        wr_design_chunk_release(out);
         return WR_NO_MEMORY;
+    }
     int combination[WR_MAX_FIXELS];
     if (spec->candidates)
         memcpy(combination, spec->candidates[first], sizeof combination);
@@ -751,8 +972,20 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
     uint64_t n = (uint64_t)spec->shard_count, shard = (uint64_t)spec->shard_index;
     unsigned long spent = 0;
     wr_status status = WR_OK;
+    int *seen = NULL;
+    if (job->site_maps) {
+        seen = malloc((size_t)job->symmetry_count * (size_t)spec->fixel_count * sizeof *seen);
+        if (!seen) {
+            wr_design_chunk_release(out);
+            return WR_NO_MEMORY;
+        }
+    }
     for (uint64_t r = first; r < first + count; r++) {
-        if (r % n == shard) {
+        int copies = 1;
+        if (r % n == shard && seen && !representative(job, r, combination, seen, &copies)) {
+            out->counts.examined++;
+            out->counts.symmetric++;
+        } else if (r % n == shard) {
             if (wr_stop_requested(stop)) {
                 status = WR_STOPPED;
                 break;
@@ -762,14 +995,19 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
             double bar = fmax(threshold, threshold_of(out->designs, out->design_count, spec->top));
             outcome result;
             double score = 0;
-            status = score_candidate(job, combination, bar, &result, &score, &spent);
+            int why = 0;
+            status = score_candidate(job, combination, bar, &result, &score, &spent, &why);
             if (status != WR_OK)
                 break;
             out->counts.examined++;
             switch (result) {
             case OUTCOME_DEGENERATE: out->counts.degenerate++; break;
             case OUTCOME_UNPINNED: out->counts.unpinned++; break;
-            case OUTCOME_NO_SEATING_PUSH: out->counts.no_seating_push++; break;
+            case OUTCOME_NO_SEATING_PUSH:
+                out->counts.no_seating_push++;
+                out->why[why]++;
+                break;
+            case OUTCOME_SHARED_HOLE: out->counts.shared_hole++; break;
             case OUTCOME_BOUNDED: out->counts.bounded++; break;
             case OUTCOME_SCORED: {
                 wr_design d;
@@ -777,6 +1015,7 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
                 d.candidate = r;
                 memcpy(d.sites, combination, (size_t)spec->fixel_count * sizeof *combination);
                 d.score = score;
+                d.copies = copies;
                 keep(out->designs, &out->design_count, spec->top, &d);
                 break;
             }
@@ -787,6 +1026,7 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
         else if (r + 1 < first + count)
             next_combination(combination, spec->fixel_count, spec->site_count);
     }
+    free(seen);
     if (used)
         *used += spent;
     if (status != WR_OK)
@@ -804,7 +1044,11 @@ void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk)
     job->counts.degenerate += chunk->counts.degenerate;
     job->counts.unpinned += chunk->counts.unpinned;
     job->counts.no_seating_push += chunk->counts.no_seating_push;
+    job->counts.shared_hole += chunk->counts.shared_hole;
     job->counts.bounded += chunk->counts.bounded;
+    job->counts.symmetric += chunk->counts.symmetric;
+    for (int i = 0; i <= job->plan->kept_count; i++)
+        job->why[i] += chunk->why[i];
 }
 
 void wr_design_job_abandon(wr_design_job *job)
@@ -817,23 +1061,28 @@ void wr_design_job_abandon(wr_design_job *job)
 /* One design's figures but its critical mu (which the sweep job finds). */
 static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
 {
-    const wr_design_spec *spec = &job->spec;
     if (place(job, d->sites, &job->detail_fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
+    const wr_design_spec *spec = &job->spec;
     wr_fixture *fixture = &job->detail_fixture;
     wr_analysis *analysis;
     wr_status status = wr_analysis_new(fixture, &analysis);
     if (status != WR_OK)
         return status;
     wr_regions goal = {0}, both = {0}, arcs = {0};
-    status = wr_push_regions_finger(analysis, WR_SET_GOAL, &spec->finger, NULL, &goal);
+    status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     if (status == WR_OK)
-        status = wr_push_regions_finger(analysis, WR_SET_BOTH, &spec->finger, NULL, &both);
+        status = push_regions(job, analysis, WR_SET_BOTH, &both);
     if (status == WR_OK)
         status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
     bool below;
     if (status == WR_OK)
         status = wr_best_push_find(analysis, &both, -INFINITY, NULL, &d->best_push, &below);
+    if (status == WR_OK && spec->case_count > 0) {
+        status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
+                                     spec->finger.radius, NULL, &d->least_force);
+        *units += d->least_force.evaluations * (unsigned long)spec->case_count * 40;
+    }
     if (status == WR_OK) {
         d->goal_length = regions_length(fixture, &goal);
         d->both_length = regions_length(fixture, &both);
@@ -889,6 +1138,8 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
             status = wr_sweeper_new(&job->detail_fixture, WR_SET_GOAL, &range, &job->sweeper);
             if (status == WR_OK)
                 status = wr_sweep_job_push(job->sweeper, &spec->finger, &job->sweep);
+            if (status == WR_OK && job->index)
+                wr_sweep_job_use_index(job->sweep, job->index);
             continue;
         }
         bool finished = false;
@@ -927,6 +1178,13 @@ void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *
     *best = *has_best ? job->designs[0].score : 0;
 }
 
+void wr_design_job_figures_progress(const wr_design_job *job, int *done, int *total)
+{
+    bool searched = job->next >= job->candidates && job->outstanding == 0;
+    *done = searched ? job->detailing : 0;
+    *total = searched ? job->design_count : 0;
+}
+
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count)
 {
     *count = job->design_count;
@@ -942,9 +1200,22 @@ void wr_design_job_fixture(const wr_design_job *job, const wr_design *design, wr
     (void)status;
 }
 
+const uint64_t *wr_design_job_why(const wr_design_job *job, const wr_plan **plan, int *edge,
+                                  double *t)
+{
+    *plan = job->plan;
+    *edge = job->why_edge;
+    *t = job->why_t;
+    return job->why;
+}
+
 size_t wr_design_job_bytes(const wr_design_job *job)
 {
-    return sizeof *job + (size_t)job->spec.top * sizeof *job->designs;
+    return sizeof *job + (size_t)job->spec.top * sizeof *job->designs +
+           (job->index ? wr_push_index_bytes(job->index) : 0) +
+           (job->site_fixels ? (size_t)job->spec.site_count *
+                                   (sizeof *job->site_fixels + sizeof *job->site_ok)
+                             : 0);
 }
 
 void wr_design_job_free(wr_design_job *job)
@@ -954,6 +1225,12 @@ void wr_design_job_free(wr_design_job *job)
     wr_sweep_job_free(job->sweep);
     wr_sweeper_free(job->sweeper);
     wr_plan_free(job->plan);
+    wr_push_index_free(job->index);
+    free(job->site_fixels);
+    free(job->site_ok);
+    free(job->site_maps);
+    free(job->tuples);
     free(job->designs);
+    free(job->why);
     free(job);
 }

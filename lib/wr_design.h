@@ -7,6 +7,7 @@
  * from 0.  Each is judged as the fixture of the body with fixels at its
  * sites, the design's friction on every fixel:
  *
+ *   - shared hole: two of its sites lie in one hole (a pin is one fixel);
  *   - degenerate: the fixels are refused as a fixture's would be (two at
  *     one point with one normal, all within WR_FIXEL_SPREAD);
  *   - unpinned: the fixels let the seated part turn about a point with
@@ -20,6 +21,13 @@
  *       WR_OBJECTIVE_REGION   the total length of the `both` push region;
  *       WR_OBJECTIVE_GRAVITY  the longest arc of gravity tilts in G_goal, in
  *                             degrees;
+ *       WR_OBJECTIVE_FORCE    minus the least force of a frictionless push
+ *                             that does `both` under every load case
+ *                             (wr_least_force_find: smaller first); a
+ *                             candidate where no magnitude does counts as
+ *                             having no seating push.  Its goal region
+ *                             without loads is not asked first: gravity
+ *                             may seat a part no push alone does.
  *       WR_OBJECTIVE_ACCURACY minus the worst locating error (wr_locate.h)
  *                             with every locator off by +-tolerance: the
  *                             largest exact worst displacement of the
@@ -55,7 +63,9 @@
 #ifndef WR_DESIGN_H
 #define WR_DESIGN_H
 
+#include "wr_force.h"
 #include "wr_regions.h"
+#include "wr_sites.h"
 #include "wr_sweep.h"
 
 #include <stdint.h>
@@ -64,10 +74,11 @@
 extern "C" {
 #endif
 
+struct wr_symmetry;
+
 /* The best push's margin is the maximum to within this. */
 #define WR_DESIGN_TOLERANCE 1e-9
-/* At most this many candidate sites, and designs kept (`top`). */
-#define WR_DESIGN_MAX_SITES 100000
+/* At most this many designs kept (`top`); sites: wr_sites.h. */
 #define WR_DESIGN_MAX_TOP 1000
 /* The range of common friction the critical mu of a design is sought in
  * (friction.sweep's default). */
@@ -77,34 +88,12 @@ typedef enum wr_objective {
     WR_OBJECTIVE_MARGIN,
     WR_OBJECTIVE_REGION,
     WR_OBJECTIVE_GRAVITY,
+    WR_OBJECTIVE_FORCE,
     WR_OBJECTIVE_ACCURACY
 } wr_objective;
 
 /* With WR_OBJECTIVE_ACCURACY, at most this many features. */
 #define WR_DESIGN_MAX_FEATURES 64
-
-/* A candidate site: a boundary point and its unit inward normal, as a
- * fixel there would have them. */
-typedef struct wr_site {
-    double at[2];
-    double normal[2];
-} wr_site;
-
-/* The site at `at` on `body` (from wr_fixture_body_new), with `normal`
- * (NULL: the boundary's, required at a corner): checked as a fixel there
- * would be.  WR_OK, or WR_INVALID with `error` ("fixels[0].at" and the
- * like: the caller renames the field). */
-wr_status wr_site_new(const wr_fixture *body, const double at[2], const double *normal,
-                      wr_site *out, wr_error *error);
-
-/* Sites every `spacing` along every segment of every loop (a circle: the
- * whole circle), none closer than spacing / 2 to a segment's ends: on a
- * segment of length L, n = floor(L / spacing) sites, spacing apart,
- * centred.  Appended to *sites (malloc'd, *count items).  WR_OK;
- * WR_INVALID for a spacing that is not positive and finite, or that gives
- * more than WR_DESIGN_MAX_SITES sites; WR_NO_MEMORY (*sites as it was). */
-wr_status wr_sites_spaced(const wr_fixture *body, double spacing, wr_site **sites, int *count,
-                          wr_error *error);
 
 /* The best push of a set of regions (wr_push_regions_finger of
  * WR_SET_BOTH on the analysis's fixture), or none. */
@@ -143,6 +132,24 @@ typedef struct wr_design_spec {
      * combination of the sites. */
     const int (*candidates)[WR_MAX_FIXELS];
     uint64_t candidate_count;
+    /* True: every segment's push regions tested against every cone, as
+     * wr_push_regions_finger does, without the job's wr_push_index: the
+     * reference the index is checked and measured against.  The answer is
+     * the same either way, bit for bit. */
+    bool exhaustive;
+    /* The part's symmetries (wr_symmetry_find on the body and these
+     * sites); NULL or 0: none.  Candidates that a symmetry maps onto each
+     * other (their sites onto each other's, wr_symmetry_site_map) are one
+     * design: only the lowest-numbered is scored, and it says how many it
+     * stands for (wr_design.copies; counts.symmetric the others).  So is a
+     * listed candidate whose sites repeat an earlier one's. */
+    const struct wr_symmetry *symmetries;
+    int symmetry_count;
+    /* Load cases (wr_force.h), each one summed wrench of the model system;
+     * borrowed.  Required (at least one) for WR_OBJECTIVE_FORCE; with any
+     * objective, each design kept reports its least push force. */
+    const double (*loads)[3];
+    int case_count;
     /* WR_OBJECTIVE_ACCURACY: each locator off by +-tolerance (finite,
      * >= 0), and the features whose error counts (borrowed; none: the
      * pose's). */
@@ -162,6 +169,11 @@ typedef struct wr_design {
     bool has_critical;               /* false: the goal region is not empty
                                         at mu = WR_DESIGN_SWEEP_HIGH */
     double critical_mu;
+    int copies;                      /* the candidates it stands for, itself
+                                        included: its images under the
+                                        symmetries (1 without) */
+    wr_least_force least_force;      /* with load cases: the least push
+                                        doing `both` under all of them */
 } wr_design;
 
 typedef struct wr_design_counts {
@@ -169,6 +181,10 @@ typedef struct wr_design_counts {
     uint64_t degenerate;
     uint64_t unpinned;
     uint64_t no_seating_push;
+    uint64_t symmetric;              /* images of a lower-numbered candidate
+                                        under a symmetry: not scored, counted
+                                        in that one's copies */
+    uint64_t shared_hole;            /* two sites in one hole */
     uint64_t bounded;                /* ended early by the bound: below the
                                         top designs so far (depends on the
                                         order of work; not part of the answer) */
@@ -206,6 +222,7 @@ typedef struct wr_design_chunk {
     wr_design *designs;      /* at most `top`, best first (malloc'd) */
     int design_count;
     wr_design_counts counts;
+    uint64_t *why;           /* as wr_design_job_why's (malloc'd) */
 } wr_design_chunk;
 
 /* False when no candidate is left to claim (or the job failed). */
@@ -218,6 +235,12 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
 void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk);
 /* Is a chunk left to claim? */
 bool wr_design_job_claimable(const wr_design_job *job);
+/* End the search where it stands: no candidate is claimed from now on;
+ * the chunks claimed are merged as usual, then the designs kept so far get
+ * their figures (a time limit's answer).  Under the job's lock. */
+void wr_design_job_cut(wr_design_job *job);
+/* The candidates of the job's shard (examined reaches it when not cut). */
+uint64_t wr_design_job_total(const wr_design_job *job);
 void wr_design_job_abandon(wr_design_job *job);
 void wr_design_chunk_release(wr_design_chunk *chunk);
 
@@ -225,9 +248,22 @@ void wr_design_chunk_release(wr_design_chunk *chunk);
  * score so far (has_best false before any). */
 void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *total,
                             bool *has_best, double *best);
+/* The designs' figures, after the search: how many of the designs kept
+ * have them, of how many (0 of 0 while the search goes on). */
+void wr_design_job_figures_progress(const wr_design_job *job, int *done, int *total);
 /* When done: the designs, best first (at most `top`), and the counts. */
 const wr_design *wr_design_job_designs(const wr_design_job *job, int *count);
 const wr_design_counts *wr_design_job_counts(const wr_design_job *job);
+/* Why candidates have no seating push: each is asked about the push at one
+ * point, the middle of the longest edge the finger may push on (*edge, *t
+ * as wr_region's; a circle: 180 degrees), and counted under the goal cone
+ * that blocks it there: an array of (*plan)->kept_count + 1 counts, index
+ * i for the plan's kept string i (its contact states in origins[i]), the
+ * last for a push there that is in G_goal (the finger cannot push there,
+ * or the region was cut by rounding).  The counts sum to no_seating_push.
+ * Valid while the job is. */
+const uint64_t *wr_design_job_why(const wr_design_job *job, const struct wr_plan **plan,
+                                  int *edge, double *t);
 /* The fixture of a design (a shallow copy of the body, valid while the
  * job is). */
 void wr_design_job_fixture(const wr_design_job *job, const wr_design *design, wr_fixture *out);

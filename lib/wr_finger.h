@@ -1,4 +1,4 @@
-/* wr_finger.h -- where a round finger fits against an outline (issue 16).
+/* wr_finger.h -- where a round finger fits against an outline.
  *
  * A finger of radius r pushing at boundary point p, whose unit normal into
  * the material is nu, is a disc centred at c = p - r nu: it touches the

@@ -355,11 +355,11 @@ static double boundary_distance(const wr_fixture *f, const double p[2], size_t *
 static void edge_inward_normal(const wr_fixture *f, size_t i, double normal[2])
 {
     const double *a = f->vertices[i], *b = f->vertices[(i + 1) % f->vertex_count];
-    double d[2] = {b[0] - a[0], b[1] - a[1]};
-    double length = hypot(d[0], d[1]);
+    double d[2] = {b[0] - a[0], b[1] - a[1]}, u[2] = {0, 0};
+    wr_unit2(d, u); /* none (zero) for an edge of no direction */
     /* Counter-clockwise: the interior lies to the left of each edge. */
-    normal[0] = -d[1] / length * f->orientation;
-    normal[1] = d[0] / length * f->orientation;
+    normal[0] = -u[1] * f->orientation;
+    normal[1] = u[0] * f->orientation;
 }
 
 /* Is p within tolerance of a polygon vertex?  Returns its index or -1. */
@@ -425,9 +425,8 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
         }
         if (f->shape == WR_SHAPE_CIRCLE) {
             double d[2] = {f->center[0] - in->at[0], f->center[1] - in->at[1]};
-            double length = hypot(d[0], d[1]);
-            inward[0] = d[0] / length;
-            inward[1] = d[1] / length;
+            inward[0] = inward[1] = 0; /* none at the centre of a circle of radius 0 */
+            wr_unit2(d, inward);
             inward_known = true;
         } else {
             long vertex = near_vertex(f, in->at);
@@ -449,19 +448,25 @@ static bool build_fixel(wr_fixture *f, const wr_fixture_spec *spec, size_t index
         if (!check_finite2(in->normal, field, error))
             return false;
         double length = hypot(in->normal[0], in->normal[1]);
-        if (!(length > 0)) {
-            wr_error_set(error, field, "must not be the zero vector");
-            return false;
-        }
         if (fabs(length - 1) <= UNIT_LENGTH_TOLERANCE) {
             /* Already unit: taken as it is, so that a normal written out by
              * the protocol layer (canonical text) reads back to the same
              * bits; dividing by a length an ulp off 1 would move them. */
             out->normal[0] = in->normal[0] + 0.0;
             out->normal[1] = in->normal[1] + 0.0;
+        } else if (!wr_unit2(in->normal, out->normal)) {
+            wr_error_set(error, field, "must not be the zero vector");
+            return false;
         } else {
-            out->normal[0] = in->normal[0] / length + 0.0;
-            out->normal[1] = in->normal[1] / length + 0.0;
+            out->normal[0] += 0.0; /* no negative zero */
+            out->normal[1] += 0.0;
+        }
+        /* Scaled first (wr_unit2), any finite direction comes out unit:
+         * what does not cannot be stored as a normal. */
+        if (!(fabs(hypot(out->normal[0], out->normal[1]) - 1) <= UNIT_LENGTH_TOLERANCE)) {
+            wr_error_set(error, field, "(%g, %g) cannot be made a unit vector", in->normal[0],
+                         in->normal[1]);
+            return false;
         }
         /* The cosine of the angle to the inward normal: a normal within
          * TANGENT_TOLERANCE of perpendicular to it lies along the boundary
@@ -834,6 +839,8 @@ static wr_fixture *validate(const wr_fixture_spec *spec, bool body_only, wr_erro
     return f;
 }
 
+static bool check_placed_list(const wr_fixture *f, wr_error *error);
+
 static bool place_fixels(wr_fixture *f, const wr_fixture_spec *spec, wr_error *error)
 {
     f->fixel_count = (int)spec->fixel_count;
@@ -843,6 +850,14 @@ static bool place_fixels(wr_fixture *f, const wr_fixture_spec *spec, wr_error *e
         }
         fixel_wrenches(f, &f->fixels[i]);
     }
+    return check_placed_list(f, error);
+}
+
+/* The checks of the fixels as a list, once each is built: each fixel is
+ * built from its own spec alone, so these are all that differ between
+ * placing a list and placing its fixels one at a time. */
+static bool check_placed_list(const wr_fixture *f, wr_error *error)
+{
     /* Fixels spread over less than WR_FIXEL_SPREAD of the radius of
      * gyration have torque rows (r x n) / rho that differ by less than that
      * fraction: the cones' rank decisions and witnesses then rest on the
@@ -919,6 +934,20 @@ wr_status wr_fixture_place(const wr_fixture *body, const wr_fixel_spec *fixels, 
     return WR_OK;
 }
 
+wr_status wr_fixture_place_placed(const wr_fixture *body, const wr_fixel *fixels, size_t count,
+                                  wr_fixture *out, wr_error *error)
+{
+    if (count == 0 || count > WR_MAX_FIXELS) {
+        wr_error_set(error, "fixels", "from 1 to %d fixels, got %zu", WR_MAX_FIXELS, count);
+        return WR_INVALID;
+    }
+    *out = *body;
+    memset(out->fixels, 0, sizeof out->fixels);
+    out->fixel_count = (int)count;
+    memcpy(out->fixels, fixels, count * sizeof *fixels);
+    return check_placed_list(out, error) ? WR_OK : WR_INVALID;
+}
+
 void wr_fixture_free(wr_fixture *fixture)
 {
     if (!fixture)
@@ -955,6 +984,20 @@ double wr_fixture_unit_wrench(const wr_fixture *fixture, const double wrench[3],
     for (int k = 0; k < 3; k++)
         unit[k] = h[k] / length;
     return largest * scaled_largest * length;
+}
+
+double wr_fixture_unit_direction(double v[3]) { return wr_normalize3(v); }
+
+double wr_fixture_scale_back(const wr_fixture *fixture, const double wrench[3], double length,
+                             double value)
+{
+    if (isfinite(length))
+        return value * length;
+    /* The length overflowed: the wrench over its largest component has a
+     * finite one, and that component comes last. */
+    double largest = fmax(fabs(wrench[0]), fmax(fabs(wrench[1]), fabs(wrench[2])));
+    double reduced[3] = {wrench[0] / largest, wrench[1] / largest, wrench[2] / largest}, unit[3];
+    return value * wr_fixture_unit_wrench(fixture, reduced, unit) * largest;
 }
 
 void wr_fixture_unscale_wrench(const wr_fixture *fixture, const double scaled[3],

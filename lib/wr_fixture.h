@@ -190,18 +190,39 @@ wr_status wr_fixture_body_new(const wr_fixture_spec *spec, wr_fixture **out, wr_
 wr_status wr_fixture_place(const wr_fixture *body, const wr_fixel_spec *fixels, size_t count,
                            const wr_friction_spec *friction, wr_fixture *out, wr_error *error);
 
+/* wr_fixture_place of fixels each already placed alone on `body` (the
+ * fixels[0] of a wr_fixture_place of it by itself, with the friction the
+ * list would have): only the checks of the list as a whole are made (the
+ * spread, duplicates), since a fixel is built from its own spec alone.
+ * The same fixture as wr_fixture_place of their specs, bit for bit, and
+ * the same verdict.  WR_OK, or WR_INVALID with `error` set. */
+wr_status wr_fixture_place_placed(const wr_fixture *body, const wr_fixel *fixels, size_t count,
+                                  wr_fixture *out, wr_error *error);
+
 /* The unit direction, in the scaled metric, of a physical wrench, and the
  * length of its scaled form (docs/MODEL.md section 5).  Exact for any finite wrench,
  * however large or small: it divides by the largest component first.  The
  * length may be +inf for wrenches near the largest double; for the zero
  * wrench it is 0 and `unit` is zero. */
 double wr_fixture_unit_wrench(const wr_fixture *fixture, const double wrench[3], double unit[3]);
+/* `value`, a figure of the unit wrench's answer (a witness's force,
+ * acceleration or wrench component), scaled back to `wrench`, whose length
+ * wr_fixture_unit_wrench gave: value * length, and when that length is
+ * +inf, the same product made so that it overflows only where the result
+ * is beyond a double. */
+double wr_fixture_scale_back(const wr_fixture *fixture, const double wrench[3], double length,
+                             double value);
 
 /* Scale a physical wrench g = (f_x, f_y, tau) to (f_x, f_y, tau / rho).
  * Returns the length of the scaled wrench. */
 double wr_fixture_scale_wrench(const wr_fixture *fixture, const double wrench[3],
                                double scaled[3]);
 /* Inverse: a scaled wrench back to physical units. */
+/* Normalise v in place, scaled first (exactly, by a power of two) so that
+ * no finite v overflows or loses its digits; returns its former length
+ * (+inf near the largest double), 0 leaving the zero vector as it is. */
+double wr_fixture_unit_direction(double v[3]);
+
 void wr_fixture_unscale_wrench(const wr_fixture *fixture, const double scaled[3],
                                double wrench[3]);
 /* A row f of a half-space f . h <= 0 in scaled space, as a unit row in

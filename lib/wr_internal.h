@@ -47,16 +47,42 @@ static inline void wr_copy3(const double a[3], double out[3])
     out[1] = a[1];
     out[2] = a[2];
 }
-/* Normalise in place; returns the former length (0 leaves a unchanged). */
+/* Normalising scales first, by the power of two that brings the largest
+ * component into [1, 2): exact, so within the ordinary range the result is
+ * bit for bit the plain division's, and beyond it nothing overflows when
+ * squared (1.3e308) nor loses its digits (5e-324).  The rule for every
+ * vector this library or the protocol layer normalises. */
+static inline int wr_scale_exponent(double largest) { return ilogb(largest); }
+
+/* Normalise in place; returns the former length (0 leaves a unchanged; it
+ * may be +inf for vectors near the largest double, a still unit). */
 static inline double wr_normalize3(double a[3])
 {
-    double n = wr_norm3(a);
-    if (n > 0) {
-        a[0] /= n;
-        a[1] /= n;
-        a[2] /= n;
-    }
-    return n;
+    double largest = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    if (!(largest > 0) || !isfinite(largest))
+        return largest > 0 ? largest : 0;
+    int e = wr_scale_exponent(largest);
+    double s[3] = {scalbn(a[0], -e), scalbn(a[1], -e), scalbn(a[2], -e)};
+    double n = wr_norm3(s);
+    a[0] = s[0] / n;
+    a[1] = s[1] / n;
+    a[2] = s[2] / n;
+    return scalbn(n, e);
+}
+
+/* The unit vector along v (2D), scaled first as wr_normalize3; false when v
+ * is zero or not finite (it has no direction). */
+static inline bool wr_unit2(const double v[2], double out[2])
+{
+    double largest = fmax(fabs(v[0]), fabs(v[1]));
+    if (!(largest > 0) || !isfinite(largest))
+        return false;
+    int e = wr_scale_exponent(largest);
+    double x = scalbn(v[0], -e), y = scalbn(v[1], -e);
+    double n = hypot(x, y);
+    out[0] = x / n;
+    out[1] = y / n;
+    return true;
 }
 
 /* A closed convex cone {x : E x = 0, F x <= 0} in R^3. */
@@ -159,6 +185,14 @@ typedef struct wr_edge_frame {
     double half_angle, half_angle_sin; /* an arc's */
 } wr_edge_frame;
 void wr_edge_frame_of(const wr_fixture *fixture, int edge, wr_edge_frame *out);
+
+/* The closed interval [*lo, *hi] of t where the scaled wrench h0 + t h1
+ * lies in the cone's closure (*lo > *hi: nowhere): one linear condition
+ * per facet, a point per equality.  `scale` (|h0| + |h1|) sizes what
+ * counts as zero.  wr_regions.c: the push regions' lines and the force
+ * lines of wr_force.c are cut by the same rule. */
+void wr_line_in_cone(const struct wr_cone *cone, const double h0[3], const double h1[3],
+                     double scale, double *lo, double *hi);
 
 /* Is there an acceleration satisfying the constraint's acceleration rows,
  * strict rows strictly (kinematic feasibility, docs/MODEL.md section 4)? */

@@ -309,20 +309,26 @@ wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *
     *member = set->possible[index] && status == GLP_OPT;
     if (*member && witness) {
         memset(witness, 0, sizeof *witness);
-        double unit = scale > 0 ? scale : 1;
-        double q[3];
-        for (int j = 0; j < 3; j++)
-            q[j] = glp_get_col_prim(p, 1 + j) * unit;
-        witness->acceleration[0] = q[0] / f->mass;
-        witness->acceleration[1] = q[1] / f->mass;
-        witness->acceleration[2] = q[2] / (f->mass * f->gyration_radius);
+        /* The witness of the unit wrench, scaled back (as wr_classify's):
+         * overflow only ever reaches the figures beyond a double. */
+        witness->acceleration[0] = glp_get_col_prim(p, 1) / f->mass;
+        witness->acceleration[1] = glp_get_col_prim(p, 2) / f->mass;
+        witness->acceleration[2] = glp_get_col_prim(p, 3) / (f->mass * f->gyration_radius);
         for (int i = 0; i < f->fixel_count; i++) {
-            witness->force[i][0] = glp_get_col_prim(p, 4 + 2 * i) * unit;
-            witness->force[i][1] = glp_get_col_prim(p, 5 + 2 * i) * unit;
+            witness->force[i][0] = glp_get_col_prim(p, 4 + 2 * i);
+            witness->force[i][1] = glp_get_col_prim(p, 5 + 2 * i);
         }
         wr_newton_euler_wrench(f, witness->acceleration, (const double (*)[2])witness->force,
                                witness->wrench);
-        wr_witness_friction(f, &set->constraints[index], witness);
+        wr_witness_friction(f, &set->constraints[index], witness); /* ratios: before scaling */
+        for (int k = 0; scale > 0 && k < 3; k++) {
+            witness->acceleration[k] =
+                wr_fixture_scale_back(f, wrench, scale, witness->acceleration[k]);
+            witness->wrench[k] = wr_fixture_scale_back(f, wrench, scale, witness->wrench[k]);
+        }
+        for (int i = 0; scale > 0 && i < f->fixel_count; i++)
+            for (int k = 0; k < 2; k++)
+                witness->force[i][k] = wr_fixture_scale_back(f, wrench, scale, witness->force[i][k]);
     }
     return WR_OK;
 }

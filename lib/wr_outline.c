@@ -994,6 +994,62 @@ void wr_outline_boundary(const wr_outline *outline, size_t loop, size_t segment,
     }
 }
 
+double wr_outline_nearest_on_loop(const wr_outline *outline, size_t loop, const double p[2],
+                                  size_t *segment, double *t, double point[2])
+{
+    const wr_loop *l = &outline->loops[loop];
+    double best = INFINITY;
+    for (size_t j = 0; j < l->segment_count; j++) {
+        double tj, nearest[2];
+        double d = segment_distance(&l->segments[j], p, &tj, nearest);
+        if (d < best) {
+            best = d;
+            *segment = j;
+            *t = tj;
+            point[0] = nearest[0];
+            point[1] = nearest[1];
+        }
+    }
+    return best;
+}
+
+/* Is the direction at angle phi within the arc's sweep from its start? */
+static bool arc_passes(const wr_segment *s, double phi)
+{
+    double from = s->sweep > 0 ? s->start_angle : s->start_angle + s->sweep;
+    double along = fmod(phi - from, 2 * WR_PI);
+    if (along < 0)
+        along += 2 * WR_PI;
+    return along <= fabs(s->sweep);
+}
+
+double wr_outline_loop_width(const wr_outline *outline, size_t loop)
+{
+    const wr_loop *l = &outline->loops[loop];
+    double width = INFINITY;
+    for (int k = 0; k < WR_WIDTH_STEPS; k++) {
+        double phi = WR_PI * k / WR_WIDTH_STEPS, u[2] = {cos(phi), sin(phi)};
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t j = 0; j < l->segment_count; j++) {
+            const wr_segment *s = &l->segments[j];
+            double along = s->start[0] * u[0] + s->start[1] * u[1];
+            lo = fmin(lo, along);
+            hi = fmax(hi, along);
+            if (!is_arc(s))
+                continue;
+            /* An arc also reaches its circle's extremes along u where it
+             * passes them. */
+            double centre = s->center[0] * u[0] + s->center[1] * u[1];
+            if (arc_passes(s, phi))
+                hi = fmax(hi, centre + s->radius);
+            if (arc_passes(s, phi + WR_PI))
+                lo = fmin(lo, centre - s->radius);
+        }
+        width = fmin(width, hi - lo);
+    }
+    return width;
+}
+
 bool wr_outline_locate(const wr_outline *outline, const double p[2], double tolerance,
                        wr_outline_place *place)
 {

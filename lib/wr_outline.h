@@ -1,4 +1,4 @@
-/* wr_outline.h -- a part's outline as CAD writes it (issue 16): loops of
+/* wr_outline.h -- a part's outline as CAD writes it: loops of
  * straight segments and circular arcs, the first loop the outer boundary,
  * the others holes; its validation, the exact mass properties of the
  * uniform lamina it bounds, and its boundary geometry (points, normals
@@ -174,6 +174,20 @@ void wr_outline_boundary(const wr_outline *outline, size_t loop, size_t segment,
  * vertex (the nearest).  False for a non-finite p or tolerance. */
 bool wr_outline_locate(const wr_outline *outline, const double p[2], double tolerance,
                        wr_outline_place *place);
+
+/* The point of loop `loop` nearest p (the first of equals in segment
+ * order): its segment, its fraction t of that segment's length, the point,
+ * and (returned) the distance.  loop must be in range; p finite. */
+double wr_outline_nearest_on_loop(const wr_outline *outline, size_t loop, const double p[2],
+                                  size_t *segment, double *t, double point[2]);
+
+/* A loop's width: the least distance between two parallel lines that
+ * hold it between them, over WR_WIDTH_STEPS directions (every 1 degree of
+ * a half turn), arcs' bulges included.  A circle's is its diameter.  What
+ * the clients compare with a finger's diameter to push in a hole by
+ * default (docs/PROTOCOL.md, push_on). */
+#define WR_WIDTH_STEPS 180
+double wr_outline_loop_width(const wr_outline *outline, size_t loop);
 
 /* The distance from p to the nearest point of the boundary. */
 double wr_outline_distance(const wr_outline *outline, const double p[2]);

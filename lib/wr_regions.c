@@ -217,6 +217,14 @@ static span line_in_cone(const wr_cone *cone, const double h0[3], const double h
     return s;
 }
 
+void wr_line_in_cone(const wr_cone *cone, const double h0[3], const double h1[3], double scale,
+                     double *lo, double *hi)
+{
+    span s = line_in_cone(cone, h0, h1, scale);
+    *lo = s.lo;
+    *hi = s.hi;
+}
+
 static void scale_wrench(const wr_fixture *f, const double w[3], double h[3])
 {
     h[0] = w[0];
@@ -586,6 +594,10 @@ void wr_push_edge_place(const wr_fixture *f, int edge, size_t *loop, size_t *seg
 /* The regions of one edge of a polygon or an outline: exact for a
  * frictionless finger (affine on a line, trigonometric on an arc), sampled
  * with friction; less what a finger of the given radius cannot reach. */
+static bool edge_regions_blocked(const wr_fixture *f, const wr_cone **cones, int count,
+                                 const wr_finger *finger, int edge, const wr_span *items, int n,
+                                 const wr_stop *stop, bool *stopped, wr_regions *out);
+
 static bool edge_regions(const wr_fixture *f, const wr_cone **cones, int count,
                          const wr_finger *finger, int edge, const wr_stop *stop, bool *stopped,
                          wr_status *failure, wr_regions *out)
@@ -594,12 +606,11 @@ static bool edge_regions(const wr_fixture *f, const wr_cone **cones, int count,
         *stopped = true;
         return false;
     }
-    spans blocked = {0, 0, NULL, false};
+    wr_span *items = NULL;
+    int n = 0;
     if (finger->radius > 0) {
         size_t loop, segment;
         wr_push_edge_place(f, edge, &loop, &segment);
-        wr_span *items = NULL;
-        int n = 0;
         wr_status status =
             wr_finger_blocked(f->outline, loop, segment, finger->radius, stop, &items, &n);
         if (status != WR_OK) {
@@ -608,10 +619,21 @@ static bool edge_regions(const wr_fixture *f, const wr_cone **cones, int count,
             free(items);
             return false;
         }
-        for (int i = 0; i < n; i++)
-            add_span(&blocked, items[i].lo, items[i].hi);
-        free(items);
     }
+    bool ok = edge_regions_blocked(f, cones, count, finger, edge, items, n, stop, stopped, out);
+    free(items);
+    return ok;
+}
+
+/* edge_regions with the finger's blocked spans of the edge given (n
+ * items): what the finger cannot reach depends on the outline alone. */
+static bool edge_regions_blocked(const wr_fixture *f, const wr_cone **cones, int count,
+                                 const wr_finger *finger, int edge, const wr_span *items, int n,
+                                 const wr_stop *stop, bool *stopped, wr_regions *out)
+{
+    spans blocked = {0, 0, NULL, false};
+    for (int i = 0; i < n; i++)
+        add_span(&blocked, items[i].lo, items[i].hi);
     bool ok;
     if (finger->friction > 0) {
         /* Sampled regions, then each less the blocked spans. */
@@ -637,6 +659,16 @@ static bool edge_regions(const wr_fixture *f, const wr_cone **cones, int count,
     return ok;
 }
 
+bool wr_finger_pushes_on(const wr_fixture *fixture, const wr_finger *finger, int edge)
+{
+    if (!finger->push_on)
+        return true;
+    size_t loop = 0, segment;
+    if (fixture->shape == WR_SHAPE_OUTLINE)
+        wr_push_edge_place(fixture, edge, &loop, &segment);
+    return loop < finger->push_on_count && finger->push_on[loop];
+}
+
 wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger *finger,
                                int first_edge, int edge_count, const wr_stop *stop,
                                wr_regions *out)
@@ -660,7 +692,9 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
     wr_status failure = WR_NO_MEMORY; /* what a failure is unless said */
     if (finger->friction > 0)
         out->resolution = f->shape == WR_SHAPE_CIRCLE ? 360.0 / SAMPLES : 1.0 / SAMPLES;
-    if (f->shape == WR_SHAPE_CIRCLE) {
+    if (edge_count > 0 && !wr_finger_pushes_on(f, finger, 0) && f->shape != WR_SHAPE_OUTLINE) {
+        /* A circle's or a polygon's only loop, not pushed on: no region. */
+    } else if (f->shape == WR_SHAPE_CIRCLE) {
         /* A disc is convex: a finger of any radius reaches all of it. */
         if (finger->friction > 0) {
             ok = edge_count == 0 ||
@@ -674,7 +708,8 @@ wr_status wr_push_regions_part(const wr_analysis *a, wr_set set, const wr_finger
         }
     } else {
         for (int e = first_edge; e < first_edge + edge_count && ok; e++)
-            ok = edge_regions(f, cones, count, finger, e, stop, &stopped, &failure, out);
+            if (wr_finger_pushes_on(f, finger, e))
+                ok = edge_regions(f, cones, count, finger, e, stop, &stopped, &failure, out);
     }
     free(cones);
     if (!ok) {
@@ -698,7 +733,7 @@ wr_status wr_push_regions_finger(const wr_analysis *a, wr_set set, const wr_fing
 wr_status wr_push_regions(const wr_analysis *a, wr_set set, double finger_friction,
                           const wr_stop *stop, wr_regions *out)
 {
-    wr_finger finger = {finger_friction, 0};
+    wr_finger finger = {.friction = finger_friction};
     return wr_push_regions_finger(a, set, &finger, stop, out);
 }
 
@@ -774,5 +809,312 @@ wr_status wr_disturbance_margin(const wr_analysis *a, const double bias[3], wr_d
     }
     wr_normalize3(direction);
     wr_fixture_unscale_wrench(f, direction, out->worst_direction);
+    return WR_OK;
+}
+
+/* ---- the push index: edges by the wrench directions they can produce ------------- */
+
+/* A cap of the unit sphere of scaled wrench directions: every direction
+ * within `radius` (radians) of the unit `center`. */
+typedef struct cap {
+    double center[3];
+    double radius;
+    double reach;  /* sin(radius) + CAP_ROOM: what cap_against compares with */
+} cap;
+
+/* A node covers the reachable edges leaves[lo, hi) in edge order; a leaf
+ * has hi = lo + 1 and no children. */
+typedef struct index_node {
+    int lo, hi;
+    int left, right; /* node indices; -1 for a leaf */
+    cap cap;
+} index_node;
+
+struct wr_push_index {
+    const wr_fixture *body;  /* borrowed: its outline, com and rho are the index's */
+    wr_finger finger;
+    int edge_count;
+    /* Each edge's blocked spans: spans[offsets[e], offsets[e + 1]). */
+    int *offsets;
+    wr_span *spans;
+    int *leaves;             /* the reachable edges, increasing */
+    int leaf_count;
+    index_node *nodes;       /* nodes[0] the root (when leaf_count > 0) */
+    int node_count;
+};
+
+/* A cap is tested against a cone only with this much room (radians, about):
+ * far above the 1e-12 that the exact tests of an edge allow for rounding,
+ * so that a cone the cap clears, or that holds the cap, contributes to the
+ * exact answer exactly what the test says (nothing, or everything). */
+#define CAP_ROOM 1e-7
+
+static double angle3(const double a[3], const double b[3])
+{
+    double cross[3];
+    wr_cross3(a, b, cross);
+    return atan2(wr_norm3(cross), wr_dot3(a, b));
+}
+
+/* The cap of the shorter great-circle arc from direction u to v (neither
+ * zero, not opposite). */
+static cap arc_cap(const double u[3], const double v[3])
+{
+    double a[3], b[3];
+    wr_copy3(u, a);
+    wr_copy3(v, b);
+    wr_normalize3(a);
+    wr_normalize3(b);
+    cap c;
+    for (int k = 0; k < 3; k++)
+        c.center[k] = a[k] + b[k];
+    if (!(wr_norm3(c.center) > 1e-6)) {
+        wr_copy3(a, c.center);
+        c.radius = WR_PI;
+        return c;
+    }
+    wr_normalize3(c.center);
+    c.radius = fmax(angle3(c.center, a), angle3(c.center, b)) + 1e-12;
+    return c;
+}
+
+/* A cap holding both. */
+static cap cap_union(const cap *x, const cap *y)
+{
+    cap c;
+    for (int k = 0; k < 3; k++)
+        c.center[k] = x->center[k] + y->center[k];
+    if (!(wr_norm3(c.center) > 1e-6)) {
+        wr_copy3(x->center, c.center);
+        c.radius = WR_PI;
+        return c;
+    }
+    wr_normalize3(c.center);
+    c.radius = fmin(WR_PI, fmax(angle3(c.center, x->center) + x->radius,
+                                angle3(c.center, y->center) + y->radius) + 1e-12);
+    return c;
+}
+
+/* The cap of every push direction along an edge.  A line's scaled push
+ * wrench c1 + t c2 is never zero (its force is a unit normal), so its
+ * directions are the shorter arc between its ends; an arc's,
+ * c1 sin(phi) / s + c2 cos(phi), is an ellipse about the origin, whose
+ * direction turns monotonically, less than half a turn from phi = -a to 0
+ * and from 0 to a (a < pi). */
+static cap edge_cap(const wr_fixture *f, int edge)
+{
+    wr_edge_frame frame;
+    wr_edge_frame_of(f, edge, &frame);
+    if (frame.kind == WR_EDGE_LINE) {
+        double end[3];
+        for (int k = 0; k < 3; k++)
+            end[k] = frame.c1[k] + frame.c2[k];
+        return arc_cap(frame.c1, end);
+    }
+    double c = cos(frame.half_angle), from[3], to[3];
+    for (int k = 0; k < 3; k++) {
+        from[k] = -frame.c1[k] + c * frame.c2[k];
+        to[k] = frame.c1[k] + c * frame.c2[k];
+    }
+    cap first = arc_cap(from, frame.c2), second = arc_cap(frame.c2, to);
+    return cap_union(&first, &second);
+}
+
+/* Is the cap inside the cone's closure (1), clear of it (-1), or neither
+ * (0), each with CAP_ROOM to spare?  Unit facet rows f: f . x <= 0 over the
+ * cap when the angle from f to the centre is at least pi/2 + radius, and
+ * f . x > 0 over it when at most pi/2 - radius. */
+static int cap_against(const cap *c, const wr_cone *cone)
+{
+    if (c->radius >= WR_PI / 2 - 2 * CAP_ROOM)
+        return 0;
+    double edge = c->reach;
+    bool inside = cone->equality_count == 0;
+    for (int i = 0; i < cone->facet_count; i++) {
+        double d = wr_dot3(cone->facets[i], c->center);
+        if (d >= edge)
+            return -1;
+        if (d > -edge)
+            inside = false;
+    }
+    for (int i = 0; i < cone->equality_count; i++)
+        if (fabs(wr_dot3(cone->equalities[i], c->center)) >= edge)
+            return -1;
+    return inside ? 1 : 0;
+}
+
+static int index_build(wr_push_index *x, const cap *leaf_caps, int lo, int hi)
+{
+    int n = x->node_count++;
+    index_node *node = &x->nodes[n];
+    node->lo = lo;
+    node->hi = hi;
+    if (hi - lo == 1) {
+        node->left = node->right = -1;
+        node->cap = leaf_caps[lo];
+        node->cap.reach = sin(node->cap.radius) + CAP_ROOM;
+        return n;
+    }
+    int mid = lo + (hi - lo) / 2;
+    int left = index_build(x, leaf_caps, lo, mid);
+    int right = index_build(x, leaf_caps, mid, hi);
+    /* x->nodes does not move: it was sized for every node. */
+    x->nodes[n].left = left;
+    x->nodes[n].right = right;
+    x->nodes[n].cap = cap_union(&x->nodes[left].cap, &x->nodes[right].cap);
+    x->nodes[n].cap.reach = sin(x->nodes[n].cap.radius) + CAP_ROOM;
+    return n;
+}
+
+wr_status wr_push_index_new(const wr_fixture *body, const wr_finger *finger,
+                            wr_push_index **out)
+{
+    *out = NULL;
+    if (!(finger->friction >= 0) || !isfinite(finger->friction) || !(finger->radius >= 0) ||
+        !isfinite(finger->radius))
+        return WR_INVALID;
+    if (body->shape != WR_SHAPE_OUTLINE && body->shape != WR_SHAPE_POLYGON)
+        return WR_NO_SHAPE;
+    wr_push_index *x = calloc(1, sizeof *x);
+    if (!x)
+        return WR_NO_MEMORY;
+    x->body = body;
+    x->finger = *finger;
+    x->edge_count = wr_push_edge_count(body);
+    int edges = x->edge_count;
+    x->offsets = calloc((size_t)edges + 1, sizeof *x->offsets);
+    x->leaves = malloc((size_t)edges * sizeof *x->leaves);
+    x->nodes = malloc((size_t)(2 * edges) * sizeof *x->nodes);
+    cap *leaf_caps = malloc((size_t)edges * sizeof *leaf_caps);
+    wr_status status = x->offsets && x->leaves && x->nodes && leaf_caps ? WR_OK : WR_NO_MEMORY;
+    int span_count = 0;
+    for (int e = 0; e < edges && status == WR_OK; e++) {
+        if (finger->radius > 0) {
+            size_t loop, segment;
+            wr_push_edge_place(body, e, &loop, &segment);
+            status = wr_finger_blocked(body->outline, loop, segment, finger->radius, NULL,
+                                       &x->spans, &span_count);
+        }
+        x->offsets[e + 1] = span_count;
+        if (status != WR_OK)
+            break;
+        /* An edge the finger reaches nowhere has no region whatever the
+         * cones: the exact answer is the complement of the spans excluded,
+         * which only more spans can shrink. */
+        spans blocked = {0, 0, NULL, false};
+        for (int i = x->offsets[e]; i < span_count; i++)
+            add_span(&blocked, x->spans[i].lo, x->spans[i].hi);
+        wr_regions reach = {0};
+        if (!blocked.failed && complement(&blocked, 0, 1, e, &reach)) {
+            /* An edge not pushed on (push_on) has no region either. */
+            if (reach.count > 0 && wr_finger_pushes_on(body, finger, e)) {
+                leaf_caps[x->leaf_count] = edge_cap(body, e);
+                x->leaves[x->leaf_count++] = e;
+            }
+        } else {
+            status = WR_NO_MEMORY;
+        }
+        free(blocked.items);
+        wr_regions_release(&reach);
+    }
+    /* Never NULL, so that an edge's spans are always at spans + offset. */
+    if (status == WR_OK && !x->spans && !(x->spans = malloc(sizeof *x->spans)))
+        status = WR_NO_MEMORY;
+    if (status == WR_OK && x->leaf_count > 0)
+        index_build(x, leaf_caps, 0, x->leaf_count);
+    free(leaf_caps);
+    if (status != WR_OK) {
+        wr_push_index_free(x);
+        return status;
+    }
+    *out = x;
+    return WR_OK;
+}
+
+void wr_push_index_free(wr_push_index *index)
+{
+    if (!index)
+        return;
+    free(index->offsets);
+    free(index->spans);
+    free(index->leaves);
+    free(index->nodes);
+    free(index);
+}
+
+size_t wr_push_index_bytes(const wr_push_index *index)
+{
+    return sizeof *index + (size_t)(index->edge_count + 1) * sizeof *index->offsets +
+           (size_t)index->offsets[index->edge_count] * sizeof *index->spans +
+           (size_t)index->edge_count * (sizeof *index->leaves + 2 * sizeof *index->nodes);
+}
+
+void wr_push_index_blocked(const wr_push_index *index, int edge, const wr_span **spans,
+                           int *count)
+{
+    assert(edge >= 0 && edge < index->edge_count);
+    *spans = index->spans + index->offsets[edge];
+    *count = index->offsets[edge + 1] - index->offsets[edge];
+}
+
+/* The regions of the node's edges, in edge order, against the cones left
+ * (count of them; room holds what the node's descendants need). */
+static bool index_visit(const wr_push_index *x, int n, const wr_fixture *f, const wr_cone **cones,
+                        int count, const wr_cone **room, const wr_stop *stop, bool *stopped,
+                        wr_regions *out)
+{
+    const index_node *node = &x->nodes[n];
+    int kept = 0;
+    for (int i = 0; i < count; i++) {
+        if (cones[i]->empty)
+            continue;
+        int where = cap_against(&node->cap, cones[i]);
+        if (where > 0)
+            return true; /* every direction of every edge here is excluded */
+        if (where == 0)
+            room[kept++] = cones[i];
+    }
+    if (node->left < 0) {
+        if (wr_stop_requested(stop)) {
+            *stopped = true;
+            return false;
+        }
+        int e = x->leaves[node->lo];
+        return edge_regions_blocked(f, room, kept, &x->finger, e, x->spans + x->offsets[e],
+                                    x->offsets[e + 1] - x->offsets[e], stop, stopped, out);
+    }
+    return index_visit(x, node->left, f, room, kept, room + kept, stop, stopped, out) &&
+           index_visit(x, node->right, f, room, kept, room + kept, stop, stopped, out);
+}
+
+wr_status wr_push_regions_indexed(const wr_analysis *a, wr_set set, const wr_push_index *index,
+                                  const wr_stop *stop, wr_regions *out)
+{
+    memset(out, 0, sizeof *out);
+    const wr_fixture *f = a->fixture;
+    /* The index describes the body the fixture was placed on. */
+    assert(f->outline == index->body->outline && f->com[0] == index->body->com[0] &&
+           f->com[1] == index->body->com[1] &&
+           f->gyration_radius == index->body->gyration_radius);
+    if (index->finger.friction > 0)
+        return wr_push_regions_finger(a, set, &index->finger, stop, out);
+    const wr_cone **cones;
+    int count = set_cones(a, set, &cones);
+    if (count < 0)
+        return WR_NO_MEMORY;
+    /* Each level of the tree keeps at most the cones of the one above. */
+    int depth = 2;
+    for (int n = index->leaf_count; n > 1; n = (n + 1) / 2)
+        depth++;
+    const wr_cone **room = malloc((size_t)(depth * (count + 1)) * sizeof *room);
+    bool stopped = false, ok = room != NULL;
+    if (ok && index->leaf_count > 0)
+        ok = index_visit(index, 0, f, cones, count, room, stop, &stopped, out);
+    free(room);
+    free(cones);
+    if (!ok) {
+        wr_regions_release(out);
+        return stopped ? WR_STOPPED : WR_NO_MEMORY;
+    }
     return WR_OK;
 }

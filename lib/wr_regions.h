@@ -20,6 +20,7 @@
 #define WR_REGIONS_H
 
 #include "wr_classify.h"
+#include "wr_finger.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -65,7 +66,16 @@ wr_status wr_push_regions(const wr_analysis *analysis, wr_set set, double finger
 typedef struct wr_finger {
     double friction;
     double radius;
+    /* The loops it may push on (push_on): push_on[l] for loop l of an
+     * outline, push_on_count of them (a loop past them: not pushed on).
+     * NULL: every loop.  Borrowed.  A polygon's and a circle's boundary is
+     * loop 0.  A loop not pushed on has no push region at all. */
+    const bool *push_on;
+    size_t push_on_count;
 } wr_finger;
+
+/* May `finger` push on edge `edge` of the fixture (its loop in push_on)? */
+bool wr_finger_pushes_on(const wr_fixture *fixture, const wr_finger *finger, int edge);
 
 /* wr_push_regions with a finger of any size: WR_INVALID also for a
  * negative or infinite radius. */
@@ -81,6 +91,46 @@ wr_status wr_push_regions_finger(const wr_analysis *analysis, wr_set set, const 
 wr_status wr_push_regions_part(const wr_analysis *analysis, wr_set set, const wr_finger *finger,
                                int first_edge, int edge_count, const wr_stop *stop,
                                wr_regions *regions);
+/* An index of an outline's edges by the push directions they can produce,
+ * for asking the push regions of many fixtures placed on one body
+ * (fixture.design): the answer is wr_push_regions_finger's, bit for bit,
+ * at a cost that grows with the edges near the excluded cones' boundaries
+ * rather than with every edge.
+ *
+ * Each edge's unit scaled push wrenches lie in a cap of the sphere (a line's
+ * between its ends' directions, an arc's on an ellipse about the origin);
+ * a balanced tree over the edges in order holds caps of caps.  Against one
+ * fixture's cones, a node whose cap lies inside a cone (with room to spare)
+ * has no region, a cone the cap clears is dropped for the node's edges, and
+ * a leaf is solved exactly against the cones left: a cone dropped or
+ * holding the cap changes nothing in the exact answer, since it is decided
+ * with far more room than the exact test's rounding allowance.  The
+ * finger's blocked spans depend on the outline alone and are found once;
+ * edges the finger reaches nowhere, or may not push on (push_on), are
+ * left out.  A finger with friction is
+ * sampled, not indexed: its regions are wr_push_regions_finger's own.
+ *
+ * Built from a body of outline or polygon shape (wr_fixture_body_new) and
+ * the finger; the body must outlive the index, and every fixture the index
+ * is used with must be placed on it (same outline, centre of mass and
+ * radius of gyration: asserted).  Read-only once built: any number of
+ * threads may use one index at once.  WR_OK; WR_INVALID for a finger out of
+ * range; WR_NO_SHAPE for another shape; WR_NO_MEMORY. */
+typedef struct wr_push_index wr_push_index;
+wr_status wr_push_index_new(const wr_fixture *body, const wr_finger *finger,
+                            wr_push_index **out);
+void wr_push_index_free(wr_push_index *index);
+size_t wr_push_index_bytes(const wr_push_index *index);
+/* The finger's blocked spans of one edge (wr_finger_blocked's, found when
+ * the index was built): *count of them at *spans, owned by the index. */
+void wr_push_index_blocked(const wr_push_index *index, int edge, const wr_span **spans,
+                           int *count);
+/* wr_push_regions_finger(a, set, index's finger, stop, regions) by the
+ * index.  WR_OK; WR_NO_MEMORY; WR_STOPPED (`regions` empty unless WR_OK). */
+wr_status wr_push_regions_indexed(const wr_analysis *analysis, wr_set set,
+                                  const wr_push_index *index, const wr_stop *stop,
+                                  wr_regions *regions);
+
 /* The edges of the outline: a polygon's sides, 1 for a circle, an
  * outline's segments over all its loops, 0 without a shape. */
 int wr_push_edge_count(const wr_fixture *fixture);

@@ -626,6 +626,7 @@ struct wr_sweep_job {
     what what;
     double wrench[3];          /* WHAT_WRENCH: physical */
     wr_finger finger;          /* WHAT_PUSH */
+    const wr_push_index *push_index; /* WHAT_PUSH: NULL, or the regions' index */
     const wr_stop *stop;       /* of the current run */
     phase phase;
     /* PHASE_ROOTS: the edge (gravity: one circle), its frame once set up
@@ -666,7 +667,11 @@ static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
     } else {
         wr_regions regions;
         if (job->what == WHAT_PUSH)
-            *status = wr_push_regions_finger(analysis, s->set, &job->finger, job->stop, &regions);
+            *status = job->push_index
+                          ? wr_push_regions_indexed(analysis, s->set, job->push_index, job->stop,
+                                                    &regions)
+                          : wr_push_regions_finger(analysis, s->set, &job->finger, job->stop,
+                                                   &regions);
         else
             *status = wr_gravity_sweep(analysis, s->set, &regions);
         for (int i = 0; *status == WR_OK && i < regions.count; i++)
@@ -716,8 +721,19 @@ static wr_status edge_begin(wr_sweep_job *job)
             wr_push_edge_place(f, e, &loop, &segment);
             wr_span *spans = NULL;
             int count = 0;
-            wr_status status = wr_finger_blocked(f->outline, loop, segment, job->finger.radius,
-                                                 job->stop, &spans, &count);
+            wr_status status = WR_OK;
+            if (job->push_index) {
+                const wr_span *found;
+                wr_push_index_blocked(job->push_index, e, &found, &count);
+                spans = malloc((size_t)(count > 0 ? count : 1) * sizeof *spans);
+                if (spans && count > 0)
+                    memcpy(spans, found, (size_t)count * sizeof *spans);
+                if (!spans)
+                    status = WR_NO_MEMORY;
+            } else {
+                status = wr_finger_blocked(f->outline, loop, segment, job->finger.radius,
+                                           job->stop, &spans, &count);
+            }
             for (int i = 0; status == WR_OK && i < count; i++) {
                 const double ts[2] = {spans[i].lo, spans[i].hi};
                 for (int m = 0; m < 2; m++) {
@@ -935,6 +951,10 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
             fixed_roots(s, h, &job->roots);
             *spent += (unsigned long)s->plane_count * 4 + 1;
             job->edge = job->edge_count;
+        } else if (job->edge < job->edge_count &&
+                   !wr_finger_pushes_on(s->fixture, &job->finger, job->edge)) {
+            /* Not pushed on: no region there, nothing changes there. */
+            job->edge++;
         } else if (job->edge < job->edge_count) {
             if (job->row < 0) {
                 status = edge_begin(job);
@@ -1082,6 +1102,12 @@ wr_status wr_sweep_job_push(const wr_sweeper *s, const wr_finger *finger, wr_swe
     }
     *out = job;
     return WR_OK;
+}
+
+void wr_sweep_job_use_index(wr_sweep_job *job, const wr_push_index *index)
+{
+    assert(job->what == WHAT_PUSH);
+    job->push_index = index;
 }
 
 wr_status wr_sweep_job_gravity(const wr_sweeper *s, wr_sweep_job **out)

@@ -119,6 +119,11 @@ wr_status wr_sweep_job_wrench(const wr_sweeper *sweeper, const double wrench[3],
                               wr_sweep_job **out);
 wr_status wr_sweep_job_push(const wr_sweeper *sweeper, const wr_finger *finger,
                             wr_sweep_job **out);
+/* A push job's regions at each coefficient asked through `index` (built
+ * for the swept fixture's body and the job's finger; wr_regions.h), and
+ * the finger's blocked spans taken from it: the same answer, bit for bit.
+ * The index must outlive the job. */
+void wr_sweep_job_use_index(wr_sweep_job *job, const wr_push_index *index);
 wr_status wr_sweep_job_gravity(const wr_sweeper *sweeper, wr_sweep_job **out);
 wr_status wr_sweep_job_run(wr_sweep_job *job, unsigned long budget, unsigned long *used,
                            const wr_stop *stop, bool *done);

@@ -27,7 +27,9 @@
 #include "wr_classify.h"
 #include "wr_cone.h"
 #include "wr_design.h"
+#include "wr_sites.h"
 #include "wr_finger.h"
+#include "wr_force.h"
 #include "wr_lattice.h"
 #include "wr_locate.h"
 #include "wr_fixture.h"
@@ -37,6 +39,7 @@
 #include "wr_regions.h"
 #include "wr_status.h"
 #include "wr_sweep.h"
+#include "wr_symmetry.h"
 
 #ifdef __cplusplus
 extern "C" {

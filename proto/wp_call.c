@@ -1,9 +1,11 @@
 /* wp_call.c -- what a method's call offers it (wp_method.h): its fixture,
  * acquired through the host into the envelope's hold, its id, and whether
- * it may send notifications. */
+ * it may send notifications; and the release of a host's listing
+ * (wp_host.h). */
 #include "wp_method.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 
 /* params.fixture, held for the call: a stored id, or an inline fixture
  * object (validated, then cached under its id). */
@@ -15,6 +17,7 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
     const wp_host *host = call->host;
     wp_error *error = call->error;
     const cJSON *value = cJSON_GetObjectItemCaseSensitive(call->params, "fixture");
+    wp_host_failure failure = {WP_HOST_OK, ""};
     bool ok;
     if (cJSON_IsString(value)) {
         if (!wp_fixture_id_valid(value->valuestring)) {
@@ -22,19 +25,19 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
                          "not a fixture id (32 hexadecimal digits) nor a fixture object");
             return NULL;
         }
-        ok = host->fixture_use(host->self, value->valuestring, &hold->use, error);
+        ok = host->fixture_use(host->self, value->valuestring, &hold->use, &failure);
     } else if (cJSON_IsObject(value)) {
         wp_fixture_doc doc;
         if (!wp_fixture_read(value, "params.fixture", &doc, error))
             return NULL;
-        ok = host->fixture_adopt(host->self, &doc, false, &hold->use, error);
+        ok = host->fixture_adopt(host->self, &doc, false, &hold->use, &failure);
     } else {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
                      "must be a fixture id or a fixture object, not %s", wp_type_name(value));
         return NULL;
     }
-    if (!ok && !error->field[0])
-        snprintf(error->field, sizeof error->field, "params.fixture");
+    if (!ok)
+        wp_error_host(error, &failure, "params.fixture");
     hold->holding = ok;
     return ok ? &hold->use : NULL;
 }
@@ -48,3 +51,12 @@ void wp_call_open_result(wp_call *call, wp_buffer *out)
 const char *wp_call_id_text(const wp_call *call) { return call->id_text; }
 
 bool wp_call_may_notify(const wp_call *call) { return call->may_notify; }
+
+void wp_fixture_listing_release(wp_fixture_listing *listing)
+{
+    for (size_t i = 0; i < listing->count; i++)
+        free(listing->entries[i].name);
+    free(listing->entries);
+    listing->entries = NULL;
+    listing->count = 0;
+}

@@ -1,5 +1,7 @@
 /* wp_error.c -- errors that name the field at fault: setting them, the
- * one mapping of lib statuses to JSON-RPC codes, field paths, type names. */
+ * one mapping of lib statuses and of host statuses to JSON-RPC codes, field
+ * paths, type names. */
+#include "wp_host.h"
 #include "wp_json.h"
 
 #include <stdarg.h>
@@ -40,6 +42,19 @@ void wp_error_status(wp_error *error, wr_status status, const char *field, const
     va_end(args);
 }
 
+void wp_error_host(wp_error *error, const wp_host_failure *failure, const char *field)
+{
+    static const int CODES[] = {
+        [WP_HOST_OK] = WP_INTERNAL,           [WP_HOST_NO_MEMORY] = WP_INTERNAL,
+        [WP_HOST_NO_FIXTURE] = WP_NO_FIXTURE, [WP_HOST_STORAGE] = WP_STORAGE,
+        [WP_HOST_LIMIT] = WP_LIMIT,           [WP_HOST_UNSUPPORTED] = WP_NO_METHOD,
+    };
+    const char *at = failure->status == WP_HOST_LIMIT         ? "params.fixture"
+                     : failure->status == WP_HOST_UNSUPPORTED ? "method"
+                                                               : field;
+    wp_error_set(error, CODES[failure->status], at, "%s", failure->reason);
+}
+
 void wp_path_key(char out[WP_FIELD_MAX], const char *prefix, const char *key)
 {
     if (!prefix || !*prefix)
@@ -71,3 +86,4 @@ const char *wp_type_name(const cJSON *value)
         return "an object";
     return "an unknown value";
 }
+

@@ -543,6 +543,12 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     const char *name = NULL;
     char field[WP_FIELD_MAX];
     bool ok = wp_member_string(json, path, "name", false, &name, error);
+    if (ok && name && strlen(name) > WP_NAME_MAX) {
+        wp_path_key(field, path, "name");
+        wp_error_set(error, WP_INVALID_PARAMS, field, "is %zu bytes long; at most %d", strlen(name),
+                     WP_NAME_MAX);
+        ok = false;
+    }
     if (ok) {
         const cJSON *body = cJSON_GetObjectItemCaseSensitive(json, "body");
         wp_path_key(field, path, "body");

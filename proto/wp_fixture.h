@@ -10,6 +10,10 @@ extern "C" {
 #endif
 
 #define WP_ID_LENGTH 32 /* hex digits of a fixture id */
+/* Most bytes (UTF-8) of a fixture's name: a name is a label for people and
+ * listings; without a bound, names alone could fill the store's memory
+ * and a listing's answer. */
+#define WP_NAME_MAX 1024
 
 /* A fixture read from JSON: validated, with its content id and canonical
  * text.  Owns everything it points to. */

@@ -12,6 +12,23 @@ extern "C" {
 #endif
 
 
+/* What a host's function reports when it fails: data, in the host's own
+ * words, never a JSON-RPC code.  proto maps it to a code and a field, in
+ * one place (wp_error_host, next to wp_error_status in wp_error.c). */
+typedef enum wp_host_status {
+    WP_HOST_OK = 0,
+    WP_HOST_NO_MEMORY,     /* out of memory (deriving the cones, say) */
+    WP_HOST_NO_FIXTURE,    /* no stored fixture has the id; or no store at all */
+    WP_HOST_STORAGE,       /* the state directory failed; the reason says how */
+    WP_HOST_LIMIT,         /* --max-fixtures fixtures are stored already */
+    WP_HOST_UNSUPPORTED    /* the host does not serve the method (no daemon) */
+} wp_host_status;
+
+typedef struct wp_host_failure {
+    wp_host_status status;
+    char reason[256];      /* a sentence for a person */
+} wp_host_failure;
+
 /* A fixture held for the length of one request. */
 typedef struct wp_fixture_use {
     const char *id;
@@ -56,27 +73,37 @@ typedef struct wp_host {
      * `store`, else only cached under its id (an inline fixture).  Takes
      * the doc's contents whatever the outcome. */
     bool (*fixture_adopt)(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
-                          wp_error *error);
-    /* Hold the stored fixture `id`; WP_NO_FIXTURE when there is none. */
-    bool (*fixture_use)(void *self, const char *id, wp_fixture_use *use, wp_error *error);
+                          wp_host_failure *failure);
+    /* Hold the stored fixture `id`; WP_HOST_NO_FIXTURE when there is none. */
+    bool (*fixture_use)(void *self, const char *id, wp_fixture_use *use,
+                        wp_host_failure *failure);
     /* Hold the stored fixture `id` only if its derived data is ready (using
      * it then costs no derivation): its number of cones (goal + strong), or
      * -1 with nothing held.  May be NULL: never ready. */
     int (*fixture_use_ready)(void *self, const char *id, wp_fixture_use *use);
     void (*fixture_release)(void *self, wp_fixture_use *use);
-    /* Forget the stored fixture `id` (and its file); WP_NO_FIXTURE, WP_STORAGE. */
-    bool (*fixture_delete)(void *self, const char *id, wp_error *error);
+    /* Forget the stored fixture `id` (and its file); WP_HOST_NO_FIXTURE,
+     * WP_HOST_STORAGE. */
+    bool (*fixture_delete)(void *self, const char *id, wp_host_failure *failure);
     /* The stored fixtures, and the server's state. */
-    bool (*fixture_list)(void *self, wp_fixture_listing *listing, wp_error *error);
-    bool (*state)(void *self, wp_server_state *state, wp_error *error);
-    /* This thread's warm LP sets for a fixture in use. */
-    bool (*lp_sets)(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
-                    wp_error *error);
+    bool (*fixture_list)(void *self, wp_fixture_listing *listing, wp_host_failure *failure);
+    bool (*state)(void *self, wp_server_state *state, wp_host_failure *failure);
+    /* This thread's warm LP sets for a fixture in use: WR_OK, or why not. */
+    wr_status (*lp_sets)(void *self, wp_fixture_use *use, wr_lp_set **goal,
+                         wr_lp_set **strong);
     /* Polled by long work between bounded units (wrenches, edges): set by
      * the host to the request's own stop before each piece of work, so that
      * work for a client that hung up ends.  NULL: never stops. */
     const wr_stop *stop;
 } wp_host;
+
+/* The error of a host function that failed, the one place host statuses
+ * become JSON-RPC codes (wp_error.c): WP_HOST_NO_MEMORY is WP_INTERNAL,
+ * NO_FIXTURE WP_NO_FIXTURE, STORAGE WP_STORAGE, each at `field` (the
+ * parameter that named the fixture, or ""); LIMIT is WP_LIMIT at
+ * params.fixture (what a put would add); UNSUPPORTED is WP_NO_METHOD at
+ * "method".  The reason is the host's. */
+void wp_error_host(wp_error *error, const wp_host_failure *failure, const char *field);
 
 #ifdef __cplusplus
 }

@@ -144,6 +144,11 @@ wp_json_shape wp_json_scan(const char *text, size_t length, int limit);
  * found) or the text is not such an object. */
 bool wp_json_member(const char *text, size_t length, size_t object, const char *key,
                     size_t *start, size_t *end);
+/* Where the JSON value at i (white space before it skipped by the caller)
+ * ends, and where white space from i ends; for a text wp_json_scan passed
+ * and cJSON read. */
+size_t wp_json_skip_value(const char *text, size_t i, size_t length);
+size_t wp_json_skip_space(const char *text, size_t i, size_t length);
 /* The same, with only where the value starts: its end is not looked for
  * (a member holding megabytes is not read twice). */
 bool wp_json_member_start(const char *text, size_t length, size_t object, const char *key,

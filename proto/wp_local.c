@@ -2,6 +2,7 @@
  * validated, analysed, used and freed; nothing is kept between requests. */
 #include "wp_local.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -17,29 +18,33 @@ typedef struct held {
     wr_lp_set *goal, *strong;
 } held;
 
-static bool no_store(wp_error *error)
+static bool fail(wp_host_failure *failure, wp_host_status status, const char *reason)
 {
-    wp_error_set(error, WP_NO_FIXTURE, "",
-                 "there are no stored fixtures in process: give the fixture inline, or ask "
-                 "the daemon");
+    failure->status = status;
+    snprintf(failure->reason, sizeof failure->reason, "%s", reason);
     return false;
 }
 
+static bool no_store(wp_host_failure *failure)
+{
+    return fail(failure, WP_HOST_NO_FIXTURE,
+                "there are no stored fixtures in process: give the fixture inline, or ask "
+                "the daemon");
+}
+
 static bool local_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
-                        wp_error *error)
+                        wp_host_failure *failure)
 {
     (void)self;
     if (store) {
         wp_fixture_doc_release(doc);
-        wp_error_set(error, WP_STORAGE, "", "storing fixtures needs the daemon");
-        return false;
+        return fail(failure, WP_HOST_STORAGE, "storing fixtures needs the daemon");
     }
     held *h = calloc(1, sizeof *h);
     if (!h || wr_analysis_new(doc->fixture, &h->analysis) != WR_OK) {
         free(h);
         wp_fixture_doc_release(doc);
-        wp_error_set(error, WP_INTERNAL, "", "out of memory");
-        return false;
+        return fail(failure, WP_HOST_NO_MEMORY, "out of memory");
     }
     wp_fixture_doc_move(&h->doc, doc);
     /* The analysis borrows the fixture: both live in `h` until release. */
@@ -48,12 +53,13 @@ static bool local_adopt(void *self, wp_fixture_doc *doc, bool store, wp_fixture_
     return true;
 }
 
-static bool local_use(void *self, const char *id, wp_fixture_use *use, wp_error *error)
+static bool local_use(void *self, const char *id, wp_fixture_use *use,
+                      wp_host_failure *failure)
 {
     (void)self;
     (void)id;
     (void)use;
-    return no_store(error);
+    return no_store(failure);
 }
 
 static void local_release(void *self, wp_fixture_use *use)
@@ -68,42 +74,39 @@ static void local_release(void *self, wp_fixture_use *use)
     memset(use, 0, sizeof *use);
 }
 
-static bool local_delete(void *self, const char *id, wp_error *error)
+static bool local_delete(void *self, const char *id, wp_host_failure *failure)
 {
     (void)self;
     (void)id;
-    return no_store(error);
+    return no_store(failure);
 }
 
-static bool local_list(void *self, wp_fixture_listing *listing, wp_error *error)
+static bool local_list(void *self, wp_fixture_listing *listing, wp_host_failure *failure)
 {
     (void)self;
     (void)listing;
-    return no_store(error);
+    return no_store(failure);
 }
 
-static bool local_state(void *self, wp_server_state *state, wp_error *error)
+static bool local_state(void *self, wp_server_state *state, wp_host_failure *failure)
 {
     (void)self;
     (void)state;
-    wp_error_set(error, WP_NO_METHOD, "method", "server.status needs the daemon");
-    return false;
+    return fail(failure, WP_HOST_UNSUPPORTED, "server.status needs the daemon");
 }
 
-static bool local_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal, wr_lp_set **strong,
-                          wp_error *error)
+static wr_status local_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal,
+                               wr_lp_set **strong)
 {
     wp_local *local = self;
     held *h = use->handle[0];
     wr_status status =
         h->goal ? WR_OK : wr_analysis_lp_sets(h->analysis, local->solver, &h->goal, &h->strong);
-    if (status != WR_OK) {
-        wp_error_status(error, status, "", "%s", wr_strerror(status));
-        return false;
-    }
+    if (status != WR_OK)
+        return status;
     *goal = h->goal;
     *strong = h->strong;
-    return true;
+    return WR_OK;
 }
 
 wp_local *wp_local_new(void)

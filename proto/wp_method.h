@@ -65,12 +65,10 @@ typedef struct wp_streamer {
      * whole notification lines (progress) and then opens it with
      * wp_call_open_result before its result's text. */
     bool opens_result;
-    /* Optional, both or neither: work that other threads may do while a
-     * step runs.  `parallel`: is some to be had now?  `work`: do a bounded
-     * piece of it (false when there was none, or it failed).  A step that
-     * begins while `parallel` is true must not end the stream (return
-     * WP_STEP_DONE or FAILED), since `work` may still be running in
-     * another thread until that step returns. */
+    /* Optional, both or neither: chunks that helpers may make while a step
+     * runs, by the engine (wp_chunks.h, which states and enforces the rule
+     * that keeps the stream alive while a helper is in it): `parallel` is
+     * wp_chunks_parallel, `work` wp_chunks_work. */
     bool (*parallel)(void *stream);
     bool (*work)(void *stream, const wp_host *host);
 } wp_streamer;

@@ -8,21 +8,30 @@
 static const char *const NONE[] = {NULL};
 static const char *const FIXTURE[] = {"fixture", NULL};
 static const char *const ID[] = {"id", NULL};
+static const char *const LIST[] = {"after", "limit", NULL};
 static const char *const CLASSIFY[] = {"fixture", "wrenches", "sets", "method", "tolerance",
                                        "fields", NULL};
 static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
-static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", NULL};
+static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", "push_on",
+                                   "force", "cases", NULL};
 static const char *const SWEEP[] = {"fixture", "set", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
-                                     "progress", "shard", "tolerance", "features", NULL};
+                                     "progress", "shard", "push_on", "corner_clearance",
+                                     "pin_diameter", "cases", "collapse_symmetric", "deadline_s",
+                                     "tolerance", "features", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const LOCATING[] = {"fixture", "tolerance", "features", "sigma_ratio", NULL};
 static const char *const LOCATING_REQUIRED[] = {"fixture", "tolerance", NULL};
+static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
+                                          NULL};
+static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
+static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples",
+                                         NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
-                                             "push", "gravity", NULL};
+                                             "push", "gravity", "force", "cases", NULL};
 
 /* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
  * one piece, and the event loop may answer it.  The rest end their piece
@@ -34,7 +43,7 @@ const wp_method wp_methods[] = {
     {.name = "fixture.get", .handler = wp_handle_fixture_get, .fields = ID, .required = ID,
      .flags = WP_CHEAP},
     {.name = "fixture.delete", .handler = wp_handle_fixture_delete, .fields = ID, .required = ID},
-    {.name = "fixture.list", .handler = wp_handle_fixture_list, .fields = NONE, .required = NONE,
+    {.name = "fixture.list", .handler = wp_handle_fixture_list, .fields = LIST, .required = NONE,
      .flags = WP_CHEAP},
     {.name = "wrench.classify", .stream = &wp_classify_stream, .fields = CLASSIFY,
      .required = CLASSIFY_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = wp_classify_light,
@@ -56,6 +65,10 @@ const wp_method wp_methods[] = {
      .required = FIXTURE, .flags = WP_FIXTURE},
     {.name = "fixture.locating", .handler = wp_handle_fixture_locating, .fields = LOCATING,
      .required = LOCATING_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = wp_locating_light},
+    {.name = "force.range", .handler = wp_handle_force_range, .fields = FORCE_RANGE,
+     .required = FORCE_REQUIRED, .flags = WP_FIXTURE},
+    {.name = "push.force", .handler = wp_handle_push_force, .fields = PUSH_FORCE,
+     .required = FORCE_REQUIRED, .flags = WP_FIXTURE},
     {.name = "fixture.design", .stream = &wp_design_stream, .fields = DESIGN,
      .required = DESIGN_REQUIRED},
     {0},

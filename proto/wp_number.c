@@ -15,8 +15,8 @@
  *     decimals near x are more than x * 10^-15 apart.  So when P(p), p <= 15,
  *     reads back it has the value of P(15); the loop can only go on while
  *     P(p) is that same value, written in p digits.
- *   - P(15) "shows 15 significant digits" (the old code counted the digit
- *     characters from the first non-zero one up to any 'e') when its value
+ *   - P(15) "shows 15 significant digits" (counting the digit characters
+ *     from the first non-zero one up to any 'e') when its value
  *     has 15 digits, or when it is written as an integer of 15 digits
  *     (decimal exponent 14, "100000000000000" counts 15).  In the first case
  *     P(14) is another value and the loop stops at once.  In the second, the

@@ -12,18 +12,21 @@ bool wp_check_object(const cJSON *value, const char *path, const char *const *al
                      wp_type_name(value));
         return false;
     }
+    /* Field paths are formatted only for an error: requests of many
+     * objects (load cases) are checked member by member. */
     char field[WP_FIELD_MAX];
     for (const cJSON *member = value->child; member; member = member->next) {
         bool known = false;
         for (const char *const *name = allowed; *name && !known; name++)
             known = strcmp(*name, member->string) == 0;
-        wp_path_key(field, path, member->string);
         if (!known) {
+            wp_path_key(field, path, member->string);
             wp_error_set(error, WP_INVALID_PARAMS, field, "unknown field");
             return false;
         }
         for (const cJSON *other = member->next; other; other = other->next)
             if (strcmp(other->string, member->string) == 0) {
+                wp_path_key(field, path, member->string);
                 wp_error_set(error, WP_INVALID_PARAMS, field, "appears more than once");
                 return false;
             }
@@ -56,6 +59,10 @@ bool wp_vector2(const cJSON *value, const char *path, double out[2], wp_error *e
     char field[WP_FIELD_MAX];
     const cJSON *item = value->child;
     for (int i = 0; i < 2; i++, item = item->next) {
+        if (cJSON_IsNumber(item) && isfinite(item->valuedouble)) {
+            out[i] = item->valuedouble; /* wp_number's answer, without a path */
+            continue;
+        }
         wp_path_index(field, path, (size_t)i);
         if (!wp_number(item, field, &out[i], error))
             return false;
@@ -86,6 +93,10 @@ bool wp_member_number(const cJSON *object, const char *path, const char *key, bo
     const cJSON *value = member(object, path, key, required, present, error, &ok);
     if (!value)
         return ok;
+    if (cJSON_IsNumber(value) && isfinite(value->valuedouble)) {
+        *out = value->valuedouble; /* wp_number's answer, without a path */
+        return true;
+    }
     char field[WP_FIELD_MAX];
     wp_path_key(field, path, key);
     return wp_number(value, field, out, error);
@@ -98,6 +109,13 @@ bool wp_member_vector2(const cJSON *object, const char *path, const char *key, b
     const cJSON *value = member(object, path, key, required, present, error, &ok);
     if (!value)
         return ok;
+    const cJSON *x = cJSON_IsArray(value) ? value->child : NULL, *y = x ? x->next : NULL;
+    if (y && !y->next && cJSON_IsNumber(x) && cJSON_IsNumber(y) && isfinite(x->valuedouble) &&
+        isfinite(y->valuedouble)) {
+        out[0] = x->valuedouble; /* wp_vector2's answer, without a path */
+        out[1] = y->valuedouble;
+        return true;
+    }
     char field[WP_FIELD_MAX];
     wp_path_key(field, path, key);
     return wp_vector2(value, field, out, error);

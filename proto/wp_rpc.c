@@ -4,6 +4,7 @@
 #include <assert.h>
 #include <ctype.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +75,16 @@ struct wp_answer {
     cJSON *empty;            /* {} for a request without params */
     char *id_text;           /* its id as answered (malloc'd) */
     size_t bytes;            /* wp_answer_bytes */
+    /* A long batch is read a request at a time (after the whole line was
+     * parsed once, to refuse it whole if it is not JSON, and the tree
+     * freed): its text, the spans of the requests not yet begun, and the
+     * tree of the one in hand.  So a batch whose answer waits on a slow
+     * reader holds its text and one request's tree, not the tree of every
+     * request in it (forty times the text). */
+    char *text;
+    size_t (*spans)[2];
+    size_t span_count, span_next;
+    cJSON *member;
 };
 
 static void release_fixture(wp_answer *answer, const wp_host *host)
@@ -327,6 +338,54 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
     return cheap;
 }
 
+/* A parse that fails for want of memory is not a line that is not JSON:
+ * cJSON says neither, so its allocations go through this, which notes a
+ * failure for the thread that parses (cJSON's hooks are process-wide,
+ * installed once). */
+static _Thread_local bool parse_out_of_memory;
+
+static void *noting_malloc(size_t size)
+{
+    void *p = malloc(size);
+    if (!p)
+        parse_out_of_memory = true;
+    return p;
+}
+
+static void install_hooks(void)
+{
+    cJSON_Hooks hooks = {noting_malloc, free};
+    cJSON_InitHooks(&hooks);
+}
+
+/* The refusal of a line that ran out of memory while it was parsed: -32603
+ * (documented for it), under the request's id when the line is one request
+ * whose id can be read from the text (a string or a number, echoed as
+ * written), else under null. */
+static cJSON *refuse_out_of_memory(char **refusal, const char *text, size_t length)
+{
+    size_t start, end;
+    const char *id = "null";
+    char *written = NULL;
+    if (wp_json_member(text, length, 0, "id", &start, &end) && end > start &&
+        (text[start] == '"' || text[start] == '-' || isdigit((unsigned char)text[start]))) {
+        written = malloc(end - start + 1);
+        if (written) {
+            memcpy(written, text + start, end - start);
+            written[end - start] = 0;
+            id = written;
+        }
+    }
+    wp_error error;
+    wp_error_set(&error, WP_INTERNAL, "", "out of memory while reading the request");
+    wp_buffer b = {0};
+    write_error(&b, &error, id);
+    wp_buffer_puts(&b, "\n");
+    free(written);
+    *refusal = wp_buffer_take(&b);
+    return NULL;
+}
+
 /* parse_line's refusal: the answer in *refusal, no JSON. */
 static cJSON *refuse(char **refusal, int code, const char *reason)
 {
@@ -383,8 +442,16 @@ static cJSON *parse_line(const wp_limits *limits, const char *line, size_t lengt
         return refuse(refusal, WP_INVALID_REQUEST,
                       "a string holds \\u0000 (U+0000), which wrenchd does not accept");
     }
+    static pthread_once_t hooks_installed = PTHREAD_ONCE_INIT;
+    pthread_once(&hooks_installed, install_hooks);
+    parse_out_of_memory = false;
     const char *end = NULL;
     cJSON *json = cJSON_ParseWithLengthOpts(line + start, length - start, &end, false);
+    if (!json && parse_out_of_memory) {
+        counts->requests++;
+        counts->errors++;
+        return refuse_out_of_memory(refusal, line + start, length - start);
+    }
     if (json && end == line + length && shape.number_problem) {
         /* cJSON read it, but RFC 8259 does not allow it (a leading zero
          * would be octal to some readers): not JSON. */
@@ -493,6 +560,70 @@ static char *prepare_wrenches(const char *line, size_t length, wp_prepared *prep
     return copy;
 }
 
+/* Keep a long batch as text and spans (wp_answer's `text`), its tree
+ * freed; left as a tree when out of memory. */
+static void read_lazily(wp_answer *answer, const char *line, size_t length, size_t members)
+{
+    char *text = malloc(length + 1);
+    size_t (*spans)[2] = malloc(members * sizeof *spans);
+    if (!text || !spans) {
+        free(text);
+        free(spans);
+        return;
+    }
+    memcpy(text, line, length);
+    text[length] = 0;
+    size_t i = wp_json_skip_space(text, 0, length);
+    assert(text[i] == '[');
+    i = wp_json_skip_space(text, i + 1, length);
+    size_t n = 0;
+    while (i < length && text[i] != ']' && n < members) {
+        spans[n][0] = i;
+        i = wp_json_skip_value(text, i, length);
+        spans[n++][1] = i;
+        i = wp_json_skip_space(text, i, length);
+        if (i < length && text[i] == ',')
+            i = wp_json_skip_space(text, i + 1, length);
+    }
+    assert(n == members);
+    cJSON_Delete(answer->json);
+    answer->json = NULL;
+    answer->next = NULL;
+    answer->text = text;
+    answer->spans = spans;
+    answer->span_count = n;
+    answer->bytes = length + (members * sizeof *spans);
+}
+
+/* A lazily read batch: the next request's tree in answer->next (the one
+ * before it freed: its stream is over), or its error answer written when
+ * it cannot be read for want of memory.  False when none is left. */
+static bool next_member(wp_answer *answer, wp_buffer *out, wp_counts *counts)
+{
+    while (!answer->next && answer->text && answer->span_next < answer->span_count) {
+        cJSON_Delete(answer->member);
+        answer->member = NULL;
+        size_t start = answer->spans[answer->span_next][0];
+        size_t end = answer->spans[answer->span_next][1];
+        answer->span_next++;
+        cJSON *member = cJSON_ParseWithLengthOpts(answer->text + start, end - start, NULL, false);
+        if (member && !wp_json_keep_id_text(member, answer->text + start, end - start)) {
+            cJSON_Delete(member);
+            member = NULL;
+        }
+        if (!member) {
+            counts->requests++;
+            counts->errors++;
+            wp_error error;
+            wp_error_set(&error, WP_INTERNAL, "", "out of memory while reading the request");
+            write_error_answer(answer, out, &error, NULL);
+            continue;
+        }
+        answer->member = answer->next = member;
+    }
+    return answer->next != NULL;
+}
+
 wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t length)
 {
     wp_answer *answer = calloc(1, sizeof *answer);
@@ -546,6 +677,8 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
         }
         answer->batch = true;
         answer->next = json->child;
+        if (length >= PREPARE_BYTES)
+            read_lazily(answer, line, length, members);
     } else {
         answer->next = json;
     }
@@ -573,7 +706,7 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
             return step;
         }
     }
-    while (answer->next) {
+    while (answer->next || next_member(answer, out, counts)) {
         if (!answer->whole && out->length > start &&
             (used >= answer->budget || out->length - start >= answer->piece_bytes))
             return WP_STEP_MORE;
@@ -599,8 +732,9 @@ size_t wp_answer_bytes(const wp_answer *answer)
         return 0;
     /* A stream's holdings change as it goes (a batch's chunks made ahead
      * of their turn): asked anew, between steps, when no helper is in it. */
+    size_t text = answer->text ? answer->spans[answer->span_count - 1][1] : 0;
     if (answer->stream && answer->streamer->bytes)
-        return 4096 + answer->streamer->bytes(answer->stream);
+        return 4096 + text + answer->streamer->bytes(answer->stream);
     return answer->bytes;
 }
 
@@ -628,6 +762,9 @@ void wp_answer_free(wp_answer *answer, const wp_host *host)
         return;
     end_stream(answer, host); /* and the fixture held, if any */
     cJSON_Delete(answer->json);
+    cJSON_Delete(answer->member);
+    free(answer->text);
+    free(answer->spans);
     free(answer->refusal);
     free(answer->prepared.wrenches);
     free(answer);

@@ -17,6 +17,8 @@ typedef struct wp_limits {
     int max_depth;        /* deepest nesting of arrays and objects */
     size_t max_wrenches;  /* most wrenches in one wrench.classify */
     size_t max_batch;     /* most requests in one batch */
+    uint64_t max_candidates; /* most candidates of one fixture.design (its
+                              shard's); 0: no cap */
 } wp_limits;
 
 typedef struct wp_counts {
@@ -95,13 +97,12 @@ wp_step wp_answer_step(wp_answer *answer, const wp_host *host, wp_buffer *out,
 /* Smaller pieces than the default (tests and fuzzing, to cut answers at
  * every place they may be cut): `budget` work units, `bytes` of text. */
 void wp_answer_pieces(wp_answer *answer, unsigned long budget, size_t bytes);
-/* Work for other threads beside the answer's steps (a design's chunks of
- * candidates): wp_answer_parallel, asked between steps, says whether there
- * is some now; wp_answer_work does a bounded piece of it, in any thread,
- * with the thread's own host (its stop is the request's), while one step
- * of the answer runs -- and only then: never once that step has returned,
- * for the step that follows may end the answer.  False when there was
- * none left. */
+/* Chunks for helpers beside the answer's steps (wp_chunks.h):
+ * wp_answer_parallel, asked between steps, says whether there are some
+ * now; wp_answer_work makes one, in any thread, with the thread's own host
+ * (its stop is the request's), while the step that follows the yes runs --
+ * and only then: never once that step has returned, for the step after it
+ * may end the answer.  False when there was none left. */
 bool wp_answer_parallel(wp_answer *answer);
 bool wp_answer_work(wp_answer *answer, const wp_host *host);
 /* Bytes the answer holds between steps (its parsed request, wrenches, a

@@ -165,6 +165,18 @@ static size_t skip_space(const char *text, size_t i, size_t length)
 
 /* The end of the JSON value starting at text[i], in a text cJSON has
  * already accepted (so no validation here, only its extent). */
+static size_t skip_value(const char *text, size_t i, size_t length);
+
+size_t wp_json_skip_value(const char *text, size_t i, size_t length)
+{
+    return skip_value(text, i, length);
+}
+
+size_t wp_json_skip_space(const char *text, size_t i, size_t length)
+{
+    return skip_space(text, i, length);
+}
+
 static size_t skip_value(const char *text, size_t i, size_t length)
 {
     if (i >= length)

@@ -642,6 +642,106 @@ int wrc_locating_get(wrc_client *c, const char *fixture_id, const double *tolera
     return WRC_OK;
 }
 
+/* "[[a, b], [c, null], ...]" at p into force's intervals (null: INFINITY). */
+static bool read_force_intervals(const char *p, wrc_force *force)
+{
+    force->interval_count = 0;
+    p += strspn(p, " ");
+    if (*p++ != '[')
+        return false;
+    for (;;) {
+        p += strspn(p, " ,");
+        if (*p == ']')
+            return true;
+        if (*p++ != '[')
+            return false;
+        double bounds[2];
+        for (int k = 0; k < 2; k++) {
+            p += strspn(p, " ,");
+            if (k == 1 && strncmp(p, "null", 4) == 0) {
+                bounds[k] = INFINITY;
+                p += 4;
+                continue;
+            }
+            char *end;
+            bounds[k] = strtod(p, &end);
+            if (end == p)
+                return false;
+            p = end;
+        }
+        p += strspn(p, " ");
+        if (*p++ != ']')
+            return false;
+        if (force->interval_count < WRC_SWEEP_INTERVALS) {
+            force->intervals[force->interval_count][0] = bounds[0];
+            force->intervals[force->interval_count][1] = bounds[1];
+        }
+        force->interval_count++;
+    }
+}
+
+int wrc_force_range(wrc_client *c, const char *fixture_id, const double at[2],
+                    const wrc_load *loads, int count, const char *set, wrc_force *force)
+{
+    if (!c || !fixture_id || !at || !loads || !set || !force || count < 1 || count > 100)
+        return WRC_EINVAL;
+    if (strcmp(set, "goal") != 0 && strcmp(set, "strong") != 0 && strcmp(set, "both") != 0)
+        return fail(c, WRC_EINVAL, "set is \"goal\", \"strong\" or \"both\", not \"%.20s\"", set);
+    for (const char *p = fixture_id; *p; p++)
+        if (*p == '"' || *p == '\\' || (unsigned char)*p < 32)
+            return fail(c, WRC_EINVAL, "a fixture id has no quotes, backslashes or controls");
+    if (!isfinite(at[0]) || !isfinite(at[1]))
+        return fail(c, WRC_EINVAL, "the push's point is not finite");
+    unsigned long id = ++c->next_id;
+    size_t n = 0, size = c->buffer_bytes;
+    char *q = c->request;
+    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"force.range\",\"params\":{\"fixture\":\"%s\","
+        "\"push\":{\"at\":[%.17g,%.17g]},\"sets\":[\"%s\"],\"cases\":[{\"loads\":[",
+        fixture_id, at[0], at[1], set);
+    for (int i = 0; i < count; i++) {
+        const wrc_load *l = &loads[i];
+        const double values[] = {l->g, l->direction_deg, l->force[0], l->force[1], l->at[0],
+                                 l->at[1], l->wrench[0], l->wrench[1], l->wrench[2]};
+        for (size_t k = 0; k < sizeof values / sizeof values[0]; k++)
+            if (!isfinite(values[k]))
+                return fail(c, WRC_EINVAL, "load %d has a number that is not finite", i);
+        if (l->kind == WRC_LOAD_GRAVITY)
+            PUT("%s{\"gravity\":{\"g\":%.17g,\"direction_deg\":%.17g}}", i ? "," : "", l->g,
+                l->direction_deg);
+        else if (l->kind == WRC_LOAD_FORCE)
+            PUT("%s{\"force\":[%.17g,%.17g],\"at\":[%.17g,%.17g]}", i ? "," : "", l->force[0],
+                l->force[1], l->at[0], l->at[1]);
+        else if (l->kind == WRC_LOAD_WRENCH)
+            PUT("%s{\"wrench\":[%.17g,%.17g,%.17g]}", i ? "," : "", l->wrench[0], l->wrench[1],
+                l->wrench[2]);
+        else
+            return fail(c, WRC_EINVAL, "load %d: kind is WRC_LOAD_GRAVITY, _FORCE or _WRENCH", i);
+    }
+    PUT("]}]},\"id\":%lu}\n", id);
+    if (n >= size)
+        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
+    size_t capacity = c->buffer_bytes;
+    int status = exchange(c, c->request, n, &c->answer, &capacity, false, NULL, NULL);
+    if (status != WRC_OK)
+        return status;
+    const char *text = c->answer;
+    const char *answer_id = strstr(text, "\"id\":");
+    while (answer_id && strstr(answer_id + 1, "\"id\":"))
+        answer_id = strstr(answer_id + 1, "\"id\":");
+    if (!answer_id || strtoul(answer_id + 5, NULL, 10) != id)
+        return fail(c, WRC_EPROTO, "the answer's id is not the request's");
+    if (read_server_error(c, text))
+        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
+    /* "all" comes after the cases: its set's intervals and least. */
+    const char *all = value_of(text, "all");
+    const char *intervals = all ? value_of(all, "intervals") : NULL;
+    const char *least = all ? value_of(all, "least") : NULL;
+    if (!intervals || !least || !read_force_intervals(intervals, force))
+        return fail(c, WRC_EPROTO, "the answer has no intervals for all the cases");
+    force->least = strncmp(least, "null", 4) == 0 ? NAN : strtod(least, NULL);
+    return WRC_OK;
+}
+
 int wrc_call(wrc_client *c, const char *request, char **answer)
 {
     return wrc_call_notified(c, request, answer, NULL, NULL);

@@ -146,6 +146,31 @@ typedef struct wrc_locating {
 int wrc_locating_get(wrc_client *client, const char *fixture_id, const double *tolerance,
                      int tolerance_count, double sigma_ratio, wrc_locate_feature *features,
                      int feature_count, wrc_locating *out);
+/* A load (docs/PROTOCOL.md, "Loads and cases"), in the fixture's units. */
+enum { WRC_LOAD_GRAVITY, WRC_LOAD_FORCE, WRC_LOAD_WRENCH };
+typedef struct wrc_load {
+    int kind;                 /* WRC_LOAD_* */
+    double g, direction_deg;  /* gravity: m g pulling along direction_deg */
+    double force[2], at[2];   /* a force at a point of the part */
+    double wrench[3];         /* f_x, f_y, tau about the centre of mass */
+} wrc_load;
+
+typedef struct wrc_force {
+    /* The magnitudes that do the set's job, in order; an upper end of
+     * INFINITY is none.  interval_count may exceed WRC_SWEEP_INTERVALS:
+     * the first ones are kept. */
+    int interval_count;
+    double intervals[WRC_SWEEP_INTERVALS][2];
+    double least;             /* the first interval's lower end; NAN: none */
+} wrc_force;
+
+/* force.range for a stored fixture: a push at `at` (on the outline, along
+ * the inward normal there) against one case of `count` loads (1 to 100),
+ * for `set`; its intervals of magnitude in the fixture's force unit.
+ * Allocates nothing.  Returns WRC_OK, or an error code (WRC_ESERVER with
+ * the field at fault: wrc_server_error). */
+int wrc_force_range(wrc_client *client, const char *fixture_id, const double at[2],
+                    const wrc_load *loads, int count, const char *set, wrc_force *force);
 
 /* Send one JSON-RPC request (a JSON text without "\n") and return its
  * answer line, malloc'd (the caller frees it).  For notifications nothing

@@ -12,6 +12,9 @@
                          the part, as a dial
     Wrench_Design        fixture.design: where to put the fixels, with
                          FreeCAD's progress indicator; the best design placed
+    Wrench_LeastForce    with the fixture's Gravity or Loads: the least push
+                         force along the outline as coloured pieces, and where
+                         the smallest push suffices
 
 A command works on the WrenchFixture selected (or one of its objects), else
 on the document's only one.  Messages and errors go to the report view.
@@ -260,6 +263,11 @@ class RegionsCommand(_Command):
                 _say("best push at %s %s along %s, margin %.4g: push there and let go (it is in "
                      "both)" % (wf._fmt_point(push.At), wf.UNIT, wf._fmt_point(push.Direction),
                                 push.Margin))
+                if fixture.Gravity or list(fixture.Loads):
+                    _say("how hard: %s there under every load case; the least push anywhere is %s"
+                         % ("%.4g N" % push.PushForce if push.PushForce >= 0 else "no force does it",
+                            "%.4g N at %s" % (push.LeastForce, wf._fmt_point(push.LeastForceAt))
+                            if push.LeastForce >= 0 else "none"))
             else:
                 _say(push.Label)
 
@@ -350,9 +358,38 @@ class LocateCommand(_Command):
                  % obj.Label)
 
 
+class LeastForceCommand(_Command):
+    NAME = "Wrench_LeastForce"
+    ICON = "WrenchRegions"
+    MENU = "Least force"
+    TIP = ("How hard to push: the least force of a push along the outline that seats the part "
+           "and holds it under every load case (the fixture's Gravity and Loads), coloured from "
+           "blue (least) to red, and where the smallest push suffices")
+
+    def Activated(self):
+        doc = FreeCAD.ActiveDocument
+        fixture = _fixture_in_selection(doc)
+        if fixture is None:
+            return
+        if not fixture.Gravity and not list(fixture.Loads):
+            _fail("%s has no Gravity and no Loads: set them (its Loads group) first" % fixture.Label)
+            return
+        made = _dependents(fixture, "WrenchLeastForce")
+        obj = made[0] if made else _run(doc, "Wrench least force",
+                                        lambda: wf.make_least_force(fixture))
+        if obj is None or not _recompute(doc, [fixture, obj]):
+            return
+        wf.colour_least_force(obj)
+        if obj.Least >= 0:
+            _say("least push %.4g N at %s along %s: it seats the part and holds it under every "
+                 "load case" % (obj.Least, wf._fmt_point(obj.LeastAt),
+                                wf._fmt_point(obj.LeastDirection)))
+        else:
+            _say(obj.Label)
+
+
 COMMANDS = [FixtureCommand, AddFixelsCommand, ClearFixelsCommand, RegionsCommand,
-            GravityDialCommand, DesignCommand]
-COMMANDS.append(LocateCommand)
+            GravityDialCommand, DesignCommand, LeastForceCommand, LocateCommand]
 for _command in COMMANDS:
     FreeCADGui.addCommand(_command.NAME, _command())
 

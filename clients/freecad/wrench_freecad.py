@@ -48,7 +48,9 @@ the fixture in wrenchd; WrenchRegions (one per set: goal, strong, both),
 WrenchFixels, WrenchBestPush and WrenchGravityDial show what wrenchd answers
 for it, and recompute when the part, the fixels or the friction change.
 Each region of a WrenchRegions is a WrenchRegion object of its own, with its
-Shape (the line or arc) and its numbers.
+Shape (the line or arc) and its numbers.  A WrenchRegions' PushOn is the
+push_on it asks with (push_on_of: empty, the clients' default); PushOnLoops
+and the report view say which loops that took.
 
 What each set promises: a push in `goal` reaches every fixel from any
 contact state, but the part may then slide along its fixels; one in
@@ -103,8 +105,10 @@ __all__ = [
 SETS = ("goal", "strong", "both")
 
 # The unit of every length the workbench reports: FreeCAD's own, whatever
-# unit schema its preferences show.
+# unit schema its preferences show; the fixtures it puts name it (with
+# forces in N, and so the Mass in kg).
 UNIT = "mm"
+UNITS = {"length": UNIT, "force": "N"}
 
 # What a push in each set promises, in the words of docs/PROTOCOL.md.
 MEANING = {
@@ -899,8 +903,19 @@ class WrenchFixture:
         _add(obj, "App::PropertyFloat", "KineticFriction", "Friction",
              "Kinetic friction, at most the static one", 0.3)
         _add(obj, "App::PropertyFloat", "Mass", "Friction",
-             "The part's mass (a uniform lamina: its centre of mass and inertia follow "
-             "from the outline)", 1.0)
+             "The part's mass in kg (a uniform lamina: its centre of mass and inertia "
+             "follow from the outline)", 1.0)
+        _add(obj, "App::PropertyFloat", "Gravity", "Loads",
+             "Gravity's acceleration in mm/s^2 (9810 on earth), pulling the part along "
+             "GravityDirection; 0: none.  With Gravity or Loads the fixture is sent in mm and N, "
+             "and the best push says how hard to push", 0.0)
+        _add(obj, "App::PropertyFloat", "GravityDirection", "Loads",
+             "Where gravity pulls, in degrees counter-clockwise from the outline's x axis "
+             "(270: along -y)", 270.0)
+        _add(obj, "App::PropertyStringList", "Loads", "Loads",
+             "Load cases, one a line, each with gravity: NAME: FX,FY @ X,Y,Z -- a force in N along "
+             "the document's X and Y at a point of the part (document mm); several forces of one "
+             "case separated by ';'")
         _add(obj, "App::PropertyString", "Socket", "wrenchd",
              "wrenchd's socket; empty: $WRENCHD_SOCKET, else ./run/wrenchd.sock")
         _add(obj, "App::PropertyFloat", "Timeout", "wrenchd",
@@ -908,8 +923,9 @@ class WrenchFixture:
         _add(obj, "App::PropertyInteger", "DesignFixels", "Design",
              "Design: how many fixels to place", 3)
         _add(obj, "App::PropertyLength", "DesignSpacing", "Design",
-             "Design: candidate sites this far apart along the outline (0: the perimeter / 40, "
-             "to two digits)",
+             "Design: candidate sites this far apart along each loop's length, across the joints "
+             "of faceted curves, clear of corners by half of it (0: the perimeter / 40, to two "
+             "digits); pushes on the outer boundary only (a point finger)",
              0.0)
         if "DesignObjective" not in obj.PropertiesList:
             obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",
@@ -1019,7 +1035,9 @@ class WrenchFixture:
         obj.FixelsMoved = moved
         fixture = {"name": obj.Label, "body": {"mass": obj.Mass, "shape": shape},
                    "friction": {"static": obj.StaticFriction, "kinetic": obj.KineticFriction},
-                   "fixels": fixels}
+                   "fixels": fixels, "units": dict(UNITS)}
+        if obj.Gravity != 0 or list(obj.Loads):
+            load_cases(obj, shape)  # refused here, at the property, when malformed
         if not fixels:
             obj.FixtureId = ""
             obj.Pinned = False
@@ -1034,6 +1052,49 @@ class WrenchFixture:
         obj.Inertia = float(put.inertia)
         obj.Pinned = bool(put.pinned)
         obj.FixtureJson = json.dumps(fixture)
+
+
+def load_cases(fixture_obj, outline_shape):
+    """The fixture's load cases as wrenchd takes them (docs/PROTOCOL.md,
+    "Loads and cases"): each line of Loads with gravity added, or gravity
+    alone; [] with neither.  Forces along the document's X and Y are turned
+    into the outline's plane, points taken into its coordinates."""
+    gravity = []
+    if fixture_obj.Gravity:
+        if fixture_obj.Gravity < 0:
+            raise WrenchError("%s: Gravity %s must not be negative (GravityDirection says where it "
+                              "pulls)" % (fixture_obj.Label, _fmt(fixture_obj.Gravity)),
+                              "cases[0].loads[0].gravity.g", "negative")
+        gravity = [{"gravity": {"g": fixture_obj.Gravity,
+                                "direction_deg": fixture_obj.GravityDirection}, "name": "gravity"}]
+    cases = []
+    for i, line in enumerate(fixture_obj.Loads):
+        name, _, text = line.rpartition(":") if ":" in line else ("", "", line)
+        loads = list(gravity)
+        for part in [p for p in text.split(";") if p.strip()]:
+            try:
+                force_text, at_text = part.split("@")
+                fx, fy = [float(v) for v in force_text.split(",")]
+                x, y, z = [float(v) for v in at_text.split(",")]
+            except ValueError:
+                raise WrenchError("%s: Loads[%d] %r: a force is FX,FY @ X,Y,Z (N, document mm)"
+                                  % (fixture_obj.Label, i, line), "Loads[%d]" % i, "malformed")
+            f2 = outline_shape.direction_2d(Vector(fx, fy, 0)) if (fx or fy) else (0.0, 0.0)
+            scale = math.hypot(fx, fy)
+            norm = math.hypot(f2[0], f2[1])
+            force = [f2[0] * scale / norm, f2[1] * scale / norm] if norm else [0.0, 0.0]
+            ax, ay, _ = outline_shape.to_2d(Vector(x, y, z))
+            loads.append({"force": force, "at": [ax, ay]})
+        if not loads:
+            raise WrenchError("%s: Loads[%d] %r has no force" % (fixture_obj.Label, i, line),
+                              "Loads[%d]" % i, "empty")
+        case = {"loads": loads}
+        if name.strip():
+            case["name"] = name.strip()
+        cases.append(case)
+    if not cases and gravity:
+        cases = [{"name": "gravity", "loads": gravity}]
+    return cases
 
 
 class _Fixture:
@@ -1102,6 +1163,66 @@ def _set_enumeration(obj, name, values, value):
     setattr(obj, name, value)
 
 
+def _loop_count(body):
+    shape = body.get("shape") or {}
+    return len(shape.get("loops") or []) if shape.get("type") == "outline" else 1
+
+
+def push_on_of(text, body, finger_radius):
+    """The push_on a WrenchRegions' PushOn property asks for: "" the
+    clients' default (wrenchd.default_push_on, docs/PROTOCOL.md push_on),
+    "outer", "all", or loop numbers ("0, 2"); an OutlineError naming PushOn
+    for anything else, or a loop the outline does not have."""
+    text = (text or "").strip()
+    if not text:
+        return wrenchd.default_push_on(body, finger_radius)
+    if text.lower() in ("outer", "all"):
+        return text.lower()
+    n = _loop_count(body)
+    loops = []
+    for word in text.replace(",", " ").replace(";", " ").split():
+        try:
+            loop = int(word)
+        except ValueError:
+            raise OutlineError("PushOn: %r is neither outer, all nor a list of loop numbers "
+                               "(0 is the outer boundary)" % text) from None
+        if not 0 <= loop < n:
+            raise OutlineError("PushOn: loop %d is not one of the outline's loops (0 to %d)"
+                               % (loop, n - 1))
+        if loop not in loops:
+            loops.append(loop)
+    return sorted(loops)
+
+
+def pushed_loops(push_on, body):
+    """The loop numbers a push_on names (None and "all": every loop)."""
+    if push_on == "outer":
+        return [0]
+    if push_on is None or push_on == "all":
+        return list(range(_loop_count(body)))
+    return list(push_on)
+
+
+def describe_push_on(loops, body, finger_radius, chosen):
+    """The report view's line on where the regions were looked for: which
+    loops, which holes were left out and why (the clients' default)."""
+    n = _loop_count(body)
+    left = [i for i in range(1, n) if i not in loops]
+    names = ", ".join("the outer boundary" if i == 0 else "hole %d" % i for i in loops)
+    text = "pushes on %s" % names
+    if left:
+        text += "; not on hole%s %s" % ("s" if len(left) > 1 else "",
+                                         ", ".join(str(i) for i in left))
+        if chosen:
+            text += " (PushOn)"
+        elif finger_radius > 0:
+            text += " (no wider than the finger, %s across)" % _fmt(2 * finger_radius)
+        else:
+            text += (" (a point finger has no size to compare with a hole's: set FingerRadius, "
+                     "or PushOn to all)")
+    return text
+
+
 class WrenchRegions:
     """The push regions of one set (goal, strong or both) on the fixture's
     outline: its Shape is every region's line or arc; each region is also a
@@ -1121,6 +1242,10 @@ class WrenchRegions:
             _set_enumeration(obj, "Set", SETS, "both")
         _add(obj, "App::PropertyLength", "FingerRadius", "Regions",
              "The pushing finger's radius: points it cannot reach drop out (0: a point)", 0.0)
+        _add(obj, "App::PropertyString", "PushOn", "Regions",
+             "The loops the finger may push on: empty, the clients' default (the outer "
+             "boundary and every hole wider than the finger; a point finger: the outer "
+             "boundary only); outer; all; or loop numbers, 0 the outer boundary (0, 2)", "")
         _add(obj, "App::PropertyBool", "SweepFriction", "Regions",
              "Also find the critical friction above which the region is empty "
              "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8)",
@@ -1131,8 +1256,11 @@ class WrenchRegions:
                 ("App::PropertyFloat", "TotalLength", "The regions' total length (push.regions)"),
                 ("App::PropertyFloat", "Fraction", "Of the outline's perimeter"),
                 ("App::PropertyFloat", "CriticalMu",
-                 "The friction above which the region is empty (-1: not empty at 2; "
+                 "The friction above which the region is empty, on every loop whatever "
+                 "PushOn says: friction.sweep has no push_on (-1: not empty at 2; "
                  "-2: not computed)"),
+                ("App::PropertyIntegerList", "PushOnLoops",
+                 "The loops the regions were looked for on (PushOn resolved)"),
                 ("App::PropertyIntegerList", "RegionLoops", "Each region's loop"),
                 ("App::PropertyIntegerList", "RegionSegments", "Each region's segment"),
                 ("App::PropertyStringList", "RegionEdges", "Each region's FreeCAD edge"),
@@ -1178,8 +1306,14 @@ class WrenchRegions:
             self.failed(obj)
             obj.Label = "Regions %s (no fixels yet)" % which
             return
+        radius = float(obj.FingerRadius)
+        push_on = push_on_of(obj.PushOn, fixture.fixture["body"], radius)
         answer = fixture.ask(lambda: fixture.client.push_regions(
-            fixture.fixture, which, finger_radius=float(obj.FingerRadius)))
+            fixture.fixture, which, finger_radius=radius, push_on=push_on))
+        obj.PushOnLoops = pushed_loops(push_on, fixture.fixture["body"])
+        FreeCAD.Console.PrintMessage("Wrench: regions %s %s\n" % (
+            which, describe_push_on(obj.PushOnLoops, fixture.fixture["body"], radius,
+                                    bool(obj.PushOn.strip()))))
         outline = fixture.outline
         edges, loops, segs, names, t0, t1, lengths, starts, ends = [], [], [], [], [], [], [], [], []
         for r in answer.regions:
@@ -1520,7 +1654,13 @@ class WrenchBestPush(_Dependent):
                 ("App::PropertyFloat", "GravityGoalDegrees",
                  "The longest arc of tilts under which gravity seats the part"),
                 ("App::PropertyFloat", "CriticalMu",
-                 "The friction above which no push seats the part (-1: none up to 2)")):
+                 "The friction above which no push seats the part (-1: none up to 2)"),
+                ("App::PropertyFloat", "PushForce",
+                 "With the fixture's Gravity or Loads: the least force in N of this push that "
+                 "seats the part and holds it under every case (-1: none does; 0 without loads)"),
+                ("App::PropertyFloat", "LeastForce",
+                 "With loads: the least push force anywhere on the outline, in N (-1: none)"),
+                ("App::PropertyVector", "LeastForceAt", "Where that least push is (document)")):
             _add(obj, kind, name, "Answer", doc, mode=1)
 
     def _execute(self, obj):
@@ -1566,6 +1706,98 @@ class WrenchBestPush(_Dependent):
         obj.Loop, obj.Segment, obj.T = push.get("loop", 0), push.get("segment", push.get("edge", 0)), \
             push["t"]
         obj.Label = "Best push (both): margin %.4g, push here and let go" % obj.Margin
+        cases = load_cases(fixture.obj, outline)
+        obj.PushForce = obj.LeastForce = 0.0
+        if cases:
+            # How hard: this push's least force under every case, and the
+            # least push anywhere (force.range, push.force; N).
+            fid = fixture.obj.FixtureId
+            here = fixture.ask(lambda: fixture.client.force_range(
+                fid, cases, push={"at": at, "direction": direction}, sets=["both"]))
+            least = here["all"]["both"]["least"]
+            obj.PushForce = -1.0 if least is None else least
+            anywhere = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=1))["least"]
+            obj.LeastForce = -1.0 if anywhere is None else anywhere["force"]
+            if anywhere is not None:
+                obj.LeastForceAt = outline.to_3d(anywhere["at"])
+            obj.Label = ("Best push (both): margin %.4g, %s" % (
+                obj.Margin, "at least %.4g N under every load case" % least if least is not None
+                else "no force does it under every load case"))
+
+
+class WrenchLeastForce(_Dependent):
+    """The least push force F*(p) along the outline under the fixture's
+    load cases (push.force, set both): the outline cut into a piece per
+    sample, each coloured from blue (the least) to red (the most), grey
+    where no force does the job; and where the smallest push suffices."""
+
+    def setup(self, obj):
+        _Dependent.setup(self, obj)
+        _add(obj, "App::PropertyInteger", "Samples", "Force",
+             "Samples of F* per segment of the outline", 32)
+        for kind, name, doc in (
+                ("App::PropertyFloatList", "Forces",
+                 "F* at each piece's sample, in N (-1: no force does the job there)"),
+                ("App::PropertyFloat", "Least", "The least push force over the outline, N (-1: none)"),
+                ("App::PropertyVector", "LeastAt", "Where it is (document)"),
+                ("App::PropertyVector", "LeastDirection", "Along what (the inward normal there)")):
+            _add(obj, kind, name, "Answer", doc, mode=1)
+
+    def _execute(self, obj):
+        fixture = _Fixture(obj.Fixture, obj.Label)
+        outline = fixture.outline
+        cases = load_cases(fixture.obj, outline)
+        if not cases or not fixture.has_fixels:
+            obj.Shape = Part.Shape()
+            obj.Forces, obj.Least = [], -1.0
+            obj.Label = "Least force (%s)" % ("set the fixture's Gravity or Loads" if not cases
+                                              else "no fixels yet")
+            return
+        fid = fixture.obj.FixtureId
+        samples = max(1, min(int(obj.Samples), 4096))
+        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples))
+        pieces, forces = [], []
+        for seg in r["segments"]:
+            segment = outline.segments[seg.get("loop", 0)][seg.get("segment", seg.get("edge", 0))]
+            ts = seg["t"]
+            for j, (t, f) in enumerate(zip(ts, seg["force"])):
+                t0 = 0.0 if j == 0 else (ts[j - 1] + t) / 2
+                t1 = 1.0 if j + 1 == len(ts) else (t + ts[j + 1]) / 2
+                pieces.append(outline.edge_3d(segment, t0, t1))
+                forces.append(-1.0 if f is None else f)
+        obj.Shape = Part.Compound(pieces)
+        obj.Forces = forces
+        least = r["least"]
+        obj.Least = -1.0 if least is None else least["force"]
+        if least is not None:
+            obj.LeastAt = outline.to_3d(least["at"])
+            obj.LeastDirection = outline.direction_3d(least["direction"])
+            obj.Label = "Least force: %.4g N at %s" % (obj.Least, _fmt_point(obj.LeastAt))
+        else:
+            obj.Label = "Least force: no push does the job under every load case"
+        colour_least_force(obj)
+
+
+def least_force_colours(forces):
+    """Per piece: blue at the least F*, red at the most, grey where none."""
+    finite = [f for f in forces if f >= 0]
+    lo, hi = (min(finite), max(finite)) if finite else (0.0, 0.0)
+    out = []
+    for f in forces:
+        if f < 0:
+            out.append((0.8, 0.8, 0.8))
+            continue
+        x = (f - lo) / (hi - lo) if hi > lo else 0.0
+        out.append((0.12 + x * (0.75 - 0.12), 0.31 + x * (0.22 - 0.31), 0.61 + x * (0.17 - 0.61)))
+    return out
+
+
+def colour_least_force(obj):
+    """The pieces' colours, when the GUI shows the object."""
+    vobj = getattr(obj, "ViewObject", None)
+    if FreeCAD.GuiUp and vobj is not None and hasattr(vobj, "LineColorArray"):
+        vobj.LineWidth = 6.0
+        vobj.LineColorArray = least_force_colours(list(obj.Forces))
 
 
 class WrenchGravityDial(_Dependent):
@@ -1689,8 +1921,8 @@ class ViewProviderWrench:
         obj = getattr(self, "Object", None)
         name = {"WrenchFixture": "WrenchFixture", "WrenchRegions": "WrenchRegions",
                 "WrenchRegion": "WrenchRegions", "WrenchFixels": "WrenchFixels",
-                "WrenchBestPush": "WrenchBestPush", "WrenchGravityDial": "WrenchGravityDial"
-                }.get(_proxy_name(obj) if obj is not None else "", "Wrench")
+                "WrenchBestPush": "WrenchBestPush", "WrenchGravityDial": "WrenchGravityDial",
+                "WrenchLeastForce": "WrenchRegions"}.get(_proxy_name(obj) if obj is not None else "", "Wrench")
         return icon(name)
 
     def __getstate__(self):
@@ -1771,11 +2003,15 @@ def _dependent(kind, fixture, label, **values):
     return obj
 
 
-def make_regions(fixture, set="both"):
-    """A WrenchRegions of `set` (goal, strong or both) for the fixture."""
+def make_regions(fixture, set="both", push_on=""):
+    """A WrenchRegions of `set` (goal, strong or both) for the fixture;
+    push_on its PushOn: "" (the clients' default), "outer", "all" or a list
+    of loop numbers."""
     if set not in SETS:
         raise ValueError("set: one of goal, strong, both, not %r" % (set,))
-    return _dependent("WrenchRegions", fixture, "Regions %s" % set, Set=set)
+    if not isinstance(push_on, str):
+        push_on = ", ".join(str(int(i)) for i in push_on)
+    return _dependent("WrenchRegions", fixture, "Regions %s" % set, Set=set, PushOn=push_on)
 
 
 def make_fixels(fixture):
@@ -1791,6 +2027,10 @@ def make_locating(fixture, tolerance=0.02, features=(), names=()):
     document points `features` (named `names`)."""
     return _dependent("WrenchLocating", fixture, "Locating", Tolerance=tolerance,
                       Features=list(features), FeatureNames=list(names))
+
+
+def make_least_force(fixture, samples=32):
+    return _dependent("WrenchLeastForce", fixture, "Least force", Samples=samples)
 
 
 def make_gravity_dial(fixture, set="both"):
@@ -1870,23 +2110,50 @@ def show_regions(doc, face, fixels, friction, set, client):
 
 class _Progress:
     """design.progress notifications on FreeCAD's progress indicator (the
-    status bar's in the GUI, the console's in freecadcmd)."""
+    status bar's in the GUI, the console's in freecadcmd): one run of the
+    indicator per stage (a lattice's hole pairs, the candidates, the
+    designs' figures), and the estimated time left (eta_s) beside it: on the
+    status bar in the GUI, a console line at each tenth without it."""
+
+    UNITS = {"poses": "hole pairs", "candidates": "candidates", "figures": "designs' figures"}
 
     def __init__(self, text):
         self.text = text
         self.indicator = None
+        self.stage = None
         self.shown = 0
         # the status bar's bar in percent; the console's line in tenths
         self.steps = 100 if FreeCAD.GuiUp else 10
 
+    def _eta(self, params):
+        eta = params.get("eta_s")
+        if eta is None or (params.get("done") or 0) >= (params.get("total") or 0):
+            return ""
+        return ", about %s left" % wrenchd._eta_text(eta)
+
     def __call__(self, params):
         total = params.get("total") or 0
         done = params.get("done") or 0
-        if self.indicator is None:
+        stage = params.get("stage", "candidates")
+        unit = self.UNITS.get(stage, stage)
+        if self.indicator is None or stage != self.stage:
+            self.stop()
+            self.stage = stage
+            self.shown = 0
             self.indicator = FreeCAD.Base.ProgressIndicator()
-            self.indicator.start("%s: %d %s" % (self.text, total, params.get("stage", "candidates")),
-                                 self.steps)
+            self.indicator.start("%s: %d %s" % (self.text, total, unit), self.steps)
         step = int(self.steps * done / total) if total else self.steps
+        eta = self._eta(params)
+        if eta and FreeCAD.GuiUp:
+            try:
+                import FreeCADGui
+                FreeCADGui.getMainWindow().statusBar().showMessage(
+                    "%s: %d of %d %s%s" % (self.text, done, total, unit, eta))
+            except Exception:                # no main window: the bar alone
+                pass
+        elif eta and step > self.shown:
+            FreeCAD.Console.PrintMessage("%s: %d of %d %s%s\n" % (self.text, done, total, unit,
+                                                                  eta))
         while self.shown < step:
             self.shown += 1
             self.indicator.next(True)      # raises when the user stops it
@@ -1979,6 +2246,9 @@ def _design_lines(count, shape, result, spacing):
                                          _fmt(d.both_length), _fmt(d.gravity_goal_deg),
                                          "none up to 2" if d.critical_mu is None
                                          else _fmt(d.critical_mu)))
+        if getattr(d, "copies", 1) > 1:
+            lines[-1] += "; and %d more like it, turned or mirrored by the part's symmetries" % (
+                d.copies - 1)
     if result.designs:
         lines.append("design 1's fixels placed. Push at its best push (the arrow) and let go: "
                      "it lies in both, which seats the part from any contact state and then "

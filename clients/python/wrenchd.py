@@ -16,7 +16,9 @@ Methods of Client (and of Batch, see below):
     put_fixture(fixture)                   -> PutResult   fixture.put
     get_fixture(fixture_id)                -> dict        fixture.get (the explicit form)
     delete_fixture(fixture_id, missing_ok=False) -> bool  fixture.delete
-    list_fixtures()                        -> [FixtureInfo]  fixture.list
+    list_fixtures(after=None, limit=None)  -> FixturePage [FixtureInfo]  fixture.list
+                                              (a Client gathers every page
+                                              unless after or limit is given)
     classify(fixture, wrenches, sets=("goal", "strong"), method="auto",
              tolerance=None)               -> [{set name: Verdict}]  wrench.classify
     cone(fixture, constraints)             -> Cone        cone.get
@@ -99,6 +101,7 @@ from __future__ import annotations
 
 import itertools
 import json
+import math
 import os
 import socket
 import threading
@@ -112,6 +115,7 @@ __all__ = [
     "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
     "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
     "FixtureInfo", "FrictionSweep", "explain", "explain_goal", "explain_strong", "default_socket_path",
+    "default_push_on", "loop_width", "explain_no_design", "explain_empty_regions",
     "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
     "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
 ]
@@ -340,6 +344,8 @@ class PushRegions:
     fraction: float                    # of the perimeter
     exact: bool                        # False: sampled (a finger with friction)
     resolution: float                  # the sampling step (t, or degrees); 0 when exact
+    # An empty answer: why ({"reasons": [...]}, explain_empty_regions)
+    why_empty: Optional[Dict[str, Any]] = None
 
 
 @dataclass
@@ -407,22 +413,130 @@ class Design:
     score: float
     sites: Optional[List[int]] = None          # the sites chosen (not on a lattice)
     pegs: Optional[List[List[int]]] = None     # a lattice: the pegs' holes
+    # The fixels on holes: pins, [{"fixel", "hole", "diameter"}] (not on a lattice)
+    pins: Optional[List[Dict[str, Any]]] = None
     pose: Optional[List[float]] = None         # a lattice: [x, y, theta in degrees]
     accuracy: Optional[float] = None           # objective accuracy: the worst locating error
+    copies: int = 1                            # the candidates it stands for: its
+                                               # images under the part's symmetries
+    # With load cases: the least push doing both under every case ({"at",
+    # "direction", "force", "lower_bound", ...}, None when none does).
+    least_push: Optional[Dict[str, Any]] = None
 
 
 @dataclass
 class DesignResult:
     """fixture.design: `designs` best first; `counts` {"candidates",
-    "examined", "degenerate", "unpinned", "no_seating_push"}; the number of
-    `sites` (or, on a lattice, of `poses`), the `objective` and the `shard`
-    [i, n]."""
+    "examined", "degenerate", "unpinned", "no_seating_push", "shared_hole",
+    "symmetric"}; the number of `sites` (or, on a lattice, of `poses`), the
+    `objective`, the `shard` [i, n], and the part's `symmetries` ([{"kind":
+    "rotation" | "reflection", "angle_deg", "center"}], the identity first;
+    None when collapse_symmetric=False)."""
     designs: List[Design]
     counts: Dict[str, int]
     sites: int = 0                     # candidate sites (0 on a lattice)
     poses: int = 0                     # a lattice: the poses found
     objective: str = "margin"
     shard: List[int] = dataclasses_field(default_factory=lambda: [0, 1])
+    # Why candidates have no seating push: {"asked_at", "reasons": [{"blocking",
+    # "states", "candidates"}]} (docs/PROTOCOL.md); see explain_no_design
+    why_no_seating_push: Optional[Dict[str, Any]] = None
+    symmetries: Optional[List[Dict[str, Any]]] = None
+
+
+def _eta_text(seconds: float) -> str:
+    s = int(seconds + 0.5)
+    if s < 60:
+        return "%d s" % s
+    if s < 3600:
+        return "%d min %d s" % (s // 60, s % 60)
+    return "%d h %d min" % (s // 3600, s % 3600 // 60)
+
+
+def progress_bar(stream: Any = None, width: int = 30) -> Callable[[Dict[str, Any]], None]:
+    """A progress callable for Client.design(progress=...): a bar redrawn in
+    place on `stream` (default sys.stderr), as wrenchctl draws it: the stage
+    (a lattice's hole pairs, the candidates, the designs' figures), done of
+    total, the estimated time left of the stage (eta_s) and the best score
+    so far; a new line when a stage is done."""
+    import sys
+    out = stream if stream is not None else sys.stderr
+    units = {"poses": "hole pairs", "candidates": "candidates", "figures": "designs' figures"}
+
+    def show(params: Dict[str, Any]) -> None:
+        done, total = params.get("done") or 0, params.get("total") or 0
+        if total <= 0:
+            return
+        filled = int(width * done / total)
+        line = "\r[%s%s] %3.0f%% %d/%d %s" % ("#" * filled, "." * (width - filled),
+                                              100.0 * done / total, done, total,
+                                              units.get(params.get("stage"), "candidates"))
+        if params.get("eta_s") is not None and done < total:
+            line += ", about %s left" % _eta_text(params["eta_s"])
+        if params.get("best") is not None:
+            line += ", best %.6g" % params["best"]
+        out.write(line + ("\n" if done >= total else " " * 10))
+        out.flush()
+    return show
+
+
+_NO_DESIGN_REASONS = ("shared_hole", "degenerate", "unpinned", "no_seating_push")
+
+
+def explain_no_design(result: Union["DesignResult", Mapping[str, Any]]) -> List[str]:
+    """Why a design found nothing, as lines, wrenchctl's: each reason with
+    its count ("1,001 of 1,001 candidates"), and for the candidates without
+    a seating push why the push asked about does not seat them, in the
+    words of explain_goal ("from contact state 1010 fixel 3 may break
+    away")."""
+    if not isinstance(result, DesignResult):
+        result = _design_result(dict(result))
+    counts = result.counts
+    lines = [_W["no_design"] % "{:,}".format(counts.get("examined", 0))]
+    for key in _NO_DESIGN_REASONS:
+        if counts.get(key, 0) > 0:
+            lines.append("  {:,} {}".format(counts[key], _W["no_design_" + key]))
+    why = result.why_no_seating_push or {}
+    asked, reasons = why.get("asked_at") or {}, why.get("reasons") or []
+    if reasons and asked.get("at"):
+        if "loop" in asked:
+            place = ", loop %d segment %d" % (asked["loop"], asked["segment"])
+        elif "edge" in asked:
+            place = ", edge %d" % asked["edge"]
+        else:
+            place = ""
+        lines.append("  " + _W["no_design_asked"] % ("(%.6g, %.6g)%s" % (
+            asked["at"][0], asked["at"][1], place)))
+        for r in reasons:
+            words = (explain_goal(r["blocking"], r["states"]) if r.get("blocking") is not None
+                     else _W["no_design_unreached"])
+            lines.append("    {:,} of {:,}: {}".format(r["candidates"],
+                                                       counts.get("no_seating_push", 0), words))
+    return lines
+
+
+def explain_empty_regions(answer: Mapping[str, Any]) -> List[str]:
+    """Why push.regions found no region (its why_empty), as lines,
+    wrenchctl's: each reason with the number of edges whose middle it
+    blocks.  [] when there are regions.  `answer` is the raw result
+    (Client.call) or a PushRegions."""
+    why = getattr(answer, "why_empty", None)
+    if why is None and isinstance(answer, Mapping):
+        why = answer.get("why_empty")
+    reasons = (why or {}).get("reasons") or []
+    edges = sum(r["edges"] for r in reasons)
+    if not edges:
+        return []
+    lines = [_W["empty_region"] % edges]
+    for r in reasons:
+        if r.get("blocking") is None:
+            words = _W["no_design_unreached"]
+        elif r.get("set") == "goal":
+            words = explain_goal(r["blocking"], r["states"])
+        else:
+            words = explain_strong(r["blocking"])
+        lines.append("  %d of %d: %s" % (r["edges"], edges, words))
+    return lines
 
 
 def _design_result(result: Any) -> DesignResult:
@@ -530,11 +644,19 @@ def _plan_result(result: Any) -> Plan:
     return plan
 
 
-def _list_result(result: Any) -> List[FixtureInfo]:
+class FixturePage(list):
+    """A page of fixture.list: its FixtureInfo, and `more`: whether
+    fixtures follow its last (ask again with after=page[-1].id)."""
+    more = False
+
+
+def _list_result(result: Any) -> "FixturePage":
     items = result.get("fixtures") if isinstance(result, dict) else None
     if not isinstance(items, list):
         raise WrenchdProtocolError("fixture.list: no fixtures array in %r" % (result,))
-    return [_build(FixtureInfo, f, "fixture.list") for f in items]
+    page = FixturePage(_build(FixtureInfo, f, "fixture.list") for f in items)
+    page.more = result.get("more") is True
+    return page
 
 
 def _object_result(result: Any) -> Dict[str, Any]:
@@ -597,6 +719,16 @@ _EXPLAIN_WORDS = {
     "inside_goal": "seats the part from every contact state",
     "inside_strong": "once seated, it does not move",
     "inside_both": "seats the part from every contact state and, once seated, it does not move",
+    # an empty design (explain_no_design); counts preformatted ("1,001")
+    "no_design": "no design: no candidate has a push that seats the part.  Of %s candidates:",
+    "no_design_shared_hole": "put two fixels in one hole (a pin is one fixel)",
+    "no_design_degenerate": "are degenerate (fixels at one point with one normal, or too close)",
+    "no_design_unpinned": "do not pin the part (it turns about a point with every contact kept)",
+    "no_design_no_seating_push": "have no seating push",
+    "no_design_asked": "why, for a push at %s, the middle of the longest segment pushed on:",
+    "no_design_unreached": "that push seats the part, but the finger cannot push there",
+    # an empty push region (explain_empty_regions)
+    "empty_region": "no region: the push at the middle of each of the %d edges pushed on:",
 }
 _W = _EXPLAIN_WORDS
 
@@ -646,6 +778,66 @@ def explain_strong(blocking: str) -> str:
         return _W["mode"] % blocking
     return _W["move"] + _W["move_join"].join(
         _W["move_fixel"] % (i + 1, MOTION[c]) for i, c in enumerate(blocking))
+
+
+# ---- where the finger may push -------------------------------------------------------
+
+WIDTH_STEPS = 180   # directions of a half turn at which a hole's width is measured
+
+
+def loop_width(loop: Sequence[Sequence[float]]) -> float:
+    """A loop's width (x, y, bulge rows as in an outline's shape): the least
+    distance between two parallel lines holding it, over WIDTH_STEPS
+    directions, arcs' bulges included (a circle's: its diameter).  The
+    same measure as wrenchctl's (lib/wr_outline.h, wr_outline_loop_width)."""
+    arcs, points = [], []
+    for j, v in enumerate(loop):
+        w = loop[(j + 1) % len(loop)]
+        points.append((float(v[0]), float(v[1])))
+        bulge = float(v[2]) if len(v) > 2 else 0.0
+        if bulge:
+            dx, dy = w[0] - v[0], w[1] - v[1]
+            k = (1.0 - bulge * bulge) / (4.0 * bulge)
+            c = ((v[0] + w[0]) / 2 - dy * k, (v[1] + w[1]) / 2 + dx * k)
+            sweep = 4.0 * math.atan(bulge)
+            start = math.atan2(v[1] - c[1], v[0] - c[0])
+            arcs.append((c, math.hypot(v[0] - c[0], v[1] - c[1]),
+                         start if sweep > 0 else start + sweep, abs(sweep)))
+
+    def passes(frm, sweep, phi):
+        return (phi - frm) % (2 * math.pi) <= sweep
+
+    width = math.inf
+    for k in range(WIDTH_STEPS):
+        phi = math.pi * k / WIDTH_STEPS
+        u = (math.cos(phi), math.sin(phi))
+        along = [p[0] * u[0] + p[1] * u[1] for p in points]
+        lo, hi = min(along), max(along)
+        for c, r, frm, sweep in arcs:
+            centre = c[0] * u[0] + c[1] * u[1]
+            if passes(frm, sweep, phi):
+                hi = max(hi, centre + r)
+            if passes(frm, sweep, phi + math.pi):
+                lo = min(lo, centre - r)
+        width = min(width, hi - lo)
+    return width
+
+
+def default_push_on(body: Any, finger_radius: float = 0.0) -> Any:
+    """The clients' push_on when none is given (docs/PROTOCOL.md, push_on):
+    the outer boundary and every hole wider than the finger's diameter;
+    a point finger (radius 0), whose size is not known, the outer boundary
+    only -- never inside a screw hole.  None when the body has no holes
+    (every loop is taken anyway), else "outer" or [0, holes...]."""
+    shape = body.get("shape") if isinstance(body, Mapping) else None
+    if not isinstance(shape, Mapping) or shape.get("type") != "outline":
+        return None
+    loops = shape.get("loops") or []
+    if len(loops) < 2:
+        return None
+    wide = [i for i, loop in enumerate(loops) if i > 0 and finger_radius > 0
+            and loop_width(loop) > 2 * finger_radius]
+    return [0] + wide if wide else "outer"
 
 
 def explain(verdict: Union[Verdict, Mapping[str, Any]], set_name: Optional[str] = None) -> str:
@@ -714,6 +906,12 @@ def _fixture_id(fixture_id: Any) -> str:
     return fixture_id
 
 
+def _cases(cases: Iterable[Any]) -> List[Dict[str, Any]]:
+    """Cases as the protocol takes them: a case given as a bare list of
+    loads becomes {"loads": [...]}."""
+    return [dict(c) if isinstance(c, Mapping) else {"loads": list(c)} for c in cases]
+
+
 def _wrench(w: Any) -> Any:
     if isinstance(w, Mapping):
         return dict(w)
@@ -732,6 +930,10 @@ class _Methods:
                 readonly: bool, timeout: Any, on_error: Optional[Callable] = None,
                 notify: Optional[Callable] = None):
         raise NotImplementedError
+
+    def _stored_body(self, fixture_id: str) -> Any:
+        """A stored fixture's body, asked now (for the default push_on)."""
+        return self.call("fixture.get", {"id": fixture_id}, readonly=True).get("body")
 
     def put_fixture(self, fixture: Mapping[str, Any], *, timeout: Any = _DEFAULT):
         """fixture.put: store a fixture (idempotent: same content, same id)."""
@@ -752,9 +954,18 @@ class _Methods:
         return self._invoke("fixture.delete", {"id": _fixture_id(fixture_id)}, _deleted_result,
                             False, timeout, _missing_is_false if missing_ok else None)
 
-    def list_fixtures(self, *, timeout: Any = _DEFAULT):
-        """fixture.list: [FixtureInfo], sorted by id."""
-        return self._invoke("fixture.list", {}, _list_result, True, timeout)
+    def list_fixtures(self, *, after: Optional[str] = None, limit: Optional[int] = None,
+                      timeout: Any = _DEFAULT):
+        """fixture.list, one page: a FixturePage of FixtureInfo sorted by
+        id, those after the id `after`, at most `limit` (the daemon's
+        default 1000); its `more` says whether others follow.  A Client
+        asked without after or limit gathers every page."""
+        params: Dict[str, Any] = {}
+        if after is not None:
+            params["after"] = _fixture_id(after)
+        if limit is not None:
+            params["limit"] = limit
+        return self._invoke("fixture.list", params, _list_result, True, timeout)
 
     def classify(self, fixture: Any, wrenches: Iterable[Any],
                  sets: Union[str, Sequence[str]] = ("goal", "strong"), method: str = "auto",
@@ -800,18 +1011,73 @@ class _Methods:
                             lambda r: _build(Modes, r, "modes.get"), True, timeout)
 
     def push_regions(self, fixture: Any, set: str = "goal", finger_friction: float = 0.0, *,
-                     finger_radius: float = 0.0, timeout: Any = _DEFAULT):
+                     finger_radius: float = 0.0, push_on: Any = None,
+                     force: Optional[float] = None, cases: Optional[Iterable[Any]] = None,
+                     timeout: Any = _DEFAULT):
         """push.regions: where a finger pushing along the inward normal gives
         a wrench in the set (PushRegions).  finger_friction > 0: every force
         of the finger's friction cone must be in it (sampled).  finger_radius
         > 0: only where a disc of that radius touching the boundary from
-        outside overlaps no part of the workpiece."""
-        params = {"fixture": _fixture_ref(fixture), "set": set}
+        outside overlaps no part of the workpiece.  push_on: "outer", "all"
+        or a list of loops; None: default_push_on of the fixture's body (a
+        stored fixture's is fetched).  force F (and cases, see force_range):
+        where a push of magnitude F does the set's job under every case
+        (exact, a frictionless finger)."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "set": set}
         if finger_friction:
             params["finger_friction"] = finger_friction
         if finger_radius:
             params["finger_radius"] = finger_radius
+        if push_on is None:
+            ref = params["fixture"]
+            body = ref.get("body") if isinstance(ref, Mapping) else self._stored_body(ref)
+            push_on = default_push_on(body, finger_radius)
+        if push_on is not None:
+            params["push_on"] = push_on
+        if force is not None:
+            params["force"] = force
+        if cases is not None:
+            params["cases"] = _cases(cases)
         return self._invoke("push.regions", params, _push_result, True, timeout)
+
+    def force_range(self, fixture: Any, cases: Iterable[Any], *,
+                    push: Optional[Mapping[str, Any]] = None, wrench: Any = None,
+                    sets: Optional[Sequence[str]] = None,
+                    range: Optional[Sequence[float]] = None, timeout: Any = _DEFAULT):
+        """force.range: the magnitudes F of one push (push={"at": [x, y],
+        "direction"?: [dx, dy]}, or a wrench direction) that do each set's
+        job under each case and under all of them, as the daemon's answer
+        {"cases": [...], "all": {...}} (S = {"intervals", "least"}, None for
+        no upper end), in the fixture's force unit.  A case is {"name"?,
+        "loads": [...]} or a list of loads; a load {"gravity": {"g",
+        "direction_deg"}}, {"force", "at"} or {"wrench"}."""
+        if (push is None) == (wrench is None):
+            raise ValueError("force_range takes push or wrench, one of them")
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "cases": _cases(cases)}
+        if push is not None:
+            params["push"] = dict(push)
+        else:
+            params["wrench"] = list(wrench)
+        if sets is not None:
+            params["sets"] = list(sets)
+        if range is not None:
+            params["range"] = [range[0], range[1]]
+        return self._invoke("force.range", params, _object_result, True, timeout)
+
+    def push_force(self, fixture: Any, cases: Iterable[Any], *, set: str = "both",
+                   finger_radius: float = 0.0, samples: Optional[int] = None,
+                   timeout: Any = _DEFAULT):
+        """push.force: the least force F*(p) of a push along the inward
+        normal that does the set's job under every case, sampled exactly
+        along every segment, and its minimum over the outline ("least":
+        {"at", "direction", "force", "lower_bound", ...} or None)."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "cases": _cases(cases),
+                                  "set": set}
+        if finger_radius:
+            params["finger_radius"] = finger_radius
+        if samples is not None:
+            params["samples"] = samples
+        return self._invoke("push.force", params, _object_result, True, timeout)
 
     def gravity_sweep(self, fixture: Any, set: str = "goal", *, timeout: Any = _DEFAULT):
         """gravity.sweep: the arcs [a, b] of tilt (degrees, the direction
@@ -885,17 +1151,26 @@ class _Methods:
                sites: Optional[Iterable[Any]] = None, spacing: Optional[float] = None,
                lattice: Optional[Mapping[str, Any]] = None, objective: str = "margin",
                top: int = 10, finger_radius: float = 0.0, finger_friction: float = 0.0,
-               shard: Optional[Sequence[int]] = None,
+               push_on: Any = None, corner_clearance: Optional[float] = None,
+               pin_diameter: Optional[float] = None, shard: Optional[Sequence[int]] = None,
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
                tolerance: Optional[float] = None, features: Optional[Iterable[Any]] = None,
+               cases: Optional[Iterable[Any]] = None, collapse_symmetric: bool = True,
                timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
         [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
         Objective "accuracy" takes `tolerance` and `features` (as locating).
         `progress`, a callable, receives each design.progress notification's
-        params ({"id", "done", "total", "best"}) as it arrives; the timeout
-        is then the longest silence.  `shard` = (i, n): shard i of n."""
+        params ({"id", "stage", "done", "total", "best", "eta_s"}) as it
+        arrives (progress_bar() draws them); the timeout is then the longest
+        silence.  `shard` = (i, n): shard i of n.
+        With `spacing`, `corner_clearance` (default spacing / 2) and
+        `pin_diameter` (sites on holes are pins of that diameter).
+        `push_on`: "outer", "all" or a list of loops; None: default_push_on
+        (the outer boundary and the holes wider than the finger).  Designs
+        that a symmetry of the part maps onto each other come once, with
+        their `copies`; collapse_symmetric=False lists every one."""
         given = [name for name, value in (("sites", sites), ("spacing", spacing),
                                           ("lattice", lattice)) if value is not None]
         if len(given) != 1:
@@ -908,12 +1183,20 @@ class _Methods:
                                for x in sites]
         elif spacing is not None:
             params["spacing"] = spacing
+            if corner_clearance is not None:
+                params["corner_clearance"] = corner_clearance
+            if pin_diameter is not None:
+                params["pin_diameter"] = pin_diameter
         else:
             params["lattice"] = dict(lattice)
         if finger_radius:
             params["finger_radius"] = finger_radius
         if finger_friction:
             params["finger_friction"] = finger_friction
+        if push_on is None:
+            push_on = default_push_on(body, finger_radius)
+        if push_on is not None:
+            params["push_on"] = push_on
         if shard is not None:
             params["shard"] = [int(shard[0]), int(shard[1])]
         if tolerance is not None:
@@ -921,8 +1204,12 @@ class _Methods:
         if features is not None:
             params["features"] = [dict(f) if isinstance(f, Mapping) else {"at": list(f)}
                                   for f in features]
+        if not collapse_symmetric:
+            params["collapse_symmetric"] = False
         if progress is not None:
             params["progress"] = True
+        if cases is not None:
+            params["cases"] = _cases(cases)
         return self._invoke("fixture.design", params, _design_result, True, timeout,
                             notify=progress)
 
@@ -960,6 +1247,17 @@ class Client(_Methods):
     """One connection to wrenchd at socket_path (default: $WRENCHD_SOCKET or
     ./run/wrenchd.sock).  timeout: seconds for each call (connecting,
     sending, answering); None waits forever.  See the module's docstring."""
+
+    def list_fixtures(self, *, after: Optional[str] = None, limit: Optional[int] = None,
+                      timeout: Any = _DEFAULT):
+        page = _Methods.list_fixtures(self, after=after, limit=limit, timeout=timeout)
+        if after is not None or limit is not None:
+            return page
+        every = FixturePage(page)
+        while page.more and page:
+            page = _Methods.list_fixtures(self, after=page[-1].id, timeout=timeout)
+            every.extend(page)
+        return every
 
     def __init__(self, socket_path: Optional[Union[str, "os.PathLike[str]"]] = None,
                  timeout: Optional[float] = DEFAULT_TIMEOUT):
@@ -1273,6 +1571,11 @@ class Batch(_Methods):
 
     def __len__(self) -> int:
         return len(self._items)
+
+    def _stored_body(self, fixture_id: str) -> Any:
+        # Asked on the client at once, not in the batch: the request being
+        # built needs it.
+        return self.client._stored_body(fixture_id)
 
     def __enter__(self) -> "Batch":
         return self

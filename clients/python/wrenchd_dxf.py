@@ -1001,8 +1001,9 @@ def read_dxf(path, layers=None, tolerance=None, units=None, curve_tolerance=None
                                  "deviation": measured})
         for k, (start, bulge) in enumerate(arcs):
             stop = arcs[k + 1][0] if k + 1 < len(arcs) else p1
+            # a curve's ends are computed: at a joint a LINE's drawn end is kept
             reader.segs.append(_Seg(start, stop, bulge, index, k, where, curve.kind,
-                                    (k == 0, k + 1 == len(arcs))))
+                                    (False, False)))
     report["curve_deviation"] = worst
 
     # segments shorter than the tolerance: a LINE or ARC is left out, a
@@ -1272,6 +1273,8 @@ def main(argv=None):
             chosen = [number]
             text = json.dumps(parts[number - 1]["shape"])
             report["part"] = number
+            report["loops"] = len(parts[number - 1]["shape"]["loops"])
+            report["holes"] = parts[number - 1]["holes"]
     except (DxfShapeError, OSError) as error:
         sys.stderr.write("wrenchd_dxf: %s: %s\n" % (args.dxf, error))
         return 1

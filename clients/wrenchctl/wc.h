@@ -65,8 +65,15 @@ enum {
     WC_OPT_SWEEP = 1 << 16,     /* --push SET, --gravity SET, --wrench FX,FY,TAU (repeated),
                                    --range LO:HI, --kinetic-ratio R */
     WC_OPT_DESIGN = 1 << 17,    /* --spacing H, --lattice P,R,NXxNY, --fixels K,
-                                   --objective O, --top N, --shard I/N */
-    WC_OPT_LOCATE = 1 << 18     /* --tolerance T|T1,T2,T3, --feature [NAME=]X,Y (repeated),
+                                   --objective O, --top N, --shard I/N,
+                                   --corner-clearance C, --pin-diameter D,
+                                   --emit-fixture N FILE,
+                                   --symmetric collapse|all */
+    WC_OPT_PUSH_ON = 1 << 18,   /* --push-on outer|all|L,L,... */
+    WC_OPT_CASE = 1 << 19,      /* --case SPEC (repeated): load cases (wc_force.c) */
+    WC_OPT_FORCE = 1 << 20,     /* force: --push X,Y[@DX,DY], --wrench FX,FY,TAU, --range */
+    WC_OPT_PUSH_FORCE = 1 << 21, /* push: --force F */
+    WC_OPT_LOCATE = 1 << 22     /* --tolerance T|T1,T2,T3, --feature [NAME=]X,Y (repeated),
                                    --sigma-ratio R */
 };
 
@@ -97,14 +104,24 @@ typedef struct wc_run {
     bool range_given;
     double kinetic_ratio;   /* --kinetic-ratio */
     bool ratio_given;
+    bool table_full;        /* --table full: every row, not a summary */
     double spacing;         /* --spacing; 0 when not given */
     int fixels, top;        /* --fixels, --top; 0 when not given */
     const char *objective;  /* --objective */
     int shard[2];           /* --shard I/N */
     bool shard_given;
+    bool symmetric_all;     /* --symmetric all: collapse_symmetric false */
     double lattice[2];      /* --lattice PITCH,RADIUS,NXxNY: pitch, peg radius */
     int lattice_extent[2];
     bool lattice_given;
+    double corner_clearance; /* --corner-clearance; 0 when not given */
+    double pin_diameter;     /* --pin-diameter */
+    bool pin_diameter_given;
+    int emit_design;         /* --emit-fixture N FILE: design N (from 1); 0: none */
+    const char *emit_file;
+    cJSON *push_on;          /* --push-on, as sent; NULL: the clients' default */
+    int decimals;            /* design-merge: the shards' drawing precision (their
+                                summary lines say it); -1: not known */
     /* WC_FIXTURE: the fixture as sent (an object, or an id string) */
     cJSON *fixture;
     /* kept by a request function for its answer (sweep: --wrench, as read) */
@@ -116,6 +133,12 @@ typedef struct wc_run {
     cJSON *features;
     double sigma_ratio;
     bool sigma_ratio_given;
+    /* WC_OPT_CASE, WC_OPT_FORCE, WC_OPT_PUSH_FORCE */
+    cJSON *cases;           /* the cases, as sent */
+    cJSON *force_push;      /* force --push: {"at", "direction"?} */
+    cJSON *force_wrench;    /* force --wrench: [fx, fy, tau] */
+    double push_force;      /* push --force */
+    bool push_force_given;
 } wc_run;
 
 /* Adds the command's params to `params` (the fixture is already there for

@@ -35,7 +35,10 @@ cJSON *wc_call(wc_options *o, const char *method, cJSON *params, int *status)
     cJSON_AddStringToObject(request, "method", method);
     cJSON_AddItemToObject(request, "params", params);
     cJSON_AddNumberToObject(request, "id", 1);
-    char *line = cJSON_PrintUnformatted(request);
+    /* Every number exactly as read: cJSON's own printer writes some doubles
+     * to 15 digits (a bulge of tan(pi/8) moves by 1e-16), and the daemon
+     * would answer for another drawing. */
+    char *line = wp_canonical(request, NULL);
     cJSON_Delete(request);
     if (!line) {
         *status = EXIT_SERVER;
@@ -45,7 +48,7 @@ cJSON *wc_call(wc_options *o, const char *method, cJSON *params, int *status)
     char *answer = NULL;
     if (o->local) {
         wp_local *local = wp_local_new();
-        wp_limits limits = {64, (size_t)-1, (size_t)-1};
+        wp_limits limits = {64, (size_t)-1, (size_t)-1, 0};
         wp_counts counts = {0, 0};
         answer = local ? wp_answer_line(wp_local_host(local), &limits, line, strlen(line), &counts)
                        : NULL;

@@ -9,11 +9,14 @@
 
 #include "wc.h"
 
+struct wr_fixture;
+
 /* wc_fixture.c: put, get, delete, list, status */
 int wc_put_request(wc_run *run, cJSON *params);
 int wc_put_answer(wc_run *run, const cJSON *result);
 int wc_id_request(wc_run *run, cJSON *params);         /* get, delete: {"id"} */
 int wc_delete_answer(wc_run *run, const cJSON *result);
+int wc_list_request(wc_run *run, cJSON *params);
 int wc_list_answer(wc_run *run, const cJSON *result);
 int wc_status_answer(wc_run *run, const cJSON *result);
 
@@ -41,5 +44,33 @@ int wc_design_answer(wc_run *run, const cJSON *result);
 int wc_locate_request(wc_run *run, cJSON *params); /* fixture.locating */
 int wc_locate_answer(wc_run *run, const cJSON *result);
 int wc_design_merge_request(wc_run *run, cJSON *params); /* no method: the whole command */
+
+/* wc_reach.c: where the finger may push (push, design) */
+int wc_take_push_on(wc_run *run, const char *value); /* --push-on: 0, or an exit status */
+/* Adds params.push_on: --push-on's, else the clients' default for `body`
+ * (a body's JSON, or a stored fixture's id string, whose body is fetched)
+ * and --finger-radius; nothing when every loop is taken anyway.  -1 to go
+ * on, or an exit status. */
+int wc_push_on(wc_run *run, const cJSON *body, cJSON *params);
+
+/* With --svg, the picture `draw` makes of the answer on the part (its
+ * geometry read from the file or the store): -1, or EXIT_USAGE after
+ * saying why there is none (wc_regions.c). */
+typedef bool (*wc_drawing)(const wc_run *run, const cJSON *result, FILE *out,
+                           const struct wr_fixture *geometry, const char *name);
+int wc_picture(wc_run *run, const cJSON *result, wc_drawing draw);
+
+/* wc_force.c: force, push-force, and push's --force and --case; the
+ * options --case, --push X,Y (force's), --wrench (force's), --force */
+int wc_take_case(wc_run *run, const char *value);
+int wc_take_force_push(wc_run *run, const char *value);
+int wc_take_force_wrench(wc_run *run, const char *value);
+int wc_take_push_force(wc_run *run, const char *value);
+int wc_force_request(wc_run *run, cJSON *params); /* force.range */
+int wc_force_answer(wc_run *run, const cJSON *result);
+int wc_push_force_request(wc_run *run, cJSON *params); /* push.force */
+int wc_push_force_answer(wc_run *run, const cJSON *result);
+/* push.regions' "force" and "cases", when given; -1 or an exit status. */
+int wc_push_loads(wc_run *run, cJSON *params);
 
 #endif

@@ -5,6 +5,7 @@
 #include "wc_print.h"
 #include "wc_svg.h"
 
+#include "wc_explain.h" /* generated from clients/python/wrenchd.py */
 #include "wp_fixture.h"
 
 #include <errno.h>
@@ -13,8 +14,21 @@
 #include <string.h>
 #include <unistd.h>
 
-/* design.progress on stderr, redrawn in place: a bar, the count, the best
- * score so far. */
+/* Seconds as a person reads them: "40 s", "3 min 5 s", "2 h 10 min". */
+static void format_eta(double seconds, char *out, size_t size)
+{
+    double s = floor(seconds + 0.5);
+    if (s < 60)
+        snprintf(out, size, "%.0f s", s);
+    else if (s < 3600)
+        snprintf(out, size, "%.0f min %.0f s", floor(s / 60), fmod(s, 60));
+    else
+        snprintf(out, size, "%.0f h %.0f min", floor(s / 3600), floor(fmod(s, 3600) / 60));
+}
+
+/* design.progress on stderr, redrawn in place: a bar, the count of the
+ * stage (a lattice's poses, the candidates, the designs' figures), the
+ * estimated time left of it (eta_s), the best score so far. */
 static void progress_bar(const char *line, void *context)
 {
     (void)context;
@@ -23,6 +37,11 @@ static void progress_bar(const char *line, void *context)
     double done = cJSON_GetNumberValue(cJSON_GetObjectItem(params, "done"));
     double total = cJSON_GetNumberValue(cJSON_GetObjectItem(params, "total"));
     const cJSON *best = cJSON_GetObjectItem(params, "best");
+    const cJSON *eta = cJSON_GetObjectItem(params, "eta_s");
+    const char *stage = cJSON_GetStringValue(cJSON_GetObjectItem(params, "stage"));
+    const char *unit = !stage || strcmp(stage, "candidates") == 0 ? "candidates"
+                       : strcmp(stage, "poses") == 0           ? "hole pairs"
+                                                               : "designs' figures";
     if (json && total > 0 && done >= 0) {
         enum { WIDTH = 30 };
         int filled = (int)(WIDTH * done / total);
@@ -30,11 +49,17 @@ static void progress_bar(const char *line, void *context)
         for (int i = 0; i < WIDTH; i++)
             bar[i] = i < filled ? '#' : '.';
         bar[WIDTH] = 0;
-        fprintf(stderr, "\r[%s] %3.0f%% %.0f/%.0f candidates", bar, 100 * done / total, done,
-                total);
+        fprintf(stderr, "\r[%s] %3.0f%% %.0f/%.0f %s", bar, 100 * done / total, done, total,
+                unit);
+        if (cJSON_IsNumber(eta) && done < total) {
+            char text[32];
+            format_eta(eta->valuedouble, text, sizeof text);
+            fprintf(stderr, ", about %s left", text);
+        }
         if (cJSON_IsNumber(best))
             fprintf(stderr, ", best %.6g", best->valuedouble);
-        fputs(done >= total ? "\n" : "  ", stderr);
+        /* Spaces over what a longer line before left. */
+        fputs(done >= total ? "\n" : "          ", stderr);
         fflush(stderr);
     }
     cJSON_Delete(json);
@@ -88,6 +113,10 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddItemToObject(lattice, "extent", cJSON_CreateIntArray(run->lattice_extent, 2));
     } else if (run->spacing > 0) {
         cJSON_AddNumberToObject(params, "spacing", run->spacing);
+        if (run->corner_clearance > 0)
+            cJSON_AddNumberToObject(params, "corner_clearance", run->corner_clearance);
+        if (run->pin_diameter_given)
+            cJSON_AddNumberToObject(params, "pin_diameter", run->pin_diameter);
     } else if (body && cJSON_IsArray(cJSON_GetObjectItem(json, "fixels"))) {
         /* The fixture's fixels are the candidate sites. */
         cJSON *sites = cJSON_AddArrayToObject(params, "sites");
@@ -109,8 +138,15 @@ int wc_design_request(wc_run *run, cJSON *params)
         return wc_usage_error("design: no candidate sites: give --spacing H, or a fixture whose "
                               "fixels are the sites");
     }
-    /* For --svg: the body and friction, to draw each design as a fixture;
-     * and the file's units, which the table and the pictures name. */
+    if ((run->corner_clearance > 0 || run->pin_diameter_given) &&
+        !cJSON_GetObjectItem(params, "spacing")) {
+        cJSON_Delete(json);
+        free(name);
+        return wc_usage_error("design: --corner-clearance and --pin-diameter go with --spacing");
+    }
+    /* For --svg and --emit-fixture: the body and friction, to draw each
+     * design as a fixture and to write one; and the file's units, which the
+     * table and the pictures name and the fixture written keeps. */
     run->fixture = cJSON_CreateObject();
     cJSON_AddStringToObject(run->fixture, "name", name ? name : "design");
     free(name);
@@ -122,6 +158,11 @@ int wc_design_request(wc_run *run, cJSON *params)
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
     cJSON_AddItemToObject(run->fixture, "friction",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "friction"), true));
+    int reach = wc_push_on(run, cJSON_GetObjectItem(params, "body"), params);
+    if (reach >= 0)
+        return reach;
+    if (run->emit_design && run->shard_given)
+        return wc_usage_error("design: --emit-fixture needs the whole answer, not a --shard");
     if (run->fixels)
         cJSON_AddNumberToObject(params, "fixels", run->fixels);
     if (run->top)
@@ -134,6 +175,8 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddItemToObject(params, "features", cJSON_Duplicate(run->features, true));
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
+    if (run->symmetric_all)
+        cJSON_AddBoolToObject(params, "collapse_symmetric", false);
     if (run->friction_given)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->shard_given)
@@ -167,6 +210,10 @@ static void shard_lines(const wc_run *run, const cJSON *result)
     cJSON *rest = cJSON_Duplicate(result, true);
     cJSON_DeleteItemFromObject(rest, "designs");
     cJSON_AddNumberToObject(rest, "top", run->top ? run->top : 10);
+    /* The merged table prints points as this one would. */
+    cJSON_AddNumberToObject(rest, "decimals", wc_drawing_decimals(cJSON_GetObjectItem(
+                                                  cJSON_GetObjectItem(run->fixture, "body"),
+                                                  "shape")));
     char *line = cJSON_PrintUnformatted(rest);
     if (line)
         printf("%s\n", line);
@@ -174,9 +221,10 @@ static void shard_lines(const wc_run *run, const cJSON *result)
     cJSON_Delete(rest);
 }
 
-/* A design as a fixture: the request's body and friction with its fixels
- * (friction as a number or an interval becomes the fixture's form). */
-static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
+/* A design as a fixture's JSON: the request's body and friction with its
+ * fixels (friction as a number or an interval becomes the fixture's
+ * form). */
+static cJSON *design_fixture_json(const wc_run *run, const cJSON *design)
 {
     cJSON *json = cJSON_CreateObject();
     cJSON_AddItemToObject(json, "body",
@@ -191,6 +239,51 @@ static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
     if (cJSON_GetObjectItem(run->fixture, "units"))
         cJSON_AddItemToObject(json, "units",
                               cJSON_Duplicate(cJSON_GetObjectItem(run->fixture, "units"), true));
+    return json;
+}
+
+/* --emit-fixture N FILE: design N as a fixture file, named after the
+ * part and the design.  -1, or an exit status after saying why not. */
+static int emit_fixture(const wc_run *run, const cJSON *result)
+{
+    const cJSON *designs = cJSON_GetObjectItem(result, "designs");
+    int count = cJSON_GetArraySize(designs);
+    if (run->emit_design > count)
+        return wc_usage_error("design: --emit-fixture %d: the answer has %d design%s",
+                              run->emit_design, count, count == 1 ? "" : "s");
+    const cJSON *design = cJSON_GetArrayItem(designs, run->emit_design - 1);
+    cJSON *body = design_fixture_json(run, design);
+    cJSON *json = cJSON_CreateObject();
+    char name[256];
+    snprintf(name, sizeof name, "%s, design %d",
+             cJSON_GetStringValue(cJSON_GetObjectItem(run->fixture, "name")), run->emit_design);
+    cJSON_AddStringToObject(json, "name", name);
+    const char *keys[] = {"body", "friction", "fixels"};
+    for (int k = 0; k < 3; k++)
+        cJSON_AddItemToObject(json, keys[k], cJSON_DetachItemFromObject(body, keys[k]));
+    cJSON_Delete(body);
+    const cJSON *units = cJSON_GetObjectItem(run->fixture, "units");
+    if (units)
+        cJSON_AddItemToObject(json, "units", cJSON_Duplicate(units, true));
+    /* Every number as read (cJSON_Print would round some to 15 digits,
+     * and a fixel could then leave the boundary). */
+    char *text = wp_canonical(json, NULL);
+    cJSON_Delete(json);
+    FILE *out = fopen(run->emit_file, "w");
+    int status = -1;
+    if (!out || !text || fprintf(out, "%s\n", text) < 0)
+        status = wc_usage_error("--emit-fixture %s: %s", run->emit_file,
+                                out ? "cannot write" : strerror(errno));
+    if (out && fclose(out) != 0 && status < 0)
+        status = wc_usage_error("--emit-fixture %s: %s", run->emit_file, strerror(errno));
+    free(text);
+    return status;
+}
+
+/* A design as a fixture, read as the daemon reads one. */
+static wr_fixture *design_fixture(const wc_run *run, const cJSON *design)
+{
+    cJSON *json = design_fixture_json(run, design);
     wp_fixture_doc doc;
     wp_error error;
     bool ok = wp_fixture_read(json, "fixture", &doc, &error);
@@ -227,8 +320,8 @@ static int design_pictures(const wc_run *run, const cJSON *result)
             break;
         }
         wr_analysis *analysis;
-        wr_finger finger = {run->friction_given ? run->finger_friction : 0,
-                            run->radius_given ? run->finger_radius : 0};
+        wr_finger finger = {.friction = run->friction_given ? run->finger_friction : 0,
+                            .radius = run->radius_given ? run->finger_radius : 0};
         if (wr_analysis_new(fixtures[count], &analysis) != WR_OK ||
             wr_push_regions_finger(analysis, WR_SET_BOTH, &finger, NULL, &regions[count]) !=
                 WR_OK) {
@@ -242,6 +335,15 @@ static int design_pictures(const wc_run *run, const cJSON *result)
         p->regions = regions[count].items;
         p->region_count = regions[count].count;
         p->rank = (int)number(d, "rank");
+        for (int k = 0; k < WR_MAX_FIXELS; k++)
+            p->pin_diameter[k] = -1;
+        const cJSON *pin;
+        cJSON_ArrayForEach(pin, cJSON_GetObjectItem(d, "pins"))
+        {
+            int fixel = (int)number(pin, "fixel");
+            if (fixel >= 0 && fixel < WR_MAX_FIXELS)
+                p->pin_diameter[fixel] = number(pin, "diameter");
+        }
         p->score = number(d, "score");
         const cJSON *push = cJSON_GetObjectItem(d, "best_push");
         if (cJSON_IsObject(push)) {
@@ -291,6 +393,71 @@ static int design_pictures(const wc_run *run, const cJSON *result)
     return status;
 }
 
+/* n with a comma every three digits: "1,001". */
+static void grouped(double n, char *out, size_t size)
+{
+    char digits[32];
+    snprintf(digits, sizeof digits, "%.0f", n);
+    size_t length = strlen(digits), k = 0;
+    for (size_t i = 0; i < length && k + 2 < size; i++) {
+        if (i > 0 && (length - i) % 3 == 0)
+            out[k++] = ',';
+        out[k++] = digits[i];
+    }
+    out[k] = 0;
+}
+
+/* Why no candidate is a design: each reason with its count, and for those
+ * without a seating push, why the push asked about does not seat them
+ * (why_no_seating_push, in the words of classify's explanations). */
+static void explain_no_design(const cJSON *result)
+{
+    const cJSON *counts = cJSON_GetObjectItem(result, "counts");
+    char of[32], n[32];
+    grouped(number(counts, "examined"), of, sizeof of);
+    printf(WC_EXPLAIN_NO_DESIGN "\n", of);
+    static const char *const REASONS[][2] = {
+        {"shared_hole", WC_EXPLAIN_NO_DESIGN_SHARED_HOLE},
+        {"degenerate", WC_EXPLAIN_NO_DESIGN_DEGENERATE},
+        {"unpinned", WC_EXPLAIN_NO_DESIGN_UNPINNED},
+        {"no_seating_push", WC_EXPLAIN_NO_DESIGN_NO_SEATING_PUSH}};
+    for (size_t i = 0; i < sizeof REASONS / sizeof *REASONS; i++) {
+        double count = number(counts, REASONS[i][0]);
+        if (count > 0) {
+            grouped(count, n, sizeof n);
+            printf("  %s %s\n", n, REASONS[i][1]);
+        }
+    }
+    const cJSON *why = cJSON_GetObjectItem(result, "why_no_seating_push");
+    const cJSON *asked = cJSON_GetObjectItem(why, "asked_at");
+    const cJSON *at = cJSON_GetObjectItem(asked, "at");
+    if (cJSON_GetArraySize(cJSON_GetObjectItem(why, "reasons")) == 0 || cJSON_GetArraySize(at) != 2)
+        return;
+    char place[64] = "";
+    if (cJSON_GetObjectItem(asked, "loop"))
+        snprintf(place, sizeof place, ", loop %.0f segment %.0f", number(asked, "loop"),
+                 number(asked, "segment"));
+    else if (cJSON_GetObjectItem(asked, "edge"))
+        snprintf(place, sizeof place, ", edge %.0f", number(asked, "edge"));
+    grouped(number(counts, "no_seating_push"), of, sizeof of);
+    char where[128];
+    snprintf(where, sizeof where, "(%.6g, %.6g)%s", cJSON_GetArrayItem(at, 0)->valuedouble,
+             cJSON_GetArrayItem(at, 1)->valuedouble, place);
+    printf("  " WC_EXPLAIN_NO_DESIGN_ASKED "\n", where);
+    const cJSON *reason;
+    cJSON_ArrayForEach(reason, cJSON_GetObjectItem(why, "reasons"))
+    {
+        char words[512];
+        const char *blocking = cJSON_GetStringValue(cJSON_GetObjectItem(reason, "blocking"));
+        if (blocking)
+            wc_explain_goal(blocking, cJSON_GetObjectItem(reason, "states"), words, sizeof words);
+        else
+            snprintf(words, sizeof words, "%s", WC_EXPLAIN_NO_DESIGN_UNREACHED);
+        grouped(number(reason, "candidates"), n, sizeof n);
+        printf("    %s of %s: %s\n", n, of, words);
+    }
+}
+
 int wc_design_answer(wc_run *run, const cJSON *result)
 {
     if (run->shard_given) {
@@ -305,8 +472,18 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     {
         any_push = any_push || cJSON_IsObject(cJSON_GetObjectItem(d, "best_push"));
     }
-    if (run->o->json)
+    if (run->emit_design) {
+        int status = emit_fixture(run, result);
+        if (status >= 0)
+            return status;
+    }
+    if (run->o->json) {
+        /* --json --svg: the picture too. */
+        int status = run->svg && run->fixture ? design_pictures(run, result) : -1;
+        if (status >= 0)
+            return status;
         return any_push ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+    }
     const char *objective = cJSON_GetStringValue(cJSON_GetObjectItem(result, "objective"));
     if (cJSON_GetObjectItem(result, "poses"))
         printf("design: 3 pegs on the lattice, %.0f poses of the part touching three",
@@ -319,32 +496,44 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     if (cJSON_GetArraySize(shard) == 2 && cJSON_GetArrayItem(shard, 1)->valuedouble > 1)
         printf(" (shard %.0f of %.0f: %.0f of them)", cJSON_GetArrayItem(shard, 0)->valuedouble,
                cJSON_GetArrayItem(shard, 1)->valuedouble, number(counts, "examined"));
-    printf("; %.0f without a seating push, %.0f unpinned, %.0f degenerate; ranked by %s\n",
+    printf("; %.0f without a seating push, %.0f unpinned, %.0f degenerate", 
            number(counts, "no_seating_push"), number(counts, "unpinned"),
-           number(counts, "degenerate"), objective ? objective : "margin");
+           number(counts, "degenerate"));
+    if (number(counts, "shared_hole") > 0)
+        printf(", %.0f with two fixels in one hole", number(counts, "shared_hole"));
+    printf("; ranked by %s\n", objective ? objective : "margin");
     if (objective && strcmp(objective, "accuracy") == 0)
         printf("score: minus the worst locating error, locators off by +-%g (the features' worst "
                "displacement, else the pose's in the scaled metric)\n",
                cJSON_IsNumber(run->locate_tolerance) ? run->locate_tolerance->valuedouble : NAN);
-    printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
+    int symmetries = cJSON_GetArraySize(cJSON_GetObjectItem(result, "symmetries"));
+    if (symmetries > 1)
+        printf("the part has %d symmetries (the identity among them): designs one maps onto "
+               "another are listed once, with how many more it stands for\n",
+               symmetries);
+    if (cJSON_GetArraySize(designs) > 0)
+        printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
+    /* Points to the drawing's precision (wc_drawing_decimals). */
+    int decimals = run->fixture ? wc_drawing_decimals(cJSON_GetObjectItem(
+                                      cJSON_GetObjectItem(run->fixture, "body"), "shape"))
+                                : run->decimals;
     cJSON_ArrayForEach(d, designs)
     {
-        char fixels[256] = "", push[128] = "none", cell[64];
+        char fixels[512] = "", push[160] = "none", cell[96];
         const cJSON *f;
         cJSON_ArrayForEach(f, cJSON_GetObjectItem(d, "fixels"))
         {
-            const cJSON *at = cJSON_GetObjectItem(f, "at");
-            snprintf(cell, sizeof cell, "%s(%.4g, %.4g)", fixels[0] ? " " : "",
-                     cJSON_GetArrayItem(at, 0)->valuedouble, cJSON_GetArrayItem(at, 1)->valuedouble);
+            if (fixels[0])
+                strncat(fixels, " ", sizeof fixels - strlen(fixels) - 1);
+            wc_point_text(cJSON_GetObjectItem(f, "at"), decimals, cell, sizeof cell);
             strncat(fixels, cell, sizeof fixels - strlen(fixels) - 1);
         }
         const cJSON *best = cJSON_GetObjectItem(d, "best_push");
         if (cJSON_IsObject(best)) {
-            const cJSON *at = cJSON_GetObjectItem(best, "at");
             const cJSON *direction = cJSON_GetObjectItem(best, "direction");
-            snprintf(push, sizeof push, "(%.4g, %.4g) -> (%.3g, %.3g)",
-                     cJSON_GetArrayItem(at, 0)->valuedouble, cJSON_GetArrayItem(at, 1)->valuedouble,
+            wc_point_text(cJSON_GetObjectItem(best, "at"), decimals, cell, sizeof cell);
+            snprintf(push, sizeof push, "%s -> (%.3f, %.3f)", cell,
                      cJSON_GetArrayItem(direction, 0)->valuedouble + 0.0,
                      cJSON_GetArrayItem(direction, 1)->valuedouble + 0.0);
         }
@@ -355,6 +544,9 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("%-4.0f  %-10.6g  %-34s  %-30s  %-9.4g  %-9.4g  %-7.3g  %s\n", number(d, "rank"),
                number(d, "score"), fixels, push, number(d, "goal_length"),
                number(d, "both_length"), number(d, "gravity_goal_deg"), critical_text);
+        if (number(d, "copies") > 1)
+            printf("      and %.0f more: its images under the part's symmetries\n",
+                   number(d, "copies") - 1);
         const cJSON *pegs = cJSON_GetObjectItem(d, "pegs"), *pose = cJSON_GetObjectItem(d, "pose");
         if (cJSON_GetArraySize(pegs) == 3 && cJSON_GetArraySize(pose) == 3) {
             printf("      pegs in holes");
@@ -376,7 +568,7 @@ int wc_design_answer(wc_run *run, const cJSON *result)
             return status;
     }
     if (cJSON_GetArraySize(designs) == 0)
-        printf("no design: no candidate has a push that seats the part\n");
+        explain_no_design(result);
     else
         printf("Push at the best push and let go: it is in the both region (goal seats the part,\n"
                "strong then holds it); a goal push alone may leave it sliding along its fixels.\n");
@@ -384,6 +576,68 @@ int wc_design_answer(wc_run *run, const cJSON *result)
 }
 
 /* ---- design-merge -------------------------------------------------------------------- */
+
+/* Adds a shard's why_no_seating_push reasons to `into` ({"asked_at",
+ * "reasons"}), summing the candidates of equal blocking strings; the
+ * reasons are sorted again, most first, when the last is in. */
+static void merge_why(cJSON *into, const cJSON *why)
+{
+    if (!cJSON_GetObjectItem(into, "asked_at") && cJSON_GetObjectItem(why, "asked_at"))
+        cJSON_AddItemToObject(into, "asked_at",
+                              cJSON_Duplicate(cJSON_GetObjectItem(why, "asked_at"), true));
+    cJSON *reasons = cJSON_GetObjectItem(into, "reasons");
+    if (!reasons)
+        reasons = cJSON_AddArrayToObject(into, "reasons");
+    const cJSON *r;
+    cJSON_ArrayForEach(r, cJSON_GetObjectItem(why, "reasons"))
+    {
+        const char *blocking = cJSON_GetStringValue(cJSON_GetObjectItem(r, "blocking"));
+        cJSON *same = NULL, *mine;
+        cJSON_ArrayForEach(mine, reasons)
+        {
+            const char *other = cJSON_GetStringValue(cJSON_GetObjectItem(mine, "blocking"));
+            if ((!blocking && !other) || (blocking && other && strcmp(blocking, other) == 0))
+                same = mine;
+        }
+        if (same)
+            cJSON_ReplaceItemInObject(same, "candidates",
+                                      cJSON_CreateNumber(number(same, "candidates") +
+                                                         number(r, "candidates")));
+        else
+            cJSON_AddItemToArray(reasons, cJSON_Duplicate(r, true));
+    }
+}
+
+/* Does reason a come before b: more candidates, then by blocking string,
+ * null last (as the daemon orders them)? */
+static bool reason_before(const cJSON *a, const cJSON *b)
+{
+    double na = number(a, "candidates"), nb = number(b, "candidates");
+    if (na != nb)
+        return na > nb;
+    const char *sa = cJSON_GetStringValue(cJSON_GetObjectItem(a, "blocking"));
+    const char *sb = cJSON_GetStringValue(cJSON_GetObjectItem(b, "blocking"));
+    return sa && (!sb || strcmp(sa, sb) < 0);
+}
+
+/* The merged reasons in the daemon's order. */
+static void sort_why(cJSON *why)
+{
+    cJSON *reasons = cJSON_GetObjectItem(why, "reasons");
+    int n = cJSON_GetArraySize(reasons);
+    cJSON **all = calloc((size_t)(n ? n : 1), sizeof *all);
+    for (int k = 0; all && k < n; k++)
+        all[k] = cJSON_DetachItemViaPointer(reasons, reasons->child);
+    for (int a = 1; all && a < n; a++)
+        for (int b = a; b > 0 && reason_before(all[b], all[b - 1]); b--) {
+            cJSON *swap = all[b];
+            all[b] = all[b - 1];
+            all[b - 1] = swap;
+        }
+    for (int k = 0; all && k < n; k++)
+        cJSON_AddItemToArray(reasons, all[k]);
+    free(all);
+}
 
 static bool same_number(const cJSON *a, const cJSON *b)
 {
@@ -402,10 +656,12 @@ static bool ranks_before(const cJSON *a, const cJSON *b)
 int wc_design_merge_request(wc_run *run, cJSON *params)
 {
     (void)params;
-    cJSON *designs = cJSON_CreateArray(), *first = NULL;
-    double counts[5] = {0};
-    static const char *const COUNT_NAMES[5] = {"candidates", "examined", "degenerate", "unpinned",
-                                               "no_seating_push"};
+    cJSON *designs = cJSON_CreateArray(), *first = NULL, *why = cJSON_CreateObject();
+    enum { COUNTS = 7 };
+    double counts[COUNTS] = {0};
+    static const char *const COUNT_NAMES[COUNTS] = {"candidates", "examined", "degenerate",
+                                                    "unpinned", "no_seating_push", "shared_hole",
+                                                    "symmetric"};
     int shard_count = 0, summaries = 0;
     bool *seen = NULL;
     int status = EXIT_INSIDE;
@@ -444,6 +700,8 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
             }
             if (!first) {
                 first = json;
+                const cJSON *decimals = cJSON_GetObjectItem(json, "decimals");
+                run->decimals = cJSON_IsNumber(decimals) ? (int)decimals->valuedouble : -1;
                 shard_count = (int)n->valuedouble;
                 seen = calloc((size_t)shard_count, sizeof *seen);
                 counts[0] = number(cJSON_GetObjectItem(json, "counts"), "candidates");
@@ -475,8 +733,9 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
             }
             seen[index] = true;
             summaries++;
-            for (int k = 1; k < 5; k++)
+            for (int k = 1; k < COUNTS; k++)
                 counts[k] += number(cJSON_GetObjectItem(json, "counts"), COUNT_NAMES[k]);
+            merge_why(why, cJSON_GetObjectItem(json, "why_no_seating_push"));
             if (json != first)
                 cJSON_Delete(json);
         }
@@ -518,8 +777,14 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         }
         free(all);
         cJSON *total = cJSON_AddObjectToObject(result, "counts");
-        for (int c = 0; c < 5; c++)
+        for (int c = 0; c < COUNTS; c++)
             cJSON_AddNumberToObject(total, COUNT_NAMES[c], counts[c]);
+        sort_why(why);
+        cJSON_AddItemToObject(result, "why_no_seating_push", why);
+        why = NULL;
+        const cJSON *symmetries = cJSON_GetObjectItem(first, "symmetries");
+        if (symmetries)
+            cJSON_AddItemToObject(result, "symmetries", cJSON_Duplicate(symmetries, true));
         const char *source = cJSON_GetObjectItem(first, "poses") ? "poses" : "sites";
         cJSON_AddItemToObject(result, source,
                               cJSON_Duplicate(cJSON_GetObjectItem(first, source), true));
@@ -533,6 +798,7 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         cJSON_Delete(result);
     }
     free(seen);
+    cJSON_Delete(why);
     cJSON_Delete(first);
     cJSON_Delete(designs);
     return status;

@@ -3,6 +3,7 @@
 #include "wc_commands.h"
 #include "wc_print.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 
 int wc_put_request(wc_run *run, cJSON *params)
@@ -39,6 +40,53 @@ int wc_delete_answer(wc_run *run, const cJSON *result)
     if (!run->o->json)
         printf("deleted %s\n", run->items[0]);
     return EXIT_INSIDE;
+}
+
+/* fixture.list answers a page at a time: every page is asked (each after
+ * the last id of the one before) and the whole list printed as one. */
+int wc_list_request(wc_run *run, cJSON *params)
+{
+    (void)params; /* each page has its own */
+    cJSON *all = cJSON_CreateObject();
+    cJSON *fixtures = all ? cJSON_AddArrayToObject(all, "fixtures") : NULL;
+    if (!fixtures) {
+        cJSON_Delete(all);
+        fputs("wrenchctl: out of memory\n", stderr);
+        return EXIT_SERVER;
+    }
+    char after[64] = "";
+    int status = EXIT_INSIDE;
+    for (;;) {
+        cJSON *page_params = cJSON_CreateObject();
+        if (page_params && after[0])
+            cJSON_AddStringToObject(page_params, "after", after);
+        cJSON *page = wc_call(run->o, "fixture.list", page_params, &status);
+        if (!page) {
+            cJSON_Delete(all);
+            return status;
+        }
+        cJSON *items = cJSON_DetachItemFromObject(page, "fixtures");
+        bool more = cJSON_IsTrue(cJSON_GetObjectItem(page, "more"));
+        cJSON_Delete(page);
+        cJSON *item = items ? items->child : NULL;
+        const char *last = NULL;
+        while (item) {
+            cJSON *next = item->next;
+            cJSON_AddItemToArray(fixtures, cJSON_DetachItemViaPointer(items, item));
+            last = cJSON_GetStringValue(cJSON_GetObjectItem(item, "id"));
+            item = next;
+        }
+        if (last)
+            snprintf(after, sizeof after, "%s", last);
+        cJSON_Delete(items);
+        if (!more || !last)
+            break;
+    }
+    if (run->o->json)
+        wc_print_json(all);
+    status = wc_list_answer(run, all);
+    cJSON_Delete(all);
+    return status;
 }
 
 int wc_list_answer(wc_run *run, const cJSON *result)

@@ -40,4 +40,18 @@ void wc_explain_goal(const char *blocking, const cJSON *states, char *out, size_
 /* The motion a strong-set blocking mode allows, in words. */
 void wc_explain_strong(const char *blocking, char *out, size_t size);
 
+/* ---- coordinates to the drawing's precision ---------------------------------- */
+
+/* The decimals of the drawing (WC_MAX_DECIMALS at most): the median of the
+ * decimals its coordinates (a body's "shape": its vertices, centre, radius;
+ * not bulges) have in their shortest exact form, and never fewer than show
+ * 1/10,000 of the shape's size.  What
+ * tables print points to (wrenchctl(1), push); -1 for no shape (a
+ * stored fixture not at hand): then %g. */
+#define WC_MAX_DECIMALS 6
+int wc_drawing_decimals(const cJSON *shape);
+/* "(x, y)" rounded to `decimals` places, trailing zeros dropped ("(120,
+ * 52.5)"; -1: 6 significant digits). */
+void wc_point_text(const cJSON *point, int decimals, char *out, size_t size);
+
 #endif

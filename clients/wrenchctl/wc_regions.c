@@ -6,6 +6,7 @@
 #include "wc_call.h"
 #include "wc_commands.h"
 #include "wc_print.h"
+#include "wc_explain.h" /* generated from clients/python/wrenchd.py */
 #include "wc_svg.h"
 
 #include "wp_fixture.h"
@@ -90,6 +91,11 @@ static int picture(wc_run *run, const cJSON *result, drawing draw)
     return drawn ? -1 : EXIT_USAGE;
 }
 
+int wc_picture(wc_run *run, const cJSON *result, wc_drawing draw)
+{
+    return picture(run, result, draw);
+}
+
 /* The set asked, for the tables and pictures. */
 static const char *set_name(const wc_run *run)
 {
@@ -106,7 +112,11 @@ int wc_push_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(params, "finger_friction", run->finger_friction);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
-    return -1;
+    int status = wc_push_on(run,
+                            cJSON_IsString(run->fixture) ? run->fixture
+                                                         : cJSON_GetObjectItem(run->fixture, "body"),
+                            params);
+    return status >= 0 ? status : wc_push_loads(run, params);
 }
 
 /* Does the answer name its regions by loop and segment (an outline)? */
@@ -115,46 +125,189 @@ static bool by_segment(const cJSON *regions)
     return cJSON_HasObjectItem(cJSON_GetArrayItem(regions, 0), "loop");
 }
 
+/* An empty answer's why_empty, in words: each reason with its count of
+ * the edges whose middle it blocks. */
+static void explain_empty(const cJSON *why)
+{
+    const cJSON *reasons = cJSON_GetObjectItem(why, "reasons"), *r;
+    int edges = 0;
+    cJSON_ArrayForEach(r, reasons) edges += (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edges"));
+    if (edges == 0)
+        return;
+    printf(WC_EXPLAIN_EMPTY_REGION "\n", edges);
+    cJSON_ArrayForEach(r, reasons)
+    {
+        char words[512];
+        const char *blocking = cJSON_GetStringValue(cJSON_GetObjectItem(r, "blocking"));
+        const char *set = cJSON_GetStringValue(cJSON_GetObjectItem(r, "set"));
+        if (!blocking)
+            snprintf(words, sizeof words, "%s", WC_EXPLAIN_NO_DESIGN_UNREACHED);
+        else if (set && strcmp(set, "goal") == 0)
+            wc_explain_goal(blocking, cJSON_GetObjectItem(r, "states"), words, sizeof words);
+        else
+            wc_explain_strong(blocking, words, sizeof words);
+        printf("  %d of %d: %s\n", (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edges")), edges,
+               words);
+    }
+}
+
+/* The number of segments of loop `loop` of the fixture's shape (a
+ * polygon's edges as loop 0, a circle 1), 0 when not known (a stored
+ * fixture). */
+static int segments_of(const cJSON *fixture, int loop)
+{
+    const cJSON *shape = cJSON_GetObjectItem(cJSON_GetObjectItem(fixture, "body"), "shape");
+    const cJSON *loops = cJSON_GetObjectItem(shape, "loops");
+    if (loops)
+        return cJSON_GetArraySize(cJSON_GetArrayItem(loops, loop));
+    if (cJSON_GetObjectItem(shape, "vertices"))
+        return cJSON_GetArraySize(cJSON_GetObjectItem(shape, "vertices"));
+    return cJSON_GetObjectItem(shape, "center") ? 1 : 0;
+}
+
+/* A row of the push table: the regions order[first..first + count - 1],
+ * which continue one another across the joints between segments. */
+typedef struct push_row {
+    int first, count;
+    double length;
+} push_row;
+
+/* Does region b continue region a: the same loop, b starting at the joint
+ * where a ends (a circle: at 0 degrees where a ends at 360)? */
+static bool continues(const cJSON *a, const cJSON *b, int segments, bool outline, bool circle)
+{
+    const char *key = outline ? "segment" : "edge";
+    double end = circle ? 360 : 1;
+    if (outline && cJSON_GetNumberValue(cJSON_GetObjectItem(a, "loop")) !=
+                       cJSON_GetNumberValue(cJSON_GetObjectItem(b, "loop")))
+        return false;
+    int sa = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(a, key));
+    int sb = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(b, key));
+    return segments > 0 && sb == (sa + 1) % segments &&
+           cJSON_GetNumberValue(cJSON_GetObjectItem(a, "t1")) >= end * (1 - 1e-9) &&
+           cJSON_GetNumberValue(cJSON_GetObjectItem(b, "t0")) <= end * 1e-9;
+}
+
+static int loop_of_region(const cJSON *r, bool outline)
+{
+    return outline ? (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "loop")) : 0;
+}
+
+/* The rows of `regions` (in the answer's order, by loop, segment, t0):
+ * consecutive pieces that continue one another are one row, and a loop's
+ * last row that runs on past its vertex 0 into the loop's first row is
+ * one row with it, starting with the last's pieces.  Fills order (count
+ * region indices) and rows; returns the number of rows. */
+static int push_rows(const cJSON *regions, const cJSON *fixture, bool outline, bool circle,
+                     int *order, push_row *rows)
+{
+    int count = cJSON_GetArraySize(regions), row_count = 0;
+    for (int i = 0; i < count; i++) {
+        const cJSON *r = cJSON_GetArrayItem(regions, i);
+        int segments = fixture ? segments_of(fixture, loop_of_region(r, outline)) : 0;
+        double length = cJSON_GetNumberValue(cJSON_GetObjectItem(r, "length"));
+        order[i] = i;
+        if (row_count > 0 && continues(cJSON_GetArrayItem(regions, i - 1), r, segments, outline,
+                                       circle)) {
+            rows[row_count - 1].count++;
+            rows[row_count - 1].length += length;
+        } else {
+            rows[row_count++] = (push_row){i, 1, length};
+        }
+    }
+    /* Each loop's rows a..b: if b runs on into a, b's pieces go first. */
+    for (int a = 0; a < row_count; a++) {
+        int loop = loop_of_region(cJSON_GetArrayItem(regions, order[rows[a].first]), outline);
+        int b = a;
+        while (b + 1 < row_count &&
+               loop_of_region(cJSON_GetArrayItem(regions, order[rows[b + 1].first]), outline) == loop)
+            b++;
+        const cJSON *end = cJSON_GetArrayItem(regions, order[rows[b].first + rows[b].count - 1]);
+        const cJSON *start = cJSON_GetArrayItem(regions, order[rows[a].first]);
+        if (b > a && continues(end, start, fixture ? segments_of(fixture, loop) : 0, outline,
+                               circle)) {
+            /* order[a's first .. b's end]: b's pieces, then a's, then the rest. */
+            int from = rows[a].first, moved = rows[b].count;
+            int span = rows[b].first + moved - from;
+            int *copy = malloc((size_t)span * sizeof *copy);
+            if (copy) {
+                memcpy(copy, order + rows[b].first, (size_t)moved * sizeof *copy);
+                memcpy(copy + moved, order + from, (size_t)(span - moved) * sizeof *copy);
+                memcpy(order + from, copy, (size_t)span * sizeof *copy);
+                free(copy);
+                rows[a].count += moved;
+                rows[a].length += rows[b].length;
+                for (int k = a + 1; k < b; k++)
+                    rows[k].first += moved;
+                memmove(rows + b, rows + b + 1, (size_t)(row_count - b - 1) * sizeof *rows);
+                row_count--;
+                b--;
+            }
+        }
+        a = b;
+    }
+    return row_count;
+}
+
 static void print_push(const wc_run *run, const cJSON *result)
 {
     const cJSON *regions = cJSON_GetObjectItem(result, "regions");
     int count = cJSON_GetArraySize(regions);
     double fraction = cJSON_GetNumberValue(cJSON_GetObjectItem(result, "fraction"));
     bool outline = by_segment(regions);
-    /* No regions, no table: an outline's empty answer does not say it is
+    const cJSON *fixture = cJSON_IsObject(run->fixture) ? run->fixture : NULL;
+    const cJSON *shape = cJSON_GetObjectItem(cJSON_GetObjectItem(fixture, "body"), "shape");
+    bool circle = cJSON_GetObjectItem(shape, "center") != NULL;
+    int decimals = wc_drawing_decimals(shape);
+    int *order = calloc((size_t)(count ? count : 1), sizeof *order);
+    push_row *rows = calloc((size_t)(count ? count : 1), sizeof *rows);
+    int row_count = order && rows ? push_rows(regions, fixture, outline, circle, order, rows) : 0;
+/* No regions, no table: an outline's empty answer does not say it is
      * one, so no header could be the right one. */
-    if (count > 0 && outline)
-        printf("%4s  %7s  %-24s  %-24s  %10s  %10s  %9s\n", "loop", "segment", "from", "to", "t0",
-               "t1", "length");
-    else if (count > 0)
-        printf("%4s  %-24s  %-24s  %10s  %10s  %9s\n", "edge", "from", "to", "t0", "t1",
+    if (row_count > 0 && outline)
+        printf("%4s  ", "loop");
+    if (row_count > 0)
+        printf("%-9s  %-26s  %-26s  %12s\n", outline ? "segments" : "edges", "from", "to",
                "length");
-    const cJSON *r;
-    cJSON_ArrayForEach(r, regions)
-    {
-        const cJSON *from = cJSON_GetObjectItem(r, "from"), *to = cJSON_GetObjectItem(r, "to");
-        char a_text[64], b_text[64];
-        snprintf(a_text, sizeof a_text, "(%.6g, %.6g)", cJSON_GetArrayItem(from, 0)->valuedouble,
-                 cJSON_GetArrayItem(from, 1)->valuedouble);
-        snprintf(b_text, sizeof b_text, "(%.6g, %.6g)", cJSON_GetArrayItem(to, 0)->valuedouble,
-                 cJSON_GetArrayItem(to, 1)->valuedouble);
-        if (outline)
-            printf("%4d  %7d  ", (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "loop")),
-                   (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "segment")));
+    for (int k = 0; k < row_count; k++) {
+        const cJSON *first = cJSON_GetArrayItem(regions, order[rows[k].first]);
+        const cJSON *last = cJSON_GetArrayItem(regions, order[rows[k].first + rows[k].count - 1]);
+        const char *key = outline ? "segment" : "edge";
+        char a_text[64], b_text[64], which[32];
+        wc_point_text(cJSON_GetObjectItem(first, "from"), decimals, a_text, sizeof a_text);
+        wc_point_text(cJSON_GetObjectItem(last, "to"), decimals, b_text, sizeof b_text);
+        int s0 = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(first, key));
+        int s1 = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(last, key));
+        if (rows[k].count == 1)
+            snprintf(which, sizeof which, "%d", s0);
         else
-            printf("%4d  ", (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, "edge")));
-        printf("%-24s  %-24s  %10.6f  %10.6f  %9.6f\n", a_text, b_text,
-               cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0")),
-               cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1")),
-               cJSON_GetNumberValue(cJSON_GetObjectItem(r, "length")));
+            snprintf(which, sizeof which, "%d-%d", s0, s1);
+        if (outline)
+            printf("%4d  ", (int)cJSON_GetNumberValue(cJSON_GetObjectItem(first, "loop")));
+        printf("%-9s  %-26s  %-26s  %12.*f\n", which, a_text, b_text, decimals < 0 ? 6 : decimals,
+               rows[k].length);
+        /* Its pieces, each segment's t0 and t1 as the answer gives them. */
+        printf("%s  pieces:", outline ? "    " : "");
+        for (int p = 0; p < rows[k].count; p++) {
+            const cJSON *r = cJSON_GetArrayItem(regions, order[rows[k].first + p]);
+            printf("%s %s %d t %.6g-%.6g", p ? "," : "", key,
+                   (int)cJSON_GetNumberValue(cJSON_GetObjectItem(r, key)),
+                   cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t0")),
+                   cJSON_GetNumberValue(cJSON_GetObjectItem(r, "t1")));
+        }
+        printf("\n");
     }
-    printf("set %s: %d region%s, length %.6g, %.2f%% of the outline", set_name(run), count,
-           count == 1 ? "" : "s",
+    free(rows);
+    free(order);
+    printf("set %s: %d region%s (%d piece%s), length %.6g, %.2f%% of the outline", set_name(run),
+           row_count, row_count == 1 ? "" : "s", count, count == 1 ? "" : "s",
            cJSON_GetNumberValue(cJSON_GetObjectItem(result, "total_length")), 100 * fraction);
     if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
         printf(" (sampled: resolution %g)",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
     printf("\n");
+    if (count == 0)
+        explain_empty(cJSON_GetObjectItem(result, "why_empty"));
     if (strcmp(set_name(run), "both") != 0)
         printf("%s\n", wc_set_promise(set_name(run)));
 }
@@ -449,17 +602,56 @@ static void print_region_sweep(const wc_run *run, const cJSON *result)
         printf("sampled: resolution %g\n",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
     printf("%12s  %14s\n", "mu", push ? "length" : "arc (degrees)");
-    const cJSON *point;
-    cJSON_ArrayForEach(point, cJSON_GetObjectItem(result, "curve"))
-    printf("%12.6f  %14.6f\n", cJSON_GetNumberValue(cJSON_GetArrayItem(point, 0)),
-           cJSON_GetNumberValue(cJSON_GetArrayItem(point, 1)));
+    /* Summarised unless --table full: the points nearest SUMMARY_ROWS
+     * evenly spaced mu up to the critical mu (where the curve changes),
+     * those at the intervals' ends, and the last. */
+    enum { SUMMARY_ROWS = 9 };
+    const cJSON *curve = cJSON_GetObjectItem(result, "curve");
+    int n = cJSON_GetArraySize(curve), shown = 0;
+    bool full = run->table_full || n <= 2 * SUMMARY_ROWS;
+    bool *keep = calloc((size_t)(n ? n : 1), sizeof *keep);
+    for (int i = 0; keep && i < n; i++)
+        keep[i] = full;
+    double low = sweep_low(run), high = sweep_high(run);
+    if (cJSON_IsNumber(critical) && critical->valuedouble > low)
+        high = critical->valuedouble;
+    if (keep && n > 0)
+        keep[n - 1] = true;
+    for (int k = 0; keep && !full && n > 0 && k < SUMMARY_ROWS; k++) {
+        double mu = low + (high - low) * k / (SUMMARY_ROWS - 1);
+        int best = 0;
+        for (int i = 1; i < n; i++)
+            if (fabs(cJSON_GetArrayItem(cJSON_GetArrayItem(curve, i), 0)->valuedouble - mu) <
+                fabs(cJSON_GetArrayItem(cJSON_GetArrayItem(curve, best), 0)->valuedouble - mu))
+                best = i;
+        keep[best] = true;
+    }
+    const cJSON *interval;
+    cJSON_ArrayForEach(interval, intervals)
+    for (int e = 0; keep && !full && e < 2; e++) {
+        double end = cJSON_GetNumberValue(cJSON_GetArrayItem(interval, e));
+        for (int i = 0; i < n; i++)
+            if (cJSON_GetArrayItem(cJSON_GetArrayItem(curve, i), 0)->valuedouble == end)
+                keep[i] = true;
+    }
+    for (int i = 0; keep && i < n; i++) {
+        if (!keep[i])
+            continue;
+        const cJSON *point = cJSON_GetArrayItem(curve, i);
+        printf("%12.6f  %14.6f\n", cJSON_GetNumberValue(cJSON_GetArrayItem(point, 0)),
+               cJSON_GetNumberValue(cJSON_GetArrayItem(point, 1)));
+        shown++;
+    }
+    free(keep);
+    if (shown < n)
+        printf("(%d of the curve's %d points; --table full for all, --json for the answer)\n",
+               shown, n);
     printf("%s\n", wc_set_promise(run->sweep_set));
 }
 
 static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
                               const wr_fixture *geometry, const char *name)
 {
-    (void)geometry;
     const cJSON *curve = cJSON_GetObjectItem(result, "curve");
     int points = cJSON_GetArraySize(curve);
     double(*xy)[2] = calloc((size_t)(points ? points : 1), sizeof *xy);
@@ -476,6 +668,7 @@ static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
         .critical = cJSON_IsNumber(critical) ? critical->valuedouble : NAN,
         .curve = (const double(*)[2])xy,
         .curve_count = points,
+        .fixture = geometry,
     };
     wc_interval *intervals = intervals_of(cJSON_GetObjectItem(result, "intervals"),
                                           &plot.interval_count);

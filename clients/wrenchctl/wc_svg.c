@@ -142,7 +142,7 @@ static void legend(FILE *out, int line, const char *text)
     fputs("</text>\n", out);
 }
 
-/* ---- outlines of lines and arcs (issue 16) ------------------------------------ */
+/* ---- outlines of lines and arcs ---------------------------------------------- */
 
 /* Which loop and segment an outline's edge is: the edges count the
  * segments of every loop in order, loop 0's first (wr_region).  False for
@@ -231,18 +231,6 @@ static size_t hole_at(const wr_fixture *fx, const double p[2])
     return place.loop;
 }
 
-/* The smaller side of a loop's bounding box. */
-static double loop_width(const wr_loop *l)
-{
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (size_t j = 0; j < l->segment_count; j++)
-        for (int k = 0; k < 2; k++) {
-            lo[k] = fmin(lo[k], l->segments[j].box_min[k]);
-            hi[k] = fmax(hi[k], l->segments[j].box_max[k]);
-        }
-    return fmin(hi[0] - lo[0], hi[1] - lo[1]);
-}
-
 /* The outline, filled light and stroked grey: the boundary outside any
  * region. */
 static void outline(FILE *out, const frame *f, const wr_fixture *fx)
@@ -286,18 +274,21 @@ static void friction_cone(FILE *out, const frame *f, const wr_fixel *x, double c
             page_y(f, b[1]));
 }
 
+/* A pin's disc when its diameter is not known (or 0, a point), in page
+ * units: a dot, not a size it does not have. */
+#define PIN_DOT 7.0
+
 /* A fixel on a hole's boundary: a pin in the hole, a dark disc touching the
- * boundary at the contact (its radius the wedge's size, or 0.35 of the
- * hole's narrower side if that is less, so that it shows its clearance),
- * its friction cone, and an arrow from its centre along the normal, its
- * head half the pin's radius into the material (short: the wall beyond a
- * hole may be thin); its number on it. */
-static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t hole,
-                double wedge, double cone)
+ * boundary at the contact, at its diameter when known (`diameter` > 0),
+ * else a dot; its friction cone, and an arrow from its centre along the
+ * normal, its head half the pin's radius into the material (short: the
+ * wall beyond a hole may be thin); its number on it. */
+static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, double diameter,
+                double cone)
 {
     const wr_fixel *x = &fx->fixels[i];
     const double *p = x->at, *n = x->normal;
-    double radius = fmin(wedge, 0.35 * loop_width(&fx->outline->loops[hole]));
+    double radius = diameter > 0 ? diameter / 2 : PIN_DOT / f->scale;
     double c[2] = {p[0] - radius * n[0], p[1] - radius * n[1]};
     fprintf(out, "<circle class=\"fixel pin\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#444\"/>\n",
             page_x(f, c[0]), page_y(f, c[1]), radius * f->scale);
@@ -314,15 +305,15 @@ static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, size_t h
 }
 
 /* Each fixel: a dark wedge outside the part, its apex at the contact, and
- * its friction cone opening into the part; on a hole's boundary, a pin. */
-static void fixels(FILE *out, const frame *f, const wr_fixture *fx)
+ * its friction cone opening into the part; on a hole's boundary, a pin of
+ * pin_diameters[i] (NULL or < 0: not known). */
+static void fixels(FILE *out, const frame *f, const wr_fixture *fx, const double *pin_diameters)
 {
     double wedge = 0.06 * f->size, cone = 0.16 * f->size;
     for (int i = 0; i < fx->fixel_count; i++) {
         const wr_fixel *x = &fx->fixels[i];
-        size_t hole = hole_at(fx, x->at);
-        if (hole > 0) {
-            pin(out, f, fx, i, hole, wedge, cone);
+        if (hole_at(fx, x->at) > 0) {
+            pin(out, f, fx, i, pin_diameters ? pin_diameters[i] : -1, cone);
             continue;
         }
         const double *p = x->at, *n = x->normal, *t = x->tangent;
@@ -445,7 +436,7 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
         }
         fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"7\"/>\n", out);
     }
-    fixels(out, &f, fx);
+    fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
     friction_text(fx, mu, sizeof mu);
     snprintf(text, sizeof text, "%s, set %s: push here (thick black) with a %s finger", name, set,
@@ -466,6 +457,98 @@ void wc_svg_push(FILE *out, const wr_fixture *fx, const char *name, const char *
     else
         snprintf(text, sizeof text, "no push region: no point of the outline will do");
     legend(out, 2, text);
+    legend(out, 3, wc_set_promise(set));
+    end(out);
+}
+
+/* Blue (#1f4e9c) at 0 to red (#c0392b) at 1. */
+static void band_colour(double x, char colour[8])
+{
+    x = fmin(fmax(x, 0), 1);
+    snprintf(colour, 8, "#%02x%02x%02x", (int)(0x1f + x * (0xc0 - 0x1f)),
+             (int)(0x4e + x * (0x39 - 0x4e)), (int)(0x9c + x * (0x2b - 0x9c)));
+}
+
+void wc_svg_push_force(FILE *out, const wr_fixture *fx, const char *name, const char *set,
+                       const wc_force_band *bands, int band_count, const double at[2],
+                       const double direction[2], double least, const char *unit)
+{
+    frame f = frame_for(fx, 0.3, 4);
+    char text[256];
+    snprintf(text, sizeof text, "%s: least push force, set %s", name, set);
+    begin(out, &f, text, fx);
+    outline(out, &f, fx);
+    double lo = INFINITY, hi = -INFINITY;
+    for (int b = 0; b < band_count; b++)
+        for (int j = 0; j < bands[b].count; j++)
+            if (isfinite(bands[b].force[j])) {
+                lo = fmin(lo, bands[b].force[j]);
+                hi = fmax(hi, bands[b].force[j]);
+            }
+    double top = fx->shape == WR_SHAPE_CIRCLE ? 360 : 1;
+    for (int b = 0; b < band_count; b++) {
+        const wc_force_band *band = &bands[b];
+        size_t loop = 0, segment = 0;
+        if (fx->shape == WR_SHAPE_OUTLINE && !edge_place(fx->outline, band->edge, &loop, &segment))
+            continue;
+        for (int j = 0; j < band->count; j++) {
+            /* The sample's stretch: halfway to its neighbours. */
+            double t0 = j == 0 ? 0 : (band->t[j - 1] + band->t[j]) / 2;
+            double t1 = j + 1 == band->count ? top : (band->t[j] + band->t[j + 1]) / 2;
+            char colour[8] = "#cccccc";
+            bool finite = isfinite(band->force[j]);
+            if (finite)
+                band_colour(hi > lo ? (band->force[j] - lo) / (hi - lo) : 0, colour);
+            fputs("<path class=\"force-band\" d=\"", out);
+            if (fx->shape == WR_SHAPE_CIRCLE) {
+                arc_path(out, &f, fx->center, fx->radius, t0, t1);
+            } else if (fx->shape == WR_SHAPE_OUTLINE) {
+                double a[2];
+                wr_outline_boundary(fx->outline, loop, segment, t0, a, NULL);
+                fprintf(out, "M " OUTLINE_XY, page_x(&f, a[0]), page_y(&f, a[1]));
+                segment_to(out, &f, fx->outline, loop, segment, t0, t1);
+            } else {
+                double a[2], c[2], n[2];
+                wr_boundary_point(fx, band->edge, t0, a, n);
+                wr_boundary_point(fx, band->edge, t1, c, n);
+                fprintf(out, "M %.2f %.2f L %.2f %.2f", page_x(&f, a[0]), page_y(&f, a[1]),
+                        page_x(&f, c[0]), page_y(&f, c[1]));
+            }
+            fprintf(out, "\" fill=\"none\" stroke=\"%s\" stroke-width=\"9\"%s/>\n", colour,
+                    finite ? "" : " stroke-dasharray=\"4 4\"");
+        }
+    }
+    fixels(out, &f, fx, NULL);
+    centre_of_mass(out, &f, fx);
+    if (isfinite(least)) {
+        /* The least push: an arrow onto the point, along the push. */
+        double length = 0.25 * f.size;
+        double tail[2] = {at[0] - length * direction[0], at[1] - length * direction[1]};
+        fprintf(out,
+                "<line class=\"least-push\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+                "stroke=\"#1f4e9c\" stroke-width=\"3\" marker-end=\"url(#arrow-1f4e9c)\"/>\n",
+                page_x(&f, tail[0]), page_y(&f, tail[1]), page_x(&f, at[0]), page_y(&f, at[1]));
+        fprintf(out, "<text x=\"%.2f\" y=\"%.2f\" fill=\"#1f4e9c\">%.4g %s</text>\n",
+                page_x(&f, tail[0]) + 4, page_y(&f, tail[1]) - 4, least, unit);
+        snprintf(text, sizeof text, "%s, set %s: least push %.6g %s at (%.4g, %.4g) (arrow)", name,
+                 set, least, unit, at[0], at[1]);
+    } else {
+        snprintf(text, sizeof text, "%s, set %s: no push of any force does the job", name, set);
+    }
+    legend(out, 0, text);
+    /* The colour scale, drawn as a bar with its ends' values. */
+    if (isfinite(lo)) {
+        fputs("<defs><linearGradient id=\"force-scale\"><stop offset=\"0\" stop-color=\"#1f4e9c\"/>"
+              "<stop offset=\"1\" stop-color=\"#c0392b\"/></linearGradient></defs>\n",
+              out);
+        fprintf(out, "<rect class=\"force-scale\" x=\"12\" y=\"%d\" width=\"200\" height=\"10\" "
+                     "fill=\"url(#force-scale)\"/>\n",
+                22 + 18 * 1 - 10);
+        snprintf(text, sizeof text, "%*s%.4g to %.4g %s (least force F* along the outline)", 36,
+                 "", lo, hi, unit);
+        legend(out, 1, text);
+    }
+    legend(out, 2, "grey dashes: no push of any force does the job there");
     legend(out, 3, wc_set_promise(set));
     end(out);
 }
@@ -506,7 +589,7 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fx, const char *name, const cha
         fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"9\"/>\n", out);
     }
     outline(out, &f, fx);
-    fixels(out, &f, fx);
+    fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
     friction_text(fx, mu, sizeof mu);
     snprintf(text, sizeof text, "%s, set %s, %s", name, set, mu);
@@ -561,7 +644,7 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
     snprintf(text, sizeof text, "%s: disturbance margin", name);
     begin(out, &f, text, fx);
     outline(out, &f, fx);
-    fixels(out, &f, fx);
+    fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
     wrench_arrow(out, &f, fx, bias, "1f4e9c", "");
     if (blocking)
@@ -624,7 +707,7 @@ static void design_panel(FILE *out, const frame *f, const wc_design_panel *p)
                 "stroke=\"#444\" stroke-width=\"2\"/>\n",
                 page_x(f, p->pegs[m][0]), page_y(f, p->pegs[m][1]),
                 fmax(3, p->peg_radius * f->scale));
-    fixels(out, f, fx);
+    fixels(out, f, fx, p->pin_diameter);
     centre_of_mass(out, f, fx);
     if (p->has_push) {
         /* The finger's push: an arrow ending at the point, along the push. */
@@ -787,7 +870,7 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
     char text[512], spans[256];
     snprintf(text, sizeof text, "%s: friction sweep of the %s of G_%s", p->name,
              push ? "push region" : "gravity arcs", p->set);
-    begin(out, &f, text, NULL);
+    begin(out, &f, text, p->fixture);
     double top = f.top + 20, bottom = top + PLOT_HEIGHT;
     axis x = {p->range[0], p->range[1], PLOT_LEFT, WIDTH - PLOT_RIGHT};
     double most = 0;
@@ -816,11 +899,14 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
                 "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"end\">%g</text>\n",
                 x.from - 5, py, x.from, py, x.from - 8, py + 4, k * y_step);
     }
+    char axis[64] = "push region length";
+    if (length_unit(p->fixture))
+        snprintf(axis, sizeof axis, "push region length (%s)", length_unit(p->fixture));
     fprintf(out,
             "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" "
             "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n",
             22.0, (top + bottom) / 2, 22.0, (top + bottom) / 2,
-            push ? "push region length" : "gravity arcs (\xc2\xb0)");
+            push ? axis : "gravity arcs (\xc2\xb0)");
     mu_axis(out, &x, bottom, p->kinetic_ratio);
     /* The curve. */
     if (p->curve_count > 0) {
@@ -955,7 +1041,7 @@ void wc_svg_locate(FILE *out, const wr_fixture *fx, const char *name, const wc_l
     double moved[3] = {magnification * pose[0], magnification * pose[1],
                        magnification * pose[2]};
     displaced_outline(out, &f, fx, moved);
-    fixels(out, &f, fx);
+    fixels(out, &f, fx, NULL);
     centre_of_mass(out, &f, fx);
     for (int i = 0; i < count; i++) {
         const wc_locate_mark *m = &marks[i];

@@ -2,12 +2,13 @@
  * 8: the part's outline in grey, the fixels as small wedges with their
  * friction cones, the centre of mass, the answer in thick black, a legend.
  *
- * An outline of lines and arcs (issue 16) is one <path class="outline">,
+ * An outline of lines and arcs is one <path class="outline">,
  * each loop a closed subpath, straight segments as lines and arcs as SVG
  * arcs, with fill-rule evenodd so that holes are holes; a push region on an
  * arc is an arc.  A fixel on a hole's boundary is a pin in the hole (a
- * <circle class="fixel pin">), with an arrow (class "fixel-normal") along
- * its normal into the material.
+ * <circle class="fixel pin">) at its diameter where the picture knows it
+ * (a design's pins), else a dot, with an arrow (class "fixel-normal")
+ * along its normal into the material.
  *
  * Every region (a push region, a gravity arc) is one <path class="region">,
  * so a reader (or a test) can count them; nothing else is a path of that
@@ -25,6 +26,22 @@
 void wc_svg_push(FILE *out, const wr_fixture *fixture, const char *name, const char *set,
                  const wr_region *regions, int count, double fraction, double finger_friction,
                  double finger_radius);
+
+/* push.force's samples of the least force F* along one edge (as
+ * wr_region's edge): t and F* (NAN where no push does the job). */
+typedef struct wc_force_band {
+    int edge;
+    int count;
+    const double *t, *force;
+} wc_force_band;
+
+/* F* as a coloured band along the outline (each sample's stretch, blue at
+ * the least force drawn to red at the most; grey where none works), the
+ * least push as an arrow, and a legend with the colour scale in `unit`.
+ * `least` NAN: no push does the job. */
+void wc_svg_push_force(FILE *out, const wr_fixture *fixture, const char *name, const char *set,
+                       const wc_force_band *bands, int band_count, const double at[2],
+                       const double direction[2], double least, const char *unit);
 
 /* The gravity sweep as a dial around the part: arcs of tilt, in degrees. */
 void wc_svg_gravity(FILE *out, const wr_fixture *fixture, const char *name, const char *set,
@@ -53,6 +70,7 @@ typedef struct wc_sweep_plot {
     double critical;       /* the mu above which it is empty; NAN: none */
     const double (*curve)[2]; /* (mu, length), increasing in mu */
     int curve_count;
+    const wr_fixture *fixture; /* the unit of its lengths, when it names one; may be NULL */
 } wc_sweep_plot;
 
 /* The region's size against mu: the curve (a <polyline class="curve">),
@@ -90,6 +108,7 @@ typedef struct wc_design_panel {
     double pegs[3][2];
     int holes[3][2];
     double peg_radius;
+    double pin_diameter[WR_MAX_FIXELS]; /* a pin's (the design's "pins"); -1 elsewhere */
 } wc_design_panel;
 
 /* The best designs side by side, three to a row: each part with its

@@ -226,6 +226,15 @@ static int take_ratio(wc_run *run, const char *value)
     return 0;
 }
 
+/* --table full|summary: a sweep's curve whole, or summarised (default). */
+static int take_table(wc_run *run, const char *value)
+{
+    if (strcmp(value, "full") != 0 && strcmp(value, "summary") != 0)
+        return wc_usage_error("--table is full or summary, not '%s'", value);
+    run->table_full = strcmp(value, "full") == 0;
+    return 0;
+}
+
 static int take_spacing(wc_run *run, const char *value)
 {
     if (!take_number("spacing", value, &run->spacing) || !(run->spacing > 0))
@@ -279,7 +288,39 @@ static int take_lattice(wc_run *run, const char *value)
     return 0;
 }
 
+static int take_clearance(wc_run *run, const char *value)
+{
+    if (!take_number("corner-clearance", value, &run->corner_clearance) ||
+        !(run->corner_clearance > 0))
+        return run->corner_clearance == 0 ? wc_usage_error("--corner-clearance wants a length "
+                                                           "above 0")
+                                          : EXIT_USAGE;
+    return 0;
+}
+
+static int take_pin_diameter(wc_run *run, const char *value)
+{
+    if (!take_number("pin-diameter", value, &run->pin_diameter) || !(run->pin_diameter >= 0))
+        return wc_usage_error("--pin-diameter wants a length, 0 or more, not '%s'", value);
+    run->pin_diameter_given = true;
+    return 0;
+}
+
+/* --emit-fixture N FILE: its N here; the dispatcher takes FILE after it. */
+static int take_emit(wc_run *run, const char *value)
+{
+    return take_whole("emit-fixture", value, 1, 1000, &run->emit_design);
+}
+
 /* --shard I/N: shard I of N, 0 <= I < N. */
+static int take_symmetric(wc_run *run, const char *value)
+{
+    if (strcmp(value, "collapse") != 0 && strcmp(value, "all") != 0)
+        return wc_usage_error("--symmetric wants collapse or all, not '%s'", value);
+    run->symmetric_all = strcmp(value, "all") == 0;
+    return 0;
+}
+
 static int take_shard(wc_run *run, const char *value)
 {
     char *end;
@@ -388,6 +429,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"wrench", WC_OPT_SWEEP, take_wrench},
     {"range", WC_OPT_SWEEP, take_range},
     {"kinetic-ratio", WC_OPT_SWEEP, take_ratio},
+    {"table", WC_OPT_SWEEP, take_table},
     {"spacing", WC_OPT_DESIGN, take_spacing},
     {"lattice", WC_OPT_DESIGN, take_lattice},
     {"fixels", WC_OPT_DESIGN, take_fixels},
@@ -397,6 +439,16 @@ static const command_option COMMAND_OPTIONS[] = {
     {"tolerance", WC_OPT_LOCATE, take_locate_tolerance},
     {"feature", WC_OPT_LOCATE, take_feature},
     {"sigma-ratio", WC_OPT_LOCATE, take_sigma_ratio},
+    {"corner-clearance", WC_OPT_DESIGN, take_clearance},
+    {"pin-diameter", WC_OPT_DESIGN, take_pin_diameter},
+    {"emit-fixture", WC_OPT_DESIGN, take_emit},
+    {"symmetric", WC_OPT_DESIGN, take_symmetric},
+    {"push-on", WC_OPT_PUSH_ON, wc_take_push_on},
+    {"case", WC_OPT_CASE, wc_take_case},
+    {"push", WC_OPT_FORCE, wc_take_force_push},
+    {"wrench", WC_OPT_FORCE, wc_take_force_wrench},
+    {"range", WC_OPT_FORCE, take_range},
+    {"force", WC_OPT_PUSH_FORCE, wc_take_push_force},
     {NULL, 0, NULL},
 };
 
@@ -447,10 +499,18 @@ static int parse_command(wc_run *run, int argc, char **argv)
             fprintf(stderr, "wrenchctl %s: %s wants a value\n", c->name, a);
             return EXIT_USAGE;
         }
-        char option_name[16];
+        char option_name[24];
         snprintf(option_name, sizeof option_name, "%.*s", (int)length, a + 2);
         if (global ? take_global(run->o, option_name, value) != 0 : k->take(run, value) != 0)
             return EXIT_USAGE;
+        if (!global && k->take == take_emit) {
+            /* The one option of two values: N, then FILE. */
+            if (i + 1 >= argc) {
+                fprintf(stderr, "wrenchctl %s: --emit-fixture wants N and a FILE\n", c->name);
+                return EXIT_USAGE;
+            }
+            run->emit_file = argv[++i];
+        }
     }
     if (run->count < c->min_args || run->count > c->max_args) {
         fprintf(stderr, "wrenchctl %s: %d argument%s given; try 'wrenchctl %s --help'\n", c->name,
@@ -502,12 +562,23 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
     cJSON_Delete(run.bias);
     cJSON_Delete(run.locate_tolerance);
     cJSON_Delete(run.features);
+    cJSON_Delete(run.push_on);
+    cJSON_Delete(run.cases);
+    cJSON_Delete(run.force_push);
+    cJSON_Delete(run.force_wrench);
     return status;
 }
 
 /* ---- the table of commands ---------------------------------------------------------- */
 
 static int help_request(wc_run *run, cJSON *params);
+
+/* --push-on, in the help of push and design; PAD as for FRICTION_HELP. */
+#define PUSH_ON_HELP(PAD)                                                                    \
+    "  --push-on LOOPS  " PAD "where the finger may push: outer, all, or loop numbers\n"       \
+    "                   " PAD "(0,2,5; 0 the outer boundary).  Default: the outer boundary\n"  \
+    "                   " PAD "and the holes wider than the finger (--finger-radius); a\n"    \
+    "                   " PAD "point finger pushes on the outer boundary only\n"
 
 /* --friction, in the help of every command that takes it; PAD (spaces)
  * brings its text to the column of the command's other options'. */
@@ -532,7 +603,7 @@ const wc_command wc_commands[] = {
      "Print the stored fixture ID as JSON."},
     {"list", "",
      WC_DAEMON, 0, 0,
-     "fixture.list", NULL, wc_list_answer,
+     "fixture.list", wc_list_request, NULL,
      "list the stored fixtures",
      "List the stored fixtures."},
     {"delete", "ID",
@@ -574,9 +645,10 @@ const wc_command wc_commands[] = {
      "the feasible moving contact modes",
      "The kinematically feasible moving contact modes, and whether the fixels pin the part."},
     {"push",
-     "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--friction LO:HI] "
-     "[--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_INTERVAL,
+     "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--push-on LOOPS]\n"
+     "       [--friction LO:HI] [--svg FILE] [--force F --case SPEC...]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_INTERVAL |
+         WC_OPT_PUSH_ON | WC_OPT_CASE | WC_OPT_PUSH_FORCE,
      1, 1,
      "push.regions", wc_push_request, wc_push_answer,
      "where a finger's push seats the part",
@@ -591,9 +663,43 @@ const wc_command wc_commands[] = {
      "                         in the set (sampled and bisected; the resolution is printed)\n"
      "  --finger-radius R      a round finger of radius R (default 0, a point): only where it\n"
      "                         fits against the part without overlapping it\n"
+     PUSH_ON_HELP("      ")
      "  --svg FILE             also draw the part, its fixels and the region\n"
+     "  --force F              the region of a push of magnitude F (the fixture's force unit)\n"
+     "                         under every --case (exact; a frictionless finger)\n"
+     "  --case SPEC            a load case, repeated: see 'wrenchctl force --help'\n"
      FRICTION_HELP("       ")
      "Exit status 0 when there is a region, 1 when there is none."},
+    {"force",
+     "FIXTURE (--push X,Y[@DX,DY] | --wrench FX,FY,TAU) --case SPEC... [--sets LIST]\n"
+     "       [--range LO:HI]",
+     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS, 1, 1,
+     "force.range", wc_force_request, wc_force_answer,
+     "how hard to push: the magnitudes that do a set's job under load cases",
+     "The magnitudes F of one push that seat the part (goal), hold it (strong) or both, under\n"
+     "each load case and under all of them (one force for the whole sequence): exact intervals,\n"
+     "in the fixture's force unit.\n"
+     "  --push X,Y          a unit force at (X, Y) on the outline, along the inward normal;\n"
+     "                      X,Y@DX,DY along (DX, DY) instead\n"
+     "  --wrench FX,FY,TAU  or a direction of wrench (scaled to unit length)\n"
+     "  --case SPEC         a case, repeated: [NAME:]LOAD[;LOAD...] with LOAD one of\n"
+     "                      gravity=G@DEG (m G pulling along DEG degrees: 270 is down),\n"
+     "                      force=FX,FY@X,Y (a force at a point), wrench=FX,FY,TAU\n"
+     "  --sets LIST         comma-separated: goal, strong, both (default all three)\n"
+     "  --range LO:HI       only magnitudes in [LO, HI]\n"
+     "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
+    {"push-force", "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+     "push.force", wc_push_force_request, wc_push_force_answer,
+     "the least push force along the outline, and where it is least",
+     "F*(p), the least force of a push along the inward normal at p that does the set's job\n"
+     "(default both) under every case, sampled exactly along every segment, and its minimum\n"
+     "over the outline (branch and bound: the point where the smallest push suffices).\n"
+     "  --case SPEC         a load case, repeated (see 'wrenchctl force --help')\n"
+     "  --set SET           goal, strong or both (default)\n"
+     "  --finger-radius R   only where a round finger of radius R fits\n"
+     "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
+     "Exit status 0 when some push does the job, 1 when none does."},
     {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--svg FILE]",
      WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL, 1, 1,
      "gravity.sweep", wc_gravity_request, wc_gravity_answer,
@@ -617,7 +723,8 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
     {"sweep",
      "FIXTURE (--push SET | --gravity SET | --wrench FX,FY,TAU... [--set SET]) [--range LO:HI]\n"
-     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]",
+     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]\n"
+     "       [--table full|summary]",
      WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
@@ -634,6 +741,8 @@ const wc_command wc_commands[] = {
      "  --kinetic-ratio R   mu_k = R mu, 0 < R <= 1 (default 1)\n"
      "  --finger-friction MU, --finger-radius R\n"
      "                      with --push: the finger, as for push\n"
+     "  --table full        every point of the curve (default: a summary, the points nearest\n"
+     "                      9 evenly spaced mu and those at the intervals' ends)\n"
      "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
@@ -660,19 +769,24 @@ const wc_command wc_commands[] = {
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K]\n"
      "       [--objective margin|region|gravity|accuracy] [--top N] [--friction LO:HI]\n"
      "       [--finger-radius R] [--finger-friction MU]\n"
-     "       [--tolerance T [--feature NAME=X,Y]...] [--shard I/N] [--svg FILE]",
+     "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
+     "       [--corner-clearance C] [--pin-diameter D]\n"
+     "       [--shard I/N] [--symmetric collapse|all] [--svg FILE] [--emit-fixture N FILE]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
-         WC_OPT_LOCATE, 1, 1,
+         WC_OPT_PUSH_ON | WC_OPT_LOCATE, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
      "where to put the fixels, and where to push",
      "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
      "are ranked, each with its best push (the point of the both region whose push has the\n"
      "largest margin: push there and let go), its push regions' lengths, its longest gravity\n"
-     "arc and its critical mu.  A progress bar on a terminal.\n"
+     "arc and its critical mu.  A progress bar on a terminal, with the time left.\n"
      "  BODY               a JSON file: a fixture (its body and friction are used, and its\n"
      "                     fixels are the candidate sites unless --spacing is given) or a\n"
      "                     body alone\n"
-     "  --spacing H        candidate sites every H along every segment, centred\n"
+     "  --spacing H        candidate sites every H along each loop's length, across the\n"
+     "                     joints of faceted curves, clear of corners (turns of more than\n"
+     "                     20 degrees) by --corner-clearance C (default H/2)\n"
+     "  --pin-diameter D   sites on a hole are pins of diameter D, kept where one fits\n"
      "  --lattice P,R,NXxNY  a modular fixture plate: holes at pitch P, pegs of radius R,\n"
      "                     NX by NY holes; every pose of the part touching three pegs\n"
      "  --fixels K         fixels per design (default 3)\n"
@@ -684,10 +798,17 @@ const wc_command wc_commands[] = {
      "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
      "  --finger-radius R, --finger-friction MU\n"
      "                     the finger that pushes, as for push\n"
+     PUSH_ON_HELP("  ")
      "  --shard I/N        evaluate shard I of N of the candidates only, and write JSON lines\n"
      "                     for design-merge (examples/design-array.sbatch runs it on Slurm)\n"
+     "  --symmetric collapse|all  designs that a symmetry of the part (a turn or a mirror)\n"
+     "                     maps onto each other: listed once with how many more it stands\n"
+     "                     for (collapse, the default), or every one (all)\n"
      "  --svg FILE         also draw the best designs side by side: the part, its fixels\n"
-     "                     (pegs on a lattice), the both region and the best push\n"
+     "                     (pegs on a lattice, pins at their diameter), the both region and\n"
+     "                     the best push (with --json too)\n"
+     "  --emit-fixture N FILE  write design N (its rank) as a fixture file that every other\n"
+     "                     command takes: the body, the friction, the design's fixels\n"
      "Exit status 0 when some design has a push that seats and holds the part, 1 when none."},
     {"design-merge", "SHARD_OUTPUT...",
      WC_STDIN, 1, 1 << 20,

@@ -2,6 +2,7 @@
  * modes.get, push.regions (written an edge at a time), gravity.sweep and
  * stability.margin. */
 #include "common.h"
+#include "loads.h"
 #include "methods.h"
 
 #include <math.h>
@@ -69,9 +70,7 @@ cJSON *wp_handle_cone_get(wp_call *call)
     }
     for (int i = 0; i < cone.ray_count; i++) {
         wr_fixture_unscale_wrench(f, cone.rays[i], row);
-        double length = sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
-        for (int k = 0; k < 3; k++)
-            row[k] /= length;
+        wr_fixture_unit_direction(row);
         cJSON_AddItemToArray(generators, vector3(row));
     }
     wr_cone_release(&cone);
@@ -141,14 +140,96 @@ static bool read_set(const cJSON *params, wr_set *set, wp_error *error)
  * every edge: a long outline is seconds of work). */
 typedef struct push_state {
     wr_set set;
-    wr_finger finger;    /* its friction and radius */
+    wr_finger finger;    /* its friction and radius; its push_on: */
+    bool *push_on;       /* owned */
     int edges, next;     /* the outline's edges; the next to answer */
     unsigned long edge_cost;
     bool opened, any;    /* "{"regions":[" written; a region written */
     double total, resolution;
+    wp_push_load load;   /* "force" and "cases": regions under them */
 } push_state;
 
-static void stream_free(void *stream) { free(stream); }
+static void push_free(void *stream)
+{
+    push_state *state = stream;
+    free(state->push_on);
+    wp_push_load_release(&state->load);
+    free(state);
+}
+
+/* One reason: the blocking cone (set and index; index -1: none). */
+typedef struct reason {
+    wr_set set;
+    int index;
+    int edges;
+} reason;
+
+static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set set,
+                       const wr_finger *finger)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    int edges = wr_push_edge_count(f);
+    reason *reasons = calloc((size_t)edges + 1, sizeof *reasons);
+    int count = 0;
+    for (int e = 0; reasons && e < edges; e++) {
+        if (!wr_finger_pushes_on(f, finger, e))
+            continue;
+        double wrench[3];
+        wr_push_wrench(f, e, f->shape == WR_SHAPE_CIRCLE ? 180 : 0.5, wrench);
+        wr_answer answer;
+        if (wr_classify_margin(analysis, wrench, set, WR_DEFAULT_TOLERANCE, &answer) != WR_OK)
+            continue;
+        reason r = {answer.blocking >= 0 ? answer.blocking_set : set, answer.blocking, 1};
+        int i = 0;
+        while (i < count && (reasons[i].set != r.set || reasons[i].index != r.index))
+            i++;
+        if (i < count)
+            reasons[i].edges++;
+        else
+            reasons[count++] = r;
+    }
+    /* Most edges first; equal counts in the order first met (insertion). */
+    for (int a = 1; a < count; a++)
+        for (int b = a; b > 0 && reasons[b].edges > reasons[b - 1].edges; b--) {
+            reason swap = reasons[b];
+            reasons[b] = reasons[b - 1];
+            reasons[b - 1] = swap;
+        }
+    WP_BUFFER_LITERAL(out, ",\"why_empty\":{\"reasons\":[");
+    for (int i = 0; i < count; i++) {
+        wp_buffer_puts(out, i ? ",{\"blocking\":" : "{\"blocking\":");
+        if (reasons[i].index < 0) {
+            WP_BUFFER_LITERAL(out, "null");
+        } else {
+            char text[WR_CONSTRAINT_TEXT];
+            wr_constraint_format(&wr_analysis_cone(analysis, reasons[i].set, reasons[i].index)
+                                      ->constraint,
+                                 text);
+            wp_buffer_string(out, text);
+        }
+        WP_BUFFER_LITERAL(out, ",\"set\":");
+        wp_buffer_string(out, reasons[i].set == WR_SET_GOAL     ? "goal"
+                              : reasons[i].set == WR_SET_STRONG ? "strong"
+                                                                : "both");
+        WP_BUFFER_LITERAL(out, ",\"states\":[");
+        if (reasons[i].index >= 0 && reasons[i].set == WR_SET_GOAL) {
+            const wr_plan_origins *origins =
+                &wr_analysis_plan(analysis)->origins[reasons[i].index];
+            for (int j = 0; j < origins->count; j++) {
+                char state[WR_STATE_TEXT];
+                wr_state_format(origins->states[j], f->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+        }
+        WP_BUFFER_LITERAL(out, "],\"edges\":");
+        wp_buffer_number(out, reasons[i].edges);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    WP_BUFFER_LITERAL(out, "]}");
+    free(reasons);
+}
 
 static void *push_begin(wp_call *call, wp_prepared *prepared)
 {
@@ -167,13 +248,25 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
                      "push regions need the part's outline: the fixture has no shape");
         return NULL;
     }
+    wp_push_load load;
+    if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
+        return NULL;
     push_state *state = calloc(1, sizeof *state);
     if (!state) {
+        wp_push_load_release(&load);
         wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
     }
+    state->load = load;
     state->set = set;
-    state->finger = (wr_finger){friction, radius};
+    state->finger = (wr_finger){.friction = friction, .radius = radius};
+    if (!wp_read_push_on(call->params, "params", use->fixture, &state->push_on,
+                         &state->finger.push_on_count, call->error)) {
+        wp_push_load_release(&state->load);
+        free(state);
+        return NULL;
+    }
+    state->finger.push_on = state->push_on;
     state->edges = wr_push_edge_count(use->fixture);
     /* An edge against every cone: a few dot products each, or, with a
      * finger's friction, a segment test at every sample and bisection. */
@@ -183,7 +276,7 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
                                                                  : wr_analysis_cone_count(a, WR_SET_GOAL) +
                                                                        wr_analysis_cone_count(a, WR_SET_STRONG));
     /* A finger with a size is tested against every segment of the outline. */
-    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) +
+    state->edge_cost = (cones + 1) * (friction > 0 ? 2200 : 4) * (unsigned long)(load.count + 1) +
                        (radius > 0 ? 8 * (unsigned long)state->edges : 0);
     return state;
 }
@@ -237,8 +330,18 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
         if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
-        wr_status status = wr_push_regions_part(use->analysis, state->set, &state->finger,
-                                                state->next, 1, call->host->stop, &part);
+        const wp_push_load *load = &state->load;
+        /* Under loads, only the edges the finger may push on (push_on). */
+        bool skip = load->given && !wr_finger_pushes_on(f, &state->finger, state->next);
+        wr_status status =
+            skip ? WR_OK
+            : load->given
+                ? wr_push_regions_loaded(use->analysis, state->set, load->force,
+                                         (const double (*)[3])load->loads, load->count,
+                                         state->finger.radius, state->next, 1, call->host->stop,
+                                         &part)
+                : wr_push_regions_part(use->analysis, state->set, &state->finger, state->next, 1,
+                                       call->host->stop, &part);
         if (status != WR_OK) {
             wr_regions_release(&part);
             wp_error_status(call->error, status, "", "%s", wr_strerror(status));
@@ -265,11 +368,15 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
     wp_buffer_puts(out, state->resolution == 0 ? ",\"exact\":true" : ",\"exact\":false");
     WP_BUFFER_LITERAL(out, ",\"resolution\":");
     wp_buffer_number(out, state->resolution);
+    /* Why there is none: the blocking cones of the push alone (without
+     * loads; under loads force.range says it per point). */
+    if (!state->any && !state->load.given)
+        write_push_why(out, use->analysis, state->set, &state->finger);
     WP_BUFFER_LITERAL(out, "}");
     return WP_STEP_DONE;
 }
 
-const wp_streamer wp_push_stream = {push_begin, push_step, stream_free, NULL, false, NULL, NULL};
+const wp_streamer wp_push_stream = {push_begin, push_step, push_free, NULL, false, NULL, NULL};
 
 cJSON *wp_handle_gravity_sweep(wp_call *call)
 {

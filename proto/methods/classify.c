@@ -1,11 +1,11 @@
 /* classify.c -- wrench.classify: its params read and checked, its answer
  * written in chunks of wrenches that helpers may make in parallel. */
 #include "common.h"
+#include "wp_chunks.h"
 #include "methods.h"
 
 #include <assert.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -177,16 +177,14 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
 
 /* wrench.classify, written in pieces (wp_streamer, wp_method.h): the wrenches
  * are read once, up front, so that a bad one is refused before any answer
- * is written; then the answer is made in chunks of consecutive wrenches.
- *
- * A chunk's text is made by whichever thread claims it -- the step, or a
- * helper on another worker (wp_streamer.work) -- into its own buffer, and
- * the steps write the chunks into the answer in order as they are done.
- * Chunk i lives in chunks[i % CLASSIFY_WINDOW]: at most that many are made
- * ahead of the one being written, which bounds what waits in memory.  How
- * many wrenches a chunk has depends on the request alone (the fields and
- * the method), never on the threads, so the same request is answered the
- * same bytes however many workers share it. */
+ * is written; then the answer is made in chunks of consecutive wrenches by
+ * the engine (wp_chunks.h): a chunk's text is made by whichever thread
+ * claims it into its record's buffer (or, next in order and made by a step,
+ * straight into the answer), and merged into the answer in order.  At most
+ * CLASSIFY_WINDOW are made ahead of the one being merged, which bounds what
+ * waits in memory.  How many wrenches a chunk has depends on the request
+ * alone (the fields and the method), never on the threads, so the same
+ * request is answered the same bytes however many workers share it. */
 #define CLASSIFY_WINDOW 16
 /* A step ends after this much text (or its budget): a piece is where its
  * helpers are forked and joined, and a few chunks a piece keep that cost
@@ -196,46 +194,34 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
  * as much as about that many verdicts measured. */
 #define CLASSIFY_MAP_VERDICTS 100000
 
+/* A chunk's record in the engine. */
 typedef struct classify_chunk {
     wp_buffer text;
     wr_answer *answers;   /* room for a chunk's answers (columns other than the
-                             verdicts), kept for the slot's next chunk */
-    bool done;
-    wr_status status;     /* not WR_OK: it failed at wrench `failed` */
-    size_t failed;
+                             verdicts), kept for the record's next chunk */
+    size_t answers_bytes;
 } classify_chunk;
 
 typedef struct classify_state {
     wp_classify_request request;
     wp_fixture_use *use;        /* held by the envelope until the stream's free */
-    pthread_mutex_t lock;       /* claims and completions; the text is the claimer's */
-    pthread_cond_t made;        /* a chunk is done */
     size_t chunk_wrenches;      /* wrenches per chunk (the last may have fewer) */
     size_t chunk_count;
-    size_t claimed;             /* chunks [0, claimed) are claimed, in order */
-    size_t written;             /* chunks [0, written) are in the answer */
-    classify_chunk chunks[CLASSIFY_WINDOW];
+    wp_chunks *chunks;
     wr_verdict_map *map;        /* a long batch's verdicts, or NULL */
-    bool failing;               /* a chunk failed: nothing more is claimed */
-    bool forked;                /* classify_parallel said yes since the last
-                                   step began: helpers may be in classify_work
-                                   until the next step returns */
     bool opened;                /* the answer's opening text is written */
 } classify_state;
+
+static const wp_chunk_ops CLASSIFY_CHUNKS;
 
 static void classify_free(void *stream)
 {
     if (!stream)
         return;
     classify_state *state = stream;
-    for (int i = 0; i < CLASSIFY_WINDOW; i++) {
-        free(state->chunks[i].text.data);
-        free(state->chunks[i].answers);
-    }
+    wp_chunks_free(state->chunks);
     wr_verdict_map_free(state->map);
     free(state->request.wrenches);
-    pthread_mutex_destroy(&state->lock);
-    pthread_cond_destroy(&state->made);
     free(stream);
 }
 
@@ -264,8 +250,6 @@ static void *classify_begin(wp_call *call, wp_prepared *prepared)
     classify_state *state = wp_stream_with_fixture(call, sizeof *state, &use);
     if (!state)
         return NULL;
-    pthread_mutex_init(&state->lock, NULL);
-    pthread_cond_init(&state->made, NULL);
     state->use = use;
     if (!read_classify(call->limits, call->params, use->fixture, prepared, &state->request,
                        call->error)) {
@@ -290,6 +274,12 @@ static void *classify_begin(wp_call *call, wp_prepared *prepared)
         }
         /* Otherwise (it cannot be made for this tolerance) each verdict is
          * measured. */
+    }
+    state->chunks = wp_chunks_new(&CLASSIFY_CHUNKS, state, state->chunk_count);
+    if (!state->chunks) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        classify_free(state);
+        return NULL;
     }
     return state;
 }
@@ -417,8 +407,11 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
     const wr_analysis *a = state->use->analysis;
     wr_lp_set *goal = NULL, *strong = NULL;
     *failed = 0;
-    if (r->lp && !host->lp_sets(host->self, state->use, &goal, &strong, error))
+    wr_status sets = r->lp ? host->lp_sets(host->self, state->use, &goal, &strong) : WR_OK;
+    if (sets != WR_OK) {
+        wp_error_status(error, sets, "", "%s", wr_strerror(sets));
         return WR_NO_MEMORY;
+    }
     size_t from = index * state->chunk_wrenches;
     size_t to = from + state->chunk_wrenches < r->wrench_count ? from + state->chunk_wrenches
                                                                : r->wrench_count;
@@ -467,98 +460,94 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
     return WR_OK;
 }
 
-/* Claim the next chunk and make it; false when none can be claimed now
- * (all are, the window is full, or one failed).  Any thread.  A step
- * passes its answer as `out`: the chunk next to be written is then made
- * straight into it (nothing to copy, for a short batch nothing else).
- * `error` only for an LP set that cannot be made. */
-static bool claim_and_make(classify_state *state, const wp_host *host, wp_error *error,
-                           wp_buffer *out)
+/* Work units per wrench, for the budget: a wrench against a cone is one,
+ * a verdict by the map about one, an LP sixty-four. */
+static unsigned long wrench_cost(const classify_state *state)
 {
-    pthread_mutex_lock(&state->lock);
-    bool claimable = !state->failing && state->claimed < state->chunk_count &&
-                     state->claimed < state->written + CLASSIFY_WINDOW;
-    size_t index = state->claimed;
-    if (claimable)
-        state->claimed++;
-    bool direct = claimable && out && index == state->written;
-    pthread_mutex_unlock(&state->lock);
-    if (!claimable)
-        return false;
-    /* The slot is this thread's alone until done: the writer reads it only
-     * then, and it was emptied when its last chunk was written. */
-    classify_chunk *chunk = &state->chunks[index % CLASSIFY_WINDOW];
-    assert(!chunk->done && chunk->text.length == 0);
+    const wp_classify_request *r = &state->request;
+    const wr_analysis *a = state->use->analysis;
+    unsigned long cones = 0;
+    for (int s = 0; s < r->set_count; s++)
+        cones += (unsigned long)(r->sets[s] == WR_SET_BOTH
+                                     ? wr_analysis_cone_count(a, WR_SET_GOAL) +
+                                           wr_analysis_cone_count(a, WR_SET_STRONG)
+                                     : wr_analysis_cone_count(a, r->sets[s]));
+    return state->map ? (unsigned long)r->set_count : r->lp ? 64 * (cones + 1) : cones + 1;
+}
+
+/* The engine's make: chunk `index` into its record's text, or straight into
+ * the answer (`direct`).  A failure is said as the chunk's turn comes. */
+static wr_status classify_make(void *method, size_t index, void *record, wp_buffer *direct,
+                               const wp_host *host, unsigned long *used, wp_error *error)
+{
+    const classify_state *state = method;
+    classify_chunk *chunk = record;
+    assert(chunk->text.length == 0);
     size_t failed;
     wr_status status = make_chunk(state, index, &chunk->answers, host, error,
-                                  direct ? out : &chunk->text, &failed);
+                                  direct ? direct : &chunk->text, &failed);
     if (status == WR_OK && !direct && chunk->text.failed)
         status = WR_NO_MEMORY;
-    pthread_mutex_lock(&state->lock);
-    chunk->status = status;
-    chunk->failed = failed;
-    if (status != WR_OK)
-        state->failing = true; /* no more claims: the answer ends at this chunk */
-    if (direct && status == WR_OK)
-        state->written++; /* in the answer already */
-    else
-        chunk->done = true;
-    pthread_cond_broadcast(&state->made);
-    pthread_mutex_unlock(&state->lock);
-    return true;
+    chunk->answers_bytes = chunk->answers ? state->chunk_wrenches * sizeof *chunk->answers : 0;
+    *used += wrench_cost(state) * state->chunk_wrenches;
+    if (status == WR_LP_FAILED)
+        wp_error_status(error, status, "params.wrenches",
+                        "GLPK failed on wrench %zu; nothing was answered", failed);
+    else if (status != WR_OK)
+        wp_error_status(error, status, "params.wrenches", "%s", wr_strerror(status));
+    return status;
 }
+
+/* The engine's merge: the record's text into the answer. */
+static wr_status classify_merge(void *method, size_t index, void *record, wp_buffer *out,
+                                wp_error *error)
+{
+    (void)index;
+    (void)error;
+    const classify_state *state = method;
+    classify_chunk *chunk = record;
+    wp_buffer_append(out, chunk->text.data, chunk->text.length);
+    chunk->text.length = 0;
+    /* A long batch's records keep their capacity; a short one's go. */
+    if (state->chunk_count <= CLASSIFY_WINDOW) {
+        free(chunk->text.data);
+        memset(&chunk->text, 0, sizeof chunk->text);
+    }
+    return WR_OK;
+}
+
+static void classify_chunk_release(void *record)
+{
+    classify_chunk *chunk = record;
+    free(chunk->text.data);
+    free(chunk->answers);
+}
+
+/* The text's room and the answers' (state->chunk_wrenches of them). */
+static size_t classify_chunk_bytes(const void *record)
+{
+    const classify_chunk *chunk = record;
+    return chunk->text.capacity + chunk->answers_bytes;
+}
+
+static const wp_chunk_ops CLASSIFY_CHUNKS = {
+    .record_size = sizeof(classify_chunk),
+    .make = classify_make,
+    .merge = classify_merge,
+    .release = classify_chunk_release,
+    .bytes = classify_chunk_bytes,
+    .direct = true,
+    .window = CLASSIFY_WINDOW,
+};
 
 static bool classify_parallel(void *stream)
 {
-    classify_state *state = stream;
-    pthread_mutex_lock(&state->lock);
-    bool more = !state->failing && state->claimed < state->chunk_count;
-    /* The host opens a fork on a yes and runs the step after it: its
-     * helpers may claim every chunk left before that step begins, so the
-     * step cannot tell from the claims alone that it shares. */
-    state->forked = state->forked || more;
-    pthread_mutex_unlock(&state->lock);
-    return more;
+    return wp_chunks_parallel(((classify_state *)stream)->chunks);
 }
 
 static bool classify_work(void *stream, const wp_host *host)
 {
-    wp_error ignored = {0}; /* a helper's failure is the chunk's status, said by a step */
-    return claim_and_make(stream, host, &ignored, NULL);
-}
-
-/* Write the chunks that are done, in order, into the answer.  A failed
- * chunk ends it: false with the error set. */
-static bool write_done(classify_state *state, wp_buffer *out, wp_error *error)
-{
-    pthread_mutex_lock(&state->lock);
-    for (;;) {
-        classify_chunk *chunk = &state->chunks[state->written % CLASSIFY_WINDOW];
-        if (state->written == state->claimed || !chunk->done)
-            break;
-        pthread_mutex_unlock(&state->lock);
-        if (chunk->status != WR_OK) {
-            if (chunk->status == WR_LP_FAILED)
-                wp_error_status(error, chunk->status, "params.wrenches",
-                                "GLPK failed on wrench %zu; nothing was answered", chunk->failed);
-            else
-                wp_error_status(error, chunk->status, "params.wrenches", "%s",
-                                wr_strerror(chunk->status));
-            return false;
-        }
-        wp_buffer_append(out, chunk->text.data, chunk->text.length);
-        chunk->text.length = 0;
-        /* A long batch's slots keep their capacity; a short one's go. */
-        if (state->chunk_count <= CLASSIFY_WINDOW) {
-            free(chunk->text.data);
-            memset(&chunk->text, 0, sizeof chunk->text);
-        }
-        pthread_mutex_lock(&state->lock);
-        chunk->done = false;
-        state->written++;
-    }
-    pthread_mutex_unlock(&state->lock);
-    return true;
+    return wp_chunks_work(((classify_state *)stream)->chunks, host);
 }
 
 static wp_step classify_step(void *stream, wp_call *call, wp_buffer *out,
@@ -566,15 +555,7 @@ static wp_step classify_step(void *stream, wp_call *call, wp_buffer *out,
 {
     classify_state *state = stream;
     const wp_classify_request *r = &state->request;
-    const wr_analysis *a = state->use->analysis;
-    /* Helpers may be making chunks until this step returns: it ends the
-     * answer only if the host was told of none before it began
-     * (wp_streamer.parallel; helpers come only after a yes) -- never in the
-     * first step, which began before the stream existed. */
-    pthread_mutex_lock(&state->lock);
-    bool shared = state->opened && state->forked;
-    state->forked = false;
-    pthread_mutex_unlock(&state->lock);
+    bool shared = wp_chunks_shared(state->chunks);
     if (!state->opened) {
         state->opened = true;
         if (r->fields) {
@@ -585,59 +566,22 @@ static wp_step classify_step(void *stream, wp_call *call, wp_buffer *out,
             WP_BUFFER_LITERAL(out, "{\"results\":[");
         }
     }
-    /* At least one chunk a step, whatever the piece spent before it: every
-     * step makes progress (and a request's first chunk fails, if it does,
-     * while its text can still be taken back). */
-    size_t start = out->length;
-    /* Work units per chunk, for the budget: a wrench against a cone is one,
-     * a verdict by the map about one, an LP sixty-four. */
-    unsigned long cones = 0;
-    for (int s = 0; s < r->set_count; s++)
-        cones += (unsigned long)(r->sets[s] == WR_SET_BOTH
-                                     ? wr_analysis_cone_count(a, WR_SET_GOAL) +
-                                           wr_analysis_cone_count(a, WR_SET_STRONG)
-                                     : wr_analysis_cone_count(a, r->sets[s]));
-    unsigned long per_wrench = state->map ? (unsigned long)r->set_count
-                               : r->lp    ? 64 * (cones + 1)
-                                          : cones + 1;
-    unsigned long chunk_cost = per_wrench * state->chunk_wrenches;
-    for (;;) {
-        if (!write_done(state, out, call->error))
-            return shared ? WP_STEP_MORE : WP_STEP_FAILED;
-        if (out->failed)
-            return shared ? WP_STEP_MORE : WP_STEP_FAILED;
-        if (state->written == state->chunk_count) {
-            if (shared)
-                return WP_STEP_MORE; /* the next step, alone, ends it */
-            WP_BUFFER_LITERAL(out, "]}");
-            return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
-        }
-        if (out->length > start &&
-            (*used >= budget || out->length - start >= CLASSIFY_PIECE_BYTES ||
-             wr_stop_requested(call->host->stop)))
-            return WP_STEP_MORE;
-        if (claim_and_make(state, call->host, call->error, out)) {
-            *used += chunk_cost;
-            continue;
-        }
-        /* Nothing to claim: the next chunk to write is a helper's, being
-         * made; wait for it (helpers never wait for a step). */
-        pthread_mutex_lock(&state->lock);
-        while (state->written < state->claimed &&
-               !state->chunks[state->written % CLASSIFY_WINDOW].done)
-            pthread_cond_wait(&state->made, &state->lock);
-        pthread_mutex_unlock(&state->lock);
-    }
+    /* A request's first chunk fails, if it does, in the first step, while
+     * its text can still be taken back. */
+    wp_step step = wp_chunks_run(state->chunks, shared, call->host, out, budget, used,
+                                 CLASSIFY_PIECE_BYTES, call->error);
+    if (step != WP_STEP_DONE)
+        return step;
+    WP_BUFFER_LITERAL(out, "]}");
+    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
 static size_t classify_bytes(const void *stream)
 {
     const classify_state *state = stream;
     size_t bytes = sizeof *state + state->request.wrench_count * sizeof *state->request.wrenches;
-    for (int i = 0; i < CLASSIFY_WINDOW; i++)
-        bytes += state->chunks[i].text.capacity +
-                 (state->chunks[i].answers ? state->chunk_wrenches * sizeof(wr_answer) : 0);
-    return bytes + (state->map ? wr_verdict_map_bytes(state->map) : 0);
+    return bytes + wp_chunks_bytes(state->chunks) +
+           (state->map ? wr_verdict_map_bytes(state->map) : 0);
 }
 
 const wp_streamer wp_classify_stream = {classify_begin,   classify_step, classify_free,

@@ -54,4 +54,13 @@ static inline void wp_write_vector(wp_buffer *b, const double *v, int n)
 /* Frees `partial` and says "out of memory": NULL, for a handler to return. */
 cJSON *wp_out_of_memory(cJSON *partial, wp_error *error);
 
+/* path.push_on of `object` for a body or fixture `shape` (fixture.design,
+ * push.regions; docs/PROTOCOL.md, push_on): absent or "all" gives *mask
+ * NULL (every loop); "outer" loop 0; a list of loop numbers those.  *mask
+ * is malloc'd (the caller frees it), *count entries, one per loop of the
+ * shape (1 for a polygon or a circle).  False with `error` at path.push_on
+ * or path.push_on[i]. */
+bool wp_read_push_on(const cJSON *object, const char *path, const wr_fixture *shape, bool **mask,
+                     size_t *count, wp_error *error);
+
 #endif

@@ -1,9 +1,11 @@
 /* design.c -- fixture.design: parameters, progress, the answer; the search
  * run a budget at a time (lib/wr_design.h), its chunks shared with helpers. */
+#include "common.h"
+#include "loads.h"
 #include "methods.h"
+#include "wp_chunks.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,37 +15,59 @@
  * of the search). */
 #define PROGRESS_INTERVAL_S 0.25
 
-static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "accuracy"};
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force", "accuracy"};
 
 typedef struct design_state design_state;
 
+/* Chunks made ahead of the one merged, at most, in each stage. */
+#define DESIGN_WINDOW 16
+
 struct design_state {
-    /* Steps (one thread at a time) and design_work (any number of
-     * threads beside them) share the job: claims and merges under it. */
-    pthread_mutex_t lock;
     wr_fixture *body;
     wr_site *sites;
     int site_count;
     wr_design_spec spec;
+    bool *push_on;        /* spec.finger.push_on, owned */
     wr_design_job *job;
     uint64_t candidates;  /* of every shard */
     bool progress;
     bool opened;          /* the response is open */
     bool search_reported; /* the notification at the search's end is sent */
     double last_report;   /* monotonic seconds; < 0 before the first */
-    wr_status failure;    /* a failure seen in a shared step, said in the next */
-    /* design_parallel said yes since the last step began: the host may
-     * have helpers in design_work until the next step returns, even if
-     * they have claimed every chunk by the time it begins.  Only the
-     * steps' thread reads and writes it. */
-    bool forked;
+    /* The engine of each stage (wp_chunks.h); the job's claims and merges
+     * are made under its lock, the job's progress read by the steps. */
+    wp_chunks *poses_chunks, *search;
     /* A lattice: its designs are enumerated first, then they are the
      * candidates (their fixels the sites, three each). */
     wr_lattice_job *lattice;
     const wr_lattice_design *poses; /* the lattice's designs, once enumerated */
     double (*features)[2]; /* objective accuracy: params.features' points (spec.features) */
     int (*listed)[WR_MAX_FIXELS];
+    const char *source;      /* the field giving the candidates: for refusals */
+    uint64_t max_candidates; /* wp_limits' (0: no cap) */
+    /* params.deadline_s: the monotonic second after which the search claims
+     * no more candidates and the answer is the best so far, "partial" (0:
+     * none); `cut` once it has.  Both read and written under the search
+     * engine's lock (search_claim), `cut` read by the steps after the
+     * search's last merge. */
+    double deadline;
+    bool cut;
+    /* The part's symmetries (start_search), unless collapse_symmetric is
+     * false: NULL then. */
+    bool collapse;
+    wr_symmetry *symmetries;
+    int symmetry_count;
+    /* The stage the last notification was of (0 poses, 1 candidates, 2
+     * figures), when it began and what was done then: the rate that
+     * eta_s is estimated from.  Only the steps' thread reads and writes
+     * them. */
+    int stage;
+    double stage_started;
+    uint64_t stage_done;
+    double (*loads)[3];   /* params.cases, summed (spec.loads points here) */
 };
+
+static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
 
 static double now_s(void)
 {
@@ -87,7 +111,43 @@ static void site_error(wp_error *error, size_t index, const wr_error *invalid)
     wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid->reason);
 }
 
-static const char *const SITE_FIELDS[] = {"at", "normal", NULL};
+static const char *const SITE_FIELDS[] = {"at", "normal", "pin", NULL};
+static const char *const PIN_FIELDS[] = {"hole", "diameter", NULL};
+
+/* params.sites[i].pin: {"hole": L, "diameter": D}, the site where that pin
+ * touches the hole's wall (wr_site_pin). */
+static bool read_pin(const cJSON *pin, const char *field, const double at[2], bool has_normal,
+                     design_state *s, wr_site *out, wp_error *error)
+{
+    char path[WP_FIELD_MAX], at_field[WP_FIELD_MAX];
+    wp_path_key(path, field, "pin");
+    double hole, diameter;
+    if (!wp_check_object(pin, path, PIN_FIELDS, error) ||
+        !wp_member_number(pin, path, "hole", true, &hole, NULL, error) ||
+        !wp_member_number(pin, path, "diameter", true, &diameter, NULL, error))
+        return false;
+    if (has_normal) {
+        wp_path_key(at_field, field, "normal");
+        wp_error_set(error, WP_INVALID_PARAMS, at_field,
+                     "not with a pin: its normal is the hole wall's where the pin touches");
+        return false;
+    }
+    if (hole != floor(hole) || fabs(hole) > 1e9)
+        hole = -1; /* refused below, with the hole numbers allowed */
+    wr_error invalid;
+    wr_status status = wr_site_pin(s->body, (int)hole, diameter, at, out, &invalid);
+    if (status == WR_OK)
+        return true;
+    if (strcmp(invalid.field, "at") == 0)
+        wp_path_key(at_field, field, "at");
+    else if (invalid.field[0])
+        wp_path_key(at_field, path, invalid.field);
+    else
+        snprintf(at_field, sizeof at_field, "%s", status == WR_INVALID ? path : "");
+    wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL, at_field, "%s",
+                 invalid.reason);
+    return false;
+}
 
 static bool read_sites(const cJSON *list, design_state *s, wp_error *error)
 {
@@ -118,6 +178,12 @@ static bool read_sites(const cJSON *list, design_state *s, wp_error *error)
             !wp_member_vector2(item, field, "at", true, at, NULL, error) ||
             !wp_member_vector2(item, field, "normal", false, normal, &has_normal, error))
             return false;
+        const cJSON *pin = cJSON_GetObjectItemCaseSensitive(item, "pin");
+        if (pin) {
+            if (!read_pin(pin, field, at, has_normal, s, &s->sites[i], error))
+                return false;
+            continue;
+        }
         wr_error invalid;
         wr_status status =
             wr_site_new(s->body, at, has_normal ? normal : NULL, &s->sites[i], &invalid);
@@ -171,6 +237,13 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
             snprintf(field, sizeof field, "%s", status == WR_INVALID ? "params.body.shape" : "");
         wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL, field, "%s",
                      invalid.reason);
+        return false;
+    }
+    size_t pairs, total;
+    wr_lattice_job_progress(s->lattice, &pairs, &total);
+    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, (total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK);
+    if (!s->poses_chunks) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
     }
     return true;
@@ -256,15 +329,38 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     if (objective) {
         int found = -1;
-        for (int i = 0; i < 4; i++)
+        for (int i = 0; i < (int)(sizeof OBJECTIVES / sizeof *OBJECTIVES); i++)
             if (strcmp(objective, OBJECTIVES[i]) == 0)
                 found = i;
         if (found < 0) {
             wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
-                         "must be \"margin\", \"region\", \"gravity\" or \"accuracy\"");
+                         "must be \"margin\", \"region\", \"gravity\", \"force\" or \"accuracy\"");
             return false;
         }
         spec->objective = (wr_objective)found;
+    }
+    /* Load cases, on the body (its mass, centre of mass and size). */
+    const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    if (!cases_json && spec->objective == WR_OBJECTIVE_FORCE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.cases",
+                     "required with the objective \"force\": the loads the push works against");
+        return false;
+    }
+    if (cases_json) {
+        wp_cases cases;
+        if (!wp_cases_read(cases_json, "params.cases", s->body, &cases, error))
+            return false;
+        s->loads = malloc((size_t)cases.count * sizeof *s->loads);
+        if (!s->loads) {
+            wp_cases_release(&cases);
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        for (int c = 0; c < cases.count; c++)
+            memcpy(s->loads[c], cases.items[c].load, sizeof s->loads[c]);
+        spec->loads = (const double (*)[3])s->loads;
+        spec->case_count = cases.count;
+        wp_cases_release(&cases);
     }
     if (!read_accuracy(params, s, error))
         return false;
@@ -280,6 +376,10 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                      "must not be negative");
         return false;
     }
+    if (!wp_read_push_on(params, "params", s->body, &s->push_on, &spec->finger.push_on_count,
+                         error))
+        return false;
+    spec->finger.push_on = s->push_on;
     const cJSON *progress = cJSON_GetObjectItemCaseSensitive(params, "progress");
     if (progress && !cJSON_IsBool(progress)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.progress", "must be true or false, not %s",
@@ -287,6 +387,22 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     }
     s->progress = progress && cJSON_IsTrue(progress);
+    double deadline_s = 0;
+    if (!wp_member_number(params, "params", "deadline_s", false, &deadline_s, &present, error))
+        return false;
+    if (present && !(deadline_s > 0 && deadline_s <= 1e9)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.deadline_s",
+                     "must be a number of seconds above 0 (at most 1e9), got %g", deadline_s);
+        return false;
+    }
+    s->deadline = present ? now_s() + deadline_s : 0;
+    const cJSON *collapse = cJSON_GetObjectItemCaseSensitive(params, "collapse_symmetric");
+    if (collapse && !cJSON_IsBool(collapse)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.collapse_symmetric",
+                     "must be true or false, not %s", wp_type_name(collapse));
+        return false;
+    }
+    s->collapse = !collapse || cJSON_IsTrue(collapse);
     const cJSON *shard = cJSON_GetObjectItemCaseSensitive(params, "shard");
     if (shard) {
         double pair[2];
@@ -321,18 +437,36 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                              : "candidate sites are required: sites, spacing or lattice");
         return false;
     }
+    const char *spacing_only[] = {"corner_clearance", "pin_diameter"};
+    for (int i = 0; i < 2 && !spacing; i++)
+        if (cJSON_GetObjectItemCaseSensitive(params, spacing_only[i])) {
+            char field[WP_FIELD_MAX];
+            wp_path_key(field, "params", spacing_only[i]);
+            wp_error_set(error, WP_INVALID_PARAMS, field, "only with spacing");
+            return false;
+        }
+    s->source = lattice ? "params.lattice" : sites ? "params.sites" : "params.spacing";
     if (lattice)
         return read_lattice(params, lattice, s, error);
     if (sites)
         return read_sites(sites, s, error);
-    double h;
-    if (!wp_member_number(params, "params", "spacing", true, &h, &present, error))
+    wr_spacing rule = {0, 0, 0};
+    bool clearance_given;
+    if (!wp_member_number(params, "params", "spacing", true, &rule.spacing, &present, error) ||
+        !wp_member_number(params, "params", "corner_clearance", false, &rule.corner_clearance,
+                          &clearance_given, error) ||
+        !wp_member_number(params, "params", "pin_diameter", false, &rule.pin_diameter, NULL,
+                          error))
         return false;
+    if (!clearance_given)
+        rule.corner_clearance = rule.spacing / 2;
     wr_error invalid;
-    wr_status status = wr_sites_spaced(s->body, h, &s->sites, &s->site_count, &invalid);
+    wr_status status = wr_sites_spaced(s->body, &rule, &s->sites, &s->site_count, &invalid);
     if (status != WR_OK) {
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, "params", invalid.field);
         wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? "params.spacing" : "", "%s", invalid.reason);
+                     status == WR_INVALID ? field : "", "%s", invalid.reason);
         return false;
     }
     return true;
@@ -365,8 +499,39 @@ static bool start_search(design_state *s, wp_error *error)
     }
     s->spec.sites = s->sites;
     s->spec.site_count = s->site_count;
+    if (s->collapse) {
+        if (wr_symmetry_find(s->body, s->sites, s->site_count, &s->symmetries,
+                             &s->symmetry_count) != WR_OK) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        /* The part's symmetries that the push_on loops and the load cases
+         * allow: a copy must be the same question, not only the same part. */
+        s->symmetry_count = wr_symmetry_filter(s->body, &s->spec.finger, s->spec.loads,
+                                               s->spec.case_count, s->symmetries,
+                                               s->symmetry_count);
+        /* Objective accuracy weighs its features by the worst: a copy must
+         * map them onto themselves too (the pose's error alone, measured
+         * about the centre of mass, every symmetry keeps). */
+        if (s->spec.objective == WR_OBJECTIVE_ACCURACY)
+            s->symmetry_count = wr_symmetry_filter_points(s->spec.features,
+                                                          s->spec.feature_count, s->body->size,
+                                                          s->symmetries, s->symmetry_count);
+        s->spec.symmetries = s->symmetries;
+        s->spec.symmetry_count = s->symmetry_count;
+    }
     s->candidates = s->lattice ? s->spec.candidate_count
                                : wr_design_candidates(s->site_count, s->spec.fixel_count);
+    /* The cap counts this request's work: its shard's share. */
+    uint64_t share = s->candidates / (uint64_t)(s->spec.shard_count > 0 ? s->spec.shard_count : 1);
+    if (s->max_candidates > 0 && share > s->max_candidates) {
+        wp_error_set(error, WP_INVALID_PARAMS, s->source,
+                     "gives %llu candidates%s; the limit is %llu (--max-candidates): fewer sites "
+                     "or fixels, a coarser spacing, or shards",
+                     (unsigned long long)share, s->spec.shard_count > 1 ? " in this shard" : "",
+                     (unsigned long long)s->max_candidates);
+        return false;
+    }
     wr_error invalid;
     wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
     if (status != WR_OK) {
@@ -374,6 +539,14 @@ static bool start_search(design_state *s, wp_error *error)
         wp_path_key(field, "params", invalid.field);
         wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
                      status == WR_INVALID ? field : "", "%s", invalid.reason);
+        return false;
+    }
+    /* The job claims WR_DESIGN_CHUNK candidates of this shard at a time:
+     * that many of every shard's. */
+    uint64_t span = (uint64_t)WR_DESIGN_CHUNK * (uint64_t)s->spec.shard_count;
+    s->search = wp_chunks_new(&SEARCH_CHUNKS, s, (size_t)((s->candidates + span - 1) / span));
+    if (!s->search) {
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
     }
     return true;
@@ -390,7 +563,7 @@ static void *design_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     }
     s->last_report = -1;
-    pthread_mutex_init(&s->lock, NULL);
+    s->max_candidates = call->limits->max_candidates;
     if (!read_params(call->params, s, call->error)) {
         design_free(s);
         return NULL;
@@ -423,28 +596,130 @@ static void write_pair(wp_buffer *out, const double v[2])
     WP_BUFFER_LITERAL(out, "]");
 }
 
+static const char *const STAGES[] = {"poses", "candidates", "figures"};
+
+/* Where a design's answer says a push is, as push.regions names places:
+ * {"loop", "segment"} on an outline, {"edge"} otherwise, then "t". */
+static void write_place(wp_buffer *out, const wr_fixture *body, int edge, double t)
+{
+    double at[2], normal[2];
+    wr_boundary_point(body, edge, t, at, normal);
+    WP_BUFFER_LITERAL(out, "{\"at\":");
+    write_pair(out, at);
+    if (body->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(body, edge, &loop, &segment);
+        WP_BUFFER_LITERAL(out, ",\"loop\":");
+        wp_buffer_number(out, (double)loop);
+        WP_BUFFER_LITERAL(out, ",\"segment\":");
+        wp_buffer_number(out, (double)segment);
+    } else {
+        WP_BUFFER_LITERAL(out, ",\"edge\":");
+        wp_buffer_number(out, edge);
+    }
+    WP_BUFFER_LITERAL(out, ",\"t\":");
+    wp_buffer_number(out, t);
+    WP_BUFFER_LITERAL(out, "}");
+}
+
+/* "why_no_seating_push" (docs/PROTOCOL.md): where the push was asked
+ * about, and the reasons with their counts, most first, equal counts by
+ * their blocking strings (strcmp), the push in G_goal (null) last: an
+ * order design-merge can keep. */
+static void write_why(design_state *s, wp_buffer *out)
+{
+    const wr_plan *plan;
+    int edge;
+    double t;
+    const uint64_t *why = wr_design_job_why(s->job, &plan, &edge, &t);
+    WP_BUFFER_LITERAL(out, ",\"why_no_seating_push\":{\"asked_at\":");
+    write_place(out, s->body, edge, t);
+    WP_BUFFER_LITERAL(out, ",\"reasons\":[");
+    int n = plan->kept_count + 1;
+    bool *written = calloc((size_t)n, sizeof *written);
+    for (int round = 0; written && round < n; round++) {
+        int most = -1;
+        char a[WR_CONSTRAINT_TEXT], b[WR_CONSTRAINT_TEXT];
+        for (int i = 0; i < n; i++) {
+            if (written[i] || why[i] == 0)
+                continue;
+            bool before = most < 0 || why[i] > why[most];
+            if (!before && why[i] == why[most] && i < plan->kept_count) {
+                wr_constraint_format(&plan->kept[i], a);
+                if (most == plan->kept_count)
+                    before = true;
+                else {
+                    wr_constraint_format(&plan->kept[most], b);
+                    before = strcmp(a, b) < 0;
+                }
+            }
+            if (before)
+                most = i;
+        }
+        if (most < 0)
+            break;
+        written[most] = true;
+        wp_buffer_puts(out, round ? ",{\"blocking\":" : "{\"blocking\":");
+        if (most == plan->kept_count) {
+            WP_BUFFER_LITERAL(out, "null,\"states\":[]");
+        } else {
+            char text[WR_CONSTRAINT_TEXT], state[WR_STATE_TEXT];
+            wr_constraint_format(&plan->kept[most], text);
+            wp_buffer_string(out, text);
+            WP_BUFFER_LITERAL(out, ",\"states\":[");
+            for (int j = 0; j < plan->origins[most].count; j++) {
+                wr_state_format(plan->origins[most].states[j], plan->fixel_count, state);
+                if (j)
+                    WP_BUFFER_LITERAL(out, ",");
+                wp_buffer_string(out, state);
+            }
+            WP_BUFFER_LITERAL(out, "]");
+        }
+        WP_BUFFER_LITERAL(out, ",\"candidates\":");
+        write_count(out, why[most]);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    free(written);
+    WP_BUFFER_LITERAL(out, "]}");
+}
+
 static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
 {
     uint64_t done = 0, total = 0;
     bool has_best = false;
     double best = 0;
-    /* Helpers may be merging meanwhile. */
-    pthread_mutex_lock(&s->lock);
+    int stage = 0;
+    /* Merges are the steps' own (wp_chunks_run): nothing to lock. */
     if (s->job) {
         wr_design_job_progress(s->job, &done, &total, &has_best, &best);
+        stage = 1;
+        if (done == total && s->search_reported) {
+            int figured, of;
+            wr_design_job_figures_progress(s->job, &figured, &of);
+            done = (uint64_t)figured;
+            total = (uint64_t)of;
+            stage = 2;
+        }
     } else {
         size_t pairs, of;
         wr_lattice_job_progress(s->lattice, &pairs, &of);
         done = pairs;
         total = of;
     }
-    pthread_mutex_unlock(&s->lock);
+    double now = now_s();
+    if (s->last_report < 0 || stage != s->stage) {
+        s->stage = stage;
+        s->stage_started = now;
+        s->stage_done = done;
+    }
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
-     * total count its hole pairs), then "candidates". */
-    wp_buffer_puts(out, s->job ? ",\"stage\":\"candidates\"" : ",\"stage\":\"poses\"");
-    WP_BUFFER_LITERAL(out, ",\"done\":");
+     * total count its hole pairs), then "candidates", then "figures" (the
+     * designs kept). */
+    WP_BUFFER_LITERAL(out, ",\"stage\":\"");
+    wp_buffer_puts(out, STAGES[stage]);
+    WP_BUFFER_LITERAL(out, "\",\"done\":");
     write_count(out, done);
     WP_BUFFER_LITERAL(out, ",\"total\":");
     write_count(out, total);
@@ -453,8 +728,18 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
         wp_buffer_number(out, best);
     else
         WP_BUFFER_LITERAL(out, "null");
+    /* The stage's seconds left at its rate so far (docs/PROTOCOL.md):
+     * unknown until some of it is done. */
+    WP_BUFFER_LITERAL(out, ",\"eta_s\":");
+    if (done >= total)
+        WP_BUFFER_LITERAL(out, "0");
+    else if (done > s->stage_done && now > s->stage_started)
+        wp_buffer_number(out, round((now - s->stage_started) / (double)(done - s->stage_done) *
+                                    (double)(total - done) * 10) / 10);
+    else
+        WP_BUFFER_LITERAL(out, "null");
     WP_BUFFER_LITERAL(out, "}}\n");
-    s->last_report = now_s();
+    s->last_report = now;
 }
 
 static void write_design(design_state *s, wp_buffer *out, const wr_design *d, int rank)
@@ -484,6 +769,26 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
         WP_BUFFER_LITERAL(out, "}");
     }
     WP_BUFFER_LITERAL(out, "]");
+    if (!s->poses) {
+        /* The fixels on holes: pins, each where one of its diameter touches
+         * the wall (wr_sites.h); its centre is at - diameter / 2 normal. */
+        WP_BUFFER_LITERAL(out, ",\"pins\":[");
+        bool any = false;
+        for (int i = 0; i < s->spec.fixel_count; i++) {
+            const wr_site *site = &s->sites[d->sites[i]];
+            if (site->loop <= 0)
+                continue;
+            wp_buffer_puts(out, any ? ",{\"fixel\":" : "{\"fixel\":");
+            any = true;
+            wp_buffer_number(out, i);
+            WP_BUFFER_LITERAL(out, ",\"hole\":");
+            wp_buffer_number(out, site->loop);
+            WP_BUFFER_LITERAL(out, ",\"diameter\":");
+            wp_buffer_number(out, site->pin_diameter);
+            WP_BUFFER_LITERAL(out, "}");
+        }
+        WP_BUFFER_LITERAL(out, "]");
+    }
     if (s->poses) {
         const wr_lattice_design *pose = &s->poses[d->candidate];
         WP_BUFFER_LITERAL(out, ",\"pegs\":[");
@@ -527,6 +832,37 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
     } else {
         WP_BUFFER_LITERAL(out, "null");
     }
+    if (s->spec.case_count > 0) {
+        /* The least push doing both under every case (wr_force.h). */
+        const wr_least_force *least = &d->least_force;
+        WP_BUFFER_LITERAL(out, ",\"least_push\":");
+        if (least->found) {
+            WP_BUFFER_LITERAL(out, "{\"at\":");
+            write_pair(out, least->at);
+            WP_BUFFER_LITERAL(out, ",\"direction\":");
+            write_pair(out, least->direction);
+            WP_BUFFER_LITERAL(out, ",\"force\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->force));
+            WP_BUFFER_LITERAL(out, ",\"lower_bound\":");
+            wp_buffer_number(out, wp_force_out(s->body, least->lower));
+            if (fixture.shape == WR_SHAPE_OUTLINE) {
+                size_t loop, segment;
+                wr_push_edge_place(&fixture, least->edge, &loop, &segment);
+                WP_BUFFER_LITERAL(out, ",\"loop\":");
+                wp_buffer_number(out, (double)loop);
+                WP_BUFFER_LITERAL(out, ",\"segment\":");
+                wp_buffer_number(out, (double)segment);
+            } else {
+                WP_BUFFER_LITERAL(out, ",\"edge\":");
+                wp_buffer_number(out, least->edge);
+            }
+            WP_BUFFER_LITERAL(out, ",\"t\":");
+            wp_buffer_number(out, least->t);
+            WP_BUFFER_LITERAL(out, "}");
+        } else {
+            WP_BUFFER_LITERAL(out, "null");
+        }
+    }
     WP_BUFFER_LITERAL(out, ",\"goal_length\":");
     wp_buffer_number(out, d->goal_length);
     WP_BUFFER_LITERAL(out, ",\"both_length\":");
@@ -544,7 +880,27 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
         WP_BUFFER_LITERAL(out, ",\"accuracy\":");
         wp_buffer_number(out, -d->score + 0.0);
     }
+    WP_BUFFER_LITERAL(out, ",\"copies\":");
+    wp_buffer_number(out, d->copies);
     WP_BUFFER_LITERAL(out, "}");
+}
+
+/* [{"kind": "rotation"|"reflection", "angle_deg", "center"}], the identity
+ * first: what collapsed the designs. */
+static void write_symmetries(design_state *s, wp_buffer *out)
+{
+    WP_BUFFER_LITERAL(out, ",\"symmetries\":[");
+    for (int i = 0; i < s->symmetry_count; i++) {
+        const wr_symmetry *g = &s->symmetries[i];
+        wp_buffer_puts(out, i ? ",{\"kind\":\"" : "{\"kind\":\"");
+        wp_buffer_puts(out, g->reflection ? "reflection" : "rotation");
+        WP_BUFFER_LITERAL(out, "\",\"angle_deg\":");
+        wp_buffer_number(out, g->angle_deg);
+        WP_BUFFER_LITERAL(out, ",\"center\":");
+        write_pair(out, g->center);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    WP_BUFFER_LITERAL(out, "]");
 }
 
 static void write_answer(design_state *s, wp_buffer *out)
@@ -558,7 +914,10 @@ static void write_answer(design_state *s, wp_buffer *out)
         write_design(s, out, &designs[i], i + 1);
     }
     const wr_design_counts *c = wr_design_job_counts(s->job);
-    WP_BUFFER_LITERAL(out, "],\"counts\":{\"candidates\":");
+    WP_BUFFER_LITERAL(out, "],");
+    if (s->cut && c->examined < wr_design_job_total(s->job))
+        WP_BUFFER_LITERAL(out, "\"partial\":true,");
+    WP_BUFFER_LITERAL(out, "\"counts\":{\"candidates\":");
     write_count(out, s->candidates);
     WP_BUFFER_LITERAL(out, ",\"examined\":");
     write_count(out, c->examined);
@@ -568,159 +927,174 @@ static void write_answer(design_state *s, wp_buffer *out)
     write_count(out, c->unpinned);
     WP_BUFFER_LITERAL(out, ",\"no_seating_push\":");
     write_count(out, c->no_seating_push);
+    WP_BUFFER_LITERAL(out, ",\"symmetric\":");
+    write_count(out, c->symmetric);
+    WP_BUFFER_LITERAL(out, ",\"shared_hole\":");
+    write_count(out, c->shared_hole);
+    WP_BUFFER_LITERAL(out, "}");
+    write_why(s, out);
     if (s->poses) {
-        WP_BUFFER_LITERAL(out, "},\"poses\":");
+        WP_BUFFER_LITERAL(out, ",\"poses\":");
         write_count(out, s->spec.candidate_count);
     } else {
-        WP_BUFFER_LITERAL(out, "},\"sites\":");
+        WP_BUFFER_LITERAL(out, ",\"sites\":");
         wp_buffer_number(out, s->site_count);
     }
     WP_BUFFER_LITERAL(out, ",\"objective\":\"");
     wp_buffer_puts(out, OBJECTIVES[s->spec.objective]);
-    WP_BUFFER_LITERAL(out, "\",\"shard\":[");
+    WP_BUFFER_LITERAL(out, "\"");
+    if (s->symmetries)
+        write_symmetries(s, out);
+    WP_BUFFER_LITERAL(out, ",\"shard\":[");
     wp_buffer_number(out, s->spec.shard_index);
     WP_BUFFER_LITERAL(out, ",");
     wp_buffer_number(out, s->spec.shard_count);
     WP_BUFFER_LITERAL(out, "]}");
 }
 
-/* Claim a chunk, run it outside the lock, merge it.  False when none was
- * left; WR_OK or the failure in *status. */
-static bool run_chunk(design_state *s, const wr_stop *stop, unsigned long *used,
-                      wr_status *status)
+/* The lattice's chunks of hole pairs, by the engine (wp_chunks.h): claimed
+ * by the job in order, made by any thread, merged in order. */
+typedef struct lattice_record {
+    size_t first, count;
+    wr_lattice_chunk chunk;
+} lattice_record;
+
+static bool lattice_claim(void *method, size_t index, void *record)
 {
+    (void)index;
+    design_state *s = method;
+    lattice_record *l = record;
+    return wr_lattice_job_claim(s->lattice, &l->first, &l->count);
+}
+
+static wr_status lattice_make(void *method, size_t index, void *record, wp_buffer *direct,
+                              const wp_host *host, unsigned long *used, wp_error *error)
+{
+    (void)index;
+    (void)direct;
+    const design_state *s = method;
+    lattice_record *l = record;
+    wr_status status = wr_lattice_chunk_run(s->lattice, l->first, l->count, host->stop,
+                                            &l->chunk, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static wr_status lattice_merge(void *method, size_t index, void *record, wp_buffer *out,
+                               wp_error *error)
+{
+    (void)index;
+    (void)out;
+    design_state *s = method;
+    lattice_record *l = record;
+    wr_status status = wr_lattice_job_merge(s->lattice, &l->chunk); /* takes its designs */
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static void lattice_release(void *record) { wr_lattice_chunk_release(&((lattice_record *)record)->chunk); }
+
+static const wp_chunk_ops LATTICE_CHUNKS = {
+    .record_size = sizeof(lattice_record),
+    .claim = lattice_claim,
+    .make = lattice_make,
+    .merge = lattice_merge,
+    .release = lattice_release,
+    .window = DESIGN_WINDOW,
+};
+
+/* The search's chunks of candidates, likewise; a chunk's threshold is the
+ * top-th score merged when it is claimed. */
+typedef struct search_record {
     uint64_t first, count;
     double threshold;
-    pthread_mutex_lock(&s->lock);
-    bool claimed = wr_design_job_claim(s->job, &first, &count, &threshold);
-    pthread_mutex_unlock(&s->lock);
-    *status = WR_OK;
-    if (!claimed)
-        return false;
     wr_design_chunk chunk;
-    *status = wr_design_chunk_run(s->job, first, count, threshold, stop, &chunk, used);
-    pthread_mutex_lock(&s->lock);
-    if (*status == WR_OK)
-        wr_design_job_merge(s->job, &chunk);
-    else
-        wr_design_job_abandon(s->job);
-    pthread_mutex_unlock(&s->lock);
-    wr_design_chunk_release(&chunk);
-    return true;
+} search_record;
+
+static bool search_claim(void *method, size_t index, void *record)
+{
+    (void)index;
+    design_state *s = method;
+    search_record *c = record;
+    /* The deadline: no candidate is claimed after it.  The chunks claimed
+     * are merged as usual, then the designs kept so far get their figures
+     * and the answer is "partial". */
+    if (s->deadline > 0 && !s->cut && now_s() >= s->deadline) {
+        wr_design_job_cut(s->job);
+        s->cut = true;
+    }
+    return wr_design_job_claim(s->job, &c->first, &c->count, &c->threshold);
 }
 
-/* A lattice's chunk of hole pairs, as run_chunk does the search's. */
-static bool run_lattice_chunk(design_state *s, const wr_stop *stop, unsigned long *used,
-                              wr_status *status)
+static wr_status search_make(void *method, size_t index, void *record, wp_buffer *direct,
+                             const wp_host *host, unsigned long *used, wp_error *error)
 {
-    size_t first, count;
-    pthread_mutex_lock(&s->lock);
-    bool claimed = wr_lattice_job_claim(s->lattice, &first, &count);
-    pthread_mutex_unlock(&s->lock);
-    *status = WR_OK;
-    if (!claimed)
-        return false;
-    wr_lattice_chunk chunk;
-    *status = wr_lattice_chunk_run(s->lattice, first, count, stop, &chunk, used);
-    pthread_mutex_lock(&s->lock);
-    if (*status == WR_OK)
-        *status = wr_lattice_job_merge(s->lattice, &chunk);
-    else
-        wr_lattice_job_abandon(s->lattice);
-    pthread_mutex_unlock(&s->lock);
-    return true;
+    (void)index;
+    (void)direct;
+    const design_state *s = method;
+    search_record *c = record;
+    wr_status status = wr_design_chunk_run(s->job, c->first, c->count, c->threshold,
+                                           host->stop, &c->chunk, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
 }
 
-/* The next chunk of whichever stage is on: the lattice's poses, then the
- * search's candidates. */
-static bool run_some(design_state *s, const wr_stop *stop, unsigned long *used,
-                     wr_status *status)
+static wr_status search_merge(void *method, size_t index, void *record, wp_buffer *out,
+                              wp_error *error)
 {
-    return s->job ? run_chunk(s, stop, used, status) : run_lattice_chunk(s, stop, used, status);
+    (void)index;
+    (void)out;
+    (void)error;
+    design_state *s = method;
+    search_record *c = record;
+    wr_design_job_merge(s->job, &c->chunk);
+    wr_design_chunk_release(&c->chunk);
+    return WR_OK;
 }
 
-/* Keep the first failure, for the step that can say it (helpers, or a
- * step that shares, cannot end the answer). */
-static void note_failure(design_state *s, wr_status status)
-{
-    pthread_mutex_lock(&s->lock);
-    if (s->failure == WR_OK)
-        s->failure = status;
-    pthread_mutex_unlock(&s->lock);
-}
+static void search_release(void *record) { wr_design_chunk_release(&((search_record *)record)->chunk); }
 
-/* Are chunks left to claim? */
-static bool claimable(design_state *s)
-{
-    pthread_mutex_lock(&s->lock);
-    bool more = s->job ? wr_design_job_claimable(s->job) : wr_lattice_job_claimable(s->lattice);
-    pthread_mutex_unlock(&s->lock);
-    return more;
-}
+static const wp_chunk_ops SEARCH_CHUNKS = {
+    .record_size = sizeof(search_record),
+    .claim = search_claim,
+    .make = search_make,
+    .merge = search_merge,
+    .release = search_release,
+    .window = DESIGN_WINDOW,
+};
 
-static bool design_parallel(void *stream)
-{
-    design_state *s = stream;
-    bool more = claimable(s);
-    s->forked = s->forked || more;
-    return more;
-}
+/* The stage on: the lattice's poses, then the search's candidates. */
+static wp_chunks *stage(design_state *s) { return s->job ? s->search : s->poses_chunks; }
+
+static bool design_parallel(void *stream) { return wp_chunks_parallel(stage(stream)); }
 
 static bool design_work(void *stream, const wp_host *host)
 {
-    design_state *s = stream;
-    unsigned long used = 0;
-    wr_status status;
-    /* s->job is set only by a step that shares nothing (below): it does
-     * not change while this runs. */
-    bool ran = run_some(s, host->stop, &used, &status);
-    if (ran && status != WR_OK)
-        note_failure(s, status); /* the step says it, as it is */
-    return ran && status == WR_OK;
+    return wp_chunks_work(stage(stream), host);
 }
 
 static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
                            unsigned long *used)
 {
     design_state *s = stream;
-    /* Helpers may be in design_work until this step returns only if the
-     * host was told there was work to share before it began (asking now
-     * would miss helpers that have claimed the last chunks meanwhile). */
-    bool shared = s->forked;
-    s->forked = false;
-    pthread_mutex_lock(&s->lock);
-    wr_status failure = s->failure;
-    pthread_mutex_unlock(&s->lock);
-    if (failure != WR_OK) {
-        if (shared)
-            return WP_STEP_MORE; /* said by a step that shares nothing */
-        wp_error_status(call->error, failure, "params", "%s", wr_strerror(failure));
-        return WP_STEP_FAILED;
-    }
+    bool shared = wp_chunks_shared(stage(s));
     if (s->progress && s->last_report < 0)
         write_progress(s, call, out);
     if (!s->job) {
         /* A lattice: its designs first, in chunks of hole pairs that
          * helpers share; the search begins in a step that shares nothing,
          * so that no helper is in a chunk when s->job appears. */
-        wr_status status = WR_OK;
-        unsigned long start = *used;
-        while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
-               status == WR_OK)
-            continue;
-        if (status != WR_OK && shared) {
-            note_failure(s, status);
-            return WP_STEP_MORE;
-        }
-        if (status != WR_OK) {
-            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+        wp_step step = wp_chunks_run(s->poses_chunks, shared, call->host, out, budget, used,
+                                     (size_t)-1, call->error);
+        if (step == WP_STEP_FAILED)
             return WP_STEP_FAILED;
-        }
-        bool enumerated = false;
-        if (!shared) {
-            pthread_mutex_lock(&s->lock);
-            status = wr_lattice_job_run(s->lattice, 1, used, call->host->stop, &enumerated);
-            pthread_mutex_unlock(&s->lock);
+        if (step == WP_STEP_DONE) {
+            bool enumerated = false;
+            wr_status status = wr_lattice_job_run(s->lattice, 1, used, call->host->stop,
+                                                  &enumerated);
             if (status != WR_OK) {
                 wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
                 return WP_STEP_FAILED;
@@ -732,42 +1106,33 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
             write_progress(s, call, out);
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
-    /* The search: chunks while the budget lasts (helpers may run others
-     * meanwhile); then the rest (the designs' figures) by the job itself. */
-    wr_status status = WR_OK;
+    /* The search: chunks while the budget lasts (helpers may make others
+     * meanwhile); then, in steps that share nothing, the rest (the
+     * designs' figures) by the job itself. */
     unsigned long start = *used;
-    /* A step that begins with chunks to share never ends the answer:
-     * other threads may be in design_work until it returns
-     * (wp_streamer.work), so the figures and the answer come in a later
-     * step, when the search is over. */
-    while (*used - start < budget && run_some(s, call->host->stop, used, &status) &&
-           status == WR_OK)
-        continue;
-    bool done = false;
-    if (status == WR_OK && !shared && *used - start < budget) {
-        pthread_mutex_lock(&s->lock);
-        status = wr_design_job_run(s->job, budget - (*used - start), used, call->host->stop,
-                                   &done);
-        pthread_mutex_unlock(&s->lock);
-    }
-    if (status != WR_OK && shared) {
-        note_failure(s, status); /* helpers may still be working: end in the next step */
-        return WP_STEP_MORE;
-    }
-    if (status != WR_OK) {
-        wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+    wp_step step = wp_chunks_run(s->search, shared, call->host, out, budget, used, (size_t)-1,
+                                 call->error);
+    if (step == WP_STEP_FAILED)
         return WP_STEP_FAILED;
+    bool done = false;
+    if (step == WP_STEP_DONE && *used - start < budget) {
+        wr_status status = wr_design_job_run(s->job, budget - (*used - start), used,
+                                             call->host->stop, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
     }
     uint64_t examined, total;
     bool has_best;
     double best;
-    pthread_mutex_lock(&s->lock);
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
-    pthread_mutex_unlock(&s->lock);
     if (s->progress && !s->search_reported &&
         (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
-        s->search_reported = examined == total;
         write_progress(s, call, out);
+        s->search_reported = examined == total;
+    } else if (s->progress && !done && now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
+        write_progress(s, call, out); /* the designs' figures */
     }
     /* A shared step never ends the answer, not even for a piece that did
      * not fit in memory: the caller sees that in the buffer. */
@@ -783,13 +1148,17 @@ static void design_free(void *stream)
     design_state *s = stream;
     if (!s)
         return;
+    wp_chunks_free(s->search);
+    wp_chunks_free(s->poses_chunks);
     wr_design_job_free(s->job);
     wr_lattice_job_free(s->lattice);
+    free(s->symmetries);
     free(s->listed);
     free(s->features);
+    free(s->loads);
     free(s->sites);
+    free(s->push_on);
     wr_fixture_free(s->body);
-    pthread_mutex_destroy(&s->lock);
     free(s);
 }
 
@@ -801,7 +1170,9 @@ static size_t design_bytes(const void *stream)
         wr_lattice_job_designs(s->lattice, &poses);
     return sizeof *s + (size_t)s->site_count * sizeof *s->sites +
            (s->job ? wr_design_job_bytes(s->job) : 0) +
-           poses * (sizeof(wr_lattice_design) + sizeof *s->listed);
+           poses * (sizeof(wr_lattice_design) + sizeof *s->listed) +
+           (s->poses_chunks ? wp_chunks_bytes(s->poses_chunks) : 0) +
+           (s->search ? wp_chunks_bytes(s->search) : 0);
 }
 
 const wp_streamer wp_design_stream = {design_begin, design_step,     design_free,    design_bytes,

@@ -34,4 +34,10 @@ bool wp_locating_light(const cJSON *params, int cones);
 /* design.c */
 extern const wp_streamer wp_design_stream;
 
+/* force.c: force.range (the magnitudes of one push that do each set's job
+ * under each load case, and under all of them) and push.force (the least
+ * push force along the outline, and where it is least) */
+cJSON *wp_handle_force_range(wp_call *call);
+cJSON *wp_handle_push_force(wp_call *call);
+
 #endif

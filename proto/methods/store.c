@@ -3,8 +3,10 @@
 #include "common.h"
 #include "methods.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* params.id: a well-formed fixture id. */
 static const char *read_id(const cJSON *params, wp_error *error)
@@ -30,8 +32,11 @@ cJSON *wp_handle_fixture_put(wp_call *call)
                          &doc, error))
         return NULL;
     wp_fixture_use use;
-    if (!host->fixture_adopt(host->self, &doc, true, &use, error))
+    wp_host_failure failure;
+    if (!host->fixture_adopt(host->self, &doc, true, &use, &failure)) {
+        wp_error_host(error, &failure, "");
         return NULL;
+    }
     cJSON *result = cJSON_CreateObject();
     if (result) {
         cJSON_AddStringToObject(result, "id", use.id);
@@ -61,9 +66,11 @@ cJSON *wp_handle_fixture_get(wp_call *call)
     wp_error *error = call->error;
     const char *id = read_id(params, error);
     wp_fixture_use use;
-    if (!id || !host->fixture_use(host->self, id, &use, error)) {
-        if (id && !error->field[0])
-            snprintf(error->field, sizeof error->field, "params.id");
+    wp_host_failure failure;
+    if (!id)
+        return NULL;
+    if (!host->fixture_use(host->self, id, &use, &failure)) {
+        wp_error_host(error, &failure, "params.id");
         return NULL;
     }
     cJSON *result = cJSON_CreateRaw(use.canonical);
@@ -77,9 +84,11 @@ cJSON *wp_handle_fixture_delete(wp_call *call)
     const cJSON *params = call->params;
     wp_error *error = call->error;
     const char *id = read_id(params, error);
-    if (!id || !host->fixture_delete(host->self, id, error)) {
-        if (id && !error->field[0])
-            snprintf(error->field, sizeof error->field, "params.id");
+    wp_host_failure failure;
+    if (!id)
+        return NULL;
+    if (!host->fixture_delete(host->self, id, &failure)) {
+        wp_error_host(error, &failure, "params.id");
         return NULL;
     }
     cJSON *result = cJSON_CreateObject();
@@ -88,15 +97,45 @@ cJSON *wp_handle_fixture_delete(wp_call *call)
     return result;
 }
 
+/* A page of fixture.list: at most this many fixtures (the default), each
+ * name at most WP_NAME_MAX bytes, so that a page is about a megabyte. */
+#define LIST_PAGE 1000
+
+/* The stored fixtures, sorted by id, a page at a time: those after
+ * params.after (an id; none: from the first), at most params.limit;
+ * "more" says whether any follow the page's last. */
 cJSON *wp_handle_fixture_list(wp_call *call)
 {
-    wp_fixture_listing listing = {0, NULL};
-    if (!call->host->fixture_list(call->host->self, &listing, call->error))
+    const char *after = NULL;
+    double limit = LIST_PAGE;
+    bool given = false;
+    if (!wp_member_string(call->params, "params", "after", false, &after, call->error) ||
+        !wp_member_number(call->params, "params", "limit", false, &limit, &given, call->error))
         return NULL;
+    if (after && !wp_fixture_id_valid(after)) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.after",
+                     "not a fixture id (32 hexadecimal digits)");
+        return NULL;
+    }
+    if (given && !(limit >= 1 && limit <= LIST_PAGE && limit == floor(limit))) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.limit",
+                     "must be a whole number from 1 to %d", LIST_PAGE);
+        return NULL;
+    }
+    wp_fixture_listing listing = {0, NULL};
+    wp_host_failure failure;
+    if (!call->host->fixture_list(call->host->self, &listing, &failure)) {
+        wp_error_host(call->error, &failure, "");
+        return NULL;
+    }
     cJSON *result = cJSON_CreateObject();
     cJSON *list = cJSON_AddArrayToObject(result, "fixtures");
     bool ok = list != NULL;
-    for (size_t i = 0; ok && i < listing.count; i++) {
+    size_t first = 0;
+    while (after && first < listing.count && strcmp(listing.entries[first].id, after) <= 0)
+        first++;
+    size_t end = first + (size_t)limit < listing.count ? first + (size_t)limit : listing.count;
+    for (size_t i = first; ok && i < end; i++) {
         const wp_fixture_entry *e = &listing.entries[i];
         cJSON *item = cJSON_CreateObject();
         ok = item && cJSON_AddStringToObject(item, "id", e->id) &&
@@ -105,6 +144,7 @@ cJSON *wp_handle_fixture_list(wp_call *call)
         if (item)
             cJSON_AddItemToArray(list, item);
     }
+    ok = ok && cJSON_AddBoolToObject(result, "more", end < listing.count);
     wp_fixture_listing_release(&listing);
     return ok ? result : wp_out_of_memory(result, call->error);
 }
@@ -112,8 +152,11 @@ cJSON *wp_handle_fixture_list(wp_call *call)
 cJSON *wp_handle_server_status(wp_call *call)
 {
     wp_server_state state;
-    if (!call->host->state(call->host->self, &state, call->error))
+    wp_host_failure failure;
+    if (!call->host->state(call->host->self, &state, &failure)) {
+        wp_error_host(call->error, &failure, "");
         return NULL;
+    }
     cJSON *result = cJSON_CreateObject();
     if (!result)
         return wp_out_of_memory(NULL, call->error);
@@ -131,13 +174,4 @@ cJSON *wp_handle_server_status(wp_call *call)
     if (!cJSON_AddNumberToObject(result, "errors", (double)state.errors))
         return wp_out_of_memory(result, call->error);
     return result;
-}
-
-void wp_fixture_listing_release(wp_fixture_listing *listing)
-{
-    for (size_t i = 0; i < listing->count; i++)
-        free(listing->entries[i].name);
-    free(listing->entries);
-    listing->entries = NULL;
-    listing->count = 0;
 }

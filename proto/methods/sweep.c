@@ -1,6 +1,7 @@
 /* sweep.c -- friction.sweep: wrenches, push regions or gravity arcs
  * against a common coefficient of friction, a job's budget at a time. */
 #include "common.h"
+#include "loads.h"
 #include "methods.h"
 
 #include <math.h>
@@ -8,7 +9,11 @@
 #include <string.h>
 
 /* friction.sweep, a job's budget at a time (wr_sweep.h). */
-enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY };
+enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY, SWEEP_FORCE };
+
+/* The least push force against mu is sampled at this many coefficients,
+ * each sample exact (wr_least_force_find on the fixture at that mu). */
+#define FORCE_SAMPLES 128
 typedef struct sweep_state {
     int what;                   /* SWEEP_* */
     wr_sweep_range range;
@@ -19,10 +24,18 @@ typedef struct sweep_state {
     size_t next;                /* wrenches: the next to answer, */
     int set;                    /* and its next set */
     bool opened;                /* "{"results":[" written */
+    /* force: the cases' loads (model system), the next sample of mu, and
+     * the fixture's fixels as specs, to place them again at each mu */
+    wp_cases cases;
+    double (*loads)[3];
+    int sample;
+    bool any;
+    wr_fixel_spec fixels[WR_MAX_FIXELS];
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
 static const char *const SWEEP_GRAVITY_FIELDS[] = {"set", NULL};
+static const char *const SWEEP_FORCE_FIELDS[] = {"set", "finger_radius", NULL};
 
 /* params.range: [low, high], 0 <= low < high <= WR_MAX_FRICTION (default
  * [0, 2]); params.kinetic_ratio in (0, 1] (default 1). */
@@ -119,17 +132,25 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
-    const char *names[3] = {"wrenches", "push", "gravity"};
+    const char *names[4] = {"wrenches", "push", "gravity", "force"};
     int given = 0;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 4; i++)
         if (cJSON_GetObjectItemCaseSensitive(params, names[i])) {
             given++;
             state->what = i;
         }
     if (given != 1) {
         wp_error_set(error, WP_INVALID_PARAMS, "params",
-                     "give exactly one of \"wrenches\", \"push\" and \"gravity\" (%d given)",
+                     "give exactly one of \"wrenches\", \"push\", \"gravity\" and \"force\" "
+                     "(%d given)",
                      given);
+        return false;
+    }
+    const cJSON *cases = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    if ((cases != NULL) != (state->what == SWEEP_FORCE)) {
+        wp_error_set(error, WP_INVALID_PARAMS, cases ? "params.cases" : "params.cases",
+                     cases ? "only with \"force\": the loads a push works against"
+                           : "required with \"force\": the loads a push works against");
         return false;
     }
     if (state->what != SWEEP_WRENCHES && cJSON_GetObjectItemCaseSensitive(params, "sets")) {
@@ -144,6 +165,37 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
         if (!wp_read_sets(params, r, error))
             return false;
         return wp_read_wrenches(call->limits, params, fixture, NULL, r, error);
+    }
+    if (state->what == SWEEP_FORCE) {
+        /* {"set"? (default both), "finger_radius"?} and the cases. */
+        const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, "force");
+        state->request.set_count = 1;
+        if (!wp_check_object(what, "params.force", SWEEP_FORCE_FIELDS, error) ||
+            !wp_read_set_at(what, "params.force", &state->request.sets[0], error) ||
+            !wp_read_finger(what, "params.force", &state->finger, error) ||
+            !wp_cases_read(cases, "params.cases", fixture, &state->cases, error))
+            return false;
+        if (!cJSON_GetObjectItemCaseSensitive(what, "set"))
+            state->request.sets[0] = WR_SET_BOTH;
+        if (fixture->shape == WR_SHAPE_NONE) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                         "a push force needs the part's outline: the fixture has no shape");
+            return false;
+        }
+        state->loads = malloc((size_t)state->cases.count * sizeof *state->loads);
+        if (!state->loads) {
+            wp_error_set(error, WP_INTERNAL, "", "out of memory");
+            return false;
+        }
+        for (int c = 0; c < state->cases.count; c++)
+            memcpy(state->loads[c], state->cases.items[c].load, sizeof state->loads[c]);
+        /* The fixels as they are, to be placed again with each mu. */
+        for (int i = 0; i < fixture->fixel_count; i++) {
+            const wr_fixel *x = &fixture->fixels[i];
+            state->fixels[i] = (wr_fixel_spec){.at = {x->at[0], x->at[1]}, .normal_given = true,
+                                               .normal = {x->normal[0], x->normal[1]}};
+        }
+        return true;
     }
     bool push = state->what == SWEEP_PUSH;
     const char *path = push ? "params.push" : "params.gravity";
@@ -170,6 +222,8 @@ static void sweep_free(void *stream)
     for (int s = 0; s < 3; s++)
         wr_sweeper_free(state->sweepers[s]);
     free(state->request.wrenches);
+    free(state->loads);
+    wp_cases_release(&state->cases);
     free(stream);
 }
 
@@ -188,6 +242,8 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     }
     wr_status status = WR_OK;
+    if (state->what == SWEEP_FORCE)
+        return state; /* sampled a mu at a time by sweep_force_step */
     for (int s = 0; status == WR_OK && s < state->request.set_count; s++)
         status = wr_sweeper_new(use->fixture, state->request.sets[s], &state->range,
                                 &state->sweepers[s]);
@@ -203,10 +259,85 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     return state;
 }
 
+/* The least push force at one mu: the fixture's fixels placed again with
+ * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
+ * point [mu, F] (F null when no push does the job) is written. */
+static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
+                              unsigned long *used, wp_buffer *out)
+{
+    wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
+                                 .kinetic_mu = mu * state->range.kinetic_ratio};
+    wr_fixture placed;
+    wr_error invalid;
+    wr_status status = wr_fixture_place(f, state->fixels, (size_t)f->fixel_count, &friction,
+                                        &placed, &invalid);
+    wr_analysis *analysis = NULL;
+    if (status == WR_OK)
+        status = wr_analysis_new(&placed, &analysis);
+    wr_least_force least = {0};
+    if (status == WR_OK)
+        status = wr_least_force_find(analysis, state->request.sets[0],
+                                     (const double (*)[3])state->loads, state->cases.count,
+                                     state->finger.radius, NULL, &least);
+    wr_analysis_free(analysis);
+    if (status != WR_OK)
+        return status;
+    *used += 1000 + least.evaluations * 40 * (unsigned long)state->cases.count;
+    WP_BUFFER_LITERAL(out, "[");
+    wp_buffer_number(out, mu + 0.0);
+    WP_BUFFER_LITERAL(out, ",");
+    if (least.found)
+        wp_buffer_number(out, wp_force_out(f, least.force));
+    else
+        WP_BUFFER_LITERAL(out, "null");
+    WP_BUFFER_LITERAL(out, "]");
+    return WR_OK;
+}
+
+/* friction.sweep "force": {"curve": [[mu, F], ...], "exact": false,
+ * "resolution": step}, a sample of mu at a time. */
+static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *out,
+                                unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
+    if (!use)
+        return WP_STEP_FAILED;
+    const double step = (state->range.high - state->range.low) / (FORCE_SAMPLES - 1);
+    if (!state->opened) {
+        state->opened = true;
+        WP_BUFFER_LITERAL(out, "{\"curve\":[");
+    }
+    for (bool first = true; state->sample < FORCE_SAMPLES && !out->failed; first = false) {
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        if (wr_stop_requested(call->host->stop)) {
+            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+            return WP_STEP_FAILED;
+        }
+        double mu = state->sample + 1 == FORCE_SAMPLES ? state->range.high
+                                                       : state->range.low + state->sample * step;
+        if (state->any)
+            WP_BUFFER_LITERAL(out, ",");
+        state->any = true;
+        wr_status status = force_sample(state, use->fixture, mu, used, out);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        state->sample++;
+    }
+    WP_BUFFER_LITERAL(out, "],\"exact\":false,\"resolution\":");
+    wp_buffer_number(out, step);
+    WP_BUFFER_LITERAL(out, "}");
+    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
+    if (state->what == SWEEP_FORCE)
+        return sweep_force_step(state, call, out, budget, used);
     const wp_classify_request *r = &state->request;
     const wr_stop *stop = call->host->stop;
     size_t start = out->length;

@@ -1,4 +1,4 @@
-"""Independent geometry of the "outline" shape (issue 16) for the tests.
+"""Independent geometry of the "outline" shape for the tests.
 
 An outline is {"type": "outline", "loops": [loop, ...]}: the first loop is
 the outer boundary, the others holes; a loop is a list of vertices [x, y] or

@@ -1,4 +1,4 @@
-"""Geometry for checking wrenchctl's pictures of outlines (issue 16), worked
+"""Geometry for checking wrenchctl's pictures of outlines, worked
 out here from the wire's description of an outline, not from wrenchctl's
 code: segments of loops of [x, y] or [x, y, bulge] vertices (the bulge
 tan(theta / 4) of the arc's included angle theta, positive counter-

@@ -1,4 +1,4 @@
-"""Peer access control with many groups (issue 14): a peer's supplementary
+"""Peer access control with many groups: a peer's supplementary
 groups are read in full, however many, and never written past a buffer.
 
 These tests run as root: they make a user and 300 groups of their own

@@ -1,4 +1,4 @@
-"""wrench.classify with "fields" (issue 19): the lean answer by column
+"""wrench.classify with "fields": the lean answer by column
 against the full answer by row for the same wrenches, every subset of the
 fields, every set, both methods; the verdicts alone (computed without
 margins, wr_classify_verdict) against the full path's on many wrenches,
@@ -203,7 +203,7 @@ def cell_edge_wrenches(put, mass, rng, count):
 def test_long_verdicts_by_the_map(client, name):
     """A batch of 100,000 verdicts or more is answered by the verdict map:
     every one of them the same as the margin path's (wr_classify_margin,
-    which tests/unit/test_verdict.c holds to the full answer bit for bit),
+    which tests/unit/lib/test_verdict.c holds to the full answer bit for bit),
     random wrenches and wrenches on the map's cell edges, two tolerances;
     and a sample against the full rows."""
     fixture = example(name)

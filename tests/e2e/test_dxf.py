@@ -1,5 +1,5 @@
-"""clients/python/wrenchd_dxf.py: the outline of a part from a DXF drawing
-(issue 16).  The drawings are written here with ezdxf (and one by FreeCAD,
+"""clients/python/wrenchd_dxf.py: the outline of a part from a DXF drawing.
+The drawings are written here with ezdxf (and one by FreeCAD,
 tests/e2e/data/); the expected loops, areas and centroids come from the
 drawing's own numbers and closed forms, with an area and centroid routine of
 this file's own (chord polygon plus circular segments), not from the tool."""

@@ -72,7 +72,7 @@ def test_batch_of_notifications_gets_no_answer(client):
     client.send(req("fixture.list", {}, id=99))
     r = client.read_json()
     assert r["id"] == 99, r
-    assert r["result"] == {"fixtures": []}, r  # the notification's delete happened
+    assert r["result"] == {"fixtures": [], "more": False}, r  # the notification's delete happened
 
 
 def test_notifications_are_never_answered(client):
@@ -252,7 +252,7 @@ def test_max_line(harness):
     c.send_line(ok)
     r = c.read_json()
     assert r["id"] == 1 and len(r["result"]["results"]) == 150, r
-    assert other.result("fixture.list", {}) == {"fixtures": []}
+    assert other.result("fixture.list", {}) == {"fixtures": [], "more": False}
 
 
 def test_max_depth(harness):
@@ -390,7 +390,7 @@ def test_clients_vanishing_mid_request(daemon):
         s.sendall(line.encode() * 2)
         s.close()
     c = daemon.client()
-    assert c.result("fixture.list", {}) == {"fixtures": []}
+    assert c.result("fixture.list", {}) == {"fixtures": [], "more": False}
     r = c.result("wrench.classify", {"fixture": f, "wrenches": [[0.1, -1, 0.2]]})
     assert len(r["results"]) == 1
 

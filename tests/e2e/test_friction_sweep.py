@@ -1,4 +1,4 @@
-"""friction.sweep (issue 17, "Sweeps over mu"): answers checked against
+"""friction.sweep (sweeps over mu): answers checked against
 closed forms and against the daemon's own point-friction answers.
 
 The method sweeps one common coefficient mu over params.range: on every

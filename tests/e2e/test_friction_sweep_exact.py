@@ -1,5 +1,5 @@
 """friction.sweep's endpoints, checked by other means than the sweep's own
-roots (issue 17: "Test the sweep's endpoints also against bisection").
+roots: against bisection.
 
 For every fixture below, every sweep (push regions of goal, strong and both,
 gravity arcs, with kinetic ratios 1 and 0.5) is compared with the existing

@@ -1,4 +1,4 @@
-"""Limits that mean what they say (issue 14): the default line length holds
+"""Limits that mean what they say: the default line length holds
 the default number of wrenches however they are written; a classify's
 tolerance is a band in [0, 1), and the lp method, which finds no margin,
 takes none."""

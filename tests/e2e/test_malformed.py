@@ -336,7 +336,7 @@ def test_reasons_name_the_problem(daemon):
         answer = a.read_json()
         check_error(answer, code, field, rid, name)
         assert reason in answer["error"]["data"]["reason"], (name, answer)
-    assert a.result("fixture.list", {}) == {"fixtures": []}
+    assert a.result("fixture.list", {}) == {"fixtures": [], "more": False}
 
 
 def test_all_rows_on_one_connection(daemon):
@@ -351,8 +351,8 @@ def test_all_rows_on_one_connection(daemon):
     # (the over-long line is not asserted to count as an error: PROTOCOL
     # does not say what "errors" counts)
     assert after["errors"] - before["errors"] >= len(ROWS) - 1, (before, after)
-    assert a.result("fixture.list", {}) == {"fixtures": []}
-    assert daemon.client().result("fixture.list", {}) == {"fixtures": []}
+    assert a.result("fixture.list", {}) == {"fixtures": [], "more": False}
+    assert daemon.client().result("fixture.list", {}) == {"fixtures": [], "more": False}
 
 
 def test_garbage_bytes_do_not_hurt(daemon):
@@ -365,7 +365,7 @@ def test_garbage_bytes_do_not_hurt(daemon):
         line = a.read_line(timeout=10)
         assert line, raw
         json.loads(line)
-    assert a.result("fixture.list", {}) == {"fixtures": []}
+    assert a.result("fixture.list", {}) == {"fixtures": [], "more": False}
 
 
 def test_boundary_tolerance(daemon):

@@ -1,4 +1,4 @@
-"""The "outline" shape (issue 16): loops of lines and arcs, holes, pins in
+"""The "outline" shape: loops of lines and arcs, holes, pins in
 holes, mass properties, push regions by loop and segment, finger_radius.
 
 Every expected number is derived here, independently of the daemon:
@@ -151,7 +151,8 @@ def check_outline_answer(ol, res):
     """The form of push.regions on an outline: every region's from / to /
     length recomputed from the geometry, ordered, disjoint; total_length the
     sum; fraction total over the perimeter of every loop."""
-    assert set(res) == {"regions", "total_length", "fraction", "exact", "resolution"}, res
+    assert set(res) == {"regions", "total_length", "fraction", "exact", "resolution"} | (
+        set() if res["regions"] else {"why_empty"}), res
     size = max(1.0, math.sqrt(abs(ol.area)))
     out = []
     total = 0.0
@@ -1400,7 +1401,7 @@ def test_tiny_bulges(client, bulge):
 
 @pytest.mark.parametrize("bulge", [1e-6, 1e-9, 1e-12, 1e-18])
 def test_nearly_straight_arcs_give_their_chords_regions(client, bulge):
-    """Fuzz (issue 16's session): an arc of bulge 1e-18 has its centre 1e19
+    """Found by fuzzing: an arc of bulge 1e-18 has its centre 1e19
     away, and regions worked out about it lost every digit of t (a whole
     region was missed).  Worked out in the chord frame, the 3-2-1 plate
     whose right and top sides bow out by bulge b has the polygon's regions

@@ -1,7 +1,7 @@
 """wrenchctl's pictures (--svg): well-formed XML, one region path per region
 of the answer, and the part drawn (outline, fixels, friction cones, centre
 of mass).  The README's pictures in docs/ are what wrenchctl draws now.
-Outlines of lines and arcs (issue 16): arcs drawn as arcs, holes as holes,
+Outlines of lines and arcs: arcs drawn as arcs, holes as holes,
 regions on arcs as arcs, pins in holes, checked against geometry worked out
 here (svg_geometry.py)."""
 
@@ -74,7 +74,7 @@ def test_bad_svg_path_is_a_usage_error():
     ("plate-3-2-1-push-strong.svg", ["push", "plate-3-2-1.json", "--set", "strong"]),
     ("plate-chamfered-push-both.svg", ["push", "plate-chamfered.json", "--set", "both"]),
     ("disc-corner-push-goal.svg", ["push", "disc-corner.json", "--set", "goal"]),
-    ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both"]),
+    ("bracket-push-both.svg", ["push", "bracket.json", "--set", "both", "--push-on", "all"]),
     ("notched-plate-push-strong-r4.svg", ["push", "notched-plate.json", "--set", "strong",
                                           "--finger-radius", "4"]),
     ("plate-chamfered-sweep-both.svg", ["sweep", "plate-chamfered.json", "--push", "both",
@@ -83,6 +83,10 @@ def test_bad_svg_path_is_a_usage_error():
     ("bracket-locate.svg", ["locate", "bracket.json", "--tolerance", "0.02", "--feature",
                             "hole=30,30", "--feature", "slot=85,30", "--feature",
                             "drill=110,50"]),
+    ("bracket-upright-push-force.svg",
+     ["push-force", "bracket-upright.json"] +
+     [a for x in (20, 40, 60, 80, 100)
+      for a in ("--case", "x%d:gravity=9810@180;force=30,-40@%d,60" % (x, x))]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""
@@ -93,7 +97,7 @@ def test_readme_pictures_are_current(harness, picture, command):
         assert a.read() == b.read(), "run 'make pictures' and commit docs/pictures"
 
 
-# ---- outlines of lines and arcs (issue 16) -----------------------------------
+# ---- outlines of lines and arcs ---------------------------------------------
 #
 # Each picture is read back with xml.etree and checked against the outline's
 # geometry worked out in svg_geometry.py from the wire's description of a
@@ -538,12 +542,16 @@ def test_finger_radius_in_help():
 
 def test_outline_regions_printed_by_loop_and_segment(harness):
     path, _ = outline_fixture(harness, "issue")
-    answer = run("push", path, "--set", "strong")
+    answer = run("push", path, "--set", "strong", "--push-on", "all")
     assert answer.returncode == 0, answer.stderr
     lines = answer.stdout.splitlines()
-    assert lines[0].split()[:4] == ["loop", "segment", "from", "to"]
-    # The table, its summary, and what the strong set promises.
+    assert lines[0].split()[:4] == ["loop", "segments", "from", "to"]
+    # The table (a row per region, its pieces under it), its summary, and
+    # what the strong set promises.
     assert lines[-2].startswith("set strong: ") and lines[-1].startswith("strong: "), lines
-    rows = [l.split() for l in lines[1:-2]]
+    rows = [l.split() for l in lines[1:-2] if not l.lstrip().startswith("pieces:")]
     assert rows and all(r[0] in ("0", "1") for r in rows)
     assert any(r[0] == "1" for r in rows)    # a region in the hole
+    # By default a point finger pushes on the outer boundary only.
+    outer = run("push", path, "--set", "strong").stdout.splitlines()
+    assert all(l.split()[0] == "0" for l in outer[1:-2] if not l.lstrip().startswith("pieces:"))

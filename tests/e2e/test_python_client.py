@@ -263,6 +263,10 @@ def test_explain_speaks_like_wrenchctl(monkeypatch):
     # test_explain_every_case_alike); the rest only the Python client says
     # (a verdict inside, a mode of letters no daemon sends).
     python_only = {"mode", "inside_goal", "inside_strong", "inside_both", "apart_many"}
+    # An empty design's and an empty region's words: compared in
+    # test_design_clients.py (test_empty_answers_explained_alike).
+    python_only |= {k for k in wrenchd._EXPLAIN_WORDS
+                    if k.startswith("no_design") or k == "empty_region"}
     assert used >= set(wrenchd._EXPLAIN_WORDS) - python_only, \
         set(wrenchd._EXPLAIN_WORDS) - python_only - used
     pivot = wrenchd.Verdict("boundary", False, 0.0, "nn+", [], None)
@@ -1100,7 +1104,7 @@ def test_regions_on_outlines_and_a_finger_with_a_size(pyclient):
     area = 120 * 60 - (4 - math.pi) * 64 - 36 * math.pi - (200 + 25 * math.pi)
     assert put.area == pytest.approx(area, rel=1e-13)
     assert put.com[1] == pytest.approx(30, rel=1e-13)
-    regions = pyclient.push_regions(put, "both")
+    regions = pyclient.push_regions(put, "both", push_on="all")
     assert regions.regions
     assert all(r.edge is None and r.loop is not None and r.segment is not None
                for r in regions.regions)

@@ -1,4 +1,4 @@
-"""Resource control (issue 14): whatever a client asks, and however it
+"""Resource control: whatever a client asks, and however it
 behaves, its connection costs bounded memory and bounded work.
 
 * Memory per connection is bounded: a large answer is produced in pieces as
@@ -316,7 +316,7 @@ def put_fixtures(d):
 
 @pytest.mark.skipif(bool(WRAPPER), reason="40 requests of 100,000 wrenches: too slow under valgrind")
 def test_forty_clients_that_never_read_keep_memory_bounded(harness):
-    """Issue 14's scenario: 40 clients each send one wrench.classify of
+    """The scenario: 40 clients each send one wrench.classify of
     100,000 wrenches for goal, strong and both on an 8-fixel fixture (about
     100 MB of answer each) and never read.  Resident memory stays under
     40 x --max-output + 64 MiB (6 MiB here: 304 MiB) while the work
@@ -574,7 +574,7 @@ def wait_for_cpu(pid, seconds, timeout):
 
 
 def test_work_of_clients_that_disconnect_stops(harness):
-    """Issue 14's scenario: two clients each send one batch of 100
+    """The scenario: two clients each send one batch of 100
     push.regions with finger_friction on a 4000-vertex outline (about 2.5 s
     of a core each, over 4 minutes of work per batch) and disconnect.  A
     third client's modes.get and classify are answered within 1 s, and

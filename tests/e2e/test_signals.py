@@ -112,7 +112,7 @@ def test_replaces_a_stale_socket(harness):
     s.close()  # the file stays, nobody listens
     assert stat.S_ISSOCK(os.stat(path).st_mode)
     d = harness.start(socket_path=path)
-    assert d.client().result("fixture.list", {}) == {"fixtures": []}
+    assert d.client().result("fixture.list", {}) == {"fixtures": [], "more": False}
 
 
 def test_socket_file_mode_and_parent(harness):
@@ -128,7 +128,7 @@ def test_default_socket_path(harness):
     """Without --socket: ./run/wrenchd.sock, its directory created."""
     d = harness.start(socket_path="")
     assert d.path == harness.path("run/wrenchd.sock") and os.path.exists(d.path)
-    assert d.client().result("fixture.list", {}) == {"fixtures": []}
+    assert d.client().result("fixture.list", {}) == {"fixtures": [], "more": False}
 
 
 @pytest.mark.parametrize("args", [

@@ -348,7 +348,8 @@ def memory_max(binary, config_text=""):
             values[key.strip()] = int(value)
     mib = 1 << 20
     total = (values["cache-mb"] * mib
-             + values["max-clients"] * (values["max-output"] + 2 * values["max-line"] + mib / 4)
+             + values["max-clients"] * (values["max-output"] + 3 * values["max-line"]
+                                        + 256 * values["max-wrenches"] + mib / 4)
              + values["threads"] * (16 * 0.7 * mib + 64 * values["max-line"])
              + 64 * mib)
     return "%dM" % -(-total // mib)
@@ -374,8 +375,9 @@ def test_memory_max_matches_the_configured_limits(harness):
         f.write(mine)
     unit = install()
     assert unit["MemoryMax"] == memory_max(BINARY, mine), unit.get("MemoryMax")
-    # By hand: max-line's default is 16 MiB.
-    assert unit["MemoryMax"] == "%dM" % -(-(100 + 10 * (4096 / (1 << 20) + 2 * 16 + 0.25)
+    # By hand: max-line's default is 16 MiB, max-wrenches' 100000.
+    assert unit["MemoryMax"] == "%dM" % -(-(100 + 10 * (4096 / (1 << 20) + 3 * 16
+                                                        + 256 * 100000 / (1 << 20) + 0.25)
                                             + 3 * (11.2 + 64 * 16) + 64) // 1)
     with open(config) as f:
         assert f.read() == mine

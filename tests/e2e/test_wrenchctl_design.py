@@ -11,6 +11,7 @@ import json
 import math
 import os
 import pty
+import re
 import select
 import subprocess
 import sys
@@ -61,10 +62,40 @@ def close(a, b):
     return a == b
 
 
+def drawing_decimals(shape):
+    """The drawing's precision (wrenchctl(1), push), computed here: the
+    median of the decimals its coordinates have in their shortest exact
+    form, at least those that show 1/10,000 of the shape's box diagonal, at
+    most 6."""
+    xs, ys, places = [], [], []
+    for loop in shape["loops"]:
+        for v in loop:
+            xs.append(v[0])
+            ys.append(v[1])
+            for x in v[:2]:
+                places.append(next(p for p in range(7)
+                                   if p == 6 or float("%.*f" % (p, x)) == x))
+    median = sorted(places)[len(places) // 2]
+    size = math.hypot(max(xs) - min(xs), max(ys) - min(ys))
+    return min(6, max(median, math.ceil(-math.log10(1e-4 * size))))
+
+
+def trimmed(x, places):
+    """x rounded to `places` decimals, trailing zeros dropped, as the tables
+    print a coordinate."""
+    text = "%.*f" % (places, x)
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return "0" if text == "-0" else text
+
+
 def test_table_is_the_daemons_answer(daemon):
     b = bracket()
+    # The bracket has holes and the finger is a point: the clients push on
+    # the outer boundary only (docs/PROTOCOL.md, push_on).
     answer = daemon.client().result("fixture.design", {
-        "body": b["body"], "friction": b["friction"], "spacing": 12, "top": 4})
+        "body": b["body"], "friction": b["friction"], "spacing": 12, "top": 4,
+        "push_on": "outer"})
     r = run("design", BRACKET, "--spacing", "12", "--top", "4", socket_path=daemon.path)
     assert r.returncode == 0, r.stderr
     lines = r.stdout.splitlines()
@@ -78,7 +109,10 @@ def test_table_is_the_daemons_answer(daemon):
         assert int(cells[0]) == d["rank"]
         assert float(cells[1]) == pytest.approx(d["score"], rel=1e-5)
         push = d["best_push"]
-        assert "(%.4g, %.4g)" % tuple(push["at"]) in row
+        places = drawing_decimals(b["body"]["shape"])
+        assert places == 2
+        assert "(%s, %s)" % (trimmed(push["at"][0], places), trimmed(push["at"][1], places)) in row
+        assert push["loop"] == 0
     assert "let go" in r.stdout and "both" in r.stdout
     # --json: the daemon's answer itself (cJSON prints some numbers a last
     # digit short: to 1e-14).
@@ -300,11 +334,15 @@ def test_python_client_design_and_progress(daemon):
         result = client.design(b["body"], b["friction"], spacing=8, top=3, progress=seen.append)
         again = client.design(b["body"], b["friction"], spacing=8, top=3)
         raw = client.call("fixture.design", {"body": b["body"], "friction": b["friction"],
-                                             "spacing": 8, "top": 3})
+                                             "spacing": 8, "top": 3, "push_on": "outer"})
     assert [d.candidate for d in result.designs] == [d["candidate"] for d in raw["designs"]]
     assert result.counts == raw["counts"] and again.counts == raw["counts"]
+    # the candidates, then perhaps the designs' figures
+    stages = [p["stage"] for p in seen]
+    assert stages == sorted(stages, key=["candidates", "figures"].index), stages
+    seen = [p for p in seen if p["stage"] == "candidates"]
     assert seen and seen[0]["done"] == 0 and seen[-1]["done"] == seen[-1]["total"]
-    assert all(p["stage"] == "candidates" for p in seen)
+    assert seen[-1]["eta_s"] == 0
     assert [p["done"] for p in seen] == sorted(p["done"] for p in seen)
     assert result.designs[0].best_push["margin"] == result.designs[0].score
     with pytest.raises(ValueError):
@@ -322,8 +360,8 @@ def test_python_client_lattice_design(daemon):
     assert all(d.pegs[0] == [0, 0] and len(d.pose) == 3 and d.sites is None
                for d in result.designs)
     stages = [p["stage"] for p in seen]
-    assert stages[0] == "poses" and stages[-1] == "candidates"
-    assert stages == sorted(stages, key=["poses", "candidates"].index)
+    assert stages[0] == "poses" and "candidates" in stages
+    assert stages == sorted(stages, key=["poses", "candidates", "figures"].index)
 
 
 def test_python_client_progress_callback_that_raises_spends_the_connection(daemon):
@@ -348,3 +386,32 @@ def test_python_client_batch_refuses_progress(daemon):
         batch = client.batch()
         with pytest.raises(ValueError):
             batch.design(b["body"], b["friction"], spacing=8, progress=print)
+
+
+def test_symmetric_designs_collapsed_and_all(daemon, tmp_path):
+    """The square's designs: by default each once, saying how many more it
+    stands for; --symmetric all lists every one; the counts agree with the
+    daemon's own answers, asked both ways."""
+    path = tmp_path / "square.json"
+    path.write_text(json.dumps(SQUARE))
+    collapsed = run("design", str(path), "--spacing", "1", "--top", "1000",
+                    socket_path=daemon.path)
+    every = run("design", str(path), "--spacing", "1", "--top", "1000", "--symmetric", "all",
+                socket_path=daemon.path)
+    assert collapsed.returncode == every.returncode == 0, (collapsed.stderr, every.stderr)
+    with wrenchd.Client(daemon.path, timeout=60) as client:
+        one = client.design(SQUARE["body"], SQUARE["friction"], spacing=1, top=1000)
+        all_ = client.design(SQUARE["body"], SQUARE["friction"], spacing=1, top=1000,
+                             collapse_symmetric=False)
+    assert len(one.symmetries) == 8 and all_.symmetries is None
+    assert sum(d.copies for d in one.designs) == len(all_.designs) > len(one.designs)
+    assert "the part has 8 symmetries" in collapsed.stdout
+    rows = [l for l in collapsed.stdout.splitlines() if re.match(r"^\d+ ", l)]
+    assert len(rows) == len(one.designs)
+    more = [l for l in collapsed.stdout.splitlines() if "more: its images" in l]
+    assert len(more) == sum(1 for d in one.designs if d.copies > 1)
+    assert len([l for l in every.stdout.splitlines() if re.match(r"^\d+ ", l)]) == \
+        len(all_.designs)
+    bad = run("design", str(path), "--spacing", "1", "--symmetric", "some",
+              socket_path=daemon.path)
+    assert bad.returncode != 0 and "--symmetric" in bad.stderr

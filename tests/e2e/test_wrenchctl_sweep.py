@@ -235,7 +235,7 @@ def test_sweep_push_table_and_plot_of_the_disc(ctl, harness):
     """The disc in a corner: the goal push region is empty from mu = 1
     (docs/MODEL.md section 7.1), its length pi/2 - 2 atan mu before."""
     svg = harness.path("sweep.svg")
-    r = ctl("sweep", DISC, "--push", "goal", "--svg", svg)
+    r = ctl("sweep", DISC, "--push", "goal", "--svg", svg, "--table", "full")
     assert r.returncode == 0, r.stderr
     lines = r.stdout.splitlines()
     assert lines[0] == ("friction sweep of the push region, set goal: mu_s = mu, mu_k = 1 mu "
@@ -262,6 +262,31 @@ def test_sweep_push_table_and_plot_of_the_disc(ctl, harness):
     x1 = max(float(a.getAttribute("x2")) for a in axis)
     assert float(line.getAttribute("x1")) == pytest.approx((x0 + x1) / 2, abs=0.01)
     assert any(t.startswith("goal: reaches every fixel") for t in texts(svg))
+
+
+def test_sweep_table_summarised_by_default(ctl):
+    """Without --table full: the curve's points nearest 9 evenly spaced mu
+    from the bottom of the range to the critical mu, those at the
+    intervals' ends and the last, each a row of the full table, and a line
+    saying how many of how many."""
+    answer = json.loads(ctl("sweep", DISC, "--push", "goal", "--json").stdout)
+    curve = answer["curve"]
+    assert len(curve) > 18, len(curve)
+    want = {len(curve) - 1}
+    top = answer["critical"]
+    for k in range(9):
+        mu = top * k / 8
+        want.add(min(range(len(curve)), key=lambda i: (abs(curve[i][0] - mu), i)))
+    for lo, hi in answer["intervals"]:
+        want |= {i for i, (mu, _) in enumerate(curve) if mu in (lo, hi)}
+    r = ctl("sweep", DISC, "--push", "goal")
+    rows = curve_rows(r.stdout)
+    assert len(rows) == len(want), (rows, sorted(want))
+    for (mu, length), i in zip(rows, sorted(want)):
+        assert mu == pytest.approx(curve[i][0], abs=1e-6)
+        assert length == pytest.approx(curve[i][1], abs=1e-6)
+    assert "(%d of the curve's %d points; --table full for all" % (len(want), len(curve)) in r.stdout
+    assert ctl("sweep", DISC, "--push", "goal", "--table", "most").returncode == 2
 
 
 def test_sweep_gravity_and_options_reach_the_daemon(ctl):

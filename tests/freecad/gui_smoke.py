@@ -174,7 +174,9 @@ def main():
     # a fixel moved off the outline, and a socket where no wrenchd listens.
     report_dock.widget().clear()
     good = list(fixture.FixelPoints)
-    fixture.FixelPoints = [good[0] + V(0, 0.5, 0)] + good[1:]
+    # 0.5 into the part along its normal: 0.5 from the outline wherever the
+    # design put it (a fillet's radius is 8)
+    fixture.FixelPoints = [good[0] + fixture.FixelNormals[0] * 0.5] + good[1:]
     doc.recompute()
     settle()
     fixture.FixelPoints = good

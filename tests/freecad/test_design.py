@@ -11,8 +11,10 @@ def test_a_design_is_placed(client, doc):
     """The bracket with no fixels: design() ranks every choice of three sites
     10 apart, places the best, and the regions and the best push recompute
     with them -- the design's own figures.  The README's run of the same
-    bracket (wrenchctl design examples/bracket.json --spacing 10) found 40
-    sites, 9880 candidates and a best margin of 0.318277."""
+    bracket (wrenchctl design examples/bracket.json --spacing 10) found 44
+    sites and 13244 candidates; the scores differ where a hole's loop starts
+    elsewhere (a loop without corners has its sites from its vertex 0), so
+    they are compared with wrenchd's answer for this test's own outline."""
     face = parts.bracket_face()
     fixture = wf.make_fixture(doc, wf._object_of_face(doc, face), [], 0.25,
                               socket=client.socket_path)
@@ -22,13 +24,15 @@ def test_a_design_is_placed(client, doc):
     assert both.Count == 0 and "no fixels yet" in both.Label and not best.Found
     seen = []
     result = wf.design(fixture, client, progress=seen.append, spacing=10, top=3)
-    assert result.sites == 40 and result.counts["candidates"] == 9880
+    assert result.sites == 44 and result.counts["candidates"] == 13244
     top = result.designs[0]
-    assert top.score == pytest.approx(0.318277, abs=5e-7)
     # the same question asked of wrenchd directly, of this test's own outline
+    # (the Python client's default push_on: a point finger, the outer boundary)
     direct = client.design({"mass": 1.0, "shape": wf.outline(face)},
                            {"static": 0.25, "kinetic": 0.25}, fixels=3, spacing=10, top=3)
     assert [d.fixels for d in result.designs] == [d.fixels for d in direct.designs]
+    assert top.score == direct.designs[0].score
+    assert top.best_push["loop"] == 0
     # placed: the fixels are the design's, in the document (the face is at z = 1)
     assert [(p.x, p.y, p.z) for p in fixture.FixelPoints] == \
         [(f["at"][0], f["at"][1], 1.0) for f in top.fixels]
@@ -41,13 +45,17 @@ def test_a_design_is_placed(client, doc):
     assert best.Found and best.Margin == pytest.approx(top.best_push["margin"], abs=1e-9)
     at = top.best_push["at"]
     assert best.At.distanceToPoint(V(at[0], at[1], 1)) <= 1e-9
-    # progress reached the end
-    assert seen and seen[-1]["done"] == seen[-1]["total"] == 9880
+    # progress reached the end of the candidates (the designs' figures may
+    # follow, stage "figures"), with the time left said on the way
+    search = [p for p in seen if p["stage"] == "candidates"]
+    assert search and search[-1]["done"] == search[-1]["total"] == 13244
+    assert search[-1]["eta_s"] == 0
+    assert all(p["stage"] == "figures" for p in seen[len(search):])
     # the ranking, in the fixture and the report view, says to push with both
-    assert fixture.Designs[0].startswith("3 fixels from 40 sites 10 mm apart, 9880 candidates")
+    assert fixture.Designs[0].startswith("3 fixels from 44 sites 10 mm apart, 13244 candidates")
     assert fixture.Designs[0].endswith("; lengths in mm")
     assert "the margin of the best push in both" in fixture.Designs[0]
-    assert fixture.Designs[1].startswith("1. score 0.318277")
+    assert fixture.Designs[1].startswith("1. score %g" % top.score)
     assert "it lies in both" in fixture.Designs[-1] and "let go" in fixture.Designs[-1]
     assert "goal alone" in fixture.Designs[-1]
 

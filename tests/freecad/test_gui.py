@@ -101,15 +101,21 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     # the report view: the design ranked, what to push with said
     report = "\n".join(result["report"])
     # the README's bracket, designed as wrenchctl designs it there
-    assert "Wrench: 3 fixels from 40 sites 10 mm apart, 9880 candidates" in report
+    assert "Wrench: 3 fixels from 44 sites 10 mm apart, 13244 candidates" in report
     assert "ranked by the margin of the best push in both" in report
     assert "; lengths in mm" in report                     # the report names the unit
-    assert "Wrench: 1. score 0.318277: fixels at (25, 0, 1) (105, 0, 1) (100, 30, 1)" in report
+    assert "Wrench: 1. score 0.359737: fixels at (114.347, 0.352035, 1) (120, 8, 1) (27, 24.8038, 1)" \
+        in report
     assert "it lies in both, which seats the part from any contact state and then holds it still" \
         in report
     assert "both: a push here seats the part from any contact state and then holds it still: " \
            "push here and let go" in report
     assert "to push and let go, use both" in report
+    # where the regions were looked for: the bracket's hole and slot left out
+    # by the clients' default for a point finger, and how to take them
+    assert "Wrench: regions both pushes on the outer boundary; not on holes 1, 2 (a point " \
+           "finger has no size to compare with a hole's: set FingerRadius, or PushOn to all)" \
+        in report
 
     # mistakes, in the report view: the fixel named, and how to start wrenchd
     mistakes = "\n".join(result["mistakes"])

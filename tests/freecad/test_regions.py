@@ -8,6 +8,7 @@ inward normal (the face's normal crossed with the edge's tangent, turned
 into the face by face.isInside) is inside the set, while a push at any
 other sampled point of the boundary is not."""
 
+import json
 import math
 
 import FreeCAD
@@ -58,10 +59,14 @@ def boundary_samples(face, per_edge=24):
     return out
 
 
-def check_regions(client, fixture, regions, which, face, frame=None):
-    """The region objects of one set, held against FreeCAD and wrenchd."""
+def check_regions(client, fixture, regions, which, face, frame=None, every_loop=False):
+    """The region objects of one set, held against FreeCAD and wrenchd.  The
+    finger is a point: it pushes on the face's outer wire only (the
+    clients' default, docs/PROTOCOL.md push_on), so only there is every
+    other sampled point not inside; every_loop: on every wire (PushOn all)."""
     size = face.BoundBox.DiagonalLength
-    answer = client.push_regions(fixture.FixtureId, which)
+    answer = client.push_regions(fixture.FixtureId, which,
+                                 push_on="all" if every_loop else None)
     assert len(regions) == len(answer.regions)
     # lengths: FreeCAD's Shape.Length of each object, summed, is push.regions' total
     total = sum(r.Shape.Length for r in regions)
@@ -92,11 +97,13 @@ def check_regions(client, fixture, regions, which, face, frame=None):
             assert verdicts[which].inside and verdicts[which].margin > 0
     # every other sampled point of the boundary: not inside
     shapes = Part.Compound([r.Shape for r in regions]) if regions else None
+    outer = face.OuterWire
     outside = [p for p in boundary_samples(face)
-               if shapes is None or shapes.distToShape(Part.Vertex(p))[0] > 1e-6 * size]
+               if (shapes is None or shapes.distToShape(Part.Vertex(p))[0] > 1e-6 * size)
+               and (every_loop or outer.distToShape(Part.Vertex(p))[0] <= 1e-9 * size)]
     verdicts = client.classify(fixture.FixtureId,
                                [push(p, inward_normal(face, p), frame) for p in outside], sets=[which])
-    assert len(outside) > 100
+    assert len(outside) > 60
     assert not any(v[which].inside for v in verdicts)
     return answer
 
@@ -122,11 +129,56 @@ def test_show_regions_on_the_bracket(client, doc):
     assert len(parts_made) == 1
     fixtures = [o for o in doc.Objects if wf._is(o, "WrenchFixture")]
     assert len(fixtures) == 3 and all(f.Source[0] == parts_made[0] for f in fixtures)
-    # the README's figure for this part: both is 39.4847 long
-    assert totals["both"] == pytest.approx(39.48474, abs=1e-4)
+    # the README's figures for this part: both is 39.4847 long on every
+    # loop (push --push-on all), 31.7654 of it on the top edge, the outer
+    # boundary a point finger pushes on
+    assert totals["both"] == pytest.approx(31.765419, abs=1e-4)
     assert totals["both"] <= min(totals["goal"], totals["strong"]) + 1e-9
     assert "push here and let go" in wf.MEANING["both"]
     assert "use both" in wf.MEANING["goal"] and "use both" in wf.MEANING["strong"]
+
+
+def test_push_on_every_loop(client, doc):
+    """PushOn: empty pushes where the clients' default does (a point finger:
+    the outer boundary only, and the report view says the holes are left
+    out and how to take them); all adds the hole and the slot, and the
+    regions then hold against FreeCAD's boundary and wrench.classify on
+    every wire; a finger 2 across reaches both holes by default; a loop the
+    outline lacks is refused naming PushOn."""
+    face = parts.bracket_face()
+    regions = wf.show_regions(doc, face, BRACKET_FIXELS, 0.25, "both", client)
+    parent = regions[0].Regions
+    fixture = parent.Fixture
+    assert list(parent.PushOnLoops) == [0] and set(r.Loop for r in regions) == {0}
+    said = wf.describe_push_on([0], json.loads(fixture.FixtureJson)["body"], 0.0, False)
+    assert "not on holes 1, 2" in said and "PushOn to all" in said
+    # every loop: the hole (loop 1) and the slot (loop 2) as FreeCAD sees them
+    every = wf.make_regions(fixture, "both", "all")
+    doc.recompute()
+    shown = [o for o in doc.Objects if wf._is(o, "WrenchRegion") and o.Regions == every]
+    assert list(every.PushOnLoops) == [0, 1, 2] and len(shown) == every.Count
+    answer = check_regions(client, fixture, shown, "both", face, every_loop=True)
+    assert any(r.Loop > 0 for r in shown)
+    # on the holes: the regions whose ends lie on the hole's and the slot's wires
+    holes = Part.Compound([w for w in face.Wires if not w.isSame(face.OuterWire)])
+    for r in shown:
+        on_hole = holes.distToShape(Part.Vertex(r.From))[0] <= 1e-9 * face.BoundBox.DiagonalLength
+        assert on_hole == (r.Loop > 0)
+    assert answer.total_length > parent.TotalLength
+    # the README's figure on every loop, push --push-on all
+    assert every.TotalLength == pytest.approx(39.4847, abs=1e-4)
+    # a list of loops: the outer boundary and the hole
+    some = wf.make_regions(fixture, "both", [0, 1])
+    doc.recompute()
+    assert list(some.PushOnLoops) == [0, 1] and set(some.RegionLoops) <= {0, 1}
+    # a finger 2 across is narrower than the hole (12) and the slot (10)
+    parent.FingerRadius = 1.0
+    doc.recompute()
+    assert list(parent.PushOnLoops) == [0, 1, 2]
+    with pytest.raises(wf.OutlineError, match="PushOn: loop 3"):
+        wf.push_on_of("0, 3", json.loads(fixture.FixtureJson)["body"], 0.0)
+    with pytest.raises(wf.OutlineError, match="PushOn"):
+        wf.push_on_of("inner", json.loads(fixture.FixtureJson)["body"], 0.0)
 
 
 def test_regions_follow_the_part(client, doc):
@@ -385,6 +437,17 @@ def test_an_unreachable_daemon_says_how_to_start_one(doc, tmp_path):
     assert "wrenchd is not reachable at %s" % path in text
     assert "`wrenchd --socket %s`" % path in text
     assert "make run" in text and "$WRENCHD_SOCKET" in text and "Socket property" in text
+
+
+def test_the_fixture_names_its_units(client, doc):
+    """The workbench's fixture says its lengths are FreeCAD's mm (and forces
+    N, the Mass kg), and wrenchd keeps them."""
+    import json
+    regions = wf.show_regions(doc, parts.bracket_face(), BRACKET_FIXELS, 0.3, "both", client)
+    fixture = regions[0].Regions.Fixture
+    sent = json.loads(fixture.FixtureJson)
+    assert sent["units"] == {"length": "mm", "force": "N"} == wf.UNITS
+    assert client.get_fixture(fixture.FixtureId)["units"] == sent["units"]
 
 
 def test_a_busy_daemon_is_busy(doc, tmp_path):

@@ -30,7 +30,9 @@
  * Skipped (not answered, counted): push.regions with a finger_friction
  * above 0 whose sampled work (SAMPLES points per edge, each against every
  * excluded cone) exceeds FRICTION_BUDGET, and wrench.classify with method
- * "lp" whose LP count exceeds LP_BUDGET.  Both are legitimate requests
+ * "lp" whose LP count exceeds LP_BUDGET, and friction.sweep's push with a
+ * finger_friction above 0 whose sampled work over SWEEP_STEPS values of mu
+ * exceeds FRICTION_BUDGET.  All are legitimate requests
  * that take seconds to minutes under the sanitizers; they would only make
  * the fuzzer time out.  Set FUZZ_REQUEST_NO_SKIP=1 to answer them anyway,
  * FUZZ_REQUEST_VERBOSE=1 to see each line and its answer on stderr. */
@@ -51,8 +53,12 @@
 #define SAMPLES_PER_EDGE 2049.0
 #define FRICTION_BUDGET 4e6   /* sample x cone tests per request */
 #define LP_BUDGET 4096.0      /* LPs per wrench.classify request */
+#define SWEEP_STEPS 256.0     /* values of mu a friction.sweep samples (wr_sweep.h) */
 
-static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 64, .max_batch = 16};
+/* A design of more candidates than max_candidates is refused (as the
+ * daemon's --max-candidates refuses it): designs stay fast enough to fuzz. */
+static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 64, .max_batch = 16,
+                                 .max_candidates = 400};
 
 static wd_cache *cache;
 static wd_stats stats;
@@ -274,14 +280,15 @@ static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edge
     const cJSON *value = param(r, "fixture");
     wp_fixture_use use;
     wp_error error;
+    wp_host_failure failure;
     bool ok;
     if (cJSON_IsString(value)) {
         ok = wp_fixture_id_valid(value->valuestring) &&
-             host->fixture_use(host->self, value->valuestring, &use, &error);
+             host->fixture_use(host->self, value->valuestring, &use, &failure);
     } else if (cJSON_IsObject(value)) {
         wp_fixture_doc doc;
         ok = wp_fixture_read(value, "params.fixture", &doc, &error) &&
-             host->fixture_adopt(host->self, &doc, false, &use, &error);
+             host->fixture_adopt(host->self, &doc, false, &use, &failure);
     } else {
         ok = false;
     }
@@ -312,6 +319,16 @@ static bool slow_request(const cJSON *r)
                 s = (wr_set)i;
         return fixture_work(r, s, &cones, &edges) &&
                edges * SAMPLES_PER_EDGE * cones > FRICTION_BUDGET;
+    }
+    if (strcmp(method, "friction.sweep") == 0) {
+        /* A push sweep with a finger with friction: push regions so sampled
+         * at each of SWEEP_STEPS values of mu. */
+        const cJSON *push = param(r, "push");
+        const cJSON *friction = cJSON_GetObjectItemCaseSensitive(push, "finger_friction");
+        if (!cJSON_IsNumber(friction) || !(friction->valuedouble > 0))
+            return false;
+        return fixture_work(r, WR_SET_GOAL, &cones, &edges) &&
+               edges * SAMPLES_PER_EDGE * cones * SWEEP_STEPS > FRICTION_BUDGET;
     }
     if (strcmp(method, "wrench.classify") == 0) {
         const cJSON *how = param(r, "method");
@@ -625,6 +642,46 @@ static void check_result(const cJSON *request, const cJSON *result, const char *
         const cJSON *version = cJSON_GetObjectItemCaseSensitive(result, "version");
         FUZZ_CHECK(cJSON_IsString(version) && strcmp(version->valuestring, WR_VERSION) == 0,
                    "server.status: version for %s", line);
+    } else if (strcmp(method, "fixture.list") == 0) {
+        /* A page: sorted ids after params.after, at most params.limit
+         * (1000 by default), names at most WP_NAME_MAX bytes, `more` a
+         * boolean. */
+        const cJSON *list = cJSON_GetObjectItemCaseSensitive(result, "fixtures");
+        const cJSON *limit = param(request, "limit");
+        const cJSON *after = param(request, "after");
+        FUZZ_CHECK(cJSON_IsArray(list) && cJSON_IsBool(cJSON_GetObjectItemCaseSensitive(result, "more")),
+                   "fixture.list: fixtures and more for %s", line);
+        FUZZ_CHECK(cJSON_GetArraySize(list) <= (cJSON_IsNumber(limit) ? limit->valuedouble : 1000),
+                   "fixture.list: a page over its limit for %s", line);
+        const char *previous = cJSON_IsString(after) ? after->valuestring : "";
+        const cJSON *item;
+        cJSON_ArrayForEach(item, list) {
+            const cJSON *id = cJSON_GetObjectItemCaseSensitive(item, "id");
+            const cJSON *name = cJSON_GetObjectItemCaseSensitive(item, "name");
+            FUZZ_CHECK(cJSON_IsString(id) && strcmp(id->valuestring, previous) > 0,
+                       "fixture.list: ids not sorted after params.after for %s", line);
+            FUZZ_CHECK(!cJSON_IsString(name) || strlen(name->valuestring) <= WP_NAME_MAX,
+                       "fixture.list: a name over %d bytes for %s", WP_NAME_MAX, line);
+            previous = id->valuestring;
+        }
+    } else if (strcmp(method, "fixture.design") == 0) {
+        /* Within --max-candidates, and "partial" only as true, with fewer
+         * examined than candidates. */
+        const cJSON *counts = cJSON_GetObjectItemCaseSensitive(result, "counts");
+        const cJSON *candidates = cJSON_GetObjectItemCaseSensitive(counts, "candidates");
+        const cJSON *examined = cJSON_GetObjectItemCaseSensitive(counts, "examined");
+        const cJSON *partial = cJSON_GetObjectItemCaseSensitive(result, "partial");
+        FUZZ_CHECK(is_number_in(candidates, 0, 1e18) && is_number_in(examined, 0, 1e18),
+                   "fixture.design: counts for %s", line);
+        FUZZ_CHECK(!partial || (cJSON_IsTrue(partial) &&
+                                examined->valuedouble < candidates->valuedouble),
+                   "fixture.design: partial for %s", line);
+        const cJSON *shard = cJSON_GetObjectItemCaseSensitive(result, "shard");
+        const cJSON *shards = cJSON_IsArray(shard) ? cJSON_GetArrayItem(shard, 1) : NULL;
+        FUZZ_CHECK(partial || examined->valuedouble == candidates->valuedouble ||
+                       (cJSON_IsNumber(shards) && shards->valuedouble > 1),
+                   "fixture.design: a whole answer examined %g of %g for %s",
+                   examined->valuedouble, candidates->valuedouble, line);
     }
 }
 
@@ -859,11 +916,11 @@ static void bound_store(void)
     if (s.stored <= STORE_BOUND)
         return;
     wp_fixture_listing listing;
-    wp_error error;
-    FUZZ_CHECK(host->fixture_list(host->self, &listing, &error), "fixture_list failed");
+    wp_host_failure failure;
+    FUZZ_CHECK(host->fixture_list(host->self, &listing, &failure), "fixture_list failed");
     FUZZ_CHECK(listing.count == s.stored, "%zu listed, %zu stored", listing.count, s.stored);
     for (size_t i = 0; i < listing.count; i++)
-        FUZZ_CHECK(host->fixture_delete(host->self, listing.entries[i].id, &error),
+        FUZZ_CHECK(host->fixture_delete(host->self, listing.entries[i].id, &failure),
                    "deleting a listed fixture failed");
     wp_fixture_listing_release(&listing);
     wd_cache_stats_get(cache, &s);

@@ -218,7 +218,7 @@ static inline bool fuzz_badly_scaled(const wr_fixture *f)
 /* Everything wr_classify says about g, for the three sets, checked; the
  * answers in out[3] (may be NULL).  With LP sets, the LP method must agree
  * on the verdict wherever the margin is beyond 1e-6 (as in
- * tests/unit/test_crosscheck.c). */
+ * tests/unit/lib/test_crosscheck.c). */
 static inline void fuzz_classify_all(const wr_analysis *a, const double g[3], wr_lp_set *goal,
                                      wr_lp_set *strong, const char *what)
 {

@@ -1659,6 +1659,7 @@ struct Config {
     int tilt_points, tilt_trials;
     int tilt_out_points, tilt_out_trials;
     int spin_points;                // discs: spinning, seated
+    int force_points, force_trials; // a finger of finite force, gravity, cuts
 };
 
 void finish(Row &row)
@@ -1789,6 +1790,220 @@ Row seat_trials(const Prepared &p, const Config &cfg, const char *set, bool grav
     row.note += fmt("; %d/%d starts touching", starts_touching, starts);
     if (starts_scaled)
         row.note += fmt("; %d starts with their gaps scaled down (to %g at least)", starts_scaled, least_scale);
+    finish(row);
+    row.seconds = since(t0);
+    return row;
+}
+
+// ---- forces: a finger of finite force under gravity and a cutting sequence ----
+//
+// wrenchd's magnitudes (force.range, push.force, lib/wr_force.h) checked in
+// Box2D.  Gravity ACCEL pulls along -y of the fixture's frame (270 degrees);
+// a cutter presses on the part's upward-facing straight edges (or, on a
+// disc, at its top), one cut at a time: a force of 0.4 m ACCEL into the
+// part along the inward normal plus half that along the edge (the feed),
+// at each edge's middle.  The cases are gravity alone (the seating) and
+// gravity with each cut (the sequence).  At a boundary point p the least
+// force F*(p) that does `both` under every case is wrenchd's; a push of
+// 1.05 F*(p) (when that is still inside every case's interval: pushing
+// harder can turn a part) must seat the part from a random start under
+// gravity and come to rest, and then hold it (boundary displacement under
+// MOVE_TOLERANCE) through every cut applied after seating, one after the
+// other.  A push of half F*(p) is reported: the sets are sufficient, not
+// necessary.
+//
+// The holding criterion is asserted for a cut whose wrench (gravity, cut
+// and push) has a G_strong margin above HOLD_MARGIN, as for the random
+// wrenches: Box2D has one friction coefficient and lets contacts overlap
+// by its slop, and just inside G_strong (1.05 F* is often within 0.01 of
+// a sliding mode's cone when that cone decides F*) its contacts creep.
+// Cuts below that margin are held or not as Box2D decides, and reported.
+//
+// Units: the analysis is in the fixture's units and the simulation in
+// metres, scaled by p.scale with the mass kept; an acceleration scales by
+// p.scale and so does a force (F_sim = p.scale F_model), gravity G_model =
+// ACCEL / p.scale.
+constexpr double HOLD_MARGIN = 0.05;
+
+struct Cut {
+    V2 at, dir;        // body frame (m), unit
+    double magnitude;  // N
+    double wrench[3];  // fixture units (model system)
+    bool asserted = true; // this trial: its wrench's G_strong margin > HOLD_MARGIN
+};
+
+std::vector<Cut> cutting_sequence(const Prepared &p)
+{
+    std::vector<Cut> cuts;
+    const double g_model = ACCEL / p.scale;
+    auto add = [&](int e, double t) {
+        double at[2], nu[2];
+        wr_boundary_point(p.f, e, t, at, nu);
+        if (!(nu[1] < -0.5))
+            return; // not facing up
+        const double tangent[2] = {-nu[1], nu[0]};
+        const double force[2] = {0.4 * p.mass * g_model * (nu[0] + 0.5 * tangent[0]),
+                                 0.4 * p.mass * g_model * (nu[1] + 0.5 * tangent[1])};
+        Cut c;
+        wr_fixture_force_wrench(p.f, force, at, c.wrench);
+        c.at = V2{p.scale * at[0], p.scale * at[1]} - p.com;
+        double length = std::hypot(force[0], force[1]);
+        c.dir = {force[0] / length, force[1] / length};
+        c.magnitude = p.scale * length;
+        cuts.push_back(c);
+    };
+    if (p.circle) {
+        add(0, 90);
+    } else {
+        for (int e = 0; e < edge_count(p); e++)
+            add(e, 0.5);
+    }
+    if (cuts.size() > 4)
+        cuts.resize(4);
+    return cuts;
+}
+
+struct ForceTrial {
+    bool seated = false, held = false;
+    double moved = 0;          // largest boundary displacement under the asserted cuts
+    double moved_marginal = 0; // ... under the others (reported)
+    long long deep = 0;
+};
+
+ForceTrial run_force_trial(const Prepared &p, const Start &st, const Load &finger, double force,
+                           const std::vector<Cut> &cuts)
+{
+    Sim sim(p, st.pose, st.v, st.w, {0, -ACCEL});
+    const unsigned all = (1u << p.k) - 1;
+    const int rest_steps = (int)std::lround(REST_TIME * HZ);
+    const int limit = (int)std::lround(TIME_LIMIT * HZ);
+    auto press = [&]() {
+        sim.part->ApplyForce((float)force * sim.part->GetWorldVector(b2(finger.dir)),
+                             sim.part->GetWorldPoint(b2(finger.at)), true);
+    };
+    ForceTrial out;
+    int calm = 0;
+    for (int n = 1; n <= limit && calm < rest_steps; n++) {
+        press();
+        sim.step();
+        double v = sim.part->GetLinearVelocity().Length(), w = std::fabs(sim.part->GetAngularVelocity());
+        calm = v < REST_SPEED && w < REST_SPIN && sim.touching() == all ? calm + 1 : 0;
+    }
+    Pose rest = sim.pose();
+    double pos_err = p.circle ? norm((rest.x + rotate(p.center, rest.th)) - (p.com + p.center))
+                              : norm(rest.x - p.com);
+    double ang_err = p.circle ? 0 : std::fabs(rest.th) * DEG;
+    out.seated = calm >= rest_steps && pos_err < POSE_TOLERANCE && ang_err < ANGLE_TOLERANCE;
+    if (out.seated) {
+        // The cuts one after the other, the finger pushing throughout.
+        // A cut's displacement is from where the last one left the part.
+        const int steps = (int)std::lround(HOLD_TIME / 3 * HZ);
+        for (const Cut &c : cuts) {
+            Pose from = sim.pose();
+            double &moved = c.asserted ? out.moved : out.moved_marginal;
+            for (int n = 0; n < steps; n++) {
+                press();
+                sim.part->ApplyForce((float)c.magnitude * sim.part->GetWorldVector(b2(c.dir)),
+                                     sim.part->GetWorldPoint(b2(c.at)), true);
+                sim.step();
+                moved = std::max(moved, boundary_displacement(p, from, sim.pose()));
+            }
+        }
+        out.held = out.moved < MOVE_TOLERANCE;
+    }
+    out.deep = sim.friction.deep;
+    return out;
+}
+
+// factor 1.05: the criterion (>= 99% seated and held); below 1: reported.
+Row force_trials(const Prepared &p, const char *set, double factor, int points, int trials)
+{
+    auto t0 = Clock::now();
+    Row row;
+    row.fixture = p.name;
+    row.set = set;
+    row.criterion = factor > 1 ? AT_LEAST_99 : REPORT;
+    std::vector<Cut> cuts = cutting_sequence(p);
+    std::vector<std::array<double, 3>> loads;
+    const double g_model = ACCEL / p.scale;
+    loads.push_back({0, -p.mass * g_model, 0});
+    for (const Cut &c : cuts)
+        loads.push_back({c.wrench[0], -p.mass * g_model + c.wrench[1], c.wrench[2]});
+    const int cases = (int)loads.size();
+    const double(*lp)[3] = reinterpret_cast<const double(*)[3]>(loads.data());
+    wr_least_force best;
+    if (wr_least_force_find(p.an, WR_SET_BOTH, lp, cases, 0, nullptr, &best) != WR_OK || !best.found) {
+        row.criterion = NOT_APPLICABLE;
+        row.note = "no push of any force does both under every case";
+        return row;
+    }
+    double least_seen = INFINITY, most_seen = 0, worst_move = 0;
+    int attempts = 0, failures_shown = 0, marginal_cuts = 0, marginal_held = 0;
+    Rng prng(seed_of(p.name, set, 0, -1));
+    int edges = edge_count(p);
+    while (row.points < points && attempts++ < 200 * points) {
+        int edge = (int)prng.uniform(0, edges);
+        double t = p.circle ? prng.uniform(0, 360) : prng.uniform(0.02, 0.98);
+        double w[3], least;
+        Load finger = finger_at(p, edge, t, w);
+        if (wr_least_force_at(p.an, WR_SET_BOTH, lp, cases, w, &least) != WR_OK || !std::isfinite(least))
+            continue;
+        // 1.05 F* must still do the job under every case.
+        bool inside = true;
+        wr_forces good = {0, 0, nullptr};
+        for (int c = 0; c < cases && inside; c++) {
+            inside = false;
+            if (wr_force_range(p.an, WR_SET_BOTH, lp[c], w, 0, INFINITY, &good) == WR_OK)
+                for (int i = 0; i < good.count; i++)
+                    inside |= good.items[i].lo < 1.05 * least && 1.05 * least < good.items[i].hi;
+        }
+        wr_forces_release(&good);
+        if (!inside || least <= 0)
+            continue;
+        row.points++;
+        least_seen = std::min(least_seen, least);
+        most_seen = std::max(most_seen, least);
+        double force = factor * least * p.scale;
+        for (size_t c = 0; c < cuts.size(); c++) {
+            double cw[3];
+            for (int k = 0; k < 3; k++)
+                cw[k] = lp[c + 1][k] + factor * least * w[k];
+            cuts[c].asserted = margin_of(p, cw, WR_SET_STRONG) > HOLD_MARGIN;
+        }
+        for (int r = 0; r < trials; r++) {
+            Rng rng(seed_of(p.name, set, row.points, r));
+            Start st;
+            if (!sample_start(p, rng, &st))
+                continue;
+            ForceTrial ft = run_force_trial(p, st, finger, force, cuts);
+            for (const Cut &c : cuts)
+                if (!c.asserted && ft.seated) {
+                    marginal_cuts++;
+                    marginal_held += ft.moved_marginal < MOVE_TOLERANCE;
+                }
+            row.trials++;
+            row.deep_trials += ft.deep > 0;
+            if (ft.seated && ft.held) {
+                row.successes++;
+                worst_move = std::max(worst_move, ft.moved);
+            } else if (factor > 1 && failures_shown < 10) {
+                failures_shown++;
+                std::fprintf(stderr, "  %s %s: edge %d t %.4f F* %.6g: seated %d, moved %.4f m\n",
+                             p.name.c_str(), set, edge, t, least, (int)ft.seated, ft.moved);
+            }
+        }
+    }
+    if (row.points == 0) {
+        row.criterion = NOT_APPLICABLE;
+        row.note = "no point where 1.05 F* stays inside every case's interval";
+        return row;
+    }
+    row.note = fmt("%zu cuts after seating; F* %.4g..%.4g N (scaled), least over the outline %.4g; "
+                   "displacement <= %.4f m while cut",
+                   cuts.size(), least_seen * p.scale, most_seen * p.scale, best.force * p.scale, worst_move);
+    if (marginal_cuts)
+        row.note += fmt("; %d cut(s) with G_strong margin <= %.2f (reported): %d held", marginal_cuts,
+                        HOLD_MARGIN, marginal_held);
     finish(row);
     row.seconds = since(t0);
     return row;
@@ -2402,6 +2617,7 @@ int main(int argc, char **argv)
         cfg.tilt_points = 50, cfg.tilt_trials = 4;
         cfg.tilt_out_points = 25, cfg.tilt_out_trials = 2;
         cfg.spin_points = 50;
+        cfg.force_points = 25, cfg.force_trials = 8;
     } else {
         cfg.goal_points = 200, cfg.goal_trials = 5;
         cfg.out_points = 100, cfg.out_trials = 5;
@@ -2410,6 +2626,7 @@ int main(int argc, char **argv)
         cfg.tilt_points = 200, cfg.tilt_trials = 5;
         cfg.tilt_out_points = 100, cfg.tilt_out_trials = 5;
         cfg.spin_points = 200;
+        cfg.force_points = 100, cfg.force_trials = 5;
     }
     auto start = Clock::now();
     if (friction_factor != 1.0)
@@ -2518,6 +2735,10 @@ int main(int argc, char **argv)
         mine.push_back(hold_wrenches(p, cfg, "hold: margin > 0.05", true, cfg.wrenches_in));
         print_row(mine.back());
         mine.push_back(hold_wrenches(p, cfg, "move: margin < -0.05", false, cfg.wrenches_out));
+        print_row(mine.back());
+        mine.push_back(force_trials(p, "force: 1.05 F*, cuts", 1.05, cfg.force_points, cfg.force_trials));
+        print_row(mine.back());
+        mine.push_back(force_trials(p, "force: 0.5 F*, cuts", 0.5, cfg.force_points / 2, cfg.force_trials));
         print_row(mine.back());
         rows.insert(rows.end(), mine.begin(), mine.end());
         wr_analysis_free(p.an);

@@ -37,6 +37,40 @@ static inline wr_fixture *test_polygon_body(const double (*vertices)[2], size_t 
     return body;
 }
 
+/* A body alone of an outline's loops, mass 1; with `com` (NULL: the
+ * lamina's centroid) given, its inertia 50.  NULL when refused. */
+static inline wr_fixture *test_outline_body(const wr_loop_spec *loops, size_t count,
+                                            const double *com)
+{
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = 1;
+    spec.shape = WR_SHAPE_OUTLINE;
+    spec.loops = loops;
+    spec.loop_count = count;
+    if (com) {
+        spec.com_given = true;
+        spec.com[0] = com[0];
+        spec.com[1] = com[1];
+        spec.inertia_given = true;
+        spec.inertia = 50;
+    }
+    wr_fixture *body = NULL;
+    wr_error error;
+    return wr_fixture_body_new(&spec, &body, &error) == WR_OK ? body : NULL;
+}
+
+/* A design job made and run to the end: its first status not WR_OK, or
+ * WR_OK with *out done. */
+static inline wr_status test_design_run(const wr_design_spec *spec, wr_design_job **out)
+{
+    wr_error error;
+    wr_status status = wr_design_job_new(spec, out, &error);
+    for (bool done = false; status == WR_OK && !done;)
+        status = wr_design_job_run(*out, 1000000, NULL, NULL, &done);
+    return status;
+}
+
 static inline wr_analysis *test_analysis_new(const wr_fixture *fixture)
 {
     wr_analysis *analysis;

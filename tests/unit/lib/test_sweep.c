@@ -43,7 +43,7 @@ static void disc_closed_forms(void **state)
 
     /* Push: length pi/2 - 2 atan mu on the unit circle, empty from mu = 1. */
     wr_sweep_curve curve;
-    wr_finger point = {0, 0};
+    wr_finger point = {.friction = 0};
     assert_int_equal(wr_sweep_push(goal, &point, NULL, &curve), WR_OK);
     assert_true(curve.exact);
     assert_int_equal(curve.intervals.count, 1);
@@ -213,7 +213,7 @@ static void refusals_and_stops(void **state)
     assert_int_equal(wr_sweeper_new(disc, WR_SET_BOTH, &RANGE, &s), WR_OK);
     wr_stop stop = {always, NULL};
     wr_sweep_curve curve;
-    wr_finger point = {0, 0}, negative = {-1, 0};
+    wr_finger point = {.friction = 0}, negative = {.friction = -1};
     assert_int_equal(wr_sweep_push(s, &point, &stop, &curve), WR_STOPPED);
     assert_int_equal(curve.point_count, 0);
     assert_int_equal(wr_sweep_push(s, &negative, NULL, &curve), WR_INVALID);

@@ -442,6 +442,58 @@ static void locating_reads_the_answer_without_allocating(void **state)
     stop(&f);
 }
 
+static const char FORCE_RANGE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"cases\":[{\"name\":null,\"both\":{\"intervals\":"
+    "[[1,2],[3.5,null]],\"least\":1}}],\"all\":{\"both\":{\"intervals\":[[1.5,2],[3.5,null]],"
+    "\"least\":1.5}}},\"id\":%ID%}";
+static const char FORCE_NONE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"cases\":[{\"name\":null,\"goal\":{\"intervals\":[],"
+    "\"least\":null}}],\"all\":{\"goal\":{\"intervals\":[],\"least\":null}}},\"id\":%ID%}";
+
+/* force.range: the request as the protocol spells it, all's intervals read
+ * (a null upper end is none), nothing allocated. */
+static void force_range_reads_all_without_allocating(void **state)
+{
+    (void)state;
+    const char *const answers[] = {FORCE_RANGE, FORCE_NONE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    wrc_force force;
+    const wrc_load loads[] = {
+        {.kind = WRC_LOAD_GRAVITY, .g = 9810, .direction_deg = 270},
+        {.kind = WRC_LOAD_FORCE, .force = {-20, 0}, .at = {60, 60}},
+        {.kind = WRC_LOAD_WRENCH, .wrench = {1, 2, 3}},
+    };
+    const double at[2] = {110, 50};
+    long before = atomic_load(&allocations);
+    assert_int_equal(wrc_force_range(c, ID, at, loads, 3, "both", &force), WRC_OK);
+    assert_int_equal(atomic_load(&allocations) - before, 0);
+    assert_int_equal(force.interval_count, 2);
+    assert_true(force.intervals[0][0] == 1.5 && force.intervals[0][1] == 2);
+    assert_true(force.intervals[1][0] == 3.5 && isinf(force.intervals[1][1]));
+    assert_true(force.least == 1.5);
+    assert_non_null(strstr(f.last_request, "\"method\":\"force.range\""));
+    assert_non_null(strstr(f.last_request,
+                           "\"push\":{\"at\":[110,50]},\"sets\":[\"both\"],\"cases\":[{\"loads\":["
+                           "{\"gravity\":{\"g\":9810,\"direction_deg\":270}},"
+                           "{\"force\":[-20,0],\"at\":[60,60]},{\"wrench\":[1,2,3]}]}]"));
+    assert_int_equal(wrc_force_range(c, ID, at, loads, 1, "goal", &force), WRC_OK);
+    assert_int_equal(force.interval_count, 0);
+    assert_true(isnan(force.least));
+    /* Refused before sending. */
+    assert_int_equal(wrc_force_range(c, ID, at, loads, 0, "goal", &force), WRC_EINVAL);
+    assert_int_equal(wrc_force_range(c, ID, at, loads, 1, "gaol", &force), WRC_EINVAL);
+    wrc_load bad = {.kind = 7};
+    assert_int_equal(wrc_force_range(c, ID, at, &bad, 1, "goal", &force), WRC_EINVAL);
+    bad = (wrc_load){.kind = WRC_LOAD_GRAVITY, .g = NAN};
+    assert_int_equal(wrc_force_range(c, ID, at, &bad, 1, "goal", &force), WRC_EINVAL);
+    assert_int_equal(f.requests, 2);
+    wrc_close(c);
+    stop(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -454,6 +506,7 @@ int main(void)
         cmocka_unit_test(a_small_buffer_refuses_a_big_answer),
         cmocka_unit_test(friction_sweep_reads_intervals_without_allocating),
         cmocka_unit_test(locating_reads_the_answer_without_allocating),
+        cmocka_unit_test(force_range_reads_all_without_allocating),
     };
     return cmocka_run_group_tests_name("client", tests, NULL, NULL);
 }

@@ -6,10 +6,15 @@
 #include <stdint.h>
 #include <cmocka.h>
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdatomic.h>
+#include <time.h>
 #include <stdio.h>
 
 #include "test_util.h"
 #include "wd_worker.h"
+#include "wp_chunks.h"
 #include "wp_rpc.h"
 #include "wp_sha256.h"
 
@@ -140,7 +145,7 @@ static void assert_same_fixture(const wr_fixture *a, const wr_fixture *b)
     assert_memory_equal(a->fixels, b->fixels, (size_t)a->fixel_count * sizeof *a->fixels);
 }
 
-/* Issue 14: the id hashes the explicit form (every default written out), so
+/* The id hashes the explicit form (every default written out), so
  * writing out a default keeps it; the stored text reads back to the same
  * fixture, bit for bit, and to the same text and id. */
 static void explicit_form_reads_back_to_the_same_fixture(void **state)
@@ -286,7 +291,7 @@ static int setup(void **state)
     char why[128];
     h->cache = wd_cache_new(NULL, 1 << 20, 10000, why, sizeof why);
     h->thread = wd_thread_host_new(h->cache, &h->stats);
-    h->limits = (wp_limits){16, 100, 8};
+    h->limits = (wp_limits){16, 100, 8, 0};
     *state = h;
     return h->cache && h->thread ? 0 : -1;
 }
@@ -711,7 +716,7 @@ static void pieces_join_to_the_whole_answer(void **state)
 {
     harness *h = *state;
     const wp_host *host = wd_thread_host_wp(h->thread);
-    wp_limits limits = {16, 100000, 16};
+    wp_limits limits = {16, 100000, 16, 0};
     char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
@@ -801,7 +806,7 @@ static void pieces_join_to_the_whole_answer(void **state)
  * then runs the step; a helper may claim chunks before the step begins,
  * and may be inside wp_answer_work until the step returns (the fork is
  * closed after it).  So a step that follows a "yes" from
- * wp_answer_parallel must not end the answer (wp_rpc.h, wp_streamer):
+ * wp_answer_parallel must not end the answer (the rule in wp_chunks.h):
  * ending it frees the stream (its lock, its chunks, the fixture held)
  * under a helper -- even when the helpers had claimed every chunk left
  * by the time the step began.  Here the helpers' turns run, in this
@@ -810,7 +815,7 @@ static void a_step_after_parallel_does_not_end_the_answer(void **state)
 {
     harness *h = *state;
     const wp_host *host = wd_thread_host_wp(h->thread);
-    wp_limits limits = {16, 100000, 16};
+    wp_limits limits = {16, 100000, 16, 0};
     char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
@@ -914,7 +919,7 @@ static void long_numbers_read_as_the_tree_reads_them(void **state)
 {
     harness *h = *state;
     const wp_host *host = wd_thread_host_wp(h->thread);
-    wp_limits limits = {16, 100000, 16};
+    wp_limits limits = {16, 100000, 16, 0};
     char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
@@ -981,6 +986,172 @@ static void a_stop_ends_long_work(void **state)
     free(text);
 }
 
+/* ---- the engine of chunked work (wp_chunks.h), alone -------------------- */
+
+/* A method of the engine's tests: chunk i is the text "<i>"; `fail_at`
+ * fails its make (WR_STOPPED), `slow_at` makes it take a while (a helper
+ * still inside make while the step goes on). */
+typedef struct toy {
+    size_t fail_at, slow_at;
+    atomic_int claimed; /* chunks a make has begun */
+} toy;
+
+typedef struct toy_record {
+    char text[24];
+} toy_record;
+
+static wr_status toy_make(void *method, size_t index, void *record, wp_buffer *direct,
+                          const wp_host *host, unsigned long *used, wp_error *error)
+{
+    (void)host;
+    toy *t = method;
+    atomic_fetch_add(&t->claimed, 1);
+    if (index == t->slow_at) {
+        struct timespec pause = {0, 100 * 1000 * 1000};
+        nanosleep(&pause, NULL);
+    }
+    if (index == t->fail_at) {
+        wp_error_set(error, WP_INTERNAL, "", "chunk %zu failed", index);
+        return WR_STOPPED;
+    }
+    char text[24];
+    snprintf(text, sizeof text, "<%zu>", index);
+    if (direct)
+        wp_buffer_puts(direct, text);
+    else
+        snprintf(((toy_record *)record)->text, sizeof text, "%s", text);
+    *used += 1;
+    return WR_OK;
+}
+
+static wr_status toy_merge(void *method, size_t index, void *record, wp_buffer *out,
+                           wp_error *error)
+{
+    (void)method;
+    (void)index;
+    (void)error;
+    wp_buffer_puts(out, ((toy_record *)record)->text);
+    return WR_OK;
+}
+
+static const wp_chunk_ops TOY = {.record_size = sizeof(toy_record), .make = toy_make,
+                                 .merge = toy_merge, .window = 4};
+
+typedef struct toy_helper {
+    wp_chunks *chunks;
+    const wp_host *host;
+    int turns;
+} toy_helper;
+
+/* A helper of the daemon's pool: its turns of wp_chunks_work. */
+static void *toy_helper_main(void *argument)
+{
+    toy_helper *helper = argument;
+    for (int i = 0; i < helper->turns; i++)
+        wp_chunks_work(helper->chunks, helper->host);
+    return NULL;
+}
+
+/* The rule: a step that begins after wp_chunks_parallel said yes does not
+ * end the answer, though every chunk is merged by the time it returns: a
+ * helper claimed the last chunk before the step began and is still inside
+ * make while it runs (the classify case, a step that asked for chunks left
+ * at its start, and the design case, a step that asked again, both ended
+ * the answer here, freeing what the helper was using). */
+static void a_shared_step_never_ends_the_answer(void **state)
+{
+    (void)state;
+    wp_host host = {0};
+    toy t = {.fail_at = SIZE_MAX, .slow_at = 0};
+    wp_chunks *chunks = wp_chunks_new(&TOY, &t, 1);
+    assert_non_null(chunks);
+    assert_true(wp_chunks_parallel(chunks));
+    toy_helper helper = {chunks, &host, 1};
+    pthread_t thread;
+    assert_int_equal(pthread_create(&thread, NULL, toy_helper_main, &helper), 0);
+    while (atomic_load(&t.claimed) == 0) /* the helper holds the only chunk */
+        sched_yield();
+    wp_buffer out = {0};
+    wp_error error = {0};
+    unsigned long used = 0;
+    bool shared = wp_chunks_shared(chunks);
+    assert_true(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_MORE);
+    assert_true(wp_chunks_done(chunks));
+    pthread_join(thread, NULL);
+    /* The next step shares nothing (nothing was left to share): it ends it. */
+    assert_false(wp_chunks_parallel(chunks));
+    shared = wp_chunks_shared(chunks);
+    assert_false(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_DONE);
+    assert_string_equal(out.data, "<0>");
+    free(out.data);
+    wp_chunks_free(chunks);
+}
+
+/* Chunks made out of order, by helpers and the step, are merged in order;
+ * no more than the window are made ahead of the one next merged. */
+static void chunks_merge_in_order_within_the_window(void **state)
+{
+    (void)state;
+    wp_host host = {0};
+    toy t = {.fail_at = SIZE_MAX, .slow_at = 0};
+    wp_chunks *chunks = wp_chunks_new(&TOY, &t, 9);
+    assert_true(wp_chunks_parallel(chunks));
+    toy_helper slow = {chunks, &host, 1}, fast = {chunks, &host, 8};
+    pthread_t first, second;
+    assert_int_equal(pthread_create(&first, NULL, toy_helper_main, &slow), 0);
+    while (atomic_load(&t.claimed) == 0) /* chunk 0 is the slow helper's */
+        sched_yield();
+    assert_int_equal(pthread_create(&second, NULL, toy_helper_main, &fast), 0);
+    pthread_join(second, NULL);
+    /* Chunk 0 is not merged: the window (4) stopped the fast helper. */
+    assert_true(atomic_load(&t.claimed) <= 4);
+    wp_buffer out = {0};
+    wp_error error = {0};
+    unsigned long used = 0;
+    bool shared = wp_chunks_shared(chunks);
+    while (wp_chunks_run(chunks, shared, &host, &out, 1000, &used, 1 << 20, &error) !=
+           WP_STEP_DONE)
+        shared = wp_chunks_shared(chunks);
+    pthread_join(first, NULL);
+    assert_string_equal(out.data, "<0><1><2><3><4><5><6><7><8>");
+    free(out.data);
+    wp_chunks_free(chunks);
+}
+
+/* A helper's failure is kept: the chunks before it are merged, a step that
+ * shares goes on, and the next step that shares nothing says it. */
+static void a_failure_is_said_by_a_step_that_shares_nothing(void **state)
+{
+    (void)state;
+    wp_host host = {0};
+    toy t = {.fail_at = 1, .slow_at = SIZE_MAX};
+    wp_chunks *chunks = wp_chunks_new(&TOY, &t, 3);
+    assert_true(wp_chunks_parallel(chunks));
+    assert_true(wp_chunks_work(chunks, &host));  /* chunk 0 */
+    assert_true(wp_chunks_work(chunks, &host));  /* chunk 1: fails */
+    assert_false(wp_chunks_work(chunks, &host)); /* nothing more is claimed */
+    assert_false(wp_chunks_parallel(chunks));
+    wp_buffer out = {0};
+    wp_error error = {0};
+    unsigned long used = 0;
+    bool shared = wp_chunks_shared(chunks);
+    assert_true(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_MORE);
+    shared = wp_chunks_shared(chunks);
+    assert_false(shared);
+    assert_int_equal(wp_chunks_run(chunks, shared, &host, &out, 100, &used, 1 << 20, &error),
+                     WP_STEP_FAILED);
+    assert_string_equal(error.reason, "chunk 1 failed");
+    assert_string_equal(out.data, "<0>");
+    free(out.data);
+    wp_chunks_free(chunks);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -997,6 +1168,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(light_lines_answer_as_any_other, setup, teardown),
         cmocka_unit_test_setup_teardown(pieces_join_to_the_whole_answer, setup, teardown),
         cmocka_unit_test_setup_teardown(a_stop_ends_long_work, setup, teardown),
+        cmocka_unit_test(a_shared_step_never_ends_the_answer),
+        cmocka_unit_test(chunks_merge_in_order_within_the_window),
+        cmocka_unit_test(a_failure_is_said_by_a_step_that_shares_nothing),
         cmocka_unit_test_setup_teardown(a_step_after_parallel_does_not_end_the_answer, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(long_numbers_read_as_the_tree_reads_them, setup,

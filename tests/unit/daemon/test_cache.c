@@ -97,6 +97,36 @@ static char *fixture_text(int i)
     return text;
 }
 
+/* The cache's functions, their failure (the cache's own status and words)
+ * made a JSON-RPC error as proto makes it (wp_error_host). */
+static bool cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
+                        wp_error *error)
+{
+    wp_host_failure failure = {WP_HOST_OK, ""};
+    if (wd_cache_adopt(cache, doc, store, use, &failure))
+        return true;
+    wp_error_host(error, &failure, "");
+    return false;
+}
+
+static bool cache_use(wd_cache *cache, const char *id, wp_fixture_use *use, wp_error *error)
+{
+    wp_host_failure failure = {WP_HOST_OK, ""};
+    if (wd_cache_use(cache, id, use, &failure))
+        return true;
+    wp_error_host(error, &failure, "");
+    return false;
+}
+
+static bool cache_delete(wd_cache *cache, const char *id, wp_error *error)
+{
+    wp_host_failure failure = {WP_HOST_OK, ""};
+    if (wd_cache_delete(cache, id, &failure))
+        return true;
+    wp_error_host(error, &failure, "");
+    return false;
+}
+
 /* wd_cache_adopt of fixture i; the result, with *use and *error. */
 static bool adopt(wd_cache *cache, int i, bool store, wp_fixture_use *use, wp_error *error)
 {
@@ -105,7 +135,7 @@ static bool adopt(wd_cache *cache, int i, bool store, wp_fixture_use *use, wp_er
     wp_fixture_doc doc;
     assert_true(wp_fixture_read(json, "", &doc, error));
     cJSON_Delete(json);
-    return wd_cache_adopt(cache, &doc, store, use, error);
+    return cache_adopt(cache, &doc, store, use, error);
 }
 
 /* The id of fixture i. */
@@ -137,7 +167,7 @@ static void touch(wd_cache *cache, int i)
     id_of(i, id);
     wp_fixture_use use;
     wp_error error = {0};
-    assert_true(wd_cache_use(cache, id, &use, &error));
+    assert_true(cache_use(cache, id, &use, &error));
     wd_cache_release(cache, &use);
 }
 
@@ -241,7 +271,7 @@ static void lru_evicts_oldest_unused(void **state)
     int held[3] = {1, 0, 2};
     for (int k = 0; k < 3; k++) {
         id_of(held[k], ids[k]);
-        assert_true(wd_cache_use(cache, ids[k], &uses[k], &error));
+        assert_true(cache_use(cache, ids[k], &uses[k], &error));
         assert_non_null(uses[k].analysis);
     }
     /* 3 was the only one not in use: it went; the three held stay. */
@@ -278,7 +308,7 @@ static bool adopt_large(wd_cache *cache, wp_fixture_use *use)
     wp_error error = {0};
     assert_true(wp_fixture_read(json, "", &doc, &error));
     cJSON_Delete(json);
-    return wd_cache_adopt(cache, &doc, false, use, &error);
+    return cache_adopt(cache, &doc, false, use, &error);
 }
 
 /* One eviction may take several entries: a large analysis derived pushes
@@ -323,15 +353,15 @@ static void serial_changes_on_rebuild(void **state)
     id_of(0, id);
     wp_fixture_use first, second, again;
     wp_error error = {0};
-    assert_true(wd_cache_use(cache, id, &first, &error));
-    assert_true(wd_cache_use(cache, id, &second, &error));
+    assert_true(cache_use(cache, id, &first, &error));
+    assert_true(cache_use(cache, id, &second, &error));
     assert_true(wd_cache_serial(&first) == wd_cache_serial(&second));
     uint64_t serial = wd_cache_serial(&first);
     wd_cache_release(cache, &first);
     assert_true(derived(cache, 0)); /* still held by `second` */
     wd_cache_release(cache, &second);
     assert_false(derived(cache, 0));
-    assert_true(wd_cache_use(cache, id, &again, &error));
+    assert_true(cache_use(cache, id, &again, &error));
     assert_true(wd_cache_serial(&again) != serial);
     wd_cache_release(cache, &again);
     wd_cache_free(cache);
@@ -354,7 +384,7 @@ static void inline_is_not_stored(void **state)
     assert_non_null(use.analysis);
     assert_int_equal(listed(cache), 0);
     assert_int_equal(wd_cache_ready(cache, id), -1); /* only stored ones are asked */
-    assert_false(wd_cache_use(cache, id, &by_id, &error));
+    assert_false(cache_use(cache, id, &by_id, &error));
     assert_int_equal(error.code, WP_NO_FIXTURE);
     wd_cache_stats stats = stats_of(cache);
     assert_int_equal(stats.stored, 0);
@@ -366,7 +396,7 @@ static void inline_is_not_stored(void **state)
 
     put(cache, 0);
     assert_int_equal(listed(cache), 1);
-    assert_true(wd_cache_use(cache, id, &by_id, &error));
+    assert_true(cache_use(cache, id, &by_id, &error));
     wd_cache_release(cache, &by_id);
     wd_cache_free(cache);
 }
@@ -393,7 +423,7 @@ static void max_fixtures_refuses(void **state)
     assert_true(adopt(cache, 2, false, &use, &error));
     wd_cache_release(cache, &use);
     id_of(0, id);
-    assert_true(wd_cache_delete(cache, id, &error));
+    assert_true(cache_delete(cache, id, &error));
     put(cache, 2);
     assert_int_equal(listed(cache), 2);
     wd_cache_free(cache);
@@ -422,12 +452,12 @@ static void delete_removes_the_file(void **state)
     assert_string_equal(text, expected);
     wd_cache_release(cache, &use);
 
-    assert_true(wd_cache_delete(cache, id, &error));
+    assert_true(cache_delete(cache, id, &error));
     assert_false(exists("%s/fixtures/%s.json", dir, id));
     assert_int_equal(listed(cache), 0);
-    assert_false(wd_cache_use(cache, id, &use, &error));
+    assert_false(cache_use(cache, id, &use, &error));
     assert_int_equal(error.code, WP_NO_FIXTURE);
-    assert_false(wd_cache_delete(cache, id, &error));
+    assert_false(cache_delete(cache, id, &error));
     assert_int_equal(error.code, WP_NO_FIXTURE);
     wd_cache_free(cache);
     remove_state(dir);
@@ -500,7 +530,7 @@ static void put_is_durable_in_order(void **state)
     snprintf(text, sizeof text, "%s\n", use.canonical);
     assert_string_equal(watch.renamed_text, text); /* whole before the rename */
     wd_cache_release(cache, &use);
-    assert_true(wd_cache_delete(cache, id, &error));
+    assert_true(cache_delete(cache, id, &error));
 
     /* The file's sync fails: nothing stored, no file left. */
     memset(&watch, 0, sizeof watch);
@@ -535,7 +565,7 @@ static void put_is_durable_in_order(void **state)
 }
 
 /* One cache at a time on a state directory: the second is refused, with
- * the holder's pid. */
+ * the holder's pid, also once DIR/lock is deleted. */
 static void state_directory_is_locked(void **state)
 {
     (void)state;
@@ -545,9 +575,17 @@ static void state_directory_is_locked(void **state)
     assert_null(wd_cache_new(dir, SIZE_MAX, 100, why, sizeof why));
     char expected[512];
     snprintf(expected, sizeof expected,
-             "the state directory %s is in use by another wrenchd (pid %ld, holding %s/lock)", dir,
-             (long)getpid(), dir);
+             "the state directory %s is in use by another wrenchd (pid %ld, which holds a lock on "
+             "the directory)",
+             dir, (long)getpid());
     assert_string_equal(why, expected);
+    /* The lock is the directory's: deleting DIR/lock (or replacing it)
+     * frees nothing. */
+    char lock_path[PATH_MAX + 16];
+    snprintf(lock_path, sizeof lock_path, "%s/lock", dir);
+    assert_int_equal(unlink(lock_path), 0);
+    assert_null(wd_cache_new(dir, SIZE_MAX, 100, why, sizeof why));
+    assert_non_null(strstr(why, "is in use by another wrenchd (pid unknown"));
     wd_cache_free(first);
     wd_cache *second = wd_cache_new(dir, SIZE_MAX, 100, why, sizeof why);
     assert_non_null(second); /* released with the first */

@@ -14,6 +14,8 @@
 
 #include "test_util.h"
 
+#define WR_TEST_PI 3.14159265358979323846
+
 /* A 10 x 4 plate with its corner at the origin. */
 static const double PLATE[4][2] = {{0, 0}, {10, 0}, {10, 4}, {0, 4}};
 /* A 12-sided plate: a 12 x 8 rectangle with chamfered corners and a notch. */
@@ -29,7 +31,7 @@ static void spaced_sites_closed_form(void **state)
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;
-    assert_int_equal(wr_sites_spaced(body, 2, &sites, &count, &error), WR_OK);
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){2, 2 / 2.0, 0}, &sites, &count, &error), WR_OK);
     /* 10 / 2 = 5 sites on the long sides (1, 3, 5, 7, 9 from a corner),
      * 4 / 2 = 2 on the short ones (1, 3). */
     assert_int_equal(count, 14);
@@ -45,14 +47,76 @@ static void spaced_sites_closed_form(void **state)
     }
     /* 3 on a side of 10 fits 3 sites, 3.5 from each end: 3.5, 6.5 ... */
     count = 0;
-    assert_int_equal(wr_sites_spaced(body, 3, &sites, &count, &error), WR_OK);
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){3, 3 / 2.0, 0}, &sites, &count, &error), WR_OK);
     assert_int_equal(count, 3 + 1 + 3 + 1);
     assert_true(fabs(sites[0].at[0] - 2) <= 1e-12 && fabs(sites[2].at[0] - 8) <= 1e-12);
     assert_true(fabs(sites[3].at[1] - 2) <= 1e-12);
     count = 0;
-    assert_int_equal(wr_sites_spaced(body, 0, &sites, &count, &error), WR_INVALID);
-    assert_int_equal(wr_sites_spaced(body, 1e-9, &sites, &count, &error), WR_INVALID);
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){0, 0 / 2.0, 0}, &sites, &count, &error), WR_INVALID);
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){1e-9, 1e-9 / 2.0, 0}, &sites, &count, &error), WR_INVALID);
     assert_int_equal(count, 0);
+    free(sites);
+    wr_fixture_free(body);
+}
+
+/* A circle drawn as 36 straight segments turns 10 degrees at each joint,
+ * below the corner angle: one closed run, floor(P / h) sites P / n apart
+ * from vertex 0 along the loop, walked here edge by edge; a site on a
+ * joint takes the bisector of the two edges' normals, pointing to the
+ * centre.  With clearance c the rectangle's long side of 10 holds
+ * floor((10 - 2c) / h) + 1 sites. */
+static void spaced_sites_by_arc_length(void **state)
+{
+    (void)state;
+    double polygon[36][2];
+    for (int i = 0; i < 36; i++) {
+        polygon[i][0] = 10 * cos(i * WR_TEST_PI / 18);
+        polygon[i][1] = 10 * sin(i * WR_TEST_PI / 18);
+    }
+    wr_fixture *body = test_polygon_body(polygon, 36);
+    assert_non_null(body);
+    double side = 20 * sin(WR_TEST_PI / 36), perimeter = 36 * side;
+    for (double h = 0.7; h < 8; h += 1.3) {
+        wr_site *sites = NULL;
+        int count = 0;
+        wr_error error;
+        assert_int_equal(wr_sites_spaced(body, &(wr_spacing){h, 0.01, 0}, &sites, &count, &error),
+                         WR_OK);
+        int n = (int)floor(perimeter / h);
+        assert_int_equal(count, n);
+        for (int k = 0; k < n; k++) {
+            double s = perimeter * k / n;
+            int edge = (int)floor(s / side + 1e-12);
+            double t = s / side - edge;
+            if (edge >= 36)
+                edge = 35, t = 1;
+            const double *a = polygon[edge], *b = polygon[(edge + 1) % 36];
+            double p[2] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
+            assert_true(hypot(sites[k].at[0] - p[0], sites[k].at[1] - p[1]) <= 1e-9);
+            /* Inward: along the edge's normal, or the bisector at a joint. */
+            double mid = t < 1e-9 ? edge * WR_TEST_PI / 18 : (edge + 0.5) * WR_TEST_PI / 18;
+            assert_true(hypot(sites[k].normal[0] + cos(mid), sites[k].normal[1] + sin(mid)) <= 1e-9);
+        }
+        free(sites);
+    }
+    wr_fixture_free(body);
+    body = test_polygon_body(PLATE, 4);
+    wr_site *sites = NULL;
+    int count = 0;
+    wr_error error;
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){2, 0.5, 0}, &sites, &count, &error), WR_OK);
+    /* Long sides: (10 - 1) / 2 -> 5 sites at 1, 3, ..., 9 centred; short:
+     * (4 - 1) / 2 -> 2 sites. */
+    assert_int_equal(count, 2 * 5 + 2 * 2);
+    count = 0;
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){2, 3, 0}, &sites, &count, &error), WR_OK);
+    /* (10 - 6) / 2 + 1 = 3 on a long side; a short side is shorter than 6. */
+    assert_int_equal(count, 6);
+    assert_true(fabs(sites[0].at[0] - 3) <= 1e-12 && fabs(sites[2].at[0] - 7) <= 1e-12);
+    count = 0;
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){2, 0, 0}, &sites, &count, &error),
+                     WR_INVALID);
+    assert_string_equal(error.field, "corner_clearance");
     free(sites);
     wr_fixture_free(body);
 }
@@ -150,7 +214,7 @@ static void best_push_against_sampling(void **state)
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;
-    assert_int_equal(wr_sites_spaced(body, 2, &sites, &count, &error), WR_OK);
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){2, 2 / 2.0, 0}, &sites, &count, &error), WR_OK);
     wr_friction_spec friction = {.given = true, .static_mu = 0.25};
     int checked = 0, samples = 0;
     double worst_gap = 0;
@@ -243,7 +307,7 @@ static void search_against_brute_force(void **state)
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;
-    assert_int_equal(wr_sites_spaced(body, 3, &sites, &count, &error), WR_OK);
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){3, 3 / 2.0, 0}, &sites, &count, &error), WR_OK);
     for (int objective = 0; objective < 3; objective++) {
         wr_design_spec spec = {
             .body = body,
@@ -382,7 +446,7 @@ static void chunks_in_any_order(void **state)
     wr_site *sites = NULL;
     int count = 0;
     wr_error error;
-    assert_int_equal(wr_sites_spaced(body, 2, &sites, &count, &error), WR_OK);
+    assert_int_equal(wr_sites_spaced(body, &(wr_spacing){2, 2 / 2.0, 0}, &sites, &count, &error), WR_OK);
     wr_design_spec spec = {.body = body, .friction = {.given = true, .static_mu = 0.25},
                            .sites = sites, .site_count = count, .fixel_count = 3,
                            .objective = WR_OBJECTIVE_MARGIN, .top = 5, .shard_count = 1};
@@ -427,6 +491,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(spaced_sites_closed_form),
+        cmocka_unit_test(spaced_sites_by_arc_length),
         cmocka_unit_test(placed_equals_whole),
         cmocka_unit_test(best_push_against_sampling),
         cmocka_unit_test(search_against_brute_force),

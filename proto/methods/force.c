@@ -1,0 +1,464 @@
+/* force.c -- force.range (docs/PROTOCOL.md): the maximal intervals of a
+ * push's magnitude that do goal's, strong's or both's job under each load
+ * case (wr_force_range), and their intersection over the cases;
+ * push.force, the least push force along the outline; and push.regions'
+ * force and cases, read for analysis.c. */
+#include "common.h"
+#include "loads.h"
+#include "methods.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SET_NAMES wp_set_names
+
+/* push.force's samples of F* per segment: the default and the most. */
+#define WP_FORCE_SAMPLES 64
+#define WP_FORCE_MAX_SAMPLES 4096
+static const char *const PUSH_FIELDS[] = {"at", "direction", NULL};
+
+/* params.sets: names of sets, each once; all three when left out. */
+static bool read_sets(const cJSON *params, bool sets[3], wp_error *error)
+{
+    const cJSON *list = cJSON_GetObjectItemCaseSensitive(params, "sets");
+    sets[0] = sets[1] = sets[2] = list == NULL;
+    if (!list)
+        return true;
+    if (!cJSON_IsArray(list) || cJSON_GetArraySize(list) == 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.sets",
+                     "must be a non-empty array of \"goal\", \"strong\", \"both\"");
+        return false;
+    }
+    size_t i = 0;
+    for (const cJSON *item = list->child; item; item = item->next, i++) {
+        char field[WP_FIELD_MAX];
+        wp_path_index(field, "params.sets", i);
+        int s = 0;
+        while (s < 3 && !(cJSON_IsString(item) && strcmp(item->valuestring, SET_NAMES[s]) == 0))
+            s++;
+        if (s == 3 || sets[s]) {
+            wp_error_set(error, WP_INVALID_PARAMS, field,
+                         s == 3 ? "must be \"goal\", \"strong\" or \"both\"" : "given twice");
+            return false;
+        }
+        sets[s] = true;
+    }
+    return true;
+}
+
+/* The unit push, a physical wrench of the model system: params.push (a
+ * unit force at a point, along the inward normal there or a direction) or
+ * params.wrench (a direction of wrench, of unit length in the scaled metric
+ * of docs/MODEL.md section 5). */
+static bool read_push(const cJSON *params, const wr_fixture *f, double push[3], wp_error *error)
+{
+    const cJSON *at_push = cJSON_GetObjectItemCaseSensitive(params, "push");
+    const cJSON *wrench = cJSON_GetObjectItemCaseSensitive(params, "wrench");
+    if ((at_push != NULL) == (wrench != NULL)) {
+        wp_error_set(error, WP_INVALID_PARAMS, at_push ? "params.wrench" : "params.push",
+                     at_push ? "give \"push\" or \"wrench\", not both"
+                             : "required: a push {\"at\", \"direction\"?} or a \"wrench\"");
+        return false;
+    }
+    if (wrench) {
+        double w[3], unit[3];
+        if (!cJSON_IsArray(wrench) || cJSON_GetArraySize(wrench) != 3) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.wrench",
+                         "a wrench is [f_x, f_y, tau]: 3 numbers");
+            return false;
+        }
+        const cJSON *item = wrench->child;
+        for (int k = 0; k < 3; k++, item = item->next) {
+            char field[WP_FIELD_MAX];
+            wp_path_index(field, "params.wrench", (size_t)k);
+            if (!wp_number(item, field, &w[k], error))
+                return false;
+        }
+        /* Its direction is the same in the fixture's units and the model
+         * system (forces and torques convert by one factor). */
+        if (!(wr_fixture_unit_wrench(f, w, unit) > 0)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.wrench",
+                         "must not be zero: it is the push's direction");
+            return false;
+        }
+        wr_fixture_unscale_wrench(f, unit, push);
+        return true;
+    }
+    double at[2], direction[2];
+    bool directed = false;
+    if (!wp_check_object(at_push, "params.push", PUSH_FIELDS, error) ||
+        !wp_member_vector2(at_push, "params.push", "at", true, at, NULL, error) ||
+        !wp_member_vector2(at_push, "params.push", "direction", false, direction, &directed,
+                           error))
+        return false;
+    if (directed) {
+        double length = hypot(direction[0], direction[1]);
+        if (!(length > 0) || !isfinite(length)) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.push.direction",
+                         "must be a non-zero finite vector");
+            return false;
+        }
+        if (!wp_point_near_part(f, at, "params.push.at", error))
+            return false;
+        direction[0] /= length;
+        direction[1] /= length;
+    } else {
+        if (f->shape == WR_SHAPE_NONE) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.push.direction",
+                         "required: the fixture has no shape, so no inward normal");
+            return false;
+        }
+        /* The inward normal there, by the rule a fixel's is found by: at
+         * must be on the boundary, off its corners. */
+        wr_fixel_spec fixel;
+        memset(&fixel, 0, sizeof fixel);
+        fixel.at[0] = at[0];
+        fixel.at[1] = at[1];
+        wr_friction_spec frictionless;
+        memset(&frictionless, 0, sizeof frictionless);
+        frictionless.given = true;
+        wr_fixture placed;
+        wr_error invalid;
+        if (wr_fixture_place(f, &fixel, 1, &frictionless, &placed, &invalid) != WR_OK) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.push.at",
+                         "%s (or give \"direction\")", invalid.reason);
+            return false;
+        }
+        direction[0] = placed.fixels[0].normal[0];
+        direction[1] = placed.fixels[0].normal[1];
+    }
+    wr_fixture_force_wrench(f, direction, at, push);
+    return true;
+}
+
+/* params.range [lo, hi] in the fixture's force unit, into the model
+ * system; [0, inf) when left out. */
+static bool read_range(const cJSON *params, const wr_fixture *f, double range[2],
+                       wp_error *error)
+{
+    bool given = false;
+    range[0] = 0;
+    range[1] = INFINITY;
+    if (!wp_member_vector2(params, "params", "range", false, range, &given, error))
+        return false;
+    if (!given) {
+        range[1] = INFINITY;
+        return true;
+    }
+    if (range[0] < 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.range[0]",
+                     "must not be negative (a push's magnitude), got %g", range[0]);
+        return false;
+    }
+    if (range[1] < range[0]) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.range",
+                     "upside down: [%g, %g] (give [lo, hi] with lo <= hi)", range[0], range[1]);
+        return false;
+    }
+    double factor = wr_fixture_force_factor(f);
+    range[0] *= factor;
+    range[1] *= factor;
+    return true;
+}
+
+/* S = {"intervals": [[a, b], ...], "least": a0}, b null without an upper
+ * end, least null without an interval; in the fixture's force unit. */
+static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *good)
+{
+    WP_BUFFER_LITERAL(b, "{\"intervals\":[");
+    for (int i = 0; i < good->count; i++) {
+        wp_buffer_puts(b, i ? ",[" : "[");
+        wp_buffer_number(b, wp_force_out(f, good->items[i].lo));
+        WP_BUFFER_LITERAL(b, ",");
+        if (isfinite(good->items[i].hi))
+            wp_buffer_number(b, wp_force_out(f, good->items[i].hi));
+        else
+            WP_BUFFER_LITERAL(b, "null");
+        WP_BUFFER_LITERAL(b, "]");
+    }
+    WP_BUFFER_LITERAL(b, "],\"least\":");
+    if (good->count)
+        wp_buffer_number(b, wp_force_out(f, good->items[0].lo));
+    else
+        WP_BUFFER_LITERAL(b, "null");
+    WP_BUFFER_LITERAL(b, "}");
+}
+
+/* The answer is written as text (a raw result): a hundred cases are three
+ * hundred small objects, which a tree would allocate one by one. */
+cJSON *wp_handle_force_range(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    bool sets[3];
+    if (!read_sets(params, sets, error))
+        return NULL;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    const wr_fixture *f = use->fixture;
+    double push[3], range[2];
+    wp_cases cases;
+    if (!read_push(params, f, push, error) || !read_range(params, f, range, error) ||
+        !wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
+                       &cases, error))
+        return NULL;
+    wp_buffer b = {0};
+    WP_BUFFER_LITERAL(&b, "{\"cases\":[");
+    wr_forces every[3] = {{0}}, good = {0}, meet = {0};
+    wr_status status = WR_OK;
+    for (int c = 0; status == WR_OK && c < cases.count; c++) {
+        wp_buffer_puts(&b, c ? ",{\"name\":" : "{\"name\":");
+        if (cases.items[c].name)
+            wp_buffer_string(&b, cases.items[c].name);
+        else
+            WP_BUFFER_LITERAL(&b, "null");
+        for (int s = 0; status == WR_OK && s < 3; s++) {
+            if (!sets[s])
+                continue;
+            status = wr_force_range(use->analysis, (wr_set)s, cases.items[c].load, push,
+                                    range[0], range[1], &good);
+            if (status != WR_OK)
+                break;
+            WP_BUFFER_LITERAL(&b, ",\"");
+            wp_buffer_puts(&b, SET_NAMES[s]);
+            WP_BUFFER_LITERAL(&b, "\":");
+            write_force_set(&b, f, &good);
+            /* One magnitude for every case: the intersection. */
+            if (c == 0) {
+                wr_forces swap = every[s];
+                every[s] = good;
+                good = swap;
+            } else {
+                status = wr_forces_intersect(&every[s], &good, &meet);
+                wr_forces swap = every[s];
+                every[s] = meet;
+                meet = swap;
+            }
+        }
+        WP_BUFFER_LITERAL(&b, "}");
+    }
+    WP_BUFFER_LITERAL(&b, "],\"all\":{");
+    for (int s = 0, first = 1; status == WR_OK && s < 3; s++) {
+        if (!sets[s])
+            continue;
+        wp_buffer_puts(&b, first ? "\"" : ",\"");
+        first = 0;
+        wp_buffer_puts(&b, SET_NAMES[s]);
+        WP_BUFFER_LITERAL(&b, "\":");
+        write_force_set(&b, f, &every[s]);
+    }
+    WP_BUFFER_LITERAL(&b, "}}");
+    for (int s = 0; s < 3; s++)
+        wr_forces_release(&every[s]);
+    wr_forces_release(&good);
+    wr_forces_release(&meet);
+    wp_cases_release(&cases);
+    char *text = wp_buffer_take(&b);
+    cJSON *result = status == WR_OK && text ? cJSON_CreateRaw(text) : NULL;
+    free(text);
+    if (!result) {
+        /* The inputs were checked: what is left is memory, or a push too
+         * large for doubles. */
+        if (status == WR_OK)
+            status = WR_NO_MEMORY;
+        wp_error_status(error, status, status == WR_INVALID ? "params" : "", "%s",
+                        status == WR_INVALID ? "the push or a load is too large to compute with"
+                                             : wr_strerror(status));
+        return NULL;
+    }
+    return result;
+}
+
+bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_friction,
+                       wp_push_load *out, wp_error *error)
+{
+    memset(out, 0, sizeof *out);
+    const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
+    double force;
+    if (!wp_member_number(params, "params", "force", false, &force, &out->given, error))
+        return false;
+    if (!out->given) {
+        if (cases_json) {
+            wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+                         "required with \"cases\": the push's magnitude");
+            return false;
+        }
+        return true;
+    }
+    if (!(force > 0)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+                     "must be positive (a push's magnitude), got %g", force);
+        return false;
+    }
+    if (finger_friction > 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "not with \"force\": regions under a force are exact, for a frictionless "
+                     "finger");
+        return false;
+    }
+    out->force = force * wr_fixture_force_factor(f);
+    if (!isfinite(out->force)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.force", "too large to compute with");
+        return false;
+    }
+    wp_cases cases = {0};
+    if (cases_json && !wp_cases_read(cases_json, "params.cases", f, &cases, error))
+        return false;
+    out->count = cases_json ? cases.count : 1;
+    out->loads = calloc((size_t)out->count, sizeof *out->loads);
+    if (!out->loads) {
+        wp_cases_release(&cases);
+        wp_error_set(error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    for (int c = 0; c < cases.count; c++)
+        memcpy(out->loads[c], cases.items[c].load, sizeof out->loads[c]);
+    wp_cases_release(&cases);
+    return true;
+}
+
+void wp_push_load_release(wp_push_load *load)
+{
+    free(load->loads);
+    memset(load, 0, sizeof *load);
+}
+
+/* params.set: one name (default "both": what a user pushes with). */
+static bool read_one_set(const cJSON *params, wr_set *set, wp_error *error)
+{
+    const char *name = NULL;
+    if (!wp_member_string(params, "params", "set", false, &name, error))
+        return false;
+    *set = WR_SET_BOTH;
+    if (!name)
+        return true;
+    for (int s = 0; s < 3; s++)
+        if (strcmp(name, SET_NAMES[s]) == 0) {
+            *set = (wr_set)s;
+            return true;
+        }
+    wp_error_set(error, WP_INVALID_PARAMS, "params.set", "must be \"goal\", \"strong\" or \"both\"");
+    return false;
+}
+
+/* Where an edge is, on the wire: {"edge"} or, on an outline, {"loop",
+ * "segment"}, added to `object`. */
+static void add_place(cJSON *object, const wr_fixture *f, int edge)
+{
+    if (f->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(f, edge, &loop, &segment);
+        cJSON_AddNumberToObject(object, "loop", (double)loop);
+        cJSON_AddNumberToObject(object, "segment", (double)segment);
+    } else {
+        cJSON_AddNumberToObject(object, "edge", edge);
+    }
+}
+
+static cJSON *force_or_null(const wr_fixture *f, double force)
+{
+    return isfinite(force) ? cJSON_CreateNumber(wp_force_out(f, force)) : cJSON_CreateNull();
+}
+
+cJSON *wp_handle_push_force(wp_call *call)
+{
+    const cJSON *params = call->params;
+    wp_error *error = call->error;
+    wr_set set;
+    double radius = 0, samples_given = WP_FORCE_SAMPLES;
+    bool have_samples = false;
+    if (!read_one_set(params, &set, error) ||
+        !wp_member_number(params, "params", "finger_radius", false, &radius, NULL, error) ||
+        !wp_member_number(params, "params", "samples", false, &samples_given, &have_samples,
+                          error))
+        return NULL;
+    if (radius < 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_radius", "must not be negative");
+        return NULL;
+    }
+    if (have_samples && !(samples_given >= 1 && samples_given <= WP_FORCE_MAX_SAMPLES &&
+                          samples_given == floor(samples_given))) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.samples",
+                     "must be a whole number from 1 to %d", WP_FORCE_MAX_SAMPLES);
+        return NULL;
+    }
+    int samples = (int)samples_given;
+    wp_fixture_use *use = wp_call_fixture(call);
+    if (!use)
+        return NULL;
+    const wr_fixture *f = use->fixture;
+    if (f->shape == WR_SHAPE_NONE) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
+                     "a push force needs the part's outline: the fixture has no shape");
+        return NULL;
+    }
+    wp_cases cases;
+    if (!wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
+                       &cases, error))
+        return NULL;
+    double (*loads)[3] = malloc((size_t)cases.count * sizeof *loads);
+    cJSON *result = cJSON_CreateObject();
+    wr_status status = loads && result ? WR_OK : WR_NO_MEMORY;
+    for (int c = 0; loads && c < cases.count; c++)
+        memcpy(loads[c], cases.items[c].load, sizeof loads[c]);
+    wr_least_force least;
+    if (status == WR_OK)
+        status = wr_least_force_find(use->analysis, set, (const double (*)[3])loads, cases.count,
+                                     radius, call->host->stop, &least);
+    if (status == WR_OK) {
+        cJSON *best = least.found ? cJSON_AddObjectToObject(result, "least")
+                                  : cJSON_AddNullToObject(result, "least");
+        if (least.found && best) {
+            add_place(best, f, least.edge);
+            cJSON_AddNumberToObject(best, "t", least.t + 0.0);
+            const double at[2] = {least.at[0] + 0.0, least.at[1] + 0.0};
+            const double direction[2] = {least.direction[0] + 0.0, least.direction[1] + 0.0};
+            cJSON_AddItemToObject(best, "at", cJSON_CreateDoubleArray(at, 2));
+            cJSON_AddItemToObject(best, "direction", cJSON_CreateDoubleArray(direction, 2));
+            cJSON_AddItemToObject(best, "force", force_or_null(f, least.force));
+            cJSON_AddItemToObject(best, "lower_bound", force_or_null(f, least.lower));
+            cJSON_AddBoolToObject(best, "converged", least.converged);
+        }
+        cJSON_AddNumberToObject(result, "evaluations", (double)least.evaluations);
+        cJSON_AddNumberToObject(result, "samples", samples);
+    }
+    /* F* at evenly spaced points of every edge (off its ends), each exact. */
+    cJSON *segments = status == WR_OK ? cJSON_AddArrayToObject(result, "segments") : NULL;
+    int edges = wr_push_edge_count(f);
+    double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
+    for (int e = 0; status == WR_OK && e < edges; e++) {
+        cJSON *segment = cJSON_CreateObject();
+        cJSON *ts = cJSON_CreateArray(), *forces = cJSON_CreateArray();
+        if (!segments || !segment || !ts || !forces) {
+            cJSON_Delete(segment);
+            cJSON_Delete(ts);
+            cJSON_Delete(forces);
+            status = WR_NO_MEMORY;
+            break;
+        }
+        cJSON_AddItemToArray(segments, segment);
+        add_place(segment, f, e);
+        cJSON_AddItemToObject(segment, "t", ts);
+        cJSON_AddItemToObject(segment, "force", forces);
+        for (int j = 0; status == WR_OK && j < samples; j++) {
+            double t = top * (j + 0.5) / samples, push[3], value;
+            wr_push_wrench(f, e, t, push);
+            status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
+                                       cases.count, push, &value);
+            cJSON_AddItemToArray(ts, cJSON_CreateNumber(t));
+            cJSON_AddItemToArray(forces, force_or_null(f, value));
+        }
+        if (wr_stop_requested(call->host->stop))
+            status = WR_STOPPED;
+    }
+    free(loads);
+    wp_cases_release(&cases);
+    if (status != WR_OK) {
+        cJSON_Delete(result);
+        wp_error_status(error, status, "", "%s", wr_strerror(status));
+        return NULL;
+    }
+    return result;
+}

@@ -1,0 +1,639 @@
+"""Forces and loads with magnitudes (docs/PROTOCOL.md, "force.range",
+"Loads and cases", push.regions' "force" and "cases").
+
+Nothing here echoes the daemon: closed forms derived below, every interval
+end re-checked by wrench.classify just inside and just outside with both
+methods (the explicit cones and the LPs), push.regions under a force against
+force.range at 10,000 points, and one fixture written in three systems of
+units giving the same answers converted."""
+
+import math
+import os
+
+import pytest
+
+import fixtures as FX
+from conftest import REPO
+
+G = 9.81
+R2 = math.sqrt(2)
+
+
+def error_of(client, method, params):
+    e = client.error(method, params)
+    assert e["code"] == -32602, e
+    assert set(e["data"]) == {"field", "reason"}, e
+    return e["data"]["field"], e["data"]["reason"]
+
+
+def gravity(g=G, phi=270.0, name=None):
+    load = {"gravity": {"g": g, "direction_deg": phi}}
+    if name:
+        load["name"] = name
+    return load
+
+
+def case(*loads, name=None):
+    c = {"loads": list(loads)}
+    if name:
+        c["name"] = name
+    return c
+
+
+def force_range(client, fixture, cases, push=None, wrench=None, sets=None, rng=None):
+    params = {"fixture": fixture, "cases": cases}
+    if push is not None:
+        params["push"] = push
+    if wrench is not None:
+        params["wrench"] = wrench
+    if sets is not None:
+        params["sets"] = sets
+    if rng is not None:
+        params["range"] = rng
+    return client.result("force.range", params)
+
+
+def plate_321(mu=0.0, units=None):
+    f = FX.rectangle_321(mu)
+    if units:
+        f["units"] = units
+    return f
+
+
+# ---- closed forms ---------------------------------------------------------------------
+#
+# The disc in a corner (docs/MODEL.md section 7): G_goal = {f_x < 0, f_y < 0,
+# |f_x| > mu |f_y|, |f_y| > mu |f_x|}, any torque.  Gravity along +x (phi = 0)
+# and a push at boundary angle 45 degrees (the point (cos 45, sin 45), force
+# -F (1, 1) / sqrt 2): f_x = m G - F / sqrt 2, f_y = -F / sqrt 2, seated
+# exactly when F > sqrt 2 m G / (1 - mu) (f_x < 0 is implied; |f_y| >
+# mu |f_x| holds then).
+#
+# The frictionless 3-2-1 plate (4 x 2, com (2, 1), fixels (1, 0), (3, 0),
+# (0, 1)) under gravity straight down, pushed at (4, y) along -x: g = (-F,
+# -m G, F (y - 1)).  Its goal cones (one s, the rest m or u) hold (-a, -b,
+# tau), a, b > 0, exactly when tau <= -b (smm, smu: the part turns about
+# (3, 1), alpha = (tau + b) / (I + m) <= 0) or tau >= b (msm, msu, about
+# (1, 1)); the cones with s at fixel 3 need a_x >= 0, impossible as only
+# fixel 3 pushes along x.  (The derivation in full: tests/unit/test_force.c.)
+# So the push seats it exactly for 0 < F < m G / |y - 1|.
+
+
+def test_disc_in_a_corner_closed_form(client):
+    mu = 0.5
+    f = FX.disc_corner(mu)
+    r = force_range(client, f, [case({"wrench": [G, 0, 0]}, name="pull +x")],
+                    push={"at": [1 / R2, 1 / R2]}, sets=["goal"])
+    assert set(r) == {"cases", "all"}
+    assert r["cases"][0]["name"] == "pull +x" and set(r["cases"][0]) == {"name", "goal"}
+    goal = r["cases"][0]["goal"]
+    least = R2 * G / (1 - mu)
+    assert len(goal["intervals"]) == 1 and goal["intervals"][0][1] is None, goal
+    assert abs(goal["intervals"][0][0] - least) < 1e-12 * least
+    assert goal["least"] == goal["intervals"][0][0]
+    assert r["all"]["goal"] == goal
+    # Gravity the same way, as a gravity load: m = 1, phi = 0.
+    r2 = force_range(client, f, [case(gravity(G, 0))], push={"at": [1 / R2, 1 / R2]},
+                     sets=["goal"])
+    assert abs(r2["all"]["goal"]["least"] - least) < 1e-12 * least
+    assert r2["cases"][0]["name"] is None
+
+
+def test_plate_321_under_gravity_closed_form(client):
+    f = plate_321(0.0)
+    for y in (1.5, 0.25, 1.9):
+        r = force_range(client, f, [case(gravity())], push={"at": [4, y]}, sets=["goal"])
+        goal = r["all"]["goal"]
+        top = G / abs(y - 1)
+        assert len(goal["intervals"]) == 1, goal
+        assert goal["intervals"][0][0] == 0 and goal["least"] == 0
+        assert abs(goal["intervals"][0][1] - top) < 1e-12 * top, (y, goal)
+    r = force_range(client, f, [case(gravity())], push={"at": [4, 1]}, sets=["goal"])
+    assert r["all"]["goal"]["intervals"] == [[0, None]]
+
+
+def test_all_is_the_intersection_over_cases(client):
+    f = plate_321(0.0)
+    cases = [case(gravity(), name="y=%g" % y) for y in (1, 2, 3)]
+    # The same gravity in every case, but a cutter force along the top edge
+    # in two of them: the intersection is what every case allows.
+    cases[1]["loads"].append({"force": [-5, 0], "at": [3, 2], "name": "cutter"})
+    cases[2]["loads"].append({"force": [0, -20], "at": [3.5, 2]})
+    r = force_range(client, f, cases, push={"at": [4, 1.5]})
+    for s in ("goal", "strong", "both"):
+        inter = None
+        for c in r["cases"]:
+            iv = [(a, math.inf if b is None else b) for a, b in c[s]["intervals"]]
+            if inter is None:
+                inter = iv
+            else:
+                inter = [(max(a, c2), min(b, d)) for a, b in inter for c2, d in iv
+                         if max(a, c2) < min(b, d)]
+        got = [(a, math.inf if b is None else b) for a, b in r["all"][s]["intervals"]]
+        assert got == inter, (s, got, inter)
+
+
+# ---- every end re-checked by wrench.classify, both methods ----------------------------
+
+
+def classify(client, fixture, wrenches, sets, method):
+    r = client.result("wrench.classify", {"fixture": fixture, "wrenches": wrenches,
+                                          "sets": sets, "method": method})
+    return r["results"]
+
+
+def push_wrench(fixture_obj, at, direction):
+    """(d, (at - com) x d) for the 4 x 2 plate or a disc at the origin."""
+    com = fixture_obj["body"].get("com")
+    if com is None:  # the plate's centroid
+        xs = [v[0] for v in fixture_obj["body"]["shape"]["vertices"]]
+        ys = [v[1] for v in fixture_obj["body"]["shape"]["vertices"]]
+        com = [(min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2]
+    r = (at[0] - com[0], at[1] - com[1])
+    return (direction[0], direction[1], r[0] * direction[1] - r[1] * direction[0])
+
+
+PROBES = [
+    # fixture, push point, inward normal, cases
+    ("plate", [4, 1.5], [-1, 0], [[gravity()], [gravity(), {"force": [-3, -2], "at": [2, 2]}]]),
+    ("plate", [2.5, 2], [0, -1], [[gravity(phi=200)], [{"wrench": [1, -4, 0.5]}]]),
+    ("plate", [4, 0.4], [-1, 0], [[gravity(phi=240)], [gravity(phi=300)]]),
+    ("disc", [math.cos(0.7), math.sin(0.7)], [-math.cos(0.7), -math.sin(0.7)],
+     [[gravity(phi=0)], [gravity(phi=225)], [{"wrench": [2, 1, 3]}]]),
+]
+
+
+@pytest.mark.parametrize("probe", range(len(PROBES)))
+def test_every_end_agrees_with_classify_both_methods(client, probe):
+    kind, at, normal, case_loads = PROBES[probe]
+    f = plate_321(0.2) if kind == "plate" else FX.disc_corner(0.3)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    u = push_wrench(f, at, normal)
+    r = force_range(client, fid, [case(*loads) for loads in case_loads], push={"at": at})
+    # Each case's load as a wrench: the same case alone, pushed with F = 0,
+    # is the load; the load's wrench is read from the case's definition.
+    checked = lp_checked = 0
+    for ci, loads in enumerate(case_loads):
+        load = [0.0, 0.0, 0.0]
+        for ld in loads:
+            if "gravity" in ld:
+                phi = math.radians(ld["gravity"]["direction_deg"])
+                load[0] += ld["gravity"]["g"] * math.cos(phi)  # mass 1
+                load[1] += ld["gravity"]["g"] * math.sin(phi)
+            elif "wrench" in ld:
+                load = [load[k] + ld["wrench"][k] for k in range(3)]
+            else:
+                w = push_wrench(f, ld["at"], ld["force"])
+                load = [load[k] + w[k] for k in range(3)]
+        for s in ("goal", "strong", "both"):
+            iv = r["cases"][ci][s]["intervals"]
+            probes = []  # (F, expected inside)
+            for i, (a, b) in enumerate(iv):
+                width = (b - a) if b is not None else math.inf
+                step = 1e-6 * max(1.0, a)
+                probes.append((a + min(step, width / 4), True))
+                if a > 0:
+                    probes.append((a - step, False))
+                if b is not None:
+                    step = 1e-6 * max(1.0, b)
+                    probes.append((b - min(step, width / 4), True))
+                    probes.append((b + step, False))
+            if not probes:
+                continue
+            wrenches = [[load[k] + F * u[k] for k in range(3)] for F, _ in probes]
+            cones = classify(client, fid, wrenches, [s], "auto")
+            lp = classify(client, fid, wrenches, [s], "lp")
+            for (F, want), c, l in zip(probes, cones, lp):
+                got = c[s]["verdict"]
+                assert (got == "inside") == want, (s, F, want, c[s])
+                checked += 1
+                # The methods agree where the margin is beyond 1e-6.
+                if abs(c[s]["margin"]) > 1e-6:
+                    assert (l[s]["verdict"] == "inside") == want, (s, F, l[s], c[s])
+                    lp_checked += 1
+    assert checked > 0
+
+
+# ---- units: one fixture in three systems -------------------------------------------
+
+
+def scaled_fixture(length_scale, units):
+    """The 3-2-1 plate with lengths multiplied by length_scale (mass in kg)."""
+    f = plate_321(0.2)
+    f["body"]["shape"]["vertices"] = [[x * length_scale, y * length_scale]
+                                      for x, y in f["body"]["shape"]["vertices"]]
+    for fx in f["fixels"]:
+        fx["at"] = [c * length_scale for c in fx["at"]]
+    f["units"] = units
+    return f
+
+
+def test_units_give_the_same_answers_converted(client):
+    # The plate 4 m x 2 m, mass 1 kg, in metres and newtons; in millimetres
+    # (coordinates x1000, g in mm/s^2) and newtons; in inches and pounds-force.
+    lbf = 4.4482216152605
+    systems = [
+        (1.0, {"length": "m", "force": "N"}, 1.0),
+        (1000.0, {"length": "mm", "force": "N"}, 1.0),
+        (1 / 0.0254, {"length": "in", "force": "lbf"}, 1 / lbf),
+    ]
+    answers = []
+    for scale, units, per_newton in systems:
+        f = scaled_fixture(scale, units)
+        loads = [gravity(G * scale),
+                 {"force": [-3 * per_newton, -2 * per_newton], "at": [2 * scale, 2 * scale]},
+                 {"wrench": [0.5 * per_newton, -1 * per_newton, 0.7 * per_newton * scale]}]
+        r = force_range(client, f, [case(*loads)], push={"at": [4 * scale, 1.5 * scale]},
+                        rng=[0, 1000 * per_newton])
+        answers.append((per_newton, r))
+    base = answers[0][1]
+    for per_newton, r in answers[1:]:
+        for s in ("goal", "strong", "both"):
+            want = base["all"][s]["intervals"]
+            got = r["all"][s]["intervals"]
+            assert len(got) == len(want), (s, got, want)
+            for (a, b), (c, d) in zip(want, got):
+                assert abs(c / per_newton - a) <= 1e-9 * max(1, a), (s, got, want)
+                assert abs(d / per_newton - b) <= 1e-9 * max(1, b), (s, got, want)
+    assert any(base["all"][s]["intervals"] for s in ("goal", "strong", "both"))
+
+
+# ---- bad input ------------------------------------------------------------------------
+
+
+def test_bad_input_is_refused_at_its_field(client):
+    f = plate_321(0.2)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    ok_case = [case(gravity())]
+    bad = [
+        ({"cases": ok_case}, "params.push", "required"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "wrench": [1, 0, 0]}, "params.wrench", "not both"),
+        ({"cases": [], "push": {"at": [4, 1]}}, "params.cases", "empty"),
+        ({"cases": [{"loads": []}], "push": {"at": [4, 1]}}, "params.cases[0].loads", "empty"),
+        ({"cases": [case(gravity(g=-9.81))], "push": {"at": [4, 1]}},
+         "params.cases[0].loads[0].gravity.g", "negative"),
+        ({"cases": [case({"force": [1, 0], "at": [400, 1]})], "push": {"at": [4, 1]}},
+         "params.cases[0].loads[0].at", "beyond"),
+        ({"cases": [case({"torque": 1})], "push": {"at": [4, 1]}},
+         "params.cases[0].loads[0]", "gravity"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "range": [5, 1]}, "params.range",
+         "upside down"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "range": [-1, 1]}, "params.range[0]",
+         "negative"),
+        ({"cases": ok_case, "push": {"at": [5, 1]}}, "params.push.at", "boundary"),
+        ({"cases": ok_case, "push": {"at": [4, 0]}}, "params.push.at", ""),
+        ({"cases": ok_case, "push": {"at": [4, 1], "direction": [0, 0]}},
+         "params.push.direction", "non-zero"),
+        ({"cases": ok_case, "wrench": [0, 0, 0]}, "params.wrench", "zero"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "sets": ["goal", "goal"]}, "params.sets[1]",
+         "twice"),
+        ({"cases": ok_case, "push": {"at": [4, 1]}, "sets": ["all"]}, "params.sets[0]", "goal"),
+        ({"cases": [case(gravity())] * 1001, "push": {"at": [4, 1]}}, "params.cases", "1000"),
+        ({"cases": [case(*([gravity()] * 101))], "push": {"at": [4, 1]}},
+         "params.cases[0].loads", "100"),
+        ({"cases": [{"loads": [gravity()], "extra": 1}], "push": {"at": [4, 1]}},
+         "params.cases[0].extra", ""),
+    ]
+    for params, field, word in bad:
+        params = dict(params, fixture=fid)
+        got = error_of(client, "force.range", params)
+        assert got[0] == field and word in got[1], (params, got)
+
+
+# ---- push.regions under a force, against force.range at 10,000 points ----------------
+
+import outline_model as OM  # noqa: E402
+
+
+def rounded_plate(mu=0.1):
+    """A 4 x 2 plate with corners rounded to radius 0.5 (arcs), located by
+    two fixels on its bottom edge and one on its left."""
+    loop = OM.rounded_rectangle(4, 2, 0.5, center=(2, 1))
+    return {"body": {"mass": 1.0, "shape": {"type": "outline", "loops": [loop]}},
+            "friction": {"static": mu},
+            "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]}
+
+
+def boundary_samples(fixture, n):
+    """n points of the outline away from its vertices: (key, t, point,
+    inward normal), key the region's edge (or (loop, segment))."""
+    shape = fixture["body"]["shape"]
+    out = []
+    if shape["type"] == "circle":
+        c, r = shape["center"], shape["radius"]
+        for i in range(n):
+            t = 360.0 * (i + 0.5) / n
+            a = math.radians(t)
+            out.append((0, t, (c[0] + r * math.cos(a), c[1] + r * math.sin(a)),
+                        (-math.cos(a), -math.sin(a))))
+        return out
+    if shape["type"] == "polygon":
+        segs = OM.segments([list(v) + [0] for v in shape["vertices"]])
+        keys = list(range(len(segs)))
+    else:
+        segs = OM.segments(shape["loops"][0])
+        keys = [(0, j) for j in range(len(segs))]
+    per = n // len(segs)
+    for key, s in zip(keys, segs):
+        for i in range(per):
+            t = (i + 0.5) / per
+            d = s.direction(t)
+            out.append((key, t, s.point(t), (-d[1], d[0])))  # counter-clockwise: left is in
+    return out
+
+
+def region_key(region):
+    return (region["loop"], region["segment"]) if "loop" in region else region["edge"]
+
+
+def batched(client, requests, size=500):
+    """Answers of many requests, sent as JSON-RPC batches."""
+    out = []
+    for i in range(0, len(requests), size):
+        chunk = [{"jsonrpc": "2.0", "id": i + k, "method": m, "params": p}
+                 for k, (m, p) in enumerate(requests[i:i + size])]
+        client.send(chunk)
+        answers = sorted(client.read_json(), key=lambda a: a["id"])
+        assert all("result" in a for a in answers), [a for a in answers if "result" not in a][:1]
+        out.extend(a["result"] for a in answers)
+    return out
+
+
+REGION_CASES = [
+    ("chamfered plate", lambda: FX.chamfered_plate(0.05), 12.0, "both",
+     [[gravity()], [gravity(), {"force": [-4, -1], "at": [2, 2], "name": "cutter"}]]),
+    ("disc in a corner", lambda: FX.disc_corner(0.3), 15.0, "goal",
+     [[gravity(phi=200)], [gravity(phi=250), {"wrench": [1, 0, 2]}]]),
+    ("rounded plate", lambda: rounded_plate(0.1), 20.0, "both",
+     [[gravity()], [gravity(), {"force": [-3, 0], "at": [2, 2]}]]),
+]
+
+
+@pytest.mark.parametrize("which", range(len(REGION_CASES)))
+def test_regions_under_a_force_agree_with_force_range(client, which):
+    name, make, F, s, case_loads = REGION_CASES[which]
+    f = make()
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    cases = [case(*loads) for loads in case_loads]
+    regions = client.result("push.regions", {"fixture": fid, "set": s, "force": F,
+                                             "cases": cases})
+    assert regions["exact"] is True and regions["resolution"] == 0
+    top = 360.0 if f["body"]["shape"]["type"] == "circle" else 1.0
+    # Without loads the answer is today's (to rounding: another arithmetic
+    # path): a force alone changes nothing.
+    alone = client.result("push.regions", {"fixture": fid, "set": s, "force": F})["regions"]
+    today = client.result("push.regions", {"fixture": fid, "set": s})["regions"]
+    assert len(alone) == len(today), (alone, today)
+    for a, b in zip(alone, today):
+        assert region_key(a) == region_key(b)
+        assert abs(a["t0"] - b["t0"]) < 1e-12 * top and abs(a["t1"] - b["t1"]) < 1e-12 * top
+    samples = boundary_samples(f, 10000)
+    assert len(samples) == 10000
+    requests = [("force.range", {"fixture": fid, "cases": cases, "sets": [s],
+                                 "push": {"at": list(p), "direction": list(nu)}})
+                for _, _, p, nu in samples]
+    answers = batched(client, requests)
+    agree = inside = skipped = 0
+    for (key, t, _, _), answer in zip(samples, answers):
+        near = False
+        in_region = False
+        for reg in regions["regions"]:
+            if region_key(reg) != key:
+                continue
+            in_region |= reg["t0"] < t < reg["t1"]
+            near |= abs(t - reg["t0"]) < 1e-7 * top or abs(t - reg["t1"]) < 1e-7 * top
+        in_range = False
+        for a, b in answer["all"][s]["intervals"]:
+            b = math.inf if b is None else b
+            in_range |= a < F < b
+            near |= abs(F - a) < 1e-7 * F or abs(F - b) < 1e-7 * F
+        if near:
+            skipped += 1
+            continue
+        assert in_region == in_range, (name, key, t, answer["all"][s], regions["regions"])
+        agree += 1
+        inside += in_region
+    assert agree >= 9990 and inside > 50 and agree - inside > 50, (agree, inside, skipped)
+
+
+def test_regions_under_a_force_refuse_bad_input(client):
+    fid = client.result("fixture.put", {"fixture": FX.chamfered_plate(0.05)})["id"]
+    bad = [
+        ({"cases": [case(gravity())]}, "params.force", "required"),
+        ({"force": 0}, "params.force", "positive"),
+        ({"force": -2, "cases": [case(gravity())]}, "params.force", "positive"),
+        ({"force": 5, "cases": []}, "params.cases", "empty"),
+        ({"force": 5, "finger_friction": 0.2}, "params.finger_friction", "force"),
+        ({"force": 5, "cases": [case(gravity(g=-1))]}, "params.cases[0].loads[0].gravity.g",
+         "negative"),
+    ]
+    for params, field, word in bad:
+        got = error_of(client, "push.regions", dict(params, fixture=fid))
+        assert got[0] == field and word in got[1], (params, got)
+
+
+# ---- push.force: the least force along the outline ------------------------------------
+
+
+@pytest.mark.parametrize("which", range(len(REGION_CASES)))
+def test_push_force_minimum_against_brute_force(client, which):
+    name, make, _, s, case_loads = REGION_CASES[which]
+    f = make()
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    cases = [case(*loads) for loads in case_loads]
+    r = client.result("push.force", {"fixture": fid, "set": s, "cases": cases})
+    assert set(r) == {"least", "segments", "samples", "evaluations"}
+    # Brute force: force.range (the intersection of each case's intervals,
+    # another path than the search's union of excluded intervals) at 4,000
+    # points of the outline, each pushing along its own inward normal.
+    samples = boundary_samples(f, 4000)
+    answers = batched(client, [("force.range", {"fixture": fid, "cases": cases, "sets": [s],
+                                                "push": {"at": list(p), "direction": list(nu)}})
+                               for _, _, p, nu in samples])
+    brute = min((a["all"][s]["least"] for a in answers if a["all"][s]["least"] is not None),
+                default=None)
+    least = r["least"]
+    print(name, "least", least and least["force"], "brute", brute, "evaluations", r["evaluations"])
+    # Each of these fixtures has a push that does the job.
+    assert brute is not None
+    assert least is not None and least["converged"], least
+    assert least["force"] <= brute * (1 + 1e-9) + 1e-12, (least, brute)
+    assert least["lower_bound"] <= brute + 1e-12, (least, brute)
+    # F* where the search says it is least: force.range agrees.
+    at_least = force_range(client, fid, cases, push={"at": least["at"],
+                                                     "direction": least["direction"]},
+                           sets=[s])
+    assert abs(at_least["all"][s]["least"] - least["force"]) <= 1e-9 * least["force"] + 1e-12
+    # The samples are F* at their points, exactly: three checked.
+    seg = r["segments"][0]
+    assert len(seg["t"]) == r["samples"] == 64
+
+
+def test_push_force_closed_forms(client):
+    # The disc in a corner, gravity along +x: F*(theta) = m G / (cos - mu sin)
+    # on the goal side, least as theta -> 0, approaching m G (derived in
+    # tests/unit/test_force.c).
+    r = client.result("push.force", {"fixture": FX.disc_corner(0.5), "set": "goal",
+                                     "cases": [case(gravity(G, 0))]})
+    assert G <= r["least"]["force"] < G * (1 + 1e-8), r["least"]
+    assert r["least"]["lower_bound"] <= G * (1 + 1e-12)
+    # The frictionless 3-2-1 plate under gravity: any push on the right edge
+    # at a height y != 1 seats it for 0 < F < m G / |y - 1|: the least is 0
+    # (approached: the answer is an infimum).
+    r = client.result("push.force", {"fixture": plate_321(0.0), "set": "goal",
+                                     "cases": [case(gravity())]})
+    assert r["least"]["force"] == 0, r["least"]
+
+
+def test_push_force_units_and_refusals(client):
+    lbf = 4.4482216152605
+    answers = []
+    for scale, units, per_newton in ((1.0, {"length": "m", "force": "N"}, 1.0),
+                                     (1 / 0.0254, {"length": "in", "force": "lbf"}, 1 / lbf)):
+        f = scaled_fixture(scale, units)
+        loads = [gravity(G * scale), {"force": [-3 * per_newton, -2 * per_newton],
+                                      "at": [2 * scale, 2 * scale]}]
+        r = client.result("push.force", {"fixture": f, "set": "strong", "cases": [case(*loads)]})
+        answers.append((per_newton, r["least"]))
+    (_, a), (k, b) = answers
+    assert a is not None and abs(b["force"] / k - a["force"]) <= 1e-9 * a["force"], (a, b)
+    fid = client.result("fixture.put", {"fixture": plate_321(0.2)})["id"]
+    for params, field in (({}, "params.cases"), ({"cases": []}, "params.cases"),
+                          ({"cases": [case(gravity())], "samples": 0}, "params.samples"),
+                          ({"cases": [case(gravity())], "set": "all"}, "params.set"),
+                          ({"cases": [case(gravity())], "finger_radius": -1},
+                           "params.finger_radius")):
+        got = error_of(client, "push.force", dict(params, fixture=fid))
+        assert got[0] == field, (params, got)
+
+
+# ---- fixture.design with objective "force", against a brute force -------------------
+
+
+def test_design_objective_force_against_brute_force(client):
+    import itertools
+    body = {"mass": 1.0, "shape": {"type": "polygon",
+                                   "vertices": [[0, 0], [4, 0], [4, 1], [3, 2], [0, 2]]}}
+    sites = [{"at": [0.8, 0]}, {"at": [2, 0]}, {"at": [3.2, 0]}, {"at": [0, 0.6]},
+             {"at": [0, 1.4]}, {"at": [1.5, 2]}]
+    cases = [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})]
+    r = client.result("fixture.design", {"body": body, "friction": 0.05, "sites": sites,
+                                         "objective": "force", "cases": cases, "top": 20})
+    designs = r["designs"]
+    # Brute force: every combination of three sites put as a fixture and
+    # asked push.force (both, the same cases); those with a finite least.
+    brute = {}
+    for combo in itertools.combinations(range(len(sites)), 3):
+        f = {"body": body, "friction": {"static": 0.05},
+             "fixels": [dict(sites[i]) for i in combo]}
+        try:
+            fid = client.result("fixture.put", {"fixture": f})["id"]
+        except Exception:
+            continue  # degenerate: the design refuses it too
+        if not client.result("fixture.put", {"fixture": f}).get("pinned", True):
+            continue
+        least = client.result("push.force", {"fixture": fid, "set": "both", "cases": cases,
+                                             "samples": 1})["least"]
+        if least is not None:
+            brute[combo] = least["force"]
+    assert brute, "no candidate has a push that works"
+    ranked = sorted(brute.items(), key=lambda kv: (kv[1], kv[0]))
+    assert len(designs) == min(20, len(ranked)), (len(designs), len(ranked))
+    for d, (combo, force) in zip(designs, ranked):
+        assert abs(d["least_push"]["force"] - force) <= 1e-9 * force, (d, combo, force)
+        assert abs(-d["score"] - force) <= 1e-9 * force
+    assert tuple(designs[0]["sites"]) == ranked[0][0]
+    # The other objectives report the least push too when cases are given.
+    m = client.result("fixture.design", {"body": body, "friction": 0.05, "sites": sites,
+                                         "cases": cases, "top": 3})
+    for d in m["designs"]:
+        assert "least_push" in d
+        combo = tuple(d["sites"])
+        if d["least_push"] is not None:
+            assert abs(d["least_push"]["force"] - brute[combo]) <= 1e-9 * brute[combo]
+    e = client.error("fixture.design", {"body": body, "friction": 0.05, "sites": sites,
+                                        "objective": "force"})
+    assert e["data"]["field"] == "params.cases", e
+
+
+# ---- the Python client ---------------------------------------------------------------
+
+
+def test_python_client_functions(daemon, client):
+    import sys
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    f = plate_321(0.0)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    with wrenchd.Client(daemon.path) as c:
+        r = c.force_range(fid, [[gravity()]], push={"at": [4, 1.5]}, sets=["goal"])
+        assert r == client.result("force.range", {"fixture": fid, "cases": [case(gravity())],
+                                                  "push": {"at": [4, 1.5]}, "sets": ["goal"]})
+        assert abs(r["all"]["goal"]["intervals"][0][1] - 2 * G) < 1e-12 * G
+        p = c.push_force(fid, [{"name": "g", "loads": [gravity()]}], set="strong", samples=8)
+        assert p == client.result("push.force", {"fixture": fid, "set": "strong", "samples": 8,
+                                                 "cases": [case(gravity(), name="g")]})
+        regions = c.push_regions(fid, "goal", force=5.0, cases=[[gravity()]])
+        want = client.result("push.regions", {"fixture": fid, "set": "goal", "force": 5.0,
+                                              "cases": [case(gravity())]})
+        assert [[x.t0, x.t1] for x in regions.regions] == [[x["t0"], x["t1"]]
+                                                           for x in want["regions"]]
+        d = c.design(FX.chamfered_plate()["body"], 0.05, spacing=0.9, objective="force",
+                     cases=[[gravity()]], top=2)
+        assert d.designs and d.designs[0].least_push is not None
+        with pytest.raises(ValueError):
+            c.force_range(fid, [[gravity()]])
+
+
+def test_readme_how_hard_to_push(client):
+    """The README's numbers (section "How hard to push"), as the daemon
+    gives them today."""
+    with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+        import json
+        f = json.load(fh)
+    cuts = [case(gravity(9810, 180), {"force": [30, -40], "at": [x, 60]}, name="x%d" % x)
+            for x in (20, 40, 60, 80, 100)]
+    alone = client.result("push.force", {"fixture": f, "cases": [case(gravity(9810, 180))]})
+    assert "%.9g" % alone["least"]["force"] == "3.96122186"
+    r = force_range(client, f, cuts, push={"at": [30, 60]}, sets=["strong", "both"])
+    assert "%.9g" % r["all"]["strong"]["least"] == "23.4403564"
+    assert "%.9g" % r["all"]["both"]["least"] == "199.844546"
+    best = client.result("push.force", {"fixture": f, "cases": cuts})["least"]
+    assert "%.8g" % best["force"] == "47.702833"
+    finger = client.result("push.force", {"fixture": f, "cases": cuts, "finger_radius": 8})
+    assert "%.9g" % finger["least"]["force"] == "168.925751"
+
+
+# ---- friction.sweep: the least force against mu ---------------------------------------
+
+
+def test_friction_sweep_least_force_against_push_force(client):
+    import copy
+    f = FX.chamfered_plate(0.05)
+    cases = [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})]
+    r = client.result("friction.sweep", {"fixture": f, "range": [0, 0.4], "kinetic_ratio": 0.8,
+                                         "force": {"set": "both"}, "cases": cases})
+    assert set(r) == {"curve", "exact", "resolution"} and r["exact"] is False
+    curve = r["curve"]
+    assert len(curve) == 128 and curve[0][0] == 0 and curve[-1][0] == 0.4
+    assert abs(r["resolution"] - 0.4 / 127) < 1e-15
+    finite = [p for p in curve if p[1] is not None]
+    assert finite and len(finite) < len(curve), "the push stops working as mu grows"
+    # Each sample is push.force's least on the fixture at that mu.
+    for mu, least in curve[::16] + [curve[-1]]:
+        g = copy.deepcopy(f)
+        g["friction"] = {"static": mu, "kinetic": 0.8 * mu}
+        want = client.result("push.force", {"fixture": g, "set": "both", "cases": cases,
+                                            "samples": 1})["least"]
+        if want is None:
+            assert least is None, (mu, least)
+        else:
+            assert least is not None and abs(least - want["force"]) <= 1e-12 * want["force"], (
+                mu, least, want)
+    for params, field in (({"force": {}}, "params.cases"),
+                          ({"push": {"set": "both"}, "cases": cases}, "params.cases"),
+                          ({"force": {"set": "all"}, "cases": cases}, "params.force.set"),
+                          ({"force": {"finger_friction": 0.1}, "cases": cases},
+                           "params.force.finger_friction")):
+        got = error_of(client, "friction.sweep", dict(params, fixture=f))
+        assert got[0] == field, (params, got)
