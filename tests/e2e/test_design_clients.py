@@ -214,8 +214,11 @@ def test_empty_design_explained(daemon, twelve_file):
         v = body["shape"]["vertices"]
         sites = [[(v[i][0] + v[(i + 1) % 12][0]) / 2, (v[i][1] + v[(i + 1) % 12][1]) / 2]
                  for i in range(12)]
+        # every candidate scored, not one per symmetric group: the tally
+        # below classifies all 220
         answer = client.call("fixture.design", {"body": body, "friction": friction,
-                                                "sites": [{"at": s} for s in sites]})
+                                                "sites": [{"at": s} for s in sites],
+                                                "collapse_symmetric": False})
         assert answer["designs"] == [] and answer["counts"]["no_seating_push"] == 220
         why = answer["why_no_seating_push"]
         asked = why["asked_at"]
@@ -239,10 +242,11 @@ def test_empty_design_explained(daemon, twelve_file):
         assert counts == sorted(counts, reverse=True)
         assert wrenchd.explain_no_design(answer)[1] == "  220 have no seating push"
     # wrenchctl's words, the Python client's of the same answer
-    spaced = json.loads(run("--json", "design", twelve_file, "--spacing", "0.4",
-                            socket_path=daemon.path).stdout)
+    spaced = json.loads(run("--json", "design", twelve_file, "--spacing", "0.4", "--symmetric",
+                            "all", socket_path=daemon.path).stdout)
     lines = wrenchd.explain_no_design(spaced)
-    r = run("design", twelve_file, "--spacing", "0.4", socket_path=daemon.path)
+    r = run("design", twelve_file, "--spacing", "0.4", "--symmetric", "all",
+            socket_path=daemon.path)
     assert r.returncode == 1
     text = r.stdout.splitlines()
     start = text.index(lines[0])
