@@ -184,31 +184,9 @@ def _fmt_point(p):
     return "(" + ", ".join(_fmt(c) for c in p) + ")"
 
 
-def _sub(a, b):
-    return (a[0] - b[0], a[1] - b[1])
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1]
-
-
-def _cross(a, b):
-    return a[0] * b[1] - a[1] * b[0]
-
-
-def _norm(a):
-    return math.hypot(a[0], a[1])
-
-
-def _unit(a):
-    n = _norm(a)
-    return (a[0] / n, a[1] / n)
-
-
-def _angle(a, b):
-    """The signed angle from direction a to direction b, counter-clockwise
-    positive, in (-pi, pi]."""
-    return math.atan2(_cross(a, b), _dot(a, b))
+# The plane's vector arithmetic is the shared module's (wrenchd_arcs.py).
+_sub, _dot, _cross = wrenchd_arcs._sub, wrenchd_arcs._dot, wrenchd_arcs._cross
+_norm, _unit, _angle = wrenchd_arcs._norm, wrenchd_arcs._unit, wrenchd_arcs._angle
 
 
 # ---- segments ----------------------------------------------------------------------
