@@ -1073,7 +1073,9 @@ def test_progress_long_run(daemon):
     assert between <= 4.5 * elapsed + 1, (len(notes), elapsed, [t for t, _ in notes])
     # and some between, on a run this long (otherwise it is not progress)
     assert between >= 1, (len(notes), elapsed)
-    times = [t for t, _ in notes[1:-1]]
+    # The end of a stage (done == total) is said at once, whenever it comes;
+    # the rate holds for the notifications between the stages' ends.
+    times = [t for t, m in notes[1:-1] if m["params"]["done"] != m["params"]["total"]]
     gaps = [b - a for a, b in zip(times, times[1:])]
     assert all(g >= 0.15 for g in gaps), ("notifications closer than a quarter second", gaps)
     figure("design progress notifications", len(notes))
