@@ -1207,6 +1207,13 @@ int wd_server_run(const wd_config *config)
     }
     event_add(s->signal_events[0], NULL);
     event_add(s->signal_events[1], NULL);
+    /* Who may connect is said before the socket exists: a client that
+     * finds the socket finds the line already written. */
+    {
+        char admitted[WD_MAX_ALLOWED * 24 + 64];
+        wd_peer_describe(config, admitted, sizeof admitted);
+        wd_log(WD_LOG_INFO, "admitted: %s", admitted);
+    }
     fd = config->listen_fd >= 0 ? config->listen_fd : wd_listen_open(config->socket_path, &s->socket_file, why, sizeof why);
     if (fd < 0) {
         wd_log(WD_LOG_ERROR, "%s", why);
@@ -1224,11 +1231,6 @@ int wd_server_run(const wd_config *config)
            WR_VERSION, config->listen_fd >= 0 ? "the socket systemd passed" : config->socket_path,
            config->threads, config->state_dir ? config->state_dir : "in memory only",
            config->cache_bytes >> 20);
-    {
-        char admitted[WD_MAX_ALLOWED * 24 + 64];
-        wd_peer_describe(config, admitted, sizeof admitted);
-        wd_log(WD_LOG_INFO, "admitted: %s", admitted);
-    }
     {
         wd_cache_stats held;
         wd_cache_stats_get(s->cache, &held);
