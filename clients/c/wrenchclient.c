@@ -468,6 +468,30 @@ static const char *read_intervals(const char *p, wrc_sweep *sweep)
 
 /* Append to a request being written into q (size bytes, n used so far):
  * n counts on past the end, so that n >= size says it did not fit. */
+/* The request of `n` bytes in c->request (written into `size`) sent, its
+ * answer in c->answer and checked: the answer's id is its last "id" member
+ * (the results' numbers come before it) and must be `id`; a server error is
+ * said.  WRC_OK with *text the answer, or the failure, said. */
+static int call_checked(wrc_client *c, size_t n, size_t size, unsigned long id,
+                        const char **text)
+{
+    if (n >= size)
+        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
+    size_t capacity = c->buffer_bytes;
+    int status = exchange(c, c->request, n, &c->answer, &capacity, false, NULL, NULL);
+    if (status != WRC_OK)
+        return status;
+    const char *answer_id = strstr(c->answer, "\"id\":");
+    while (answer_id && strstr(answer_id + 1, "\"id\":"))
+        answer_id = strstr(answer_id + 1, "\"id\":");
+    if (!answer_id || strtoul(answer_id + 5, NULL, 10) != id)
+        return fail(c, WRC_EPROTO, "the answer's id is not the request's");
+    if (read_server_error(c, c->answer))
+        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
+    *text = c->answer;
+    return WRC_OK;
+}
+
 #define PUT(...)                                                                                   \
     do {                                                                                           \
         int written = snprintf(q + (n < size ? n : size), n < size ? size - n : 0, __VA_ARGS__);  \
@@ -517,21 +541,10 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
         PUT("}");
     }
     PUT("},\"id\":%lu}\n", id);
-    if (n >= size)
-        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
-    size_t capacity = c->buffer_bytes;
-    int status = exchange(c, c->request, n, &c->answer, &capacity, false, NULL, NULL);
+    const char *text;
+    int status = call_checked(c, n, size, id, &text);
     if (status != WRC_OK)
         return status;
-    const char *text = c->answer;
-    /* The id is the answer's last member: the curve's numbers come before. */
-    const char *answer_id = strstr(text, "\"id\":");
-    while (answer_id && strstr(answer_id + 1, "\"id\":"))
-        answer_id = strstr(answer_id + 1, "\"id\":");
-    if (!answer_id || strtoul(answer_id + 5, NULL, 10) != id)
-        return fail(c, WRC_EPROTO, "the answer's id is not the request's");
-    if (read_server_error(c, text))
-        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
     sweep->critical = NAN;
     const char *intervals = value_of(text, wrench ? r->set : "intervals");
     if (!intervals || !read_intervals(intervals, sweep))
@@ -595,15 +608,10 @@ int wrc_locating_get(wrc_client *c, const char *fixture_id, const double *tolera
     for (int i = 0; i < feature_count; i++)
         PUT("%s{\"at\":[%.17g,%.17g]}", i ? "," : "", features[i].at[0], features[i].at[1]);
     PUT("]},\"id\":%lu}\n", id);
-    if (n >= size)
-        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
-    size_t capacity = c->buffer_bytes;
-    int status = exchange(c, c->request, n, &c->answer, &capacity, false, NULL, NULL);
+    const char *text;
+    int status = call_checked(c, n, size, id, &text);
     if (status != WRC_OK)
         return status;
-    const char *text = c->answer;
-    if (read_server_error(c, text))
-        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
     /* The result's members in the order the daemon writes them
      * (docs/PROTOCOL.md): each looked for after the one before. */
     memset(out, 0, sizeof *out);
@@ -718,20 +726,10 @@ int wrc_force_range(wrc_client *c, const char *fixture_id, const double at[2],
             return fail(c, WRC_EINVAL, "load %d: kind is WRC_LOAD_GRAVITY, _FORCE or _WRENCH", i);
     }
     PUT("]}]},\"id\":%lu}\n", id);
-    if (n >= size)
-        return fail(c, WRC_ETOOBIG, "the request is longer than %zu bytes", c->buffer_bytes);
-    size_t capacity = c->buffer_bytes;
-    int status = exchange(c, c->request, n, &c->answer, &capacity, false, NULL, NULL);
+    const char *text;
+    int status = call_checked(c, n, size, id, &text);
     if (status != WRC_OK)
         return status;
-    const char *text = c->answer;
-    const char *answer_id = strstr(text, "\"id\":");
-    while (answer_id && strstr(answer_id + 1, "\"id\":"))
-        answer_id = strstr(answer_id + 1, "\"id\":");
-    if (!answer_id || strtoul(answer_id + 5, NULL, 10) != id)
-        return fail(c, WRC_EPROTO, "the answer's id is not the request's");
-    if (read_server_error(c, text))
-        return fail(c, WRC_ESERVER, "wrenchd: %s: %s", c->server_field, c->server_reason);
     /* "all" comes after the cases: its set's intervals and least. */
     const char *all = value_of(text, "all");
     const char *intervals = all ? value_of(all, "intervals") : NULL;
