@@ -323,12 +323,20 @@ static bool trig_bad(const wr_analysis *a, wr_set set, const trig_curve *curve,
     return !bad->failed;
 }
 
+/* The finger of the force paths: its radius and push_on (its friction is
+ * not used: the push is along the inward normal). */
+static bool finger_valid(const wr_finger *finger)
+{
+    return finger && finger->radius >= 0 && isfinite(finger->radius);
+}
+
 /* The regions of one edge (a circle: its one edge), appended to `out`. */
 static bool edge_loaded(const wr_analysis *a, wr_set set, const double (*offsets)[3], int cases,
-                        double radius, int edge, const wr_stop *stop, wr_status *failure,
-                        wr_regions *out)
+                        const wr_finger *finger, int edge, const wr_stop *stop,
+                        wr_status *failure, wr_regions *out)
 {
     const wr_fixture *f = wr_analysis_fixture(a);
+    double radius = finger->radius;
     spanlist bad = {0}, good = {0};
     wr_edge_frame frame;
     wr_edge_frame_of(f, edge, &frame);
@@ -399,16 +407,16 @@ static bool edge_loaded(const wr_analysis *a, wr_set set, const double (*offsets
 }
 
 wr_status wr_push_regions_loaded(const wr_analysis *a, wr_set set, double force,
-                                 const double (*loads)[3], int case_count, double finger_radius,
-                                 int first_edge, int edge_count, const wr_stop *stop,
-                                 wr_regions *out)
+                                 const double (*loads)[3], int case_count,
+                                 const wr_finger *finger, int first_edge, int edge_count,
+                                 const wr_stop *stop, wr_regions *out)
 {
     const wr_fixture *f = wr_analysis_fixture(a);
     int edges = wr_push_edge_count(f);
     if (f->shape == WR_SHAPE_NONE)
         return WR_NO_SHAPE;
-    if (!(force > 0) || !isfinite(force) || case_count < 1 || !(finger_radius >= 0) ||
-        !isfinite(finger_radius) || first_edge < 0 || edge_count < 0 ||
+    if (!(force > 0) || !isfinite(force) || case_count < 1 || !finger_valid(finger) ||
+        first_edge < 0 || edge_count < 0 ||
         edge_count > edges - first_edge)
         return WR_INVALID;
     for (int c = 0; c < case_count; c++)
@@ -432,8 +440,10 @@ wr_status wr_push_regions_loaded(const wr_analysis *a, wr_set set, double force,
             ok = false;
             break;
         }
-        ok = edge_loaded(a, set, (const double (*)[3])offsets, case_count, finger_radius, e,
-                         stop, &failure, out);
+        /* A loop not pushed on has no region (push_on). */
+        if (wr_finger_pushes_on(f, finger, e))
+            ok = edge_loaded(a, set, (const double (*)[3])offsets, case_count, finger, e, stop,
+                             &failure, out);
     }
     free(offsets);
     if (!ok) {
@@ -816,7 +826,7 @@ static double enough(double best)
 #define BB_START 8
 
 wr_status wr_least_force_find(const wr_analysis *a, wr_set set, const double (*loads)[3],
-                              int case_count, double finger_radius, const wr_stop *stop,
+                              int case_count, const wr_finger *finger, const wr_stop *stop,
                               wr_least_force *out)
 {
     memset(out, 0, sizeof *out);
@@ -824,8 +834,9 @@ wr_status wr_least_force_find(const wr_analysis *a, wr_set set, const double (*l
     const wr_fixture *f = wr_analysis_fixture(a);
     if (f->shape == WR_SHAPE_NONE)
         return WR_NO_SHAPE;
-    if (case_count < 1 || !(finger_radius >= 0) || !isfinite(finger_radius))
+    if (case_count < 1 || !finger_valid(finger))
         return WR_INVALID;
+    double finger_radius = finger->radius;
     double (*hl)[3] = malloc((size_t)case_count * sizeof *hl);
     if (!hl)
         return WR_NO_MEMORY;
@@ -865,7 +876,9 @@ wr_status wr_least_force_find(const wr_analysis *a, wr_set set, const double (*l
     for (int e = 0; status == WR_OK && e < edges; e++) {
         edge_push_of(f, e, &pushes[e]);
         spanlist reach = {0};
-        if (finger_radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
+        if (!wr_finger_pushes_on(f, finger, e)) {
+            /* A loop not pushed on (push_on): nothing of this edge is reached. */
+        } else if (finger_radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
             size_t loop, segment;
             wr_push_edge_place(f, e, &loop, &segment);
             wr_span *items = NULL;

@@ -28,7 +28,7 @@ static const char *const LOCATING_REQUIRED[] = {"fixture", "tolerance", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};
 static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
-static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples",
+static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples", "push_on",
                                          NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", "force", "cases", NULL};

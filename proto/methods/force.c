@@ -394,10 +394,17 @@ cJSON *wp_handle_push_force(wp_call *call)
                      "a push force needs the part's outline: the fixture has no shape");
         return NULL;
     }
+    bool *push_on;
+    wr_finger finger = {.radius = radius};
+    if (!wp_read_push_on(params, "params", f, &push_on, &finger.push_on_count, error))
+        return NULL;
+    finger.push_on = push_on;
     wp_cases cases;
     if (!wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
-                       &cases, error))
+                       &cases, error)) {
+        free(push_on);
         return NULL;
+    }
     double (*loads)[3] = malloc((size_t)cases.count * sizeof *loads);
     cJSON *result = cJSON_CreateObject();
     wr_status status = loads && result ? WR_OK : WR_NO_MEMORY;
@@ -406,7 +413,7 @@ cJSON *wp_handle_push_force(wp_call *call)
     wr_least_force least;
     if (status == WR_OK)
         status = wr_least_force_find(use->analysis, set, (const double (*)[3])loads, cases.count,
-                                     radius, call->host->stop, &least);
+                                     &finger, call->host->stop, &least);
     if (status == WR_OK) {
         cJSON *best = least.found ? cJSON_AddObjectToObject(result, "least")
                                   : cJSON_AddNullToObject(result, "least");
@@ -442,11 +449,14 @@ cJSON *wp_handle_push_force(wp_call *call)
         add_place(segment, f, e);
         cJSON_AddItemToObject(segment, "t", ts);
         cJSON_AddItemToObject(segment, "force", forces);
+        /* A loop not pushed on (push_on): no push there, F* null. */
+        bool pushed = wr_finger_pushes_on(f, &finger, e);
         for (int j = 0; status == WR_OK && j < samples; j++) {
-            double t = top * (j + 0.5) / samples, push[3], value;
+            double t = top * (j + 0.5) / samples, push[3], value = INFINITY;
             wr_push_wrench(f, e, t, push);
-            status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
-                                       cases.count, push, &value);
+            if (pushed)
+                status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
+                                           cases.count, push, &value);
             cJSON_AddItemToArray(ts, cJSON_CreateNumber(t));
             cJSON_AddItemToArray(forces, force_or_null(f, value));
         }
@@ -454,6 +464,7 @@ cJSON *wp_handle_push_force(wp_call *call)
             status = WR_STOPPED;
     }
     free(loads);
+    free(push_on);
     wp_cases_release(&cases);
     if (status != WR_OK) {
         cJSON_Delete(result);

@@ -19,6 +19,7 @@ typedef struct sweep_state {
     wr_sweep_range range;
     wp_classify_request request;   /* the sets (one for push and gravity), the wrenches */
     wr_finger finger;
+    bool *push_on;              /* finger.push_on, owned (force) */
     wr_sweeper *sweepers[3];    /* one per set */
     wr_sweep_job *job;          /* the current one */
     size_t next;                /* wrenches: the next to answer, */
@@ -35,7 +36,7 @@ typedef struct sweep_state {
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
 static const char *const SWEEP_GRAVITY_FIELDS[] = {"set", NULL};
-static const char *const SWEEP_FORCE_FIELDS[] = {"set", "finger_radius", NULL};
+static const char *const SWEEP_FORCE_FIELDS[] = {"set", "finger_radius", "push_on", NULL};
 
 /* params.range: [low, high], 0 <= low < high <= WR_MAX_FRICTION (default
  * [0, 2]); params.kinetic_ratio in (0, 1] (default 1). */
@@ -167,14 +168,17 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
         return wp_read_wrenches(call->limits, params, fixture, NULL, r, error);
     }
     if (state->what == SWEEP_FORCE) {
-        /* {"set"? (default both), "finger_radius"?} and the cases. */
+        /* {"set"? (default both), "finger_radius"?, "push_on"?} and the cases. */
         const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, "force");
         state->request.set_count = 1;
         if (!wp_check_object(what, "params.force", SWEEP_FORCE_FIELDS, error) ||
             !wp_read_set_at(what, "params.force", &state->request.sets[0], error) ||
             !wp_read_finger(what, "params.force", &state->finger, error) ||
+            !wp_read_push_on(what, "params.force", fixture, &state->push_on,
+                             &state->finger.push_on_count, error) ||
             !wp_cases_read(cases, "params.cases", fixture, &state->cases, error))
             return false;
+        state->finger.push_on = state->push_on;
         if (!cJSON_GetObjectItemCaseSensitive(what, "set"))
             state->request.sets[0] = WR_SET_BOTH;
         if (fixture->shape == WR_SHAPE_NONE) {
@@ -223,6 +227,7 @@ static void sweep_free(void *stream)
         wr_sweeper_free(state->sweepers[s]);
     free(state->request.wrenches);
     free(state->loads);
+    free(state->push_on);
     wp_cases_release(&state->cases);
     free(stream);
 }
@@ -278,7 +283,7 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     if (status == WR_OK)
         status = wr_least_force_find(analysis, state->request.sets[0],
                                      (const double (*)[3])state->loads, state->cases.count,
-                                     state->finger.radius, NULL, &least);
+                                     &state->finger, NULL, &least);
     wr_analysis_free(analysis);
     if (status != WR_OK)
         return status;
