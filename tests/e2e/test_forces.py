@@ -613,12 +613,42 @@ def test_friction_sweep_least_force_against_push_force(client):
     cases = [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})]
     r = client.result("friction.sweep", {"fixture": f, "range": [0, 0.4], "kinetic_ratio": 0.8,
                                          "force": {"set": "both"}, "cases": cases})
-    assert set(r) == {"curve", "exact", "resolution"} and r["exact"] is False
+    assert set(r) == {"curve", "at", "intervals", "exact", "resolution"} and r["exact"] is False
     curve = r["curve"]
-    assert len(curve) == 128 and curve[0][0] == 0 and curve[-1][0] == 0.4
+    mus = [p[0] for p in curve]
+    grid = [i * (0.4 / 127) for i in range(127)] + [0.4]
+    ends = [e for iv in r["intervals"] for e in iv]
+    # The grid and the push alone's interval ends, increasing.
+    assert mus == sorted(set(grid) | set(ends)) and len(r["at"]) == len(curve)
     assert abs(r["resolution"] - 0.4 / 127) < 1e-15
     finite = [p for p in curve if p[1] is not None]
     assert finite and len(finite) < len(curve), "the push stops working as mu grows"
+    # The intervals: where the push alone has a region, exactly (push.regions
+    # with the fixture at mu, just inside and just outside every end), and
+    # the least force is finite on them.
+    assert r["intervals"] and r["intervals"][0][1] < 0.4, r
+    for lo, hi in r["intervals"]:
+        for mu, inside in ((lo + 1e-7, True), (hi - 1e-7, True), (lo - 1e-7, False),
+                           (hi + 1e-7, False), ((lo + hi) / 2, True)):
+            if not 0 <= mu <= 0.4 or (mu < 1e-7 and not inside) or (
+                    mu > 0.4 - 1e-7 and not inside):
+                continue
+            g = copy.deepcopy(f)
+            g["friction"] = {"static": mu, "kinetic": 0.8 * mu}
+            regions = client.result("push.regions", {"fixture": g, "set": "both"})["regions"]
+            assert bool(regions) == inside, (mu, lo, hi)
+        assert all(p[1] is not None for p in curve if lo <= p[0] <= hi)
+    # Each sample's point against force.range there: its least over all the
+    # cases for the set is the sample's force.
+    for (mu, least), at in list(zip(curve, r["at"]))[::9]:
+        assert (least is None) == (at is None)
+        if at is None:
+            continue
+        g = copy.deepcopy(f)
+        g["friction"] = {"static": mu, "kinetic": 0.8 * mu}
+        got = force_range(client, g, cases, push={"at": at}, sets=["both"])["all"]["both"]
+        assert got["least"] is not None and abs(got["least"] - least) <= 1e-9 * least, (
+            mu, least, got)
     # Each sample is push.force's least on the fixture at that mu.
     for mu, least in curve[::16] + [curve[-1]]:
         g = copy.deepcopy(f)
