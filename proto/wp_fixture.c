@@ -619,6 +619,12 @@ bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_e
     else
         ok = read_body(json, field, &spec, &storage, error);
     if (ok) {
+        /* Its units, as a fixture's: the loads' forces and G are in them. */
+        wp_path_key(field, path, "units");
+        ok = read_units(cJSON_GetObjectItemCaseSensitive(params, "units"), field, &spec.units,
+                        error);
+    }
+    if (ok) {
         wr_error invalid;
         wr_status status = wr_fixture_body_new(&spec, body, &invalid);
         if (status != WR_OK) {

@@ -875,7 +875,10 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
     else
         WP_BUFFER_LITERAL(out, "null");
     WP_BUFFER_LITERAL(out, ",\"score\":");
-    wp_buffer_number(out, d->score);
+    /* Objective force: minus a force, in the body's force unit. */
+    wp_buffer_number(out, s->spec.objective == WR_OBJECTIVE_FORCE
+                              ? -wp_force_out(s->body, -d->score)
+                              : d->score);
     if (accuracy) { /* the worst locating error, whose negative is the score */
         WP_BUFFER_LITERAL(out, ",\"accuracy\":");
         wp_buffer_number(out, -d->score + 0.0);

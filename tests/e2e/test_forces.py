@@ -556,6 +556,50 @@ def test_design_objective_force_against_brute_force(client):
     assert e["data"]["field"] == "params.cases", e
 
 
+def test_design_units_give_the_same_design_converted(client):
+    """fixture.design's "units" as a fixture's: the same body in m/N, mm/N
+    and in/lbf, its cases written in each, gives the same designs, each
+    least push the same force converted (and its point scaled)."""
+    lbf = 4.4482216152605
+    vertices = [[0, 0], [4, 0], [4, 1], [3, 2], [0, 2]]
+    sites = [[0.8, 0], [2, 0], [3.2, 0], [0, 0.6], [0, 1.4], [1.5, 2]]
+    answers = []
+    for scale, units, per_newton in ((1.0, {"length": "m", "force": "N"}, 1.0),
+                                     (1000.0, {"length": "mm", "force": "N"}, 1.0),
+                                     (1 / 0.0254, {"length": "in", "force": "lbf"}, 1 / lbf)):
+        body = {"mass": 1.0, "shape": {"type": "polygon",
+                                       "vertices": [[x * scale, y * scale] for x, y in vertices]}}
+        cases = [case(gravity(G * scale)),
+                 case(gravity(G * scale), {"force": [-2 * per_newton, -1 * per_newton],
+                                           "at": [1 * scale, 2 * scale]})]
+        r = client.result("fixture.design", {
+            "body": body, "friction": 0.05, "units": units, "objective": "force",
+            "cases": cases, "top": 6,
+            "sites": [{"at": [x * scale, y * scale]} for x, y in sites]})
+        answers.append((scale, per_newton, r["designs"]))
+    _, _, base = answers[0]
+    assert base and base[0]["least_push"] is not None
+    for scale, per_newton, designs in answers[1:]:
+        assert [d["sites"] for d in designs] == [d["sites"] for d in base]
+        for d, b in zip(designs, base):
+            want = b["least_push"]["force"]
+            assert abs(d["least_push"]["force"] / per_newton - want) <= 1e-9 * want, (d, b)
+            assert abs(-d["score"] / per_newton - want) <= 1e-9 * want, (d, b)
+            for got, at in zip(d["least_push"]["at"], b["least_push"]["at"]):
+                assert abs(got / scale - at) <= 1e-9 * 4, (d, b)
+    # Without units the numbers are one consistent system: the m/N answer.
+    plain = client.result("fixture.design", {
+        "body": {"mass": 1.0, "shape": {"type": "polygon", "vertices": vertices}},
+        "friction": 0.05, "objective": "force", "top": 6,
+        "cases": [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})],
+        "sites": [{"at": s} for s in sites]})["designs"]
+    assert [d["least_push"]["force"] for d in plain] == [d["least_push"]["force"] for d in base]
+    e = client.error("fixture.design", {"body": {"mass": 1.0, "shape": {
+        "type": "polygon", "vertices": vertices}}, "friction": 0.05,
+        "units": {"length": "ft", "force": "N"}, "sites": [{"at": s} for s in sites]})
+    assert e["data"]["field"] == "params.units.length", e
+
+
 # ---- the Python client ---------------------------------------------------------------
 
 
