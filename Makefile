@@ -301,7 +301,7 @@ pictures: $(BUILD)/wrenchctl
 	cd $(BUILD) && ./wrenchctl --local design bracket.json --spacing 10 --top 3 \
 	    --emit-fixture 1 bracket-design.json >/dev/null
 	$(BUILD)/wrenchctl --local push $(BUILD)/bracket-design.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
-	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
+	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --push-on all --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.

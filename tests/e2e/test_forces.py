@@ -646,6 +646,10 @@ def test_readme_how_hard_to_push(client):
     assert "%.8g" % best["force"] == "47.702833"
     finger = client.result("push.force", {"fixture": f, "cases": cuts, "finger_radius": 8})
     assert "%.9g" % finger["least"]["force"] == "168.925751"
+    # A point finger on the outer boundary only (the clients' default push_on).
+    outer = client.result("push.force", {"fixture": f, "cases": cuts, "push_on": "outer"})
+    assert "%.9g" % outer["least"]["force"] == "168.925751"
+    assert outer["least"]["loop"] == 0 and best["loop"] != 0
 
 
 # ---- friction.sweep: the least force against mu ---------------------------------------
