@@ -627,6 +627,33 @@ def test_python_client_functions(daemon, client):
         assert d.designs and d.designs[0].least_push is not None
         with pytest.raises(ValueError):
             c.force_range(fid, [[gravity()]])
+        # push_on: the clients' default on a part with holes is the outer
+        # boundary for a point finger; given, as sent.
+        with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+            import json
+            upright = json.load(fh)
+        cut = [case(gravity(9810, 180), {"force": [30, -40], "at": [20, 60]})]
+        for push_on, sent in ((None, "outer"), ("all", "all"), ([0, 2], [0, 2])):
+            got = c.push_force(upright, cut, push_on=push_on, samples=4)
+            assert got == client.result("push.force", {"fixture": upright, "cases": cut,
+                                                       "set": "both", "samples": 4,
+                                                       "push_on": sent})
+        s = c.friction_sweep(upright, range=(0, 0.4), force={"set": "both"}, cases=cut)
+        want = client.result("friction.sweep", {"fixture": upright, "range": [0, 0.4],
+                                                "kinetic_ratio": 1.0, "cases": cut,
+                                                "force": {"set": "both", "push_on": "outer"}})
+        assert s.curve == want["curve"] and s.at == want["at"]
+        assert s.intervals == want["intervals"] and s.exact is False
+        with pytest.raises(ValueError):
+            c.friction_sweep(upright, force=True)
+        d2 = c.design(upright["body"], 0.25, sites=[f["at"] for f in upright["fixels"]],
+                      objective="force", cases=[[gravity(9810, 180)]], push_on="all",
+                      units=upright["units"])
+        d3 = client.result("fixture.design", {
+            "body": upright["body"], "friction": 0.25, "units": upright["units"],
+            "sites": [{"at": f["at"]} for f in upright["fixels"]], "objective": "force",
+            "push_on": "all", "fixels": 3, "top": 10, "cases": [case(gravity(9810, 180))]})
+        assert [d.least_push for d in d2.designs] == [d["least_push"] for d in d3["designs"]]
 
 
 def test_readme_how_hard_to_push(client):
