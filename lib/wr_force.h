@@ -57,6 +57,13 @@ void wr_forces_release(wr_forces *forces);
 wr_status wr_force_range(const wr_analysis *analysis, wr_set set, const double load[3],
                          const double push[3], double lo, double hi, wr_forces *out);
 
+/* wr_force_range for each set s with sets[s] (indexed by wr_set: goal,
+ * strong, both), into out[s] (the others untouched): every cone's span of
+ * the line found once for all three, the same answers.  Returns as
+ * wr_force_range. */
+wr_status wr_force_ranges(const wr_analysis *analysis, const bool sets[3], const double load[3],
+                          const double push[3], double lo, double hi, wr_forces out[3]);
+
 /* The intersection of two interval sets, into `out` (which may be neither
  * of them).  WR_OK or WR_NO_MEMORY. */
 wr_status wr_forces_intersect(const wr_forces *a, const wr_forces *b, wr_forces *out);

@@ -206,7 +206,7 @@ cJSON *wp_handle_force_range(wp_call *call)
         return NULL;
     wp_buffer b = {0};
     WP_BUFFER_LITERAL(&b, "{\"cases\":[");
-    wr_forces every[3] = {{0}}, good = {0}, meet = {0};
+    wr_forces every[3] = {{0}}, good[3] = {{0}}, meet = {0};
     wr_status status = WR_OK;
     for (int c = 0; status == WR_OK && c < cases.count; c++) {
         wp_buffer_puts(&b, c ? ",{\"name\":" : "{\"name\":");
@@ -214,24 +214,22 @@ cJSON *wp_handle_force_range(wp_call *call)
             wp_buffer_string(&b, cases.items[c].name);
         else
             WP_BUFFER_LITERAL(&b, "null");
+        status = wr_force_ranges(use->analysis, sets, cases.items[c].load, push, range[0],
+                                 range[1], good);
         for (int s = 0; status == WR_OK && s < 3; s++) {
             if (!sets[s])
                 continue;
-            status = wr_force_range(use->analysis, (wr_set)s, cases.items[c].load, push,
-                                    range[0], range[1], &good);
-            if (status != WR_OK)
-                break;
             WP_BUFFER_LITERAL(&b, ",\"");
             wp_buffer_puts(&b, SET_NAMES[s]);
             WP_BUFFER_LITERAL(&b, "\":");
-            write_force_set(&b, f, &good);
+            write_force_set(&b, f, &good[s]);
             /* One magnitude for every case: the intersection. */
             if (c == 0) {
                 wr_forces swap = every[s];
-                every[s] = good;
-                good = swap;
+                every[s] = good[s];
+                good[s] = swap;
             } else {
-                status = wr_forces_intersect(&every[s], &good, &meet);
+                status = wr_forces_intersect(&every[s], &good[s], &meet);
                 wr_forces swap = every[s];
                 every[s] = meet;
                 meet = swap;
@@ -250,9 +248,10 @@ cJSON *wp_handle_force_range(wp_call *call)
         write_force_set(&b, f, &every[s]);
     }
     WP_BUFFER_LITERAL(&b, "}}");
-    for (int s = 0; s < 3; s++)
+    for (int s = 0; s < 3; s++) {
         wr_forces_release(&every[s]);
-    wr_forces_release(&good);
+        wr_forces_release(&good[s]);
+    }
     wr_forces_release(&meet);
     wp_cases_release(&cases);
     char *text = wp_buffer_take(&b);
