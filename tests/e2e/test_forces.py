@@ -258,6 +258,31 @@ def test_units_give_the_same_answers_converted(client):
     assert any(base["all"][s]["intervals"] for s in ("goal", "strong", "both"))
 
 
+def test_witness_acceleration_in_the_fixture_length_unit(client):
+    """A wrench pulling the bracket off its fixels (no contact force): its
+    witness acceleration is f / m and tau / I in the fixture's units, 1 N on
+    0.8 kg in mm/N being 1250 mm/s^2 (1 N = 1000 kg mm/s^2); the same
+    fixture without units reads the numbers as kg mm/s^2 (1.25)."""
+    import json
+    with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+        f = json.load(fh)
+    plain = dict(f)
+    plain.pop("units")
+    mass = f["body"]["mass"]
+    answers = []
+    for fixture, per_unit in ((f, 1000.0), (plain, 1.0)):
+        r = client.result("wrench.classify", {"fixture": fixture, "wrenches": [[1, 2, 0.5]],
+                                               "sets": ["goal"]})["results"][0]["goal"]
+        w = r["witness"]
+        assert all(c == [0, 0] for c in w["forces"]), w
+        assert abs(w["acceleration"][0] - per_unit * 1 / mass) <= 1e-12 * per_unit / mass
+        assert abs(w["acceleration"][1] - per_unit * 2 / mass) <= 1e-12 * per_unit / mass
+        answers.append(w)
+    assert abs(answers[0]["acceleration"][2] - 1000 * answers[1]["acceleration"][2]) <= \
+        1e-9 * abs(answers[0]["acceleration"][2])
+    assert answers[0]["wrench"] == answers[1]["wrench"]
+
+
 # ---- bad input ------------------------------------------------------------------------
 
 
