@@ -249,7 +249,8 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     }
     wp_push_load load;
-    if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
+    if (!wp_push_load_read(call->params, use->fixture, friction, wp_case_limit(call->limits),
+                           &load, call->error))
         return NULL;
     push_state *state = calloc(1, sizeof *state);
     if (!state) {

@@ -45,6 +45,7 @@ struct design_state {
     int (*listed)[WR_MAX_FIXELS];
     const char *source;      /* the field giving the candidates: for refusals */
     uint64_t max_candidates; /* wp_limits' (0: no cap) */
+    int max_cases;           /* wp_case_limit of the limits */
     /* params.deadline_s: the monotonic second after which the search claims
      * no more candidates and the answer is the best so far, "partial" (0:
      * none); `cut` once it has.  Both read and written under the search
@@ -348,7 +349,7 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
     }
     if (cases_json) {
         wp_cases cases;
-        if (!wp_cases_read(cases_json, "params.cases", s->body, &cases, error))
+        if (!wp_cases_read(cases_json, "params.cases", s->body, s->max_cases, &cases, error))
             return false;
         s->loads = malloc((size_t)cases.count * sizeof *s->loads);
         if (!s->loads) {
@@ -564,6 +565,7 @@ static void *design_begin(wp_call *call, wp_prepared *prepared)
     }
     s->last_report = -1;
     s->max_candidates = call->limits->max_candidates;
+    s->max_cases = wp_case_limit(call->limits);
     if (!read_params(call->params, s, call->error)) {
         design_free(s);
         return NULL;

@@ -202,7 +202,7 @@ cJSON *wp_handle_force_range(wp_call *call)
     wp_cases cases;
     if (!read_push(params, f, push, error) || !read_range(params, f, range, error) ||
         !wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
-                       &cases, error))
+                       wp_case_limit(call->limits), &cases, error))
         return NULL;
     wp_buffer b = {0};
     WP_BUFFER_LITERAL(&b, "{\"cases\":[");
@@ -271,7 +271,7 @@ cJSON *wp_handle_force_range(wp_call *call)
 }
 
 bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_friction,
-                       wp_push_load *out, wp_error *error)
+                       int most_cases, wp_push_load *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);
     const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
@@ -303,7 +303,7 @@ bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_f
         return false;
     }
     wp_cases cases = {0};
-    if (cases_json && !wp_cases_read(cases_json, "params.cases", f, &cases, error))
+    if (cases_json && !wp_cases_read(cases_json, "params.cases", f, most_cases, &cases, error))
         return false;
     out->count = cases_json ? cases.count : 1;
     out->loads = calloc((size_t)out->count, sizeof *out->loads);
@@ -400,7 +400,7 @@ cJSON *wp_handle_push_force(wp_call *call)
     finger.push_on = push_on;
     wp_cases cases;
     if (!wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
-                       &cases, error)) {
+                       wp_case_limit(call->limits), &cases, error)) {
         free(push_on);
         return NULL;
     }

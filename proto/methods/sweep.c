@@ -189,7 +189,8 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
             !wp_read_finger(what, "params.force", &state->finger, error) ||
             !wp_read_push_on(what, "params.force", fixture, &state->push_on,
                              &state->finger.push_on_count, error) ||
-            !wp_cases_read(cases, "params.cases", fixture, &state->cases, error))
+            !wp_cases_read(cases, "params.cases", fixture, wp_case_limit(call->limits),
+                           &state->cases, error))
             return false;
         state->finger.push_on = state->push_on;
         if (!cJSON_GetObjectItemCaseSensitive(what, "set"))

@@ -325,6 +325,26 @@ def test_bad_input_is_refused_at_its_field(client):
         assert got[0] == field and word in got[1], (params, got)
 
 
+def test_max_cases_is_the_daemons_limit(harness):
+    """--max-cases N: N cases are taken, N + 1 refused at params.cases
+    naming the limit and the option, by every method that takes cases."""
+    d = harness.start("--max-cases", "3", socket_path=harness.path("cases.sock"))
+    c = d.client()
+    fid = c.result("fixture.put", {"fixture": plate_321(0.2)})["id"]
+    three, four = [case(gravity())] * 3, [case(gravity())] * 4
+    asks = [("force.range", {"fixture": fid, "push": {"at": [4, 1]}}),
+            ("push.force", {"fixture": fid, "samples": 1}),
+            ("push.regions", {"fixture": fid, "set": "both", "force": 5.0}),
+            ("friction.sweep", {"fixture": fid, "force": {}, "range": [0, 0.2]}),
+            ("fixture.design", {"body": plate_321(0.2)["body"], "friction": 0.2,
+                                "sites": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]})]
+    for method, params in asks:
+        assert c.result(method, dict(params, cases=three)) is not None, method
+        e = c.error(method, dict(params, cases=four))
+        assert e["data"]["field"] == "params.cases", (method, e)
+        assert "at most 3 cases (the daemon's --max-cases), 4 given" in e["data"]["reason"], e
+
+
 # ---- push.regions under a force, against force.range at 10,000 points ----------------
 
 import outline_model as OM  # noqa: E402
