@@ -448,17 +448,30 @@ cJSON *wp_handle_push_force(wp_call *call)
         add_place(segment, f, e);
         cJSON_AddItemToObject(segment, "t", ts);
         cJSON_AddItemToObject(segment, "force", forces);
-        /* A loop not pushed on (push_on): no push there, F* null. */
+        /* No push where the finger may not push (a loop push_on leaves out)
+         * or does not fit (its blocked spans): F* null there. */
         bool pushed = wr_finger_pushes_on(f, &finger, e);
+        wr_span *blocked = NULL;
+        int blocked_count = 0;
+        if (pushed && radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
+            size_t loop, piece;
+            wr_push_edge_place(f, e, &loop, &piece);
+            status = wr_finger_blocked(f->outline, loop, piece, radius, call->host->stop,
+                                       &blocked, &blocked_count);
+        }
         for (int j = 0; status == WR_OK && j < samples; j++) {
             double t = top * (j + 0.5) / samples, push[3], value = INFINITY;
+            bool reached = pushed;
+            for (int b = 0; reached && b < blocked_count; b++)
+                reached = !(t >= blocked[b].lo && t <= blocked[b].hi);
             wr_push_wrench(f, e, t, push);
-            if (pushed)
+            if (reached)
                 status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
                                            cases.count, push, &value);
             cJSON_AddItemToArray(ts, cJSON_CreateNumber(t));
             cJSON_AddItemToArray(forces, force_or_null(f, value));
         }
+        free(blocked);
         if (wr_stop_requested(call->host->stop))
             status = WR_STOPPED;
     }

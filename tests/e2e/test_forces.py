@@ -645,6 +645,39 @@ def test_design_units_give_the_same_design_converted(client):
     assert e["data"]["field"] == "params.units.length", e
 
 
+def test_push_force_samples_only_where_the_finger_pushes(client):
+    """push.force's samples are null where the finger may not push (a loop
+    push_on leaves out) or does not fit: the bracket's holes (12 and 10 mm
+    wide, clients/python's loop_width) take no finger of radius 8, its
+    outer boundary's straight edges away from the corners take any; and the
+    samples that are given are F* there, push.force's with a point finger."""
+    import json
+    import sys
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+        f = json.load(fh)
+    widths = [wrenchd.loop_width(loop) for loop in f["body"]["shape"]["loops"]]
+    cut = [case(gravity(9810, 180), {"force": [30, -40], "at": [20, 60]})]
+    point = client.result("push.force", {"fixture": f, "cases": cut, "samples": 16})
+    big = client.result("push.force", {"fixture": f, "cases": cut, "samples": 16,
+                                        "finger_radius": 8})
+    outer = client.result("push.force", {"fixture": f, "cases": cut, "samples": 16,
+                                          "push_on": "outer"})
+    kept = 0
+    for p, b, o in zip(point["segments"], big["segments"], outer["segments"]):
+        if p["loop"] != 0:
+            assert widths[p["loop"]] < 16
+            assert all(v is None for v in b["force"]), b
+            assert all(v is None for v in o["force"]), o
+            continue
+        assert o["force"] == p["force"]
+        for v, w in zip(p["force"], b["force"]):
+            assert w is None or w == v
+            kept += w is not None
+    assert kept > 0
+
+
 # ---- the Python client ---------------------------------------------------------------
 
 
