@@ -1713,6 +1713,10 @@ class WrenchLeastForce(_Dependent):
         _Dependent.setup(self, obj)
         _add(obj, "App::PropertyInteger", "Samples", "Force",
              "Samples of F* per segment of the outline", 32)
+        _add(obj, "App::PropertyString", "PushOn", "Force",
+             "Where the finger may push, as a regions object's PushOn: empty, the clients' "
+             "default (a point finger on the outer boundary only); outer; all; or loop "
+             "numbers (0, 2)", "")
         for kind, name, doc in (
                 ("App::PropertyFloatList", "Forces",
                  "F* at each piece's sample, in N (-1: no force does the job there)"),
@@ -1733,7 +1737,12 @@ class WrenchLeastForce(_Dependent):
             return
         fid = fixture.obj.FixtureId
         samples = max(1, min(int(obj.Samples), 4096))
-        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples))
+        try:
+            push_on = push_on_of(obj.PushOn, fixture.fixture["body"], 0.0)
+        except OutlineError as e:
+            raise WrenchError("%s: %s" % (obj.Label, e))
+        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples,
+                                                          push_on=push_on or "all"))
         pieces, forces = [], []
         for seg in r["segments"]:
             segment = outline.segments[seg.get("loop", 0)][seg.get("segment", seg.get("edge", 0))]
@@ -2007,8 +2016,13 @@ def make_locating(fixture, tolerance=0.02, features=(), names=()):
                       Features=list(features), FeatureNames=list(names))
 
 
-def make_least_force(fixture, samples=32):
-    return _dependent("WrenchLeastForce", fixture, "Least force", Samples=samples)
+def make_least_force(fixture, samples=32, push_on=""):
+    """A WrenchLeastForce of the fixture: F* at `samples` points of every
+    segment, the finger pushing on `push_on` (as make_regions')."""
+    if not isinstance(push_on, str):
+        push_on = ", ".join(str(int(i)) for i in push_on)
+    return _dependent("WrenchLeastForce", fixture, "Least force", Samples=samples,
+                      PushOn=push_on)
 
 
 def make_gravity_dial(fixture, set="both"):
