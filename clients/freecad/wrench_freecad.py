@@ -908,9 +908,22 @@ class WrenchFixture:
         if "DesignObjective" not in obj.PropertiesList:
             obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",
                             "Design: rank by the margin of the best push in both (margin), the "
-                            "length of the both region (region), or the gravity arc (gravity)")
-            obj.DesignObjective = ["margin", "region", "gravity"]
+                            "length of the both region (region), the gravity arc (gravity), the "
+                            "least push force under Gravity and Loads (force), or the worst "
+                            "locating error with locators off by DesignTolerance (accuracy)")
+            obj.DesignObjective = DESIGN_OBJECTIVES
             obj.DesignObjective = "margin"
+        elif list(obj.getEnumerationsOfProperty("DesignObjective")) != DESIGN_OBJECTIVES:
+            chosen = obj.DesignObjective  # a document of before: its choice kept
+            obj.DesignObjective = DESIGN_OBJECTIVES
+            obj.DesignObjective = chosen
+        _add(obj, "App::PropertyLength", "DesignTolerance", "Design",
+             "Design, objective accuracy: how far each locator may be off along its normal; "
+             "the worst error is the pose's (scaled), or the farthest DesignFeatures point's",
+             0.02)
+        _add(obj, "App::PropertyVectorList", "DesignFeatures", "Design",
+             "Design, objective accuracy: points of the part (document) whose worst "
+             "displacement ranks the designs; empty: the pose's error")
         _add(obj, "App::PropertyInteger", "DesignTop", "Design", "Design: designs to list", 5)
         _add(obj, "App::PropertyStringList", "Designs", "Design",
              "The last design's ranking, best first (its fixels were placed)", mode=1)
@@ -2156,6 +2169,9 @@ class _Progress:
             self.indicator = None
 
 
+DESIGN_OBJECTIVES = ["margin", "region", "gravity", "force", "accuracy"]
+
+
 def design(fixture, client=None, progress=True, spacing=None, fixels=None, objective=None,
            top=None, place=True):
     """fixture.design on the fixture's face: `fixels` (default the fixture's
@@ -2182,17 +2198,28 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
         client = client_for(fixture.Socket, fixture.Timeout)
     friction = {"static": fixture.StaticFriction, "kinetic": fixture.KineticFriction}
     body = {"mass": fixture.Mass, "shape": shape}
+    # Gravity and Loads: every design reports its least push under them, and
+    # objective force ranks by it (mm and N, as the fixture is sent).
+    cases = load_cases(fixture, shape)
+    if objective == "force" and not cases:
+        raise WrenchError("%s: DesignObjective force ranks by the least push under the load "
+                          "cases: set Gravity or Loads" % fixture.Label, "cases", "required")
+    extra = {"cases": cases, "units": {"length": "mm", "force": "N"}} if cases else {}
+    if objective == "accuracy":
+        extra["tolerance"] = float(fixture.DesignTolerance)
+        extra["features"] = [shape.to_2d(p)[:2] for p in fixture.DesignFeatures]
     indicator = _Progress("Designing %s" % fixture.Label) if progress is True else None
     callback = indicator if indicator is not None else (progress or None)
     what = "%s: design" % fixture.Label
     try:
         result = _ask(what, path, lambda: client.design(
             body, friction, fixels=count, spacing=h, objective=objective, top=top,
-            progress=callback), shape, properties={
+            progress=callback, **extra), shape, properties={
                 "fixels": "DesignFixels (%s)" % count, "spacing": "DesignSpacing (%s)" % _fmt(h),
                 "objective": "DesignObjective (%s)" % objective, "top": "DesignTop (%s)" % top,
                 "friction": "the friction (StaticFriction, KineticFriction)",
-                "body": "the part (Mass, or its outline)"})
+                "body": "the part (Mass, or its outline)", "cases": "Gravity and Loads",
+                "tolerance": "DesignTolerance", "features": "DesignFeatures"})
     finally:
         if indicator is not None:
             indicator.stop()
@@ -2222,7 +2249,11 @@ def _design_lines(count, shape, result, spacing):
                 counts.get("degenerate", 0),
                 {"margin": "the margin of the best push in both",
                  "region": "the length of the both region",
-                 "gravity": "the longest arc of tilts under which gravity seats the part"
+                 "gravity": "the longest arc of tilts under which gravity seats the part",
+                 "force": "the least push force (N) that seats and holds it under every load "
+                          "case, smallest first",
+                 "accuracy": "the worst locating error (%s) with every locator off by up to "
+                             "DesignTolerance" % UNIT,
                  }.get(result.objective, result.objective), UNIT))
     lines = [head]
     for d in result.designs:
@@ -2238,6 +2269,11 @@ def _design_lines(count, shape, result, spacing):
                                          _fmt(d.both_length), _fmt(d.gravity_goal_deg),
                                          "none up to 2" if d.critical_mu is None
                                          else _fmt(d.critical_mu)))
+        if d.least_push is not None:
+            lines[-1] += "; least push %.6g N at %s" % (
+                d.least_push["force"], _fmt_point(shape.to_3d(d.least_push["at"])))
+        if d.accuracy is not None:
+            lines[-1] += "; worst locating error %s %s" % (_fmt(d.accuracy), UNIT)
         if getattr(d, "copies", 1) > 1:
             lines[-1] += "; and %d more like it, turned or mirrored by the part's symmetries" % (
                 d.copies - 1)
