@@ -31,7 +31,7 @@ static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
 static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples",
                                          NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
-                                             "push", "gravity", "force", "cases", NULL};
+                                             "push", "gravity", "force", "cases", "deadline_s", NULL};
 
 /* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
  * one piece, and the event loop may answer it.  The rest end their piece

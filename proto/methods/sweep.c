@@ -31,6 +31,9 @@ typedef struct sweep_state {
     int sample;
     bool any;
     wr_fixel_spec fixels[WR_MAX_FIXELS];
+    /* params.deadline_s: the monotonic second after which the sweep stops
+     * where it has got to (0: none; sweep_step). */
+    double deadline;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -103,8 +106,11 @@ static void write_intervals(wp_buffer *out, const wr_intervals *list)
     WP_BUFFER_LITERAL(out, "]");
 }
 
-/* {"intervals", "critical", "curve", "exact", "resolution"} */
-static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
+static void write_stopped(wp_buffer *out, double reached);
+
+/* {"intervals", "critical", "curve", "exact", "resolution"}, and when the
+ * deadline stopped it, "partial" and "stopped_at": `reached`. */
+static void write_curve(wp_buffer *out, const wr_sweep_curve *curve, bool stopped, double reached)
 {
     WP_BUFFER_LITERAL(out, "{\"intervals\":");
     write_intervals(out, &curve->intervals);
@@ -123,6 +129,8 @@ static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
     wp_buffer_puts(out, curve->exact ? "],\"exact\":true" : "],\"exact\":false");
     WP_BUFFER_LITERAL(out, ",\"resolution\":");
     wp_buffer_number(out, curve->resolution);
+    if (stopped)
+        write_stopped(out, reached);
     WP_BUFFER_LITERAL(out, "}");
 }
 
@@ -158,7 +166,8 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
                      "only with \"wrenches\": a push or gravity sweep takes its \"set\"");
         return false;
     }
-    if (!read_sweep_range(params, &state->range, error))
+    if (!read_sweep_range(params, &state->range, error) ||
+        !wp_read_deadline(params, &state->deadline, error))
         return false;
     if (state->what == SWEEP_WRENCHES) {
         wp_classify_request *r = &state->request;
@@ -294,6 +303,20 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     return WR_OK;
 }
 
+/* params.deadline_s given and passed. */
+static bool deadline_passed(const sweep_state *state)
+{
+    return state->deadline > 0 && wp_now_s() >= state->deadline;
+}
+
+/* ,"partial":true,"stopped_at":mu -- the members a sweep stopped by its
+ * deadline ends its result with (docs/PROTOCOL.md, friction.sweep). */
+static void write_stopped(wp_buffer *out, double reached)
+{
+    WP_BUFFER_LITERAL(out, ",\"partial\":true,\"stopped_at\":");
+    wp_buffer_number(out, reached + 0.0);
+}
+
 /* friction.sweep "force": {"curve": [[mu, F], ...], "exact": false,
  * "resolution": step}, a sample of mu at a time. */
 static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *out,
@@ -307,7 +330,13 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
         state->opened = true;
         WP_BUFFER_LITERAL(out, "{\"curve\":[");
     }
+    bool partial = false;
     for (bool first = true; state->sample < FORCE_SAMPLES && !out->failed; first = false) {
+        /* Past the deadline: the samples so far (at least one). */
+        if (state->sample > 0 && deadline_passed(state)) {
+            partial = true;
+            break;
+        }
         if (!first && *used >= budget)
             return WP_STEP_MORE;
         if (wr_stop_requested(call->host->stop)) {
@@ -328,6 +357,10 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
     }
     WP_BUFFER_LITERAL(out, "],\"exact\":false,\"resolution\":");
     wp_buffer_number(out, step);
+    if (partial)
+        write_stopped(out, state->sample == FORCE_SAMPLES
+                               ? state->range.high
+                               : state->range.low + (state->sample - 1) * step);
     WP_BUFFER_LITERAL(out, "}");
     return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
@@ -363,9 +396,15 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
                 }
             }
         }
-        bool done;
-        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1, used,
-                                            stop, &done);
+        /* Past the deadline: the job ends where it has got to, and is
+         * answered as if done; the result then says where that was. */
+        bool done = false, stopped = deadline_passed(state);
+        double reached = 0;
+        wr_status status = stopped ? wr_sweep_job_stop(state->job, &reached)
+                                   : wr_sweep_job_run(state->job,
+                                                      budget > *used ? budget - *used : 1, used,
+                                                      stop, &done);
+        done |= stopped;
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
@@ -373,7 +412,7 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         if (!done)
             continue;
         if (state->what != SWEEP_WRENCHES) {
-            write_curve(out, wr_sweep_job_curve(state->job));
+            write_curve(out, wr_sweep_job_curve(state->job), stopped, reached);
             return WP_STEP_DONE;
         }
         /* A wrench's set answered: {"goal": [...], ...} as its sets end. */
@@ -386,10 +425,17 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         write_intervals(out, wr_sweep_job_intervals(state->job));
         wr_sweep_job_free(state->job);
         state->job = NULL;
-        if (++state->set == r->set_count) {
+        if (++state->set == r->set_count || stopped) {
             WP_BUFFER_LITERAL(out, "}");
             state->set = 0;
             state->next++;
+        }
+        if (stopped) {
+            /* The last result's last set is answered up to `reached`. */
+            WP_BUFFER_LITERAL(out, "]");
+            write_stopped(out, reached);
+            WP_BUFFER_LITERAL(out, "}");
+            return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
         }
     }
     return WP_STEP_FAILED; /* out of memory: the buffer says so */
