@@ -46,7 +46,7 @@
 
 #include <time.h>
 
-#define DERIVED_LIMIT (1u << 20) /* bytes of derived data the cache keeps */
+#define DERIVED_LIMIT (64u << 20) /* bytes of derived data the cache keeps */
 #define STORE_BOUND 32           /* stored fixtures kept across inputs */
 /* wr_push_regions with friction: 2049 samples per edge (lib/wr_regions.c
  * SAMPLES), each testing every excluded cone of the set. */
