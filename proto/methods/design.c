@@ -70,13 +70,6 @@ struct design_state {
 
 static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
 
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + t.tv_nsec * 1e-9;
-}
-
 /* A whole number in [lo, hi] at params.key (default kept when absent). */
 static bool read_count(const cJSON *params, const char *key, double lo, double hi, int *out,
                        wp_error *error)
@@ -388,15 +381,8 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     }
     s->progress = progress && cJSON_IsTrue(progress);
-    double deadline_s = 0;
-    if (!wp_member_number(params, "params", "deadline_s", false, &deadline_s, &present, error))
+    if (!wp_read_deadline(params, &s->deadline, error))
         return false;
-    if (present && !(deadline_s > 0 && deadline_s <= 1e9)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.deadline_s",
-                     "must be a number of seconds above 0 (at most 1e9), got %g", deadline_s);
-        return false;
-    }
-    s->deadline = present ? now_s() + deadline_s : 0;
     const cJSON *collapse = cJSON_GetObjectItemCaseSensitive(params, "collapse_symmetric");
     if (collapse && !cJSON_IsBool(collapse)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.collapse_symmetric",
@@ -708,7 +694,7 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
         done = pairs;
         total = of;
     }
-    double now = now_s();
+    double now = wp_now_s();
     if (s->last_report < 0 || stage != s->stage) {
         s->stage = stage;
         s->stage_started = now;
@@ -1026,7 +1012,7 @@ static bool search_claim(void *method, size_t index, void *record)
     /* The deadline: no candidate is claimed after it.  The chunks claimed
      * are merged as usual, then the designs kept so far get their figures
      * and the answer is "partial". */
-    if (s->deadline > 0 && !s->cut && now_s() >= s->deadline) {
+    if (s->deadline > 0 && !s->cut && wp_now_s() >= s->deadline) {
         wr_design_job_cut(s->job);
         s->cut = true;
     }
@@ -1107,7 +1093,7 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
             if (enumerated && !start_search(s, call->error))
                 return WP_STEP_FAILED;
         }
-        if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+        if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
             write_progress(s, call, out);
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
@@ -1133,10 +1119,10 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
     double best;
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
     if (s->progress && !s->search_reported &&
-        (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
+        (examined == total || wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
         write_progress(s, call, out);
         s->search_reported = examined == total;
-    } else if (s->progress && !done && now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
+    } else if (s->progress && !done && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
         write_progress(s, call, out); /* the designs' figures */
     }
     /* A shared step never ends the answer, not even for a piece that did

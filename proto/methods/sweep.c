@@ -45,6 +45,9 @@ typedef struct sweep_state {
     int sample;
     bool any;
     wr_fixel_spec fixels[WR_MAX_FIXELS];
+    /* params.deadline_s: the monotonic second after which the sweep stops
+     * where it has got to (0: none; sweep_step). */
+    double deadline;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -117,8 +120,11 @@ static void write_intervals(wp_buffer *out, const wr_intervals *list)
     WP_BUFFER_LITERAL(out, "]");
 }
 
-/* {"intervals", "critical", "curve", "exact", "resolution"} */
-static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
+static void write_stopped(wp_buffer *out, double reached);
+
+/* {"intervals", "critical", "curve", "exact", "resolution"}, and when the
+ * deadline stopped it, "partial" and "stopped_at": `reached`. */
+static void write_curve(wp_buffer *out, const wr_sweep_curve *curve, bool stopped, double reached)
 {
     WP_BUFFER_LITERAL(out, "{\"intervals\":");
     write_intervals(out, &curve->intervals);
@@ -137,6 +143,8 @@ static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
     wp_buffer_puts(out, curve->exact ? "],\"exact\":true" : "],\"exact\":false");
     WP_BUFFER_LITERAL(out, ",\"resolution\":");
     wp_buffer_number(out, curve->resolution);
+    if (stopped)
+        write_stopped(out, reached);
     WP_BUFFER_LITERAL(out, "}");
 }
 
@@ -172,7 +180,8 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
                      "only with \"wrenches\": a push or gravity sweep takes its \"set\"");
         return false;
     }
-    if (!read_sweep_range(params, &state->range, error))
+    if (!read_sweep_range(params, &state->range, error) ||
+        !wp_read_deadline(params, &state->deadline, error))
         return false;
     if (state->what == SWEEP_WRENCHES) {
         wp_classify_request *r = &state->request;
@@ -317,6 +326,20 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     return WR_OK;
 }
 
+/* params.deadline_s given and passed. */
+static bool deadline_passed(const sweep_state *state)
+{
+    return state->deadline > 0 && wp_now_s() >= state->deadline;
+}
+
+/* ,"partial":true,"stopped_at":mu -- the members a sweep stopped by its
+ * deadline ends its result with (docs/PROTOCOL.md, friction.sweep). */
+static void write_stopped(wp_buffer *out, double reached)
+{
+    WP_BUFFER_LITERAL(out, ",\"partial\":true,\"stopped_at\":");
+    wp_buffer_number(out, reached + 0.0);
+}
+
 static int compare_mus(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -374,7 +397,13 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
         state->opened = true;
         WP_BUFFER_LITERAL(out, "{\"curve\":[");
     }
+    bool partial = false;
     for (bool first = true; state->sample < state->mu_count && !out->failed; first = false) {
+        /* Past the deadline: the samples so far (at least one). */
+        if (state->sample > 0 && deadline_passed(state)) {
+            partial = true;
+            break;
+        }
         if (!first && *used >= budget)
             return WP_STEP_MORE;
         if (wr_stop_requested(call->host->stop)) {
@@ -393,7 +422,7 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
         state->sample++;
     }
     WP_BUFFER_LITERAL(out, "],\"at\":[");
-    for (int i = 0; i < state->mu_count; i++) {
+    for (int i = 0; i < state->sample; i++) {
         if (i)
             WP_BUFFER_LITERAL(out, ",");
         if (isnan(state->at[i][0]))
@@ -405,6 +434,8 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
     write_intervals(out, &wr_sweep_job_curve(state->job)->intervals);
     WP_BUFFER_LITERAL(out, ",\"exact\":false,\"resolution\":");
     wp_buffer_number(out, (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));
+    if (partial)
+        write_stopped(out, state->mus[state->sample - 1]);
     WP_BUFFER_LITERAL(out, "}");
     return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
@@ -440,9 +471,15 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
                 }
             }
         }
-        bool done;
-        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1, used,
-                                            stop, &done);
+        /* Past the deadline: the job ends where it has got to, and is
+         * answered as if done; the result then says where that was. */
+        bool done = false, stopped = deadline_passed(state);
+        double reached = 0;
+        wr_status status = stopped ? wr_sweep_job_stop(state->job, &reached)
+                                   : wr_sweep_job_run(state->job,
+                                                      budget > *used ? budget - *used : 1, used,
+                                                      stop, &done);
+        done |= stopped;
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
@@ -450,7 +487,7 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         if (!done)
             continue;
         if (state->what != SWEEP_WRENCHES) {
-            write_curve(out, wr_sweep_job_curve(state->job));
+            write_curve(out, wr_sweep_job_curve(state->job), stopped, reached);
             return WP_STEP_DONE;
         }
         /* A wrench's set answered: {"goal": [...], ...} as its sets end. */
@@ -463,10 +500,17 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         write_intervals(out, wr_sweep_job_intervals(state->job));
         wr_sweep_job_free(state->job);
         state->job = NULL;
-        if (++state->set == r->set_count) {
+        if (++state->set == r->set_count || stopped) {
             WP_BUFFER_LITERAL(out, "}");
             state->set = 0;
             state->next++;
+        }
+        if (stopped) {
+            /* The last result's last set is answered up to `reached`. */
+            WP_BUFFER_LITERAL(out, "]");
+            write_stopped(out, reached);
+            WP_BUFFER_LITERAL(out, "}");
+            return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
         }
     }
     return WP_STEP_FAILED; /* out of memory: the buffer says so */
