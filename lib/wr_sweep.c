@@ -54,8 +54,11 @@ struct wr_sweeper {
     int plane_count;
     plane *planes;
     int *plane_cones;
-    int analysis_cones; /* both sets' cones: what each analysis builds */
+    int analysis_cones; /* the cones each analysis builds */
     values structure;   /* where a cone's faces change (settled) */
+    /* What every analysis at one mu shares: plan, modes, acceleration
+     * generators (G_strong's only when the set needs them). */
+    wr_analysis_frame *frame;
 };
 
 /* ---- small things ------------------------------------------------------------------ */
@@ -303,8 +306,10 @@ static wr_status build_family(wr_sweeper *s)
 {
     wr_fixture at_one;
     wr_fixture_at_friction(s->fixture, 1, s->range.kinetic_ratio, &at_one);
+    if (wr_analysis_frame_new(s->fixture, s->set != WR_SET_GOAL, &s->frame) != WR_OK)
+        return WR_NO_MEMORY;
     wr_analysis *analysis;
-    if (wr_analysis_new(&at_one, &analysis) != WR_OK)
+    if (wr_analysis_frame_at(s->frame, &at_one, &analysis) != WR_OK)
         return WR_NO_MEMORY;
     wr_status status = WR_NO_MEMORY;
     int sets[2], set_count = 0;
@@ -314,7 +319,7 @@ static wr_status build_family(wr_sweeper *s)
         sets[set_count++] = WR_SET_STRONG;
     int total = 0, generators = 0;
     s->analysis_cones = wr_analysis_cone_count(analysis, WR_SET_GOAL) +
-                        wr_analysis_cone_count(analysis, WR_SET_STRONG);
+                        (s->set != WR_SET_GOAL ? wr_analysis_cone_count(analysis, WR_SET_STRONG) : 0);
     for (int i = 0; i < set_count; i++) {
         int n = wr_analysis_cone_count(analysis, (wr_set)sets[i]);
         total += n;
@@ -442,6 +447,7 @@ void wr_sweeper_free(wr_sweeper *s)
     free(s->planes);
     free(s->plane_cones);
     free(s->structure.items);
+    wr_analysis_frame_free(s->frame);
     free(s);
 }
 
@@ -656,7 +662,7 @@ static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
     wr_fixture at;
     wr_fixture_at_friction(s->fixture, mu, s->range.kinetic_ratio, &at);
     wr_analysis *analysis;
-    *status = wr_analysis_new(&at, &analysis);
+    *status = wr_analysis_frame_at(s->frame, &at, &analysis);
     if (*status != WR_OK)
         return -1;
     double result = 0;
