@@ -177,6 +177,8 @@ struct wr_analysis {
     bool plan_borrowed;           /* the plan is the caller's (wr_analysis_goal_new) */
     bool complete;                /* the modes and G_strong's cones are derived */
     bool modes_borrowed;          /* the modes are a frame's (wr_analysis_frame_at) */
+    const bool *goal_shared;      /* NULL, or which cones are a frame's, not to */
+    const bool *modes_shared;     /* free (wr_analysis_frame_at) */
 };
 
 /* A cone in two parts (wr_cone.c).  Its acceleration generators M Q_X

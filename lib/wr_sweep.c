@@ -178,6 +178,37 @@ static double poly_value(const double *c, int degree, double x)
     return v;
 }
 
+/* Is |p| above `margin` on all of [lo, hi], by the Bernstein coefficients
+ * of p on the interval (p lies between the smallest and the largest)?
+ * Most of a sweep's polynomials have no root in the range: this settles
+ * them without their derivatives' roots.  The margin is far above the
+ * rounding of the coefficients and of poly_roots' own evaluations, so
+ * where this says yes poly_roots would find no root, nor a touch. */
+static bool clear_of_zero(const double *c, int degree, double lo, double hi, double margin)
+{
+    /* p(lo + w t) = sum e_i (w t)^i: the Taylor shift to lo. */
+    double e[MAX_DEGREE + 1];
+    memcpy(e, c, (size_t)(degree + 1) * sizeof *e);
+    for (int i = 0; i < degree; i++)
+        for (int j = degree - 1; j >= i; j--)
+            e[j] += lo * e[j + 1];
+    double w = hi - lo, power = 1;
+    for (int i = 0; i <= degree; i++, power *= w)
+        e[i] *= power;
+    /* b_k = sum_{i <= k} C(k, i) / C(n, i) e_i. */
+    static const double binomial[MAX_DEGREE + 1][MAX_DEGREE + 1] = {
+        {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
+    bool above = true, below = true;
+    for (int k = 0; k <= degree && (above || below); k++) {
+        double b = 0;
+        for (int i = 0; i <= k; i++)
+            b += binomial[k][i] / binomial[degree][i] * e[i];
+        above &= b > margin;
+        below &= b < -margin;
+    }
+    return above || below;
+}
+
 /* The root of a polynomial that changes sign on [lo, hi], bisected until
  * the interval cannot shrink. */
 static double bisect(const double *c, int degree, double lo, double hi, double value_lo)
@@ -215,6 +246,8 @@ static int poly_roots(const double *coefficients, int degree, double lo, double 
         size += fabs(coefficients[i]) * power;
     if (size == 0 || !isfinite(size))
         return size == 0 ? -1 : 0;
+    if (degree >= 2 && clear_of_zero(coefficients, degree, lo, hi, 1e-11 * size))
+        return 0;
     /* Terms that cannot matter on the interval are dropped: the degree
      * the polynomial really has there. */
     double c[MAX_DEGREE + 1];
