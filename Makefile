@@ -345,9 +345,13 @@ $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 # linked against its libraries.
 BASELINE_REVISION = a296b40
 BASELINE_ANSWER = $(BUILD)/baseline/answer
-$(BASELINE_ANSWER): bench/answer.c bench/bench_util.h
+BASELINE_DAEMON = $(BUILD)/baseline/src/build/wrenchd
+$(BUILD)/baseline/src/Makefile:
 	rm -rf $(BUILD)/baseline/src && mkdir -p $(BUILD)/baseline/src
 	git archive $(BASELINE_REVISION) | tar -x -C $(BUILD)/baseline/src
+$(BASELINE_DAEMON): $(BUILD)/baseline/src/Makefile
+	$(MAKE) -C $(BUILD)/baseline/src build/wrenchd
+$(BASELINE_ANSWER): bench/answer.c bench/bench_util.h $(BUILD)/baseline/src/Makefile
 	$(MAKE) -C $(BUILD)/baseline/src build/libwrench.a build/libwrenchproto.a
 	$(call compile,plain) -I$(BUILD)/baseline/src/lib -I$(BUILD)/baseline/src/proto -Ibench bench/answer.c \
 	    $(BUILD)/baseline/src/build/libwrenchproto.a $(BUILD)/baseline/src/build/libwrench.a \
@@ -356,7 +360,7 @@ $(BASELINE_ANSWER): bench/answer.c bench/bench_util.h
 # The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
 bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE) \
-       $(BENCH_ANSWER) $(BASELINE_ANSWER)
+       $(BENCH_ANSWER) $(BASELINE_ANSWER) $(BASELINE_DAEMON)
 	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
