@@ -673,6 +673,7 @@ struct wr_sweep_job {
     int edge, edge_count, row;
     wr_edge_frame frame;
     double (*alpha)[3], (*beta)[3];
+    bool *cuts;                /* the plane may cut the edge somewhere in the range */
     values roots;
     /* PHASE_DECIDE, PHASE_CURVE: the next piece or point. */
     int index;
@@ -726,6 +727,37 @@ static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
 }
 
 /* ---- push and gravity: where two planes meet the edge at one point ---------------- */
+
+/* The sign of p on [lo, hi] when |p| stays above `margin` there (by its
+ * Bernstein coefficients), else 0. */
+static int sign_clear(const double *c, int degree, double lo, double hi, double margin)
+{
+    if (!clear_of_zero(c, degree, lo, hi, margin))
+        return 0;
+    return poly_value(c, degree, lo) > 0 ? 1 : -1;
+}
+
+/* Can the plane with alpha(mu) = c1 . n(mu), beta(mu) = c2 . n(mu) cut a
+ * straight edge c1 + t c2, t in [0, 1], at some mu of the range?  It cuts
+ * at t = -alpha / beta, in [0, 1] exactly when alpha and alpha + beta (its
+ * values at the edge's two ends) do not have one strict sign.  No when
+ * both keep one sign, clear of zero by far more than the rounding of any
+ * root, all over the range: then no point where this plane meets another
+ * lies on the edge (edge_row's test, to 1e-9 in t, would drop it). */
+static bool line_cut_possible(const double alpha[3], const double beta[3],
+                              const wr_sweep_range *r)
+{
+    double end[3], reach = fmax(1, fmax(fabs(r->low), fabs(r->high))), size = 0, power = 1;
+    for (int k = 0; k < 3; k++, power *= reach) {
+        end[k] = alpha[k] + beta[k];
+        size += (fabs(alpha[k]) + fabs(beta[k])) * power;
+    }
+    if (!(size > 0) || !isfinite(size))
+        return true;
+    double margin = 1e-6 * size;
+    int a = sign_clear(alpha, 2, r->low, r->high, margin);
+    return a == 0 || a != sign_clear(end, 2, r->low, r->high, margin);
+}
 
 /* The frame of the job's current edge, each plane's alpha = c1 . n(mu) and
  * beta = c2 . n(mu) on it, and for a push the roots of the edge's ends
@@ -789,11 +821,14 @@ static wr_status edge_begin(wr_sweep_job *job)
                 return status;
         }
     }
-    for (int i = 0; i < s->plane_count; i++)
+    for (int i = 0; i < s->plane_count; i++) {
         for (int k = 0; k < 3; k++) {
             job->alpha[i][k] = wr_dot3(job->frame.c1, s->planes[i].n[k]);
             job->beta[i][k] = wr_dot3(job->frame.c2, s->planes[i].n[k]);
         }
+        job->cuts[i] = job->frame.kind != WR_EDGE_LINE ||
+                       line_cut_possible(job->alpha[i], job->beta[i], &s->range);
+    }
     return job->roots.failed ? WR_NO_MEMORY : WR_OK;
 }
 
@@ -807,7 +842,11 @@ static void edge_row(wr_sweep_job *job, int i)
     const wr_sweep_range *r = &s->range;
     const wr_edge_frame *frame = &job->frame;
     double (*alpha)[3] = job->alpha, (*beta)[3] = job->beta;
+    if (!job->cuts[i])
+        return;
     for (int j = i + 1; j < s->plane_count; j++) {
+        if (!job->cuts[j])
+            continue;
         double c[5] = {0, 0, 0, 0, 0};
         for (int x = 0; x < 3; x++)
             for (int y = 0; y < 3; y++)
@@ -1064,6 +1103,7 @@ void wr_sweep_job_free(wr_sweep_job *job)
         return;
     free(job->alpha);
     free(job->beta);
+    free(job->cuts);
     free(job->roots.items);
     free(job->points.items);
     wr_intervals_release(&job->intervals);
@@ -1096,7 +1136,8 @@ static wr_sweep_job *job_new(const wr_sweeper *s, what what)
         size_t planes = (size_t)s->plane_count + 1;
         job->alpha = malloc(planes * sizeof *job->alpha);
         job->beta = malloc(planes * sizeof *job->beta);
-        if (!job->alpha || !job->beta) {
+        job->cuts = malloc(planes * sizeof *job->cuts);
+        if (!job->alpha || !job->beta || !job->cuts) {
             wr_sweep_job_free(job);
             return NULL;
         }
