@@ -675,8 +675,13 @@ struct wr_sweep_job {
     double (*alpha)[3], (*beta)[3];
     bool *cuts;                /* the plane may cut the edge somewhere in the range */
     values roots;
-    /* PHASE_DECIDE, PHASE_CURVE: the next piece or point. */
+    /* PHASE_DECIDE, PHASE_CURVE: the next piece or point; for G_goal
+     * (decide_shrinking) the pieces known non-empty, [0, full_below), the
+     * first known empty, empty_at (-1 before the bisection), and the mu
+     * beyond which the answer is empty (+inf: none). */
     int index;
+    int full_below, empty_at;
+    double empty_from;
     values points;
     /* PHASE_SAMPLED: the step of mu, the emptiness before it, where the
      * current interval started, and a change being bisected in [lo, hi]. */
@@ -1015,6 +1020,48 @@ static wr_status sampled_unit(wr_sweep_job *job, unsigned long *spent)
     return WR_OK;
 }
 
+/* The pieces of a G_goal sweep, decided by bisection over them.  G_goal
+ * only shrinks as mu grows (its strings use s, u and m, and an m cone
+ * widens with mu_s: docs/PROTOCOL.md), and so do a push region, a gravity
+ * arc and the set of mu at which a wrench is inside: the pieces in which
+ * the answer is non-empty come first.  The first empty one is found with
+ * log2 of the pieces' answers (each the answer at its middle, as for any
+ * set), and the intervals are the union of the pieces before it, as
+ * deciding every piece would make them; the curve's points beyond it are
+ * empty (empty_from). */
+static wr_status decide_shrinking(wr_sweep_job *job, wr_intervals *out, unsigned long *spent)
+{
+    int pieces = job->roots.count - 1;
+    if (job->full_below < 0 && job->empty_at == 0) {
+        job->full_below = 0; /* pieces [0, full_below) are non-empty */
+        job->empty_at = pieces; /* piece empty_at is empty (pieces: none known) */
+    }
+    if (job->full_below < job->empty_at) {
+        int piece = job->full_below + (job->empty_at - job->full_below) / 2;
+        double lo = job->roots.items[piece], hi = job->roots.items[piece + 1];
+        wr_status status = WR_OK;
+        double value = answer_at(job, lo + (hi - lo) / 2, &status);
+        *spent += job->evaluation_cost;
+        if (status != WR_OK)
+            return status;
+        if (value > 0)
+            job->full_below = piece + 1;
+        else
+            job->empty_at = piece;
+        return WR_OK;
+    }
+    if (job->empty_at > 0 &&
+        !add_interval(out, job->roots.items[0], job->roots.items[job->empty_at]))
+        return WR_NO_MEMORY;
+    if (job->empty_at < pieces)
+        job->empty_from = job->roots.items[job->empty_at];
+    if (job->what == WHAT_WRENCH) {
+        job->phase = PHASE_DONE;
+        return WR_OK;
+    }
+    return curve_begin(job);
+}
+
 /* One unit of work: a plane row of an edge, a piece decided, a point of the
  * curve, a step of the sampled sweep. */
 static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
@@ -1058,6 +1105,8 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
         return status;
     case PHASE_DECIDE: {
         wr_intervals *out = job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;
+        if (s->set == WR_SET_GOAL)
+            return decide_shrinking(job, out, spent);
         if (job->index + 1 >= job->roots.count) {
             if (job->what == WHAT_WRENCH) {
                 job->phase = PHASE_DONE;
@@ -1082,8 +1131,12 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
             return WR_OK;
         }
         double mu = job->points.items[job->index];
-        double length = answer_at(job, mu, &status);
-        *spent += job->evaluation_cost;
+        /* Beyond the end of a shrinking set's last interval: empty. */
+        double length = 0;
+        if (!(mu > job->empty_from)) {
+            length = answer_at(job, mu, &status);
+            *spent += job->evaluation_cost;
+        }
         if (status != WR_OK)
             return status;
         job->curve.points[job->index][0] = mu;
@@ -1122,6 +1175,8 @@ static wr_sweep_job *job_new(const wr_sweeper *s, what what)
     job->edge_count = 1;
     job->curve.exact = true;
     job->row_cost = 32; /* a quartic's roots and their checks */
+    job->full_below = -1;
+    job->empty_from = INFINITY;
     /* An analysis at one mu: every cone's hull; then the question. */
     unsigned long cones = (unsigned long)s->cone_count + 1;
     job->evaluation_cost = (unsigned long)s->analysis_cones * 300 + cones * 4;
