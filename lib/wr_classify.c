@@ -235,7 +235,7 @@ static wr_status frame_cones_build(const wr_fixture *at, const wr_constraint *co
     return WR_OK;
 }
 
-wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture *at,
+wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture *at, bool strong,
                                wr_analysis **out)
 {
     *out = NULL;
@@ -249,7 +249,7 @@ wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture 
     a->goal_shared = frame->goal.shared;
     wr_status status =
         frame_cones_build(at, a->plan->kept, a->plan->kept_count, &frame->goal, &a->goal_cones);
-    if (status == WR_OK && frame->strong) {
+    if (status == WR_OK && strong && frame->strong) {
         a->modes = frame->modes;
         a->modes_borrowed = true;
         a->modes_shared = frame->modes_cones.shared;

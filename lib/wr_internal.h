@@ -199,12 +199,13 @@ wr_status wr_cone_build_from(struct wr_cone *cone, const wr_fixture *fixture,
  * (the same fixels, normals and body; wr_fixture_at_friction) by building
  * only the friction edges and the hulls: bit for bit what
  * wr_analysis_new makes of that fixture, but that without `strong` the
- * analysis has only G_goal's cones (as wr_analysis_goal_new's).  The
+ * analysis has only G_goal's cones (as wr_analysis_goal_new's), and so
+ * has an analysis made without `strong` from a frame that has them.  The
  * frame is immutable once built: any number of threads may use it; it
  * must outlive every analysis made from it. */
 typedef struct wr_analysis_frame wr_analysis_frame;
 wr_status wr_analysis_frame_new(const wr_fixture *fixture, bool strong, wr_analysis_frame **out);
-wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture *at,
+wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture *at, bool strong,
                                struct wr_analysis **out);
 void wr_analysis_frame_free(wr_analysis_frame *frame);
 

@@ -342,7 +342,7 @@ static wr_status build_family(wr_sweeper *s)
     if (wr_analysis_frame_new(s->fixture, s->set != WR_SET_GOAL, &s->frame) != WR_OK)
         return WR_NO_MEMORY;
     wr_analysis *analysis;
-    if (wr_analysis_frame_at(s->frame, &at_one, &analysis) != WR_OK)
+    if (wr_analysis_frame_at(s->frame, &at_one, s->set != WR_SET_GOAL, &analysis) != WR_OK)
         return WR_NO_MEMORY;
     wr_status status = WR_NO_MEMORY;
     int sets[2], set_count = 0;
@@ -693,32 +693,33 @@ struct wr_sweep_job {
     unsigned long evaluation_cost, row_cost;
 };
 
-/* The answer at mu: for a wrench 1 inside, 0 not; for a region its total
+/* The answer at mu for `set` (the sweeper's, or G_goal: wr_sweep.c's
+ * decide_shrinking): for a wrench 1 inside, 0 not; for a region its total
  * length.  -1 with *status set on failure. */
-static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
+static double answer_in(const wr_sweep_job *job, double mu, wr_set set, wr_status *status)
 {
     const wr_sweeper *s = job->sweeper;
     wr_fixture at;
     wr_fixture_at_friction(s->fixture, mu, s->range.kinetic_ratio, &at);
     wr_analysis *analysis;
-    *status = wr_analysis_frame_at(s->frame, &at, &analysis);
+    *status = wr_analysis_frame_at(s->frame, &at, set != WR_SET_GOAL, &analysis);
     if (*status != WR_OK)
         return -1;
     double result = 0;
     if (job->what == WHAT_WRENCH) {
         wr_answer answer;
-        *status = wr_classify(analysis, job->wrench, s->set, WR_DEFAULT_TOLERANCE, &answer);
+        *status = wr_classify(analysis, job->wrench, set, WR_DEFAULT_TOLERANCE, &answer);
         result = answer.verdict == WR_VERDICT_INSIDE;
     } else {
         wr_regions regions;
         if (job->what == WHAT_PUSH)
             *status = job->push_index
-                          ? wr_push_regions_indexed(analysis, s->set, job->push_index, job->stop,
+                          ? wr_push_regions_indexed(analysis, set, job->push_index, job->stop,
                                                     &regions)
-                          : wr_push_regions_finger(analysis, s->set, &job->finger, job->stop,
+                          : wr_push_regions_finger(analysis, set, &job->finger, job->stop,
                                                    &regions);
         else
-            *status = wr_gravity_sweep(analysis, s->set, &regions);
+            *status = wr_gravity_sweep(analysis, set, &regions);
         for (int i = 0; *status == WR_OK && i < regions.count; i++)
             result += job->what == WHAT_PUSH ? wr_region_length(&at, &regions.items[i])
                                              : regions.items[i].t1 - regions.items[i].t0;
@@ -729,6 +730,11 @@ static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
     }
     wr_analysis_free(analysis);
     return *status == WR_OK ? result : -1;
+}
+
+static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
+{
+    return answer_in(job, mu, job->sweeper->set, status);
 }
 
 /* ---- push and gravity: where two planes meet the edge at one point ---------------- */
@@ -1020,27 +1026,29 @@ static wr_status sampled_unit(wr_sweep_job *job, unsigned long *spent)
     return WR_OK;
 }
 
-/* The pieces of a G_goal sweep, decided by bisection over them.  G_goal
- * only shrinks as mu grows (its strings use s, u and m, and an m cone
- * widens with mu_s: docs/PROTOCOL.md), and so do a push region, a gravity
- * arc and the set of mu at which a wrench is inside: the pieces in which
- * the answer is non-empty come first.  The first empty one is found with
- * log2 of the pieces' answers (each the answer at its middle, as for any
- * set), and the intervals are the union of the pieces before it, as
- * deciding every piece would make them; the curve's points beyond it are
- * empty (empty_from). */
+/* The pieces of a G_goal or a both sweep.  G_goal only shrinks as mu
+ * grows (its strings use s, u and m, and an m cone widens with mu_s:
+ * docs/PROTOCOL.md), and so do its push regions, its gravity arcs and the
+ * set of mu at which a wrench is in it: the pieces in which G_goal's answer
+ * is non-empty come first, and the first empty one is found by bisection,
+ * each piece's G_goal answer taken at its middle.  A goal sweep's intervals
+ * are then the union of the pieces before it, as deciding every piece
+ * would make them.  G_both lies in G_goal, so a both sweep decides only
+ * the pieces before it, one at a time.  For either, the curve's points
+ * beyond it are empty (empty_from). */
 static wr_status decide_shrinking(wr_sweep_job *job, wr_intervals *out, unsigned long *spent)
 {
+    const wr_sweeper *s = job->sweeper;
     int pieces = job->roots.count - 1;
-    if (job->full_below < 0 && job->empty_at == 0) {
-        job->full_below = 0; /* pieces [0, full_below) are non-empty */
-        job->empty_at = pieces; /* piece empty_at is empty (pieces: none known) */
+    wr_status status = WR_OK;
+    if (job->full_below < 0) {
+        job->full_below = 0;    /* pieces [0, full_below): G_goal non-empty */
+        job->empty_at = pieces; /* the first piece known empty (pieces: none) */
     }
     if (job->full_below < job->empty_at) {
         int piece = job->full_below + (job->empty_at - job->full_below) / 2;
         double lo = job->roots.items[piece], hi = job->roots.items[piece + 1];
-        wr_status status = WR_OK;
-        double value = answer_at(job, lo + (hi - lo) / 2, &status);
+        double value = answer_in(job, lo + (hi - lo) / 2, WR_SET_GOAL, &status);
         *spent += job->evaluation_cost;
         if (status != WR_OK)
             return status;
@@ -1050,9 +1058,19 @@ static wr_status decide_shrinking(wr_sweep_job *job, wr_intervals *out, unsigned
             job->empty_at = piece;
         return WR_OK;
     }
-    if (job->empty_at > 0 &&
-        !add_interval(out, job->roots.items[0], job->roots.items[job->empty_at]))
-        return WR_NO_MEMORY;
+    if (s->set == WR_SET_GOAL) {
+        if (job->empty_at > 0 &&
+            !add_interval(out, job->roots.items[0], job->roots.items[job->empty_at]))
+            return WR_NO_MEMORY;
+    } else if (job->index < job->empty_at) {
+        double lo = job->roots.items[job->index], hi = job->roots.items[job->index + 1];
+        double value = answer_at(job, lo + (hi - lo) / 2, &status);
+        *spent += job->evaluation_cost;
+        job->index++;
+        if (status == WR_OK && value > 0 && !add_interval(out, lo, hi))
+            status = WR_NO_MEMORY;
+        return status;
+    }
     if (job->empty_at < pieces)
         job->empty_from = job->roots.items[job->empty_at];
     if (job->what == WHAT_WRENCH) {
@@ -1105,7 +1123,7 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
         return status;
     case PHASE_DECIDE: {
         wr_intervals *out = job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;
-        if (s->set == WR_SET_GOAL)
+        if (s->set != WR_SET_STRONG)
             return decide_shrinking(job, out, spent);
         if (job->index + 1 >= job->roots.count) {
             if (job->what == WHAT_WRENCH) {

@@ -86,7 +86,7 @@ static void frame_analyses_are_the_analyses_at_each_mu(void **state)
                 wr_fixture_at_friction(f, mu, ratio, &at);
                 wr_analysis *fresh, *framed;
                 assert_int_equal(wr_analysis_new(&at, &fresh), WR_OK);
-                assert_int_equal(wr_analysis_frame_at(frame, &at, &framed), WR_OK);
+                assert_int_equal(wr_analysis_frame_at(frame, &at, strong, &framed), WR_OK);
                 int goal = wr_analysis_cone_count(fresh, WR_SET_GOAL);
                 assert_int_equal(wr_analysis_cone_count(framed, WR_SET_GOAL), goal);
                 for (int i = 0; i < goal; i++)
