@@ -673,7 +673,7 @@ struct wr_sweep_job {
     int edge, edge_count, row;
     wr_edge_frame frame;
     double (*alpha)[3], (*beta)[3];
-    bool *cuts;                /* the plane may cut the edge somewhere in the range */
+    double *cut_from, *cut_to; /* where in mu each plane may cut the edge (line_cut_span) */
     values roots;
     /* PHASE_DECIDE, PHASE_CURVE: the next piece or point; for G_goal
      * (decide_shrinking) the pieces known non-empty, [0, full_below), the
@@ -739,35 +739,62 @@ static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
 
 /* ---- push and gravity: where two planes meet the edge at one point ---------------- */
 
-/* The sign of p on [lo, hi] when |p| stays above `margin` there (by its
- * Bernstein coefficients), else 0. */
-static int sign_clear(const double *c, int degree, double lo, double hi, double margin)
-{
-    if (!clear_of_zero(c, degree, lo, hi, margin))
-        return 0;
-    return poly_value(c, degree, lo) > 0 ? 1 : -1;
-}
+/* A plane cuts a straight edge c1 + t c2 where alpha + t beta = 0 (alpha =
+ * c1 . n(mu), beta = c2 . n(mu)).  Two planes' roots on the edge are kept
+ * only where t is within 1e-9 of [0, 1] (edge_row); this much wider slack
+ * covers that and every rounding of a root. */
+#define CUT_SLACK 1e-6
 
-/* Can the plane with alpha(mu) = c1 . n(mu), beta(mu) = c2 . n(mu) cut a
- * straight edge c1 + t c2, t in [0, 1], at some mu of the range?  It cuts
- * at t = -alpha / beta, in [0, 1] exactly when alpha and alpha + beta (its
- * values at the edge's two ends) do not have one strict sign.  No when
- * both keep one sign, clear of zero by far more than the rounding of any
- * root, all over the range: then no point where this plane meets another
- * lies on the edge (edge_row's test, to 1e-9 in t, would drop it). */
-static bool line_cut_possible(const double alpha[3], const double beta[3],
-                              const wr_sweep_range *r)
+/* The smallest interval [*from, *to] of the range holding every mu at
+ * which the plane cuts the straight edge at t in [-CUT_SLACK, 1 +
+ * CUT_SLACK]: where A = alpha - CUT_SLACK beta and B = alpha + (1 +
+ * CUT_SLACK) beta, the values at the slack's two ends, do not have one
+ * strict sign.  Their sign changes only at their roots, so a test at the
+ * middle of each piece between them decides the piece.  *from > *to: the
+ * plane never cuts the edge.  The whole range when A or B vanishes
+ * throughout.  Widened by far more than a root's rounding. */
+static void line_cut_span(const double alpha[3], const double beta[3], const wr_sweep_range *r,
+                          double *from, double *to)
 {
-    double end[3], reach = fmax(1, fmax(fabs(r->low), fabs(r->high))), size = 0, power = 1;
-    for (int k = 0; k < 3; k++, power *= reach) {
-        end[k] = alpha[k] + beta[k];
-        size += (fabs(alpha[k]) + fabs(beta[k])) * power;
+    double A[3], B[3], points[2 * (MAX_DEGREE + 2) + 2];
+    for (int k = 0; k < 3; k++) {
+        A[k] = alpha[k] - CUT_SLACK * beta[k];
+        B[k] = alpha[k] + (1 + CUT_SLACK) * beta[k];
     }
-    if (!(size > 0) || !isfinite(size))
-        return true;
-    double margin = 1e-6 * size;
-    int a = sign_clear(alpha, 2, r->low, r->high, margin);
-    return a == 0 || a != sign_clear(end, 2, r->low, r->high, margin);
+    double widen = 1e-9 * fmax(1, r->high);
+    int n = 0, fa = poly_roots(A, 2, r->low, r->high, points);
+    int fb = fa < 0 ? -1 : poly_roots(B, 2, r->low, r->high, points + fa);
+    if (fa < 0 || fb < 0) {
+        *from = r->low;
+        *to = r->high;
+        return;
+    }
+    n = fa + fb;
+    *from = INFINITY;
+    *to = -INFINITY;
+    for (int i = 0; i < n; i++) { /* the roots cut at an end of the slack */
+        *from = fmin(*from, points[i]);
+        *to = fmax(*to, points[i]);
+    }
+    points[n++] = r->low;
+    points[n++] = r->high;
+    for (int i = 1; i < n; i++) /* insertion sort: at most six */
+        for (int j = i; j > 0 && points[j] < points[j - 1]; j--) {
+            double t = points[j];
+            points[j] = points[j - 1];
+            points[j - 1] = t;
+        }
+    for (int i = 0; i + 1 < n; i++) {
+        double mid = points[i] + (points[i + 1] - points[i]) / 2;
+        if (poly_value(A, 2, mid) * poly_value(B, 2, mid) <= 0) {
+            *from = fmin(*from, points[i]);
+            *to = fmax(*to, points[i + 1]);
+        }
+    }
+    if (*from <= *to) {
+        *from -= widen;
+        *to += widen;
+    }
 }
 
 /* The frame of the job's current edge, each plane's alpha = c1 . n(mu) and
@@ -837,8 +864,13 @@ static wr_status edge_begin(wr_sweep_job *job)
             job->alpha[i][k] = wr_dot3(job->frame.c1, s->planes[i].n[k]);
             job->beta[i][k] = wr_dot3(job->frame.c2, s->planes[i].n[k]);
         }
-        job->cuts[i] = job->frame.kind != WR_EDGE_LINE ||
-                       line_cut_possible(job->alpha[i], job->beta[i], &s->range);
+        if (job->frame.kind == WR_EDGE_LINE) {
+            line_cut_span(job->alpha[i], job->beta[i], &s->range, &job->cut_from[i],
+                          &job->cut_to[i]);
+        } else {
+            job->cut_from[i] = s->range.low;
+            job->cut_to[i] = s->range.high;
+        }
     }
     return job->roots.failed ? WR_NO_MEMORY : WR_OK;
 }
@@ -853,10 +885,12 @@ static void edge_row(wr_sweep_job *job, int i)
     const wr_sweep_range *r = &s->range;
     const wr_edge_frame *frame = &job->frame;
     double (*alpha)[3] = job->alpha, (*beta)[3] = job->beta;
-    if (!job->cuts[i])
-        return;
+    double from = job->cut_from[i], to = job->cut_to[i];
+    if (from > to)
+        return; /* never on the edge */
     for (int j = i + 1; j < s->plane_count; j++) {
-        if (!job->cuts[j])
+        /* A root kept is where both planes cut the edge. */
+        if (job->cut_to[j] < from || job->cut_from[j] > to || job->cut_from[j] > job->cut_to[j])
             continue;
         double c[5] = {0, 0, 0, 0, 0};
         for (int x = 0; x < 3; x++)
@@ -1174,7 +1208,8 @@ void wr_sweep_job_free(wr_sweep_job *job)
         return;
     free(job->alpha);
     free(job->beta);
-    free(job->cuts);
+    free(job->cut_from);
+    free(job->cut_to);
     free(job->roots.items);
     free(job->points.items);
     wr_intervals_release(&job->intervals);
@@ -1209,8 +1244,9 @@ static wr_sweep_job *job_new(const wr_sweeper *s, what what)
         size_t planes = (size_t)s->plane_count + 1;
         job->alpha = malloc(planes * sizeof *job->alpha);
         job->beta = malloc(planes * sizeof *job->beta);
-        job->cuts = malloc(planes * sizeof *job->cuts);
-        if (!job->alpha || !job->beta || !job->cuts) {
+        job->cut_from = malloc(planes * sizeof *job->cut_from);
+        job->cut_to = malloc(planes * sizeof *job->cut_to);
+        if (!job->alpha || !job->beta || !job->cut_from || !job->cut_to) {
             wr_sweep_job_free(job);
             return NULL;
         }
