@@ -673,7 +673,7 @@ struct wr_sweep_job {
     int edge, edge_count, row;
     wr_edge_frame frame;
     double (*alpha)[3], (*beta)[3];
-    double *cut_from, *cut_to; /* where in mu each plane may cut the edge (line_cut_span) */
+    double *cut_from, *cut_to; /* where in mu each plane may cut the edge (edge_cut_span) */
     values roots;
     /* PHASE_DECIDE, PHASE_CURVE: the next piece or point; for G_goal
      * (decide_shrinking) the pieces known non-empty, [0, full_below), the
@@ -739,28 +739,27 @@ static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
 
 /* ---- push and gravity: where two planes meet the edge at one point ---------------- */
 
-/* A plane cuts a straight edge c1 + t c2 where alpha + t beta = 0 (alpha =
- * c1 . n(mu), beta = c2 . n(mu)).  Two planes' roots on the edge are kept
- * only where t is within 1e-9 of [0, 1] (edge_row); this much wider slack
- * covers that and every rounding of a root. */
+/* A plane cuts an edge where its two coordinates on the edge meet
+ * (wr_internal.h's frames): a straight edge c1 + t c2 where alpha + t beta
+ * = 0, an arc (sin phi / s) c1 + cos phi c2 where (tan phi / s) alpha +
+ * beta = 0 (cos phi > 0 on an arc below a half circle), with alpha = c1 .
+ * n(mu), beta = c2 . n(mu).  Two planes' roots on the edge are kept only
+ * where t is within 1e-9 of [0, 1] or phi of [-a, a] (edge_row); this much
+ * wider slack covers that and every rounding of a root. */
 #define CUT_SLACK 1e-6
 
 /* The smallest interval [*from, *to] of the range holding every mu at
- * which the plane cuts the straight edge at t in [-CUT_SLACK, 1 +
- * CUT_SLACK]: where A = alpha - CUT_SLACK beta and B = alpha + (1 +
- * CUT_SLACK) beta, the values at the slack's two ends, do not have one
- * strict sign.  Their sign changes only at their roots, so a test at the
- * middle of each piece between them decides the piece.  *from > *to: the
- * plane never cuts the edge.  The whole range when A or B vanishes
- * throughout.  Widened by far more than a root's rounding. */
-static void line_cut_span(const double alpha[3], const double beta[3], const wr_sweep_range *r,
-                          double *from, double *to)
+ * which the plane's cut lies within the slack of the edge: where A(mu) and
+ * B(mu), the values of the form that vanishes at the cut (affine in the
+ * edge's parameter) at the slack's two ends, do not have one strict sign.  Their
+ * sign changes only at their roots, so a test at the middle of each piece
+ * between them decides the piece.  *from > *to: the plane never cuts the
+ * edge.  The whole range when A or B vanishes throughout.  Widened by far
+ * more than a root's rounding. */
+static void cut_span(const double A[3], const double B[3], const wr_sweep_range *r,
+                     double *from, double *to)
 {
-    double A[3], B[3], points[2 * (MAX_DEGREE + 2) + 2];
-    for (int k = 0; k < 3; k++) {
-        A[k] = alpha[k] - CUT_SLACK * beta[k];
-        B[k] = alpha[k] + (1 + CUT_SLACK) * beta[k];
-    }
+    double points[2 * (MAX_DEGREE + 2) + 2];
     double widen = 1e-9 * fmax(1, r->high);
     int n = 0, fa = poly_roots(A, 2, r->low, r->high, points);
     int fb = fa < 0 ? -1 : poly_roots(B, 2, r->low, r->high, points + fa);
@@ -795,6 +794,36 @@ static void line_cut_span(const double alpha[3], const double beta[3], const wr_
         *from -= widen;
         *to += widen;
     }
+}
+
+/* cut_span for the job's current edge and plane i: a line's form at t =
+ * -CUT_SLACK and 1 + CUT_SLACK; an arc's (in u = tan phi) at phi = -+(a +
+ * CUT_SLACK); the whole range on a circle, or an arc too near a half
+ * circle for tan. */
+static void edge_cut_span(const wr_sweep_job *job, int i, double *from, double *to)
+{
+    const wr_sweep_range *r = &job->sweeper->range;
+    const wr_edge_frame *frame = &job->frame;
+    const double *alpha = job->alpha[i], *beta = job->beta[i];
+    double A[3], B[3];
+    if (frame->kind == WR_EDGE_LINE) {
+        for (int k = 0; k < 3; k++) {
+            A[k] = alpha[k] - CUT_SLACK * beta[k];
+            B[k] = alpha[k] + (1 + CUT_SLACK) * beta[k];
+        }
+    } else if (frame->kind == WR_EDGE_ARC && frame->half_angle + CUT_SLACK < WR_PI / 2 - 1e-3 &&
+               frame->half_angle_sin > 0) {
+        double reach = tan(frame->half_angle + CUT_SLACK) / frame->half_angle_sin;
+        for (int k = 0; k < 3; k++) {
+            A[k] = beta[k] - reach * alpha[k];
+            B[k] = beta[k] + reach * alpha[k];
+        }
+    } else {
+        *from = r->low;
+        *to = r->high;
+        return;
+    }
+    cut_span(A, B, r, from, to);
 }
 
 /* The frame of the job's current edge, each plane's alpha = c1 . n(mu) and
@@ -864,13 +893,7 @@ static wr_status edge_begin(wr_sweep_job *job)
             job->alpha[i][k] = wr_dot3(job->frame.c1, s->planes[i].n[k]);
             job->beta[i][k] = wr_dot3(job->frame.c2, s->planes[i].n[k]);
         }
-        if (job->frame.kind == WR_EDGE_LINE) {
-            line_cut_span(job->alpha[i], job->beta[i], &s->range, &job->cut_from[i],
-                          &job->cut_to[i]);
-        } else {
-            job->cut_from[i] = s->range.low;
-            job->cut_to[i] = s->range.high;
-        }
+        edge_cut_span(job, i, &job->cut_from[i], &job->cut_to[i]);
     }
     return job->roots.failed ? WR_NO_MEMORY : WR_OK;
 }
