@@ -14,7 +14,8 @@ fixel along its edge by a few thousandths, so that nothing is
 answered from a cache a real drag would miss.  Times each request and the
 whole recompute with the Python client (its own time included) against
 build/wrenchd and against the baseline's daemon (the Makefile's
-BASELINE_REVISION), the two alternating; medians of N (default 15).
+BASELINE_REVISION), alternating, each first every other time; medians of N
+(default 15).
 """
 import json
 import os
@@ -95,8 +96,11 @@ def main():
             runs = {"new": [], "baseline": []}
             for i in range(repeats):
                 f = moved(fixture, i % 7)
-                runs["new"].append(recompute(cnew, f))
-                runs["baseline"].append(recompute(cbase, f))
+                # Which goes first alternates: neither always follows the
+                # other's heaviest request.
+                order = [("new", cnew), ("baseline", cbase)]
+                for side, client in order if i % 2 == 0 else order[::-1]:
+                    runs[side].append(recompute(client, f))
         finally:
             for d in (dnew, dbase):
                 d.terminate()
