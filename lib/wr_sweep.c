@@ -1083,6 +1083,20 @@ static wr_status sampled_unit(wr_sweep_job *job, unsigned long *spent)
     return WR_OK;
 }
 
+/* Piece job->index decided at its middle; its interval added when the
+ * answer there is non-empty. */
+static wr_status decide_piece(wr_sweep_job *job, wr_intervals *out, unsigned long *spent)
+{
+    wr_status status = WR_OK;
+    double lo = job->roots.items[job->index], hi = job->roots.items[job->index + 1];
+    double value = answer_at(job, lo + (hi - lo) / 2, &status);
+    *spent += job->evaluation_cost;
+    job->index++;
+    if (status == WR_OK && value > 0 && !add_interval(out, lo, hi))
+        status = WR_NO_MEMORY;
+    return status;
+}
+
 /* The pieces of a G_goal or a both sweep.  G_goal only shrinks as mu
  * grows (its strings use s, u and m, and an m cone widens with mu_s:
  * docs/PROTOCOL.md), and so do its push regions, its gravity arcs and the
@@ -1120,13 +1134,7 @@ static wr_status decide_shrinking(wr_sweep_job *job, wr_intervals *out, unsigned
             !add_interval(out, job->roots.items[0], job->roots.items[job->empty_at]))
             return WR_NO_MEMORY;
     } else if (job->index < job->empty_at) {
-        double lo = job->roots.items[job->index], hi = job->roots.items[job->index + 1];
-        double value = answer_at(job, lo + (hi - lo) / 2, &status);
-        *spent += job->evaluation_cost;
-        job->index++;
-        if (status == WR_OK && value > 0 && !add_interval(out, lo, hi))
-            status = WR_NO_MEMORY;
-        return status;
+        return decide_piece(job, out, spent);
     }
     if (job->empty_at < pieces)
         job->empty_from = job->roots.items[job->empty_at];
@@ -1189,13 +1197,7 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
             }
             return curve_begin(job);
         }
-        double lo = job->roots.items[job->index], hi = job->roots.items[job->index + 1];
-        double value = answer_at(job, lo + (hi - lo) / 2, &status);
-        *spent += job->evaluation_cost;
-        job->index++;
-        if (status == WR_OK && value > 0 && !add_interval(out, lo, hi))
-            status = WR_NO_MEMORY;
-        return status;
+        return decide_piece(job, out, spent);
     }
     case PHASE_SAMPLED:
         return sampled_unit(job, spent);
