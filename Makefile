@@ -327,6 +327,7 @@ BENCH_MICRO  = $(BUILD)/bench/micro
 BENCH_SOCKET = $(BUILD)/bench/socket
 BENCH_LOCATE = $(BUILD)/bench/locate
 BENCH_SEGMENTS = $(BUILD)/bench/segments
+BENCH_ANSWER = $(BUILD)/bench/answer
 
 # bench/X.c -> build/bench/X, linked with the libraries it lists below.
 # number: the cost of writing a number, old (snprintf + strtod) against new
@@ -335,18 +336,37 @@ $(BUILD)/bench/%: bench/%.c
 	@mkdir -p $(dir $@)
 	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
-$(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 $(BENCH_SEGMENTS): $(BUILD)/libwrench.a
 $(BENCH_SEGMENTS): BENCH_LIBS = -lglpk -lm
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
 $(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
-$(BENCH_MICRO) $(BENCH_LOCATE): BENCH_LIBS = -lcjson -lglpk -lm
+$(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER): BENCH_LIBS = -lcjson -lglpk -lm
 $(BENCH_NUMBER): BENCH_LIBS = -lm
 $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
+# The baseline the sweep figures are set beside (bench/sweep.py) and the
+# answers compared with (bench/compare_sweeps.py): the revision
+# BASELINE_REVISION built from git in build/baseline/, with bench/answer.c
+# linked against its libraries.
+BASELINE_REVISION = a296b40
+BASELINE_ANSWER = $(BUILD)/baseline/answer
+BASELINE_DAEMON = $(BUILD)/baseline/src/build/wrenchd
+$(BUILD)/baseline/src/Makefile:
+	rm -rf $(BUILD)/baseline/src && mkdir -p $(BUILD)/baseline/src
+	git archive $(BASELINE_REVISION) | tar -x -C $(BUILD)/baseline/src
+$(BASELINE_DAEMON): $(BUILD)/baseline/src/Makefile
+	$(MAKE) -C $(BUILD)/baseline/src build/wrenchd
+$(BASELINE_ANSWER): bench/answer.c bench/bench_util.h $(BUILD)/baseline/src/Makefile
+	$(MAKE) -C $(BUILD)/baseline/src build/libwrench.a build/libwrenchproto.a
+	$(call compile,plain) -I$(BUILD)/baseline/src/lib -I$(BUILD)/baseline/src/proto -Ibench bench/answer.c \
+	    $(BUILD)/baseline/src/build/libwrenchproto.a $(BUILD)/baseline/src/build/libwrench.a \
+	    -lcjson -lglpk -lm -o $@
+
 # The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
-bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE)
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE) \
+       $(BENCH_ANSWER) $(BASELINE_ANSWER) $(BASELINE_DAEMON)
 	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,

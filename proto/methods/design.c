@@ -37,6 +37,10 @@ struct design_state {
     /* The engine of each stage (wp_chunks.h); the job's claims and merges
      * are made under its lock, the job's progress read by the steps. */
     wp_chunks *poses_chunks, *search;
+    /* After the search: the kept designs' figures, a design a chunk, from
+     * design figures_first on (NULL until then). */
+    wp_chunks *figures;
+    int figures_first;
     /* A lattice: its designs are enumerated first, then they are the
      * candidates (their fixels the sites, three each). */
     wr_lattice_job *lattice;
@@ -1057,8 +1061,47 @@ static const wp_chunk_ops SEARCH_CHUNKS = {
     .window = DESIGN_WINDOW,
 };
 
-/* The stage on: the lattice's poses, then the search's candidates. */
-static wp_chunks *stage(design_state *s) { return s->job ? s->search : s->poses_chunks; }
+/* The designs' figures: chunk i is design figures_first + i. */
+static wr_status figure_make(void *method, size_t index, void *record, wp_buffer *direct,
+                             const wp_host *host, unsigned long *used, wp_error *error)
+{
+    (void)record;
+    (void)direct;
+    const design_state *s = method;
+    wr_status status =
+        wr_design_job_figure(s->job, s->figures_first + (int)index, host->stop, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static wr_status figure_merge(void *method, size_t index, void *record, wp_buffer *out,
+                              wp_error *error)
+{
+    (void)index;
+    (void)record;
+    (void)out;
+    (void)error;
+    wr_design_job_figure_merged(((design_state *)method)->job);
+    return WR_OK;
+}
+
+static void figure_release(void *record) { (void)record; }
+
+static const wp_chunk_ops FIGURE_CHUNKS = {
+    .record_size = 1,
+    .make = figure_make,
+    .merge = figure_merge,
+    .release = figure_release,
+    .window = DESIGN_WINDOW,
+};
+
+/* The stage on: the lattice's poses, then the search's candidates, then
+ * the kept designs' figures. */
+static wp_chunks *stage(design_state *s)
+{
+    return s->figures ? s->figures : s->job ? s->search : s->poses_chunks;
+}
 
 static bool design_parallel(void *stream) { return wp_chunks_parallel(stage(stream)); }
 
@@ -1098,13 +1141,41 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
     /* The search: chunks while the budget lasts (helpers may make others
-     * meanwhile); then, in steps that share nothing, the rest (the
-     * designs' figures) by the job itself. */
+     * meanwhile); then the kept designs' figures, a design a chunk; then,
+     * in a step that shares nothing, the job itself says it is done. */
+    if (s->figures) {
+        wp_step step = wp_chunks_run(s->figures, shared, call->host, out, budget, used,
+                                     (size_t)-1, call->error);
+        if (step == WP_STEP_FAILED)
+            return WP_STEP_FAILED;
+        if (step != WP_STEP_DONE) {
+            if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+                write_progress(s, call, out);
+            return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
+        }
+    }
     unsigned long start = *used;
     wp_step step = wp_chunks_run(s->search, shared, call->host, out, budget, used, (size_t)-1,
                                  call->error);
     if (step == WP_STEP_FAILED)
         return WP_STEP_FAILED;
+    if (step == WP_STEP_DONE && !s->figures && wr_design_job_figures_left(s->job) > 0) {
+        /* The search is over and no helper is in it (a step that shares
+         * nothing): the figures' stage begins. */
+        int figured, of;
+        wr_design_job_figures_progress(s->job, &figured, &of);
+        s->figures_first = figured;
+        s->figures = wp_chunks_new(&FIGURE_CHUNKS, s, (size_t)(of - figured));
+        if (!s->figures) {
+            wp_error_status(call->error, WR_NO_MEMORY, "params", "%s",
+                            wr_strerror(WR_NO_MEMORY));
+            return WP_STEP_FAILED;
+        }
+        if (s->progress && !s->search_reported)
+            write_progress(s, call, out);
+        s->search_reported = true;
+        return out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
+    }
     bool done = false;
     if (step == WP_STEP_DONE && *used - start < budget) {
         wr_status status = wr_design_job_run(s->job, budget - (*used - start), used,
@@ -1139,6 +1210,7 @@ static void design_free(void *stream)
     design_state *s = stream;
     if (!s)
         return;
+    wp_chunks_free(s->figures);
     wp_chunks_free(s->search);
     wp_chunks_free(s->poses_chunks);
     wr_design_job_free(s->job);
@@ -1163,7 +1235,8 @@ static size_t design_bytes(const void *stream)
            (s->job ? wr_design_job_bytes(s->job) : 0) +
            poses * (sizeof(wr_lattice_design) + sizeof *s->listed) +
            (s->poses_chunks ? wp_chunks_bytes(s->poses_chunks) : 0) +
-           (s->search ? wp_chunks_bytes(s->search) : 0);
+           (s->search ? wp_chunks_bytes(s->search) : 0) +
+           (s->figures ? wp_chunks_bytes(s->figures) : 0);
 }
 
 const wp_streamer wp_design_stream = {design_begin, design_step,     design_free,    design_bytes,
