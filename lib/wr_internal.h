@@ -139,6 +139,40 @@ double wr_nnls3(const double (*columns)[3], int count, const double y[3], double
 bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
                        double point[2]);
 
+/* The pairs of boxes that overlap, found by a sweep along x: the boxes
+ * sorted by their least x, each compared only with those whose x range it
+ * enters (the active ones), then in y.  visit(context, i, j) is called once
+ * for each pair i < j whose closed boxes, each grown by `margin` on every
+ * side, overlap (and possibly for some that only nearly do: a superset,
+ * never fewer), in no particular order.  The work is O(n log n) for the
+ * sort plus one comparison per pair whose x ranges overlap.  The simplicity
+ * tests of outlines (wr_outline.c) and polygons (wr_fixture.c) give it
+ * their segments' boxes and keep, of the pairs visited that meet, the one
+ * an exhaustive test in index order would have found first.  Returns false
+ * only when out of memory (nothing visited then). */
+typedef struct wr_box {
+    double min[2], max[2];
+} wr_box;
+typedef void (*wr_box_visit)(void *context, size_t i, size_t j);
+bool wr_box_pairs(const wr_box *boxes, size_t n, double margin, wr_box_visit visit,
+                  void *context);
+/* wr_outline_new, with `exhaustively` every pair of segments tested in index
+ * order instead of the sweep's pairs: the reference the sweep is tested
+ * against.  The same answer, the same error, either way. */
+/* The first two edges of the polygon v[0..n) that meet where a simple
+ * polygon's do not, in index order (edge i from vertex i to i + 1): edges
+ * that are not neighbours sharing a point (*first < *second), or
+ * neighbours folding back onto each other (*second = *first + 1 mod n,
+ * *point their shared vertex).  1 found, 0 none, -1 out of memory.  By the
+ * sweep, or with `exhaustively` pair by pair (the reference, for tests);
+ * the same answer either way (wr_fixture.c). */
+int wr_polygon_first_meeting(const double (*v)[2], size_t n, bool exhaustively, size_t *first,
+                             size_t *second, double point[2]);
+struct wr_loop_spec;
+struct wr_outline;
+wr_status wr_outline_new_checked(const struct wr_loop_spec *loops, size_t loop_count,
+                                 bool exhaustively, struct wr_outline **out, wr_error *error);
+
 struct wr_constraint;
 struct wr_plan;
 struct wr_cone;
