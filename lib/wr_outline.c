@@ -819,6 +819,50 @@ static bool key_before(const size_t *key, const meeting *best, int length)
     return false;
 }
 
+/* Segment s lies in the rectangle of its chord frame u in [-U, U],
+ * w in [0, S]: a line on its chord (S = 0); an arc between its chord and
+ * its sagitta h tan(a / 2) = h |bulge|, as wide as its chord up to a half
+ * circle and as its circle beyond.  Its extent along the unit axis n,
+ * relative to the point o: [*lo, *hi]. */
+static void segment_extent(const wr_segment *s, const double o[2], const double n[2], double *lo,
+                           double *hi)
+{
+    double h = s->half_chord;
+    double U = is_arc(s) && s->half_angle > WR_PI / 2 ? s->radius : h;
+    double S = h * fabs(s->bulge);
+    double centre = (s->midpoint[0] - o[0]) * n[0] + (s->midpoint[1] - o[1]) * n[1] +
+                    S / 2 * (s->bulge_normal[0] * n[0] + s->bulge_normal[1] * n[1]);
+    double half = U * fabs(s->direction[0] * n[0] + s->direction[1] * n[1]) +
+                  S / 2 * fabs(s->bulge_normal[0] * n[0] + s->bulge_normal[1] * n[1]);
+    *lo = centre - half;
+    *hi = centre + half;
+}
+
+/* Are the two segments further apart than twice the tolerance along one
+ * of their chords' normals (with room for rounding)?  Then no point of one
+ * is within the tolerance of the other, nor do they cross, and
+ * segments_meet would say so: the pairs of long thin segments whose boxes
+ * overlap (a star's spikes, a zigzag's teeth) are set aside for the cost of
+ * a few products. */
+static bool segments_apart(const wr_segment *first, const wr_segment *second, double tolerance)
+{
+    const wr_segment *pair[2] = {first, second};
+    double reach = 0;
+    for (int i = 0; i < 2; i++)
+        reach += fabs(pair[i]->midpoint[0]) + fabs(pair[i]->midpoint[1]) + pair[i]->radius +
+                 pair[i]->half_chord * (1 + fabs(pair[i]->bulge));
+    double gap = 2 * tolerance + 1e-12 * reach;
+    for (int i = 0; i < 2; i++) {
+        const double *o = pair[i]->midpoint, *n = pair[i]->bulge_normal;
+        double lo[2], hi[2];
+        segment_extent(pair[0], o, n, &lo[0], &hi[0]);
+        segment_extent(pair[1], o, n, &lo[1], &hi[1]);
+        if (lo[1] > hi[0] + gap || lo[0] > hi[1] + gap)
+            return true;
+    }
+    return false;
+}
+
 static void visit_segments(void *context, size_t g, size_t h)
 {
     meetings *m = context;
@@ -829,6 +873,8 @@ static void visit_segments(void *context, size_t g, size_t h)
         size_t key[4] = {j, l, 0, 0};
         meeting *best = &m->simple[loop_g];
         if (key_before(key, best, 2) &&
+            !segments_apart(&m->outline->loops[loop_g].segments[j],
+                            &m->outline->loops[loop_g].segments[l], m->tolerance) &&
             loop_pair_meets(m->outline, loop_g, j, l, m->tolerance, point))
             *best = (meeting){true, {j, l, 0, 0}, {point[0], point[1]}};
         return;
@@ -836,9 +882,10 @@ static void visit_segments(void *context, size_t g, size_t h)
     /* g < h and the block holds the loops in order: h's loop is the later. */
     size_t key[4] = {loop_h, loop_g, l, j};
     shared_vertices none = {0, {NULL, NULL}};
-    if (key_before(key, &m->apart, 4) &&
-        segments_meet(&m->outline->loops[loop_h].segments[l],
-                      &m->outline->loops[loop_g].segments[j], &none, m->tolerance, point))
+    const wr_segment *later = &m->outline->loops[loop_h].segments[l],
+                     *earlier = &m->outline->loops[loop_g].segments[j];
+    if (key_before(key, &m->apart, 4) && !segments_apart(later, earlier, m->tolerance) &&
+        segments_meet(later, earlier, &none, m->tolerance, point))
         m->apart = (meeting){true, {key[0], key[1], key[2], key[3]}, {point[0], point[1]}};
 }
 
