@@ -219,6 +219,16 @@ typedef struct wr_edge_frame {
     double half_angle, half_angle_sin; /* an arc's */
 } wr_edge_frame;
 void wr_edge_frame_of(const wr_fixture *fixture, int edge, wr_edge_frame *out);
+/* The open t-intervals of [0, 1] on an arc's frame where its push wrench is
+ * in none of the cones (push.regions of one arc, as edge 0), appended to
+ * *out: by the fast path where it decides (one atan2 per facet, nothing
+ * allocated), else, or with `reference` always, by the reference (every
+ * root sorted and every piece tested); *referred (may be NULL) counts the
+ * cones the reference took.  For the tests and the benchmark, which hold
+ * the two to the same regions (wr_regions.c). */
+struct wr_regions;
+wr_status wr_arc_regions(const wr_edge_frame *frame, const struct wr_cone **cones, int count,
+                         bool reference, int *referred, struct wr_regions *out);
 
 /* The closed interval [*lo, *hi] of t where the scaled wrench h0 + t h1
  * lies in the cone's closure (*lo > *hi: nowhere): one linear condition
