@@ -322,6 +322,7 @@ BENCH_SOCKET = $(BUILD)/bench/socket
 BENCH_LOCATE = $(BUILD)/bench/locate
 BENCH_SEGMENTS = $(BUILD)/bench/segments
 BENCH_REGIONS = $(BUILD)/bench/regions
+BENCH_LATTICE = $(BUILD)/bench/lattice
 
 # bench/X.c -> build/bench/X, linked with the libraries it lists below.
 # number: the cost of writing a number, old (snprintf + strtod) against new
@@ -331,8 +332,8 @@ $(BUILD)/bench/%: bench/%.c
 	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
 $(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
-$(BENCH_SEGMENTS) $(BENCH_REGIONS): $(BUILD)/libwrench.a
-$(BENCH_SEGMENTS) $(BENCH_REGIONS): BENCH_LIBS = -lglpk -lm
+$(BENCH_SEGMENTS) $(BENCH_REGIONS) $(BENCH_LATTICE): $(BUILD)/libwrench.a
+$(BENCH_SEGMENTS) $(BENCH_REGIONS) $(BENCH_LATTICE): BENCH_LIBS = -lglpk -lm
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
 $(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
 $(BENCH_MICRO) $(BENCH_LOCATE): BENCH_LIBS = -lcjson -lglpk -lm

@@ -168,6 +168,13 @@ bool wr_box_pairs(const wr_box *boxes, size_t n, double margin, wr_box_visit vis
  * the same answer either way (wr_fixture.c). */
 int wr_polygon_first_meeting(const double (*v)[2], size_t n, bool exhaustively, size_t *first,
                              size_t *second, double point[2]);
+/* Find a lattice job's poses with arcs by the reference: the third curve's
+ * residual scanned over theta in WR_LATTICE_STEPS steps, each change of
+ * sign bisected and each small minimum refined (a pose crossing zero and
+ * back within a step is missed), instead of the polynomial's roots
+ * (wr_lattice.c).  Before the job runs; for the tests and the benchmark. */
+struct wr_lattice_job;
+void wr_lattice_job_scan(struct wr_lattice_job *job);
 struct wr_loop_spec;
 struct wr_outline;
 wr_status wr_outline_new_checked(const struct wr_loop_spec *loops, size_t loop_count,

@@ -17,13 +17,16 @@
  *   - Three straight segments: eliminating the translation leaves
  *     A cos theta + B sin theta = C, solved in closed form (at most two
  *     poses), the translation then from two of the lines.
- *   - With an arc: the translation is solved from two of the curves for
- *     each theta (lines first: one point, or the two points where a line
- *     or circle meets a circle), and the third curve's residual is
- *     scanned over theta in WR_LATTICE_STEPS steps, each change of sign
- *     bisected, and each small local minimum of its size refined (a pose
- *     where the residual touches zero without crossing it).  A pose whose
- *     residual crosses zero and back within one step may be missed.
+ *   - With an arc: eliminating the translation leaves one polynomial in
+ *     t = tan(theta / 2) (docs/MODEL.md, "Lattice poses with arcs"): of
+ *     degree 4 for two lines and an arc, 8 for a line and two arcs, 12
+ *     for three arcs.  Its real roots are the candidate angles (a double
+ *     root is a pose where a peg touches without crossing); each is made
+ *     a root of the geometry by Newton's steps and its translation solved
+ *     from two of the curves (lines first: one point, or the two points
+ *     where a line or circle meets a circle).  WR_LATTICE_STEPS is the
+ *     step of the theta scan that the tests hold the polynomial against
+ *     (wr_lattice_job_scan, wr_internal.h).
  *
  * At most WR_LATTICE_MAX_DESIGNS poses are kept (those found first);
  * the answer's count of poses says how many.
