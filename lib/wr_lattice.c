@@ -4,6 +4,7 @@
 #include "wr_outline.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -43,8 +44,12 @@ struct wr_lattice_job {
     hole *holes;             /* after (0, 0) in (j, i) order, within reach */
     size_t hole_count;
     size_t pair_total;       /* (second, third) hole pairs, numbered in order */
-    size_t claimed;          /* pairs handed out as chunks */
-    size_t merged;           /* pairs whose designs are in `found`, in order */
+    /* The units of work: a hole pair and the curve its first peg touches,
+     * numbered pair * curve_count + curve, so that a unit's work is the
+     * curves of the other two pegs, whatever the number of holes. */
+    size_t unit_total;
+    size_t claimed;          /* units handed out as chunks */
+    size_t merged;           /* units whose designs are in `found`, in order */
     int outstanding;         /* chunks claimed, not yet merged or abandoned */
     /* Finished chunks ahead of their turn (claimed later than one still
      * running): at most the chunks outstanding at once, a few. */
@@ -152,6 +157,7 @@ static bool build_holes(wr_lattice_job *job)
         job->hole_count = count;
     }
     job->pair_total = job->hole_count * (job->hole_count ? job->hole_count - 1 : 0) / 2;
+    job->unit_total = job->pair_total * (size_t)job->curve_count;
     return true;
 }
 
@@ -817,50 +823,50 @@ static bool reachable(const curve *a, const curve *b, double distance, double sl
            distance >= between - a->hull_radius - b->hull_radius - slack;
 }
 
-/* Every pose for the holes P, every assignment of curves. */
-static bool hole_triple(const wr_lattice_job *job, design_list *out, const hole *const P[3],
+/* Every pose for the holes P with the first peg on curve x, every
+ * assignment of curves to the other two. */
+static bool hole_triple(const wr_lattice_job *job, design_list *out, const hole *const P[3], int x,
                         unsigned long *units)
 {
     double d01 = hypot(P[0]->at[0] - P[1]->at[0], P[0]->at[1] - P[1]->at[1]);
     double d02 = hypot(P[0]->at[0] - P[2]->at[0], P[0]->at[1] - P[2]->at[1]);
     double d12 = hypot(P[1]->at[0] - P[2]->at[0], P[1]->at[1] - P[2]->at[1]);
     double slack = 1e-6 * job->body->size;
-    for (int x = 0; x < job->curve_count; x++)
-        for (int y = 0; y < job->curve_count; y++) {
-            if (!reachable(&job->curves[x], &job->curves[y], d01, slack))
+    for (int y = 0; y < job->curve_count; y++) {
+        if (!reachable(&job->curves[x], &job->curves[y], d01, slack))
+            continue;
+        for (int z = 0; z < job->curve_count; z++) {
+            const curve *k[3] = {&job->curves[x], &job->curves[y], &job->curves[z]};
+            if (!reachable(k[0], k[2], d02, slack) || !reachable(k[1], k[2], d12, slack))
                 continue;
-            for (int z = 0; z < job->curve_count; z++) {
-                const curve *k[3] = {&job->curves[x], &job->curves[y], &job->curves[z]};
-                if (!reachable(k[0], k[2], d02, slack) || !reachable(k[1], k[2], d12, slack))
-                    continue;
-                *units += 8;
-                if (k[0]->line && k[1]->line && k[2]->line) {
-                    if (!three_lines(job, out, P, k))
-                        return false;
-                    continue;
-                }
-                /* Lines first: the translation comes from them. */
-                int order[3] = {0, 1, 2};
-                for (int a = 0; a < 3; a++)
-                    for (int b = 0; b < 2; b++)
-                        if (!k[order[b]]->line && k[order[b + 1]]->line) {
-                            int t = order[b];
-                            order[b] = order[b + 1];
-                            order[b + 1] = t;
-                        }
-                const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
-                const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
-                if (job->scan) {
-                    *units += 40 * WR_LATTICE_STEPS;
-                    if (!with_arcs(job, out, Q, K, P, k))
-                        return false;
-                } else {
-                    *units += 400;
-                    if (!exact_arcs(job, out, Q, K, P, k))
-                        return false;
-                }
+            *units += 8;
+            if (k[0]->line && k[1]->line && k[2]->line) {
+                if (!three_lines(job, out, P, k))
+                    return false;
+                continue;
+            }
+            /* Lines first: the translation comes from them. */
+            int order[3] = {0, 1, 2};
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 2; b++)
+                    if (!k[order[b]]->line && k[order[b + 1]]->line) {
+                        int t = order[b];
+                        order[b] = order[b + 1];
+                        order[b + 1] = t;
+                    }
+            const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
+            const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
+            if (job->scan) {
+                *units += 40 * WR_LATTICE_STEPS;
+                if (!with_arcs(job, out, Q, K, P, k))
+                    return false;
+            } else {
+                *units += 400;
+                if (!exact_arcs(job, out, Q, K, P, k))
+                    return false;
             }
         }
+    }
     return true;
 }
 
@@ -879,11 +885,15 @@ static void pair_holes(const wr_lattice_job *job, size_t p, size_t *second, size
 
 bool wr_lattice_job_claim(wr_lattice_job *job, size_t *first, size_t *count)
 {
-    if (job->failed || job->claimed >= job->pair_total)
+    if (job->failed || job->claimed >= job->unit_total)
         return false;
+    /* As many units as make WR_LATTICE_CHUNK pairs of curves for the other
+     * two pegs (a unit's work), at least one. */
+    size_t curves = (size_t)job->curve_count, per = WR_LATTICE_CHUNK / (curves * curves);
+    if (per < 1)
+        per = 1;
     *first = job->claimed;
-    *count = job->pair_total - job->claimed < WR_LATTICE_CHUNK ? job->pair_total - job->claimed
-                                                                : WR_LATTICE_CHUNK;
+    *count = job->unit_total - job->claimed < per ? job->unit_total - job->claimed : per;
     job->claimed += *count;
     job->outstanding++;
     return true;
@@ -891,7 +901,7 @@ bool wr_lattice_job_claim(wr_lattice_job *job, size_t *first, size_t *count)
 
 bool wr_lattice_job_claimable(const wr_lattice_job *job)
 {
-    return !job->failed && job->claimed < job->pair_total;
+    return !job->failed && job->claimed < job->unit_total;
 }
 
 void wr_lattice_chunk_release(wr_lattice_chunk *chunk)
@@ -910,14 +920,20 @@ wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t c
     design_list list = {NULL, 0, 0};
     unsigned long spent = 0;
     int nx = job->lattice.extent[0], ny = job->lattice.extent[1];
+    size_t curves = (size_t)job->curve_count;
     wr_status status = WR_OK;
-    for (size_t p = first; p < first + count; p++) {
+    size_t a = 0, b = 0, pair = SIZE_MAX;
+    for (size_t u = first; u < first + count; u++) {
         if (wr_stop_requested(stop)) {
             status = WR_STOPPED;
             break;
         }
-        size_t a, b;
-        pair_holes(job, p, &a, &b);
+        size_t p = u / curves;
+        int x = (int)(u % curves);
+        if (p != pair) {
+            pair_holes(job, p, &a, &b);
+            pair = p;
+        }
         const hole *second = &job->holes[a], *third = &job->holes[b];
         int lo_i = second->i < third->i ? second->i : third->i;
         int hi_i = second->i > third->i ? second->i : third->i;
@@ -928,7 +944,7 @@ wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t c
         if (hi_i - lo_i < nx && hi_j < ny &&
             hypot(second->at[0] - third->at[0], second->at[1] - third->at[1]) <= job->reach) {
             const hole *P[3] = {&origin, second, third};
-            if (!hole_triple(job, &list, P, &spent)) {
+            if (!hole_triple(job, &list, P, x, &spent)) {
                 status = WR_NO_MEMORY;
                 break;
             }
@@ -1030,7 +1046,7 @@ wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned
     }
     if (used)
         *used += spent;
-    *done = job->merged >= job->pair_total && job->outstanding == 0;
+    *done = job->merged >= job->unit_total && job->outstanding == 0;
     return WR_OK;
 }
 
@@ -1039,7 +1055,7 @@ void wr_lattice_job_scan(wr_lattice_job *job) { job->scan = true; }
 void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total)
 {
     *done = job->merged;
-    *total = job->pair_total;
+    *total = job->unit_total;
 }
 
 const wr_lattice_design *wr_lattice_job_designs(const wr_lattice_job *job, size_t *count)
