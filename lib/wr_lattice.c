@@ -44,9 +44,10 @@ struct wr_lattice_job {
     hole *holes;             /* after (0, 0) in (j, i) order, within reach */
     size_t hole_count;
     size_t pair_total;       /* (second, third) hole pairs, numbered in order */
-    /* The units of work: a hole pair and the curve its first peg touches,
-     * numbered pair * curve_count + curve, so that a unit's work is the
-     * curves of the other two pegs, whatever the number of holes. */
+    /* The units of work: a hole pair and the curves its first two pegs
+     * touch, numbered (pair * curve_count + x) * curve_count + y, so that
+     * a unit's work is the curves of the third peg, whatever the number of
+     * holes. */
     size_t unit_total;
     size_t claimed;          /* units handed out as chunks */
     size_t merged;           /* units whose designs are in `found`, in order */
@@ -157,7 +158,7 @@ static bool build_holes(wr_lattice_job *job)
         job->hole_count = count;
     }
     job->pair_total = job->hole_count * (job->hole_count ? job->hole_count - 1 : 0) / 2;
-    job->unit_total = job->pair_total * (size_t)job->curve_count;
+    job->unit_total = job->pair_total * (size_t)job->curve_count * (size_t)job->curve_count;
     return true;
 }
 
@@ -823,48 +824,46 @@ static bool reachable(const curve *a, const curve *b, double distance, double sl
            distance >= between - a->hull_radius - b->hull_radius - slack;
 }
 
-/* Every pose for the holes P with the first peg on curve x, every
- * assignment of curves to the other two. */
+/* Every pose for the holes P with the first two pegs on curves x and y,
+ * every curve for the third. */
 static bool hole_triple(const wr_lattice_job *job, design_list *out, const hole *const P[3], int x,
-                        unsigned long *units)
+                        int y, unsigned long *units)
 {
     double d01 = hypot(P[0]->at[0] - P[1]->at[0], P[0]->at[1] - P[1]->at[1]);
     double d02 = hypot(P[0]->at[0] - P[2]->at[0], P[0]->at[1] - P[2]->at[1]);
     double d12 = hypot(P[1]->at[0] - P[2]->at[0], P[1]->at[1] - P[2]->at[1]);
     double slack = 1e-6 * job->body->size;
-    for (int y = 0; y < job->curve_count; y++) {
-        if (!reachable(&job->curves[x], &job->curves[y], d01, slack))
+    if (!reachable(&job->curves[x], &job->curves[y], d01, slack))
+        return true;
+    for (int z = 0; z < job->curve_count; z++) {
+        const curve *k[3] = {&job->curves[x], &job->curves[y], &job->curves[z]};
+        if (!reachable(k[0], k[2], d02, slack) || !reachable(k[1], k[2], d12, slack))
             continue;
-        for (int z = 0; z < job->curve_count; z++) {
-            const curve *k[3] = {&job->curves[x], &job->curves[y], &job->curves[z]};
-            if (!reachable(k[0], k[2], d02, slack) || !reachable(k[1], k[2], d12, slack))
-                continue;
-            *units += 8;
-            if (k[0]->line && k[1]->line && k[2]->line) {
-                if (!three_lines(job, out, P, k))
-                    return false;
-                continue;
-            }
-            /* Lines first: the translation comes from them. */
-            int order[3] = {0, 1, 2};
-            for (int a = 0; a < 3; a++)
-                for (int b = 0; b < 2; b++)
-                    if (!k[order[b]]->line && k[order[b + 1]]->line) {
-                        int t = order[b];
-                        order[b] = order[b + 1];
-                        order[b + 1] = t;
-                    }
-            const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
-            const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
-            if (job->scan) {
-                *units += 40 * WR_LATTICE_STEPS;
-                if (!with_arcs(job, out, Q, K, P, k))
-                    return false;
-            } else {
-                *units += 400;
-                if (!exact_arcs(job, out, Q, K, P, k))
-                    return false;
-            }
+        *units += 8;
+        if (k[0]->line && k[1]->line && k[2]->line) {
+            if (!three_lines(job, out, P, k))
+                return false;
+            continue;
+        }
+        /* Lines first: the translation comes from them. */
+        int order[3] = {0, 1, 2};
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 2; b++)
+                if (!k[order[b]]->line && k[order[b + 1]]->line) {
+                    int t = order[b];
+                    order[b] = order[b + 1];
+                    order[b + 1] = t;
+                }
+        const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
+        const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
+        if (job->scan) {
+            *units += 40 * WR_LATTICE_STEPS;
+            if (!with_arcs(job, out, Q, K, P, k))
+                return false;
+        } else {
+            *units += 400;
+            if (!exact_arcs(job, out, Q, K, P, k))
+                return false;
         }
     }
     return true;
@@ -887,9 +886,9 @@ bool wr_lattice_job_claim(wr_lattice_job *job, size_t *first, size_t *count)
 {
     if (job->failed || job->claimed >= job->unit_total)
         return false;
-    /* As many units as make WR_LATTICE_CHUNK pairs of curves for the other
-     * two pegs (a unit's work), at least one. */
-    size_t curves = (size_t)job->curve_count, per = WR_LATTICE_CHUNK / (curves * curves);
+    /* As many units as make WR_LATTICE_CHUNK curves for the third peg (a
+     * unit's work), at least one. */
+    size_t curves = (size_t)job->curve_count, per = WR_LATTICE_CHUNK / curves;
     if (per < 1)
         per = 1;
     *first = job->claimed;
@@ -928,8 +927,8 @@ wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t c
             status = WR_STOPPED;
             break;
         }
-        size_t p = u / curves;
-        int x = (int)(u % curves);
+        size_t p = u / curves / curves;
+        int x = (int)(u / curves % curves), y = (int)(u % curves);
         if (p != pair) {
             pair_holes(job, p, &a, &b);
             pair = p;
@@ -944,7 +943,7 @@ wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t c
         if (hi_i - lo_i < nx && hi_j < ny &&
             hypot(second->at[0] - third->at[0], second->at[1] - third->at[1]) <= job->reach) {
             const hole *P[3] = {&origin, second, third};
-            if (!hole_triple(job, &list, P, x, &spent)) {
+            if (!hole_triple(job, &list, P, x, y, &spent)) {
                 status = WR_NO_MEMORY;
                 break;
             }

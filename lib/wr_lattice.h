@@ -80,18 +80,18 @@ wr_status wr_lattice_job_new(const wr_fixture *body, const wr_lattice *lattice,
 wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned long *used,
                              const wr_stop *stop, bool *done);
 /* The same in chunks that threads may run at once (as wr_design.h's).
- * The unit of work is a hole pair with the segment the first peg touches
- * (numbered pair * segments + segment): its work is the segments of the
- * other two pegs, bounded by the outline alone, however many holes the
- * lattice has.  A chunk is consecutive units, as many as make
- * WR_LATTICE_CHUNK pairs of segments, at least one; their count is known
- * only as they are claimed.  Claim, merge and abandon change the job (the
- * caller serialises them, and wr_lattice_job_run); wr_lattice_chunk_run
- * only reads it.  Merged chunks are kept in the order of their units,
- * whatever order they finish in, so the designs are the same however the
- * work was split; the job is done when every unit's chunk is merged.
- * Merge takes the chunk's designs. */
-#define WR_LATTICE_CHUNK 1024
+ * The unit of work is a hole pair with the segments the first two pegs
+ * touch (numbered (pair * segments + first) * segments + second): its work
+ * is the segments of the third peg, bounded by the outline alone, however
+ * many holes the lattice has.  A chunk is consecutive units, as many as
+ * make WR_LATTICE_CHUNK segments for the third peg, at least one; their
+ * count is known only as they are claimed.  Claim, merge and abandon
+ * change the job (the caller serialises them, and wr_lattice_job_run);
+ * wr_lattice_chunk_run only reads it.  Merged chunks are kept in the order
+ * of their units, whatever order they finish in, so the designs are the
+ * same however the work was split; the job is done when every unit's
+ * chunk is merged.  Merge takes the chunk's designs. */
+#define WR_LATTICE_CHUNK 16384
 
 typedef struct wr_lattice_chunk {
     size_t first, count;            /* its units */
@@ -107,8 +107,8 @@ wr_status wr_lattice_job_merge(wr_lattice_job *job, wr_lattice_chunk *chunk);
 void wr_lattice_job_abandon(wr_lattice_job *job);
 void wr_lattice_chunk_release(wr_lattice_chunk *chunk);
 
-/* Progress: units (a hole pair and the first peg's segment) looked at
- * (merged), of how many. */
+/* Progress: units (a hole pair and the first two pegs' segments) looked
+ * at (merged), of how many. */
 void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total);
 /* When done: the designs, in the order found (hole triples in order, then
  * segment triples, then theta). */
