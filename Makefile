@@ -342,8 +342,20 @@ $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
 # The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
-bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE)
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE) \
+       $(BENCH_REGIONS) $(BENCH_LATTICE) $(BUILD)/baseline/wrenchd
 	@bench/run
+
+# The daemon the geometry figures are compared with, side by side in one
+# run (bench/geometry.py, bench/compare.py): main before the simplicity
+# sweep, the inline cache, the arc regions' fast path and the lattice's
+# polynomial, built from git into build/baseline.
+BENCH_BASELINE ?= a296b40
+$(BUILD)/baseline/wrenchd:
+	rm -rf $(BUILD)/baseline && mkdir -p $(BUILD)/baseline/src
+	git archive $(BENCH_BASELINE) | tar -x -C $(BUILD)/baseline/src
+	$(MAKE) -C $(BUILD)/baseline/src build/wrenchd
+	cp $(BUILD)/baseline/src/build/wrenchd $@
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
 # nothing wrong, exit status 0 on SIGTERM.  The last lines are the summary.

@@ -11,11 +11,11 @@ JSON lines on the socket (no client library in the time):
                4,000-vertex polygon: the simplicity test dominates;
   inline/id    wrench.classify of one wrench on a 2,000-segment outline,
                the fixture inline (the same text each time) against by id;
-  regions-*    push.regions (goal) on a part of lines against the same part
-               with arcs;
-  lattice-*    fixture.design's lattice on a plate of lines and the same
-               plate with two-arc holes.
-A baseline without a figure's method or field prints null there.
+and, counted by callgrind in process (build/bench/regions, build/bench/lattice):
+  regions-*    push.regions' instructions per pair of an edge and a cone:
+               lines, arcs, arcs by the reference;
+  lattice-*    a lattice design's instructions per pose: lines, arcs, arcs
+               by the theta scan.
 """
 import argparse
 import json
@@ -184,6 +184,45 @@ def ms(seconds, answer):
     return [seconds[0] * 1e3, seconds[1] * 1e3] if "result" in answer else None
 
 
+def instructions(argv):
+    """The instructions a program runs, counted by callgrind (None without
+    valgrind)."""
+    if not shutil.which("valgrind"):
+        return None
+    with tempfile.TemporaryDirectory() as tmp:
+        run = subprocess.run(["valgrind", "--tool=callgrind",
+                              "--callgrind-out-file=" + os.path.join(tmp, "out")] + argv,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    for line in run.stderr.splitlines():
+        if "Collected :" in line:
+            return int(line.split(":")[-1])
+    return None
+
+
+def counted(build, quick):
+    """Instructions per pair (push.regions) and per pose (lattice), each run
+    less a run that only builds the parts: callgrind's counts, which a busy
+    machine does not move."""
+    out = {}
+    regions = os.path.join(build, "bench", "regions")
+    repeats = 20 if quick else 200
+    base = instructions([regions, "--only", "lines", "--repeats", "0"])
+    if base is None:
+        return out
+    pairs = json.loads(subprocess.run([regions, "--only", "lines", "--repeats", "0"],
+                                      stdout=subprocess.PIPE, text=True).stdout)["pairs"]
+    for mode in ("lines", "arcs", "reference"):
+        total = instructions([regions, "--only", mode, "--repeats", str(repeats)])
+        out["regions-" + mode] = (total - base) / repeats / pairs
+    lattice = os.path.join(build, "bench", "lattice")
+    base = instructions([lattice, "--only", "none"])
+    for mode in ("lines", "arcs") + (() if quick else ("scan",)):
+        poses = json.loads(subprocess.run([lattice, "--only", mode], stdout=subprocess.PIPE,
+                                          text=True).stdout)["poses"]
+        out["lattice-" + mode] = (instructions([lattice, "--only", mode]) - base) / poses
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--wrenchd", required=True)
@@ -204,9 +243,13 @@ def main():
                 daemon.wait(timeout=30)
     finally:
         shutil.rmtree(directory, ignore_errors=True)
+    figures["instructions"] = counted(os.path.dirname(os.path.abspath(args.wrenchd)), args.quick)
     if args.json:
         print(json.dumps(figures))
         return
+    for key, value in figures["instructions"].items():
+        print("%-18s %22.0f instructions per %s" % (key, value,
+                                                   "pair" if "regions" in key else "pose"))
     print("%-18s %22s %22s" % ("ms: wall / CPU", "new", "baseline"))
     for key in figures["new"]:
         cells = ["%.2f / %.2f" % tuple(f[key]) if f[key] else "-"

@@ -933,32 +933,112 @@ static void meetings_free(meetings *m)
 /* Hole i (meeting no other loop) inside the outer loop, outside the other
  * holes and not around them.  A loop meeting none of the others is wholly
  * inside or outside each, so one vertex tells. */
-static bool check_nesting(const wr_outline *outline, size_t i, wr_error *error)
+static void report_nesting(size_t i, size_t other, bool contains, const double vertex[2],
+                           wr_error *error)
 {
     char field[96];
     snprintf(field, sizeof field, "loops[%zu]", i);
-    const double *vertex = outline->loops[i].segments[0].start;
-    if (loop_winding(&outline->loops[0], vertex) == 0) {
+    if (other == 0)
         wr_error_set(error, field,
                      "the hole is not inside the outer loop (loops[0]): vertex 0 (%g, %g) lies "
                      "outside it",
                      vertex[0], vertex[1]);
+    else
+        wr_error_set(error, field, "the hole %s hole loops[%zu]: holes must be apart",
+                     contains ? "contains" : "lies inside", other);
+}
+
+/* Hole i against the outer loop and each earlier hole, one by one: the
+ * reference (wr_outline_new_checked) for the boxes' sweep below. */
+static bool check_nesting(const wr_outline *outline, size_t i, wr_error *error)
+{
+    const double *vertex = outline->loops[i].segments[0].start;
+    if (loop_winding(&outline->loops[0], vertex) == 0) {
+        report_nesting(i, 0, false, vertex, error);
         return false;
     }
     for (size_t other = 1; other < i; other++) {
         const double *theirs = outline->loops[other].segments[0].start;
         if (loop_winding(&outline->loops[other], vertex) != 0) {
-            wr_error_set(error, field, "the hole lies inside hole loops[%zu]: holes must be apart",
-                         other);
+            report_nesting(i, other, false, vertex, error);
             return false;
         }
         if (loop_winding(&outline->loops[i], theirs) != 0) {
-            wr_error_set(error, field, "the hole contains hole loops[%zu]: holes must be apart",
-                         other);
+            report_nesting(i, other, true, vertex, error);
             return false;
         }
     }
     return true;
+}
+
+/* Two holes (apart, as checked before) are nested only if their boxes
+ * overlap: the sweep over the holes' boxes finds those pairs, and of the
+ * nested ones keeps the first in check_nesting's order (the later hole,
+ * then the earlier, "inside" before "contains"). */
+typedef struct nesting {
+    const wr_outline *outline;
+    bool found;
+    size_t key[3]; /* i, other, contains */
+} nesting;
+
+static void visit_holes(void *context, size_t a, size_t b)
+{
+    nesting *n = context;
+    size_t other = a + 1, i = b + 1; /* the boxes are of loops 1 on */
+    const wr_loop *loops = n->outline->loops;
+    for (size_t contains = 0; contains < 2; contains++) {
+        size_t key[3] = {i, other, contains};
+        if (n->found && (key[0] > n->key[0] || (key[0] == n->key[0] && key[1] > n->key[1]) ||
+                         (key[0] == n->key[0] && key[1] == n->key[1] && key[2] >= n->key[2])))
+            return;
+        const wr_loop *around = contains ? &loops[i] : &loops[other];
+        const double *vertex = contains ? loops[other].segments[0].start : loops[i].segments[0].start;
+        if (loop_winding(around, vertex) != 0) {
+            *n = (nesting){n->outline, true, {i, other, contains}};
+            return;
+        }
+    }
+}
+
+static wr_status check_holes_nested(const wr_outline *outline, wr_error *error)
+{
+    size_t holes = outline->loop_count - 1;
+    wr_box *boxes = malloc((holes ? holes : 1) * sizeof *boxes);
+    if (!boxes) {
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    for (size_t h = 0; h < holes; h++) {
+        const wr_loop *loop = &outline->loops[h + 1];
+        boxes[h] = (wr_box){{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+        for (size_t j = 0; j < loop->segment_count; j++)
+            for (int k = 0; k < 2; k++) {
+                boxes[h].min[k] = fmin(boxes[h].min[k], loop->segments[j].box_min[k]);
+                boxes[h].max[k] = fmax(boxes[h].max[k], loop->segments[j].box_max[k]);
+            }
+    }
+    nesting n = {outline, false, {0, 0, 0}};
+    bool ok = wr_box_pairs(boxes, holes, 0, visit_holes, &n);
+    free(boxes);
+    if (!ok) {
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    /* The outer loop around each hole, up to the first nested pair's. */
+    size_t last = n.found ? n.key[0] : outline->loop_count - 1;
+    for (size_t i = 1; i <= last; i++) {
+        const double *vertex = outline->loops[i].segments[0].start;
+        if (loop_winding(&outline->loops[0], vertex) == 0) {
+            report_nesting(i, 0, false, vertex, error);
+            return WR_INVALID;
+        }
+    }
+    if (n.found) {
+        report_nesting(n.key[0], n.key[1], n.key[2], outline->loops[n.key[0]].segments[0].start,
+                       error);
+        return WR_INVALID;
+    }
+    return WR_OK;
 }
 
 /* The numbers one by one, then the loops' segments. */
@@ -1053,6 +1133,8 @@ static wr_status check_loops(wr_outline *outline, const meetings *m, double tole
     for (size_t i = 1; !m && i < outline->loop_count; i++)
         if (!check_apart_exhaustively(outline, i, tolerance, error))
             return WR_INVALID;
+    if (m)
+        return check_holes_nested(outline, error);
     for (size_t i = 1; i < outline->loop_count; i++)
         if (!check_nesting(outline, i, error))
             return WR_INVALID;

@@ -4,7 +4,7 @@
  * segments touch, overlap collinearly and share points exactly; stars with
  * a vertex moved onto, or just short of, or just past another segment;
  * zigzags whose long segments' boxes all overlap; holes tangent to each
- * other and to the outer loop; arcs tangent to lines and to arcs), the
+ * other and to the outer loop, inside or around each other, or outside it; arcs tangent to lines and to arcs), the
  * answer must be the same every time: accepted by both, or refused by both
  * with the same field and the same reason (the same two segments, the same
  * point).  Each family must produce both answers, so neither method can
@@ -251,9 +251,20 @@ static void test_holes(void **state)
         for (int h = 0; h < holes; h++) {
             new_loop(s);
             double r = test_range(&rng, 0.2, 1), cx, cy;
-            int kind = (int)(test_uniform(&rng) * 5);
+            int kind = (int)(test_uniform(&rng) * 7);
             double gap = gaps[(int)(test_uniform(&rng) * 6)] * tolerance;
-            if (kind == 0 && h > 0) { /* beside an earlier hole */
+            if (kind == 5 && h > 0) { /* about an earlier hole's centre: in it, or around it */
+                int other = (int)(test_uniform(&rng) * h);
+                cx = centres[other][0];
+                cy = centres[other][1];
+                r = radii[other] * (test_uniform(&rng) < 0.5 ? test_range(&rng, 0.2, 0.6)
+                                                             : test_range(&rng, 1.5, 2));
+                kind = 2;
+            } else if (kind == 6) { /* outside the outer loop */
+                cx = 11 + r;
+                cy = test_range(&rng, 1, 9);
+                kind = 2;
+            } else if (kind == 0 && h > 0) { /* beside an earlier hole */
                 int other = (int)(test_uniform(&rng) * h);
                 double angle = test_range(&rng, 0, 2 * TEST_PI);
                 double d = radii[other] + r + gap;
