@@ -328,6 +328,8 @@ BENCH_SOCKET = $(BUILD)/bench/socket
 BENCH_LOCATE = $(BUILD)/bench/locate
 BENCH_SEGMENTS = $(BUILD)/bench/segments
 BENCH_ANSWER = $(BUILD)/bench/answer
+BENCH_REGIONS = $(BUILD)/bench/regions
+BENCH_LATTICE = $(BUILD)/bench/lattice
 
 # bench/X.c -> build/bench/X, linked with the libraries it lists below.
 # number: the cost of writing a number, old (snprintf + strtod) against new
@@ -337,8 +339,8 @@ $(BUILD)/bench/%: bench/%.c
 	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
 $(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
-$(BENCH_SEGMENTS): $(BUILD)/libwrench.a
-$(BENCH_SEGMENTS): BENCH_LIBS = -lglpk -lm
+$(BENCH_SEGMENTS) $(BENCH_REGIONS) $(BENCH_LATTICE): $(BUILD)/libwrench.a
+$(BENCH_SEGMENTS) $(BENCH_REGIONS) $(BENCH_LATTICE): BENCH_LIBS = -lglpk -lm
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
 $(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
 $(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER): BENCH_LIBS = -lcjson -lglpk -lm
@@ -366,8 +368,9 @@ $(BASELINE_ANSWER): bench/answer.c bench/bench_util.h $(BUILD)/baseline/src/Make
 # The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
 bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE) \
-       $(BENCH_ANSWER) $(BASELINE_ANSWER) $(BASELINE_DAEMON)
+       $(BENCH_ANSWER) $(BASELINE_ANSWER) $(BASELINE_DAEMON) $(BENCH_REGIONS) $(BENCH_LATTICE)
 	@bench/run
+
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,
 # nothing wrong, exit status 0 on SIGTERM.  The last lines are the summary.

@@ -531,6 +531,16 @@ bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1])
     return true;
 }
 
+bool wp_fixture_written_key(const cJSON *json, char key[WP_ID_LENGTH + 1])
+{
+    unsigned char digest[32];
+    if (!wp_canonical_digest(json, digest))
+        return false;
+    for (int i = 0; i < WP_ID_LENGTH / 2; i++)
+        snprintf(key + 2 * i, 3, "%02x", digest[i]);
+    return true;
+}
+
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);

@@ -23,6 +23,8 @@ typedef struct wp_fixture_doc {
     char *canonical;            /* canonical text of the explicit form, with the
                                    name when one was given: what is stored */
     wr_fixture *fixture;
+    char written[WP_ID_LENGTH + 1]; /* inline: the key of the text as written
+                                       (wp_fixture_written_key), "" unknown */
 } wp_fixture_doc;
 
 /* The explicit form of a fixture (docs/PROTOCOL.md, "Fixture id"): the
@@ -54,6 +56,13 @@ bool wp_friction_read(const cJSON *json, const char *path, wr_friction_spec *out
  * files stored under such ids (the daemon re-keys them).  False out of
  * memory. */
 bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1]);
+/* The key of a fixture object as written, name and all, before anything
+ * is validated: its canonical digest (wp_canonical_digest).  Spellings with
+ * one digest have one canonical text, the same values, so they validate to
+ * the same fixture: the daemon keeps a validated inline fixture under this key too
+ * (wp_host.h, fixture_use_written) and a request repeating it skips
+ * wp_fixture_read.  False out of memory. */
+bool wp_fixture_written_key(const cJSON *json, char key[WP_ID_LENGTH + 1]);
 /* Move: `to` takes what `from` owned; `from` is left empty. */
 void wp_fixture_doc_move(wp_fixture_doc *to, wp_fixture_doc *from);
 

@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -237,9 +238,7 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
                      invalid.reason);
         return false;
     }
-    size_t pairs, total;
-    wr_lattice_job_progress(s->lattice, &pairs, &total);
-    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, (total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK);
+    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, SIZE_MAX); /* as the job claims them */
     if (!s->poses_chunks) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
@@ -707,8 +706,8 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
-     * total count its hole pairs), then "candidates", then "figures" (the
-     * designs kept). */
+     * total count its units: a hole pair with the first peg's segment),
+     * then "candidates", then "figures" (the designs kept). */
     WP_BUFFER_LITERAL(out, ",\"stage\":\"");
     wp_buffer_puts(out, STAGES[stage]);
     WP_BUFFER_LITERAL(out, "\",\"done\":");
@@ -947,7 +946,7 @@ static void write_answer(design_state *s, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "]}");
 }
 
-/* The lattice's chunks of hole pairs, by the engine (wp_chunks.h): claimed
+/* The lattice's chunks of units (wr_lattice.h), by the engine (wp_chunks.h): claimed
  * by the job in order, made by any thread, merged in order. */
 typedef struct lattice_record {
     size_t first, count;
