@@ -1148,7 +1148,7 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
         if (step == WP_STEP_FAILED)
             return WP_STEP_FAILED;
         if (step != WP_STEP_DONE) {
-            if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+            if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
                 write_progress(s, call, out);
             return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
         }
