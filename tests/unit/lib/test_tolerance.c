@@ -1,0 +1,336 @@
+/* test_tolerance.c -- robust answers over a geometric tolerance
+ * (lib/wr_tolerance.h) against what is derived here without it:
+ *
+ * - sampling: every fixture of the set is built here from its own
+ *   geometry (a contact moved along its edge or round its circle, its
+ *   normal the boundary's there, tilted) and classified nominally; no
+ *   sample may be other than inside where the robust answer is inside, and
+ *   each outside's witness, rebuilt here from its points and normals,
+ *   must be outside;
+ * - a closed form: on the frictionless 3-2-1 plate (centre (2, 1)) a push
+ *   f = (-a, -b) with torque tau seats the part exactly when, about each
+ *   point P_j where a bottom locator's normal meets the left one's, the
+ *   moment tau + (c - P_j) x f keeps the other bottom locator pressed:
+ *   tau + b (x_2 - 2) + a (1 - y_3) > 0 and tau - b (2 - x_1) + a (1 - y_3)
+ *   < 0.  Nominally (x = 1, 3; y_3 = 1) that is |tau| < b; with every
+ *   contact free to move T along its edge the worst case is
+ *   |tau| < b (1 - T) - a T;
+ * - each bad tolerance refused at its field. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+
+#include "test_util.h"
+#include "wr_tolerance.h"
+
+#define DEG (TEST_PI / 180)
+
+/* The 3-2-1 plate [0, 4] x [0, 2]: locators under it at x = 1 and 3, one
+ * on its left side at y = 1. */
+static const double PLATE[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
+static const double PLATE_AT[3][2] = {{1, 0}, {3, 0}, {0, 1}};
+/* Along the boundary, counter-clockwise, and the inward normal: the
+ * bottom edge runs +x with normal +y, the left edge runs -y with normal +x. */
+static const double PLATE_RUN[3][2] = {{1, 0}, {1, 0}, {0, -1}};
+static const double PLATE_NORMAL[3][2] = {{0, 1}, {0, 1}, {1, 0}};
+
+static wr_fixture *plate(double mu, const double at[3][2], const double normal[3][2])
+{
+    wr_fixel_spec fixels[3];
+    memset(fixels, 0, sizeof fixels);
+    for (int i = 0; i < 3; i++) {
+        fixels[i].at[0] = at[i][0];
+        fixels[i].at[1] = at[i][1];
+        if (normal) {
+            fixels[i].normal_given = true;
+            fixels[i].normal[0] = normal[i][0];
+            fixels[i].normal[1] = normal[i][1];
+        }
+    }
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = 1;
+    spec.shape = WR_SHAPE_POLYGON;
+    spec.vertex_count = 4;
+    spec.vertices = PLATE;
+    spec.friction.given = true;
+    spec.friction.static_mu = mu;
+    spec.fixel_count = 3;
+    spec.fixels = fixels;
+    wr_error error;
+    return test_fixture_new(&spec, &error);
+}
+
+/* The disc of radius 1 at the origin with three fixels at the given
+ * angles (radians), normals radial inwards. */
+static wr_fixture *disc(double mu, const double angle[3], const double tilt[3])
+{
+    wr_fixel_spec fixels[3];
+    memset(fixels, 0, sizeof fixels);
+    for (int i = 0; i < 3; i++) {
+        fixels[i].at[0] = cos(angle[i]);
+        fixels[i].at[1] = sin(angle[i]);
+        if (tilt) {
+            double n = angle[i] + TEST_PI + tilt[i];
+            fixels[i].normal_given = true;
+            fixels[i].normal[0] = cos(n);
+            fixels[i].normal[1] = sin(n);
+        }
+    }
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = 1;
+    spec.shape = WR_SHAPE_CIRCLE;
+    spec.radius = 1;
+    spec.friction.given = true;
+    spec.friction.static_mu = mu;
+    spec.fixel_count = 3;
+    spec.fixels = fixels;
+    wr_error error;
+    return test_fixture_new(&spec, &error);
+}
+
+static void set_tolerance(wr_fixture *f, double position, double angle)
+{
+    wr_tolerance t = {true, position, angle};
+    wr_error error;
+    assert_int_equal(wr_fixture_set_tolerance(f, &t, &error), WR_OK);
+}
+
+static wr_verdict nominal_verdict(const wr_fixture *f, const double w[3], wr_set set)
+{
+    wr_analysis *a = test_analysis_new(f);
+    wr_answer answer;
+    assert_int_equal(wr_classify(a, w, set, WR_DEFAULT_TOLERANCE, &answer), WR_OK);
+    wr_analysis_free(a);
+    return answer.verdict;
+}
+
+/* A fixture of the plate's set, built from its own geometry: s[i] along
+ * the edge, the normal tilted by tilt[i]. */
+static wr_fixture *plate_sample(double mu, const double s[3], const double tilt[3])
+{
+    double at[3][2], normal[3][2];
+    for (int i = 0; i < 3; i++) {
+        at[i][0] = PLATE_AT[i][0] + s[i] * PLATE_RUN[i][0];
+        at[i][1] = PLATE_AT[i][1] + s[i] * PLATE_RUN[i][1];
+        double c = cos(tilt[i]), sn = sin(tilt[i]);
+        normal[i][0] = c * PLATE_NORMAL[i][0] - sn * PLATE_NORMAL[i][1];
+        normal[i][1] = sn * PLATE_NORMAL[i][0] + c * PLATE_NORMAL[i][1];
+    }
+    return plate(mu, at, normal);
+}
+
+static wr_fixture *disc_sample(double mu, const double angle[3], const double s[3],
+                               const double tilt[3])
+{
+    double a[3];
+    for (int i = 0; i < 3; i++)
+        a[i] = angle[i] + s[i]; /* radius 1: arc length is angle */
+    return disc(mu, a, tilt);
+}
+
+/* A perturbation drawn from the set: each coordinate at an end of its
+ * range half the time (where worst cases live), uniform otherwise. */
+static void draw(test_rng *rng, double position, double angle, double s[3], double tilt[3])
+{
+    for (int i = 0; i < 3; i++) {
+        double u = test_uniform(rng), v = test_uniform(rng);
+        s[i] = u < 0.25 ? -position : u < 0.5 ? position : test_range(rng, -position, position);
+        double a = angle * DEG;
+        tilt[i] = v < 0.25 ? -a : v < 0.5 ? a : test_range(rng, -a, a);
+    }
+}
+
+/* The witness: each point on its fixel's edge (or circle) within T of
+ * nominal, each normal within A of the boundary's; rebuilt from them, the
+ * fixture's answer is outside. */
+static void check_witness(bool is_disc, double mu, const double angle[3], double position,
+                          double tol_angle, const wr_robust_answer *r, const double w[3],
+                          wr_set set)
+{
+    assert_true(r->has_perturbation);
+    double s[3], tilt[3];
+    for (int i = 0; i < 3; i++) {
+        const double *p = r->points[i], *n = r->normals[i];
+        double boundary_normal[2];
+        if (is_disc) {
+            assert_true(fabs(hypot(p[0], p[1]) - 1) < 1e-12);
+            double moved = remainder(atan2(p[1], p[0]) - angle[i], 2 * TEST_PI);
+            s[i] = moved;
+            boundary_normal[0] = -p[0];
+            boundary_normal[1] = -p[1];
+        } else {
+            double d[2] = {p[0] - PLATE_AT[i][0], p[1] - PLATE_AT[i][1]};
+            s[i] = d[0] * PLATE_RUN[i][0] + d[1] * PLATE_RUN[i][1];
+            /* on the edge: no motion across it */
+            assert_true(fabs(d[0] * PLATE_NORMAL[i][0] + d[1] * PLATE_NORMAL[i][1]) < 1e-12);
+            boundary_normal[0] = PLATE_NORMAL[i][0];
+            boundary_normal[1] = PLATE_NORMAL[i][1];
+        }
+        assert_true(fabs(s[i]) <= position * (1 + 1e-12));
+        tilt[i] = atan2(boundary_normal[0] * n[1] - boundary_normal[1] * n[0],
+                        boundary_normal[0] * n[0] + boundary_normal[1] * n[1]);
+        assert_true(fabs(tilt[i]) <= tol_angle * DEG * (1 + 1e-9) + 1e-12);
+    }
+    wr_fixture *g = is_disc ? disc_sample(mu, angle, s, tilt) : plate_sample(mu, s, tilt);
+    assert_non_null(g);
+    assert_int_equal(nominal_verdict(g, w, set), WR_VERDICT_OUTSIDE);
+    wr_fixture_free(g);
+}
+
+static void sample_test(bool is_disc, double mu, double position, double angle, int wrenches,
+                        int samples, uint64_t seed, int last_set, int counts[3])
+{
+    static const double DISC_AT[3] = {200 * DEG, 270 * DEG, 340 * DEG};
+    wr_fixture *f = is_disc ? disc(mu, DISC_AT, NULL) : plate(mu, PLATE_AT, NULL);
+    assert_non_null(f);
+    set_tolerance(f, position, angle);
+    wr_analysis *a = test_analysis_new(f);
+    wr_robust *rb;
+    assert_int_equal(wr_robust_new(a, 0, &rb), WR_OK);
+    test_rng rng = {seed};
+    /* Wrenches nominally inside, most of them, since only those can be
+     * robustly inside; the rest drawn from the whole sphere. */
+    for (int n = 0; n < wrenches; n++) {
+        double w[3];
+        for (int tries = 0; tries < 10000; tries++) {
+            test_sphere(&rng, w);
+            if (n % 4 == 0 ||
+                nominal_verdict(f, w, (wr_set)(n % (last_set + 1))) == WR_VERDICT_INSIDE)
+                break;
+        }
+        for (int set = WR_SET_GOAL; set <= last_set; set++) {
+            wr_robust_answer r;
+            assert_int_equal(wr_robust_classify(rb, w, (wr_set)set, WR_DEFAULT_TOLERANCE, &r),
+                             WR_OK);
+            counts[r.answer.verdict]++;
+            if (r.answer.verdict == WR_VERDICT_OUTSIDE) {
+                check_witness(is_disc, mu, DISC_AT, position, angle, &r, w, (wr_set)set);
+                continue;
+            }
+            if (r.answer.verdict != WR_VERDICT_INSIDE)
+                continue;
+            for (int k = 0; k < samples; k++) {
+                double s[3], tilt[3];
+                draw(&rng, position, angle, s, tilt);
+                wr_fixture *g =
+                    is_disc ? disc_sample(mu, DISC_AT, s, tilt) : plate_sample(mu, s, tilt);
+                assert_non_null(g);
+                if (nominal_verdict(g, w, (wr_set)set) != WR_VERDICT_INSIDE) {
+                    print_error("inside contradicted: wrench (%g, %g, %g) set %d sample "
+                                "s (%g %g %g) tilt (%g %g %g)\n",
+                                w[0], w[1], w[2], set, s[0], s[1], s[2], tilt[0], tilt[1],
+                                tilt[2]);
+                    fail();
+                }
+                wr_fixture_free(g);
+            }
+        }
+    }
+    wr_robust_free(rb);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+}
+
+static void test_sampling_plate(void **state)
+{
+    (void)state;
+    int counts[3] = {0, 0, 0};
+    sample_test(false, 0.3, 0.02, 1, 24, 30, 0x1234567ULL, WR_SET_BOTH, counts);
+    print_message("plate: inside %d, boundary %d, outside %d\n", counts[0], counts[1],
+                  counts[2]);
+    assert_true(counts[WR_VERDICT_INSIDE] > 10);
+    assert_true(counts[WR_VERDICT_OUTSIDE] > 10);
+    assert_true(counts[WR_VERDICT_BOUNDARY] * 4 < counts[0] + counts[1] + counts[2]);
+}
+
+/* The frictionless plate: (-a, -b, tau) = (-0.5, -1, tau) seats it robustly
+ * for |tau| below b (1 - T) - a T = 0.85 and not above. */
+static void test_closed_form(void **state)
+{
+    (void)state;
+    const double T = 0.1;
+    wr_fixture *f = plate(0, PLATE_AT, NULL);
+    assert_non_null(f);
+    set_tolerance(f, T, 0);
+    wr_analysis *a = test_analysis_new(f);
+    wr_robust *rb;
+    assert_int_equal(wr_robust_new(a, 0, &rb), WR_OK);
+    static const double taus[] = {0.3, 0.7, 0.75, 0.95, 0.99};
+    const double fa = 0.5, fb = 1;
+    for (size_t i = 0; i < sizeof taus / sizeof *taus; i++)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            double tau = sign * taus[i];
+            double w[3] = {-fa, -fb, tau};
+            /* nominally inside: |tau| < b */
+            assert_int_equal(nominal_verdict(f, w, WR_SET_GOAL), WR_VERDICT_INSIDE);
+            wr_robust_answer r;
+            assert_int_equal(wr_robust_classify(rb, w, WR_SET_GOAL, WR_DEFAULT_TOLERANCE, &r),
+                             WR_OK);
+            wr_verdict expect =
+                fabs(tau) < fb * (1 - T) - fa * T ? WR_VERDICT_INSIDE : WR_VERDICT_OUTSIDE;
+            if (r.answer.verdict != expect)
+                print_error("tau %g: verdict %d, expected %d (margin %g)\n", tau,
+                            r.answer.verdict, expect, r.answer.margin);
+            assert_int_equal(r.answer.verdict, expect);
+            if (expect == WR_VERDICT_OUTSIDE) {
+                /* The witness breaks the closed form's condition on its
+                 * side: the moment about the pivot turns the wrong way. */
+                double x1 = r.points[0][0], x2 = r.points[1][0], y3 = r.points[2][1];
+                if (tau < 0)
+                    assert_true(tau + fb * (x2 - 2) + fa * (1 - y3) < 0);
+                else
+                    assert_true(tau - fb * (2 - x1) + fa * (1 - y3) > 0);
+                check_witness(false, 0, NULL, T, 0, &r, w, WR_SET_GOAL);
+            }
+        }
+    wr_robust_free(rb);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    wr_fixture *f = plate(0.3, PLATE_AT, NULL);
+    assert_non_null(f);
+    struct {
+        wr_tolerance t;
+        const char *field;
+        const char *words;
+    } bad[] = {
+        {{true, -0.1, 0}, "tolerance.position", ">= 0"},
+        {{true, NAN, 0}, "tolerance.position", ">= 0"},
+        {{true, 0.1, 90}, "tolerance.angle", "below 90"},
+        {{true, 0.1, -1}, "tolerance.angle", "below 90"},
+        {{true, 0.1, INFINITY}, "tolerance.angle", "below 90"},
+        /* fixel 1 at x = 1 on the bottom edge [0, 4]: 1 to the nearer end */
+        {{true, 1.25, 0}, "tolerance.position", "0.25 more than fixel 1"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        wr_error error;
+        assert_int_equal(wr_fixture_set_tolerance(f, &bad[i].t, &error), WR_INVALID);
+        assert_string_equal(error.field, bad[i].field);
+        if (!strstr(error.reason, bad[i].words))
+            print_error("%s\n", error.reason);
+        assert_non_null(strstr(error.reason, bad[i].words));
+    }
+    wr_tolerance fine = {true, 1, 89.9};
+    wr_error error;
+    assert_int_equal(wr_fixture_set_tolerance(f, &fine, &error), WR_OK);
+    wr_fixture_free(f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_closed_form),
+        cmocka_unit_test(test_sampling_plate),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
