@@ -760,6 +760,18 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
     return result;
 }
 
+/* The index of constraint c among the nominal analysis's cones of `set`,
+ * or -1 for a mode only a perturbed fixture may have. */
+static int nominal_index(const wr_robust *rb, wr_set set, const wr_constraint *c)
+{
+    int count = wr_analysis_cone_count(rb->analysis, set);
+    const wr_constraint *list = wr_analysis_constraints(rb->analysis, set);
+    for (int i = 0; i < count; i++)
+        if (strcmp(list[i].letters, c->letters) == 0 && list[i].pivot == c->pivot)
+            return i;
+    return -1;
+}
+
 static void unit_family(const double x[3], ivec *family)
 {
     for (int j = 0; j < 3; j++)
@@ -819,18 +831,26 @@ wr_status wr_robust_classify(const wr_robust *rb, const double wrench[3], wr_set
                     return WR_NO_MEMORY;
                 wr_answer answer;
                 status = wr_classify(a, wrench, set, tolerance, &answer);
-                wr_analysis_free(a);
-                if (status != WR_OK)
+                if (status != WR_OK) {
+                    wr_analysis_free(a);
                     return status;
+                }
                 if (answer.verdict == WR_VERDICT_OUTSIDE) {
                     out->answer = answer;
+                    /* Named by the nominal analysis's cones: the goal's are
+                     * the plan's on every fixture; a mode the nominal
+                     * fixture lacks has none (-1). */
+                    out->answer.blocking = nominal_index(rb, answer.blocking_set,
+                        wr_analysis_constraints(a, answer.blocking_set) + answer.blocking);
                     out->has_perturbation = true;
                     for (int j = 0; j < f->fixel_count; j++) {
                         memcpy(out->points[j], moved.fixels[j].at, sizeof out->points[j]);
                         memcpy(out->normals[j], moved.fixels[j].normal, sizeof out->normals[j]);
                     }
+                    wr_analysis_free(a);
                     return WR_OK;
                 }
+                wr_analysis_free(a);
                 r = CONE_UNDECIDED; /* rounding kept the witness at the edge */
             }
             if (r == CONE_UNDECIDED && !undecided) {
@@ -852,15 +872,8 @@ wr_status wr_robust_classify(const wr_robust *rb, const double wrench[3], wr_set
     out->answer.verdict = WR_VERDICT_BOUNDARY;
     out->answer.margin = least;
     out->answer.blocking_set = undecided_set == 0 ? WR_SET_GOAL : WR_SET_STRONG;
-    /* The blocking cone's index among the nominal analysis's cones, or -1
-     * for a mode only a perturbed fixture may have. */
-    const wr_constraint *c = &rb->cones[undecided_set][undecided_cone];
-    int nominal_count = wr_analysis_cone_count(rb->analysis, out->answer.blocking_set);
-    const wr_constraint *list = wr_analysis_constraints(rb->analysis, out->answer.blocking_set);
-    out->answer.blocking = -1;
-    for (int i = 0; i < nominal_count; i++)
-        if (strcmp(list[i].letters, c->letters) == 0 && list[i].pivot == c->pivot)
-            out->answer.blocking = i;
+    out->answer.blocking = nominal_index(rb, out->answer.blocking_set,
+                                         &rb->cones[undecided_set][undecided_cone]);
     memset(&out->answer.witness, 0, sizeof out->answer.witness);
     return WR_OK;
 }
