@@ -908,3 +908,113 @@ bool wr_robust_box_inside(const wr_robust *rb, const double lo[3], const double 
     }
     return true;
 }
+
+/* ---- regions ----------------------------------------------------------- */
+
+/* The scaled wrenches of a push along (edge, t) for t in [ta, tb], or of
+ * gravity for tilts in [ta, tb] degrees, in a box [lo, hi]: the ends'
+ * componentwise bounds, widened where the family turns (an arc, a circle,
+ * the tilt), since a sinusoid of amplitude A over an angle D rises at most
+ * A (1 - cos(D / 2)) above the larger of its ends. */
+static void family_box(const wr_fixture *f, int edge, bool gravity, double ta, double tb,
+                       double lo[3], double hi[3])
+{
+    double w[2][3], amplitude[3] = {1, 1, 0}, turn = 0;
+    for (int k = 0; k < 2; k++) {
+        double t = k ? tb : ta;
+        if (gravity) {
+            w[k][0] = cos(t * WR_PI / 180);
+            w[k][1] = sin(t * WR_PI / 180);
+            w[k][2] = 0;
+        } else {
+            wr_push_wrench(f, edge, t, w[k]);
+            w[k][2] /= f->gyration_radius;
+        }
+    }
+    if (gravity) {
+        turn = (tb - ta) * WR_PI / 180;
+    } else if (f->shape == WR_SHAPE_CIRCLE) {
+        turn = (tb - ta) * WR_PI / 180;
+        amplitude[2] = hypot(f->center[0] - f->com[0], f->center[1] - f->com[1]) /
+                       f->gyration_radius;
+    } else if (f->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(f, edge, &loop, &segment);
+        const wr_segment *seg = &f->outline->loops[loop].segments[segment];
+        if (seg->bulge != 0) {
+            turn = fabs(seg->sweep) * (tb - ta);
+            amplitude[2] = hypot(seg->center[0] - f->com[0], seg->center[1] - f->com[1]) /
+                           f->gyration_radius;
+        }
+    }
+    double bulge = turn > 0 ? 1 - cos(0.5 * turn) : 0;
+    for (int j = 0; j < 3; j++) {
+        double e = amplitude[j] * bulge + 1e-15 * (fabs(w[0][j]) + fabs(w[1][j]) + 1e-300);
+        lo[j] = fmin(w[0][j], w[1][j]) - e;
+        hi[j] = fmax(w[0][j], w[1][j]) + e;
+    }
+}
+
+static bool append_region(wr_regions *out, int edge, double t0, double t1)
+{
+    if (out->count > 0 && out->items[out->count - 1].edge == edge &&
+        out->items[out->count - 1].t1 == t0) {
+        out->items[out->count - 1].t1 = t1;
+        return true;
+    }
+    if (out->count == out->capacity) {
+        int capacity = out->capacity ? 2 * out->capacity : 16;
+        wr_region *items = realloc(out->items, sizeof *items * (size_t)capacity);
+        if (!items)
+            return false;
+        out->items = items;
+        out->capacity = capacity;
+    }
+    out->items[out->count++] = (wr_region){edge, t0, t1};
+    return true;
+}
+
+wr_status wr_robust_regions(const wr_robust *rb, wr_set set, const wr_regions *nominal,
+                            bool gravity, const wr_stop *stop, wr_regions *out)
+{
+    memset(out, 0, sizeof *out);
+    out->resolution = nominal->resolution;
+    const wr_fixture *f = rb->fixture;
+    for (int r = 0; r < nominal->count; r++) {
+        const wr_region *region = &nominal->items[r];
+        /* Depth-first, left piece first, so that pieces come out in order. */
+        struct piece {
+            double t0, t1;
+            int depth;
+        } stack[2 * WR_ROBUST_DEPTH + 2];
+        int top = 0;
+        stack[top++] = (struct piece){region->t0, region->t1, 0};
+        while (top > 0) {
+            struct piece p = stack[--top];
+            if (wr_stop_requested(stop)) {
+                wr_regions_release(out);
+                return WR_STOPPED;
+            }
+            double lo[3], hi[3];
+            family_box(f, region->edge, gravity, p.t0, p.t1, lo, hi);
+            wr_status status;
+            if (wr_robust_box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, &status)) {
+                if (!append_region(out, region->edge, p.t0, p.t1)) {
+                    wr_regions_release(out);
+                    return WR_NO_MEMORY;
+                }
+                continue;
+            }
+            if (status != WR_OK) {
+                wr_regions_release(out);
+                return status;
+            }
+            if (p.depth < WR_ROBUST_DEPTH) {
+                double mid = 0.5 * (p.t0 + p.t1);
+                stack[top++] = (struct piece){mid, p.t1, p.depth + 1};
+                stack[top++] = (struct piece){p.t0, mid, p.depth + 1};
+            }
+        }
+    }
+    return WR_OK;
+}

@@ -17,6 +17,7 @@
 #define WR_TOLERANCE_H
 
 #include "wr_classify.h"
+#include "wr_regions.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -85,6 +86,19 @@ wr_status wr_robust_classify(const wr_robust *robust, const double wrench[3], wr
  * WR_NO_MEMORY (then false). */
 bool wr_robust_box_inside(const wr_robust *robust, const double lo[3], const double hi[3],
                           wr_set set, double tolerance, wr_status *status);
+
+/* The robust part of nominal push regions (wr_push_regions of the same
+ * set, frictionless finger) or gravity arcs (wr_gravity_sweep; `edge` -1:
+ * t is the tilt in degrees): each nominal interval is bisected down to
+ * 2^-WR_ROBUST_DEPTH of its length, and the pieces proved inside
+ * (wr_robust_box_inside over the push wrenches of the piece) are kept,
+ * contiguous ones joined.  So the result lies inside the robust region
+ * exactly, and reaches within a 2^-WR_ROBUST_DEPTH share of each nominal
+ * interval's length of every end that its proofs reach.  WR_OK;
+ * WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY (`out` empty unless WR_OK). */
+#define WR_ROBUST_DEPTH 10
+wr_status wr_robust_regions(const wr_robust *robust, wr_set set, const wr_regions *nominal,
+                            bool gravity, const wr_stop *stop, wr_regions *out);
 
 #ifdef __cplusplus
 }

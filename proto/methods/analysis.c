@@ -147,6 +147,7 @@ typedef struct push_state {
     bool opened, any;    /* "{"regions":[" written; a region written */
     double total, resolution;
     wp_push_load load;   /* "force" and "cases": regions under them */
+    wr_robust *robust;   /* the fixture has a tolerance: the regions' robust part */
 } push_state;
 
 static void push_free(void *stream)
@@ -154,6 +155,7 @@ static void push_free(void *stream)
     push_state *state = stream;
     free(state->push_on);
     wp_push_load_release(&state->load);
+    wr_robust_free(state->robust);
     free(state);
 }
 
@@ -231,6 +233,28 @@ static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set s
     free(reasons);
 }
 
+/* Boxes per excluded cone for one piece of a robust region: a piece that
+ * so few do not prove is split instead (wr_robust_regions). */
+#define ROBUST_REGION_BUDGET 16
+
+/* What robust regions cover (docs/PROTOCOL.md, "Tolerance"): the push of a
+ * frictionless finger alone; a finger's friction or loads are refused. */
+static bool robust_push_supported(const wp_push_load *load, double friction, wp_error *error)
+{
+    if (friction > 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "a fixture with a tolerance has robust regions for a frictionless "
+                     "finger only");
+        return false;
+    }
+    if (load->given) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+                     "a fixture with a tolerance has robust regions without loads only");
+        return false;
+    }
+    return true;
+}
+
 static void *push_begin(wp_call *call, wp_prepared *prepared)
 {
     (void)prepared;
@@ -251,6 +275,10 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
     wp_push_load load;
     if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
         return NULL;
+    if (use->fixture->tolerance.given && !robust_push_supported(&load, friction, call->error)) {
+        wp_push_load_release(&load);
+        return NULL;
+    }
     push_state *state = calloc(1, sizeof *state);
     if (!state) {
         wp_push_load_release(&load);
@@ -268,6 +296,12 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
     }
     state->finger.push_on = state->push_on;
     state->edges = wr_push_edge_count(use->fixture);
+    if (use->fixture->tolerance.given &&
+        wr_robust_new(use->analysis, ROBUST_REGION_BUDGET, &state->robust) != WR_OK) {
+        push_free(state);
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return NULL;
+    }
     /* An edge against every cone: a few dot products each, or, with a
      * finger's friction, a segment test at every sample and bisection. */
     const wr_analysis *a = use->analysis;
@@ -342,6 +376,12 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
                                          &part)
                 : wr_push_regions_part(use->analysis, state->set, &state->finger, state->next, 1,
                                        call->host->stop, &part);
+        if (status == WR_OK && state->robust) {
+            wr_regions nominal = part;
+            status = wr_robust_regions(state->robust, state->set, &nominal, false,
+                                       call->host->stop, &part);
+            wr_regions_release(&nominal);
+        }
         if (status != WR_OK) {
             wr_regions_release(&part);
             wp_error_status(call->error, status, "", "%s", wr_strerror(status));
@@ -378,6 +418,22 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
 
 const wp_streamer wp_push_stream = {push_begin, push_step, push_free, NULL, false, NULL, NULL};
 
+/* Nominal regions or arcs replaced by their robust part. */
+static wr_status robust_part(const wr_analysis *a, wr_set set, bool gravity, const wr_stop *stop,
+                             wr_regions *regions)
+{
+    wr_robust *robust;
+    wr_status status = wr_robust_new(a, ROBUST_REGION_BUDGET, &robust);
+    wr_regions nominal = *regions;
+    if (status == WR_OK)
+        status = wr_robust_regions(robust, set, &nominal, gravity, stop, regions);
+    else
+        memset(regions, 0, sizeof *regions);
+    wr_regions_release(&nominal);
+    wr_robust_free(robust);
+    return status;
+}
+
 cJSON *wp_handle_gravity_sweep(wp_call *call)
 {
     const cJSON *params = call->params;
@@ -391,6 +447,8 @@ cJSON *wp_handle_gravity_sweep(wp_call *call)
     cJSON *result = NULL;
     wr_regions arcs;
     wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
+    if (status == WR_OK && use->fixture->tolerance.given)
+        status = robust_part(use->analysis, set, true, call->host->stop, &arcs);
     if (status != WR_OK) {
         wp_error_status(error, status, "params.set", "%s", wr_strerror(status));
     } else {
