@@ -37,6 +37,13 @@ static const double PLATE_AT[3][2] = {{1, 0}, {3, 0}, {0, 1}};
 static const double PLATE_RUN[3][2] = {{1, 0}, {1, 0}, {0, -1}};
 static const double PLATE_NORMAL[3][2] = {{0, 1}, {0, 1}, {1, 0}};
 
+/* The outline plate() builds on: the rectangle, or the chamfered plate
+ * (its corner (4, 2) cut from (4, 1) to (3, 2)); the fixels' edges are the
+ * same on both. */
+static const double CHAMFERED[5][2] = {{0, 0}, {4, 0}, {4, 1}, {3, 2}, {0, 2}};
+static const double (*plate_vertices)[2] = PLATE;
+static size_t plate_vertex_count = 4;
+
 static wr_fixture *plate(double mu, const double at[3][2], const double normal[3][2])
 {
     wr_fixel_spec fixels[3];
@@ -54,37 +61,8 @@ static wr_fixture *plate(double mu, const double at[3][2], const double normal[3
     memset(&spec, 0, sizeof spec);
     spec.mass = 1;
     spec.shape = WR_SHAPE_POLYGON;
-    spec.vertex_count = 4;
-    spec.vertices = PLATE;
-    spec.friction.given = true;
-    spec.friction.static_mu = mu;
-    spec.fixel_count = 3;
-    spec.fixels = fixels;
-    wr_error error;
-    return test_fixture_new(&spec, &error);
-}
-
-/* The disc of radius 1 at the origin with three fixels at the given
- * angles (radians), normals radial inwards. */
-static wr_fixture *disc(double mu, const double angle[3], const double tilt[3])
-{
-    wr_fixel_spec fixels[3];
-    memset(fixels, 0, sizeof fixels);
-    for (int i = 0; i < 3; i++) {
-        fixels[i].at[0] = cos(angle[i]);
-        fixels[i].at[1] = sin(angle[i]);
-        if (tilt) {
-            double n = angle[i] + TEST_PI + tilt[i];
-            fixels[i].normal_given = true;
-            fixels[i].normal[0] = cos(n);
-            fixels[i].normal[1] = sin(n);
-        }
-    }
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.shape = WR_SHAPE_CIRCLE;
-    spec.radius = 1;
+    spec.vertex_count = plate_vertex_count;
+    spec.vertices = plate_vertices;
     spec.friction.given = true;
     spec.friction.static_mu = mu;
     spec.fixel_count = 3;
@@ -124,15 +102,6 @@ static wr_fixture *plate_sample(double mu, const double s[3], const double tilt[
     return plate(mu, at, normal);
 }
 
-static wr_fixture *disc_sample(double mu, const double angle[3], const double s[3],
-                               const double tilt[3])
-{
-    double a[3];
-    for (int i = 0; i < 3; i++)
-        a[i] = angle[i] + s[i]; /* radius 1: arc length is angle */
-    return disc(mu, a, tilt);
-}
-
 /* A perturbation drawn from the set: each coordinate at an end of its
  * range half the time (where worst cases live), uniform otherwise. */
 static void draw(test_rng *rng, double position, double angle, double s[3], double tilt[3])
@@ -145,48 +114,36 @@ static void draw(test_rng *rng, double position, double angle, double s[3], doub
     }
 }
 
-/* The witness: each point on its fixel's edge (or circle) within T of
- * nominal, each normal within A of the boundary's; rebuilt from them, the
- * fixture's answer is outside. */
-static void check_witness(bool is_disc, double mu, const double angle[3], double position,
-                          double tol_angle, const wr_robust_answer *r, const double w[3],
-                          wr_set set)
+/* The witness: each point on its fixel's edge within T of nominal, each
+ * normal within A of the boundary's; rebuilt from them, the fixture's
+ * answer is outside. */
+static void check_witness(double mu, double position, double tol_angle,
+                          const wr_robust_answer *r, const double w[3], wr_set set)
 {
     assert_true(r->has_perturbation);
     double s[3], tilt[3];
     for (int i = 0; i < 3; i++) {
         const double *p = r->points[i], *n = r->normals[i];
-        double boundary_normal[2];
-        if (is_disc) {
-            assert_true(fabs(hypot(p[0], p[1]) - 1) < 1e-12);
-            double moved = remainder(atan2(p[1], p[0]) - angle[i], 2 * TEST_PI);
-            s[i] = moved;
-            boundary_normal[0] = -p[0];
-            boundary_normal[1] = -p[1];
-        } else {
-            double d[2] = {p[0] - PLATE_AT[i][0], p[1] - PLATE_AT[i][1]};
-            s[i] = d[0] * PLATE_RUN[i][0] + d[1] * PLATE_RUN[i][1];
-            /* on the edge: no motion across it */
-            assert_true(fabs(d[0] * PLATE_NORMAL[i][0] + d[1] * PLATE_NORMAL[i][1]) < 1e-12);
-            boundary_normal[0] = PLATE_NORMAL[i][0];
-            boundary_normal[1] = PLATE_NORMAL[i][1];
-        }
+        double d[2] = {p[0] - PLATE_AT[i][0], p[1] - PLATE_AT[i][1]};
+        s[i] = d[0] * PLATE_RUN[i][0] + d[1] * PLATE_RUN[i][1];
+        /* on the edge: no motion across it */
+        assert_true(fabs(d[0] * PLATE_NORMAL[i][0] + d[1] * PLATE_NORMAL[i][1]) < 1e-12);
+        const double *boundary_normal = PLATE_NORMAL[i];
         assert_true(fabs(s[i]) <= position * (1 + 1e-12));
         tilt[i] = atan2(boundary_normal[0] * n[1] - boundary_normal[1] * n[0],
                         boundary_normal[0] * n[0] + boundary_normal[1] * n[1]);
         assert_true(fabs(tilt[i]) <= tol_angle * DEG * (1 + 1e-9) + 1e-12);
     }
-    wr_fixture *g = is_disc ? disc_sample(mu, angle, s, tilt) : plate_sample(mu, s, tilt);
+    wr_fixture *g = plate_sample(mu, s, tilt);
     assert_non_null(g);
     assert_int_equal(nominal_verdict(g, w, set), WR_VERDICT_OUTSIDE);
     wr_fixture_free(g);
 }
 
-static void sample_test(bool is_disc, double mu, double position, double angle, int wrenches,
-                        int samples, uint64_t seed, int last_set, int counts[3])
+static void sample_test(double mu, double position, double angle, int wrenches, int samples,
+                        uint64_t seed, int last_set, int counts[3])
 {
-    static const double DISC_AT[3] = {200 * DEG, 270 * DEG, 340 * DEG};
-    wr_fixture *f = is_disc ? disc(mu, DISC_AT, NULL) : plate(mu, PLATE_AT, NULL);
+    wr_fixture *f = plate(mu, PLATE_AT, NULL);
     assert_non_null(f);
     set_tolerance(f, position, angle);
     wr_analysis *a = test_analysis_new(f);
@@ -209,7 +166,7 @@ static void sample_test(bool is_disc, double mu, double position, double angle, 
                              WR_OK);
             counts[r.answer.verdict]++;
             if (r.answer.verdict == WR_VERDICT_OUTSIDE) {
-                check_witness(is_disc, mu, DISC_AT, position, angle, &r, w, (wr_set)set);
+                check_witness(mu, position, angle, &r, w, (wr_set)set);
                 continue;
             }
             if (r.answer.verdict != WR_VERDICT_INSIDE)
@@ -217,8 +174,7 @@ static void sample_test(bool is_disc, double mu, double position, double angle, 
             for (int k = 0; k < samples; k++) {
                 double s[3], tilt[3];
                 draw(&rng, position, angle, s, tilt);
-                wr_fixture *g =
-                    is_disc ? disc_sample(mu, DISC_AT, s, tilt) : plate_sample(mu, s, tilt);
+                wr_fixture *g = plate_sample(mu, s, tilt);
                 assert_non_null(g);
                 if (nominal_verdict(g, w, (wr_set)set) != WR_VERDICT_INSIDE) {
                     print_error("inside contradicted: wrench (%g, %g, %g) set %d sample "
@@ -240,7 +196,7 @@ static void test_sampling_plate(void **state)
 {
     (void)state;
     int counts[3] = {0, 0, 0};
-    sample_test(false, 0.3, 0.02, 1, 24, 30, 0x1234567ULL, WR_SET_BOTH, counts);
+    sample_test(0.3, 0.02, 1, 24, 30, 0x1234567ULL, WR_SET_BOTH, counts);
     print_message("plate: inside %d, boundary %d, outside %d\n", counts[0], counts[1],
                   counts[2]);
     assert_true(counts[WR_VERDICT_INSIDE] > 10);
@@ -285,12 +241,70 @@ static void test_closed_form(void **state)
                     assert_true(tau + fb * (x2 - 2) + fa * (1 - y3) < 0);
                 else
                     assert_true(tau - fb * (2 - x1) + fa * (1 - y3) > 0);
-                check_witness(false, 0, NULL, T, 0, &r, w, WR_SET_GOAL);
+                check_witness(0, T, 0, &r, w, WR_SET_GOAL);
             }
         }
     wr_robust_free(rb);
     wr_analysis_free(a);
     wr_fixture_free(f);
+}
+
+/* Robust push regions on the chamfered plate: inside the nominal ones,
+ * shorter, and every point of them inside on every sampled fixture of the
+ * set, built here. */
+static void test_regions(void **state)
+{
+    (void)state;
+    const double T = 0.01, A = 0.5, mu = 0.1;
+    plate_vertices = CHAMFERED;
+    plate_vertex_count = 5;
+    wr_fixture *f = plate(mu, PLATE_AT, NULL);
+    assert_non_null(f);
+    set_tolerance(f, T, A);
+    wr_analysis *a = test_analysis_new(f);
+    wr_robust *rb;
+    assert_int_equal(wr_robust_new(a, 16, &rb), WR_OK);
+    wr_regions nominal, robust;
+    assert_int_equal(wr_push_regions(a, WR_SET_BOTH, 0, NULL, &nominal), WR_OK);
+    assert_int_equal(wr_robust_regions(rb, WR_SET_BOTH, &nominal, false, NULL, &robust), WR_OK);
+    double nominal_length = 0, robust_length = 0;
+    for (int i = 0; i < nominal.count; i++)
+        nominal_length += wr_region_length(f, &nominal.items[i]);
+    assert_true(robust.count >= 1);
+    test_rng rng = {0x5eedULL};
+    for (int i = 0; i < robust.count; i++) {
+        const wr_region *r = &robust.items[i];
+        robust_length += wr_region_length(f, r);
+        bool within = false;
+        for (int j = 0; j < nominal.count; j++)
+            within |= nominal.items[j].edge == r->edge && nominal.items[j].t0 <= r->t0 &&
+                      r->t1 <= nominal.items[j].t1;
+        assert_true(within);
+        for (int k = 0; k < 20; k++) {
+            double t = k == 0 ? r->t0 : k == 1 ? r->t1 : test_range(&rng, r->t0, r->t1);
+            double w[3];
+            wr_push_wrench(f, r->edge, t, w);
+            for (int n = 0; n < 20; n++) {
+                double s[3], tilt[3];
+                draw(&rng, T, A, s, tilt);
+                wr_fixture *g = plate_sample(mu, s, tilt);
+                assert_non_null(g);
+                assert_int_equal(nominal_verdict(g, w, WR_SET_BOTH), WR_VERDICT_INSIDE);
+                wr_fixture_free(g);
+            }
+        }
+    }
+    print_message("chamfered plate, both: nominal %g, robust %g\n", nominal_length,
+                  robust_length);
+    assert_true(robust_length < nominal_length);
+    assert_true(robust_length > 0.5 * nominal_length);
+    wr_regions_release(&nominal);
+    wr_regions_release(&robust);
+    wr_robust_free(rb);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    plate_vertices = PLATE;
+    plate_vertex_count = 4;
 }
 
 static void test_refusals(void **state)
@@ -331,6 +345,7 @@ int main(void)
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_closed_form),
         cmocka_unit_test(test_sampling_plate),
+        cmocka_unit_test(test_regions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
