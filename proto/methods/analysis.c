@@ -465,6 +465,44 @@ cJSON *wp_handle_gravity_sweep(wp_call *call)
     return result;
 }
 
+/* The disturbance margin over a fixture's tolerance: the robust answer of
+ * the bias in G_strong, its margin (for inside, a lower bound of the worst
+ * over the set; for outside, the witness fixture's) times |h(bias)|,
+ * blocking at the nominal cone named when it has one. */
+static wr_status robust_margin(const wr_analysis *a, const double bias[3], wr_disturbance *d,
+                               wr_robust_answer *robust)
+{
+    wr_robust *rb;
+    wr_status status = wr_robust_new(a, 0, &rb);
+    if (status != WR_OK)
+        return status;
+    status = wr_robust_classify(rb, bias, WR_SET_STRONG, WR_DEFAULT_TOLERANCE, robust);
+    wr_robust_free(rb);
+    if (status != WR_OK)
+        return status;
+    double unit[3];
+    double length = wr_fixture_unit_wrench(wr_analysis_fixture(a), bias, unit);
+    d->margin = fmin(d->margin, robust->answer.margin * length);
+    if (robust->answer.blocking >= 0)
+        d->blocking = robust->answer.blocking;
+    return WR_OK;
+}
+
+/* "robust": the verdict over the set, and an outside's witness. */
+static void add_robust_verdict(cJSON *result, const wr_fixture *f, const wr_robust_answer *r)
+{
+    static const char *const NAMES[] = {"inside", "boundary", "outside"};
+    cJSON_AddStringToObject(result, "robust", NAMES[r->answer.verdict]);
+    if (!r->has_perturbation)
+        return;
+    cJSON *points = cJSON_AddArrayToObject(result, "perturbation");
+    cJSON *normals = cJSON_AddArrayToObject(result, "perturbation_normals");
+    for (int i = 0; points && normals && i < f->fixel_count; i++) {
+        cJSON_AddItemToArray(points, cJSON_CreateDoubleArray(r->points[i], 2));
+        cJSON_AddItemToArray(normals, cJSON_CreateDoubleArray(r->normals[i], 2));
+    }
+}
+
 cJSON *wp_handle_stability_margin(wp_call *call)
 {
     const cJSON *params = call->params;
@@ -478,7 +516,12 @@ cJSON *wp_handle_stability_margin(wp_call *call)
     bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",
                                use->fixture, bias, error);
     wr_status status = read ? wr_disturbance_margin(use->analysis, bias, &d) : WR_OK;
-    if (status != WR_OK)
+    wr_robust_answer robust = {.has_perturbation = false};
+    if (status == WR_OK && read && d.bounded && use->fixture->tolerance.given)
+        status = robust_margin(use->analysis, bias, &d, &robust);
+    if (status == WR_LP_FAILED || status == WR_NO_MEMORY)
+        wp_error_status(error, status, "", "%s", wr_strerror(status));
+    else if (status != WR_OK)
         wp_error_status(error, status, "params.bias",
                         "so large that its margin is beyond the largest number");
     else if (read) {
@@ -490,6 +533,8 @@ cJSON *wp_handle_stability_margin(wp_call *call)
             cJSON_AddNumberToObject(result, "margin", d.margin + 0.0);
             cJSON_AddStringToObject(result, "blocking", text);
             cJSON_AddItemToObject(result, "worst_direction", vector3(d.worst_direction));
+            if (use->fixture->tolerance.given)
+                add_robust_verdict(result, use->fixture, &robust);
         } else {
             /* No moving mode at all: no disturbance moves the part. */
             cJSON_AddNullToObject(result, "margin");
