@@ -974,46 +974,159 @@ static bool append_region(wr_regions *out, int edge, double t0, double t1)
     return true;
 }
 
+/* A family of wrenches over a parameter interval, as a box. */
+typedef void (*family_fn)(const void *context, double ta, double tb, double lo[3], double hi[3]);
+
+/* The pieces of [t0, t1], bisected down to 2^-WR_ROBUST_DEPTH of it, whose
+ * family is proved robustly inside, each passed to `keep` in order. */
+static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, family_fn family,
+                        const void *context, const wr_stop *stop,
+                        bool (*keep)(void *sink, double t0, double t1), void *sink)
+{
+    struct piece {
+        double t0, t1;
+        int depth;
+    } stack[2 * WR_ROBUST_DEPTH + 2];
+    int top = 0;
+    stack[top++] = (struct piece){t0, t1, 0};
+    while (top > 0) {
+        struct piece p = stack[--top];
+        if (wr_stop_requested(stop))
+            return WR_STOPPED;
+        double lo[3], hi[3];
+        family(context, p.t0, p.t1, lo, hi);
+        wr_status status;
+        if (wr_robust_box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, &status)) {
+            if (!keep(sink, p.t0, p.t1))
+                return WR_NO_MEMORY;
+            continue;
+        }
+        if (status != WR_OK)
+            return status;
+        if (p.depth < WR_ROBUST_DEPTH) {
+            /* Left piece on top, so that pieces come out in order. */
+            double mid = 0.5 * (p.t0 + p.t1);
+            stack[top++] = (struct piece){mid, p.t1, p.depth + 1};
+            stack[top++] = (struct piece){p.t0, mid, p.depth + 1};
+        }
+    }
+    return WR_OK;
+}
+
+typedef struct region_family {
+    const wr_fixture *fixture;
+    int edge;
+    bool gravity;
+} region_family;
+
+static void region_box(const void *context, double ta, double tb, double lo[3], double hi[3])
+{
+    const region_family *r = context;
+    family_box(r->fixture, r->edge, r->gravity, ta, tb, lo, hi);
+}
+
+typedef struct region_sink {
+    wr_regions *out;
+    int edge;
+} region_sink;
+
+static bool keep_region(void *sink, double t0, double t1)
+{
+    region_sink *r = sink;
+    return append_region(r->out, r->edge, t0, t1);
+}
+
 wr_status wr_robust_regions(const wr_robust *rb, wr_set set, const wr_regions *nominal,
                             bool gravity, const wr_stop *stop, wr_regions *out)
 {
     memset(out, 0, sizeof *out);
     out->resolution = nominal->resolution;
-    const wr_fixture *f = rb->fixture;
     for (int r = 0; r < nominal->count; r++) {
         const wr_region *region = &nominal->items[r];
-        /* Depth-first, left piece first, so that pieces come out in order. */
-        struct piece {
-            double t0, t1;
-            int depth;
-        } stack[2 * WR_ROBUST_DEPTH + 2];
-        int top = 0;
-        stack[top++] = (struct piece){region->t0, region->t1, 0};
-        while (top > 0) {
-            struct piece p = stack[--top];
-            if (wr_stop_requested(stop)) {
-                wr_regions_release(out);
-                return WR_STOPPED;
-            }
-            double lo[3], hi[3];
-            family_box(f, region->edge, gravity, p.t0, p.t1, lo, hi);
-            wr_status status;
-            if (wr_robust_box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, &status)) {
-                if (!append_region(out, region->edge, p.t0, p.t1)) {
-                    wr_regions_release(out);
-                    return WR_NO_MEMORY;
-                }
-                continue;
-            }
-            if (status != WR_OK) {
-                wr_regions_release(out);
-                return status;
-            }
-            if (p.depth < WR_ROBUST_DEPTH) {
-                double mid = 0.5 * (p.t0 + p.t1);
-                stack[top++] = (struct piece){mid, p.t1, p.depth + 1};
-                stack[top++] = (struct piece){p.t0, mid, p.depth + 1};
-            }
+        region_family family = {rb->fixture, region->edge, gravity};
+        region_sink sink = {out, region->edge};
+        wr_status status = bisect(rb, set, region->t0, region->t1, region_box, &family, stop,
+                                  keep_region, &sink);
+        if (status != WR_OK) {
+            wr_regions_release(out);
+            return status;
+        }
+    }
+    return WR_OK;
+}
+
+/* Magnitudes F of load + F push, on the parameter s = F / (F + c) in
+ * [0, 1] (c > 0 a force of the problem's size): (1 - s) L + s c u is
+ * (L + F u) c / (F + c), the same direction, and affine in s, so its box
+ * over [sa, sb] is its ends'.  `push` holds c u. */
+typedef struct force_family {
+    double load[3], push[3], c;
+} force_family;
+
+static void force_box(const void *context, double sa, double sb, double lo[3], double hi[3])
+{
+    const force_family *f = context;
+    for (int j = 0; j < 3; j++) {
+        double a = (1 - sa) * f->load[j] + sa * f->push[j];
+        double b = (1 - sb) * f->load[j] + sb * f->push[j];
+        double e = 1e-15 * (fabs(a) + fabs(b) + 1e-300);
+        lo[j] = fmin(a, b) - e;
+        hi[j] = fmax(a, b) + e;
+    }
+}
+
+typedef struct force_sink {
+    wr_forces *out;
+    double c;
+} force_sink;
+
+static double magnitude(double s, double c) { return s >= 1 ? INFINITY : c * s / (1 - s); }
+
+static bool keep_force(void *sink, double s0, double s1)
+{
+    force_sink *f = sink;
+    wr_forces *out = f->out;
+    double lo = magnitude(s0, f->c), hi = magnitude(s1, f->c);
+    if (out->count > 0 && out->items[out->count - 1].hi == lo) {
+        out->items[out->count - 1].hi = hi;
+        return true;
+    }
+    if (out->count == out->capacity) {
+        int capacity = out->capacity ? 2 * out->capacity : 8;
+        wr_force_interval *items = realloc(out->items, sizeof *items * (size_t)capacity);
+        if (!items)
+            return false;
+        out->items = items;
+        out->capacity = capacity;
+    }
+    out->items[out->count++] = (wr_force_interval){lo, hi};
+    return true;
+}
+
+wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3],
+                           const double push[3], const wr_forces *nominal, const wr_stop *stop,
+                           wr_forces *out)
+{
+    out->count = 0;
+    const wr_fixture *f = rb->fixture;
+    force_family family;
+    memcpy(family.load, load, sizeof family.load);
+    memcpy(family.push, push, sizeof family.push);
+    family.load[2] /= f->gyration_radius;
+    family.push[2] /= f->gyration_radius;
+    double lengths[2] = {wr_norm3(family.load), wr_norm3(family.push)};
+    family.c = lengths[0] > 0 && lengths[1] > 0 ? lengths[0] / lengths[1] : 1;
+    for (int j = 0; j < 3; j++)
+        family.push[j] *= family.c;
+    force_sink sink = {out, family.c};
+    for (int i = 0; i < nominal->count; i++) {
+        const wr_force_interval *g = &nominal->items[i];
+        double s0 = g->lo / (g->lo + family.c);
+        double s1 = isinf(g->hi) ? 1 : g->hi / (g->hi + family.c);
+        wr_status status = bisect(rb, set, s0, s1, force_box, &family, stop, keep_force, &sink);
+        if (status != WR_OK) {
+            out->count = 0;
+            return status;
         }
     }
     return WR_OK;

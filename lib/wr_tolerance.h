@@ -17,6 +17,7 @@
 #define WR_TOLERANCE_H
 
 #include "wr_classify.h"
+#include "wr_force.h"
 #include "wr_regions.h"
 
 #ifdef __cplusplus
@@ -99,6 +100,16 @@ bool wr_robust_box_inside(const wr_robust *robust, const double lo[3], const dou
 #define WR_ROBUST_DEPTH 10
 wr_status wr_robust_regions(const wr_robust *robust, wr_set set, const wr_regions *nominal,
                             bool gravity, const wr_stop *stop, wr_regions *out);
+
+/* The robust part of nominal good magnitudes (wr_force_range of the same
+ * set, load and push, both physical wrenches of the model system): each
+ * nominal interval bisected as wr_robust_regions does, on the parameter
+ * F / (F + c) (an unbounded interval is a bounded one of it).  `out`
+ * (emptied first, its array reused) lies inside the robust magnitudes.
+ * WR_OK; WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY. */
+wr_status wr_robust_forces(const wr_robust *robust, wr_set set, const double load[3],
+                           const double push[3], const wr_forces *nominal, const wr_stop *stop,
+                           wr_forces *out);
 
 #ifdef __cplusplus
 }

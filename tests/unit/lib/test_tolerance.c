@@ -307,6 +307,48 @@ static void test_regions(void **state)
     plate_vertex_count = 4;
 }
 
+/* The frictionless plate under its weight (m G = 1, straight down) pushed
+ * along -x at (4, y): (-F, -1, F (y - 1)), so by the closed form above it
+ * with a = F, b = 1, tau = F (y - 1) it seats robustly for
+ * F |y - 1| < (1 - T) - F T, that is 0 < F < (1 - T) / (|y - 1| + T);
+ * nominally 0 < F < 1 / |y - 1|. */
+static void test_force_closed_form(void **state)
+{
+    (void)state;
+    const double T = 0.1;
+    wr_fixture *f = plate(0, PLATE_AT, NULL);
+    assert_non_null(f);
+    set_tolerance(f, T, 0);
+    wr_analysis *a = test_analysis_new(f);
+    wr_robust *rb;
+    assert_int_equal(wr_robust_new(a, 256, &rb), WR_OK);
+    static const double heights[] = {1.5, 0.4, 1.9};
+    for (size_t i = 0; i < sizeof heights / sizeof *heights; i++) {
+        double y = heights[i];
+        double load[3] = {0, -f->mass, 0}, push[3];
+        wr_fixture_force_wrench(f, (const double[2]){-1, 0}, (const double[2]){4, y}, push);
+        wr_forces nominal = {0}, robust = {0};
+        assert_int_equal(wr_force_range(a, WR_SET_GOAL, load, push, 0, INFINITY, &nominal),
+                         WR_OK);
+        assert_int_equal(nominal.count, 1);
+        assert_true(fabs(nominal.items[0].hi - 1 / fabs(y - 1)) < 1e-9);
+        assert_int_equal(
+            wr_robust_forces(rb, WR_SET_GOAL, load, push, &nominal, NULL, &robust), WR_OK);
+        assert_true(robust.count >= 1);
+        double hi = (1 - T) / (fabs(y - 1) + T);
+        double lo_found = robust.items[0].lo, hi_found = robust.items[robust.count - 1].hi;
+        print_message("y %g: robust (%g, %g), closed form (0, %g)\n", y, lo_found, hi_found,
+                      hi);
+        assert_true(lo_found >= 0 && lo_found < 0.05 * hi);
+        assert_true(hi_found <= hi * (1 + 1e-9) && hi_found > 0.97 * hi);
+        wr_forces_release(&nominal);
+        wr_forces_release(&robust);
+    }
+    wr_robust_free(rb);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+}
+
 static void test_refusals(void **state)
 {
     (void)state;
@@ -346,6 +388,7 @@ int main(void)
         cmocka_unit_test(test_closed_form),
         cmocka_unit_test(test_sampling_plate),
         cmocka_unit_test(test_regions),
+        cmocka_unit_test(test_force_closed_form),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
