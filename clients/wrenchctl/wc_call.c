@@ -225,6 +225,31 @@ int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
     return -1;
 }
 
+/* A stored fixture fetched (an inline one as it is) and sent inline with
+ * the tolerance {"position", "angle"} in place of its own. */
+int wc_fixture_tolerance(wc_options *o, cJSON **fixture, double position, double angle)
+{
+    if (cJSON_IsString(*fixture)) {
+        int status;
+        cJSON *params = cJSON_CreateObject();
+        cJSON_AddStringToObject(params, "id", (*fixture)->valuestring);
+        cJSON *stored = wc_call(o, "fixture.get", params, &status);
+        if (!stored)
+            return status;
+        cJSON_Delete(*fixture);
+        *fixture = stored;
+    }
+    if (!cJSON_IsObject(*fixture))
+        return wc_usage_error("--tolerance: the fixture is not a JSON object");
+    cJSON *tolerance = cJSON_CreateObject();
+    cJSON_AddNumberToObject(tolerance, "position", position);
+    if (angle > 0)
+        cJSON_AddNumberToObject(tolerance, "angle", angle);
+    cJSON_DeleteItemFromObject(*fixture, "tolerance");
+    cJSON_AddItemToObject(*fixture, "tolerance", tolerance);
+    return -1;
+}
+
 /* ---- wrenches ---------------------------------------------------------------- */
 
 /* "fx,fy,tau" or "fx,fy@x,y" as a wrench JSON value; NULL if neither. */
