@@ -320,6 +320,7 @@ BENCH_NUMBER = $(BUILD)/bench/number
 BENCH_MICRO  = $(BUILD)/bench/micro
 BENCH_SOCKET = $(BUILD)/bench/socket
 BENCH_LOCATE = $(BUILD)/bench/locate
+BENCH_TOLERANCE = $(BUILD)/bench/tolerance
 BENCH_SEGMENTS = $(BUILD)/bench/segments
 
 # bench/X.c -> build/bench/X, linked with the libraries it lists below.
@@ -329,18 +330,18 @@ $(BUILD)/bench/%: bench/%.c
 	@mkdir -p $(dir $@)
 	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
-$(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_TOLERANCE): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 $(BENCH_SEGMENTS): $(BUILD)/libwrench.a
 $(BENCH_SEGMENTS): BENCH_LIBS = -lglpk -lm
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
 $(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
-$(BENCH_MICRO) $(BENCH_LOCATE): BENCH_LIBS = -lcjson -lglpk -lm
+$(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_TOLERANCE): BENCH_LIBS = -lcjson -lglpk -lm
 $(BENCH_NUMBER): BENCH_LIBS = -lm
 $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
 # The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
-bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE)
+bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE) $(BENCH_TOLERANCE)
 	@bench/run
 
 # A fresh daemon, 32 clients x 1000 lines, every answer checked: nothing lost,

@@ -235,7 +235,7 @@ static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set s
 
 /* Boxes per excluded cone for one piece of a robust region: a piece that
  * so few do not prove is split instead (wr_robust_regions). */
-#define ROBUST_REGION_BUDGET 64
+#define ROBUST_REGION_BUDGET 16
 
 /* What robust regions cover (docs/PROTOCOL.md, "Tolerance"): the push of a
  * frictionless finger alone; a finger's friction or loads are refused. */
