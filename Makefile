@@ -483,6 +483,8 @@ $(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a 
 
 physics-check: $(BUILD)/physics-validate
 	$(BUILD)/physics-validate --quick $(PHYSICS_FIXTURES)
+	$(BUILD)/physics-validate --quick --tolerance 0.03,0.5 examples/plate-chamfered.json
+	$(BUILD)/physics-validate --quick --tolerance 0.05,0.2 examples/bracket.json
 
 validate: $(BUILD)/physics-validate
 	$(BUILD)/physics-validate --full $(PHYSICS_FIXTURES)
