@@ -382,10 +382,64 @@ static void build_system(const wr_robust *rb, const wr_constraint *c, const box 
     }
 }
 
+/* A certificate found: lambda+, lambda- (interleaved per equality row),
+ * then mu per inequality row, as the LP's columns. */
+#define CERTIFICATE_MAX (2 * 2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1)
+typedef struct certificate {
+    bool valid;
+    int equality_count, inequality_count;
+    double value[CERTIFICATE_MAX];
+} certificate;
+
+/* The distance a given certificate proves over the box: the lower bound of
+ * y . x over the bound of |y|_1, or -1 when some edge's bound is above 0
+ * (no proof).  The same bounds the LP states, evaluated: a certificate
+ * found for one box is tried on its neighbours before an LP is solved. */
+static double check_certificate(const system_t *sys, const ivec *x, const certificate *cert)
+{
+    int ne = sys->equality_count, nf = sys->inequality_count;
+    if (!cert->valid || cert->equality_count != ne || cert->inequality_count != nf)
+        return -1;
+    const double *v = cert->value;
+    for (int k = 0; k < sys->edge_count; k++) {
+        double up = 0;
+        for (int e = 0; e < ne; e++) {
+            iv d = ivec_dot(&sys->equality[e], &sys->edge[k]);
+            up += v[2 * e] * d.hi - v[2 * e + 1] * d.lo;
+        }
+        for (int q = 0; q < nf; q++)
+            up -= v[2 * ne + q] * ivec_dot(&sys->inequality[q], &sys->edge[k]).lo;
+        if (up > 0)
+            return -1;
+    }
+    double norm = 0, lower = 0;
+    for (int j = 0; j < 3; j++) {
+        double hi = 0, lo = 0;
+        for (int e = 0; e < ne; e++) {
+            hi += v[2 * e] * sys->equality[e].v[j].hi - v[2 * e + 1] * sys->equality[e].v[j].lo;
+            lo += v[2 * e] * sys->equality[e].v[j].lo - v[2 * e + 1] * sys->equality[e].v[j].hi;
+        }
+        for (int q = 0; q < nf; q++) {
+            hi -= v[2 * ne + q] * sys->inequality[q].v[j].lo;
+            lo -= v[2 * ne + q] * sys->inequality[q].v[j].hi;
+        }
+        norm += fmax(fabs(hi), fabs(lo));
+    }
+    for (int e = 0; e < ne; e++) {
+        iv d = ivec_dot(&sys->equality[e], x);
+        lower += v[2 * e] * d.lo - v[2 * e + 1] * d.hi;
+    }
+    for (int q = 0; q < nf; q++)
+        lower -= v[2 * ne + q] * ivec_dot(&sys->inequality[q], x).hi;
+    /* Rounding in these sums: a proof must clear it. */
+    return norm > 0 && lower > 0 ? lower / norm * (1 - 1e-12) : -1;
+}
+
 /* The certificate LP of the file's comment over one box: the largest t
  * with y(theta) . x >= t for all theta and x of the box.  Returns t (-1 when
- * none is positive), or NAN when GLPK failed. */
-static double certify(const system_t *sys, const ivec *x)
+ * none is positive), or NAN when GLPK failed; a positive one's multipliers
+ * into *cert (may be NULL). */
+static double certify(const system_t *sys, const ivec *x, certificate *cert)
 {
     int ne = sys->equality_count, nf = sys->inequality_count, ng = sys->edge_count;
     int cols = 2 * ne + nf + 3 + 1;
@@ -484,6 +538,13 @@ static double certify(const system_t *sys, const ivec *x)
         glp_std_basis(p);
         if (glp_simplex(p, &parm) == 0 && glp_get_status(p) == GLP_OPT)
             t = glp_get_obj_val(p);
+    }
+    if (cert && t > 0) {
+        cert->valid = true;
+        cert->equality_count = ne;
+        cert->inequality_count = nf;
+        for (int j = 0; j < 2 * ne + nf; j++)
+            cert->value[j] = glp_get_col_prim(p, 1 + j);
     }
     glp_delete_prob(p);
     return t;
@@ -697,7 +758,8 @@ enum { CONE_CLEAR, CONE_WITNESS, CONE_UNDECIDED, CONE_FAILED };
  * in *least. */
 static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec *x,
                         const double *point, double tolerance, double nominal,
-                        double *lower, double *least, double *s, double *tilt)
+                        certificate *cache, double *lower, double *least, double *s,
+                        double *tilt)
 {
     int budget = rb->budget;
     box *queue = malloc(sizeof *queue * (size_t)(budget + 1));
@@ -720,7 +782,11 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
         examined++;
         system_t sys;
         build_system(rb, c, &b, &sys);
-        double t = certify(&sys, x);
+        /* The last certificate of this cone first: a neighbouring box's
+         * often proves this one too, without an LP. */
+        double t = cache ? check_certificate(&sys, x, cache) : -1;
+        if (!(t > tolerance))
+            t = certify(&sys, x, cache);
         if (isnan(t)) {
             result = CONE_FAILED;
             break;
@@ -819,7 +885,8 @@ wr_status wr_robust_classify(const wr_robust *rb, const double wrench[3], wr_set
             double nominal = cone.empty ? INFINITY : wr_cone_signed_distance(&cone, x, NULL);
             wr_cone_release(&cone);
             double lo, le, s[WR_MAX_FIXELS], tilt[WR_MAX_FIXELS];
-            int r = examine_cone(rb, c, &family, x, tolerance, nominal, &lo, &le, s, tilt);
+            int r = examine_cone(rb, c, &family, x, tolerance, nominal, NULL, &lo, &le, s,
+                                 tilt);
             if (r == CONE_FAILED)
                 return WR_LP_FAILED;
             least = fmin(least, le);
@@ -878,8 +945,10 @@ wr_status wr_robust_classify(const wr_robust *rb, const double wrench[3], wr_set
     return WR_OK;
 }
 
-bool wr_robust_box_inside(const wr_robust *rb, const double lo[3], const double hi[3],
-                          wr_set set, double tolerance, wr_status *status)
+/* wr_robust_box_inside with a certificate cache per cone (goal's, then
+ * strong's; NULL: none). */
+static bool box_inside(const wr_robust *rb, const double lo[3], const double hi[3], wr_set set,
+                       double tolerance, certificate *caches, wr_status *status)
 {
     *status = WR_OK;
     ivec family;
@@ -896,8 +965,9 @@ bool wr_robust_box_inside(const wr_robust *rb, const double lo[3], const double 
             continue;
         for (int i = 0; i < rb->cone_count[which]; i++) {
             double lower, least, s[WR_MAX_FIXELS], tilt[WR_MAX_FIXELS];
+            certificate *cache = caches ? &caches[which * rb->cone_count[0] + i] : NULL;
             int r = examine_cone(rb, &rb->cones[which][i], &family, NULL, tolerance * big,
-                                 INFINITY, &lower, &least, s, tilt);
+                                 INFINITY, cache, &lower, &least, s, tilt);
             if (r == CONE_FAILED) {
                 *status = WR_LP_FAILED;
                 return false;
@@ -907,6 +977,12 @@ bool wr_robust_box_inside(const wr_robust *rb, const double lo[3], const double 
         }
     }
     return true;
+}
+
+bool wr_robust_box_inside(const wr_robust *rb, const double lo[3], const double hi[3],
+                          wr_set set, double tolerance, wr_status *status)
+{
+    return box_inside(rb, lo, hi, set, tolerance, NULL, status);
 }
 
 /* ---- regions ----------------------------------------------------------- */
@@ -989,20 +1065,30 @@ static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, f
     } stack[2 * WR_ROBUST_DEPTH + 2];
     int top = 0;
     stack[top++] = (struct piece){t0, t1, 0};
-    while (top > 0) {
+    /* Neighbouring pieces share certificates: one cache per cone. */
+    certificate *caches = calloc((size_t)(rb->cone_count[0] + rb->cone_count[1]) + 1,
+                                 sizeof *caches);
+    if (!caches)
+        return WR_NO_MEMORY;
+    wr_status result = WR_OK;
+    while (top > 0 && result == WR_OK) {
         struct piece p = stack[--top];
-        if (wr_stop_requested(stop))
-            return WR_STOPPED;
+        if (wr_stop_requested(stop)) {
+            result = WR_STOPPED;
+            break;
+        }
         double lo[3], hi[3];
         family(context, p.t0, p.t1, lo, hi);
         wr_status status;
-        if (wr_robust_box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, &status)) {
+        if (box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, caches, &status)) {
             if (!keep(sink, p.t0, p.t1))
-                return WR_NO_MEMORY;
+                result = WR_NO_MEMORY;
             continue;
         }
-        if (status != WR_OK)
-            return status;
+        if (status != WR_OK) {
+            result = status;
+            break;
+        }
         if (p.depth < WR_ROBUST_DEPTH) {
             /* Left piece on top, so that pieces come out in order. */
             double mid = 0.5 * (p.t0 + p.t1);
@@ -1010,7 +1096,8 @@ static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, f
             stack[top++] = (struct piece){p.t0, mid, p.depth + 1};
         }
     }
-    return WR_OK;
+    free(caches);
+    return result;
 }
 
 typedef struct region_family {
