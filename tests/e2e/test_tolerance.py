@@ -154,3 +154,24 @@ def test_id_and_refusals(client):
     error = client.error("friction.sweep", {"fixture": with_tolerance(PLATE, 0.01),
                                             "wrenches": [[0, -1, 0]]})
     assert error["data"]["field"] == "params.fixture.tolerance", error
+
+
+def test_python_client(daemon):
+    """wrenchd.with_tolerance and the witness on Verdict and Disturbance."""
+    import os
+    import sys
+    from conftest import REPO
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    fixture = wrenchd.with_tolerance(PLATE, 0.1, 1.0)
+    assert fixture["tolerance"] == {"position": 0.1, "angle": 1.0}
+    assert "tolerance" not in PLATE
+    with wrenchd.Client(daemon.path, timeout=30) as c:
+        v = c.classify(fixture, [[-0.5, -1, 0.95]], sets="goal")[0]["goal"]
+        assert v.verdict == "outside" and len(v.perturbation) == 3
+        assert len(v.perturbation_normals) == 3
+        nominal = c.classify(PLATE, [[-0.5, -1, 0.95]], sets="goal")[0]["goal"]
+        assert nominal.perturbation is None
+        d = c.stability_margin(fixture, [0, -1, 0.5])
+        assert d.robust in ("inside", "boundary", "outside")
+        assert c.stability_margin(PLATE, [0, -1, 0.5]).robust is None
