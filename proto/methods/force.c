@@ -410,6 +410,13 @@ cJSON *wp_handle_push_force(wp_call *call)
                      "a push force needs the part's outline: the fixture has no shape");
         return NULL;
     }
+    if (f->tolerance.given) {
+        /* The least force is exact on the nominal fixels only. */
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "push.force answers the nominal fixture only: ask force.range at a point "
+                     "for magnitudes robust over the tolerance");
+        return NULL;
+    }
     wp_cases cases;
     if (!wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
                        &cases, error))

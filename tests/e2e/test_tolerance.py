@@ -154,6 +154,9 @@ def test_id_and_refusals(client):
     error = client.error("friction.sweep", {"fixture": with_tolerance(PLATE, 0.01),
                                             "wrenches": [[0, -1, 0]]})
     assert error["data"]["field"] == "params.fixture.tolerance", error
+    error = client.error("push.force", {"fixture": with_tolerance(PLATE, 0.01),
+                                        "cases": [{"loads": [{"gravity": 9.81}]}]})
+    assert error["data"]["field"] == "params.fixture.tolerance", error
 
 
 def test_python_client(daemon):
