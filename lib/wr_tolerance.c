@@ -581,6 +581,11 @@ static int independent_triples(const wr_robust *rb, const box *whole, unsigned *
     return count;
 }
 
+/* Up to this many fixels the four-row test below is made for every mode
+ * string (4^k of them, each with up to C(2k + 1, 4) subsets); beyond it a
+ * mode it would exclude is kept, and answers are only more cautious. */
+#define WR_ROBUST_SUBSETS_MAX_FIXELS 4
+
 /* Could some fixture of the set make mode c feasible? */
 static bool mode_possible(const wr_constraint *c, const unsigned *masks, int count)
 {
@@ -596,6 +601,83 @@ static bool mode_possible(const wr_constraint *c, const unsigned *masks, int cou
         if ((masks[i] & rows) == masks[i])
             return false;
     return true;
+}
+
+static iv det3(const ivec *r0, const ivec *r1, const ivec *r2)
+{
+    return iv_add(
+        iv_add(iv_mul(r0->v[0], iv_sub(iv_mul(r1->v[1], r2->v[2]), iv_mul(r1->v[2], r2->v[1]))),
+               iv_mul(r0->v[1], iv_sub(iv_mul(r1->v[2], r2->v[0]), iv_mul(r1->v[0], r2->v[2])))),
+        iv_mul(r0->v[2], iv_sub(iv_mul(r1->v[0], r2->v[1]), iv_mul(r1->v[1], r2->v[0]))));
+}
+
+/* Is mode c's motion impossible on every fixture of the set, by four of
+ * its rows?  Any four vectors of R^3 satisfy sum_i c_i r_i = 0 with c_i =
+ * (-1)^i det(the other three).  If over the whole set the c_i of the
+ * inequality rows among four (F q >= 0, strict ones > 0) keep one sign,
+ * some strict one's away from 0, then for q meeting the equality rows
+ * sum over inequalities of c_i (r_i . q) = 0 while each term has that sign
+ * and one is not 0: no such q.  `whole` the set's box. */
+static bool mode_impossible(const wr_robust *rb, const wr_constraint *c, const box *whole)
+{
+    ivec rows[2 * WR_MAX_FIXELS + 1];
+    int kind[2 * WR_MAX_FIXELS + 1]; /* 0 equality, 1 inequality, 2 strict */
+    int n = 0;
+    const wr_fixture *f = rb->fixture;
+    for (int i = 0; i < f->fixel_count; i++) {
+        ivec nw, tw;
+        fixel_enclosure(f, &rb->motion[i], i, whole, &nw, &tw);
+        switch (c->letters[i]) {
+        case 's':
+            rows[n] = nw, kind[n++] = c->strict_separation ? 2 : 1;
+            break;
+        case 'l':
+        case 'r':
+            rows[n] = nw, kind[n++] = 0;
+            rows[n] = c->letters[i] == 'l' ? tw : ivec_neg(&tw), kind[n++] = 2;
+            break;
+        case 'n':
+            rows[n] = nw, kind[n++] = 0;
+            rows[n] = tw, kind[n++] = 0;
+            break;
+        default:
+            break;
+        }
+    }
+    if (c->pivot) {
+        ivec e = {{{0, 0}, {0, 0}, {c->pivot, c->pivot}}};
+        rows[n] = e, kind[n++] = 2;
+    }
+    int pick[4];
+    for (pick[0] = 0; pick[0] < n; pick[0]++)
+        for (pick[1] = pick[0] + 1; pick[1] < n; pick[1]++)
+            for (pick[2] = pick[1] + 1; pick[2] < n; pick[2]++)
+                for (pick[3] = pick[2] + 1; pick[3] < n; pick[3]++) {
+                    int positive = 0, negative = 0, strict_positive = 0, strict_negative = 0;
+                    int inequalities = 0;
+                    for (int m = 0; m < 4; m++) {
+                        if (kind[pick[m]] == 0)
+                            continue;
+                        inequalities++;
+                        const ivec *o[3];
+                        for (int j = 0, k = 0; j < 4; j++)
+                            if (j != m)
+                                o[k++] = &rows[pick[j]];
+                        iv d = det3(o[0], o[1], o[2]);
+                        if (m % 2)
+                            d = (iv){-d.hi, -d.lo};
+                        positive += d.lo >= 0;
+                        negative += d.hi <= 0;
+                        strict_positive += kind[pick[m]] == 2 && d.lo > 0;
+                        strict_negative += kind[pick[m]] == 2 && d.hi < 0;
+                    }
+                    if (inequalities == 0)
+                        continue;
+                    if ((positive == inequalities && strict_positive > 0) ||
+                        (negative == inequalities && strict_negative > 0))
+                        return true;
+                }
+    return false;
 }
 
 static void whole_box(const wr_robust *rb, box *b)
@@ -673,7 +755,8 @@ wr_status wr_robust_new(const wr_analysis *analysis, int budget, wr_robust **out
         }
         if (strspn(c.letters, "n") == (size_t)k)
             continue; /* rolling everywhere: the part at rest, or a pivot below */
-        if (in_list(rb->cones[1], count, &c) || !mode_possible(&c, masks, mask_count))
+        if (in_list(rb->cones[1], count, &c) || !mode_possible(&c, masks, mask_count) ||
+            (k <= WR_ROBUST_SUBSETS_MAX_FIXELS && mode_impossible(rb, &c, &whole)))
             continue;
         rb->cones[1][count++] = c;
     }
