@@ -305,6 +305,9 @@ struct wr_robust {
     const wr_fixture *fixture;
     int budget;
     fixel_motion motion[WR_MAX_FIXELS];
+    /* Each fixel's wrenches over the whole set, the first box of every
+     * cone's search: made once. */
+    ivec whole_normal[WR_MAX_FIXELS], whole_tangent[WR_MAX_FIXELS];
     int cone_count[2];          /* goal, strong */
     wr_constraint *cones[2];    /* strings examined: goal's kept, strong's candidates */
 };
@@ -335,7 +338,8 @@ static ivec edge_of(const ivec *n, const ivec *t, double kappa)
     return r;
 }
 
-static void build_system(const wr_robust *rb, const wr_constraint *c, const box *b,
+/* `whole`: b is the whole set, whose enclosures rb holds. */
+static void build_system(const wr_robust *rb, const wr_constraint *c, const box *b, bool whole,
                          system_t *sys)
 {
     const wr_fixture *f = rb->fixture;
@@ -345,7 +349,12 @@ static void build_system(const wr_robust *rb, const wr_constraint *c, const box 
         if (letter == 'u')
             continue;
         ivec n, t;
-        fixel_enclosure(f, &rb->motion[i], i, b, &n, &t);
+        if (whole) {
+            n = rb->whole_normal[i];
+            t = rb->whole_tangent[i];
+        } else {
+            fixel_enclosure(f, &rb->motion[i], i, b, &n, &t);
+        }
         const wr_fixel *fx = &f->fixels[i];
         switch (letter) {
         case 's':
@@ -683,9 +692,12 @@ static bool mode_impossible(const wr_robust *rb, const wr_constraint *c, const b
 static void whole_box(const wr_robust *rb, box *b)
 {
     memset(b, 0, sizeof *b);
-    double a = tilt_reach(rb->fixture);
+    double a = tilt_reach(rb->fixture), position = rb->fixture->tolerance.given
+                                                        ? rb->fixture->tolerance.position
+                                                        : 0;
     for (int i = 0; i < rb->fixture->fixel_count; i++) {
-        double s = wr_tolerance_reach(rb->fixture, i);
+        /* wr_tolerance_reach, from the motions found once */
+        double s = rb->motion[i].kind == MOVE_FIXED ? 0 : position;
         b->s[i][0] = -s;
         b->s[i][1] = s;
         b->tilt[i][0] = -a;
@@ -740,6 +752,8 @@ wr_status wr_robust_new(const wr_analysis *analysis, int budget, wr_robust **out
     int count = nominal;
     box whole;
     whole_box(rb, &whole);
+    for (int i = 0; i < k; i++)
+        fixel_enclosure(f, &rb->motion[i], i, &whole, &rb->whole_normal[i], &rb->whole_tangent[i]);
     unsigned masks[560]; /* C(16, 3) */
     int mask_count = independent_triples(rb, &whole, masks);
     static const char letters[] = "slrn";
@@ -841,10 +855,9 @@ enum { CONE_CLEAR, CONE_WITNESS, CONE_UNDECIDED, CONE_FAILED };
  * in *least. */
 static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec *x,
                         const double *point, double tolerance, double nominal,
-                        certificate *cache, double *lower, double *least, double *s,
-                        double *tilt)
+                        certificate *cache, int budget, double *lower, double *least,
+                        double *s, double *tilt)
 {
-    int budget = rb->budget;
     box *queue = malloc(sizeof *queue * (size_t)(budget + 1));
     if (!queue)
         return CONE_FAILED;
@@ -864,7 +877,7 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
         queue[pick] = queue[--count];
         examined++;
         system_t sys;
-        build_system(rb, c, &b, &sys);
+        build_system(rb, c, &b, examined == 1, &sys);
         /* The last certificate of this cone first: a neighbouring box's
          * often proves this one too, without an LP. */
         double t = cache ? check_certificate(&sys, x, cache) : -1;
@@ -968,8 +981,8 @@ wr_status wr_robust_classify(const wr_robust *rb, const double wrench[3], wr_set
             double nominal = cone.empty ? INFINITY : wr_cone_signed_distance(&cone, x, NULL);
             wr_cone_release(&cone);
             double lo, le, s[WR_MAX_FIXELS], tilt[WR_MAX_FIXELS];
-            int r = examine_cone(rb, c, &family, x, tolerance, nominal, NULL, &lo, &le, s,
-                                 tilt);
+            int r = examine_cone(rb, c, &family, x, tolerance, nominal, NULL, rb->budget, &lo,
+                                 &le, s, tilt);
             if (r == CONE_FAILED)
                 return WR_LP_FAILED;
             least = fmin(least, le);
@@ -1031,7 +1044,7 @@ wr_status wr_robust_classify(const wr_robust *rb, const double wrench[3], wr_set
 /* wr_robust_box_inside with a certificate cache per cone (goal's, then
  * strong's; NULL: none). */
 static bool box_inside(const wr_robust *rb, const double lo[3], const double hi[3], wr_set set,
-                       double tolerance, certificate *caches, wr_status *status)
+                       double tolerance, certificate *caches, int budget, wr_status *status)
 {
     *status = WR_OK;
     ivec family;
@@ -1050,7 +1063,7 @@ static bool box_inside(const wr_robust *rb, const double lo[3], const double hi[
             double lower, least, s[WR_MAX_FIXELS], tilt[WR_MAX_FIXELS];
             certificate *cache = caches ? &caches[which * rb->cone_count[0] + i] : NULL;
             int r = examine_cone(rb, &rb->cones[which][i], &family, NULL, tolerance * big,
-                                 INFINITY, cache, &lower, &least, s, tilt);
+                                 INFINITY, cache, budget, &lower, &least, s, tilt);
             if (r == CONE_FAILED) {
                 *status = WR_LP_FAILED;
                 return false;
@@ -1065,7 +1078,7 @@ static bool box_inside(const wr_robust *rb, const double lo[3], const double hi[
 bool wr_robust_box_inside(const wr_robust *rb, const double lo[3], const double hi[3],
                           wr_set set, double tolerance, wr_status *status)
 {
-    return box_inside(rb, lo, hi, set, tolerance, NULL, status);
+    return box_inside(rb, lo, hi, set, tolerance, NULL, rb->budget, status);
 }
 
 /* ---- regions ----------------------------------------------------------- */
@@ -1163,7 +1176,11 @@ static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, f
         double lo[3], hi[3];
         family(context, p.t0, p.t1, lo, hi);
         wr_status status;
-        if (box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, caches, &status)) {
+        /* A piece that one box per cone does not prove is split along the
+         * family first: the boxes of the set are split (the whole budget)
+         * only for the finest pieces. */
+        int budget = p.depth < WR_ROBUST_DEPTH ? 1 : rb->budget;
+        if (box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, caches, budget, &status)) {
             if (!keep(sink, p.t0, p.t1))
                 result = WR_NO_MEMORY;
             continue;
