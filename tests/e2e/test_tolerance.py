@@ -178,3 +178,20 @@ def test_python_client(daemon):
         d = c.stability_margin(fixture, [0, -1, 0.5])
         assert d.robust in ("inside", "boundary", "outside")
         assert c.stability_margin(PLATE, [0, -1, 0.5]).robust is None
+
+
+def test_lean_columns_are_robust(client):
+    """A lean answer (fields) over a tolerance: the same verdicts and
+    margins as the full answer's, which are robust."""
+    fixture = with_tolerance(PLATE, 0.1)
+    wrenches = [[-0.5, -1, t] for t in (-0.95, -0.3, 0, 0.3, 0.95)] + [[0, -1, 0.5]]
+    full = classify(client, fixture, wrenches, ["goal", "strong"])
+    lean = client.result("wrench.classify", {"fixture": fixture, "wrenches": wrenches,
+                                             "sets": ["goal", "strong"],
+                                             "fields": ["verdict", "margin"]})
+    letters = {"inside": "i", "boundary": "b", "outside": "o"}
+    for set_name in ("goal", "strong"):
+        verdicts = "".join(p[set_name]["verdicts"] for p in lean["pieces"])
+        margins = [m for p in lean["pieces"] for m in p[set_name]["margins"]]
+        assert verdicts == "".join(letters[r[set_name]["verdict"]] for r in full)
+        assert margins == [r[set_name]["margin"] for r in full]
