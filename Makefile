@@ -326,6 +326,7 @@ BENCH_NUMBER = $(BUILD)/bench/number
 BENCH_MICRO  = $(BUILD)/bench/micro
 BENCH_SOCKET = $(BUILD)/bench/socket
 BENCH_LOCATE = $(BUILD)/bench/locate
+BENCH_TOLERANCE = $(BUILD)/bench/tolerance
 BENCH_SEGMENTS = $(BUILD)/bench/segments
 BENCH_ANSWER = $(BUILD)/bench/answer
 BENCH_REGIONS = $(BUILD)/bench/regions
@@ -338,12 +339,12 @@ $(BUILD)/bench/%: bench/%.c
 	@mkdir -p $(dir $@)
 	$(call compile,plain) $(PROTO_INCLUDES) $< $(filter %.a,$^) $(BENCH_LIBS) -o $@
 
-$(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
+$(BENCH_LOAD) $(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER) $(BENCH_TOLERANCE): $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
 $(BENCH_SEGMENTS) $(BENCH_REGIONS) $(BENCH_LATTICE): $(BUILD)/libwrench.a
 $(BENCH_SEGMENTS) $(BENCH_REGIONS) $(BENCH_LATTICE): BENCH_LIBS = -lglpk -lm
 $(BENCH_NUMBER): $(BUILD)/libwrenchproto.a
 $(BENCH_LOAD): BENCH_LIBS = -lcjson -lglpk -lpthread -lm
-$(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER): BENCH_LIBS = -lcjson -lglpk -lm
+$(BENCH_MICRO) $(BENCH_LOCATE) $(BENCH_ANSWER) $(BENCH_TOLERANCE): BENCH_LIBS = -lcjson -lglpk -lm
 $(BENCH_NUMBER): BENCH_LIBS = -lm
 $(BENCH_SOCKET): BENCH_LIBS = -lpthread -lm
 
@@ -368,7 +369,8 @@ $(BASELINE_ANSWER): bench/answer.c bench/bench_util.h $(BUILD)/baseline/src/Make
 # The benchmarks, one table (docs/PERFORMANCE.md); figures, never a
 # test.  Run it on a quiet machine.
 bench: all $(BENCH_MICRO) $(BENCH_SOCKET) $(BENCH_NUMBER) $(BENCH_SEGMENTS) $(BENCH_LOCATE) \
-       $(BENCH_ANSWER) $(BASELINE_ANSWER) $(BASELINE_DAEMON) $(BENCH_REGIONS) $(BENCH_LATTICE)
+       $(BENCH_ANSWER) $(BASELINE_ANSWER) $(BASELINE_DAEMON) $(BENCH_REGIONS) $(BENCH_LATTICE) \
+       $(BENCH_TOLERANCE)
 	@bench/run
 
 
@@ -439,7 +441,7 @@ WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
                  lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_force.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_sites.h lib/wr_design.h \
-                 lib/wr_lattice.h lib/wr_locate.h lib/wr_symmetry.h \
+                 lib/wr_lattice.h lib/wr_locate.h lib/wr_symmetry.h lib/wr_tolerance.h \
                  clients/c/wrenchclient.h
 INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
     $(PREFIX)/lib/libwrench.a $(PREFIX)/lib/libwrenchclient.a \
@@ -511,6 +513,8 @@ $(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a 
 
 physics-check: $(BUILD)/physics-validate
 	$(BUILD)/physics-validate --quick $(PHYSICS_FIXTURES)
+	$(BUILD)/physics-validate --quick --tolerance 0.03,0.5 examples/plate-chamfered.json
+	$(BUILD)/physics-validate --quick --tolerance 0.05,0.2 examples/bracket.json
 
 validate: $(BUILD)/physics-validate
 	$(BUILD)/physics-validate --full $(PHYSICS_FIXTURES)

@@ -185,6 +185,10 @@ static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *
     WP_BUFFER_LITERAL(b, "}");
 }
 
+/* Boxes per excluded cone for one piece of a robust interval: a piece
+ * that so few do not prove is split instead (wr_robust_forces). */
+#define ROBUST_FORCE_BUDGET 64
+
 /* The answer is written as text (a raw result): a hundred cases are three
  * hundred small objects, which a tree would allocate one by one. */
 cJSON *wp_handle_force_range(wp_call *call)
@@ -207,7 +211,11 @@ cJSON *wp_handle_force_range(wp_call *call)
     wp_buffer b = {0};
     WP_BUFFER_LITERAL(&b, "{\"cases\":[");
     wr_forces every[3] = {{0}}, good[3] = {{0}}, meet = {0};
-    wr_status status = WR_OK;
+    /* A fixture with a tolerance: each good interval's robust part. */
+    wr_robust *robust = NULL;
+    wr_status status = f->tolerance.given ? wr_robust_new(use->analysis, ROBUST_FORCE_BUDGET,
+                                                          &robust)
+                                          : WR_OK;
     for (int c = 0; status == WR_OK && c < cases.count; c++) {
         wp_buffer_puts(&b, c ? ",{\"name\":" : "{\"name\":");
         if (cases.items[c].name)
@@ -219,6 +227,15 @@ cJSON *wp_handle_force_range(wp_call *call)
         for (int s = 0; status == WR_OK && s < 3; s++) {
             if (!sets[s])
                 continue;
+            if (robust) {
+                wr_forces nominal = good[s];
+                good[s] = (wr_forces){0};
+                status = wr_robust_forces(robust, (wr_set)s, cases.items[c].load, push,
+                                          &nominal, call->host->stop, &good[s]);
+                wr_forces_release(&nominal);
+                if (status != WR_OK)
+                    break;
+            }
             WP_BUFFER_LITERAL(&b, ",\"");
             wp_buffer_puts(&b, SET_NAMES[s]);
             WP_BUFFER_LITERAL(&b, "\":");
@@ -253,6 +270,7 @@ cJSON *wp_handle_force_range(wp_call *call)
         wr_forces_release(&good[s]);
     }
     wr_forces_release(&meet);
+    wr_robust_free(robust);
     wp_cases_release(&cases);
     char *text = wp_buffer_take(&b);
     cJSON *result = status == WR_OK && text ? cJSON_CreateRaw(text) : NULL;
@@ -391,6 +409,13 @@ cJSON *wp_handle_push_force(wp_call *call)
     if (f->shape == WR_SHAPE_NONE) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
                      "a push force needs the part's outline: the fixture has no shape");
+        return NULL;
+    }
+    if (f->tolerance.given) {
+        /* The least force is exact on the nominal fixels only. */
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "push.force answers the nominal fixture only: ask force.range at a point "
+                     "for magnitudes robust over the tolerance");
         return NULL;
     }
     bool *push_on;
