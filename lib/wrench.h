@@ -38,6 +38,7 @@
 #include "wr_plan.h"
 #include "wr_regions.h"
 #include "wr_status.h"
+#include "wr_support.h"
 #include "wr_sweep.h"
 #include "wr_symmetry.h"
 
