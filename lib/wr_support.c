@@ -331,9 +331,12 @@ static int lp_solve(lp *l)
     parm.presolve = GLP_OFF;
     /* The discs' bounds are refined to 1e-9 and beyond: GLPK's default
      * feasibility tolerance (1e-7) would hide the rest. */
-    parm.tol_bnd = 1e-12;
-    parm.tol_dj = 1e-12;
-    for (int attempt = 0; attempt < 2; attempt++) {
+    parm.it_lim = 5000;
+    for (int attempt = 0; attempt < 3; attempt++) {
+        /* Tight tolerances first; GLPK's own (with scaling) if they stall,
+         * which on a degenerate problem they can. */
+        parm.tol_bnd = attempt < 2 ? 1e-12 : 1e-7;
+        parm.tol_dj = attempt < 2 ? 1e-12 : 1e-7;
         glp_std_basis(l->p);
         if (attempt)
             glp_scale_prob(l->p, GLP_SF_AUTO);
@@ -840,4 +843,622 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
     }
     wr_forces_release(&scratch);
     return st;
+}
+
+/* ---- holding ------------------------------------------------------------- */
+
+/* A cell of motion directions: the cone of 1 to 3 unit scaled
+ * accelerations q' = m (a_x, a_y, rho alpha) of one mode. */
+typedef struct cell {
+    int count;
+    double ray[3][3];
+} cell;
+
+/* The acceleration of support i's point under the scaled acceleration q'. */
+static void point_acceleration(const model *m, int i, const double q[3], double a[2])
+{
+    const wr_fixture *f = m->f;
+    double r[2];
+    arm(f, m->s, i, r);
+    double ax = q[0] / f->mass, ay = q[1] / f->mass;
+    double alpha = q[2] / (f->mass * f->gyration_radius);
+    a[0] = ax - alpha * r[1];
+    a[1] = ay + alpha * r[0];
+}
+
+/* Below this (relative to the part's size times |q'| / m), a support's
+ * point counts as not accelerating: it may stick. */
+#define STILL 1e-12
+
+/* The directions of sliding friction over a cell at support i: up to 3
+ * unit-length points whose convex hull, scaled by the friction's size,
+ * holds every -f_i / |f_i| = a_i / |a_i| the cell's directions give.
+ * false when a_i may vanish in the cell or its directions spread over
+ * more than 120 degrees: the whole disc then. */
+static bool arc_hull(const model *m, int i, const cell *c, double points[3][2], int *count)
+{
+    double u[3][2];
+    double still = STILL * m->f->size / m->f->mass;
+    for (int j = 0; j < c->count; j++) {
+        point_acceleration(m, i, c->ray[j], u[j]);
+        double n = hypot(u[j][0], u[j][1]);
+        if (!(n > still))
+            return false;
+        u[j][0] /= n;
+        u[j][1] /= n;
+    }
+    if (c->count == 1) {
+        memcpy(points[0], u[0], sizeof u[0]);
+        *count = 1;
+        return true;
+    }
+    /* The pair farthest apart spans an arc holding the third (a linear
+     * image of a cone is the cone of the images, and a pointed cone of
+     * the plane is the arc between its two extreme directions). */
+    int best_a = -1, best_b = -1;
+    double best_cos = 2;
+    for (int a = 0; a < c->count; a++)
+        for (int b = a + 1; b < c->count; b++) {
+            double cosine = u[a][0] * u[b][0] + u[a][1] * u[b][1];
+            if (cosine < best_cos) {
+                best_cos = cosine;
+                best_a = a;
+                best_b = b;
+            }
+        }
+    if (best_cos < -0.5) /* wider than 120 degrees */
+        return false;
+    const double *ua = u[best_a], *ub = u[best_b];
+    double cross_ab = ua[0] * ub[1] - ua[1] * ub[0];
+    for (int j = 0; j < c->count; j++) {
+        if (j == best_a || j == best_b)
+            continue;
+        double ca = ua[0] * u[j][1] - ua[1] * u[j][0];
+        double cb = u[j][0] * ub[1] - u[j][1] * ub[0];
+        if (ca * cross_ab < -1e-15 || cb * cross_ab < -1e-15)
+            return false; /* the third lies outside: the cone is wider */
+    }
+    memcpy(points[0], ua, sizeof points[0]);
+    memcpy(points[1], ub, sizeof points[1]);
+    /* The tangents at the arc's ends meet at (ua + ub) / (1 + cos). */
+    points[2][0] = (ua[0] + ub[0]) / (1 + best_cos);
+    points[2][1] = (ua[1] + ub[1]) / (1 + best_cos);
+    *count = 3;
+    return true;
+}
+
+/* One LP of holding: over a cell (relaxed: each sliding friction in the
+ * hull of its arc) or at a single direction (exact: the cell's one ray).
+ * Minimises the L1 residual of
+ *     h(g) = q' + sum kappa_j G_j + sum_i W_i phi_i
+ * with q' in the cell's cone, G_j the mode's contact generators, phi_i =
+ * -f_i the support's friction reversed, sliding (|phi_i| between mu_k_min
+ * N_i and mu_k N_i, along the arc) or, where the point may stay still,
+ * anywhere in the disc |phi_i| <= mu_s N_i (from outside, cut by the
+ * solutions until they lie in it). */
+typedef struct hold_lp {
+    const model *m;
+    const wr_cone *cone;
+    const cell *c;
+    double target[3];
+    /* A step of sequential LP (a single direction only): free columns
+     * Delta_k, |Delta_k| <= trust, along `tangent` k, with the wrench's
+     * change linearised about the direction at the magnitudes t0 and each
+     * support's m0. */
+    int tangent_count;
+    double tangent[2][3];
+    double trust, t0, m0[WR_MAX_SUPPORTS];
+    double delta[2];
+    /* out */
+    double residual;
+    double lambda[3];
+    double kappa[WR_HULL_MAX];
+    double theta[WR_MAX_SUPPORTS * WR_MAX_SUPPORTS * WR_MAX_SUPPORTS / 6 + 1];
+    double phi[WR_MAX_SUPPORTS][2];
+    int solves;
+} hold_lp;
+
+static int hold_lp_solve(hold_lp *h)
+{
+    const model *m = h->m;
+    const wr_supports *s = m->s;
+    directions dirs[WR_MAX_SUPPORTS];
+    bool disc[WR_MAX_SUPPORTS];
+    double points[WR_MAX_SUPPORTS][3][2];
+    int point_count[WR_MAX_SUPPORTS];
+    for (int i = 0; i < s->count; i++) {
+        disc[i] = !arc_hull(m, i, h->c, points[i], &point_count[i]);
+        directions_start(&dirs[i]);
+    }
+    for (int round = 0; round < 40; round++) {
+        lp l;
+        lp_init(&l, GLP_MIN);
+        int wrench[3];
+        for (int k = 0; k < 3; k++)
+            wrench[k] = lp_row(&l, GLP_FX, h->target[k], h->target[k]);
+        for (int k = 0; k < 3; k++) {
+            int e = lp_col(&l, GLP_LO, 0, 0, 1);
+            lp_set(&l, wrench[k], e, 1);
+            e = lp_col(&l, GLP_LO, 0, 0, 1);
+            lp_set(&l, wrench[k], e, -1);
+        }
+        int lambda = 0;
+        for (int j = 0; j < h->c->count; j++) {
+            int col = lp_col(&l, GLP_LO, 0, 0, 0);
+            if (j == 0)
+                lambda = col;
+            for (int k = 0; k < 3; k++)
+                lp_set(&l, wrench[k], col, h->c->ray[j][k]);
+        }
+        int kappa = 0, kappa_count = 0;
+        for (int j = 0; j < h->cone->generator_count; j++) {
+            if (h->cone->origins[j].fixel < 0)
+                continue;
+            int col = lp_col(&l, GLP_LO, 0, 0, 0);
+            if (!kappa_count++)
+                kappa = col;
+            for (int k = 0; k < 3; k++)
+                lp_set(&l, wrench[k], col, h->cone->generators[j][k]);
+        }
+        int theta = distribution_columns(&l, m, 0);
+        int one = lp_row(&l, GLP_FX, 1, 1);
+        for (int v = 0; v < s->distribution_count; v++)
+            lp_set(&l, one, theta + v, 1);
+        int first[WR_MAX_SUPPORTS];
+        for (int i = 0; i < s->count; i++) {
+            if (disc[i]) {
+                first[i] = disc_columns(&l, m, i, &dirs[i], false, theta, wrench);
+                continue;
+            }
+            /* mu_k_min N_i <= sum eta <= mu_k N_i. */
+            int upper = lp_row(&l, GLP_UP, 0, 0), lower = lp_row(&l, GLP_LO, 0, 0);
+            add_normal(&l, m, upper, theta, i, -s->mu_kinetic);
+            add_normal(&l, m, lower, theta, i, -s->mu_kinetic_min);
+            first[i] = l.cols + 1;
+            for (int k = 0; k < point_count[i]; k++) {
+                int eta = lp_col(&l, GLP_LO, 0, 0, 0);
+                lp_set(&l, upper, eta, 1);
+                lp_set(&l, lower, eta, 1);
+                for (int r = 0; r < 3; r++)
+                    lp_set(&l, wrench[r], eta,
+                           points[i][k][0] * m->unit[i][0][r] + points[i][k][1] * m->unit[i][1][r]);
+            }
+        }
+        int delta = 0;
+        for (int k = 0; k < h->tangent_count; k++) {
+            int col = lp_col(&l, GLP_DB, -h->trust, h->trust, 0);
+            if (k == 0)
+                delta = col;
+            double column[3];
+            for (int r = 0; r < 3; r++)
+                column[r] = h->t0 * h->tangent[k][r];
+            for (int i = 0; i < s->count; i++) {
+                if (disc[i])
+                    continue;
+                /* d(a / |a|) = (I - a^ a^T) (A_i dq) / |a|. */
+                double a[2], da[2];
+                point_acceleration(m, i, h->c->ray[0], a);
+                point_acceleration(m, i, h->tangent[k], da);
+                double n = hypot(a[0], a[1]);
+                double u[2] = {a[0] / n, a[1] / n};
+                double along = u[0] * da[0] + u[1] * da[1];
+                double d[2] = {(da[0] - along * u[0]) / n, (da[1] - along * u[1]) / n};
+                for (int r = 0; r < 3; r++)
+                    column[r] += h->m0[i] * (d[0] * m->unit[i][0][r] + d[1] * m->unit[i][1][r]);
+            }
+            for (int r = 0; r < 3; r++)
+                lp_set(&l, wrench[r], col, column[r]);
+        }
+        int status = lp_solve(&l);
+        h->solves++;
+        for (int k = 0; k < h->tangent_count && status == GLP_OPT; k++)
+            h->delta[k] = glp_get_col_prim(l.p, delta + k);
+        if (status != GLP_OPT) {
+            lp_release(&l);
+            return -1; /* the residual columns make every LP feasible and bounded */
+        }
+        h->residual = glp_get_obj_val(l.p);
+        for (int j = 0; j < h->c->count; j++)
+            h->lambda[j] = glp_get_col_prim(l.p, lambda + j);
+        for (int j = 0; j < kappa_count; j++)
+            h->kappa[j] = glp_get_col_prim(l.p, kappa + j);
+        double normal[WR_MAX_SUPPORTS] = {0};
+        for (int v = 0; v < s->distribution_count; v++) {
+            h->theta[v] = glp_get_col_prim(l.p, theta + v);
+            for (int i = 0; i < s->count; i++)
+                normal[i] += h->theta[v] * s->distributions[v][i] / m->scale;
+        }
+        bool cut = false;
+        for (int i = 0; i < s->count; i++) {
+            if (disc[i]) {
+                h->phi[i][0] = glp_get_col_prim(l.p, first[i]);
+                h->phi[i][1] = glp_get_col_prim(l.p, first[i] + 1);
+                if (hypot(h->phi[i][0], h->phi[i][1]) > s->mu_static * normal[i] * (1 + 1e-12) + 1e-15)
+                    cut |= directions_add(&dirs[i], h->phi[i][0], h->phi[i][1]);
+            } else {
+                h->phi[i][0] = h->phi[i][1] = 0;
+                for (int k = 0; k < point_count[i]; k++) {
+                    double eta = glp_get_col_prim(l.p, first[i] + k);
+                    h->phi[i][0] += eta * points[i][k][0];
+                    h->phi[i][1] += eta * points[i][k][1];
+                }
+            }
+        }
+        lp_release(&l);
+        if (!cut)
+            break;
+    }
+    return 0;
+}
+
+static double angle_between(const double a[3], const double b[3])
+{
+    double c[3];
+    wr_cross3(a, b, c);
+    return atan2(wr_norm3(c), wr_dot3(a, b));
+}
+
+/* The cells of a mode's directions: its cone of accelerations cut by the
+ * eight orthants (so each piece is pointed, at most 90 degrees across),
+ * each piece of full dimension fanned into simplicial cells.  Returns the
+ * number written (at most `max`). */
+static int mode_cells(const wr_cone *cone, cell *cells, int max)
+{
+    double accel[WR_HULL_MAX][3];
+    int n = 0;
+    for (int j = 0; j < cone->generator_count; j++)
+        if (cone->origins[j].fixel < 0)
+            wr_copy3(cone->generators[j], accel[n++]);
+    if (n == 0)
+        return 0;
+    wr_hrep q;
+    wr_hull_from_generators((const double (*)[3])accel, n, &q);
+    int count = 0;
+    for (int o = 0; o < 8; o++) {
+        double rows[WR_HULL_MAX + 3][3];
+        int rc = 0;
+        for (int i = 0; i < q.facet_count && rc < WR_HULL_MAX; i++)
+            wr_copy3(q.facets[i], rows[rc++]);
+        for (int k = 0; k < 3; k++) {
+            double row[3] = {0, 0, 0};
+            row[k] = (o >> k & 1) ? 1 : -1; /* sign s_k: -s_k x_k <= 0 */
+            wr_copy3(row, rows[rc++]);
+        }
+        double gens[WR_HULL_MAX][3];
+        int g = wr_hull_generators_of_rows((const double (*)[3])rows, rc,
+                                           (const double (*)[3])q.equalities, q.equality_count,
+                                           gens, WR_HULL_MAX);
+        if (g == 0)
+            continue;
+        wr_hrep piece;
+        wr_hull_from_generators((const double (*)[3])gens, g, &piece);
+        if (piece.dimension != q.dimension)
+            continue;
+        double rays[WR_HULL_MAX][3];
+        int r = wr_hull_rays(&piece, rays, WR_HULL_MAX);
+        for (int i = 0; i < r; i++)
+            wr_normalize3(rays[i]);
+        if (q.dimension == 1 || q.dimension == 2) {
+            /* One ray, or the two extreme ones of a planar piece. */
+            cell c = {.count = q.dimension};
+            wr_copy3(rays[0], c.ray[0]);
+            if (q.dimension == 2) {
+                double worst = -2;
+                for (int i = 0; i < r; i++)
+                    for (int j = i + 1; j < r; j++) {
+                        double a = angle_between(rays[i], rays[j]);
+                        if (a > worst) {
+                            worst = a;
+                            wr_copy3(rays[i], c.ray[0]);
+                            wr_copy3(rays[j], c.ray[1]);
+                        }
+                    }
+            }
+            if (count < max)
+                cells[count++] = c;
+            continue;
+        }
+        /* Three dimensions: the extreme rays in turn about their mean,
+         * fanned from the first. */
+        double axis[3] = {0, 0, 0};
+        for (int i = 0; i < r; i++)
+            for (int k = 0; k < 3; k++)
+                axis[k] += rays[i][k];
+        wr_normalize3(axis);
+        double e1[3], e2[3], any[3] = {1, 0, 0};
+        if (fabs(axis[0]) > 0.9)
+            any[0] = 0, any[1] = 1;
+        wr_cross3(axis, any, e1);
+        wr_normalize3(e1);
+        wr_cross3(axis, e1, e2);
+        double angle[WR_HULL_MAX];
+        int order[WR_HULL_MAX];
+        for (int i = 0; i < r; i++) {
+            angle[i] = atan2(wr_dot3(rays[i], e2), wr_dot3(rays[i], e1));
+            order[i] = i;
+        }
+        for (int i = 1; i < r; i++) /* insertion sort by angle */
+            for (int j = i; j > 0 && angle[order[j]] < angle[order[j - 1]]; j--) {
+                int t = order[j];
+                order[j] = order[j - 1];
+                order[j - 1] = t;
+            }
+        for (int i = 1; i + 1 < r && count < max; i++) {
+            cell c = {.count = 3};
+            wr_copy3(rays[order[0]], c.ray[0]);
+            wr_copy3(rays[order[i]], c.ray[1]);
+            wr_copy3(rays[order[i + 1]], c.ray[2]);
+            cells[count++] = c;
+        }
+    }
+    return count;
+}
+
+typedef struct strong_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    const double *wrench;
+    double tolerance;
+    const wr_stop *stop;
+    wr_support_strong *out;
+} strong_call;
+
+/* The witness's forces, back in physical units. */
+static void witness_fill(const model *m, const wr_cone *cone, const hold_lp *h,
+                         const double direction[3], double t, wr_support_strong *out)
+{
+    const wr_fixture *f = m->f;
+    double q[3];
+    for (int k = 0; k < 3; k++)
+        q[k] = t * direction[k] * m->scale;
+    out->acceleration[0] = q[0] / f->mass;
+    out->acceleration[1] = q[1] / f->mass;
+    out->acceleration[2] = q[2] / (f->mass * f->gyration_radius);
+    memset(out->force, 0, sizeof out->force);
+    int k = 0;
+    for (int j = 0; j < cone->generator_count; j++) {
+        const wr_generator_origin *o = &cone->origins[j];
+        if (o->fixel < 0)
+            continue;
+        out->force[o->fixel][0] += h->kappa[k] * o->normal_force * m->scale;
+        out->force[o->fixel][1] += h->kappa[k] * o->tangent_force * m->scale;
+        k++;
+    }
+    for (int i = 0; i < m->s->count; i++) {
+        out->support_force[i][0] = -h->phi[i][0] * m->scale;
+        out->support_force[i][1] = -h->phi[i][1] * m->scale;
+        out->normal[i] = 0;
+        for (int v = 0; v < m->s->distribution_count; v++)
+            out->normal[i] += h->theta[v] * m->s->distributions[v][i];
+    }
+}
+
+/* Branch and bound over one mode's cells: 1 a witness (out filled), 0 no
+ * direction consistent by the margin, 2 undecided, -1 an LP failed,
+ * -2 stopped. */
+static int mode_search(const model *m, const wr_cone *cone, const double target[3], double margin,
+                       const wr_stop *stop, wr_support_strong *out)
+{
+    enum { STACK = 4096 };
+    cell *stack = malloc(STACK * sizeof *stack);
+    if (!stack)
+        return -3;
+    int top = mode_cells(cone, stack, 64);
+    /* The mode's directions, to keep a refined witness among them. */
+    double accel[WR_HULL_MAX][3];
+    int accel_count = 0;
+    for (int j = 0; j < cone->generator_count; j++)
+        if (cone->origins[j].fixel < 0)
+            wr_copy3(cone->generators[j], accel[accel_count++]);
+    wr_hrep q;
+    wr_hull_from_generators((const double (*)[3])accel, accel_count, &q);
+    int result = 0, looked = 0;
+    hold_lp h = {.m = m, .cone = cone};
+    memcpy(h.target, target, sizeof h.target);
+    while (top > 0) {
+        if (wr_stop_requested(stop)) {
+            result = -2;
+            break;
+        }
+        cell c = stack[--top];
+        if (++looked > WR_SUPPORT_MAX_CELLS) {
+            result = 2;
+            break;
+        }
+        out->cells++;
+        h.c = &c;
+        if (hold_lp_solve(&h) < 0) {
+            result = -1;
+            break;
+        }
+        if (h.residual > margin)
+            continue; /* no direction of the cell is consistent */
+        /* A witness: the relaxation's own direction, else the centre. */
+        double direction[3] = {0, 0, 0};
+        for (int j = 0; j < c.count; j++)
+            for (int k = 0; k < 3; k++)
+                direction[k] += h.lambda[j] * c.ray[j][k];
+        if (!(wr_norm3(direction) > 1e-12))
+            for (int j = 0; j < c.count; j++)
+                for (int k = 0; k < 3; k++)
+                    direction[k] += c.ray[j][k];
+        wr_normalize3(direction);
+        cell single = {.count = 1};
+        wr_copy3(direction, single.ray[0]);
+        hold_lp w = h;
+        w.c = &single;
+        w.solves = 0;
+        if (hold_lp_solve(&w) < 0) {
+            result = -1;
+            break;
+        }
+        h.solves += w.solves;
+        /* A motion consistent with g is usually one direction alone (three
+         * equations, as many unknowns): close in on it by sequential LP,
+         * the friction's directions linearised about the last one. */
+        double span = 0;
+        for (int i = 0; i < c.count; i++)
+            for (int j = i + 1; j < c.count; j++)
+                span = fmax(span, angle_between(c.ray[i], c.ray[j]));
+        for (int step = 0; step < 16 && w.residual > 1e-10 && c.count > 1; step++) {
+            hold_lp n = w;
+            n.tangent_count = 0;
+            /* Tangents within the cell's span, orthogonal to the direction. */
+            for (int j = 0; j < c.count && n.tangent_count < c.count - 1; j++) {
+                double b[3];
+                wr_copy3(c.ray[j], b);
+                double along = wr_dot3(b, direction);
+                for (int k = 0; k < 3; k++)
+                    b[k] -= along * direction[k];
+                for (int t = 0; t < n.tangent_count; t++) {
+                    double d = wr_dot3(b, n.tangent[t]);
+                    for (int k = 0; k < 3; k++)
+                        b[k] -= d * n.tangent[t][k];
+                }
+                if (wr_norm3(b) > 1e-6) {
+                    wr_normalize3(b);
+                    wr_copy3(b, n.tangent[n.tangent_count++]);
+                }
+            }
+            n.trust = fmax(2 * span, 1e-9);
+            n.solves = 0;
+            n.t0 = w.lambda[0];
+            for (int i = 0; i < m->s->count; i++)
+                n.m0[i] = hypot(w.phi[i][0], w.phi[i][1]);
+            if (hold_lp_solve(&n) < 0)
+                break;
+            double next[3];
+            wr_copy3(direction, next);
+            for (int t = 0; t < n.tangent_count; t++)
+                for (int k = 0; k < 3; k++)
+                    next[k] += n.delta[t] * n.tangent[t][k];
+            wr_normalize3(next);
+            bool among = true;
+            for (int i = 0; i < q.facet_count; i++)
+                among &= wr_dot3(q.facets[i], next) <= 1e-12;
+            for (int i = 0; i < q.equality_count; i++)
+                among &= fabs(wr_dot3(q.equalities[i], next)) <= 1e-12;
+            if (!among)
+                break;
+            hold_lp v = h;
+            cell at = {.count = 1};
+            wr_copy3(next, at.ray[0]);
+            v.c = &at;
+            v.solves = 0;
+            if (hold_lp_solve(&v) < 0)
+                break;
+            h.solves += n.solves + v.solves;
+            if (!(v.residual < w.residual))
+                break;
+            w = v;
+            wr_copy3(next, direction);
+            single = at;
+            w.c = &single;
+        }
+        if (w.residual <= 1e-10) {
+            witness_fill(m, cone, &w, direction, w.lambda[0], out);
+            result = 1;
+            break;
+        }
+        if (c.count == 1) { /* nothing to split: exact and not consistent */
+            if (w.residual <= margin)
+                result = 2;
+            continue;
+        }
+        /* Split the longest edge. */
+        int a = 0, b = 1;
+        double longest = -1;
+        for (int i = 0; i < c.count; i++)
+            for (int j = i + 1; j < c.count; j++) {
+                double angle = angle_between(c.ray[i], c.ray[j]);
+                if (angle > longest) {
+                    longest = angle;
+                    a = i;
+                    b = j;
+                }
+            }
+        if (longest < WR_SUPPORT_MIN_CELL) {
+            result = 2;
+            continue;
+        }
+        if (top + 2 > STACK) {
+            result = 2;
+            break;
+        }
+        double mid[3];
+        for (int k = 0; k < 3; k++)
+            mid[k] = c.ray[a][k] + c.ray[b][k];
+        wr_normalize3(mid);
+        cell left = c, right = c;
+        wr_copy3(mid, left.ray[a]);
+        wr_copy3(mid, right.ray[b]);
+        stack[top++] = left;
+        stack[top++] = right;
+    }
+    out->solves += h.solves;
+    free(stack);
+    return result;
+}
+
+static wr_status strong_body(void *context)
+{
+    strong_call *call = context;
+    const wr_fixture *f = wr_analysis_fixture(call->analysis);
+    model m;
+    model_init(&m, f, call->supports, problem_scale(f, call->supports, call->wrench));
+    double target[3];
+    wr_fixture_scale_wrench(f, call->wrench, target);
+    for (int k = 0; k < 3; k++)
+        target[k] /= m.scale;
+    wr_support_strong *out = call->out;
+    out->verdict = WR_VERDICT_INSIDE;
+    out->blocking = -1;
+    int count = wr_analysis_cone_count(call->analysis, WR_SET_STRONG);
+    for (int c = 0; c < count; c++) {
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_STRONG, c);
+        if (cone->empty)
+            continue;
+        int r = mode_search(&m, cone, target, call->tolerance, call->stop, out);
+        if (r == -1)
+            return WR_LP_FAILED;
+        if (r == -2)
+            return WR_STOPPED;
+        if (r == -3)
+            return WR_NO_MEMORY;
+        if (r == 1) {
+            out->verdict = WR_VERDICT_OUTSIDE;
+            out->blocking = c;
+            return WR_OK;
+        }
+        if (r == 2 && out->verdict == WR_VERDICT_INSIDE) {
+            out->verdict = WR_VERDICT_BOUNDARY;
+            out->blocking = c;
+        }
+    }
+    return WR_OK;
+}
+
+wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *supports,
+                             wr_lp_env *env, const double wrench[3], double tolerance,
+                             const wr_stop *stop, wr_support_strong *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]) ||
+        !(tolerance >= 0))
+        return WR_INVALID;
+    double h[3];
+    if (supports->total == 0 ||
+        (supports->mu_static == 0 && supports->mu_kinetic == 0)) {
+        /* No support friction: the cones alone. */
+        wr_answer answer;
+        wr_status st = wr_classify(analysis, wrench, WR_SET_STRONG, tolerance, &answer);
+        out->verdict = answer.verdict;
+        out->blocking = answer.blocking;
+        memcpy(out->acceleration, answer.witness.acceleration, sizeof out->acceleration);
+        memcpy(out->force, answer.witness.force, sizeof out->force);
+        return st;
+    }
+    (void)h;
+    strong_call call = {analysis, supports, wrench, tolerance, stop, out};
+    return wr_lp_guarded(env, strong_body, &call);
 }

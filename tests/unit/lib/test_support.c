@@ -450,12 +450,277 @@ static void test_polygon_bracket(void **state)
     wr_lp_env_free(env);
 }
 
+
+/* ---- holding --------------------------------------------------------------- */
+
+/* At zero load nothing moves the part: for every fixture and buttons of
+ * the bracket test below, and for the two worked examples. */
+static void test_zero_load_held(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    wr_fixture *fixtures[2] = {test_disc_corner(0.5), plate_321()};
+    const double plate_buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
+    for (int k = 0; k < 2; k++) {
+        wr_analysis *a = test_analysis_new(fixtures[k]);
+        wr_error error;
+        wr_supports *s = supports_new(fixtures[k], k ? plate_buttons : tri, 3, 0.2, G, NULL, 0,
+                                      &error);
+        assert_non_null(s);
+        double zero[3] = {0, 0, 0};
+        wr_support_strong strong;
+        assert_int_equal(
+            wr_supports_strong(a, s, env, zero, WR_DEFAULT_TOLERANCE, NULL, &strong), WR_OK);
+        printf("zero load, %s: %s after %d cells\n", k ? "3-2-1 plate" : "disc",
+               strong.verdict == WR_VERDICT_INSIDE ? "held" : "not held", strong.cells);
+        assert_int_equal(strong.verdict, WR_VERDICT_INSIDE);
+        wr_supports_free(s);
+        wr_analysis_free(a);
+        wr_fixture_free(fixtures[k]);
+    }
+    wr_lp_env_free(env);
+}
+
+/* The 3-2-1 plate (m = 2, centre of mass (2, 1)) on buttons at (1, 0.5),
+ * (3, 0.5) and (2, 1.7), mu_B = 0.2 (static and kinetic), a down clamp of
+ * D at the centre of mass: the centre of pressure stays at the centre of
+ * mass, W = m g + D.  A cutting force F_c along +x through the centre of
+ * mass pulls the plate off its left locator.
+ *
+ * Any motion q of the seated plate has, dotted with q (as a power), on
+ * the load's side F_c a_x (the force acts at the centre of mass) and on the
+ * other the inertia q.M.q >= 0, the fixels' forces' share >= 0 (they push
+ * and their friction opposes sliding) and the buttons' friction
+ * sum mu_B N_i |a_i| >= mu_B |sum N_i a_i| = mu_B W |a_com| (the buttons'
+ * weighted mean acceleration is the centre of pressure's).  So a motion
+ * needs F_c >= mu_B W, and at F_c > mu_B W the translation along +x is one
+ * (fixels 1 and 2 sliding unloaded, fixel 3 leaving, a_x = (F_c - mu_B W)
+ * / m).  The least clamp that holds is
+ *
+ *     D* = F_c / mu_B - m g.
+ *
+ * wrenchd: held at 1.001 D*, moves (with that translation) at 0.999 D*. */
+static void test_plate_clamp(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    wr_fixture *f = plate_321();
+    wr_analysis *a = test_analysis_new(f);
+    const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
+    double mu_b = 0.2, cutting = 30;
+    double expected = cutting / mu_b - 2 * G;
+    double load[3] = {cutting, 0, 0};
+    for (int side = -1; side <= 1; side += 2) {
+        wr_down_spec down = {{2, 1}, expected * (1 + side * 1e-3)};
+        wr_error error;
+        wr_supports *s = supports_new(f, buttons, 3, mu_b, G, &down, 1, &error);
+        assert_non_null(s);
+        wr_support_strong strong;
+        assert_int_equal(
+            wr_supports_strong(a, s, env, load, WR_DEFAULT_TOLERANCE, NULL, &strong), WR_OK);
+        printf("3-2-1 plate, clamp %.6g (D* = %.6g): %s, %d cells, %d LPs\n", down.force,
+               expected, strong.verdict == WR_VERDICT_INSIDE ? "held" : "moves", strong.cells,
+               strong.solves);
+        if (side > 0) {
+            assert_int_equal(strong.verdict, WR_VERDICT_INSIDE);
+        } else {
+            assert_int_equal(strong.verdict, WR_VERDICT_OUTSIDE);
+            /* The witness: the translation along +x, a_x = (F_c - mu W) / m. */
+            double w = 2 * G + down.force;
+            assert_true(fabs(strong.acceleration[0] - (cutting - mu_b * w) / 2) <
+                        1e-6 * cutting);
+            assert_true(fabs(strong.acceleration[1]) < 1e-6 && fabs(strong.acceleration[2]) < 1e-6);
+        }
+        wr_supports_free(s);
+    }
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    wr_lp_env_free(env);
+}
+
+/* Is the motion along the scaled acceleration direction q' of mode `cone`
+ * consistent with g?  This file's own LP: g = t q' + sum kappa_j G_j (the
+ * mode's contact generators) + sum_i m_i W(a_i / |a_i|) at p_i, t >= 0,
+ * mu_k_min N_i <= m_i <= mu_k N_i, N >= 0 with the statics rows (not
+ * wrenchd's distributions); returns the least L1 residual in the scaled
+ * metric.  A point whose acceleration vanishes (a measure-zero set of
+ * directions, never sampled) is not handled. */
+static double motion_residual(const wr_fixture *f, const wr_supports *s, const wr_cone *cone,
+                              const double g[3], const double q[3])
+{
+    glp_prob *p = glp_create_prob();
+    glp_set_obj_dir(p, GLP_MIN);
+    int n = s->count;
+    glp_add_rows(p, 6 + 2 * n);
+    double h[3];
+    wr_fixture_scale_wrench(f, g, h);
+    for (int k = 0; k < 3; k++)
+        glp_set_row_bnds(p, 1 + k, GLP_FX, h[k], h[k]);
+    glp_set_row_bnds(p, 4, GLP_FX, s->total, s->total);
+    glp_set_row_bnds(p, 5, GLP_FX, s->total * s->pressure[0], s->total * s->pressure[0]);
+    glp_set_row_bnds(p, 6, GLP_FX, s->total * s->pressure[1], s->total * s->pressure[1]);
+    for (int i = 0; i < n; i++) {
+        glp_set_row_bnds(p, 7 + 2 * i, GLP_UP, 0, 0); /* m_i - mu_k N_i <= 0 */
+        glp_set_row_bnds(p, 8 + 2 * i, GLP_LO, 0, 0); /* m_i - mu_k_min N_i >= 0 */
+    }
+    int ia[1024], ja[1024];
+    double ar[1024];
+    int count = 0;
+#define SET(r, c, v) (count++, ia[count] = (r), ja[count] = (c), ar[count] = (v))
+    int t = glp_add_cols(p, 1);
+    glp_set_col_bnds(p, t, GLP_LO, 0, 0);
+    for (int k = 0; k < 3; k++)
+        SET(1 + k, t, q[k]);
+    for (int j = 0; j < cone->generator_count; j++) {
+        if (cone->origins[j].fixel < 0)
+            continue;
+        int c = glp_add_cols(p, 1);
+        glp_set_col_bnds(p, c, GLP_LO, 0, 0);
+        for (int k = 0; k < 3; k++)
+            SET(1 + k, c, cone->generators[j][k]);
+    }
+    double rho = f->gyration_radius;
+    double ax = q[0] / f->mass, ay = q[1] / f->mass, alpha = q[2] / (f->mass * rho);
+    for (int i = 0; i < n; i++) {
+        double rx = s->points[i][0] - f->com[0], ry = s->points[i][1] - f->com[1];
+        double a[2] = {ax - alpha * ry, ay + alpha * rx};
+        double norm = hypot(a[0], a[1]);
+        a[0] /= norm;
+        a[1] /= norm;
+        int N = glp_add_cols(p, 2);
+        glp_set_col_bnds(p, N, GLP_LO, 0, 0);
+        glp_set_col_bnds(p, N + 1, GLP_LO, 0, 0);
+        SET(4, N, 1);
+        SET(5, N, s->points[i][0]);
+        SET(6, N, s->points[i][1]);
+        SET(7 + 2 * i, N, -s->mu_kinetic);
+        SET(8 + 2 * i, N, -s->mu_kinetic_min);
+        int m = N + 1; /* the friction's size, along a_i (it opposes the motion: -f = m a) */
+        SET(7 + 2 * i, m, 1);
+        SET(8 + 2 * i, m, 1);
+        SET(1, m, a[0]);
+        SET(2, m, a[1]);
+        SET(3, m, (rx * a[1] - ry * a[0]) / rho);
+    }
+    for (int k = 0; k < 3; k++) {
+        int e = glp_add_cols(p, 2);
+        glp_set_col_bnds(p, e, GLP_LO, 0, 0);
+        glp_set_col_bnds(p, e + 1, GLP_LO, 0, 0);
+        glp_set_obj_coef(p, e, 1);
+        glp_set_obj_coef(p, e + 1, 1);
+        SET(1 + k, e, 1);
+        SET(1 + k, e + 1, -1);
+    }
+#undef SET
+    glp_load_matrix(p, count, ia, ja, ar);
+    glp_smcp parm;
+    glp_init_smcp(&parm);
+    parm.msg_lev = GLP_MSG_OFF;
+    assert_int_equal(glp_simplex(p, &parm), 0);
+    assert_int_equal(glp_get_status(p), GLP_OPT);
+    double residual = glp_get_obj_val(p);
+    glp_delete_prob(p);
+    return residual;
+}
+
+/* Random loads on the disc and on the 3-2-1 plate on 3 and 4 buttons:
+ * where wrenchd says held, no direction of a dense sample of every moving
+ * mode's directions (each mode's acceleration generators combined with
+ * random weights, 400 per mode) is consistent; where it says moves, its
+ * witness direction is consistent by this file's LP. */
+static void test_holding_sampled(void **state)
+{
+    (void)state;
+    test_rng rng = {8128};
+    wr_lp_env *env = test_lp_env_new();
+    int held = 0, moves = 0, boundary = 0, samples = 0;
+    for (int trial = 0; trial < 8; trial++) {
+        wr_fixture *f = trial % 2 ? plate_321() : test_disc_corner(test_range(&rng, 0.2, 0.6));
+        wr_analysis *a = test_analysis_new(f);
+        const double plate4[4][2] = {{0.5, 0.4}, {3.5, 0.4}, {3.5, 1.6}, {0.5, 1.6}};
+        const double disc4[4][2] = {{0.3, 0.3}, {-0.3, 0.3}, {-0.3, -0.3}, {0.3, -0.3}};
+        const double plate3[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
+        int n = trial % 4 < 2 ? 3 : 4;
+        const double (*points)[2] = trial % 2 ? (n == 3 ? plate3 : plate4) : (n == 3 ? tri : disc4);
+        wr_error error;
+        wr_supports *s = supports_new(f, points, n, test_range(&rng, 0.1, 0.5), G, NULL, 0, &error);
+        assert_non_null(s);
+        for (int w = 0; w < 6; w++) {
+            double g[3];
+            test_sphere(&rng, g);
+            double size = test_range(&rng, 0.3, 3) * s->mu_static * s->total;
+            g[2] *= f->gyration_radius;
+            for (int k = 0; k < 3; k++)
+                g[k] *= size;
+            wr_support_strong strong;
+            assert_int_equal(
+                wr_supports_strong(a, s, env, g, WR_DEFAULT_TOLERANCE, NULL, &strong), WR_OK);
+            double scale = fmax(size, s->mu_static * s->total);
+            if (strong.verdict == WR_VERDICT_OUTSIDE) {
+                const wr_cone *cone = wr_analysis_cone(a, WR_SET_STRONG, strong.blocking);
+                double q[3] = {strong.acceleration[0] * f->mass, strong.acceleration[1] * f->mass,
+                               strong.acceleration[2] * f->mass * f->gyration_radius};
+                double norm = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+                if (norm > 0) {
+                    for (int k = 0; k < 3; k++)
+                        q[k] /= norm;
+                    assert_true(motion_residual(f, s, cone, g, q) <= 1e-8 * scale);
+                }
+                moves++;
+                continue;
+            }
+            if (strong.verdict == WR_VERDICT_BOUNDARY) {
+                boundary++;
+                continue;
+            }
+            held++;
+            int modes = wr_analysis_cone_count(a, WR_SET_STRONG);
+            for (int c = 0; c < modes; c++) {
+                const wr_cone *cone = wr_analysis_cone(a, WR_SET_STRONG, c);
+                if (cone->empty)
+                    continue;
+                for (int k = 0; k < 400; k++) {
+                    double q[3] = {0, 0, 0};
+                    for (int j = 0; j < cone->generator_count; j++) {
+                        if (cone->origins[j].fixel >= 0)
+                            continue;
+                        double weight = test_uniform(&rng);
+                        weight = weight * weight * weight; /* some near the edges */
+                        for (int r = 0; r < 3; r++)
+                            q[r] += weight * cone->generators[j][r];
+                    }
+                    double norm = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+                    if (!(norm > 1e-9))
+                        continue;
+                    for (int r = 0; r < 3; r++)
+                        q[r] /= norm;
+                    assert_true(motion_residual(f, s, cone, g, q) > 1e-9 * scale);
+                    samples++;
+                }
+            }
+        }
+        wr_supports_free(s);
+        wr_analysis_free(a);
+        wr_fixture_free(f);
+    }
+    printf("holding: %d held (%d directions sampled, none consistent), %d move (witness "
+           "found again), %d boundary\n",
+           held, samples, moves, boundary);
+    assert_true(held > 0 && moves > 0);
+    wr_lp_env_free(env);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_statics),
         cmocka_unit_test(test_disc_least_force),
         cmocka_unit_test(test_polygon_bracket),
+        cmocka_unit_test(test_zero_load_held),
+        cmocka_unit_test(test_plate_clamp),
+        cmocka_unit_test(test_holding_sampled),
     };
+    if (getenv("TEST_FILTER")) /* one test by name, while working on it */
+        cmocka_set_test_filter(getenv("TEST_FILTER"));
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
