@@ -121,6 +121,8 @@ static wr_status host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal,
     return WR_OK;
 }
 
+static wr_lp_env *host_lp_env(void *self) { return ((wd_thread_host *)self)->solver; }
+
 wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
 {
     wd_thread_host *thread = calloc(1, sizeof *thread);
@@ -145,7 +147,8 @@ wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
                              .fixture_delete = host_delete,
                              .fixture_list = host_list,
                              .state = host_state,
-                             .lp_sets = host_lp_sets};
+                             .lp_sets = host_lp_sets,
+                             .lp_env = host_lp_env};
     return thread;
 }
 

@@ -166,9 +166,10 @@ wr_status wr_supports_new(const wr_fixture *fixture, const wr_support_spec *spec
             wr_error_set(error, field, "is outside the part: a down clamp must press on it");
             goto invalid;
         }
-        s->total += s->down[i].force;
-        moment[0] += s->down[i].force * s->down[i].at[0];
-        moment[1] += s->down[i].force * s->down[i].at[1];
+        double force = s->down[i].force * wr_fixture_force_factor(fixture);
+        s->total += force;
+        moment[0] += force * s->down[i].at[0];
+        moment[1] += force * s->down[i].at[1];
     }
     bool spread = false;
     for (int i = 2; i < s->count && !spread; i++) {
@@ -219,6 +220,18 @@ wr_status wr_supports_new(const wr_fixture *fixture, const wr_support_spec *spec
 invalid:
     wr_supports_free(s);
     return WR_INVALID;
+}
+
+wr_status wr_fixture_set_supports(wr_fixture *fixture, const wr_support_spec *spec,
+                                  wr_error *error)
+{
+    wr_supports *s;
+    wr_status status = wr_supports_new(fixture, spec, &s, error);
+    if (status != WR_OK)
+        return status;
+    wr_supports_free(fixture->supports);
+    fixture->supports = s;
+    return WR_OK;
 }
 
 /* Support i's lever arm (p_i - com). */

@@ -35,7 +35,8 @@
  * cannot miss a consistent direction inside it.
  *
  * Units: the fixture's model system (wr_fixture.h): g in length / s^2,
- * forces in kg * length / s^2.  All functions are re-entrant; those taking
+ * forces in kg * length / s^2 -- but for the down clamps' forces, which
+ * are given (and kept) in the fixture's force unit and converted here.  All functions are re-entrant; those taking
  * a wr_lp_env run GLPK in the calling thread (wr_lp.h). */
 #ifndef WR_SUPPORT_H
 #define WR_SUPPORT_H
@@ -52,7 +53,7 @@ extern "C" {
 
 typedef struct wr_down_spec {
     double at[2];
-    double force; /* >= 0, into the plate */
+    double force; /* >= 0, into the plate, in the fixture's force unit */
 } wr_down_spec;
 
 typedef struct wr_support_spec {
@@ -72,7 +73,7 @@ typedef struct wr_supports {
     double g;
     int down_count;
     wr_down_spec down[WR_MAX_DOWN];
-    double total;          /* W = m g + sum of the down forces */
+    double total;          /* W = m g + sum of the down forces (model system) */
     double pressure[2];    /* the centre of pressure (the com when W = 0) */
     /* The vertices of P: distribution_count rows of `count` normal forces
      * (one row of zeros when W = 0). */
@@ -92,6 +93,11 @@ typedef struct wr_supports {
 wr_status wr_supports_new(const wr_fixture *fixture, const wr_support_spec *spec,
                           wr_supports **out, wr_error *error);
 void wr_supports_free(wr_supports *supports);
+
+/* wr_supports_new for `fixture`, kept by it (fixture->supports, freed with
+ * it; any supports it had are freed first).  Errors as wr_supports_new's. */
+wr_status wr_fixture_set_supports(wr_fixture *fixture, const wr_support_spec *spec,
+                                  wr_error *error);
 
 /* The support function of S in the physical metric: the largest w . s over
  * s in S, for a row w = (w_x, w_y, w_tau) of wrench space; equal to

@@ -248,6 +248,11 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
                      "push regions need the part's outline: the fixture has no shape");
         return NULL;
     }
+    if (wp_supports_refuse(call, use->fixture, "params.force",
+                           "a push at a point to force.range (the magnitudes that seat it) or "
+                           "wrench.classify (what a push of a given force does); push regions "
+                           "are answered for a part floating in its plane"))
+        return NULL;
     wp_push_load load;
     if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
         return NULL;
@@ -388,6 +393,10 @@ cJSON *wp_handle_gravity_sweep(wp_call *call)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
+    if (wp_supports_refuse(call, use->fixture, "params.fixture",
+                           "the gravity as a load (wrench.classify, force.range cases): a tilt "
+                           "alone says nothing of the supports' friction"))
+        return NULL;
     cJSON *result = NULL;
     wr_regions arcs;
     wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
@@ -413,6 +422,10 @@ cJSON *wp_handle_stability_margin(wp_call *call)
     wp_error *error = call->error;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
+        return NULL;
+    if (wp_supports_refuse(call, use->fixture, "params.bias",
+                           "the biasing wrench with its disturbances to wrench.classify: the "
+                           "disturbance margin is a distance between directions"))
         return NULL;
     double bias[3];
     cJSON *result = NULL;
