@@ -629,6 +629,18 @@ static double problem_scale(const wr_fixture *f, const wr_supports *s, const dou
     return fmax(n, s->mu_static * s->total);
 }
 
+/* The model of one wrench's question, and the wrench in it (scaled metric,
+ * divided by the model's scale). */
+static void model_for(model *m, const wr_analysis *analysis, const wr_supports *supports,
+                      const double wrench[3], double target[3])
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    model_init(m, f, supports, problem_scale(f, supports, wrench));
+    wr_fixture_scale_wrench(f, wrench, target);
+    for (int k = 0; k < 3; k++)
+        target[k] /= m->scale;
+}
+
 typedef struct goal_call {
     const wr_analysis *analysis;
     const wr_supports *supports;
@@ -640,13 +652,9 @@ typedef struct goal_call {
 static wr_status goal_body(void *context)
 {
     goal_call *call = context;
-    const wr_fixture *f = wr_analysis_fixture(call->analysis);
     model m;
-    model_init(&m, f, call->supports, problem_scale(f, call->supports, call->wrench));
     double target[3];
-    wr_fixture_scale_wrench(f, call->wrench, target);
-    for (int k = 0; k < 3; k++)
-        target[k] /= m.scale;
+    model_for(&m, call->analysis, call->supports, call->wrench, target);
     double push[3] = {0, 0, 0};
     wr_support_goal *out = call->out;
     out->verdict = WR_VERDICT_INSIDE;
@@ -1416,13 +1424,9 @@ static int mode_search(const model *m, const wr_cone *cone, const double target[
 static wr_status strong_body(void *context)
 {
     strong_call *call = context;
-    const wr_fixture *f = wr_analysis_fixture(call->analysis);
     model m;
-    model_init(&m, f, call->supports, problem_scale(f, call->supports, call->wrench));
     double target[3];
-    wr_fixture_scale_wrench(f, call->wrench, target);
-    for (int k = 0; k < 3; k++)
-        target[k] /= m.scale;
+    model_for(&m, call->analysis, call->supports, call->wrench, target);
     wr_support_strong *out = call->out;
     out->verdict = WR_VERDICT_INSIDE;
     out->blocking = -1;

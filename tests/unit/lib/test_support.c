@@ -176,6 +176,25 @@ static void test_disc_least_force(void **state)
  * (maximise: largest) F with load + F push in C + S_poly; NAN when none. */
 #define POLY 256
 
+/* Columns e+, e- >= 0 on the three wrench rows, each costing 1: the
+ * least L1 residual of the rows.  Returns the triplets' new count. */
+static int residual_columns(glp_prob *p, int count, int *ia, int *ja, double *ar)
+{
+    for (int k = 0; k < 3; k++) {
+        int e = glp_add_cols(p, 2);
+        for (int side = 0; side < 2; side++) {
+            glp_set_col_bnds(p, e + side, GLP_LO, 0, 0);
+            glp_set_obj_coef(p, e + side, 1);
+            count++;
+            ia[count] = 1 + k;
+            ja[count] = e + side;
+            ar[count] = side ? -1 : 1;
+        }
+    }
+    return count;
+}
+
+
 static double poly_lp(const wr_fixture *f, const wr_supports *s, const wr_cone *cone,
                       const double g[3], const double *push, int direction, bool outer)
 {
@@ -248,16 +267,7 @@ static double poly_lp(const wr_fixture *f, const wr_supports *s, const wr_cone *
         for (int k = 0; k < 3; k++)
             SET(1 + k, magnitude, -hu[k]);
     } else {
-        /* Residual columns: minimise the L1 residual. */
-        for (int k = 0; k < 3; k++) {
-            int e = glp_add_cols(p, 2);
-            glp_set_col_bnds(p, e, GLP_LO, 0, 0);
-            glp_set_col_bnds(p, e + 1, GLP_LO, 0, 0);
-            glp_set_obj_coef(p, e, 1);
-            glp_set_obj_coef(p, e + 1, 1);
-            SET(1 + k, e, 1);
-            SET(1 + k, e + 1, -1);
-        }
+        count = residual_columns(p, count, ia, ja, ar);
     }
 #undef SET
     glp_load_matrix(p, count, ia, ja, ar);
@@ -602,15 +612,7 @@ static double motion_residual(const wr_fixture *f, const wr_supports *s, const w
         SET(2, m, a[1]);
         SET(3, m, (rx * a[1] - ry * a[0]) / rho);
     }
-    for (int k = 0; k < 3; k++) {
-        int e = glp_add_cols(p, 2);
-        glp_set_col_bnds(p, e, GLP_LO, 0, 0);
-        glp_set_col_bnds(p, e + 1, GLP_LO, 0, 0);
-        glp_set_obj_coef(p, e, 1);
-        glp_set_obj_coef(p, e + 1, 1);
-        SET(1 + k, e, 1);
-        SET(1 + k, e + 1, -1);
-    }
+    count = residual_columns(p, count, ia, ja, ar);
 #undef SET
     glp_load_matrix(p, count, ia, ja, ar);
     glp_smcp parm;
