@@ -302,6 +302,7 @@ pictures: $(BUILD)/wrenchctl
 	    --emit-fixture 1 bracket-design.json >/dev/null
 	$(BUILD)/wrenchctl --local push $(BUILD)/bracket-design.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
+	$(BUILD)/wrenchctl --local force examples/plate-3-2-1-buttons.json --push 2.4663,2@-0.42262,-0.90631 --case none:wrench=0,0,0 --sets goal --svg docs/pictures/plate-3-2-1-buttons.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.
