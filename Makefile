@@ -473,7 +473,10 @@ uninstall:
 # ---- physics validation (tests/physics) ----
 # wrenchd's answers against Box2D (docs/VALIDATION.md).  physics-check is the
 # quick run make check includes; validate is the full one, with the table.
-PHYSICS_FIXTURES = $(wildcard examples/*.json) $(wildcard tests/physics/fixtures/*.json)
+# A fixture on supports is left out: this simulation floats the part, and
+# its buttons' friction (docs/MODEL.md section 10) is not simulated here.
+PHYSICS_FIXTURES = $(filter-out examples/plate-3-2-1-buttons.json,$(wildcard examples/*.json)) \
+                   $(wildcard tests/physics/fixtures/*.json)
 PHYSICS_CXXFLAGS = -std=c++17 -Wall -Wextra -Werror -O2 -g
 
 $(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
