@@ -484,8 +484,15 @@ $(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a 
 	$(CXX) $(PHYSICS_CXXFLAGS) -MMD -MP $(INCLUDES) $$(pkg-config --cflags box2d) $< \
 	    $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $$(pkg-config --libs box2d) -lcjson -lglpk -lm -o $@
 
-physics-check: $(BUILD)/physics-validate
+# A part on a base plate: each support a b2FrictionJoint (tests/physics/supports.cpp).
+$(BUILD)/physics-supports: tests/physics/supports.cpp $(BUILD)/libwrench.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(PHYSICS_CXXFLAGS) -MMD -MP $(LIB_INCLUDES) $$(pkg-config --cflags box2d) $< \
+	    $(BUILD)/libwrench.a $$(pkg-config --libs box2d) -lglpk -lm -o $@
+
+physics-check: $(BUILD)/physics-validate $(BUILD)/physics-supports
 	$(BUILD)/physics-validate --quick $(PHYSICS_FIXTURES)
+	$(BUILD)/physics-supports
 
 validate: $(BUILD)/physics-validate
 	$(BUILD)/physics-validate --full $(PHYSICS_FIXTURES)
