@@ -132,3 +132,19 @@ def test_direction_questions_refused(client, method, params, field):
     got, reason = error_of(client, method, dict(params, fixture=f))
     assert got == field, (got, reason)
     assert "supports" in reason, reason
+
+
+def test_python_client_least_force_on_the_plate(daemon):
+    """The Python client's on_supports and force_range: the disc's closed
+    form again, through the client."""
+    import os
+    import sys
+    from conftest import REPO
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    with wrenchd.Client(daemon.path, timeout=60) as c:
+        f = wrenchd.on_supports(FX.disc_corner(0.5), BUTTONS, 0.3, G)
+        r = c.force_range(f, [[{"wrench": [0, 0, 0]}]], push={"at": [1 / R2, 1 / R2]},
+                          sets=["goal"])
+        expected = 0.3 * G * math.sqrt(10)
+        assert abs(r["all"]["goal"]["least"] - expected) < 1e-7 * expected
