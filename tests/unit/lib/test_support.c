@@ -319,31 +319,6 @@ static double poly_least_force(const wr_analysis *a, const wr_supports *s, const
     return at;
 }
 
-/* The 3-2-1 plate of docs/MODEL.md section 7.2: 4 by 2, m = 2, fixels
- * at (1, 0), (3, 0) and (0, 1), mu_s 0.3, mu_k 0.25. */
-static wr_fixture *plate_321(void)
-{
-    static const double vertices[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
-    wr_fixel_spec fixels[3];
-    memset(fixels, 0, sizeof fixels);
-    fixels[0].at[0] = 1;
-    fixels[1].at[0] = 3;
-    fixels[2].at[1] = 1;
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 2;
-    spec.shape = WR_SHAPE_POLYGON;
-    spec.vertex_count = 4;
-    spec.vertices = vertices;
-    spec.friction.given = true;
-    spec.friction.static_mu = 0.3;
-    spec.friction.kinetic_given = true;
-    spec.friction.kinetic_mu = 0.25;
-    spec.fixel_count = 3;
-    spec.fixels = fixels;
-    return test_fixture_new(&spec, NULL);
-}
-
 /* Random fixtures, 3 to 5 buttons, random friction and clamps: wrenchd's
  * seating verdict and least push force lie between the inscribed and the
  * circumscribed 256-gons'. */
@@ -357,7 +332,7 @@ static void test_polygon_bracket(void **state)
         /* The disc in the corner with random friction, the 3-2-1 plate,
          * random discs and polygons with two fixels. */
         wr_fixture *f = trial % 4 == 0   ? test_disc_corner(test_range(&rng, 0.1, 0.8))
-                        : trial % 4 == 1 ? plate_321()
+                        : trial % 4 == 1 ? test_plate_321()
                                          : test_random_fixture(&rng, 2, trial % 4 == 2);
         if (!f) {
             printf("trial %d: no fixture\n", trial);
@@ -469,7 +444,7 @@ static void test_zero_load_held(void **state)
 {
     (void)state;
     wr_lp_env *env = test_lp_env_new();
-    wr_fixture *fixtures[2] = {test_disc_corner(0.5), plate_321()};
+    wr_fixture *fixtures[2] = {test_disc_corner(0.5), test_plate_321()};
     const double plate_buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
     for (int k = 0; k < 2; k++) {
         wr_analysis *a = test_analysis_new(fixtures[k]);
@@ -514,7 +489,7 @@ static void test_plate_clamp(void **state)
 {
     (void)state;
     wr_lp_env *env = test_lp_env_new();
-    wr_fixture *f = plate_321();
+    wr_fixture *f = test_plate_321();
     wr_analysis *a = test_analysis_new(f);
     const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
     double mu_b = 0.2, cutting = 30;
@@ -637,7 +612,7 @@ static void test_holding_sampled(void **state)
     wr_lp_env *env = test_lp_env_new();
     int held = 0, moves = 0, boundary = 0, samples = 0;
     for (int trial = 0; trial < 8; trial++) {
-        wr_fixture *f = trial % 2 ? plate_321() : test_disc_corner(test_range(&rng, 0.2, 0.6));
+        wr_fixture *f = trial % 2 ? test_plate_321() : test_disc_corner(test_range(&rng, 0.2, 0.6));
         wr_analysis *a = test_analysis_new(f);
         const double plate4[4][2] = {{0.5, 0.4}, {3.5, 0.4}, {3.5, 1.6}, {0.5, 1.6}};
         const double disc4[4][2] = {{0.3, 0.3}, {-0.3, 0.3}, {-0.3, -0.3}, {0.3, -0.3}};
