@@ -1479,3 +1479,55 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
     strong_call call = {analysis, supports, wrench, tolerance, stop, out};
     return wr_lp_guarded(env, strong_body, &call);
 }
+
+/* ---- push regions on the plate -------------------------------------------- */
+
+wr_status wr_supports_push_regions(const wr_analysis *analysis, const wr_supports *supports,
+                                   wr_lp_env *env, double force, const double (*loads)[3],
+                                   int case_count, int edge, wr_regions *regions)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    if (f->shape != WR_SHAPE_POLYGON || edge < 0 || edge >= (int)f->vertex_count ||
+        !(force > 0) || !isfinite(force) || case_count < 1)
+        return WR_INVALID;
+    /* On a straight edge the unit push's wrench is affine in t. */
+    double w0[3], w1[3], push[3];
+    wr_push_wrench(f, edge, 0, w0);
+    wr_push_wrench(f, edge, 1, w1);
+    for (int k = 0; k < 3; k++)
+        push[k] = force * (w1[k] - w0[k]);
+    wr_forces all = {0}, one = {0}, meet = {0};
+    wr_status status = WR_OK;
+    for (int c = 0; c < case_count && status == WR_OK; c++) {
+        double load[3];
+        for (int k = 0; k < 3; k++)
+            load[k] = loads[c][k] + force * w0[k];
+        status = wr_supports_force_range(analysis, supports, env, load, push, 0, 1,
+                                         c ? &one : &all);
+        if (status == WR_OK && c) {
+            status = wr_forces_intersect(&all, &one, &meet);
+            wr_forces swap = all;
+            all = meet;
+            meet = swap;
+        }
+    }
+    for (int i = 0; status == WR_OK && i < all.count; i++) {
+        if (!(all.items[i].hi > all.items[i].lo))
+            continue;
+        if (regions->count == regions->capacity) {
+            int capacity = regions->capacity ? 2 * regions->capacity : 8;
+            wr_region *items = realloc(regions->items, (size_t)capacity * sizeof *items);
+            if (!items) {
+                status = WR_NO_MEMORY;
+                break;
+            }
+            regions->items = items;
+            regions->capacity = capacity;
+        }
+        regions->items[regions->count++] = (wr_region){edge, all.items[i].lo, all.items[i].hi};
+    }
+    wr_forces_release(&all);
+    wr_forces_release(&one);
+    wr_forces_release(&meet);
+    return status;
+}

@@ -168,6 +168,18 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
                                   wr_lp_env *env, const double (*loads)[3], int case_count,
                                   const double push[3], double *force, double *lower);
 
+/* Push regions on the plate: the open intervals of t on polygon edge
+ * `edge` where a frictionless finger pushing with magnitude `force` along
+ * the inward normal, plus each case's load, seats the part on its supports
+ * (G_goal with S, under every case), appended to `regions`.  On a straight
+ * edge the push's wrench is affine in t, so each C + S holds one interval
+ * of t, found as wr_supports_force_range finds one of F.  WR_OK;
+ * WR_INVALID (not a polygon, an edge out of range, a force not positive
+ * and finite, no case); WR_NO_MEMORY; WR_LP_FAILED. */
+wr_status wr_supports_push_regions(const wr_analysis *analysis, const wr_supports *supports,
+                                   wr_lp_env *env, double force, const double (*loads)[3],
+                                   int case_count, int edge, wr_regions *regions);
+
 #ifdef __cplusplus
 }
 #endif

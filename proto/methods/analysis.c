@@ -231,6 +231,31 @@ static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set s
     free(reasons);
 }
 
+/* On supports (wr_support.h) the regions are those of a push of a given
+ * force that seats the part (goal), on a polygon's straight edges, for a
+ * point finger: false with the error set otherwise. */
+static bool supports_push_ok(wp_call *call, const wr_fixture *f, wr_set set, double radius,
+                             const wp_push_load *load)
+{
+    if (!f->supports)
+        return true;
+    if (!load->given)
+        return !wp_supports_refuse(call, f, "params.force",
+                                   "\"force\", the push's magnitude: the regions where a push "
+                                   "that hard seats the part");
+    const char *why = set != WR_SET_GOAL ? "params.set"
+                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                      : radius > 0 ? "params.finger_radius"
+                                   : NULL;
+    if (!why)
+        return true;
+    wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                 "the fixture rests on supports: its push regions are where a push of the given "
+                 "force seats it (set \"goal\"), along a polygon's straight edges, for a point "
+                 "finger; whether the seated part is held is wrench.classify's \"strong\"");
+    return false;
+}
+
 static void *push_begin(wp_call *call, wp_prepared *prepared)
 {
     (void)prepared;
@@ -248,14 +273,13 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
                      "push regions need the part's outline: the fixture has no shape");
         return NULL;
     }
-    if (wp_supports_refuse(call, use->fixture, "params.force",
-                           "a push at a point to force.range (the magnitudes that seat it) or "
-                           "wrench.classify (what a push of a given force does); push regions "
-                           "are answered for a part floating in its plane"))
-        return NULL;
     wp_push_load load;
     if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
         return NULL;
+    if (!supports_push_ok(call, use->fixture, set, radius, &load)) {
+        wp_push_load_release(&load);
+        return NULL;
+    }
     push_state *state = calloc(1, sizeof *state);
     if (!state) {
         wp_push_load_release(&load);
@@ -338,8 +362,14 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
         const wp_push_load *load = &state->load;
         /* Under loads, only the edges the finger may push on (push_on). */
         bool skip = load->given && !wr_finger_pushes_on(f, &state->finger, state->next);
+        wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
         wr_status status =
             skip ? WR_OK
+            : f->supports
+                ? (env ? wr_supports_push_regions(use->analysis, f->supports, env, load->force,
+                                                  (const double (*)[3])load->loads, load->count,
+                                                  state->next, &part)
+                       : WR_LP_FAILED)
             : load->given
                 ? wr_push_regions_loaded(use->analysis, state->set, load->force,
                                          (const double (*)[3])load->loads, load->count,

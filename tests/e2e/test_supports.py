@@ -8,11 +8,14 @@ clamp against a cutting force. Bad input refused naming the field; the
 questions of directions alone refused saying what to give."""
 
 import copy
+import json
 import math
+import os
 
 import pytest
 
 import fixtures as FX
+from conftest import REPO
 
 G = 9.81
 R2 = math.sqrt(2)
@@ -119,7 +122,6 @@ def test_zero_load_held(client):
 
 
 @pytest.mark.parametrize("method,params,field", [
-    ("push.regions", {"set": "goal"}, "params.force"),
     ("stability.margin", {"bias": [0, -1, 0]}, "params.bias"),
     ("force.range", {"push": {"at": [1 / R2, 1 / R2]}, "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
      "params.sets"),
@@ -169,3 +171,37 @@ def test_units_millimetres_and_newtons(client):
         expected = mu_b * weight * math.sqrt(10)
         least = r["all"]["goal"]["least"]
         assert abs(least - expected) < 1e-7 * expected, (least, expected)
+
+
+def test_push_regions_under_a_force_agree_with_force_range(client):
+    """The chamfered plate on three buttons: push.regions under a force of
+    20 finds the part of the chamfer where a push that hard seats it; just
+    inside its end force.range's least force at that point is below 20,
+    just outside above. More force, a longer region, tending to the
+    floating plate's."""
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        f = json.load(fh)
+    f = on_buttons(f, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    starts = []
+    for force in (20, 60, 200):
+        r = client.result("push.regions", {"fixture": f, "set": "goal", "force": force,
+                                           "cases": none})
+        assert len(r["regions"]) == 1, r
+        region = r["regions"][0]
+        assert region["edge"] == 2 and region["t1"] == 1, region
+        starts.append(region["t0"])
+    assert starts[0] > starts[1] > starts[2] > 0.525556, starts
+    t = starts[0]
+    for dt, below in ((1e-4, True), (-1e-4, False)):
+        at = [4 - (t + dt), 1 + (t + dt)]  # edge 2 runs from (4, 1) to (3, 2)
+        least = client.result("force.range", {"fixture": f, "push": {"at": at}, "cases": none,
+                                               "sets": ["goal"]})["all"]["goal"]["least"]
+        assert (least is not None and least < 20) == below, (dt, least)
+    # On supports the other sets, a finger of some size and no force are refused.
+    for extra, field in (({"set": "both", "force": 20, "cases": none}, "params.set"),
+                         ({"set": "goal", "force": 20, "cases": none, "finger_radius": 0.1},
+                          "params.finger_radius"),
+                         ({"set": "goal"}, "params.force")):
+        got, _ = error_of(client, "push.regions", dict(extra, fixture=f))
+        assert got == field
