@@ -308,6 +308,7 @@ pictures: $(BUILD)/wrenchctl
 	    --emit-fixture 1 bracket-design.json >/dev/null
 	$(BUILD)/wrenchctl --local push $(BUILD)/bracket-design.json --set both --svg docs/pictures/sheet-bracket-push-both.svg >/dev/null
 	$(BUILD)/wrenchctl --local push-force examples/bracket-upright.json $(foreach x,20 40 60 80 100,--case 'x$(x):gravity=9810@180;force=30,-40@$(x),60') --push-on all --svg docs/pictures/bracket-upright-push-force.svg >/dev/null
+	$(BUILD)/wrenchctl --local force examples/plate-3-2-1-buttons.json --push 2.4663,2@-0.42262,-0.90631 --case none:wrench=0,0,0 --sets goal --svg docs/pictures/plate-3-2-1-buttons.svg >/dev/null
 
 # ---- load and soak (bench) ----
 # bench/README.md says what these measure and how to read their output.
@@ -503,7 +504,10 @@ uninstall:
 # ---- physics validation (tests/physics) ----
 # wrenchd's answers against Box2D (docs/VALIDATION.md).  physics-check is the
 # quick run make check includes; validate is the full one, with the table.
-PHYSICS_FIXTURES = $(wildcard examples/*.json) $(wildcard tests/physics/fixtures/*.json)
+# A fixture on supports is left out: this simulation floats the part, and
+# its buttons' friction (docs/MODEL.md section 10) is not simulated here.
+PHYSICS_FIXTURES = $(filter-out examples/plate-3-2-1-buttons.json,$(wildcard examples/*.json)) \
+                   $(wildcard tests/physics/fixtures/*.json)
 PHYSICS_CXXFLAGS = -std=c++17 -Wall -Wextra -Werror -O2 -g
 
 $(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a
@@ -511,10 +515,17 @@ $(BUILD)/physics-validate: tests/physics/validate.cpp $(BUILD)/libwrenchproto.a 
 	$(CXX) $(PHYSICS_CXXFLAGS) -MMD -MP $(INCLUDES) $$(pkg-config --cflags box2d) $< \
 	    $(BUILD)/libwrenchproto.a $(BUILD)/libwrench.a $$(pkg-config --libs box2d) -lcjson -lglpk -lm -o $@
 
-physics-check: $(BUILD)/physics-validate
+# A part on a base plate: each support a b2FrictionJoint (tests/physics/supports.cpp).
+$(BUILD)/physics-supports: tests/physics/supports.cpp $(BUILD)/libwrench.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(PHYSICS_CXXFLAGS) -MMD -MP $(LIB_INCLUDES) $$(pkg-config --cflags box2d) $< \
+	    $(BUILD)/libwrench.a $$(pkg-config --libs box2d) -lglpk -lm -o $@
+
+physics-check: $(BUILD)/physics-validate $(BUILD)/physics-supports
 	$(BUILD)/physics-validate --quick $(PHYSICS_FIXTURES)
 	$(BUILD)/physics-validate --quick --tolerance 0.03,0.5 examples/plate-chamfered.json
 	$(BUILD)/physics-validate --quick --tolerance 0.05,0.2 examples/bracket.json
+	$(BUILD)/physics-supports
 
 validate: $(BUILD)/physics-validate
 	$(BUILD)/physics-validate --full $(PHYSICS_FIXTURES)

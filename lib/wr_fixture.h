@@ -175,6 +175,10 @@ typedef struct wr_fixture {
     wr_fixel fixels[WR_MAX_FIXELS];
     wr_units units;               /* as given; not given: both factors 1 */
     wr_tolerance tolerance;       /* set by wr_fixture_set_tolerance only */
+    /* The base plate's supports under the part (wr_support.h), owned:
+     * wr_fixture_free frees them.  NULL: the part floats in its plane.
+     * Set once by wr_fixture_set_supports, before the fixture is shared. */
+    struct wr_supports *supports;
 } wr_fixture;
 
 /* Validate `spec` and build a fixture into *out.  WR_INVALID when anything

@@ -140,6 +140,24 @@ SOLVER_FAILURE = -32004
 _DEFAULT = object()     # "the client's timeout"
 
 
+def on_supports(fixture: Mapping[str, Any], points: Sequence[Sequence[float]], friction: Any,
+                g: float, down: Optional[Sequence[Mapping[str, Any]]] = None) -> Dict[str, Any]:
+    """A copy of `fixture` lying on a base plate (docs/PROTOCOL.md,
+    "Supports"): rest buttons at `points` with coefficient `friction` (a
+    number, [lo, hi] or {"static", "kinetic"}), gravity `g` into the plate
+    in the fixture's length / s^2, and down clamps [{"at": [x, y],
+    "force": N}].  On supports wrench.classify and force.range answer with
+    the buttons' friction; force_range(...)["all"]["goal"]["least"] is the
+    least push force on the plate."""
+    out = json.loads(json.dumps(fixture))
+    supports: Dict[str, Any] = {"points": [list(p) for p in points], "friction": friction,
+                                "g": g}
+    if down:
+        supports["down"] = [dict(d) for d in down]
+    out["supports"] = supports
+    return out
+
+
 def default_socket_path() -> str:
     """$WRENCHD_SOCKET, else ./run/wrenchd.sock (the daemon's default)."""
     return os.environ.get("WRENCHD_SOCKET") or os.path.join(".", "run", "wrenchd.sock")

@@ -721,8 +721,8 @@ const wc_command wc_commands[] = {
      "Exit status 0 when there is a region, 1 when there is none."},
     {"force",
      "FIXTURE (--push X,Y[@DX,DY] | --wrench FX,FY,TAU) --case SPEC... [--sets LIST]\n"
-     "       [--range LO:HI] [--tolerance T[,A]]",
-     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS | WC_OPT_GEOMETRIC, 1, 1,
+     "       [--range LO:HI] [--tolerance T[,A]] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS | WC_OPT_GEOMETRIC | WC_OPT_SVG, 1, 1,
      "force.range", wc_force_request, wc_force_answer,
      "how hard to push: the magnitudes that do a set's job under load cases",
      "The magnitudes F of one push that seat the part (goal), hold it (strong) or both, under\n"
@@ -736,7 +736,11 @@ const wc_command wc_commands[] = {
      "                      force=FX,FY@X,Y (a force at a point), wrench=FX,FY,TAU\n"
      "  --sets LIST         comma-separated: goal, strong, both (default all three)\n"
      "  --range LO:HI       only magnitudes in [LO, HI]\n"
+     "  --svg FILE          also draw the part, its fixels, its supports with their friction\n"
+     "                      discs, the push and the least force\n"
      GEOMETRIC_HELP(" ")
+     "A fixture on supports (its \"supports\" member) answers goal alone: the magnitudes that\n"
+     "seat it against the supports' friction; its least is the least push force on the plate.\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
     {"push-force",
      "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]",

@@ -255,6 +255,31 @@ static bool robust_push_supported(const wp_push_load *load, double friction, wp_
     return true;
 }
 
+/* On supports (wr_support.h) the regions are those of a push of a given
+ * force that seats the part (goal), on a polygon's straight edges, for a
+ * point finger: false with the error set otherwise. */
+static bool supports_push_ok(wp_call *call, const wr_fixture *f, wr_set set, double radius,
+                             const wp_push_load *load)
+{
+    if (!f->supports)
+        return true;
+    if (!load->given)
+        return !wp_supports_refuse(call, f, "params.force",
+                                   "\"force\", the push's magnitude: the regions where a push "
+                                   "that hard seats the part");
+    const char *why = set != WR_SET_GOAL ? "params.set"
+                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                      : radius > 0 ? "params.finger_radius"
+                                   : NULL;
+    if (!why)
+        return true;
+    wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                 "the fixture rests on supports: its push regions are where a push of the given "
+                 "force seats it (set \"goal\"), along a polygon's straight edges, for a point "
+                 "finger; whether the seated part is held is wrench.classify's \"strong\"");
+    return false;
+}
+
 static void *push_begin(wp_call *call, wp_prepared *prepared)
 {
     (void)prepared;
@@ -276,7 +301,8 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
     if (!wp_push_load_read(call->params, use->fixture, friction, wp_case_limit(call->limits),
                            &load, call->error))
         return NULL;
-    if (use->fixture->tolerance.given && !robust_push_supported(&load, friction, call->error)) {
+    if ((use->fixture->tolerance.given && !robust_push_supported(&load, friction, call->error)) ||
+        !supports_push_ok(call, use->fixture, set, radius, &load)) {
         wp_push_load_release(&load);
         return NULL;
     }
@@ -366,8 +392,18 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
             return WP_STEP_MORE;
         wr_regions part = {0};
         const wp_push_load *load = &state->load;
+        /* On supports, only the edges the finger may push on (push_on); the
+         * other paths ask the finger itself. */
+        bool skip = f->supports && load->given && !wr_finger_pushes_on(f, &state->finger, state->next);
+        wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
         wr_status status =
-            load->given
+            skip ? WR_OK
+            : f->supports
+                ? (env ? wr_supports_push_regions(use->analysis, f->supports, env, load->force,
+                                                  (const double (*)[3])load->loads, load->count,
+                                                  state->next, &part)
+                       : WR_LP_FAILED)
+            : load->given
                 ? wr_push_regions_loaded(use->analysis, state->set, load->force,
                                          (const double (*)[3])load->loads, load->count,
                                          &state->finger, state->next, 1, call->host->stop, &part)
@@ -441,6 +477,10 @@ cJSON *wp_handle_gravity_sweep(wp_call *call)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
+    if (wp_supports_refuse(call, use->fixture, "params.fixture",
+                           "the gravity as a load (wrench.classify, force.range cases): a tilt "
+                           "alone says nothing of the supports' friction"))
+        return NULL;
     cJSON *result = NULL;
     wr_regions arcs;
     wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
@@ -506,6 +546,10 @@ cJSON *wp_handle_stability_margin(wp_call *call)
     wp_error *error = call->error;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
+        return NULL;
+    if (wp_supports_refuse(call, use->fixture, "params.bias",
+                           "the biasing wrench with its disturbances to wrench.classify: the "
+                           "disturbance margin is a distance between directions"))
         return NULL;
     double bias[3];
     cJSON *result = NULL;

@@ -314,7 +314,7 @@ static void *classify_begin(wp_call *call, wp_prepared *prepared)
         }
         verdicts = 0; /* the map knows the nominal fixture only */
     }
-    if (verdicts >= CLASSIFY_MAP_VERDICTS) {
+    if (verdicts >= CLASSIFY_MAP_VERDICTS && !wr_analysis_fixture(use->analysis)->supports) {
         wr_status status = wr_verdict_map_new(use->analysis, r->tolerance, &state->map);
         if (status == WR_NO_MEMORY) {
             wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
@@ -336,9 +336,11 @@ static void *classify_begin(wp_call *call, wp_prepared *prepared)
 /* One wrench's answer for one set, as much of it as the chunk writes. */
 static wr_status answer_one(const classify_state *state, const wr_analysis *a, wr_lp_set *goal,
                             wr_lp_set *strong, size_t i, wr_set set, bool verdict_only,
-                            bool witness, wr_answer *answer)
+                            bool witness, const wp_host *host, wr_answer *answer)
 {
     const wp_classify_request *r = &state->request;
+    if (wr_analysis_fixture(a)->supports)
+        return wp_supports_answer(a, host, r->wrenches[i], set, r->tolerance, answer);
     if (r->lp)
         return wr_classify_lp(a, goal, strong, r->wrenches[i], set, answer);
     if (state->robust) {
@@ -364,10 +366,11 @@ static wr_status answer_one(const classify_state *state, const wr_analysis *a, w
 /* One set's columns of a lean chunk: {"verdicts": "...", "margins": [...],
  * ...}, each column a pass over the chunk's answers, computed once. */
 static wr_status write_set_columns(const classify_state *state, const wr_analysis *a,
-                                   wr_lp_set *goal, wr_lp_set *strong, const wr_stop *stop,
+                                   wr_lp_set *goal, wr_lp_set *strong, const wp_host *host,
                                    wr_set set, size_t from, size_t to, wr_answer *answers,
                                    wp_buffer *out, size_t *failed)
 {
+    const wr_stop *stop = host->stop;
     const wp_classify_request *r = &state->request;
     bool witness = r->fields & (1u << FIELD_WITNESS);
     static const char LETTERS[] = {'i', 'b', 'o'};
@@ -384,7 +387,7 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
                 return WR_STOPPED;
             }
             wr_answer answer;
-            wr_status status = answer_one(state, a, goal, strong, i, set, true, false, &answer);
+            wr_status status = answer_one(state, a, goal, strong, i, set, true, false, host, &answer);
             if (status != WR_OK) {
                 *failed = i;
                 return status;
@@ -402,7 +405,7 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
             return WR_STOPPED;
         }
         wr_status status =
-            answer_one(state, a, goal, strong, i, set, false, witness, &answers[i - from]);
+            answer_one(state, a, goal, strong, i, set, false, witness, host, &answers[i - from]);
         if (status != WR_OK) {
             *failed = i;
             return status;
@@ -485,7 +488,7 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
             WP_BUFFER_LITERAL(out, ",\"");
             wp_buffer_puts(out, wp_set_names[r->sets[s]]);
             WP_BUFFER_LITERAL(out, "\":{");
-            status = write_set_columns(state, a, goal, strong, host->stop, r->sets[s], from, to,
+            status = write_set_columns(state, a, goal, strong, host, r->sets[s], from, to,
                                        *answers, out, failed);
             WP_BUFFER_LITERAL(out, "}");
         }
@@ -504,7 +507,7 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
                 state->robust ? wr_robust_classify(state->robust, r->wrenches[i], r->sets[s],
                                                    r->tolerance, &robust)
                               : answer_one(state, a, goal, strong, i, r->sets[s], false, true,
-                                           &robust.answer);
+                                           host, &robust.answer);
             if (status != WR_OK) {
                 *failed = i;
                 return status;

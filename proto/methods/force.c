@@ -189,6 +189,34 @@ static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *
  * that so few do not prove is split instead (wr_robust_forces). */
 #define ROBUST_FORCE_BUDGET 64
 
+/* One case's good magnitudes for the sets asked: by the cones, or for a
+ * part on supports by the discs of wr_support.h (G_goal's; the others are
+ * refused before, by supports_sets). */
+static wr_status set_ranges(const wp_call *call, const wr_analysis *a, const bool sets[3],
+                            const double load[3], const double push[3], double lo, double hi,
+                            wr_forces good[3])
+{
+    const wr_supports *supports = wr_analysis_fixture(a)->supports;
+    if (!supports)
+        return wr_force_ranges(a, sets, load, push, lo, hi, good);
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    if (!env)
+        return WR_LP_FAILED;
+    return wr_supports_force_range(a, supports, env, load, push, lo, hi, &good[WR_SET_GOAL]);
+}
+/* On supports force.range answers G_goal's magnitudes: false, with the
+ * error at params.sets, when strong or both is asked. */
+static bool supports_sets(wp_call *call, const wr_fixture *f, const bool sets[3])
+{
+    if (!f->supports || (!sets[WR_SET_STRONG] && !sets[WR_SET_BOTH]))
+        return true;
+    wp_error_set(call->error, WP_INVALID_PARAMS, "params.sets",
+                 "the fixture rests on supports: force.range gives the magnitudes that seat it "
+                 "(\"goal\"); whether the seated part is held under a load is wrench.classify's "
+                 "\"strong\" with that load");
+    return false;
+}
+
 /* The answer is written as text (a raw result): a hundred cases are three
  * hundred small objects, which a tree would allocate one by one. */
 cJSON *wp_handle_force_range(wp_call *call)
@@ -204,7 +232,8 @@ cJSON *wp_handle_force_range(wp_call *call)
     const wr_fixture *f = use->fixture;
     double push[3], range[2];
     wp_cases cases;
-    if (!read_push(params, f, push, error) || !read_range(params, f, range, error) ||
+    if (!supports_sets(call, f, sets) || !read_push(params, f, push, error) ||
+        !read_range(params, f, range, error) ||
         !wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
                        wp_case_limit(call->limits), &cases, error))
         return NULL;
@@ -222,8 +251,8 @@ cJSON *wp_handle_force_range(wp_call *call)
             wp_buffer_string(&b, cases.items[c].name);
         else
             WP_BUFFER_LITERAL(&b, "null");
-        status = wr_force_ranges(use->analysis, sets, cases.items[c].load, push, range[0],
-                                 range[1], good);
+        status = set_ranges(call, use->analysis, sets, cases.items[c].load, push, range[0],
+                            range[1], good);
         for (int s = 0; status == WR_OK && s < 3; s++) {
             if (!sets[s])
                 continue;
@@ -404,6 +433,11 @@ cJSON *wp_handle_push_force(wp_call *call)
     int samples = (int)samples_given;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
+        return NULL;
+    if (wp_supports_refuse(call, use->fixture, "params.fixture",
+                           "the push at a point to force.range, whose \"least\" is the least "
+                           "force there on the plate: the least over the outline is found for a "
+                           "part floating in its plane"))
         return NULL;
     const wr_fixture *f = use->fixture;
     if (f->shape == WR_SHAPE_NONE) {

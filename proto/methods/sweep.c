@@ -276,6 +276,12 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
         sweep_free(state);
         return NULL;
     }
+    if (wp_supports_refuse(call, use->fixture, "params.fixture",
+                           "one fixture per coefficient to wrench.classify or force.range: the "
+                           "sweep's answers are those of a part floating in its plane")) {
+        sweep_free(state);
+        return NULL;
+    }
     if (!read_sweep(call, use->fixture, state)) {
         sweep_free(state);
         return NULL;
