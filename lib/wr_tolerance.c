@@ -453,6 +453,9 @@ static double certify(const system_t *sys, const ivec *x, certificate *cert)
     int ne = sys->equality_count, nf = sys->inequality_count, ng = sys->edge_count;
     int cols = 2 * ne + nf + 3 + 1;
     int u_col = 2 * ne + nf + 1, t_col = cols;
+    /* The calling thread's GLPK environment may be one GLPK made itself
+     * (no wr_lp_env in this thread): it must print nothing either. */
+    glp_term_out(GLP_OFF);
     glp_prob *p = glp_create_prob();
     glp_set_obj_dir(p, GLP_MAX);
     glp_add_cols(p, cols);
