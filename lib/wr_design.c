@@ -515,7 +515,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         } else if (spec->objective == WR_OBJECTIVE_FORCE) {
             wr_least_force least;
             status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
-                                         spec->finger.radius, NULL, &least);
+                                         &spec->finger, NULL, &least);
             *units += least.evaluations * (unsigned long)cones * (unsigned long)spec->case_count;
             if (status == WR_OK && !least.found) {
                 *result = OUTCOME_NO_SEATING_PUSH;
@@ -1081,7 +1081,7 @@ static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixt
         status = wr_best_push_find(analysis, &both, -INFINITY, NULL, &d->best_push, &below);
     if (status == WR_OK && spec->case_count > 0) {
         status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
-                                     spec->finger.radius, NULL, &d->least_force);
+                                     &spec->finger, NULL, &d->least_force);
         *units += d->least_force.evaluations * (unsigned long)spec->case_count * 40;
     }
     if (status == WR_OK) {

@@ -161,6 +161,47 @@ double wr_nnls3(const double (*columns)[3], int count, const double y[3], double
 bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
                        double point[2]);
 
+/* The pairs of boxes that overlap, found by a sweep along x: the boxes
+ * sorted by their least x, each compared only with those whose x range it
+ * enters (the active ones), then in y.  visit(context, i, j) is called once
+ * for each pair i < j whose closed boxes, each grown by `margin` on every
+ * side, overlap (and possibly for some that only nearly do: a superset,
+ * never fewer), in no particular order.  The work is O(n log n) for the
+ * sort plus one comparison per pair whose x ranges overlap.  The simplicity
+ * tests of outlines (wr_outline.c) and polygons (wr_fixture.c) give it
+ * their segments' boxes and keep, of the pairs visited that meet, the one
+ * an exhaustive test in index order would have found first.  Returns false
+ * only when out of memory (nothing visited then). */
+typedef struct wr_box {
+    double min[2], max[2];
+} wr_box;
+typedef void (*wr_box_visit)(void *context, size_t i, size_t j);
+bool wr_box_pairs(const wr_box *boxes, size_t n, double margin, wr_box_visit visit,
+                  void *context);
+/* wr_outline_new, with `exhaustively` every pair of segments tested in index
+ * order instead of the sweep's pairs: the reference the sweep is tested
+ * against.  The same answer, the same error, either way. */
+/* The first two edges of the polygon v[0..n) that meet where a simple
+ * polygon's do not, in index order (edge i from vertex i to i + 1): edges
+ * that are not neighbours sharing a point (*first < *second), or
+ * neighbours folding back onto each other (*second = *first + 1 mod n,
+ * *point their shared vertex).  1 found, 0 none, -1 out of memory.  By the
+ * sweep, or with `exhaustively` pair by pair (the reference, for tests);
+ * the same answer either way (wr_fixture.c). */
+int wr_polygon_first_meeting(const double (*v)[2], size_t n, bool exhaustively, size_t *first,
+                             size_t *second, double point[2]);
+/* Find a lattice job's poses with arcs by the reference: the third curve's
+ * residual scanned over theta in WR_LATTICE_STEPS steps, each change of
+ * sign bisected and each small minimum refined (a pose crossing zero and
+ * back within a step is missed), instead of the polynomial's roots
+ * (wr_lattice.c).  Before the job runs; for the tests and the benchmark. */
+struct wr_lattice_job;
+void wr_lattice_job_scan(struct wr_lattice_job *job);
+struct wr_loop_spec;
+struct wr_outline;
+wr_status wr_outline_new_checked(const struct wr_loop_spec *loops, size_t loop_count,
+                                 bool exhaustively, struct wr_outline **out, wr_error *error);
+
 struct wr_constraint;
 struct wr_plan;
 struct wr_cone;
@@ -238,6 +279,16 @@ typedef struct wr_edge_frame {
     double half_angle, half_angle_sin; /* an arc's */
 } wr_edge_frame;
 void wr_edge_frame_of(const wr_fixture *fixture, int edge, wr_edge_frame *out);
+/* The open t-intervals of [0, 1] on an arc's frame where its push wrench is
+ * in none of the cones (push.regions of one arc, as edge 0), appended to
+ * *out: by the fast path where it decides (one atan2 per facet, nothing
+ * allocated), else, or with `reference` always, by the reference (every
+ * root sorted and every piece tested); *referred (may be NULL) counts the
+ * cones the reference took.  For the tests and the benchmark, which hold
+ * the two to the same regions (wr_regions.c). */
+struct wr_regions;
+wr_status wr_arc_regions(const wr_edge_frame *frame, const struct wr_cone **cones, int count,
+                         bool reference, int *referred, struct wr_regions *out);
 
 /* The closed interval [*lo, *hi] of t where the scaled wrench h0 + t h1
  * lies in the cone's closure (*lo > *hi: nowhere): one linear condition

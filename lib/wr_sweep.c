@@ -1351,6 +1351,49 @@ wr_status wr_sweep_job_run(wr_sweep_job *job, unsigned long budget, unsigned lon
     return status;
 }
 
+wr_status wr_sweep_job_stop(wr_sweep_job *job, double *reached)
+{
+    const wr_sweep_range *r = &job->sweeper->range;
+    wr_intervals *list = job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;
+    double at = r->low;
+    switch (job->phase) {
+    case PHASE_ROOTS: /* no piece decided yet */
+        break;
+    case PHASE_DECIDE: /* pieces below roots[index] decided */
+        at = job->roots.items[job->index];
+        break;
+    case PHASE_SAMPLED:
+        /* Decided at the step's low end (or, bisecting, at lo): the answer
+         * there is `previous`, as it has been since `start`. */
+        if (job->step > 0) {
+            at = job->bisecting ? job->lo
+                                : r->low + (r->high - r->low) * (job->step - 1) / FRICTION_STEPS;
+            if (job->previous && !add_interval(list, job->start, at))
+                return WR_NO_MEMORY;
+        }
+        break;
+    case PHASE_CURVE: /* every interval; the points below index */
+        at = job->index > 0 ? job->points.items[job->index - 1] : r->low;
+        break;
+    case PHASE_DONE:
+        *reached = r->high;
+        return WR_OK;
+    }
+    /* Keep what lies below `at`, cut there. */
+    int n = 0;
+    for (int i = 0; i < list->count; i++) {
+        if (!(list->items[i][0] < at))
+            break;
+        list->items[n][0] = list->items[i][0];
+        list->items[n++][1] = fmin(list->items[i][1], at);
+    }
+    list->count = n;
+    job->curve.has_critical = false;
+    job->phase = PHASE_DONE;
+    *reached = at;
+    return WR_OK;
+}
+
 const wr_intervals *wr_sweep_job_intervals(const wr_sweep_job *job)
 {
     return job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;

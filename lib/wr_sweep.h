@@ -131,6 +131,14 @@ void wr_sweep_job_use_index(wr_sweep_job *job, const wr_push_index *index);
 wr_status wr_sweep_job_gravity(const wr_sweeper *sweeper, wr_sweep_job **out);
 wr_status wr_sweep_job_run(wr_sweep_job *job, unsigned long budget, unsigned long *used,
                            const wr_stop *stop, bool *done);
+/* Ends a job that is not done where it has got to (a server's deadline):
+ * *reached is the mu up to which its answer is decided, the range's low end
+ * when nothing is yet, the top when the job is done.  Its intervals keep
+ * what lies below *reached, an interval still open there cut at *reached;
+ * a region's curve keeps its points up to *reached and has_critical is
+ * false (not known).  The job is then done: its answers below can be
+ * taken, it runs no more.  WR_OK; WR_NO_MEMORY (an interval to close). */
+wr_status wr_sweep_job_stop(wr_sweep_job *job, double *reached);
 /* When done: a wrench's intervals (also a region's), a region's curve. */
 const wr_intervals *wr_sweep_job_intervals(const wr_sweep_job *job);
 const wr_sweep_curve *wr_sweep_job_curve(const wr_sweep_job *job);

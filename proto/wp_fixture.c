@@ -531,6 +531,16 @@ bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1])
     return true;
 }
 
+bool wp_fixture_written_key(const cJSON *json, char key[WP_ID_LENGTH + 1])
+{
+    unsigned char digest[32];
+    if (!wp_canonical_digest(json, digest))
+        return false;
+    for (int i = 0; i < WP_ID_LENGTH / 2; i++)
+        snprintf(key + 2 * i, 3, "%02x", digest[i]);
+    return true;
+}
+
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);
@@ -618,6 +628,12 @@ bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_e
         wp_error_set(error, WP_INVALID_PARAMS, field, "required");
     else
         ok = read_body(json, field, &spec, &storage, error);
+    if (ok) {
+        /* Its units, as a fixture's: the loads' forces and G are in them. */
+        wp_path_key(field, path, "units");
+        ok = read_units(cJSON_GetObjectItemCaseSensitive(params, "units"), field, &spec.units,
+                        error);
+    }
     if (ok) {
         wr_error invalid;
         wr_status status = wr_fixture_body_new(&spec, body, &invalid);

@@ -172,6 +172,25 @@ typedef struct wrc_force {
 int wrc_force_range(wrc_client *client, const char *fixture_id, const double at[2],
                     const wrc_load *loads, int count, const char *set, wrc_force *force);
 
+/* The point of the outline where the smallest push suffices (push.force's
+ * "least"). */
+typedef struct wrc_least_push {
+    int found;                /* 0: no push does the job under the case */
+    double at[2], direction[2];
+    double force;             /* in the fixture's force unit */
+    double lower_bound;       /* no point needs less */
+    int converged;
+} wrc_least_push;
+
+/* push.force for a stored fixture against one case of `count` loads (1 to
+ * 100), for `set`: the least push over the outline, for a finger of
+ * `finger_radius` (0: a point) pushing on `push_on` ("outer", "all", or
+ * NULL: the daemon's default, every loop).  Allocates nothing.  Returns
+ * WRC_OK, or an error code (WRC_ESERVER with the field at fault). */
+int wrc_push_force(wrc_client *client, const char *fixture_id, const wrc_load *loads, int count,
+                   const char *set, double finger_radius, const char *push_on,
+                   wrc_least_push *least);
+
 /* Send one JSON-RPC request (a JSON text without "\n") and return its
  * answer line, malloc'd (the caller frees it).  For notifications nothing
  * comes back: do not send them here. */

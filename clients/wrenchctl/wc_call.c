@@ -48,7 +48,7 @@ cJSON *wc_call(wc_options *o, const char *method, cJSON *params, int *status)
     char *answer = NULL;
     if (o->local) {
         wp_local *local = wp_local_new();
-        wp_limits limits = {64, (size_t)-1, (size_t)-1, 0};
+        wp_limits limits = {64, (size_t)-1, (size_t)-1, 0, (size_t)-1};
         wp_counts counts = {0, 0};
         answer = local ? wp_answer_line(wp_local_host(local), &limits, line, strlen(line), &counts)
                        : NULL;

@@ -170,8 +170,10 @@ static int take_interval(wc_run *run, const char *value)
 static int take_sweep_kind(wc_run *run, const char *kind, const char *option)
 {
     if (run->sweep_kind && strcmp(run->sweep_kind, kind) != 0)
-        return wc_usage_error("sweep: --%s and --%s: one of --push, --gravity or --wrench",
+        return wc_usage_error("sweep: --%s and --%s: one of --push, --gravity, --least-force "
+                              "or --wrench",
                               strcmp(run->sweep_kind, "wrenches") == 0 ? "wrench"
+                              : strcmp(run->sweep_kind, "force") == 0  ? "least-force"
                                                                        : run->sweep_kind,
                               option);
     run->sweep_kind = kind;
@@ -192,6 +194,14 @@ static int take_gravity(wc_run *run, const char *value)
         return wc_usage_error("--gravity is goal, strong or both, not '%s'", value);
     run->sweep_set = value;
     return take_sweep_kind(run, "gravity", "gravity");
+}
+
+static int take_least_force(wc_run *run, const char *value)
+{
+    if (!is_set_name(value))
+        return wc_usage_error("--least-force is goal, strong or both, not '%s'", value);
+    run->sweep_set = value;
+    return take_sweep_kind(run, "force", "least-force");
 }
 
 static int take_wrench(wc_run *run, const char *value)
@@ -267,8 +277,10 @@ static int take_top(wc_run *run, const char *value)
 static int take_objective(wc_run *run, const char *value)
 {
     if (strcmp(value, "margin") != 0 && strcmp(value, "region") != 0 &&
-        strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0)
-        return wc_usage_error("--objective is margin, region, gravity or accuracy, not '%s'",
+        strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0 &&
+        strcmp(value, "force") != 0)
+        return wc_usage_error("--objective is margin, region, gravity, force or accuracy, "
+                              "not '%s'",
                               value);
     run->objective = value;
     return 0;
@@ -426,6 +438,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"friction", WC_OPT_INTERVAL, take_interval},
     {"push", WC_OPT_SWEEP, take_push},
     {"gravity", WC_OPT_SWEEP, take_gravity},
+    {"least-force", WC_OPT_SWEEP, take_least_force},
     {"wrench", WC_OPT_SWEEP, take_wrench},
     {"range", WC_OPT_SWEEP, take_range},
     {"kinetic-ratio", WC_OPT_SWEEP, take_ratio},
@@ -688,8 +701,9 @@ const wc_command wc_commands[] = {
      "  --sets LIST         comma-separated: goal, strong, both (default all three)\n"
      "  --range LO:HI       only magnitudes in [LO, HI]\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
-    {"push-force", "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+    {"push-force",
+     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON, 1, 1,
      "push.force", wc_push_force_request, wc_push_force_answer,
      "the least push force along the outline, and where it is least",
      "F*(p), the least force of a push along the inward normal at p that does the set's job\n"
@@ -698,6 +712,7 @@ const wc_command wc_commands[] = {
      "  --case SPEC         a load case, repeated (see 'wrenchctl force --help')\n"
      "  --set SET           goal, strong or both (default)\n"
      "  --finger-radius R   only where a round finger of radius R fits\n"
+     PUSH_ON_HELP("  ")
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
      "Exit status 0 when some push does the job, 1 when none does."},
     {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--svg FILE]",
@@ -722,10 +737,13 @@ const wc_command wc_commands[] = {
      FRICTION_HELP("  ")
      "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
     {"sweep",
-     "FIXTURE (--push SET | --gravity SET | --wrench FX,FY,TAU... [--set SET]) [--range LO:HI]\n"
-     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]\n"
+     "FIXTURE (--push SET | --gravity SET | --least-force SET --case SPEC... |\n"
+     "       --wrench FX,FY,TAU... [--set SET]) [--range LO:HI] [--kinetic-ratio R]\n"
+     "       [--finger-friction MU] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
      "       [--table full|summary]",
-     WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+     WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG |
+         WC_OPT_CASE | WC_OPT_PUSH_ON,
+     1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
      "Sweep the friction: mu_s = mu and mu_k = R mu at every fixel (the fixture's own friction\n"
@@ -734,19 +752,25 @@ const wc_command wc_commands[] = {
      "                      not empty, the critical mu above which it is (none when it is not\n"
      "                      empty at the top of the range), and its length against mu\n"
      "  --gravity SET       the same for the gravity arcs, their total in degrees\n"
+     "  --least-force SET   the least push force doing SET's job under every --case (a load\n"
+     "                      case, as for force), minimised over the outline, and where: each\n"
+     "                      value exact at its mu, on a grid of 128 and at the ends of the\n"
+     "                      exact intervals of mu where the push alone has a region\n"
      "  --wrench FX,FY,TAU  a wrench (torque about the centre of mass), repeated for more: for\n"
      "                      each, and each set, the mu where it is inside\n"
      "  --set SET           with --wrench: one set (default goal and strong)\n"
      "  --range LO:HI       the range of mu, 0 <= LO < HI (default 0:2)\n"
      "  --kinetic-ratio R   mu_k = R mu, 0 < R <= 1 (default 1)\n"
      "  --finger-friction MU, --finger-radius R\n"
-     "                      with --push: the finger, as for push\n"
+     "                      with --push: the finger, as for push (--least-force: the radius)\n"
+     PUSH_ON_HELP("   ")
      "  --table full        every point of the curve (default: a summary, the points nearest\n"
      "                      9 evenly spaced mu and those at the intervals' ends)\n"
      "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
-     "inside each set for some mu), 1 when not."},
+     "inside each set for some mu; for the least force: when some push does it at some mu),\n"
+     "1 when not."},
     {"locate", "FIXTURE --tolerance T[,T2,T3] [--feature [NAME=]X,Y]... [--sigma-ratio R]\n"
      "       [--svg FILE]",
      WC_FIXTURE | WC_OPT_LOCATE | WC_OPT_SVG, 1, 1,
@@ -767,13 +791,13 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the fixels determine the pose, 1 when they do not."},
     {"design",
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K]\n"
-     "       [--objective margin|region|gravity|accuracy] [--top N] [--friction LO:HI]\n"
-     "       [--finger-radius R] [--finger-friction MU]\n"
+     "       [--objective margin|region|gravity|force|accuracy] [--top N] [--friction LO:HI]\n"
+     "       [--finger-radius R] [--finger-friction MU] [--case SPEC...]\n"
      "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
      "       [--corner-clearance C] [--pin-diameter D]\n"
      "       [--shard I/N] [--symmetric collapse|all] [--svg FILE] [--emit-fixture N FILE]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
-         WC_OPT_PUSH_ON | WC_OPT_LOCATE, 1, 1,
+         WC_OPT_PUSH_ON | WC_OPT_LOCATE | WC_OPT_CASE, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
      "where to put the fixels, and where to push",
      "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
@@ -791,9 +815,14 @@ const wc_command wc_commands[] = {
      "                     NX by NY holes; every pose of the part touching three pegs\n"
      "  --fixels K         fixels per design (default 3)\n"
      "  --objective O      margin (the best push's; default), region (the both region's\n"
-     "                     length), gravity (the longest goal arc of tilts) or accuracy (the\n"
-     "                     smallest worst locating error with --tolerance T and the --feature\n"
-     "                     points, as for locate; without features the pose's, scaled)\n"
+     "                     length), gravity (the longest goal arc of tilts), force (the least\n"
+     "                     push force doing both under every --case, smallest first) or\n"
+     "                     accuracy (the smallest worst locating error with --tolerance T and\n"
+     "                     the --feature points, as for locate; without features the pose's,\n"
+     "                     scaled)\n"
+     "  --case SPEC        a load case, repeated (see 'wrenchctl force --help'): each design\n"
+     "                     also reports its least push under them, with any objective; in the\n"
+     "                     file's units (its \"units\", else one consistent system)\n"
      "  --top N            how many designs (default 10)\n"
      "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
      "  --finger-radius R, --finger-friction MU\n"

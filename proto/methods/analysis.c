@@ -249,7 +249,8 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     }
     wp_push_load load;
-    if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
+    if (!wp_push_load_read(call->params, use->fixture, friction, wp_case_limit(call->limits),
+                           &load, call->error))
         return NULL;
     push_state *state = calloc(1, sizeof *state);
     if (!state) {
@@ -331,15 +332,11 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
             return WP_STEP_MORE;
         wr_regions part = {0};
         const wp_push_load *load = &state->load;
-        /* Under loads, only the edges the finger may push on (push_on). */
-        bool skip = load->given && !wr_finger_pushes_on(f, &state->finger, state->next);
         wr_status status =
-            skip ? WR_OK
-            : load->given
+            load->given
                 ? wr_push_regions_loaded(use->analysis, state->set, load->force,
                                          (const double (*)[3])load->loads, load->count,
-                                         state->finger.radius, state->next, 1, call->host->stop,
-                                         &part)
+                                         &state->finger, state->next, 1, call->host->stop, &part)
                 : wr_push_regions_part(use->analysis, state->set, &state->finger, state->next, 1,
                                        call->host->stop, &part);
         if (status != WR_OK) {

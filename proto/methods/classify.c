@@ -153,8 +153,16 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
     }
     const wr_fixture *f = wr_analysis_fixture(a);
     const wr_witness *w = &answer->witness;
+    /* Wrenches are classified as given, in the fixture's force unit (a cone
+     * is a cone: verdicts and margins do not depend on the scale), so the
+     * witness's forces and wrench are in it too; its acceleration, in
+     * length / s^2 and rad / s^2, is what those forces give in the model
+     * system: times the force factor (1 without units). */
+    const double k = wr_fixture_force_factor(f);
+    const double acceleration[3] = {w->acceleration[0] * k, w->acceleration[1] * k,
+                                    w->acceleration[2] * k};
     WP_BUFFER_LITERAL(b, "{\"acceleration\":");
-    wp_write_vector(b, w->acceleration, 3);
+    wp_write_vector(b, acceleration, 3);
     WP_BUFFER_LITERAL(b, ",\"forces\":[");
     for (int i = 0; i < f->fixel_count; i++) {
         if (i)

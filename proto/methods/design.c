@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -49,6 +50,7 @@ struct design_state {
     int (*listed)[WR_MAX_FIXELS];
     const char *source;      /* the field giving the candidates: for refusals */
     uint64_t max_candidates; /* wp_limits' (0: no cap) */
+    int max_cases;           /* wp_case_limit of the limits */
     /* params.deadline_s: the monotonic second after which the search claims
      * no more candidates and the answer is the best so far, "partial" (0:
      * none); `cut` once it has.  Both read and written under the search
@@ -72,13 +74,6 @@ struct design_state {
 };
 
 static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
-
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + t.tv_nsec * 1e-9;
-}
 
 /* A whole number in [lo, hi] at params.key (default kept when absent). */
 static bool read_count(const cJSON *params, const char *key, double lo, double hi, int *out,
@@ -243,9 +238,7 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
                      invalid.reason);
         return false;
     }
-    size_t pairs, total;
-    wr_lattice_job_progress(s->lattice, &pairs, &total);
-    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, (total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK);
+    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, SIZE_MAX); /* as the job claims them */
     if (!s->poses_chunks) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
@@ -352,7 +345,7 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
     }
     if (cases_json) {
         wp_cases cases;
-        if (!wp_cases_read(cases_json, "params.cases", s->body, &cases, error))
+        if (!wp_cases_read(cases_json, "params.cases", s->body, s->max_cases, &cases, error))
             return false;
         s->loads = malloc((size_t)cases.count * sizeof *s->loads);
         if (!s->loads) {
@@ -391,15 +384,8 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     }
     s->progress = progress && cJSON_IsTrue(progress);
-    double deadline_s = 0;
-    if (!wp_member_number(params, "params", "deadline_s", false, &deadline_s, &present, error))
+    if (!wp_read_deadline(params, &s->deadline, error))
         return false;
-    if (present && !(deadline_s > 0 && deadline_s <= 1e9)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.deadline_s",
-                     "must be a number of seconds above 0 (at most 1e9), got %g", deadline_s);
-        return false;
-    }
-    s->deadline = present ? now_s() + deadline_s : 0;
     const cJSON *collapse = cJSON_GetObjectItemCaseSensitive(params, "collapse_symmetric");
     if (collapse && !cJSON_IsBool(collapse)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.collapse_symmetric",
@@ -568,6 +554,7 @@ static void *design_begin(wp_call *call, wp_prepared *prepared)
     }
     s->last_report = -1;
     s->max_candidates = call->limits->max_candidates;
+    s->max_cases = wp_case_limit(call->limits);
     if (!read_params(call->params, s, call->error)) {
         design_free(s);
         return NULL;
@@ -710,7 +697,7 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
         done = pairs;
         total = of;
     }
-    double now = now_s();
+    double now = wp_now_s();
     if (s->last_report < 0 || stage != s->stage) {
         s->stage = stage;
         s->stage_started = now;
@@ -719,8 +706,8 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
-     * total count its hole pairs), then "candidates", then "figures" (the
-     * designs kept). */
+     * total count its units: a hole pair with the first peg's segment),
+     * then "candidates", then "figures" (the designs kept). */
     WP_BUFFER_LITERAL(out, ",\"stage\":\"");
     wp_buffer_puts(out, STAGES[stage]);
     WP_BUFFER_LITERAL(out, "\",\"done\":");
@@ -879,7 +866,10 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
     else
         WP_BUFFER_LITERAL(out, "null");
     WP_BUFFER_LITERAL(out, ",\"score\":");
-    wp_buffer_number(out, d->score);
+    /* Objective force: minus a force, in the body's force unit. */
+    wp_buffer_number(out, s->spec.objective == WR_OBJECTIVE_FORCE
+                              ? -wp_force_out(s->body, -d->score)
+                              : d->score);
     if (accuracy) { /* the worst locating error, whose negative is the score */
         WP_BUFFER_LITERAL(out, ",\"accuracy\":");
         wp_buffer_number(out, -d->score + 0.0);
@@ -956,7 +946,7 @@ static void write_answer(design_state *s, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "]}");
 }
 
-/* The lattice's chunks of hole pairs, by the engine (wp_chunks.h): claimed
+/* The lattice's chunks of units (wr_lattice.h), by the engine (wp_chunks.h): claimed
  * by the job in order, made by any thread, merged in order. */
 typedef struct lattice_record {
     size_t first, count;
@@ -1025,7 +1015,7 @@ static bool search_claim(void *method, size_t index, void *record)
     /* The deadline: no candidate is claimed after it.  The chunks claimed
      * are merged as usual, then the designs kept so far get their figures
      * and the answer is "partial". */
-    if (s->deadline > 0 && !s->cut && now_s() >= s->deadline) {
+    if (s->deadline > 0 && !s->cut && wp_now_s() >= s->deadline) {
         wr_design_job_cut(s->job);
         s->cut = true;
     }
@@ -1145,7 +1135,7 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
             if (enumerated && !start_search(s, call->error))
                 return WP_STEP_FAILED;
         }
-        if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+        if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
             write_progress(s, call, out);
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
@@ -1158,7 +1148,7 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
         if (step == WP_STEP_FAILED)
             return WP_STEP_FAILED;
         if (step != WP_STEP_DONE) {
-            if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+            if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
                 write_progress(s, call, out);
             return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
         }
@@ -1199,10 +1189,10 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
     double best;
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
     if (s->progress && !s->search_reported &&
-        (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
+        (examined == total || wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
         write_progress(s, call, out);
         s->search_reported = examined == total;
-    } else if (s->progress && !done && now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
+    } else if (s->progress && !done && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
         write_progress(s, call, out); /* the designs' figures */
     }
     /* A shared step never ends the answer, not even for a piece that did

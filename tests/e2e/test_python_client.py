@@ -761,7 +761,7 @@ def test_friction_sweep_request_shape(fake):
 
 
 @pytest.mark.parametrize("kwargs, words", [
-    ({}, "exactly one of wrenches, push and gravity"),
+    ({}, "exactly one of wrenches, push, gravity and force"),
     ({"push": "goal", "gravity": "goal"}, "not push and gravity"),
     ({"wrenches": [(1, 0, 0)], "push": True}, "not wrenches and push"),
     ({"push": "goal", "sets": ["goal"]}, "sets go with wrenches"),
