@@ -185,9 +185,9 @@ void wr_analysis_frame_free(wr_analysis_frame *frame)
 {
     if (!frame)
         return;
-    wr_plan_free(frame->plan);
     frame_cones_release(&frame->goal, frame->plan ? frame->plan->kept_count : 0);
     frame_cones_release(&frame->modes_cones, frame->mode_count);
+    wr_plan_free(frame->plan); /* last: the goal cones' count is the plan's */
     free(frame->modes);
     free(frame);
 }

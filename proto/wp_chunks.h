@@ -3,8 +3,9 @@
  * (in order, in a step); the engine owns the rest: the lock, the window of
  * chunks made ahead of their turn, the "shared" flag, the kept failure and
  * the merging in order.  Classify (chunks of wrenches), design (chunks of
- * candidates) and the lattice (chunks of hole pairs) use it; nothing else
- * runs work on helpers (docs/ARCHITECTURE.md, "Parallel work").
+ * candidates, then a chunk per kept design's figures) and the lattice
+ * (chunks of hole pairs) use it; nothing else runs work on helpers
+ * (docs/ARCHITECTURE.md, "Parallel work").
  *
  * The threads: a stream's steps run one at a time (wp_answer_step); while
  * one runs, the daemon's helpers may call wp_chunks_work, any number at
