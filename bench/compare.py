@@ -2,7 +2,7 @@
 """bench/compare.py -- the answers of this build against a baseline build,
 request by request: what changed besides the speed.
 
-    bench/compare.py --wrenchd build/wrenchd --baseline build/baseline/wrenchd [--random N]
+    bench/compare.py --wrenchd build/wrenchd --baseline build/baseline/src/build/wrenchd [--random N]
 
 Asks both daemons the same requests and compares the answers number by
 number:

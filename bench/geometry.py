@@ -2,7 +2,7 @@
 """bench/geometry.py -- geometry at interactive speed, side by side with a
 baseline build of wrenchd, both daemons started by this script in one run.
 
-    bench/geometry.py --wrenchd build/wrenchd --baseline build/baseline/wrenchd [--quick] [--json]
+    bench/geometry.py --wrenchd build/wrenchd --baseline build/baseline/src/build/wrenchd [--quick] [--json]
 
 Each figure is the median over sequential requests on one connection, raw
 JSON lines on the socket (no client library in the time):

@@ -11,6 +11,8 @@
 
 #include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
 
 #define WR_PI 3.14159265358979323846
 
@@ -52,7 +54,27 @@ static inline void wr_copy3(const double a[3], double out[3])
  * bit for bit the plain division's, and beyond it nothing overflows when
  * squared (1.3e308) nor loses its digits (5e-324).  The rule for every
  * vector this library or the protocol layer normalises. */
-static inline int wr_scale_exponent(double largest) { return ilogb(largest); }
+static inline int wr_scale_exponent(double largest)
+{
+    /* ilogb, read from the bits for a normal number (the library call's
+     * cost shows in every hull). */
+    uint64_t bits;
+    memcpy(&bits, &largest, sizeof bits);
+    int field = (int)((bits >> 52) & 0x7ff);
+    return field != 0 && field != 0x7ff ? field - 1023 : ilogb(largest);
+}
+
+/* scalbn(x, e): for e in the normal exponents, a product with 2^e, which
+ * is exact or rounded once just as scalbn rounds (so the same bits). */
+static inline double wr_scalbn(double x, int e)
+{
+    if (e < -1022 || e > 1023)
+        return scalbn(x, e);
+    uint64_t bits = (uint64_t)(e + 1023) << 52;
+    double power;
+    memcpy(&power, &bits, sizeof power);
+    return x * power;
+}
 
 /* Normalise in place; returns the former length (0 leaves a unchanged; it
  * may be +inf for vectors near the largest double, a still unit). */
@@ -62,12 +84,12 @@ static inline double wr_normalize3(double a[3])
     if (!(largest > 0) || !isfinite(largest))
         return largest > 0 ? largest : 0;
     int e = wr_scale_exponent(largest);
-    double s[3] = {scalbn(a[0], -e), scalbn(a[1], -e), scalbn(a[2], -e)};
+    double s[3] = {wr_scalbn(a[0], -e), wr_scalbn(a[1], -e), wr_scalbn(a[2], -e)};
     double n = wr_norm3(s);
     a[0] = s[0] / n;
     a[1] = s[1] / n;
     a[2] = s[2] / n;
-    return scalbn(n, e);
+    return wr_scalbn(n, e);
 }
 
 /* The unit vector along v (2D), scaled first as wr_normalize3; false when v
@@ -78,7 +100,7 @@ static inline bool wr_unit2(const double v[2], double out[2])
     if (!(largest > 0) || !isfinite(largest))
         return false;
     int e = wr_scale_exponent(largest);
-    double x = scalbn(v[0], -e), y = scalbn(v[1], -e);
+    double x = wr_scalbn(v[0], -e), y = wr_scalbn(v[1], -e);
     double n = hypot(x, y);
     out[0] = x / n;
     out[1] = y / n;
@@ -195,7 +217,38 @@ struct wr_analysis {
     bool pinned;                  /* rolling at every fixel forces q = 0 */
     bool plan_borrowed;           /* the plan is the caller's (wr_analysis_goal_new) */
     bool complete;                /* the modes and G_strong's cones are derived */
+    bool modes_borrowed;          /* the modes are a frame's (wr_analysis_frame_at) */
+    const bool *goal_shared;      /* NULL, or which cones are a frame's, not to */
+    const bool *modes_shared;     /* free (wr_analysis_frame_at) */
 };
+
+/* A cone in two parts (wr_cone.c).  Its acceleration generators M Q_X
+ * involve no friction: wr_cone_acceleration writes them and returns their
+ * count, or -1 when the strict rows cannot be met (the cone is empty).
+ * wr_cone_build_from adds the friction edges of `fixture` and builds the
+ * rest; with the first part's output it is wr_cone_build, bit for bit. */
+int wr_cone_acceleration(const wr_fixture *fixture, const struct wr_constraint *constraint,
+                         double (*generators)[3]);
+wr_status wr_cone_build_from(struct wr_cone *cone, const wr_fixture *fixture,
+                             const struct wr_constraint *constraint, const double (*acceleration)[3],
+                             int accel_count);
+
+/* What an analysis holds that no coefficient of friction changes: the plan,
+ * the moving modes and pinned, and every cone's acceleration generators,
+ * for G_goal's cones and (with `strong`) G_strong's.  Built once from a
+ * fixture, it makes the analysis of the same fixture at any friction
+ * (the same fixels, normals and body; wr_fixture_at_friction) by building
+ * only the friction edges and the hulls: bit for bit what
+ * wr_analysis_new makes of that fixture, but that without `strong` the
+ * analysis has only G_goal's cones (as wr_analysis_goal_new's), and so
+ * has an analysis made without `strong` from a frame that has them.  The
+ * frame is immutable once built: any number of threads may use it; it
+ * must outlive every analysis made from it. */
+typedef struct wr_analysis_frame wr_analysis_frame;
+wr_status wr_analysis_frame_new(const wr_fixture *fixture, bool strong, wr_analysis_frame **out);
+wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture *at, bool strong,
+                               struct wr_analysis **out);
+void wr_analysis_frame_free(wr_analysis_frame *frame);
 
 /* The margin of the unit scaled wrench x for one set (WR_SET_GOAL or
  * WR_SET_STRONG): minus the largest depth in an excluded cone, else the

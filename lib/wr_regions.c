@@ -49,10 +49,36 @@ static int compare_doubles(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static int compare_spans(const void *a, const void *b)
+/* Spans by their lower ends, in place (a heap sort: no allocation, no
+ * call per comparison; complement's answer does not depend on the order
+ * of spans with the same lower end). */
+static void sift_down(span *items, int root, int count)
 {
-    double x = ((const span *)a)->lo, y = ((const span *)b)->lo;
-    return (x > y) - (x < y);
+    span moving = items[root];
+    for (;;) {
+        int child = 2 * root + 1;
+        if (child >= count)
+            break;
+        if (child + 1 < count && items[child + 1].lo > items[child].lo)
+            child++;
+        if (!(items[child].lo > moving.lo))
+            break;
+        items[root] = items[child];
+        root = child;
+    }
+    items[root] = moving;
+}
+
+static void sort_spans(span *items, int count)
+{
+    for (int i = count / 2 - 1; i >= 0; i--)
+        sift_down(items, i, count);
+    for (int end = count - 1; end > 0; end--) {
+        span top = items[0];
+        items[0] = items[end];
+        items[end] = top;
+        sift_down(items, 0, end);
+    }
 }
 
 static bool add_region(wr_regions *r, int edge, double t0, double t1)
@@ -78,8 +104,7 @@ static bool add_region(wr_regions *r, int edge, double t0, double t1)
 /* The open complement of the closed spans within (low, high), as regions. */
 static bool complement(spans *bad, double low, double high, int edge, wr_regions *out)
 {
-    if (bad->count > 0) /* an empty list has no array */
-        qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_spans);
+    sort_spans(bad->items, bad->count);
     double sliver = SLIVER * (high - low);
     double from = low;
     for (int i = 0; i < bad->count; i++) {

@@ -42,8 +42,9 @@ typedef struct wp_fixture_doc {
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error);
 void wp_fixture_doc_release(wp_fixture_doc *doc);
 /* The body at path.body of `params` alone (fixture.design): read as a
- * fixture's body, a shape required, into *body (wr_fixture_body_new).
- * False on error, with nothing allocated. */
+ * fixture's body, a shape required, into *body (wr_fixture_body_new), with
+ * the units at path.units (optional, as a fixture's "units").  False on
+ * error, with nothing allocated. */
 bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_error *error);
 /* Friction at `path` (present): a number (static), an interval [lo, hi]
  * (static) or a fixture's {"static", "kinetic"}, checked. */

@@ -275,11 +275,20 @@ int wc_push_force_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "set", run->set);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
-    return -1;
+    return wc_push_on(run,
+                      cJSON_IsString(run->fixture) ? run->fixture
+                                                   : cJSON_GetObjectItem(run->fixture, "body"),
+                      params);
 }
 
-/* The force unit of a fixture's geometry, by its factor. */
-static const char *geometry_unit(const wr_fixture *f)
+const char *wc_named_force_unit(const cJSON *fixture)
+{
+    const char *unit = cJSON_GetStringValue(
+        cJSON_GetObjectItem(cJSON_GetObjectItem(fixture, "units"), "force"));
+    return unit ? unit : "(model units)";
+}
+
+const char *wc_force_unit(const wr_fixture *f)
 {
     if (!f->units.given)
         return "(model units)";
@@ -339,7 +348,7 @@ static bool draw_push_force(const wc_run *run, const cJSON *result, FILE *out,
         force = cJSON_GetNumberValue(cJSON_GetObjectItem(least, "force"));
     }
     wc_svg_push_force(out, geometry, name, run->set ? run->set : "both", bands, count, at,
-                      direction, force, geometry_unit(geometry));
+                      direction, force, wc_force_unit(geometry));
     free(bands);
     free(values);
     return true;
