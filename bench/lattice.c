@@ -10,45 +10,21 @@
 #include "wr_internal.h"
 #include "wr_lattice.h"
 #include "wrench.h"
+#include "bench_body.h"
+#include "bench_util.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #define QUARTER 0.41421356237309503
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static wr_fixture *body_of(const double (*v)[3], size_t n)
-{
-    wr_loop_spec loop = {n, v};
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.shape = WR_SHAPE_OUTLINE;
-    spec.loops = &loop;
-    spec.loop_count = 1;
-    wr_fixture *body;
-    wr_error error;
-    if (wr_fixture_body_new(&spec, &body, &error) != WR_OK) {
-        fprintf(stderr, "lattice: %s\n", error.reason);
-        exit(1);
-    }
-    return body;
-}
 
 /* The poses found, and the seconds taken. */
 static size_t run(const wr_fixture *body, bool scan, double *seconds)
 {
     const wr_lattice L = {.pitch = 1, .peg_radius = 0.15, .extent = {5, 5}};
-    double start = now();
+    double start = bench_seconds();
     wr_lattice_job *job;
     wr_error error;
     if (wr_lattice_job_new(body, &L, &job, &error) != WR_OK)
@@ -62,7 +38,7 @@ static size_t run(const wr_fixture *body, bool scan, double *seconds)
     size_t count;
     wr_lattice_job_designs(job, &count);
     wr_lattice_job_free(job);
-    *seconds = now() - start;
+    *seconds = bench_seconds() - start;
     return count;
 }
 
@@ -85,7 +61,10 @@ int main(int argc, char **argv)
     memcpy(octagon, rounded, sizeof octagon);
     for (int i = 0; i < 8; i++)
         octagon[i][2] = 0;
-    wr_fixture *arcs = body_of(rounded, 8), *lines = body_of((const double (*)[3])octagon, 8);
+    wr_fixture *arcs = bench_outline_body("rounded", rounded, 8);
+    wr_fixture *lines = bench_outline_body("octagon", (const double (*)[3])octagon, 8);
+    if (!arcs || !lines)
+        return 1;
     double seconds[3];
     size_t poses[3];
     if (only) {

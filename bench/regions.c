@@ -13,21 +13,15 @@
 #include "wr_plan.h"
 #include "wr_regions.h"
 #include "wrench.h"
+#include "bench_body.h"
+#include "bench_util.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #define SIDES 24
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* The part with its three fixels (on sides 0, 8 and 15, at their middles),
  * and its analysis. */
@@ -40,19 +34,9 @@ static wr_analysis *part(double bulge, wr_fixture **body_out, wr_fixture *placed
         vertices[k][1] = 40 * sin(angle);
         vertices[k][2] = bulge;
     }
-    wr_loop_spec loop = {SIDES, (const double (*)[3])vertices};
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.shape = WR_SHAPE_OUTLINE;
-    spec.loops = &loop;
-    spec.loop_count = 1;
-    wr_fixture *body;
-    wr_error error;
-    if (wr_fixture_body_new(&spec, &body, &error) != WR_OK) {
-        fprintf(stderr, "regions: %s: %s\n", error.field, error.reason);
+    wr_fixture *body = bench_outline_body("regions", (const double (*)[3])vertices, SIDES);
+    if (!body)
         exit(1);
-    }
     wr_fixel_spec fixels[3];
     memset(fixels, 0, sizeof fixels);
     const int sides[3] = {0, 8, 15};
@@ -61,6 +45,7 @@ static wr_analysis *part(double bulge, wr_fixture **body_out, wr_fixture *placed
         wr_outline_boundary(body->outline, 0, (size_t)sides[i], 0.5, fixels[i].at, normal);
     }
     wr_friction_spec friction = {.given = true, .static_mu = 0.3};
+    wr_error error;
     if (wr_fixture_place(body, fixels, 3, &friction, placed, &error) != WR_OK) {
         fprintf(stderr, "regions: %s: %s\n", error.field, error.reason);
         exit(1);
@@ -122,9 +107,9 @@ int main(int argc, char **argv)
     } else {
         double ns[3];
         for (int m = 0; m < 3; m++) {
-            double start = now();
+            double start = bench_seconds();
             run(m == 0 ? lines : arcs, &placed[m == 0 ? 0 : 1], m == 2, repeats);
-            ns[m] = (now() - start) * 1e9 / repeats / pairs[m == 0 ? 0 : 1];
+            ns[m] = (bench_seconds() - start) * 1e9 / repeats / pairs[m == 0 ? 0 : 1];
         }
         if (json)
             printf("{\"line_ns\": %.2f, \"arc_ns\": %.2f, \"reference_ns\": %.2f, \"pairs\": [%d, %d]}\n",

@@ -24,6 +24,7 @@
  * Left out: the designs' figures after the search (best push, gravity,
  * critical friction), which cost the same per design whatever the index. */
 #include "wrench.h"
+#include "bench_body.h"
 #include "bench_util.h"
 
 #include <math.h>
@@ -44,23 +45,6 @@ static double sorted_median(double *v, int n)
     return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
 }
 
-/* A body alone of one loop, mass 1. */
-static wr_fixture *body_of(const char *name, const double (*vertices)[3], size_t count)
-{
-    wr_loop_spec loop = {count, vertices};
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.shape = WR_SHAPE_OUTLINE;
-    spec.loops = &loop;
-    spec.loop_count = 1;
-    wr_fixture *body = NULL;
-    wr_error error;
-    if (wr_fixture_body_new(&spec, &body, &error) != WR_OK)
-        fprintf(stderr, "%s: %s: %s\n", name, error.field, error.reason);
-    return body;
-}
-
 /* The gear: radius 10 + 1.2 * clamp(1.6 cos(20 theta)), 2,000 vertices. */
 static wr_fixture *gear(void)
 {
@@ -73,7 +57,7 @@ static wr_fixture *gear(void)
         v[i][1] = r * sin(theta);
         v[i][2] = 0;
     }
-    return body_of("gear", (const double(*)[3])v, 2000);
+    return bench_outline_body("gear", (const double(*)[3])v, 2000);
 }
 
 static wr_fixture *plate(void)
@@ -83,7 +67,7 @@ static wr_fixture *plate(void)
         {1, 0, 0},  {6, 0, 0},  {6, 1, 0},  {7, 1, 0},  {7, 0, 0},  {11, 0, f}, {12, 1, 0},
         {12, 4, 0}, {12, 7, 0}, {11, 8, 0}, {9, 8, 0},  {7, 8, 0},  {7, 6, 0},  {5, 6, 0},
         {5, 8, 0},  {3, 8, 0},  {1, 8, f},  {0, 7, 0},  {0, 4, 0},  {0, 1, 0}};
-    return body_of("plate", v, 20);
+    return bench_outline_body("plate", v, 20);
 }
 
 /* SITES sites at the midpoints of segments spread evenly over loop 0. */

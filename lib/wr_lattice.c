@@ -646,7 +646,7 @@ static int poly_roots(const double *c, int degree, double *roots)
         if (fabs(fhi) <= zero || (flo < 0) == (fhi < 0))
             continue; /* a root at hi is the next step's */
         int side = 0;
-        for (int it = 0; it < 100 && hi - lo > 4e-16 * (1 + fabs(lo)); it++) {
+        for (int it = 0; it < 100 && hi - lo > 1e-11 * (1 + fabs(lo)); it++) {
             double mid = (lo * fhi - hi * flo) / (fhi - flo);
             if (!(mid > lo && mid < hi))
                 mid = (lo + hi) / 2;
