@@ -498,6 +498,21 @@ static int call_checked(wrc_client *c, size_t n, size_t size, unsigned long id,
         n += written > 0 ? (size_t)written : 0;                                                    \
     } while (0)
 
+/* A friction.sweep request's start: the fixture, and the range and ratio
+ * unless they are the defaults' zeros. */
+static void put_sweep_head(char *q, size_t *at, size_t size, const char *fixture_id,
+                           const double range[2], double kinetic_ratio)
+{
+    size_t n = *at;
+    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"friction.sweep\",\"params\":{\"fixture\":\"%s\"",
+        fixture_id);
+    if (range[0] != 0 || range[1] != 0)
+        PUT(",\"range\":[%.17g,%.17g]", range[0], range[1]);
+    if (kinetic_ratio != 0)
+        PUT(",\"kinetic_ratio\":%.17g", kinetic_ratio);
+    *at = n;
+}
+
 int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_request *r,
                        wrc_sweep *sweep)
 {
@@ -523,12 +538,7 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
     unsigned long id = ++c->next_id;
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
-    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"friction.sweep\",\"params\":{\"fixture\":\"%s\"",
-        fixture_id);
-    if (r->range[0] != 0 || r->range[1] != 0)
-        PUT(",\"range\":[%.17g,%.17g]", r->range[0], r->range[1]);
-    if (r->kinetic_ratio != 0)
-        PUT(",\"kinetic_ratio\":%.17g", r->kinetic_ratio);
+    put_sweep_head(q, &n, size, fixture_id, r->range, r->kinetic_ratio);
     if (wrench) {
         PUT(",\"wrenches\":[[%.17g,%.17g,%.17g]],\"sets\":[\"%s\"]", r->wrench[0], r->wrench[1],
             r->wrench[2], r->set);
@@ -713,6 +723,18 @@ static int check_force_call(wrc_client *c, const char *fixture_id, const wrc_loa
 
 /* One case of `count` loads, {"loads": [...]}, appended at q + *n (checked
  * by check_force_call). */
+/* A finger (push.force, friction.sweep's force): its radius and the loops
+ * it pushes on. */
+static int check_finger(wrc_client *c, double finger_radius, const char *push_on)
+{
+    if (!(finger_radius >= 0) || !isfinite(finger_radius))
+        return fail(c, WRC_EINVAL, "the finger's radius is a finite number >= 0");
+    if (push_on && strcmp(push_on, "outer") != 0 && strcmp(push_on, "all") != 0)
+        return fail(c, WRC_EINVAL, "push_on is \"outer\", \"all\" or NULL, not \"%.20s\"",
+                    push_on);
+    return WRC_OK;
+}
+
 static void put_case(char *q, size_t *at, size_t size, const wrc_load *loads, int count)
 {
     size_t n = *at;
@@ -774,11 +796,9 @@ int wrc_push_force(wrc_client *c, const char *fixture_id, const wrc_load *loads,
     int checked = check_force_call(c, fixture_id, loads, count, set);
     if (checked != WRC_OK)
         return checked;
-    if (!(finger_radius >= 0) || !isfinite(finger_radius))
-        return fail(c, WRC_EINVAL, "the finger's radius is a finite number >= 0");
-    if (push_on && strcmp(push_on, "outer") != 0 && strcmp(push_on, "all") != 0)
-        return fail(c, WRC_EINVAL, "push_on is \"outer\", \"all\" or NULL, not \"%.20s\"",
-                    push_on);
+    checked = check_finger(c, finger_radius, push_on);
+    if (checked != WRC_OK)
+        return checked;
     unsigned long id = ++c->next_id;
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
@@ -871,20 +891,13 @@ int wrc_force_sweep(wrc_client *c, const char *fixture_id, const wrc_load *loads
     for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; k++)
         if (!isfinite(numbers[k]))
             return fail(c, WRC_EINVAL, "a number of the request is not finite");
-    if (r->finger_radius < 0)
-        return fail(c, WRC_EINVAL, "the finger's radius is a finite number >= 0");
-    if (r->push_on && strcmp(r->push_on, "outer") != 0 && strcmp(r->push_on, "all") != 0)
-        return fail(c, WRC_EINVAL, "push_on is \"outer\", \"all\" or NULL, not \"%.20s\"",
-                    r->push_on);
+    checked = check_finger(c, r->finger_radius, r->push_on);
+    if (checked != WRC_OK)
+        return checked;
     unsigned long id = ++c->next_id;
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
-    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"friction.sweep\",\"params\":{\"fixture\":\"%s\"",
-        fixture_id);
-    if (r->range[0] != 0 || r->range[1] != 0)
-        PUT(",\"range\":[%.17g,%.17g]", r->range[0], r->range[1]);
-    if (r->kinetic_ratio != 0)
-        PUT(",\"kinetic_ratio\":%.17g", r->kinetic_ratio);
+    put_sweep_head(q, &n, size, fixture_id, r->range, r->kinetic_ratio);
     PUT(",\"force\":{\"set\":\"%s\"", r->set);
     if (r->finger_radius != 0)
         PUT(",\"finger_radius\":%.17g", r->finger_radius);
