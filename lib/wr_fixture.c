@@ -1,6 +1,7 @@
 /* wr_fixture.c -- validation of a fixture spec and the derived quantities
  * (centroid, uniform inertia, inward normals, scaled contact wrenches). */
 #include "wr_fixture.h"
+#include "wr_support.h"
 #include "wr_internal.h"
 #include "wr_outline.h"
 
@@ -1020,6 +1021,7 @@ void wr_fixture_free(wr_fixture *fixture)
         return;
     free(fixture->vertices);
     wr_outline_free(fixture->outline);
+    wr_supports_free(fixture->supports);
     free(fixture);
 }
 

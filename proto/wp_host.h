@@ -100,6 +100,9 @@ typedef struct wp_host {
      * the host to the request's own stop before each piece of work, so that
      * work for a client that hung up ends.  NULL: never stops. */
     const wr_stop *stop;
+    /* This thread's GLPK environment, for LPs a method builds itself (a
+     * fixture on supports: wr_support.h).  Never freed by the caller. */
+    wr_lp_env *(*lp_env)(void *self);
 } wp_host;
 
 /* The error of a host function that failed, the one place host statuses

@@ -354,6 +354,8 @@ static const char *copy_string(const char *p, char *out, size_t size)
     return *p == '"' ? p + 1 : p;
 }
 
+static bool read_numbers(const char *p, double *out, int n);
+
 /* The value after "key": in text, or NULL. */
 static const char *value_of(const char *text, const char *key)
 {
@@ -429,6 +431,19 @@ int wrc_classify(wrc_client *c, const char *fixture_id, const double wrench[3], 
     answer->blocking[0] = 0;
     if (*blocking == '"')
         copy_string(blocking + 1, answer->blocking, sizeof answer->blocking);
+    answer->perturbation_count = 0;
+    const char *points = value_of(text, "perturbation");
+    if (points && *points == '[') {
+        /* [[x, y], ...]: each point's two numbers */
+        const char *p = points + 1;
+        while (*p == '[' && answer->perturbation_count < 8) {
+            if (!read_numbers(p, answer->perturbation[answer->perturbation_count], 2))
+                return fail(c, WRC_EPROTO, "a perturbation point is not two numbers");
+            answer->perturbation_count++;
+            p = strchr(p, ']');
+            p = p ? p + 1 + (p[1] == ',') : "";
+        }
+    }
     return WRC_OK;
 }
 

@@ -67,6 +67,12 @@ typedef struct wrc_answer {
     wrc_verdict verdict;
     double margin;        /* in [-1, 1]; docs/MODEL.md section 5 */
     char blocking[16];    /* the blocking string ("ms", "ll", "nn+"), "" when inside */
+    /* A fixture stored with a tolerance (docs/PROTOCOL.md, "Tolerance"),
+     * the answer outside: the contact points of a fixture of its set on
+     * which the wrench is outside, one per fixel (perturbation_count of
+     * them); 0 otherwise. */
+    int perturbation_count;
+    double perturbation[8][2];
 } wrc_answer;
 
 /* Classify one wrench (f_x, f_y, tau) for the stored fixture `fixture_id`

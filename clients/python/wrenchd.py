@@ -115,7 +115,7 @@ __all__ = [
     "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
     "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
     "FixtureInfo", "FrictionSweep", "explain", "explain_goal", "explain_strong", "default_socket_path",
-    "default_push_on", "loop_width", "explain_no_design", "explain_empty_regions",
+    "default_push_on", "loop_width", "explain_no_design", "explain_empty_regions", "with_tolerance",
     "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
     "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
 ]
@@ -138,6 +138,24 @@ LIMIT_EXCEEDED = -32003
 SOLVER_FAILURE = -32004
 
 _DEFAULT = object()     # "the client's timeout"
+
+
+def on_supports(fixture: Mapping[str, Any], points: Sequence[Sequence[float]], friction: Any,
+                g: float, down: Optional[Sequence[Mapping[str, Any]]] = None) -> Dict[str, Any]:
+    """A copy of `fixture` lying on a base plate (docs/PROTOCOL.md,
+    "Supports"): rest buttons at `points` with coefficient `friction` (a
+    number, [lo, hi] or {"static", "kinetic"}), gravity `g` into the plate
+    in the fixture's length / s^2, and down clamps [{"at": [x, y],
+    "force": N}].  On supports wrench.classify and force.range answer with
+    the buttons' friction; force_range(...)["all"]["goal"]["least"] is the
+    least push force on the plate."""
+    out = json.loads(json.dumps(fixture))
+    supports: Dict[str, Any] = {"points": [list(p) for p in points], "friction": friction,
+                                "g": g}
+    if down:
+        supports["down"] = [dict(d) for d in down]
+    out["supports"] = supports
+    return out
 
 
 def default_socket_path() -> str:
@@ -241,6 +259,10 @@ class Verdict:
     blocking: Optional[str]            # the excluded cone ("ms", "ll", "nn+"); None when inside
     states: List[str]                  # goal: contact states the blocking string comes from
     witness: Optional[Witness]         # None when inside
+    # A fixture with a tolerance, outside: the contact points and normals
+    # of a fixture of its set on which the wrench is outside (None else).
+    perturbation: Optional[List[List[float]]] = None
+    perturbation_normals: Optional[List[List[float]]] = None
 
     @classmethod
     def from_wire(cls, obj: Any) -> "Verdict":
@@ -356,6 +378,12 @@ class Disturbance:
     margin: Optional[float]            # < 0: the bias itself moves the part
     blocking: Optional[str]            # the mode the worst disturbance starts
     worst_direction: Optional[List[float]]  # a wrench of unit scaled length
+    # A fixture with a tolerance: the bias's verdict in G_strong over its
+    # set ("inside", "boundary", "outside"; margin is then the worst), and
+    # for outside the witness's contacts and normals.
+    robust: Optional[str] = None
+    perturbation: Optional[List[List[float]]] = None
+    perturbation_normals: Optional[List[List[float]]] = None
 
 
 @dataclass
@@ -905,6 +933,22 @@ def _fixture_ref(fixture: Any) -> Any:
         return dict(fixture)
     raise TypeError("a fixture is an id string, a PutResult or a fixture dict, not %s"
                     % type(fixture).__name__)
+
+
+def with_tolerance(fixture: Mapping[str, Any], position: float,
+                   angle: float = 0.0) -> Dict[str, Any]:
+    """A copy of a fixture dict with the geometric tolerance {"position":
+    position, "angle": angle} (docs/PROTOCOL.md, "Tolerance"): every
+    analysis of it then answers for each fixture whose contacts lie within
+    `position` along the outline and whose normals within `angle` degrees.
+    A stored fixture: get_fixture() it first."""
+    if not isinstance(fixture, Mapping):
+        raise TypeError("with_tolerance takes a fixture dict (get_fixture() a stored one)")
+    out = dict(fixture)
+    out["tolerance"] = {"position": position}
+    if angle:
+        out["tolerance"]["angle"] = angle
+    return out
 
 
 def _fixture_id(fixture_id: Any) -> str:

@@ -304,11 +304,50 @@ static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, double d
             page_x(f, c[0]), page_y(f, c[1]) + 5, i + 1);
 }
 
+/* A fixture on supports (wr_support.h): each support a small square, and
+ * its friction disc |f| <= mu_s N_i drawn about it, dashed, to a scale
+ * where the whole capacity mu_s W would be 0.3 of the part's size (the
+ * largest N_i over the admissible distributions); the normal force beside
+ * it in the fixture's force unit. */
+static void supports(FILE *out, const frame *f, const wr_fixture *fx)
+{
+    const wr_supports *s = fx->supports;
+    if (!s)
+        return;
+    double half = 4, reach = 0.3 * f->size / (s->total > 0 ? s->total : 1);
+    for (int i = 0; i < s->count; i++) {
+        double x = page_x(f, s->points[i][0]), y = page_y(f, s->points[i][1]);
+        if (s->mu_static > 0 && s->normal_max[i] > 0)
+            fprintf(out,
+                    "<circle class=\"friction-disc\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" "
+                    "fill=\"#2e86c1\" fill-opacity=\"0.12\" stroke=\"#2e86c1\" "
+                    "stroke-dasharray=\"4 3\"/>\n",
+                    x, y, reach * s->normal_max[i] * f->scale);
+        fprintf(out,
+                "<rect class=\"support\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                "fill=\"#2e86c1\"/>\n",
+                x - half, y - half, 2 * half, 2 * half);
+        double n = s->normal_min[i] == s->normal_max[i] ? s->normal_max[i] : -1;
+        double unit = wr_fixture_force_factor(fx);
+        if (n >= 0)
+            fprintf(out,
+                    "<text class=\"support-load\" x=\"%.2f\" y=\"%.2f\" font-size=\"11\" "
+                    "fill=\"#1b4f72\">N=%.4g</text>\n",
+                    x + 7, y - 6, n / unit);
+        else
+            fprintf(out,
+                    "<text class=\"support-load\" x=\"%.2f\" y=\"%.2f\" font-size=\"11\" "
+                    "fill=\"#1b4f72\">N=%.4g..%.4g</text>\n",
+                    x + 7, y - 6, s->normal_min[i] / unit, s->normal_max[i] / unit);
+    }
+}
+
 /* Each fixel: a dark wedge outside the part, its apex at the contact, and
  * its friction cone opening into the part; on a hole's boundary, a pin of
  * pin_diameters[i] (NULL or < 0: not known). */
 static void fixels(FILE *out, const frame *f, const wr_fixture *fx, const double *pin_diameters)
 {
+    supports(out, f, fx);
     double wedge = 0.06 * f->size, cone = 0.16 * f->size;
     for (int i = 0; i < fx->fixel_count; i++) {
         const wr_fixel *x = &fx->fixels[i];
@@ -663,6 +702,37 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
         legend(out, 1, text);
         snprintf(text, sizeof text, "dashed red: the worst disturbance, which starts mode %s",
                  blocking);
+        legend(out, 2, text);
+    }
+    end(out);
+}
+
+void wc_svg_force(FILE *out, const wr_fixture *fx, const char *name, const double *push,
+                  double least, const char *unit)
+{
+    frame f = frame_for(fx, 0.5, 3);
+    char text[256], mu[96];
+    snprintf(text, sizeof text, "%s: the least push force", name);
+    begin(out, &f, text, fx);
+    outline(out, &f, fx);
+    fixels(out, &f, fx, NULL);
+    centre_of_mass(out, &f, fx);
+    if (push)
+        wrench_arrow(out, &f, fx, push, "1f4e9c", "");
+    friction_text(fx, mu, sizeof mu);
+    snprintf(text, sizeof text, "%s, %s: the push (blue) on its line of action", name, mu);
+    legend(out, 0, text);
+    if (isfinite(least))
+        snprintf(text, sizeof text, "the least force that seats the part (goal): %.6g %s", least,
+                 unit);
+    else
+        snprintf(text, sizeof text, "no force of this push seats the part");
+    legend(out, 1, text);
+    if (fx->supports) {
+        snprintf(text, sizeof text,
+                 "on %d supports (blue squares), mu_B %.4g: dashed, each one's friction disc "
+                 "|f| <= mu_B N_i to scale",
+                 fx->supports->count, fx->supports->mu_static);
         legend(out, 2, text);
     }
     end(out);

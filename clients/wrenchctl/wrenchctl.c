@@ -387,6 +387,25 @@ static int take_locate_tolerance(wc_run *run, const char *value)
     return 0;
 }
 
+/* --tolerance T[,A] of the analyses: each contact within T along the
+ * outline, each normal within A degrees (the daemon checks them against
+ * the fixture). */
+static int take_geometric(wc_run *run, const char *value)
+{
+    double v[2] = {0, 0};
+    char tail;
+    int n = sscanf(value, "%lf,%lf%c", &v[0], &v[1], &tail);
+    if ((n != 1 && n != 2) || !(v[0] >= 0) || !(v[1] >= 0) || !isfinite(v[0]) ||
+        !isfinite(v[1]))
+        return wc_usage_error("--tolerance wants T or T,A (numbers >= 0: a length along the "
+                              "outline, an angle in degrees), not '%s'",
+                              value);
+    run->geometric[0] = v[0];
+    run->geometric[1] = v[1];
+    run->geometric_given = true;
+    return 0;
+}
+
 /* locate --feature [NAME=]X,Y, repeated. */
 static int take_feature(wc_run *run, const char *value)
 {
@@ -450,6 +469,8 @@ static const command_option COMMAND_OPTIONS[] = {
     {"objective", WC_OPT_DESIGN, take_objective},
     {"shard", WC_OPT_DESIGN, take_shard},
     {"tolerance", WC_OPT_LOCATE, take_locate_tolerance},
+    {"tolerance", WC_OPT_GEOMETRIC, take_geometric},
+    {"fixture-tolerance", WC_OPT_METHOD, take_geometric},
     {"feature", WC_OPT_LOCATE, take_feature},
     {"sigma-ratio", WC_OPT_LOCATE, take_sigma_ratio},
     {"corner-clearance", WC_OPT_DESIGN, take_clearance},
@@ -546,6 +567,8 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
             status = EXIT_USAGE;
         else if (run.friction_interval_given)
             status = wc_fixture_friction(o, &run.fixture, run.friction_low, run.friction_high);
+        if (status < 0 && run.geometric_given)
+            status = wc_fixture_tolerance(o, &run.fixture, run.geometric[0], run.geometric[1]);
     }
     if (status < 0 && !c->method)
         status = c->request(&run, NULL);
@@ -601,6 +624,14 @@ static int help_request(wc_run *run, cJSON *params);
     "                  " PAD "the answers are robust: each holds for every friction in\n"   \
     "                  " PAD "the interval (a stored fixture is fetched, sent inline)\n"
 
+/* The fixture's geometric tolerance (docs/PROTOCOL.md, "Tolerance"), PAD
+ * after the option as FRICTION_HELP's. */
+#define GEOMETRIC_HELP(PAD)                                                                  \
+    "  --tolerance T[,A]" PAD "each contact anywhere within T along the outline, each\n"     \
+    "                   " PAD "normal tilted by up to A degrees: robust answers, inside\n"   \
+    "                   " PAD "only if for every such fixture, outside with one that\n"      \
+    "                   " PAD "shows it\n"
+
 /* name, usage, flags, arguments (fewest, most), method, request, answer,
  * summary, help. */
 const wc_command wc_commands[] = {
@@ -625,7 +656,8 @@ const wc_command wc_commands[] = {
      "forget a stored fixture",
      "Forget the stored fixture ID."},
     {"classify",
-     "FIXTURE WRENCH... [--sets LIST] [--method auto|lp] [--tolerance T] [--friction LO:HI]",
+     "FIXTURE WRENCH... [--sets LIST] [--method auto|lp] [--tolerance T] [--friction LO:HI]\n"
+     "       [--fixture-tolerance T[,A]]",
      WC_FIXTURE | WC_STDIN | WC_OPT_SETS | WC_OPT_METHOD | WC_OPT_TOLERANCE | WC_OPT_INTERVAL, 2,
      1 << 20,
      "wrench.classify", wc_classify_request, wc_classify_answer,
@@ -640,6 +672,9 @@ const wc_command wc_commands[] = {
      "  --method M       auto (explicit cones, with margins; default) or lp (GLPK, no margin)\n"
      "  --tolerance T    |margin| <= T is 'boundary' (default 1e-9)\n"
      FRICTION_HELP(" ")
+     "  --fixture-tolerance T[,A]  each contact anywhere within T along the outline, each\n"
+     "                   normal tilted by up to A degrees: robust verdicts, inside only if\n"
+     "                   for every such fixture, outside with one that shows it\n"
      "Exit status 0 when every wrench is inside every set asked, 1 when one is not."},
     {"cone", "FIXTURE STRING",
      WC_FIXTURE, 2, 2,
@@ -659,9 +694,9 @@ const wc_command wc_commands[] = {
      "The kinematically feasible moving contact modes, and whether the fixels pin the part."},
     {"push",
      "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--push-on LOOPS]\n"
-     "       [--friction LO:HI] [--svg FILE] [--force F --case SPEC...]",
+     "       [--friction LO:HI] [--tolerance T[,A]] [--svg FILE] [--force F --case SPEC...]",
      WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_INTERVAL |
-         WC_OPT_PUSH_ON | WC_OPT_CASE | WC_OPT_PUSH_FORCE,
+         WC_OPT_PUSH_ON | WC_OPT_CASE | WC_OPT_PUSH_FORCE | WC_OPT_GEOMETRIC,
      1, 1,
      "push.regions", wc_push_request, wc_push_answer,
      "where a finger's push seats the part",
@@ -682,11 +717,12 @@ const wc_command wc_commands[] = {
      "                         under every --case (exact; a frictionless finger)\n"
      "  --case SPEC            a load case, repeated: see 'wrenchctl force --help'\n"
      FRICTION_HELP("       ")
+     GEOMETRIC_HELP("      ")
      "Exit status 0 when there is a region, 1 when there is none."},
     {"force",
      "FIXTURE (--push X,Y[@DX,DY] | --wrench FX,FY,TAU) --case SPEC... [--sets LIST]\n"
-     "       [--range LO:HI]",
-     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS, 1, 1,
+     "       [--range LO:HI] [--tolerance T[,A]] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS | WC_OPT_GEOMETRIC | WC_OPT_SVG, 1, 1,
      "force.range", wc_force_request, wc_force_answer,
      "how hard to push: the magnitudes that do a set's job under load cases",
      "The magnitudes F of one push that seat the part (goal), hold it (strong) or both, under\n"
@@ -700,6 +736,11 @@ const wc_command wc_commands[] = {
      "                      force=FX,FY@X,Y (a force at a point), wrench=FX,FY,TAU\n"
      "  --sets LIST         comma-separated: goal, strong, both (default all three)\n"
      "  --range LO:HI       only magnitudes in [LO, HI]\n"
+     "  --svg FILE          also draw the part, its fixels, its supports with their friction\n"
+     "                      discs, the push and the least force\n"
+     GEOMETRIC_HELP(" ")
+     "A fixture on supports (its \"supports\" member) answers goal alone: the magnitudes that\n"
+     "seat it against the supports' friction; its least is the least push force on the plate.\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
     {"push-force",
      "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]",
@@ -715,8 +756,8 @@ const wc_command wc_commands[] = {
      PUSH_ON_HELP("  ")
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
      "Exit status 0 when some push does the job, 1 when none does."},
-    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL, 1, 1,
+    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC, 1, 1,
      "gravity.sweep", wc_gravity_request, wc_gravity_answer,
      "the tilts under which gravity seats the part",
      "The arcs of tilt (the direction gravity pulls, degrees, in the part's frame) under which\n"
@@ -725,9 +766,10 @@ const wc_command wc_commands[] = {
      "                    on, strong holds it only once seated; both does both)\n"
      "  --svg FILE        also draw the sweep as a dial around the part\n"
      FRICTION_HELP("  ")
+     GEOMETRIC_HELP(" ")
      "Exit status 0 when there is an arc, 1 when there is none."},
-    {"margin", "FIXTURE BIAS [--friction LO:HI] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SVG | WC_OPT_INTERVAL, 2, 2,
+    {"margin", "FIXTURE BIAS [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC, 2, 2,
      "stability.margin", wc_margin_request, wc_margin_answer,
      "how large a disturbance a biasing wrench tolerates",
      "The disturbance margin of a biasing wrench (fx,fy,tau or fx,fy@x,y): how large a\n"
@@ -735,6 +777,7 @@ const wc_command wc_commands[] = {
      "the contact mode the worst one starts, and that worst direction.\n"
      "  --svg FILE        also draw the bias and the worst disturbance on the part\n"
      FRICTION_HELP("  ")
+     GEOMETRIC_HELP(" ")
      "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
     {"sweep",
      "FIXTURE (--push SET | --gravity SET | --least-force SET --case SPEC... |\n"

@@ -209,6 +209,38 @@ static bool read_cases(wp_call *call, const wr_fixture *f, wp_cases *cases)
     return wp_cases_read(tree, "params.cases", f, most, cases, call->error);
 }
 
+/* Boxes per excluded cone for one piece of a robust interval: a piece
+ * that so few do not prove is split instead (wr_robust_forces). */
+#define ROBUST_FORCE_BUDGET 64
+
+/* One case's good magnitudes for the sets asked: by the cones, or for a
+ * part on supports by the discs of wr_support.h (G_goal's; the others are
+ * refused before, by supports_sets). */
+static wr_status set_ranges(const wp_call *call, const wr_analysis *a, const bool sets[3],
+                            const double load[3], const double push[3], double lo, double hi,
+                            wr_forces good[3])
+{
+    const wr_supports *supports = wr_analysis_fixture(a)->supports;
+    if (!supports)
+        return wr_force_ranges(a, sets, load, push, lo, hi, good);
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    if (!env)
+        return WR_LP_FAILED;
+    return wr_supports_force_range(a, supports, env, load, push, lo, hi, &good[WR_SET_GOAL]);
+}
+/* On supports force.range answers G_goal's magnitudes: false, with the
+ * error at params.sets, when strong or both is asked. */
+static bool supports_sets(wp_call *call, const wr_fixture *f, const bool sets[3])
+{
+    if (!f->supports || (!sets[WR_SET_STRONG] && !sets[WR_SET_BOTH]))
+        return true;
+    wp_error_set(call->error, WP_INVALID_PARAMS, "params.sets",
+                 "the fixture rests on supports: force.range gives the magnitudes that seat it "
+                 "(\"goal\"); whether the seated part is held under a load is wrench.classify's "
+                 "\"strong\" with that load");
+    return false;
+}
+
 /* The answer is written as text (a raw result): a hundred cases are three
  * hundred small objects, which a tree would allocate one by one. */
 cJSON *wp_handle_force_range(wp_call *call)
@@ -224,24 +256,37 @@ cJSON *wp_handle_force_range(wp_call *call)
     const wr_fixture *f = use->fixture;
     double push[3], range[2];
     wp_cases cases;
-    if (!read_push(params, f, push, error) || !read_range(params, f, range, error) ||
-        !read_cases(call, f, &cases))
+    if (!supports_sets(call, f, sets) || !read_push(params, f, push, error) ||
+        !read_range(params, f, range, error) || !read_cases(call, f, &cases))
         return NULL;
     wp_buffer b = {0};
     WP_BUFFER_LITERAL(&b, "{\"cases\":[");
     wr_forces every[3] = {{0}}, good[3] = {{0}}, meet = {0};
-    wr_status status = WR_OK;
+    /* A fixture with a tolerance: each good interval's robust part. */
+    wr_robust *robust = NULL;
+    wr_status status = f->tolerance.given ? wr_robust_new(use->analysis, ROBUST_FORCE_BUDGET,
+                                                          &robust)
+                                          : WR_OK;
     for (int c = 0; status == WR_OK && c < cases.count; c++) {
         wp_buffer_puts(&b, c ? ",{\"name\":" : "{\"name\":");
         if (cases.items[c].name)
             wp_buffer_string(&b, cases.items[c].name);
         else
             WP_BUFFER_LITERAL(&b, "null");
-        status = wr_force_ranges(use->analysis, sets, cases.items[c].load, push, range[0],
-                                 range[1], good);
+        status = set_ranges(call, use->analysis, sets, cases.items[c].load, push, range[0],
+                            range[1], good);
         for (int s = 0; status == WR_OK && s < 3; s++) {
             if (!sets[s])
                 continue;
+            if (robust) {
+                wr_forces nominal = good[s];
+                good[s] = (wr_forces){0};
+                status = wr_robust_forces(robust, (wr_set)s, cases.items[c].load, push,
+                                          &nominal, call->host->stop, &good[s]);
+                wr_forces_release(&nominal);
+                if (status != WR_OK)
+                    break;
+            }
             WP_BUFFER_LITERAL(&b, ",\"");
             wp_buffer_puts(&b, SET_NAMES[s]);
             WP_BUFFER_LITERAL(&b, "\":");
@@ -276,6 +321,7 @@ cJSON *wp_handle_force_range(wp_call *call)
         wr_forces_release(&good[s]);
     }
     wr_forces_release(&meet);
+    wr_robust_free(robust);
     wp_cases_release(&cases);
     char *text = wp_buffer_take(&b);
     cJSON *result = status == WR_OK && text ? cJSON_CreateRaw(text) : NULL;
@@ -410,10 +456,22 @@ cJSON *wp_handle_push_force(wp_call *call)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
+    if (wp_supports_refuse(call, use->fixture, "params.fixture",
+                           "the push at a point to force.range, whose \"least\" is the least "
+                           "force there on the plate: the least over the outline is found for a "
+                           "part floating in its plane"))
+        return NULL;
     const wr_fixture *f = use->fixture;
     if (f->shape == WR_SHAPE_NONE) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
                      "a push force needs the part's outline: the fixture has no shape");
+        return NULL;
+    }
+    if (f->tolerance.given) {
+        /* The least force is exact on the nominal fixels only. */
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "push.force answers the nominal fixture only: ask force.range at a point "
+                     "for magnitudes robust over the tolerance");
         return NULL;
     }
     bool *push_on;

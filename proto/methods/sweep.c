@@ -267,6 +267,21 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     sweep_state *state = wp_stream_with_fixture(call, sizeof *state, &use);
     if (!state)
         return NULL;
+    if (use->fixture->tolerance.given) {
+        /* The sweep's exact machinery varies mu on the nominal fixels. */
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "friction.sweep answers the nominal fixture only: sweep the fixture "
+                     "without its tolerance, or ask the robust questions (classify, push, "
+                     "gravity, margin, force) at one friction");
+        sweep_free(state);
+        return NULL;
+    }
+    if (wp_supports_refuse(call, use->fixture, "params.fixture",
+                           "one fixture per coefficient to wrench.classify or force.range: the "
+                           "sweep's answers are those of a part floating in its plane")) {
+        sweep_free(state);
+        return NULL;
+    }
     if (!read_sweep(call, use->fixture, state)) {
         sweep_free(state);
         return NULL;

@@ -142,6 +142,13 @@ static const char OUTSIDE[] =
     "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"strong\":{\"verdict\":\"outside\",\"inside\":"
     "false,\"margin\":-0.003162,\"blocking\":\"ll\",\"states\":[],\"witness\":{\"acceleration\":"
     "[0,0,1],\"forces\":[[1,0],[1,0]],\"wrench\":[1,2,3]}}}]},\"id\":%ID%}";
+/* A fixture with a tolerance: the witness's contacts and normals follow
+ * the answer's other members (docs/PROTOCOL.md, "Tolerance"). */
+static const char ROBUST_OUTSIDE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"goal\":{\"verdict\":\"outside\",\"inside\":"
+    "false,\"margin\":-0.25,\"blocking\":\"msm\",\"states\":[\"101\"],\"witness\":null,"
+    "\"perturbation\":[[1.05,0],[2.9,0],[0,1.1]],\"perturbation_normals\":[[0,1],[0,1],[1,0]]}}]},"
+    "\"id\":%ID%}";
 static const char NO_FIXTURE[] =
     "{\"jsonrpc\":\"2.0\",\"error\":{\"code\":-32001,\"message\":\"No such fixture\",\"data\":"
     "{\"field\":\"params.fixture\",\"reason\":\"no stored fixture has the id \\\"x\\\"\"}},"
@@ -183,6 +190,28 @@ static void classify_reads_verdicts_without_allocating(void **state)
     assert_non_null(strstr(f.last_request, "[[-1,-1,0]]"));
     assert_non_null(strstr(f.last_request, "\"sets\":[\"strong\"]"));
     assert_int_equal(f.connections, 1);
+    wrc_close(c);
+    stop(&f);
+}
+
+static void classify_reads_a_robust_witness(void **state)
+{
+    (void)state;
+    const char *const answers[] = {ROBUST_OUTSIDE, INSIDE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    wrc_answer a;
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_OK);
+    assert_int_equal(a.verdict, WRC_OUTSIDE);
+    assert_int_equal(a.perturbation_count, 3);
+    const double expect[3][2] = {{1.05, 0}, {2.9, 0}, {0, 1.1}};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 2; j++)
+            assert_true(a.perturbation[i][j] == expect[i][j]);
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_OK);
+    assert_int_equal(a.perturbation_count, 0);
     wrc_close(c);
     stop(&f);
 }
@@ -609,6 +638,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(classify_reads_verdicts_without_allocating),
+        cmocka_unit_test(classify_reads_a_robust_witness),
         cmocka_unit_test(server_errors_carry_code_field_and_reason),
         cmocka_unit_test(bad_arguments_and_bad_answers),
         cmocka_unit_test(a_silent_daemon_times_out),
