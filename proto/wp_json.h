@@ -166,6 +166,13 @@ bool wp_json_member_start(const char *text, size_t length, size_t object, const 
  * reads it the ordinary way, and says what is wrong).  With `end` NULL
  * only white space may follow the array; else *end is where it ends. */
 long wp_json_triples(const char *text, size_t length, double (**out)[3], size_t *end);
+/* The finite number at text[*i], of a text wp_json_scan passed, read as
+ * cJSON reads it: true with *i past it, false when it is not a number there
+ * (or not finite as a double). */
+bool wp_json_read_number(const char *text, size_t length, size_t *i, double *out);
+/* Past the closing quote of the string whose opening quote is at text[i];
+ * 0 when it does not end. */
+size_t wp_json_string_end(const char *text, size_t length, size_t i);
 /* A hint that the `bytes` at p, about to be written front to back, be
  * backed by huge pages: a few page faults for megabytes, not thousands. */
 void wp_advise_huge(void *p, size_t bytes);

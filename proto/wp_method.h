@@ -31,6 +31,9 @@ typedef struct wp_call {
     wp_fixture_hold *fixture;    /* the envelope's, for wp_call_fixture */
     const char *id_text;         /* the id as the response writes it ("null") */
     bool may_notify;             /* wp_call_may_notify */
+    /* params.<raw_text> as written (wp_method.raw_text), or NULL: a
+     * request of its own only, not a batch member. */
+    struct wp_prepared *prepared;
 } wp_call;
 
 /* The call's fixture (params.fixture: a stored id, or an inline fixture),
@@ -47,6 +50,12 @@ wp_fixture_use *wp_call_fixture(wp_call *call);
 typedef struct wp_prepared {
     double (*wrenches)[3];
     size_t count;
+    /* params.<raw_text> (wp_method.raw_text): its text, NUL-ended and the
+     * method's to write in (it may end strings in place), from a line the
+     * scan passed (wp_json_scan: numbers in JSON's form, escapes, UTF-8);
+     * the tree holds [] in its place.  NULL when the request has none. */
+    char *text;
+    size_t length;
 } wp_prepared;
 
 /* A method whose result is written in pieces: begin reads the params and
@@ -107,6 +116,10 @@ typedef struct wp_method {
      * [x, y, z] numbers: read straight from the text, without a tree node
      * per number (wp_prepared), for the stream's begin.  NULL: none. */
     const char *raw_array;
+    /* A member of params the handler reads from its text, at any length
+     * (wp_prepared.text), without a tree node per value: cut from the line
+     * before it is parsed.  NULL: none. */
+    const char *raw_text;
 } wp_method;
 
 extern const wp_method wp_methods[];   /* ends with a zeroed entry */

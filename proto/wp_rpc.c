@@ -66,7 +66,7 @@ struct wp_answer {
     bool opened;             /* a batch's "[" is written */
     size_t stream_written;   /* bytes the current stream's steps have written */
     bool done;
-    wp_prepared prepared;    /* a long classify's wrenches, read from the text */
+    wp_prepared prepared;    /* params' member read from the text (wp_method.h) */
     wp_fixture_hold hold;    /* the request in hand's fixture (wp_method.h) */
     /* The request in progress, when its result is written in pieces. */
     const wp_streamer *streamer;
@@ -202,7 +202,8 @@ static wp_call call_of(wp_answer *answer, const wp_host *host, cJSON *params, wp
                        const char *id_text)
 {
     return (wp_call){host, &answer->limits, params, error, &answer->hold,
-                     id_text ? id_text : "null", !answer->batch && !answer->whole};
+                     id_text ? id_text : "null", !answer->batch && !answer->whole,
+                     answer->batch || !answer->prepared.text ? NULL : &answer->prepared};
 }
 
 static void end_stream(wp_answer *answer, const wp_host *host)
@@ -511,32 +512,67 @@ bool wp_answer_light(wp_answer *answer, const wp_host *host)
 /* Lines from this long on are worth reading without a tree node per number. */
 #define PREPARE_BYTES 65536
 
-/* The method a line names, if its row has a raw_array: found from the
- * text, the name quoted as written (an escaped name takes the ordinary
- * way). */
-static const wp_method *raw_array_method(const char *quoted, size_t length)
+/* The method a line names, found from the text, the name quoted as
+ * written (an escaped name takes the ordinary way); NULL when its row
+ * reads nothing from the text. */
+static const wp_method *raw_method(const char *line, size_t length)
 {
+    size_t start, end;
+    if (!wp_json_member(line, length, 0, "method", &start, &end))
+        return NULL;
+    const char *quoted = line + start;
+    size_t n = end - start;
     for (const wp_method *m = wp_methods; m->name; m++)
-        if (m->raw_array && length == strlen(m->name) + 2 && quoted[0] == '"' &&
-            quoted[length - 1] == '"' && memcmp(quoted + 1, m->name, length - 2) == 0)
+        if ((m->raw_array || m->raw_text) && n == strlen(m->name) + 2 && quoted[0] == '"' &&
+            quoted[n - 1] == '"' && memcmp(quoted + 1, m->name, n - 2) == 0)
             return m;
     return NULL;
 }
 
-/* A long line of a method with a raw_array (wp_method.h): read that member
- * of params straight from the text when it is the common shape (arrays of
- * three numbers), and return a copy of the line with [] in its place for
- * the tree; NULL for the ordinary way. */
-static char *prepare_wrenches(const char *line, size_t length, wp_prepared *prepared,
-                              size_t *copy_length)
+/* A copy of the line with [] in place of text[start, end). */
+static char *cut(const char *line, size_t length, size_t start, size_t end, size_t *copy_length)
 {
-    size_t method_start, method_end, params_start, start;
-    const wp_method *m;
+    char *copy = malloc(length - (end - start) + 3);
+    if (!copy)
+        return NULL;
+    memcpy(copy, line, start);
+    memcpy(copy + start, "[]", 2);
+    memcpy(copy + start + 2, line + end, length - end);
+    *copy_length = length - (end - start) + 2;
+    copy[*copy_length] = 0;
+    return copy;
+}
+
+/* A line of a method with a raw_array or raw_text (wp_method.h), which the
+ * scan has passed: read that member of params straight from the text (a
+ * raw_array when the line is long and the member is the common shape,
+ * arrays of three numbers; a raw_text as it is written), and return a copy
+ * of the line with [] in its place for the tree; NULL for the ordinary
+ * way. */
+static char *prepare(const wp_method *m, const char *line, size_t length,
+                     wp_prepared *prepared, size_t *copy_length)
+{
+    size_t params_start, start, end;
+    if (!wp_json_member_start(line, length, 0, "params", &params_start))
+        return NULL;
+    if (m->raw_text) {
+        if (!wp_json_member(line, length, params_start, m->raw_text, &start, &end))
+            return NULL;
+        char *text = malloc(end - start + 1);
+        char *copy = text ? cut(line, length, start, end, copy_length) : NULL;
+        if (!copy) {
+            free(text);
+            return NULL;
+        }
+        memcpy(text, line + start, end - start);
+        text[end - start] = 0;
+        prepared->text = text;
+        prepared->length = end - start;
+        return copy;
+    }
     /* Neither params nor its array is spanned before it is read: a
      * million wrenches are 30 MB of text. */
-    if (length < PREPARE_BYTES || !wp_json_member(line, length, 0, "method", &method_start, &method_end) ||
-        !(m = raw_array_method(line + method_start, method_end - method_start)) ||
-        !wp_json_member_start(line, length, 0, "params", &params_start) ||
+    if (length < PREPARE_BYTES ||
         !wp_json_member_start(line, length, params_start, m->raw_array, &start))
         return NULL;
     double (*wrenches)[3];
@@ -544,17 +580,11 @@ static char *prepare_wrenches(const char *line, size_t length, wp_prepared *prep
     long count = wp_json_triples(line + start, length - start, &wrenches, &read);
     if (count < 0)
         return NULL;
-    size_t end = start + read;
-    char *copy = malloc(length - (end - start) + 3);
+    char *copy = cut(line, length, start, start + read, copy_length);
     if (!copy) {
         free(wrenches);
         return NULL;
     }
-    memcpy(copy, line, start);
-    memcpy(copy + start, "[]", 2);
-    memcpy(copy + start + 2, line + end, length - end);
-    *copy_length = length - (end - start) + 2;
-    copy[*copy_length] = 0;
     prepared->wrenches = wrenches;
     prepared->count = (size_t)count;
     return copy;
@@ -635,16 +665,31 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
     wp_counts counted = {0, 0}; /* a refusal counts when its step writes it */
     size_t short_length = 0;
     char *short_line = NULL;
-    /* Only a text the scan passes (UTF-8, depth, controls) is read so. */
-    if (length >= PREPARE_BYTES && wp_utf8_valid(line, length)) {
+    /* Only a text the scan passes (UTF-8, depth, controls, numbers) is
+     * read so; the copy is scanned again, short as it is. */
+    const wp_method *raw = raw_method(line, length);
+    if (raw && (raw->raw_text || length >= PREPARE_BYTES) && wp_utf8_valid(line, length)) {
         wp_json_shape shape = wp_json_scan(line, length, limits->max_depth);
         if (shape.depth <= limits->max_depth && !shape.control && !shape.nul_escape &&
             !shape.bad_escape && !shape.number_problem)
-            short_line = prepare_wrenches(line, length, &answer->prepared, &short_length);
+            short_line = prepare(raw, line, length, &answer->prepared, &short_length);
     }
-    cJSON *json = short_line ? parse_line(limits, short_line, short_length, &counted, &answer->refusal)
-                             : parse_line(limits, line, length, &counted, &answer->refusal);
-    free(short_line);
+    cJSON *json = NULL;
+    if (short_line) {
+        wp_counts scratch = {0, 0};
+        json = parse_line(limits, short_line, short_length, &scratch, &answer->refusal);
+        free(short_line);
+        if (!json) {
+            /* Refused as the line was written, not as cut. */
+            free(answer->refusal);
+            answer->refusal = NULL;
+            free(answer->prepared.text);
+            free(answer->prepared.wrenches);
+            memset(&answer->prepared, 0, sizeof answer->prepared);
+        }
+    }
+    if (!json)
+        json = parse_line(limits, line, length, &counted, &answer->refusal);
     if (!json) {
         if (!answer->refusal) {
             free(answer);
@@ -767,6 +812,7 @@ void wp_answer_free(wp_answer *answer, const wp_host *host)
     free(answer->spans);
     free(answer->refusal);
     free(answer->prepared.wrenches);
+    free(answer->prepared.text);
     free(answer);
 }
 

@@ -486,6 +486,16 @@ static bool read_number(const char *text, size_t length, size_t *i, double *out)
     return true;
 }
 
+bool wp_json_read_number(const char *text, size_t length, size_t *i, double *out)
+{
+    return read_number(text, length, i, out);
+}
+
+size_t wp_json_string_end(const char *text, size_t length, size_t i)
+{
+    return span_string(text, length, i);
+}
+
 long wp_json_triples(const char *text, size_t length, double (**out)[3], size_t *end)
 {
     *out = NULL;

@@ -513,6 +513,21 @@ static int call_checked(wrc_client *c, size_t n, size_t size, unsigned long id,
         n += written > 0 ? (size_t)written : 0;                                                    \
     } while (0)
 
+/* A friction.sweep request's start: the fixture, and the range and ratio
+ * unless they are the defaults' zeros. */
+static void put_sweep_head(char *q, size_t *at, size_t size, const char *fixture_id,
+                           const double range[2], double kinetic_ratio)
+{
+    size_t n = *at;
+    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"friction.sweep\",\"params\":{\"fixture\":\"%s\"",
+        fixture_id);
+    if (range[0] != 0 || range[1] != 0)
+        PUT(",\"range\":[%.17g,%.17g]", range[0], range[1]);
+    if (kinetic_ratio != 0)
+        PUT(",\"kinetic_ratio\":%.17g", kinetic_ratio);
+    *at = n;
+}
+
 int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_request *r,
                        wrc_sweep *sweep)
 {
@@ -538,12 +553,7 @@ int wrc_friction_sweep(wrc_client *c, const char *fixture_id, const wrc_sweep_re
     unsigned long id = ++c->next_id;
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
-    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"friction.sweep\",\"params\":{\"fixture\":\"%s\"",
-        fixture_id);
-    if (r->range[0] != 0 || r->range[1] != 0)
-        PUT(",\"range\":[%.17g,%.17g]", r->range[0], r->range[1]);
-    if (r->kinetic_ratio != 0)
-        PUT(",\"kinetic_ratio\":%.17g", r->kinetic_ratio);
+    put_sweep_head(q, &n, size, fixture_id, r->range, r->kinetic_ratio);
     if (wrench) {
         PUT(",\"wrenches\":[[%.17g,%.17g,%.17g]],\"sets\":[\"%s\"]", r->wrench[0], r->wrench[1],
             r->wrench[2], r->set);
@@ -728,6 +738,18 @@ static int check_force_call(wrc_client *c, const char *fixture_id, const wrc_loa
 
 /* One case of `count` loads, {"loads": [...]}, appended at q + *n (checked
  * by check_force_call). */
+/* A finger (push.force, friction.sweep's force): its radius and the loops
+ * it pushes on. */
+static int check_finger(wrc_client *c, double finger_radius, const char *push_on)
+{
+    if (!(finger_radius >= 0) || !isfinite(finger_radius))
+        return fail(c, WRC_EINVAL, "the finger's radius is a finite number >= 0");
+    if (push_on && strcmp(push_on, "outer") != 0 && strcmp(push_on, "all") != 0)
+        return fail(c, WRC_EINVAL, "push_on is \"outer\", \"all\" or NULL, not \"%.20s\"",
+                    push_on);
+    return WRC_OK;
+}
+
 static void put_case(char *q, size_t *at, size_t size, const wrc_load *loads, int count)
 {
     size_t n = *at;
@@ -789,11 +811,9 @@ int wrc_push_force(wrc_client *c, const char *fixture_id, const wrc_load *loads,
     int checked = check_force_call(c, fixture_id, loads, count, set);
     if (checked != WRC_OK)
         return checked;
-    if (!(finger_radius >= 0) || !isfinite(finger_radius))
-        return fail(c, WRC_EINVAL, "the finger's radius is a finite number >= 0");
-    if (push_on && strcmp(push_on, "outer") != 0 && strcmp(push_on, "all") != 0)
-        return fail(c, WRC_EINVAL, "push_on is \"outer\", \"all\" or NULL, not \"%.20s\"",
-                    push_on);
+    checked = check_finger(c, finger_radius, push_on);
+    if (checked != WRC_OK)
+        return checked;
     unsigned long id = ++c->next_id;
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
@@ -825,6 +845,100 @@ int wrc_push_force(wrc_client *c, const char *fixture_id, const wrc_load *loads,
     least->force = strtod(force, NULL);
     least->lower_bound = strtod(lower, NULL);
     least->converged = strncmp(converged, "true", 4) == 0;
+    return WRC_OK;
+}
+
+/* Reads "[[a, b], null, ...]" at p, a or b a number or null (NAN), a null
+ * item both NAN: the first `capacity` pairs into out (out may be NULL),
+ * their count into *count; the end of the array, or NULL when it is not
+ * one. */
+static const char *read_pairs(const char *p, double (*out)[2], int capacity, int *count)
+{
+    *count = 0;
+    p += strspn(p, " ");
+    if (*p++ != '[')
+        return NULL;
+    for (;;) {
+        p += strspn(p, " ,");
+        if (*p == ']')
+            return p + 1;
+        double pair[2] = {NAN, NAN};
+        if (strncmp(p, "null", 4) == 0) {
+            p += 4;
+        } else {
+            if (*p++ != '[')
+                return NULL;
+            for (int k = 0; k < 2; k++) {
+                p += strspn(p, " ,");
+                char *end;
+                if (strncmp(p, "null", 4) == 0) {
+                    p += 4;
+                    continue;
+                }
+                pair[k] = strtod(p, &end);
+                if (end == p)
+                    return NULL;
+                p = end;
+            }
+            p += strspn(p, " ");
+            if (*p++ != ']')
+                return NULL;
+        }
+        if (out && *count < capacity) {
+            out[*count][0] = pair[0];
+            out[*count][1] = pair[1];
+        }
+        (*count)++;
+    }
+}
+
+int wrc_force_sweep(wrc_client *c, const char *fixture_id, const wrc_load *loads, int count,
+                    const wrc_force_sweep_request *r, double (*curve)[2], double (*at)[2],
+                    int capacity, wrc_force_curve *sweep)
+{
+    if (!c || !fixture_id || !loads || !r || !r->set || !curve || capacity < 0 || !sweep ||
+        count < 1 || count > 100)
+        return WRC_EINVAL;
+    int checked = check_force_call(c, fixture_id, loads, count, r->set);
+    if (checked != WRC_OK)
+        return checked;
+    const double numbers[] = {r->range[0], r->range[1], r->kinetic_ratio, r->finger_radius};
+    for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; k++)
+        if (!isfinite(numbers[k]))
+            return fail(c, WRC_EINVAL, "a number of the request is not finite");
+    checked = check_finger(c, r->finger_radius, r->push_on);
+    if (checked != WRC_OK)
+        return checked;
+    unsigned long id = ++c->next_id;
+    size_t n = 0, size = c->buffer_bytes;
+    char *q = c->request;
+    put_sweep_head(q, &n, size, fixture_id, r->range, r->kinetic_ratio);
+    PUT(",\"force\":{\"set\":\"%s\"", r->set);
+    if (r->finger_radius != 0)
+        PUT(",\"finger_radius\":%.17g", r->finger_radius);
+    if (r->push_on)
+        PUT(",\"push_on\":\"%s\"", r->push_on);
+    PUT("},\"cases\":[");
+    put_case(q, &n, size, loads, count);
+    PUT("]},\"id\":%lu}\n", id);
+    const char *text;
+    int status = call_checked(c, n, size, id, &text);
+    if (status != WRC_OK)
+        return status;
+    memset(sweep, 0, sizeof *sweep);
+    const char *samples = value_of(text, "curve"), *end = NULL, *points = NULL;
+    const char *intervals = value_of(text, "intervals");
+    int located = 0;
+    wrc_sweep alone;
+    if (samples)
+        end = read_pairs(samples, curve, capacity, &sweep->sample_count);
+    if (end)
+        points = value_of(end, "at");
+    if (!end || !points || !read_pairs(points, at, capacity, &located) ||
+        located != sweep->sample_count || !intervals || !read_intervals(intervals, &alone))
+        return fail(c, WRC_EPROTO, "the answer has no curve, points or intervals");
+    sweep->interval_count = alone.interval_count;
+    memcpy(sweep->intervals, alone.intervals, sizeof sweep->intervals);
     return WRC_OK;
 }
 

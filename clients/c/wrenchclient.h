@@ -197,6 +197,40 @@ int wrc_push_force(wrc_client *client, const char *fixture_id, const wrc_load *l
                    const char *set, double finger_radius, const char *push_on,
                    wrc_least_push *least);
 
+/* friction.sweep's "force" for a stored fixture: the least push force
+ * over the outline against mu (push.force's least at each sampled mu),
+ * under one case of `count` loads (1 to 100).  range {0, 0} and
+ * kinetic_ratio 0 ask for the daemon's defaults; finger and push_on as in
+ * wrc_push_force. */
+typedef struct wrc_force_sweep_request {
+    const char *set;        /* "goal", "strong" or "both" */
+    double range[2];        /* 0 <= range[0] < range[1]; {0, 0}: the default */
+    double kinetic_ratio;   /* in (0, 1]; 0: the default */
+    double finger_radius;   /* 0: a point finger */
+    const char *push_on;    /* "outer", "all", or NULL: every loop */
+} wrc_force_sweep_request;
+
+typedef struct wrc_force_curve {
+    /* The mu intervals where the push alone has a region for the set (the
+     * least force is finite there whatever the loads), in order;
+     * interval_count may exceed WRC_SWEEP_INTERVALS: the first are kept. */
+    int interval_count;
+    double intervals[WRC_SWEEP_INTERVALS][2];
+    /* The samples in the answer; more than the caller's capacity: the
+     * first `capacity` are kept. */
+    int sample_count;
+} wrc_force_curve;
+
+/* One friction.sweep with "force": each sample's {mu, F} into curve[i]
+ * (F NAN where no push does the job) and, with `at` not NULL, the point
+ * where the force is least into at[i] (NAN, NAN with no push), for the
+ * first `capacity` samples, increasing in mu.  Allocates nothing; the
+ * answer must fit the client's buffer (WRC_ETOOBIG otherwise).  Returns
+ * WRC_OK, or an error code (WRC_ESERVER with the field at fault). */
+int wrc_force_sweep(wrc_client *client, const char *fixture_id, const wrc_load *loads, int count,
+                    const wrc_force_sweep_request *request, double (*curve)[2], double (*at)[2],
+                    int capacity, wrc_force_curve *sweep);
+
 /* Send one JSON-RPC request (a JSON text without "\n") and return its
  * answer line, malloc'd (the caller frees it).  For notifications nothing
  * comes back: do not send them here. */

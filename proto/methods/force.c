@@ -185,6 +185,30 @@ static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *
     WP_BUFFER_LITERAL(b, "}");
 }
 
+/* params.cases: from their text when the envelope cut it out of the line
+ * (wp_method.raw_text), without a tree node per number; from the tree
+ * otherwise, and when the text is not the common shape (the tree's reader
+ * says what is wrong). */
+static bool read_cases(wp_call *call, const wr_fixture *f, wp_cases *cases)
+{
+    int most = wp_case_limit(call->limits);
+    const wp_prepared *text = call->prepared;
+    if (!text)
+        return wp_cases_read(cJSON_GetObjectItemCaseSensitive(call->params, "cases"),
+                             "params.cases", f, most, cases, call->error);
+    if (wp_cases_read_text(text->text, text->length, f, most, cases))
+        return true;
+    /* The tree of the text, in params in place of the [] left there, so
+     * that it lives as long as the names borrowed from it. */
+    cJSON *tree = cJSON_ParseWithLength(text->text, text->length);
+    if (!tree || !cJSON_ReplaceItemInObjectCaseSensitive(call->params, "cases", tree)) {
+        cJSON_Delete(tree);
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return false;
+    }
+    return wp_cases_read(tree, "params.cases", f, most, cases, call->error);
+}
+
 /* Boxes per excluded cone for one piece of a robust interval: a piece
  * that so few do not prove is split instead (wr_robust_forces). */
 #define ROBUST_FORCE_BUDGET 64
@@ -233,9 +257,7 @@ cJSON *wp_handle_force_range(wp_call *call)
     double push[3], range[2];
     wp_cases cases;
     if (!supports_sets(call, f, sets) || !read_push(params, f, push, error) ||
-        !read_range(params, f, range, error) ||
-        !wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
-                       wp_case_limit(call->limits), &cases, error))
+        !read_range(params, f, range, error) || !read_cases(call, f, &cases))
         return NULL;
     wp_buffer b = {0};
     WP_BUFFER_LITERAL(&b, "{\"cases\":[");

@@ -13,17 +13,50 @@ static const char *const WRENCH_LOAD_FIELDS[] = {"wrench", "name", NULL};
 
 #define DEGREES (3.14159265358979323846 / 180)
 
+static bool near_part(const wr_fixture *f, const double at[2])
+{
+    return hypot(at[0] - f->com[0], at[1] - f->com[1]) <= f->size;
+}
+
 bool wp_point_near_part(const wr_fixture *f, const double at[2], const char *path,
                         wp_error *error)
 {
     double d = hypot(at[0] - f->com[0], at[1] - f->com[1]);
-    if (d <= f->size)
+    if (near_part(f, at))
         return true;
     wp_error_set(error, WP_INVALID_PARAMS, path,
                  "(%g, %g) is %.6g from the part's centre of mass, %.6g beyond its size (%.6g): "
                  "a load acts on the part",
                  at[0], at[1], d, d - f->size, f->size);
     return false;
+}
+
+/* A load's wrench in the model system, from the numbers as given (in the
+ * fixture's units): the one conversion of each kind, for the tree's reader
+ * and the text's. */
+static void gravity_load(const wr_fixture *f, double g, double phi, double w[3])
+{
+    /* m G in kg * length / s^2: the model system's force already.  The
+     * tilt convention of gravity.sweep: phi is where it pulls. */
+    w[0] = f->mass * g * cos(phi * DEGREES);
+    w[1] = f->mass * g * sin(phi * DEGREES);
+    w[2] = 0;
+}
+
+static void force_load(const wr_fixture *f, const double force[2], const double at[2],
+                       double w[3])
+{
+    double factor = wr_fixture_force_factor(f);
+    const double model[2] = {force[0] * factor, force[1] * factor};
+    wr_fixture_force_wrench(f, model, at, w);
+}
+
+/* Add w to sum; false when the sum overflows. */
+static bool add_load(double sum[3], const double w[3])
+{
+    for (int k = 0; k < 3; k++)
+        sum[k] += w[k];
+    return isfinite(sum[0]) && isfinite(sum[1]) && isfinite(sum[2]);
 }
 
 /* One load at `path`, added to `sum` (model system). */
@@ -58,10 +91,7 @@ static bool read_load(const cJSON *json, const char *path, const wr_fixture *f, 
                          g);
             return false;
         }
-        /* m G in kg * length / s^2: the model system's force already.
-         * The tilt convention of gravity.sweep: phi is where it pulls. */
-        w[0] = f->mass * g * cos(phi * DEGREES);
-        w[1] = f->mass * g * sin(phi * DEGREES);
+        gravity_load(f, g, phi, w);
     } else if (cJSON_GetObjectItemCaseSensitive(json, "force")) {
         double force[2], at[2];
         wp_path_key(field, path, "at");
@@ -71,8 +101,7 @@ static bool read_load(const cJSON *json, const char *path, const wr_fixture *f, 
             !wp_member_vector2(json, path, "at", true, at, NULL, error) ||
             !wp_point_near_part(f, at, field, error))
             return false;
-        const double model[2] = {force[0] * factor, force[1] * factor};
-        wr_fixture_force_wrench(f, model, at, w);
+        force_load(f, force, at, w);
     } else if (cJSON_GetObjectItemCaseSensitive(json, "wrench")) {
         const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "wrench");
         wp_path_key(field, path, "wrench");
@@ -97,9 +126,7 @@ static bool read_load(const cJSON *json, const char *path, const wr_fixture *f, 
                      "a load has \"gravity\", \"force\" (with \"at\") or \"wrench\"");
         return false;
     }
-    for (int k = 0; k < 3; k++)
-        sum[k] += w[k];
-    if (!(isfinite(sum[0]) && isfinite(sum[1]) && isfinite(sum[2]))) {
+    if (!add_load(sum, w)) {
         wp_error_set(error, WP_INVALID_PARAMS, path, "too large: the case's load overflows");
         return false;
     }
@@ -182,4 +209,217 @@ void wp_cases_release(wp_cases *cases)
 {
     free(cases->items);
     memset(cases, 0, sizeof *cases);
+}
+
+/* ---- cases read from their text ------------------------------------------
+ * The common shape only, checked as the tree's reader checks it; anything
+ * else (an escape in a key or a name, a member twice or unknown, a value of
+ * another type, a load the tree's reader would refuse) makes the text
+ * reader give up, and the caller reads the tree, which says what is wrong. */
+
+typedef struct text_reader {
+    char *text;
+    size_t length, i;
+} text_reader;
+
+static void skip_space(text_reader *r)
+{
+    r->i = wp_json_skip_space(r->text, r->i, r->length);
+}
+
+/* The byte c next (after white space), consumed. */
+static bool take(text_reader *r, char c)
+{
+    skip_space(r);
+    if (r->i >= r->length || r->text[r->i] != c)
+        return false;
+    r->i++;
+    return true;
+}
+
+/* A string without escapes: its text, which ends at the next '"' (the
+ * text is not written until all of it is read). */
+static const char *plain_string(text_reader *r, size_t *length)
+{
+    skip_space(r);
+    size_t start = r->i;
+    if (start >= r->length || r->text[start] != '"')
+        return NULL;
+    size_t end = wp_json_string_end(r->text, r->length, start);
+    if (!end || memchr(r->text + start, '\\', end - start))
+        return NULL;
+    r->i = end;
+    *length = end - start - 2;
+    return r->text + start + 1;
+}
+
+/* A key and its colon: the key's index in `keys`, or -1. */
+static int key(text_reader *r, const char *const *keys)
+{
+    size_t length;
+    const char *name = plain_string(r, &length);
+    if (!name || !take(r, ':'))
+        return -1;
+    for (int k = 0; keys[k]; k++)
+        if (strlen(keys[k]) == length && memcmp(name, keys[k], length) == 0)
+            return k;
+    return -1;
+}
+
+static bool number(text_reader *r, double *out)
+{
+    skip_space(r);
+    return wp_json_read_number(r->text, r->length, &r->i, out);
+}
+
+/* [n_0, ..., n_{count-1}] */
+static bool numbers(text_reader *r, double *out, int count)
+{
+    if (!take(r, '['))
+        return false;
+    for (int k = 0; k < count; k++)
+        if (!number(r, &out[k]) || !take(r, k + 1 < count ? ',' : ']'))
+            return false;
+    return true;
+}
+
+/* After an object's member: true with *more when a ',' follows, false
+ * when neither ',' nor `close` does. */
+static bool next_member(text_reader *r, char close, bool *more)
+{
+    skip_space(r);
+    if (r->i < r->length && r->text[r->i] == ',') {
+        r->i++;
+        *more = true;
+        return true;
+    }
+    *more = false;
+    return take(r, close);
+}
+
+static const char *const LOAD_KEYS[] = {"name", "gravity", "force", "at", "wrench", NULL};
+enum { LOAD_NAME, LOAD_GRAVITY, LOAD_FORCE, LOAD_AT, LOAD_WRENCH };
+
+static bool text_load(text_reader *r, const wr_fixture *f, double sum[3])
+{
+    double g = 0, phi = 0, force[2] = {0, 0}, at[2] = {0, 0}, w[3] = {0, 0, 0};
+    unsigned seen = 0;
+    if (!take(r, '{'))
+        return false;
+    for (bool more = true; more;) {
+        int k = key(r, LOAD_KEYS);
+        if (k < 0 || (seen & 1u << k))
+            return false;
+        seen |= 1u << k;
+        bool read = false;
+        switch (k) {
+        case LOAD_NAME:
+            read = plain_string(r, &(size_t){0}) != NULL;
+            break;
+        case LOAD_GRAVITY: {
+            static const char *const keys[] = {"g", "direction_deg", NULL};
+            unsigned got = 0;
+            read = take(r, '{');
+            for (bool again = read; again;) {
+                int j = key(r, keys);
+                read = j >= 0 && !(got & 1u << j) && number(r, j ? &phi : &g) &&
+                       next_member(r, '}', &again);
+                got |= j >= 0 ? 1u << j : 0;
+                if (!read)
+                    break;
+            }
+            read = read && got == 3;
+            break;
+        }
+        case LOAD_FORCE:
+            read = numbers(r, force, 2);
+            break;
+        case LOAD_AT:
+            read = numbers(r, at, 2);
+            break;
+        case LOAD_WRENCH:
+            read = numbers(r, w, 3);
+            break;
+        }
+        if (!read || !next_member(r, '}', &more))
+            return false;
+    }
+    unsigned kind = seen & ~(1u << LOAD_NAME);
+    if (kind == 1u << LOAD_GRAVITY) {
+        if (g < 0)
+            return false;
+        gravity_load(f, g, phi, w);
+    } else if (kind == (1u << LOAD_FORCE | 1u << LOAD_AT)) {
+        if (!near_part(f, at))
+            return false;
+        force_load(f, force, at, w);
+    } else if (kind == 1u << LOAD_WRENCH) {
+        for (int k = 0; k < 3; k++)
+            w[k] *= wr_fixture_force_factor(f);
+    } else {
+        return false;
+    }
+    return add_load(sum, w);
+}
+
+static const char *const CASE_KEYS[] = {"name", "loads", NULL};
+
+static bool text_case(text_reader *r, const wr_fixture *f, wp_case *c)
+{
+    unsigned seen = 0;
+    if (!take(r, '{'))
+        return false;
+    for (bool more = true; more;) {
+        int k = key(r, CASE_KEYS);
+        if (k < 0 || (seen & 1u << k))
+            return false;
+        seen |= 1u << k;
+        if (k == 0) {
+            if (!(c->name = plain_string(r, &(size_t){0})))
+                return false;
+        } else {
+            if (!take(r, '['))
+                return false;
+            int n = 0;
+            for (bool again = true; again; n++)
+                if (n == WP_MAX_LOADS || !text_load(r, f, c->load) ||
+                    !next_member(r, ']', &again))
+                    return false;
+        }
+        if (!next_member(r, '}', &more))
+            return false;
+    }
+    return seen & 2u;
+}
+
+bool wp_cases_read_text(char *text, size_t length, const wr_fixture *f, int most,
+                        wp_cases *out)
+{
+    memset(out, 0, sizeof *out);
+    text_reader r = {text, length, 0};
+    if (!take(&r, '['))
+        return false;
+    /* Room for as many cases as the text could hold ("{"loads":[{"wrench":
+     * [0,0,0]}]}," is 28 bytes), given back when counted. */
+    size_t capacity = length / 28 + 1;
+    if (capacity > (size_t)most)
+        capacity = (size_t)most;
+    out->items = calloc(capacity, sizeof *out->items);
+    if (!out->items)
+        return false;
+    for (bool more = true; more; out->count++)
+        if ((size_t)out->count == capacity || !text_case(&r, f, &out->items[out->count]) ||
+            !next_member(&r, ']', &more))
+            goto refuse;
+    skip_space(&r);
+    if (r.i != length)
+        goto refuse;
+    /* Read whole: the names are ended in place. */
+    for (int c = 0; c < out->count; c++)
+        if (out->items[c].name)
+            *strchr(out->items[c].name, '"') = 0;
+    return true;
+refuse:
+    wp_cases_release(out);
+    return false;
 }

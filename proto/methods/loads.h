@@ -51,6 +51,14 @@ typedef struct wp_cases {
  * False with nothing allocated on error. */
 bool wp_cases_read(const cJSON *json, const char *path, const wr_fixture *fixture, int most,
                    wp_cases *out, wp_error *error);
+/* The same cases from params.cases' text as written (wp_prepared.text,
+ * which the scan has passed; names are ended in place and borrowed from
+ * it), read without a tree: true with the very cases wp_cases_read would
+ * give, false with nothing allocated when the text is not their common
+ * shape or wp_cases_read would refuse it -- then read the tree, which says
+ * why. */
+bool wp_cases_read_text(char *text, size_t length, const wr_fixture *fixture, int most,
+                        wp_cases *out);
 void wp_cases_release(wp_cases *cases);
 
 /* A point of the part where a force acts (a load's `at`, a push's): within

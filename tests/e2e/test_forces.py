@@ -7,6 +7,7 @@ methods (the explicit cones and the LPs), push.regions under a force against
 force.range at 10,000 points, and one fixture written in three systems of
 units giving the same answers converted."""
 
+import json
 import math
 import os
 
@@ -820,3 +821,52 @@ def test_friction_sweep_least_force_against_push_force(client):
                            "params.force.finger_friction")):
         got = error_of(client, "friction.sweep", dict(params, fixture=f))
         assert got[0] == field, (params, got)
+
+
+def test_cases_read_from_text_as_from_the_tree(client):
+    """force.range reads a request's cases from its text, a batch member's
+    from the tree: the same answer, byte for byte, for the common shape
+    written every way JSON allows (white space, member order, exponents,
+    names in UTF-8) and for every shape the text reader leaves to the tree
+    (escapes, members twice or unknown, wrong types, refused loads)."""
+    fid = client.result("fixture.put", {"fixture": plate_321(0.2)})["id"]
+    push = '{"at":[4,1.5]}'
+    texts = [
+        '[{"name":"a","loads":[{"gravity":{"g":9.81,"direction_deg":270}},'
+        '{"force":[-2.5e0,-3],"at":[1.25,2]}]}]',
+        ' [ { "loads" : [ { "direction_deg" : 270 , "g" : 981E-2 } ] } ] '.replace(
+            '{ "direction_deg"', '{ "gravity" : { "direction_deg"').replace('} ] }', '} } ] }'),
+        '[{"loads":[{"at":[2,2],"force":[0.1,-1e-3],"name":"cutter"}],"name":"b\u00e9"}]',
+        '[{"loads":[{"wrench":[1,-2,0.5]}]},{"name":"c","loads":[{"wrench":[-1,-2,-0.5]}]}]',
+        '[{"name":"tab\\tbed","loads":[{"wrench":[1,-2,0.5]}]}]',
+        '[{"na\\u006de":"x","loads":[{"wrench":[1,-2,0.5]}]}]',
+        '[{"name":"x","name":"y","loads":[{"wrench":[1,-2,0.5]}]}]',
+        '[{"name":1,"loads":[{"wrench":[1,-2,0.5]}]}]',
+        '[{"loads":[{"wrench":[1,-2,0.5]}],"extra":0}]',
+        '[{"loads":[{"wrench":[1,-2]}]}]',
+        '[{"loads":[{"gravity":{"g":-9.81,"direction_deg":270}}]}]',
+        '[{"loads":[{"gravity":{"g":9.81}}]}]',
+        '[{"loads":[{"force":[1,0],"at":[400,1]}]}]',
+        '[{"loads":[{"force":[1,0]}]}]',
+        '[{"loads":[{"wrench":[1e308,0,0]},{"wrench":[1e308,0,0]}]}]',
+        '[{"loads":[{"wrench":[1,0,0],"gravity":{"g":1,"direction_deg":0}}]}]',
+        '[{"loads":[]}]',
+        '[]',
+        '{}',
+        '[{"loads":[' + ','.join(['{"wrench":[0,-1,0]}'] * 101) + ']}]',
+        '[' + ','.join(['{"loads":[{"wrench":[0,-1,0]}]}'] * 1001) + ']',
+    ]
+    for k, cases in enumerate(texts):
+        one = '{"jsonrpc":"2.0","id":%d,"method":"force.range","params":{"fixture":"%s",' \
+              '"push":%s,"cases":%s}}' % (k, fid, push, cases)
+        client.send_line(one)
+        alone = client.read_line()
+        client.send_line("[" + one + "]")
+        member = client.read_line()
+        assert member == b"[" + alone + b"]", (cases[:200], alone[:300], member[:300])
+        answer = json.loads(alone)
+        if k < 4:
+            assert "result" in answer, (cases, answer)
+        else:
+            assert "result" in answer or \
+                answer["error"]["data"]["field"].startswith("params.cases"), (cases, answer)

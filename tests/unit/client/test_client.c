@@ -574,6 +574,66 @@ static void push_force_reads_the_least_push(void **state)
     stop(&f);
 }
 
+static const char FORCE_SWEEP[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"curve\":[[0,null],[0.25,12.5],[0.5,7.25e1],"
+    "[1,null]],\"at\":[null,[4,1.5],[4,0.75],null],\"intervals\":[[0.125,0.625]],"
+    "\"exact\":false,\"resolution\":0.0078125},\"id\":%ID%}";
+
+/* friction.sweep's force: the request as the protocol spells it (defaults
+ * left out, the case's loads), each sample's mu and force with null as
+ * NAN, the points, the intervals, beyond the capacity only counted, and
+ * nothing allocated. */
+static void force_sweep_reads_the_curve(void **state)
+{
+    (void)state;
+    const char *const answers[] = {FORCE_SWEEP, FORCE_SWEEP, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    const wrc_load loads[] = {{.kind = WRC_LOAD_GRAVITY, .g = 9.81, .direction_deg = 270}};
+    wrc_force_sweep_request r = {.set = "both", .push_on = "all", .finger_radius = 0.5};
+    double curve[4][2], at[4][2];
+    wrc_force_curve sweep;
+    long before = atomic_load(&allocations);
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, at, 4, &sweep), WRC_OK);
+    assert_int_equal(atomic_load(&allocations) - before, 0);
+    assert_int_equal(sweep.sample_count, 4);
+    assert_true(curve[0][0] == 0 && isnan(curve[0][1]) && isnan(at[0][0]) && isnan(at[0][1]));
+    assert_true(curve[1][0] == 0.25 && curve[1][1] == 12.5 && at[1][0] == 4 && at[1][1] == 1.5);
+    assert_true(curve[2][0] == 0.5 && curve[2][1] == 72.5 && at[2][1] == 0.75);
+    assert_true(curve[3][0] == 1 && isnan(curve[3][1]));
+    assert_int_equal(sweep.interval_count, 1);
+    assert_true(sweep.intervals[0][0] == 0.125 && sweep.intervals[0][1] == 0.625);
+    assert_non_null(strstr(f.last_request,
+                           "\"method\":\"friction.sweep\",\"params\":{\"fixture\":\""
+                           "e0d7a1a0bd6e8bf16fe5845da1960ed9\","
+                           "\"force\":{\"set\":\"both\",\"finger_radius\":0.5,"
+                           "\"push_on\":\"all\"},\"cases\":[{\"loads\":["
+                           "{\"gravity\":{\"g\":9.8100000000000005,\"direction_deg\":270}}]}]}"));
+    /* A range and a ratio given; two samples kept of four, no points. */
+    r = (wrc_force_sweep_request){.set = "goal", .range = {0.25, 0.5}, .kinetic_ratio = 0.5};
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, NULL, 2, &sweep), WRC_OK);
+    assert_int_equal(sweep.sample_count, 4);
+    assert_true(curve[1][1] == 12.5);
+    assert_non_null(strstr(f.last_request, "\"range\":[0.25,0.5],\"kinetic_ratio\":0.5,"
+                                           "\"force\":{\"set\":\"goal\"},\"cases\""));
+    /* Refused before sending. */
+    r.set = "all";
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, at, 4, &sweep), WRC_EINVAL);
+    r = (wrc_force_sweep_request){.set = "both", .push_on = "inner"};
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, at, 4, &sweep), WRC_EINVAL);
+    r = (wrc_force_sweep_request){.set = "both", .finger_radius = -1};
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, at, 4, &sweep), WRC_EINVAL);
+    r = (wrc_force_sweep_request){.set = "both", .range = {0, NAN}};
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, at, 4, &sweep), WRC_EINVAL);
+    r = (wrc_force_sweep_request){.set = "both"};
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 0, &r, curve, at, 4, &sweep), WRC_EINVAL);
+    assert_int_equal(f.requests, 2);
+    wrc_close(c);
+    stop(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -588,6 +648,7 @@ int main(void)
         cmocka_unit_test(friction_sweep_reads_intervals_without_allocating),
         cmocka_unit_test(locating_reads_the_answer_without_allocating),
         cmocka_unit_test(push_force_reads_the_least_push),
+        cmocka_unit_test(force_sweep_reads_the_curve),
         cmocka_unit_test(force_range_reads_all_without_allocating),
     };
     return cmocka_run_group_tests_name("client", tests, NULL, NULL);
