@@ -36,6 +36,11 @@ static bool host_use(void *self, const char *id, wp_fixture_use *use, wp_host_fa
     return wd_cache_use(((wd_thread_host *)self)->cache, id, use, failure);
 }
 
+static bool host_use_written(void *self, const char *key, wp_fixture_use *use)
+{
+    return wd_cache_use_written(((wd_thread_host *)self)->cache, key, use);
+}
+
 static void host_release(void *self, wp_fixture_use *use)
 {
     wd_cache_release(((wd_thread_host *)self)->cache, use);
@@ -46,9 +51,17 @@ static bool host_delete(void *self, const char *id, wp_host_failure *failure)
     return wd_cache_delete(((wd_thread_host *)self)->cache, id, failure);
 }
 
+/* Work per wrench the light policy counts for a fixture on supports, in
+ * cones: each of its answers solves LPs, cone after cone, refining discs
+ * (wr_support.h), so no request on it is light. */
+#define SUPPORTS_COST 1000000
+
 static int host_use_ready(void *self, const char *id, wp_fixture_use *use)
 {
-    return wd_cache_use_ready(((wd_thread_host *)self)->cache, id, use);
+    int cones = wd_cache_use_ready(((wd_thread_host *)self)->cache, id, use);
+    if (cones >= 0 && use->fixture && use->fixture->supports)
+        return SUPPORTS_COST;
+    return cones;
 }
 
 static bool host_list(void *self, wp_fixture_listing *listing, wp_host_failure *failure)
@@ -121,6 +134,8 @@ static wr_status host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal,
     return WR_OK;
 }
 
+static wr_lp_env *host_lp_env(void *self) { return ((wd_thread_host *)self)->solver; }
+
 wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
 {
     wd_thread_host *thread = calloc(1, sizeof *thread);
@@ -140,12 +155,14 @@ wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
     thread->host = (wp_host){.self = thread,
                              .fixture_adopt = host_adopt,
                              .fixture_use = host_use,
+                             .fixture_use_written = host_use_written,
                              .fixture_use_ready = host_use_ready,
                              .fixture_release = host_release,
                              .fixture_delete = host_delete,
                              .fixture_list = host_list,
                              .state = host_state,
-                             .lp_sets = host_lp_sets};
+                             .lp_sets = host_lp_sets,
+                             .lp_env = host_lp_env};
     return thread;
 }
 

@@ -332,3 +332,15 @@ wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *
     }
     return WR_OK;
 }
+
+wr_status wr_lp_guarded(wr_lp_env *env, wr_status (*body)(void *context), void *context)
+{
+    if (setjmp(env->jump)) {
+        /* As wr_lp_member: every problem of this thread is invalid now. */
+        glp_free_env();
+        env->generation++;
+        configure_thread(env);
+        return WR_LP_FAILED;
+    }
+    return body(context);
+}

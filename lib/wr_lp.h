@@ -57,6 +57,14 @@ void wr_lp_set_free(wr_lp_set *set);
 wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *member,
                        wr_witness *witness);
 
+/* Run `body(context)` in the env's thread with GLPK's fatal errors caught:
+ * a body that builds its own problems (glp_create_prob) returns its own
+ * status; a fatal GLPK error inside it ends it at once, frees the thread's
+ * GLPK environment (every problem of the thread with it) and returns
+ * WR_LP_FAILED.  Memory the body allocated other than GLPK's must be
+ * reachable from `context`, for the caller to free either way. */
+wr_status wr_lp_guarded(wr_lp_env *env, wr_status (*body)(void *context), void *context);
+
 #ifdef __cplusplus
 }
 #endif

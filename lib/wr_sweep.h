@@ -30,7 +30,11 @@
  * is bisected to the last bit), and kept when the wrench there lies on the
  * face itself in a plane that supports its cone.  Between two consecutive
  * roots nothing changes, so the answer is decided at the middle of each
- * piece: no interval can hide between samples, however narrow.  G_goal
+ * piece: no interval can hide between samples, however narrow.  Each
+ * answer at one mu is the analysis of the fixture at that mu, made from
+ * what the sweeper built once (wr_analysis_frame, wr_internal.h: the plan,
+ * the modes, every cone's acceleration generators, the cones with no
+ * friction edge), bit for bit the analysis made from scratch.  G_goal
  * needs no special case (it shrinks as mu grows, so its intervals start at
  * the bottom of the range); G_strong's, which do not, come out the same
  * way. */

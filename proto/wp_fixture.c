@@ -8,7 +8,7 @@
 #include <string.h>
 
 static const char *const FIXTURE_FIELDS[] = {"name", "body", "friction", "fixels", "units",
-                                             NULL};
+                                             "tolerance", "supports", NULL};
 static const char *const UNITS_FIELDS[] = {"length", "force", NULL};
 
 /* The units a fixture may name (docs/PROTOCOL.md, "Units"), each with its
@@ -57,6 +57,39 @@ static bool read_units(const cJSON *json, const char *path, wr_units *out, wp_er
     out->given = true;
     return true;
 }
+
+/* The fixture's geometric tolerance (docs/PROTOCOL.md, "Tolerance"):
+ * {"position": T, "angle"?: A}; absent, out->given stays false.  Its
+ * values are checked against the fixture by apply_tolerance. */
+static const char *const TOLERANCE_FIELDS[] = {"position", "angle", NULL};
+
+static bool read_tolerance(const cJSON *json, const char *path, wr_tolerance *out,
+                           wp_error *error)
+{
+    if (!json)
+        return true;
+    out->angle = 0;
+    if (!wp_check_object(json, path, TOLERANCE_FIELDS, error) ||
+        !wp_member_number(json, path, "position", true, &out->position, NULL, error) ||
+        !wp_member_number(json, path, "angle", false, &out->angle, NULL, error))
+        return false;
+    out->given = true;
+    return true;
+}
+
+/* wr_fixture_set_tolerance, its refusal at `path`.tolerance.x. */
+static bool apply_tolerance(wr_fixture *fixture, const wr_tolerance *tolerance,
+                            const char *path, wp_error *error)
+{
+    wr_error invalid;
+    if (wr_fixture_set_tolerance(fixture, tolerance, &invalid) == WR_OK)
+        return true;
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, invalid.field);
+    wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid.reason);
+    return false;
+}
+
 
 /* The name of the unit of `table` of size `si` (one read_unit gave). */
 static const char *unit_text(const unit_name *table, double si)
@@ -346,6 +379,75 @@ static bool read_fixels(const cJSON *json, const char *path, wr_fixel_spec **fix
     return true;
 }
 
+/* ---- supports (a base plate under the part) ------------------------------ */
+
+static const char *const SUPPORTS_FIELDS[] = {"points", "friction", "g", "down", NULL};
+static const char *const DOWN_FIELDS[] = {"at", "force", NULL};
+
+/* "supports" at `path` (present), for the validated `fixture`: read, then
+ * checked and kept by wr_fixture_set_supports, its faults at path.field. */
+static bool read_supports(const cJSON *json, const char *path, wr_fixture *fixture,
+                          wp_error *error)
+{
+    if (!wp_check_object(json, path, SUPPORTS_FIELDS, error))
+        return false;
+    double points[WR_MAX_SUPPORTS][2];
+    wr_down_spec down[WR_MAX_DOWN];
+    wr_support_spec spec;
+    memset(&spec, 0, sizeof spec);
+    char field[WP_FIELD_MAX], item_field[WP_FIELD_MAX];
+    const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "points");
+    wp_path_key(field, path, "points");
+    if (!list) {
+        wp_error_set(error, WP_INVALID_PARAMS, field, "required: the supports' points [[x, y], ...]");
+        return false;
+    }
+    if (!read_array(list, field, "points", WR_MAX_SUPPORTS, &spec.point_count, error))
+        return false;
+    size_t i = 0;
+    for (const cJSON *item = list->child; item; item = item->next, i++) {
+        wp_path_index(item_field, field, i);
+        if (!wp_vector2(item, item_field, points[i], error))
+            return false;
+    }
+    spec.points = (const double (*)[2])points;
+    wp_path_key(field, path, "friction");
+    const cJSON *friction = cJSON_GetObjectItemCaseSensitive(json, "friction");
+    if (!friction) {
+        wp_error_set(error, WP_INVALID_PARAMS, field,
+                     "required: the supports' coefficient of friction mu_B");
+        return false;
+    }
+    if (!wp_friction_read(friction, field, &spec.friction, error))
+        return false;
+    if (!wp_member_number(json, path, "g", true, &spec.g, NULL, error))
+        return false;
+    list = cJSON_GetObjectItemCaseSensitive(json, "down");
+    if (list) {
+        wp_path_key(field, path, "down");
+        if (!read_array(list, field, "down clamps", WR_MAX_DOWN, &spec.down_count, error))
+            return false;
+        i = 0;
+        for (const cJSON *item = list->child; item; item = item->next, i++) {
+            wp_path_index(item_field, field, i);
+            if (!wp_check_object(item, item_field, DOWN_FIELDS, error) ||
+                !wp_member_vector2(item, item_field, "at", true, down[i].at, NULL, error) ||
+                !wp_member_number(item, item_field, "force", true, &down[i].force, NULL, error))
+                return false;
+        }
+        spec.down = down;
+    }
+    wr_error invalid;
+    wr_status status = wr_fixture_set_supports(fixture, &spec, &invalid);
+    if (status != WR_OK) {
+        wp_path_key(field, path, invalid.field);
+        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
+                     status == WR_INVALID ? field : path, "%s", invalid.reason);
+        return false;
+    }
+    return true;
+}
+
 static void hex_id(const char *canonical, char id[WP_ID_LENGTH + 1])
 {
     wp_sha256 hash;
@@ -464,6 +566,57 @@ static cJSON *explicit_fixel(const wr_fixel *fixel)
     return item;
 }
 
+/* {"position": T, "angle": A}, the angle only when not 0 (so that a
+ * tolerance written with "angle": 0 and one without share an id). */
+static bool explicit_tolerance(cJSON *root, const wr_tolerance *t)
+{
+    if (!t->given)
+        return true;
+    cJSON *item = cJSON_CreateObject();
+    return add(root, "tolerance", item) &&
+           add(item, "position", cJSON_CreateNumber(t->position)) &&
+           (t->angle == 0 || add(item, "angle", cJSON_CreateNumber(t->angle)));
+}
+
+/* The supports' explicit form: points, friction {static, kinetic}, g, and
+ * the down clamps when there are any (forces as given). */
+static cJSON *explicit_supports(const wr_supports *s)
+{
+    cJSON *root = cJSON_CreateObject(), *points = cJSON_CreateArray();
+    cJSON *friction = cJSON_CreateObject();
+    bool ok = root && points && friction && add(root, "points", points);
+    if (!ok)
+        cJSON_Delete(points);
+    if (ok && !add(root, "friction", friction))
+        ok = false;
+    else if (!ok)
+        cJSON_Delete(friction);
+    for (int i = 0; ok && i < s->count; i++) {
+        cJSON *point = vector2(s->points[i]);
+        ok = point != NULL;
+        if (ok)
+            cJSON_AddItemToArray(points, point);
+    }
+    ok = ok && add(friction, "static", coefficient(s->mu_static_min, s->mu_static)) &&
+         add(friction, "kinetic", coefficient(s->mu_kinetic_min, s->mu_kinetic)) &&
+         add(root, "g", cJSON_CreateNumber(s->g));
+    if (ok && s->down_count) {
+        cJSON *down = cJSON_CreateArray();
+        ok = add(root, "down", down);
+        for (int i = 0; ok && i < s->down_count; i++) {
+            cJSON *item = cJSON_CreateObject();
+            ok = item && (cJSON_AddItemToArray(down, item), true) &&
+                 add(item, "at", vector2(s->down[i].at)) &&
+                 add(item, "force", cJSON_CreateNumber(s->down[i].force));
+        }
+    }
+    if (!ok) {
+        cJSON_Delete(root);
+        return NULL;
+    }
+    return root;
+}
+
 /* The explicit form without the name, as a JSON tree; NULL out of memory. */
 static cJSON *explicit_fixture(const wr_fixture *f)
 {
@@ -487,6 +640,9 @@ static cJSON *explicit_fixture(const wr_fixture *f)
          add(body, "inertia", cJSON_CreateNumber(f->inertia)) &&
          add(body, "com", vector2(f->com)) &&
          (f->shape == WR_SHAPE_NONE || add(body, "shape", explicit_shape(f)));
+    ok = ok && explicit_tolerance(root, &f->tolerance);
+    if (ok && f->supports)
+        ok = add(root, "supports", explicit_supports(f->supports));
     for (int i = 0; ok && i < f->fixel_count; i++) {
         cJSON *fixel = explicit_fixel(&f->fixels[i]);
         ok = fixel != NULL;
@@ -531,6 +687,16 @@ bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1])
     return true;
 }
 
+bool wp_fixture_written_key(const cJSON *json, char key[WP_ID_LENGTH + 1])
+{
+    unsigned char digest[32];
+    if (!wp_canonical_digest(json, digest))
+        return false;
+    for (int i = 0; i < WP_ID_LENGTH / 2; i++)
+        snprintf(key + 2 * i, 3, "%02x", digest[i]);
+    return true;
+}
+
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);
@@ -569,6 +735,12 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
         ok = read_units(cJSON_GetObjectItemCaseSensitive(json, "units"), field, &spec.units,
                         error);
     }
+    wr_tolerance tolerance = {false, 0, 0};
+    if (ok) {
+        wp_path_key(field, path, "tolerance");
+        ok = read_tolerance(cJSON_GetObjectItemCaseSensitive(json, "tolerance"), field,
+                            &tolerance, error);
+    }
     if (ok) {
         const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "fixels");
         wp_path_key(field, path, "fixels");
@@ -589,6 +761,30 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
             wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
                          status == WR_INVALID ? field : path, "%s", invalid.reason);
             ok = false;
+        }
+    }
+    if (ok && !apply_tolerance(out->fixture, &tolerance, path, error)) {
+        wr_fixture_free(out->fixture);
+        out->fixture = NULL;
+        ok = false;
+    }
+    const cJSON *supports = cJSON_GetObjectItemCaseSensitive(json, "supports");
+    if (ok && supports && out->fixture->tolerance.given) {
+        /* The robust answers (wr_tolerance.h) are made over the cones of a
+         * floating part; a part on supports answers by its discs. */
+        wp_path_key(field, path, "tolerance");
+        wp_error_set(error, WP_INVALID_PARAMS, field,
+                     "a fixture on supports takes no tolerance: give one or the other");
+        wr_fixture_free(out->fixture);
+        out->fixture = NULL;
+        ok = false;
+    }
+    if (ok && supports) {
+        wp_path_key(field, path, "supports");
+        ok = read_supports(supports, field, out->fixture, error);
+        if (!ok) {
+            wr_fixture_free(out->fixture);
+            out->fixture = NULL;
         }
     }
     shape_storage_free(&storage);
@@ -618,6 +814,12 @@ bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_e
         wp_error_set(error, WP_INVALID_PARAMS, field, "required");
     else
         ok = read_body(json, field, &spec, &storage, error);
+    if (ok) {
+        /* Its units, as a fixture's: the loads' forces and G are in them. */
+        wp_path_key(field, path, "units");
+        ok = read_units(cJSON_GetObjectItemCaseSensitive(params, "units"), field, &spec.units,
+                        error);
+    }
     if (ok) {
         wr_error invalid;
         wr_status status = wr_fixture_body_new(&spec, body, &invalid);

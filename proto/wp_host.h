@@ -74,6 +74,11 @@ typedef struct wp_host {
      * the doc's contents whatever the outcome. */
     bool (*fixture_adopt)(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                           wp_host_failure *failure);
+    /* Hold the fixture adopted from an inline object whose written key
+     * (wp_fixture_written_key, doc->written at the adoption) is `key`, if
+     * it is still kept: true, held, and the object need not be read again.
+     * False: not kept (or out of memory), nothing held.  May be NULL. */
+    bool (*fixture_use_written)(void *self, const char *key, wp_fixture_use *use);
     /* Hold the stored fixture `id`; WP_HOST_NO_FIXTURE when there is none. */
     bool (*fixture_use)(void *self, const char *id, wp_fixture_use *use,
                         wp_host_failure *failure);
@@ -95,6 +100,9 @@ typedef struct wp_host {
      * the host to the request's own stop before each piece of work, so that
      * work for a client that hung up ends.  NULL: never stops. */
     const wr_stop *stop;
+    /* This thread's GLPK environment, for LPs a method builds itself (a
+     * fixture on supports: wr_support.h).  Never freed by the caller. */
+    wr_lp_env *(*lp_env)(void *self);
 } wp_host;
 
 /* The error of a host function that failed, the one place host statuses

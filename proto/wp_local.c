@@ -109,6 +109,8 @@ static wr_status local_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal
     return WR_OK;
 }
 
+static wr_lp_env *local_lp_env(void *self) { return ((wp_local *)self)->solver; }
+
 wp_local *wp_local_new(void)
 {
     wp_local *local = calloc(1, sizeof *local);
@@ -125,7 +127,8 @@ wp_local *wp_local_new(void)
                             .fixture_delete = local_delete,
                             .fixture_list = local_list,
                             .state = local_state,
-                            .lp_sets = local_lp_sets};
+                            .lp_sets = local_lp_sets,
+                            .lp_env = local_lp_env};
     return local;
 }
 

@@ -21,14 +21,14 @@ static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spa
                                      "objective", "top", "finger_radius", "finger_friction",
                                      "progress", "shard", "push_on", "corner_clearance",
                                      "pin_diameter", "cases", "collapse_symmetric", "deadline_s",
-                                     "tolerance", "features", NULL};
+                                     "tolerance", "features", "units", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const LOCATING[] = {"fixture", "tolerance", "features", "sigma_ratio", NULL};
 static const char *const LOCATING_REQUIRED[] = {"fixture", "tolerance", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};
 static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
-static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples",
+static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples", "push_on",
                                          "deadline_s", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", "force", "cases", "deadline_s", NULL};

@@ -233,8 +233,38 @@ static void print_row(const char *name, const char *set_name, const cJSON *set)
     printf("%-16s  %-6s  %-14s  %s\n", name, set_name, least_text, text);
 }
 
+/* --svg: the part with its supports, the push and the least force over
+ * all cases (goal's, else the first set's). */
+static bool draw_force(const wc_run *run, const cJSON *result, FILE *out,
+                       const wr_fixture *geometry, const char *name)
+{
+    const cJSON *all = cJSON_GetObjectItem(result, "all");
+    const cJSON *set = cJSON_HasObjectItem(all, "goal") ? cJSON_GetObjectItem(all, "goal")
+                                                        : all->child;
+    const cJSON *least = cJSON_GetObjectItem(set, "least");
+    double push[3], *drawn = NULL;
+    if (run->force_wrench) {
+        for (int k = 0; k < 3; k++)
+            push[k] = cJSON_GetArrayItem(run->force_wrench, k)->valuedouble;
+        drawn = push;
+    } else if (cJSON_HasObjectItem(run->force_push, "direction")) {
+        const cJSON *at = cJSON_GetObjectItem(run->force_push, "at");
+        const cJSON *d = cJSON_GetObjectItem(run->force_push, "direction");
+        double p[2] = {cJSON_GetArrayItem(at, 0)->valuedouble, cJSON_GetArrayItem(at, 1)->valuedouble};
+        double v[2] = {cJSON_GetArrayItem(d, 0)->valuedouble, cJSON_GetArrayItem(d, 1)->valuedouble};
+        wr_fixture_force_wrench(geometry, v, p, push);
+        drawn = push;
+    }
+    wc_svg_force(out, geometry, name, drawn,
+                 cJSON_IsNumber(least) ? least->valuedouble : INFINITY, wc_force_unit(geometry));
+    return true;
+}
+
 int wc_force_answer(wc_run *run, const cJSON *result)
 {
+    int pictured = wc_picture(run, result, draw_force);
+    if (pictured >= 0)
+        return pictured;
     static const char *const sets[] = {"goal", "strong", "both"};
     const cJSON *all = cJSON_GetObjectItem(result, "all");
     if (!run->o->json) {
@@ -275,11 +305,20 @@ int wc_push_force_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "set", run->set);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
-    return -1;
+    return wc_push_on(run,
+                      cJSON_IsString(run->fixture) ? run->fixture
+                                                   : cJSON_GetObjectItem(run->fixture, "body"),
+                      params);
 }
 
-/* The force unit of a fixture's geometry, by its factor. */
-static const char *geometry_unit(const wr_fixture *f)
+const char *wc_named_force_unit(const cJSON *fixture)
+{
+    const char *unit = cJSON_GetStringValue(
+        cJSON_GetObjectItem(cJSON_GetObjectItem(fixture, "units"), "force"));
+    return unit ? unit : "(model units)";
+}
+
+const char *wc_force_unit(const wr_fixture *f)
 {
     if (!f->units.given)
         return "(model units)";
@@ -339,7 +378,7 @@ static bool draw_push_force(const wc_run *run, const cJSON *result, FILE *out,
         force = cJSON_GetNumberValue(cJSON_GetObjectItem(least, "force"));
     }
     wc_svg_push_force(out, geometry, name, run->set ? run->set : "both", bands, count, at,
-                      direction, force, geometry_unit(geometry));
+                      direction, force, wc_force_unit(geometry));
     free(bands);
     free(values);
     return true;

@@ -304,11 +304,50 @@ static void pin(FILE *out, const frame *f, const wr_fixture *fx, int i, double d
             page_x(f, c[0]), page_y(f, c[1]) + 5, i + 1);
 }
 
+/* A fixture on supports (wr_support.h): each support a small square, and
+ * its friction disc |f| <= mu_s N_i drawn about it, dashed, to a scale
+ * where the whole capacity mu_s W would be 0.3 of the part's size (the
+ * largest N_i over the admissible distributions); the normal force beside
+ * it in the fixture's force unit. */
+static void supports(FILE *out, const frame *f, const wr_fixture *fx)
+{
+    const wr_supports *s = fx->supports;
+    if (!s)
+        return;
+    double half = 4, reach = 0.3 * f->size / (s->total > 0 ? s->total : 1);
+    for (int i = 0; i < s->count; i++) {
+        double x = page_x(f, s->points[i][0]), y = page_y(f, s->points[i][1]);
+        if (s->mu_static > 0 && s->normal_max[i] > 0)
+            fprintf(out,
+                    "<circle class=\"friction-disc\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" "
+                    "fill=\"#2e86c1\" fill-opacity=\"0.12\" stroke=\"#2e86c1\" "
+                    "stroke-dasharray=\"4 3\"/>\n",
+                    x, y, reach * s->normal_max[i] * f->scale);
+        fprintf(out,
+                "<rect class=\"support\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" "
+                "fill=\"#2e86c1\"/>\n",
+                x - half, y - half, 2 * half, 2 * half);
+        double n = s->normal_min[i] == s->normal_max[i] ? s->normal_max[i] : -1;
+        double unit = wr_fixture_force_factor(fx);
+        if (n >= 0)
+            fprintf(out,
+                    "<text class=\"support-load\" x=\"%.2f\" y=\"%.2f\" font-size=\"11\" "
+                    "fill=\"#1b4f72\">N=%.4g</text>\n",
+                    x + 7, y - 6, n / unit);
+        else
+            fprintf(out,
+                    "<text class=\"support-load\" x=\"%.2f\" y=\"%.2f\" font-size=\"11\" "
+                    "fill=\"#1b4f72\">N=%.4g..%.4g</text>\n",
+                    x + 7, y - 6, s->normal_min[i] / unit, s->normal_max[i] / unit);
+    }
+}
+
 /* Each fixel: a dark wedge outside the part, its apex at the contact, and
  * its friction cone opening into the part; on a hole's boundary, a pin of
  * pin_diameters[i] (NULL or < 0: not known). */
 static void fixels(FILE *out, const frame *f, const wr_fixture *fx, const double *pin_diameters)
 {
+    supports(out, f, fx);
     double wedge = 0.06 * f->size, cone = 0.16 * f->size;
     for (int i = 0; i < fx->fixel_count; i++) {
         const wr_fixel *x = &fx->fixels[i];
@@ -668,6 +707,37 @@ void wc_svg_margin(FILE *out, const wr_fixture *fx, const char *name, const doub
     end(out);
 }
 
+void wc_svg_force(FILE *out, const wr_fixture *fx, const char *name, const double *push,
+                  double least, const char *unit)
+{
+    frame f = frame_for(fx, 0.5, 3);
+    char text[256], mu[96];
+    snprintf(text, sizeof text, "%s: the least push force", name);
+    begin(out, &f, text, fx);
+    outline(out, &f, fx);
+    fixels(out, &f, fx, NULL);
+    centre_of_mass(out, &f, fx);
+    if (push)
+        wrench_arrow(out, &f, fx, push, "1f4e9c", "");
+    friction_text(fx, mu, sizeof mu);
+    snprintf(text, sizeof text, "%s, %s: the push (blue) on its line of action", name, mu);
+    legend(out, 0, text);
+    if (isfinite(least))
+        snprintf(text, sizeof text, "the least force that seats the part (goal): %.6g %s", least,
+                 unit);
+    else
+        snprintf(text, sizeof text, "no force of this push seats the part");
+    legend(out, 1, text);
+    if (fx->supports) {
+        snprintf(text, sizeof text,
+                 "on %d supports (blue squares), mu_B %.4g: dashed, each one's friction disc "
+                 "|f| <= mu_B N_i to scale",
+                 fx->supports->count, fx->supports->mu_static);
+        legend(out, 2, text);
+    }
+    end(out);
+}
+
 /* ---- designs side by side ------------------------------------------------------- */
 
 #define PANEL_WIDTH 420.0
@@ -862,14 +932,14 @@ static void intervals_text(const wc_interval *intervals, int count, char *out, s
 
 void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
 {
-    bool push = strcmp(p->what, "push") == 0;
+    bool push = strcmp(p->what, "push") == 0, force = strcmp(p->what, "force") == 0;
     int lines = 4;
     frame f = {0};
     f.top = 20 + 18 * lines;
     f.height = f.top + 20 + PLOT_HEIGHT + PLOT_BOTTOM;
     char text[512], spans[256];
     snprintf(text, sizeof text, "%s: friction sweep of the %s of G_%s", p->name,
-             push ? "push region" : "gravity arcs", p->set);
+             force ? "least push force" : push ? "push region" : "gravity arcs", p->set);
     begin(out, &f, text, p->fixture);
     double top = f.top + 20, bottom = top + PLOT_HEIGHT;
     axis x = {p->range[0], p->range[1], PLOT_LEFT, WIDTH - PLOT_RIGHT};
@@ -900,19 +970,26 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
                 x.from - 5, py, x.from, py, x.from - 8, py + 4, k * y_step);
     }
     char axis[64] = "push region length";
-    if (length_unit(p->fixture))
+    if (force)
+        snprintf(axis, sizeof axis, "least push force (%s)", p->force_unit);
+    else if (length_unit(p->fixture))
         snprintf(axis, sizeof axis, "push region length (%s)", length_unit(p->fixture));
     fprintf(out,
             "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" "
             "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n",
             22.0, (top + bottom) / 2, 22.0, (top + bottom) / 2,
-            push ? axis : "gravity arcs (\xc2\xb0)");
+            push || force ? axis : "gravity arcs (\xc2\xb0)");
     mu_axis(out, &x, bottom, p->kinetic_ratio);
-    /* The curve. */
-    if (p->curve_count > 0) {
+    /* The curve: a polyline per run of points with a value (a force
+     * sweep's is none where no push does the job). */
+    for (int i = 0; i < p->curve_count;) {
+        if (isnan(p->curve[i][1])) {
+            i++;
+            continue;
+        }
         fputs("<polyline class=\"curve\" points=\"", out);
-        for (int i = 0; i < p->curve_count; i++)
-            fprintf(out, "%s%.2f,%.2f", i ? " " : "", on_axis(&x, p->curve[i][0]),
+        for (int first = i; i < p->curve_count && !isnan(p->curve[i][1]); i++)
+            fprintf(out, "%s%.2f,%.2f", i > first ? " " : "", on_axis(&x, p->curve[i][0]),
                     on_axis(&y, p->curve[i][1]));
         fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"2.5\" "
               "stroke-linejoin=\"round\"/>\n",
@@ -932,13 +1009,21 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
                 px + (right ? -6 : 6), top + 16, right ? "end" : "start", p->critical);
     }
     snprintf(text, sizeof text, "%s, set %s: %s against the friction \xce\xbc", p->name, p->set,
-             push ? "the push region's length" : "the gravity arcs, in degrees,");
+             force  ? "the least push force under every case (exact at each \xce\xbc drawn)"
+             : push ? "the push region's length"
+                    : "the gravity arcs, in degrees,");
     legend(out, 0, text);
     intervals_text(p->intervals, p->interval_count, spans, sizeof spans);
-    snprintf(text, sizeof text, "shaded: \xce\xbc where the %s is not empty: %s",
-             push ? "push region" : "gravity sweep", spans);
+    if (force)
+        snprintf(text, sizeof text, "shaded: \xce\xbc where the push alone has a region (a "
+                 "large enough push does it whatever the loads): %s", spans);
+    else
+        snprintf(text, sizeof text, "shaded: \xce\xbc where the %s is not empty: %s",
+                 push ? "push region" : "gravity sweep", spans);
     legend(out, 1, text);
-    if (!isfinite(p->critical))
+    if (force)
+        snprintf(text, sizeof text, "no line: no push does the job under every case");
+    else if (!isfinite(p->critical))
         snprintf(text, sizeof text,
                  "not empty at the top of the range, \xce\xbc = %g: no critical \xce\xbc",
                  p->range[1]);

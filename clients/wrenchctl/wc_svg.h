@@ -52,6 +52,13 @@ void wc_svg_gravity(FILE *out, const wr_fixture *fixture, const char *name, cons
 void wc_svg_margin(FILE *out, const wr_fixture *fixture, const char *name, const double bias[3],
                    double margin, const double worst_direction[3], const char *blocking);
 
+/* The force command's picture: the part, its fixels and supports (each
+ * support's friction disc to scale), the push's wrench `push` (NULL: none
+ * drawn) and the least force that seats the part (NAN or INFINITY: none),
+ * in `unit`. */
+void wc_svg_force(FILE *out, const wr_fixture *fixture, const char *name, const double *push,
+                  double least, const char *unit);
+
 /* An interval [low, high] of friction coefficients. */
 typedef struct wc_interval {
     double low, high;
@@ -61,7 +68,9 @@ typedef struct wc_interval {
  * mu_s = mu and mu_k = kinetic_ratio * mu at every fixel. */
 typedef struct wc_sweep_plot {
     const char *name;      /* the fixture's */
-    const char *what;      /* "push" (length, the fixture's units) or "gravity" (degrees) */
+    const char *what;      /* "push" (length, the fixture's units), "gravity" (degrees) or
+                              "force" (the least push force; NAN where none does it) */
+    const char *force_unit; /* with "force": the unit of the forces */
     const char *set;
     double range[2];       /* of mu, the plot's horizontal axis */
     double kinetic_ratio;

@@ -40,4 +40,17 @@ extern const wp_streamer wp_design_stream;
 cJSON *wp_handle_force_range(wp_call *call);
 cJSON *wp_handle_push_force(wp_call *call);
 
+/* supports.c: a fixture on a base plate (wr_support.h) */
+/* One wrench's answer by the supports' seating and holding (no margin; a
+ * motion's witness for strong): as wr_classify's, with the host's GLPK
+ * environment.  WR_LP_FAILED without one. */
+wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
+                             const double wrench[3], wr_set set, double tolerance,
+                             wr_answer *answer);
+/* A question about directions alone cannot be answered for a fixture on
+ * supports: true (the call's error set at `field`, naming `what` to give
+ * instead) when the fixture has supports, else false. */
+bool wp_supports_refuse(wp_call *call, const wr_fixture *fixture, const char *field,
+                        const char *what);
+
 #endif

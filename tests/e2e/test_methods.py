@@ -697,6 +697,8 @@ def test_examples_loaded(harness):
             f = json.load(fh)
         fid = c.result("fixture.put", {"fixture": f})["id"]
         assert fid in [x["id"] for x in listed]
+        if "supports" in f:
+            continue  # the floating model does not apply: test_supports.py
         if f["body"].get("shape", {}).get("type") == "outline":
             # model.py knows no outlines; the explicit form gives what it
             # needs (com, inertia, every normal) without the shape, whose

@@ -514,8 +514,11 @@ def test_get_put_gives_the_id_back_and_the_id_is_its_hash(client):
         got = client.result("fixture.get", {"id": fid})
         # units: only a fixture that names them has them (docs/PROTOCOL.md,
         # "Units"), the same as it was given
-        assert set(got) <= {"name", "body", "fixels", "units"} and "friction" not in got, got
+        assert set(got) <= {"name", "body", "fixels", "units", "supports"}, got
+        assert "friction" not in got, got
         assert got.get("units") == f.get("units"), (f.get("units"), got)
+        # supports: only a fixture on a base plate has them
+        assert ("supports" in got) == ("supports" in f), got
         assert {"mass", "inertia", "com"} <= set(got["body"]), got
         for fixel in got["fixels"]:
             assert set(fixel) == {"at", "normal", "friction"}, got

@@ -227,6 +227,31 @@ static inline wr_fixture *test_disc_corner(double mu)
     return test_fixture_new(&spec, NULL);
 }
 
+/* The 3-2-1 plate of docs/MODEL.md section 7.2: 4 by 2, m = 2, fixels
+ * at (1, 0), (3, 0) and (0, 1), mu_s 0.3, mu_k 0.25. */
+static inline wr_fixture *test_plate_321(void)
+{
+    static const double vertices[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
+    wr_fixel_spec fixels[3];
+    memset(fixels, 0, sizeof fixels);
+    fixels[0].at[0] = 1;
+    fixels[1].at[0] = 3;
+    fixels[2].at[1] = 1;
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = 2;
+    spec.shape = WR_SHAPE_POLYGON;
+    spec.vertex_count = 4;
+    spec.vertices = vertices;
+    spec.friction.given = true;
+    spec.friction.static_mu = 0.3;
+    spec.friction.kinetic_given = true;
+    spec.friction.kinetic_mu = 0.25;
+    spec.fixel_count = 3;
+    spec.fixels = fixels;
+    return test_fixture_new(&spec, NULL);
+}
+
 /* Does (q, c) of a witness satisfy the closure of the constraint's rows
  * (docs/MODEL.md section 2's table) and make the wrench g by Newton-Euler, within
  * `relative` of |g|?  NULL, or which row fails.  Written from docs/MODEL.md, not

@@ -1,0 +1,1533 @@
+/* wr_support.c -- friction at the supports under a part on a base plate
+ * (wr_support.h; docs/MODEL.md section 11). */
+#include "wr_support.h"
+
+#include "wr_internal.h"
+#include "wr_outline.h"
+
+#include <glpk.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- statics out of the plane ------------------------------------------ */
+
+static bool inside_part(const wr_fixture *f, const double p[2])
+{
+    if (f->shape == WR_SHAPE_CIRCLE)
+        return hypot(p[0] - f->center[0], p[1] - f->center[1]) <= f->radius;
+    if (f->outline)
+        return wr_outline_contains(f->outline, p, 0.0) ||
+               wr_outline_distance(f->outline, p) <= 1e-12 * f->size;
+    return true; /* no shape: nothing to be outside of */
+}
+
+static double segment_distance(const double a[2], const double b[2], const double p[2])
+{
+    double d[2] = {b[0] - a[0], b[1] - a[1]};
+    double len2 = d[0] * d[0] + d[1] * d[1];
+    double t = len2 > 0 ? ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return hypot(a[0] + t * d[0] - p[0], a[1] + t * d[1] - p[1]);
+}
+
+/* Barycentric coordinates of c in triangle (a, b, d); false when the three
+ * are (nearly) on a line. */
+static bool barycentric(const double a[2], const double b[2], const double d[2], const double c[2],
+                        double out[3])
+{
+    double det = (b[0] - a[0]) * (d[1] - a[1]) - (d[0] - a[0]) * (b[1] - a[1]);
+    double scale = fmax(fabs(b[0] - a[0]) + fabs(b[1] - a[1]), fabs(d[0] - a[0]) + fabs(d[1] - a[1]));
+    if (!(fabs(det) > 1e-12 * scale * scale))
+        return false;
+    double u = ((c[0] - a[0]) * (d[1] - a[1]) - (d[0] - a[0]) * (c[1] - a[1])) / det;
+    double v = ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / det;
+    out[0] = 1 - u - v;
+    out[1] = u;
+    out[2] = v;
+    return true;
+}
+
+void wr_supports_free(wr_supports *supports)
+{
+    if (!supports)
+        return;
+    free(supports->distributions);
+    free(supports);
+}
+
+/* The vertices of P: a vertex of {N >= 0, A N = b} with three rows has at
+ * most three non-zero entries, on points whose triangle holds c; every
+ * such triangle (of points not on a line) gives one, and a c on an edge or
+ * a point is reached through any triangle having it. */
+static wr_status distribution_vertices(wr_supports *s)
+{
+    int n = s->count;
+    int capacity = n * (n - 1) * (n - 2) / 6;
+    s->distributions = calloc((size_t)capacity + 1, sizeof s->distributions[0]);
+    if (!s->distributions)
+        return WR_NO_MEMORY;
+    s->distribution_count = 0;
+    if (s->total == 0) {
+        s->distribution_count = 1;
+        return WR_OK;
+    }
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++)
+            for (int k = j + 1; k < n; k++) {
+                double w[3];
+                if (!barycentric(s->points[i], s->points[j], s->points[k], s->pressure, w))
+                    continue;
+                if (w[0] < -1e-12 || w[1] < -1e-12 || w[2] < -1e-12)
+                    continue;
+                double row[WR_MAX_SUPPORTS] = {0};
+                row[i] = fmax(w[0], 0) * s->total;
+                row[j] = fmax(w[1], 0) * s->total;
+                row[k] = fmax(w[2], 0) * s->total;
+                bool seen = false;
+                for (int v = 0; v < s->distribution_count && !seen; v++) {
+                    double d = 0;
+                    for (int m = 0; m < n; m++)
+                        d = fmax(d, fabs(s->distributions[v][m] - row[m]));
+                    seen = d <= 1e-12 * s->total;
+                }
+                if (!seen)
+                    memcpy(s->distributions[s->distribution_count++], row, sizeof row);
+            }
+    return WR_OK;
+}
+
+wr_status wr_supports_new(const wr_fixture *fixture, const wr_support_spec *spec,
+                          wr_supports **out, wr_error *error)
+{
+    *out = NULL;
+    char field[64];
+    if (spec->point_count < 3 || spec->point_count > WR_MAX_SUPPORTS) {
+        wr_error_set(error, "points",
+                     spec->point_count < 3 ? "at least 3 supports are needed to rest on"
+                                           : "more supports than libwrench takes (16)");
+        return WR_INVALID;
+    }
+    if (wr_friction_check(&spec->friction, "friction", error) != WR_OK)
+        return WR_INVALID;
+    if (!isfinite(spec->g) || spec->g < 0) {
+        wr_error_set(error, "g", "must be a finite number >= 0 (gravity into the plate)");
+        return WR_INVALID;
+    }
+    if (spec->down_count > WR_MAX_DOWN) {
+        wr_error_set(error, "down", "more down clamps than libwrench takes (16)");
+        return WR_INVALID;
+    }
+    wr_supports *s = calloc(1, sizeof *s);
+    if (!s) {
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    s->count = (int)spec->point_count;
+    for (int i = 0; i < s->count; i++) {
+        s->points[i][0] = spec->points[i][0] + 0.0;
+        s->points[i][1] = spec->points[i][1] + 0.0;
+        snprintf(field, sizeof field, "points[%d]", i);
+        if (!isfinite(s->points[i][0]) || !isfinite(s->points[i][1])) {
+            wr_error_set(error, field, "must be finite");
+            goto invalid;
+        }
+        if (!inside_part(fixture, s->points[i])) {
+            wr_error_set(error, field, "is outside the part: a support must lie under it");
+            goto invalid;
+        }
+    }
+    const wr_friction_spec *fr = &spec->friction;
+    s->mu_static = fr->static_mu + 0.0;
+    s->mu_static_min = (fr->static_interval ? fr->static_min : fr->static_mu) + 0.0;
+    if (fr->kinetic_given) {
+        s->mu_kinetic = fr->kinetic_mu + 0.0;
+        s->mu_kinetic_min = (fr->kinetic_interval ? fr->kinetic_min : fr->kinetic_mu) + 0.0;
+    } else {
+        s->mu_kinetic = s->mu_static;
+        s->mu_kinetic_min = s->mu_static_min;
+    }
+    s->g = spec->g + 0.0;
+    s->down_count = (int)spec->down_count;
+    double moment[2] = {fixture->mass * s->g * fixture->com[0],
+                        fixture->mass * s->g * fixture->com[1]};
+    s->total = fixture->mass * s->g;
+    for (int i = 0; i < s->down_count; i++) {
+        s->down[i] = spec->down[i];
+        snprintf(field, sizeof field, "down[%d].force", i);
+        if (!isfinite(s->down[i].force) || s->down[i].force < 0) {
+            wr_error_set(error, field, "must be a finite number >= 0 (a force into the plate)");
+            goto invalid;
+        }
+        snprintf(field, sizeof field, "down[%d].at", i);
+        if (!isfinite(s->down[i].at[0]) || !isfinite(s->down[i].at[1]) ||
+            !inside_part(fixture, s->down[i].at)) {
+            wr_error_set(error, field, "is outside the part: a down clamp must press on it");
+            goto invalid;
+        }
+        double force = s->down[i].force * wr_fixture_force_factor(fixture);
+        s->total += force;
+        moment[0] += force * s->down[i].at[0];
+        moment[1] += force * s->down[i].at[1];
+    }
+    bool spread = false;
+    for (int i = 2; i < s->count && !spread; i++) {
+        double w[3];
+        for (int j = 1; j < i && !spread; j++)
+            for (int k = 0; k < j && !spread; k++)
+                spread = barycentric(s->points[k], s->points[j], s->points[i], s->points[0], w);
+    }
+    if (!spread) {
+        wr_error_set(error, "points", "the supports lie on one line: the part would tip over it");
+        goto invalid;
+    }
+    if (s->total > 0) {
+        s->pressure[0] = moment[0] / s->total;
+        s->pressure[1] = moment[1] / s->total;
+    } else {
+        s->pressure[0] = fixture->com[0];
+        s->pressure[1] = fixture->com[1];
+    }
+    if (distribution_vertices(s) != WR_OK) {
+        wr_supports_free(s);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    if (s->distribution_count == 0) {
+        double d = INFINITY;
+        for (int i = 0; i < s->count; i++)
+            for (int j = i + 1; j < s->count; j++)
+                d = fmin(d, segment_distance(s->points[i], s->points[j], s->pressure));
+        char reason[160];
+        snprintf(reason, sizeof reason,
+                 "the centre of pressure (%.9g, %.9g) is %.6g outside the supports' polygon: the "
+                 "part tips",
+                 s->pressure[0], s->pressure[1], d);
+        wr_error_set(error, "points", reason);
+        goto invalid;
+    }
+    for (int i = 0; i < s->count; i++) {
+        s->normal_min[i] = INFINITY;
+        s->normal_max[i] = 0;
+        for (int v = 0; v < s->distribution_count; v++) {
+            s->normal_min[i] = fmin(s->normal_min[i], s->distributions[v][i]);
+            s->normal_max[i] = fmax(s->normal_max[i], s->distributions[v][i]);
+        }
+    }
+    *out = s;
+    return WR_OK;
+invalid:
+    wr_supports_free(s);
+    return WR_INVALID;
+}
+
+wr_status wr_fixture_set_supports(wr_fixture *fixture, const wr_support_spec *spec,
+                                  wr_error *error)
+{
+    wr_supports *s;
+    wr_status status = wr_supports_new(fixture, spec, &s, error);
+    if (status != WR_OK)
+        return status;
+    wr_supports_free(fixture->supports);
+    fixture->supports = s;
+    return WR_OK;
+}
+
+/* Support i's lever arm (p_i - com). */
+static void arm(const wr_fixture *f, const wr_supports *s, int i, double r[2])
+{
+    r[0] = s->points[i][0] - f->com[0];
+    r[1] = s->points[i][1] - f->com[1];
+}
+
+double wr_supports_support_function(const wr_fixture *fixture, const wr_supports *supports,
+                                    const double row[3])
+{
+    double best = 0;
+    for (int v = 0; v < supports->distribution_count; v++) {
+        double sum = 0;
+        for (int i = 0; i < supports->count; i++) {
+            double r[2];
+            arm(fixture, supports, i, r);
+            sum += supports->mu_static * supports->distributions[v][i] *
+                   hypot(row[0] - row[2] * r[1], row[1] + row[2] * r[0]);
+        }
+        best = fmax(best, sum);
+    }
+    return best;
+}
+
+/* ---- a small LP builder over GLPK ---------------------------------------- */
+
+typedef struct lp {
+    glp_prob *p;
+    int rows, cols;
+    int count, capacity; /* triplets, 1-based as GLPK's */
+    int *ia, *ja;
+    double *ar;
+    bool failed;         /* out of memory */
+} lp;
+
+static void lp_init(lp *l, int direction)
+{
+    memset(l, 0, sizeof *l);
+    l->p = glp_create_prob();
+    glp_set_obj_dir(l->p, direction);
+}
+
+static void lp_release(lp *l)
+{
+    if (l->p)
+        glp_delete_prob(l->p);
+    free(l->ia);
+    free(l->ja);
+    free(l->ar);
+    memset(l, 0, sizeof *l);
+}
+
+/* A column with bounds (type GLP_LO etc.) and objective coefficient. */
+static int lp_col(lp *l, int type, double lo, double hi, double objective)
+{
+    int j = glp_add_cols(l->p, 1);
+    glp_set_col_bnds(l->p, j, type, lo, hi);
+    glp_set_obj_coef(l->p, j, objective);
+    l->cols = j;
+    return j;
+}
+
+static int lp_row(lp *l, int type, double lo, double hi)
+{
+    int i = glp_add_rows(l->p, 1);
+    glp_set_row_bnds(l->p, i, type, lo, hi);
+    l->rows = i;
+    return i;
+}
+
+static void lp_set(lp *l, int row, int col, double value)
+{
+    if (value == 0 || l->failed)
+        return;
+    if (l->count + 2 > l->capacity) {
+        int capacity = l->capacity ? 2 * l->capacity : 256;
+        int *ia = realloc(l->ia, (size_t)capacity * sizeof *ia);
+        if (ia)
+            l->ia = ia;
+        int *ja = realloc(l->ja, (size_t)capacity * sizeof *ja);
+        if (ja)
+            l->ja = ja;
+        double *ar = realloc(l->ar, (size_t)capacity * sizeof *ar);
+        if (ar)
+            l->ar = ar;
+        if (!ia || !ja || !ar) {
+            l->failed = true;
+            return;
+        }
+        l->capacity = capacity;
+    }
+    l->count++;
+    l->ia[l->count] = row;
+    l->ja[l->count] = col;
+    l->ar[l->count] = value;
+}
+
+/* Solve: GLP_OPT, GLP_NOFEAS, GLP_UNBND, or -1 (no memory or a failed
+ * solve). */
+static int lp_solve(lp *l)
+{
+    if (l->failed)
+        return -1;
+    glp_load_matrix(l->p, l->count, l->ia, l->ja, l->ar);
+    glp_smcp parm;
+    glp_init_smcp(&parm);
+    parm.msg_lev = GLP_MSG_OFF;
+    parm.presolve = GLP_OFF;
+    /* The discs' bounds are refined to 1e-9 and beyond: GLPK's default
+     * feasibility tolerance (1e-7) would hide the rest. */
+    parm.it_lim = 5000;
+    for (int attempt = 0; attempt < 3; attempt++) {
+        /* Tight tolerances first; GLPK's own (with scaling) if they stall,
+         * which on a degenerate problem they can. */
+        parm.tol_bnd = attempt < 2 ? 1e-12 : 1e-7;
+        parm.tol_dj = attempt < 2 ? 1e-12 : 1e-7;
+        glp_std_basis(l->p);
+        if (attempt)
+            glp_scale_prob(l->p, GLP_SF_AUTO);
+        int rc = glp_simplex(l->p, &parm);
+        if (rc != 0)
+            continue;
+        int status = glp_get_status(l->p);
+        if (status == GLP_OPT || status == GLP_NOFEAS || status == GLP_UNBND)
+            return status;
+    }
+    return -1;
+}
+
+/* ---- the common model ---------------------------------------------------- */
+
+/* A disc's directions: angles, refined by the solutions met. */
+#define MAX_DIRECTIONS 160
+#define PI 3.14159265358979323846
+typedef struct directions {
+    int count;
+    double angle[MAX_DIRECTIONS];
+} directions;
+
+static void directions_start(directions *d)
+{
+    d->count = 8;
+    for (int k = 0; k < 8; k++)
+        d->angle[k] = k * (PI / 4);
+}
+
+/* Add the direction of (x, y); false when it is (nearly) there already or
+ * there is no room. */
+static bool directions_add(directions *d, double x, double y)
+{
+    if (!(hypot(x, y) > 0) || d->count == MAX_DIRECTIONS)
+        return false;
+    double a = atan2(y, x);
+    for (int k = 0; k < d->count; k++) {
+        double diff = remainder(a - d->angle[k], 2 * PI);
+        if (fabs(diff) < 1e-13)
+            return false;
+    }
+    d->angle[d->count++] = a;
+    return true;
+}
+
+/* What the LPs share: the fixture, the supports and the scale. */
+typedef struct model {
+    const wr_fixture *f;
+    const wr_supports *s;
+    double scale;                         /* wrenches and forces are divided by it */
+    double unit[WR_MAX_SUPPORTS][2][3];   /* scaled wrench of a unit force along x, y */
+} model;
+
+static void model_init(model *m, const wr_fixture *f, const wr_supports *s, double scale)
+{
+    m->f = f;
+    m->s = s;
+    m->scale = scale;
+    for (int i = 0; i < s->count; i++) {
+        double r[2];
+        arm(f, s, i, r);
+        double rho = f->gyration_radius;
+        double ux[3] = {1, 0, -r[1] / rho}, uy[3] = {0, 1, r[0] / rho};
+        memcpy(m->unit[i][0], ux, sizeof ux);
+        memcpy(m->unit[i][1], uy, sizeof uy);
+    }
+}
+
+/* Columns theta_v >= 0 of the distributions, with objective `objective`
+ * each; returns the first. */
+static int distribution_columns(lp *l, const model *m, double objective)
+{
+    int first = 0;
+    for (int v = 0; v < m->s->distribution_count; v++) {
+        int j = lp_col(l, GLP_LO, 0, 0, objective);
+        if (v == 0)
+            first = j;
+    }
+    return first;
+}
+
+/* sum_v theta_v N^v_i * factor / scale, into row `row`. */
+static void add_normal(lp *l, const model *m, int row, int theta, int i, double factor)
+{
+    for (int v = 0; v < m->s->distribution_count; v++)
+        lp_set(l, row, theta + v, factor * m->s->distributions[v][i] / m->scale);
+}
+
+/* The friction force (fx, fy) of support i within the disc |f| <= mu_s N_i:
+ * from outside (one row per direction) or from inside (a convex
+ * combination of the polygon's vertices).  `wrench` are the three equality
+ * rows, to which the force contributes its scaled wrench.  Returns the
+ * column of fx (fy follows). */
+static int disc_columns(lp *l, const model *m, int i, const directions *d, bool inner,
+                        int theta, const int wrench[3])
+{
+    int fx = lp_col(l, GLP_FR, 0, 0, 0);
+    int fy = lp_col(l, GLP_FR, 0, 0, 0);
+    for (int k = 0; k < 3; k++) {
+        lp_set(l, wrench[k], fx, m->unit[i][0][k]);
+        lp_set(l, wrench[k], fy, m->unit[i][1][k]);
+    }
+    double mu = m->s->mu_static;
+    if (!inner) {
+        for (int k = 0; k < d->count; k++) {
+            int row = lp_row(l, GLP_UP, 0, 0);
+            lp_set(l, row, fx, cos(d->angle[k]));
+            lp_set(l, row, fy, sin(d->angle[k]));
+            add_normal(l, m, row, theta, i, -mu);
+        }
+    } else {
+        int rx = lp_row(l, GLP_FX, 0, 0), ry = lp_row(l, GLP_FX, 0, 0);
+        int total = lp_row(l, GLP_UP, 0, 0);
+        lp_set(l, rx, fx, 1);
+        lp_set(l, ry, fy, 1);
+        add_normal(l, m, total, theta, i, -mu);
+        for (int k = 0; k < d->count; k++) {
+            int eta = lp_col(l, GLP_LO, 0, 0, 0);
+            lp_set(l, rx, eta, -cos(d->angle[k]));
+            lp_set(l, ry, eta, -sin(d->angle[k]));
+            lp_set(l, total, eta, 1);
+        }
+    }
+    return fx;
+}
+
+/* ---- seating ------------------------------------------------------------- */
+
+/* What one LP of a cone asks: the least scale rho (RHO), or the least or
+ * largest push magnitude (F_MIN, F_MAX). */
+typedef enum question { RHO, F_MIN, F_MAX } question;
+
+typedef struct cone_lp {
+    const model *m;
+    const wr_cone *cone;
+    question q;
+    double target[3];   /* h(g) / scale, or h(L) / scale */
+    double push[3];     /* h(u) / |h(u)| */
+    bool inner;
+    const directions *dirs; /* one per support */
+    /* out */
+    int status;         /* GLP_OPT, GLP_NOFEAS, GLP_UNBND, -1 */
+    double value;
+    double force[WR_MAX_SUPPORTS][2];
+} cone_lp;
+
+static void cone_lp_solve(cone_lp *c)
+{
+    const model *m = c->m;
+    lp l;
+    lp_init(&l, c->q == F_MAX ? GLP_MAX : GLP_MIN);
+    int wrench[3];
+    for (int k = 0; k < 3; k++)
+        wrench[k] = lp_row(&l, GLP_FX, c->target[k], c->target[k]);
+    for (int j = 0; j < c->cone->generator_count; j++) {
+        int col = lp_col(&l, GLP_LO, 0, 0, 0);
+        for (int k = 0; k < 3; k++)
+            lp_set(&l, wrench[k], col, c->cone->generators[j][k]);
+    }
+    int theta = distribution_columns(&l, m, c->q == RHO ? 1 : 0);
+    if (c->q != RHO) {
+        int one = lp_row(&l, GLP_FX, 1, 1);
+        for (int v = 0; v < m->s->distribution_count; v++)
+            lp_set(&l, one, theta + v, 1);
+    }
+    int fx[WR_MAX_SUPPORTS];
+    for (int i = 0; i < m->s->count; i++)
+        fx[i] = disc_columns(&l, m, i, &c->dirs[i], c->inner, theta, wrench);
+    int magnitude = 0;
+    if (c->q != RHO) {
+        magnitude = lp_col(&l, GLP_LO, 0, 0, 1);
+        for (int k = 0; k < 3; k++)
+            lp_set(&l, wrench[k], magnitude, -c->push[k]);
+    }
+    c->status = lp_solve(&l);
+    if (c->status == GLP_OPT) {
+        c->value = glp_get_obj_val(l.p);
+        for (int i = 0; i < m->s->count; i++) {
+            c->force[i][0] = glp_get_col_prim(l.p, fx[i]);
+            c->force[i][1] = glp_get_col_prim(l.p, fx[i] + 1);
+        }
+    }
+    lp_release(&l);
+}
+
+/* The bracket [lo, hi] of one cone's optimum, the disc polygons refined
+ * from the outer solutions until hi - lo <= tolerance * max(1, |lo|), or
+ * until `decided` says the bracket is enough.  Infeasible from outside:
+ * lo = hi = the value of "no answer" (INFINITY for RHO and F_MIN, -INFINITY
+ * for F_MAX); unbounded (F_MAX): +INFINITY.  Returns WR_OK or
+ * WR_LP_FAILED. */
+typedef bool (*bracket_decided)(double lo, double hi, void *context);
+
+static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, const double target[3],
+                              const double push[3], double tolerance, bracket_decided decided,
+                              void *context, double *lo, double *hi, int *solves)
+{
+    directions dirs[WR_MAX_SUPPORTS];
+    for (int i = 0; i < m->s->count; i++)
+        directions_start(&dirs[i]);
+    double none = q == F_MAX ? -INFINITY : INFINITY;
+    double sign = q == F_MAX ? -1 : 1; /* sign * value: a minimum */
+    double outer_best = -INFINITY, inner_best = INFINITY; /* of sign * value */
+    for (int round = 0; round < 60; round++) {
+        cone_lp c = {.m = m, .cone = cone, .q = q, .dirs = dirs};
+        memcpy(c.target, target, sizeof c.target);
+        memcpy(c.push, push, sizeof c.push);
+        c.inner = false;
+        cone_lp_solve(&c);
+        (*solves)++;
+        if (c.status < 0)
+            return WR_LP_FAILED;
+        if (c.status == GLP_NOFEAS) {
+            *lo = *hi = none;
+            return WR_OK;
+        }
+        if (c.status == GLP_UNBND) {
+            *lo = *hi = INFINITY; /* only F_MAX can be unbounded from outside */
+            if (q != F_MAX)
+                return WR_LP_FAILED;
+            /* Unbounded from inside too?  Any inner solution with a push
+             * ray: ask the inner LP. */
+        } else {
+            outer_best = fmax(outer_best, sign * c.value);
+        }
+        cone_lp in = c;
+        in.inner = true;
+        cone_lp_solve(&in);
+        (*solves)++;
+        if (in.status < 0)
+            return WR_LP_FAILED;
+        if (in.status == GLP_UNBND) {
+            *lo = *hi = INFINITY;
+            return WR_OK;
+        }
+        if (in.status == GLP_OPT)
+            inner_best = fmin(inner_best, sign * in.value);
+        /* The optimum lies in [outer_best, inner_best] (as a minimum). */
+        double a = outer_best, b = inner_best;
+        *lo = sign > 0 ? a : -b;
+        *hi = sign > 0 ? b : -a;
+        if (b - a <= tolerance * fmax(1, fabs(a)))
+            return WR_OK;
+        if (decided && decided(*lo, *hi, context))
+            return WR_OK;
+        bool added = false;
+        if (c.status == GLP_OPT)
+            for (int i = 0; i < m->s->count; i++) {
+                double x = c.force[i][0], y = c.force[i][1];
+                /* Only where the outer force leaves the disc. */
+                double r = 0;
+                for (int v = 0; v < m->s->distribution_count; v++)
+                    r = fmax(r, m->s->distributions[v][i]);
+                if (hypot(x, y) > 0 && r > 0)
+                    added |= directions_add(&dirs[i], x, y);
+                if (in.status == GLP_OPT)
+                    added |= directions_add(&dirs[i], in.force[i][0], in.force[i][1]);
+            }
+        if (!added)
+            return WR_OK;
+    }
+    return WR_OK;
+}
+
+static bool rho_decided(double lo, double hi, void *context)
+{
+    double tolerance = *(const double *)context;
+    return lo > 1 + tolerance || hi < 1 - tolerance;
+}
+
+/* The scale of a problem: the wrench's and S's sizes. */
+static double problem_scale(const wr_fixture *f, const wr_supports *s, const double wrench[3])
+{
+    double h[3];
+    double n = wr_fixture_scale_wrench(f, wrench, h);
+    return fmax(n, s->mu_static * s->total);
+}
+
+/* The model of one wrench's question, and the wrench in it (scaled metric,
+ * divided by the model's scale). */
+static void model_for(model *m, const wr_analysis *analysis, const wr_supports *supports,
+                      const double wrench[3], double target[3])
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    model_init(m, f, supports, problem_scale(f, supports, wrench));
+    wr_fixture_scale_wrench(f, wrench, target);
+    for (int k = 0; k < 3; k++)
+        target[k] /= m->scale;
+}
+
+typedef struct goal_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    const double *wrench;
+    double tolerance;
+    wr_support_goal *out;
+} goal_call;
+
+static wr_status goal_body(void *context)
+{
+    goal_call *call = context;
+    model m;
+    double target[3];
+    model_for(&m, call->analysis, call->supports, call->wrench, target);
+    double push[3] = {0, 0, 0};
+    wr_support_goal *out = call->out;
+    out->verdict = WR_VERDICT_INSIDE;
+    out->rho_lo = out->rho_hi = INFINITY;
+    out->blocking = -1;
+    int count = wr_analysis_cone_count(call->analysis, WR_SET_GOAL);
+    for (int c = 0; c < count; c++) {
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_GOAL, c);
+        if (cone->empty)
+            continue;
+        double lo, hi;
+        wr_status st = cone_bracket(&m, cone, RHO, target, push, call->tolerance, rho_decided,
+                                    &call->tolerance, &lo, &hi, &out->solves);
+        if (st != WR_OK)
+            return st;
+        wr_verdict v = lo > 1 + call->tolerance   ? WR_VERDICT_INSIDE
+                       : hi < 1 - call->tolerance ? WR_VERDICT_OUTSIDE
+                                                  : WR_VERDICT_BOUNDARY;
+        /* The blocking cone: the worst verdict, then the least rho. */
+        if (v > out->verdict || (v == out->verdict && lo < out->rho_lo)) {
+            out->verdict = v;
+            out->rho_lo = lo;
+            out->rho_hi = hi;
+            out->blocking = c;
+        }
+    }
+    return WR_OK;
+}
+
+wr_status wr_supports_goal(const wr_analysis *analysis, const wr_supports *supports,
+                           wr_lp_env *env, const double wrench[3], double tolerance,
+                           wr_support_goal *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]) ||
+        !(tolerance >= 0))
+        return WR_INVALID;
+    if (supports->total == 0 || supports->mu_static == 0) {
+        /* S = {0}: the cones alone. */
+        wr_answer answer;
+        wr_status st = wr_classify_margin(analysis, wrench, WR_SET_GOAL, tolerance, &answer);
+        out->verdict = answer.verdict;
+        out->blocking = answer.blocking;
+        out->rho_lo = out->rho_hi = answer.verdict == WR_VERDICT_INSIDE ? INFINITY : 0;
+        return st;
+    }
+    goal_call call = {analysis, supports, wrench, tolerance, out};
+    return wr_lp_guarded(env, goal_body, &call);
+}
+
+/* ---- magnitudes along a push --------------------------------------------- */
+
+static wr_status forces_append(wr_forces *out, double lo, double hi)
+{
+    if (out->count == out->capacity) {
+        int capacity = out->capacity ? 2 * out->capacity : 8;
+        wr_force_interval *items = realloc(out->items, (size_t)capacity * sizeof *items);
+        if (!items)
+            return WR_NO_MEMORY;
+        out->items = items;
+        out->capacity = capacity;
+    }
+    out->items[out->count++] = (wr_force_interval){lo, hi};
+    return WR_OK;
+}
+
+static int interval_order(const void *a, const void *b)
+{
+    const wr_force_interval *x = a, *y = b;
+    return (x->lo > y->lo) - (x->lo < y->lo);
+}
+
+/* The complement in [lo, hi] of the union of closed intervals `excluded`
+ * (sorted here), as open intervals, into `good`. */
+static wr_status complement(wr_forces *excluded, double lo, double hi, wr_forces *good)
+{
+    qsort(excluded->items, (size_t)excluded->count, sizeof excluded->items[0], interval_order);
+    good->count = 0;
+    double at = lo;
+    for (int i = 0; i < excluded->count && at < hi; i++) {
+        const wr_force_interval *e = &excluded->items[i];
+        if (e->hi < at)
+            continue;
+        if (e->lo > at && forces_append(good, at, fmin(e->lo, hi)) != WR_OK)
+            return WR_NO_MEMORY;
+        at = fmax(at, e->hi);
+    }
+    if (at < hi && forces_append(good, at, hi) != WR_OK)
+        return WR_NO_MEMORY;
+    return WR_OK;
+}
+
+typedef struct range_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    const double *load, *push;
+    double lo, hi;
+    wr_forces *outer, *inner; /* good magnitudes from the outer and inner excluded sets */
+} range_call;
+
+static wr_status range_body(void *context)
+{
+    range_call *call = context;
+    const wr_fixture *f = wr_analysis_fixture(call->analysis);
+    double hu[3], hl[3];
+    double push_length = wr_fixture_scale_wrench(f, call->push, hu);
+    double scale = fmax(problem_scale(f, call->supports, call->load), push_length);
+    model m;
+    model_init(&m, f, call->supports, scale);
+    wr_fixture_scale_wrench(f, call->load, hl);
+    for (int k = 0; k < 3; k++) {
+        hl[k] /= scale;
+        hu[k] /= push_length;
+    }
+    /* Magnitudes in the LP: F' = F |h(u)| / scale. */
+    double to_force = scale / push_length;
+    wr_forces outer_excluded = {0}, inner_excluded = {0};
+    wr_status st = WR_OK;
+    int solves = 0;
+    int count = wr_analysis_cone_count(call->analysis, WR_SET_GOAL);
+    for (int c = 0; c < count && st == WR_OK; c++) {
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_GOAL, c);
+        if (cone->empty)
+            continue;
+        double a_lo, a_hi, b_lo, b_hi;
+        st = cone_bracket(&m, cone, F_MIN, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &a_lo, &a_hi,
+                          &solves);
+        if (st != WR_OK || a_lo == INFINITY)
+            continue; /* no magnitude reaches this cone */
+        st = cone_bracket(&m, cone, F_MAX, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
+                          &solves);
+        if (st != WR_OK)
+            break;
+        /* Outer: [a_lo, b_hi] holds the cone's magnitudes; inner:
+         * [a_hi, b_lo] is held by them (when not empty). */
+        st = forces_append(&outer_excluded, a_lo * to_force, b_hi * to_force);
+        if (st == WR_OK && a_hi <= b_lo)
+            st = forces_append(&inner_excluded, a_hi * to_force, b_lo * to_force);
+    }
+    if (st == WR_OK)
+        st = complement(&outer_excluded, call->lo, call->hi, call->outer);
+    if (st == WR_OK && call->inner)
+        st = complement(&inner_excluded, call->lo, call->hi, call->inner);
+    wr_forces_release(&outer_excluded);
+    wr_forces_release(&inner_excluded);
+    return st;
+}
+
+static wr_status range_both(const wr_analysis *analysis, const wr_supports *supports,
+                            wr_lp_env *env, const double load[3], const double push[3], double lo,
+                            double hi, wr_forces *outer, wr_forces *inner)
+{
+    outer->count = 0;
+    if (inner)
+        inner->count = 0;
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(load[k]) || !isfinite(push[k]))
+            return WR_INVALID;
+    if ((push[0] == 0 && push[1] == 0 && push[2] == 0) || !(lo >= 0) || !(lo <= hi))
+        return WR_INVALID;
+    if (supports->total == 0 || supports->mu_static == 0) {
+        wr_status st = wr_force_range(analysis, WR_SET_GOAL, load, push, lo, hi, outer);
+        if (st == WR_OK && inner)
+            st = wr_force_range(analysis, WR_SET_GOAL, load, push, lo, hi, inner);
+        return st;
+    }
+    range_call call = {analysis, supports, load, push, lo, hi, outer, inner};
+    return wr_lp_guarded(env, range_body, &call);
+}
+
+wr_status wr_supports_force_range(const wr_analysis *analysis, const wr_supports *supports,
+                                  wr_lp_env *env, const double load[3], const double push[3],
+                                  double lo, double hi, wr_forces *out)
+{
+    return range_both(analysis, supports, env, load, push, lo, hi, out, NULL);
+}
+
+wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports *supports,
+                                  wr_lp_env *env, const double (*loads)[3], int case_count,
+                                  const double push[3], double *force, double *lower)
+{
+    *force = *lower = INFINITY;
+    if (case_count < 1)
+        return WR_INVALID;
+    wr_forces sets[2][2] = {{{0}}}; /* [outer, inner][running, this case] */
+    wr_forces scratch = {0};
+    wr_status st = WR_OK;
+    for (int c = 0; c < case_count && st == WR_OK; c++) {
+        st = range_both(analysis, supports, env, loads[c], push, 0, INFINITY,
+                        c ? &sets[0][1] : &sets[0][0], c ? &sets[1][1] : &sets[1][0]);
+        for (int k = 0; k < 2 && st == WR_OK && c; k++) {
+            st = wr_forces_intersect(&sets[k][0], &sets[k][1], &scratch);
+            wr_forces swap = sets[k][0];
+            sets[k][0] = scratch;
+            scratch = swap;
+        }
+    }
+    if (st == WR_OK) {
+        if (sets[0][0].count)
+            *force = sets[0][0].items[0].lo;
+        if (sets[1][0].count)
+            *lower = sets[1][0].items[0].lo;
+    }
+    for (int k = 0; k < 2; k++) {
+        wr_forces_release(&sets[k][0]);
+        wr_forces_release(&sets[k][1]);
+    }
+    wr_forces_release(&scratch);
+    return st;
+}
+
+/* ---- holding ------------------------------------------------------------- */
+
+/* A cell of motion directions: the cone of 1 to 3 unit scaled
+ * accelerations q' = m (a_x, a_y, rho alpha) of one mode. */
+typedef struct cell {
+    int count;
+    double ray[3][3];
+} cell;
+
+/* The acceleration of support i's point under the scaled acceleration q'. */
+static void point_acceleration(const model *m, int i, const double q[3], double a[2])
+{
+    const wr_fixture *f = m->f;
+    double r[2];
+    arm(f, m->s, i, r);
+    double ax = q[0] / f->mass, ay = q[1] / f->mass;
+    double alpha = q[2] / (f->mass * f->gyration_radius);
+    a[0] = ax - alpha * r[1];
+    a[1] = ay + alpha * r[0];
+}
+
+/* Below this (relative to the part's size times |q'| / m), a support's
+ * point counts as not accelerating: it may stick. */
+#define STILL 1e-12
+
+/* The directions of sliding friction over a cell at support i: up to 3
+ * unit-length points whose convex hull, scaled by the friction's size,
+ * holds every -f_i / |f_i| = a_i / |a_i| the cell's directions give.
+ * false when a_i may vanish in the cell or its directions spread over
+ * more than 120 degrees: the whole disc then. */
+static bool arc_hull(const model *m, int i, const cell *c, double points[3][2], int *count)
+{
+    double u[3][2];
+    double still = STILL * m->f->size / m->f->mass;
+    for (int j = 0; j < c->count; j++) {
+        point_acceleration(m, i, c->ray[j], u[j]);
+        double n = hypot(u[j][0], u[j][1]);
+        if (!(n > still))
+            return false;
+        u[j][0] /= n;
+        u[j][1] /= n;
+    }
+    if (c->count == 1) {
+        memcpy(points[0], u[0], sizeof u[0]);
+        *count = 1;
+        return true;
+    }
+    /* The pair farthest apart spans an arc holding the third (a linear
+     * image of a cone is the cone of the images, and a pointed cone of
+     * the plane is the arc between its two extreme directions). */
+    int best_a = -1, best_b = -1;
+    double best_cos = 2;
+    for (int a = 0; a < c->count; a++)
+        for (int b = a + 1; b < c->count; b++) {
+            double cosine = u[a][0] * u[b][0] + u[a][1] * u[b][1];
+            if (cosine < best_cos) {
+                best_cos = cosine;
+                best_a = a;
+                best_b = b;
+            }
+        }
+    if (best_cos < -0.5) /* wider than 120 degrees */
+        return false;
+    const double *ua = u[best_a], *ub = u[best_b];
+    double cross_ab = ua[0] * ub[1] - ua[1] * ub[0];
+    for (int j = 0; j < c->count; j++) {
+        if (j == best_a || j == best_b)
+            continue;
+        double ca = ua[0] * u[j][1] - ua[1] * u[j][0];
+        double cb = u[j][0] * ub[1] - u[j][1] * ub[0];
+        if (ca * cross_ab < -1e-15 || cb * cross_ab < -1e-15)
+            return false; /* the third lies outside: the cone is wider */
+    }
+    memcpy(points[0], ua, sizeof points[0]);
+    memcpy(points[1], ub, sizeof points[1]);
+    /* The tangents at the arc's ends meet at (ua + ub) / (1 + cos). */
+    points[2][0] = (ua[0] + ub[0]) / (1 + best_cos);
+    points[2][1] = (ua[1] + ub[1]) / (1 + best_cos);
+    *count = 3;
+    return true;
+}
+
+/* One LP of holding: over a cell (relaxed: each sliding friction in the
+ * hull of its arc) or at a single direction (exact: the cell's one ray).
+ * Minimises the L1 residual of
+ *     h(g) = q' + sum kappa_j G_j + sum_i W_i phi_i
+ * with q' in the cell's cone, G_j the mode's contact generators, phi_i =
+ * -f_i the support's friction reversed, sliding (|phi_i| between mu_k_min
+ * N_i and mu_k N_i, along the arc) or, where the point may stay still,
+ * anywhere in the disc |phi_i| <= mu_s N_i (from outside, cut by the
+ * solutions until they lie in it). */
+typedef struct hold_lp {
+    const model *m;
+    const wr_cone *cone;
+    const cell *c;
+    double target[3];
+    /* A step of sequential LP (a single direction only): free columns
+     * Delta_k, |Delta_k| <= trust, along `tangent` k, with the wrench's
+     * change linearised about the direction at the magnitudes t0 and each
+     * support's m0. */
+    int tangent_count;
+    double tangent[2][3];
+    double trust, t0, m0[WR_MAX_SUPPORTS];
+    double delta[2];
+    /* out */
+    double residual;
+    double lambda[3];
+    double kappa[WR_HULL_MAX];
+    double theta[WR_MAX_SUPPORTS * WR_MAX_SUPPORTS * WR_MAX_SUPPORTS / 6 + 1];
+    double phi[WR_MAX_SUPPORTS][2];
+    int solves;
+} hold_lp;
+
+static int hold_lp_solve(hold_lp *h)
+{
+    const model *m = h->m;
+    const wr_supports *s = m->s;
+    directions dirs[WR_MAX_SUPPORTS];
+    bool disc[WR_MAX_SUPPORTS];
+    double points[WR_MAX_SUPPORTS][3][2];
+    int point_count[WR_MAX_SUPPORTS];
+    for (int i = 0; i < s->count; i++) {
+        disc[i] = !arc_hull(m, i, h->c, points[i], &point_count[i]);
+        directions_start(&dirs[i]);
+    }
+    for (int round = 0; round < 40; round++) {
+        lp l;
+        lp_init(&l, GLP_MIN);
+        int wrench[3];
+        for (int k = 0; k < 3; k++)
+            wrench[k] = lp_row(&l, GLP_FX, h->target[k], h->target[k]);
+        for (int k = 0; k < 3; k++) {
+            int e = lp_col(&l, GLP_LO, 0, 0, 1);
+            lp_set(&l, wrench[k], e, 1);
+            e = lp_col(&l, GLP_LO, 0, 0, 1);
+            lp_set(&l, wrench[k], e, -1);
+        }
+        int lambda = 0;
+        for (int j = 0; j < h->c->count; j++) {
+            int col = lp_col(&l, GLP_LO, 0, 0, 0);
+            if (j == 0)
+                lambda = col;
+            for (int k = 0; k < 3; k++)
+                lp_set(&l, wrench[k], col, h->c->ray[j][k]);
+        }
+        int kappa = 0, kappa_count = 0;
+        for (int j = 0; j < h->cone->generator_count; j++) {
+            if (h->cone->origins[j].fixel < 0)
+                continue;
+            int col = lp_col(&l, GLP_LO, 0, 0, 0);
+            if (!kappa_count++)
+                kappa = col;
+            for (int k = 0; k < 3; k++)
+                lp_set(&l, wrench[k], col, h->cone->generators[j][k]);
+        }
+        int theta = distribution_columns(&l, m, 0);
+        int one = lp_row(&l, GLP_FX, 1, 1);
+        for (int v = 0; v < s->distribution_count; v++)
+            lp_set(&l, one, theta + v, 1);
+        int first[WR_MAX_SUPPORTS];
+        for (int i = 0; i < s->count; i++) {
+            if (disc[i]) {
+                first[i] = disc_columns(&l, m, i, &dirs[i], false, theta, wrench);
+                continue;
+            }
+            /* mu_k_min N_i <= sum eta <= mu_k N_i. */
+            int upper = lp_row(&l, GLP_UP, 0, 0), lower = lp_row(&l, GLP_LO, 0, 0);
+            add_normal(&l, m, upper, theta, i, -s->mu_kinetic);
+            add_normal(&l, m, lower, theta, i, -s->mu_kinetic_min);
+            first[i] = l.cols + 1;
+            for (int k = 0; k < point_count[i]; k++) {
+                int eta = lp_col(&l, GLP_LO, 0, 0, 0);
+                lp_set(&l, upper, eta, 1);
+                lp_set(&l, lower, eta, 1);
+                for (int r = 0; r < 3; r++)
+                    lp_set(&l, wrench[r], eta,
+                           points[i][k][0] * m->unit[i][0][r] + points[i][k][1] * m->unit[i][1][r]);
+            }
+        }
+        int delta = 0;
+        for (int k = 0; k < h->tangent_count; k++) {
+            int col = lp_col(&l, GLP_DB, -h->trust, h->trust, 0);
+            if (k == 0)
+                delta = col;
+            double column[3];
+            for (int r = 0; r < 3; r++)
+                column[r] = h->t0 * h->tangent[k][r];
+            for (int i = 0; i < s->count; i++) {
+                if (disc[i])
+                    continue;
+                /* d(a / |a|) = (I - a^ a^T) (A_i dq) / |a|. */
+                double a[2], da[2];
+                point_acceleration(m, i, h->c->ray[0], a);
+                point_acceleration(m, i, h->tangent[k], da);
+                double n = hypot(a[0], a[1]);
+                double u[2] = {a[0] / n, a[1] / n};
+                double along = u[0] * da[0] + u[1] * da[1];
+                double d[2] = {(da[0] - along * u[0]) / n, (da[1] - along * u[1]) / n};
+                for (int r = 0; r < 3; r++)
+                    column[r] += h->m0[i] * (d[0] * m->unit[i][0][r] + d[1] * m->unit[i][1][r]);
+            }
+            for (int r = 0; r < 3; r++)
+                lp_set(&l, wrench[r], col, column[r]);
+        }
+        int status = lp_solve(&l);
+        h->solves++;
+        for (int k = 0; k < h->tangent_count && status == GLP_OPT; k++)
+            h->delta[k] = glp_get_col_prim(l.p, delta + k);
+        if (status != GLP_OPT) {
+            lp_release(&l);
+            return -1; /* the residual columns make every LP feasible and bounded */
+        }
+        h->residual = glp_get_obj_val(l.p);
+        for (int j = 0; j < h->c->count; j++)
+            h->lambda[j] = glp_get_col_prim(l.p, lambda + j);
+        for (int j = 0; j < kappa_count; j++)
+            h->kappa[j] = glp_get_col_prim(l.p, kappa + j);
+        double normal[WR_MAX_SUPPORTS] = {0};
+        for (int v = 0; v < s->distribution_count; v++) {
+            h->theta[v] = glp_get_col_prim(l.p, theta + v);
+            for (int i = 0; i < s->count; i++)
+                normal[i] += h->theta[v] * s->distributions[v][i] / m->scale;
+        }
+        bool cut = false;
+        for (int i = 0; i < s->count; i++) {
+            if (disc[i]) {
+                h->phi[i][0] = glp_get_col_prim(l.p, first[i]);
+                h->phi[i][1] = glp_get_col_prim(l.p, first[i] + 1);
+                if (hypot(h->phi[i][0], h->phi[i][1]) > s->mu_static * normal[i] * (1 + 1e-12) + 1e-15)
+                    cut |= directions_add(&dirs[i], h->phi[i][0], h->phi[i][1]);
+            } else {
+                h->phi[i][0] = h->phi[i][1] = 0;
+                for (int k = 0; k < point_count[i]; k++) {
+                    double eta = glp_get_col_prim(l.p, first[i] + k);
+                    h->phi[i][0] += eta * points[i][k][0];
+                    h->phi[i][1] += eta * points[i][k][1];
+                }
+            }
+        }
+        lp_release(&l);
+        if (!cut)
+            break;
+    }
+    return 0;
+}
+
+static double angle_between(const double a[3], const double b[3])
+{
+    double c[3];
+    wr_cross3(a, b, c);
+    return atan2(wr_norm3(c), wr_dot3(a, b));
+}
+
+/* The cells of a mode's directions: its cone of accelerations cut by the
+ * eight orthants (so each piece is pointed, at most 90 degrees across),
+ * each piece of full dimension fanned into simplicial cells.  Returns the
+ * number written (at most `max`). */
+static int mode_cells(const wr_cone *cone, cell *cells, int max)
+{
+    double accel[WR_HULL_MAX][3];
+    int n = 0;
+    for (int j = 0; j < cone->generator_count; j++)
+        if (cone->origins[j].fixel < 0)
+            wr_copy3(cone->generators[j], accel[n++]);
+    if (n == 0)
+        return 0;
+    wr_hrep q;
+    wr_hull_from_generators((const double (*)[3])accel, n, &q);
+    int count = 0;
+    for (int o = 0; o < 8; o++) {
+        double rows[WR_HULL_MAX + 3][3];
+        int rc = 0;
+        for (int i = 0; i < q.facet_count && rc < WR_HULL_MAX; i++)
+            wr_copy3(q.facets[i], rows[rc++]);
+        for (int k = 0; k < 3; k++) {
+            double row[3] = {0, 0, 0};
+            row[k] = (o >> k & 1) ? 1 : -1; /* sign s_k: -s_k x_k <= 0 */
+            wr_copy3(row, rows[rc++]);
+        }
+        double gens[WR_HULL_MAX][3];
+        int g = wr_hull_generators_of_rows((const double (*)[3])rows, rc,
+                                           (const double (*)[3])q.equalities, q.equality_count,
+                                           gens, WR_HULL_MAX);
+        if (g == 0)
+            continue;
+        wr_hrep piece;
+        wr_hull_from_generators((const double (*)[3])gens, g, &piece);
+        if (piece.dimension != q.dimension)
+            continue;
+        double rays[WR_HULL_MAX][3];
+        int r = wr_hull_rays(&piece, rays, WR_HULL_MAX);
+        for (int i = 0; i < r; i++)
+            wr_normalize3(rays[i]);
+        if (q.dimension == 1 || q.dimension == 2) {
+            /* One ray, or the two extreme ones of a planar piece. */
+            cell c = {.count = q.dimension};
+            wr_copy3(rays[0], c.ray[0]);
+            if (q.dimension == 2) {
+                double worst = -2;
+                for (int i = 0; i < r; i++)
+                    for (int j = i + 1; j < r; j++) {
+                        double a = angle_between(rays[i], rays[j]);
+                        if (a > worst) {
+                            worst = a;
+                            wr_copy3(rays[i], c.ray[0]);
+                            wr_copy3(rays[j], c.ray[1]);
+                        }
+                    }
+            }
+            if (count < max)
+                cells[count++] = c;
+            continue;
+        }
+        /* Three dimensions: the extreme rays in turn about their mean,
+         * fanned from the first. */
+        double axis[3] = {0, 0, 0};
+        for (int i = 0; i < r; i++)
+            for (int k = 0; k < 3; k++)
+                axis[k] += rays[i][k];
+        wr_normalize3(axis);
+        double e1[3], e2[3], any[3] = {1, 0, 0};
+        if (fabs(axis[0]) > 0.9)
+            any[0] = 0, any[1] = 1;
+        wr_cross3(axis, any, e1);
+        wr_normalize3(e1);
+        wr_cross3(axis, e1, e2);
+        double angle[WR_HULL_MAX];
+        int order[WR_HULL_MAX];
+        for (int i = 0; i < r; i++) {
+            angle[i] = atan2(wr_dot3(rays[i], e2), wr_dot3(rays[i], e1));
+            order[i] = i;
+        }
+        for (int i = 1; i < r; i++) /* insertion sort by angle */
+            for (int j = i; j > 0 && angle[order[j]] < angle[order[j - 1]]; j--) {
+                int t = order[j];
+                order[j] = order[j - 1];
+                order[j - 1] = t;
+            }
+        for (int i = 1; i + 1 < r && count < max; i++) {
+            cell c = {.count = 3};
+            wr_copy3(rays[order[0]], c.ray[0]);
+            wr_copy3(rays[order[i]], c.ray[1]);
+            wr_copy3(rays[order[i + 1]], c.ray[2]);
+            cells[count++] = c;
+        }
+    }
+    return count;
+}
+
+typedef struct strong_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    const double *wrench;
+    double tolerance;
+    const wr_stop *stop;
+    wr_support_strong *out;
+} strong_call;
+
+/* The witness's forces, back in physical units. */
+static void witness_fill(const model *m, const wr_cone *cone, const hold_lp *h,
+                         const double direction[3], double t, wr_support_strong *out)
+{
+    const wr_fixture *f = m->f;
+    double q[3];
+    for (int k = 0; k < 3; k++)
+        q[k] = t * direction[k] * m->scale;
+    out->acceleration[0] = q[0] / f->mass;
+    out->acceleration[1] = q[1] / f->mass;
+    out->acceleration[2] = q[2] / (f->mass * f->gyration_radius);
+    memset(out->force, 0, sizeof out->force);
+    int k = 0;
+    for (int j = 0; j < cone->generator_count; j++) {
+        const wr_generator_origin *o = &cone->origins[j];
+        if (o->fixel < 0)
+            continue;
+        out->force[o->fixel][0] += h->kappa[k] * o->normal_force * m->scale;
+        out->force[o->fixel][1] += h->kappa[k] * o->tangent_force * m->scale;
+        k++;
+    }
+    for (int i = 0; i < m->s->count; i++) {
+        out->support_force[i][0] = -h->phi[i][0] * m->scale;
+        out->support_force[i][1] = -h->phi[i][1] * m->scale;
+        out->normal[i] = 0;
+        for (int v = 0; v < m->s->distribution_count; v++)
+            out->normal[i] += h->theta[v] * m->s->distributions[v][i];
+    }
+}
+
+/* Branch and bound over one mode's cells: 1 a witness (out filled), 0 no
+ * direction consistent by the margin, 2 undecided, -1 an LP failed,
+ * -2 stopped. */
+static int mode_search(const model *m, const wr_cone *cone, const double target[3], double margin,
+                       const wr_stop *stop, wr_support_strong *out)
+{
+    enum { STACK = 4096 };
+    cell *stack = malloc(STACK * sizeof *stack);
+    if (!stack)
+        return -3;
+    int top = mode_cells(cone, stack, 64);
+    /* The mode's directions, to keep a refined witness among them. */
+    double accel[WR_HULL_MAX][3];
+    int accel_count = 0;
+    for (int j = 0; j < cone->generator_count; j++)
+        if (cone->origins[j].fixel < 0)
+            wr_copy3(cone->generators[j], accel[accel_count++]);
+    wr_hrep q;
+    wr_hull_from_generators((const double (*)[3])accel, accel_count, &q);
+    int result = 0, looked = 0;
+    hold_lp h = {.m = m, .cone = cone};
+    memcpy(h.target, target, sizeof h.target);
+    while (top > 0) {
+        if (wr_stop_requested(stop)) {
+            result = -2;
+            break;
+        }
+        cell c = stack[--top];
+        if (++looked > WR_SUPPORT_MAX_CELLS) {
+            result = 2;
+            break;
+        }
+        out->cells++;
+        h.c = &c;
+        if (hold_lp_solve(&h) < 0) {
+            result = -1;
+            break;
+        }
+        if (h.residual > margin)
+            continue; /* no direction of the cell is consistent */
+        /* A witness: the relaxation's own direction, else the centre. */
+        double direction[3] = {0, 0, 0};
+        for (int j = 0; j < c.count; j++)
+            for (int k = 0; k < 3; k++)
+                direction[k] += h.lambda[j] * c.ray[j][k];
+        if (!(wr_norm3(direction) > 1e-12))
+            for (int j = 0; j < c.count; j++)
+                for (int k = 0; k < 3; k++)
+                    direction[k] += c.ray[j][k];
+        wr_normalize3(direction);
+        cell single = {.count = 1};
+        wr_copy3(direction, single.ray[0]);
+        hold_lp w = h;
+        w.c = &single;
+        w.solves = 0;
+        if (hold_lp_solve(&w) < 0) {
+            result = -1;
+            break;
+        }
+        h.solves += w.solves;
+        /* A motion consistent with g is usually one direction alone (three
+         * equations, as many unknowns): close in on it by sequential LP,
+         * the friction's directions linearised about the last one. */
+        double span = 0;
+        for (int i = 0; i < c.count; i++)
+            for (int j = i + 1; j < c.count; j++)
+                span = fmax(span, angle_between(c.ray[i], c.ray[j]));
+        for (int step = 0; step < 16 && w.residual > 1e-10 && c.count > 1; step++) {
+            hold_lp n = w;
+            n.tangent_count = 0;
+            /* Tangents within the cell's span, orthogonal to the direction. */
+            for (int j = 0; j < c.count && n.tangent_count < c.count - 1; j++) {
+                double b[3];
+                wr_copy3(c.ray[j], b);
+                double along = wr_dot3(b, direction);
+                for (int k = 0; k < 3; k++)
+                    b[k] -= along * direction[k];
+                for (int t = 0; t < n.tangent_count; t++) {
+                    double d = wr_dot3(b, n.tangent[t]);
+                    for (int k = 0; k < 3; k++)
+                        b[k] -= d * n.tangent[t][k];
+                }
+                if (wr_norm3(b) > 1e-6) {
+                    wr_normalize3(b);
+                    wr_copy3(b, n.tangent[n.tangent_count++]);
+                }
+            }
+            n.trust = fmax(2 * span, 1e-9);
+            n.solves = 0;
+            n.t0 = w.lambda[0];
+            for (int i = 0; i < m->s->count; i++)
+                n.m0[i] = hypot(w.phi[i][0], w.phi[i][1]);
+            if (hold_lp_solve(&n) < 0)
+                break;
+            double next[3];
+            wr_copy3(direction, next);
+            for (int t = 0; t < n.tangent_count; t++)
+                for (int k = 0; k < 3; k++)
+                    next[k] += n.delta[t] * n.tangent[t][k];
+            wr_normalize3(next);
+            bool among = true;
+            for (int i = 0; i < q.facet_count; i++)
+                among &= wr_dot3(q.facets[i], next) <= 1e-12;
+            for (int i = 0; i < q.equality_count; i++)
+                among &= fabs(wr_dot3(q.equalities[i], next)) <= 1e-12;
+            if (!among)
+                break;
+            hold_lp v = h;
+            cell at = {.count = 1};
+            wr_copy3(next, at.ray[0]);
+            v.c = &at;
+            v.solves = 0;
+            if (hold_lp_solve(&v) < 0)
+                break;
+            h.solves += n.solves + v.solves;
+            if (!(v.residual < w.residual))
+                break;
+            w = v;
+            wr_copy3(next, direction);
+            single = at;
+            w.c = &single;
+        }
+        if (w.residual <= 1e-10) {
+            witness_fill(m, cone, &w, direction, w.lambda[0], out);
+            result = 1;
+            break;
+        }
+        if (c.count == 1) { /* nothing to split: exact and not consistent */
+            if (w.residual <= margin)
+                result = 2;
+            continue;
+        }
+        /* Split the longest edge. */
+        int a = 0, b = 1;
+        double longest = -1;
+        for (int i = 0; i < c.count; i++)
+            for (int j = i + 1; j < c.count; j++) {
+                double angle = angle_between(c.ray[i], c.ray[j]);
+                if (angle > longest) {
+                    longest = angle;
+                    a = i;
+                    b = j;
+                }
+            }
+        if (longest < WR_SUPPORT_MIN_CELL) {
+            result = 2;
+            continue;
+        }
+        if (top + 2 > STACK) {
+            result = 2;
+            break;
+        }
+        double mid[3];
+        for (int k = 0; k < 3; k++)
+            mid[k] = c.ray[a][k] + c.ray[b][k];
+        wr_normalize3(mid);
+        cell left = c, right = c;
+        wr_copy3(mid, left.ray[a]);
+        wr_copy3(mid, right.ray[b]);
+        stack[top++] = left;
+        stack[top++] = right;
+    }
+    out->solves += h.solves;
+    free(stack);
+    return result;
+}
+
+static wr_status strong_body(void *context)
+{
+    strong_call *call = context;
+    model m;
+    double target[3];
+    model_for(&m, call->analysis, call->supports, call->wrench, target);
+    wr_support_strong *out = call->out;
+    out->verdict = WR_VERDICT_INSIDE;
+    out->blocking = -1;
+    int count = wr_analysis_cone_count(call->analysis, WR_SET_STRONG);
+    for (int c = 0; c < count; c++) {
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_STRONG, c);
+        if (cone->empty)
+            continue;
+        int r = mode_search(&m, cone, target, call->tolerance, call->stop, out);
+        if (r == -1)
+            return WR_LP_FAILED;
+        if (r == -2)
+            return WR_STOPPED;
+        if (r == -3)
+            return WR_NO_MEMORY;
+        if (r == 1) {
+            out->verdict = WR_VERDICT_OUTSIDE;
+            out->blocking = c;
+            return WR_OK;
+        }
+        if (r == 2 && out->verdict == WR_VERDICT_INSIDE) {
+            out->verdict = WR_VERDICT_BOUNDARY;
+            out->blocking = c;
+        }
+    }
+    return WR_OK;
+}
+
+wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *supports,
+                             wr_lp_env *env, const double wrench[3], double tolerance,
+                             const wr_stop *stop, wr_support_strong *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]) ||
+        !(tolerance >= 0))
+        return WR_INVALID;
+    double h[3];
+    if (supports->total == 0 ||
+        (supports->mu_static == 0 && supports->mu_kinetic == 0)) {
+        /* No support friction: the cones alone. */
+        wr_answer answer;
+        wr_status st = wr_classify(analysis, wrench, WR_SET_STRONG, tolerance, &answer);
+        out->verdict = answer.verdict;
+        out->blocking = answer.blocking;
+        memcpy(out->acceleration, answer.witness.acceleration, sizeof out->acceleration);
+        memcpy(out->force, answer.witness.force, sizeof out->force);
+        return st;
+    }
+    (void)h;
+    strong_call call = {analysis, supports, wrench, tolerance, stop, out};
+    return wr_lp_guarded(env, strong_body, &call);
+}
+
+/* ---- push regions on the plate -------------------------------------------- */
+
+wr_status wr_supports_push_regions(const wr_analysis *analysis, const wr_supports *supports,
+                                   wr_lp_env *env, double force, const double (*loads)[3],
+                                   int case_count, int edge, wr_regions *regions)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    if (f->shape != WR_SHAPE_POLYGON || edge < 0 || edge >= (int)f->vertex_count ||
+        !(force > 0) || !isfinite(force) || case_count < 1)
+        return WR_INVALID;
+    /* On a straight edge the unit push's wrench is affine in t. */
+    double w0[3], w1[3], push[3];
+    wr_push_wrench(f, edge, 0, w0);
+    wr_push_wrench(f, edge, 1, w1);
+    for (int k = 0; k < 3; k++)
+        push[k] = force * (w1[k] - w0[k]);
+    wr_forces all = {0}, one = {0}, meet = {0};
+    wr_status status = WR_OK;
+    for (int c = 0; c < case_count && status == WR_OK; c++) {
+        double load[3];
+        for (int k = 0; k < 3; k++)
+            load[k] = loads[c][k] + force * w0[k];
+        status = wr_supports_force_range(analysis, supports, env, load, push, 0, 1,
+                                         c ? &one : &all);
+        if (status == WR_OK && c) {
+            status = wr_forces_intersect(&all, &one, &meet);
+            wr_forces swap = all;
+            all = meet;
+            meet = swap;
+        }
+    }
+    for (int i = 0; status == WR_OK && i < all.count; i++) {
+        if (!(all.items[i].hi > all.items[i].lo))
+            continue;
+        if (regions->count == regions->capacity) {
+            int capacity = regions->capacity ? 2 * regions->capacity : 8;
+            wr_region *items = realloc(regions->items, (size_t)capacity * sizeof *items);
+            if (!items) {
+                status = WR_NO_MEMORY;
+                break;
+            }
+            regions->items = items;
+            regions->capacity = capacity;
+        }
+        regions->items[regions->count++] = (wr_region){edge, all.items[i].lo, all.items[i].hi};
+    }
+    wr_forces_release(&all);
+    wr_forces_release(&one);
+    wr_forces_release(&meet);
+    return status;
+}

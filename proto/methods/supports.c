@@ -1,0 +1,58 @@
+/* supports.c -- what the methods share for a fixture on a base plate
+ * (wr_support.h; docs/MODEL.md section 11): a wrench's answer, and the
+ * refusal of questions whose answer does not depend on magnitudes. */
+#include "methods.h"
+
+#include <string.h>
+
+wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
+                             const double wrench[3], wr_set set, double tolerance,
+                             wr_answer *answer)
+{
+    memset(answer, 0, sizeof *answer);
+    answer->has_margin = false;
+    answer->blocking = -1;
+    const wr_supports *supports = wr_analysis_fixture(analysis)->supports;
+    wr_lp_env *env = host->lp_env ? host->lp_env(host->self) : NULL;
+    if (!env)
+        return WR_LP_FAILED;
+    wr_verdict goal_verdict = WR_VERDICT_INSIDE;
+    if (set != WR_SET_STRONG) {
+        wr_support_goal goal;
+        wr_status status = wr_supports_goal(analysis, supports, env, wrench, tolerance, &goal);
+        if (status != WR_OK)
+            return status;
+        goal_verdict = answer->verdict = goal.verdict;
+        answer->blocking_set = WR_SET_GOAL;
+        answer->blocking = goal.blocking;
+        if (set == WR_SET_GOAL || goal.verdict == WR_VERDICT_OUTSIDE)
+            return WR_OK;
+    }
+    wr_support_strong strong;
+    wr_status status =
+        wr_supports_strong(analysis, supports, env, wrench, tolerance, host->stop, &strong);
+    if (status != WR_OK)
+        return status;
+    /* Both: the worse verdict, its blocking cone (the goal's on a tie). */
+    if (set == WR_SET_STRONG || strong.verdict > goal_verdict) {
+        answer->verdict = strong.verdict;
+        answer->blocking_set = WR_SET_STRONG;
+        answer->blocking = strong.blocking;
+        memcpy(answer->witness.acceleration, strong.acceleration,
+               sizeof answer->witness.acceleration);
+        memcpy(answer->witness.force, strong.force, sizeof answer->witness.force);
+    }
+    return WR_OK;
+}
+
+bool wp_supports_refuse(wp_call *call, const wr_fixture *fixture, const char *field,
+                        const char *what)
+{
+    if (!fixture->supports)
+        return false;
+    wp_error_set(call->error, WP_INVALID_PARAMS, field,
+                 "the fixture rests on supports, whose friction depends on how hard the part is "
+                 "pushed: give %s",
+                 what);
+    return true;
+}

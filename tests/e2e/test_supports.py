@@ -1,0 +1,207 @@
+"""A part on a base plate: the fixture's "supports" (docs/PROTOCOL.md,
+"Supports"; docs/MODEL.md section 11).
+
+Closed forms derived here: the disc in the corner's least push force on
+three buttons (the friction capacity mu_B W against the distance of the
+push from the edge of the goal wedge), and the 3-2-1 plate's least down
+clamp against a cutting force. Bad input refused naming the field; the
+questions of directions alone refused saying what to give."""
+
+import copy
+import json
+import math
+import os
+
+import pytest
+
+import fixtures as FX
+from conftest import REPO
+
+G = 9.81
+R2 = math.sqrt(2)
+BUTTONS = [[0, 0.2], [-0.17320508075688773, -0.1], [0.17320508075688773, -0.1]]
+
+
+def on_buttons(fixture, points, mu, g=G, down=None):
+    f = copy.deepcopy(fixture)
+    f["supports"] = {"points": points, "friction": mu, "g": g}
+    if down is not None:
+        f["supports"]["down"] = down
+    return f
+
+
+def plate(mass=2.0):
+    f = FX.rectangle_321(0.3)
+    f["body"]["mass"] = mass
+    return f
+
+
+def error_of(client, method, params):
+    e = client.error(method, params)
+    assert e["code"] == -32602, e
+    return e["data"]["field"], e["data"]["reason"]
+
+
+def test_id_and_round_trip(client):
+    floating = FX.disc_corner(0.5)
+    a = client.result("fixture.put", {"fixture": floating})["id"]
+    resting = on_buttons(floating, BUTTONS, 0.3)
+    b = client.result("fixture.put", {"fixture": resting})["id"]
+    assert a != b
+    got = client.result("fixture.get", {"id": b})
+    s = got["supports"]
+    assert s["points"] == BUTTONS and s["g"] == G
+    assert s["friction"] == {"static": 0.3, "kinetic": 0.3}
+    assert "supports" not in client.result("fixture.get", {"id": a})
+    # What get returns puts back to the same id.
+    assert client.result("fixture.put", {"fixture": got})["id"] == b
+
+
+@pytest.mark.parametrize("path,value,field,words", [
+    ("points", BUTTONS[:2], "points", "at least 3"),
+    ("points", BUTTONS[:2] + [[1.5, 0]], "points[2]", "outside the part"),
+    ("friction", -0.1, "friction", "negative"),
+    ("g", -1, "g", ">= 0"),
+    ("down", [{"at": [3, 0], "force": 1}], "down[0].at", "outside the part"),
+    ("down", [{"at": [0, 0], "force": -1}], "down[0].force", ">= 0"),
+    # 10 m g at (0, -0.9): the centre of pressure at y = -9/11, 0.718182
+    # below the buttons' edge y = -0.1.
+    ("down", [{"at": [0, -0.9], "force": 10 * G}], "points", "0.718182"),
+])
+def test_bad_supports_name_the_field(client, path, value, field, words):
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    f["supports"][path] = value
+    got, reason = error_of(client, "fixture.put", {"fixture": f})
+    assert got == "params.fixture.supports." + field, (got, reason)
+    assert words in reason, reason
+
+
+def test_disc_least_push_force(client):
+    """Every excluded cone of the disc in the corner (friction 0.5) holds
+    the torque axis, so a push through the centre seats when its force is
+    farther than mu_B W (the radius of the buttons' force discs' sum) from
+    the complement of the goal wedge 206.565..243.435 degrees. A push at
+    45 degrees on the rim pushes along 225 degrees, 18.435 degrees inside
+    the wedge: F* = mu_B W / sin(18.435 deg) = mu_B W sqrt(10)."""
+    mu_b = 0.3
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, mu_b)
+    r = client.result("force.range", {"fixture": f, "push": {"at": [1 / R2, 1 / R2]},
+                                      "cases": [{"loads": [{"wrench": [0, 0, 0]}]}], "sets": ["goal"]})
+    least = r["all"]["goal"]["least"]
+    expected = mu_b * G * math.sqrt(10)
+    assert abs(least - expected) < 1e-7 * expected, (least, expected)
+    floating = client.result("force.range", {"fixture": FX.disc_corner(0.5),
+                                             "push": {"at": [1 / R2, 1 / R2]},
+                                             "cases": [{"loads": [{"wrench": [0, 0, 0]}]}], "sets": ["goal"]})
+    assert floating["all"]["goal"]["least"] == 0
+
+
+def test_plate_least_clamp_against_cutting_force(client):
+    """The 3-2-1 plate (m = 2, centre of mass (2, 1)) on buttons (1, 0.5),
+    (3, 0.5), (2, 1.7), mu_B = 0.2, a down clamp D at the centre of mass.
+    A cutting force F_c along +x through the centre of mass: any motion
+    needs F_c a_x >= mu_B sum N_i |a_i| >= mu_B W |a_com| (power), so it is
+    held while F_c < mu_B (m g + D): D* = F_c / mu_B - m g."""
+    mu_b, cutting = 0.2, 30.0
+    d_star = cutting / mu_b - 2 * G
+    verdicts = []
+    for factor in (0.999, 1.001):
+        f = on_buttons(plate(), [[1, 0.5], [3, 0.5], [2, 1.7]], mu_b,
+                       down=[{"at": [2, 1], "force": factor * d_star}])
+        r = client.result("wrench.classify", {"fixture": f, "wrenches": [[cutting, 0, 0]],
+                                              "sets": ["strong"]})
+        verdicts.append(r["results"][0]["strong"]["verdict"])
+    assert verdicts == ["outside", "inside"], verdicts
+
+
+def test_zero_load_held(client):
+    f = on_buttons(plate(), [[1, 0.5], [3, 0.5], [2, 1.7]], 0.2)
+    r = client.result("wrench.classify", {"fixture": f, "wrenches": [[0, 0, 0]],
+                                          "sets": ["strong"]})
+    assert r["results"][0]["strong"]["verdict"] == "inside"
+
+
+@pytest.mark.parametrize("method,params,field", [
+    ("stability.margin", {"bias": [0, -1, 0]}, "params.bias"),
+    ("force.range", {"push": {"at": [1 / R2, 1 / R2]}, "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
+     "params.sets"),
+    ("push.force", {"set": "goal", "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
+     "params.fixture"),
+    ("gravity.sweep", {"set": "goal"}, "params.fixture"),
+])
+def test_direction_questions_refused(client, method, params, field):
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    got, reason = error_of(client, method, dict(params, fixture=f))
+    assert got == field, (got, reason)
+    assert "supports" in reason, reason
+
+
+def test_python_client_least_force_on_the_plate(daemon):
+    """The Python client's on_supports and force_range: the disc's closed
+    form again, through the client."""
+    import os
+    import sys
+    from conftest import REPO
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    with wrenchd.Client(daemon.path, timeout=60) as c:
+        f = wrenchd.on_supports(FX.disc_corner(0.5), BUTTONS, 0.3, G)
+        r = c.force_range(f, [[{"wrench": [0, 0, 0]}]], push={"at": [1 / R2, 1 / R2]},
+                          sets=["goal"])
+        expected = 0.3 * G * math.sqrt(10)
+        assert abs(r["all"]["goal"]["least"] - expected) < 1e-7 * expected
+
+
+def test_units_millimetres_and_newtons(client):
+    """The disc in millimetres and newtons (g = 9810 mm/s^2, a down clamp in
+    N): the same least force in N as in metres, and a clamp of 1 N adds
+    mu_B sqrt(10) N to it."""
+    mu_b = 0.3
+    f = {"name": "disc-mm", "units": {"length": "mm", "force": "N"},
+         "body": {"mass": 1.0, "inertia": 0.5e6, "com": [0, 0],
+                  "shape": {"type": "circle", "center": [0, 0], "radius": 1000.0}},
+         "friction": {"static": 0.5},
+         "fixels": [{"at": [-1000, 0], "normal": [1, 0]}, {"at": [0, -1000], "normal": [0, 1]}]}
+    mm = [[1000 * x, 1000 * y] for x, y in BUTTONS]
+    for down, weight in ((None, G), ([{"at": [0, 0], "force": 1.0}], G + 1)):
+        g = on_buttons(f, mm, mu_b, g=9810, down=down)
+        r = client.result("force.range", {"fixture": g, "push": {"at": [1000 / R2, 1000 / R2]},
+                                          "cases": [{"loads": [{"wrench": [0, 0, 0]}]}],
+                                          "sets": ["goal"]})
+        expected = mu_b * weight * math.sqrt(10)
+        least = r["all"]["goal"]["least"]
+        assert abs(least - expected) < 1e-7 * expected, (least, expected)
+
+
+def test_push_regions_under_a_force_agree_with_force_range(client):
+    """The chamfered plate on three buttons: push.regions under a force of
+    20 finds the part of the chamfer where a push that hard seats it; just
+    inside its end force.range's least force at that point is below 20,
+    just outside above. More force, a longer region, tending to the
+    floating plate's."""
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        f = json.load(fh)
+    f = on_buttons(f, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    starts = []
+    for force in (20, 60, 200):
+        r = client.result("push.regions", {"fixture": f, "set": "goal", "force": force,
+                                           "cases": none})
+        assert len(r["regions"]) == 1, r
+        region = r["regions"][0]
+        assert region["edge"] == 2 and region["t1"] == 1, region
+        starts.append(region["t0"])
+    assert starts[0] > starts[1] > starts[2] > 0.525556, starts
+    t = starts[0]
+    for dt, below in ((1e-4, True), (-1e-4, False)):
+        at = [4 - (t + dt), 1 + (t + dt)]  # edge 2 runs from (4, 1) to (3, 2)
+        least = client.result("force.range", {"fixture": f, "push": {"at": at}, "cases": none,
+                                               "sets": ["goal"]})["all"]["goal"]["least"]
+        assert (least is not None and least < 20) == below, (dt, least)
+    # On supports the other sets, a finger of some size and no force are refused.
+    for extra, field in (({"set": "both", "force": 20, "cases": none}, "params.set"),
+                         ({"set": "goal", "force": 20, "cases": none, "finger_radius": 0.1},
+                          "params.finger_radius"),
+                         ({"set": "goal"}, "params.force")):
+        got, _ = error_of(client, "push.regions", dict(extra, fixture=f))
+        assert got == field
