@@ -29,7 +29,7 @@ static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", 
                                           NULL};
 static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
 static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples", "push_on",
-                                         NULL};
+                                         "deadline_s", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
                                              "push", "gravity", "force", "cases", "deadline_s", NULL};
 

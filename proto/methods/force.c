@@ -430,6 +430,18 @@ static cJSON *force_or_null(const wr_fixture *f, double force)
     return isfinite(force) ? cJSON_CreateNumber(wp_force_out(f, force)) : cJSON_CreateNull();
 }
 
+/* A stop that the caller's stop or a deadline asks for. */
+typedef struct deadline_stop {
+    const wr_stop *caller;
+    double deadline; /* wp_now_s's second; 0: none */
+} deadline_stop;
+
+static bool deadline_or_caller(void *context)
+{
+    const deadline_stop *d = context;
+    return wr_stop_requested(d->caller) || (d->deadline > 0 && wp_now_s() >= d->deadline);
+}
+
 cJSON *wp_handle_push_force(wp_call *call)
 {
     const cJSON *params = call->params;
@@ -453,6 +465,9 @@ cJSON *wp_handle_push_force(wp_call *call)
         return NULL;
     }
     int samples = (int)samples_given;
+    double deadline;
+    if (!wp_read_deadline(params, &deadline, error))
+        return NULL;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return NULL;
@@ -490,10 +505,20 @@ cJSON *wp_handle_push_force(wp_call *call)
     wr_status status = loads && result ? WR_OK : WR_NO_MEMORY;
     for (int c = 0; loads && c < cases.count; c++)
         memcpy(loads[c], cases.items[c].load, sizeof loads[c]);
-    wr_least_force least;
+    /* Past params.deadline_s the search for the least stops: "least" is
+     * then null, no segment is sampled, and the answer is "partial". */
+    deadline_stop by = {call->host->stop, deadline};
+    const wr_stop stop = {deadline_or_caller, &by};
+    wr_least_force least = {0};
+    bool partial = false;
     if (status == WR_OK)
         status = wr_least_force_find(use->analysis, set, (const double (*)[3])loads, cases.count,
-                                     &finger, call->host->stop, &least);
+                                     &finger, &stop, &least);
+    if (status == WR_STOPPED && !wr_stop_requested(call->host->stop)) {
+        status = WR_OK;
+        partial = true;
+        least.found = false;
+    }
     if (status == WR_OK) {
         cJSON *best = least.found ? cJSON_AddObjectToObject(result, "least")
                                   : cJSON_AddNullToObject(result, "least");
@@ -511,11 +536,13 @@ cJSON *wp_handle_push_force(wp_call *call)
         cJSON_AddNumberToObject(result, "evaluations", (double)least.evaluations);
         cJSON_AddNumberToObject(result, "samples", samples);
     }
-    /* F* at evenly spaced points of every edge (off its ends), each exact. */
+    /* F* at evenly spaced points of every edge (off its ends), each exact;
+     * past params.deadline_s, only those sampled so far (the last edge's
+     * cut short, none after a search that stopped), and "partial". */
     cJSON *segments = status == WR_OK ? cJSON_AddArrayToObject(result, "segments") : NULL;
     int edges = wr_push_edge_count(f);
     double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
-    for (int e = 0; status == WR_OK && e < edges; e++) {
+    for (int e = 0; status == WR_OK && !partial && e < edges; e++) {
         cJSON *segment = cJSON_CreateObject();
         cJSON *ts = cJSON_CreateArray(), *forces = cJSON_CreateArray();
         if (!segments || !segment || !ts || !forces) {
@@ -541,6 +568,10 @@ cJSON *wp_handle_push_force(wp_call *call)
                                        &blocked, &blocked_count);
         }
         for (int j = 0; status == WR_OK && j < samples; j++) {
+            if (deadline > 0 && wp_now_s() >= deadline) {
+                partial = true;
+                break;
+            }
             double t = top * (j + 0.5) / samples, push[3], value = INFINITY;
             bool reached = pushed;
             for (int b = 0; reached && b < blocked_count; b++)
@@ -559,6 +590,8 @@ cJSON *wp_handle_push_force(wp_call *call)
     free(loads);
     free(push_on);
     wp_cases_release(&cases);
+    if (status == WR_OK && partial && !cJSON_AddTrueToObject(result, "partial"))
+        status = WR_NO_MEMORY;
     if (status != WR_OK) {
         cJSON_Delete(result);
         wp_error_status(error, status, "", "%s", wr_strerror(status));

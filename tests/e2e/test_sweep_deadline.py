@@ -128,3 +128,54 @@ def test_partial_sweeps_agree_with_the_whole_below_where_they_stopped(harness):
         reached_inside += 1
     # The deadlines fell inside the work, not only before its first decision.
     assert reached_inside >= 3, reached_inside
+
+
+def ask(c, method, params):
+    """The result, waiting as long as a whole long request takes."""
+    c.send(c.request(method, params))
+    answer = c.read_json(timeout=600 * SLOW)
+    assert "result" in answer, answer
+    return answer["result"]
+
+
+def test_push_force_with_a_deadline_answers_the_samples_so_far(harness):
+    """push.force of the 8-fixel octagon at 4096 samples a segment under ten
+    cases takes minutes whole; with deadline_s 1 it answers within seconds,
+    "partial" (its least null when its search had not ended, its segments
+    the first ones sampled, the last cut short).  Each sample is exact, so
+    those of a partial answer at 256 samples equal the whole answer's at
+    the same points, and its least is the whole answer's."""
+    d = harness.start("--threads", "1")
+    c = d.client(timeout=600 * SLOW)
+    cases = [{"loads": [{"wrench": [0.01 * i, -1, 0.001 * i]}]} for i in range(10)]
+    # Stored first: its cones are made once, before the deadlines run.
+    octagon = c.result("fixture.put", {"fixture": octagon_8()})["id"]
+    start = time.monotonic()
+    r = c.result("push.force", {"fixture": octagon, "cases": cases, "samples": 4096,
+                                "deadline_s": 1})
+    assert time.monotonic() - start < 1 + 8 * SLOW
+    assert r["partial"] is True
+    assert sum(len(s["t"]) for s in r["segments"]) < 8 * 4096
+
+    params = {"fixture": octagon, "cases": cases, "samples": 256}
+    start = time.monotonic()
+    whole = ask(c, "push.force", params)
+    seconds = time.monotonic() - start
+    assert "partial" not in whole
+    sampled = 0
+    for fraction in (0.8, 0.9, 0.95):
+        r = ask(c, "push.force", dict(params, deadline_s=max(seconds * fraction, 1e-3)))
+        if not r.get("partial"):
+            continue
+        if r["least"] != whole["least"]:
+            # Stopped in the search for the least: nothing sampled yet.
+            assert r["least"] is None and r["segments"] == [], r
+            continue
+        assert all(len(s["t"]) == 256 for s in r["segments"][:-1])
+        for got, full in zip(r["segments"], whole["segments"]):
+            n = len(got["t"])
+            assert got["t"] == full["t"][:n] and got["force"] == full["force"][:n]
+            sampled += n
+    assert sampled > 0
+    e = c.error("push.force", dict(params, deadline_s=0))
+    assert e["data"]["field"] == "params.deadline_s", e

@@ -940,11 +940,14 @@ static void check_answer(const cJSON *json, bool whole, const char *answer, cons
 /* The daemon makes answers a piece at a time: cut into the smallest pieces
  * there are, the same line answers byte for byte what it answered whole --
  * unless it asks what changes between two askings (a deletion, the
- * server's counters, a store past its bound, an LP's witness). */
+ * server's counters, a store past its bound, an LP's witness, where a
+ * deadline stopped it). */
 static void pieces_agree(const char *line, size_t length, const char *whole, const char *text)
 {
     if (memmem(line, length, "delete", 6) || memmem(line, length, "status", 6) ||
         memmem(line, length, "list", 4) ||
+        /* A deadline's answer ends where the clock stopped it. */
+        memmem(line, length, "deadline", 8) ||
         /* The LP method's witnesses hang on the solver's warm start: asked
          * again, their last bits may differ (load-check drops them too). */
         memmem(line, length, "\"lp\"", 4))
