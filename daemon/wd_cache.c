@@ -62,12 +62,18 @@ typedef struct entry {
     int refs;                 /* requests holding it */
     bool stored;              /* put (listed, on disk) rather than only cached */
     struct entry *next;       /* hash chain */
+    /* The key of the inline text it was last adopted from
+     * (wp_fixture_written_key), "" none; with it the entry is also in
+     * the written map, chained by next_written. */
+    char written[WP_ID_LENGTH + 1];
+    struct entry *next_written;
 } entry;
 
 struct wd_cache {
     pthread_mutex_t lock;
     pthread_mutex_t store_lock;
     entry **buckets;
+    entry **written_buckets;  /* the same count: entries by their written key */
     size_t bucket_count;      /* a power of two */
     size_t count;
     size_t stored_count;      /* entries with `stored`; changes under store_lock */
@@ -135,25 +141,74 @@ static entry *find(const wd_cache *c, const char *id)
     return NULL;
 }
 
+static entry *find_written(const wd_cache *c, const char *key)
+{
+    for (entry *e = c->written_buckets[bucket_of(c, key)]; e; e = e->next_written)
+        if (strcmp(e->written, key) == 0)
+            return e;
+    return NULL;
+}
+
+static void unlink_written(wd_cache *c, entry *e)
+{
+    if (!e->written[0])
+        return;
+    for (entry **p = &c->written_buckets[bucket_of(c, e->written)]; *p; p = &(*p)->next_written)
+        if (*p == e) {
+            *p = e->next_written;
+            break;
+        }
+    e->written[0] = 0;
+    e->next_written = NULL;
+}
+
+/* Keep e under the written key too (one per entry: the latest). */
+static void set_written(wd_cache *c, entry *e, const char *key)
+{
+    if (!key[0] || strcmp(e->written, key) == 0)
+        return;
+    unlink_written(c, e);
+    entry *other = find_written(c, key);
+    if (other) /* one text validates to one fixture: never, but for a hash collision */
+        unlink_written(c, other);
+    memcpy(e->written, key, sizeof e->written);
+    size_t b = bucket_of(c, key);
+    e->next_written = c->written_buckets[b];
+    c->written_buckets[b] = e;
+}
+
 static bool insert(wd_cache *c, entry *e)
 {
     if (c->count + 1 > 2 * c->bucket_count) {
         size_t n = 2 * c->bucket_count;
         entry **grown = calloc(n, sizeof *grown);
-        if (!grown)
+        entry **grown_written = calloc(n, sizeof *grown_written);
+        if (!grown || !grown_written) {
+            free(grown);
+            free(grown_written);
             return false;
-        entry **old = c->buckets;
+        }
+        entry **old = c->buckets, **old_written = c->written_buckets;
         size_t old_count = c->bucket_count;
         c->buckets = grown;
+        c->written_buckets = grown_written;
         c->bucket_count = n;
-        for (size_t i = 0; i < old_count; i++)
+        for (size_t i = 0; i < old_count; i++) {
             for (entry *x = old[i], *next; x; x = next) {
                 next = x->next;
                 size_t b = bucket_of(c, x->id);
                 x->next = c->buckets[b];
                 c->buckets[b] = x;
             }
+            for (entry *x = old_written[i], *next; x; x = next) {
+                next = x->next_written;
+                size_t b = bucket_of(c, x->written);
+                x->next_written = c->written_buckets[b];
+                c->written_buckets[b] = x;
+            }
+        }
         free(old);
+        free(old_written);
     }
     size_t b = bucket_of(c, e->id);
     e->next = c->buckets[b];
@@ -164,6 +219,7 @@ static bool insert(wd_cache *c, entry *e)
 
 static void unlink_entry(wd_cache *c, entry *e)
 {
+    unlink_written(c, e);
     for (entry **p = &c->buckets[bucket_of(c, e->id)]; *p; p = &(*p)->next)
         if (*p == e) {
             assert(c->count > 0);
@@ -195,6 +251,7 @@ static void check_locked(const wd_cache *c)
             stored += e->stored;
             derived += e->analysis_bytes;
             assert(bucket_of(c, e->id) == b && find(c, e->id) == e);
+            assert(!e->written[0] || find_written(c, e->written) == e);
             assert(e->refs >= 0 && e->texts && e->texts->refs > 0);
             assert(e->analysis || e->analysis_bytes == 0);
             assert(e->last_used <= c->clock && e->serial <= c->serial);
@@ -644,10 +701,11 @@ wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_s
     pthread_mutex_init(&c->store_lock, NULL);
     c->bucket_count = 64;
     c->buckets = calloc(c->bucket_count, sizeof *c->buckets);
+    c->written_buckets = calloc(c->bucket_count, sizeof *c->written_buckets);
     c->derived_limit = derived_limit;
     c->max_stored = max_stored;
     c->lock_fd = -1;
-    if (!c->buckets) {
+    if (!c->buckets || !c->written_buckets) {
         snprintf(why, why_size, "out of memory");
         wd_cache_free(c);
         return NULL;
@@ -681,7 +739,7 @@ void wd_cache_free(wd_cache *c)
 {
     if (!c)
         return;
-    if (c->buckets)
+    if (c->buckets && c->written_buckets)
         check_locked(c);
     for (size_t b = 0; c->buckets && b < c->bucket_count; b++)
         for (entry *e = c->buckets[b], *next; e; e = next) {
@@ -690,6 +748,7 @@ void wd_cache_free(wd_cache *c)
             entry_free(e);
         }
     free(c->buckets);
+    free(c->written_buckets);
     free(c->dir);
     if (c->lock_fd >= 0)
         close(c->lock_fd); /* releases the lock; DIR/lock stays, harmless */
@@ -755,6 +814,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
         e->fixture = doc->fixture;
         doc->fixture = NULL;
     }
+    set_written(c, e, doc->written);
     e->refs++;
     /* A new entry has taken the doc's texts; an existing one may be renamed. */
     bool renamed = doc->name && strcmp(doc->name, e->texts->name) != 0;
@@ -821,6 +881,17 @@ bool wd_cache_use(wd_cache *c, const char *id, wp_fixture_use *use, wp_host_fail
     e->refs++;
     pthread_mutex_unlock(&c->lock);
     return derive_for_use(c, e, NULL, use, failure);
+}
+
+bool wd_cache_use_written(wd_cache *c, const char *key, wp_fixture_use *use)
+{
+    pthread_mutex_lock(&c->lock);
+    entry *e = find_written(c, key);
+    if (e)
+        e->refs++;
+    pthread_mutex_unlock(&c->lock);
+    wp_host_failure failure;
+    return e && derive_for_use(c, e, NULL, use, &failure);
 }
 
 int wd_cache_ready(wd_cache *c, const char *id)

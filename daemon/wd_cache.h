@@ -35,6 +35,9 @@ bool wd_cache_adopt(wd_cache *cache, wp_fixture_doc *doc, bool store, wp_fixture
                     wp_host_failure *failure);
 bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use,
                   wp_host_failure *failure);
+/* Hold the fixture adopted from an inline text of written key `key`
+ * (stored or only cached), while it is kept: false when it is not. */
+bool wd_cache_use_written(wd_cache *cache, const char *key, wp_fixture_use *use);
 /* Hold the stored fixture `id` if its derived data is there (so that using
  * it derives nothing): its number of cones (goal + strong), or -1 with
  * nothing held. */

@@ -36,6 +36,11 @@ static bool host_use(void *self, const char *id, wp_fixture_use *use, wp_host_fa
     return wd_cache_use(((wd_thread_host *)self)->cache, id, use, failure);
 }
 
+static bool host_use_written(void *self, const char *key, wp_fixture_use *use)
+{
+    return wd_cache_use_written(((wd_thread_host *)self)->cache, key, use);
+}
+
 static void host_release(void *self, wp_fixture_use *use)
 {
     wd_cache_release(((wd_thread_host *)self)->cache, use);
@@ -150,6 +155,7 @@ wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
     thread->host = (wp_host){.self = thread,
                              .fixture_adopt = host_adopt,
                              .fixture_use = host_use,
+                             .fixture_use_written = host_use_written,
                              .fixture_use_ready = host_use_ready,
                              .fixture_release = host_release,
                              .fixture_delete = host_delete,

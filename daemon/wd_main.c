@@ -91,6 +91,7 @@ NUMBER_SETTER(set_max_clients, max_clients, unsigned long, 1, 1000000, 1)
 NUMBER_SETTER(set_max_clients_per_uid, max_clients_per_uid, unsigned long, 0, 1000000, 1)
 NUMBER_SETTER(set_max_batch, max_batch, size_t, 1, 1000000, 1)
 NUMBER_SETTER(set_max_candidates, max_candidates, unsigned long long, 1, 1ULL << 62, 1)
+NUMBER_SETTER(set_max_cases, max_cases, size_t, 1, 1000000, 1)
 NUMBER_SETTER(set_idle_timeout, idle_timeout, unsigned, 0, 86400 * 7, 1)
 NUMBER_SETTER(set_request_timeout, request_timeout, unsigned, 0, 86400, 1)
 
@@ -252,6 +253,10 @@ static const option_spec OPTIONS[] = {
                             "shard) may examine; more are refused at the\n"
                             "field giving them, with the count\n"
                             "(default 100000000)", set_max_candidates},
+    {"max-cases", "N", "most load cases in one request (force.range,\n"
+                       "push.force, push.regions, fixture.design,\n"
+                       "friction.sweep); more are refused at\n"
+                       "params.cases (default 1000)", set_max_cases},
     {"idle-timeout", "SECONDS", "close a connection with nothing in flight\n"
                                 "after this long without a request, or one\n"
                                 "that leaves answers unread this long\n"
@@ -391,6 +396,7 @@ int main(int argc, char **argv)
         .max_clients = 256,
         .max_batch = 1000,
         .max_candidates = 100000000,
+        .max_cases = 1000,
         .idle_timeout = 300,
         .request_timeout = 30,
         .listen_fd = -1,

@@ -1167,7 +1167,7 @@ int wd_server_run(const wd_config *config)
     wd_server *s = &server;
     s->config = config;
     s->limits = (wp_limits){config->max_depth, config->max_wrenches, config->max_batch,
-                            config->max_candidates};
+                            config->max_candidates, config->max_cases};
     s->stats.started = time(NULL);
     s->stats.threads = config->threads;
     pthread_mutex_init(&s->done_lock, NULL);

@@ -24,6 +24,7 @@ typedef struct wd_config {
                                    0: no cap but max_clients */
     size_t max_batch;           /* most requests in one batch */
     unsigned long long max_candidates; /* most candidates of one design */
+    size_t max_cases;           /* most load cases in one request */
     unsigned idle_timeout;      /* seconds without a request in flight, or with
                                    answers left unread, before a connection is
                                    closed; 0: never */

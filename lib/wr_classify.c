@@ -21,12 +21,14 @@ static wr_status build_cones(const wr_fixture *fixture, const wr_constraint *con
     return WR_OK;
 }
 
-static void release_cones(wr_cone *cones, int count)
+/* `shared` (NULL: none) marks the cones that are a frame's, not to free. */
+static void release_cones(wr_cone *cones, int count, const bool *shared)
 {
     if (!cones)
         return;
     for (int i = 0; i < count; i++)
-        wr_cone_release(&cones[i]);
+        if (!shared || !shared[i])
+            wr_cone_release(&cones[i]);
     free(cones);
 }
 
@@ -65,7 +67,7 @@ wr_status wr_analysis_complete(wr_analysis *a)
     if (status == WR_OK)
         status = build_cones(a->fixture, a->modes, a->mode_count, &a->mode_cones);
     if (status != WR_OK) {
-        release_cones(a->mode_cones, a->mode_count);
+        release_cones(a->mode_cones, a->mode_count, NULL);
         free(a->modes);
         a->mode_cones = NULL;
         a->modes = NULL;
@@ -90,12 +92,179 @@ void wr_analysis_free(wr_analysis *analysis)
 {
     if (!analysis)
         return;
-    release_cones(analysis->goal_cones, analysis->plan ? analysis->plan->kept_count : 0);
-    release_cones(analysis->mode_cones, analysis->mode_count);
-    free(analysis->modes);
+    release_cones(analysis->goal_cones, analysis->plan ? analysis->plan->kept_count : 0,
+                  analysis->goal_shared);
+    release_cones(analysis->mode_cones, analysis->mode_count, analysis->modes_shared);
+    if (!analysis->modes_borrowed)
+        free(analysis->modes);
     if (!analysis->plan_borrowed)
         wr_plan_free(analysis->plan);
     free(analysis);
+}
+
+/* ---- the analysis at any friction (wr_internal.h) ------------------------------- */
+
+/* The acceleration generators of one set's cones, packed: cone i's are
+ * generators[first[i] .. first[i] + count[i]), count -1 for an empty cone. */
+typedef struct frame_cones {
+    int *first, *count;
+    double (*generators)[3];
+    /* A cone with no friction edge (no l, r, n or m) is the same at every
+     * coefficient: built once, shared by every analysis. */
+    bool *shared;
+    wr_cone *cones; /* the shared ones built, the others zero */
+} frame_cones;
+
+struct wr_analysis_frame {
+    wr_plan *plan;
+    bool strong;             /* the modes and their cones' generators are here */
+    bool pinned;
+    int mode_count;
+    wr_constraint *modes;
+    frame_cones goal, modes_cones;
+};
+
+static void frame_cones_release(frame_cones *c, int n)
+{
+    free(c->first);
+    free(c->count);
+    free(c->generators);
+    for (int i = 0; c->cones && i < n; i++)
+        wr_cone_release(&c->cones[i]);
+    free(c->cones);
+    free(c->shared);
+}
+
+static bool has_friction_edge(const wr_constraint *constraint)
+{
+    for (int i = 0; i < constraint->length; i++)
+        if (strchr("lrnm", constraint->letters[i]))
+            return true;
+    return false;
+}
+
+static wr_status frame_cones_make(const wr_fixture *fixture, const wr_constraint *constraints,
+                                  int n, frame_cones *out)
+{
+    out->first = malloc((size_t)(n + 1) * sizeof *out->first);
+    out->count = malloc((size_t)(n + 1) * sizeof *out->count);
+    int capacity = 4 * n + 16, used = 0;
+    out->generators = malloc((size_t)capacity * sizeof *out->generators);
+    out->shared = calloc((size_t)(n + 1), sizeof *out->shared);
+    out->cones = calloc((size_t)(n + 1), sizeof *out->cones);
+    if (!out->first || !out->count || !out->generators || !out->shared || !out->cones)
+        return WR_NO_MEMORY;
+    for (int i = 0; i < n; i++) {
+        double generators[WR_HULL_MAX][3];
+        int count = wr_cone_acceleration(fixture, &constraints[i], generators);
+        if (used + (count > 0 ? count : 0) > capacity) {
+            capacity = 2 * capacity + WR_HULL_MAX;
+            double (*grown)[3] = realloc(out->generators, (size_t)capacity * sizeof *grown);
+            if (!grown)
+                return WR_NO_MEMORY;
+            out->generators = grown;
+        }
+        out->first[i] = used;
+        out->count[i] = count;
+        if (count > 0) {
+            memcpy(out->generators + used, generators, (size_t)count * sizeof generators[0]);
+            used += count;
+        }
+        if (!has_friction_edge(&constraints[i])) {
+            wr_status status = wr_cone_build_from(&out->cones[i], fixture, &constraints[i],
+                                                  (const double (*)[3])generators, count);
+            if (status != WR_OK)
+                return status;
+            out->shared[i] = true;
+        }
+    }
+    return WR_OK;
+}
+
+void wr_analysis_frame_free(wr_analysis_frame *frame)
+{
+    if (!frame)
+        return;
+    wr_plan_free(frame->plan);
+    frame_cones_release(&frame->goal, frame->plan ? frame->plan->kept_count : 0);
+    frame_cones_release(&frame->modes_cones, frame->mode_count);
+    free(frame->modes);
+    free(frame);
+}
+
+wr_status wr_analysis_frame_new(const wr_fixture *fixture, bool strong, wr_analysis_frame **out)
+{
+    *out = NULL;
+    wr_analysis_frame *frame = calloc(1, sizeof *frame);
+    if (!frame)
+        return WR_NO_MEMORY;
+    frame->strong = strong;
+    wr_status status = wr_plan_new(fixture->fixel_count, &frame->plan);
+    if (status == WR_OK)
+        status = frame_cones_make(fixture, frame->plan->kept, frame->plan->kept_count,
+                                  &frame->goal);
+    if (status == WR_OK && strong)
+        status = wr_modes_find(fixture, &frame->modes, &frame->mode_count, &frame->pinned);
+    if (status == WR_OK && strong)
+        status = frame_cones_make(fixture, frame->modes, frame->mode_count, &frame->modes_cones);
+    if (status != WR_OK) {
+        wr_analysis_frame_free(frame);
+        return status;
+    }
+    *out = frame;
+    return WR_OK;
+}
+
+static wr_status frame_cones_build(const wr_fixture *at, const wr_constraint *constraints, int n,
+                                   const frame_cones *c, wr_cone **cones)
+{
+    *cones = calloc((size_t)(n > 0 ? n : 1), sizeof **cones);
+    if (!*cones)
+        return WR_NO_MEMORY;
+    for (int i = 0; i < n; i++) {
+        if (c->shared[i]) {
+            (*cones)[i] = c->cones[i];
+            continue;
+        }
+        wr_status status = wr_cone_build_from(&(*cones)[i], at, &constraints[i],
+                                              (const double (*)[3])(c->generators + c->first[i]),
+                                              c->count[i]);
+        if (status != WR_OK)
+            return status;
+    }
+    return WR_OK;
+}
+
+wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture *at, bool strong,
+                               wr_analysis **out)
+{
+    *out = NULL;
+    assert(frame->plan->fixel_count == at->fixel_count);
+    wr_analysis *a = calloc(1, sizeof *a);
+    if (!a)
+        return WR_NO_MEMORY;
+    a->fixture = at;
+    a->plan = frame->plan;
+    a->plan_borrowed = true;
+    a->goal_shared = frame->goal.shared;
+    wr_status status =
+        frame_cones_build(at, a->plan->kept, a->plan->kept_count, &frame->goal, &a->goal_cones);
+    if (status == WR_OK && strong && frame->strong) {
+        a->modes = frame->modes;
+        a->modes_borrowed = true;
+        a->modes_shared = frame->modes_cones.shared;
+        a->mode_count = frame->mode_count;
+        a->pinned = frame->pinned;
+        status = frame_cones_build(at, a->modes, a->mode_count, &frame->modes_cones,
+                                   &a->mode_cones);
+        a->complete = status == WR_OK;
+    }
+    if (status != WR_OK) {
+        wr_analysis_free(a);
+        return status;
+    }
+    *out = a;
+    return WR_OK;
 }
 
 static size_t cones_bytes(const wr_cone *cones, int count)

@@ -283,31 +283,49 @@ bool wr_constraint_kinematically_feasible(const wr_fixture *fixture,
     return strict_rows_met(&r, (const double (*)[3])gens, count);
 }
 
+int wr_cone_acceleration(const wr_fixture *fixture, const wr_constraint *constraint,
+                         double (*generators)[3])
+{
+    rows r;
+    acceleration_rows(fixture, constraint, &r);
+    int count = wr_hull_generators_of_rows((const double (*)[3])r.inequalities,
+                                           r.inequality_count,
+                                           (const double (*)[3])r.equalities, r.equality_count,
+                                           generators, WR_HULL_MAX);
+    return strict_rows_met(&r, (const double (*)[3])generators, count) ? count : -1;
+}
+
 wr_status wr_cone_build(wr_cone *cone, const wr_fixture *fixture,
                         const wr_constraint *constraint)
 {
+    double acceleration[WR_HULL_MAX][3];
+    int count = wr_cone_acceleration(fixture, constraint, acceleration);
+    return wr_cone_build_from(cone, fixture, constraint, (const double (*)[3])acceleration, count);
+}
+
+wr_status wr_cone_build_from(wr_cone *cone, const wr_fixture *fixture,
+                             const wr_constraint *constraint, const double (*acceleration)[3],
+                             int accel_count)
+{
     memset(cone, 0, sizeof *cone);
     cone->constraint = *constraint;
+    if (accel_count < 0) {
+        cone->empty = true;
+        cone->dimension = -1;
+        return WR_OK;
+    }
 
     rows r;
     acceleration_rows(fixture, constraint, &r);
     double gens[WR_HULL_MAX][3];
     wr_generator_origin origins[WR_HULL_MAX];
-    int accel_count = wr_hull_generators_of_rows((const double (*)[3])r.inequalities,
-                                                 r.inequality_count,
-                                                 (const double (*)[3])r.equalities,
-                                                 r.equality_count, gens, WR_HULL_MAX);
+    memcpy(gens, acceleration, (size_t)accel_count * sizeof gens[0]);
     for (int i = 0; i < accel_count; i++)
         origins[i] = (wr_generator_origin){-1, 0, 0};
     int force_count = force_generators(fixture, constraint, gens + accel_count,
                                        origins + accel_count);
     int total = accel_count + force_count;
 
-    if (!strict_rows_met(&r, (const double (*)[3])gens, accel_count)) {
-        cone->empty = true;
-        cone->dimension = -1;
-        return WR_OK;
-    }
     cone->zero_admitted = zero_admitted(&r, (const double (*)[3])(gens + accel_count), force_count);
 
     wr_hrep h;

@@ -515,7 +515,7 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         } else if (spec->objective == WR_OBJECTIVE_FORCE) {
             wr_least_force least;
             status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
-                                         spec->finger.radius, NULL, &least);
+                                         &spec->finger, NULL, &least);
             *units += least.evaluations * (unsigned long)cones * (unsigned long)spec->case_count;
             if (status == WR_OK && !least.found) {
                 *result = OUTCOME_NO_SEATING_PUSH;
@@ -1058,13 +1058,14 @@ void wr_design_job_abandon(wr_design_job *job)
     job->failed = true;
 }
 
-/* One design's figures but its critical mu (which the sweep job finds). */
-static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
+/* One design's figures but its critical mu (which the sweep job finds),
+ * placed into *fixture.  Reads the job, writes *d. */
+static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixture,
+                        unsigned long *units)
 {
-    if (place(job, d->sites, &job->detail_fixture) != WR_OK)
+    if (place(job, d->sites, fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
     const wr_design_spec *spec = &job->spec;
-    wr_fixture *fixture = &job->detail_fixture;
     wr_analysis *analysis;
     wr_status status = wr_analysis_new(fixture, &analysis);
     if (status != WR_OK)
@@ -1080,7 +1081,7 @@ static wr_status detail(wr_design_job *job, wr_design *d, unsigned long *units)
         status = wr_best_push_find(analysis, &both, -INFINITY, NULL, &d->best_push, &below);
     if (status == WR_OK && spec->case_count > 0) {
         status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
-                                     spec->finger.radius, NULL, &d->least_force);
+                                     &spec->finger, NULL, &d->least_force);
         *units += d->least_force.evaluations * (unsigned long)spec->case_count * 40;
     }
     if (status == WR_OK) {
@@ -1131,7 +1132,7 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
         }
         wr_design *d = &job->designs[job->detailing];
         if (!job->sweep) {
-            status = detail(job, d, &spent);
+            status = detail(job, d, &job->detail_fixture, &spent);
             if (status != WR_OK)
                 break;
             wr_sweep_range range = {0, WR_DESIGN_SWEEP_HIGH, 1};
@@ -1167,6 +1168,57 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
     *done = job->next >= job->candidates && job->outstanding == 0 &&
             job->detailing >= job->design_count;
     return WR_OK;
+}
+
+bool wr_design_job_searched(const wr_design_job *job)
+{
+    return !job->failed && job->next >= job->candidates && job->outstanding == 0;
+}
+
+int wr_design_job_figures_left(const wr_design_job *job)
+{
+    return wr_design_job_searched(job) ? job->design_count - job->detailing : 0;
+}
+
+wr_status wr_design_job_figure(const wr_design_job *job, int index, const wr_stop *stop,
+                               unsigned long *used)
+{
+    assert(wr_design_job_searched(job) && index >= job->detailing && index < job->design_count);
+    /* The design is written only here, by one thread: the cast keeps the
+     * job's other readers' const. */
+    wr_design *d = (wr_design *)&job->designs[index];
+    wr_fixture fixture;
+    unsigned long spent = 0;
+    wr_status status = detail(job, d, &fixture, &spent);
+    wr_sweeper *sweeper = NULL;
+    wr_sweep_job *sweep = NULL;
+    wr_sweep_range range = {0, WR_DESIGN_SWEEP_HIGH, 1};
+    if (status == WR_OK)
+        status = wr_sweeper_new(&fixture, WR_SET_GOAL, &range, &sweeper);
+    if (status == WR_OK)
+        status = wr_sweep_job_push(sweeper, &job->spec.finger, &sweep);
+    if (status == WR_OK && job->index)
+        wr_sweep_job_use_index(sweep, job->index);
+    bool finished = false;
+    if (status == WR_OK)
+        status = wr_sweep_job_run(sweep, (unsigned long)-1, &spent, stop, &finished);
+    if (status == WR_OK) {
+        assert(finished);
+        const wr_sweep_curve *curve = wr_sweep_job_curve(sweep);
+        d->has_critical = curve->has_critical;
+        d->critical_mu = curve->critical;
+    }
+    wr_sweep_job_free(sweep);
+    wr_sweeper_free(sweeper);
+    if (used)
+        *used += spent;
+    return status;
+}
+
+void wr_design_job_figure_merged(wr_design_job *job)
+{
+    assert(job->detailing < job->design_count && !job->sweep);
+    job->detailing++;
 }
 
 void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *total,

@@ -244,6 +244,22 @@ uint64_t wr_design_job_total(const wr_design_job *job);
 void wr_design_job_abandon(wr_design_job *job);
 void wr_design_chunk_release(wr_design_chunk *chunk);
 
+/* The designs' figures in parallel too, once the search is over (every
+ * chunk claimed and merged: wr_design_job_searched): the designs still
+ * without figures are those from the first of wr_design_job_figures_left,
+ * in order.  wr_design_job_figure makes design `index`'s figures, critical
+ * mu included, in its own fixture, analysis and sweep: it reads the job
+ * and writes that design only, so any number may run at once on different
+ * designs.  wr_design_job_figure_merged then counts the next design in
+ * order as done (under the caller's lock, serialised with
+ * wr_design_job_run): the same figures, bit for bit, as wr_design_job_run
+ * makes one at a time.  WR_OK; WR_NO_MEMORY; WR_STOPPED. */
+bool wr_design_job_searched(const wr_design_job *job);
+int wr_design_job_figures_left(const wr_design_job *job);
+wr_status wr_design_job_figure(const wr_design_job *job, int index, const wr_stop *stop,
+                               unsigned long *used);
+void wr_design_job_figure_merged(wr_design_job *job);
+
 /* Progress: candidates of the shard looked at, of how many, and the best
  * score so far (has_best false before any). */
 void wr_design_job_progress(const wr_design_job *job, uint64_t *done, uint64_t *total,

@@ -191,38 +191,98 @@ static double polygon_area2(const double (*v)[2], size_t n)
     return area2;
 }
 
-/* The first two edges that meet where a simple polygon's do not: edges
- * that are not neighbours sharing a point, or neighbours folding back onto
- * each other.  Edge i runs from vertex i to vertex i + 1. */
-static bool self_intersection(const double (*v)[2], size_t n, size_t *first, size_t *second,
-                              double point[2])
+/* Neighbours i, i + 1 (mod n) collinear and turning back at their shared
+ * vertex: they overlap from it on. */
+static bool folds_back(const double (*v)[2], size_t n, size_t i)
 {
-    for (size_t i = 0; i < n; i++) {
-        const double *a = v[i], *b = v[(i + 1) % n], *c = v[(i + 2) % n];
-        double d1[2] = {b[0] - a[0], b[1] - a[1]}, d2[2] = {c[0] - b[0], c[1] - b[1]};
-        if (cross2(d1, d2) == 0 && d1[0] * d2[0] + d1[1] * d2[1] < 0) {
-            /* Collinear and turning back: they overlap from the shared
-             * vertex b on. */
-            *first = i;
-            *second = (i + 1) % n;
-            point[0] = b[0];
-            point[1] = b[1];
-            return true;
-        }
-        for (size_t j = i + 2; j < n; j++) {
-            if (i == 0 && j == n - 1)
-                continue; /* neighbours through vertex 0 */
-            if (segments_meet(a, b, v[j], v[(j + 1) % n], point)) {
-                *first = i;
-                *second = j;
-                return true;
-            }
-        }
-    }
-    return false;
+    const double *a = v[i], *b = v[(i + 1) % n], *c = v[(i + 2) % n];
+    double d1[2] = {b[0] - a[0], b[1] - a[1]}, d2[2] = {c[0] - b[0], c[1] - b[1]};
+    return cross2(d1, d2) == 0 && d1[0] * d2[0] + d1[1] * d2[1] < 0;
 }
 
-static bool check_polygon(const wr_fixture_spec *spec, double size, wr_error *error)
+/* Edges i < j, not neighbours, share a point?  Edge i runs from vertex i
+ * to vertex i + 1. */
+static bool edges_meet(const double (*v)[2], size_t n, size_t i, size_t j, double point[2])
+{
+    if (j == i + 1 || (i == 0 && j == n - 1))
+        return false; /* neighbours, sharing a vertex: folds_back's */
+    return segments_meet(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n], point);
+}
+
+/* The pairs of edges the sweep visits (wr_box_pairs), keeping the first
+ * that meets in index order; a pair at or after it is not tested. */
+typedef struct edge_meeting {
+    const double (*v)[2];
+    size_t n;
+    bool found;
+    size_t first, second;
+    double point[2];
+} edge_meeting;
+
+static void visit_edges(void *context, size_t i, size_t j)
+{
+    edge_meeting *m = context;
+    if (m->found && (i > m->first || (i == m->first && j >= m->second)))
+        return;
+    double point[2];
+    if (edges_meet(m->v, m->n, i, j, point)) {
+        m->found = true;
+        m->first = i;
+        m->second = j;
+        m->point[0] = point[0];
+        m->point[1] = point[1];
+    }
+}
+
+int wr_polygon_first_meeting(const double (*v)[2], size_t n, bool exhaustively, size_t *first,
+                             size_t *second, double point[2])
+{
+    size_t fold = n;
+    for (size_t i = 0; i < n && fold == n; i++)
+        if (folds_back(v, n, i))
+            fold = i;
+    edge_meeting m = {v, n, false, 0, 0, {0, 0}};
+    if (exhaustively) {
+        for (size_t i = 0; i < n && !m.found && i < fold; i++)
+            for (size_t j = i + 2; j < n && !m.found; j++)
+                visit_edges(&m, i, j);
+    } else {
+        wr_box *boxes = calloc(n, sizeof *boxes);
+        if (!boxes)
+            return -1;
+        for (size_t i = 0; i < n; i++) {
+            const double *a = v[i], *b = v[(i + 1) % n];
+            boxes[i] = (wr_box){{fmin(a[0], b[0]), fmin(a[1], b[1])},
+                                {fmax(a[0], b[0]), fmax(a[1], b[1])}};
+        }
+        /* Closed boxes, no margin: edges sharing a point share it exactly
+         * in their boxes, the comparisons exact. */
+        bool ok = wr_box_pairs(boxes, n, 0, visit_edges, &m);
+        free(boxes);
+        if (!ok)
+            return -1;
+    }
+    /* In index order, edge i's fold with i + 1 comes before its meetings
+     * with edges i + 2 on. */
+    if (fold < n && (!m.found || fold <= m.first)) {
+        *first = fold;
+        *second = (fold + 1) % n;
+        point[0] = v[*second][0];
+        point[1] = v[*second][1];
+        return 1;
+    }
+    if (!m.found)
+        return 0;
+    *first = m.first;
+    *second = m.second;
+    point[0] = m.point[0];
+    point[1] = m.point[1];
+    return 1;
+}
+
+/* *no_memory set (and false returned) when the simplicity test ran out. */
+static bool check_polygon(const wr_fixture_spec *spec, double size, wr_error *error,
+                          bool *no_memory)
 {
     size_t n = spec->vertex_count;
     const double (*v)[2] = spec->vertices;
@@ -261,7 +321,13 @@ static bool check_polygon(const wr_fixture_spec *spec, double size, wr_error *er
      * that its edges cross. */
     size_t first, second;
     double point[2];
-    if (self_intersection(v, n, &first, &second, point)) {
+    int meeting = wr_polygon_first_meeting(v, n, false, &first, &second, point);
+    if (meeting < 0) {
+        wr_error_set(error, "", "out of memory");
+        *no_memory = true;
+        return false;
+    }
+    if (meeting > 0) {
         if (second == (first + 1) % n) {
             snprintf(field, sizeof field, "body.shape.vertices[%zu]", second);
             wr_error_set(error, field,
@@ -620,7 +686,7 @@ static double shape_size(const wr_fixture_spec *spec)
     return size > 0 ? size : 1;
 }
 
-static bool check_body(const wr_fixture_spec *spec, wr_error *error)
+static bool check_body(const wr_fixture_spec *spec, wr_error *error, bool *no_memory)
 {
     if (!isfinite(spec->mass)) {
         wr_error_set(error, "body.mass", "must be a finite number");
@@ -662,7 +728,7 @@ static bool check_body(const wr_fixture_spec *spec, wr_error *error)
             return false;
         }
     } else if (spec->shape == WR_SHAPE_POLYGON) {
-        if (!check_polygon(spec, shape_size(spec), error))
+        if (!check_polygon(spec, shape_size(spec), error, no_memory))
             return false;
     } else if (spec->shape == WR_SHAPE_NONE) {
         if (!spec->com_given) {
@@ -724,7 +790,7 @@ static bool check_fixel_list(const wr_fixture_spec *spec, wr_error *error)
 static wr_fixture *validate(const wr_fixture_spec *spec, bool body_only, wr_error *error,
                             bool *no_memory)
 {
-    if (!check_body(spec, error))
+    if (!check_body(spec, error, no_memory))
         return NULL;
     /* Before anything is derived from them (a shapeless body's size). */
     if (!body_only && !check_fixel_list(spec, error))

@@ -115,6 +115,15 @@ typedef struct wr_fixture_spec {
     wr_units units;                 /* not given: both factors 1 */
 } wr_fixture_spec;
 
+/* A fixture's geometric tolerance (wr_tolerance.h, docs/MODEL.md section
+ * 10): each contact within arc length `position` of its nominal point along
+ * the boundary, each normal tilted by up to `angle` degrees. */
+typedef struct wr_tolerance {
+    bool given;          /* false: every answer is the nominal one */
+    double position;     /* >= 0, the fixture's length unit */
+    double angle;        /* in [0, 90), degrees */
+} wr_tolerance;
+
 /* A validated fixel.  t = n turned +90 degrees: (-n_y, n_x). */
 typedef struct wr_fixel {
     double at[2];
@@ -165,6 +174,7 @@ typedef struct wr_fixture {
     int fixel_count;
     wr_fixel fixels[WR_MAX_FIXELS];
     wr_units units;               /* as given; not given: both factors 1 */
+    wr_tolerance tolerance;       /* set by wr_fixture_set_tolerance only */
     /* The base plate's supports under the part (wr_support.h), owned:
      * wr_fixture_free frees them.  NULL: the part floats in its plane.
      * Set once by wr_fixture_set_supports, before the fixture is shared. */

@@ -51,11 +51,27 @@ static int compare_doubles(const void *a, const void *b)
 /* The open gaps of [low, high] between the closed spans `bad`, into `good`
  * (appended), each mapped by `map` (NULL: as they are).  A gap no wider than
  * sliver(from, to) is rounding where two spans meet.  Sorts `bad`. */
+/* Sorts by lo: a point's few spans by insertion (qsort's set-up costs more
+ * than the sort), many by qsort. */
+static void sort_spans(spanlist *s)
+{
+    if (s->count > 16) {
+        qsort(s->items, (size_t)s->count, sizeof *s->items, compare_lo);
+        return;
+    }
+    for (int i = 1; i < s->count; i++) {
+        wr_force_interval item = s->items[i];
+        int j = i;
+        for (; j > 0 && s->items[j - 1].lo > item.lo; j--)
+            s->items[j] = s->items[j - 1];
+        s->items[j] = item;
+    }
+}
+
 static void gaps(spanlist *bad, double low, double high, double (*sliver)(double, double, double),
                  double sliver_arg, spanlist *good)
 {
-    if (bad->count > 0)
-        qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_lo);
+    sort_spans(bad);
     double from = low;
     for (int i = 0; i <= bad->count; i++) {
         double to = i < bad->count ? bad->items[i].lo : high;
@@ -112,52 +128,18 @@ static double force_sliver(double from, double to, double unused)
     return 1e-9 * fmax(1, isfinite(to) ? fabs(to) : 1);
 }
 
-/* Spans held on the stack before a call needs the heap: a set's cones for
- * up to four fixels. */
-#define STACK_SPANS 64
+/* Spans held on the stack before a call needs the heap: both sets' cones
+ * for up to four fixels. */
+#define STACK_SPANS 128
 
-wr_status wr_force_range(const wr_analysis *a, wr_set set, const double load[3],
-                         const double push[3], double lo, double hi, wr_forces *out)
+/* The good magnitudes in [lo, hi] of one set, from its cones' spans `bad`
+ * (in s = F k; sorted here), into `out`.  WR_OK or WR_NO_MEMORY (out
+ * empty). */
+static wr_status good_forces(spanlist *bad, double k, double lo, double hi, wr_forces *out)
 {
-    out->count = 0; /* its array is reused */
-    if (!finite3(load) || !finite3(push) || !(lo >= 0) || !isfinite(lo) || !(hi >= lo))
-        return WR_INVALID;
-    const wr_fixture *f = wr_analysis_fixture(a);
-    double hl[3], hu[3];
-    scaled(f, load, hl);
-    scaled(f, push, hu);
-    double nl = wr_normalize3(hl), nu = wr_normalize3(hu);
-    if (!(nu > 0) || !isfinite(nl) || !isfinite(nu))
-        return WR_INVALID;
-    /* The line is nl (x_L + s x_u) with s = F nu / nl: unit vectors, so the
-     * rows' zero is absolute.  Without a load, s = F nu. */
-    double k = nl > 0 ? nu / nl : nu;
-    wr_force_interval stack[STACK_SPANS];
-    int count = set_cone_count(a, set);
-    spanlist bad = {0, STACK_SPANS, stack, false};
-    if (count + 1 > STACK_SPANS) {
-        bad.items = malloc((size_t)(count + 1) * sizeof *bad.items);
-        bad.capacity = count + 1;
-        if (!bad.items)
-            return WR_NO_MEMORY;
-    }
-    for (int i = 0; i < count; i++) {
-        const wr_cone *cone = set_cone(a, set, i);
-        if (cone->empty)
-            continue;
-        double s0, s1;
-        wr_line_in_cone(cone, hl, hu, 2, &s0, &s1);
-        span_add(&bad, fmax(s0, 0), s1);
-    }
-    /* s = 0 without a load is the zero wrench: on every cone's boundary. */
-    if (!(nl > 0))
-        span_add(&bad, 0, 0);
-    assert(!bad.failed); /* room for every cone and the zero wrench */
     double s_lo = lo * k, s_hi = hi * k;
     spanlist good = {0, out->capacity, out->items, false};
-    gaps(&bad, s_lo, s_hi, force_sliver, 0, &good);
-    if (bad.items != stack)
-        free(bad.items);
+    gaps(bad, s_lo, s_hi, force_sliver, 0, &good);
     out->items = good.items;
     out->capacity = good.capacity;
     if (good.failed) {
@@ -172,6 +154,83 @@ wr_status wr_force_range(const wr_analysis *a, wr_set set, const double load[3],
     }
     out->count = good.count;
     return WR_OK;
+}
+
+wr_status wr_force_ranges(const wr_analysis *a, const bool sets[3], const double load[3],
+                          const double push[3], double lo, double hi, wr_forces out[3])
+{
+    for (int s = 0; s < 3; s++)
+        if (sets[s])
+            out[s].count = 0; /* its array is reused */
+    if (!finite3(load) || !finite3(push) || !(lo >= 0) || !isfinite(lo) || !(hi >= lo))
+        return WR_INVALID;
+    const wr_fixture *f = wr_analysis_fixture(a);
+    double hl[3], hu[3];
+    scaled(f, load, hl);
+    scaled(f, push, hu);
+    double nl = wr_normalize3(hl), nu = wr_normalize3(hu);
+    if (!(nu > 0) || !isfinite(nl) || !isfinite(nu))
+        return WR_INVALID;
+    /* The line is nl (x_L + s x_u) with s = F nu / nl: unit vectors, so the
+     * rows' zero is absolute.  Without a load, s = F nu. */
+    double k = nl > 0 ? nu / nl : nu;
+    /* Each cone's span once: goal's first, then strong's (both is all of
+     * them), and room for every one in each set's copy. */
+    int goal = wr_analysis_cone_count(a, WR_SET_GOAL);
+    int count = goal + wr_analysis_cone_count(a, WR_SET_STRONG);
+    wr_force_interval stack[2 * STACK_SPANS];
+    wr_force_interval *spans = stack, *work = stack + STACK_SPANS;
+    if (count + 1 > STACK_SPANS) {
+        spans = malloc(2 * (size_t)(count + 1) * sizeof *spans);
+        if (!spans)
+            return WR_NO_MEMORY;
+        work = spans + count + 1;
+    }
+    int found = 0, goal_found = 0;
+    for (int i = 0; i < count; i++) {
+        const wr_cone *cone = i < goal ? wr_analysis_cone(a, WR_SET_GOAL, i)
+                                       : wr_analysis_cone(a, WR_SET_STRONG, i - goal);
+        double s0, s1;
+        if (!cone->empty) {
+            wr_line_in_cone(cone, hl, hu, 2, &s0, &s1);
+            s0 = fmax(s0, 0);
+            if (s0 <= s1)
+                spans[found++] = (wr_force_interval){s0, s1};
+        }
+        if (i + 1 == goal)
+            goal_found = found;
+    }
+    if (goal == 0)
+        goal_found = 0;
+    wr_status status = WR_OK;
+    for (int s = 0; status == WR_OK && s < 3; s++) {
+        if (!sets[s])
+            continue;
+        int from = s == WR_SET_STRONG ? goal_found : 0, to = s == WR_SET_GOAL ? goal_found : found;
+        spanlist bad = {0, count + 1, work, false};
+        for (int i = from; i < to; i++)
+            bad.items[bad.count++] = spans[i];
+        /* s = 0 without a load is the zero wrench: on every cone's boundary. */
+        if (!(nl > 0))
+            span_add(&bad, 0, 0);
+        assert(!bad.failed && bad.items == work); /* room for every cone and the zero wrench */
+        status = good_forces(&bad, k, lo, hi, &out[s]);
+    }
+    if (spans != stack)
+        free(spans);
+    return status;
+}
+
+wr_status wr_force_range(const wr_analysis *a, wr_set set, const double load[3],
+                         const double push[3], double lo, double hi, wr_forces *out)
+{
+    bool sets[3] = {false, false, false};
+    wr_forces all[3] = {{0}};
+    sets[set] = true;
+    all[set] = *out;
+    wr_status status = wr_force_ranges(a, sets, load, push, lo, hi, all);
+    *out = all[set];
+    return status;
 }
 
 wr_status wr_forces_intersect(const wr_forces *a, const wr_forces *b, wr_forces *out)
@@ -323,12 +382,20 @@ static bool trig_bad(const wr_analysis *a, wr_set set, const trig_curve *curve,
     return !bad->failed;
 }
 
+/* The finger of the force paths: its radius and push_on (its friction is
+ * not used: the push is along the inward normal). */
+static bool finger_valid(const wr_finger *finger)
+{
+    return finger && finger->radius >= 0 && isfinite(finger->radius);
+}
+
 /* The regions of one edge (a circle: its one edge), appended to `out`. */
 static bool edge_loaded(const wr_analysis *a, wr_set set, const double (*offsets)[3], int cases,
-                        double radius, int edge, const wr_stop *stop, wr_status *failure,
-                        wr_regions *out)
+                        const wr_finger *finger, int edge, const wr_stop *stop,
+                        wr_status *failure, wr_regions *out)
 {
     const wr_fixture *f = wr_analysis_fixture(a);
+    double radius = finger->radius;
     spanlist bad = {0}, good = {0};
     wr_edge_frame frame;
     wr_edge_frame_of(f, edge, &frame);
@@ -399,16 +466,16 @@ static bool edge_loaded(const wr_analysis *a, wr_set set, const double (*offsets
 }
 
 wr_status wr_push_regions_loaded(const wr_analysis *a, wr_set set, double force,
-                                 const double (*loads)[3], int case_count, double finger_radius,
-                                 int first_edge, int edge_count, const wr_stop *stop,
-                                 wr_regions *out)
+                                 const double (*loads)[3], int case_count,
+                                 const wr_finger *finger, int first_edge, int edge_count,
+                                 const wr_stop *stop, wr_regions *out)
 {
     const wr_fixture *f = wr_analysis_fixture(a);
     int edges = wr_push_edge_count(f);
     if (f->shape == WR_SHAPE_NONE)
         return WR_NO_SHAPE;
-    if (!(force > 0) || !isfinite(force) || case_count < 1 || !(finger_radius >= 0) ||
-        !isfinite(finger_radius) || first_edge < 0 || edge_count < 0 ||
+    if (!(force > 0) || !isfinite(force) || case_count < 1 || !finger_valid(finger) ||
+        first_edge < 0 || edge_count < 0 ||
         edge_count > edges - first_edge)
         return WR_INVALID;
     for (int c = 0; c < case_count; c++)
@@ -432,8 +499,10 @@ wr_status wr_push_regions_loaded(const wr_analysis *a, wr_set set, double force,
             ok = false;
             break;
         }
-        ok = edge_loaded(a, set, (const double (*)[3])offsets, case_count, finger_radius, e,
-                         stop, &failure, out);
+        /* A loop not pushed on has no region (push_on). */
+        if (wr_finger_pushes_on(f, finger, e))
+            ok = edge_loaded(a, set, (const double (*)[3])offsets, case_count, finger, e, stop,
+                             &failure, out);
     }
     free(offsets);
     if (!ok) {
@@ -482,8 +551,7 @@ static bool bad_forces(const wr_analysis *a, wr_set set, const double load[3],
  * covered. */
 static double covered_from_zero(spanlist *bad, double unit)
 {
-    if (bad->count > 0)
-        qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_lo);
+    sort_spans(bad);
     double end = 0;
     bool covered = false;
     for (int i = 0; i < bad->count; i++) {
@@ -816,7 +884,7 @@ static double enough(double best)
 #define BB_START 8
 
 wr_status wr_least_force_find(const wr_analysis *a, wr_set set, const double (*loads)[3],
-                              int case_count, double finger_radius, const wr_stop *stop,
+                              int case_count, const wr_finger *finger, const wr_stop *stop,
                               wr_least_force *out)
 {
     memset(out, 0, sizeof *out);
@@ -824,8 +892,9 @@ wr_status wr_least_force_find(const wr_analysis *a, wr_set set, const double (*l
     const wr_fixture *f = wr_analysis_fixture(a);
     if (f->shape == WR_SHAPE_NONE)
         return WR_NO_SHAPE;
-    if (case_count < 1 || !(finger_radius >= 0) || !isfinite(finger_radius))
+    if (case_count < 1 || !finger_valid(finger))
         return WR_INVALID;
+    double finger_radius = finger->radius;
     double (*hl)[3] = malloc((size_t)case_count * sizeof *hl);
     if (!hl)
         return WR_NO_MEMORY;
@@ -865,7 +934,9 @@ wr_status wr_least_force_find(const wr_analysis *a, wr_set set, const double (*l
     for (int e = 0; status == WR_OK && e < edges; e++) {
         edge_push_of(f, e, &pushes[e]);
         spanlist reach = {0};
-        if (finger_radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
+        if (!wr_finger_pushes_on(f, finger, e)) {
+            /* A loop not pushed on (push_on): nothing of this edge is reached. */
+        } else if (finger_radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
             size_t loop, segment;
             wr_push_edge_place(f, e, &loop, &segment);
             wr_span *items = NULL;

@@ -57,6 +57,13 @@ void wr_forces_release(wr_forces *forces);
 wr_status wr_force_range(const wr_analysis *analysis, wr_set set, const double load[3],
                          const double push[3], double lo, double hi, wr_forces *out);
 
+/* wr_force_range for each set s with sets[s] (indexed by wr_set: goal,
+ * strong, both), into out[s] (the others untouched): every cone's span of
+ * the line found once for all three, the same answers.  Returns as
+ * wr_force_range. */
+wr_status wr_force_ranges(const wr_analysis *analysis, const bool sets[3], const double load[3],
+                          const double push[3], double lo, double hi, wr_forces out[3]);
+
 /* The intersection of two interval sets, into `out` (which may be neither
  * of them).  WR_OK or WR_NO_MEMORY. */
 wr_status wr_forces_intersect(const wr_forces *a, const wr_forces *b, wr_forces *out);
@@ -68,17 +75,19 @@ wr_status wr_forces_intersect(const wr_forces *a, const wr_forces *b, wr_forces 
  * in t, on an arc and on a circle it is A cos phi + B sin phi + L, each row
  * of a cone met at the roots of A cos phi + B sin phi = C.  Edges
  * [first_edge, first_edge + edge_count) only, appended to `regions` (the
- * parts of all edges, in order, make the whole answer); a finger of
- * `finger_radius` > 0 also loses the points it cannot reach (wr_finger.h),
- * as wr_push_regions_finger.  `loads` are physical wrenches of the model
- * system.  WR_OK; WR_NO_SHAPE; WR_INVALID for a force not positive and
- * finite, a non-finite load, no case, a negative radius or edges past the
- * outline's; WR_NO_MEMORY; WR_STOPPED.  On failure `regions` is as it
- * was. */
+ * parts of all edges, in order, make the whole answer).  The `finger`
+ * (wr_regions.h) is used for its radius and its push_on: a finger of
+ * radius > 0 loses the points it cannot reach (wr_finger.h) and a loop not
+ * pushed on has no region, as in wr_push_regions_finger; its friction is
+ * not used (every force path pushes along the inward normal).  `loads` are
+ * physical wrenches of the model system.  WR_OK; WR_NO_SHAPE; WR_INVALID
+ * for a force not positive and finite, a non-finite load, no case, a
+ * negative or non-finite radius or edges past the outline's; WR_NO_MEMORY;
+ * WR_STOPPED.  On failure `regions` is as it was. */
 wr_status wr_push_regions_loaded(const wr_analysis *analysis, wr_set set, double force,
-                                 const double (*loads)[3], int case_count, double finger_radius,
-                                 int first_edge, int edge_count, const wr_stop *stop,
-                                 wr_regions *regions);
+                                 const double (*loads)[3], int case_count,
+                                 const wr_finger *finger, int first_edge, int edge_count,
+                                 const wr_stop *stop, wr_regions *regions);
 
 /* The least magnitude F*(p) with which a push at p along the inward normal
  * does the set's job under every case: the lower end of the first interval
@@ -89,7 +98,8 @@ wr_status wr_least_force_at(const wr_analysis *analysis, wr_set set, const doubl
                             int case_count, const double push[3], double *force);
 
 /* The point of the outline where the smallest push suffices: the minimum
- * of F*(p) over the outline (a finger of `finger_radius` reaching it), by
+ * of F*(p) over the points the `finger` reaches and may push on (its radius
+ * and push_on, as wr_push_regions_loaded's; its friction not used), by
  * branch and bound over intervals of each edge, which cannot miss it.
  *
  * The bound.  Over an interval T of an edge, each row f of an excluded
@@ -131,7 +141,7 @@ typedef struct wr_least_force {
 } wr_least_force;
 
 wr_status wr_least_force_find(const wr_analysis *analysis, wr_set set, const double (*loads)[3],
-                              int case_count, double finger_radius, const wr_stop *stop,
+                              int case_count, const wr_finger *finger, const wr_stop *stop,
                               wr_least_force *out);
 
 #ifdef __cplusplus

@@ -11,6 +11,8 @@
 
 #include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
 
 #define WR_PI 3.14159265358979323846
 
@@ -52,7 +54,27 @@ static inline void wr_copy3(const double a[3], double out[3])
  * bit for bit the plain division's, and beyond it nothing overflows when
  * squared (1.3e308) nor loses its digits (5e-324).  The rule for every
  * vector this library or the protocol layer normalises. */
-static inline int wr_scale_exponent(double largest) { return ilogb(largest); }
+static inline int wr_scale_exponent(double largest)
+{
+    /* ilogb, read from the bits for a normal number (the library call's
+     * cost shows in every hull). */
+    uint64_t bits;
+    memcpy(&bits, &largest, sizeof bits);
+    int field = (int)((bits >> 52) & 0x7ff);
+    return field != 0 && field != 0x7ff ? field - 1023 : ilogb(largest);
+}
+
+/* scalbn(x, e): for e in the normal exponents, a product with 2^e, which
+ * is exact or rounded once just as scalbn rounds (so the same bits). */
+static inline double wr_scalbn(double x, int e)
+{
+    if (e < -1022 || e > 1023)
+        return scalbn(x, e);
+    uint64_t bits = (uint64_t)(e + 1023) << 52;
+    double power;
+    memcpy(&power, &bits, sizeof power);
+    return x * power;
+}
 
 /* Normalise in place; returns the former length (0 leaves a unchanged; it
  * may be +inf for vectors near the largest double, a still unit). */
@@ -62,12 +84,12 @@ static inline double wr_normalize3(double a[3])
     if (!(largest > 0) || !isfinite(largest))
         return largest > 0 ? largest : 0;
     int e = wr_scale_exponent(largest);
-    double s[3] = {scalbn(a[0], -e), scalbn(a[1], -e), scalbn(a[2], -e)};
+    double s[3] = {wr_scalbn(a[0], -e), wr_scalbn(a[1], -e), wr_scalbn(a[2], -e)};
     double n = wr_norm3(s);
     a[0] = s[0] / n;
     a[1] = s[1] / n;
     a[2] = s[2] / n;
-    return scalbn(n, e);
+    return wr_scalbn(n, e);
 }
 
 /* The unit vector along v (2D), scaled first as wr_normalize3; false when v
@@ -78,7 +100,7 @@ static inline bool wr_unit2(const double v[2], double out[2])
     if (!(largest > 0) || !isfinite(largest))
         return false;
     int e = wr_scale_exponent(largest);
-    double x = scalbn(v[0], -e), y = scalbn(v[1], -e);
+    double x = wr_scalbn(v[0], -e), y = wr_scalbn(v[1], -e);
     double n = hypot(x, y);
     out[0] = x / n;
     out[1] = y / n;
@@ -139,6 +161,47 @@ double wr_nnls3(const double (*columns)[3], int count, const double y[3], double
 bool wr_segments_cross(const double a[2], const double b[2], const double c[2], const double d[2],
                        double point[2]);
 
+/* The pairs of boxes that overlap, found by a sweep along x: the boxes
+ * sorted by their least x, each compared only with those whose x range it
+ * enters (the active ones), then in y.  visit(context, i, j) is called once
+ * for each pair i < j whose closed boxes, each grown by `margin` on every
+ * side, overlap (and possibly for some that only nearly do: a superset,
+ * never fewer), in no particular order.  The work is O(n log n) for the
+ * sort plus one comparison per pair whose x ranges overlap.  The simplicity
+ * tests of outlines (wr_outline.c) and polygons (wr_fixture.c) give it
+ * their segments' boxes and keep, of the pairs visited that meet, the one
+ * an exhaustive test in index order would have found first.  Returns false
+ * only when out of memory (nothing visited then). */
+typedef struct wr_box {
+    double min[2], max[2];
+} wr_box;
+typedef void (*wr_box_visit)(void *context, size_t i, size_t j);
+bool wr_box_pairs(const wr_box *boxes, size_t n, double margin, wr_box_visit visit,
+                  void *context);
+/* wr_outline_new, with `exhaustively` every pair of segments tested in index
+ * order instead of the sweep's pairs: the reference the sweep is tested
+ * against.  The same answer, the same error, either way. */
+/* The first two edges of the polygon v[0..n) that meet where a simple
+ * polygon's do not, in index order (edge i from vertex i to i + 1): edges
+ * that are not neighbours sharing a point (*first < *second), or
+ * neighbours folding back onto each other (*second = *first + 1 mod n,
+ * *point their shared vertex).  1 found, 0 none, -1 out of memory.  By the
+ * sweep, or with `exhaustively` pair by pair (the reference, for tests);
+ * the same answer either way (wr_fixture.c). */
+int wr_polygon_first_meeting(const double (*v)[2], size_t n, bool exhaustively, size_t *first,
+                             size_t *second, double point[2]);
+/* Find a lattice job's poses with arcs by the reference: the third curve's
+ * residual scanned over theta in WR_LATTICE_STEPS steps, each change of
+ * sign bisected and each small minimum refined (a pose crossing zero and
+ * back within a step is missed), instead of the polynomial's roots
+ * (wr_lattice.c).  Before the job runs; for the tests and the benchmark. */
+struct wr_lattice_job;
+void wr_lattice_job_scan(struct wr_lattice_job *job);
+struct wr_loop_spec;
+struct wr_outline;
+wr_status wr_outline_new_checked(const struct wr_loop_spec *loops, size_t loop_count,
+                                 bool exhaustively, struct wr_outline **out, wr_error *error);
+
 struct wr_constraint;
 struct wr_plan;
 struct wr_cone;
@@ -154,7 +217,38 @@ struct wr_analysis {
     bool pinned;                  /* rolling at every fixel forces q = 0 */
     bool plan_borrowed;           /* the plan is the caller's (wr_analysis_goal_new) */
     bool complete;                /* the modes and G_strong's cones are derived */
+    bool modes_borrowed;          /* the modes are a frame's (wr_analysis_frame_at) */
+    const bool *goal_shared;      /* NULL, or which cones are a frame's, not to */
+    const bool *modes_shared;     /* free (wr_analysis_frame_at) */
 };
+
+/* A cone in two parts (wr_cone.c).  Its acceleration generators M Q_X
+ * involve no friction: wr_cone_acceleration writes them and returns their
+ * count, or -1 when the strict rows cannot be met (the cone is empty).
+ * wr_cone_build_from adds the friction edges of `fixture` and builds the
+ * rest; with the first part's output it is wr_cone_build, bit for bit. */
+int wr_cone_acceleration(const wr_fixture *fixture, const struct wr_constraint *constraint,
+                         double (*generators)[3]);
+wr_status wr_cone_build_from(struct wr_cone *cone, const wr_fixture *fixture,
+                             const struct wr_constraint *constraint, const double (*acceleration)[3],
+                             int accel_count);
+
+/* What an analysis holds that no coefficient of friction changes: the plan,
+ * the moving modes and pinned, and every cone's acceleration generators,
+ * for G_goal's cones and (with `strong`) G_strong's.  Built once from a
+ * fixture, it makes the analysis of the same fixture at any friction
+ * (the same fixels, normals and body; wr_fixture_at_friction) by building
+ * only the friction edges and the hulls: bit for bit what
+ * wr_analysis_new makes of that fixture, but that without `strong` the
+ * analysis has only G_goal's cones (as wr_analysis_goal_new's), and so
+ * has an analysis made without `strong` from a frame that has them.  The
+ * frame is immutable once built: any number of threads may use it; it
+ * must outlive every analysis made from it. */
+typedef struct wr_analysis_frame wr_analysis_frame;
+wr_status wr_analysis_frame_new(const wr_fixture *fixture, bool strong, wr_analysis_frame **out);
+wr_status wr_analysis_frame_at(const wr_analysis_frame *frame, const wr_fixture *at, bool strong,
+                               struct wr_analysis **out);
+void wr_analysis_frame_free(wr_analysis_frame *frame);
 
 /* The margin of the unit scaled wrench x for one set (WR_SET_GOAL or
  * WR_SET_STRONG): minus the largest depth in an excluded cone, else the
@@ -185,6 +279,16 @@ typedef struct wr_edge_frame {
     double half_angle, half_angle_sin; /* an arc's */
 } wr_edge_frame;
 void wr_edge_frame_of(const wr_fixture *fixture, int edge, wr_edge_frame *out);
+/* The open t-intervals of [0, 1] on an arc's frame where its push wrench is
+ * in none of the cones (push.regions of one arc, as edge 0), appended to
+ * *out: by the fast path where it decides (one atan2 per facet, nothing
+ * allocated), else, or with `reference` always, by the reference (every
+ * root sorted and every piece tested); *referred (may be NULL) counts the
+ * cones the reference took.  For the tests and the benchmark, which hold
+ * the two to the same regions (wr_regions.c). */
+struct wr_regions;
+wr_status wr_arc_regions(const wr_edge_frame *frame, const struct wr_cone **cones, int count,
+                         bool reference, int *referred, struct wr_regions *out);
 
 /* The closed interval [*lo, *hi] of t where the scaled wrench h0 + t h1
  * lies in the cone's closure (*lo > *hi: nowhere): one linear condition

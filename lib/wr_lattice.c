@@ -4,6 +4,7 @@
 #include "wr_outline.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -43,8 +44,13 @@ struct wr_lattice_job {
     hole *holes;             /* after (0, 0) in (j, i) order, within reach */
     size_t hole_count;
     size_t pair_total;       /* (second, third) hole pairs, numbered in order */
-    size_t claimed;          /* pairs handed out as chunks */
-    size_t merged;           /* pairs whose designs are in `found`, in order */
+    /* The units of work: a hole pair and the curves its first two pegs
+     * touch, numbered (pair * curve_count + x) * curve_count + y, so that
+     * a unit's work is the curves of the third peg, whatever the number of
+     * holes. */
+    size_t unit_total;
+    size_t claimed;          /* units handed out as chunks */
+    size_t merged;           /* units whose designs are in `found`, in order */
     int outstanding;         /* chunks claimed, not yet merged or abandoned */
     /* Finished chunks ahead of their turn (claimed later than one still
      * running): at most the chunks outstanding at once, a few. */
@@ -52,6 +58,7 @@ struct wr_lattice_job {
     size_t waiting_count, waiting_capacity;
     design_list found;
     bool failed;
+    bool scan;               /* poses with arcs by the theta scan (wr_lattice_job_scan) */
     double grid[WR_LATTICE_STEPS + 1][2]; /* cos, sin of the scan's angles */
 };
 
@@ -151,6 +158,7 @@ static bool build_holes(wr_lattice_job *job)
         job->hole_count = count;
     }
     job->pair_total = job->hole_count * (job->hole_count ? job->hole_count - 1 : 0) / 2;
+    job->unit_total = job->pair_total * (size_t)job->curve_count * (size_t)job->curve_count;
     return true;
 }
 
@@ -506,6 +514,306 @@ static bool with_arcs(const wr_lattice_job *job, design_list *out, const hole *c
     return true;
 }
 
+/* ---- exact poses with arcs: a polynomial in t = tan(theta / 2) ------------------------
+ *
+ * docs/MODEL.md ("Lattice poses with arcs") derives it.  With
+ * c = (1 - t^2) / (1 + t^2) and s = 2 t / (1 + t^2), a quantity linear in
+ * (c, s, 1) is a quadratic in t over (1 + t^2); products add the powers of
+ * the denominator, and an equation's terms are brought to one power before
+ * its numerator is taken.  Two lines and an arc give a quartic, a line and
+ * two arcs degree 8, three arcs degree 12. */
+#define TRIG_TERMS 13
+
+typedef struct trig {
+    int den;                 /* the value is sum c[i] t^i / (1 + t^2)^den */
+    double c[TRIG_TERMS];    /* degree at most 2 den */
+} trig;
+
+/* a cos + b sin + e. */
+static trig trig_linear(double a, double b, double e)
+{
+    trig x = {1, {a + e, 2 * b, e - a}};
+    return x;
+}
+
+static trig trig_constant(double e)
+{
+    trig x = {0, {e}};
+    return x;
+}
+
+/* x times (1 + t^2)^k: the same value at a higher power. */
+static trig trig_raise(trig x, int k)
+{
+    for (; k > 0; k--) {
+        trig y = {x.den + 1, {0}};
+        for (int i = 0; i <= 2 * x.den; i++) {
+            y.c[i] += x.c[i];
+            y.c[i + 2] += x.c[i];
+        }
+        x = y;
+    }
+    return x;
+}
+
+static trig trig_add(trig x, trig y, double sign)
+{
+    if (x.den < y.den)
+        x = trig_raise(x, y.den - x.den);
+    else
+        y = trig_raise(y, x.den - y.den);
+    for (int i = 0; i <= 2 * x.den; i++)
+        x.c[i] += sign * y.c[i];
+    return x;
+}
+
+static trig trig_mul(trig x, trig y)
+{
+    trig z = {x.den + y.den, {0}};
+    for (int i = 0; i <= 2 * x.den; i++)
+        for (int j = 0; j <= 2 * y.den; j++)
+            z.c[i + j] += x.c[i] * y.c[j];
+    return z;
+}
+
+/* A vector of two such quantities. */
+typedef struct trig2 {
+    trig x, y;
+} trig2;
+
+static trig trig_dot(trig2 u, trig2 v) { return trig_add(trig_mul(u.x, v.x), trig_mul(u.y, v.y), 1); }
+
+/* p(theta) = R(-theta) P - C: the plate point P seen from the part, less
+ * C, linear in (c, s, 1). */
+static trig2 seen(const double P[2], const double C[2])
+{
+    trig2 v = {trig_linear(P[0], P[1], -C[0]), trig_linear(P[1], -P[0], -C[1])};
+    return v;
+}
+
+/* sum c[i] x^i. */
+static double poly_at(const double *c, int degree, double x)
+{
+    double value = 0;
+    for (int i = degree; i >= 0; i--)
+        value = value * x + c[i];
+    return value;
+}
+
+/* The real roots of the polynomial in [-1, 1], into roots (at most degree
+ * of them), each once: between consecutive roots of its derivative (found
+ * the same way) the polynomial is monotone, so a change of sign there is
+ * one root, found by false position with the Illinois step; a root of the
+ * derivative where the polynomial is zero to rounding is a double root (a
+ * curve touched, not crossed). */
+static int poly_roots(const double *c, int degree, double *roots)
+{
+    while (degree > 0 && c[degree] == 0)
+        degree--;
+    if (degree <= 0)
+        return 0;
+    if (degree == 1) {
+        double x = -c[0] / c[1];
+        roots[0] = x;
+        return x >= -1 && x <= 1;
+    }
+    double derivative[TRIG_TERMS], critical[TRIG_TERMS + 1];
+    for (int i = 1; i <= degree; i++)
+        derivative[i - 1] = i * c[i];
+    int n = 0;
+    critical[n++] = -1;
+    double inner[TRIG_TERMS];
+    int m = poly_roots(derivative, degree - 1, inner);
+    for (int i = 0; i < m; i++)
+        critical[n++] = inner[i];
+    critical[n++] = 1;
+    /* Zero to rounding: against the largest value the terms can reach on
+     * [-1, 1], not the terms at x (near x = 0 they would be c[0] alone). */
+    double size = 0;
+    for (int i = 0; i <= degree; i++)
+        size += fabs(c[i]);
+    double zero = 1e-9 * size;
+    int found = 0;
+    for (int i = 0; i < n; i++) {
+        double x = critical[i], f = poly_at(c, degree, x);
+        if (fabs(f) <= zero && (found == 0 || x > roots[found - 1])) {
+            roots[found++] = x;
+            continue;
+        }
+        if (i + 1 == n)
+            break;
+        double lo = x, hi = critical[i + 1], flo = f, fhi = poly_at(c, degree, hi);
+        if (fabs(fhi) <= zero || (flo < 0) == (fhi < 0))
+            continue; /* a root at hi is the next step's */
+        int side = 0;
+        for (int it = 0; it < 100 && hi - lo > 4e-16 * (1 + fabs(lo)); it++) {
+            double mid = (lo * fhi - hi * flo) / (fhi - flo);
+            if (!(mid > lo && mid < hi))
+                mid = (lo + hi) / 2;
+            double fm = poly_at(c, degree, mid);
+            if (fabs(fm) <= 1e-15 * size) { /* zero to the evaluation's rounding */
+                lo = hi = mid;
+                break;
+            }
+            if ((fm < 0) == (flo < 0)) {
+                lo = mid;
+                flo = fm;
+                if (side == -1)
+                    fhi /= 2;
+                side = -1;
+            } else {
+                hi = mid;
+                fhi = fm;
+                if (side == 1)
+                    flo /= 2;
+                side = 1;
+            }
+        }
+        roots[found++] = (lo + hi) / 2;
+    }
+    return found;
+}
+
+/* The angles theta where the numerator of e vanishes: its roots t in
+ * [-1, 1] (|theta| <= pi/2) and, for the rest of the circle, the roots u
+ * in [-1, 1] of the same polynomial reversed (u = 1 / t: theta beyond
+ * pi/2 either way, u = 0 at theta = pi), so that no root is far out. */
+static int trig_angles(const trig *e, double *thetas)
+{
+    int degree = 2 * e->den, count = 0;
+    double reversed[TRIG_TERMS], roots[TRIG_TERMS];
+    for (int i = 0; i <= degree; i++)
+        reversed[i] = e->c[degree - i];
+    int n = poly_roots(e->c, degree, roots);
+    for (int i = 0; i < n; i++)
+        thetas[count++] = 2 * atan(roots[i]);
+    n = poly_roots(reversed, degree, roots);
+    for (int i = 0; i < n; i++)
+        thetas[count++] = roots[i] == 0 ? WR_PI : 2 * atan2(1, roots[i]);
+    return count;
+}
+
+/* A root of the polynomial made a root of the geometry: Newton's steps on
+ * the third curve's residual with the translation from the first two
+ * (branch `branch`), while they shorten; the polynomial's coefficients
+ * carry the rounding of their products, the residual does not.  A touch
+ * (a double root) converges too, more slowly, to where the residual is
+ * least. */
+static double polish(const wr_lattice_job *job, const hole *const Q[3], const curve *const K[3],
+                     double theta, int branch)
+{
+    double tau[2], last = INFINITY;
+    for (int it = 0; it < 8; it++) {
+        double f = third_residual(Q, K, theta, branch, tau);
+        if (!(fabs(f) > 1e-15 * job->body->size))
+            break;
+        double h = 1e-7, g = third_residual(Q, K, theta + h, branch, tau);
+        double step = f * h / (g - f);
+        if (!isfinite(step) || fabs(step) > 1e-3 || fabs(step) >= last)
+            break;
+        theta -= step;
+        last = fabs(step);
+    }
+    return theta;
+}
+
+/* The poses of the holes Q with curves K, lines first, each from a root
+ * of one polynomial: the translation is eliminated between the three
+ * equations (below), the roots are the angles, and at each the
+ * translation is solved from the first two curves (both of a circle's
+ * branches; try_pose keeps only what meets all three within its
+ * tolerance).  P, k: as the design has them. */
+static bool exact_arcs(const wr_lattice_job *job, design_list *out, const hole *const Q[3],
+                       const curve *const K[3], const hole *const P[3], const curve *const k[3])
+{
+    static const double origin[2] = {0, 0};
+    trig equation;
+    if (K[0]->line && K[1]->line) {
+        /* n_m . tau = n_m . p_m - c_m for the lines, tau by Cramer's rule,
+         * then |p_2 - C_2 - tau|^2 = rho^2 (degree 4). */
+        double det = cross2(K[0]->n, K[1]->n);
+        if (fabs(det) < 1e-9)
+            return true; /* parallel lines: no translation is fixed (solve_two) */
+        trig2 p0 = seen(Q[0]->at, origin), p1 = seen(Q[1]->at, origin);
+        trig b0 = trig_add(trig_add(trig_mul(trig_constant(K[0]->n[0]), p0.x),
+                                    trig_mul(trig_constant(K[0]->n[1]), p0.y), 1),
+                           trig_constant(K[0]->c), -1);
+        trig b1 = trig_add(trig_add(trig_mul(trig_constant(K[1]->n[0]), p1.x),
+                                    trig_mul(trig_constant(K[1]->n[1]), p1.y), 1),
+                           trig_constant(K[1]->c), -1);
+        trig2 tau = {trig_add(trig_mul(b0, trig_constant(K[1]->n[1] / det)),
+                              trig_mul(b1, trig_constant(K[0]->n[1] / det)), -1),
+                     trig_add(trig_mul(b1, trig_constant(K[0]->n[0] / det)),
+                              trig_mul(b0, trig_constant(K[1]->n[0] / det)), -1)};
+        trig2 w = seen(Q[2]->at, K[2]->center);
+        w.x = trig_add(w.x, tau.x, -1);
+        w.y = trig_add(w.y, tau.y, -1);
+        equation = trig_add(trig_dot(w, w), trig_constant(K[2]->rho * K[2]->rho), -1);
+    } else {
+        /* Two linear equations in tau: the line's (when there is one) and
+         * the difference of two circles' (|u_i - tau|^2 - |u_j - tau|^2 =
+         * rho_i^2 - rho_j^2 with u = p - C, the |tau|^2 cancelling):
+         * g . tau = h with g, h linear in (c, s, 1) or constant.  Then
+         * tau = N / det, and the last circle's |u det - N|^2 =
+         * rho^2 det^2 (degree 8 with a line, 12 without). */
+        trig2 g[2];
+        trig h[2];
+        int first = 0, row = 0;
+        if (K[0]->line) {
+            trig2 p0 = seen(Q[0]->at, origin);
+            g[0] = (trig2){trig_constant(K[0]->n[0]), trig_constant(K[0]->n[1])};
+            h[0] = trig_add(trig_add(trig_mul(g[0].x, p0.x), trig_mul(g[0].y, p0.y), 1),
+                            trig_constant(K[0]->c), -1);
+            first = 1;
+            row = 1;
+        }
+        /* Circles first .. 2: u_i = p_i - C_i, |u_i|^2 = |P_i|^2 +
+         * |C_i|^2 - 2 C_i . p_i, linear in (c, s, 1). */
+        trig2 u[3];
+        trig norm2[3];
+        for (int i = first; i < 3; i++) {
+            u[i] = seen(Q[i]->at, K[i]->center);
+            const double *Pi = Q[i]->at, *C = K[i]->center;
+            trig2 p = seen(Pi, origin);
+            norm2[i] = trig_add(trig_constant(dot2(Pi, Pi) + dot2(C, C)),
+                                trig_add(trig_mul(trig_constant(2 * C[0]), p.x),
+                                         trig_mul(trig_constant(2 * C[1]), p.y), 1),
+                                -1);
+        }
+        for (int j = first + 1; row < 2; j++, row++) {
+            /* 2 (u_j - u_first) . tau = rho_first^2 - rho_j^2 - |u_first|^2 + |u_j|^2 */
+            g[row].x = trig_mul(trig_add(u[j].x, u[first].x, -1), trig_constant(2));
+            g[row].y = trig_mul(trig_add(u[j].y, u[first].y, -1), trig_constant(2));
+            h[row] = trig_add(trig_add(norm2[j], norm2[first], -1),
+                              trig_constant(K[first]->rho * K[first]->rho -
+                                            K[j]->rho * K[j]->rho),
+                              1);
+        }
+        trig det = trig_add(trig_mul(g[0].x, g[1].y), trig_mul(g[0].y, g[1].x), -1);
+        trig2 N = {trig_add(trig_mul(h[0], g[1].y), trig_mul(h[1], g[0].y), -1),
+                   trig_add(trig_mul(g[0].x, h[1]), trig_mul(g[1].x, h[0]), -1)};
+        trig2 w = {trig_add(trig_mul(u[first].x, det), N.x, -1),
+                   trig_add(trig_mul(u[first].y, det), N.y, -1)};
+        equation = trig_add(trig_dot(w, w),
+                            trig_mul(trig_constant(K[first]->rho * K[first]->rho),
+                                     trig_mul(det, det)),
+                            -1);
+    }
+    double thetas[2 * TRIG_TERMS];
+    int count = trig_angles(&equation, thetas);
+    double tau[2];
+    for (int i = 0; i < count; i++)
+        for (int branch = 0; branch < 2; branch++) {
+            if (branch && K[0]->line && K[1]->line)
+                break;
+            double theta = polish(job, Q, K, thetas[i], branch);
+            if (!isnan(third_residual(Q, K, theta, branch, tau)) &&
+                !try_pose(job, out, P, k, theta, tau))
+                return false;
+        }
+    return true;
+}
+
 /* The offset curves' centre distance range: can pegs this far apart touch
  * these two curves? */
 static bool reachable(const curve *a, const curve *b, double distance, double slack)
@@ -516,44 +824,48 @@ static bool reachable(const curve *a, const curve *b, double distance, double sl
            distance >= between - a->hull_radius - b->hull_radius - slack;
 }
 
-/* Every pose for the holes P, every assignment of curves. */
-static bool hole_triple(const wr_lattice_job *job, design_list *out, const hole *const P[3],
-                        unsigned long *units)
+/* Every pose for the holes P with the first two pegs on curves x and y,
+ * every curve for the third. */
+static bool hole_triple(const wr_lattice_job *job, design_list *out, const hole *const P[3], int x,
+                        int y, unsigned long *units)
 {
     double d01 = hypot(P[0]->at[0] - P[1]->at[0], P[0]->at[1] - P[1]->at[1]);
     double d02 = hypot(P[0]->at[0] - P[2]->at[0], P[0]->at[1] - P[2]->at[1]);
     double d12 = hypot(P[1]->at[0] - P[2]->at[0], P[1]->at[1] - P[2]->at[1]);
     double slack = 1e-6 * job->body->size;
-    for (int x = 0; x < job->curve_count; x++)
-        for (int y = 0; y < job->curve_count; y++) {
-            if (!reachable(&job->curves[x], &job->curves[y], d01, slack))
-                continue;
-            for (int z = 0; z < job->curve_count; z++) {
-                const curve *k[3] = {&job->curves[x], &job->curves[y], &job->curves[z]};
-                if (!reachable(k[0], k[2], d02, slack) || !reachable(k[1], k[2], d12, slack))
-                    continue;
-                *units += 8;
-                if (k[0]->line && k[1]->line && k[2]->line) {
-                    if (!three_lines(job, out, P, k))
-                        return false;
-                    continue;
-                }
-                /* Lines first: the translation comes from them. */
-                int order[3] = {0, 1, 2};
-                for (int a = 0; a < 3; a++)
-                    for (int b = 0; b < 2; b++)
-                        if (!k[order[b]]->line && k[order[b + 1]]->line) {
-                            int t = order[b];
-                            order[b] = order[b + 1];
-                            order[b + 1] = t;
-                        }
-                const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
-                const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
-                *units += 40 * WR_LATTICE_STEPS;
-                if (!with_arcs(job, out, Q, K, P, k))
-                    return false;
-            }
+    if (!reachable(&job->curves[x], &job->curves[y], d01, slack))
+        return true;
+    for (int z = 0; z < job->curve_count; z++) {
+        const curve *k[3] = {&job->curves[x], &job->curves[y], &job->curves[z]};
+        if (!reachable(k[0], k[2], d02, slack) || !reachable(k[1], k[2], d12, slack))
+            continue;
+        *units += 8;
+        if (k[0]->line && k[1]->line && k[2]->line) {
+            if (!three_lines(job, out, P, k))
+                return false;
+            continue;
         }
+        /* Lines first: the translation comes from them. */
+        int order[3] = {0, 1, 2};
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 2; b++)
+                if (!k[order[b]]->line && k[order[b + 1]]->line) {
+                    int t = order[b];
+                    order[b] = order[b + 1];
+                    order[b + 1] = t;
+                }
+        const hole *Q[3] = {P[order[0]], P[order[1]], P[order[2]]};
+        const curve *K[3] = {k[order[0]], k[order[1]], k[order[2]]};
+        if (job->scan) {
+            *units += 40 * WR_LATTICE_STEPS;
+            if (!with_arcs(job, out, Q, K, P, k))
+                return false;
+        } else {
+            *units += 400;
+            if (!exact_arcs(job, out, Q, K, P, k))
+                return false;
+        }
+    }
     return true;
 }
 
@@ -572,11 +884,15 @@ static void pair_holes(const wr_lattice_job *job, size_t p, size_t *second, size
 
 bool wr_lattice_job_claim(wr_lattice_job *job, size_t *first, size_t *count)
 {
-    if (job->failed || job->claimed >= job->pair_total)
+    if (job->failed || job->claimed >= job->unit_total)
         return false;
+    /* As many units as make WR_LATTICE_CHUNK curves for the third peg (a
+     * unit's work), at least one. */
+    size_t curves = (size_t)job->curve_count, per = WR_LATTICE_CHUNK / curves;
+    if (per < 1)
+        per = 1;
     *first = job->claimed;
-    *count = job->pair_total - job->claimed < WR_LATTICE_CHUNK ? job->pair_total - job->claimed
-                                                                : WR_LATTICE_CHUNK;
+    *count = job->unit_total - job->claimed < per ? job->unit_total - job->claimed : per;
     job->claimed += *count;
     job->outstanding++;
     return true;
@@ -584,7 +900,7 @@ bool wr_lattice_job_claim(wr_lattice_job *job, size_t *first, size_t *count)
 
 bool wr_lattice_job_claimable(const wr_lattice_job *job)
 {
-    return !job->failed && job->claimed < job->pair_total;
+    return !job->failed && job->claimed < job->unit_total;
 }
 
 void wr_lattice_chunk_release(wr_lattice_chunk *chunk)
@@ -603,14 +919,20 @@ wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t c
     design_list list = {NULL, 0, 0};
     unsigned long spent = 0;
     int nx = job->lattice.extent[0], ny = job->lattice.extent[1];
+    size_t curves = (size_t)job->curve_count;
     wr_status status = WR_OK;
-    for (size_t p = first; p < first + count; p++) {
+    size_t a = 0, b = 0, pair = SIZE_MAX;
+    for (size_t u = first; u < first + count; u++) {
         if (wr_stop_requested(stop)) {
             status = WR_STOPPED;
             break;
         }
-        size_t a, b;
-        pair_holes(job, p, &a, &b);
+        size_t p = u / curves / curves;
+        int x = (int)(u / curves % curves), y = (int)(u % curves);
+        if (p != pair) {
+            pair_holes(job, p, &a, &b);
+            pair = p;
+        }
         const hole *second = &job->holes[a], *third = &job->holes[b];
         int lo_i = second->i < third->i ? second->i : third->i;
         int hi_i = second->i > third->i ? second->i : third->i;
@@ -621,7 +943,7 @@ wr_status wr_lattice_chunk_run(const wr_lattice_job *job, size_t first, size_t c
         if (hi_i - lo_i < nx && hi_j < ny &&
             hypot(second->at[0] - third->at[0], second->at[1] - third->at[1]) <= job->reach) {
             const hole *P[3] = {&origin, second, third};
-            if (!hole_triple(job, &list, P, &spent)) {
+            if (!hole_triple(job, &list, P, x, y, &spent)) {
                 status = WR_NO_MEMORY;
                 break;
             }
@@ -723,14 +1045,16 @@ wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned
     }
     if (used)
         *used += spent;
-    *done = job->merged >= job->pair_total && job->outstanding == 0;
+    *done = job->merged >= job->unit_total && job->outstanding == 0;
     return WR_OK;
 }
+
+void wr_lattice_job_scan(wr_lattice_job *job) { job->scan = true; }
 
 void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total)
 {
     *done = job->merged;
-    *total = job->pair_total;
+    *total = job->unit_total;
 }
 
 const wr_lattice_design *wr_lattice_job_designs(const wr_lattice_job *job, size_t *count)

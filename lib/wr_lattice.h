@@ -17,13 +17,16 @@
  *   - Three straight segments: eliminating the translation leaves
  *     A cos theta + B sin theta = C, solved in closed form (at most two
  *     poses), the translation then from two of the lines.
- *   - With an arc: the translation is solved from two of the curves for
- *     each theta (lines first: one point, or the two points where a line
- *     or circle meets a circle), and the third curve's residual is
- *     scanned over theta in WR_LATTICE_STEPS steps, each change of sign
- *     bisected, and each small local minimum of its size refined (a pose
- *     where the residual touches zero without crossing it).  A pose whose
- *     residual crosses zero and back within one step may be missed.
+ *   - With an arc: eliminating the translation leaves one polynomial in
+ *     t = tan(theta / 2) (docs/MODEL.md, "Lattice poses with arcs"): of
+ *     degree 4 for two lines and an arc, 8 for a line and two arcs, 12
+ *     for three arcs.  Its real roots are the candidate angles (a double
+ *     root is a pose where a peg touches without crossing); each is made
+ *     a root of the geometry by Newton's steps and its translation solved
+ *     from two of the curves (lines first: one point, or the two points
+ *     where a line or circle meets a circle).  WR_LATTICE_STEPS is the
+ *     step of the theta scan that the tests hold the polynomial against
+ *     (wr_lattice_job_scan, wr_internal.h).
  *
  * At most WR_LATTICE_MAX_DESIGNS poses are kept (those found first);
  * the answer's count of poses says how many.
@@ -76,17 +79,22 @@ wr_status wr_lattice_job_new(const wr_fixture *body, const wr_lattice *lattice,
                              wr_lattice_job **out, wr_error *error);
 wr_status wr_lattice_job_run(wr_lattice_job *job, unsigned long budget, unsigned long *used,
                              const wr_stop *stop, bool *done);
-/* The same in chunks that threads may run at once (as wr_design.h's): a
- * chunk is WR_LATTICE_CHUNK consecutive hole pairs.  Claim, merge and
- * abandon change the job (the caller serialises them, and
- * wr_lattice_job_run); wr_lattice_chunk_run only reads it.  Merged chunks
- * are kept in the order of their pairs, whatever order they finish in, so
- * the designs are the same however the work was split; the job is done
- * when every pair's chunk is merged.  Merge takes the chunk's designs. */
-#define WR_LATTICE_CHUNK 8
+/* The same in chunks that threads may run at once (as wr_design.h's).
+ * The unit of work is a hole pair with the segments the first two pegs
+ * touch (numbered (pair * segments + first) * segments + second): its work
+ * is the segments of the third peg, bounded by the outline alone, however
+ * many holes the lattice has.  A chunk is consecutive units, as many as
+ * make WR_LATTICE_CHUNK segments for the third peg, at least one; their
+ * count is known only as they are claimed.  Claim, merge and abandon
+ * change the job (the caller serialises them, and wr_lattice_job_run);
+ * wr_lattice_chunk_run only reads it.  Merged chunks are kept in the order
+ * of their units, whatever order they finish in, so the designs are the
+ * same however the work was split; the job is done when every unit's
+ * chunk is merged.  Merge takes the chunk's designs. */
+#define WR_LATTICE_CHUNK 16384
 
 typedef struct wr_lattice_chunk {
-    size_t first, count;            /* its hole pairs */
+    size_t first, count;            /* its units */
     wr_lattice_design *designs;     /* malloc'd */
     size_t design_count;
 } wr_lattice_chunk;
@@ -99,7 +107,8 @@ wr_status wr_lattice_job_merge(wr_lattice_job *job, wr_lattice_chunk *chunk);
 void wr_lattice_job_abandon(wr_lattice_job *job);
 void wr_lattice_chunk_release(wr_lattice_chunk *chunk);
 
-/* Progress: hole pairs looked at (merged), of how many. */
+/* Progress: units (a hole pair and the first two pegs' segments) looked
+ * at (merged), of how many. */
 void wr_lattice_job_progress(const wr_lattice_job *job, size_t *done, size_t *total);
 /* When done: the designs, in the order found (hole triples in order, then
  * segment triples, then theta). */

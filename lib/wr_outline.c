@@ -94,6 +94,65 @@ bool wr_segments_cross(const double a[2], const double b[2], const double c[2], 
     return true;
 }
 
+/* ---- pairs of boxes that overlap (wr_internal.h) -------------------------------- */
+
+typedef struct box_entry {
+    double enter; /* the grown box's least x */
+    size_t index;
+} box_entry;
+
+static int box_entry_order(const void *a, const void *b)
+{
+    const box_entry *x = a, *y = b;
+    if (x->enter != y->enter)
+        return x->enter < y->enter ? -1 : 1;
+    return x->index < y->index ? -1 : x->index > y->index;
+}
+
+bool wr_box_pairs(const wr_box *boxes, size_t n, double margin, wr_box_visit visit,
+                  void *context)
+{
+    if (n < 2)
+        return true;
+    box_entry *order = malloc(n * sizeof *order);
+    size_t *active = malloc(n * sizeof *active);
+    if (!order || !active) {
+        free(order);
+        free(active);
+        return false;
+    }
+    for (size_t i = 0; i < n; i++)
+        order[i] = (box_entry){boxes[i].min[0] - margin, i};
+    qsort(order, n, sizeof *order, box_entry_order);
+    /* Invariant: active holds every box entered so far whose grown x range
+     * reaches the current box's least x; the boxes still to come enter at
+     * or beyond it, so one left behind never overlaps again. */
+    size_t active_count = 0;
+    for (size_t k = 0; k < n; k++) {
+        size_t i = order[k].index;
+        const wr_box *box = &boxes[i];
+        size_t kept = 0;
+        for (size_t a = 0; a < active_count; a++) {
+            size_t j = active[a];
+            const wr_box *other = &boxes[j];
+            if (other->max[0] + margin < order[k].enter)
+                continue;
+            active[kept++] = j;
+            /* In x they overlap: other entered first, so its least x is
+             * at most this one's. */
+            if (other->min[1] - margin > box->max[1] + margin ||
+                box->min[1] - margin > other->max[1] + margin)
+                continue;
+            visit(context, j < i ? j : i, j < i ? i : j);
+        }
+        active[kept++] = i;
+        active_count = kept;
+    }
+    free(order);
+    free(active);
+    return true;
+}
+
 /* (a (1/2 + c^2) - 3/2 s c) / s^4 = a * sum polar_series[k] a^(2k) */
 static const double polar_series[SERIES_TERMS] = {
     2.0 / 15.0,
@@ -643,36 +702,73 @@ static void describe_segment(char *text, size_t size, const wr_loop *loop, size_
              (j + 1) % loop->segment_count);
 }
 
-/* The first two segments of loop i that meet where a simple loop's do not. */
-static bool check_simple(const wr_outline *outline, size_t i, double tolerance, wr_error *error)
+static void report_simple(const wr_outline *outline, size_t i, size_t j, size_t l,
+                          const double point[2], wr_error *error)
+{
+    const wr_loop *loop = &outline->loops[i];
+    char field[96], one[96], two[96];
+    snprintf(field, sizeof field, "loops[%zu]", i);
+    describe_segment(one, sizeof one, loop, j);
+    describe_segment(two, sizeof two, loop, l);
+    wr_error_set(error, field, "the loop is not simple: %s and %s meet at (%g, %g)", one, two,
+                 point[0], point[1]);
+}
+
+static void report_apart(const wr_outline *outline, size_t i, size_t other, size_t j, size_t l,
+                         const double point[2], wr_error *error)
+{
+    char field[96], one[96], two[96];
+    snprintf(field, sizeof field, "loops[%zu]", i);
+    describe_segment(one, sizeof one, &outline->loops[i], j);
+    describe_segment(two, sizeof two, &outline->loops[other], l);
+    if (other == 0)
+        wr_error_set(error, field,
+                     "the hole meets the outer loop (loops[0]): its %s and the outer loop's %s "
+                     "meet at (%g, %g)",
+                     one, two, point[0], point[1]);
+    else
+        wr_error_set(error, field,
+                     "the hole meets hole loops[%zu]: its %s and that hole's %s meet at (%g, %g)",
+                     other, one, two, point[0], point[1]);
+}
+
+/* Segments j < l of loop i meet where a simple loop's do not?  Neighbours
+ * share their common vertex (both ends in a 2-vertex loop), where meeting
+ * is allowed. */
+static bool loop_pair_meets(const wr_outline *outline, size_t i, size_t j, size_t l,
+                            double tolerance, double point[2])
 {
     const wr_loop *loop = &outline->loops[i];
     size_t n = loop->segment_count;
-    for (size_t j = 0; j < n; j++) {
+    const wr_segment *first = &loop->segments[j], *second = &loop->segments[l];
+    shared_vertices shared = {0, {NULL, NULL}};
+    if (l == j + 1)
+        shared.points[shared.count++] = first->end;
+    if (j == 0 && l == n - 1)
+        shared.points[shared.count++] = first->start;
+    return segments_meet(first, second, &shared, tolerance, point);
+}
+
+/* Every pair in index order, the first that meets reported: the reference
+ * the sweep below is tested against (wr_outline_new_checked). */
+static bool check_simple_exhaustively(const wr_outline *outline, size_t i, double tolerance,
+                                      wr_error *error)
+{
+    size_t n = outline->loops[i].segment_count;
+    for (size_t j = 0; j < n; j++)
         for (size_t l = j + 1; l < n; l++) {
-            const wr_segment *first = &loop->segments[j], *second = &loop->segments[l];
-            shared_vertices shared = {0, {NULL, NULL}};
-            if (l == j + 1)
-                shared.points[shared.count++] = first->end;
-            if (j == 0 && l == n - 1)
-                shared.points[shared.count++] = first->start;
             double point[2];
-            if (!segments_meet(first, second, &shared, tolerance, point))
-                continue;
-            char field[96], one[96], two[96];
-            snprintf(field, sizeof field, "loops[%zu]", i);
-            describe_segment(one, sizeof one, loop, j);
-            describe_segment(two, sizeof two, loop, l);
-            wr_error_set(error, field, "the loop is not simple: %s and %s meet at (%g, %g)", one,
-                         two, point[0], point[1]);
-            return false;
+            if (loop_pair_meets(outline, i, j, l, tolerance, point)) {
+                report_simple(outline, i, j, l, point, error);
+                return false;
+            }
         }
-    }
     return true;
 }
 
-/* Loop i against every earlier loop: no two meet. */
-static bool check_apart(const wr_outline *outline, size_t i, double tolerance, wr_error *error)
+/* Loop i against every earlier loop, pair by pair in index order. */
+static bool check_apart_exhaustively(const wr_outline *outline, size_t i, double tolerance,
+                                     wr_error *error)
 {
     const wr_loop *loop = &outline->loops[i];
     shared_vertices none = {0, {NULL, NULL}};
@@ -681,58 +777,268 @@ static bool check_apart(const wr_outline *outline, size_t i, double tolerance, w
         for (size_t j = 0; j < loop->segment_count; j++)
             for (size_t l = 0; l < earlier->segment_count; l++) {
                 double point[2];
-                if (!segments_meet(&loop->segments[j], &earlier->segments[l], &none, tolerance,
-                                   point))
-                    continue;
-                char field[96], one[96], two[96];
-                snprintf(field, sizeof field, "loops[%zu]", i);
-                describe_segment(one, sizeof one, loop, j);
-                describe_segment(two, sizeof two, earlier, l);
-                if (other == 0)
-                    wr_error_set(error, field,
-                                 "the hole meets the outer loop (loops[0]): its %s and the outer "
-                                 "loop's %s meet at (%g, %g)",
-                                 one, two, point[0], point[1]);
-                else
-                    wr_error_set(error, field,
-                                 "the hole meets hole loops[%zu]: its %s and that hole's %s meet "
-                                 "at (%g, %g)",
-                                 other, one, two, point[0], point[1]);
-                return false;
+                if (segments_meet(&loop->segments[j], &earlier->segments[l], &none, tolerance,
+                                  point)) {
+                    report_apart(outline, i, other, j, l, point, error);
+                    return false;
+                }
             }
     }
     return true;
 }
 
+/* Where the segments of an outline meet, found by one sweep over all its
+ * segments' boxes (wr_box_pairs): for each loop the first pair of its own
+ * that meets, and the first pair of two loops, "first" in the order the
+ * exhaustive checks above visit them, so that the errors are theirs:
+ *   within loop i:  (j, l), j < l;
+ *   across loops:   (i, other, j, l), other < i, j in loop i, l in other.
+ * A pair at or after the best found so far is not tested at all. */
+typedef struct meeting {
+    bool found;
+    size_t key[4];
+    double point[2];
+} meeting;
+
+typedef struct meetings {
+    const wr_outline *outline;
+    double tolerance;
+    const size_t *loop_of;  /* a segment's loop, by its index in the block */
+    const size_t *first_of; /* a loop's first segment's index in the block */
+    meeting *simple;        /* one per loop */
+    meeting apart;
+} meetings;
+
+static bool key_before(const size_t *key, const meeting *best, int length)
+{
+    if (!best->found)
+        return true;
+    for (int k = 0; k < length; k++)
+        if (key[k] != best->key[k])
+            return key[k] < best->key[k];
+    return false;
+}
+
+/* Segment s lies in the rectangle of its chord frame u in [-U, U],
+ * w in [0, S]: a line on its chord (S = 0); an arc between its chord and
+ * its sagitta h tan(a / 2) = h |bulge|, as wide as its chord up to a half
+ * circle and as its circle beyond.  Its extent along the unit axis n,
+ * relative to the point o: [*lo, *hi]. */
+static void segment_extent(const wr_segment *s, const double o[2], const double n[2], double *lo,
+                           double *hi)
+{
+    double h = s->half_chord;
+    double U = is_arc(s) && s->half_angle > WR_PI / 2 ? s->radius : h;
+    double S = h * fabs(s->bulge);
+    double centre = (s->midpoint[0] - o[0]) * n[0] + (s->midpoint[1] - o[1]) * n[1] +
+                    S / 2 * (s->bulge_normal[0] * n[0] + s->bulge_normal[1] * n[1]);
+    double half = U * fabs(s->direction[0] * n[0] + s->direction[1] * n[1]) +
+                  S / 2 * fabs(s->bulge_normal[0] * n[0] + s->bulge_normal[1] * n[1]);
+    *lo = centre - half;
+    *hi = centre + half;
+}
+
+/* Are the two segments further apart than twice the tolerance along one
+ * of their chords' normals (with room for rounding)?  Then no point of one
+ * is within the tolerance of the other, nor do they cross, and
+ * segments_meet would say so: the pairs of long thin segments whose boxes
+ * overlap (a star's spikes, a zigzag's teeth) are set aside for the cost of
+ * a few products. */
+static bool segments_apart(const wr_segment *first, const wr_segment *second, double tolerance)
+{
+    const wr_segment *pair[2] = {first, second};
+    double reach = 0;
+    for (int i = 0; i < 2; i++)
+        reach += fabs(pair[i]->midpoint[0]) + fabs(pair[i]->midpoint[1]) + pair[i]->radius +
+                 pair[i]->half_chord * (1 + fabs(pair[i]->bulge));
+    double gap = 2 * tolerance + 1e-12 * reach;
+    for (int i = 0; i < 2; i++) {
+        const double *o = pair[i]->midpoint, *n = pair[i]->bulge_normal;
+        double lo[2], hi[2];
+        segment_extent(pair[0], o, n, &lo[0], &hi[0]);
+        segment_extent(pair[1], o, n, &lo[1], &hi[1]);
+        if (lo[1] > hi[0] + gap || lo[0] > hi[1] + gap)
+            return true;
+    }
+    return false;
+}
+
+static void visit_segments(void *context, size_t g, size_t h)
+{
+    meetings *m = context;
+    size_t loop_g = m->loop_of[g], loop_h = m->loop_of[h];
+    size_t j = g - m->first_of[loop_g], l = h - m->first_of[loop_h];
+    double point[2];
+    if (loop_g == loop_h) {
+        size_t key[4] = {j, l, 0, 0};
+        meeting *best = &m->simple[loop_g];
+        if (key_before(key, best, 2) &&
+            !segments_apart(&m->outline->loops[loop_g].segments[j],
+                            &m->outline->loops[loop_g].segments[l], m->tolerance) &&
+            loop_pair_meets(m->outline, loop_g, j, l, m->tolerance, point))
+            *best = (meeting){true, {j, l, 0, 0}, {point[0], point[1]}};
+        return;
+    }
+    /* g < h and the block holds the loops in order: h's loop is the later. */
+    size_t key[4] = {loop_h, loop_g, l, j};
+    shared_vertices none = {0, {NULL, NULL}};
+    const wr_segment *later = &m->outline->loops[loop_h].segments[l],
+                     *earlier = &m->outline->loops[loop_g].segments[j];
+    if (key_before(key, &m->apart, 4) && !segments_apart(later, earlier, m->tolerance) &&
+        segments_meet(later, earlier, &none, m->tolerance, point))
+        m->apart = (meeting){true, {key[0], key[1], key[2], key[3]}, {point[0], point[1]}};
+}
+
+/* Fill m (its arrays allocated here; meetings_free) by the sweep.  False
+ * when out of memory. */
+static bool find_meetings(const wr_outline *outline, double tolerance, meetings *m)
+{
+    size_t total = outline->vertex_count, loops = outline->loop_count;
+    size_t *loop_of = malloc(total * sizeof *loop_of);
+    size_t *first_of = malloc(loops * sizeof *first_of);
+    wr_box *boxes = malloc(total * sizeof *boxes);
+    *m = (meetings){outline, tolerance, loop_of, first_of, calloc(loops, sizeof(meeting)),
+                    {false, {0, 0, 0, 0}, {0, 0}}};
+    bool ok = loop_of && first_of && boxes && m->simple;
+    if (ok) {
+        size_t g = 0;
+        for (size_t i = 0; i < loops; i++) {
+            first_of[i] = g;
+            const wr_loop *loop = &outline->loops[i];
+            assert(loop->segments == outline->loops[0].segments + g);
+            for (size_t j = 0; j < loop->segment_count; j++, g++) {
+                loop_of[g] = i;
+                for (int k = 0; k < 2; k++) {
+                    boxes[g].min[k] = loop->segments[j].box_min[k];
+                    boxes[g].max[k] = loop->segments[j].box_max[k];
+                }
+            }
+        }
+        /* segments_meet refuses boxes apart by more than the tolerance; a
+         * margin of the tolerance on each box keeps every pair it would
+         * test. */
+        ok = wr_box_pairs(boxes, total, tolerance, visit_segments, m);
+    }
+    free(boxes);
+    return ok;
+}
+
+static void meetings_free(meetings *m)
+{
+    free((void *)m->loop_of);
+    free((void *)m->first_of);
+    free(m->simple);
+}
+
 /* Hole i (meeting no other loop) inside the outer loop, outside the other
  * holes and not around them.  A loop meeting none of the others is wholly
  * inside or outside each, so one vertex tells. */
-static bool check_nesting(const wr_outline *outline, size_t i, wr_error *error)
+static void report_nesting(size_t i, size_t other, bool contains, const double vertex[2],
+                           wr_error *error)
 {
     char field[96];
     snprintf(field, sizeof field, "loops[%zu]", i);
-    const double *vertex = outline->loops[i].segments[0].start;
-    if (loop_winding(&outline->loops[0], vertex) == 0) {
+    if (other == 0)
         wr_error_set(error, field,
                      "the hole is not inside the outer loop (loops[0]): vertex 0 (%g, %g) lies "
                      "outside it",
                      vertex[0], vertex[1]);
+    else
+        wr_error_set(error, field, "the hole %s hole loops[%zu]: holes must be apart",
+                     contains ? "contains" : "lies inside", other);
+}
+
+/* Hole i against the outer loop and each earlier hole, one by one: the
+ * reference (wr_outline_new_checked) for the boxes' sweep below. */
+static bool check_nesting(const wr_outline *outline, size_t i, wr_error *error)
+{
+    const double *vertex = outline->loops[i].segments[0].start;
+    if (loop_winding(&outline->loops[0], vertex) == 0) {
+        report_nesting(i, 0, false, vertex, error);
         return false;
     }
     for (size_t other = 1; other < i; other++) {
         const double *theirs = outline->loops[other].segments[0].start;
         if (loop_winding(&outline->loops[other], vertex) != 0) {
-            wr_error_set(error, field, "the hole lies inside hole loops[%zu]: holes must be apart",
-                         other);
+            report_nesting(i, other, false, vertex, error);
             return false;
         }
         if (loop_winding(&outline->loops[i], theirs) != 0) {
-            wr_error_set(error, field, "the hole contains hole loops[%zu]: holes must be apart",
-                         other);
+            report_nesting(i, other, true, vertex, error);
             return false;
         }
     }
     return true;
+}
+
+/* Two holes (apart, as checked before) are nested only if their boxes
+ * overlap: the sweep over the holes' boxes finds those pairs, and of the
+ * nested ones keeps the first in check_nesting's order (the later hole,
+ * then the earlier, "inside" before "contains"). */
+typedef struct nesting {
+    const wr_outline *outline;
+    bool found;
+    size_t key[3]; /* i, other, contains */
+} nesting;
+
+static void visit_holes(void *context, size_t a, size_t b)
+{
+    nesting *n = context;
+    size_t other = a + 1, i = b + 1; /* the boxes are of loops 1 on */
+    const wr_loop *loops = n->outline->loops;
+    for (size_t contains = 0; contains < 2; contains++) {
+        size_t key[3] = {i, other, contains};
+        if (n->found && (key[0] > n->key[0] || (key[0] == n->key[0] && key[1] > n->key[1]) ||
+                         (key[0] == n->key[0] && key[1] == n->key[1] && key[2] >= n->key[2])))
+            return;
+        const wr_loop *around = contains ? &loops[i] : &loops[other];
+        const double *vertex = contains ? loops[other].segments[0].start : loops[i].segments[0].start;
+        if (loop_winding(around, vertex) != 0) {
+            *n = (nesting){n->outline, true, {i, other, contains}};
+            return;
+        }
+    }
+}
+
+static wr_status check_holes_nested(const wr_outline *outline, wr_error *error)
+{
+    size_t holes = outline->loop_count - 1;
+    wr_box *boxes = malloc((holes ? holes : 1) * sizeof *boxes);
+    if (!boxes) {
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    for (size_t h = 0; h < holes; h++) {
+        const wr_loop *loop = &outline->loops[h + 1];
+        boxes[h] = (wr_box){{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+        for (size_t j = 0; j < loop->segment_count; j++)
+            for (int k = 0; k < 2; k++) {
+                boxes[h].min[k] = fmin(boxes[h].min[k], loop->segments[j].box_min[k]);
+                boxes[h].max[k] = fmax(boxes[h].max[k], loop->segments[j].box_max[k]);
+            }
+    }
+    nesting n = {outline, false, {0, 0, 0}};
+    bool ok = wr_box_pairs(boxes, holes, 0, visit_holes, &n);
+    free(boxes);
+    if (!ok) {
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
+    }
+    /* The outer loop around each hole, up to the first nested pair's. */
+    size_t last = n.found ? n.key[0] : outline->loop_count - 1;
+    for (size_t i = 1; i <= last; i++) {
+        const double *vertex = outline->loops[i].segments[0].start;
+        if (loop_winding(&outline->loops[0], vertex) == 0) {
+            report_nesting(i, 0, false, vertex, error);
+            return WR_INVALID;
+        }
+    }
+    if (n.found) {
+        report_nesting(n.key[0], n.key[1], n.key[2], outline->loops[n.key[0]].segments[0].start,
+                       error);
+        return WR_INVALID;
+    }
+    return WR_OK;
 }
 
 /* The numbers one by one, then the loops' segments. */
@@ -788,9 +1094,58 @@ static void loop_box(const wr_outline *outline, double box_min[2], double box_ma
         }
 }
 
+/* check_geometry's checks from the simple loops on; m NULL: pair by pair. */
+static wr_status check_loops(wr_outline *outline, const meetings *m, double tolerance,
+                             wr_error *error)
+{
+    double size = outline->size;
+    for (size_t i = 0; i < outline->loop_count; i++) {
+        /* Simple before the area: a bow tie's lobes cancel, and "encloses
+         * no area" would hide that its segments cross. */
+        if (m && m->simple[i].found) {
+            report_simple(outline, i, m->simple[i].key[0], m->simple[i].key[1],
+                          m->simple[i].point, error);
+            return WR_INVALID;
+        }
+        if (!m && !check_simple_exhaustively(outline, i, tolerance, error))
+            return WR_INVALID;
+        wr_loop *loop = &outline->loops[i];
+        moments integrals = loop_moments(loop, loop->segments[0].start);
+        /* Compared as area / size with size: size * size may overflow. */
+        if (!(fabs(integrals.area) / size > DEGENERATE_TOLERANCE * size)) {
+            char field[96];
+            snprintf(field, sizeof field, "loops[%zu]", i);
+            wr_error_set(error, field, isfinite(integrals.area)
+                                           ? "the loop encloses no area"
+                                           : "the loop is too large for double precision: its "
+                                             "area overflows");
+            return WR_INVALID;
+        }
+        loop->signed_area = integrals.area;
+        loop->orientation = integrals.area > 0 ? 1 : -1;
+        loop->material_side = i == 0 ? loop->orientation : -loop->orientation;
+    }
+    if (m && m->apart.found) {
+        const size_t *key = m->apart.key;
+        report_apart(outline, key[0], key[1], key[2], key[3], m->apart.point, error);
+        return WR_INVALID;
+    }
+    for (size_t i = 1; !m && i < outline->loop_count; i++)
+        if (!check_apart_exhaustively(outline, i, tolerance, error))
+            return WR_INVALID;
+    if (m)
+        return check_holes_nested(outline, error);
+    for (size_t i = 1; i < outline->loop_count; i++)
+        if (!check_nesting(outline, i, error))
+            return WR_INVALID;
+    return WR_OK;
+}
+
 /* Everything after the numbers: segments of length, simple loops of area,
- * apart, nested as an outline's. */
-static bool check_geometry(wr_outline *outline, wr_error *error)
+ * apart, nested as an outline's.  Where segments meet is found by the sweep
+ * (find_meetings), or with `exhaustively` pair by pair; the first fault is
+ * reported either way, the same one.  WR_OK, WR_INVALID or WR_NO_MEMORY. */
+static wr_status check_geometry(wr_outline *outline, bool exhaustively, wr_error *error)
 {
     loop_box(outline, outline->box_min, outline->box_max);
     outline->size = hypot(outline->box_max[0] - outline->box_min[0],
@@ -798,7 +1153,7 @@ static bool check_geometry(wr_outline *outline, wr_error *error)
     if (!isfinite(outline->size)) {
         wr_error_set(error, "loops",
                      "the outline is too large for double precision: its extent overflows");
-        return false;
+        return WR_INVALID;
     }
     double size = outline->size;
     for (size_t i = 0; i < outline->loop_count; i++) {
@@ -811,39 +1166,20 @@ static bool check_geometry(wr_outline *outline, wr_error *error)
                 snprintf(field, sizeof field, "loops[%zu][%zu]", i, next);
                 wr_error_set(error, field,
                              "repeats vertex %zu: segment %zu between them has no length", j, j);
-                return false;
+                return WR_INVALID;
             }
         }
     }
     double tolerance = WR_OUTLINE_TOLERANCE * size;
-    for (size_t i = 0; i < outline->loop_count; i++) {
-        /* Simple before the area: a bow tie's lobes cancel, and "encloses
-         * no area" would hide that its segments cross. */
-        if (!check_simple(outline, i, tolerance, error))
-            return false;
-        wr_loop *loop = &outline->loops[i];
-        moments m = loop_moments(loop, loop->segments[0].start);
-        /* Compared as area / size with size: size * size may overflow. */
-        if (!(fabs(m.area) / size > DEGENERATE_TOLERANCE * size)) {
-            char field[96];
-            snprintf(field, sizeof field, "loops[%zu]", i);
-            wr_error_set(error, field, isfinite(m.area)
-                                           ? "the loop encloses no area"
-                                           : "the loop is too large for double precision: its "
-                                             "area overflows");
-            return false;
-        }
-        loop->signed_area = m.area;
-        loop->orientation = m.area > 0 ? 1 : -1;
-        loop->material_side = i == 0 ? loop->orientation : -loop->orientation;
+    meetings m = {0};
+    if (!exhaustively && !find_meetings(outline, tolerance, &m)) {
+        meetings_free(&m);
+        wr_error_set(error, "", "out of memory");
+        return WR_NO_MEMORY;
     }
-    for (size_t i = 1; i < outline->loop_count; i++)
-        if (!check_apart(outline, i, tolerance, error))
-            return false;
-    for (size_t i = 1; i < outline->loop_count; i++)
-        if (!check_nesting(outline, i, error))
-            return false;
-    return true;
+    wr_status status = check_loops(outline, exhaustively ? NULL : &m, tolerance, error);
+    meetings_free(&m);
+    return status;
 }
 
 /* Area, centroid, polar moment and perimeter of the lamina: each loop's
@@ -891,6 +1227,12 @@ static bool mass_properties(wr_outline *outline, wr_error *error)
 wr_status wr_outline_new(const wr_loop_spec *loops, size_t loop_count, wr_outline **out,
                          wr_error *error)
 {
+    return wr_outline_new_checked(loops, loop_count, false, out, error);
+}
+
+wr_status wr_outline_new_checked(const struct wr_loop_spec *loops, size_t loop_count,
+                                 bool exhaustively, struct wr_outline **out, wr_error *error)
+{
     *out = NULL;
     if (!check_numbers(loops, loop_count, error))
         return WR_INVALID;
@@ -923,9 +1265,12 @@ wr_status wr_outline_new(const wr_loop_spec *loops, size_t loop_count, wr_outlin
             segment_box(&built[i].segments[j]);
         }
     }
-    if (!check_geometry(outline, error) || !mass_properties(outline, error)) {
+    wr_status status = check_geometry(outline, exhaustively, error);
+    if (status == WR_OK && !mass_properties(outline, error))
+        status = WR_INVALID;
+    if (status != WR_OK) {
         wr_outline_free(outline);
-        return WR_INVALID;
+        return status;
     }
     *out = outline;
     return WR_OK;

@@ -49,10 +49,36 @@ static int compare_doubles(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static int compare_spans(const void *a, const void *b)
+/* Spans by their lower ends, in place (a heap sort: no allocation, no
+ * call per comparison; complement's answer does not depend on the order
+ * of spans with the same lower end). */
+static void sift_down(span *items, int root, int count)
 {
-    double x = ((const span *)a)->lo, y = ((const span *)b)->lo;
-    return (x > y) - (x < y);
+    span moving = items[root];
+    for (;;) {
+        int child = 2 * root + 1;
+        if (child >= count)
+            break;
+        if (child + 1 < count && items[child + 1].lo > items[child].lo)
+            child++;
+        if (!(items[child].lo > moving.lo))
+            break;
+        items[root] = items[child];
+        root = child;
+    }
+    items[root] = moving;
+}
+
+static void sort_spans(span *items, int count)
+{
+    for (int i = count / 2 - 1; i >= 0; i--)
+        sift_down(items, i, count);
+    for (int end = count - 1; end > 0; end--) {
+        span top = items[0];
+        items[0] = items[end];
+        items[end] = top;
+        sift_down(items, 0, end);
+    }
 }
 
 static bool add_region(wr_regions *r, int edge, double t0, double t1)
@@ -78,8 +104,7 @@ static bool add_region(wr_regions *r, int edge, double t0, double t1)
 /* The open complement of the closed spans within (low, high), as regions. */
 static bool complement(spans *bad, double low, double high, int edge, wr_regions *out)
 {
-    if (bad->count > 0) /* an empty list has no array */
-        qsort(bad->items, (size_t)bad->count, sizeof *bad->items, compare_spans);
+    sort_spans(bad->items, bad->count);
     double sliver = SLIVER * (high - low);
     double from = low;
     for (int i = 0; i < bad->count; i++) {
@@ -422,63 +447,208 @@ void wr_edge_frame_of(const wr_fixture *f, int edge, wr_edge_frame *out)
     out->half_angle_sin = s;
 }
 
+/* The reference for one arc and one cone: every root of every row sorted,
+ * then each root and each piece between two tested against every row.
+ * False out of memory. */
+static bool arc_cone_reference(const wr_edge_frame *frame, const wr_cone *cone, spans *bad)
+{
+    const double *c1 = frame->c1, *c2 = frame->c2;
+    double a = frame->half_angle, s = frame->half_angle_sin;
+    int rows = cone->facet_count + cone->equality_count;
+    double *roots = malloc((size_t)(5 * rows + 2) * sizeof *roots);
+    if (!roots)
+        return false;
+    int found = 0;
+    roots[found++] = -a;
+    roots[found++] = a;
+    for (int i = 0; i < rows; i++) {
+        const double *row =
+            i < cone->facet_count ? cone->facets[i] : cone->equalities[i - cone->facet_count];
+        double alpha = wr_dot3(row, c1), beta = wr_dot3(row, c2);
+        if (alpha == 0 && beta == 0)
+            continue;
+        /* The root in [-pi/2, pi/2], the other pi away: taken from
+         * atan2 as it is, a small root beside pi would keep only
+         * pi's ulp of its digits once pi is taken off. */
+        double root = alpha >= 0 ? atan2(-beta * s, alpha) : atan2(beta * s, -alpha);
+        for (int turn = -2; turn <= 2; turn++) {
+            double phi = root + turn * WR_PI;
+            if (phi > -a && phi < a)
+                roots[found++] = phi;
+        }
+    }
+    qsort(roots, (size_t)found, sizeof *roots, compare_doubles);
+    /* Each root, then each piece between two: in the cone's closure? */
+    for (int i = 0; i < 2 * found - 1; i++) {
+        double phi = i % 2 == 0 ? roots[i / 2] : (roots[i / 2] + roots[i / 2 + 1]) / 2;
+        double wrench[3];
+        double zero = 1e-12 * arc_wrench(c1, c2, s, phi, wrench);
+        bool inside = true;
+        for (int k = 0; k < cone->facet_count && inside; k++)
+            inside = wr_dot3(cone->facets[k], wrench) <= zero;
+        for (int k = 0; k < cone->equality_count && inside; k++)
+            inside = fabs(wr_dot3(cone->equalities[k], wrench)) <= zero;
+        if (!inside)
+            continue;
+        double lo = i % 2 == 0 ? phi : roots[i / 2], hi = i % 2 == 0 ? phi : roots[i / 2 + 1];
+        add_span(bad, (lo / a + 1) / 2, (hi / a + 1) / 2);
+    }
+    free(roots);
+    return !bad->failed;
+}
+
+/* Roots closer than this (radians) to where the fast path puts a span's
+ * end, and rows weaker than ARC_WEAK of the curve's size, are where the
+ * reference's tolerances could decide otherwise than exact arithmetic: the
+ * fast path leaves them to it. */
+#define ARC_NEAR 1e-5
+#define ARC_WEAK 1e-6
+
+/* Is the angle of (x, y), x >= 0, below that of (u, v), u >= 0?  Both in
+ * [-pi/2, pi/2]: by the sign of the cross product, and on the y axis
+ * (cross 0, opposite) by y. */
+static bool angle_below(double x, double y, double u, double v)
+{
+    double cross = x * v - y * u;
+    return cross != 0 ? cross > 0 : y < v;
+}
+
+/* Is any row's root, other than row `self`'s, within ARC_NEAR modulo pi of
+ * the direction (dx, dy)?  Roots are the rows' angles (x, y) modulo pi, so
+ * near means nearly parallel: |sin| of the angle between them small. */
+static bool root_near(const double (*v)[2], int count, int self, double dx, double dy)
+{
+    double d2 = dx * dx + dy * dy;
+    for (int i = 0; i < count; i++) {
+        double cross = v[i][0] * dy - v[i][1] * dx;
+        if (i != self && cross * cross <= ARC_NEAR * ARC_NEAR * (v[i][0] * v[i][0] + v[i][1] * v[i][1]) * d2)
+            return true;
+    }
+    return false;
+}
+
+/* One arc and one full-dimensional cone, with no allocation and at most
+ * four atan2: facet row f holds where g(phi) = (f.C1) sin(phi) / s +
+ * (f.C2) cos(phi) <= 0, which is everywhere but an open interval of length
+ * pi between two of its roots: with the reference's root r in [-pi/2, pi/2]
+ * (the angle of (f.C1, -(f.C2) s), its sign made x >= 0), the interval is
+ * (r - pi, r) when f.C1 < 0 (a "low" row) and (r, r + pi) otherwise (a
+ * "high" row).  Intervals of one length leave of [-a, a] at most three
+ * closed pieces: before every start (the least low r less pi, else the
+ * least high r), between the greatest low r and the least high r, and
+ * after every end (the greatest high r plus pi, else the greatest low r).
+ * Only those four extremes need their angles, ordered meanwhile by cross
+ * products.  Up to a half circle (a <= pi/2): beyond it, an interval's
+ * copy 2 pi away would reach into [-a, a] too.  The reference finds the same pieces between the same roots,
+ * computed the same way, unless a row is weak, a piece is nearly a point,
+ * or another root lies near a piece's end (its tolerance may then take in
+ * a sliver more): false in those cases, with nothing added, and the caller
+ * asks the reference. */
+static bool arc_cone_fast(const wr_edge_frame *frame, const wr_cone *cone, spans *bad)
+{
+    const double *c1 = frame->c1, *c2 = frame->c2;
+    double a = frame->half_angle, s = frame->half_angle_sin;
+    /* Beyond a half circle a row's interval comes back, 2 pi on, within
+     * [-a, a]: the reference's. */
+    if (cone->equality_count > 0 || cone->facet_count > WR_HULL_MAX || a > WR_PI / 2)
+        return false;
+    /* The curve's size times s: a row is weak when |(alpha / s, beta)| is
+     * below ARC_WEAK of it, compared here times s. */
+    double size_s = wr_norm3(c1) + s * wr_norm3(c2), weak = ARC_WEAK * size_s;
+    double v[WR_HULL_MAX][2];
+    int count = 0;
+    int extreme[4] = {-1, -1, -1, -1}; /* low min, low max, high min, high max */
+    for (int i = 0; i < cone->facet_count; i++) {
+        double alpha = wr_dot3(cone->facets[i], c1), beta = wr_dot3(cone->facets[i], c2);
+        if (alpha == 0 && beta == 0)
+            continue; /* 0 <= 0 everywhere, as the reference's test finds */
+        double x = alpha >= 0 ? alpha : -alpha, y = alpha >= 0 ? -beta * s : beta * s;
+        if (x * x + y * y <= weak * weak)
+            return false;
+        v[count][0] = x;
+        v[count][1] = y;
+        int *group = alpha < 0 ? extreme : extreme + 2;
+        if (group[0] < 0 || angle_below(x, y, v[group[0]][0], v[group[0]][1]))
+            group[0] = count;
+        if (group[1] < 0 || angle_below(v[group[1]][0], v[group[1]][1], x, y))
+            group[1] = count;
+        count++;
+    }
+    /* The extremes' roots, as the reference computes them (root + turn * pi
+     * for the pieces' ends); below a half circle by a margin (a < pi/2),
+     * the piece before every start is empty when a low row starts at or
+     * before -pi/2, and the piece after every end when a high row ends at
+     * or after pi/2: their roots are not needed. */
+    bool low = extreme[0] >= 0, high = extreme[2] >= 0;
+    bool small = a < WR_PI / 2 - 2 * ARC_NEAR;
+    bool need[4] = {low && !small, low, high, high && !small};
+    double r[4];
+    for (int e = 0; e < 4; e++)
+        r[e] = need[e] ? atan2(v[extreme[e]][1], v[extreme[e]][0]) : NAN;
+    double start_min = low ? (small ? -INFINITY : r[0] + -1 * WR_PI) : high ? r[2] : INFINITY;
+    double end_max = high ? (small ? INFINITY : r[3] + 1 * WR_PI) : low ? r[1] : -INFINITY;
+    /* Each piece with the rows whose roots are its ends (-1: -a or a). */
+    double pieces[3][2] = {{-a, fmin(a, start_min)},
+                           {low && high ? fmax(-a, r[1]) : INFINITY, high ? fmin(a, r[2]) : -INFINITY},
+                           {fmax(-a, end_max), a}};
+    int rows[3][2] = {{-1, low ? extreme[0] : extreme[2]},
+                      {extreme[1], extreme[2]},
+                      {high ? extreme[3] : extreme[1], -1}};
+    for (int p = 0; p < 3; p++) {
+        double length = pieces[p][1] - pieces[p][0];
+        if (fabs(length) <= ARC_NEAR)
+            return false; /* nearly a point, or nearly one and empty */
+        if (!(length > 0))
+            continue;
+        for (int e = 0; e < 2; e++) {
+            double end = pieces[p][e];
+            /* cos a from sin a: only which roots are near it is asked. */
+            double cosine = sqrt(fmax(0.0, (1 - s) * (1 + s))) * (a < WR_PI / 2 ? 1 : -1);
+            int row = end == a || end == -a ? -1 : rows[p][e];
+            bool near = row >= 0 ? root_near(v, count, row, v[row][0], v[row][1])
+                                 : root_near(v, count, -1, cosine, end > 0 ? s : -s);
+            if (near)
+                return false;
+        }
+    }
+    for (int p = 0; p < 3; p++)
+        if (pieces[p][0] < pieces[p][1])
+            add_span(bad, (pieces[p][0] / a + 1) / 2, (pieces[p][1] / a + 1) / 2);
+    return true;
+}
+
+wr_status wr_arc_regions(const wr_edge_frame *frame, const wr_cone **cones, int count,
+                         bool reference, int *referred, wr_regions *out)
+{
+    spans bad = {0, 0, NULL, false};
+    bool ok = true;
+    for (int n = 0; n < count && ok; n++) {
+        if (cones[n]->empty)
+            continue;
+        bool fast = !reference && arc_cone_fast(frame, cones[n], &bad);
+        if (!fast && referred)
+            (*referred)++;
+        ok = fast || arc_cone_reference(frame, cones[n], &bad);
+    }
+    ok = ok && complement(&bad, 0, 1, 0, out);
+    free(bad.items);
+    return ok ? WR_OK : WR_NO_MEMORY;
+}
+
 static bool arc_bad_spans(const wr_fixture *f, const wr_cone **cones, int count, int edge,
                           const wr_stop *stop, bool *stopped, spans *bad)
 {
     wr_edge_frame frame;
     wr_edge_frame_of(f, edge, &frame);
-    const double *c1 = frame.c1, *c2 = frame.c2;
-    double a = frame.half_angle, s = frame.half_angle_sin;
     for (int n = 0; n < count && !bad->failed; n++) {
         if (wr_stop_requested(stop)) {
             *stopped = true;
             return false;
         }
-        const wr_cone *cone = cones[n];
-        if (cone->empty)
+        if (cones[n]->empty)
             continue;
-        int rows = cone->facet_count + cone->equality_count;
-        double *roots = malloc((size_t)(5 * rows + 2) * sizeof *roots);
-        if (!roots) {
-            bad->failed = true;
+        if (!arc_cone_fast(&frame, cones[n], bad) && !arc_cone_reference(&frame, cones[n], bad))
             return false;
-        }
-        int found = 0;
-        roots[found++] = -a;
-        roots[found++] = a;
-        for (int i = 0; i < rows; i++) {
-            const double *row =
-                i < cone->facet_count ? cone->facets[i] : cone->equalities[i - cone->facet_count];
-            double alpha = wr_dot3(row, c1), beta = wr_dot3(row, c2);
-            if (alpha == 0 && beta == 0)
-                continue;
-            /* The root in [-pi/2, pi/2], the other pi away: taken from
-             * atan2 as it is, a small root beside pi would keep only
-             * pi's ulp of its digits once pi is taken off. */
-            double root = alpha >= 0 ? atan2(-beta * s, alpha) : atan2(beta * s, -alpha);
-            for (int turn = -2; turn <= 2; turn++) {
-                double phi = root + turn * WR_PI;
-                if (phi > -a && phi < a)
-                    roots[found++] = phi;
-            }
-        }
-        qsort(roots, (size_t)found, sizeof *roots, compare_doubles);
-        /* Each root, then each piece between two: in the cone's closure? */
-        for (int i = 0; i < 2 * found - 1; i++) {
-            double phi = i % 2 == 0 ? roots[i / 2] : (roots[i / 2] + roots[i / 2 + 1]) / 2;
-            double wrench[3];
-            double zero = 1e-12 * arc_wrench(c1, c2, s, phi, wrench);
-            bool inside = true;
-            for (int k = 0; k < cone->facet_count && inside; k++)
-                inside = wr_dot3(cone->facets[k], wrench) <= zero;
-            for (int k = 0; k < cone->equality_count && inside; k++)
-                inside = fabs(wr_dot3(cone->equalities[k], wrench)) <= zero;
-            if (!inside)
-                continue;
-            double lo = i % 2 == 0 ? phi : roots[i / 2], hi = i % 2 == 0 ? phi : roots[i / 2 + 1];
-            add_span(bad, (lo / a + 1) / 2, (hi / a + 1) / 2);
-        }
-        free(roots);
     }
     return !bad->failed;
 }

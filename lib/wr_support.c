@@ -1,5 +1,5 @@
 /* wr_support.c -- friction at the supports under a part on a base plate
- * (wr_support.h; docs/MODEL.md section 10). */
+ * (wr_support.h; docs/MODEL.md section 11). */
 #include "wr_support.h"
 
 #include "wr_internal.h"

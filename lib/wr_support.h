@@ -1,5 +1,5 @@
 /* wr_support.h -- a part lying on a base plate: friction at the supports
- * under it (docs/MODEL.md section 10, "On a base plate").
+ * under it (docs/MODEL.md section 11, "On a base plate").
  *
  * The part lies on rest buttons (supports) at points p_i of its plane.
  * Gravity g presses it onto them, and so may vertical clamps ("down").

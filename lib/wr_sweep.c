@@ -54,8 +54,11 @@ struct wr_sweeper {
     int plane_count;
     plane *planes;
     int *plane_cones;
-    int analysis_cones; /* both sets' cones: what each analysis builds */
+    int analysis_cones; /* the cones each analysis builds */
     values structure;   /* where a cone's faces change (settled) */
+    /* What every analysis at one mu shares: plan, modes, acceleration
+     * generators (G_strong's only when the set needs them). */
+    wr_analysis_frame *frame;
 };
 
 /* ---- small things ------------------------------------------------------------------ */
@@ -175,6 +178,37 @@ static double poly_value(const double *c, int degree, double x)
     return v;
 }
 
+/* Is |p| above `margin` on all of [lo, hi], by the Bernstein coefficients
+ * of p on the interval (p lies between the smallest and the largest)?
+ * Most of a sweep's polynomials have no root in the range: this settles
+ * them without their derivatives' roots.  The margin is far above the
+ * rounding of the coefficients and of poly_roots' own evaluations, so
+ * where this says yes poly_roots would find no root, nor a touch. */
+static bool clear_of_zero(const double *c, int degree, double lo, double hi, double margin)
+{
+    /* p(lo + w t) = sum e_i (w t)^i: the Taylor shift to lo. */
+    double e[MAX_DEGREE + 1];
+    memcpy(e, c, (size_t)(degree + 1) * sizeof *e);
+    for (int i = 0; i < degree; i++)
+        for (int j = degree - 1; j >= i; j--)
+            e[j] += lo * e[j + 1];
+    double w = hi - lo, power = 1;
+    for (int i = 0; i <= degree; i++, power *= w)
+        e[i] *= power;
+    /* b_k = sum_{i <= k} C(k, i) / C(n, i) e_i. */
+    static const double binomial[MAX_DEGREE + 1][MAX_DEGREE + 1] = {
+        {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
+    bool above = true, below = true;
+    for (int k = 0; k <= degree && (above || below); k++) {
+        double b = 0;
+        for (int i = 0; i <= k; i++)
+            b += binomial[k][i] / binomial[degree][i] * e[i];
+        above &= b > margin;
+        below &= b < -margin;
+    }
+    return above || below;
+}
+
 /* The root of a polynomial that changes sign on [lo, hi], bisected until
  * the interval cannot shrink. */
 static double bisect(const double *c, int degree, double lo, double hi, double value_lo)
@@ -212,6 +246,8 @@ static int poly_roots(const double *coefficients, int degree, double lo, double 
         size += fabs(coefficients[i]) * power;
     if (size == 0 || !isfinite(size))
         return size == 0 ? -1 : 0;
+    if (degree >= 2 && clear_of_zero(coefficients, degree, lo, hi, 1e-11 * size))
+        return 0;
     /* Terms that cannot matter on the interval are dropped: the degree
      * the polynomial really has there. */
     double c[MAX_DEGREE + 1];
@@ -303,8 +339,10 @@ static wr_status build_family(wr_sweeper *s)
 {
     wr_fixture at_one;
     wr_fixture_at_friction(s->fixture, 1, s->range.kinetic_ratio, &at_one);
+    if (wr_analysis_frame_new(s->fixture, s->set != WR_SET_GOAL, &s->frame) != WR_OK)
+        return WR_NO_MEMORY;
     wr_analysis *analysis;
-    if (wr_analysis_new(&at_one, &analysis) != WR_OK)
+    if (wr_analysis_frame_at(s->frame, &at_one, s->set != WR_SET_GOAL, &analysis) != WR_OK)
         return WR_NO_MEMORY;
     wr_status status = WR_NO_MEMORY;
     int sets[2], set_count = 0;
@@ -314,7 +352,7 @@ static wr_status build_family(wr_sweeper *s)
         sets[set_count++] = WR_SET_STRONG;
     int total = 0, generators = 0;
     s->analysis_cones = wr_analysis_cone_count(analysis, WR_SET_GOAL) +
-                        wr_analysis_cone_count(analysis, WR_SET_STRONG);
+                        (s->set != WR_SET_GOAL ? wr_analysis_cone_count(analysis, WR_SET_STRONG) : 0);
     for (int i = 0; i < set_count; i++) {
         int n = wr_analysis_cone_count(analysis, (wr_set)sets[i]);
         total += n;
@@ -442,6 +480,7 @@ void wr_sweeper_free(wr_sweeper *s)
     free(s->planes);
     free(s->plane_cones);
     free(s->structure.items);
+    wr_analysis_frame_free(s->frame);
     free(s);
 }
 
@@ -634,9 +673,15 @@ struct wr_sweep_job {
     int edge, edge_count, row;
     wr_edge_frame frame;
     double (*alpha)[3], (*beta)[3];
+    double *cut_from, *cut_to; /* where in mu each plane may cut the edge (edge_cut_span) */
     values roots;
-    /* PHASE_DECIDE, PHASE_CURVE: the next piece or point. */
+    /* PHASE_DECIDE, PHASE_CURVE: the next piece or point; for G_goal
+     * (decide_shrinking) the pieces known non-empty, [0, full_below), the
+     * first known empty, empty_at (-1 before the bisection), and the mu
+     * beyond which the answer is empty (+inf: none). */
     int index;
+    int full_below, empty_at;
+    double empty_from;
     values points;
     /* PHASE_SAMPLED: the step of mu, the emptiness before it, where the
      * current interval started, and a change being bisected in [lo, hi]. */
@@ -648,32 +693,33 @@ struct wr_sweep_job {
     unsigned long evaluation_cost, row_cost;
 };
 
-/* The answer at mu: for a wrench 1 inside, 0 not; for a region its total
+/* The answer at mu for `set` (the sweeper's, or G_goal: wr_sweep.c's
+ * decide_shrinking): for a wrench 1 inside, 0 not; for a region its total
  * length.  -1 with *status set on failure. */
-static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
+static double answer_in(const wr_sweep_job *job, double mu, wr_set set, wr_status *status)
 {
     const wr_sweeper *s = job->sweeper;
     wr_fixture at;
     wr_fixture_at_friction(s->fixture, mu, s->range.kinetic_ratio, &at);
     wr_analysis *analysis;
-    *status = wr_analysis_new(&at, &analysis);
+    *status = wr_analysis_frame_at(s->frame, &at, set != WR_SET_GOAL, &analysis);
     if (*status != WR_OK)
         return -1;
     double result = 0;
     if (job->what == WHAT_WRENCH) {
         wr_answer answer;
-        *status = wr_classify(analysis, job->wrench, s->set, WR_DEFAULT_TOLERANCE, &answer);
+        *status = wr_classify(analysis, job->wrench, set, WR_DEFAULT_TOLERANCE, &answer);
         result = answer.verdict == WR_VERDICT_INSIDE;
     } else {
         wr_regions regions;
         if (job->what == WHAT_PUSH)
             *status = job->push_index
-                          ? wr_push_regions_indexed(analysis, s->set, job->push_index, job->stop,
+                          ? wr_push_regions_indexed(analysis, set, job->push_index, job->stop,
                                                     &regions)
-                          : wr_push_regions_finger(analysis, s->set, &job->finger, job->stop,
+                          : wr_push_regions_finger(analysis, set, &job->finger, job->stop,
                                                    &regions);
         else
-            *status = wr_gravity_sweep(analysis, s->set, &regions);
+            *status = wr_gravity_sweep(analysis, set, &regions);
         for (int i = 0; *status == WR_OK && i < regions.count; i++)
             result += job->what == WHAT_PUSH ? wr_region_length(&at, &regions.items[i])
                                              : regions.items[i].t1 - regions.items[i].t0;
@@ -686,7 +732,99 @@ static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
     return *status == WR_OK ? result : -1;
 }
 
+static double answer_at(const wr_sweep_job *job, double mu, wr_status *status)
+{
+    return answer_in(job, mu, job->sweeper->set, status);
+}
+
 /* ---- push and gravity: where two planes meet the edge at one point ---------------- */
+
+/* A plane cuts an edge where its two coordinates on the edge meet
+ * (wr_internal.h's frames): a straight edge c1 + t c2 where alpha + t beta
+ * = 0, an arc (sin phi / s) c1 + cos phi c2 where (tan phi / s) alpha +
+ * beta = 0 (cos phi > 0 on an arc below a half circle), with alpha = c1 .
+ * n(mu), beta = c2 . n(mu).  Two planes' roots on the edge are kept only
+ * where t is within 1e-9 of [0, 1] or phi of [-a, a] (edge_row); this much
+ * wider slack covers that and every rounding of a root. */
+#define CUT_SLACK 1e-6
+
+/* The smallest interval [*from, *to] of the range holding every mu at
+ * which the plane's cut lies within the slack of the edge: where A(mu) and
+ * B(mu), the values of the form that vanishes at the cut (affine in the
+ * edge's parameter) at the slack's two ends, do not have one strict sign.  Their
+ * sign changes only at their roots, so a test at the middle of each piece
+ * between them decides the piece.  *from > *to: the plane never cuts the
+ * edge.  The whole range when A or B vanishes throughout.  Widened by far
+ * more than a root's rounding. */
+static void cut_span(const double A[3], const double B[3], const wr_sweep_range *r,
+                     double *from, double *to)
+{
+    double points[2 * (MAX_DEGREE + 2) + 2];
+    double widen = 1e-9 * fmax(1, r->high);
+    int n = 0, fa = poly_roots(A, 2, r->low, r->high, points);
+    int fb = fa < 0 ? -1 : poly_roots(B, 2, r->low, r->high, points + fa);
+    if (fa < 0 || fb < 0) {
+        *from = r->low;
+        *to = r->high;
+        return;
+    }
+    n = fa + fb;
+    *from = INFINITY;
+    *to = -INFINITY;
+    for (int i = 0; i < n; i++) { /* the roots cut at an end of the slack */
+        *from = fmin(*from, points[i]);
+        *to = fmax(*to, points[i]);
+    }
+    points[n++] = r->low;
+    points[n++] = r->high;
+    for (int i = 1; i < n; i++) /* insertion sort: at most six */
+        for (int j = i; j > 0 && points[j] < points[j - 1]; j--) {
+            double t = points[j];
+            points[j] = points[j - 1];
+            points[j - 1] = t;
+        }
+    for (int i = 0; i + 1 < n; i++) {
+        double mid = points[i] + (points[i + 1] - points[i]) / 2;
+        if (poly_value(A, 2, mid) * poly_value(B, 2, mid) <= 0) {
+            *from = fmin(*from, points[i]);
+            *to = fmax(*to, points[i + 1]);
+        }
+    }
+    if (*from <= *to) {
+        *from -= widen;
+        *to += widen;
+    }
+}
+
+/* cut_span for the job's current edge and plane i: a line's form at t =
+ * -CUT_SLACK and 1 + CUT_SLACK; an arc's (in u = tan phi) at phi = -+(a +
+ * CUT_SLACK); the whole range on a circle, or an arc too near a half
+ * circle for tan. */
+static void edge_cut_span(const wr_sweep_job *job, int i, double *from, double *to)
+{
+    const wr_sweep_range *r = &job->sweeper->range;
+    const wr_edge_frame *frame = &job->frame;
+    const double *alpha = job->alpha[i], *beta = job->beta[i];
+    double A[3], B[3];
+    if (frame->kind == WR_EDGE_LINE) {
+        for (int k = 0; k < 3; k++) {
+            A[k] = alpha[k] - CUT_SLACK * beta[k];
+            B[k] = alpha[k] + (1 + CUT_SLACK) * beta[k];
+        }
+    } else if (frame->kind == WR_EDGE_ARC && frame->half_angle + CUT_SLACK < WR_PI / 2 - 1e-3 &&
+               frame->half_angle_sin > 0) {
+        double reach = tan(frame->half_angle + CUT_SLACK) / frame->half_angle_sin;
+        for (int k = 0; k < 3; k++) {
+            A[k] = beta[k] - reach * alpha[k];
+            B[k] = beta[k] + reach * alpha[k];
+        }
+    } else {
+        *from = r->low;
+        *to = r->high;
+        return;
+    }
+    cut_span(A, B, r, from, to);
+}
 
 /* The frame of the job's current edge, each plane's alpha = c1 . n(mu) and
  * beta = c2 . n(mu) on it, and for a push the roots of the edge's ends
@@ -750,11 +888,13 @@ static wr_status edge_begin(wr_sweep_job *job)
                 return status;
         }
     }
-    for (int i = 0; i < s->plane_count; i++)
+    for (int i = 0; i < s->plane_count; i++) {
         for (int k = 0; k < 3; k++) {
             job->alpha[i][k] = wr_dot3(job->frame.c1, s->planes[i].n[k]);
             job->beta[i][k] = wr_dot3(job->frame.c2, s->planes[i].n[k]);
         }
+        edge_cut_span(job, i, &job->cut_from[i], &job->cut_to[i]);
+    }
     return job->roots.failed ? WR_NO_MEMORY : WR_OK;
 }
 
@@ -768,7 +908,13 @@ static void edge_row(wr_sweep_job *job, int i)
     const wr_sweep_range *r = &s->range;
     const wr_edge_frame *frame = &job->frame;
     double (*alpha)[3] = job->alpha, (*beta)[3] = job->beta;
+    double from = job->cut_from[i], to = job->cut_to[i];
+    if (from > to)
+        return; /* never on the edge */
     for (int j = i + 1; j < s->plane_count; j++) {
+        /* A root kept is where both planes cut the edge. */
+        if (job->cut_to[j] < from || job->cut_from[j] > to || job->cut_from[j] > job->cut_to[j])
+            continue;
         double c[5] = {0, 0, 0, 0, 0};
         for (int x = 0; x < 3; x++)
             for (int y = 0; y < 3; y++)
@@ -937,6 +1083,68 @@ static wr_status sampled_unit(wr_sweep_job *job, unsigned long *spent)
     return WR_OK;
 }
 
+/* Piece job->index decided at its middle; its interval added when the
+ * answer there is non-empty. */
+static wr_status decide_piece(wr_sweep_job *job, wr_intervals *out, unsigned long *spent)
+{
+    wr_status status = WR_OK;
+    double lo = job->roots.items[job->index], hi = job->roots.items[job->index + 1];
+    double value = answer_at(job, lo + (hi - lo) / 2, &status);
+    *spent += job->evaluation_cost;
+    job->index++;
+    if (status == WR_OK && value > 0 && !add_interval(out, lo, hi))
+        status = WR_NO_MEMORY;
+    return status;
+}
+
+/* The pieces of a G_goal or a both sweep.  G_goal only shrinks as mu
+ * grows (its strings use s, u and m, and an m cone widens with mu_s:
+ * docs/PROTOCOL.md), and so do its push regions, its gravity arcs and the
+ * set of mu at which a wrench is in it: the pieces in which G_goal's answer
+ * is non-empty come first, and the first empty one is found by bisection,
+ * each piece's G_goal answer taken at its middle.  A goal sweep's intervals
+ * are then the union of the pieces before it, as deciding every piece
+ * would make them.  G_both lies in G_goal, so a both sweep decides only
+ * the pieces before it, one at a time.  For either, the curve's points
+ * beyond it are empty (empty_from). */
+static wr_status decide_shrinking(wr_sweep_job *job, wr_intervals *out, unsigned long *spent)
+{
+    const wr_sweeper *s = job->sweeper;
+    int pieces = job->roots.count - 1;
+    wr_status status = WR_OK;
+    if (job->full_below < 0) {
+        job->full_below = 0;    /* pieces [0, full_below): G_goal non-empty */
+        job->empty_at = pieces; /* the first piece known empty (pieces: none) */
+    }
+    if (job->full_below < job->empty_at) {
+        int piece = job->full_below + (job->empty_at - job->full_below) / 2;
+        double lo = job->roots.items[piece], hi = job->roots.items[piece + 1];
+        double value = answer_in(job, lo + (hi - lo) / 2, WR_SET_GOAL, &status);
+        *spent += job->evaluation_cost;
+        if (status != WR_OK)
+            return status;
+        if (value > 0)
+            job->full_below = piece + 1;
+        else
+            job->empty_at = piece;
+        return WR_OK;
+    }
+    if (s->set == WR_SET_GOAL) {
+        if (job->empty_at > 0 &&
+            !add_interval(out, job->roots.items[0], job->roots.items[job->empty_at]))
+            return WR_NO_MEMORY;
+    } else if (job->index < job->empty_at) {
+        return decide_piece(job, out, spent);
+    }
+    if (job->empty_at < pieces)
+        job->empty_from = job->roots.items[job->empty_at];
+    if (job->what == WHAT_WRENCH) {
+        job->phase = PHASE_DONE;
+        return WR_OK;
+    }
+    return curve_begin(job);
+}
+
 /* One unit of work: a plane row of an edge, a piece decided, a point of the
  * curve, a step of the sampled sweep. */
 static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
@@ -980,6 +1188,8 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
         return status;
     case PHASE_DECIDE: {
         wr_intervals *out = job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;
+        if (s->set != WR_SET_STRONG)
+            return decide_shrinking(job, out, spent);
         if (job->index + 1 >= job->roots.count) {
             if (job->what == WHAT_WRENCH) {
                 job->phase = PHASE_DONE;
@@ -987,13 +1197,7 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
             }
             return curve_begin(job);
         }
-        double lo = job->roots.items[job->index], hi = job->roots.items[job->index + 1];
-        double value = answer_at(job, lo + (hi - lo) / 2, &status);
-        *spent += job->evaluation_cost;
-        job->index++;
-        if (status == WR_OK && value > 0 && !add_interval(out, lo, hi))
-            status = WR_NO_MEMORY;
-        return status;
+        return decide_piece(job, out, spent);
     }
     case PHASE_SAMPLED:
         return sampled_unit(job, spent);
@@ -1004,8 +1208,12 @@ static wr_status job_unit(wr_sweep_job *job, unsigned long *spent)
             return WR_OK;
         }
         double mu = job->points.items[job->index];
-        double length = answer_at(job, mu, &status);
-        *spent += job->evaluation_cost;
+        /* Beyond the end of a shrinking set's last interval: empty. */
+        double length = 0;
+        if (!(mu > job->empty_from)) {
+            length = answer_at(job, mu, &status);
+            *spent += job->evaluation_cost;
+        }
         if (status != WR_OK)
             return status;
         job->curve.points[job->index][0] = mu;
@@ -1025,6 +1233,8 @@ void wr_sweep_job_free(wr_sweep_job *job)
         return;
     free(job->alpha);
     free(job->beta);
+    free(job->cut_from);
+    free(job->cut_to);
     free(job->roots.items);
     free(job->points.items);
     wr_intervals_release(&job->intervals);
@@ -1043,6 +1253,8 @@ static wr_sweep_job *job_new(const wr_sweeper *s, what what)
     job->edge_count = 1;
     job->curve.exact = true;
     job->row_cost = 32; /* a quartic's roots and their checks */
+    job->full_below = -1;
+    job->empty_from = INFINITY;
     /* An analysis at one mu: every cone's hull; then the question. */
     unsigned long cones = (unsigned long)s->cone_count + 1;
     job->evaluation_cost = (unsigned long)s->analysis_cones * 300 + cones * 4;
@@ -1057,7 +1269,9 @@ static wr_sweep_job *job_new(const wr_sweeper *s, what what)
         size_t planes = (size_t)s->plane_count + 1;
         job->alpha = malloc(planes * sizeof *job->alpha);
         job->beta = malloc(planes * sizeof *job->beta);
-        if (!job->alpha || !job->beta) {
+        job->cut_from = malloc(planes * sizeof *job->cut_from);
+        job->cut_to = malloc(planes * sizeof *job->cut_to);
+        if (!job->alpha || !job->beta || !job->cut_from || !job->cut_to) {
             wr_sweep_job_free(job);
             return NULL;
         }
@@ -1135,6 +1349,49 @@ wr_status wr_sweep_job_run(wr_sweep_job *job, unsigned long budget, unsigned lon
         *used += spent;
     *done = status == WR_OK && job->phase == PHASE_DONE;
     return status;
+}
+
+wr_status wr_sweep_job_stop(wr_sweep_job *job, double *reached)
+{
+    const wr_sweep_range *r = &job->sweeper->range;
+    wr_intervals *list = job->what == WHAT_WRENCH ? &job->intervals : &job->curve.intervals;
+    double at = r->low;
+    switch (job->phase) {
+    case PHASE_ROOTS: /* no piece decided yet */
+        break;
+    case PHASE_DECIDE: /* pieces below roots[index] decided */
+        at = job->roots.items[job->index];
+        break;
+    case PHASE_SAMPLED:
+        /* Decided at the step's low end (or, bisecting, at lo): the answer
+         * there is `previous`, as it has been since `start`. */
+        if (job->step > 0) {
+            at = job->bisecting ? job->lo
+                                : r->low + (r->high - r->low) * (job->step - 1) / FRICTION_STEPS;
+            if (job->previous && !add_interval(list, job->start, at))
+                return WR_NO_MEMORY;
+        }
+        break;
+    case PHASE_CURVE: /* every interval; the points below index */
+        at = job->index > 0 ? job->points.items[job->index - 1] : r->low;
+        break;
+    case PHASE_DONE:
+        *reached = r->high;
+        return WR_OK;
+    }
+    /* Keep what lies below `at`, cut there. */
+    int n = 0;
+    for (int i = 0; i < list->count; i++) {
+        if (!(list->items[i][0] < at))
+            break;
+        list->items[n][0] = list->items[i][0];
+        list->items[n++][1] = fmin(list->items[i][1], at);
+    }
+    list->count = n;
+    job->curve.has_critical = false;
+    job->phase = PHASE_DONE;
+    *reached = at;
+    return WR_OK;
 }
 
 const wr_intervals *wr_sweep_job_intervals(const wr_sweep_job *job)

@@ -30,7 +30,11 @@
  * is bisected to the last bit), and kept when the wrench there lies on the
  * face itself in a plane that supports its cone.  Between two consecutive
  * roots nothing changes, so the answer is decided at the middle of each
- * piece: no interval can hide between samples, however narrow.  G_goal
+ * piece: no interval can hide between samples, however narrow.  Each
+ * answer at one mu is the analysis of the fixture at that mu, made from
+ * what the sweeper built once (wr_analysis_frame, wr_internal.h: the plan,
+ * the modes, every cone's acceleration generators, the cones with no
+ * friction edge), bit for bit the analysis made from scratch.  G_goal
  * needs no special case (it shrinks as mu grows, so its intervals start at
  * the bottom of the range); G_strong's, which do not, come out the same
  * way. */
@@ -127,6 +131,14 @@ void wr_sweep_job_use_index(wr_sweep_job *job, const wr_push_index *index);
 wr_status wr_sweep_job_gravity(const wr_sweeper *sweeper, wr_sweep_job **out);
 wr_status wr_sweep_job_run(wr_sweep_job *job, unsigned long budget, unsigned long *used,
                            const wr_stop *stop, bool *done);
+/* Ends a job that is not done where it has got to (a server's deadline):
+ * *reached is the mu up to which its answer is decided, the range's low end
+ * when nothing is yet, the top when the job is done.  Its intervals keep
+ * what lies below *reached, an interval still open there cut at *reached;
+ * a region's curve keeps its points up to *reached and has_critical is
+ * false (not known).  The job is then done: its answers below can be
+ * taken, it runs no more.  WR_OK; WR_NO_MEMORY (an interval to close). */
+wr_status wr_sweep_job_stop(wr_sweep_job *job, double *reached);
 /* When done: a wrench's intervals (also a region's), a region's curve. */
 const wr_intervals *wr_sweep_job_intervals(const wr_sweep_job *job);
 const wr_sweep_curve *wr_sweep_job_curve(const wr_sweep_job *job);

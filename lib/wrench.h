@@ -13,6 +13,7 @@
  *   wr_sweep.h     answers as functions of a common friction coefficient
  *   wr_design.h    fixture design: sites, the best push, the search
  *   wr_lattice.h   designs on a modular fixture plate: pegs and poses
+ *   wr_tolerance.h robust answers over a fixture's geometric tolerance
  *
  * Pure computation: no I/O, no global state; every function is re-entrant.
  * Objects are created by wr_status *_new(..., T **out) and released by
@@ -38,6 +39,7 @@
 #include "wr_plan.h"
 #include "wr_regions.h"
 #include "wr_status.h"
+#include "wr_tolerance.h"
 #include "wr_support.h"
 #include "wr_sweep.h"
 #include "wr_symmetry.h"

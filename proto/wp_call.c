@@ -6,6 +6,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* params.fixture, held for the call: a stored id, or an inline fixture
  * object (validated, then cached under its id). */
@@ -27,9 +28,17 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
         }
         ok = host->fixture_use(host->self, value->valuestring, &hold->use, &failure);
     } else if (cJSON_IsObject(value)) {
+        /* Validated once: a text kept since is used as it was adopted. */
+        char written[WP_ID_LENGTH + 1] = "";
+        if (host->fixture_use_written && wp_fixture_written_key(value, written) &&
+            host->fixture_use_written(host->self, written, &hold->use)) {
+            hold->holding = true;
+            return &hold->use;
+        }
         wp_fixture_doc doc;
         if (!wp_fixture_read(value, "params.fixture", &doc, error))
             return NULL;
+        memcpy(doc.written, written, sizeof doc.written);
         ok = host->fixture_adopt(host->self, &doc, false, &hold->use, &failure);
     } else {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",

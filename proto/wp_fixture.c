@@ -8,8 +8,7 @@
 #include <string.h>
 
 static const char *const FIXTURE_FIELDS[] = {"name", "body", "friction", "fixels", "units",
-                                              "supports",
-                                             NULL};
+                                             "tolerance", "supports", NULL};
 static const char *const UNITS_FIELDS[] = {"length", "force", NULL};
 
 /* The units a fixture may name (docs/PROTOCOL.md, "Units"), each with its
@@ -58,6 +57,39 @@ static bool read_units(const cJSON *json, const char *path, wr_units *out, wp_er
     out->given = true;
     return true;
 }
+
+/* The fixture's geometric tolerance (docs/PROTOCOL.md, "Tolerance"):
+ * {"position": T, "angle"?: A}; absent, out->given stays false.  Its
+ * values are checked against the fixture by apply_tolerance. */
+static const char *const TOLERANCE_FIELDS[] = {"position", "angle", NULL};
+
+static bool read_tolerance(const cJSON *json, const char *path, wr_tolerance *out,
+                           wp_error *error)
+{
+    if (!json)
+        return true;
+    out->angle = 0;
+    if (!wp_check_object(json, path, TOLERANCE_FIELDS, error) ||
+        !wp_member_number(json, path, "position", true, &out->position, NULL, error) ||
+        !wp_member_number(json, path, "angle", false, &out->angle, NULL, error))
+        return false;
+    out->given = true;
+    return true;
+}
+
+/* wr_fixture_set_tolerance, its refusal at `path`.tolerance.x. */
+static bool apply_tolerance(wr_fixture *fixture, const wr_tolerance *tolerance,
+                            const char *path, wp_error *error)
+{
+    wr_error invalid;
+    if (wr_fixture_set_tolerance(fixture, tolerance, &invalid) == WR_OK)
+        return true;
+    char field[WP_FIELD_MAX];
+    wp_path_key(field, path, invalid.field);
+    wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid.reason);
+    return false;
+}
+
 
 /* The name of the unit of `table` of size `si` (one read_unit gave). */
 static const char *unit_text(const unit_name *table, double si)
@@ -573,6 +605,18 @@ static cJSON *explicit_supports(const wr_supports *s)
     return root;
 }
 
+/* {"position": T, "angle": A}, the angle only when not 0 (so that a
+ * tolerance written with "angle": 0 and one without share an id). */
+static bool explicit_tolerance(cJSON *root, const wr_tolerance *t)
+{
+    if (!t->given)
+        return true;
+    cJSON *item = cJSON_CreateObject();
+    return add(root, "tolerance", item) &&
+           add(item, "position", cJSON_CreateNumber(t->position)) &&
+           (t->angle == 0 || add(item, "angle", cJSON_CreateNumber(t->angle)));
+}
+
 /* The explicit form without the name, as a JSON tree; NULL out of memory. */
 static cJSON *explicit_fixture(const wr_fixture *f)
 {
@@ -598,6 +642,7 @@ static cJSON *explicit_fixture(const wr_fixture *f)
          (f->shape == WR_SHAPE_NONE || add(body, "shape", explicit_shape(f)));
     if (ok && f->supports)
         ok = add(root, "supports", explicit_supports(f->supports));
+    ok = ok && explicit_tolerance(root, &f->tolerance);
     for (int i = 0; ok && i < f->fixel_count; i++) {
         cJSON *fixel = explicit_fixel(&f->fixels[i]);
         ok = fixel != NULL;
@@ -642,6 +687,16 @@ bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1])
     return true;
 }
 
+bool wp_fixture_written_key(const cJSON *json, char key[WP_ID_LENGTH + 1])
+{
+    unsigned char digest[32];
+    if (!wp_canonical_digest(json, digest))
+        return false;
+    for (int i = 0; i < WP_ID_LENGTH / 2; i++)
+        snprintf(key + 2 * i, 3, "%02x", digest[i]);
+    return true;
+}
+
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);
@@ -680,6 +735,12 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
         ok = read_units(cJSON_GetObjectItemCaseSensitive(json, "units"), field, &spec.units,
                         error);
     }
+    wr_tolerance tolerance = {false, 0, 0};
+    if (ok) {
+        wp_path_key(field, path, "tolerance");
+        ok = read_tolerance(cJSON_GetObjectItemCaseSensitive(json, "tolerance"), field,
+                            &tolerance, error);
+    }
     if (ok) {
         const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "fixels");
         wp_path_key(field, path, "fixels");
@@ -711,6 +772,11 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
             out->fixture = NULL;
         }
     }
+    if (ok && !apply_tolerance(out->fixture, &tolerance, path, error)) {
+        wr_fixture_free(out->fixture);
+        out->fixture = NULL;
+        ok = false;
+    }
     shape_storage_free(&storage);
     free(fixels);
     if (!ok)
@@ -738,6 +804,12 @@ bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_e
         wp_error_set(error, WP_INVALID_PARAMS, field, "required");
     else
         ok = read_body(json, field, &spec, &storage, error);
+    if (ok) {
+        /* Its units, as a fixture's: the loads' forces and G are in them. */
+        wp_path_key(field, path, "units");
+        ok = read_units(cJSON_GetObjectItemCaseSensitive(params, "units"), field, &spec.units,
+                        error);
+    }
     if (ok) {
         wr_error invalid;
         wr_status status = wr_fixture_body_new(&spec, body, &invalid);

@@ -23,6 +23,8 @@ typedef struct wp_fixture_doc {
     char *canonical;            /* canonical text of the explicit form, with the
                                    name when one was given: what is stored */
     wr_fixture *fixture;
+    char written[WP_ID_LENGTH + 1]; /* inline: the key of the text as written
+                                       (wp_fixture_written_key), "" unknown */
 } wp_fixture_doc;
 
 /* The explicit form of a fixture (docs/PROTOCOL.md, "Fixture id"): the
@@ -40,8 +42,9 @@ typedef struct wp_fixture_doc {
 bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, wp_error *error);
 void wp_fixture_doc_release(wp_fixture_doc *doc);
 /* The body at path.body of `params` alone (fixture.design): read as a
- * fixture's body, a shape required, into *body (wr_fixture_body_new).
- * False on error, with nothing allocated. */
+ * fixture's body, a shape required, into *body (wr_fixture_body_new), with
+ * the units at path.units (optional, as a fixture's "units").  False on
+ * error, with nothing allocated. */
 bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_error *error);
 /* Friction at `path` (present): a number (static), an interval [lo, hi]
  * (static) or a fixture's {"static", "kinetic"}, checked. */
@@ -53,6 +56,13 @@ bool wp_friction_read(const cJSON *json, const char *path, wr_friction_spec *out
  * files stored under such ids (the daemon re-keys them).  False out of
  * memory. */
 bool wp_fixture_legacy_id(const cJSON *json, char id[WP_ID_LENGTH + 1]);
+/* The key of a fixture object as written, name and all, before anything
+ * is validated: its canonical digest (wp_canonical_digest).  Spellings with
+ * one digest have one canonical text, the same values, so they validate to
+ * the same fixture: the daemon keeps a validated inline fixture under this key too
+ * (wp_host.h, fixture_use_written) and a request repeating it skips
+ * wp_fixture_read.  False out of memory. */
+bool wp_fixture_written_key(const cJSON *json, char key[WP_ID_LENGTH + 1]);
 /* Move: `to` takes what `from` owned; `from` is left empty. */
 void wp_fixture_doc_move(wp_fixture_doc *to, wp_fixture_doc *from);
 

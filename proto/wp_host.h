@@ -74,6 +74,11 @@ typedef struct wp_host {
      * the doc's contents whatever the outcome. */
     bool (*fixture_adopt)(void *self, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                           wp_host_failure *failure);
+    /* Hold the fixture adopted from an inline object whose written key
+     * (wp_fixture_written_key, doc->written at the adoption) is `key`, if
+     * it is still kept: true, held, and the object need not be read again.
+     * False: not kept (or out of memory), nothing held.  May be NULL. */
+    bool (*fixture_use_written)(void *self, const char *key, wp_fixture_use *use);
     /* Hold the stored fixture `id`; WP_HOST_NO_FIXTURE when there is none. */
     bool (*fixture_use)(void *self, const char *id, wp_fixture_use *use,
                         wp_host_failure *failure);

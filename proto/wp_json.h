@@ -110,6 +110,13 @@ char *wp_buffer_take(wp_buffer *buffer);
  * wp_format_number, no white space; a top-level member named `skip` (may be
  * NULL) is left out.  Malloc'd, or NULL when out of memory. */
 char *wp_canonical(const cJSON *value, const char *skip);
+/* A digest of the value's canonical form without writing its text: SHA-256
+ * of its members sorted by key, strings by length and bytes, numbers as
+ * their doubles' bits.  Two values with one digest have one canonical text
+ * (numbers that differ only as -0 and 0 have two digests and one text);
+ * the digest costs a small part of the text's, whose numbers are written
+ * in decimal.  False out of memory. */
+bool wp_canonical_digest(const cJSON *value, unsigned char digest[32]);
 
 /* Is the text well-formed UTF-8 (RFC 3629: no overlong forms, no
  * surrogates, nothing above U+10FFFF)?  JSON text must be. */

@@ -21,17 +21,17 @@ static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spa
                                      "objective", "top", "finger_radius", "finger_friction",
                                      "progress", "shard", "push_on", "corner_clearance",
                                      "pin_diameter", "cases", "collapse_symmetric", "deadline_s",
-                                     "tolerance", "features", NULL};
+                                     "tolerance", "features", "units", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const LOCATING[] = {"fixture", "tolerance", "features", "sigma_ratio", NULL};
 static const char *const LOCATING_REQUIRED[] = {"fixture", "tolerance", NULL};
 static const char *const FORCE_RANGE[] = {"fixture", "push", "wrench", "cases", "sets", "range",
                                           NULL};
 static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
-static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples",
+static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples", "push_on",
                                          NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
-                                             "push", "gravity", "force", "cases", NULL};
+                                             "push", "gravity", "force", "cases", "deadline_s", NULL};
 
 /* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
  * one piece, and the event loop may answer it.  The rest end their piece
@@ -43,8 +43,7 @@ const wp_method wp_methods[] = {
     {.name = "fixture.get", .handler = wp_handle_fixture_get, .fields = ID, .required = ID,
      .flags = WP_CHEAP},
     {.name = "fixture.delete", .handler = wp_handle_fixture_delete, .fields = ID, .required = ID},
-    {.name = "fixture.list", .handler = wp_handle_fixture_list, .fields = LIST, .required = NONE,
-     .flags = WP_CHEAP},
+    {.name = "fixture.list", .stream = &wp_list_stream, .fields = LIST, .required = NONE},
     {.name = "wrench.classify", .stream = &wp_classify_stream, .fields = CLASSIFY,
      .required = CLASSIFY_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = wp_classify_light,
      .raw_array = "wrenches"},

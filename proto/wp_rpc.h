@@ -19,6 +19,8 @@ typedef struct wp_limits {
     size_t max_batch;     /* most requests in one batch */
     uint64_t max_candidates; /* most candidates of one fixture.design (its
                               shard's); 0: no cap */
+    size_t max_cases;     /* most load cases in one request; 0: WP_MAX_CASES
+                             (proto/methods/loads.h) */
 } wp_limits;
 
 typedef struct wp_counts {

@@ -354,6 +354,8 @@ static const char *copy_string(const char *p, char *out, size_t size)
     return *p == '"' ? p + 1 : p;
 }
 
+static bool read_numbers(const char *p, double *out, int n);
+
 /* The value after "key": in text, or NULL. */
 static const char *value_of(const char *text, const char *key)
 {
@@ -429,6 +431,19 @@ int wrc_classify(wrc_client *c, const char *fixture_id, const double wrench[3], 
     answer->blocking[0] = 0;
     if (*blocking == '"')
         copy_string(blocking + 1, answer->blocking, sizeof answer->blocking);
+    answer->perturbation_count = 0;
+    const char *points = value_of(text, "perturbation");
+    if (points && *points == '[') {
+        /* [[x, y], ...]: each point's two numbers */
+        const char *p = points + 1;
+        while (*p == '[' && answer->perturbation_count < 8) {
+            if (!read_numbers(p, answer->perturbation[answer->perturbation_count], 2))
+                return fail(c, WRC_EPROTO, "a perturbation point is not two numbers");
+            answer->perturbation_count++;
+            p = strchr(p, ']');
+            p = p ? p + 1 + (p[1] == ',') : "";
+        }
+    }
     return WRC_OK;
 }
 
@@ -688,24 +703,16 @@ static bool read_force_intervals(const char *p, wrc_force *force)
     }
 }
 
-int wrc_force_range(wrc_client *c, const char *fixture_id, const double at[2],
-                    const wrc_load *loads, int count, const char *set, wrc_force *force)
+/* The checks every force call makes of its arguments: WRC_OK or WRC_EINVAL
+ * (said why). */
+static int check_force_call(wrc_client *c, const char *fixture_id, const wrc_load *loads,
+                            int count, const char *set)
 {
-    if (!c || !fixture_id || !at || !loads || !set || !force || count < 1 || count > 100)
-        return WRC_EINVAL;
     if (strcmp(set, "goal") != 0 && strcmp(set, "strong") != 0 && strcmp(set, "both") != 0)
         return fail(c, WRC_EINVAL, "set is \"goal\", \"strong\" or \"both\", not \"%.20s\"", set);
     for (const char *p = fixture_id; *p; p++)
         if (*p == '"' || *p == '\\' || (unsigned char)*p < 32)
             return fail(c, WRC_EINVAL, "a fixture id has no quotes, backslashes or controls");
-    if (!isfinite(at[0]) || !isfinite(at[1]))
-        return fail(c, WRC_EINVAL, "the push's point is not finite");
-    unsigned long id = ++c->next_id;
-    size_t n = 0, size = c->buffer_bytes;
-    char *q = c->request;
-    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"force.range\",\"params\":{\"fixture\":\"%s\","
-        "\"push\":{\"at\":[%.17g,%.17g]},\"sets\":[\"%s\"],\"cases\":[{\"loads\":[",
-        fixture_id, at[0], at[1], set);
     for (int i = 0; i < count; i++) {
         const wrc_load *l = &loads[i];
         const double values[] = {l->g, l->direction_deg, l->force[0], l->force[1], l->at[0],
@@ -713,19 +720,52 @@ int wrc_force_range(wrc_client *c, const char *fixture_id, const double at[2],
         for (size_t k = 0; k < sizeof values / sizeof values[0]; k++)
             if (!isfinite(values[k]))
                 return fail(c, WRC_EINVAL, "load %d has a number that is not finite", i);
+        if (l->kind != WRC_LOAD_GRAVITY && l->kind != WRC_LOAD_FORCE && l->kind != WRC_LOAD_WRENCH)
+            return fail(c, WRC_EINVAL, "load %d: kind is WRC_LOAD_GRAVITY, _FORCE or _WRENCH", i);
+    }
+    return WRC_OK;
+}
+
+/* One case of `count` loads, {"loads": [...]}, appended at q + *n (checked
+ * by check_force_call). */
+static void put_case(char *q, size_t *at, size_t size, const wrc_load *loads, int count)
+{
+    size_t n = *at;
+    PUT("{\"loads\":[");
+    for (int i = 0; i < count; i++) {
+        const wrc_load *l = &loads[i];
         if (l->kind == WRC_LOAD_GRAVITY)
             PUT("%s{\"gravity\":{\"g\":%.17g,\"direction_deg\":%.17g}}", i ? "," : "", l->g,
                 l->direction_deg);
         else if (l->kind == WRC_LOAD_FORCE)
             PUT("%s{\"force\":[%.17g,%.17g],\"at\":[%.17g,%.17g]}", i ? "," : "", l->force[0],
                 l->force[1], l->at[0], l->at[1]);
-        else if (l->kind == WRC_LOAD_WRENCH)
+        else
             PUT("%s{\"wrench\":[%.17g,%.17g,%.17g]}", i ? "," : "", l->wrench[0], l->wrench[1],
                 l->wrench[2]);
-        else
-            return fail(c, WRC_EINVAL, "load %d: kind is WRC_LOAD_GRAVITY, _FORCE or _WRENCH", i);
     }
-    PUT("]}]},\"id\":%lu}\n", id);
+    PUT("]}");
+    *at = n;
+}
+
+int wrc_force_range(wrc_client *c, const char *fixture_id, const double at[2],
+                    const wrc_load *loads, int count, const char *set, wrc_force *force)
+{
+    if (!c || !fixture_id || !at || !loads || !set || !force || count < 1 || count > 100)
+        return WRC_EINVAL;
+    int checked = check_force_call(c, fixture_id, loads, count, set);
+    if (checked != WRC_OK)
+        return checked;
+    if (!isfinite(at[0]) || !isfinite(at[1]))
+        return fail(c, WRC_EINVAL, "the push's point is not finite");
+    unsigned long id = ++c->next_id;
+    size_t n = 0, size = c->buffer_bytes;
+    char *q = c->request;
+    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"force.range\",\"params\":{\"fixture\":\"%s\","
+        "\"push\":{\"at\":[%.17g,%.17g]},\"sets\":[\"%s\"],\"cases\":[",
+        fixture_id, at[0], at[1], set);
+    put_case(q, &n, size, loads, count);
+    PUT("]},\"id\":%lu}\n", id);
     const char *text;
     int status = call_checked(c, n, size, id, &text);
     if (status != WRC_OK)
@@ -737,6 +777,54 @@ int wrc_force_range(wrc_client *c, const char *fixture_id, const double at[2],
     if (!intervals || !least || !read_force_intervals(intervals, force))
         return fail(c, WRC_EPROTO, "the answer has no intervals for all the cases");
     force->least = strncmp(least, "null", 4) == 0 ? NAN : strtod(least, NULL);
+    return WRC_OK;
+}
+
+int wrc_push_force(wrc_client *c, const char *fixture_id, const wrc_load *loads, int count,
+                   const char *set, double finger_radius, const char *push_on,
+                   wrc_least_push *least)
+{
+    if (!c || !fixture_id || !loads || !set || !least || count < 1 || count > 100)
+        return WRC_EINVAL;
+    int checked = check_force_call(c, fixture_id, loads, count, set);
+    if (checked != WRC_OK)
+        return checked;
+    if (!(finger_radius >= 0) || !isfinite(finger_radius))
+        return fail(c, WRC_EINVAL, "the finger's radius is a finite number >= 0");
+    if (push_on && strcmp(push_on, "outer") != 0 && strcmp(push_on, "all") != 0)
+        return fail(c, WRC_EINVAL, "push_on is \"outer\", \"all\" or NULL, not \"%.20s\"",
+                    push_on);
+    unsigned long id = ++c->next_id;
+    size_t n = 0, size = c->buffer_bytes;
+    char *q = c->request;
+    PUT("{\"jsonrpc\":\"2.0\",\"method\":\"push.force\",\"params\":{\"fixture\":\"%s\","
+        "\"set\":\"%s\",\"samples\":1,\"finger_radius\":%.17g,",
+        fixture_id, set, finger_radius);
+    if (push_on)
+        PUT("\"push_on\":\"%s\",", push_on);
+    PUT("\"cases\":[");
+    put_case(q, &n, size, loads, count);
+    PUT("]},\"id\":%lu}\n", id);
+    const char *text;
+    int status = call_checked(c, n, size, id, &text);
+    if (status != WRC_OK)
+        return status;
+    memset(least, 0, sizeof *least);
+    const char *best = value_of(text, "least");
+    if (!best)
+        return fail(c, WRC_EPROTO, "the answer has no least push");
+    if (strncmp(best, "null", 4) == 0)
+        return WRC_OK;
+    const char *at = value_of(best, "at"), *direction = value_of(best, "direction");
+    const char *force = value_of(best, "force"), *lower = value_of(best, "lower_bound");
+    const char *converged = value_of(best, "converged");
+    if (!at || !direction || !force || !lower || !converged ||
+        !read_numbers(at, least->at, 2) || !read_numbers(direction, least->direction, 2))
+        return fail(c, WRC_EPROTO, "the least push lacks at, direction, force or lower_bound");
+    least->found = 1;
+    least->force = strtod(force, NULL);
+    least->lower_bound = strtod(lower, NULL);
+    least->converged = strncmp(converged, "true", 4) == 0;
     return WRC_OK;
 }
 

@@ -67,6 +67,12 @@ typedef struct wrc_answer {
     wrc_verdict verdict;
     double margin;        /* in [-1, 1]; docs/MODEL.md section 5 */
     char blocking[16];    /* the blocking string ("ms", "ll", "nn+"), "" when inside */
+    /* A fixture stored with a tolerance (docs/PROTOCOL.md, "Tolerance"),
+     * the answer outside: the contact points of a fixture of its set on
+     * which the wrench is outside, one per fixel (perturbation_count of
+     * them); 0 otherwise. */
+    int perturbation_count;
+    double perturbation[8][2];
 } wrc_answer;
 
 /* Classify one wrench (f_x, f_y, tau) for the stored fixture `fixture_id`
@@ -171,6 +177,25 @@ typedef struct wrc_force {
  * the field at fault: wrc_server_error). */
 int wrc_force_range(wrc_client *client, const char *fixture_id, const double at[2],
                     const wrc_load *loads, int count, const char *set, wrc_force *force);
+
+/* The point of the outline where the smallest push suffices (push.force's
+ * "least"). */
+typedef struct wrc_least_push {
+    int found;                /* 0: no push does the job under the case */
+    double at[2], direction[2];
+    double force;             /* in the fixture's force unit */
+    double lower_bound;       /* no point needs less */
+    int converged;
+} wrc_least_push;
+
+/* push.force for a stored fixture against one case of `count` loads (1 to
+ * 100), for `set`: the least push over the outline, for a finger of
+ * `finger_radius` (0: a point) pushing on `push_on` ("outer", "all", or
+ * NULL: the daemon's default, every loop).  Allocates nothing.  Returns
+ * WRC_OK, or an error code (WRC_ESERVER with the field at fault). */
+int wrc_push_force(wrc_client *client, const char *fixture_id, const wrc_load *loads, int count,
+                   const char *set, double finger_radius, const char *push_on,
+                   wrc_least_push *least);
 
 /* Send one JSON-RPC request (a JSON text without "\n") and return its
  * answer line, malloc'd (the caller frees it).  For notifications nothing

@@ -296,8 +296,9 @@ class DesignCommand(_Command):
     ICON = "WrenchDesign"
     MENU = "Design"
     TIP = ("fixture.design: every choice of DesignFixels candidate sites DesignSpacing apart "
-           "along the outline, ranked by the margin of the best push in both (DesignObjective); "
-           "the best design's fixels are placed")
+           "along the outline, ranked by DesignObjective (the margin of the best push in both, "
+           "the both region's length, the gravity arc, the least push force under Gravity and "
+           "Loads, or the worst locating error); the best design's fixels are placed")
 
     def Activated(self):
         doc = FreeCAD.ActiveDocument

@@ -908,9 +908,22 @@ class WrenchFixture:
         if "DesignObjective" not in obj.PropertiesList:
             obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",
                             "Design: rank by the margin of the best push in both (margin), the "
-                            "length of the both region (region), or the gravity arc (gravity)")
-            obj.DesignObjective = ["margin", "region", "gravity"]
+                            "length of the both region (region), the gravity arc (gravity), the "
+                            "least push force under Gravity and Loads (force), or the worst "
+                            "locating error with locators off by DesignTolerance (accuracy)")
+            obj.DesignObjective = DESIGN_OBJECTIVES
             obj.DesignObjective = "margin"
+        elif list(obj.getEnumerationsOfProperty("DesignObjective")) != DESIGN_OBJECTIVES:
+            chosen = obj.DesignObjective  # a document of before: its choice kept
+            obj.DesignObjective = DESIGN_OBJECTIVES
+            obj.DesignObjective = chosen
+        _add(obj, "App::PropertyLength", "DesignTolerance", "Design",
+             "Design, objective accuracy: how far each locator may be off along its normal; "
+             "the worst error is the pose's (scaled), or the farthest DesignFeatures point's",
+             0.02)
+        _add(obj, "App::PropertyVectorList", "DesignFeatures", "Design",
+             "Design, objective accuracy: points of the part (document) whose worst "
+             "displacement ranks the designs; empty: the pose's error")
         _add(obj, "App::PropertyInteger", "DesignTop", "Design", "Design: designs to list", 5)
         _add(obj, "App::PropertyStringList", "Designs", "Design",
              "The last design's ranking, best first (its fixels were placed)", mode=1)
@@ -1713,6 +1726,10 @@ class WrenchLeastForce(_Dependent):
         _Dependent.setup(self, obj)
         _add(obj, "App::PropertyInteger", "Samples", "Force",
              "Samples of F* per segment of the outline", 32)
+        _add(obj, "App::PropertyString", "PushOn", "Force",
+             "Where the finger may push, as a regions object's PushOn: empty, the clients' "
+             "default (a point finger on the outer boundary only); outer; all; or loop "
+             "numbers (0, 2)", "")
         for kind, name, doc in (
                 ("App::PropertyFloatList", "Forces",
                  "F* at each piece's sample, in N (-1: no force does the job there)"),
@@ -1733,7 +1750,12 @@ class WrenchLeastForce(_Dependent):
             return
         fid = fixture.obj.FixtureId
         samples = max(1, min(int(obj.Samples), 4096))
-        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples))
+        try:
+            push_on = push_on_of(obj.PushOn, fixture.fixture["body"], 0.0)
+        except OutlineError as e:
+            raise WrenchError("%s: %s" % (obj.Label, e))
+        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples,
+                                                          push_on=push_on or "all"))
         pieces, forces = [], []
         for seg in r["segments"]:
             segment = outline.segments[seg.get("loop", 0)][seg.get("segment", seg.get("edge", 0))]
@@ -2007,8 +2029,13 @@ def make_locating(fixture, tolerance=0.02, features=(), names=()):
                       Features=list(features), FeatureNames=list(names))
 
 
-def make_least_force(fixture, samples=32):
-    return _dependent("WrenchLeastForce", fixture, "Least force", Samples=samples)
+def make_least_force(fixture, samples=32, push_on=""):
+    """A WrenchLeastForce of the fixture: F* at `samples` points of every
+    segment, the finger pushing on `push_on` (as make_regions')."""
+    if not isinstance(push_on, str):
+        push_on = ", ".join(str(int(i)) for i in push_on)
+    return _dependent("WrenchLeastForce", fixture, "Least force", Samples=samples,
+                      PushOn=push_on)
 
 
 def make_gravity_dial(fixture, set="both"):
@@ -2142,6 +2169,9 @@ class _Progress:
             self.indicator = None
 
 
+DESIGN_OBJECTIVES = ["margin", "region", "gravity", "force", "accuracy"]
+
+
 def design(fixture, client=None, progress=True, spacing=None, fixels=None, objective=None,
            top=None, place=True):
     """fixture.design on the fixture's face: `fixels` (default the fixture's
@@ -2168,17 +2198,28 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
         client = client_for(fixture.Socket, fixture.Timeout)
     friction = {"static": fixture.StaticFriction, "kinetic": fixture.KineticFriction}
     body = {"mass": fixture.Mass, "shape": shape}
+    # Gravity and Loads: every design reports its least push under them, and
+    # objective force ranks by it (mm and N, as the fixture is sent).
+    cases = load_cases(fixture, shape)
+    if objective == "force" and not cases:
+        raise WrenchError("%s: DesignObjective force ranks by the least push under the load "
+                          "cases: set Gravity or Loads" % fixture.Label, "cases", "required")
+    extra = {"cases": cases, "units": {"length": "mm", "force": "N"}} if cases else {}
+    if objective == "accuracy":
+        extra["tolerance"] = float(fixture.DesignTolerance)
+        extra["features"] = [shape.to_2d(p)[:2] for p in fixture.DesignFeatures]
     indicator = _Progress("Designing %s" % fixture.Label) if progress is True else None
     callback = indicator if indicator is not None else (progress or None)
     what = "%s: design" % fixture.Label
     try:
         result = _ask(what, path, lambda: client.design(
             body, friction, fixels=count, spacing=h, objective=objective, top=top,
-            progress=callback), shape, properties={
+            progress=callback, **extra), shape, properties={
                 "fixels": "DesignFixels (%s)" % count, "spacing": "DesignSpacing (%s)" % _fmt(h),
                 "objective": "DesignObjective (%s)" % objective, "top": "DesignTop (%s)" % top,
                 "friction": "the friction (StaticFriction, KineticFriction)",
-                "body": "the part (Mass, or its outline)"})
+                "body": "the part (Mass, or its outline)", "cases": "Gravity and Loads",
+                "tolerance": "DesignTolerance", "features": "DesignFeatures"})
     finally:
         if indicator is not None:
             indicator.stop()
@@ -2208,7 +2249,11 @@ def _design_lines(count, shape, result, spacing):
                 counts.get("degenerate", 0),
                 {"margin": "the margin of the best push in both",
                  "region": "the length of the both region",
-                 "gravity": "the longest arc of tilts under which gravity seats the part"
+                 "gravity": "the longest arc of tilts under which gravity seats the part",
+                 "force": "the least push force (N) that seats and holds it under every load "
+                          "case, smallest first",
+                 "accuracy": "the worst locating error (%s) with every locator off by up to "
+                             "DesignTolerance" % UNIT,
                  }.get(result.objective, result.objective), UNIT))
     lines = [head]
     for d in result.designs:
@@ -2224,6 +2269,11 @@ def _design_lines(count, shape, result, spacing):
                                          _fmt(d.both_length), _fmt(d.gravity_goal_deg),
                                          "none up to 2" if d.critical_mu is None
                                          else _fmt(d.critical_mu)))
+        if d.least_push is not None:
+            lines[-1] += "; least push %.6g N at %s" % (
+                d.least_push["force"], _fmt_point(shape.to_3d(d.least_push["at"])))
+        if d.accuracy is not None:
+            lines[-1] += "; worst locating error %s %s" % (_fmt(d.accuracy), UNIT)
         if getattr(d, "copies", 1) > 1:
             lines[-1] += "; and %d more like it, turned or mirrored by the part's symmetries" % (
                 d.copies - 1)

@@ -115,7 +115,7 @@ __all__ = [
     "WrenchdError", "WrenchdUnavailable", "WrenchdTimeout", "WrenchdProtocolError",
     "Verdict", "Witness", "Cone", "Plan", "PlanState", "Modes", "Status", "PutResult",
     "FixtureInfo", "FrictionSweep", "explain", "explain_goal", "explain_strong", "default_socket_path",
-    "default_push_on", "loop_width", "explain_no_design", "explain_empty_regions",
+    "default_push_on", "loop_width", "explain_no_design", "explain_empty_regions", "with_tolerance",
     "PARSE_ERROR", "INVALID_REQUEST", "METHOD_NOT_FOUND", "INVALID_PARAMS", "INTERNAL_ERROR",
     "NO_SUCH_FIXTURE", "STORAGE_FAILURE", "LIMIT_EXCEEDED", "SOLVER_FAILURE",
 ]
@@ -259,6 +259,10 @@ class Verdict:
     blocking: Optional[str]            # the excluded cone ("ms", "ll", "nn+"); None when inside
     states: List[str]                  # goal: contact states the blocking string comes from
     witness: Optional[Witness]         # None when inside
+    # A fixture with a tolerance, outside: the contact points and normals
+    # of a fixture of its set on which the wrench is outside (None else).
+    perturbation: Optional[List[List[float]]] = None
+    perturbation_normals: Optional[List[List[float]]] = None
 
     @classmethod
     def from_wire(cls, obj: Any) -> "Verdict":
@@ -374,6 +378,12 @@ class Disturbance:
     margin: Optional[float]            # < 0: the bias itself moves the part
     blocking: Optional[str]            # the mode the worst disturbance starts
     worst_direction: Optional[List[float]]  # a wrench of unit scaled length
+    # A fixture with a tolerance: the bias's verdict in G_strong over its
+    # set ("inside", "boundary", "outside"; margin is then the worst), and
+    # for outside the witness's contacts and normals.
+    robust: Optional[str] = None
+    perturbation: Optional[List[List[float]]] = None
+    perturbation_normals: Optional[List[List[float]]] = None
 
 
 @dataclass
@@ -401,7 +411,11 @@ class FrictionSweep:
     (None when it is not empty at the top of the range; the bottom of the
     range when empty throughout), `curve` [[mu, size], ...] increasing in mu
     (the push region's total length, or the gravity arcs' total in
-    degrees), and for push `exact` and `resolution`.  For wrenches:
+    degrees), and for push `exact` and `resolution`.  For force: `curve`
+    [[mu, F], ...] the least push force (F None where no push does the job
+    under every case), `at` its point per sample, `intervals` the mu where
+    the push alone has a region (exact), `exact` False and `resolution` the
+    grid's step.  For wrenches:
     `results`, one {set name: [[lo, hi], ...]} per wrench, the mu where it
     is inside; the other fields are then empty."""
     intervals: List[List[float]] = dataclasses_field(default_factory=list)
@@ -410,6 +424,10 @@ class FrictionSweep:
     exact: bool = True
     resolution: float = 0.0
     results: Optional[List[Dict[str, List[List[float]]]]] = None
+    # force: the least push's point at each sample of `curve` ([x, y], None
+    # where no push does it); `intervals` are then where the push alone has
+    # a region.
+    at: Optional[List[Optional[List[float]]]] = None
 
 
 @dataclass
@@ -566,8 +584,10 @@ def _design_result(result: Any) -> DesignResult:
 
 def _friction_sweep_result(result: Any) -> FrictionSweep:
     if not isinstance(result, dict) or not (isinstance(result.get("results"), list)
-                                            or isinstance(result.get("intervals"), list)):
-        raise WrenchdProtocolError("friction.sweep: the answer has no results or intervals")
+                                            or isinstance(result.get("intervals"), list)
+                                            or isinstance(result.get("curve"), list)):
+        raise WrenchdProtocolError("friction.sweep: the answer has no results, intervals or "
+                                   "curve")
     return _build(FrictionSweep, result, "friction.sweep")
 
 
@@ -915,6 +935,22 @@ def _fixture_ref(fixture: Any) -> Any:
                     % type(fixture).__name__)
 
 
+def with_tolerance(fixture: Mapping[str, Any], position: float,
+                   angle: float = 0.0) -> Dict[str, Any]:
+    """A copy of a fixture dict with the geometric tolerance {"position":
+    position, "angle": angle} (docs/PROTOCOL.md, "Tolerance"): every
+    analysis of it then answers for each fixture whose contacts lie within
+    `position` along the outline and whose normals within `angle` degrees.
+    A stored fixture: get_fixture() it first."""
+    if not isinstance(fixture, Mapping):
+        raise TypeError("with_tolerance takes a fixture dict (get_fixture() a stored one)")
+    out = dict(fixture)
+    out["tolerance"] = {"position": position}
+    if angle:
+        out["tolerance"]["angle"] = angle
+    return out
+
+
 def _fixture_id(fixture_id: Any) -> str:
     if isinstance(fixture_id, (PutResult, FixtureInfo)):
         return fixture_id.id
@@ -1028,6 +1064,14 @@ class _Methods:
         return self._invoke("modes.get", {"fixture": _fixture_ref(fixture)},
                             lambda r: _build(Modes, r, "modes.get"), True, timeout)
 
+    def _push_on(self, ref: Any, push_on: Any, finger_radius: float) -> Any:
+        """push_on as given, or default_push_on of the fixture's body (a
+        stored fixture's is fetched)."""
+        if push_on is not None:
+            return push_on
+        body = ref.get("body") if isinstance(ref, Mapping) else self._stored_body(ref)
+        return default_push_on(body, finger_radius)
+
     def push_regions(self, fixture: Any, set: str = "goal", finger_friction: float = 0.0, *,
                      finger_radius: float = 0.0, push_on: Any = None,
                      force: Optional[float] = None, cases: Optional[Iterable[Any]] = None,
@@ -1046,10 +1090,7 @@ class _Methods:
             params["finger_friction"] = finger_friction
         if finger_radius:
             params["finger_radius"] = finger_radius
-        if push_on is None:
-            ref = params["fixture"]
-            body = ref.get("body") if isinstance(ref, Mapping) else self._stored_body(ref)
-            push_on = default_push_on(body, finger_radius)
+        push_on = self._push_on(params["fixture"], push_on, finger_radius)
         if push_on is not None:
             params["push_on"] = push_on
         if force is not None:
@@ -1083,16 +1124,20 @@ class _Methods:
         return self._invoke("force.range", params, _object_result, True, timeout)
 
     def push_force(self, fixture: Any, cases: Iterable[Any], *, set: str = "both",
-                   finger_radius: float = 0.0, samples: Optional[int] = None,
-                   timeout: Any = _DEFAULT):
+                   finger_radius: float = 0.0, push_on: Any = None,
+                   samples: Optional[int] = None, timeout: Any = _DEFAULT):
         """push.force: the least force F*(p) of a push along the inward
         normal that does the set's job under every case, sampled exactly
         along every segment, and its minimum over the outline ("least":
-        {"at", "direction", "force", "lower_bound", ...} or None)."""
+        {"at", "direction", "force", "lower_bound", ...} or None).
+        push_on as push_regions' (None: default_push_on of the body)."""
         params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "cases": _cases(cases),
                                   "set": set}
         if finger_radius:
             params["finger_radius"] = finger_radius
+        push_on = self._push_on(params["fixture"], push_on, finger_radius)
+        if push_on is not None:
+            params["push_on"] = push_on
         if samples is not None:
             params["samples"] = samples
         return self._invoke("push.force", params, _object_result, True, timeout)
@@ -1137,21 +1182,27 @@ class _Methods:
     def friction_sweep(self, fixture: Any, *, range: Sequence[float] = (0, 2),
                        kinetic_ratio: float = 1.0, wrenches: Optional[Iterable[Any]] = None,
                        sets: Optional[Union[str, Sequence[str]]] = None,
-                       push: Any = None, gravity: Any = None, timeout: Any = _DEFAULT):
+                       push: Any = None, gravity: Any = None, force: Any = None,
+                       cases: Optional[Iterable[Any]] = None, timeout: Any = _DEFAULT):
         """friction.sweep: how the answers change with the friction, mu_s =
         mu and mu_k = kinetic_ratio * mu at every fixel (the fixture's own
         friction ignored), mu over `range` (FrictionSweep).  Exactly one of
         `wrenches` (with `sets`, default the daemon's: goal and strong),
-        `push` and `gravity`; push and gravity are a set name, True (set
-        goal) or a dict ({"set", "finger_friction", "finger_radius"} for
-        push)."""
+        `push`, `gravity` and `force` (with `cases`, as force_range's: the
+        least push force against mu); each of the last three is a set name,
+        True (set goal; both for force) or a dict ({"set", "finger_friction",
+        "finger_radius"} for push, {"set", "finger_radius", "push_on"} for
+        force, whose push_on defaults to default_push_on of the body)."""
         given = [name for name, value in (("wrenches", wrenches), ("push", push),
-                                          ("gravity", gravity)) if value is not None]
+                                          ("gravity", gravity), ("force", force))
+                 if value is not None]
         if len(given) != 1:
-            raise ValueError("friction_sweep takes exactly one of wrenches, push and gravity%s"
-                             % (", not " + " and ".join(given) if given else ""))
+            raise ValueError("friction_sweep takes exactly one of wrenches, push, gravity and "
+                             "force%s" % (", not " + " and ".join(given) if given else ""))
         if sets is not None and wrenches is None:
             raise ValueError("friction_sweep: sets go with wrenches")
+        if (cases is None) != (force is None):
+            raise ValueError("friction_sweep: cases go with force, and force needs them")
         params: Dict[str, Any] = {"fixture": _fixture_ref(fixture),
                                   "range": [float(x) for x in range],
                                   "kinetic_ratio": kinetic_ratio}
@@ -1161,6 +1212,14 @@ class _Methods:
                 params["sets"] = [sets] if isinstance(sets, str) else list(sets)
         elif push is not None:
             params["push"] = _sweep_part(push, "push")
+        elif force is not None:
+            part = _sweep_part(force, "force")
+            push_on = self._push_on(params["fixture"], part.get("push_on"),
+                                    part.get("finger_radius", 0.0))
+            if push_on is not None:
+                part["push_on"] = push_on
+            params["force"] = part
+            params["cases"] = _cases(cases)
         else:
             params["gravity"] = _sweep_part(gravity, "gravity")
         return self._invoke("friction.sweep", params, _friction_sweep_result, True, timeout)
@@ -1174,7 +1233,7 @@ class _Methods:
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
                tolerance: Optional[float] = None, features: Optional[Iterable[Any]] = None,
                cases: Optional[Iterable[Any]] = None, collapse_symmetric: bool = True,
-               timeout: Any = _DEFAULT):
+               units: Optional[Mapping[str, str]] = None, timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
         [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
@@ -1188,7 +1247,11 @@ class _Methods:
         `push_on`: "outer", "all" or a list of loops; None: default_push_on
         (the outer boundary and the holes wider than the finger).  Designs
         that a symmetry of the part maps onto each other come once, with
-        their `copies`; collapse_symmetric=False lists every one."""
+        their `copies`; collapse_symmetric=False lists every one.
+        Objective "force" ranks by the least push doing both under `cases`
+        (as force_range's; with any objective each design then has its
+        `least_push`); `units` ({"length", "force"}, as a fixture's) are
+        those of the body, the cases and the forces answered."""
         given = [name for name, value in (("sites", sites), ("spacing", spacing),
                                           ("lattice", lattice)) if value is not None]
         if len(given) != 1:
@@ -1228,6 +1291,8 @@ class _Methods:
             params["progress"] = True
         if cases is not None:
             params["cases"] = _cases(cases)
+        if units is not None:
+            params["units"] = dict(units)
         return self._invoke("fixture.design", params, _design_result, True, timeout,
                             notify=progress)
 

@@ -73,6 +73,8 @@ enum {
     WC_OPT_CASE = 1 << 19,      /* --case SPEC (repeated): load cases (wc_force.c) */
     WC_OPT_FORCE = 1 << 20,     /* force: --push X,Y[@DX,DY], --wrench FX,FY,TAU, --range */
     WC_OPT_PUSH_FORCE = 1 << 21, /* push: --force F */
+    WC_OPT_GEOMETRIC = 1 << 23, /* --tolerance T[,A] (classify: --fixture-tolerance): the
+                                   fixture's geometric tolerance */
     WC_OPT_LOCATE = 1 << 22     /* --tolerance T|T1,T2,T3, --feature [NAME=]X,Y (repeated),
                                    --sigma-ratio R */
 };
@@ -130,6 +132,8 @@ typedef struct wc_run {
     /* locate: --tolerance (a number or an array), --feature ({"name"?, "at"}
        objects), --sigma-ratio */
     cJSON *locate_tolerance;
+    bool geometric_given;         /* WC_OPT_GEOMETRIC */
+    double geometric[2];          /* position, angle (degrees) */
     cJSON *features;
     double sigma_ratio;
     bool sigma_ratio_given;

@@ -48,7 +48,7 @@ cJSON *wc_call(wc_options *o, const char *method, cJSON *params, int *status)
     char *answer = NULL;
     if (o->local) {
         wp_local *local = wp_local_new();
-        wp_limits limits = {64, (size_t)-1, (size_t)-1, 0};
+        wp_limits limits = {64, (size_t)-1, (size_t)-1, 0, (size_t)-1};
         wp_counts counts = {0, 0};
         answer = local ? wp_answer_line(wp_local_host(local), &limits, line, strlen(line), &counts)
                        : NULL;
@@ -190,7 +190,10 @@ cJSON *wc_fixture_argument(wc_options *o, const char *argument)
 
 /* --friction LO:HI: the fixture inline, its friction the interval at every
  * fixel. */
-int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
+/* A stored fixture fetched in place of its id, so that it can be sent
+ * inline with a member replaced; -1, or an exit status (`option` names the
+ * option that asked, for the error). */
+static int fixture_inline(wc_options *o, cJSON **fixture, const char *option)
 {
     if (cJSON_IsString(*fixture)) {
         int status;
@@ -203,7 +206,15 @@ int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
         *fixture = stored;
     }
     if (!cJSON_IsObject(*fixture))
-        return wc_usage_error("--friction: the fixture is not a JSON object");
+        return wc_usage_error("%s: the fixture is not a JSON object", option);
+    return -1;
+}
+
+int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
+{
+    int status = fixture_inline(o, fixture, "--friction");
+    if (status >= 0)
+        return status;
     cJSON *fixels = cJSON_GetObjectItem(*fixture, "fixels");
     cJSON *fixel;
     cJSON_ArrayForEach(fixel, fixels)
@@ -222,6 +233,22 @@ int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
     }
     cJSON_DeleteItemFromObject(*fixture, "friction");
     cJSON_AddItemToObject(*fixture, "friction", friction);
+    return -1;
+}
+
+/* A stored fixture fetched (an inline one as it is) and sent inline with
+ * the tolerance {"position", "angle"} in place of its own. */
+int wc_fixture_tolerance(wc_options *o, cJSON **fixture, double position, double angle)
+{
+    int status = fixture_inline(o, fixture, "--tolerance");
+    if (status >= 0)
+        return status;
+    cJSON *tolerance = cJSON_CreateObject();
+    cJSON_AddNumberToObject(tolerance, "position", position);
+    if (angle > 0)
+        cJSON_AddNumberToObject(tolerance, "angle", angle);
+    cJSON_DeleteItemFromObject(*fixture, "tolerance");
+    cJSON_AddItemToObject(*fixture, "tolerance", tolerance);
     return -1;
 }
 

@@ -37,6 +37,10 @@ cJSON *wc_fixture_argument(wc_options *o, const char *argument);
  * after saying why not (the fetch's, or EXIT_USAGE for a fixture that is
  * not an object). */
 int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high);
+/* The same with the fixture's geometric tolerance (--tolerance T[,A] of the
+ * analyses; classify's is --fixture-tolerance, its --tolerance being the
+ * verdicts' band) replaced. */
+int wc_fixture_tolerance(wc_options *o, cJSON **fixture, double position, double angle);
 
 /* "fx,fy,tau" or "fx,fy@x,y" as a wrench JSON value; NULL if neither. */
 cJSON *wc_wrench_argument(const char *text);

@@ -97,6 +97,20 @@ static void explain(const cJSON *v, char *why, size_t size)
         wc_explain_strong(blocking, why, size);
 }
 
+/* A robust outside's witness: the contact points of the fixture of the
+ * tolerance's set on which the wrench is outside. */
+static void print_perturbation(const cJSON *points)
+{
+    if (!cJSON_IsArray(points))
+        return;
+    printf("      outside on the fixture with contacts at");
+    const cJSON *p;
+    cJSON_ArrayForEach(p, points)
+    printf(" (%g, %g)", cJSON_GetArrayItem(p, 0)->valuedouble,
+           cJSON_GetArrayItem(p, 1)->valuedouble);
+    printf("\n");
+}
+
 static void print_verdicts(const cJSON *wrenches, const cJSON *results)
 {
     int width = 6;
@@ -130,6 +144,7 @@ static void print_verdicts(const cJSON *wrenches, const cJSON *results)
                    first ? wrench : "", v->string,
                    cJSON_GetStringValue(cJSON_GetObjectItem(v, "verdict")), margin_text,
                    blocking ? blocking : "", why);
+            print_perturbation(cJSON_GetObjectItem(v, "perturbation"));
             first = false;
         }
         index++;
@@ -145,6 +160,10 @@ int wc_classify_answer(wc_run *run, const cJSON *result)
     cJSON_ArrayForEach(v, r) all_inside &= cJSON_IsTrue(cJSON_GetObjectItem(v, "inside"));
     if (!run->o->json && run->friction_interval_given)
         wc_print_friction(run->friction_low, run->friction_high);
+    if (!run->o->json && run->geometric_given)
+        printf("robust over the fixture's tolerance: contacts within %g along the outline, "
+               "normals within %g degrees\n",
+               run->geometric[0], run->geometric[1]);
     if (!run->o->json)
         print_verdicts(run->wrenches, results);
     return all_inside ? EXIT_INSIDE : EXIT_NOT_INSIDE;

@@ -63,6 +63,11 @@ int wc_picture(wc_run *run, const cJSON *result, wc_drawing draw);
 /* wc_force.c: force, push-force, and push's --force and --case; the
  * options --case, --push X,Y (force's), --wrench (force's), --force */
 int wc_take_case(wc_run *run, const char *value);
+/* The force unit a fixture names ("N", "mN", "lbf"), or "(model units)". */
+const char *wc_force_unit(const struct wr_fixture *fixture);
+/* The same for a fixture's JSON (its "units"); a stored fixture's id
+ * (a string) names none: "(model units)". */
+const char *wc_named_force_unit(const cJSON *fixture);
 int wc_take_force_push(wc_run *run, const char *value);
 int wc_take_force_wrench(wc_run *run, const char *value);
 int wc_take_push_force(wc_run *run, const char *value);

@@ -150,9 +150,13 @@ int wc_design_request(wc_run *run, cJSON *params)
     run->fixture = cJSON_CreateObject();
     cJSON_AddStringToObject(run->fixture, "name", name ? name : "design");
     free(name);
-    if (body && cJSON_GetObjectItem(json, "units"))
+    if (body && cJSON_GetObjectItem(json, "units")) {
+        /* The daemon converts the cases' forces and the least pushes by them. */
         cJSON_AddItemToObject(run->fixture, "units",
                               cJSON_Duplicate(cJSON_GetObjectItem(json, "units"), true));
+        cJSON_AddItemToObject(params, "units",
+                              cJSON_Duplicate(cJSON_GetObjectItem(json, "units"), true));
+    }
     cJSON_Delete(json);
     cJSON_AddItemToObject(run->fixture, "body",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
@@ -169,6 +173,10 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(params, "top", run->top);
     if (run->objective)
         cJSON_AddStringToObject(params, "objective", run->objective);
+    if (run->objective && strcmp(run->objective, "force") == 0 && !run->cases)
+        return wc_usage_error("design --objective force wants at least one --case");
+    if (run->cases)
+        cJSON_AddItemToObject(params, "cases", cJSON_Duplicate(run->cases, true));
     if (run->locate_tolerance) /* objective accuracy: one number for every locator */
         cJSON_AddItemToObject(params, "tolerance", cJSON_Duplicate(run->locate_tolerance, true));
     if (run->features)
@@ -502,6 +510,9 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     if (number(counts, "shared_hole") > 0)
         printf(", %.0f with two fixels in one hole", number(counts, "shared_hole"));
     printf("; ranked by %s\n", objective ? objective : "margin");
+    if (objective && strcmp(objective, "force") == 0)
+        printf("score: minus the least push force (%s) that does both under every case\n",
+               wc_named_force_unit(run->fixture));
     if (objective && strcmp(objective, "accuracy") == 0)
         printf("score: minus the worst locating error, locators off by +-%g (the features' worst "
                "displacement, else the pose's in the scaled metric)\n",
@@ -544,6 +555,17 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("%-4.0f  %-10.6g  %-34s  %-30s  %-9.4g  %-9.4g  %-7.3g  %s\n", number(d, "rank"),
                number(d, "score"), fixels, push, number(d, "goal_length"),
                number(d, "both_length"), number(d, "gravity_goal_deg"), critical_text);
+        const cJSON *least = cJSON_GetObjectItem(d, "least_push");
+        if (cJSON_IsObject(least)) {
+            const cJSON *direction = cJSON_GetObjectItem(least, "direction");
+            wc_point_text(cJSON_GetObjectItem(least, "at"), decimals, cell, sizeof cell);
+            printf("      least push %.9g %s at %s -> (%.3f, %.3f)\n", number(least, "force"),
+                   wc_named_force_unit(run->fixture), cell,
+                   cJSON_GetArrayItem(direction, 0)->valuedouble + 0.0,
+                   cJSON_GetArrayItem(direction, 1)->valuedouble + 0.0);
+        } else if (least) {
+            printf("      least push: none does both under every case\n");
+        }
         if (number(d, "copies") > 1)
             printf("      and %.0f more: its images under the part's symmetries\n",
                    number(d, "copies") - 1);

@@ -233,8 +233,6 @@ static void print_row(const char *name, const char *set_name, const cJSON *set)
     printf("%-16s  %-6s  %-14s  %s\n", name, set_name, least_text, text);
 }
 
-static const char *geometry_unit(const wr_fixture *f);
-
 /* --svg: the part with its supports, the push and the least force over
  * all cases (goal's, else the first set's). */
 static bool draw_force(const wc_run *run, const cJSON *result, FILE *out,
@@ -258,7 +256,7 @@ static bool draw_force(const wc_run *run, const cJSON *result, FILE *out,
         drawn = push;
     }
     wc_svg_force(out, geometry, name, drawn,
-                 cJSON_IsNumber(least) ? least->valuedouble : INFINITY, geometry_unit(geometry));
+                 cJSON_IsNumber(least) ? least->valuedouble : INFINITY, wc_force_unit(geometry));
     return true;
 }
 
@@ -307,11 +305,20 @@ int wc_push_force_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "set", run->set);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
-    return -1;
+    return wc_push_on(run,
+                      cJSON_IsString(run->fixture) ? run->fixture
+                                                   : cJSON_GetObjectItem(run->fixture, "body"),
+                      params);
 }
 
-/* The force unit of a fixture's geometry, by its factor. */
-static const char *geometry_unit(const wr_fixture *f)
+const char *wc_named_force_unit(const cJSON *fixture)
+{
+    const char *unit = cJSON_GetStringValue(
+        cJSON_GetObjectItem(cJSON_GetObjectItem(fixture, "units"), "force"));
+    return unit ? unit : "(model units)";
+}
+
+const char *wc_force_unit(const wr_fixture *f)
 {
     if (!f->units.given)
         return "(model units)";
@@ -371,7 +378,7 @@ static bool draw_push_force(const wc_run *run, const cJSON *result, FILE *out,
         force = cJSON_GetNumberValue(cJSON_GetObjectItem(least, "force"));
     }
     wc_svg_push_force(out, geometry, name, run->set ? run->set : "both", bands, count, at,
-                      direction, force, geometry_unit(geometry));
+                      direction, force, wc_force_unit(geometry));
     free(bands);
     free(values);
     return true;

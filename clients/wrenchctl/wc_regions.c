@@ -503,14 +503,23 @@ static const double DEFAULT_RANGE[2] = {0, 2};
 int wc_sweep_request(wc_run *run, cJSON *params)
 {
     if (!run->sweep_kind)
-        return wc_usage_error("sweep wants --push SET, --gravity SET or --wrench FX,FY,TAU");
+        return wc_usage_error("sweep wants --push SET, --gravity SET, --least-force SET or "
+                              "--wrench FX,FY,TAU");
     bool wrenches = strcmp(run->sweep_kind, "wrenches") == 0;
     bool push = strcmp(run->sweep_kind, "push") == 0;
+    bool force = strcmp(run->sweep_kind, "force") == 0;
     if (run->set && !wrenches)
         return wc_usage_error("sweep: --set is for --wrench; --%s SET names the set",
-                              run->sweep_kind);
-    if ((run->friction_given || run->radius_given) && !push)
-        return wc_usage_error("sweep: --finger-friction and --finger-radius are for --push");
+                              force ? "least-force" : run->sweep_kind);
+    if (run->friction_given && !push)
+        return wc_usage_error("sweep: --finger-friction is for --push");
+    if (run->radius_given && !push && !force)
+        return wc_usage_error("sweep: --finger-radius is for --push and --least-force");
+    if ((run->cases != NULL) != force)
+        return wc_usage_error(force ? "sweep --least-force wants at least one --case"
+                                    : "sweep: --case is for --least-force");
+    if (run->push_on && !force)
+        return wc_usage_error("sweep: --push-on is for --least-force");
     if (run->range_given)
         cJSON_AddItemToObject(params, "range", cJSON_CreateDoubleArray(run->range, 2));
     if (run->ratio_given)
@@ -529,7 +538,13 @@ int wc_sweep_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(what, "finger_friction", run->finger_friction);
     if (run->radius_given)
         cJSON_AddNumberToObject(what, "finger_radius", run->finger_radius);
-    return -1;
+    if (!force)
+        return -1;
+    cJSON_AddItemToObject(params, "cases", cJSON_Duplicate(run->cases, true));
+    return wc_push_on(run,
+                      cJSON_IsString(run->fixture) ? run->fixture
+                                                   : cJSON_GetObjectItem(run->fixture, "body"),
+                      what);
 }
 
 /* The range and the kinetic ratio swept: those given, or the defaults. */
@@ -578,6 +593,40 @@ static wc_interval *intervals_of(const cJSON *intervals, int *count)
         out[i].high = cJSON_GetNumberValue(cJSON_GetArrayItem(interval, 1));
     }
     return out;
+}
+
+/* friction.sweep "force": the intervals, then the least force (and where)
+ * at the samples: every one with --table full, else about 12 evenly. */
+static void print_force_sweep(const wc_run *run, const cJSON *result)
+{
+    char what[96];
+    snprintf(what, sizeof what, "the least push force, set %s", run->sweep_set);
+    print_sweep_header(run, what);
+    printf("the push alone has a region (a large enough push does it whatever the loads) for "
+           "mu in ");
+    print_intervals(cJSON_GetObjectItem(result, "intervals"));
+    printf("sampled: each value exact at its mu; grid step %g, and every interval end\n",
+           cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+    printf("%12s  %16s  %s\n", "mu", "least force", "at");
+    const cJSON *curve = cJSON_GetObjectItem(result, "curve"), *at = cJSON_GetObjectItem(result, "at");
+    int n = cJSON_GetArraySize(curve), every = run->table_full || n <= 24 ? 1 : n / 12, shown = 0;
+    for (int i = 0; i < n; i++) {
+        if (i % every != 0 && i != n - 1)
+            continue;
+        const cJSON *point = cJSON_GetArrayItem(curve, i), *where = cJSON_GetArrayItem(at, i);
+        const cJSON *value = cJSON_GetArrayItem(point, 1);
+        printf("%12.6f  ", cJSON_GetNumberValue(cJSON_GetArrayItem(point, 0)));
+        if (cJSON_IsNumber(value))
+            printf("%12.6g %-3s  (%g, %g)\n", value->valuedouble, wc_named_force_unit(run->fixture),
+                   cJSON_GetNumberValue(cJSON_GetArrayItem(where, 0)),
+                   cJSON_GetNumberValue(cJSON_GetArrayItem(where, 1)));
+        else
+            printf("%16s  no push does it under every case\n", "none");
+        shown++;
+    }
+    if (shown < n)
+        printf("(%d of the %d samples; --table full for all, --json for the answer)\n", shown, n);
+    printf("%s\n", wc_set_promise(run->sweep_set));
 }
 
 static void print_region_sweep(const wc_run *run, const cJSON *result)
@@ -662,6 +711,7 @@ static bool draw_region_sweep(const wc_run *run, const cJSON *result, FILE *out,
     wc_sweep_plot plot = {
         .name = name,
         .what = run->sweep_kind,
+        .force_unit = geometry ? wc_force_unit(geometry) : "(model units)",
         .set = run->sweep_set,
         .range = {sweep_low(run), sweep_high(run)},
         .kinetic_ratio = sweep_ratio(run),
@@ -766,15 +816,24 @@ static bool draw_wrench_sweep(const wc_run *run, const cJSON *result, FILE *out,
 int wc_sweep_answer(wc_run *run, const cJSON *result)
 {
     bool wrenches = strcmp(run->sweep_kind, "wrenches") == 0;
+    bool force = strcmp(run->sweep_kind, "force") == 0;
     if (!run->o->json) {
         if (wrenches)
             print_wrench_sweep(run, result);
+        else if (force)
+            print_force_sweep(run, result);
         else
             print_region_sweep(run, result);
     }
     int status = picture(run, result, wrenches ? draw_wrench_sweep : draw_region_sweep);
     if (status >= 0)
         return status;
+    if (force) { /* 0 when some push does the job at some mu */
+        const cJSON *point;
+        cJSON_ArrayForEach(point, cJSON_GetObjectItem(result, "curve"))
+        if (cJSON_IsNumber(cJSON_GetArrayItem(point, 1))) return EXIT_INSIDE;
+        return EXIT_NOT_INSIDE;
+    }
     if (!wrenches)
         return cJSON_GetArraySize(cJSON_GetObjectItem(result, "intervals")) > 0 ? EXIT_INSIDE
                                                                                  : EXIT_NOT_INSIDE;

@@ -932,14 +932,14 @@ static void intervals_text(const wc_interval *intervals, int count, char *out, s
 
 void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
 {
-    bool push = strcmp(p->what, "push") == 0;
+    bool push = strcmp(p->what, "push") == 0, force = strcmp(p->what, "force") == 0;
     int lines = 4;
     frame f = {0};
     f.top = 20 + 18 * lines;
     f.height = f.top + 20 + PLOT_HEIGHT + PLOT_BOTTOM;
     char text[512], spans[256];
     snprintf(text, sizeof text, "%s: friction sweep of the %s of G_%s", p->name,
-             push ? "push region" : "gravity arcs", p->set);
+             force ? "least push force" : push ? "push region" : "gravity arcs", p->set);
     begin(out, &f, text, p->fixture);
     double top = f.top + 20, bottom = top + PLOT_HEIGHT;
     axis x = {p->range[0], p->range[1], PLOT_LEFT, WIDTH - PLOT_RIGHT};
@@ -970,19 +970,26 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
                 x.from - 5, py, x.from, py, x.from - 8, py + 4, k * y_step);
     }
     char axis[64] = "push region length";
-    if (length_unit(p->fixture))
+    if (force)
+        snprintf(axis, sizeof axis, "least push force (%s)", p->force_unit);
+    else if (length_unit(p->fixture))
         snprintf(axis, sizeof axis, "push region length (%s)", length_unit(p->fixture));
     fprintf(out,
             "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" "
             "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n",
             22.0, (top + bottom) / 2, 22.0, (top + bottom) / 2,
-            push ? axis : "gravity arcs (\xc2\xb0)");
+            push || force ? axis : "gravity arcs (\xc2\xb0)");
     mu_axis(out, &x, bottom, p->kinetic_ratio);
-    /* The curve. */
-    if (p->curve_count > 0) {
+    /* The curve: a polyline per run of points with a value (a force
+     * sweep's is none where no push does the job). */
+    for (int i = 0; i < p->curve_count;) {
+        if (isnan(p->curve[i][1])) {
+            i++;
+            continue;
+        }
         fputs("<polyline class=\"curve\" points=\"", out);
-        for (int i = 0; i < p->curve_count; i++)
-            fprintf(out, "%s%.2f,%.2f", i ? " " : "", on_axis(&x, p->curve[i][0]),
+        for (int first = i; i < p->curve_count && !isnan(p->curve[i][1]); i++)
+            fprintf(out, "%s%.2f,%.2f", i > first ? " " : "", on_axis(&x, p->curve[i][0]),
                     on_axis(&y, p->curve[i][1]));
         fputs("\" fill=\"none\" stroke=\"black\" stroke-width=\"2.5\" "
               "stroke-linejoin=\"round\"/>\n",
@@ -1002,13 +1009,21 @@ void wc_svg_sweep(FILE *out, const wc_sweep_plot *p)
                 px + (right ? -6 : 6), top + 16, right ? "end" : "start", p->critical);
     }
     snprintf(text, sizeof text, "%s, set %s: %s against the friction \xce\xbc", p->name, p->set,
-             push ? "the push region's length" : "the gravity arcs, in degrees,");
+             force  ? "the least push force under every case (exact at each \xce\xbc drawn)"
+             : push ? "the push region's length"
+                    : "the gravity arcs, in degrees,");
     legend(out, 0, text);
     intervals_text(p->intervals, p->interval_count, spans, sizeof spans);
-    snprintf(text, sizeof text, "shaded: \xce\xbc where the %s is not empty: %s",
-             push ? "push region" : "gravity sweep", spans);
+    if (force)
+        snprintf(text, sizeof text, "shaded: \xce\xbc where the push alone has a region (a "
+                 "large enough push does it whatever the loads): %s", spans);
+    else
+        snprintf(text, sizeof text, "shaded: \xce\xbc where the %s is not empty: %s",
+                 push ? "push region" : "gravity sweep", spans);
     legend(out, 1, text);
-    if (!isfinite(p->critical))
+    if (force)
+        snprintf(text, sizeof text, "no line: no push does the job under every case");
+    else if (!isfinite(p->critical))
         snprintf(text, sizeof text,
                  "not empty at the top of the range, \xce\xbc = %g: no critical \xce\xbc",
                  p->range[1]);

@@ -68,7 +68,9 @@ typedef struct wc_interval {
  * mu_s = mu and mu_k = kinetic_ratio * mu at every fixel. */
 typedef struct wc_sweep_plot {
     const char *name;      /* the fixture's */
-    const char *what;      /* "push" (length, the fixture's units) or "gravity" (degrees) */
+    const char *what;      /* "push" (length, the fixture's units), "gravity" (degrees) or
+                              "force" (the least push force; NAN where none does it) */
+    const char *force_unit; /* with "force": the unit of the forces */
     const char *set;
     double range[2];       /* of mu, the plot's horizontal axis */
     double kinetic_ratio;

@@ -170,8 +170,10 @@ static int take_interval(wc_run *run, const char *value)
 static int take_sweep_kind(wc_run *run, const char *kind, const char *option)
 {
     if (run->sweep_kind && strcmp(run->sweep_kind, kind) != 0)
-        return wc_usage_error("sweep: --%s and --%s: one of --push, --gravity or --wrench",
+        return wc_usage_error("sweep: --%s and --%s: one of --push, --gravity, --least-force "
+                              "or --wrench",
                               strcmp(run->sweep_kind, "wrenches") == 0 ? "wrench"
+                              : strcmp(run->sweep_kind, "force") == 0  ? "least-force"
                                                                        : run->sweep_kind,
                               option);
     run->sweep_kind = kind;
@@ -192,6 +194,14 @@ static int take_gravity(wc_run *run, const char *value)
         return wc_usage_error("--gravity is goal, strong or both, not '%s'", value);
     run->sweep_set = value;
     return take_sweep_kind(run, "gravity", "gravity");
+}
+
+static int take_least_force(wc_run *run, const char *value)
+{
+    if (!is_set_name(value))
+        return wc_usage_error("--least-force is goal, strong or both, not '%s'", value);
+    run->sweep_set = value;
+    return take_sweep_kind(run, "force", "least-force");
 }
 
 static int take_wrench(wc_run *run, const char *value)
@@ -267,8 +277,10 @@ static int take_top(wc_run *run, const char *value)
 static int take_objective(wc_run *run, const char *value)
 {
     if (strcmp(value, "margin") != 0 && strcmp(value, "region") != 0 &&
-        strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0)
-        return wc_usage_error("--objective is margin, region, gravity or accuracy, not '%s'",
+        strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0 &&
+        strcmp(value, "force") != 0)
+        return wc_usage_error("--objective is margin, region, gravity, force or accuracy, "
+                              "not '%s'",
                               value);
     run->objective = value;
     return 0;
@@ -375,6 +387,25 @@ static int take_locate_tolerance(wc_run *run, const char *value)
     return 0;
 }
 
+/* --tolerance T[,A] of the analyses: each contact within T along the
+ * outline, each normal within A degrees (the daemon checks them against
+ * the fixture). */
+static int take_geometric(wc_run *run, const char *value)
+{
+    double v[2] = {0, 0};
+    char tail;
+    int n = sscanf(value, "%lf,%lf%c", &v[0], &v[1], &tail);
+    if ((n != 1 && n != 2) || !(v[0] >= 0) || !(v[1] >= 0) || !isfinite(v[0]) ||
+        !isfinite(v[1]))
+        return wc_usage_error("--tolerance wants T or T,A (numbers >= 0: a length along the "
+                              "outline, an angle in degrees), not '%s'",
+                              value);
+    run->geometric[0] = v[0];
+    run->geometric[1] = v[1];
+    run->geometric_given = true;
+    return 0;
+}
+
 /* locate --feature [NAME=]X,Y, repeated. */
 static int take_feature(wc_run *run, const char *value)
 {
@@ -426,6 +457,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"friction", WC_OPT_INTERVAL, take_interval},
     {"push", WC_OPT_SWEEP, take_push},
     {"gravity", WC_OPT_SWEEP, take_gravity},
+    {"least-force", WC_OPT_SWEEP, take_least_force},
     {"wrench", WC_OPT_SWEEP, take_wrench},
     {"range", WC_OPT_SWEEP, take_range},
     {"kinetic-ratio", WC_OPT_SWEEP, take_ratio},
@@ -437,6 +469,8 @@ static const command_option COMMAND_OPTIONS[] = {
     {"objective", WC_OPT_DESIGN, take_objective},
     {"shard", WC_OPT_DESIGN, take_shard},
     {"tolerance", WC_OPT_LOCATE, take_locate_tolerance},
+    {"tolerance", WC_OPT_GEOMETRIC, take_geometric},
+    {"fixture-tolerance", WC_OPT_METHOD, take_geometric},
     {"feature", WC_OPT_LOCATE, take_feature},
     {"sigma-ratio", WC_OPT_LOCATE, take_sigma_ratio},
     {"corner-clearance", WC_OPT_DESIGN, take_clearance},
@@ -533,6 +567,8 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
             status = EXIT_USAGE;
         else if (run.friction_interval_given)
             status = wc_fixture_friction(o, &run.fixture, run.friction_low, run.friction_high);
+        if (status < 0 && run.geometric_given)
+            status = wc_fixture_tolerance(o, &run.fixture, run.geometric[0], run.geometric[1]);
     }
     if (status < 0 && !c->method)
         status = c->request(&run, NULL);
@@ -588,6 +624,14 @@ static int help_request(wc_run *run, cJSON *params);
     "                  " PAD "the answers are robust: each holds for every friction in\n"   \
     "                  " PAD "the interval (a stored fixture is fetched, sent inline)\n"
 
+/* The fixture's geometric tolerance (docs/PROTOCOL.md, "Tolerance"), PAD
+ * after the option as FRICTION_HELP's. */
+#define GEOMETRIC_HELP(PAD)                                                                  \
+    "  --tolerance T[,A]" PAD "each contact anywhere within T along the outline, each\n"     \
+    "                   " PAD "normal tilted by up to A degrees: robust answers, inside\n"   \
+    "                   " PAD "only if for every such fixture, outside with one that\n"      \
+    "                   " PAD "shows it\n"
+
 /* name, usage, flags, arguments (fewest, most), method, request, answer,
  * summary, help. */
 const wc_command wc_commands[] = {
@@ -612,7 +656,8 @@ const wc_command wc_commands[] = {
      "forget a stored fixture",
      "Forget the stored fixture ID."},
     {"classify",
-     "FIXTURE WRENCH... [--sets LIST] [--method auto|lp] [--tolerance T] [--friction LO:HI]",
+     "FIXTURE WRENCH... [--sets LIST] [--method auto|lp] [--tolerance T] [--friction LO:HI]\n"
+     "       [--fixture-tolerance T[,A]]",
      WC_FIXTURE | WC_STDIN | WC_OPT_SETS | WC_OPT_METHOD | WC_OPT_TOLERANCE | WC_OPT_INTERVAL, 2,
      1 << 20,
      "wrench.classify", wc_classify_request, wc_classify_answer,
@@ -627,6 +672,9 @@ const wc_command wc_commands[] = {
      "  --method M       auto (explicit cones, with margins; default) or lp (GLPK, no margin)\n"
      "  --tolerance T    |margin| <= T is 'boundary' (default 1e-9)\n"
      FRICTION_HELP(" ")
+     "  --fixture-tolerance T[,A]  each contact anywhere within T along the outline, each\n"
+     "                   normal tilted by up to A degrees: robust verdicts, inside only if\n"
+     "                   for every such fixture, outside with one that shows it\n"
      "Exit status 0 when every wrench is inside every set asked, 1 when one is not."},
     {"cone", "FIXTURE STRING",
      WC_FIXTURE, 2, 2,
@@ -646,9 +694,9 @@ const wc_command wc_commands[] = {
      "The kinematically feasible moving contact modes, and whether the fixels pin the part."},
     {"push",
      "FIXTURE [--set SET] [--finger-friction MU] [--finger-radius R] [--push-on LOOPS]\n"
-     "       [--friction LO:HI] [--svg FILE] [--force F --case SPEC...]",
+     "       [--friction LO:HI] [--tolerance T[,A]] [--svg FILE] [--force F --case SPEC...]",
      WC_FIXTURE | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_INTERVAL |
-         WC_OPT_PUSH_ON | WC_OPT_CASE | WC_OPT_PUSH_FORCE,
+         WC_OPT_PUSH_ON | WC_OPT_CASE | WC_OPT_PUSH_FORCE | WC_OPT_GEOMETRIC,
      1, 1,
      "push.regions", wc_push_request, wc_push_answer,
      "where a finger's push seats the part",
@@ -669,11 +717,12 @@ const wc_command wc_commands[] = {
      "                         under every --case (exact; a frictionless finger)\n"
      "  --case SPEC            a load case, repeated: see 'wrenchctl force --help'\n"
      FRICTION_HELP("       ")
+     GEOMETRIC_HELP("      ")
      "Exit status 0 when there is a region, 1 when there is none."},
     {"force",
      "FIXTURE (--push X,Y[@DX,DY] | --wrench FX,FY,TAU) --case SPEC... [--sets LIST]\n"
-     "       [--range LO:HI] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS | WC_OPT_SVG, 1, 1,
+     "       [--range LO:HI] [--tolerance T[,A]] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_FORCE | WC_OPT_CASE | WC_OPT_SETS | WC_OPT_GEOMETRIC | WC_OPT_SVG, 1, 1,
      "force.range", wc_force_request, wc_force_answer,
      "how hard to push: the magnitudes that do a set's job under load cases",
      "The magnitudes F of one push that seat the part (goal), hold it (strong) or both, under\n"
@@ -689,11 +738,13 @@ const wc_command wc_commands[] = {
      "  --range LO:HI       only magnitudes in [LO, HI]\n"
      "  --svg FILE          also draw the part, its fixels, its supports with their friction\n"
      "                      discs, the push and the least force\n"
+     GEOMETRIC_HELP(" ")
      "A fixture on supports (its \"supports\" member) answers goal alone: the magnitudes that\n"
      "seat it against the supports' friction; its least is the least push force on the plate.\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
-    {"push-force", "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+    {"push-force",
+     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON, 1, 1,
      "push.force", wc_push_force_request, wc_push_force_answer,
      "the least push force along the outline, and where it is least",
      "F*(p), the least force of a push along the inward normal at p that does the set's job\n"
@@ -702,10 +753,11 @@ const wc_command wc_commands[] = {
      "  --case SPEC         a load case, repeated (see 'wrenchctl force --help')\n"
      "  --set SET           goal, strong or both (default)\n"
      "  --finger-radius R   only where a round finger of radius R fits\n"
+     PUSH_ON_HELP("  ")
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
      "Exit status 0 when some push does the job, 1 when none does."},
-    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL, 1, 1,
+    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC, 1, 1,
      "gravity.sweep", wc_gravity_request, wc_gravity_answer,
      "the tilts under which gravity seats the part",
      "The arcs of tilt (the direction gravity pulls, degrees, in the part's frame) under which\n"
@@ -714,9 +766,10 @@ const wc_command wc_commands[] = {
      "                    on, strong holds it only once seated; both does both)\n"
      "  --svg FILE        also draw the sweep as a dial around the part\n"
      FRICTION_HELP("  ")
+     GEOMETRIC_HELP(" ")
      "Exit status 0 when there is an arc, 1 when there is none."},
-    {"margin", "FIXTURE BIAS [--friction LO:HI] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SVG | WC_OPT_INTERVAL, 2, 2,
+    {"margin", "FIXTURE BIAS [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]",
+     WC_FIXTURE | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC, 2, 2,
      "stability.margin", wc_margin_request, wc_margin_answer,
      "how large a disturbance a biasing wrench tolerates",
      "The disturbance margin of a biasing wrench (fx,fy,tau or fx,fy@x,y): how large a\n"
@@ -724,12 +777,16 @@ const wc_command wc_commands[] = {
      "the contact mode the worst one starts, and that worst direction.\n"
      "  --svg FILE        also draw the bias and the worst disturbance on the part\n"
      FRICTION_HELP("  ")
+     GEOMETRIC_HELP(" ")
      "Exit status 0 when the bias holds the part (margin > 0), 1 when it does not."},
     {"sweep",
-     "FIXTURE (--push SET | --gravity SET | --wrench FX,FY,TAU... [--set SET]) [--range LO:HI]\n"
-     "       [--kinetic-ratio R] [--finger-friction MU] [--finger-radius R] [--svg FILE]\n"
+     "FIXTURE (--push SET | --gravity SET | --least-force SET --case SPEC... |\n"
+     "       --wrench FX,FY,TAU... [--set SET]) [--range LO:HI] [--kinetic-ratio R]\n"
+     "       [--finger-friction MU] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
      "       [--table full|summary]",
-     WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG, 1, 1,
+     WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG |
+         WC_OPT_CASE | WC_OPT_PUSH_ON,
+     1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
      "Sweep the friction: mu_s = mu and mu_k = R mu at every fixel (the fixture's own friction\n"
@@ -738,19 +795,25 @@ const wc_command wc_commands[] = {
      "                      not empty, the critical mu above which it is (none when it is not\n"
      "                      empty at the top of the range), and its length against mu\n"
      "  --gravity SET       the same for the gravity arcs, their total in degrees\n"
+     "  --least-force SET   the least push force doing SET's job under every --case (a load\n"
+     "                      case, as for force), minimised over the outline, and where: each\n"
+     "                      value exact at its mu, on a grid of 128 and at the ends of the\n"
+     "                      exact intervals of mu where the push alone has a region\n"
      "  --wrench FX,FY,TAU  a wrench (torque about the centre of mass), repeated for more: for\n"
      "                      each, and each set, the mu where it is inside\n"
      "  --set SET           with --wrench: one set (default goal and strong)\n"
      "  --range LO:HI       the range of mu, 0 <= LO < HI (default 0:2)\n"
      "  --kinetic-ratio R   mu_k = R mu, 0 < R <= 1 (default 1)\n"
      "  --finger-friction MU, --finger-radius R\n"
-     "                      with --push: the finger, as for push\n"
+     "                      with --push: the finger, as for push (--least-force: the radius)\n"
+     PUSH_ON_HELP("   ")
      "  --table full        every point of the curve (default: a summary, the points nearest\n"
      "                      9 evenly spaced mu and those at the intervals' ends)\n"
      "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
-     "inside each set for some mu), 1 when not."},
+     "inside each set for some mu; for the least force: when some push does it at some mu),\n"
+     "1 when not."},
     {"locate", "FIXTURE --tolerance T[,T2,T3] [--feature [NAME=]X,Y]... [--sigma-ratio R]\n"
      "       [--svg FILE]",
      WC_FIXTURE | WC_OPT_LOCATE | WC_OPT_SVG, 1, 1,
@@ -771,13 +834,13 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the fixels determine the pose, 1 when they do not."},
     {"design",
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K]\n"
-     "       [--objective margin|region|gravity|accuracy] [--top N] [--friction LO:HI]\n"
-     "       [--finger-radius R] [--finger-friction MU]\n"
+     "       [--objective margin|region|gravity|force|accuracy] [--top N] [--friction LO:HI]\n"
+     "       [--finger-radius R] [--finger-friction MU] [--case SPEC...]\n"
      "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
      "       [--corner-clearance C] [--pin-diameter D]\n"
      "       [--shard I/N] [--symmetric collapse|all] [--svg FILE] [--emit-fixture N FILE]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
-         WC_OPT_PUSH_ON | WC_OPT_LOCATE, 1, 1,
+         WC_OPT_PUSH_ON | WC_OPT_LOCATE | WC_OPT_CASE, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
      "where to put the fixels, and where to push",
      "Design a fixture for a body: every choice of K candidate sites is a candidate; the best\n"
@@ -795,9 +858,14 @@ const wc_command wc_commands[] = {
      "                     NX by NY holes; every pose of the part touching three pegs\n"
      "  --fixels K         fixels per design (default 3)\n"
      "  --objective O      margin (the best push's; default), region (the both region's\n"
-     "                     length), gravity (the longest goal arc of tilts) or accuracy (the\n"
-     "                     smallest worst locating error with --tolerance T and the --feature\n"
-     "                     points, as for locate; without features the pose's, scaled)\n"
+     "                     length), gravity (the longest goal arc of tilts), force (the least\n"
+     "                     push force doing both under every --case, smallest first) or\n"
+     "                     accuracy (the smallest worst locating error with --tolerance T and\n"
+     "                     the --feature points, as for locate; without features the pose's,\n"
+     "                     scaled)\n"
+     "  --case SPEC        a load case, repeated (see 'wrenchctl force --help'): each design\n"
+     "                     also reports its least push under them, with any objective; in the\n"
+     "                     file's units (its \"units\", else one consistent system)\n"
      "  --top N            how many designs (default 10)\n"
      "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
      "  --finger-radius R, --finger-friction MU\n"

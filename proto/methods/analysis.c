@@ -147,6 +147,7 @@ typedef struct push_state {
     bool opened, any;    /* "{"regions":[" written; a region written */
     double total, resolution;
     wp_push_load load;   /* "force" and "cases": regions under them */
+    wr_robust *robust;   /* the fixture has a tolerance: the regions' robust part */
 } push_state;
 
 static void push_free(void *stream)
@@ -154,6 +155,7 @@ static void push_free(void *stream)
     push_state *state = stream;
     free(state->push_on);
     wp_push_load_release(&state->load);
+    wr_robust_free(state->robust);
     free(state);
 }
 
@@ -256,6 +258,28 @@ static bool supports_push_ok(wp_call *call, const wr_fixture *f, wr_set set, dou
     return false;
 }
 
+/* Boxes per excluded cone for one piece of a robust region: a piece that
+ * so few do not prove is split instead (wr_robust_regions). */
+#define ROBUST_REGION_BUDGET 16
+
+/* What robust regions cover (docs/PROTOCOL.md, "Tolerance"): the push of a
+ * frictionless finger alone; a finger's friction or loads are refused. */
+static bool robust_push_supported(const wp_push_load *load, double friction, wp_error *error)
+{
+    if (friction > 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "a fixture with a tolerance has robust regions for a frictionless "
+                     "finger only");
+        return false;
+    }
+    if (load->given) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+                     "a fixture with a tolerance has robust regions without loads only");
+        return false;
+    }
+    return true;
+}
+
 static void *push_begin(wp_call *call, wp_prepared *prepared)
 {
     (void)prepared;
@@ -274,9 +298,11 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     }
     wp_push_load load;
-    if (!wp_push_load_read(call->params, use->fixture, friction, &load, call->error))
+    if (!wp_push_load_read(call->params, use->fixture, friction, wp_case_limit(call->limits),
+                           &load, call->error))
         return NULL;
-    if (!supports_push_ok(call, use->fixture, set, radius, &load)) {
+    if (!supports_push_ok(call, use->fixture, set, radius, &load) ||
+        (use->fixture->tolerance.given && !robust_push_supported(&load, friction, call->error))) {
         wp_push_load_release(&load);
         return NULL;
     }
@@ -297,6 +323,12 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
     }
     state->finger.push_on = state->push_on;
     state->edges = wr_push_edge_count(use->fixture);
+    if (use->fixture->tolerance.given &&
+        wr_robust_new(use->analysis, ROBUST_REGION_BUDGET, &state->robust) != WR_OK) {
+        push_free(state);
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return NULL;
+    }
     /* An edge against every cone: a few dot products each, or, with a
      * finger's friction, a segment test at every sample and bisection. */
     const wr_analysis *a = use->analysis;
@@ -360,12 +392,9 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
             return WP_STEP_MORE;
         wr_regions part = {0};
         const wp_push_load *load = &state->load;
-        /* Under loads, only the edges the finger may push on (push_on). */
-        bool skip = load->given && !wr_finger_pushes_on(f, &state->finger, state->next);
         wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
         wr_status status =
-            skip ? WR_OK
-            : f->supports
+            f->supports
                 ? (env ? wr_supports_push_regions(use->analysis, f->supports, env, load->force,
                                                   (const double (*)[3])load->loads, load->count,
                                                   state->next, &part)
@@ -373,10 +402,15 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
             : load->given
                 ? wr_push_regions_loaded(use->analysis, state->set, load->force,
                                          (const double (*)[3])load->loads, load->count,
-                                         state->finger.radius, state->next, 1, call->host->stop,
-                                         &part)
+                                         &state->finger, state->next, 1, call->host->stop, &part)
                 : wr_push_regions_part(use->analysis, state->set, &state->finger, state->next, 1,
                                        call->host->stop, &part);
+        if (status == WR_OK && state->robust) {
+            wr_regions nominal = part;
+            status = wr_robust_regions(state->robust, state->set, &nominal, false,
+                                       call->host->stop, &part);
+            wr_regions_release(&nominal);
+        }
         if (status != WR_OK) {
             wr_regions_release(&part);
             wp_error_status(call->error, status, "", "%s", wr_strerror(status));
@@ -413,6 +447,22 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
 
 const wp_streamer wp_push_stream = {push_begin, push_step, push_free, NULL, false, NULL, NULL};
 
+/* Nominal regions or arcs replaced by their robust part. */
+static wr_status robust_part(const wr_analysis *a, wr_set set, bool gravity, const wr_stop *stop,
+                             wr_regions *regions)
+{
+    wr_robust *robust;
+    wr_status status = wr_robust_new(a, ROBUST_REGION_BUDGET, &robust);
+    wr_regions nominal = *regions;
+    if (status == WR_OK)
+        status = wr_robust_regions(robust, set, &nominal, gravity, stop, regions);
+    else
+        memset(regions, 0, sizeof *regions);
+    wr_regions_release(&nominal);
+    wr_robust_free(robust);
+    return status;
+}
+
 cJSON *wp_handle_gravity_sweep(wp_call *call)
 {
     const cJSON *params = call->params;
@@ -430,6 +480,8 @@ cJSON *wp_handle_gravity_sweep(wp_call *call)
     cJSON *result = NULL;
     wr_regions arcs;
     wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
+    if (status == WR_OK && use->fixture->tolerance.given)
+        status = robust_part(use->analysis, set, true, call->host->stop, &arcs);
     if (status != WR_OK) {
         wp_error_status(error, status, "params.set", "%s", wr_strerror(status));
     } else {
@@ -444,6 +496,44 @@ cJSON *wp_handle_gravity_sweep(wp_call *call)
         wr_regions_release(&arcs);
     }
     return result;
+}
+
+/* The disturbance margin over a fixture's tolerance: the robust answer of
+ * the bias in G_strong, its margin (for inside, a lower bound of the worst
+ * over the set; for outside, the witness fixture's) times |h(bias)|,
+ * blocking at the nominal cone named when it has one. */
+static wr_status robust_margin(const wr_analysis *a, const double bias[3], wr_disturbance *d,
+                               wr_robust_answer *robust)
+{
+    wr_robust *rb;
+    wr_status status = wr_robust_new(a, 0, &rb);
+    if (status != WR_OK)
+        return status;
+    status = wr_robust_classify(rb, bias, WR_SET_STRONG, WR_DEFAULT_TOLERANCE, robust);
+    wr_robust_free(rb);
+    if (status != WR_OK)
+        return status;
+    double unit[3];
+    double length = wr_fixture_unit_wrench(wr_analysis_fixture(a), bias, unit);
+    d->margin = fmin(d->margin, robust->answer.margin * length);
+    if (robust->answer.blocking >= 0)
+        d->blocking = robust->answer.blocking;
+    return WR_OK;
+}
+
+/* "robust": the verdict over the set, and an outside's witness. */
+static void add_robust_verdict(cJSON *result, const wr_fixture *f, const wr_robust_answer *r)
+{
+    static const char *const NAMES[] = {"inside", "boundary", "outside"};
+    cJSON_AddStringToObject(result, "robust", NAMES[r->answer.verdict]);
+    if (!r->has_perturbation)
+        return;
+    cJSON *points = cJSON_AddArrayToObject(result, "perturbation");
+    cJSON *normals = cJSON_AddArrayToObject(result, "perturbation_normals");
+    for (int i = 0; points && normals && i < f->fixel_count; i++) {
+        cJSON_AddItemToArray(points, cJSON_CreateDoubleArray(r->points[i], 2));
+        cJSON_AddItemToArray(normals, cJSON_CreateDoubleArray(r->normals[i], 2));
+    }
 }
 
 cJSON *wp_handle_stability_margin(wp_call *call)
@@ -463,7 +553,12 @@ cJSON *wp_handle_stability_margin(wp_call *call)
     bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",
                                use->fixture, bias, error);
     wr_status status = read ? wr_disturbance_margin(use->analysis, bias, &d) : WR_OK;
-    if (status != WR_OK)
+    wr_robust_answer robust = {.has_perturbation = false};
+    if (status == WR_OK && read && d.bounded && use->fixture->tolerance.given)
+        status = robust_margin(use->analysis, bias, &d, &robust);
+    if (status == WR_LP_FAILED || status == WR_NO_MEMORY)
+        wp_error_status(error, status, "", "%s", wr_strerror(status));
+    else if (status != WR_OK)
         wp_error_status(error, status, "params.bias",
                         "so large that its margin is beyond the largest number");
     else if (read) {
@@ -475,6 +570,8 @@ cJSON *wp_handle_stability_margin(wp_call *call)
             cJSON_AddNumberToObject(result, "margin", d.margin + 0.0);
             cJSON_AddStringToObject(result, "blocking", text);
             cJSON_AddItemToObject(result, "worst_direction", vector3(d.worst_direction));
+            if (use->fixture->tolerance.given)
+                add_robust_verdict(result, use->fixture, &robust);
         } else {
             /* No moving mode at all: no disturbance moves the part. */
             cJSON_AddNullToObject(result, "margin");

@@ -78,6 +78,13 @@ static bool read_classify(const wp_limits *limits, const cJSON *params,
         wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance", "must be in [0, 1)");
         return false;
     }
+    if (r->lp && fixture->tolerance.given) {
+        /* The LPs decide the nominal fixture alone. */
+        wp_error_set(error, WP_INVALID_PARAMS, "params.method",
+                     "the \"lp\" method answers the nominal fixture only; a fixture with a "
+                     "tolerance is answered by its cones (\"auto\")");
+        return false;
+    }
     if (r->lp && tolerance_given) {
         /* The LP method finds no margin, so it has no band to widen. */
         wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance",
@@ -109,6 +116,30 @@ static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *an
     WP_BUFFER_LITERAL(b, ",\"witness\":");
     write_witness(b, a, answer);
     WP_BUFFER_LITERAL(b, "}");
+}
+
+/* A robust outside's witness, inside the set's answer just written (its
+ * closing brace reopened): "perturbation", the contact points of a
+ * fixture of the set on which the wrench is outside, and
+ * "perturbation_normals", their normals (docs/PROTOCOL.md, "Tolerance"). */
+static void write_perturbation(wp_buffer *b, const wr_fixture *f, const wr_robust_answer *r)
+{
+    if (b->failed)
+        return;
+    b->length--; /* the answer's "}" */
+    WP_BUFFER_LITERAL(b, ",\"perturbation\":[");
+    for (int i = 0; i < f->fixel_count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(b, ",");
+        wp_write_vector(b, r->points[i], 2);
+    }
+    WP_BUFFER_LITERAL(b, "],\"perturbation_normals\":[");
+    for (int i = 0; i < f->fixel_count; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(b, ",");
+        wp_write_vector(b, r->normals[i], 2);
+    }
+    WP_BUFFER_LITERAL(b, "]}");
 }
 
 /* The blocking string, or null. */
@@ -153,8 +184,16 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
     }
     const wr_fixture *f = wr_analysis_fixture(a);
     const wr_witness *w = &answer->witness;
+    /* Wrenches are classified as given, in the fixture's force unit (a cone
+     * is a cone: verdicts and margins do not depend on the scale), so the
+     * witness's forces and wrench are in it too; its acceleration, in
+     * length / s^2 and rad / s^2, is what those forces give in the model
+     * system: times the force factor (1 without units). */
+    const double k = wr_fixture_force_factor(f);
+    const double acceleration[3] = {w->acceleration[0] * k, w->acceleration[1] * k,
+                                    w->acceleration[2] * k};
     WP_BUFFER_LITERAL(b, "{\"acceleration\":");
-    wp_write_vector(b, w->acceleration, 3);
+    wp_write_vector(b, acceleration, 3);
     WP_BUFFER_LITERAL(b, ",\"forces\":[");
     for (int i = 0; i < f->fixel_count; i++) {
         if (i)
@@ -210,6 +249,7 @@ typedef struct classify_state {
     wp_chunks *chunks;
     wr_verdict_map *map;        /* a long batch's verdicts, or NULL */
     bool opened;                /* the answer's opening text is written */
+    wr_robust *robust;          /* the fixture has a tolerance: robust answers */
 } classify_state;
 
 static const wp_chunk_ops CLASSIFY_CHUNKS;
@@ -221,6 +261,7 @@ static void classify_free(void *stream)
     classify_state *state = stream;
     wp_chunks_free(state->chunks);
     wr_verdict_map_free(state->map);
+    wr_robust_free(state->robust);
     free(state->request.wrenches);
     free(stream);
 }
@@ -265,6 +306,14 @@ static void *classify_begin(wp_call *call, wp_prepared *prepared)
     /* Verdicts without margins, many of them: by the map.  Built here,
      * before any helper can be reading it. */
     size_t verdicts = verdicts_alone(r) ? r->wrench_count * (size_t)r->set_count : 0;
+    if (use->fixture->tolerance.given) {
+        if (wr_robust_new(use->analysis, 0, &state->robust) != WR_OK) {
+            wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+            classify_free(state);
+            return NULL;
+        }
+        verdicts = 0; /* the map knows the nominal fixture only */
+    }
     if (verdicts >= CLASSIFY_MAP_VERDICTS && !wr_analysis_fixture(use->analysis)->supports) {
         wr_status status = wr_verdict_map_new(use->analysis, r->tolerance, &state->map);
         if (status == WR_NO_MEMORY) {
@@ -294,6 +343,13 @@ static wr_status answer_one(const classify_state *state, const wr_analysis *a, w
         return wp_supports_answer(a, host, r->wrenches[i], set, r->tolerance, answer);
     if (r->lp)
         return wr_classify_lp(a, goal, strong, r->wrenches[i], set, answer);
+    if (state->robust) {
+        wr_robust_answer robust;
+        wr_status status = wr_robust_classify(state->robust, r->wrenches[i], set, r->tolerance,
+                                              &robust);
+        *answer = robust.answer;
+        return status;
+    }
     if (verdict_only) {
         answer->has_margin = false;
         return state->map ? wr_verdict_map_classify(state->map, r->wrenches[i], set, &answer->verdict)
@@ -446,9 +502,12 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
         }
         wp_buffer_puts(out, i > from ? ",{" : "{");
         for (int s = 0; s < r->set_count; s++) {
-            wr_answer answer;
-            wr_status status = answer_one(state, a, goal, strong, i, r->sets[s], false, true,
-                                          host, &answer);
+            wr_robust_answer robust = {.has_perturbation = false};
+            wr_status status =
+                state->robust ? wr_robust_classify(state->robust, r->wrenches[i], r->sets[s],
+                                                   r->tolerance, &robust)
+                              : answer_one(state, a, goal, strong, i, r->sets[s], false, true,
+                                           host, &robust.answer);
             if (status != WR_OK) {
                 *failed = i;
                 return status;
@@ -456,7 +515,9 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
             wp_buffer_puts(out, s ? ",\"" : "\"");
             wp_buffer_puts(out, wp_set_names[r->sets[s]]);
             WP_BUFFER_LITERAL(out, "\":");
-            write_answer(out, a, &answer);
+            write_answer(out, a, &robust.answer);
+            if (robust.has_perturbation)
+                write_perturbation(out, wr_analysis_fixture(a), &robust);
         }
         WP_BUFFER_LITERAL(out, "}");
     }

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 const char *const wp_set_names[3] = {"goal", "strong", "both"};
 
@@ -193,5 +194,28 @@ bool wp_read_push_on(const cJSON *object, const char *path, const wr_fixture *sh
     }
     *mask = chosen;
     *count = loops;
+    return true;
+}
+
+double wp_now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+bool wp_read_deadline(const cJSON *params, double *deadline, wp_error *error)
+{
+    double seconds = 0;
+    bool present = false;
+    *deadline = 0;
+    if (!wp_member_number(params, "params", "deadline_s", false, &seconds, &present, error))
+        return false;
+    if (present && !(seconds > 0 && seconds <= 1e9)) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.deadline_s",
+                     "must be a number of seconds above 0 (at most 1e9), got %g", seconds);
+        return false;
+    }
+    *deadline = present ? wp_now_s() + seconds : 0;
     return true;
 }

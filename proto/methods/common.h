@@ -34,6 +34,13 @@ bool wp_read_set_at(const cJSON *object, const char *path, wr_set *set, wp_error
 /* path.finger_friction and path.finger_radius: not negative (default 0). */
 bool wp_read_finger(const cJSON *object, const char *path, wr_finger *finger, wp_error *error);
 
+/* The monotonic clock, in seconds. */
+double wp_now_s(void);
+/* params.deadline_s (docs/PROTOCOL.md, Bounded work): seconds above 0, at
+ * most 1e9.  *deadline is the monotonic second it ends (wp_now_s), 0 when
+ * not given.  False with the error at params.deadline_s. */
+bool wp_read_deadline(const cJSON *params, double *deadline, wp_error *error);
+
 /* The call's fixture (held until the stream's free) and a zeroed state of
  * `size` bytes; NULL with the error set when either fails. */
 void *wp_stream_with_fixture(wp_call *call, size_t size, wp_fixture_use **use);

@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -37,6 +38,10 @@ struct design_state {
     /* The engine of each stage (wp_chunks.h); the job's claims and merges
      * are made under its lock, the job's progress read by the steps. */
     wp_chunks *poses_chunks, *search;
+    /* After the search: the kept designs' figures, a design a chunk, from
+     * design figures_first on (NULL until then). */
+    wp_chunks *figures;
+    int figures_first;
     /* A lattice: its designs are enumerated first, then they are the
      * candidates (their fixels the sites, three each). */
     wr_lattice_job *lattice;
@@ -45,6 +50,7 @@ struct design_state {
     int (*listed)[WR_MAX_FIXELS];
     const char *source;      /* the field giving the candidates: for refusals */
     uint64_t max_candidates; /* wp_limits' (0: no cap) */
+    int max_cases;           /* wp_case_limit of the limits */
     /* params.deadline_s: the monotonic second after which the search claims
      * no more candidates and the answer is the best so far, "partial" (0:
      * none); `cut` once it has.  Both read and written under the search
@@ -68,13 +74,6 @@ struct design_state {
 };
 
 static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
-
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + t.tv_nsec * 1e-9;
-}
 
 /* A whole number in [lo, hi] at params.key (default kept when absent). */
 static bool read_count(const cJSON *params, const char *key, double lo, double hi, int *out,
@@ -239,9 +238,7 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
                      invalid.reason);
         return false;
     }
-    size_t pairs, total;
-    wr_lattice_job_progress(s->lattice, &pairs, &total);
-    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, (total + WR_LATTICE_CHUNK - 1) / WR_LATTICE_CHUNK);
+    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, SIZE_MAX); /* as the job claims them */
     if (!s->poses_chunks) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
@@ -348,7 +345,7 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
     }
     if (cases_json) {
         wp_cases cases;
-        if (!wp_cases_read(cases_json, "params.cases", s->body, &cases, error))
+        if (!wp_cases_read(cases_json, "params.cases", s->body, s->max_cases, &cases, error))
             return false;
         s->loads = malloc((size_t)cases.count * sizeof *s->loads);
         if (!s->loads) {
@@ -387,15 +384,8 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
         return false;
     }
     s->progress = progress && cJSON_IsTrue(progress);
-    double deadline_s = 0;
-    if (!wp_member_number(params, "params", "deadline_s", false, &deadline_s, &present, error))
+    if (!wp_read_deadline(params, &s->deadline, error))
         return false;
-    if (present && !(deadline_s > 0 && deadline_s <= 1e9)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.deadline_s",
-                     "must be a number of seconds above 0 (at most 1e9), got %g", deadline_s);
-        return false;
-    }
-    s->deadline = present ? now_s() + deadline_s : 0;
     const cJSON *collapse = cJSON_GetObjectItemCaseSensitive(params, "collapse_symmetric");
     if (collapse && !cJSON_IsBool(collapse)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.collapse_symmetric",
@@ -564,6 +554,7 @@ static void *design_begin(wp_call *call, wp_prepared *prepared)
     }
     s->last_report = -1;
     s->max_candidates = call->limits->max_candidates;
+    s->max_cases = wp_case_limit(call->limits);
     if (!read_params(call->params, s, call->error)) {
         design_free(s);
         return NULL;
@@ -706,7 +697,7 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
         done = pairs;
         total = of;
     }
-    double now = now_s();
+    double now = wp_now_s();
     if (s->last_report < 0 || stage != s->stage) {
         s->stage = stage;
         s->stage_started = now;
@@ -715,8 +706,8 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
     wp_buffer_puts(out, wp_call_id_text(call));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
-     * total count its hole pairs), then "candidates", then "figures" (the
-     * designs kept). */
+     * total count its units: a hole pair with the first peg's segment),
+     * then "candidates", then "figures" (the designs kept). */
     WP_BUFFER_LITERAL(out, ",\"stage\":\"");
     wp_buffer_puts(out, STAGES[stage]);
     WP_BUFFER_LITERAL(out, "\",\"done\":");
@@ -875,7 +866,10 @@ static void write_design(design_state *s, wp_buffer *out, const wr_design *d, in
     else
         WP_BUFFER_LITERAL(out, "null");
     WP_BUFFER_LITERAL(out, ",\"score\":");
-    wp_buffer_number(out, d->score);
+    /* Objective force: minus a force, in the body's force unit. */
+    wp_buffer_number(out, s->spec.objective == WR_OBJECTIVE_FORCE
+                              ? -wp_force_out(s->body, -d->score)
+                              : d->score);
     if (accuracy) { /* the worst locating error, whose negative is the score */
         WP_BUFFER_LITERAL(out, ",\"accuracy\":");
         wp_buffer_number(out, -d->score + 0.0);
@@ -952,7 +946,7 @@ static void write_answer(design_state *s, wp_buffer *out)
     WP_BUFFER_LITERAL(out, "]}");
 }
 
-/* The lattice's chunks of hole pairs, by the engine (wp_chunks.h): claimed
+/* The lattice's chunks of units (wr_lattice.h), by the engine (wp_chunks.h): claimed
  * by the job in order, made by any thread, merged in order. */
 typedef struct lattice_record {
     size_t first, count;
@@ -1021,7 +1015,7 @@ static bool search_claim(void *method, size_t index, void *record)
     /* The deadline: no candidate is claimed after it.  The chunks claimed
      * are merged as usual, then the designs kept so far get their figures
      * and the answer is "partial". */
-    if (s->deadline > 0 && !s->cut && now_s() >= s->deadline) {
+    if (s->deadline > 0 && !s->cut && wp_now_s() >= s->deadline) {
         wr_design_job_cut(s->job);
         s->cut = true;
     }
@@ -1066,8 +1060,47 @@ static const wp_chunk_ops SEARCH_CHUNKS = {
     .window = DESIGN_WINDOW,
 };
 
-/* The stage on: the lattice's poses, then the search's candidates. */
-static wp_chunks *stage(design_state *s) { return s->job ? s->search : s->poses_chunks; }
+/* The designs' figures: chunk i is design figures_first + i. */
+static wr_status figure_make(void *method, size_t index, void *record, wp_buffer *direct,
+                             const wp_host *host, unsigned long *used, wp_error *error)
+{
+    (void)record;
+    (void)direct;
+    const design_state *s = method;
+    wr_status status =
+        wr_design_job_figure(s->job, s->figures_first + (int)index, host->stop, used);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
+static wr_status figure_merge(void *method, size_t index, void *record, wp_buffer *out,
+                              wp_error *error)
+{
+    (void)index;
+    (void)record;
+    (void)out;
+    (void)error;
+    wr_design_job_figure_merged(((design_state *)method)->job);
+    return WR_OK;
+}
+
+static void figure_release(void *record) { (void)record; }
+
+static const wp_chunk_ops FIGURE_CHUNKS = {
+    .record_size = 1,
+    .make = figure_make,
+    .merge = figure_merge,
+    .release = figure_release,
+    .window = DESIGN_WINDOW,
+};
+
+/* The stage on: the lattice's poses, then the search's candidates, then
+ * the kept designs' figures. */
+static wp_chunks *stage(design_state *s)
+{
+    return s->figures ? s->figures : s->job ? s->search : s->poses_chunks;
+}
 
 static bool design_parallel(void *stream) { return wp_chunks_parallel(stage(stream)); }
 
@@ -1102,18 +1135,46 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
             if (enumerated && !start_search(s, call->error))
                 return WP_STEP_FAILED;
         }
-        if (s->progress && now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+        if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
             write_progress(s, call, out);
         return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
     /* The search: chunks while the budget lasts (helpers may make others
-     * meanwhile); then, in steps that share nothing, the rest (the
-     * designs' figures) by the job itself. */
+     * meanwhile); then the kept designs' figures, a design a chunk; then,
+     * in a step that shares nothing, the job itself says it is done. */
+    if (s->figures) {
+        wp_step step = wp_chunks_run(s->figures, shared, call->host, out, budget, used,
+                                     (size_t)-1, call->error);
+        if (step == WP_STEP_FAILED)
+            return WP_STEP_FAILED;
+        if (step != WP_STEP_DONE) {
+            if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
+                write_progress(s, call, out);
+            return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
+        }
+    }
     unsigned long start = *used;
     wp_step step = wp_chunks_run(s->search, shared, call->host, out, budget, used, (size_t)-1,
                                  call->error);
     if (step == WP_STEP_FAILED)
         return WP_STEP_FAILED;
+    if (step == WP_STEP_DONE && !s->figures && wr_design_job_figures_left(s->job) > 0) {
+        /* The search is over and no helper is in it (a step that shares
+         * nothing): the figures' stage begins. */
+        int figured, of;
+        wr_design_job_figures_progress(s->job, &figured, &of);
+        s->figures_first = figured;
+        s->figures = wp_chunks_new(&FIGURE_CHUNKS, s, (size_t)(of - figured));
+        if (!s->figures) {
+            wp_error_status(call->error, WR_NO_MEMORY, "params", "%s",
+                            wr_strerror(WR_NO_MEMORY));
+            return WP_STEP_FAILED;
+        }
+        if (s->progress && !s->search_reported)
+            write_progress(s, call, out);
+        s->search_reported = true;
+        return out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
+    }
     bool done = false;
     if (step == WP_STEP_DONE && *used - start < budget) {
         wr_status status = wr_design_job_run(s->job, budget - (*used - start), used,
@@ -1128,10 +1189,10 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
     double best;
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
     if (s->progress && !s->search_reported &&
-        (examined == total || now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
+        (examined == total || wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
         write_progress(s, call, out);
         s->search_reported = examined == total;
-    } else if (s->progress && !done && now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
+    } else if (s->progress && !done && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
         write_progress(s, call, out); /* the designs' figures */
     }
     /* A shared step never ends the answer, not even for a piece that did
@@ -1148,6 +1209,7 @@ static void design_free(void *stream)
     design_state *s = stream;
     if (!s)
         return;
+    wp_chunks_free(s->figures);
     wp_chunks_free(s->search);
     wp_chunks_free(s->poses_chunks);
     wr_design_job_free(s->job);
@@ -1172,7 +1234,8 @@ static size_t design_bytes(const void *stream)
            (s->job ? wr_design_job_bytes(s->job) : 0) +
            poses * (sizeof(wr_lattice_design) + sizeof *s->listed) +
            (s->poses_chunks ? wp_chunks_bytes(s->poses_chunks) : 0) +
-           (s->search ? wp_chunks_bytes(s->search) : 0);
+           (s->search ? wp_chunks_bytes(s->search) : 0) +
+           (s->figures ? wp_chunks_bytes(s->figures) : 0);
 }
 
 const wp_streamer wp_design_stream = {design_begin, design_step,     design_free,    design_bytes,

@@ -185,20 +185,17 @@ static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *
     WP_BUFFER_LITERAL(b, "}");
 }
 
-/* One case's good magnitudes for one set: by the cones, or for a part on
- * supports by the discs of wr_support.h (G_goal's; the others are refused
- * before, by supports_sets). */
-static wr_status set_range(const wp_call *call, const wr_analysis *a, wr_set set,
-                           const double load[3], const double push[3], double lo, double hi,
-                           wr_forces *good)
+/* One case's good magnitudes for a part on supports: G_goal's, by the
+ * discs of wr_support.h, into good[WR_SET_GOAL] (the other sets are
+ * refused before, by supports_sets). */
+static wr_status supports_range(const wp_call *call, const wr_analysis *a, const double load[3],
+                                const double push[3], double lo, double hi, wr_forces good[3])
 {
-    const wr_supports *supports = wr_analysis_fixture(a)->supports;
-    if (!supports)
-        return wr_force_range(a, set, load, push, lo, hi, good);
     wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
     if (!env)
         return WR_LP_FAILED;
-    return wr_supports_force_range(a, supports, env, load, push, lo, hi, good);
+    return wr_supports_force_range(a, wr_analysis_fixture(a)->supports, env, load, push, lo, hi,
+                                   &good[WR_SET_GOAL]);
 }
 
 /* On supports force.range answers G_goal's magnitudes: false, with the
@@ -213,6 +210,9 @@ static bool supports_sets(wp_call *call, const wr_fixture *f, const bool sets[3]
                  "\"strong\" with that load");
     return false;
 }
+/* Boxes per excluded cone for one piece of a robust interval: a piece
+ * that so few do not prove is split instead (wr_robust_forces). */
+#define ROBUST_FORCE_BUDGET 64
 
 /* The answer is written as text (a raw result): a hundred cases are three
  * hundred small objects, which a tree would allocate one by one. */
@@ -229,38 +229,52 @@ cJSON *wp_handle_force_range(wp_call *call)
     const wr_fixture *f = use->fixture;
     double push[3], range[2];
     wp_cases cases;
-    if (!supports_sets(call, f, sets) || !read_push(params, f, push, error) || !read_range(params, f, range, error) ||
+    if (!supports_sets(call, f, sets) || !read_push(params, f, push, error) ||
+        !read_range(params, f, range, error) ||
         !wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
-                       &cases, error))
+                       wp_case_limit(call->limits), &cases, error))
         return NULL;
     wp_buffer b = {0};
     WP_BUFFER_LITERAL(&b, "{\"cases\":[");
-    wr_forces every[3] = {{0}}, good = {0}, meet = {0};
-    wr_status status = WR_OK;
+    wr_forces every[3] = {{0}}, good[3] = {{0}}, meet = {0};
+    /* A fixture with a tolerance: each good interval's robust part. */
+    wr_robust *robust = NULL;
+    wr_status status = f->tolerance.given ? wr_robust_new(use->analysis, ROBUST_FORCE_BUDGET,
+                                                          &robust)
+                                          : WR_OK;
     for (int c = 0; status == WR_OK && c < cases.count; c++) {
         wp_buffer_puts(&b, c ? ",{\"name\":" : "{\"name\":");
         if (cases.items[c].name)
             wp_buffer_string(&b, cases.items[c].name);
         else
             WP_BUFFER_LITERAL(&b, "null");
+        status = f->supports ? supports_range(call, use->analysis, cases.items[c].load, push,
+                                              range[0], range[1], good)
+                             : wr_force_ranges(use->analysis, sets, cases.items[c].load, push,
+                                               range[0], range[1], good);
         for (int s = 0; status == WR_OK && s < 3; s++) {
             if (!sets[s])
                 continue;
-            status = set_range(call, use->analysis, (wr_set)s, cases.items[c].load, push,
-                               range[0], range[1], &good);
-            if (status != WR_OK)
-                break;
+            if (robust) {
+                wr_forces nominal = good[s];
+                good[s] = (wr_forces){0};
+                status = wr_robust_forces(robust, (wr_set)s, cases.items[c].load, push,
+                                          &nominal, call->host->stop, &good[s]);
+                wr_forces_release(&nominal);
+                if (status != WR_OK)
+                    break;
+            }
             WP_BUFFER_LITERAL(&b, ",\"");
             wp_buffer_puts(&b, SET_NAMES[s]);
             WP_BUFFER_LITERAL(&b, "\":");
-            write_force_set(&b, f, &good);
+            write_force_set(&b, f, &good[s]);
             /* One magnitude for every case: the intersection. */
             if (c == 0) {
                 wr_forces swap = every[s];
-                every[s] = good;
-                good = swap;
+                every[s] = good[s];
+                good[s] = swap;
             } else {
-                status = wr_forces_intersect(&every[s], &good, &meet);
+                status = wr_forces_intersect(&every[s], &good[s], &meet);
                 wr_forces swap = every[s];
                 every[s] = meet;
                 meet = swap;
@@ -279,10 +293,12 @@ cJSON *wp_handle_force_range(wp_call *call)
         write_force_set(&b, f, &every[s]);
     }
     WP_BUFFER_LITERAL(&b, "}}");
-    for (int s = 0; s < 3; s++)
+    for (int s = 0; s < 3; s++) {
         wr_forces_release(&every[s]);
-    wr_forces_release(&good);
+        wr_forces_release(&good[s]);
+    }
     wr_forces_release(&meet);
+    wr_robust_free(robust);
     wp_cases_release(&cases);
     char *text = wp_buffer_take(&b);
     cJSON *result = status == WR_OK && text ? cJSON_CreateRaw(text) : NULL;
@@ -301,7 +317,7 @@ cJSON *wp_handle_force_range(wp_call *call)
 }
 
 bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_friction,
-                       wp_push_load *out, wp_error *error)
+                       int most_cases, wp_push_load *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);
     const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
@@ -333,7 +349,7 @@ bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_f
         return false;
     }
     wp_cases cases = {0};
-    if (cases_json && !wp_cases_read(cases_json, "params.cases", f, &cases, error))
+    if (cases_json && !wp_cases_read(cases_json, "params.cases", f, most_cases, &cases, error))
         return false;
     out->count = cases_json ? cases.count : 1;
     out->loads = calloc((size_t)out->count, sizeof *out->loads);
@@ -428,10 +444,24 @@ cJSON *wp_handle_push_force(wp_call *call)
                      "a push force needs the part's outline: the fixture has no shape");
         return NULL;
     }
+    if (f->tolerance.given) {
+        /* The least force is exact on the nominal fixels only. */
+        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "push.force answers the nominal fixture only: ask force.range at a point "
+                     "for magnitudes robust over the tolerance");
+        return NULL;
+    }
+    bool *push_on;
+    wr_finger finger = {.radius = radius};
+    if (!wp_read_push_on(params, "params", f, &push_on, &finger.push_on_count, error))
+        return NULL;
+    finger.push_on = push_on;
     wp_cases cases;
     if (!wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
-                       &cases, error))
+                       wp_case_limit(call->limits), &cases, error)) {
+        free(push_on);
         return NULL;
+    }
     double (*loads)[3] = malloc((size_t)cases.count * sizeof *loads);
     cJSON *result = cJSON_CreateObject();
     wr_status status = loads && result ? WR_OK : WR_NO_MEMORY;
@@ -440,7 +470,7 @@ cJSON *wp_handle_push_force(wp_call *call)
     wr_least_force least;
     if (status == WR_OK)
         status = wr_least_force_find(use->analysis, set, (const double (*)[3])loads, cases.count,
-                                     radius, call->host->stop, &least);
+                                     &finger, call->host->stop, &least);
     if (status == WR_OK) {
         cJSON *best = least.found ? cJSON_AddObjectToObject(result, "least")
                                   : cJSON_AddNullToObject(result, "least");
@@ -476,18 +506,35 @@ cJSON *wp_handle_push_force(wp_call *call)
         add_place(segment, f, e);
         cJSON_AddItemToObject(segment, "t", ts);
         cJSON_AddItemToObject(segment, "force", forces);
+        /* No push where the finger may not push (a loop push_on leaves out)
+         * or does not fit (its blocked spans): F* null there. */
+        bool pushed = wr_finger_pushes_on(f, &finger, e);
+        wr_span *blocked = NULL;
+        int blocked_count = 0;
+        if (pushed && radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
+            size_t loop, piece;
+            wr_push_edge_place(f, e, &loop, &piece);
+            status = wr_finger_blocked(f->outline, loop, piece, radius, call->host->stop,
+                                       &blocked, &blocked_count);
+        }
         for (int j = 0; status == WR_OK && j < samples; j++) {
-            double t = top * (j + 0.5) / samples, push[3], value;
+            double t = top * (j + 0.5) / samples, push[3], value = INFINITY;
+            bool reached = pushed;
+            for (int b = 0; reached && b < blocked_count; b++)
+                reached = !(t >= blocked[b].lo && t <= blocked[b].hi);
             wr_push_wrench(f, e, t, push);
-            status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
-                                       cases.count, push, &value);
+            if (reached)
+                status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
+                                           cases.count, push, &value);
             cJSON_AddItemToArray(ts, cJSON_CreateNumber(t));
             cJSON_AddItemToArray(forces, force_or_null(f, value));
         }
+        free(blocked);
         if (wr_stop_requested(call->host->stop))
             status = WR_STOPPED;
     }
     free(loads);
+    free(push_on);
     wp_cases_release(&cases);
     if (status != WR_OK) {
         cJSON_Delete(result);

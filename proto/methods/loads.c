@@ -106,8 +106,8 @@ static bool read_load(const cJSON *json, const char *path, const wr_fixture *f, 
     return true;
 }
 
-bool wp_cases_read(const cJSON *json, const char *path, const wr_fixture *f, wp_cases *out,
-                   wp_error *error)
+bool wp_cases_read(const cJSON *json, const char *path, const wr_fixture *f, int most,
+                   wp_cases *out, wp_error *error)
 {
     memset(out, 0, sizeof *out);
     if (!json) {
@@ -125,9 +125,9 @@ bool wp_cases_read(const cJSON *json, const char *path, const wr_fixture *f, wp_
                      "empty: give at least one case {\"loads\": [...]}");
         return false;
     }
-    if (count > WP_MAX_CASES) {
-        wp_error_set(error, WP_INVALID_PARAMS, path, "at most %d cases, %d given", WP_MAX_CASES,
-                     count);
+    if (count > most) {
+        wp_error_set(error, WP_INVALID_PARAMS, path,
+                     "at most %d cases (the daemon's --max-cases), %d given", most, count);
         return false;
     }
     out->items = calloc((size_t)count, sizeof *out->items);

@@ -12,10 +12,20 @@
 extern "C" {
 #endif
 
-/* Most cases in one request, and most loads in one case: a tool path of a
- * few hundred points fits; beyond, the request is refused at the field. */
+/* Most cases in one request (the default of the daemon's --max-cases, at
+ * most WP_MOST_CASES), and most loads in one case: a tool path of a few
+ * hundred points fits; beyond, the request is refused at the field. */
 #define WP_MAX_CASES 1000
+#define WP_MOST_CASES 1000000
 #define WP_MAX_LOADS 100
+
+/* The most cases a request may give: the limits' max_cases (the daemon's
+ * --max-cases), WP_MAX_CASES when 0. */
+static inline int wp_case_limit(const wp_limits *limits)
+{
+    size_t most = limits && limits->max_cases > 0 ? limits->max_cases : WP_MAX_CASES;
+    return most < WP_MOST_CASES ? (int)most : WP_MOST_CASES;
+}
 
 /* One case: its name (borrowed from the request's JSON, NULL when not
  * given) and the sum of its loads, a physical wrench of the model system
@@ -37,10 +47,10 @@ typedef struct wp_cases {
  *   {"wrench": [fx, fy, tau], "name"?}                       tau about the com
  * Refused at their field: a negative G, a point `at` farther than the part's
  * size from its centre of mass (how far is said), wrong types, unknown
- * members, more than WP_MAX_CASES cases or WP_MAX_LOADS loads.  False with
- * nothing allocated on error. */
-bool wp_cases_read(const cJSON *json, const char *path, const wr_fixture *fixture, wp_cases *out,
-                   wp_error *error);
+ * members, more than `most` cases (wp_case_limit) or WP_MAX_LOADS loads.
+ * False with nothing allocated on error. */
+bool wp_cases_read(const cJSON *json, const char *path, const wr_fixture *fixture, int most,
+                   wp_cases *out, wp_error *error);
 void wp_cases_release(wp_cases *cases);
 
 /* A point of the part where a force acts (a load's `at`, a push's): within
@@ -71,7 +81,7 @@ typedef struct wp_push_load {
  * with them (the loaded regions are exact, for a frictionless finger).
  * False with nothing allocated on error. */
 bool wp_push_load_read(const cJSON *params, const wr_fixture *fixture, double finger_friction,
-                       wp_push_load *out, wp_error *error);
+                       int most_cases, wp_push_load *out, wp_error *error);
 void wp_push_load_release(wp_push_load *load);
 
 #ifdef __cplusplus

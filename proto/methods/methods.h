@@ -9,7 +9,7 @@
 cJSON *wp_handle_fixture_put(wp_call *call);
 cJSON *wp_handle_fixture_get(wp_call *call);
 cJSON *wp_handle_fixture_delete(wp_call *call);
-cJSON *wp_handle_fixture_list(wp_call *call);
+extern const wp_streamer wp_list_stream;
 cJSON *wp_handle_server_status(wp_call *call);
 
 /* classify.c */

@@ -98,14 +98,34 @@ cJSON *wp_handle_fixture_delete(wp_call *call)
 }
 
 /* A page of fixture.list: at most this many fixtures (the default), each
- * name at most WP_NAME_MAX bytes, so that a page is about a megabyte. */
+ * name at most WP_NAME_MAX bytes, so that a page holds about a megabyte. */
 #define LIST_PAGE 1000
+
+/* fixture.list's page: its entries, taken from the store's listing when
+ * the request begins (the rest released at once), written a piece at a
+ * time. */
+typedef struct list_state {
+    wp_fixture_listing page;
+    size_t next;  /* the next entry to write */
+    bool more;    /* entries follow the page's last */
+    size_t bytes; /* what it holds: the entries and their names */
+} list_state;
+
+static void list_free(void *stream)
+{
+    list_state *state = stream;
+    if (!state)
+        return;
+    wp_fixture_listing_release(&state->page);
+    free(state);
+}
 
 /* The stored fixtures, sorted by id, a page at a time: those after
  * params.after (an id; none: from the first), at most params.limit;
  * "more" says whether any follow the page's last. */
-cJSON *wp_handle_fixture_list(wp_call *call)
+static void *list_begin(wp_call *call, wp_prepared *prepared)
 {
+    (void)prepared;
     const char *after = NULL;
     double limit = LIST_PAGE;
     bool given = false;
@@ -122,32 +142,72 @@ cJSON *wp_handle_fixture_list(wp_call *call)
                      "must be a whole number from 1 to %d", LIST_PAGE);
         return NULL;
     }
-    wp_fixture_listing listing = {0, NULL};
-    wp_host_failure failure;
-    if (!call->host->fixture_list(call->host->self, &listing, &failure)) {
-        wp_error_host(call->error, &failure, "");
+    list_state *state = calloc(1, sizeof *state);
+    if (!state) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
         return NULL;
     }
-    cJSON *result = cJSON_CreateObject();
-    cJSON *list = cJSON_AddArrayToObject(result, "fixtures");
-    bool ok = list != NULL;
-    size_t first = 0;
-    while (after && first < listing.count && strcmp(listing.entries[first].id, after) <= 0)
-        first++;
-    size_t end = first + (size_t)limit < listing.count ? first + (size_t)limit : listing.count;
-    for (size_t i = first; ok && i < end; i++) {
-        const wp_fixture_entry *e = &listing.entries[i];
-        cJSON *item = cJSON_CreateObject();
-        ok = item && cJSON_AddStringToObject(item, "id", e->id) &&
-             cJSON_AddStringToObject(item, "name", e->name) &&
-             cJSON_AddNumberToObject(item, "fixels", e->fixels);
-        if (item)
-            cJSON_AddItemToArray(list, item);
+    wp_fixture_listing all = {0, NULL};
+    wp_host_failure failure;
+    if (!call->host->fixture_list(call->host->self, &all, &failure)) {
+        wp_error_host(call->error, &failure, "");
+        free(state);
+        return NULL;
     }
-    ok = ok && cJSON_AddBoolToObject(result, "more", end < listing.count);
-    wp_fixture_listing_release(&listing);
-    return ok ? result : wp_out_of_memory(result, call->error);
+    /* The page is entries [first, end) of the sorted listing: kept, the
+     * rest's names freed now, so that the stream holds one page. */
+    size_t first = 0;
+    while (after && first < all.count && strcmp(all.entries[first].id, after) <= 0)
+        first++;
+    size_t end = first + (size_t)limit < all.count ? first + (size_t)limit : all.count;
+    for (size_t i = 0; i < all.count; i++)
+        if (i < first || i >= end) {
+            free(all.entries[i].name);
+            all.entries[i].name = NULL;
+        }
+    memmove(all.entries, all.entries + first, (end - first) * sizeof *all.entries);
+    state->page = (wp_fixture_listing){end - first, all.entries};
+    state->more = end < all.count;
+    state->bytes = sizeof *state + all.count * sizeof *all.entries;
+    for (size_t i = 0; i < state->page.count; i++)
+        state->bytes += strlen(state->page.entries[i].name) + 1;
+    return state;
 }
+
+/* {"fixtures": [{"id", "name", "fixels"}, ...], "more"}: entries until a
+ * piece's bytes (WP_PIECE_BYTES), so that the daemon checks its bound on
+ * the client's unsent output between them (--max-output). */
+static wp_step list_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+                         unsigned long *used)
+{
+    (void)call;
+    (void)budget;
+    list_state *state = stream;
+    size_t start = out->length;
+    if (state->next == 0)
+        WP_BUFFER_LITERAL(out, "{\"fixtures\":[");
+    for (; state->next < state->page.count && !out->failed; state->next++) {
+        if (out->length - start >= WP_PIECE_BYTES) {
+            *used += 1;
+            return WP_STEP_MORE;
+        }
+        const wp_fixture_entry *e = &state->page.entries[state->next];
+        wp_buffer_puts(out, state->next ? ",{\"id\":\"" : "{\"id\":\"");
+        wp_buffer_puts(out, e->id);
+        WP_BUFFER_LITERAL(out, "\",\"name\":");
+        wp_buffer_string(out, e->name);
+        WP_BUFFER_LITERAL(out, ",\"fixels\":");
+        wp_buffer_number(out, e->fixels);
+        WP_BUFFER_LITERAL(out, "}");
+    }
+    wp_buffer_puts(out, state->more ? "],\"more\":true}" : "],\"more\":false}");
+    *used += 1;
+    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
+static size_t list_bytes(const void *stream) { return ((const list_state *)stream)->bytes; }
+
+const wp_streamer wp_list_stream = {list_begin, list_step, list_free, list_bytes, false, NULL, NULL};
 
 cJSON *wp_handle_server_status(wp_call *call)
 {

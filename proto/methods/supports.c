@@ -1,5 +1,5 @@
 /* supports.c -- what the methods share for a fixture on a base plate
- * (wr_support.h; docs/MODEL.md section 10): a wrench's answer, and the
+ * (wr_support.h; docs/MODEL.md section 11): a wrench's answer, and the
  * refusal of questions whose answer does not depend on magnitudes. */
 #include "methods.h"
 

@@ -11,14 +11,25 @@
 /* friction.sweep, a job's budget at a time (wr_sweep.h). */
 enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY, SWEEP_FORCE };
 
-/* The least push force against mu is sampled at this many coefficients,
- * each sample exact (wr_least_force_find on the fixture at that mu). */
+/* The least push force against mu, F*(mu), is the minimum over the outline
+ * of the lower end of a union of intervals whose cones' faces move with mu
+ * (their normals quadratic in mu, wr_sweep.h): its breakpoints are where
+ * the minimising point jumps from one place of the outline to another as
+ * well as where a face changes, and no closed form in mu is kept.  So it
+ * is sampled, each sample exact at its mu (wr_least_force_find on the
+ * fixture placed again with that friction, to WR_FORCE_TOLERANCE), at
+ * FORCE_SAMPLES coefficients evenly over the range and at every end of the
+ * exact intervals of mu where the push alone has a region (wr_sweep_push,
+ * a frictionless finger): there a large enough push overcomes any load, so
+ * F* is finite on them whatever the cases, and their ends are where it may
+ * jump to null. */
 #define FORCE_SAMPLES 128
 typedef struct sweep_state {
     int what;                   /* SWEEP_* */
     wr_sweep_range range;
     wp_classify_request request;   /* the sets (one for push and gravity), the wrenches */
     wr_finger finger;
+    bool *push_on;              /* finger.push_on, owned (force) */
     wr_sweeper *sweepers[3];    /* one per set */
     wr_sweep_job *job;          /* the current one */
     size_t next;                /* wrenches: the next to answer, */
@@ -28,14 +39,20 @@ typedef struct sweep_state {
      * the fixture's fixels as specs, to place them again at each mu */
     wp_cases cases;
     double (*loads)[3];
+    double *mus;                /* the coefficients sampled, increasing */
+    int mu_count;
+    double (*at)[2];            /* the least force's point at each; NAN: none */
     int sample;
     bool any;
     wr_fixel_spec fixels[WR_MAX_FIXELS];
+    /* params.deadline_s: the monotonic second after which the sweep stops
+     * where it has got to (0: none; sweep_step). */
+    double deadline;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
 static const char *const SWEEP_GRAVITY_FIELDS[] = {"set", NULL};
-static const char *const SWEEP_FORCE_FIELDS[] = {"set", "finger_radius", NULL};
+static const char *const SWEEP_FORCE_FIELDS[] = {"set", "finger_radius", "push_on", NULL};
 
 /* params.range: [low, high], 0 <= low < high <= WR_MAX_FRICTION (default
  * [0, 2]); params.kinetic_ratio in (0, 1] (default 1). */
@@ -103,8 +120,11 @@ static void write_intervals(wp_buffer *out, const wr_intervals *list)
     WP_BUFFER_LITERAL(out, "]");
 }
 
-/* {"intervals", "critical", "curve", "exact", "resolution"} */
-static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
+static void write_stopped(wp_buffer *out, double reached);
+
+/* {"intervals", "critical", "curve", "exact", "resolution"}, and when the
+ * deadline stopped it, "partial" and "stopped_at": `reached`. */
+static void write_curve(wp_buffer *out, const wr_sweep_curve *curve, bool stopped, double reached)
 {
     WP_BUFFER_LITERAL(out, "{\"intervals\":");
     write_intervals(out, &curve->intervals);
@@ -123,6 +143,8 @@ static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
     wp_buffer_puts(out, curve->exact ? "],\"exact\":true" : "],\"exact\":false");
     WP_BUFFER_LITERAL(out, ",\"resolution\":");
     wp_buffer_number(out, curve->resolution);
+    if (stopped)
+        write_stopped(out, reached);
     WP_BUFFER_LITERAL(out, "}");
 }
 
@@ -158,7 +180,8 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
                      "only with \"wrenches\": a push or gravity sweep takes its \"set\"");
         return false;
     }
-    if (!read_sweep_range(params, &state->range, error))
+    if (!read_sweep_range(params, &state->range, error) ||
+        !wp_read_deadline(params, &state->deadline, error))
         return false;
     if (state->what == SWEEP_WRENCHES) {
         wp_classify_request *r = &state->request;
@@ -167,14 +190,18 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
         return wp_read_wrenches(call->limits, params, fixture, NULL, r, error);
     }
     if (state->what == SWEEP_FORCE) {
-        /* {"set"? (default both), "finger_radius"?} and the cases. */
+        /* {"set"? (default both), "finger_radius"?, "push_on"?} and the cases. */
         const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, "force");
         state->request.set_count = 1;
         if (!wp_check_object(what, "params.force", SWEEP_FORCE_FIELDS, error) ||
             !wp_read_set_at(what, "params.force", &state->request.sets[0], error) ||
             !wp_read_finger(what, "params.force", &state->finger, error) ||
-            !wp_cases_read(cases, "params.cases", fixture, &state->cases, error))
+            !wp_read_push_on(what, "params.force", fixture, &state->push_on,
+                             &state->finger.push_on_count, error) ||
+            !wp_cases_read(cases, "params.cases", fixture, wp_case_limit(call->limits),
+                           &state->cases, error))
             return false;
+        state->finger.push_on = state->push_on;
         if (!cJSON_GetObjectItemCaseSensitive(what, "set"))
             state->request.sets[0] = WR_SET_BOTH;
         if (fixture->shape == WR_SHAPE_NONE) {
@@ -223,6 +250,9 @@ static void sweep_free(void *stream)
         wr_sweeper_free(state->sweepers[s]);
     free(state->request.wrenches);
     free(state->loads);
+    free(state->mus);
+    free(state->at);
+    free(state->push_on);
     wp_cases_release(&state->cases);
     free(stream);
 }
@@ -243,17 +273,26 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
         sweep_free(state);
         return NULL;
     }
+    if (use->fixture->tolerance.given) {
+        /* The sweep's exact machinery varies mu on the nominal fixels. */
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "friction.sweep answers the nominal fixture only: sweep the fixture "
+                     "without its tolerance, or ask the robust questions (classify, push, "
+                     "gravity, margin, force) at one friction");
+        sweep_free(state);
+        return NULL;
+    }
     if (!read_sweep(call, use->fixture, state)) {
         sweep_free(state);
         return NULL;
     }
     wr_status status = WR_OK;
-    if (state->what == SWEEP_FORCE)
-        return state; /* sampled a mu at a time by sweep_force_step */
+    /* Force: the push alone's intervals first (the job), then the samples
+     * a mu at a time (sweep_force_step). */
     for (int s = 0; status == WR_OK && s < state->request.set_count; s++)
         status = wr_sweeper_new(use->fixture, state->request.sets[s], &state->range,
                                 &state->sweepers[s]);
-    if (status == WR_OK && state->what == SWEEP_PUSH)
+    if (status == WR_OK && (state->what == SWEEP_PUSH || state->what == SWEEP_FORCE))
         status = wr_sweep_job_push(state->sweepers[0], &state->finger, &state->job);
     else if (status == WR_OK && state->what == SWEEP_GRAVITY)
         status = wr_sweep_job_gravity(state->sweepers[0], &state->job);
@@ -269,7 +308,7 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
  * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
  * point [mu, F] (F null when no push does the job) is written. */
 static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
-                              unsigned long *used, wp_buffer *out)
+                              unsigned long *used, wp_buffer *out, double at[2])
 {
     wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
                                  .kinetic_mu = mu * state->range.kinetic_ratio};
@@ -284,10 +323,12 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     if (status == WR_OK)
         status = wr_least_force_find(analysis, state->request.sets[0],
                                      (const double (*)[3])state->loads, state->cases.count,
-                                     state->finger.radius, NULL, &least);
+                                     &state->finger, NULL, &least);
     wr_analysis_free(analysis);
     if (status != WR_OK)
         return status;
+    at[0] = least.found ? least.at[0] + 0.0 : NAN;
+    at[1] = least.found ? least.at[1] + 0.0 : NAN;
     *used += 1000 + least.evaluations * 40 * (unsigned long)state->cases.count;
     WP_BUFFER_LITERAL(out, "[");
     wp_buffer_number(out, mu + 0.0);
@@ -300,40 +341,116 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     return WR_OK;
 }
 
-/* friction.sweep "force": {"curve": [[mu, F], ...], "exact": false,
- * "resolution": step}, a sample of mu at a time. */
+/* params.deadline_s given and passed. */
+static bool deadline_passed(const sweep_state *state)
+{
+    return state->deadline > 0 && wp_now_s() >= state->deadline;
+}
+
+/* ,"partial":true,"stopped_at":mu -- the members a sweep stopped by its
+ * deadline ends its result with (docs/PROTOCOL.md, friction.sweep). */
+static void write_stopped(wp_buffer *out, double reached)
+{
+    WP_BUFFER_LITERAL(out, ",\"partial\":true,\"stopped_at\":");
+    wp_buffer_number(out, reached + 0.0);
+}
+
+static int compare_mus(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The coefficients to sample (FORCE_SAMPLES evenly, ends included, and
+ * the ends of the push alone's intervals), increasing, without repeats. */
+static bool force_mus(sweep_state *state, const wr_intervals *alone)
+{
+    int most = FORCE_SAMPLES + 2 * alone->count;
+    state->mus = malloc((size_t)most * sizeof *state->mus);
+    state->at = malloc((size_t)most * sizeof *state->at);
+    if (!state->mus || !state->at)
+        return false;
+    const double step = (state->range.high - state->range.low) / (FORCE_SAMPLES - 1);
+    int n = 0;
+    for (int i = 0; i < FORCE_SAMPLES; i++)
+        state->mus[n++] = i + 1 == FORCE_SAMPLES ? state->range.high : state->range.low + i * step;
+    for (int i = 0; i < alone->count; i++)
+        for (int k = 0; k < 2; k++)
+            state->mus[n++] = alone->items[i][k];
+    qsort(state->mus, (size_t)n, sizeof *state->mus, compare_mus);
+    int kept = 0;
+    for (int i = 0; i < n; i++)
+        if (kept == 0 || state->mus[i] > state->mus[kept - 1])
+            state->mus[kept++] = state->mus[i];
+    state->mu_count = kept;
+    return true;
+}
+
+/* friction.sweep "force": {"curve": [[mu, F], ...], "at": [[x, y] | null,
+ * ...], "intervals": [[lo, hi], ...], "exact": false, "resolution": step}:
+ * the push alone's intervals (a job), then a sample of mu at a time. */
 static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *out,
                                 unsigned long budget, unsigned long *used)
 {
     wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
     if (!use)
         return WP_STEP_FAILED;
-    const double step = (state->range.high - state->range.low) / (FORCE_SAMPLES - 1);
+    if (!state->mus) {
+        bool done;
+        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1,
+                                            used, call->host->stop, &done);
+        if (status == WR_OK && done && !force_mus(state, &wr_sweep_job_curve(state->job)->intervals))
+            status = WR_NO_MEMORY;
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        if (!done || *used >= budget)
+            return WP_STEP_MORE;
+    }
     if (!state->opened) {
         state->opened = true;
         WP_BUFFER_LITERAL(out, "{\"curve\":[");
     }
-    for (bool first = true; state->sample < FORCE_SAMPLES && !out->failed; first = false) {
+    bool partial = false;
+    for (bool first = true; state->sample < state->mu_count && !out->failed; first = false) {
+        /* Past the deadline: the samples so far (at least one). */
+        if (state->sample > 0 && deadline_passed(state)) {
+            partial = true;
+            break;
+        }
         if (!first && *used >= budget)
             return WP_STEP_MORE;
         if (wr_stop_requested(call->host->stop)) {
             wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
             return WP_STEP_FAILED;
         }
-        double mu = state->sample + 1 == FORCE_SAMPLES ? state->range.high
-                                                       : state->range.low + state->sample * step;
         if (state->any)
             WP_BUFFER_LITERAL(out, ",");
         state->any = true;
-        wr_status status = force_sample(state, use->fixture, mu, used, out);
+        wr_status status = force_sample(state, use->fixture, state->mus[state->sample], used, out,
+                                        state->at[state->sample]);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
         }
         state->sample++;
     }
-    WP_BUFFER_LITERAL(out, "],\"exact\":false,\"resolution\":");
-    wp_buffer_number(out, step);
+    WP_BUFFER_LITERAL(out, "],\"at\":[");
+    for (int i = 0; i < state->sample; i++) {
+        if (i)
+            WP_BUFFER_LITERAL(out, ",");
+        if (isnan(state->at[i][0]))
+            WP_BUFFER_LITERAL(out, "null");
+        else
+            wp_write_vector(out, state->at[i], 2);
+    }
+    WP_BUFFER_LITERAL(out, "],\"intervals\":");
+    write_intervals(out, &wr_sweep_job_curve(state->job)->intervals);
+    WP_BUFFER_LITERAL(out, ",\"exact\":false,\"resolution\":");
+    wp_buffer_number(out, (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));
+    if (partial)
+        write_stopped(out, state->mus[state->sample - 1]);
     WP_BUFFER_LITERAL(out, "}");
     return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
@@ -369,9 +486,15 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
                 }
             }
         }
-        bool done;
-        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1, used,
-                                            stop, &done);
+        /* Past the deadline: the job ends where it has got to, and is
+         * answered as if done; the result then says where that was. */
+        bool done = false, stopped = deadline_passed(state);
+        double reached = 0;
+        wr_status status = stopped ? wr_sweep_job_stop(state->job, &reached)
+                                   : wr_sweep_job_run(state->job,
+                                                      budget > *used ? budget - *used : 1, used,
+                                                      stop, &done);
+        done |= stopped;
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
@@ -379,7 +502,7 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         if (!done)
             continue;
         if (state->what != SWEEP_WRENCHES) {
-            write_curve(out, wr_sweep_job_curve(state->job));
+            write_curve(out, wr_sweep_job_curve(state->job), stopped, reached);
             return WP_STEP_DONE;
         }
         /* A wrench's set answered: {"goal": [...], ...} as its sets end. */
@@ -392,10 +515,17 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         write_intervals(out, wr_sweep_job_intervals(state->job));
         wr_sweep_job_free(state->job);
         state->job = NULL;
-        if (++state->set == r->set_count) {
+        if (++state->set == r->set_count || stopped) {
             WP_BUFFER_LITERAL(out, "}");
             state->set = 0;
             state->next++;
+        }
+        if (stopped) {
+            /* The last result's last set is answered up to `reached`. */
+            WP_BUFFER_LITERAL(out, "]");
+            write_stopped(out, reached);
+            WP_BUFFER_LITERAL(out, "}");
+            return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
         }
     }
     return WP_STEP_FAILED; /* out of memory: the buffer says so */

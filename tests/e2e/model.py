@@ -304,6 +304,15 @@ class Model:
             self.fixels.append(f)
         self.k = len(self.fixels)
         self._cones = {}
+        # docs/PROTOCOL.md, units: forces in the fixture's force unit, the
+        # acceleration in its length unit per s^2; M q is in kg length/s^2,
+        # force_factor of them to one force unit (1 N = 1000 kg mm/s^2).
+        units = fixture.get("units")
+        self.force_factor = 1.0
+        if units:
+            metres = {"mm": 1e-3, "m": 1.0, "in": 0.0254}[units["length"]]
+            newtons = {"N": 1.0, "mN": 1e-3, "lbf": 4.4482216152605}[units["force"]]
+            self.force_factor = newtons / metres
 
     def _inward_normal(self, at):
         shape = self.shape
@@ -339,8 +348,10 @@ class Model:
         return (force[0], force[1], cross2(sub(at, self.com), force))
 
     def newton_euler(self, q, forces):
-        """M q - sum_i (W_in c_in + W_it c_it), physical."""
-        w = (self.mass * q[0], self.mass * q[1], self.inertia * q[2])
+        """M q - sum_i (W_in c_in + W_it c_it), physical (M q converted to
+        the fixture's force unit)."""
+        k = self.force_factor
+        w = (self.mass * q[0] / k, self.mass * q[1] / k, self.inertia * q[2] / k)
         for f, (cn, ct) in zip(self.fixels, forces):
             w = sub(w, add(mul(cn, f.Wn), mul(ct, f.Wt)))
         return w

@@ -258,6 +258,31 @@ def test_units_give_the_same_answers_converted(client):
     assert any(base["all"][s]["intervals"] for s in ("goal", "strong", "both"))
 
 
+def test_witness_acceleration_in_the_fixture_length_unit(client):
+    """A wrench pulling the bracket off its fixels (no contact force): its
+    witness acceleration is f / m and tau / I in the fixture's units, 1 N on
+    0.8 kg in mm/N being 1250 mm/s^2 (1 N = 1000 kg mm/s^2); the same
+    fixture without units reads the numbers as kg mm/s^2 (1.25)."""
+    import json
+    with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+        f = json.load(fh)
+    plain = dict(f)
+    plain.pop("units")
+    mass = f["body"]["mass"]
+    answers = []
+    for fixture, per_unit in ((f, 1000.0), (plain, 1.0)):
+        r = client.result("wrench.classify", {"fixture": fixture, "wrenches": [[1, 2, 0.5]],
+                                               "sets": ["goal"]})["results"][0]["goal"]
+        w = r["witness"]
+        assert all(c == [0, 0] for c in w["forces"]), w
+        assert abs(w["acceleration"][0] - per_unit * 1 / mass) <= 1e-12 * per_unit / mass
+        assert abs(w["acceleration"][1] - per_unit * 2 / mass) <= 1e-12 * per_unit / mass
+        answers.append(w)
+    assert abs(answers[0]["acceleration"][2] - 1000 * answers[1]["acceleration"][2]) <= \
+        1e-9 * abs(answers[0]["acceleration"][2])
+    assert answers[0]["wrench"] == answers[1]["wrench"]
+
+
 # ---- bad input ------------------------------------------------------------------------
 
 
@@ -298,6 +323,26 @@ def test_bad_input_is_refused_at_its_field(client):
         params = dict(params, fixture=fid)
         got = error_of(client, "force.range", params)
         assert got[0] == field and word in got[1], (params, got)
+
+
+def test_max_cases_is_the_daemons_limit(harness):
+    """--max-cases N: N cases are taken, N + 1 refused at params.cases
+    naming the limit and the option, by every method that takes cases."""
+    d = harness.start("--max-cases", "3", socket_path=harness.path("cases.sock"))
+    c = d.client()
+    fid = c.result("fixture.put", {"fixture": plate_321(0.2)})["id"]
+    three, four = [case(gravity())] * 3, [case(gravity())] * 4
+    asks = [("force.range", {"fixture": fid, "push": {"at": [4, 1]}}),
+            ("push.force", {"fixture": fid, "samples": 1}),
+            ("push.regions", {"fixture": fid, "set": "both", "force": 5.0}),
+            ("friction.sweep", {"fixture": fid, "force": {}, "range": [0, 0.2]}),
+            ("fixture.design", {"body": plate_321(0.2)["body"], "friction": 0.2,
+                                "sites": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]})]
+    for method, params in asks:
+        assert c.result(method, dict(params, cases=three)) is not None, method
+        e = c.error(method, dict(params, cases=four))
+        assert e["data"]["field"] == "params.cases", (method, e)
+        assert "at most 3 cases (the daemon's --max-cases), 4 given" in e["data"]["reason"], e
 
 
 # ---- push.regions under a force, against force.range at 10,000 points ----------------
@@ -556,6 +601,83 @@ def test_design_objective_force_against_brute_force(client):
     assert e["data"]["field"] == "params.cases", e
 
 
+def test_design_units_give_the_same_design_converted(client):
+    """fixture.design's "units" as a fixture's: the same body in m/N, mm/N
+    and in/lbf, its cases written in each, gives the same designs, each
+    least push the same force converted (and its point scaled)."""
+    lbf = 4.4482216152605
+    vertices = [[0, 0], [4, 0], [4, 1], [3, 2], [0, 2]]
+    sites = [[0.8, 0], [2, 0], [3.2, 0], [0, 0.6], [0, 1.4], [1.5, 2]]
+    answers = []
+    for scale, units, per_newton in ((1.0, {"length": "m", "force": "N"}, 1.0),
+                                     (1000.0, {"length": "mm", "force": "N"}, 1.0),
+                                     (1 / 0.0254, {"length": "in", "force": "lbf"}, 1 / lbf)):
+        body = {"mass": 1.0, "shape": {"type": "polygon",
+                                       "vertices": [[x * scale, y * scale] for x, y in vertices]}}
+        cases = [case(gravity(G * scale)),
+                 case(gravity(G * scale), {"force": [-2 * per_newton, -1 * per_newton],
+                                           "at": [1 * scale, 2 * scale]})]
+        r = client.result("fixture.design", {
+            "body": body, "friction": 0.05, "units": units, "objective": "force",
+            "cases": cases, "top": 6,
+            "sites": [{"at": [x * scale, y * scale]} for x, y in sites]})
+        answers.append((scale, per_newton, r["designs"]))
+    _, _, base = answers[0]
+    assert base and base[0]["least_push"] is not None
+    for scale, per_newton, designs in answers[1:]:
+        assert [d["sites"] for d in designs] == [d["sites"] for d in base]
+        for d, b in zip(designs, base):
+            want = b["least_push"]["force"]
+            assert abs(d["least_push"]["force"] / per_newton - want) <= 1e-9 * want, (d, b)
+            assert abs(-d["score"] / per_newton - want) <= 1e-9 * want, (d, b)
+            for got, at in zip(d["least_push"]["at"], b["least_push"]["at"]):
+                assert abs(got / scale - at) <= 1e-9 * 4, (d, b)
+    # Without units the numbers are one consistent system: the m/N answer.
+    plain = client.result("fixture.design", {
+        "body": {"mass": 1.0, "shape": {"type": "polygon", "vertices": vertices}},
+        "friction": 0.05, "objective": "force", "top": 6,
+        "cases": [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})],
+        "sites": [{"at": s} for s in sites]})["designs"]
+    assert [d["least_push"]["force"] for d in plain] == [d["least_push"]["force"] for d in base]
+    e = client.error("fixture.design", {"body": {"mass": 1.0, "shape": {
+        "type": "polygon", "vertices": vertices}}, "friction": 0.05,
+        "units": {"length": "ft", "force": "N"}, "sites": [{"at": s} for s in sites]})
+    assert e["data"]["field"] == "params.units.length", e
+
+
+def test_push_force_samples_only_where_the_finger_pushes(client):
+    """push.force's samples are null where the finger may not push (a loop
+    push_on leaves out) or does not fit: the bracket's holes (12 and 10 mm
+    wide, clients/python's loop_width) take no finger of radius 8, its
+    outer boundary's straight edges away from the corners take any; and the
+    samples that are given are F* there, push.force's with a point finger."""
+    import json
+    import sys
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+        f = json.load(fh)
+    widths = [wrenchd.loop_width(loop) for loop in f["body"]["shape"]["loops"]]
+    cut = [case(gravity(9810, 180), {"force": [30, -40], "at": [20, 60]})]
+    point = client.result("push.force", {"fixture": f, "cases": cut, "samples": 16})
+    big = client.result("push.force", {"fixture": f, "cases": cut, "samples": 16,
+                                        "finger_radius": 8})
+    outer = client.result("push.force", {"fixture": f, "cases": cut, "samples": 16,
+                                          "push_on": "outer"})
+    kept = 0
+    for p, b, o in zip(point["segments"], big["segments"], outer["segments"]):
+        if p["loop"] != 0:
+            assert widths[p["loop"]] < 16
+            assert all(v is None for v in b["force"]), b
+            assert all(v is None for v in o["force"]), o
+            continue
+        assert o["force"] == p["force"]
+        for v, w in zip(p["force"], b["force"]):
+            assert w is None or w == v
+            kept += w is not None
+    assert kept > 0
+
+
 # ---- the Python client ---------------------------------------------------------------
 
 
@@ -583,6 +705,33 @@ def test_python_client_functions(daemon, client):
         assert d.designs and d.designs[0].least_push is not None
         with pytest.raises(ValueError):
             c.force_range(fid, [[gravity()]])
+        # push_on: the clients' default on a part with holes is the outer
+        # boundary for a point finger; given, as sent.
+        with open(os.path.join(REPO, "examples", "bracket-upright.json")) as fh:
+            import json
+            upright = json.load(fh)
+        cut = [case(gravity(9810, 180), {"force": [30, -40], "at": [20, 60]})]
+        for push_on, sent in ((None, "outer"), ("all", "all"), ([0, 2], [0, 2])):
+            got = c.push_force(upright, cut, push_on=push_on, samples=4)
+            assert got == client.result("push.force", {"fixture": upright, "cases": cut,
+                                                       "set": "both", "samples": 4,
+                                                       "push_on": sent})
+        s = c.friction_sweep(upright, range=(0, 0.4), force={"set": "both"}, cases=cut)
+        want = client.result("friction.sweep", {"fixture": upright, "range": [0, 0.4],
+                                                "kinetic_ratio": 1.0, "cases": cut,
+                                                "force": {"set": "both", "push_on": "outer"}})
+        assert s.curve == want["curve"] and s.at == want["at"]
+        assert s.intervals == want["intervals"] and s.exact is False
+        with pytest.raises(ValueError):
+            c.friction_sweep(upright, force=True)
+        d2 = c.design(upright["body"], 0.25, sites=[f["at"] for f in upright["fixels"]],
+                      objective="force", cases=[[gravity(9810, 180)]], push_on="all",
+                      units=upright["units"])
+        d3 = client.result("fixture.design", {
+            "body": upright["body"], "friction": 0.25, "units": upright["units"],
+            "sites": [{"at": f["at"]} for f in upright["fixels"]], "objective": "force",
+            "push_on": "all", "fixels": 3, "top": 10, "cases": [case(gravity(9810, 180))]})
+        assert [d.least_push for d in d2.designs] == [d["least_push"] for d in d3["designs"]]
 
 
 def test_readme_how_hard_to_push(client):
@@ -602,6 +751,10 @@ def test_readme_how_hard_to_push(client):
     assert "%.8g" % best["force"] == "47.702833"
     finger = client.result("push.force", {"fixture": f, "cases": cuts, "finger_radius": 8})
     assert "%.9g" % finger["least"]["force"] == "168.925751"
+    # A point finger on the outer boundary only (the clients' default push_on).
+    outer = client.result("push.force", {"fixture": f, "cases": cuts, "push_on": "outer"})
+    assert "%.9g" % outer["least"]["force"] == "168.925751"
+    assert outer["least"]["loop"] == 0 and best["loop"] != 0
 
 
 # ---- friction.sweep: the least force against mu ---------------------------------------
@@ -613,12 +766,42 @@ def test_friction_sweep_least_force_against_push_force(client):
     cases = [case(gravity()), case(gravity(), {"force": [-2, -1], "at": [1, 2]})]
     r = client.result("friction.sweep", {"fixture": f, "range": [0, 0.4], "kinetic_ratio": 0.8,
                                          "force": {"set": "both"}, "cases": cases})
-    assert set(r) == {"curve", "exact", "resolution"} and r["exact"] is False
+    assert set(r) == {"curve", "at", "intervals", "exact", "resolution"} and r["exact"] is False
     curve = r["curve"]
-    assert len(curve) == 128 and curve[0][0] == 0 and curve[-1][0] == 0.4
+    mus = [p[0] for p in curve]
+    grid = [i * (0.4 / 127) for i in range(127)] + [0.4]
+    ends = [e for iv in r["intervals"] for e in iv]
+    # The grid and the push alone's interval ends, increasing.
+    assert mus == sorted(set(grid) | set(ends)) and len(r["at"]) == len(curve)
     assert abs(r["resolution"] - 0.4 / 127) < 1e-15
     finite = [p for p in curve if p[1] is not None]
     assert finite and len(finite) < len(curve), "the push stops working as mu grows"
+    # The intervals: where the push alone has a region, exactly (push.regions
+    # with the fixture at mu, just inside and just outside every end), and
+    # the least force is finite on them.
+    assert r["intervals"] and r["intervals"][0][1] < 0.4, r
+    for lo, hi in r["intervals"]:
+        for mu, inside in ((lo + 1e-7, True), (hi - 1e-7, True), (lo - 1e-7, False),
+                           (hi + 1e-7, False), ((lo + hi) / 2, True)):
+            if not 0 <= mu <= 0.4 or (mu < 1e-7 and not inside) or (
+                    mu > 0.4 - 1e-7 and not inside):
+                continue
+            g = copy.deepcopy(f)
+            g["friction"] = {"static": mu, "kinetic": 0.8 * mu}
+            regions = client.result("push.regions", {"fixture": g, "set": "both"})["regions"]
+            assert bool(regions) == inside, (mu, lo, hi)
+        assert all(p[1] is not None for p in curve if lo <= p[0] <= hi)
+    # Each sample's point against force.range there: its least over all the
+    # cases for the set is the sample's force.
+    for (mu, least), at in list(zip(curve, r["at"]))[::9]:
+        assert (least is None) == (at is None)
+        if at is None:
+            continue
+        g = copy.deepcopy(f)
+        g["friction"] = {"static": mu, "kinetic": 0.8 * mu}
+        got = force_range(client, g, cases, push={"at": at}, sets=["both"])["all"]["both"]
+        assert got["least"] is not None and abs(got["least"] - least) <= 1e-9 * least, (
+            mu, least, got)
     # Each sample is push.force's least on the fixture at that mu.
     for mu, least in curve[::16] + [curve[-1]]:
         g = copy.deepcopy(f)

@@ -705,6 +705,76 @@ def test_fixture_list_pages_by_after_and_limit(harness):
     assert [line.split()[0] for line in out.stdout.splitlines()[1:-1]] == ids
 
 
+def rss_kib(pid, field):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith(field + ":"):
+                return int(line.split()[1])
+    return 0
+
+
+@pytest.mark.skipif(SANITIZED, reason="resident memory under a sanitizer measures its allocator")
+def test_fixture_list_is_written_in_pieces_under_max_output(harness):
+    """A page of 1000 fixtures whose 1024-byte names each escape to 6 KiB is
+    about 6 MiB of text.  Ten clients ask for it and never read: each
+    answer is written a piece at a time while the client's unsent output is
+    under --max-output (256 KiB), so the daemon's resident memory grows by
+    about a piece, the bound and the page's names a client (under 3 MiB),
+    not the page's text (60 MiB if each answer were made whole).  A client
+    that reads gets the same page as one reading the answer whole would."""
+    d = harness.start("--max-output", str(256 << 10), "--max-clients", "16")
+    c = d.client(timeout=60 * SLOW)
+    lines = []
+    for i in range(1000):
+        fixture = json.loads(json.dumps(DISC))
+        fixture["name"] = "\x01" * 1020 + "%04d" % i
+        fixture["body"]["mass"] = 1 + i / 1024.0
+        lines.append(json.dumps({"jsonrpc": "2.0", "method": "fixture.put",
+                                 "params": {"fixture": fixture}, "id": i}))
+    c.send_raw(("\n".join(lines) + "\n").encode())
+    for _ in range(1000):
+        assert "result" in c.read_json()
+    whole = c.result("fixture.list")
+    assert len(whole["fixtures"]) == 1000 and whole["more"] is False
+    text = len(json.dumps(whole, separators=(",", ":")))
+    assert text > 5 << 20, text
+    # Peak resident memory from here (Linux: 5 to clear_refs resets VmHWM).
+    with open("/proc/%d/clear_refs" % d.pid, "w") as f:
+        f.write("5")
+    before = rss_kib(d.pid, "VmRSS")
+    request = b'{"jsonrpc":"2.0","method":"fixture.list","id":1}\n'
+    clients = []
+    try:
+        for _ in range(10):
+            s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+            s.connect(d.path)
+            s.sendall(request)
+            clients.append(s)
+        time.sleep(2 * SLOW)
+        deadline = time.monotonic() + 20 * SLOW
+        while time.monotonic() < deadline and not idle_cpu(d.pid):
+            pass
+        grown = (rss_kib(d.pid, "VmHWM") - before) >> 10
+        print("resident memory grew by %d MiB for 10 unread pages of %d MiB" % (grown, text >> 20))
+        assert grown < 30, grown
+        # One of them reads: the whole page, the same as read at once.
+        reader = clients.pop()
+        reader.settimeout(60 * SLOW)
+        got = b""
+        while not got.endswith(b"\n"):
+            chunk = reader.recv(1 << 16)
+            assert chunk, "closed"
+            got += chunk
+        answer = json.loads(got)
+        assert answer["result"] == whole and answer["id"] == 1
+        reader.close()
+    finally:
+        for s in clients:
+            s.close()
+    assert "result" in ask_status(d.path, 20 * SLOW)
+
+
 # ---- bounded work: --max-candidates and deadline_s ------------------------------------------
 
 def design_params(spacing, **more):

@@ -86,7 +86,8 @@ def test_bad_svg_path_is_a_usage_error():
     ("bracket-upright-push-force.svg",
      ["push-force", "bracket-upright.json"] +
      [a for x in (20, 40, 60, 80, 100)
-      for a in ("--case", "x%d:gravity=9810@180;force=30,-40@%d,60" % (x, x))]),
+      for a in ("--case", "x%d:gravity=9810@180;force=30,-40@%d,60" % (x, x))] +
+     ["--push-on", "all"]),
 ])
 def test_readme_pictures_are_current(harness, picture, command):
     """docs/pictures/ holds what wrenchctl draws today (make pictures)."""

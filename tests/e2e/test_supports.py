@@ -1,5 +1,5 @@
 """A part on a base plate: the fixture's "supports" (docs/PROTOCOL.md,
-"Supports"; docs/MODEL.md section 10).
+"Supports"; docs/MODEL.md section 11).
 
 Closed forms derived here: the disc in the corner's least push force on
 three buttons (the friction capacity mu_B W against the distance of the

@@ -122,3 +122,89 @@ def test_push_force_table_and_picture(bracket, client, tmp_path):
     r = run("push-force", fid, *CASES_ARGS, "--json", "--set", "goal", socket_path=daemon.path)
     assert same(json.loads(r.stdout), client.result("push.force", {"fixture": fid, "cases": CASES,
                                                                     "set": "goal"}))
+
+
+def test_push_force_push_on_default_and_given(client):
+    """push-force sends the clients' push_on: a point finger on the outer
+    boundary only (the bracket's holes left out), --push-on all every loop;
+    each against push.force asked by hand."""
+    path = os.path.join(REPO, "examples", "bracket-upright.json")
+    with open(path) as fh:
+        fixture = json.load(fh)
+    args = ["--case", "gravity=9810@180;force=30,-40@20,60"]
+    cases = [{"loads": [{"gravity": {"g": 9810, "direction_deg": 180}},
+                        {"force": [30, -40], "at": [20, 60]}]}]
+    for extra, push_on in (([], "outer"), (["--push-on", "all"], None), (["--push-on", "0,1"],
+                                                                        [0, 1])):
+        r = run("--local", "push-force", path, *args, *extra, "--json")
+        assert r.returncode in (0, 1), r.stderr
+        params = {"fixture": fixture, "cases": cases}
+        if push_on is not None:
+            params["push_on"] = push_on
+        assert same(json.loads(r.stdout), client.result("push.force", params)), extra
+    r = run("--local", "push-force", path, *args, "--push-on", "inner")
+    assert r.returncode == 2 and "--push-on" in r.stderr
+
+
+def test_sweep_least_force(client, tmp_path):
+    """sweep --least-force SET --case ...: friction.sweep's "force" as sent
+    by hand, the table (the intervals, the samples with their points) and
+    the plot (a curve broken where no push does it)."""
+    path = os.path.join(REPO, "examples", "plate-chamfered.json")
+    with open(path) as fh:
+        fixture = json.load(fh)
+    svg = tmp_path / "sweep.svg"
+    r = run("--local", "sweep", path, "--least-force", "both", "--case", "gravity=9.81@270",
+            "--range", "0:0.6", "--json", "--svg", str(svg))
+    assert r.returncode in (0, 1), r.stderr
+    got = json.loads(r.stdout)
+    want = client.result("friction.sweep", {"fixture": fixture, "range": [0, 0.6],
+                                            "force": {"set": "both"},
+                                            "cases": [{"loads": [{"gravity": {
+                                                "g": 9.81, "direction_deg": 270}}]}]})
+    assert same(got, want)
+    assert r.returncode == (0 if any(p[1] is not None for p in want["curve"]) else 1)
+    doc = xml.dom.minidom.parse(str(svg))
+    curves = [p for p in doc.getElementsByTagName("polyline") if p.getAttribute("class") == "curve"]
+    runs, inside = 0, False
+    for _, force in want["curve"]:
+        runs += force is not None and not inside
+        inside = force is not None
+    assert len(curves) == runs
+    text = " ".join(t.firstChild.data for t in doc.getElementsByTagName("text") if t.firstChild)
+    assert "least push force" in text
+    r = run("--local", "sweep", path, "--least-force", "both", "--case", "gravity=9.81@270",
+            "--range", "0:0.6")
+    assert r.returncode in (0, 1), r.stderr
+    assert "the push alone has a region" in r.stdout and "least force" in r.stdout, r.stdout
+    r = run("--local", "sweep", path, "--least-force", "both")
+    assert r.returncode == 2 and "--case" in r.stderr
+    r = run("--local", "sweep", path, "--push", "both", "--case", "gravity=9.81@270")
+    assert r.returncode == 2 and "--case" in r.stderr
+
+
+def test_design_objective_force(client):
+    """design --objective force --case ...: fixture.design with the cases
+    and the file's units as sent by hand; the table names each design's
+    least push and the unit."""
+    path = os.path.join(REPO, "examples", "bracket-upright.json")
+    with open(path) as fh:
+        fixture = json.load(fh)
+    args = ["--objective", "force", "--case", "gravity=9810@180", "--top", "3"]
+    r = run("--local", "design", path, *args, "--push-on", "all", "--json")
+    assert r.returncode in (0, 1), r.stderr
+    got = json.loads(r.stdout)
+    sites = [{"at": f["at"]} for f in fixture["fixels"]]
+    want = client.result("fixture.design", {
+        "body": fixture["body"], "friction": fixture["friction"], "units": fixture["units"],
+        "sites": sites, "objective": "force", "top": 3, "push_on": "all",
+        "cases": [{"loads": [{"gravity": {"g": 9810, "direction_deg": 180}}]}]})
+    assert [d["least_push"]["force"] for d in got["designs"]] == [
+        d["least_push"]["force"] for d in want["designs"]]
+    assert got["objective"] == "force"
+    r = run("--local", "design", path, *args, "--push-on", "all")
+    assert r.returncode in (0, 1), r.stderr
+    assert "least push %.9g N" % want["designs"][0]["least_push"]["force"] in r.stdout, r.stdout
+    assert "minus the least push force (N)" in r.stdout
+    r = run("--local", "design", path, "--objective", "force")
+    assert r.returncode == 2 and "--case" in r.stderr

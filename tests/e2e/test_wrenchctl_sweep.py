@@ -325,12 +325,18 @@ def test_sweep_wrenches_table_and_bands(ctl, harness):
 
 
 @pytest.mark.parametrize("args, words", [
-    ([], "sweep wants --push SET, --gravity SET or --wrench FX,FY,TAU"),
+    ([], "sweep wants --push SET, --gravity SET, --least-force SET or --wrench FX,FY,TAU"),
     (["--push", "goal", "--gravity", "goal"], "--push and --gravity: one of"),
     (["--wrench", "1,0,0", "--push", "goal"], "--wrench and --push: one of"),
     (["--push", "gaol"], "--push is goal, strong or both"),
     (["--push", "goal", "--set", "strong"], "--set is for --wrench"),
-    (["--gravity", "goal", "--finger-radius", "1"], "are for --push"),
+    (["--gravity", "goal", "--finger-radius", "1"], "--finger-radius is for --push and"),
+    (["--least-force", "goal", "--finger-friction", "0.1", "--case", "gravity=9.81@270"],
+     "--finger-friction is for --push"),
+    (["--least-force", "goal"], "--least-force wants at least one --case"),
+    (["--least-force", "goal", "--push", "goal"], "--least-force and --push: one of"),
+    (["--gravity", "goal", "--case", "gravity=9.81@270"], "--case is for --least-force"),
+    (["--gravity", "goal", "--push-on", "all"], "--push-on is for --least-force"),
     (["--wrench", "1,2"], "--wrench wants FX,FY,TAU"),
     (["--wrench", "1,0@2,2"], "--wrench wants FX,FY,TAU"),
     (["--push", "goal", "--range", "1:1"], "--range 1:1: LO must be below HI"),

@@ -99,3 +99,51 @@ def test_design_refusals(client, doc):
     with pytest.raises(wf.WrenchError, match=r"no design: 1 fixels from .* 0 degenerate\)"):
         wf.design(fixture, client, progress=None, spacing=20, fixels=1)
     assert list(fixture.FixelPoints) == []
+
+
+def test_design_objectives_force_and_accuracy(client, doc):
+    """DesignObjective force ranks by the least push under the fixture's
+    Gravity and Loads, accuracy by the worst locating error with locators
+    off by DesignTolerance at the DesignFeatures points: each the same
+    ranking, least pushes and errors as wrenchd asked directly for the same
+    outline, cases and units."""
+    face = parts.bracket_face()
+    fixture = wf.make_fixture(doc, wf._object_of_face(doc, face), [], 0.25,
+                              socket=client.socket_path)
+    fixture.Mass = 0.8
+    fixture.DesignObjective = "force"
+    doc.recompute()
+    with pytest.raises(wf.WrenchError) as e:
+        wf.design(fixture, client, progress=None, spacing=20, top=3, place=False)
+    assert "set Gravity or Loads" in str(e.value)
+    fixture.Gravity = 9810
+    fixture.GravityDirection = 180
+    fixture.Loads = ["cut: 30,-40 @ 60,60,1"]
+    doc.recompute()
+    result = wf.design(fixture, client, progress=None, spacing=20, top=3, place=False)
+    shape = wf.outline(face)
+    gravity = {"gravity": {"g": 9810.0, "direction_deg": 180.0}, "name": "gravity"}
+    cases = [{"name": "cut", "loads": [gravity, {"force": [30.0, -40.0], "at": [60.0, 60.0]}]}]
+    direct = client.design({"mass": 0.8, "shape": shape}, {"static": 0.25, "kinetic": 0.25},
+                           fixels=3, spacing=20, top=3, objective="force", cases=cases,
+                           units={"length": "mm", "force": "N"})
+    assert result.objective == "force" and result.designs
+    assert [d.fixels for d in result.designs] == [d.fixels for d in direct.designs]
+    assert [d.least_push["force"] for d in result.designs] == \
+        [d.least_push["force"] for d in direct.designs]
+    assert "the least push force (N)" in fixture.Designs[0]
+    assert "least push %.6g N" % result.designs[0].least_push["force"] in fixture.Designs[1]
+    # Accuracy: the pose's error, then a feature's (a document point).
+    fixture.DesignObjective = "accuracy"
+    fixture.DesignTolerance = 0.05
+    fixture.DesignFeatures = [V(110, 50, 1)]
+    doc.recompute()
+    result = wf.design(fixture, client, progress=None, spacing=20, top=3, place=False)
+    direct = client.design({"mass": 0.8, "shape": shape}, {"static": 0.25, "kinetic": 0.25},
+                           fixels=3, spacing=20, top=3, objective="accuracy", tolerance=0.05,
+                           features=[(110.0, 50.0)], cases=cases,
+                           units={"length": "mm", "force": "N"})
+    assert [d.fixels for d in result.designs] == [d.fixels for d in direct.designs]
+    assert [d.accuracy for d in result.designs] == [d.accuracy for d in direct.designs]
+    assert "worst locating error %s mm" % wf._fmt(result.designs[0].accuracy) in \
+        fixture.Designs[1]

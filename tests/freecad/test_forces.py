@@ -58,10 +58,19 @@ def test_least_force_and_the_best_push_force(client, doc):
     want = r["all"]["both"]["least"]
     assert want is not None and best.PushForce == pytest.approx(want, rel=1e-9)
     assert "N under every load case" in best.Label
-    # The least force anywhere: the README's figure for the same bracket.
-    assert least.Least == pytest.approx(47.702833, rel=1e-6)
+    # The least force anywhere a point finger pushes by default (the outer
+    # boundary), the best push's too: the README's figure for the same
+    # bracket; with PushOn all, from inside the locating hole.
+    assert least.Least == pytest.approx(168.925751, rel=1e-6)
     assert best.LeastForce == pytest.approx(least.Least, rel=1e-12)
-    assert least.LeastAt.distanceToPoint(V(25.9941, 25.5331, 1)) < 1e-3
+    assert least.LeastAt.distanceToPoint(V(24.6058, 60, 1)) < 1e-3
+    anywhere = wf.make_least_force(fixture, samples=16, push_on="all")
+    doc.recompute()
+    assert anywhere.Least == pytest.approx(47.702833, rel=1e-6)
+    assert anywhere.LeastAt.distanceToPoint(V(25.9941, 25.5331, 1)) < 1e-3
+    holes = sum(len(loop) for loop in wf._Fixture(fixture, "t").outline.segments[1:])
+    assert sum(1 for f in least.Forces if f < 0) >= 16 * holes  # no push on the holes
+    doc.removeObject(anywhere.Name)
     # A piece per sample of every segment, coloured from its F*.
     segments = sum(len(loop) for loop in wf._Fixture(fixture, "t").outline.segments)
     assert len(least.Forces) == 16 * segments == len(least.Shape.Edges)

@@ -46,7 +46,7 @@
 
 #include <time.h>
 
-#define DERIVED_LIMIT (1u << 20) /* bytes of derived data the cache keeps */
+#define DERIVED_LIMIT (64u << 20) /* bytes of derived data the cache keeps */
 #define STORE_BOUND 32           /* stored fixtures kept across inputs */
 /* wr_push_regions with friction: 2049 samples per edge (lib/wr_regions.c
  * SAMPLES), each testing every excluded cone of the set. */
@@ -416,10 +416,90 @@ static void check_error(const cJSON *error, const char *line)
                "error %d names field \"%s\" for %s", code->valueint, f, line);
 }
 
+/* wrench.classify with "fields", by column (docs/PROTOCOL.md, Lean
+ * answers): "count" the wrenches, pieces whose counts add up to it, in
+ * each one object per set asked, in order, holding only the columns asked,
+ * each with one entry per wrench of the piece; verdict letters of "iob"
+ * and, with margins (method "auto"), the letter the margin implies under
+ * the tolerance asked (the zero wrench's margin 0 aside). */
+static void check_classify_columns(const cJSON *request, const cJSON *result, const char *line)
+{
+    static const char *const COLUMNS[][2] = {{"verdict", "verdicts"}, {"margin", "margins"},
+                                            {"blocking", "blocking"}, {"states", "states"},
+                                            {"witness", "witness"}};
+    const cJSON *wrenches = param(request, "wrenches");
+    const cJSON *fields = param(request, "fields");
+    const cJSON *sets = param(request, "sets");
+    const cJSON *given = param(request, "tolerance");
+    double tolerance = cJSON_IsNumber(given) ? given->valuedouble : WR_DEFAULT_TOLERANCE;
+    const cJSON *count = cJSON_GetObjectItemCaseSensitive(result, "count");
+    const cJSON *pieces = cJSON_GetObjectItemCaseSensitive(result, "pieces");
+    FUZZ_CHECK(cJSON_IsArray(wrenches) && cJSON_IsNumber(count) && cJSON_IsArray(pieces) &&
+                   count->valuedouble == cJSON_GetArraySize(wrenches) &&
+                   cJSON_GetArraySize(result) == 2,
+               "classify by columns: count and pieces for %s", line);
+    int total = 0;
+    for (const cJSON *piece = pieces->child; piece; piece = piece->next) {
+        const cJSON *n = cJSON_GetObjectItemCaseSensitive(piece, "count");
+        FUZZ_CHECK(is_number_in(n, 1, 1e9), "classify by columns: a piece's count for %s", line);
+        int m = n->valueint;
+        total += m;
+        const cJSON *set = piece->child->next; /* after "count" */
+        for (int i = 0; i < (sets ? cJSON_GetArraySize(sets) : 2); i++, set = set->next) {
+            const char *name = sets ? cJSON_GetArrayItem(sets, i)->valuestring
+                                    : (i == 0 ? "goal" : "strong");
+            FUZZ_CHECK(set && set->string && strcmp(set->string, name) == 0,
+                       "classify by columns: set %s not in its place for %s", name, line);
+            const cJSON *column = set->child;
+            for (size_t c = 0; c < sizeof COLUMNS / sizeof COLUMNS[0]; c++) {
+                bool asked = false;
+                for (const cJSON *f = fields->child; f; f = f->next)
+                    asked |= strcmp(f->valuestring, COLUMNS[c][0]) == 0;
+                if (!asked)
+                    continue;
+                FUZZ_CHECK(column && strcmp(column->string, COLUMNS[c][1]) == 0 &&
+                               (c == 0 ? cJSON_IsString(column) &&
+                                             strlen(column->valuestring) == (size_t)m &&
+                                             strspn(column->valuestring, "iob") == (size_t)m
+                                       : cJSON_GetArraySize(column) == m),
+                           "classify by columns: column %s of set %s for %s", COLUMNS[c][1],
+                           name, line);
+                column = column->next;
+            }
+            FUZZ_CHECK(!column, "classify by columns: a column not asked for %s", line);
+            const cJSON *verdicts = cJSON_GetObjectItemCaseSensitive(set, "verdicts");
+            const cJSON *margins = cJSON_GetObjectItemCaseSensitive(set, "margins");
+            if (!verdicts || !margins)
+                continue;
+            int k = 0;
+            for (const cJSON *x = margins->child; x; x = x->next, k++) {
+                if (cJSON_IsNull(x))
+                    continue; /* method "lp" */
+                FUZZ_CHECK(is_number_in(x, -1, 1), "classify by columns: a margin for %s", line);
+                char expected = x->valuedouble > tolerance    ? 'i'
+                                : x->valuedouble < -tolerance ? 'o'
+                                                              : 'b';
+                FUZZ_CHECK(verdicts->valuestring[k] == expected ||
+                               (x->valuedouble == 0 && verdicts->valuestring[k] == 'o'),
+                           "classify by columns: margin %.17g, verdict %c for %s",
+                           x->valuedouble, verdicts->valuestring[k], line);
+            }
+        }
+        FUZZ_CHECK(!set, "classify by columns: a set not asked for %s", line);
+    }
+    FUZZ_CHECK(total == count->valueint, "classify by columns: pieces of %d wrenches, not %d "
+                                         "for %s",
+               total, count->valueint, line);
+}
+
 /* wrench.classify: one result per wrench, one answer per set asked, each
  * answer consistent (margin in [-1, 1] and the verdict it implies). */
 static void check_classify(const cJSON *request, const cJSON *result, const char *line)
 {
+    if (param(request, "fields")) {
+        check_classify_columns(request, result, line);
+        return;
+    }
     const cJSON *wrenches = param(request, "wrenches");
     const cJSON *results = cJSON_GetObjectItemCaseSensitive(result, "results");
     FUZZ_CHECK(cJSON_IsArray(results) && cJSON_IsArray(wrenches) &&
@@ -509,14 +589,20 @@ static void check_intervals(const cJSON *list, bool regions, const char *line)
     for (const cJSON *item = list->child; item; item = item->next) {
         double edge = 0, t0, t1;
         if (regions) {
+            /* An outline's region names its loop and segment, in that
+             * order; another shape's its edge. */
             const cJSON *e = cJSON_GetObjectItemCaseSensitive(item, "edge");
+            const cJSON *loop = cJSON_GetObjectItemCaseSensitive(item, "loop");
+            const cJSON *segment = cJSON_GetObjectItemCaseSensitive(item, "segment");
             const cJSON *a = cJSON_GetObjectItemCaseSensitive(item, "t0");
             const cJSON *b = cJSON_GetObjectItemCaseSensitive(item, "t1");
             const cJSON *length = cJSON_GetObjectItemCaseSensitive(item, "length");
-            FUZZ_CHECK(cJSON_IsNumber(e) && cJSON_IsNumber(a) && cJSON_IsNumber(b) &&
-                           cJSON_IsNumber(length) && length->valuedouble >= 0,
+            FUZZ_CHECK((e ? cJSON_IsNumber(e) && !loop && !segment
+                          : is_number_in(loop, 0, 1e6) && is_number_in(segment, 0, 1e6)) &&
+                           cJSON_IsNumber(a) && cJSON_IsNumber(b) && cJSON_IsNumber(length) &&
+                           length->valuedouble >= 0,
                        "push.regions: a region's members for %s", line);
-            edge = e->valuedouble;
+            edge = e ? e->valuedouble : loop->valuedouble * 1e6 + segment->valuedouble;
             t0 = a->valuedouble;
             t1 = b->valuedouble;
             FUZZ_CHECK(edge >= 0 && edge == floor(edge), "push.regions: edge %.17g for %s", edge,
@@ -551,6 +637,65 @@ static bool is_unit_or_null_vector(const cJSON *v, int n)
         length += x->valuedouble * x->valuedouble;
     }
     return fabs(sqrt(length) - 1) < 1e-6;
+}
+
+/* Intervals of mu: sorted, disjoint (touching at most), each [lo, hi]
+ * with low <= lo <= hi <= top. */
+static void check_mu_intervals(const cJSON *list, double low, double top, const char *line)
+{
+    FUZZ_CHECK(cJSON_IsArray(list), "friction.sweep: intervals not an array for %s", line);
+    double last = -INFINITY;
+    for (const cJSON *i = list->child; i; i = i->next) {
+        const cJSON *lo = cJSON_GetArrayItem(i, 0), *hi = cJSON_GetArrayItem(i, 1);
+        FUZZ_CHECK(cJSON_GetArraySize(i) == 2 && cJSON_IsNumber(lo) && cJSON_IsNumber(hi) &&
+                       lo->valuedouble >= low && lo->valuedouble <= hi->valuedouble &&
+                       hi->valuedouble <= top && lo->valuedouble > last,
+                   "friction.sweep: an interval out of [%.17g, %.17g], of order or overlapping "
+                   "for %s",
+                   low, top, line);
+        last = hi->valuedouble;
+    }
+}
+
+/* friction.sweep: the intervals of mu within the range, and a deadline's
+ * partial answer ("partial" only true, with "stopped_at" in the range and
+ * nothing said above it; a whole answer has neither). */
+static void check_sweep(const cJSON *request, const cJSON *result, const char *line)
+{
+    const cJSON *range = param(request, "range");
+    double low = range ? cJSON_GetArrayItem(range, 0)->valuedouble : 0;
+    double high = range ? cJSON_GetArrayItem(range, 1)->valuedouble : 2;
+    const cJSON *partial = cJSON_GetObjectItemCaseSensitive(result, "partial");
+    const cJSON *stopped = cJSON_GetObjectItemCaseSensitive(result, "stopped_at");
+    FUZZ_CHECK((partial == NULL) == (stopped == NULL) && (!partial || cJSON_IsTrue(partial)),
+               "friction.sweep: partial and stopped_at for %s", line);
+    FUZZ_CHECK(!partial || (param(request, "deadline_s") && is_number_in(stopped, low, high)),
+               "friction.sweep: a partial answer without a deadline or stopped out of the range "
+               "for %s",
+               line);
+    double top = partial ? stopped->valuedouble : high;
+    const cJSON *results = cJSON_GetObjectItemCaseSensitive(result, "results");
+    const cJSON *curve = cJSON_GetObjectItemCaseSensitive(result, "curve");
+    if (results) {
+        FUZZ_CHECK(cJSON_IsArray(results), "friction.sweep: results for %s", line);
+        for (const cJSON *r = results->child; r; r = r->next)
+            for (const cJSON *set = r->child; set; set = set->next)
+                check_mu_intervals(set, low, top, line);
+    } else {
+        const cJSON *intervals = cJSON_GetObjectItemCaseSensitive(result, "intervals");
+        if (intervals)
+            check_mu_intervals(intervals, low, top, line);
+        FUZZ_CHECK(cJSON_IsArray(curve), "friction.sweep: curve for %s", line);
+        double last = -INFINITY;
+        for (const cJSON *p = curve->child; p; p = p->next) {
+            const cJSON *mu = cJSON_GetArrayItem(p, 0);
+            FUZZ_CHECK(cJSON_IsNumber(mu) && mu->valuedouble > last && mu->valuedouble >= low &&
+                           mu->valuedouble <= top,
+                       "friction.sweep: a curve's mu out of order or of [%.17g, %.17g] for %s",
+                       low, top, line);
+            last = mu->valuedouble;
+        }
+    }
 }
 
 /* A result of a served method, against what the request asked. */
@@ -664,6 +809,8 @@ static void check_result(const cJSON *request, const cJSON *result, const char *
                        "fixture.list: a name over %d bytes for %s", WP_NAME_MAX, line);
             previous = id->valuestring;
         }
+    } else if (strcmp(method, "friction.sweep") == 0) {
+        check_sweep(request, result, line);
     } else if (strcmp(method, "fixture.design") == 0) {
         /* Within --max-candidates, and "partial" only as true, with fewer
          * examined than candidates. */

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Write the seed corpus of the libFuzzer targets: tests/fuzz/corpus/
-{request,fixture,parse}/, one input per file.  Run once from the top of the
+{request,fixture,parse}/, one input per file.  Run from the top of the
 repository after make (python3 tests/fuzz/make_corpus.py; fixture ids come from
-build/wrenchd); it rewrites the files it
-makes and leaves hand-written ones (named hand-*) alone.
+build/wrenchd); it only adds: a seed already in the corpus (hand-written ones
+are named hand-*) is never removed or replaced.
 
 Seeds come from:
   - examples/*.json: each fixture, and requests of every method on it;
@@ -16,6 +16,7 @@ The over-long-line row (2 MiB) is left out: it is far past -max_len, and
 tests/e2e/test_framing.py covers line limits."""
 
 import glob
+import hashlib
 import json
 import os
 import random
@@ -96,6 +97,9 @@ names = set()
 
 
 def emit(target, name, data):
+    """Write a seed, never replacing one: a seed already there under this
+    name with other bytes (a README line since changed, say) stays, and
+    these bytes go beside it under the name and their hash."""
     if isinstance(data, str):
         data = data.encode()
     if len(data) > MAX_LEN:
@@ -104,18 +108,15 @@ def emit(target, name, data):
     path = os.path.join(OUT, target, name)
     assert path not in names, path
     names.add(path)
+    if os.path.exists(path):
+        with open(path, "rb") as f:
+            if f.read() == data:
+                return
+        path += "-" + hashlib.sha1(data).hexdigest()[:8]
+    os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "wb") as f:
         f.write(data)
     written[target] += 1
-
-
-def clear():
-    for target in written:
-        d = os.path.join(OUT, target)
-        os.makedirs(d, exist_ok=True)
-        for p in glob.glob(os.path.join(d, "*")):
-            if not os.path.basename(p).startswith("hand-"):
-                os.remove(p)
 
 
 def requests_for(name, f):
@@ -148,6 +149,35 @@ def requests_for(name, f):
         "sigma_ratio": 3})
     lines["locate-each"] = request("fixture.locating", {
         "fixture": f, "tolerance": [0.01 * (i + 1) for i in range(k)]})
+    # Forces, loads and cases, the fixture's units, the long requests'
+    # deadline and the list's pages.
+    cases = [{"name": "weight", "loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]},
+             {"loads": [{"force": [0.5, -0.2], "at": at, "name": "cutter"},
+                        {"wrench": [0, 0.1, 0.01]}]}]
+    lines["force-range-push"] = request("force.range", {
+        "fixture": f, "push": {"at": at, "direction": [0, 1]}, "cases": cases,
+        "sets": ["goal", "both"], "range": [0, 100]})
+    lines["force-range-wrench"] = request("force.range", {
+        "fixture": f, "wrench": [-1, -1, 0], "cases": cases[:1]})
+    lines["sweep-wrenches-deadline"] = request("friction.sweep", {
+        "fixture": f, "wrenches": [[-1, -1, 0], [0, -9.81, 0]], "sets": ["goal", "strong"],
+        "range": [0, 1], "kinetic_ratio": 0.8, "deadline_s": 0.5})
+    if "shape" in f.get("body", {}):
+        lines["push-force"] = request("push.force", {
+            "fixture": f, "set": "both", "cases": cases, "finger_radius": 0.01, "samples": 8})
+        lines["push-under-force"] = request("push.regions", {
+            "fixture": f, "set": "goal", "force": 2, "cases": cases})
+        lines["sweep-force"] = request("friction.sweep", {
+            "fixture": f, "force": {"set": "both"}, "cases": cases[:1], "range": [0.1, 0.5],
+            "deadline_s": 1})
+        lines["sweep-push-deadline"] = request("friction.sweep", {
+            "fixture": f, "push": {"set": "goal", "finger_radius": 0}, "deadline_s": 0.01})
+    with_units = dict(f, units={"length": "mm", "force": "N"})
+    lines["put-units"] = request("fixture.put", {"fixture": with_units})
+    lines["classify-units"] = request("wrench.classify", {
+        "fixture": dict(f, units={"length": "in", "force": "lbf"}),
+        "wrenches": [{"force": [0, 1], "at": at}]})
+    lines["list-page"] = request("fixture.list", {"after": fid, "limit": 2})
     if small:
         lines["push-friction"] = request("push.regions", {
             "fixture": f, "set": "strong", "finger_friction": 0.2})
@@ -168,7 +198,6 @@ def requests_for(name, f):
 
 
 def main():
-    clear()
     examples = {}
     for path in sorted(glob.glob(os.path.join(ROOT, "examples", "*.json"))):
         name = "example-" + os.path.basename(path)[:-5]
@@ -205,6 +234,20 @@ def main():
         builders["random-disc-%d" % i] = FX.random_disc(rnd, corner=i % 2 == 1)
     for name, f in builders.items():
         emit("fixture", "builder-" + name, json.dumps(f))
+    # The fixture's units (every pair of a length and a force unit once).
+    for i, (length, force) in enumerate([("mm", "N"), ("m", "mN"), ("in", "lbf")]):
+        f = list(builders.values())[i]
+        emit("fixture", "units-%s-%s" % (length, force),
+             json.dumps(dict(f, units={"length": length, "force": force})))
+    # Designs with the objectives of forces and accuracy, and a deadline.
+    plate = {"mass": 1, "shape": {"type": "polygon", "vertices": [[0, 0], [4, 0], [4, 2], [0, 2]]}}
+    design_cases = [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]
+    emit("request", "design-force", request("fixture.design", {
+        "body": plate, "friction": 0.3, "spacing": 2, "top": 2, "objective": "force",
+        "cases": design_cases, "deadline_s": 2}))
+    emit("request", "design-accuracy-deadline", request("fixture.design", {
+        "body": plate, "friction": 0.3, "spacing": 2, "top": 1, "objective": "accuracy",
+        "tolerance": 0.01, "features": [{"name": "bore", "at": [2, 1]}], "deadline_s": 0.001}))
     for name, f in list(examples.items()) + [("builder-" + n, f) for n, f in builders.items()
                                              if n in ("offset-disc", "triangle", "disc-one",
                                                       "square-form-closure", "disc-8")]:
@@ -252,7 +295,7 @@ def main():
                  bytes([which]) + c.encode() + b"\n" + w.encode())
         for i, w in enumerate(wrenches):
             emit("parse", "fixture%d-wrench%02d" % (which, i), bytes([which]) + b"\n" + w.encode())
-    print("corpus: %d request, %d fixture, %d parse seeds written to %s" % (
+    print("corpus: %d request, %d fixture, %d parse seeds added to %s" % (
         written["request"], written["fixture"], written["parse"], os.path.relpath(OUT, ROOT)))
 
 

@@ -1,4 +1,4 @@
-// supports.cpp -- a part on a base plate (docs/MODEL.md section 10) against
+// supports.cpp -- a part on a base plate (docs/MODEL.md section 11) against
 // Box2D: each support a b2FrictionJoint between the ground and the part at
 // the support's point (maxForce mu_B N_i, maxTorque 0: isotropic point
 // friction), the fixels small static circles, the plane seen from above

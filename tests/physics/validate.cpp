@@ -27,6 +27,11 @@
 //     --slide V           ... and from each partial contact state, launched
 //                         at +-V m/s along the touched fixels
 //   --hold-at EDGE T      one holding trial at (EDGE, T), traced
+//   --tolerance T[,A]     only the robust both region's pushes (over T along
+//                         the outline and A degrees), on fixtures with
+//                         contacts displaced within T at random (normals the
+//                         surface's, as Box2D's round fixels have them):
+//                         every one must seat and hold
 //   PHYSICS_TRACE=T       (environment) trace the --sweep trials at T
 //
 // Everything random comes from a counter-based generator keyed by (fixture
@@ -52,6 +57,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace {
 
@@ -2555,12 +2562,140 @@ Row spin_trials(const Prepared &p, const char *set, bool inside, const std::vect
     return row;
 }
 
+// ---- tolerance: robust pushes on fixtures with displaced locators ----
+//
+// --tolerance T,A: the fixture's geometric tolerance (docs/MODEL.md section
+// 10).  wrenchd's robust both region is asked (wr_robust_regions); then,
+// for random displacements of the set (each contact moved along its
+// segment within T, its normal tilted within A: wr_tolerance_perturb), the
+// displaced fixture is written out as a fixture of its own and given to
+// Box2D, and pushes at points of the robust region must seat the part from
+// random starts and hold it once seated, every one.
+
+// The fixture file's JSON with its fixels at `moved`'s points and normals.
+bool write_displaced(const std::string &file, const wr_fixture &moved, const std::string &out)
+{
+    std::string text;
+    if (!read_text(file, &text))
+        return false;
+    cJSON *json = cJSON_Parse(text.c_str());
+    if (!json)
+        return false;
+    cJSON *fixels = cJSON_GetObjectItem(json, "fixels");
+    for (int i = 0; i < moved.fixel_count; i++) {
+        cJSON *fixel = cJSON_GetArrayItem(fixels, i);
+        cJSON_DeleteItemFromObject(fixel, "at");
+        cJSON_DeleteItemFromObject(fixel, "normal");
+        cJSON_AddItemToObject(fixel, "at", cJSON_CreateDoubleArray(moved.fixels[i].at, 2));
+        cJSON_AddItemToObject(fixel, "normal", cJSON_CreateDoubleArray(moved.fixels[i].normal, 2));
+    }
+    cJSON_DeleteItemFromObject(json, "tolerance");
+    char *printed = cJSON_PrintUnformatted(json);
+    cJSON_Delete(json);
+    std::ofstream f(out);
+    bool ok = printed && (f << printed);
+    std::free(printed);
+    return ok;
+}
+
+Row tolerance_trials(Prepared &p, double position, double angle, int displacements, int points,
+                     int trials)
+{
+    auto t0 = Clock::now();
+    Row row;
+    row.fixture = p.name;
+    row.set = fmt("both, robust (T %g, A %g)", position, angle);
+    row.criterion = ALL;
+    wr_tolerance tolerance = {true, position / 1.0, angle};
+    wr_error why{};
+    if (wr_fixture_set_tolerance(p.doc.fixture, &tolerance, &why) != WR_OK) {
+        row.criterion = NOT_APPLICABLE;
+        row.note = fmt("%s: %s", why.field, why.reason);
+        finish(row);
+        return row;
+    }
+    wr_robust *robust = nullptr;
+    wr_regions nominal{}, found{};
+    std::vector<Interval> iv;
+    if (wr_robust_new(p.an, 16, &robust) == WR_OK &&
+        wr_push_regions(p.an, WR_SET_BOTH, 0, NULL, &nominal) == WR_OK &&
+        wr_robust_regions(robust, WR_SET_BOTH, &nominal, false, NULL, &found) == WR_OK)
+        for (int i = 0; i < found.count; i++)
+            iv.push_back({found.items[i].edge, found.items[i].t0, found.items[i].t1});
+    wr_regions_release(&nominal);
+    wr_regions_release(&found);
+    row.note = "robust both region " + region_text(p, iv);
+    const wr_fixture *f = p.f;
+    std::string tmp = fmt("/tmp/physics-tolerance-%d.json", (int)getpid());
+    for (int d = 0; d < displacements && !iv.empty(); d++) {
+        Rng drng(seed_of(p.name, "tolerance", d, 0));
+        double s[WR_MAX_FIXELS], tilt[WR_MAX_FIXELS];
+        for (int i = 0; i < f->fixel_count; i++) {
+            double reach = wr_tolerance_reach(f, i), a = angle * M_PI / 180;
+            // the ends of the ranges half the time: where worst cases live
+            s[i] = drng.uniform() < 0.5 ? (drng.uniform() < 0.5 ? -reach : reach)
+                                        : reach * (2 * drng.uniform() - 1);
+            // Box2D's round fixels push along the surface's normal: the
+            // displacements keep it (tilts are checked by the unit and e2e
+            // tests' sampling, not here).
+            tilt[i] = 0 * a;
+        }
+        wr_fixture moved;
+        wr_tolerance_perturb(f, s, tilt, &moved);
+        Prepared q;
+        std::string error;
+        if (!write_displaced(p.file, moved, tmp) || !prepare(tmp, &q, &error) || !q.unsupported.empty()) {
+            error += q.unsupported;
+            row.note += "; displaced fixture not built: " + error;
+            row.pass = false;
+            break;
+        }
+        q.name = p.name;
+        for (int j = 0; j < points; j++) {
+            Rng prng(seed_of(p.name, "tolerance point", d, j));
+            int edge;
+            double t, w[3];
+            if (!point_in(iv, j, points, prng, &edge, &t))
+                continue;
+            Load finger = finger_at(q, edge, t, w);
+            row.points++;
+            for (int r = 0; r < trials; r++) {
+                Rng rng(seed_of(p.name, "tolerance start", d * 1000 + j, r));
+                Start st;
+                if (!sample_start(q, rng, &st))
+                    continue;
+                Seat seat = run_seat(q, st, finger);
+                Hold hold = run_hold(q, {0, 0}, 0, &finger);
+                row.trials++;
+                row.deep_trials += seat.deep > 0 || hold.deep > 0;
+                bool ok = seat.seated && hold.moved <= MOVE_TOLERANCE && hold.deep == 0;
+                row.successes += ok;
+                if (!ok)
+                    std::fprintf(stderr, "  robust push failed: %s displacement %d edge %d t %.6f: seated %d, "
+                                 "held moved %.4f m\n", p.name.c_str(), d, edge, t, (int)seat.seated, hold.moved);
+            }
+        }
+        wr_analysis_free(q.an);
+        wp_fixture_doc_release(&q.doc);
+    }
+    std::remove(tmp.c_str());
+    wr_robust_free(robust);
+    row.note += fmt("; %d displacements", displacements);
+    finish(row);
+    if (row.trials == 0) { // nothing tried: no criterion met
+        row.pass = false;
+        row.note += "; no robust push to try";
+    }
+    row.seconds = since(t0);
+    return row;
+}
+
 void usage()
 {
     std::fprintf(stderr, "usage: physics-validate [--quick | --full] [--verbose] FIXTURE.json ...\n"
                  "investigations (docs/VALIDATION.md): [--friction-factor X] [--static-as-kinetic] [--chains]\n"
                  "    [--sensor-depth M] [--velocity-iterations N]\n"
-                 "    [--sweep N [--spin W] [--slide V]] [--hold-at EDGE T]\n");
+                 "    [--sweep N [--spin W] [--slide V]] [--hold-at EDGE T] [--tolerance T[,A]]\n");
 }
 
 } // namespace
@@ -2572,6 +2707,7 @@ int main(int argc, char **argv)
     int sweep = 0;
     double spin = 0, slide_speed = 0;
     int hold_edge = -1;
+    double tol_position = -1, tol_angle = 0; // --tolerance T,A
     double hold_t = 0;
     for (int i = 1; i < argc; i++) {
         if (!std::strcmp(argv[i], "--quick"))
@@ -2589,7 +2725,12 @@ int main(int argc, char **argv)
             slide_speed = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--spin") && i + 1 < argc)
             spin = std::atof(argv[++i]);
-        else if (!std::strcmp(argv[i], "--velocity-iterations") && i + 1 < argc)
+        else if (!std::strcmp(argv[i], "--tolerance") && i + 1 < argc) {
+            if (std::sscanf(argv[++i], "%lf,%lf", &tol_position, &tol_angle) < 1) {
+                usage();
+                return 2;
+            }
+        } else if (!std::strcmp(argv[i], "--velocity-iterations") && i + 1 < argc)
             VELOCITY_ITERATIONS = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--chains"))
             force_chains = true;
@@ -2668,6 +2809,14 @@ int main(int argc, char **argv)
         }
         for (int i = 0; i < p.k; i++)
             frictions.push_back({p.mu_s[i], p.mu_k[i]});
+        if (tol_position >= 0) {
+            int displacements = cfg.quick ? 6 : 20;
+            rows.push_back(tolerance_trials(p, tol_position, tol_angle, displacements, cfg.quick ? 5 : 10, 2));
+            print_row(rows.back());
+            wr_analysis_free(p.an);
+            wp_fixture_doc_release(&p.doc);
+            continue;
+        }
         if (hold_edge >= 0) {
             double w[3];
             Load finger = finger_at(p, hold_edge, hold_t, w);

@@ -142,6 +142,13 @@ static const char OUTSIDE[] =
     "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"strong\":{\"verdict\":\"outside\",\"inside\":"
     "false,\"margin\":-0.003162,\"blocking\":\"ll\",\"states\":[],\"witness\":{\"acceleration\":"
     "[0,0,1],\"forces\":[[1,0],[1,0]],\"wrench\":[1,2,3]}}}]},\"id\":%ID%}";
+/* A fixture with a tolerance: the witness's contacts and normals follow
+ * the answer's other members (docs/PROTOCOL.md, "Tolerance"). */
+static const char ROBUST_OUTSIDE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"results\":[{\"goal\":{\"verdict\":\"outside\",\"inside\":"
+    "false,\"margin\":-0.25,\"blocking\":\"msm\",\"states\":[\"101\"],\"witness\":null,"
+    "\"perturbation\":[[1.05,0],[2.9,0],[0,1.1]],\"perturbation_normals\":[[0,1],[0,1],[1,0]]}}]},"
+    "\"id\":%ID%}";
 static const char NO_FIXTURE[] =
     "{\"jsonrpc\":\"2.0\",\"error\":{\"code\":-32001,\"message\":\"No such fixture\",\"data\":"
     "{\"field\":\"params.fixture\",\"reason\":\"no stored fixture has the id \\\"x\\\"\"}},"
@@ -183,6 +190,28 @@ static void classify_reads_verdicts_without_allocating(void **state)
     assert_non_null(strstr(f.last_request, "[[-1,-1,0]]"));
     assert_non_null(strstr(f.last_request, "\"sets\":[\"strong\"]"));
     assert_int_equal(f.connections, 1);
+    wrc_close(c);
+    stop(&f);
+}
+
+static void classify_reads_a_robust_witness(void **state)
+{
+    (void)state;
+    const char *const answers[] = {ROBUST_OUTSIDE, INSIDE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    wrc_answer a;
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_OK);
+    assert_int_equal(a.verdict, WRC_OUTSIDE);
+    assert_int_equal(a.perturbation_count, 3);
+    const double expect[3][2] = {{1.05, 0}, {2.9, 0}, {0, 1.1}};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 2; j++)
+            assert_true(a.perturbation[i][j] == expect[i][j]);
+    assert_int_equal(wrc_classify(c, ID, G, "goal", &a), WRC_OK);
+    assert_int_equal(a.perturbation_count, 0);
     wrc_close(c);
     stop(&f);
 }
@@ -494,10 +523,62 @@ static void force_range_reads_all_without_allocating(void **state)
     stop(&f);
 }
 
+static const char PUSH_FORCE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"least\":{\"loop\":0,\"segment\":2,\"t\":0.25,"
+    "\"at\":[24.5,60],\"direction\":[0,-1],\"force\":168.925751,\"lower_bound\":168.9257,"
+    "\"converged\":true},\"evaluations\":40,\"samples\":1,\"segments\":[{\"loop\":0,"
+    "\"segment\":0,\"t\":[0.5],\"force\":[200]}]},\"id\":%ID%}";
+static const char PUSH_FORCE_NONE[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"least\":null,\"evaluations\":8,\"samples\":1,"
+    "\"segments\":[]},\"id\":%ID%}";
+
+/* push.force: the request as the protocol spells it (push_on only when
+ * given), the least push read, none read as not found, nothing allocated. */
+static void push_force_reads_the_least_push(void **state)
+{
+    (void)state;
+    const char *const answers[] = {PUSH_FORCE, PUSH_FORCE_NONE, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    const wrc_load loads[] = {
+        {.kind = WRC_LOAD_GRAVITY, .g = 9810, .direction_deg = 180},
+        {.kind = WRC_LOAD_FORCE, .force = {30, -40}, .at = {20, 60}},
+    };
+    wrc_least_push least;
+    long before = atomic_load(&allocations);
+    assert_int_equal(wrc_push_force(c, ID, loads, 2, "both", 0, "outer", &least), WRC_OK);
+    assert_int_equal(atomic_load(&allocations) - before, 0);
+    assert_true(least.found && least.converged);
+    assert_true(least.at[0] == 24.5 && least.at[1] == 60 && least.direction[1] == -1);
+    assert_true(least.force == 168.925751 && least.lower_bound == 168.9257);
+    assert_non_null(strstr(f.last_request, "\"method\":\"push.force\""));
+    assert_non_null(strstr(f.last_request,
+                           "\"set\":\"both\",\"samples\":1,\"finger_radius\":0,"
+                           "\"push_on\":\"outer\",\"cases\":[{\"loads\":["
+                           "{\"gravity\":{\"g\":9810,\"direction_deg\":180}},"
+                           "{\"force\":[30,-40],\"at\":[20,60]}]}]"));
+    assert_int_equal(wrc_push_force(c, ID, loads, 1, "goal", 8, NULL, &least), WRC_OK);
+    assert_false(least.found);
+    assert_null(strstr(f.last_request, "push_on"));
+    assert_non_null(strstr(f.last_request, "\"finger_radius\":8,"));
+    /* Refused before sending. */
+    assert_int_equal(wrc_push_force(c, ID, loads, 1, "goal", 0, "inner", &least), WRC_EINVAL);
+    assert_int_equal(wrc_push_force(c, ID, loads, 1, "goal", -1, NULL, &least), WRC_EINVAL);
+    assert_int_equal(wrc_push_force(c, ID, loads, 0, "goal", 0, NULL, &least), WRC_EINVAL);
+    wrc_load bad = {.kind = 7};
+    assert_int_equal(wrc_push_force(c, ID, &bad, 1, "goal", 0, NULL, &least), WRC_EINVAL);
+    assert_int_equal(f.requests, 2);
+    wrc_close(c);
+    stop(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(classify_reads_verdicts_without_allocating),
+        cmocka_unit_test(classify_reads_a_robust_witness),
         cmocka_unit_test(server_errors_carry_code_field_and_reason),
         cmocka_unit_test(bad_arguments_and_bad_answers),
         cmocka_unit_test(a_silent_daemon_times_out),
@@ -506,6 +587,7 @@ int main(void)
         cmocka_unit_test(a_small_buffer_refuses_a_big_answer),
         cmocka_unit_test(friction_sweep_reads_intervals_without_allocating),
         cmocka_unit_test(locating_reads_the_answer_without_allocating),
+        cmocka_unit_test(push_force_reads_the_least_push),
         cmocka_unit_test(force_range_reads_all_without_allocating),
     };
     return cmocka_run_group_tests_name("client", tests, NULL, NULL);

@@ -401,6 +401,72 @@ static void inline_is_not_stored(void **state)
     wd_cache_free(cache);
 }
 
+/* The key of a text as written (wp_fixture_written_key). */
+static void written_key_of(const char *text, char key[WP_ID_LENGTH + 1])
+{
+    cJSON *json = cJSON_Parse(text);
+    assert_non_null(json);
+    assert_true(wp_fixture_written_key(json, key));
+    cJSON_Delete(json);
+}
+
+/* An inline fixture is kept under the key of its text as written: asked
+ * again in any spelling of the same values it is found without being read,
+ * the same entry and the same derived data; other values, or the same ones
+ * once their derived data is evicted, are not found. */
+static void inline_found_by_written_text(void **state)
+{
+    (void)state;
+    char why[256], key[WP_ID_LENGTH + 1], respelled[WP_ID_LENGTH + 1], other[WP_ID_LENGTH + 1];
+    written_key_of(fixture_text(0), key);
+    written_key_of("{\"fixels\": [{\"at\": [1.0, 0]}, {\"at\": [3, 0e0]}, {\"at\": [0, 1]}], "
+                   "\"friction\": {\"static\": 0.30}, \"name\": \"f0\", \"body\": {\"shape\": "
+                   "{\"vertices\": [[0, 0], [4, 0], [4, 2], [0, 2]], \"type\": \"polygon\"}, "
+                   "\"mass\": 1}}",
+                   respelled);
+    written_key_of(fixture_text(1), other);
+    assert_string_equal(key, respelled);
+    assert_string_not_equal(key, other);
+
+    wd_cache *cache = wd_cache_new(NULL, SIZE_MAX, 100, why, sizeof why);
+    assert_non_null(cache);
+    wp_fixture_use use, again;
+    wp_error error = {0};
+    assert_false(wd_cache_use_written(cache, key, &again)); /* nothing kept yet */
+    cJSON *json = cJSON_Parse(fixture_text(0));
+    wp_fixture_doc doc;
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    memcpy(doc.written, key, sizeof doc.written);
+    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    const wr_analysis *analysis = use.analysis;
+    char id[WP_ID_LENGTH + 1];
+    memcpy(id, use.id, sizeof id);
+    wd_cache_release(cache, &use);
+    assert_true(wd_cache_use_written(cache, respelled, &again));
+    assert_string_equal(again.id, id);
+    assert_ptr_equal(again.analysis, analysis);
+    assert_string_equal(again.name, "f0");
+    wd_cache_release(cache, &again);
+    assert_false(wd_cache_use_written(cache, other, &again));
+    assert_int_equal(listed(cache), 0); /* kept, not stored */
+    wd_cache_free(cache);
+
+    /* No room for derived data: the inline entry goes when let go, and
+     * its key with it. */
+    cache = wd_cache_new(NULL, 0, 100, why, sizeof why);
+    assert_non_null(cache);
+    json = cJSON_Parse(fixture_text(0));
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    memcpy(doc.written, key, sizeof doc.written);
+    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    wd_cache_release(cache, &use);
+    assert_int_equal(stats_of(cache).cached, 0);
+    assert_false(wd_cache_use_written(cache, key, &again));
+    wd_cache_free(cache);
+}
+
 /* --max-fixtures: a new stored fixture beyond it is refused; storing one
  * already stored, or using a fixture inline, is not. */
 static void max_fixtures_refuses(void **state)
@@ -625,6 +691,7 @@ int main(void)
         cmocka_unit_test(eviction_takes_what_it_needs),
         cmocka_unit_test(serial_changes_on_rebuild),
         cmocka_unit_test(inline_is_not_stored),
+        cmocka_unit_test(inline_found_by_written_text),
         cmocka_unit_test(max_fixtures_refuses),
         cmocka_unit_test(delete_removes_the_file),
         cmocka_unit_test(state_directory_round_trip),

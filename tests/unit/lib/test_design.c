@@ -469,6 +469,17 @@ static void chunks_in_any_order(void **state)
         wr_design_job_merge(parts, &chunk);
         wr_design_chunk_release(&chunk);
     }
+    /* The figures as chunks too, the last design first. */
+    assert_true(wr_design_job_searched(parts));
+    int left = wr_design_job_figures_left(parts);
+    assert_int_equal(left, 5);
+    unsigned long units = 0;
+    for (int i = left - 1; i >= 0; i--)
+        assert_int_equal(wr_design_job_figure(parts, i, NULL, &units), WR_OK);
+    assert_true(units > 0);
+    for (int i = 0; i < left; i++)
+        wr_design_job_figure_merged(parts);
+    assert_int_equal(wr_design_job_figures_left(parts), 0);
     bool done = false;
     while (!done)
         assert_int_equal(wr_design_job_run(parts, 1 << 20, NULL, NULL, &done), WR_OK);

@@ -13,6 +13,9 @@
 
 #define G 9.81
 
+/* A point finger that may push everywhere. */
+static const wr_finger POINT_FINGER = {0};
+
 static void line_wrench(const double load[3], const double push[3], double force, double w[3])
 {
     for (int k = 0; k < 3; k++)
@@ -361,8 +364,8 @@ static void loaded_regions_agree_with_force_ranges(void **state)
         wr_set set = (wr_set)(trial % 3);
         wr_regions regions = {0};
         int edges = wr_push_edge_count(f);
-        assert_int_equal(wr_push_regions_loaded(a, set, force, (const double (*)[3])loads, 2, 0,
-                                                0, edges, NULL, &regions),
+        assert_int_equal(wr_push_regions_loaded(a, set, force, (const double (*)[3])loads, 2,
+                                                &POINT_FINGER, 0, edges, NULL, &regions),
                          WR_OK);
         for (int e = 0; e < edges; e++) {
             double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
@@ -400,11 +403,11 @@ static void loaded_regions_agree_with_force_ranges(void **state)
             }
         }
         /* Refusals. */
-        assert_int_equal(wr_push_regions_loaded(a, set, 0, (const double (*)[3])loads, 2, 0, 0,
-                                                edges, NULL, &regions),
+        assert_int_equal(wr_push_regions_loaded(a, set, 0, (const double (*)[3])loads, 2,
+                                                &POINT_FINGER, 0, edges, NULL, &regions),
                          WR_INVALID);
-        assert_int_equal(wr_push_regions_loaded(a, set, 1, (const double (*)[3])loads, 0, 0, 0,
-                                                edges, NULL, &regions),
+        assert_int_equal(wr_push_regions_loaded(a, set, 1, (const double (*)[3])loads, 0,
+                                                &POINT_FINGER, 0, edges, NULL, &regions),
                          WR_INVALID);
         wr_regions_release(&regions);
         wr_analysis_free(a);
@@ -435,8 +438,8 @@ static void least_force_against_brute_force(void **state)
         }
         wr_set set = (wr_set)(trial % 3);
         wr_least_force best;
-        assert_int_equal(wr_least_force_find(a, set, (const double (*)[3])loads, 2, 0, NULL,
-                                             &best),
+        assert_int_equal(wr_least_force_find(a, set, (const double (*)[3])loads, 2, &POINT_FINGER,
+                                             NULL, &best),
                          WR_OK);
         double brute = INFINITY;
         int edges = wr_push_edge_count(f);
@@ -497,8 +500,8 @@ static void least_force_disc_closed_form(void **state)
     wr_analysis *a = test_analysis_new(f);
     double load[1][3] = {{G, 0, 0}};
     wr_least_force best;
-    assert_int_equal(wr_least_force_find(a, WR_SET_GOAL, (const double (*)[3])load, 1, 0, NULL,
-                                         &best),
+    assert_int_equal(wr_least_force_find(a, WR_SET_GOAL, (const double (*)[3])load, 1,
+                                         &POINT_FINGER, NULL, &best),
                      WR_OK);
     assert_true(best.found && best.converged);
     assert_true(best.force >= G && best.force < G * (1 + 1e-8));
@@ -507,6 +510,139 @@ static void least_force_disc_closed_form(void **state)
                   best.force, G, best.t, best.evaluations);
     wr_analysis_free(a);
     wr_fixture_free(f);
+}
+
+/* A square plate with a round hole, fixels on the outer boundary, random
+ * loads: the least force with push_on "outer" (loop 0 only) against brute
+ * force over the outer loop's edges alone, and with every loop against
+ * brute force over all edges; the two minima differ where the hole's best
+ * point is better.  The loaded regions with push_on "outer" are those of
+ * every loop restricted to the outer loop's edges, and none on the hole. */
+static void push_on_excludes_a_hole(void **state)
+{
+    (void)state;
+    static const double outer[4][3] = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
+    /* A round hole: two half circles (bulge 1), pushes in every direction
+     * the square's four sides do not offer. */
+    static const double hole[2][3] = {{0.8, 0.3, 1}, {-0.2, 0.3, 1}};
+    const wr_loop_spec loops[2] = {{4, outer}, {2, hole}};
+    const bool outer_only[2] = {true, false};
+    const wr_finger on_outer = {.push_on = outer_only, .push_on_count = 2};
+    test_rng rng = {0x4013ULL};
+    int trials = 0, moved = 0;
+    for (int trial = 0; trial < 30; trial++) {
+        wr_fixel_spec fixels[3];
+        memset(fixels, 0, sizeof fixels);
+        /* Two on the bottom, one on a side, anywhere off the corners. */
+        fixels[0].at[0] = test_range(&rng, -1.8, -0.2);
+        fixels[0].at[1] = -2;
+        fixels[1].at[0] = test_range(&rng, 0.2, 1.8);
+        fixels[1].at[1] = -2;
+        fixels[2].at[0] = trial % 2 ? 2 : -2;
+        fixels[2].at[1] = test_range(&rng, -1.8, 1.8);
+        wr_fixture_spec spec;
+        memset(&spec, 0, sizeof spec);
+        spec.mass = 1;
+        spec.shape = WR_SHAPE_OUTLINE;
+        spec.loops = loops;
+        spec.loop_count = 2;
+        spec.friction.given = true;
+        spec.friction.static_mu = test_range(&rng, 0, 0.6);
+        spec.fixel_count = 3;
+        spec.fixels = fixels;
+        wr_error error;
+        wr_fixture *f = test_fixture_new(&spec, &error);
+        assert_non_null(f);
+        wr_analysis *a = test_analysis_new(f);
+        double loads[2][3];
+        for (int c = 0; c < 2; c++) {
+            test_sphere(&rng, loads[c]);
+            for (int k = 0; k < 3; k++)
+                loads[c][k] *= test_range(&rng, 0.5, 3);
+        }
+        wr_set set = (wr_set)(trial % 3);
+        wr_least_force all, outer_best;
+        assert_int_equal(wr_least_force_find(a, set, (const double (*)[3])loads, 2,
+                                             &POINT_FINGER, NULL, &all),
+                         WR_OK);
+        assert_int_equal(wr_least_force_find(a, set, (const double (*)[3])loads, 2, &on_outer,
+                                             NULL, &outer_best),
+                         WR_OK);
+        /* Brute force: F* at 2,001 points of every edge, by loop. */
+        double brute[2] = {INFINITY, INFINITY};
+        int edges = wr_push_edge_count(f);
+        for (int e = 0; e < edges; e++) {
+            size_t loop, segment;
+            wr_push_edge_place(f, e, &loop, &segment);
+            for (int i = 0; i <= 2000; i++) {
+                double push[3], least;
+                wr_push_wrench(f, e, i / 2000.0, push);
+                assert_int_equal(
+                    wr_least_force_at(a, set, (const double (*)[3])loads, 2, push, &least),
+                    WR_OK);
+                brute[loop] = fmin(brute[loop], least);
+            }
+        }
+        double every = fmin(brute[0], brute[1]);
+        assert_true(all.lower <= every * (1 + 1e-12));
+        assert_true(all.force <= every * (1 + 1e-9) || (isinf(all.force) && isinf(every)));
+        assert_true(outer_best.lower <= brute[0] * (1 + 1e-12));
+        assert_true(outer_best.force <= brute[0] * (1 + 1e-9) ||
+                    (isinf(outer_best.force) && isinf(brute[0])));
+        if (outer_best.found) {
+            size_t loop, segment;
+            wr_push_edge_place(f, outer_best.edge, &loop, &segment);
+            assert_int_equal(loop, 0);
+            /* F* at its own point: a point of the outer loop (samples may
+             * miss a narrow dip below them, never go under it). */
+            double push[3], again;
+            wr_push_wrench(f, outer_best.edge, outer_best.t, push);
+            assert_int_equal(
+                wr_least_force_at(a, set, (const double (*)[3])loads, 2, push, &again), WR_OK);
+            assert_true(again == outer_best.force);
+        }
+        if (isfinite(brute[1]) && brute[1] < brute[0] * 0.9) {
+            /* The hole has the better point: excluding it moves the answer. */
+            size_t loop, segment;
+            wr_push_edge_place(f, all.edge, &loop, &segment);
+            assert_int_equal(loop, 1);
+            assert_true(outer_best.force > all.force * 1.05);
+            moved++;
+        }
+        /* Regions under a force: the outer edges' as with every loop, none on the hole. */
+        if (isfinite(all.force)) {
+            double force = 1.5 * fmax(all.force, 0.1);
+            wr_regions every_loop = {0}, outer_loop = {0};
+            assert_int_equal(wr_push_regions_loaded(a, set, force, (const double (*)[3])loads, 2,
+                                                    &POINT_FINGER, 0, edges, NULL, &every_loop),
+                             WR_OK);
+            assert_int_equal(wr_push_regions_loaded(a, set, force, (const double (*)[3])loads, 2,
+                                                    &on_outer, 0, edges, NULL, &outer_loop),
+                             WR_OK);
+            int j = 0;
+            for (int i = 0; i < every_loop.count; i++) {
+                size_t loop, segment;
+                wr_push_edge_place(f, every_loop.items[i].edge, &loop, &segment);
+                if (loop != 0)
+                    continue;
+                assert_true(j < outer_loop.count);
+                assert_int_equal(outer_loop.items[j].edge, every_loop.items[i].edge);
+                assert_true(outer_loop.items[j].t0 == every_loop.items[i].t0);
+                assert_true(outer_loop.items[j].t1 == every_loop.items[i].t1);
+                j++;
+            }
+            assert_int_equal(j, outer_loop.count);
+            wr_regions_release(&every_loop);
+            wr_regions_release(&outer_loop);
+        }
+        trials++;
+        wr_analysis_free(a);
+        wr_fixture_free(f);
+    }
+    print_message("push_on: %d plates with a hole, the hole's point better in %d (excluded, "
+                  "the least force moves to the outer loop's brute-force minimum)\n",
+                  trials, moved);
+    assert_true(moved >= 3);
 }
 
 int main(void)
@@ -518,6 +654,7 @@ int main(void)
         cmocka_unit_test(loaded_regions_agree_with_force_ranges),
         cmocka_unit_test(least_force_against_brute_force),
         cmocka_unit_test(least_force_disc_closed_form),
+        cmocka_unit_test(push_on_excludes_a_hole),
     };
     return cmocka_run_group_tests_name("force", tests, NULL, NULL);
 }

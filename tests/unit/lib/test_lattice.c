@@ -308,7 +308,8 @@ static void chunks_in_any_order(void **state)
     static const double triangle[3][2] = {{0, 0}, {3.2, 0}, {0.7, 2.1}};
     wr_fixture *body = test_polygon_body(triangle, 3);
     assert_non_null(body);
-    wr_lattice L = {1, 0.15, {4, 4}};
+    /* Fine enough for several chunks of a segment triangle's units. */
+    wr_lattice L = {0.5, 0.15, {8, 8}};
     wr_lattice_job *whole, *parts;
     run_lattice(body, &L, &whole);
     wr_error error;

@@ -2,15 +2,18 @@
  * the disc's closed forms (docs/MODEL.md section 7.1: the goal arc is
  * (atan mu, 90 deg - atan mu)), and on random fixtures every wrench's
  * intervals against classification at sampled mu and against bisection of
- * the margin's sign at each end. */
+ * the margin's sign at each end; the analyses a sweep makes from its frame
+ * against the analyses made from scratch. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "test_util.h"
+#include "wr_internal.h"
 
 static const wr_sweep_range RANGE = {0, 1.5, 1};
 
@@ -31,6 +34,82 @@ static void at_friction_is_a_fixture_at_that_friction(void **state)
         wr_fixture_free(fresh);
     }
     wr_fixture_free(base);
+}
+
+/* Two cones the same, bit for bit (the arrays each holds included). */
+static void assert_same_cone(const wr_cone *a, const wr_cone *b)
+{
+    assert_true(a->empty == b->empty && a->dimension == b->dimension &&
+                a->zero_admitted == b->zero_admitted && a->equality_count == b->equality_count &&
+                a->facet_count == b->facet_count && a->ray_count == b->ray_count &&
+                a->generator_count == b->generator_count);
+    assert_memory_equal(&a->constraint, &b->constraint, sizeof a->constraint);
+    assert_memory_equal(a->equalities, b->equalities, sizeof a->equalities);
+    if (a->facet_count > 0) {
+        assert_memory_equal(a->facets, b->facets, (size_t)a->facet_count * sizeof a->facets[0]);
+        assert_memory_equal(a->facet_open, b->facet_open, (size_t)a->facet_count);
+    }
+    if (a->ray_count > 0)
+        assert_memory_equal(a->rays, b->rays, (size_t)a->ray_count * sizeof a->rays[0]);
+    if (a->generator_count > 0) {
+        assert_memory_equal(a->generators, b->generators,
+                            (size_t)a->generator_count * sizeof a->generators[0]);
+        for (int i = 0; i < a->generator_count; i++) /* field by field: padding */
+            assert_true(a->origins[i].fixel == b->origins[i].fixel &&
+                        !memcmp(&a->origins[i].normal_force, &b->origins[i].normal_force,
+                                sizeof(double)) &&
+                        !memcmp(&a->origins[i].tangent_force, &b->origins[i].tangent_force,
+                                sizeof(double)));
+    }
+}
+
+/* The analysis a frame makes at mu (built once, from the fixture at its own
+ * friction) against wr_analysis_new of the fixture placed at mu: the same
+ * plan, modes, pinned and cones, bit for bit; without `strong` G_strong's
+ * cones are left out. */
+static void frame_analyses_are_the_analyses_at_each_mu(void **state)
+{
+    (void)state;
+    test_rng rng = {0xf7a3e1ULL};
+    int cones = 0;
+    for (int trial = 0; trial < 12; trial++) {
+        int k = 2 + trial % 4;
+        wr_fixture *f = test_random_fixture(&rng, k, trial % 3 == 0);
+        assert_non_null(f);
+        for (int strong = 0; strong < 2; strong++) {
+            wr_analysis_frame *frame;
+            assert_int_equal(wr_analysis_frame_new(f, strong, &frame), WR_OK);
+            for (int step = 0; step < 5; step++) {
+                double mu = step == 0 ? 0 : test_range(&rng, 0, 2);
+                double ratio = step % 2 ? 1 : test_range(&rng, 0.2, 1);
+                wr_fixture at;
+                wr_fixture_at_friction(f, mu, ratio, &at);
+                wr_analysis *fresh, *framed;
+                assert_int_equal(wr_analysis_new(&at, &fresh), WR_OK);
+                assert_int_equal(wr_analysis_frame_at(frame, &at, strong, &framed), WR_OK);
+                int goal = wr_analysis_cone_count(fresh, WR_SET_GOAL);
+                assert_int_equal(wr_analysis_cone_count(framed, WR_SET_GOAL), goal);
+                for (int i = 0; i < goal; i++)
+                    assert_same_cone(wr_analysis_cone(fresh, WR_SET_GOAL, i),
+                                     wr_analysis_cone(framed, WR_SET_GOAL, i));
+                int modes = wr_analysis_cone_count(fresh, WR_SET_STRONG);
+                assert_int_equal(wr_analysis_cone_count(framed, WR_SET_STRONG),
+                                 strong ? modes : 0);
+                if (strong) {
+                    assert_true(wr_analysis_pinned(framed) == wr_analysis_pinned(fresh));
+                    for (int i = 0; i < modes; i++)
+                        assert_same_cone(wr_analysis_cone(fresh, WR_SET_STRONG, i),
+                                         wr_analysis_cone(framed, WR_SET_STRONG, i));
+                }
+                cones += goal + (strong ? modes : 0);
+                wr_analysis_free(framed);
+                wr_analysis_free(fresh);
+            }
+            wr_analysis_frame_free(frame);
+        }
+        wr_fixture_free(f);
+    }
+    assert_true(cones > 1000);
 }
 
 static void disc_closed_forms(void **state)
@@ -261,6 +340,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(at_friction_is_a_fixture_at_that_friction),
+        cmocka_unit_test(frame_analyses_are_the_analyses_at_each_mu),
         cmocka_unit_test(disc_closed_forms),
         cmocka_unit_test(random_wrench_intervals),
         cmocka_unit_test(refusals_and_stops),

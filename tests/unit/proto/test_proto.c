@@ -291,7 +291,7 @@ static int setup(void **state)
     char why[128];
     h->cache = wd_cache_new(NULL, 1 << 20, 10000, why, sizeof why);
     h->thread = wd_thread_host_new(h->cache, &h->stats);
-    h->limits = (wp_limits){16, 100, 8, 0};
+    h->limits = (wp_limits){16, 100, 8, 0, 0};
     *state = h;
     return h->cache && h->thread ? 0 : -1;
 }
@@ -716,7 +716,7 @@ static void pieces_join_to_the_whole_answer(void **state)
 {
     harness *h = *state;
     const wp_host *host = wd_thread_host_wp(h->thread);
-    wp_limits limits = {16, 100000, 16, 0};
+    wp_limits limits = {16, 100000, 16, 0, 0};
     char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
@@ -815,7 +815,7 @@ static void a_step_after_parallel_does_not_end_the_answer(void **state)
 {
     harness *h = *state;
     const wp_host *host = wd_thread_host_wp(h->thread);
-    wp_limits limits = {16, 100000, 16, 0};
+    wp_limits limits = {16, 100000, 16, 0, 0};
     char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
@@ -919,7 +919,7 @@ static void long_numbers_read_as_the_tree_reads_them(void **state)
 {
     harness *h = *state;
     const wp_host *host = wd_thread_host_wp(h->thread);
-    wp_limits limits = {16, 100000, 16, 0};
+    wp_limits limits = {16, 100000, 16, 0, 0};
     char line[8192];
     snprintf(line, sizeof line,
              "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},\"id\":1}",
