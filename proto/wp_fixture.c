@@ -764,6 +764,16 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
         }
     }
     const cJSON *supports = cJSON_GetObjectItemCaseSensitive(json, "supports");
+    if (ok && supports && cJSON_GetObjectItemCaseSensitive(json, "tolerance")) {
+        /* The robust answers are those of the part floating in its plane. */
+        wp_path_key(field, path, "supports");
+        wp_error_set(error, WP_INVALID_PARAMS, field,
+                     "a fixture on supports takes no \"tolerance\": the robust answers are "
+                     "those of a part floating in its plane; give one or the other");
+        wr_fixture_free(out->fixture);
+        out->fixture = NULL;
+        ok = false;
+    }
     if (ok && supports) {
         wp_path_key(field, path, "supports");
         ok = read_supports(supports, field, out->fixture, error);
