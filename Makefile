@@ -505,7 +505,7 @@ uninstall:
 # wrenchd's answers against Box2D (docs/VALIDATION.md).  physics-check is the
 # quick run make check includes; validate is the full one, with the table.
 # A fixture on supports is left out: this simulation floats the part, and
-# its buttons' friction (docs/MODEL.md section 10) is not simulated here.
+# its buttons' friction (docs/MODEL.md section 11) is not simulated here.
 PHYSICS_FIXTURES = $(filter-out examples/plate-3-2-1-buttons.json,$(wildcard examples/*.json)) \
                    $(wildcard tests/physics/fixtures/*.json)
 PHYSICS_CXXFLAGS = -std=c++17 -Wall -Wextra -Werror -O2 -g

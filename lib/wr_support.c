@@ -1463,7 +1463,6 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
     if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]) ||
         !(tolerance >= 0))
         return WR_INVALID;
-    double h[3];
     if (supports->total == 0 ||
         (supports->mu_static == 0 && supports->mu_kinetic == 0)) {
         /* No support friction: the cones alone. */
@@ -1475,7 +1474,6 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
         memcpy(out->force, answer.witness.force, sizeof out->force);
         return st;
     }
-    (void)h;
     strong_call call = {analysis, supports, wrench, tolerance, stop, out};
     return wr_lp_guarded(env, strong_body, &call);
 }

@@ -772,9 +772,10 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     if (ok && supports && out->fixture->tolerance.given) {
         /* The robust answers (wr_tolerance.h) are made over the cones of a
          * floating part; a part on supports answers by its discs. */
-        wp_path_key(field, path, "tolerance");
+        wp_path_key(field, path, "supports");
         wp_error_set(error, WP_INVALID_PARAMS, field,
-                     "a fixture on supports takes no tolerance: give one or the other");
+                     "a fixture on supports takes no tolerance: give supports or a "
+                     "tolerance, not both");
         wr_fixture_free(out->fixture);
         out->fixture = NULL;
         ok = false;

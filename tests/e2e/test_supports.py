@@ -205,3 +205,10 @@ def test_push_regions_under_a_force_agree_with_force_range(client):
                          ({"set": "goal"}, "params.force")):
         got, _ = error_of(client, "push.regions", dict(extra, fixture=f))
         assert got == field
+
+
+def test_supports_and_tolerance_not_together(client):
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    f["tolerance"] = {"position": 0.01}
+    got, reason = error_of(client, "fixture.put", {"fixture": f})
+    assert got == "params.fixture.supports" and "tolerance" in reason, (got, reason)
