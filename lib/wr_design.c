@@ -1183,7 +1183,9 @@ int wr_design_job_figures_left(const wr_design_job *job)
 wr_status wr_design_job_figure(const wr_design_job *job, int index, const wr_stop *stop,
                                unsigned long *used)
 {
-    assert(wr_design_job_searched(job) && index >= job->detailing && index < job->design_count);
+    /* Not job->detailing: merges change it while other designs' figures
+     * are made. */
+    assert(wr_design_job_searched(job) && index >= 0 && index < job->design_count);
     /* The design is written only here, by one thread: the cast keeps the
      * job's other readers' const. */
     wr_design *d = (wr_design *)&job->designs[index];
