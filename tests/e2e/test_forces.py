@@ -10,6 +10,7 @@ units giving the same answers converted."""
 import json
 import math
 import os
+import subprocess
 
 import pytest
 
@@ -870,3 +871,58 @@ def test_cases_read_from_text_as_from_the_tree(client):
         else:
             assert "result" in answer or \
                 answer["error"]["data"]["field"].startswith("params.cases"), (cases, answer)
+
+
+C_FORCE_SWEEP = r'''
+#include "wrenchclient.h"
+#include <stdio.h>
+int main(int argc, char **argv)
+{
+    wrc_client *c = wrc_connect(argv[1], 60000, 0, NULL);
+    const wrc_load loads[] = {{.kind = WRC_LOAD_GRAVITY, .g = 9.81, .direction_deg = 270},
+                              {.kind = WRC_LOAD_FORCE, .force = {-1, -2}, .at = {1, 2}}};
+    wrc_force_sweep_request r = {.set = "both", .range = {0, 0.5}, .push_on = "all"};
+    static double curve[400][2], at[400][2];
+    wrc_force_curve s;
+    if (!c || wrc_force_sweep(c, argv[2], loads, 2, &r, curve, at, 400, &s) != WRC_OK)
+        return 1;
+    for (int i = 0; i < s.sample_count; i++)
+        printf("%.17g %.17g %.17g %.17g\n", curve[i][0], curve[i][1], at[i][0], at[i][1]);
+    for (int i = 0; i < s.interval_count; i++)
+        printf("interval %.17g %.17g\n", s.intervals[i][0], s.intervals[i][1]);
+    wrc_close(c);
+    return 0;
+}
+'''
+
+
+def test_c_client_force_sweep_reads_what_the_daemon_answers(client, tmp_path):
+    """wrc_force_sweep against the daemon: every sample's mu, least force
+    and point, and the intervals, as the JSON answer holds them (nulls as
+    NaN), printed to 17 digits and read back the same doubles."""
+    fixture = json.load(open(os.path.join(REPO, "examples", "plate-3-2-1.json")))
+    fixture = fixture.get("fixture", fixture)
+    fid = client.result("fixture.put", {"fixture": fixture})["id"]
+    program = tmp_path / "force_sweep"
+    source = tmp_path / "force_sweep.c"
+    source.write_text(C_FORCE_SWEEP)
+    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
+                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
+                   check=True)
+    out = subprocess.run([str(program), client.path, fid], check=True, capture_output=True,
+                         text=True).stdout.split("\n")
+    want = client.result("friction.sweep", {
+        "fixture": fid, "range": [0, 0.5], "force": {"set": "both", "push_on": "all"},
+        "cases": [case(gravity(), {"force": [-1, -2], "at": [1, 2]})]})
+    nan = float("nan")
+    rows = [[float(x) for x in line.split()] for line in out if line and
+            not line.startswith("interval")]
+    intervals = [[float(x) for x in line.split()[1:]] for line in out
+                 if line.startswith("interval")]
+    assert len(rows) == len(want["curve"]) > 100
+    for row, (mu, force), point in zip(rows, want["curve"], want["at"]):
+        expect = [mu, nan if force is None else force] + (point or [nan, nan])
+        assert all(a == b or (math.isnan(a) and math.isnan(b)) for a, b in zip(row, expect)), \
+            (row, expect)
+    assert any(not math.isnan(r[1]) for r in rows)
+    assert intervals == want["intervals"]
