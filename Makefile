@@ -440,9 +440,9 @@ PYTHON_MODULES = wrenchd.py wrenchd_dxf.py wrenchd_arcs.py
 WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
 WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
-PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
-                 lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_force.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_sites.h lib/wr_design.h \
-                 lib/wr_lattice.h lib/wr_locate.h lib/wr_symmetry.h lib/wr_tolerance.h \
+# Every lib header but the internal one: wrench.h includes them all, so a
+# header left out of the install breaks every program that uses the lib.
+PUBLIC_HEADERS = lib/wrench.h $(filter-out lib/wr_internal.h,$(wildcard lib/wr_*.h)) \
                  clients/c/wrenchclient.h
 INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
     $(PREFIX)/lib/libwrench.a $(PREFIX)/lib/libwrenchclient.a \
