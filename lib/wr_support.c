@@ -1255,8 +1255,8 @@ static void witness_fill(const model *m, const wr_cone *cone, const hold_lp *h,
 }
 
 /* Branch and bound over one mode's cells: 1 a witness (out filled), 0 no
- * direction consistent by the margin, 2 undecided, -1 an LP failed,
- * -2 stopped. */
+ * direction consistent by the margin, 2 undecided (a cell whose LP GLPK
+ * could not solve included), -2 stopped, -3 out of memory. */
 static int mode_search(const model *m, const wr_cone *cone, const double target[3], double margin,
                        const wr_stop *stop, wr_support_strong *out)
 {
@@ -1288,9 +1288,12 @@ static int mode_search(const model *m, const wr_cone *cone, const double target[
         }
         out->cells++;
         h.c = &c;
+        /* An LP GLPK cannot solve (numerically) proves nothing of its
+         * cell: the cell stays undecided, so `held` is never claimed past
+         * it and the answer is at worst boundary. */
         if (hold_lp_solve(&h) < 0) {
-            result = -1;
-            break;
+            result = 2;
+            continue;
         }
         if (h.residual > margin)
             continue; /* no direction of the cell is consistent */
@@ -1310,8 +1313,8 @@ static int mode_search(const model *m, const wr_cone *cone, const double target[
         w.c = &single;
         w.solves = 0;
         if (hold_lp_solve(&w) < 0) {
-            result = -1;
-            break;
+            result = 2; /* undecided, as above */
+            continue;
         }
         h.solves += w.solves;
         /* A motion consistent with g is usually one direction alone (three

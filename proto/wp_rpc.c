@@ -257,11 +257,14 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
         end_stream(answer, host);
         return WP_STEP_FAILED;
     }
-    /* Its text is all in this piece: answer the error in its place. */
+    /* Its text is all in this piece: answer the error in its place.  In a
+     * batch `start` is before the member's separator; when that was the
+     * batch's "[", it goes with the rest and the error's separator opens
+     * the batch again. */
+    bool took_open = answer->batch && out->length > start && out->data[start] == '[';
     out->length = start;
-    bool was_opened = answer->opened && start > 0 && out->data[start - 1] == '[';
-    if (answer->batch)
-        answer->opened = answer->opened && !was_opened;
+    if (took_open)
+        answer->opened = false;
     write_error_answer(answer, out, &error, answer->id_text);
     end_stream(answer, host);
     return WP_STEP_DONE;

@@ -114,6 +114,25 @@ def test_glpk_failure_is_an_error_answer(harness):
     assert d.running
 
 
+def test_glpk_failure_first_in_a_batch(harness):
+    """A batch whose first member fails in its first piece (GLPK, by the
+    test hook) is still one JSON array: the error answer opens it, the
+    next member follows after a comma.  The batch's "[" was once taken
+    back with the failed member's text and not written again."""
+    env = dict(os.environ, WRENCHD_TEST_GLPK_FAILURE="0")
+    d = start_with_env(harness, env, "--threads", "1")
+    c = d.client()
+    params = {"fixture": FX.disc_corner(0.5), "wrenches": [[-1, -1, 0], [0, 1, 0]],
+              "method": "lp"}
+    c.send([{"jsonrpc": "2.0", "method": "wrench.classify", "params": params, "id": 1},
+            {"jsonrpc": "2.0", "method": "server.status", "params": {}, "id": 2}])
+    answers = c.read_json()
+    assert isinstance(answers, list) and [a["id"] for a in answers] == [1, 2], answers
+    assert answers[0]["error"]["code"] == -32004, answers[0]
+    assert "result" in answers[1]
+    assert d.running
+
+
 def test_a_batch_over_the_limit(harness):
     """A batch larger than --max-batch gets one clear error, not work and
     memory in proportion to it; the limit itself is served."""
