@@ -29,7 +29,6 @@ typedef struct sweep_state {
     wp_cases cases;
     double (*loads)[3];
     int sample;
-    bool any;
     wr_fixel_spec fixels[WR_MAX_FIXELS];
 } sweep_state;
 
@@ -91,39 +90,37 @@ static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_erro
     return true;
 }
 
-static void write_intervals(wp_buffer *out, const wr_intervals *list)
+static void write_intervals(wp_writer *out, const wr_intervals *list)
 {
-    WP_BUFFER_LITERAL(out, "[");
+    wp_write_array(out);
     for (int i = 0; i < list->count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
         const double pair[2] = {list->items[i][0] + 0.0, list->items[i][1] + 0.0};
-        wp_write_vector(out, pair, 2);
+        wp_write_numbers(out, pair, 2);
     }
-    WP_BUFFER_LITERAL(out, "]");
+    wp_write_array_end(out);
 }
 
 /* {"intervals", "critical", "curve", "exact", "resolution"} */
-static void write_curve(wp_buffer *out, const wr_sweep_curve *curve)
+static void write_curve(wp_writer *out, const wr_sweep_curve *curve)
 {
-    WP_BUFFER_LITERAL(out, "{\"intervals\":");
+    wp_write_object(out);
+    wp_write_key(out, "intervals");
     write_intervals(out, &curve->intervals);
-    WP_BUFFER_LITERAL(out, ",\"critical\":");
+    wp_write_key(out, "critical");
     if (curve->has_critical)
-        wp_buffer_number(out, curve->critical + 0.0);
+        wp_write_number(out, curve->critical + 0.0);
     else
-        WP_BUFFER_LITERAL(out, "null");
-    WP_BUFFER_LITERAL(out, ",\"curve\":[");
+        wp_write_null(out);
+    wp_write_key(out, "curve");
+    wp_write_array(out);
     for (int i = 0; i < curve->point_count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
         const double point[2] = {curve->points[i][0] + 0.0, curve->points[i][1] + 0.0};
-        wp_write_vector(out, point, 2);
+        wp_write_numbers(out, point, 2);
     }
-    wp_buffer_puts(out, curve->exact ? "],\"exact\":true" : "],\"exact\":false");
-    WP_BUFFER_LITERAL(out, ",\"resolution\":");
-    wp_buffer_number(out, curve->resolution);
-    WP_BUFFER_LITERAL(out, "}");
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "exact", curve->exact);
+    wp_write_member_number(out, "resolution", curve->resolution);
+    wp_write_object_end(out);
 }
 
 /* The sweep's reading of params: which question, the range, and the
@@ -263,7 +260,7 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
  * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
  * point [mu, F] (F null when no push does the job) is written. */
 static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
-                              unsigned long *used, wp_buffer *out)
+                              unsigned long *used, wp_writer *out)
 {
     wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
                                  .kinetic_mu = mu * state->range.kinetic_ratio};
@@ -283,20 +280,19 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     if (status != WR_OK)
         return status;
     *used += 1000 + least.evaluations * 40 * (unsigned long)state->cases.count;
-    WP_BUFFER_LITERAL(out, "[");
-    wp_buffer_number(out, mu + 0.0);
-    WP_BUFFER_LITERAL(out, ",");
+    wp_write_array(out);
+    wp_write_number(out, mu + 0.0);
     if (least.found)
-        wp_buffer_number(out, wp_force_out(f, least.force));
+        wp_write_number(out, wp_force_out(f, least.force));
     else
-        WP_BUFFER_LITERAL(out, "null");
-    WP_BUFFER_LITERAL(out, "]");
+        wp_write_null(out);
+    wp_write_array_end(out);
     return WR_OK;
 }
 
 /* friction.sweep "force": {"curve": [[mu, F], ...], "exact": false,
  * "resolution": step}, a sample of mu at a time. */
-static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *out,
+static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *out,
                                 unsigned long budget, unsigned long *used)
 {
     wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
@@ -305,9 +301,11 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
     const double step = (state->range.high - state->range.low) / (FORCE_SAMPLES - 1);
     if (!state->opened) {
         state->opened = true;
-        WP_BUFFER_LITERAL(out, "{\"curve\":[");
+        wp_write_object(out);
+        wp_write_key(out, "curve");
+        wp_write_array(out);
     }
-    for (bool first = true; state->sample < FORCE_SAMPLES && !out->failed; first = false) {
+    for (bool first = true; state->sample < FORCE_SAMPLES && !out->out->failed; first = false) {
         if (!first && *used >= budget)
             return WP_STEP_MORE;
         if (wr_stop_requested(call->host->stop)) {
@@ -316,9 +314,6 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
         }
         double mu = state->sample + 1 == FORCE_SAMPLES ? state->range.high
                                                        : state->range.low + state->sample * step;
-        if (state->any)
-            WP_BUFFER_LITERAL(out, ",");
-        state->any = true;
         wr_status status = force_sample(state, use->fixture, mu, used, out);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
@@ -326,13 +321,14 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
         }
         state->sample++;
     }
-    WP_BUFFER_LITERAL(out, "],\"exact\":false,\"resolution\":");
-    wp_buffer_number(out, step);
-    WP_BUFFER_LITERAL(out, "}");
-    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "exact", false);
+    wp_write_member_number(out, "resolution", step);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
-static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
@@ -340,17 +336,20 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         return sweep_force_step(state, call, out, budget, used);
     const wp_classify_request *r = &state->request;
     const wr_stop *stop = call->host->stop;
-    size_t start = out->length;
-    for (bool first = true; !out->failed; first = false) {
-        if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
+    size_t start = out->out->length;
+    for (bool first = true; !out->out->failed; first = false) {
+        if (!first && (*used >= budget || out->out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         if (state->what == SWEEP_WRENCHES) {
             if (!state->opened) {
                 state->opened = true;
-                WP_BUFFER_LITERAL(out, "{\"results\":[");
+                wp_write_object(out);
+                wp_write_key(out, "results");
+                wp_write_array(out);
             }
             if (state->next >= r->wrench_count) {
-                WP_BUFFER_LITERAL(out, "]}");
+                wp_write_array_end(out);
+                wp_write_object_end(out);
                 return WP_STEP_DONE;
             }
             if (!state->job) {
@@ -378,16 +377,13 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         }
         /* A wrench's set answered: {"goal": [...], ...} as its sets end. */
         if (state->set == 0)
-            wp_buffer_puts(out, state->next ? ",{\"" : "{\"");
-        else
-            WP_BUFFER_LITERAL(out, ",\"");
-        wp_buffer_puts(out, wp_set_names[r->sets[state->set]]);
-        WP_BUFFER_LITERAL(out, "\":");
+            wp_write_object(out);
+        wp_write_key(out, wp_set_names[r->sets[state->set]]);
         write_intervals(out, wr_sweep_job_intervals(state->job));
         wr_sweep_job_free(state->job);
         state->job = NULL;
         if (++state->set == r->set_count) {
-            WP_BUFFER_LITERAL(out, "}");
+            wp_write_object_end(out);
             state->set = 0;
             state->next++;
         }
