@@ -406,7 +406,8 @@ FREECAD_MODDIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(FREECAD_SYSTEM_MODD
 # reader).
 PYTHON_MODULES = wrenchd.py wrenchd_dxf.py wrenchd_arcs.py
 WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
-WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
+WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_outline.py wrench_objects.py \
+                  wrench_view.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
                  lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_force.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_sites.h lib/wr_design.h \
