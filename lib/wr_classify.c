@@ -185,8 +185,9 @@ void wr_analysis_frame_free(wr_analysis_frame *frame)
 {
     if (!frame)
         return;
-    wr_plan_free(frame->plan);
+    /* The goal cones are counted by the plan: released before it. */
     frame_cones_release(&frame->goal, frame->plan ? frame->plan->kept_count : 0);
+    wr_plan_free(frame->plan);
     frame_cones_release(&frame->modes_cones, frame->mode_count);
     free(frame->modes);
     free(frame);
