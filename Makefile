@@ -451,7 +451,7 @@ WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_outline.py wrench_
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 PUBLIC_HEADERS = lib/wrench.h lib/wr_status.h lib/wr_fixture.h lib/wr_cone.h lib/wr_plan.h \
                  lib/wr_lp.h lib/wr_classify.h lib/wr_regions.h lib/wr_force.h lib/wr_outline.h lib/wr_finger.h lib/wr_sweep.h lib/wr_sites.h lib/wr_design.h \
-                 lib/wr_lattice.h lib/wr_locate.h lib/wr_symmetry.h lib/wr_tolerance.h lib/wr_support.h \
+                 lib/wr_lattice.h lib/wr_locate.h lib/wr_symmetry.h lib/wr_tolerance.h lib/wr_support.h lib/wr_job.h \
                  clients/c/wrenchclient.h
 INSTALLED = $(PREFIX)/sbin/wrenchd $(PREFIX)/bin/wrenchctl \
     $(PREFIX)/lib/libwrench.a $(PREFIX)/lib/libwrenchclient.a \

@@ -4,6 +4,7 @@
 #include "loads.h"
 #include "methods.h"
 #include "wp_chunks.h"
+#include "wr_job.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -73,7 +74,7 @@ struct design_state {
     double (*loads)[3];   /* params.cases, summed (spec.loads points here) */
 };
 
-static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
+static const wp_chunk_ops JOB_CHUNKS;
 
 /* A whole number in [lo, hi] at params.key (default kept when absent). */
 static bool read_count(const cJSON *params, const char *key, double lo, double hi, int *out,
@@ -238,7 +239,7 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
                      invalid.reason);
         return false;
     }
-    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, SIZE_MAX); /* as the job claims them */
+    s->poses_chunks = wp_chunks_new(&JOB_CHUNKS, s, SIZE_MAX); /* as the job claims them */
     if (!s->poses_chunks) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
@@ -534,7 +535,7 @@ static bool start_search(design_state *s, wp_error *error)
     /* The job claims WR_DESIGN_CHUNK candidates of this shard at a time:
      * that many of every shard's. */
     uint64_t span = (uint64_t)WR_DESIGN_CHUNK * (uint64_t)s->spec.shard_count;
-    s->search = wp_chunks_new(&SEARCH_CHUNKS, s, (size_t)((s->candidates + span - 1) / span));
+    s->search = wp_chunks_new(&JOB_CHUNKS, s, (size_t)((s->candidates + span - 1) / span));
     if (!s->search) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
@@ -904,117 +905,87 @@ static void write_answer(design_state *s, wp_writer *out)
     wp_write_object_end(out);
 }
 
-/* The lattice's chunks of units (wr_lattice.h), by the engine (wp_chunks.h): claimed
- * by the job in order, made by any thread, merged in order. */
-typedef struct lattice_record {
-    size_t first, count;
-    wr_lattice_chunk chunk;
-} lattice_record;
+/* The chunks of either stage, by the engine (wp_chunks.h), in the lib's
+ * one job contract (wr_job.h): the lattice's poses (hole pairs) while
+ * there is no search job, then the search's candidates, whose claims stop
+ * at the deadline.  A record is a claim, the contract it was claimed
+ * under (NULL before its first claim) and the job's chunk. */
+typedef struct job_record {
+    wr_job_claim claim;
+    const wr_job_chunks *ops;
+    union {
+        wr_design_chunk design;
+        wr_lattice_chunk lattice;
+    } chunk;
+} job_record;
 
-static bool lattice_claim(void *method, size_t index, void *record)
+/* The stage's job and its contract.  The search begins in a step that
+ * shares nothing (design_step), so no helper is in a chunk when s->job
+ * appears. */
+static const wr_job_chunks *stage_job(const design_state *s, void **job)
+{
+    *job = s->job ? (void *)s->job : (void *)s->lattice;
+    return s->job ? &wr_design_job_chunks : &wr_lattice_job_chunks;
+}
+
+static bool job_claim(void *method, size_t index, void *record)
 {
     (void)index;
     design_state *s = method;
-    lattice_record *l = record;
-    return wr_lattice_job_claim(s->lattice, &l->first, &l->count);
-}
-
-static wr_status lattice_make(void *method, size_t index, void *record, wp_buffer *direct,
-                              const wp_host *host, unsigned long *used, wp_error *error)
-{
-    (void)index;
-    (void)direct;
-    const design_state *s = method;
-    lattice_record *l = record;
-    wr_status status = wr_lattice_chunk_run(s->lattice, l->first, l->count, host->stop,
-                                            &l->chunk, used);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
-}
-
-static wr_status lattice_merge(void *method, size_t index, void *record, wp_buffer *out,
-                               wp_error *error)
-{
-    (void)index;
-    (void)out;
-    design_state *s = method;
-    lattice_record *l = record;
-    wr_status status = wr_lattice_job_merge(s->lattice, &l->chunk); /* takes its designs */
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
-}
-
-static void lattice_release(void *record) { wr_lattice_chunk_release(&((lattice_record *)record)->chunk); }
-
-static const wp_chunk_ops LATTICE_CHUNKS = {
-    .record_size = sizeof(lattice_record),
-    .claim = lattice_claim,
-    .make = lattice_make,
-    .merge = lattice_merge,
-    .release = lattice_release,
-    .window = DESIGN_WINDOW,
-};
-
-/* The search's chunks of candidates, likewise; a chunk's threshold is the
- * top-th score merged when it is claimed. */
-typedef struct search_record {
-    uint64_t first, count;
-    double threshold;
-    wr_design_chunk chunk;
-} search_record;
-
-static bool search_claim(void *method, size_t index, void *record)
-{
-    (void)index;
-    design_state *s = method;
-    search_record *c = record;
     /* The deadline: no candidate is claimed after it.  The chunks claimed
      * are merged as usual, then the designs kept so far get their figures
      * and the answer is "partial". */
-    if (s->deadline > 0 && !s->cut && wp_now_s() >= s->deadline) {
+    if (s->job && s->deadline > 0 && !s->cut && wp_now_s() >= s->deadline) {
         wr_design_job_cut(s->job);
         s->cut = true;
     }
-    return wr_design_job_claim(s->job, &c->first, &c->count, &c->threshold);
+    void *job;
+    job_record *r = record;
+    r->ops = stage_job(s, &job);
+    return r->ops->claim(job, &r->claim);
 }
 
-static wr_status search_make(void *method, size_t index, void *record, wp_buffer *direct,
-                             const wp_host *host, unsigned long *used, wp_error *error)
+static wr_status job_make(void *method, size_t index, void *record, wp_buffer *direct,
+                          const wp_host *host, unsigned long *used, wp_error *error)
 {
     (void)index;
     (void)direct;
-    const design_state *s = method;
-    search_record *c = record;
-    wr_status status = wr_design_chunk_run(s->job, c->first, c->count, c->threshold,
-                                           host->stop, &c->chunk, used);
+    void *job;
+    const wr_job_chunks *ops = stage_job(method, &job);
+    job_record *r = record;
+    wr_status status = ops->run(job, &r->claim, host->stop, &r->chunk, used);
     if (status != WR_OK)
         wp_error_status(error, status, "params", "%s", wr_strerror(status));
     return status;
 }
 
-static wr_status search_merge(void *method, size_t index, void *record, wp_buffer *out,
-                              wp_error *error)
+static wr_status job_merge(void *method, size_t index, void *record, wp_buffer *out,
+                           wp_error *error)
 {
     (void)index;
     (void)out;
-    (void)error;
-    design_state *s = method;
-    search_record *c = record;
-    wr_design_job_merge(s->job, &c->chunk);
-    wr_design_chunk_release(&c->chunk);
-    return WR_OK;
+    void *job;
+    const wr_job_chunks *ops = stage_job(method, &job);
+    wr_status status = ops->merge(job, &((job_record *)record)->chunk);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
 }
 
-static void search_release(void *record) { wr_design_chunk_release(&((search_record *)record)->chunk); }
+static void job_release(void *record)
+{
+    job_record *r = record;
+    if (r->ops)
+        r->ops->release(&r->chunk);
+}
 
-static const wp_chunk_ops SEARCH_CHUNKS = {
-    .record_size = sizeof(search_record),
-    .claim = search_claim,
-    .make = search_make,
-    .merge = search_merge,
-    .release = search_release,
+/* Each stage has an engine of its own (s->poses_chunks, s->search). */
+static const wp_chunk_ops JOB_CHUNKS = {
+    .record_size = sizeof(job_record),
+    .claim = job_claim,
+    .make = job_make,
+    .merge = job_merge,
+    .release = job_release,
     .window = DESIGN_WINDOW,
 };
 
