@@ -1,7 +1,7 @@
 /* wr_job.h -- the one contract of a job whose work comes in chunks, for a
  * server's engine that runs chunks on several threads: the design search
  * (wr_design.h) and the lattice's poses (wr_lattice.h) keep it, each in
- * its own units (candidates, hole pairs).
+ * its own units (candidates; the lattice's units, wr_lattice.h).
  *
  * claim and merge change the job: the caller serialises them, with each
  * other and with the job's own run.  run only reads the job, and any

@@ -906,7 +906,7 @@ static void write_answer(design_state *s, wp_writer *out)
 }
 
 /* The chunks of either stage, by the engine (wp_chunks.h), in the lib's
- * one job contract (wr_job.h): the lattice's poses (hole pairs) while
+ * one job contract (wr_job.h): the lattice's poses (its units, wr_lattice.h) while
  * there is no search job, then the search's candidates, whose claims stop
  * at the deadline.  A record is a claim, the contract it was claimed
  * under (NULL before its first claim) and the job's chunk. */
