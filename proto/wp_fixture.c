@@ -473,6 +473,15 @@ static void hex_id(const char *canonical, char id[WP_ID_LENGTH + 1])
 
 static void write_pair(wp_writer *w, const double v[2]) { wp_write_numbers(w, v, 2); }
 
+/* [[x, y], ...]: n points. */
+static void write_pairs(wp_writer *w, const double (*v)[2], size_t n)
+{
+    wp_write_array(w);
+    for (size_t i = 0; i < n; i++)
+        write_pair(w, v[i]);
+    wp_write_array_end(w);
+}
+
 /* An outline's loops as given: [x, y] for a straight segment, [x, y,
  * bulge] for an arc (a bulge of 0, or -0, is the straight form: one
  * fixture, one id). */
@@ -506,10 +515,7 @@ static void write_shape(wp_writer *w, const wr_fixture *f)
     } else {
         wp_write_member_string(w, "type", "polygon");
         wp_write_key(w, "vertices");
-        wp_write_array(w);
-        for (size_t i = 0; i < f->vertex_count; i++)
-            write_pair(w, f->vertices[i]);
-        wp_write_array_end(w);
+        write_pairs(w, (const double (*)[2])f->vertices, f->vertex_count);
     }
     wp_write_object_end(w);
 }
@@ -564,10 +570,7 @@ static void write_supports(wp_writer *w, const wr_supports *s)
     wp_write_object_end(w);
     wp_write_member_number(w, "g", s->g);
     wp_write_key(w, "points");
-    wp_write_array(w);
-    for (int i = 0; i < s->count; i++)
-        write_pair(w, s->points[i]);
-    wp_write_array_end(w);
+    write_pairs(w, s->points, (size_t)s->count);
     wp_write_object_end(w);
 }
 

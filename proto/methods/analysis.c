@@ -524,18 +524,7 @@ static void write_robust_verdict(wp_writer *out, const wr_fixture *f, const wr_r
 {
     static const char *const NAMES[] = {"inside", "boundary", "outside"};
     wp_write_member_string(out, "robust", NAMES[r->answer.verdict]);
-    if (!r->has_perturbation)
-        return;
-    wp_write_key(out, "perturbation");
-    wp_write_array(out);
-    for (int i = 0; i < f->fixel_count; i++)
-        wp_write_numbers(out, r->points[i], 2);
-    wp_write_array_end(out);
-    wp_write_key(out, "perturbation_normals");
-    wp_write_array(out);
-    for (int i = 0; i < f->fixel_count; i++)
-        wp_write_numbers(out, r->normals[i], 2);
-    wp_write_array_end(out);
+    wp_write_perturbation(out, f, r);
 }
 
 bool wp_handle_stability_margin(wp_call *call, wp_writer *out)

@@ -98,24 +98,6 @@ static void write_blocking(wp_writer *w, const wr_analysis *a, const wr_answer *
 static void write_states(wp_writer *w, const wr_analysis *a, const wr_answer *answer);
 static void write_witness(wp_writer *w, const wr_analysis *a, const wr_answer *answer);
 
-/* A robust outside's witness, members of the set's answer (write_answer):
- * "perturbation", the contact points of a fixture of the set on which the
- * wrench is outside, and "perturbation_normals", their normals
- * (docs/PROTOCOL.md, "Tolerance"). */
-static void write_perturbation(wp_writer *w, const wr_fixture *f, const wr_robust_answer *r)
-{
-    wp_write_key(w, "perturbation");
-    wp_write_array(w);
-    for (int i = 0; i < f->fixel_count; i++)
-        wp_write_numbers(w, r->points[i], 2);
-    wp_write_array_end(w);
-    wp_write_key(w, "perturbation_normals");
-    wp_write_array(w);
-    for (int i = 0; i < f->fixel_count; i++)
-        wp_write_numbers(w, r->normals[i], 2);
-    wp_write_array_end(w);
-}
-
 /* One set's answer V (docs/PROTOCOL.md); with `robust` (may be NULL) an
  * outside's perturbation when it has one. */
 static void write_answer(wp_writer *w, const wr_analysis *a, const wr_answer *answer,
@@ -135,8 +117,8 @@ static void write_answer(wp_writer *w, const wr_analysis *a, const wr_answer *an
     write_states(w, a, answer);
     wp_write_key(w, "witness");
     write_witness(w, a, answer);
-    if (robust && robust->has_perturbation)
-        write_perturbation(w, wr_analysis_fixture(a), robust);
+    if (robust)
+        wp_write_perturbation(w, wr_analysis_fixture(a), robust);
     wp_write_object_end(w);
 }
 

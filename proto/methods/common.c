@@ -21,6 +21,22 @@ void wp_write_edge_place(wp_writer *out, const wr_fixture *f, int edge)
     }
 }
 
+void wp_write_perturbation(wp_writer *out, const wr_fixture *f, const wr_robust_answer *r)
+{
+    if (!r->has_perturbation)
+        return;
+    wp_write_key(out, "perturbation");
+    wp_write_array(out);
+    for (int i = 0; i < f->fixel_count; i++)
+        wp_write_numbers(out, r->points[i], 2);
+    wp_write_array_end(out);
+    wp_write_key(out, "perturbation_normals");
+    wp_write_array(out);
+    for (int i = 0; i < f->fixel_count; i++)
+        wp_write_numbers(out, r->normals[i], 2);
+    wp_write_array_end(out);
+}
+
 bool wp_read_sets(const cJSON *params, wp_classify_request *r, wp_error *error)
 {
     const cJSON *sets = cJSON_GetObjectItemCaseSensitive(params, "sets");

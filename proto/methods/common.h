@@ -49,6 +49,12 @@ void *wp_stream_with_fixture(wp_call *call, size_t size, wp_fixture_use **use);
  * written: "loop" and "segment" on an outline, "edge" otherwise. */
 void wp_write_edge_place(wp_writer *out, const wr_fixture *f, int edge);
 
+/* A robust outside's witness, as members of the object being written
+ * (nothing without one): "perturbation", the contact points of a fixture
+ * of the tolerance's set on which the wrench is outside, and
+ * "perturbation_normals", their normals (docs/PROTOCOL.md, "Tolerance"). */
+void wp_write_perturbation(wp_writer *out, const wr_fixture *f, const wr_robust_answer *r);
+
 /* path.push_on of `object` for a body or fixture `shape` (fixture.design,
  * push.regions; docs/PROTOCOL.md, push_on): absent or "all" gives *mask
  * NULL (every loop); "outer" loop 0; a list of loop numbers those.  *mask
