@@ -39,7 +39,7 @@ DAEMON_LINK = libwrenchd.a libwrenchproto.a libwrench.a
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
         fuzz-build links check-cluster deps-freecad check-freecad freecad-link freecad-picture FORCE
 
-all: $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
+all: $(BUILD)/clients/python/explain.stamp $(BUILD)/libwrench.a $(BUILD)/wrenchd $(BUILD)/wrenchctl $(BUILD)/libwrenchclient.a \
      $(BUILD)/wrenchclient-example $(BUILD)/wrenchclient-bench $(BUILD)/libwrench-example
 
 help:
@@ -105,13 +105,21 @@ $(fuzz_DIR)/lib/%.o: fuzz_FLAGS += -fno-sanitize-coverage=trace-cmp
 # writes the header dependencies of its output.
 compile = $($(1)_CC) $(WARN) $($(1)_FLAGS) -MMD -MP
 
-# The words wrenchctl explains a verdict with are the Python client's
-# (_EXPLAIN_WORDS in clients/python/wrenchd.py): one table for both, made a
-# header here for every variant's wrenchctl.
+# The words both clients explain a verdict with: one data file,
+# clients/explain_words.txt, from which clients/explain_gen.py makes
+# wrenchctl's header (for every variant's wrenchctl) and writes the Python
+# client's table in place (wrenchd.py stays one standard-library file; it
+# changes only when the words do).
 WC_EXPLAIN = $(BUILD)/clients/wrenchctl/wc_explain.h
-$(WC_EXPLAIN): clients/python/wrenchd.py clients/wrenchctl/wc_explain_gen.py
+EXPLAIN_WORDS = clients/explain_words.txt clients/explain_gen.py
+$(WC_EXPLAIN): $(EXPLAIN_WORDS)
 	@mkdir -p $(dir $@)
-	$(PYTHON) clients/wrenchctl/wc_explain_gen.py clients/python/wrenchd.py $@.tmp && mv $@.tmp $@
+	$(PYTHON) clients/explain_gen.py clients/explain_words.txt --c $@.tmp && mv $@.tmp $@
+PY_EXPLAIN = $(BUILD)/clients/python/explain.stamp
+$(PY_EXPLAIN): $(EXPLAIN_WORDS) clients/python/wrenchd.py
+	@mkdir -p $(dir $@)
+	$(PYTHON) clients/explain_gen.py clients/explain_words.txt --python clients/python/wrenchd.py
+	@touch $@
 
 # $(call variant,VARIANT): the rules of VARIANT, one pattern rule a kind of
 # source, each with its layer's include flags (above).
@@ -438,7 +446,8 @@ FREECAD_MODDIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(FREECAD_SYSTEM_MODD
 # reader).
 PYTHON_MODULES = wrenchd.py wrenchd_dxf.py wrenchd_arcs.py
 WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
-WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_commands.py \
+WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_outline.py wrench_objects.py \
+                  wrench_view.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 # Every lib header but the internal one: wrench.h includes them all, so a
 # header left out of the install breaks every program that uses the lib.

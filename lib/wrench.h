@@ -28,6 +28,7 @@
 #include "wr_classify.h"
 #include "wr_cone.h"
 #include "wr_design.h"
+#include "wr_job.h"
 #include "wr_sites.h"
 #include "wr_finger.h"
 #include "wr_force.h"

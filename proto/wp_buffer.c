@@ -10,25 +10,32 @@
 
 /* ---- buffer ------------------------------------------------------------- */
 
-void wp_buffer_append(wp_buffer *b, const char *text, size_t length)
+char *wp_buffer_grow_room(wp_buffer *b, size_t n)
 {
     if (b->failed)
-        return;
-    if (b->length + length + 1 > b->capacity) {
+        return NULL;
+    if (b->length + n + 1 > b->capacity) {
         size_t capacity = b->capacity ? b->capacity : 256;
-        while (capacity < b->length + length + 1)
+        while (capacity < b->length + n + 1)
             capacity *= 2;
         char *grown = realloc(b->data, capacity);
         if (!grown) {
             b->failed = true;
-            return;
+            return NULL;
         }
         b->data = grown;
         b->capacity = capacity;
     }
-    memcpy(b->data + b->length, text, length);
-    b->length += length;
-    b->data[b->length] = 0;
+    return b->data + b->length;
+}
+
+void wp_buffer_grow_append(wp_buffer *b, const char *text, size_t length)
+{
+    char *at = wp_buffer_grow_room(b, length);
+    if (!at)
+        return;
+    memcpy(at, text, length);
+    wp_buffer_commit(b, length);
 }
 
 void wp_buffer_reserve(wp_buffer *b, size_t bytes)

@@ -51,12 +51,6 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
     return ok ? &hold->use : NULL;
 }
 
-void wp_call_open_result(wp_call *call, wp_buffer *out)
-{
-    (void)call;
-    wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
-}
-
 const char *wp_call_id_text(const wp_call *call) { return call->id_text; }
 
 bool wp_call_may_notify(const wp_call *call) { return call->may_notify; }

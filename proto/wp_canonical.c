@@ -1,5 +1,5 @@
-/* wp_canonical.c -- a JSON value's canonical text (what fixture ids hash)
- * and a tree written into a buffer. */
+/* wp_canonical.c -- a JSON value's canonical text (what fixture ids hash,
+ * and a client's request line). */
 #include "wp_json.h"
 #include "wp_sha256.h"
 
@@ -15,10 +15,8 @@ static int compare_members(const void *a, const void *b)
     return strcmp(x->string, y->string);
 }
 
-/* JSON text of `value`; `sorted`: members by key (the canonical form), else
- * in their order.  A raw item is copied as it is (a handler's pre-written
- * text). */
-static void write_value(wp_buffer *b, const cJSON *value, const char *skip, bool sorted)
+/* The canonical text of `value`: members by key. */
+static void write_value(wp_buffer *b, const cJSON *value, const char *skip)
 {
     if (cJSON_IsObject(value)) {
         size_t count = 0;
@@ -33,15 +31,14 @@ static void write_value(wp_buffer *b, const cJSON *value, const char *skip, bool
         for (const cJSON *m = value->child; m; m = m->next)
             if (!skip || strcmp(m->string, skip) != 0)
                 members[count++] = m;
-        if (sorted)
-            qsort(members, count, sizeof *members, compare_members);
+        qsort(members, count, sizeof *members, compare_members);
         wp_buffer_append(b, "{", 1);
         for (size_t i = 0; i < count; i++) {
             if (i)
                 wp_buffer_append(b, ",", 1);
             wp_buffer_string(b, members[i]->string);
             wp_buffer_append(b, ":", 1);
-            write_value(b, members[i], NULL, sorted);
+            write_value(b, members[i], NULL);
         }
         wp_buffer_append(b, "}", 1);
         free(members);
@@ -50,18 +47,13 @@ static void write_value(wp_buffer *b, const cJSON *value, const char *skip, bool
         for (const cJSON *m = value->child; m; m = m->next) {
             if (m != value->child)
                 wp_buffer_append(b, ",", 1);
-            write_value(b, m, NULL, sorted);
+            write_value(b, m, NULL);
         }
         wp_buffer_append(b, "]", 1);
     } else if (cJSON_IsNumber(value)) {
         wp_buffer_number(b, value->valuedouble);
     } else if (cJSON_IsString(value)) {
         wp_buffer_string(b, value->valuestring);
-    } else if (cJSON_IsRaw(value)) {
-        const char *text = value->valuestring;
-        while (*text == ' ') /* room a handler left for an envelope */
-            text++;
-        wp_buffer_puts(b, text);
     } else if (cJSON_IsTrue(value)) {
         wp_buffer_puts(b, "true");
     } else if (cJSON_IsFalse(value)) {
@@ -74,13 +66,8 @@ static void write_value(wp_buffer *b, const cJSON *value, const char *skip, bool
 char *wp_canonical(const cJSON *value, const char *skip)
 {
     wp_buffer b = {0};
-    write_value(&b, value, skip, true);
+    write_value(&b, value, skip);
     return wp_buffer_take(&b);
-}
-
-void wp_buffer_json(wp_buffer *buffer, const cJSON *value)
-{
-    write_value(buffer, value, NULL, false);
 }
 
 /* ---- the canonical digest ------------------------------------------------ */

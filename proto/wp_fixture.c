@@ -471,203 +471,178 @@ static void hex_id(const char *canonical, char id[WP_ID_LENGTH + 1])
  * wp_format_number: reading the text back gives the same doubles, hence
  * the same fixture (wr_fixture.h states that invariant) and the same text. */
 
-static cJSON *vector2(const double v[2])
-{
-    return cJSON_CreateDoubleArray(v, 2);
-}
+static void write_pair(wp_writer *w, const double v[2]) { wp_write_numbers(w, v, 2); }
 
-static bool add(cJSON *object, const char *key, cJSON *item)
+/* [[x, y], ...]: n points. */
+static void write_pairs(wp_writer *w, const double (*v)[2], size_t n)
 {
-    if (!item)
-        return false;
-    cJSON_AddItemToObject(object, key, item);
-    return true;
+    wp_write_array(w);
+    for (size_t i = 0; i < n; i++)
+        write_pair(w, v[i]);
+    wp_write_array_end(w);
 }
 
 /* An outline's loops as given: [x, y] for a straight segment, [x, y,
  * bulge] for an arc (a bulge of 0, or -0, is the straight form: one
  * fixture, one id). */
-static cJSON *explicit_loops(const wr_outline *outline)
+static void write_loops(wp_writer *w, const wr_outline *outline)
 {
-    cJSON *loops = cJSON_CreateArray();
-    for (size_t i = 0; loops && i < outline->loop_count; i++) {
-        cJSON *loop = cJSON_CreateArray();
-        if (!loop) {
-            cJSON_Delete(loops);
-            return NULL;
-        }
-        cJSON_AddItemToArray(loops, loop);
+    wp_write_array(w);
+    for (size_t i = 0; i < outline->loop_count; i++) {
+        wp_write_array(w);
         for (size_t j = 0; j < outline->loops[i].segment_count; j++) {
             const wr_segment *segment = &outline->loops[i].segments[j];
             double row[3] = {segment->start[0], segment->start[1], segment->bulge + 0.0};
-            cJSON *vertex = cJSON_CreateDoubleArray(row, row[2] != 0 ? 3 : 2);
-            if (!vertex) {
-                cJSON_Delete(loops);
-                return NULL;
-            }
-            cJSON_AddItemToArray(loop, vertex);
+            wp_write_numbers(w, row, row[2] != 0 ? 3 : 2);
         }
+        wp_write_array_end(w);
     }
-    return loops;
+    wp_write_array_end(w);
 }
 
-static cJSON *explicit_shape(const wr_fixture *f)
+static void write_shape(wp_writer *w, const wr_fixture *f)
 {
-    cJSON *shape = cJSON_CreateObject();
-    bool ok = shape != NULL;
-    if (ok && f->shape == WR_SHAPE_CIRCLE) {
-        ok = add(shape, "type", cJSON_CreateString("circle")) &&
-             add(shape, "center", vector2(f->center)) &&
-             add(shape, "radius", cJSON_CreateNumber(f->radius));
-    } else if (ok && f->shape == WR_SHAPE_OUTLINE) {
-        ok = add(shape, "type", cJSON_CreateString("outline")) &&
-             add(shape, "loops", explicit_loops(f->outline));
-    } else if (ok) {
-        cJSON *vertices = cJSON_CreateArray();
-        ok = add(shape, "type", cJSON_CreateString("polygon")) &&
-             add(shape, "vertices", vertices);
-        for (size_t i = 0; ok && i < f->vertex_count; i++) {
-            cJSON *vertex = vector2(f->vertices[i]);
-            ok = vertex != NULL;
-            if (ok)
-                cJSON_AddItemToArray(vertices, vertex);
-        }
+    wp_write_object(w);
+    if (f->shape == WR_SHAPE_CIRCLE) {
+        wp_write_key(w, "center");
+        write_pair(w, f->center);
+        wp_write_member_number(w, "radius", f->radius);
+        wp_write_member_string(w, "type", "circle");
+    } else if (f->shape == WR_SHAPE_OUTLINE) {
+        wp_write_key(w, "loops");
+        write_loops(w, f->outline);
+        wp_write_member_string(w, "type", "outline");
+    } else {
+        wp_write_member_string(w, "type", "polygon");
+        wp_write_key(w, "vertices");
+        write_pairs(w, (const double (*)[2])f->vertices, f->vertex_count);
     }
-    if (!ok) {
-        cJSON_Delete(shape);
-        return NULL;
-    }
-    return shape;
+    wp_write_object_end(w);
 }
 
 /* A coefficient: the number itself when a point (as every fixture without
  * intervals has, and [a, a] is a), else [lo, hi]. */
-static cJSON *coefficient(double lo, double hi)
+static void write_coefficient(wp_writer *w, double lo, double hi)
 {
-    if (lo == hi)
-        return cJSON_CreateNumber(hi);
-    double bounds[2] = {lo, hi};
-    return cJSON_CreateDoubleArray(bounds, 2);
-}
-
-static cJSON *explicit_fixel(const wr_fixel *fixel)
-{
-    cJSON *item = cJSON_CreateObject(), *friction = cJSON_CreateObject();
-    bool ok = item && friction && add(item, "friction", friction);
-    if (!ok)
-        cJSON_Delete(friction);
-    ok = ok && add(friction, "static", coefficient(fixel->mu_static_min, fixel->mu_static)) &&
-         add(friction, "kinetic", coefficient(fixel->mu_kinetic_min, fixel->mu_kinetic)) &&
-         add(item, "at", vector2(fixel->at)) && add(item, "normal", vector2(fixel->normal));
-    if (!ok) {
-        cJSON_Delete(item);
-        return NULL;
+    if (lo == hi) {
+        wp_write_number(w, hi);
+    } else {
+        double bounds[2] = {lo, hi};
+        wp_write_numbers(w, bounds, 2);
     }
-    return item;
 }
 
-/* {"position": T, "angle": A}, the angle only when not 0 (so that a
- * tolerance written with "angle": 0 and one without share an id). */
-static bool explicit_tolerance(cJSON *root, const wr_tolerance *t)
+/* {"angle": A, "position": T} (keys sorted, as explicit_text writes
+ * them), the angle only when not 0 (so that a tolerance written with
+ * "angle": 0 and one without share an id). */
+static void write_tolerance(wp_writer *w, const wr_tolerance *t)
 {
-    if (!t->given)
-        return true;
-    cJSON *item = cJSON_CreateObject();
-    return add(root, "tolerance", item) &&
-           add(item, "position", cJSON_CreateNumber(t->position)) &&
-           (t->angle == 0 || add(item, "angle", cJSON_CreateNumber(t->angle)));
+    wp_write_object(w);
+    if (t->angle != 0)
+        wp_write_member_number(w, "angle", t->angle);
+    wp_write_member_number(w, "position", t->position);
+    wp_write_object_end(w);
 }
 
-/* The supports' explicit form: points, friction {static, kinetic}, g, and
- * the down clamps when there are any (forces as given). */
-static cJSON *explicit_supports(const wr_supports *s)
+/* The supports' explicit form (keys sorted): the down clamps when there are
+ * any (forces as given), friction {kinetic, static}, g, points. */
+static void write_supports(wp_writer *w, const wr_supports *s)
 {
-    cJSON *root = cJSON_CreateObject(), *points = cJSON_CreateArray();
-    cJSON *friction = cJSON_CreateObject();
-    bool ok = root && points && friction && add(root, "points", points);
-    if (!ok)
-        cJSON_Delete(points);
-    if (ok && !add(root, "friction", friction))
-        ok = false;
-    else if (!ok)
-        cJSON_Delete(friction);
-    for (int i = 0; ok && i < s->count; i++) {
-        cJSON *point = vector2(s->points[i]);
-        ok = point != NULL;
-        if (ok)
-            cJSON_AddItemToArray(points, point);
-    }
-    ok = ok && add(friction, "static", coefficient(s->mu_static_min, s->mu_static)) &&
-         add(friction, "kinetic", coefficient(s->mu_kinetic_min, s->mu_kinetic)) &&
-         add(root, "g", cJSON_CreateNumber(s->g));
-    if (ok && s->down_count) {
-        cJSON *down = cJSON_CreateArray();
-        ok = add(root, "down", down);
-        for (int i = 0; ok && i < s->down_count; i++) {
-            cJSON *item = cJSON_CreateObject();
-            ok = item && (cJSON_AddItemToArray(down, item), true) &&
-                 add(item, "at", vector2(s->down[i].at)) &&
-                 add(item, "force", cJSON_CreateNumber(s->down[i].force));
+    wp_write_object(w);
+    if (s->down_count) {
+        wp_write_key(w, "down");
+        wp_write_array(w);
+        for (int i = 0; i < s->down_count; i++) {
+            wp_write_object(w);
+            wp_write_key(w, "at");
+            write_pair(w, s->down[i].at);
+            wp_write_member_number(w, "force", s->down[i].force);
+            wp_write_object_end(w);
         }
+        wp_write_array_end(w);
     }
-    if (!ok) {
-        cJSON_Delete(root);
-        return NULL;
-    }
-    return root;
+    wp_write_key(w, "friction");
+    wp_write_object(w);
+    wp_write_key(w, "kinetic");
+    write_coefficient(w, s->mu_kinetic_min, s->mu_kinetic);
+    wp_write_key(w, "static");
+    write_coefficient(w, s->mu_static_min, s->mu_static);
+    wp_write_object_end(w);
+    wp_write_member_number(w, "g", s->g);
+    wp_write_key(w, "points");
+    write_pairs(w, s->points, (size_t)s->count);
+    wp_write_object_end(w);
 }
 
-/* The explicit form without the name, as a JSON tree; NULL out of memory. */
-static cJSON *explicit_fixture(const wr_fixture *f)
+static void write_fixel(wp_writer *w, const wr_fixel *fixel)
 {
-    cJSON *root = cJSON_CreateObject(), *body = cJSON_CreateObject();
-    cJSON *fixels = cJSON_CreateArray();
-    bool ok = root && body && fixels && add(root, "body", body);
-    if (!ok)
-        cJSON_Delete(body);
-    if (ok && !add(root, "fixels", fixels))
-        ok = false;
-    else if (!ok)
-        cJSON_Delete(fixels);
-    if (ok && f->units.given) {
+    wp_write_object(w);
+    wp_write_key(w, "at");
+    write_pair(w, fixel->at);
+    wp_write_key(w, "friction");
+    wp_write_object(w);
+    wp_write_key(w, "kinetic");
+    write_coefficient(w, fixel->mu_kinetic_min, fixel->mu_kinetic);
+    wp_write_key(w, "static");
+    write_coefficient(w, fixel->mu_static_min, fixel->mu_static);
+    wp_write_object_end(w);
+    wp_write_key(w, "normal");
+    write_pair(w, fixel->normal);
+    wp_write_object_end(w);
+}
+
+/* The explicit form's canonical text (wp_canonical: every object's members
+ * sorted by key, so each object below writes its keys in that order), with
+ * the name when `name` is not NULL.  Malloc'd; NULL when out of memory. */
+static char *explicit_text(const wr_fixture *f, const char *name)
+{
+    wp_buffer b = {0};
+    wp_writer w = wp_writer_on(&b);
+    wp_write_object(&w);
+    wp_write_key(&w, "body");
+    wp_write_object(&w);
+    wp_write_key(&w, "com");
+    write_pair(&w, f->com);
+    wp_write_member_number(&w, "inertia", f->inertia);
+    wp_write_member_number(&w, "mass", f->mass);
+    if (f->shape != WR_SHAPE_NONE) {
+        wp_write_key(&w, "shape");
+        write_shape(&w, f);
+    }
+    wp_write_object_end(&w);
+    wp_write_key(&w, "fixels");
+    wp_write_array(&w);
+    for (int i = 0; i < f->fixel_count; i++)
+        write_fixel(&w, &f->fixels[i]);
+    wp_write_array_end(&w);
+    if (name)
+        wp_write_member_string(&w, "name", name);
+    if (f->supports) {
+        wp_write_key(&w, "supports");
+        write_supports(&w, f->supports);
+    }
+    if (f->tolerance.given) {
+        wp_write_key(&w, "tolerance");
+        write_tolerance(&w, &f->tolerance);
+    }
+    if (f->units.given) {
         /* Only when given: a fixture without units keeps the id it had. */
-        cJSON *units = cJSON_CreateObject();
-        ok = add(root, "units", units) &&
-             add(units, "length", cJSON_CreateString(unit_text(LENGTH_UNITS, f->units.length_m))) &&
-             add(units, "force", cJSON_CreateString(unit_text(FORCE_UNITS, f->units.force_n)));
+        wp_write_key(&w, "units");
+        wp_write_object(&w);
+        wp_write_member_string(&w, "force", unit_text(FORCE_UNITS, f->units.force_n));
+        wp_write_member_string(&w, "length", unit_text(LENGTH_UNITS, f->units.length_m));
+        wp_write_object_end(&w);
     }
-    ok = ok && add(body, "mass", cJSON_CreateNumber(f->mass)) &&
-         add(body, "inertia", cJSON_CreateNumber(f->inertia)) &&
-         add(body, "com", vector2(f->com)) &&
-         (f->shape == WR_SHAPE_NONE || add(body, "shape", explicit_shape(f)));
-    ok = ok && explicit_tolerance(root, &f->tolerance);
-    if (ok && f->supports)
-        ok = add(root, "supports", explicit_supports(f->supports));
-    for (int i = 0; ok && i < f->fixel_count; i++) {
-        cJSON *fixel = explicit_fixel(&f->fixels[i]);
-        ok = fixel != NULL;
-        if (ok)
-            cJSON_AddItemToArray(fixels, fixel);
-    }
-    if (!ok) {
-        cJSON_Delete(root);
-        return NULL;
-    }
-    return root;
+    wp_write_object_end(&w);
+    return wp_buffer_take(&b);
 }
 
 /* Fill the doc's id, canonical text and name from its fixture. */
 static bool describe(wp_fixture_doc *doc, const char *name)
 {
-    cJSON *tree = explicit_fixture(doc->fixture);
-    char *content = tree ? wp_canonical(tree, NULL) : NULL;
-    if (content && name && !add(tree, "name", cJSON_CreateString(name))) {
-        free(content);
-        content = NULL;
-    }
-    doc->canonical = content ? wp_canonical(tree, NULL) : NULL;
+    char *content = explicit_text(doc->fixture, NULL);
+    doc->canonical = content ? explicit_text(doc->fixture, name) : NULL;
     doc->name = strdup(name ? name : "");
-    cJSON_Delete(tree);
     if (!content || !doc->canonical || !doc->name) {
         free(content);
         return false;

@@ -3,7 +3,8 @@
  *   wp_error.c      errors that name a field; lib statuses as JSON-RPC codes
  *   wp_read.c       strict typed access to request members
  *   wp_buffer.c     the text buffer answers are written into
- *   wp_canonical.c  canonical text, a tree written into a buffer
+ *   wp_writer.c     the JSON writer every answer is written with
+ *   wp_canonical.c  canonical text of a tree (fixture ids, request lines)
  *   wp_scan.c       a text read without a tree: checked before parsing, ids
  *                   as written, spans of members, long arrays of triples */
 #ifndef WP_JSON_H
@@ -15,6 +16,8 @@
 #include <cjson/cJSON.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -87,24 +90,136 @@ typedef struct wp_buffer {
     bool failed;
 } wp_buffer;
 
-void wp_buffer_append(wp_buffer *buffer, const char *text, size_t length);
+/* Appends the text; out of room, wp_buffer_grow_append grows the buffer
+ * first.  Inline: an answer is written a few bytes at a time. */
+void wp_buffer_grow_append(wp_buffer *buffer, const char *text, size_t length);
+static inline void wp_buffer_append(wp_buffer *buffer, const char *text, size_t length)
+{
+    if (buffer->length + length < buffer->capacity) { /* room for the NUL too */
+        char *at = buffer->data + buffer->length;
+        if (length <= 16)
+            for (size_t i = 0; i < length; i++) /* a few bytes: no call */
+                at[i] = text[i];
+        else
+            memcpy(at, text, length);
+        buffer->length += length;
+        buffer->data[buffer->length] = 0;
+    } else {
+        wp_buffer_grow_append(buffer, text, length);
+    }
+}
 void wp_buffer_puts(wp_buffer *buffer, const char *text);
-/* A string literal, its length known at compile time (hot loops). */
-#define WP_BUFFER_LITERAL(buffer, literal)                                                     \
-    wp_buffer_append(buffer, "" literal, sizeof("" literal) - 1) /* "": literals only */
+/* Room for `n` more bytes (and the NUL) at the end of the text, grown if
+ * need be: where to write them, or NULL when out of memory.  The bytes
+ * written count once wp_buffer_commit says how many. */
+char *wp_buffer_grow_room(wp_buffer *buffer, size_t n);
+static inline char *wp_buffer_room(wp_buffer *buffer, size_t n)
+{
+    if (buffer->length + n < buffer->capacity)
+        return buffer->data + buffer->length;
+    return wp_buffer_grow_room(buffer, n);
+}
+static inline void wp_buffer_commit(wp_buffer *buffer, size_t written)
+{
+    buffer->length += written;
+    buffer->data[buffer->length] = 0;
+}
 /* Capacity for `bytes` bytes of text in all, at once: a large answer whose
  * size is known roughly is not regrown (and recopied) a dozen times.  A
  * hint: on failure nothing changes. */
 void wp_buffer_reserve(wp_buffer *buffer, size_t bytes);
 void wp_buffer_number(wp_buffer *buffer, double value);
 void wp_buffer_string(wp_buffer *buffer, const char *text); /* quoted, escaped */
-/* `value` as JSON text, members in their order, numbers as
- * wp_format_number; a raw item (cJSON_Raw) is copied verbatim but for
- * leading spaces. */
-void wp_buffer_json(wp_buffer *buffer, const cJSON *value);
 
 /* The NUL-terminated text (malloc'd, the caller frees), or NULL. */
 char *wp_buffer_take(wp_buffer *buffer);
+
+/* The writer of every answer's JSON (wp_writer.c), on a buffer: values,
+ * objects and arrays, with the commas and the nesting kept by the writer,
+ * so that a caller says only what comes next.  Numbers are written by
+ * wp_format_number, strings escaped.  A writer may span steps: it holds no
+ * text, and its buffer may be a different one at each step (set `out`).
+ * At depth 0 values are separate texts (lines), never joined by commas.
+ * Nesting deeper than WP_WRITER_DEPTH is a programming error (asserted). */
+#define WP_WRITER_DEPTH 64
+typedef struct wp_writer {
+    wp_buffer *out;
+    unsigned depth;    /* containers open */
+    uint64_t filled;   /* bit d - 1: the container at depth d has a member */
+    bool keyed;        /* a key is written, its value not yet */
+} wp_writer;
+
+/* A writer on `out` at depth 0. */
+static inline wp_writer wp_writer_on(wp_buffer *out) { return (wp_writer){out, 0, 0, false}; }
+/* A writer on `out` inside an array whose "[" is written elsewhere: its
+ * values are joined by commas, the first without one -- a sequence of
+ * values that wp_write_raw puts into that array later (a chunk's text). */
+static inline wp_writer wp_writer_in_array(wp_buffer *out)
+{
+    return (wp_writer){out, 1, 0, false};
+}
+
+/* What comes before a value: true when a comma is due (after the
+ * container's last member); nothing after a key, first in a container, at
+ * depth 0.  The caller writes the comma with its own text, in one append. */
+static inline bool wp_write_comma_due(wp_writer *w)
+{
+    if (w->keyed) {
+        w->keyed = false;
+        return false;
+    }
+    if (!w->depth)
+        return false;
+    uint64_t bit = (uint64_t)1 << (w->depth - 1);
+    bool due = (w->filled & bit) != 0;
+    w->filled |= bit;
+    return due;
+}
+static inline void wp_write_separate(wp_writer *w)
+{
+    if (wp_write_comma_due(w))
+        wp_buffer_append(w->out, ",", 1);
+}
+
+void wp_write_object(wp_writer *w);     /* { */
+void wp_write_object_end(wp_writer *w); /* } */
+void wp_write_array(wp_writer *w);      /* [ */
+void wp_write_array_end(wp_writer *w);  /* ] */
+/* A member's key, in an object: a name of the protocol, written as it is
+ * (no character in it needs escaping). */
+void wp_write_key(wp_writer *w, const char *key);
+void wp_write_number(wp_writer *w, double value);
+void wp_write_string(wp_writer *w, const char *text); /* quoted, escaped */
+void wp_write_bool(wp_writer *w, bool value);
+void wp_write_null(wp_writer *w);
+/* Text that is JSON already (`length` bytes): a value, or a sequence of
+ * values joined by commas (a wp_writer_in_array's text), which join the
+ * container's members as values written one by one would.  Nothing when
+ * `length` is 0. */
+void wp_write_raw(wp_writer *w, const char *text, size_t length);
+/* [v0, v1, ...]: n numbers. */
+void wp_write_numbers(wp_writer *w, const double *v, size_t n);
+/* A member: its key and its value, in one call. */
+static inline void wp_write_member_number(wp_writer *w, const char *key, double value)
+{
+    wp_write_key(w, key);
+    wp_write_number(w, value);
+}
+static inline void wp_write_member_string(wp_writer *w, const char *key, const char *text)
+{
+    wp_write_key(w, key);
+    wp_write_string(w, text);
+}
+static inline void wp_write_member_bool(wp_writer *w, const char *key, bool value)
+{
+    wp_write_key(w, key);
+    wp_write_bool(w, value);
+}
+/* A string value of exactly n characters that the caller writes at the
+ * place returned, at once, before anything else is written: characters
+ * that need no escaping (a column of verdict letters).  NULL when out of
+ * memory (the buffer says so). */
+char *wp_write_string_room(wp_writer *w, size_t n);
 
 /* Canonical JSON: object members sorted by key, numbers as
  * wp_format_number, no white space; a top-level member named `skip` (may be

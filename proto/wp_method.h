@@ -59,14 +59,15 @@ typedef struct wp_prepared {
 } wp_prepared;
 
 /* A method whose result is written in pieces: begin reads the params and
- * returns the stream's own state (opaque to the envelope), step appends
- * the next part of the result's JSON text (all of it, from its opening
- * brace), spending at most about `budget` units (added to *used), free
+ * returns the stream's own state (opaque to the envelope), step writes
+ * the next part of the result with the response's writer (all of it, from
+ * its opening brace; the writer keeps its nesting from one step to the
+ * next, each step's text going to the writer's `out`), spending at most about `budget` units (added to *used), free
  * ends it.  Step returns WP_STEP_FAILED with `error` set when it cannot go
  * on.  The call's fixture stays held until free. */
 typedef struct wp_streamer {
     void *(*begin)(wp_call *call, wp_prepared *prepared);
-    wp_step (*step)(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+    wp_step (*step)(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                     unsigned long *used);
     void (*free)(void *stream);
     size_t (*bytes)(const void *stream); /* what it holds */
@@ -83,7 +84,7 @@ typedef struct wp_streamer {
 } wp_streamer;
 
 /* Open the response whose result follows (a streamer with opens_result). */
-void wp_call_open_result(wp_call *call, wp_buffer *out);
+void wp_call_open_result(wp_call *call, wp_writer *out);
 /* The call's id as the response will write it ("null" for none). */
 const char *wp_call_id_text(const wp_call *call);
 /* Can the call send notifications before its response: a request of its
@@ -103,8 +104,9 @@ bool wp_call_may_notify(const wp_call *call);
  * stream. */
 typedef struct wp_method {
     const char *name;
-    /* Returns the result, or NULL with call->error set. */
-    cJSON *(*handler)(wp_call *call);
+    /* Writes the result with `out`; false with call->error set (the
+     * envelope takes back what it wrote). */
+    bool (*handler)(wp_call *call, wp_writer *out);
     const wp_streamer *stream;    /* or a result written in pieces */
     const char *const *fields;    /* params it accepts, NULL-ended */
     const char *const *required;  /* of those, the ones it needs */

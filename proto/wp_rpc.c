@@ -28,17 +28,51 @@ static const char *message_of(int code)
 /* {"jsonrpc":"2.0","error":{...},"id":<id>} with id text (e.g. "null"). */
 static void write_error(wp_buffer *b, const wp_error *error, const char *id)
 {
-    wp_buffer_puts(b, "{\"jsonrpc\":\"2.0\",\"error\":{\"code\":");
-    wp_buffer_number(b, error->code);
-    wp_buffer_puts(b, ",\"message\":");
-    wp_buffer_string(b, message_of(error->code));
-    wp_buffer_puts(b, ",\"data\":{\"field\":");
-    wp_buffer_string(b, error->field);
-    wp_buffer_puts(b, ",\"reason\":");
-    wp_buffer_string(b, error->reason);
-    wp_buffer_puts(b, "}},\"id\":");
-    wp_buffer_puts(b, id);
-    wp_buffer_puts(b, "}");
+    wp_writer w = wp_writer_on(b);
+    wp_write_object(&w);
+    wp_write_key(&w, "jsonrpc");
+    wp_write_string(&w, "2.0");
+    wp_write_key(&w, "error");
+    wp_write_object(&w);
+    wp_write_key(&w, "code");
+    wp_write_number(&w, error->code);
+    wp_write_key(&w, "message");
+    wp_write_string(&w, message_of(error->code));
+    wp_write_key(&w, "data");
+    wp_write_object(&w);
+    wp_write_key(&w, "field");
+    wp_write_string(&w, error->field);
+    wp_write_key(&w, "reason");
+    wp_write_string(&w, error->reason);
+    wp_write_object_end(&w);
+    wp_write_object_end(&w);
+    wp_write_key(&w, "id");
+    wp_write_raw(&w, id, strlen(id));
+    wp_write_object_end(&w);
+}
+
+/* A response's opening, {"jsonrpc":"2.0","result": -- its result follows. */
+static void write_response_open(wp_writer *w)
+{
+    wp_write_object(w);
+    wp_write_key(w, "jsonrpc");
+    wp_write_string(w, "2.0");
+    wp_write_key(w, "result");
+}
+
+/* A response's closing, after its result: its id (text such as "null"). */
+void wp_call_open_result(wp_call *call, wp_writer *w)
+{
+    (void)call;
+    write_response_open(w);
+}
+
+static void write_response_close(wp_writer *w, const char *id_text)
+{
+    const char *id = id_text ? id_text : "null";
+    wp_write_key(w, "id");
+    wp_write_raw(w, id, strlen(id));
+    wp_write_object_end(w);
 }
 
 char *wp_error_line(int code, const char *field, const char *reason)
@@ -65,6 +99,7 @@ struct wp_answer {
     cJSON *next;             /* the next request to start, or NULL */
     bool opened;             /* a batch's "[" is written */
     size_t stream_written;   /* bytes the current stream's steps have written */
+    wp_writer response;      /* the current stream's response, across its pieces */
     bool done;
     wp_prepared prepared;    /* params' member read from the text (wp_method.h) */
     wp_fixture_hold hold;    /* the request in hand's fixture (wp_method.h) */
@@ -179,17 +214,6 @@ static void separate(wp_answer *answer, wp_buffer *out)
     answer->opened = true;
 }
 
-static void write_result(wp_answer *answer, wp_buffer *out, const cJSON *result,
-                         const char *id_text)
-{
-    separate(answer, out);
-    wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
-    wp_buffer_json(out, result);
-    wp_buffer_puts(out, ",\"id\":");
-    wp_buffer_puts(out, id_text ? id_text : "null");
-    wp_buffer_puts(out, "}");
-}
-
 static void write_error_answer(wp_answer *answer, wp_buffer *out, const wp_error *error,
                                const char *id_text)
 {
@@ -230,10 +254,11 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
     wp_call call = call_of(answer, host, answer->params, &error, answer->id_text);
     unsigned long budget = answer->whole ? (unsigned long)-1 : answer->budget;
     size_t before = out->length;
-    wp_step step = answer->streamer->step(answer->stream, &call, out, budget, used);
+    answer->response.out = out;
+    wp_step step = answer->streamer->step(answer->stream, &call, &answer->response, budget, used);
     while (step == WP_STEP_MORE && answer->whole) {
         *used = 0;
-        step = answer->streamer->step(answer->stream, &call, out, budget, used);
+        step = answer->streamer->step(answer->stream, &call, &answer->response, budget, used);
     }
     /* A stream that opens its own response and has written nothing in
      * earlier pieces (no notification either) can still be answered an
@@ -244,9 +269,7 @@ static wp_step continue_stream(wp_answer *answer, const wp_host *host, wp_buffer
     if (step == WP_STEP_MORE)
         return WP_STEP_MORE;
     if (step == WP_STEP_DONE) {
-        wp_buffer_puts(out, ",\"id\":");
-        wp_buffer_puts(out, answer->id_text ? answer->id_text : "null");
-        wp_buffer_puts(out, "}");
+        write_response_close(&answer->response, answer->id_text);
         end_stream(answer, host);
         return WP_STEP_DONE;
     }
@@ -312,8 +335,9 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             answer->id_text = id_text;
             id_text = NULL;
             answer->bytes = 4096 + (m->stream->bytes ? m->stream->bytes(stream) : 0);
+            answer->response = wp_writer_on(out);
             if (!m->stream->opens_result)
-                wp_buffer_puts(out, "{\"jsonrpc\":\"2.0\",\"result\":");
+                write_response_open(&answer->response);
             /* `start` is before the "," or "[": a failure takes it all back. */
             *stream_step = continue_stream(answer, host, out, start, true, used, counts);
         } else {
@@ -322,16 +346,26 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
                 write_error_answer(answer, out, &error, id_text);
         }
     } else {
-        cJSON *result = m ? m->handler(&call) : NULL;
-        if (!result)
-            counts->errors++;
-        if (!notification) {
-            if (result)
-                write_result(answer, out, result, id_text);
-            else
-                write_error_answer(answer, out, &error, id_text);
+        /* The result is written in its place; a handler that fails takes
+         * back what it wrote, and the error is answered instead. */
+        if (!notification)
+            separate(answer, out);
+        size_t opened = out->length;
+        wp_writer w = wp_writer_on(out);
+        write_response_open(&w);
+        bool ok = m && m->handler(&call, &w);
+        if (ok)
+            write_response_close(&w, id_text);
+        if (!ok || notification) {
+            out->length = opened; /* (a notification wrote no separator) */
+            if (out->data)
+                out->data[out->length] = 0;
         }
-        cJSON_Delete(result);
+        if (!ok) {
+            counts->errors++;
+            if (!notification)
+                write_error(out, &error, id_text ? id_text : "null");
+        }
     }
     /* The flags, acted on here and only here: the fixture wp_call_fixture
      * acquired for the call is released after it (after its last piece). */

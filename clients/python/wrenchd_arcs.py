@@ -1,6 +1,6 @@
 """wrenchd_arcs.py -- the arithmetic of wrenchd's bulged vertices, and curves
 followed by tangent arcs: written once for the DXF reader (wrenchd_dxf.py)
-and the FreeCAD workbench (clients/freecad/wrench_freecad.py).  Pure Python,
+and the FreeCAD workbench (clients/freecad/wrench_outline.py).  Pure Python,
 no FreeCAD, no ezdxf.
 
 Bulges

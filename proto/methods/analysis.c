@@ -10,123 +10,129 @@
 #include <stdlib.h>
 #include <string.h>
 
-static cJSON *vector3(const double v[3])
+static void write_vector3(wp_writer *out, const double v[3])
 {
-    /* + 0.0 turns -0 into 0, which cJSON would print as "-0". */
+    /* + 0.0 turns -0 into 0, which would be written "-0". */
     const double w[3] = {v[0] + 0.0, v[1] + 0.0, v[2] + 0.0};
-    return cJSON_CreateDoubleArray(w, 3);
+    wp_write_numbers(out, w, 3);
 }
 
 /* ---- cone.get, plan.get, modes.get --------------------------------------- */
 
-cJSON *wp_handle_cone_get(wp_call *call)
+bool wp_handle_cone_get(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
     const char *text;
     if (!wp_member_string(params, "params", "constraints", true, &text, error))
-        return NULL;
+        return false;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
-        return NULL;
+        return false;
     const wr_fixture *f = use->fixture;
     wr_constraint constraint;
     wr_error invalid;
     wr_cone cone;
-    cJSON *result = NULL;
     wr_status status = wr_constraint_parse(text, f->fixel_count, &constraint, &invalid);
     if (status != WR_OK) {
         wp_error_status(error, status, "params.constraints", "%s", invalid.reason);
-        goto done;
+        return false;
     }
     status = wr_cone_build(&cone, f, &constraint);
     if (status != WR_OK) {
         wr_cone_release(&cone);
         wp_error_status(error, status, "params.constraints", "%s", wr_strerror(status));
-        goto done;
+        return false;
     }
-    result = cJSON_CreateObject();
-    cJSON_AddStringToObject(result, "constraints", text);
-    cJSON_AddBoolToObject(result, "empty", cone.empty);
-    cJSON_AddNumberToObject(result, "dimension", cone.dimension);
-    cJSON *halfspaces = cJSON_AddArrayToObject(result, "halfspaces");
-    cJSON *strict = cJSON_AddArrayToObject(result, "strict");
-    cJSON *equalities = cJSON_AddArrayToObject(result, "equalities");
-    cJSON *generators = cJSON_AddArrayToObject(result, "generators");
-    if (!result || !halfspaces || !strict || !equalities || !generators) {
-        wr_cone_release(&cone);
-        result = wp_out_of_memory(result, error);
-        goto done;
-    }
+    wp_write_object(out);
+    wp_write_member_string(out, "constraints", text);
+    wp_write_member_bool(out, "empty", cone.empty);
+    wp_write_member_number(out, "dimension", cone.dimension);
     double row[3];
+    wp_write_key(out, "halfspaces");
+    wp_write_array(out);
     for (int i = 0; i < cone.facet_count; i++) {
         wr_fixture_unscale_row(f, cone.facets[i], row);
-        cJSON_AddItemToArray(halfspaces, vector3(row));
-        cJSON_AddItemToArray(strict, cJSON_CreateBool(cone.facet_open[i]));
+        write_vector3(out, row);
     }
+    wp_write_array_end(out);
+    wp_write_key(out, "strict");
+    wp_write_array(out);
+    for (int i = 0; i < cone.facet_count; i++)
+        wp_write_bool(out, cone.facet_open[i]);
+    wp_write_array_end(out);
+    wp_write_key(out, "equalities");
+    wp_write_array(out);
     for (int i = 0; i < cone.equality_count && !cone.empty; i++) {
         wr_fixture_unscale_row(f, cone.equalities[i], row);
-        cJSON_AddItemToArray(equalities, vector3(row));
+        write_vector3(out, row);
     }
+    wp_write_array_end(out);
+    wp_write_key(out, "generators");
+    wp_write_array(out);
     for (int i = 0; i < cone.ray_count; i++) {
         wr_fixture_unscale_wrench(f, cone.rays[i], row);
         wr_fixture_unit_direction(row);
-        cJSON_AddItemToArray(generators, vector3(row));
+        write_vector3(out, row);
     }
+    wp_write_array_end(out);
+    wp_write_object_end(out);
     wr_cone_release(&cone);
-done:
-    return result;
+    return true;
 }
 
-cJSON *wp_handle_plan_get(wp_call *call)
+bool wp_handle_plan_get(wp_call *call, wp_writer *out)
 {
-    wp_error *error = call->error;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
-        return NULL;
+        return false;
     const wr_plan *plan = wr_analysis_plan(use->analysis);
     int k = plan->fixel_count;
-    cJSON *result = cJSON_CreateObject();
-    cJSON *states = cJSON_AddArrayToObject(result, "states");
-    cJSON *cones = cJSON_AddArrayToObject(result, "cones");
-    for (int s = 0; states && s < plan->state_count; s++) {
+    wp_write_object(out);
+    wp_write_key(out, "states");
+    wp_write_array(out);
+    for (int s = 0; s < plan->state_count; s++) {
         const wr_plan_state *ps = &plan->states[s];
         char text[WR_STATE_TEXT];
         wr_state_format(ps->state, k, text);
-        cJSON *state = cJSON_CreateObject();
-        cJSON_AddStringToObject(state, "state", text);
-        cJSON *excluded = cJSON_AddArrayToObject(state, "excluded");
-        for (int e = 0; excluded && e < ps->excluded_count; e++)
-            cJSON_AddItemToArray(excluded,
-                                 cJSON_CreateString(plan->excluded[ps->excluded_first + e].letters));
-        cJSON_AddItemToArray(states, state);
+        wp_write_object(out);
+        wp_write_member_string(out, "state", text);
+        wp_write_key(out, "excluded");
+        wp_write_array(out);
+        for (int e = 0; e < ps->excluded_count; e++)
+            wp_write_string(out, plan->excluded[ps->excluded_first + e].letters);
+        wp_write_array_end(out);
+        wp_write_object_end(out);
     }
-    for (int i = 0; cones && i < plan->kept_count; i++)
-        cJSON_AddItemToArray(cones, cJSON_CreateString(plan->kept[i].letters));
-    if (!states || !cones)
-        return wp_out_of_memory(result, error);
-    return result;
+    wp_write_array_end(out);
+    wp_write_key(out, "cones");
+    wp_write_array(out);
+    for (int i = 0; i < plan->kept_count; i++)
+        wp_write_string(out, plan->kept[i].letters);
+    wp_write_array_end(out);
+    wp_write_object_end(out);
+    return true;
 }
 
-cJSON *wp_handle_modes_get(wp_call *call)
+bool wp_handle_modes_get(wp_call *call, wp_writer *out)
 {
-    wp_error *error = call->error;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
-        return NULL;
+        return false;
     const wr_analysis *a = use->analysis;
-    cJSON *result = cJSON_CreateObject();
-    cJSON *feasible = cJSON_AddArrayToObject(result, "feasible");
     const wr_constraint *modes = wr_analysis_constraints(a, WR_SET_STRONG);
-    for (int i = 0; feasible && i < wr_analysis_cone_count(a, WR_SET_STRONG); i++) {
+    wp_write_object(out);
+    wp_write_key(out, "feasible");
+    wp_write_array(out);
+    for (int i = 0; i < wr_analysis_cone_count(a, WR_SET_STRONG); i++) {
         char text[WR_CONSTRAINT_TEXT];
         wr_constraint_format(&modes[i], text);
-        cJSON_AddItemToArray(feasible, cJSON_CreateString(text));
+        wp_write_string(out, text);
     }
-    cJSON_AddBoolToObject(result, "pinned", wr_analysis_pinned(a));
-    if (!feasible)
-        return wp_out_of_memory(result, error);
-    return result;
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "pinned", wr_analysis_pinned(a));
+    wp_write_object_end(out);
+    return true;
 }
 
 /* ---- push.regions, gravity.sweep, stability.margin ----------------------- */
@@ -144,7 +150,7 @@ typedef struct push_state {
     bool *push_on;       /* owned */
     int edges, next;     /* the outline's edges; the next to answer */
     unsigned long edge_cost;
-    bool opened, any;    /* "{"regions":[" written; a region written */
+    bool opened, any;    /* {"regions":[ written; a region written */
     double total, resolution;
     wp_push_load load;   /* "force" and "cases": regions under them */
     wr_robust *robust;   /* the fixture has a tolerance: the regions' robust part */
@@ -166,7 +172,7 @@ typedef struct reason {
     int edges;
 } reason;
 
-static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set set,
+static void write_push_why(wp_writer *out, const wr_analysis *analysis, wr_set set,
                        const wr_finger *finger)
 {
     const wr_fixture *f = wr_analysis_fixture(analysis);
@@ -197,39 +203,40 @@ static void write_push_why(wp_buffer *out, const wr_analysis *analysis, wr_set s
             reasons[b] = reasons[b - 1];
             reasons[b - 1] = swap;
         }
-    WP_BUFFER_LITERAL(out, ",\"why_empty\":{\"reasons\":[");
+    wp_write_key(out, "why_empty");
+    wp_write_object(out);
+    wp_write_key(out, "reasons");
+    wp_write_array(out);
     for (int i = 0; i < count; i++) {
-        wp_buffer_puts(out, i ? ",{\"blocking\":" : "{\"blocking\":");
+        wp_write_object(out);
+        wp_write_key(out, "blocking");
         if (reasons[i].index < 0) {
-            WP_BUFFER_LITERAL(out, "null");
+            wp_write_null(out);
         } else {
             char text[WR_CONSTRAINT_TEXT];
             wr_constraint_format(&wr_analysis_cone(analysis, reasons[i].set, reasons[i].index)
                                       ->constraint,
                                  text);
-            wp_buffer_string(out, text);
+            wp_write_string(out, text);
         }
-        WP_BUFFER_LITERAL(out, ",\"set\":");
-        wp_buffer_string(out, reasons[i].set == WR_SET_GOAL     ? "goal"
-                              : reasons[i].set == WR_SET_STRONG ? "strong"
-                                                                : "both");
-        WP_BUFFER_LITERAL(out, ",\"states\":[");
+        wp_write_member_string(out, "set", wp_set_names[reasons[i].set]);
+        wp_write_key(out, "states");
+        wp_write_array(out);
         if (reasons[i].index >= 0 && reasons[i].set == WR_SET_GOAL) {
             const wr_plan_origins *origins =
                 &wr_analysis_plan(analysis)->origins[reasons[i].index];
             for (int j = 0; j < origins->count; j++) {
                 char state[WR_STATE_TEXT];
                 wr_state_format(origins->states[j], f->fixel_count, state);
-                if (j)
-                    WP_BUFFER_LITERAL(out, ",");
-                wp_buffer_string(out, state);
+                wp_write_string(out, state);
             }
         }
-        WP_BUFFER_LITERAL(out, "],\"edges\":");
-        wp_buffer_number(out, reasons[i].edges);
-        WP_BUFFER_LITERAL(out, "}");
+        wp_write_array_end(out);
+        wp_write_member_number(out, "edges", reasons[i].edges);
+        wp_write_object_end(out);
     }
-    WP_BUFFER_LITERAL(out, "]}");
+    wp_write_array_end(out);
+    wp_write_object_end(out);
     free(reasons);
 }
 
@@ -342,38 +349,26 @@ static void *push_begin(wp_call *call, wp_prepared *prepared)
     return state;
 }
 
-static void write_region(wp_buffer *out, const wr_fixture *f, const wr_region *r, double length)
+static void write_region(wp_writer *out, const wr_fixture *f, const wr_region *r, double length)
 {
     double from[2], to[2], normal[2];
     wr_boundary_point(f, r->edge, r->t0, from, normal);
     wr_boundary_point(f, r->edge, r->t1, to, normal);
     /* + 0.0: a -0 is written 0. */
     const double ends[2][2] = {{from[0] + 0.0, from[1] + 0.0}, {to[0] + 0.0, to[1] + 0.0}};
-    if (f->shape == WR_SHAPE_OUTLINE) {
-        size_t loop, segment;
-        wr_push_edge_place(f, r->edge, &loop, &segment);
-        WP_BUFFER_LITERAL(out, "{\"loop\":");
-        wp_buffer_number(out, (double)loop);
-        WP_BUFFER_LITERAL(out, ",\"segment\":");
-        wp_buffer_number(out, (double)segment);
-    } else {
-        WP_BUFFER_LITERAL(out, "{\"edge\":");
-        wp_buffer_number(out, r->edge);
-    }
-    WP_BUFFER_LITERAL(out, ",\"from\":");
-    wp_write_vector(out, ends[0], 2);
-    WP_BUFFER_LITERAL(out, ",\"to\":");
-    wp_write_vector(out, ends[1], 2);
-    WP_BUFFER_LITERAL(out, ",\"t0\":");
-    wp_buffer_number(out, r->t0);
-    WP_BUFFER_LITERAL(out, ",\"t1\":");
-    wp_buffer_number(out, r->t1);
-    WP_BUFFER_LITERAL(out, ",\"length\":");
-    wp_buffer_number(out, length);
-    WP_BUFFER_LITERAL(out, "}");
+    wp_write_object(out);
+    wp_write_edge_place(out, f, r->edge);
+    wp_write_key(out, "from");
+    wp_write_numbers(out, ends[0], 2);
+    wp_write_key(out, "to");
+    wp_write_numbers(out, ends[1], 2);
+    wp_write_member_number(out, "t0", r->t0);
+    wp_write_member_number(out, "t1", r->t1);
+    wp_write_member_number(out, "length", length);
+    wp_write_object_end(out);
 }
 
-static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+static wp_step push_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                          unsigned long *used)
 {
     push_state *state = stream;
@@ -381,14 +376,16 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
     if (!use)
         return WP_STEP_FAILED;
     const wr_fixture *f = use->fixture;
-    size_t start = out->length;
+    size_t start = out->out->length;
     if (!state->opened) {
         state->opened = true;
-        WP_BUFFER_LITERAL(out, "{\"regions\":[");
+        wp_write_object(out);
+        wp_write_key(out, "regions");
+        wp_write_array(out);
     }
     /* At least one edge a step: every step makes progress. */
-    for (bool first = true; state->next < state->edges && !out->failed; first = false) {
-        if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
+    for (bool first = true; state->next < state->edges && !out->out->failed; first = false) {
+        if (!first && (*used >= budget || out->out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         wr_regions part = {0};
         const wp_push_load *load = &state->load;
@@ -424,8 +421,6 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
             /* Summed in the order written, as the whole answer always was. */
             double length = wr_region_length(f, &part.items[i]);
             state->total += length;
-            if (state->any)
-                WP_BUFFER_LITERAL(out, ",");
             state->any = true;
             write_region(out, f, &part.items[i], length);
         }
@@ -434,18 +429,16 @@ static wp_step push_step(void *stream, wp_call *call, wp_buffer *out, unsigned l
         state->next++;
         *used += state->edge_cost;
     }
-    WP_BUFFER_LITERAL(out, "],\"total_length\":");
-    wp_buffer_number(out, state->total);
-    WP_BUFFER_LITERAL(out, ",\"fraction\":");
-    wp_buffer_number(out, state->total / wr_perimeter(f));
-    wp_buffer_puts(out, state->resolution == 0 ? ",\"exact\":true" : ",\"exact\":false");
-    WP_BUFFER_LITERAL(out, ",\"resolution\":");
-    wp_buffer_number(out, state->resolution);
+    wp_write_array_end(out);
+    wp_write_member_number(out, "total_length", state->total);
+    wp_write_member_number(out, "fraction", state->total / wr_perimeter(f));
+    wp_write_member_bool(out, "exact", state->resolution == 0);
+    wp_write_member_number(out, "resolution", state->resolution);
     /* Why there is none: the blocking cones of the push alone (without
      * loads; under loads force.range says it per point). */
     if (!state->any && !state->load.given)
         write_push_why(out, use->analysis, state->set, &state->finger);
-    WP_BUFFER_LITERAL(out, "}");
+    wp_write_object_end(out);
     return WP_STEP_DONE;
 }
 
@@ -467,39 +460,39 @@ static wr_status robust_part(const wr_analysis *a, wr_set set, bool gravity, con
     return status;
 }
 
-cJSON *wp_handle_gravity_sweep(wp_call *call)
+bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
     wr_set set;
     if (!read_set(params, &set, error))
-        return NULL;
+        return false;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
-        return NULL;
+        return false;
     if (wp_supports_refuse(call, use->fixture, "params.fixture",
                            "the gravity as a load (wrench.classify, force.range cases): a tilt "
                            "alone says nothing of the supports' friction"))
-        return NULL;
-    cJSON *result = NULL;
+        return false;
     wr_regions arcs;
     wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
     if (status == WR_OK && use->fixture->tolerance.given)
         status = robust_part(use->analysis, set, true, call->host->stop, &arcs);
     if (status != WR_OK) {
         wp_error_status(error, status, "params.set", "%s", wr_strerror(status));
-    } else {
-        result = cJSON_CreateObject();
-        cJSON *list = cJSON_AddArrayToObject(result, "intervals_deg");
-        for (int i = 0; list && i < arcs.count; i++) {
-            const double arc[2] = {arcs.items[i].t0 + 0.0, arcs.items[i].t1 + 0.0};
-            cJSON_AddItemToArray(list, cJSON_CreateDoubleArray(arc, 2));
-        }
-        if (!list)
-            result = wp_out_of_memory(result, error);
-        wr_regions_release(&arcs);
+        return false;
     }
-    return result;
+    wp_write_object(out);
+    wp_write_key(out, "intervals_deg");
+    wp_write_array(out);
+    for (int i = 0; i < arcs.count; i++) {
+        const double arc[2] = {arcs.items[i].t0 + 0.0, arcs.items[i].t1 + 0.0};
+        wp_write_numbers(out, arc, 2);
+    }
+    wp_write_array_end(out);
+    wp_write_object_end(out);
+    wr_regions_release(&arcs);
+    return true;
 }
 
 /* The disturbance margin over a fixture's tolerance: the robust answer of
@@ -525,34 +518,27 @@ static wr_status robust_margin(const wr_analysis *a, const double bias[3], wr_di
     return WR_OK;
 }
 
-/* "robust": the verdict over the set, and an outside's witness. */
-static void add_robust_verdict(cJSON *result, const wr_fixture *f, const wr_robust_answer *r)
+/* "robust": the verdict over the set, and an outside's witness, as
+ * members of the object being written. */
+static void write_robust_verdict(wp_writer *out, const wr_fixture *f, const wr_robust_answer *r)
 {
     static const char *const NAMES[] = {"inside", "boundary", "outside"};
-    cJSON_AddStringToObject(result, "robust", NAMES[r->answer.verdict]);
-    if (!r->has_perturbation)
-        return;
-    cJSON *points = cJSON_AddArrayToObject(result, "perturbation");
-    cJSON *normals = cJSON_AddArrayToObject(result, "perturbation_normals");
-    for (int i = 0; points && normals && i < f->fixel_count; i++) {
-        cJSON_AddItemToArray(points, cJSON_CreateDoubleArray(r->points[i], 2));
-        cJSON_AddItemToArray(normals, cJSON_CreateDoubleArray(r->normals[i], 2));
-    }
+    wp_write_member_string(out, "robust", NAMES[r->answer.verdict]);
+    wp_write_perturbation(out, f, r);
 }
 
-cJSON *wp_handle_stability_margin(wp_call *call)
+bool wp_handle_stability_margin(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
-        return NULL;
+        return false;
     if (wp_supports_refuse(call, use->fixture, "params.bias",
                            "the biasing wrench with its disturbances to wrench.classify: the "
                            "disturbance margin is a distance between directions"))
-        return NULL;
+        return false;
     double bias[3];
-    cJSON *result = NULL;
     wr_disturbance d;
     bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",
                                use->fixture, bias, error);
@@ -560,30 +546,37 @@ cJSON *wp_handle_stability_margin(wp_call *call)
     wr_robust_answer robust = {.has_perturbation = false};
     if (status == WR_OK && read && d.bounded && use->fixture->tolerance.given)
         status = robust_margin(use->analysis, bias, &d, &robust);
-    if (status == WR_LP_FAILED || status == WR_NO_MEMORY)
+    if (status == WR_LP_FAILED || status == WR_NO_MEMORY) {
         wp_error_status(error, status, "", "%s", wr_strerror(status));
-    else if (status != WR_OK)
+        return false;
+    }
+    if (status != WR_OK) {
         wp_error_status(error, status, "params.bias",
                         "so large that its margin is beyond the largest number");
-    else if (read) {
-        result = cJSON_CreateObject();
-        if (d.bounded) {
-            char text[WR_CONSTRAINT_TEXT];
-            wr_constraint_format(&wr_analysis_constraints(use->analysis, WR_SET_STRONG)[d.blocking],
-                                 text);
-            cJSON_AddNumberToObject(result, "margin", d.margin + 0.0);
-            cJSON_AddStringToObject(result, "blocking", text);
-            cJSON_AddItemToObject(result, "worst_direction", vector3(d.worst_direction));
-            if (use->fixture->tolerance.given)
-                add_robust_verdict(result, use->fixture, &robust);
-        } else {
-            /* No moving mode at all: no disturbance moves the part. */
-            cJSON_AddNullToObject(result, "margin");
-            cJSON_AddNullToObject(result, "blocking");
-            cJSON_AddNullToObject(result, "worst_direction");
-        }
-        if (!cJSON_GetObjectItem(result, "worst_direction"))
-            result = wp_out_of_memory(result, error);
+        return false;
     }
-    return result;
+    if (!read)
+        return false;
+    wp_write_object(out);
+    if (d.bounded) {
+        char text[WR_CONSTRAINT_TEXT];
+        wr_constraint_format(&wr_analysis_constraints(use->analysis, WR_SET_STRONG)[d.blocking],
+                             text);
+        wp_write_member_number(out, "margin", d.margin + 0.0);
+        wp_write_member_string(out, "blocking", text);
+        wp_write_key(out, "worst_direction");
+        write_vector3(out, d.worst_direction);
+        if (use->fixture->tolerance.given)
+            write_robust_verdict(out, use->fixture, &robust);
+    } else {
+        /* No moving mode at all: no disturbance moves the part. */
+        wp_write_key(out, "margin");
+        wp_write_null(out);
+        wp_write_key(out, "blocking");
+        wp_write_null(out);
+        wp_write_key(out, "worst_direction");
+        wp_write_null(out);
+    }
+    wp_write_object_end(out);
+    return true;
 }

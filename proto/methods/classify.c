@@ -94,124 +94,100 @@ static bool read_classify(const wp_limits *limits, const cJSON *params,
     return wp_read_wrenches(limits, params, fixture, prepared, r, error);
 }
 
-static void write_blocking(wp_buffer *b, const wr_analysis *a, const wr_answer *answer);
-static void write_states(wp_buffer *b, const wr_analysis *a, const wr_answer *answer);
-static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *answer);
+static void write_blocking(wp_writer *w, const wr_analysis *a, const wr_answer *answer);
+static void write_states(wp_writer *w, const wr_analysis *a, const wr_answer *answer);
+static void write_witness(wp_writer *w, const wr_analysis *a, const wr_answer *answer);
 
-/* One set's answer V (docs/PROTOCOL.md). */
-static void write_answer(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+/* One set's answer V (docs/PROTOCOL.md); with `robust` (may be NULL) an
+ * outside's perturbation when it has one. */
+static void write_answer(wp_writer *w, const wr_analysis *a, const wr_answer *answer,
+                         const wr_robust_answer *robust)
 {
-    WP_BUFFER_LITERAL(b, "{\"verdict\":\"");
-    wp_buffer_puts(b, VERDICT_NAMES[answer->verdict]);
-    wp_buffer_puts(b, answer->verdict == WR_VERDICT_INSIDE ? "\",\"inside\":true,\"margin\":"
-                                                           : "\",\"inside\":false,\"margin\":");
+    wp_write_object(w);
+    wp_write_member_string(w, "verdict", VERDICT_NAMES[answer->verdict]);
+    wp_write_member_bool(w, "inside", answer->verdict == WR_VERDICT_INSIDE);
+    wp_write_key(w, "margin");
     if (answer->has_margin)
-        wp_buffer_number(b, answer->margin);
+        wp_write_number(w, answer->margin);
     else
-        WP_BUFFER_LITERAL(b, "null");
-    WP_BUFFER_LITERAL(b, ",\"blocking\":");
-    write_blocking(b, a, answer);
-    WP_BUFFER_LITERAL(b, ",\"states\":");
-    write_states(b, a, answer);
-    WP_BUFFER_LITERAL(b, ",\"witness\":");
-    write_witness(b, a, answer);
-    WP_BUFFER_LITERAL(b, "}");
-}
-
-/* A robust outside's witness, inside the set's answer just written (its
- * closing brace reopened): "perturbation", the contact points of a
- * fixture of the set on which the wrench is outside, and
- * "perturbation_normals", their normals (docs/PROTOCOL.md, "Tolerance"). */
-static void write_perturbation(wp_buffer *b, const wr_fixture *f, const wr_robust_answer *r)
-{
-    if (b->failed)
-        return;
-    b->length--; /* the answer's "}" */
-    WP_BUFFER_LITERAL(b, ",\"perturbation\":[");
-    for (int i = 0; i < f->fixel_count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(b, ",");
-        wp_write_vector(b, r->points[i], 2);
-    }
-    WP_BUFFER_LITERAL(b, "],\"perturbation_normals\":[");
-    for (int i = 0; i < f->fixel_count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(b, ",");
-        wp_write_vector(b, r->normals[i], 2);
-    }
-    WP_BUFFER_LITERAL(b, "]}");
+        wp_write_null(w);
+    wp_write_key(w, "blocking");
+    write_blocking(w, a, answer);
+    wp_write_key(w, "states");
+    write_states(w, a, answer);
+    wp_write_key(w, "witness");
+    write_witness(w, a, answer);
+    if (robust)
+        wp_write_perturbation(w, wr_analysis_fixture(a), robust);
+    wp_write_object_end(w);
 }
 
 /* The blocking string, or null. */
-static void write_blocking(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+static void write_blocking(wp_writer *w, const wr_analysis *a, const wr_answer *answer)
 {
     if (answer->blocking < 0) {
-        WP_BUFFER_LITERAL(b, "null");
+        wp_write_null(w);
         return;
     }
     const wr_cone *cone = wr_analysis_cone(a, answer->blocking_set, answer->blocking);
     char text[WR_CONSTRAINT_TEXT];
     wr_constraint_format(&cone->constraint, text);
-    WP_BUFFER_LITERAL(b, "\"");
-    wp_buffer_puts(b, text);
-    WP_BUFFER_LITERAL(b, "\"");
+    wp_write_string(w, text);
 }
 
 /* The contact states a blocking goal string comes from: [] otherwise. */
-static void write_states(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+static void write_states(wp_writer *w, const wr_analysis *a, const wr_answer *answer)
 {
-    WP_BUFFER_LITERAL(b, "[");
+    wp_write_array(w);
     if (answer->blocking >= 0 && answer->blocking_set == WR_SET_GOAL) {
         const wr_fixture *f = wr_analysis_fixture(a);
         const wr_plan_origins *origins = &wr_analysis_plan(a)->origins[answer->blocking];
         for (int i = 0; i < origins->count; i++) {
             char state[WR_STATE_TEXT];
             wr_state_format(origins->states[i], f->fixel_count, state);
-            wp_buffer_puts(b, i ? ",\"" : "\"");
-            wp_buffer_puts(b, state);
-            WP_BUFFER_LITERAL(b, "\"");
+            wp_write_string(w, state);
         }
     }
-    WP_BUFFER_LITERAL(b, "]");
+    wp_write_array_end(w);
 }
 
 /* The witness, or null when inside. */
-static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *answer)
+static void write_witness(wp_writer *w, const wr_analysis *a, const wr_answer *answer)
 {
     if (answer->blocking < 0) {
-        WP_BUFFER_LITERAL(b, "null");
+        wp_write_null(w);
         return;
     }
     const wr_fixture *f = wr_analysis_fixture(a);
-    const wr_witness *w = &answer->witness;
+    const wr_witness *witness = &answer->witness;
     /* Wrenches are classified as given, in the fixture's force unit (a cone
      * is a cone: verdicts and margins do not depend on the scale), so the
      * witness's forces and wrench are in it too; its acceleration, in
      * length / s^2 and rad / s^2, is what those forces give in the model
      * system: times the force factor (1 without units). */
     const double k = wr_fixture_force_factor(f);
-    const double acceleration[3] = {w->acceleration[0] * k, w->acceleration[1] * k,
-                                    w->acceleration[2] * k};
-    WP_BUFFER_LITERAL(b, "{\"acceleration\":");
-    wp_write_vector(b, acceleration, 3);
-    WP_BUFFER_LITERAL(b, ",\"forces\":[");
+    const double acceleration[3] = {witness->acceleration[0] * k, witness->acceleration[1] * k,
+                                    witness->acceleration[2] * k};
+    wp_write_object(w);
+    wp_write_key(w, "acceleration");
+    wp_write_numbers(w, acceleration, 3);
+    wp_write_key(w, "forces");
+    wp_write_array(w);
+    for (int i = 0; i < f->fixel_count; i++)
+        wp_write_numbers(w, witness->force[i], 2);
+    wp_write_array_end(w);
+    wp_write_key(w, "wrench");
+    wp_write_numbers(w, witness->wrench, 3);
+    wp_write_key(w, "friction");
+    wp_write_array(w);
     for (int i = 0; i < f->fixel_count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(b, ",");
-        wp_write_vector(b, w->force[i], 2);
-    }
-    WP_BUFFER_LITERAL(b, "],\"wrench\":");
-    wp_write_vector(b, w->wrench, 3);
-    WP_BUFFER_LITERAL(b, ",\"friction\":[");
-    for (int i = 0; i < f->fixel_count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(b, ",");
-        if (isnan(w->friction[i]))
-            WP_BUFFER_LITERAL(b, "null");
+        if (isnan(witness->friction[i]))
+            wp_write_null(w);
         else
-            wp_buffer_number(b, w->friction[i]);
+            wp_write_number(w, witness->friction[i]);
     }
-    WP_BUFFER_LITERAL(b, "]}");
+    wp_write_array_end(w);
+    wp_write_object_end(w);
 }
 
 /* wrench.classify, written in pieces (wp_streamer, wp_method.h): the wrenches
@@ -219,7 +195,8 @@ static void write_witness(wp_buffer *b, const wr_analysis *a, const wr_answer *a
  * is written; then the answer is made in chunks of consecutive wrenches by
  * the engine (wp_chunks.h): a chunk's text is made by whichever thread
  * claims it into its record's buffer (or, next in order and made by a step,
- * straight into the answer), and merged into the answer in order.  At most
+ * straight into the answer with the response's writer), and merged into
+ * the answer in order.  At most
  * CLASSIFY_WINDOW are made ahead of the one being merged, which bounds what
  * waits in memory.  How many wrenches a chunk has depends on the request
  * alone (the fields and the method), never on the threads, so the same
@@ -250,6 +227,8 @@ typedef struct classify_state {
     wr_verdict_map *map;        /* a long batch's verdicts, or NULL */
     bool opened;                /* the answer's opening text is written */
     wr_robust *robust;          /* the fixture has a tolerance: robust answers */
+    wp_writer *out;             /* the response's writer, set by each step
+                                   for its merges and its direct chunks */
 } classify_state;
 
 static const wp_chunk_ops CLASSIFY_CHUNKS;
@@ -368,7 +347,7 @@ static wr_status answer_one(const classify_state *state, const wr_analysis *a, w
 static wr_status write_set_columns(const classify_state *state, const wr_analysis *a,
                                    wr_lp_set *goal, wr_lp_set *strong, const wp_host *host,
                                    wr_set set, size_t from, size_t to, wr_answer *answers,
-                                   wp_buffer *out, size_t *failed)
+                                   wp_writer *out, size_t *failed)
 {
     const wr_stop *stop = host->stop;
     const wp_classify_request *r = &state->request;
@@ -376,27 +355,25 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
     static const char LETTERS[] = {'i', 'b', 'o'};
     if (verdicts_alone(r)) {
         /* The letters straight into the text: nothing else is kept. */
-        WP_BUFFER_LITERAL(out, "\"verdicts\":\"");
-        size_t at = out->length;
-        wp_buffer_reserve(out, at + (to - from) + 64);
-        if (out->failed)
+        wp_write_key(out, "verdicts");
+        char *room = wp_write_string_room(out, to - from);
+        if (!room)
             return WR_OK; /* the buffer says so */
         for (size_t i = from; i < to; i++) {
-            if ((i - from) % STOP_POLL == 0 && wr_stop_requested(stop)) {
-                *failed = i;
-                return WR_STOPPED;
-            }
             wr_answer answer;
-            wr_status status = answer_one(state, a, goal, strong, i, set, true, false, host, &answer);
+            wr_status status = (i - from) % STOP_POLL == 0 && wr_stop_requested(stop)
+                                   ? WR_STOPPED
+                                   : answer_one(state, a, goal, strong, i, set, true, false,
+                                                host, &answer);
             if (status != WR_OK) {
+                /* The answer ends here: the room not filled is taken back. */
+                out->out->length = (size_t)(room - out->out->data) - 1;
+                out->out->data[out->out->length] = 0;
                 *failed = i;
                 return status;
             }
-            out->data[at + (i - from)] = LETTERS[answer.verdict];
+            room[i - from] = LETTERS[answer.verdict];
         }
-        out->length = at + (to - from);
-        out->data[out->length] = 0;
-        WP_BUFFER_LITERAL(out, "\"");
         return WR_OK;
     }
     for (size_t i = from; i < to; i++) {
@@ -411,36 +388,26 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
             return status;
         }
     }
-    bool first = true;
     for (int column = 0; column < FIELD_COUNT; column++) {
         if (!(r->fields & (1u << column)))
             continue;
-        wp_buffer_puts(out, first ? "\"" : ",\"");
-        first = false;
-        wp_buffer_puts(out, COLUMN_NAMES[column]);
+        wp_write_key(out, COLUMN_NAMES[column]);
         if (column == FIELD_VERDICT) {
-            WP_BUFFER_LITERAL(out, "\":\"");
-            size_t at = out->length;
-            wp_buffer_reserve(out, at + (to - from) + 64);
-            if (out->failed)
+            char *room = wp_write_string_room(out, to - from);
+            if (!room)
                 return WR_OK; /* the buffer says so */
             for (size_t i = from; i < to; i++)
-                out->data[at + (i - from)] = LETTERS[answers[i - from].verdict];
-            out->length = at + (to - from);
-            out->data[out->length] = 0;
-            WP_BUFFER_LITERAL(out, "\"");
+                room[i - from] = LETTERS[answers[i - from].verdict];
             continue;
         }
-        WP_BUFFER_LITERAL(out, "\":[");
+        wp_write_array(out);
         for (size_t i = from; i < to; i++) {
             const wr_answer *answer = &answers[i - from];
-            if (i > from)
-                WP_BUFFER_LITERAL(out, ",");
             if (column == FIELD_MARGIN) {
                 if (answer->has_margin)
-                    wp_buffer_number(out, answer->margin);
+                    wp_write_number(out, answer->margin);
                 else
-                    WP_BUFFER_LITERAL(out, "null");
+                    wp_write_null(out);
             } else if (column == FIELD_BLOCKING) {
                 write_blocking(out, a, answer);
             } else if (column == FIELD_STATES) {
@@ -449,18 +416,17 @@ static wr_status write_set_columns(const classify_state *state, const wr_analysi
                 write_witness(out, a, answer);
             }
         }
-        WP_BUFFER_LITERAL(out, "]");
+        wp_write_array_end(out);
     }
     return WR_OK;
 }
 
-/* Chunk `index`'s text into `out` (empty), with the thread's own LP sets:
- * rows joined by commas, or a lean piece {"count": n, "goal": {...}, ...};
- * either preceded by a comma but for the first.  Not WR_OK: it failed at
- * wrench *failed (WR_STOPPED: the client is gone). */
+/* Chunk `index`'s values with `out`, with the thread's own LP sets: rows,
+ * or a lean piece {"count": n, "goal": {...}, ...}.  Not WR_OK: it failed
+ * at wrench *failed (WR_STOPPED: the client is gone). */
 static wr_status make_chunk(const classify_state *state, size_t index, wr_answer **answers,
                             const wp_host *host,
-                            wp_error *error, wp_buffer *out, size_t *failed)
+                            wp_error *error, wp_writer *out, size_t *failed)
 {
     const wp_classify_request *r = &state->request;
     const wr_analysis *a = state->use->analysis;
@@ -474,25 +440,23 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
     size_t from = index * state->chunk_wrenches;
     size_t to = from + state->chunk_wrenches < r->wrench_count ? from + state->chunk_wrenches
                                                                : r->wrench_count;
-    if (index)
-        WP_BUFFER_LITERAL(out, ",");
     if (r->fields) {
         if (!verdicts_alone(r) && !*answers &&
             !(*answers = malloc(state->chunk_wrenches * sizeof **answers)))
             return WR_NO_MEMORY;
-        char count[32];
-        snprintf(count, sizeof count, "{\"count\":%zu", to - from);
-        wp_buffer_puts(out, count);
+        wp_write_object(out);
+        wp_write_member_number(out, "count", (double)(to - from));
         wr_status status = WR_OK;
         for (int s = 0; s < r->set_count && status == WR_OK; s++) {
-            WP_BUFFER_LITERAL(out, ",\"");
-            wp_buffer_puts(out, wp_set_names[r->sets[s]]);
-            WP_BUFFER_LITERAL(out, "\":{");
+            wp_write_key(out, wp_set_names[r->sets[s]]);
+            wp_write_object(out);
             status = write_set_columns(state, a, goal, strong, host, r->sets[s], from, to,
                                        *answers, out, failed);
-            WP_BUFFER_LITERAL(out, "}");
+            if (status == WR_OK)
+                wp_write_object_end(out);
         }
-        WP_BUFFER_LITERAL(out, "}");
+        if (status == WR_OK)
+            wp_write_object_end(out);
         return status;
     }
     for (size_t i = from; i < to; i++) {
@@ -500,7 +464,7 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
             *failed = i;
             return WR_STOPPED;
         }
-        wp_buffer_puts(out, i > from ? ",{" : "{");
+        wp_write_object(out);
         for (int s = 0; s < r->set_count; s++) {
             wr_robust_answer robust = {.has_perturbation = false};
             wr_status status =
@@ -512,14 +476,10 @@ static wr_status make_chunk(const classify_state *state, size_t index, wr_answer
                 *failed = i;
                 return status;
             }
-            wp_buffer_puts(out, s ? ",\"" : "\"");
-            wp_buffer_puts(out, wp_set_names[r->sets[s]]);
-            WP_BUFFER_LITERAL(out, "\":");
-            write_answer(out, a, &robust.answer);
-            if (robust.has_perturbation)
-                write_perturbation(out, wr_analysis_fixture(a), &robust);
+            wp_write_key(out, wp_set_names[r->sets[s]]);
+            write_answer(out, a, &robust.answer, &robust);
         }
-        WP_BUFFER_LITERAL(out, "}");
+        wp_write_object_end(out);
     }
     return WR_OK;
 }
@@ -548,8 +508,13 @@ static wr_status classify_make(void *method, size_t index, void *record, wp_buff
     classify_chunk *chunk = record;
     assert(chunk->text.length == 0);
     size_t failed;
+    /* Made by a step, next in order: with the response's writer, which
+     * knows whether a comma is due; else a sequence of values that the
+     * merge puts into the answer. */
+    assert(!direct || direct == state->out->out);
+    wp_writer alone = wp_writer_in_array(&chunk->text);
     wr_status status = make_chunk(state, index, &chunk->answers, host, error,
-                                  direct ? direct : &chunk->text, &failed);
+                                  direct ? state->out : &alone, &failed);
     if (status == WR_OK && !direct && chunk->text.failed)
         status = WR_NO_MEMORY;
     chunk->answers_bytes = chunk->answers ? state->chunk_wrenches * sizeof *chunk->answers : 0;
@@ -570,7 +535,8 @@ static wr_status classify_merge(void *method, size_t index, void *record, wp_buf
     (void)error;
     const classify_state *state = method;
     classify_chunk *chunk = record;
-    wp_buffer_append(out, chunk->text.data, chunk->text.length);
+    assert(out == state->out->out);
+    wp_write_raw(state->out, chunk->text.data, chunk->text.length);
     chunk->text.length = 0;
     /* A long batch's records keep their capacity; a short one's go. */
     if (state->chunk_count <= CLASSIFY_WINDOW) {
@@ -614,30 +580,33 @@ static bool classify_work(void *stream, const wp_host *host)
     return wp_chunks_work(((classify_state *)stream)->chunks, host);
 }
 
-static wp_step classify_step(void *stream, wp_call *call, wp_buffer *out,
+static wp_step classify_step(void *stream, wp_call *call, wp_writer *out,
                              unsigned long budget, unsigned long *used)
 {
     classify_state *state = stream;
     const wp_classify_request *r = &state->request;
     bool shared = wp_chunks_shared(state->chunks);
+    state->out = out;
     if (!state->opened) {
         state->opened = true;
+        wp_write_object(out);
         if (r->fields) {
-            char count[48];
-            snprintf(count, sizeof count, "{\"count\":%zu,\"pieces\":[", r->wrench_count);
-            wp_buffer_puts(out, count);
+            wp_write_member_number(out, "count", (double)r->wrench_count);
+            wp_write_key(out, "pieces");
         } else {
-            WP_BUFFER_LITERAL(out, "{\"results\":[");
+            wp_write_key(out, "results");
         }
+        wp_write_array(out);
     }
     /* A request's first chunk fails, if it does, in the first step, while
      * its text can still be taken back. */
-    wp_step step = wp_chunks_run(state->chunks, shared, call->host, out, budget, used,
+    wp_step step = wp_chunks_run(state->chunks, shared, call->host, out->out, budget, used,
                                  CLASSIFY_PIECE_BYTES, call->error);
     if (step != WP_STEP_DONE)
         return step;
-    WP_BUFFER_LITERAL(out, "]}");
-    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+    wp_write_array_end(out);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
 static size_t classify_bytes(const void *stream)

@@ -9,11 +9,32 @@
 
 const char *const wp_set_names[3] = {"goal", "strong", "both"};
 
-cJSON *wp_out_of_memory(cJSON *partial, wp_error *error)
+void wp_write_edge_place(wp_writer *out, const wr_fixture *f, int edge)
 {
-    cJSON_Delete(partial);
-    wp_error_set(error, WP_INTERNAL, "", "out of memory");
-    return NULL;
+    if (f->shape == WR_SHAPE_OUTLINE) {
+        size_t loop, segment;
+        wr_push_edge_place(f, edge, &loop, &segment);
+        wp_write_member_number(out, "loop", (double)loop);
+        wp_write_member_number(out, "segment", (double)segment);
+    } else {
+        wp_write_member_number(out, "edge", edge);
+    }
+}
+
+void wp_write_perturbation(wp_writer *out, const wr_fixture *f, const wr_robust_answer *r)
+{
+    if (!r->has_perturbation)
+        return;
+    wp_write_key(out, "perturbation");
+    wp_write_array(out);
+    for (int i = 0; i < f->fixel_count; i++)
+        wp_write_numbers(out, r->points[i], 2);
+    wp_write_array_end(out);
+    wp_write_key(out, "perturbation_normals");
+    wp_write_array(out);
+    for (int i = 0; i < f->fixel_count; i++)
+        wp_write_numbers(out, r->normals[i], 2);
+    wp_write_array_end(out);
 }
 
 bool wp_read_sets(const cJSON *params, wp_classify_request *r, wp_error *error)

@@ -45,21 +45,15 @@ bool wp_read_deadline(const cJSON *params, double *deadline, wp_error *error);
  * `size` bytes; NULL with the error set when either fails. */
 void *wp_stream_with_fixture(wp_call *call, size_t size, wp_fixture_use **use);
 
-/* [v0, v1, ...]: n numbers.  Inline: a classify row writes several per
- * wrench. */
-static inline void wp_write_vector(wp_buffer *b, const double *v, int n)
-{
-    WP_BUFFER_LITERAL(b, "[");
-    for (int i = 0; i < n; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(b, ",");
-        wp_buffer_number(b, v[i]);
-    }
-    WP_BUFFER_LITERAL(b, "]");
-}
+/* Where an edge of the push boundary is, as members of the object being
+ * written: "loop" and "segment" on an outline, "edge" otherwise. */
+void wp_write_edge_place(wp_writer *out, const wr_fixture *f, int edge);
 
-/* Frees `partial` and says "out of memory": NULL, for a handler to return. */
-cJSON *wp_out_of_memory(cJSON *partial, wp_error *error);
+/* A robust outside's witness, as members of the object being written
+ * (nothing without one): "perturbation", the contact points of a fixture
+ * of the tolerance's set on which the wrench is outside, and
+ * "perturbation_normals", their normals (docs/PROTOCOL.md, "Tolerance"). */
+void wp_write_perturbation(wp_writer *out, const wr_fixture *f, const wr_robust_answer *r);
 
 /* path.push_on of `object` for a body or fixture `shape` (fixture.design,
  * push.regions; docs/PROTOCOL.md, push_on): absent or "all" gives *mask

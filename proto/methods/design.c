@@ -4,6 +4,7 @@
 #include "loads.h"
 #include "methods.h"
 #include "wp_chunks.h"
+#include "wr_job.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -73,7 +74,7 @@ struct design_state {
     double (*loads)[3];   /* params.cases, summed (spec.loads points here) */
 };
 
-static const wp_chunk_ops LATTICE_CHUNKS, SEARCH_CHUNKS;
+static const wp_chunk_ops JOB_CHUNKS;
 
 /* A whole number in [lo, hi] at params.key (default kept when absent). */
 static bool read_count(const cJSON *params, const char *key, double lo, double hi, int *out,
@@ -238,7 +239,7 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
                      invalid.reason);
         return false;
     }
-    s->poses_chunks = wp_chunks_new(&LATTICE_CHUNKS, s, SIZE_MAX); /* as the job claims them */
+    s->poses_chunks = wp_chunks_new(&JOB_CHUNKS, s, SIZE_MAX); /* as the job claims them */
     if (!s->poses_chunks) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
@@ -534,7 +535,7 @@ static bool start_search(design_state *s, wp_error *error)
     /* The job claims WR_DESIGN_CHUNK candidates of this shard at a time:
      * that many of every shard's. */
     uint64_t span = (uint64_t)WR_DESIGN_CHUNK * (uint64_t)s->spec.shard_count;
-    s->search = wp_chunks_new(&SEARCH_CHUNKS, s, (size_t)((s->candidates + span - 1) / span));
+    s->search = wp_chunks_new(&JOB_CHUNKS, s, (size_t)((s->candidates + span - 1) / span));
     if (!s->search) {
         wp_error_set(error, WP_INTERNAL, "", "out of memory");
         return false;
@@ -571,61 +572,58 @@ static void *design_begin(wp_call *call, wp_prepared *prepared)
 }
 
 /* A count, exactly: above 2^53 a double would round it. */
-static void write_count(wp_buffer *out, uint64_t n)
+static void write_count(wp_writer *out, uint64_t n)
 {
     char text[24];
-    snprintf(text, sizeof text, "%llu", (unsigned long long)n);
-    wp_buffer_puts(out, text);
+    int length = snprintf(text, sizeof text, "%llu", (unsigned long long)n);
+    wp_write_raw(out, text, (size_t)length);
 }
 
-static void write_pair(wp_buffer *out, const double v[2])
+static void write_member_count(wp_writer *out, const char *key, uint64_t n)
 {
-    WP_BUFFER_LITERAL(out, "[");
-    wp_buffer_number(out, v[0] + 0.0);
-    WP_BUFFER_LITERAL(out, ",");
-    wp_buffer_number(out, v[1] + 0.0);
-    WP_BUFFER_LITERAL(out, "]");
+    wp_write_key(out, key);
+    write_count(out, n);
+}
+
+static void write_pair(wp_writer *out, const double v[2])
+{
+    const double pair[2] = {v[0] + 0.0, v[1] + 0.0};
+    wp_write_numbers(out, pair, 2);
 }
 
 static const char *const STAGES[] = {"poses", "candidates", "figures"};
 
 /* Where a design's answer says a push is, as push.regions names places:
- * {"loop", "segment"} on an outline, {"edge"} otherwise, then "t". */
-static void write_place(wp_buffer *out, const wr_fixture *body, int edge, double t)
+ * {"at", "loop", "segment"} on an outline, {"at", "edge"} otherwise, then
+ * "t". */
+static void write_place(wp_writer *out, const wr_fixture *body, int edge, double t)
 {
     double at[2], normal[2];
     wr_boundary_point(body, edge, t, at, normal);
-    WP_BUFFER_LITERAL(out, "{\"at\":");
+    wp_write_object(out);
+    wp_write_key(out, "at");
     write_pair(out, at);
-    if (body->shape == WR_SHAPE_OUTLINE) {
-        size_t loop, segment;
-        wr_push_edge_place(body, edge, &loop, &segment);
-        WP_BUFFER_LITERAL(out, ",\"loop\":");
-        wp_buffer_number(out, (double)loop);
-        WP_BUFFER_LITERAL(out, ",\"segment\":");
-        wp_buffer_number(out, (double)segment);
-    } else {
-        WP_BUFFER_LITERAL(out, ",\"edge\":");
-        wp_buffer_number(out, edge);
-    }
-    WP_BUFFER_LITERAL(out, ",\"t\":");
-    wp_buffer_number(out, t);
-    WP_BUFFER_LITERAL(out, "}");
+    wp_write_edge_place(out, body, edge);
+    wp_write_member_number(out, "t", t);
+    wp_write_object_end(out);
 }
 
 /* "why_no_seating_push" (docs/PROTOCOL.md): where the push was asked
  * about, and the reasons with their counts, most first, equal counts by
  * their blocking strings (strcmp), the push in G_goal (null) last: an
  * order design-merge can keep. */
-static void write_why(design_state *s, wp_buffer *out)
+static void write_why(design_state *s, wp_writer *out)
 {
     const wr_plan *plan;
     int edge;
     double t;
     const uint64_t *why = wr_design_job_why(s->job, &plan, &edge, &t);
-    WP_BUFFER_LITERAL(out, ",\"why_no_seating_push\":{\"asked_at\":");
+    wp_write_key(out, "why_no_seating_push");
+    wp_write_object(out);
+    wp_write_key(out, "asked_at");
     write_place(out, s->body, edge, t);
-    WP_BUFFER_LITERAL(out, ",\"reasons\":[");
+    wp_write_key(out, "reasons");
+    wp_write_array(out);
     int n = plan->kept_count + 1;
     bool *written = calloc((size_t)n, sizeof *written);
     for (int round = 0; written && round < n; round++) {
@@ -650,31 +648,34 @@ static void write_why(design_state *s, wp_buffer *out)
         if (most < 0)
             break;
         written[most] = true;
-        wp_buffer_puts(out, round ? ",{\"blocking\":" : "{\"blocking\":");
+        wp_write_object(out);
+        wp_write_key(out, "blocking");
         if (most == plan->kept_count) {
-            WP_BUFFER_LITERAL(out, "null,\"states\":[]");
+            wp_write_null(out);
+            wp_write_key(out, "states");
+            wp_write_array(out);
         } else {
             char text[WR_CONSTRAINT_TEXT], state[WR_STATE_TEXT];
             wr_constraint_format(&plan->kept[most], text);
-            wp_buffer_string(out, text);
-            WP_BUFFER_LITERAL(out, ",\"states\":[");
+            wp_write_string(out, text);
+            wp_write_key(out, "states");
+            wp_write_array(out);
             for (int j = 0; j < plan->origins[most].count; j++) {
                 wr_state_format(plan->origins[most].states[j], plan->fixel_count, state);
-                if (j)
-                    WP_BUFFER_LITERAL(out, ",");
-                wp_buffer_string(out, state);
+                wp_write_string(out, state);
             }
-            WP_BUFFER_LITERAL(out, "]");
         }
-        WP_BUFFER_LITERAL(out, ",\"candidates\":");
-        write_count(out, why[most]);
-        WP_BUFFER_LITERAL(out, "}");
+        wp_write_array_end(out);
+        write_member_count(out, "candidates", why[most]);
+        wp_write_object_end(out);
     }
     free(written);
-    WP_BUFFER_LITERAL(out, "]}");
+    wp_write_array_end(out);
+    wp_write_object_end(out);
 }
 
-static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
+/* A design.progress notification, a line of its own. */
+static void write_progress(design_state *s, wp_call *call, wp_buffer *line)
 {
     uint64_t done = 0, total = 0;
     bool has_best = false;
@@ -703,360 +704,288 @@ static void write_progress(design_state *s, wp_call *call, wp_buffer *out)
         s->stage_started = now;
         s->stage_done = done;
     }
-    WP_BUFFER_LITERAL(out, "{\"jsonrpc\":\"2.0\",\"method\":\"design.progress\",\"params\":{\"id\":");
-    wp_buffer_puts(out, wp_call_id_text(call));
+    wp_writer w = wp_writer_on(line);
+    wp_write_object(&w);
+    wp_write_member_string(&w, "jsonrpc", "2.0");
+    wp_write_member_string(&w, "method", "design.progress");
+    wp_write_key(&w, "params");
+    wp_write_object(&w);
+    const char *id = wp_call_id_text(call);
+    wp_write_key(&w, "id");
+    wp_write_raw(&w, id, strlen(id));
     /* The stage: "poses" while a lattice's designs are enumerated (done and
      * total count its units: a hole pair with the first peg's segment),
      * then "candidates", then "figures" (the designs kept). */
-    WP_BUFFER_LITERAL(out, ",\"stage\":\"");
-    wp_buffer_puts(out, STAGES[stage]);
-    WP_BUFFER_LITERAL(out, "\",\"done\":");
-    write_count(out, done);
-    WP_BUFFER_LITERAL(out, ",\"total\":");
-    write_count(out, total);
-    WP_BUFFER_LITERAL(out, ",\"best\":");
+    wp_write_member_string(&w, "stage", STAGES[stage]);
+    write_member_count(&w, "done", done);
+    write_member_count(&w, "total", total);
+    wp_write_key(&w, "best");
     if (has_best)
-        wp_buffer_number(out, best);
+        wp_write_number(&w, best);
     else
-        WP_BUFFER_LITERAL(out, "null");
+        wp_write_null(&w);
     /* The stage's seconds left at its rate so far (docs/PROTOCOL.md):
      * unknown until some of it is done. */
-    WP_BUFFER_LITERAL(out, ",\"eta_s\":");
+    wp_write_key(&w, "eta_s");
     if (done >= total)
-        WP_BUFFER_LITERAL(out, "0");
+        wp_write_number(&w, 0);
     else if (done > s->stage_done && now > s->stage_started)
-        wp_buffer_number(out, round((now - s->stage_started) / (double)(done - s->stage_done) *
-                                    (double)(total - done) * 10) / 10);
+        wp_write_number(&w, round((now - s->stage_started) / (double)(done - s->stage_done) *
+                                  (double)(total - done) * 10) / 10);
     else
-        WP_BUFFER_LITERAL(out, "null");
-    WP_BUFFER_LITERAL(out, "}}\n");
+        wp_write_null(&w);
+    wp_write_object_end(&w);
+    wp_write_object_end(&w);
+    wp_buffer_append(line, "\n", 1);
     s->last_report = now;
 }
 
-static void write_design(design_state *s, wp_buffer *out, const wr_design *d, int rank)
+static void write_design(design_state *s, wp_writer *out, const wr_design *d, int rank)
 {
     bool accuracy = s->spec.objective == WR_OBJECTIVE_ACCURACY;
     wr_fixture fixture;
     wr_design_job_fixture(s->job, d, &fixture);
-    WP_BUFFER_LITERAL(out, "{\"rank\":");
-    wp_buffer_number(out, rank);
-    WP_BUFFER_LITERAL(out, ",\"candidate\":");
-    write_count(out, d->candidate);
+    wp_write_object(out);
+    wp_write_member_number(out, "rank", rank);
+    write_member_count(out, "candidate", d->candidate);
     if (!s->poses) {
-        WP_BUFFER_LITERAL(out, ",\"sites\":[");
-        for (int i = 0; i < s->spec.fixel_count; i++) {
-            if (i)
-                WP_BUFFER_LITERAL(out, ",");
-            wp_buffer_number(out, (double)d->sites[i]);
-        }
-        WP_BUFFER_LITERAL(out, "]");
+        wp_write_key(out, "sites");
+        wp_write_array(out);
+        for (int i = 0; i < s->spec.fixel_count; i++)
+            wp_write_number(out, (double)d->sites[i]);
+        wp_write_array_end(out);
     }
-    WP_BUFFER_LITERAL(out, ",\"fixels\":[");
+    wp_write_key(out, "fixels");
+    wp_write_array(out);
     for (int i = 0; i < fixture.fixel_count; i++) {
-        wp_buffer_puts(out, i ? ",{\"at\":" : "{\"at\":");
+        wp_write_object(out);
+        wp_write_key(out, "at");
         write_pair(out, fixture.fixels[i].at);
-        WP_BUFFER_LITERAL(out, ",\"normal\":");
+        wp_write_key(out, "normal");
         write_pair(out, fixture.fixels[i].normal);
-        WP_BUFFER_LITERAL(out, "}");
+        wp_write_object_end(out);
     }
-    WP_BUFFER_LITERAL(out, "]");
+    wp_write_array_end(out);
     if (!s->poses) {
         /* The fixels on holes: pins, each where one of its diameter touches
          * the wall (wr_sites.h); its centre is at - diameter / 2 normal. */
-        WP_BUFFER_LITERAL(out, ",\"pins\":[");
-        bool any = false;
+        wp_write_key(out, "pins");
+        wp_write_array(out);
         for (int i = 0; i < s->spec.fixel_count; i++) {
             const wr_site *site = &s->sites[d->sites[i]];
             if (site->loop <= 0)
                 continue;
-            wp_buffer_puts(out, any ? ",{\"fixel\":" : "{\"fixel\":");
-            any = true;
-            wp_buffer_number(out, i);
-            WP_BUFFER_LITERAL(out, ",\"hole\":");
-            wp_buffer_number(out, site->loop);
-            WP_BUFFER_LITERAL(out, ",\"diameter\":");
-            wp_buffer_number(out, site->pin_diameter);
-            WP_BUFFER_LITERAL(out, "}");
+            wp_write_object(out);
+            wp_write_member_number(out, "fixel", i);
+            wp_write_member_number(out, "hole", site->loop);
+            wp_write_member_number(out, "diameter", site->pin_diameter);
+            wp_write_object_end(out);
         }
-        WP_BUFFER_LITERAL(out, "]");
+        wp_write_array_end(out);
     }
     if (s->poses) {
         const wr_lattice_design *pose = &s->poses[d->candidate];
-        WP_BUFFER_LITERAL(out, ",\"pegs\":[");
+        wp_write_key(out, "pegs");
+        wp_write_array(out);
         for (int m = 0; m < 3; m++) {
             double hole[2] = {pose->holes[m][0], pose->holes[m][1]};
-            if (m)
-                WP_BUFFER_LITERAL(out, ",");
             write_pair(out, hole);
         }
-        WP_BUFFER_LITERAL(out, "],\"pose\":[");
-        wp_buffer_number(out, pose->pose[0] + 0.0);
-        WP_BUFFER_LITERAL(out, ",");
-        wp_buffer_number(out, pose->pose[1] + 0.0);
-        WP_BUFFER_LITERAL(out, ",");
-        wp_buffer_number(out, pose->pose[2] * 180 / 3.14159265358979323846 + 0.0);
-        WP_BUFFER_LITERAL(out, "]");
+        wp_write_array_end(out);
+        const double placed[3] = {pose->pose[0] + 0.0, pose->pose[1] + 0.0,
+                                  pose->pose[2] * 180 / 3.14159265358979323846 + 0.0};
+        wp_write_key(out, "pose");
+        wp_write_numbers(out, placed, 3);
     }
-    WP_BUFFER_LITERAL(out, ",\"best_push\":");
+    wp_write_key(out, "best_push");
     const wr_best_push *push = &d->best_push;
     if (push->found) {
-        WP_BUFFER_LITERAL(out, "{\"at\":");
+        wp_write_object(out);
+        wp_write_key(out, "at");
         write_pair(out, push->at);
-        WP_BUFFER_LITERAL(out, ",\"direction\":");
+        wp_write_key(out, "direction");
         write_pair(out, push->direction);
-        WP_BUFFER_LITERAL(out, ",\"margin\":");
-        wp_buffer_number(out, push->margin);
-        if (fixture.shape == WR_SHAPE_OUTLINE) {
-            size_t loop, segment;
-            wr_push_edge_place(&fixture, push->edge, &loop, &segment);
-            WP_BUFFER_LITERAL(out, ",\"loop\":");
-            wp_buffer_number(out, (double)loop);
-            WP_BUFFER_LITERAL(out, ",\"segment\":");
-            wp_buffer_number(out, (double)segment);
-        } else {
-            WP_BUFFER_LITERAL(out, ",\"edge\":");
-            wp_buffer_number(out, push->edge);
-        }
-        WP_BUFFER_LITERAL(out, ",\"t\":");
-        wp_buffer_number(out, push->t);
-        WP_BUFFER_LITERAL(out, "}");
+        wp_write_member_number(out, "margin", push->margin);
+        wp_write_edge_place(out, &fixture, push->edge);
+        wp_write_member_number(out, "t", push->t);
+        wp_write_object_end(out);
     } else {
-        WP_BUFFER_LITERAL(out, "null");
+        wp_write_null(out);
     }
     if (s->spec.case_count > 0) {
         /* The least push doing both under every case (wr_force.h). */
         const wr_least_force *least = &d->least_force;
-        WP_BUFFER_LITERAL(out, ",\"least_push\":");
+        wp_write_key(out, "least_push");
         if (least->found) {
-            WP_BUFFER_LITERAL(out, "{\"at\":");
+            wp_write_object(out);
+            wp_write_key(out, "at");
             write_pair(out, least->at);
-            WP_BUFFER_LITERAL(out, ",\"direction\":");
+            wp_write_key(out, "direction");
             write_pair(out, least->direction);
-            WP_BUFFER_LITERAL(out, ",\"force\":");
-            wp_buffer_number(out, wp_force_out(s->body, least->force));
-            WP_BUFFER_LITERAL(out, ",\"lower_bound\":");
-            wp_buffer_number(out, wp_force_out(s->body, least->lower));
-            if (fixture.shape == WR_SHAPE_OUTLINE) {
-                size_t loop, segment;
-                wr_push_edge_place(&fixture, least->edge, &loop, &segment);
-                WP_BUFFER_LITERAL(out, ",\"loop\":");
-                wp_buffer_number(out, (double)loop);
-                WP_BUFFER_LITERAL(out, ",\"segment\":");
-                wp_buffer_number(out, (double)segment);
-            } else {
-                WP_BUFFER_LITERAL(out, ",\"edge\":");
-                wp_buffer_number(out, least->edge);
-            }
-            WP_BUFFER_LITERAL(out, ",\"t\":");
-            wp_buffer_number(out, least->t);
-            WP_BUFFER_LITERAL(out, "}");
+            wp_write_member_number(out, "force", wp_force_out(s->body, least->force));
+            wp_write_member_number(out, "lower_bound", wp_force_out(s->body, least->lower));
+            wp_write_edge_place(out, &fixture, least->edge);
+            wp_write_member_number(out, "t", least->t);
+            wp_write_object_end(out);
         } else {
-            WP_BUFFER_LITERAL(out, "null");
+            wp_write_null(out);
         }
     }
-    WP_BUFFER_LITERAL(out, ",\"goal_length\":");
-    wp_buffer_number(out, d->goal_length);
-    WP_BUFFER_LITERAL(out, ",\"both_length\":");
-    wp_buffer_number(out, d->both_length);
-    WP_BUFFER_LITERAL(out, ",\"gravity_goal_deg\":");
-    wp_buffer_number(out, d->gravity_goal_deg);
-    WP_BUFFER_LITERAL(out, ",\"critical_mu\":");
+    wp_write_member_number(out, "goal_length", d->goal_length);
+    wp_write_member_number(out, "both_length", d->both_length);
+    wp_write_member_number(out, "gravity_goal_deg", d->gravity_goal_deg);
+    wp_write_key(out, "critical_mu");
     if (d->has_critical)
-        wp_buffer_number(out, d->critical_mu);
+        wp_write_number(out, d->critical_mu);
     else
-        WP_BUFFER_LITERAL(out, "null");
-    WP_BUFFER_LITERAL(out, ",\"score\":");
+        wp_write_null(out);
     /* Objective force: minus a force, in the body's force unit. */
-    wp_buffer_number(out, s->spec.objective == WR_OBJECTIVE_FORCE
-                              ? -wp_force_out(s->body, -d->score)
-                              : d->score);
-    if (accuracy) { /* the worst locating error, whose negative is the score */
-        WP_BUFFER_LITERAL(out, ",\"accuracy\":");
-        wp_buffer_number(out, -d->score + 0.0);
-    }
-    WP_BUFFER_LITERAL(out, ",\"copies\":");
-    wp_buffer_number(out, d->copies);
-    WP_BUFFER_LITERAL(out, "}");
+    wp_write_member_number(out, "score",
+                           s->spec.objective == WR_OBJECTIVE_FORCE
+                               ? -wp_force_out(s->body, -d->score)
+                               : d->score);
+    if (accuracy) /* the worst locating error, whose negative is the score */
+        wp_write_member_number(out, "accuracy", -d->score + 0.0);
+    wp_write_member_number(out, "copies", d->copies);
+    wp_write_object_end(out);
 }
 
 /* [{"kind": "rotation"|"reflection", "angle_deg", "center"}], the identity
  * first: what collapsed the designs. */
-static void write_symmetries(design_state *s, wp_buffer *out)
+static void write_symmetries(design_state *s, wp_writer *out)
 {
-    WP_BUFFER_LITERAL(out, ",\"symmetries\":[");
+    wp_write_key(out, "symmetries");
+    wp_write_array(out);
     for (int i = 0; i < s->symmetry_count; i++) {
         const wr_symmetry *g = &s->symmetries[i];
-        wp_buffer_puts(out, i ? ",{\"kind\":\"" : "{\"kind\":\"");
-        wp_buffer_puts(out, g->reflection ? "reflection" : "rotation");
-        WP_BUFFER_LITERAL(out, "\",\"angle_deg\":");
-        wp_buffer_number(out, g->angle_deg);
-        WP_BUFFER_LITERAL(out, ",\"center\":");
+        wp_write_object(out);
+        wp_write_member_string(out, "kind", g->reflection ? "reflection" : "rotation");
+        wp_write_member_number(out, "angle_deg", g->angle_deg);
+        wp_write_key(out, "center");
         write_pair(out, g->center);
-        WP_BUFFER_LITERAL(out, "}");
+        wp_write_object_end(out);
     }
-    WP_BUFFER_LITERAL(out, "]");
+    wp_write_array_end(out);
 }
 
-static void write_answer(design_state *s, wp_buffer *out)
+static void write_answer(design_state *s, wp_writer *out)
 {
     int count;
     const wr_design *designs = wr_design_job_designs(s->job, &count);
-    WP_BUFFER_LITERAL(out, "{\"designs\":[");
-    for (int i = 0; i < count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
+    wp_write_object(out);
+    wp_write_key(out, "designs");
+    wp_write_array(out);
+    for (int i = 0; i < count; i++)
         write_design(s, out, &designs[i], i + 1);
-    }
+    wp_write_array_end(out);
     const wr_design_counts *c = wr_design_job_counts(s->job);
-    WP_BUFFER_LITERAL(out, "],");
     if (s->cut && c->examined < wr_design_job_total(s->job))
-        WP_BUFFER_LITERAL(out, "\"partial\":true,");
-    WP_BUFFER_LITERAL(out, "\"counts\":{\"candidates\":");
-    write_count(out, s->candidates);
-    WP_BUFFER_LITERAL(out, ",\"examined\":");
-    write_count(out, c->examined);
-    WP_BUFFER_LITERAL(out, ",\"degenerate\":");
-    write_count(out, c->degenerate);
-    WP_BUFFER_LITERAL(out, ",\"unpinned\":");
-    write_count(out, c->unpinned);
-    WP_BUFFER_LITERAL(out, ",\"no_seating_push\":");
-    write_count(out, c->no_seating_push);
-    WP_BUFFER_LITERAL(out, ",\"symmetric\":");
-    write_count(out, c->symmetric);
-    WP_BUFFER_LITERAL(out, ",\"shared_hole\":");
-    write_count(out, c->shared_hole);
-    WP_BUFFER_LITERAL(out, "}");
+        wp_write_member_bool(out, "partial", true);
+    wp_write_key(out, "counts");
+    wp_write_object(out);
+    write_member_count(out, "candidates", s->candidates);
+    write_member_count(out, "examined", c->examined);
+    write_member_count(out, "degenerate", c->degenerate);
+    write_member_count(out, "unpinned", c->unpinned);
+    write_member_count(out, "no_seating_push", c->no_seating_push);
+    write_member_count(out, "symmetric", c->symmetric);
+    write_member_count(out, "shared_hole", c->shared_hole);
+    wp_write_object_end(out);
     write_why(s, out);
-    if (s->poses) {
-        WP_BUFFER_LITERAL(out, ",\"poses\":");
-        write_count(out, s->spec.candidate_count);
-    } else {
-        WP_BUFFER_LITERAL(out, ",\"sites\":");
-        wp_buffer_number(out, s->site_count);
-    }
-    WP_BUFFER_LITERAL(out, ",\"objective\":\"");
-    wp_buffer_puts(out, OBJECTIVES[s->spec.objective]);
-    WP_BUFFER_LITERAL(out, "\"");
+    if (s->poses)
+        write_member_count(out, "poses", s->spec.candidate_count);
+    else
+        wp_write_member_number(out, "sites", s->site_count);
+    wp_write_member_string(out, "objective", OBJECTIVES[s->spec.objective]);
     if (s->symmetries)
         write_symmetries(s, out);
-    WP_BUFFER_LITERAL(out, ",\"shard\":[");
-    wp_buffer_number(out, s->spec.shard_index);
-    WP_BUFFER_LITERAL(out, ",");
-    wp_buffer_number(out, s->spec.shard_count);
-    WP_BUFFER_LITERAL(out, "]}");
+    const double shard[2] = {s->spec.shard_index, s->spec.shard_count};
+    wp_write_key(out, "shard");
+    wp_write_numbers(out, shard, 2);
+    wp_write_object_end(out);
 }
 
-/* The lattice's chunks of units (wr_lattice.h), by the engine (wp_chunks.h): claimed
- * by the job in order, made by any thread, merged in order. */
-typedef struct lattice_record {
-    size_t first, count;
-    wr_lattice_chunk chunk;
-} lattice_record;
+/* The chunks of either stage, by the engine (wp_chunks.h), in the lib's
+ * one job contract (wr_job.h): the lattice's poses (its units, wr_lattice.h) while
+ * there is no search job, then the search's candidates, whose claims stop
+ * at the deadline.  A record is a claim, the contract it was claimed
+ * under (NULL before its first claim) and the job's chunk. */
+typedef struct job_record {
+    wr_job_claim claim;
+    const wr_job_chunks *ops;
+    union {
+        wr_design_chunk design;
+        wr_lattice_chunk lattice;
+    } chunk;
+} job_record;
 
-static bool lattice_claim(void *method, size_t index, void *record)
+/* The stage's job and its contract.  The search begins in a step that
+ * shares nothing (design_step), so no helper is in a chunk when s->job
+ * appears. */
+static const wr_job_chunks *stage_job(const design_state *s, void **job)
+{
+    *job = s->job ? (void *)s->job : (void *)s->lattice;
+    return s->job ? &wr_design_job_chunks : &wr_lattice_job_chunks;
+}
+
+static bool job_claim(void *method, size_t index, void *record)
 {
     (void)index;
     design_state *s = method;
-    lattice_record *l = record;
-    return wr_lattice_job_claim(s->lattice, &l->first, &l->count);
-}
-
-static wr_status lattice_make(void *method, size_t index, void *record, wp_buffer *direct,
-                              const wp_host *host, unsigned long *used, wp_error *error)
-{
-    (void)index;
-    (void)direct;
-    const design_state *s = method;
-    lattice_record *l = record;
-    wr_status status = wr_lattice_chunk_run(s->lattice, l->first, l->count, host->stop,
-                                            &l->chunk, used);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
-}
-
-static wr_status lattice_merge(void *method, size_t index, void *record, wp_buffer *out,
-                               wp_error *error)
-{
-    (void)index;
-    (void)out;
-    design_state *s = method;
-    lattice_record *l = record;
-    wr_status status = wr_lattice_job_merge(s->lattice, &l->chunk); /* takes its designs */
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
-}
-
-static void lattice_release(void *record) { wr_lattice_chunk_release(&((lattice_record *)record)->chunk); }
-
-static const wp_chunk_ops LATTICE_CHUNKS = {
-    .record_size = sizeof(lattice_record),
-    .claim = lattice_claim,
-    .make = lattice_make,
-    .merge = lattice_merge,
-    .release = lattice_release,
-    .window = DESIGN_WINDOW,
-};
-
-/* The search's chunks of candidates, likewise; a chunk's threshold is the
- * top-th score merged when it is claimed. */
-typedef struct search_record {
-    uint64_t first, count;
-    double threshold;
-    wr_design_chunk chunk;
-} search_record;
-
-static bool search_claim(void *method, size_t index, void *record)
-{
-    (void)index;
-    design_state *s = method;
-    search_record *c = record;
     /* The deadline: no candidate is claimed after it.  The chunks claimed
      * are merged as usual, then the designs kept so far get their figures
      * and the answer is "partial". */
-    if (s->deadline > 0 && !s->cut && wp_now_s() >= s->deadline) {
+    if (s->job && s->deadline > 0 && !s->cut && wp_now_s() >= s->deadline) {
         wr_design_job_cut(s->job);
         s->cut = true;
     }
-    return wr_design_job_claim(s->job, &c->first, &c->count, &c->threshold);
+    void *job;
+    job_record *r = record;
+    r->ops = stage_job(s, &job);
+    return r->ops->claim(job, &r->claim);
 }
 
-static wr_status search_make(void *method, size_t index, void *record, wp_buffer *direct,
-                             const wp_host *host, unsigned long *used, wp_error *error)
+static wr_status job_make(void *method, size_t index, void *record, wp_buffer *direct,
+                          const wp_host *host, unsigned long *used, wp_error *error)
 {
     (void)index;
     (void)direct;
-    const design_state *s = method;
-    search_record *c = record;
-    wr_status status = wr_design_chunk_run(s->job, c->first, c->count, c->threshold,
-                                           host->stop, &c->chunk, used);
+    void *job;
+    const wr_job_chunks *ops = stage_job(method, &job);
+    job_record *r = record;
+    wr_status status = ops->run(job, &r->claim, host->stop, &r->chunk, used);
     if (status != WR_OK)
         wp_error_status(error, status, "params", "%s", wr_strerror(status));
     return status;
 }
 
-static wr_status search_merge(void *method, size_t index, void *record, wp_buffer *out,
-                              wp_error *error)
+static wr_status job_merge(void *method, size_t index, void *record, wp_buffer *out,
+                           wp_error *error)
 {
     (void)index;
     (void)out;
-    (void)error;
-    design_state *s = method;
-    search_record *c = record;
-    wr_design_job_merge(s->job, &c->chunk);
-    wr_design_chunk_release(&c->chunk);
-    return WR_OK;
+    void *job;
+    const wr_job_chunks *ops = stage_job(method, &job);
+    wr_status status = ops->merge(job, &((job_record *)record)->chunk);
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
 }
 
-static void search_release(void *record) { wr_design_chunk_release(&((search_record *)record)->chunk); }
+static void job_release(void *record)
+{
+    job_record *r = record;
+    if (r->ops)
+        r->ops->release(&r->chunk);
+}
 
-static const wp_chunk_ops SEARCH_CHUNKS = {
-    .record_size = sizeof(search_record),
-    .claim = search_claim,
-    .make = search_make,
-    .merge = search_merge,
-    .release = search_release,
+/* Each stage has an engine of its own (s->poses_chunks, s->search). */
+static const wp_chunk_ops JOB_CHUNKS = {
+    .record_size = sizeof(job_record),
+    .claim = job_claim,
+    .make = job_make,
+    .merge = job_merge,
+    .release = job_release,
     .window = DESIGN_WINDOW,
 };
 
@@ -1109,18 +1038,18 @@ static bool design_work(void *stream, const wp_host *host)
     return wp_chunks_work(stage(stream), host);
 }
 
-static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+static wp_step design_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                            unsigned long *used)
 {
     design_state *s = stream;
     bool shared = wp_chunks_shared(stage(s));
     if (s->progress && s->last_report < 0)
-        write_progress(s, call, out);
+        write_progress(s, call, out->out);
     if (!s->job) {
         /* A lattice: its designs first, in chunks of hole pairs that
          * helpers share; the search begins in a step that shares nothing,
          * so that no helper is in a chunk when s->job appears. */
-        wp_step step = wp_chunks_run(s->poses_chunks, shared, call->host, out, budget, used,
+        wp_step step = wp_chunks_run(s->poses_chunks, shared, call->host, out->out, budget, used,
                                      (size_t)-1, call->error);
         if (step == WP_STEP_FAILED)
             return WP_STEP_FAILED;
@@ -1136,25 +1065,25 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
                 return WP_STEP_FAILED;
         }
         if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
-            write_progress(s, call, out);
-        return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
+            write_progress(s, call, out->out);
+        return out->out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     }
     /* The search: chunks while the budget lasts (helpers may make others
      * meanwhile); then the kept designs' figures, a design a chunk; then,
      * in a step that shares nothing, the job itself says it is done. */
     if (s->figures) {
-        wp_step step = wp_chunks_run(s->figures, shared, call->host, out, budget, used,
+        wp_step step = wp_chunks_run(s->figures, shared, call->host, out->out, budget, used,
                                      (size_t)-1, call->error);
         if (step == WP_STEP_FAILED)
             return WP_STEP_FAILED;
         if (step != WP_STEP_DONE) {
             if (s->progress && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)
-                write_progress(s, call, out);
-            return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
+                write_progress(s, call, out->out);
+            return out->out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
         }
     }
     unsigned long start = *used;
-    wp_step step = wp_chunks_run(s->search, shared, call->host, out, budget, used, (size_t)-1,
+    wp_step step = wp_chunks_run(s->search, shared, call->host, out->out, budget, used, (size_t)-1,
                                  call->error);
     if (step == WP_STEP_FAILED)
         return WP_STEP_FAILED;
@@ -1171,9 +1100,9 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
             return WP_STEP_FAILED;
         }
         if (s->progress && !s->search_reported)
-            write_progress(s, call, out);
+            write_progress(s, call, out->out);
         s->search_reported = true;
-        return out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
+        return out->out->failed ? WP_STEP_FAILED : WP_STEP_MORE;
     }
     bool done = false;
     if (step == WP_STEP_DONE && *used - start < budget) {
@@ -1190,18 +1119,18 @@ static wp_step design_step(void *stream, wp_call *call, wp_buffer *out, unsigned
     wr_design_job_progress(s->job, &examined, &total, &has_best, &best);
     if (s->progress && !s->search_reported &&
         (examined == total || wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S)) {
-        write_progress(s, call, out);
+        write_progress(s, call, out->out);
         s->search_reported = examined == total;
     } else if (s->progress && !done && wp_now_s() - s->last_report >= PROGRESS_INTERVAL_S) {
-        write_progress(s, call, out); /* the designs' figures */
+        write_progress(s, call, out->out); /* the designs' figures */
     }
     /* A shared step never ends the answer, not even for a piece that did
      * not fit in memory: the caller sees that in the buffer. */
     if (!done)
-        return out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
+        return out->out->failed && !shared ? WP_STEP_FAILED : WP_STEP_MORE;
     wp_call_open_result(call, out);
     write_answer(s, out);
-    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
 static void design_free(void *stream)

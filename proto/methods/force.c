@@ -164,25 +164,27 @@ static bool read_range(const cJSON *params, const wr_fixture *f, double range[2]
 
 /* S = {"intervals": [[a, b], ...], "least": a0}, b null without an upper
  * end, least null without an interval; in the fixture's force unit. */
-static void write_force_set(wp_buffer *b, const wr_fixture *f, const wr_forces *good)
+static void write_force_set(wp_writer *out, const wr_fixture *f, const wr_forces *good)
 {
-    WP_BUFFER_LITERAL(b, "{\"intervals\":[");
+    wp_write_object(out);
+    wp_write_key(out, "intervals");
+    wp_write_array(out);
     for (int i = 0; i < good->count; i++) {
-        wp_buffer_puts(b, i ? ",[" : "[");
-        wp_buffer_number(b, wp_force_out(f, good->items[i].lo));
-        WP_BUFFER_LITERAL(b, ",");
+        wp_write_array(out);
+        wp_write_number(out, wp_force_out(f, good->items[i].lo));
         if (isfinite(good->items[i].hi))
-            wp_buffer_number(b, wp_force_out(f, good->items[i].hi));
+            wp_write_number(out, wp_force_out(f, good->items[i].hi));
         else
-            WP_BUFFER_LITERAL(b, "null");
-        WP_BUFFER_LITERAL(b, "]");
+            wp_write_null(out);
+        wp_write_array_end(out);
     }
-    WP_BUFFER_LITERAL(b, "],\"least\":");
+    wp_write_array_end(out);
+    wp_write_key(out, "least");
     if (good->count)
-        wp_buffer_number(b, wp_force_out(f, good->items[0].lo));
+        wp_write_number(out, wp_force_out(f, good->items[0].lo));
     else
-        WP_BUFFER_LITERAL(b, "null");
-    WP_BUFFER_LITERAL(b, "}");
+        wp_write_null(out);
+    wp_write_object_end(out);
 }
 
 /* params.cases: from their text when the envelope cut it out of the line
@@ -241,26 +243,25 @@ static bool supports_sets(wp_call *call, const wr_fixture *f, const bool sets[3]
     return false;
 }
 
-/* The answer is written as text (a raw result): a hundred cases are three
- * hundred small objects, which a tree would allocate one by one. */
-cJSON *wp_handle_force_range(wp_call *call)
+bool wp_handle_force_range(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
     bool sets[3];
     if (!read_sets(params, sets, error))
-        return NULL;
+        return false;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
-        return NULL;
+        return false;
     const wr_fixture *f = use->fixture;
     double push[3], range[2];
     wp_cases cases;
     if (!supports_sets(call, f, sets) || !read_push(params, f, push, error) ||
         !read_range(params, f, range, error) || !read_cases(call, f, &cases))
-        return NULL;
-    wp_buffer b = {0};
-    WP_BUFFER_LITERAL(&b, "{\"cases\":[");
+        return false;
+    wp_write_object(out);
+    wp_write_key(out, "cases");
+    wp_write_array(out);
     wr_forces every[3] = {{0}}, good[3] = {{0}}, meet = {0};
     /* A fixture with a tolerance: each good interval's robust part. */
     wr_robust *robust = NULL;
@@ -268,11 +269,12 @@ cJSON *wp_handle_force_range(wp_call *call)
                                                           &robust)
                                           : WR_OK;
     for (int c = 0; status == WR_OK && c < cases.count; c++) {
-        wp_buffer_puts(&b, c ? ",{\"name\":" : "{\"name\":");
+        wp_write_object(out);
+        wp_write_key(out, "name");
         if (cases.items[c].name)
-            wp_buffer_string(&b, cases.items[c].name);
+            wp_write_string(out, cases.items[c].name);
         else
-            WP_BUFFER_LITERAL(&b, "null");
+            wp_write_null(out);
         status = set_ranges(call, use->analysis, sets, cases.items[c].load, push, range[0],
                             range[1], good);
         for (int s = 0; status == WR_OK && s < 3; s++) {
@@ -287,10 +289,8 @@ cJSON *wp_handle_force_range(wp_call *call)
                 if (status != WR_OK)
                     break;
             }
-            WP_BUFFER_LITERAL(&b, ",\"");
-            wp_buffer_puts(&b, SET_NAMES[s]);
-            WP_BUFFER_LITERAL(&b, "\":");
-            write_force_set(&b, f, &good[s]);
+            wp_write_key(out, SET_NAMES[s]);
+            write_force_set(out, f, &good[s]);
             /* One magnitude for every case: the intersection. */
             if (c == 0) {
                 wr_forces swap = every[s];
@@ -303,19 +303,21 @@ cJSON *wp_handle_force_range(wp_call *call)
                 meet = swap;
             }
         }
-        WP_BUFFER_LITERAL(&b, "}");
+        if (status == WR_OK)
+            wp_write_object_end(out);
     }
-    WP_BUFFER_LITERAL(&b, "],\"all\":{");
-    for (int s = 0, first = 1; status == WR_OK && s < 3; s++) {
-        if (!sets[s])
-            continue;
-        wp_buffer_puts(&b, first ? "\"" : ",\"");
-        first = 0;
-        wp_buffer_puts(&b, SET_NAMES[s]);
-        WP_BUFFER_LITERAL(&b, "\":");
-        write_force_set(&b, f, &every[s]);
+    if (status == WR_OK) {
+        wp_write_array_end(out);
+        wp_write_key(out, "all");
+        wp_write_object(out);
+        for (int s = 0; s < 3; s++)
+            if (sets[s]) {
+                wp_write_key(out, SET_NAMES[s]);
+                write_force_set(out, f, &every[s]);
+            }
+        wp_write_object_end(out);
+        wp_write_object_end(out);
     }
-    WP_BUFFER_LITERAL(&b, "}}");
     for (int s = 0; s < 3; s++) {
         wr_forces_release(&every[s]);
         wr_forces_release(&good[s]);
@@ -323,20 +325,15 @@ cJSON *wp_handle_force_range(wp_call *call)
     wr_forces_release(&meet);
     wr_robust_free(robust);
     wp_cases_release(&cases);
-    char *text = wp_buffer_take(&b);
-    cJSON *result = status == WR_OK && text ? cJSON_CreateRaw(text) : NULL;
-    free(text);
-    if (!result) {
-        /* The inputs were checked: what is left is memory, or a push too
-         * large for doubles. */
-        if (status == WR_OK)
-            status = WR_NO_MEMORY;
+    if (status != WR_OK) {
+        /* The inputs were checked: what is left is a push too large for
+         * doubles, or memory.  (What was written is taken back.) */
         wp_error_status(error, status, status == WR_INVALID ? "params" : "", "%s",
                         status == WR_INVALID ? "the push or a load is too large to compute with"
                                              : wr_strerror(status));
-        return NULL;
+        return false;
     }
-    return result;
+    return true;
 }
 
 bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_friction,
@@ -411,23 +408,12 @@ static bool read_one_set(const cJSON *params, wr_set *set, wp_error *error)
     return false;
 }
 
-/* Where an edge is, on the wire: {"edge"} or, on an outline, {"loop",
- * "segment"}, added to `object`. */
-static void add_place(cJSON *object, const wr_fixture *f, int edge)
+static void write_force_or_null(wp_writer *out, const wr_fixture *f, double force)
 {
-    if (f->shape == WR_SHAPE_OUTLINE) {
-        size_t loop, segment;
-        wr_push_edge_place(f, edge, &loop, &segment);
-        cJSON_AddNumberToObject(object, "loop", (double)loop);
-        cJSON_AddNumberToObject(object, "segment", (double)segment);
-    } else {
-        cJSON_AddNumberToObject(object, "edge", edge);
-    }
-}
-
-static cJSON *force_or_null(const wr_fixture *f, double force)
-{
-    return isfinite(force) ? cJSON_CreateNumber(wp_force_out(f, force)) : cJSON_CreateNull();
+    if (isfinite(force))
+        wp_write_number(out, wp_force_out(f, force));
+    else
+        wp_write_null(out);
 }
 
 /* A stop that the caller's stop or a deadline asks for. */
@@ -442,7 +428,7 @@ static bool deadline_or_caller(void *context)
     return wr_stop_requested(d->caller) || (d->deadline > 0 && wp_now_s() >= d->deadline);
 }
 
-cJSON *wp_handle_push_force(wp_call *call)
+bool wp_handle_push_force(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
@@ -453,56 +439,56 @@ cJSON *wp_handle_push_force(wp_call *call)
         !wp_member_number(params, "params", "finger_radius", false, &radius, NULL, error) ||
         !wp_member_number(params, "params", "samples", false, &samples_given, &have_samples,
                           error))
-        return NULL;
+        return false;
     if (radius < 0) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.finger_radius", "must not be negative");
-        return NULL;
+        return false;
     }
     if (have_samples && !(samples_given >= 1 && samples_given <= WP_FORCE_MAX_SAMPLES &&
                           samples_given == floor(samples_given))) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.samples",
                      "must be a whole number from 1 to %d", WP_FORCE_MAX_SAMPLES);
-        return NULL;
+        return false;
     }
     int samples = (int)samples_given;
     double deadline;
     if (!wp_read_deadline(params, &deadline, error))
-        return NULL;
+        return false;
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
-        return NULL;
+        return false;
     if (wp_supports_refuse(call, use->fixture, "params.fixture",
                            "the push at a point to force.range, whose \"least\" is the least "
                            "force there on the plate: the least over the outline is found for a "
                            "part floating in its plane"))
-        return NULL;
+        return false;
     const wr_fixture *f = use->fixture;
     if (f->shape == WR_SHAPE_NONE) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
                      "a push force needs the part's outline: the fixture has no shape");
-        return NULL;
+        return false;
     }
     if (f->tolerance.given) {
         /* The least force is exact on the nominal fixels only. */
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.tolerance",
                      "push.force answers the nominal fixture only: ask force.range at a point "
                      "for magnitudes robust over the tolerance");
-        return NULL;
+        return false;
     }
     bool *push_on;
     wr_finger finger = {.radius = radius};
     if (!wp_read_push_on(params, "params", f, &push_on, &finger.push_on_count, error))
-        return NULL;
+        return false;
     finger.push_on = push_on;
     wp_cases cases;
     if (!wp_cases_read(cJSON_GetObjectItemCaseSensitive(params, "cases"), "params.cases", f,
                        wp_case_limit(call->limits), &cases, error)) {
         free(push_on);
-        return NULL;
+        return false;
     }
     double (*loads)[3] = malloc((size_t)cases.count * sizeof *loads);
-    cJSON *result = cJSON_CreateObject();
-    wr_status status = loads && result ? WR_OK : WR_NO_MEMORY;
+    double *values = malloc((size_t)samples * sizeof *values);
+    wr_status status = loads && values ? WR_OK : WR_NO_MEMORY;
     for (int c = 0; loads && c < cases.count; c++)
         memcpy(loads[c], cases.items[c].load, sizeof loads[c]);
     /* Past params.deadline_s the search for the least stops: "least" is
@@ -520,42 +506,39 @@ cJSON *wp_handle_push_force(wp_call *call)
         least.found = false;
     }
     if (status == WR_OK) {
-        cJSON *best = least.found ? cJSON_AddObjectToObject(result, "least")
-                                  : cJSON_AddNullToObject(result, "least");
-        if (least.found && best) {
-            add_place(best, f, least.edge);
-            cJSON_AddNumberToObject(best, "t", least.t + 0.0);
+        wp_write_object(out);
+        wp_write_key(out, "least");
+        if (least.found) {
+            wp_write_object(out);
+            wp_write_edge_place(out, f, least.edge);
+            wp_write_member_number(out, "t", least.t + 0.0);
             const double at[2] = {least.at[0] + 0.0, least.at[1] + 0.0};
             const double direction[2] = {least.direction[0] + 0.0, least.direction[1] + 0.0};
-            cJSON_AddItemToObject(best, "at", cJSON_CreateDoubleArray(at, 2));
-            cJSON_AddItemToObject(best, "direction", cJSON_CreateDoubleArray(direction, 2));
-            cJSON_AddItemToObject(best, "force", force_or_null(f, least.force));
-            cJSON_AddItemToObject(best, "lower_bound", force_or_null(f, least.lower));
-            cJSON_AddBoolToObject(best, "converged", least.converged);
+            wp_write_key(out, "at");
+            wp_write_numbers(out, at, 2);
+            wp_write_key(out, "direction");
+            wp_write_numbers(out, direction, 2);
+            wp_write_key(out, "force");
+            write_force_or_null(out, f, least.force);
+            wp_write_key(out, "lower_bound");
+            write_force_or_null(out, f, least.lower);
+            wp_write_member_bool(out, "converged", least.converged);
+            wp_write_object_end(out);
+        } else {
+            wp_write_null(out);
         }
-        cJSON_AddNumberToObject(result, "evaluations", (double)least.evaluations);
-        cJSON_AddNumberToObject(result, "samples", samples);
+        wp_write_member_number(out, "evaluations", (double)least.evaluations);
+        wp_write_member_number(out, "samples", samples);
+        /* F* at evenly spaced points of every edge (off its ends), each
+         * exact. */
+        wp_write_key(out, "segments");
+        wp_write_array(out);
     }
-    /* F* at evenly spaced points of every edge (off its ends), each exact;
-     * past params.deadline_s, only those sampled so far (the last edge's
-     * cut short, none after a search that stopped), and "partial". */
-    cJSON *segments = status == WR_OK ? cJSON_AddArrayToObject(result, "segments") : NULL;
+    /* Past params.deadline_s, only the samples made so far (the last
+     * edge's cut short, none after a search that stopped), and "partial". */
     int edges = wr_push_edge_count(f);
     double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
     for (int e = 0; status == WR_OK && !partial && e < edges; e++) {
-        cJSON *segment = cJSON_CreateObject();
-        cJSON *ts = cJSON_CreateArray(), *forces = cJSON_CreateArray();
-        if (!segments || !segment || !ts || !forces) {
-            cJSON_Delete(segment);
-            cJSON_Delete(ts);
-            cJSON_Delete(forces);
-            status = WR_NO_MEMORY;
-            break;
-        }
-        cJSON_AddItemToArray(segments, segment);
-        add_place(segment, f, e);
-        cJSON_AddItemToObject(segment, "t", ts);
-        cJSON_AddItemToObject(segment, "force", forces);
         /* No push where the finger may not push (a loop push_on leaves out)
          * or does not fit (its blocked spans): F* null there. */
         bool pushed = wr_finger_pushes_on(f, &finger, e);
@@ -567,35 +550,52 @@ cJSON *wp_handle_push_force(wp_call *call)
             status = wr_finger_blocked(f->outline, loop, piece, radius, call->host->stop,
                                        &blocked, &blocked_count);
         }
-        for (int j = 0; status == WR_OK && j < samples; j++) {
+        int made = 0;
+        for (int j = 0; status == WR_OK && j < samples; j++, made++) {
             if (deadline > 0 && wp_now_s() >= deadline) {
                 partial = true;
                 break;
             }
-            double t = top * (j + 0.5) / samples, push[3], value = INFINITY;
+            double t = top * (j + 0.5) / samples, push[3];
             bool reached = pushed;
             for (int b = 0; reached && b < blocked_count; b++)
                 reached = !(t >= blocked[b].lo && t <= blocked[b].hi);
             wr_push_wrench(f, e, t, push);
+            values[j] = INFINITY;
             if (reached)
                 status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
-                                           cases.count, push, &value);
-            cJSON_AddItemToArray(ts, cJSON_CreateNumber(t));
-            cJSON_AddItemToArray(forces, force_or_null(f, value));
+                                           cases.count, push, &values[j]);
         }
         free(blocked);
         if (wr_stop_requested(call->host->stop))
             status = WR_STOPPED;
+        if (status != WR_OK)
+            break;
+        wp_write_object(out);
+        wp_write_edge_place(out, f, e);
+        wp_write_key(out, "t");
+        wp_write_array(out);
+        for (int j = 0; j < made; j++)
+            wp_write_number(out, top * (j + 0.5) / samples);
+        wp_write_array_end(out);
+        wp_write_key(out, "force");
+        wp_write_array(out);
+        for (int j = 0; j < made; j++)
+            write_force_or_null(out, f, values[j]);
+        wp_write_array_end(out);
+        wp_write_object_end(out);
     }
     free(loads);
     free(push_on);
+    free(values);
     wp_cases_release(&cases);
-    if (status == WR_OK && partial && !cJSON_AddTrueToObject(result, "partial"))
-        status = WR_NO_MEMORY;
     if (status != WR_OK) {
-        cJSON_Delete(result);
         wp_error_status(error, status, "", "%s", wr_strerror(status));
-        return NULL;
+        return false;
     }
-    return result;
+    wp_write_array_end(out);
+    if (partial)
+        wp_write_member_bool(out, "partial", true);
+    wp_write_object_end(out);
+    return true;
 }

@@ -111,94 +111,102 @@ static bool read_features(const cJSON *value, wr_locate_feature **out, const cha
     return true;
 }
 
-static bool add(cJSON *object, const char *key, cJSON *item)
+/* [v0, ...]: n numbers, no -0. */
+static void write_numbers(wp_writer *out, const double *v, int n)
 {
-    if (!item)
-        return false;
-    cJSON_AddItemToObject(object, key, item);
-    return true;
-}
-
-static cJSON *numbers(const double *v, int n)
-{
-    double w[8];
+    wp_write_array(out);
     for (int i = 0; i < n; i++)
-        w[i] = v[i] + 0.0; /* no -0 */
-    return cJSON_CreateDoubleArray(w, n);
+        wp_write_number(out, v[i] + 0.0);
+    wp_write_array_end(out);
 }
 
-static cJSON *feature_json(const wr_locate_feature *ft, const char *name)
+/* {"vector": [x, y], "length": l} */
+static void write_displacement(wp_writer *out, const double v[2], double length)
 {
-    cJSON *o = cJSON_CreateObject(), *linear = cJSON_CreateObject(), *exact = cJSON_CreateObject(),
-          *ellipse = cJSON_CreateObject(), *cov = cJSON_CreateArray();
-    bool ok = o && linear && exact && ellipse && cov;
-    ok = ok && add(o, "name", name ? cJSON_CreateString(name) : cJSON_CreateNull()) &&
-         add(o, "at", numbers(ft->at, 2));
-    ok = ok && add(linear, "vector", numbers(ft->linear, 2)) &&
-         add(linear, "length", cJSON_CreateNumber(ft->linear_length));
-    ok = ok && add(exact, "vector", numbers(ft->exact, 2)) &&
-         add(exact, "length", cJSON_CreateNumber(ft->exact_length));
+    wp_write_object(out);
+    wp_write_key(out, "vector");
+    write_numbers(out, v, 2);
+    wp_write_member_number(out, "length", length);
+    wp_write_object_end(out);
+}
+
+static void write_feature(wp_writer *out, const wr_locate_feature *ft, const char *name)
+{
+    wp_write_object(out);
+    wp_write_key(out, "name");
+    if (name)
+        wp_write_string(out, name);
+    else
+        wp_write_null(out);
+    wp_write_key(out, "at");
+    write_numbers(out, ft->at, 2);
+    wp_write_key(out, "linear");
+    write_displacement(out, ft->linear, ft->linear_length);
+    wp_write_key(out, "exact");
+    write_displacement(out, ft->exact, ft->exact_length);
     double rows[2][2] = {{ft->covariance[0], ft->covariance[1]},
                          {ft->covariance[1], ft->covariance[2]}};
-    for (int r = 0; r < 2 && ok; r++)
-        ok = cJSON_AddItemToArray(cov, numbers(rows[r], 2));
-    ok = ok && add(ellipse, "axes", numbers(ft->axes, 2)) &&
-         add(ellipse, "angle_deg", cJSON_CreateNumber(ft->angle_deg + 0.0));
-    if (!ok) {
-        cJSON_Delete(linear);
-        cJSON_Delete(exact);
-        cJSON_Delete(ellipse);
-        cJSON_Delete(cov);
-        cJSON_Delete(o);
-        return NULL;
-    }
-    cJSON_AddItemToObject(o, "linear", linear);
-    cJSON_AddItemToObject(o, "exact", exact);
-    cJSON_AddItemToObject(o, "covariance", cov);
-    cJSON_AddItemToObject(o, "ellipse", ellipse);
-    return o;
+    wp_write_key(out, "covariance");
+    wp_write_array(out);
+    for (int r = 0; r < 2; r++)
+        write_numbers(out, rows[r], 2);
+    wp_write_array_end(out);
+    wp_write_key(out, "ellipse");
+    wp_write_object(out);
+    wp_write_key(out, "axes");
+    write_numbers(out, ft->axes, 2);
+    wp_write_member_number(out, "angle_deg", ft->angle_deg + 0.0);
+    wp_write_object_end(out);
+    wp_write_object_end(out);
 }
 
-static cJSON *result_json(const wr_locating *m, const wr_locate_feature *features,
-                          const char **names, size_t count)
+static void write_result(wp_writer *out, const wr_locating *m, const wr_locate_feature *features,
+                         const char **names, size_t count)
 {
-    cJSON *r = cJSON_CreateObject();
-    bool ok = r && add(r, "deterministic", cJSON_CreateBool(m->deterministic));
-    if (ok && m->deterministic)
-        ok = add(r, "free_motion", cJSON_CreateNull());
-    else if (ok) {
-        cJSON *motion = cJSON_CreateObject();
-        ok = add(r, "free_motion", motion) && add(motion, "twist", numbers(m->twist, 3)) &&
-             add(motion, "kind", cJSON_CreateString(m->rotation ? "rotation" : "translation")) &&
-             add(motion, "about", m->rotation ? numbers(m->about, 2) : cJSON_CreateNull());
-    }
-    if (ok && !m->deterministic) {
+    wp_write_object(out);
+    wp_write_member_bool(out, "deterministic", m->deterministic);
+    wp_write_key(out, "free_motion");
+    if (m->deterministic) {
+        wp_write_null(out);
+    } else {
+        wp_write_object(out);
+        wp_write_key(out, "twist");
+        write_numbers(out, m->twist, 3);
+        wp_write_member_string(out, "kind", m->rotation ? "rotation" : "translation");
+        wp_write_key(out, "about");
+        if (m->rotation)
+            write_numbers(out, m->about, 2);
+        else
+            wp_write_null(out);
+        wp_write_object_end(out);
         /* Nothing is determined: the rest is null. */
-        ok = add(r, "sensitivity", cJSON_CreateNull()) && add(r, "condition", cJSON_CreateNull()) &&
-             add(r, "pose_error", cJSON_CreateNull()) && add(r, "features", cJSON_CreateNull());
-        return ok ? r : (cJSON_Delete(r), NULL);
+        static const char *const REST[] = {"sensitivity", "condition", "pose_error", "features"};
+        for (int i = 0; i < 4; i++) {
+            wp_write_key(out, REST[i]);
+            wp_write_null(out);
+        }
+        wp_write_object_end(out);
+        return;
     }
-    cJSON *sensitivity = cJSON_CreateArray(), *pose = cJSON_CreateObject(),
-          *list = cJSON_CreateArray();
-    ok = ok && add(r, "sensitivity", sensitivity);
-    for (int j = 0; j < 3 && ok; j++)
-        ok = cJSON_AddItemToArray(sensitivity, numbers(m->sensitivity[j], m->fixel_count));
-    ok = ok && add(r, "condition", cJSON_CreateNumber(m->condition)) &&
-         add(r, "pose_error", pose) && add(pose, "linear", numbers(m->pose_linear, 3)) &&
-         add(pose, "exact", numbers(m->pose_exact, 3)) && add(r, "features", list);
-    for (size_t i = 0; i < count && ok; i++)
-        ok = cJSON_AddItemToArray(list, feature_json(&features[i], names[i]));
-    if (!ok) {
-        if (!cJSON_GetObjectItem(r, "sensitivity"))
-            cJSON_Delete(sensitivity);
-        if (!cJSON_GetObjectItem(r, "pose_error"))
-            cJSON_Delete(pose);
-        if (!cJSON_GetObjectItem(r, "features"))
-            cJSON_Delete(list);
-        cJSON_Delete(r);
-        return NULL;
-    }
-    return r;
+    wp_write_key(out, "sensitivity");
+    wp_write_array(out);
+    for (int j = 0; j < 3; j++)
+        write_numbers(out, m->sensitivity[j], m->fixel_count);
+    wp_write_array_end(out);
+    wp_write_member_number(out, "condition", m->condition);
+    wp_write_key(out, "pose_error");
+    wp_write_object(out);
+    wp_write_key(out, "linear");
+    write_numbers(out, m->pose_linear, 3);
+    wp_write_key(out, "exact");
+    write_numbers(out, m->pose_exact, 3);
+    wp_write_object_end(out);
+    wp_write_key(out, "features");
+    wp_write_array(out);
+    for (size_t i = 0; i < count; i++)
+        write_feature(out, &features[i], names[i]);
+    wp_write_array_end(out);
+    wp_write_object_end(out);
 }
 
 /* Light on an event loop (a stored, derived fixture) with few features:
@@ -214,7 +222,7 @@ bool wp_locating_light(const cJSON *params, int cones)
 
 /* Params: fixture, tolerance (a number or one per fixel), features?,
  * sigma_ratio? (default 3).  Lengths in the fixture's length unit. */
-cJSON *wp_handle_fixture_locating(wp_call *call)
+bool wp_handle_fixture_locating(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
     wp_error *error = call->error;
@@ -225,16 +233,16 @@ cJSON *wp_handle_fixture_locating(wp_call *call)
     if (!read_tolerance(cJSON_GetObjectItemCaseSensitive(params, "tolerance"), tolerance, &listed,
                         error) ||
         !wp_member_number(params, "params", "sigma_ratio", false, &sigma_ratio, &present, error))
-        return NULL;
+        return false;
     if (present && !(sigma_ratio > 0)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.sigma_ratio",
                      "must be above 0 (sigma = tolerance / sigma_ratio), not %g", sigma_ratio);
-        return NULL;
+        return false;
     }
     wr_locate_feature *features;
     const char **names;
     size_t count;
-    cJSON *result = NULL;
+    bool ok = false;
     if (!read_features(cJSON_GetObjectItemCaseSensitive(params, "features"), &features, &names,
                        &count, error))
         goto done;
@@ -260,11 +268,10 @@ cJSON *wp_handle_fixture_locating(wp_call *call)
         wp_error_status(error, status, field, "%s", why.reason);
         goto done;
     }
-    result = result_json(&m, features, names, count);
-    if (!result)
-        result = wp_out_of_memory(NULL, error);
+    write_result(out, &m, features, names, count);
+    ok = true;
 done:
     free(features);
     free(names);
-    return result;
+    return ok;
 }

@@ -6,29 +6,29 @@
 #include "wp_method.h"
 
 /* store.c */
-cJSON *wp_handle_fixture_put(wp_call *call);
-cJSON *wp_handle_fixture_get(wp_call *call);
-cJSON *wp_handle_fixture_delete(wp_call *call);
+bool wp_handle_fixture_put(wp_call *call, wp_writer *out);
+bool wp_handle_fixture_get(wp_call *call, wp_writer *out);
+bool wp_handle_fixture_delete(wp_call *call, wp_writer *out);
 extern const wp_streamer wp_list_stream;
-cJSON *wp_handle_server_status(wp_call *call);
+bool wp_handle_server_status(wp_call *call, wp_writer *out);
 
 /* classify.c */
 extern const wp_streamer wp_classify_stream;
 bool wp_classify_light(const cJSON *params, int cones);
 
 /* analysis.c */
-cJSON *wp_handle_cone_get(wp_call *call);
-cJSON *wp_handle_plan_get(wp_call *call);
-cJSON *wp_handle_modes_get(wp_call *call);
+bool wp_handle_cone_get(wp_call *call, wp_writer *out);
+bool wp_handle_plan_get(wp_call *call, wp_writer *out);
+bool wp_handle_modes_get(wp_call *call, wp_writer *out);
 extern const wp_streamer wp_push_stream;
-cJSON *wp_handle_gravity_sweep(wp_call *call);
-cJSON *wp_handle_stability_margin(wp_call *call);
+bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out);
+bool wp_handle_stability_margin(wp_call *call, wp_writer *out);
 
 /* sweep.c */
 extern const wp_streamer wp_sweep_stream;
 
 /* locate.c */
-cJSON *wp_handle_fixture_locating(wp_call *call);
+bool wp_handle_fixture_locating(wp_call *call, wp_writer *out);
 bool wp_locating_light(const cJSON *params, int cones);
 
 /* design.c */
@@ -37,8 +37,8 @@ extern const wp_streamer wp_design_stream;
 /* force.c: force.range (the magnitudes of one push that do each set's job
  * under each load case, and under all of them) and push.force (the least
  * push force along the outline, and where it is least) */
-cJSON *wp_handle_force_range(wp_call *call);
-cJSON *wp_handle_push_force(wp_call *call);
+bool wp_handle_force_range(wp_call *call, wp_writer *out);
+bool wp_handle_push_force(wp_call *call, wp_writer *out);
 
 /* supports.c: a fixture on a base plate (wr_support.h) */
 /* One wrench's answer by the supports' seating and holding (no margin; a

@@ -13,16 +13,16 @@ static const char *read_id(const cJSON *params, wp_error *error)
 {
     const char *id;
     if (!wp_member_string(params, "params", "id", true, &id, error))
-        return NULL;
+        return false;
     if (!wp_fixture_id_valid(id)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.id",
                      "not a fixture id: 32 hexadecimal digits, as fixture.put returns");
-        return NULL;
+        return false;
     }
     return id;
 }
 
-cJSON *wp_handle_fixture_put(wp_call *call)
+bool wp_handle_fixture_put(wp_call *call, wp_writer *out)
 {
     const wp_host *host = call->host;
     const cJSON *params = call->params;
@@ -30,36 +30,35 @@ cJSON *wp_handle_fixture_put(wp_call *call)
     wp_fixture_doc doc;
     if (!wp_fixture_read(cJSON_GetObjectItemCaseSensitive(params, "fixture"), "params.fixture",
                          &doc, error))
-        return NULL;
+        return false;
     wp_fixture_use use;
     wp_host_failure failure;
     if (!host->fixture_adopt(host->self, &doc, true, &use, &failure)) {
         wp_error_host(error, &failure, "");
-        return NULL;
+        return false;
     }
-    cJSON *result = cJSON_CreateObject();
-    if (result) {
-        cJSON_AddStringToObject(result, "id", use.id);
-        cJSON_AddStringToObject(result, "name", use.name);
-        cJSON_AddNumberToObject(result, "fixels", use.fixture->fixel_count);
-        cJSON_AddNumberToObject(result, "goal_cones",
-                                wr_analysis_cone_count(use.analysis, WR_SET_GOAL));
-        cJSON_AddNumberToObject(result, "strong_cones",
-                                wr_analysis_cone_count(use.analysis, WR_SET_STRONG));
-        cJSON_AddBoolToObject(result, "pinned", wr_analysis_pinned(use.analysis));
-        /* The mass properties in use, given or derived from the shape, for
-         * a client to check against its own CAD. */
-        const wr_fixture *f = use.fixture;
-        if (f->shape != WR_SHAPE_NONE)
-            cJSON_AddNumberToObject(result, "area", f->area);
-        cJSON_AddItemToObject(result, "com", cJSON_CreateDoubleArray(f->com, 2));
-        cJSON_AddNumberToObject(result, "inertia", f->inertia);
-    }
+    wp_write_object(out);
+    wp_write_member_string(out, "id", use.id);
+    wp_write_member_string(out, "name", use.name);
+    wp_write_member_number(out, "fixels", use.fixture->fixel_count);
+    wp_write_member_number(out, "goal_cones", wr_analysis_cone_count(use.analysis, WR_SET_GOAL));
+    wp_write_member_number(out, "strong_cones",
+                           wr_analysis_cone_count(use.analysis, WR_SET_STRONG));
+    wp_write_member_bool(out, "pinned", wr_analysis_pinned(use.analysis));
+    /* The mass properties in use, given or derived from the shape, for a
+     * client to check against its own CAD. */
+    const wr_fixture *f = use.fixture;
+    if (f->shape != WR_SHAPE_NONE)
+        wp_write_member_number(out, "area", f->area);
+    wp_write_key(out, "com");
+    wp_write_numbers(out, f->com, 2);
+    wp_write_member_number(out, "inertia", f->inertia);
+    wp_write_object_end(out);
     host->fixture_release(host->self, &use);
-    return result ? result : wp_out_of_memory(NULL, error);
+    return true;
 }
 
-cJSON *wp_handle_fixture_get(wp_call *call)
+bool wp_handle_fixture_get(wp_call *call, wp_writer *out)
 {
     const wp_host *host = call->host;
     const cJSON *params = call->params;
@@ -68,17 +67,17 @@ cJSON *wp_handle_fixture_get(wp_call *call)
     wp_fixture_use use;
     wp_host_failure failure;
     if (!id)
-        return NULL;
+        return false;
     if (!host->fixture_use(host->self, id, &use, &failure)) {
         wp_error_host(error, &failure, "params.id");
-        return NULL;
+        return false;
     }
-    cJSON *result = cJSON_CreateRaw(use.canonical);
+    wp_write_raw(out, use.canonical, strlen(use.canonical));
     host->fixture_release(host->self, &use);
-    return result ? result : wp_out_of_memory(NULL, error);
+    return true;
 }
 
-cJSON *wp_handle_fixture_delete(wp_call *call)
+bool wp_handle_fixture_delete(wp_call *call, wp_writer *out)
 {
     const wp_host *host = call->host;
     const cJSON *params = call->params;
@@ -86,15 +85,15 @@ cJSON *wp_handle_fixture_delete(wp_call *call)
     const char *id = read_id(params, error);
     wp_host_failure failure;
     if (!id)
-        return NULL;
+        return false;
     if (!host->fixture_delete(host->self, id, &failure)) {
         wp_error_host(error, &failure, "params.id");
-        return NULL;
+        return false;
     }
-    cJSON *result = cJSON_CreateObject();
-    if (!result || !cJSON_AddTrueToObject(result, "deleted"))
-        return wp_out_of_memory(result, error);
-    return result;
+    wp_write_object(out);
+    wp_write_member_bool(out, "deleted", true);
+    wp_write_object_end(out);
+    return true;
 }
 
 /* A page of fixture.list: at most this many fixtures (the default), each
@@ -177,61 +176,62 @@ static void *list_begin(wp_call *call, wp_prepared *prepared)
 /* {"fixtures": [{"id", "name", "fixels"}, ...], "more"}: entries until a
  * piece's bytes (WP_PIECE_BYTES), so that the daemon checks its bound on
  * the client's unsent output between them (--max-output). */
-static wp_step list_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+static wp_step list_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                          unsigned long *used)
 {
     (void)call;
     (void)budget;
     list_state *state = stream;
-    size_t start = out->length;
-    if (state->next == 0)
-        WP_BUFFER_LITERAL(out, "{\"fixtures\":[");
-    for (; state->next < state->page.count && !out->failed; state->next++) {
-        if (out->length - start >= WP_PIECE_BYTES) {
+    size_t start = out->out->length;
+    if (state->next == 0) {
+        wp_write_object(out);
+        wp_write_key(out, "fixtures");
+        wp_write_array(out);
+    }
+    for (; state->next < state->page.count && !out->out->failed; state->next++) {
+        if (out->out->length - start >= WP_PIECE_BYTES) {
             *used += 1;
             return WP_STEP_MORE;
         }
         const wp_fixture_entry *e = &state->page.entries[state->next];
-        wp_buffer_puts(out, state->next ? ",{\"id\":\"" : "{\"id\":\"");
-        wp_buffer_puts(out, e->id);
-        WP_BUFFER_LITERAL(out, "\",\"name\":");
-        wp_buffer_string(out, e->name);
-        WP_BUFFER_LITERAL(out, ",\"fixels\":");
-        wp_buffer_number(out, e->fixels);
-        WP_BUFFER_LITERAL(out, "}");
+        wp_write_object(out);
+        wp_write_member_string(out, "id", e->id);
+        wp_write_member_string(out, "name", e->name);
+        wp_write_member_number(out, "fixels", e->fixels);
+        wp_write_object_end(out);
     }
-    wp_buffer_puts(out, state->more ? "],\"more\":true}" : "],\"more\":false}");
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "more", state->more);
+    wp_write_object_end(out);
     *used += 1;
-    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
 static size_t list_bytes(const void *stream) { return ((const list_state *)stream)->bytes; }
 
 const wp_streamer wp_list_stream = {list_begin, list_step, list_free, list_bytes, false, NULL, NULL};
 
-cJSON *wp_handle_server_status(wp_call *call)
+bool wp_handle_server_status(wp_call *call, wp_writer *out)
 {
     wp_server_state state;
     wp_host_failure failure;
     if (!call->host->state(call->host->self, &state, &failure)) {
         wp_error_host(call->error, &failure, "");
-        return NULL;
+        return false;
     }
-    cJSON *result = cJSON_CreateObject();
-    if (!result)
-        return wp_out_of_memory(NULL, call->error);
-    cJSON_AddStringToObject(result, "version", WR_VERSION);
-    cJSON_AddNumberToObject(result, "uptime_s", state.uptime_s);
-    cJSON_AddNumberToObject(result, "fixtures", (double)state.fixtures);
-    cJSON_AddNumberToObject(result, "cached", (double)state.cached);
-    cJSON_AddNumberToObject(result, "cache_bytes", (double)state.cache_bytes);
-    cJSON_AddNumberToObject(result, "cache_limit_bytes", (double)state.cache_limit_bytes);
-    cJSON_AddNumberToObject(result, "threads", state.threads);
-    cJSON_AddNumberToObject(result, "clients", (double)state.clients);
-    cJSON_AddNumberToObject(result, "refused", (double)state.refused);
-    cJSON_AddNumberToObject(result, "denied", (double)state.denied);
-    cJSON_AddNumberToObject(result, "requests", (double)state.requests);
-    if (!cJSON_AddNumberToObject(result, "errors", (double)state.errors))
-        return wp_out_of_memory(result, call->error);
-    return result;
+    wp_write_object(out);
+    wp_write_member_string(out, "version", WR_VERSION);
+    wp_write_member_number(out, "uptime_s", state.uptime_s);
+    wp_write_member_number(out, "fixtures", (double)state.fixtures);
+    wp_write_member_number(out, "cached", (double)state.cached);
+    wp_write_member_number(out, "cache_bytes", (double)state.cache_bytes);
+    wp_write_member_number(out, "cache_limit_bytes", (double)state.cache_limit_bytes);
+    wp_write_member_number(out, "threads", state.threads);
+    wp_write_member_number(out, "clients", (double)state.clients);
+    wp_write_member_number(out, "refused", (double)state.refused);
+    wp_write_member_number(out, "denied", (double)state.denied);
+    wp_write_member_number(out, "requests", (double)state.requests);
+    wp_write_member_number(out, "errors", (double)state.errors);
+    wp_write_object_end(out);
+    return true;
 }

@@ -43,7 +43,6 @@ typedef struct sweep_state {
     int mu_count;
     double (*at)[2];            /* the least force's point at each; NAN: none */
     int sample;
-    bool any;
     wr_fixel_spec fixels[WR_MAX_FIXELS];
     /* params.deadline_s: the monotonic second after which the sweep stops
      * where it has got to (0: none; sweep_step). */
@@ -108,44 +107,42 @@ static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_erro
     return true;
 }
 
-static void write_intervals(wp_buffer *out, const wr_intervals *list)
+static void write_intervals(wp_writer *out, const wr_intervals *list)
 {
-    WP_BUFFER_LITERAL(out, "[");
+    wp_write_array(out);
     for (int i = 0; i < list->count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
         const double pair[2] = {list->items[i][0] + 0.0, list->items[i][1] + 0.0};
-        wp_write_vector(out, pair, 2);
+        wp_write_numbers(out, pair, 2);
     }
-    WP_BUFFER_LITERAL(out, "]");
+    wp_write_array_end(out);
 }
 
-static void write_stopped(wp_buffer *out, double reached);
+static void write_stopped(wp_writer *out, double reached);
 
 /* {"intervals", "critical", "curve", "exact", "resolution"}, and when the
  * deadline stopped it, "partial" and "stopped_at": `reached`. */
-static void write_curve(wp_buffer *out, const wr_sweep_curve *curve, bool stopped, double reached)
+static void write_curve(wp_writer *out, const wr_sweep_curve *curve, bool stopped, double reached)
 {
-    WP_BUFFER_LITERAL(out, "{\"intervals\":");
+    wp_write_object(out);
+    wp_write_key(out, "intervals");
     write_intervals(out, &curve->intervals);
-    WP_BUFFER_LITERAL(out, ",\"critical\":");
+    wp_write_key(out, "critical");
     if (curve->has_critical)
-        wp_buffer_number(out, curve->critical + 0.0);
+        wp_write_number(out, curve->critical + 0.0);
     else
-        WP_BUFFER_LITERAL(out, "null");
-    WP_BUFFER_LITERAL(out, ",\"curve\":[");
+        wp_write_null(out);
+    wp_write_key(out, "curve");
+    wp_write_array(out);
     for (int i = 0; i < curve->point_count; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
         const double point[2] = {curve->points[i][0] + 0.0, curve->points[i][1] + 0.0};
-        wp_write_vector(out, point, 2);
+        wp_write_numbers(out, point, 2);
     }
-    wp_buffer_puts(out, curve->exact ? "],\"exact\":true" : "],\"exact\":false");
-    WP_BUFFER_LITERAL(out, ",\"resolution\":");
-    wp_buffer_number(out, curve->resolution);
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "exact", curve->exact);
+    wp_write_member_number(out, "resolution", curve->resolution);
     if (stopped)
         write_stopped(out, reached);
-    WP_BUFFER_LITERAL(out, "}");
+    wp_write_object_end(out);
 }
 
 /* The sweep's reading of params: which question, the range, and the
@@ -308,7 +305,7 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
  * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
  * point [mu, F] (F null when no push does the job) is written. */
 static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
-                              unsigned long *used, wp_buffer *out, double at[2])
+                              unsigned long *used, wp_writer *out, double at[2])
 {
     wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
                                  .kinetic_mu = mu * state->range.kinetic_ratio};
@@ -330,14 +327,13 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     at[0] = least.found ? least.at[0] + 0.0 : NAN;
     at[1] = least.found ? least.at[1] + 0.0 : NAN;
     *used += 1000 + least.evaluations * 40 * (unsigned long)state->cases.count;
-    WP_BUFFER_LITERAL(out, "[");
-    wp_buffer_number(out, mu + 0.0);
-    WP_BUFFER_LITERAL(out, ",");
+    wp_write_array(out);
+    wp_write_number(out, mu + 0.0);
     if (least.found)
-        wp_buffer_number(out, wp_force_out(f, least.force));
+        wp_write_number(out, wp_force_out(f, least.force));
     else
-        WP_BUFFER_LITERAL(out, "null");
-    WP_BUFFER_LITERAL(out, "]");
+        wp_write_null(out);
+    wp_write_array_end(out);
     return WR_OK;
 }
 
@@ -347,12 +343,12 @@ static bool deadline_passed(const sweep_state *state)
     return state->deadline > 0 && wp_now_s() >= state->deadline;
 }
 
-/* ,"partial":true,"stopped_at":mu -- the members a sweep stopped by its
+/* "partial": true, "stopped_at": mu -- the members a sweep stopped by its
  * deadline ends its result with (docs/PROTOCOL.md, friction.sweep). */
-static void write_stopped(wp_buffer *out, double reached)
+static void write_stopped(wp_writer *out, double reached)
 {
-    WP_BUFFER_LITERAL(out, ",\"partial\":true,\"stopped_at\":");
-    wp_buffer_number(out, reached + 0.0);
+    wp_write_member_bool(out, "partial", true);
+    wp_write_member_number(out, "stopped_at", reached + 0.0);
 }
 
 static int compare_mus(const void *a, const void *b)
@@ -389,7 +385,7 @@ static bool force_mus(sweep_state *state, const wr_intervals *alone)
 /* friction.sweep "force": {"curve": [[mu, F], ...], "at": [[x, y] | null,
  * ...], "intervals": [[lo, hi], ...], "exact": false, "resolution": step}:
  * the push alone's intervals (a job), then a sample of mu at a time. */
-static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *out,
+static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *out,
                                 unsigned long budget, unsigned long *used)
 {
     wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
@@ -410,10 +406,12 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
     }
     if (!state->opened) {
         state->opened = true;
-        WP_BUFFER_LITERAL(out, "{\"curve\":[");
+        wp_write_object(out);
+        wp_write_key(out, "curve");
+        wp_write_array(out);
     }
     bool partial = false;
-    for (bool first = true; state->sample < state->mu_count && !out->failed; first = false) {
+    for (bool first = true; state->sample < state->mu_count && !out->out->failed; first = false) {
         /* Past the deadline: the samples so far (at least one). */
         if (state->sample > 0 && deadline_passed(state)) {
             partial = true;
@@ -425,9 +423,6 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
             wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
             return WP_STEP_FAILED;
         }
-        if (state->any)
-            WP_BUFFER_LITERAL(out, ",");
-        state->any = true;
         wr_status status = force_sample(state, use->fixture, state->mus[state->sample], used, out,
                                         state->at[state->sample]);
         if (status != WR_OK) {
@@ -436,26 +431,28 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_buffer *ou
         }
         state->sample++;
     }
-    WP_BUFFER_LITERAL(out, "],\"at\":[");
+    wp_write_array_end(out);
+    wp_write_key(out, "at");
+    wp_write_array(out);
     for (int i = 0; i < state->sample; i++) {
-        if (i)
-            WP_BUFFER_LITERAL(out, ",");
         if (isnan(state->at[i][0]))
-            WP_BUFFER_LITERAL(out, "null");
+            wp_write_null(out);
         else
-            wp_write_vector(out, state->at[i], 2);
+            wp_write_numbers(out, state->at[i], 2);
     }
-    WP_BUFFER_LITERAL(out, "],\"intervals\":");
+    wp_write_array_end(out);
+    wp_write_key(out, "intervals");
     write_intervals(out, &wr_sweep_job_curve(state->job)->intervals);
-    WP_BUFFER_LITERAL(out, ",\"exact\":false,\"resolution\":");
-    wp_buffer_number(out, (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));
+    wp_write_member_bool(out, "exact", false);
+    wp_write_member_number(out, "resolution",
+                           (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));
     if (partial)
         write_stopped(out, state->mus[state->sample - 1]);
-    WP_BUFFER_LITERAL(out, "}");
-    return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
-static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned long budget,
+static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
@@ -463,17 +460,20 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         return sweep_force_step(state, call, out, budget, used);
     const wp_classify_request *r = &state->request;
     const wr_stop *stop = call->host->stop;
-    size_t start = out->length;
-    for (bool first = true; !out->failed; first = false) {
-        if (!first && (*used >= budget || out->length - start >= WP_PIECE_BYTES))
+    size_t start = out->out->length;
+    for (bool first = true; !out->out->failed; first = false) {
+        if (!first && (*used >= budget || out->out->length - start >= WP_PIECE_BYTES))
             return WP_STEP_MORE;
         if (state->what == SWEEP_WRENCHES) {
             if (!state->opened) {
                 state->opened = true;
-                WP_BUFFER_LITERAL(out, "{\"results\":[");
+                wp_write_object(out);
+                wp_write_key(out, "results");
+                wp_write_array(out);
             }
             if (state->next >= r->wrench_count) {
-                WP_BUFFER_LITERAL(out, "]}");
+                wp_write_array_end(out);
+                wp_write_object_end(out);
                 return WP_STEP_DONE;
             }
             if (!state->job) {
@@ -507,25 +507,22 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_buffer *out, unsigned 
         }
         /* A wrench's set answered: {"goal": [...], ...} as its sets end. */
         if (state->set == 0)
-            wp_buffer_puts(out, state->next ? ",{\"" : "{\"");
-        else
-            WP_BUFFER_LITERAL(out, ",\"");
-        wp_buffer_puts(out, wp_set_names[r->sets[state->set]]);
-        WP_BUFFER_LITERAL(out, "\":");
+            wp_write_object(out);
+        wp_write_key(out, wp_set_names[r->sets[state->set]]);
         write_intervals(out, wr_sweep_job_intervals(state->job));
         wr_sweep_job_free(state->job);
         state->job = NULL;
         if (++state->set == r->set_count || stopped) {
-            WP_BUFFER_LITERAL(out, "}");
+            wp_write_object_end(out);
             state->set = 0;
             state->next++;
         }
         if (stopped) {
             /* The last result's last set is answered up to `reached`. */
-            WP_BUFFER_LITERAL(out, "]");
+            wp_write_array_end(out);
             write_stopped(out, reached);
-            WP_BUFFER_LITERAL(out, "}");
-            return out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+            wp_write_object_end(out);
+            return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
         }
     }
     return WP_STEP_FAILED; /* out of memory: the buffer says so */

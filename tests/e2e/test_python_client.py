@@ -203,11 +203,11 @@ class _Recording(dict):
 
 
 def test_explain_speaks_like_wrenchctl(monkeypatch):
-    """One table of words (wrenchd._EXPLAIN_WORDS, from which the build
-    generates wrenchctl's wc_explain.h), two compositions of the sentences:
-    the Python client's explain() and wrenchctl's (C) say the same of every
-    blocking string that 300 random wrenches meet on the 3-2-1 plate, on
-    a single-fixel disc (whose goal string "s" comes from the no-contact
+    """One table of words (clients/explain_words.txt, from which the build
+    generates wrenchd._EXPLAIN_WORDS and wrenchctl's wc_explain.h), two
+    compositions of the sentences: the Python client's explain() and
+    wrenchctl's (C) say the same of every blocking string that 300 random
+    wrenches meet on the 3-2-1 plate, on a single-fixel disc (whose goal string "s" comes from the no-contact
     state, and whose strong modes include the pivots) and on the disc in a
     corner, for the goal, strong
     and both sets, and of margin's blocking mode; and between them they use
@@ -360,16 +360,16 @@ def test_explain_every_case_alike(harness):
 
 
 def test_explain_words_are_wrenchctls():
-    """wrenchctl's wc_explain.h is generated from wrenchd._EXPLAIN_WORDS:
-    the generator run now writes the header the build used."""
+    """wrenchctl's wc_explain.h and wrenchd._EXPLAIN_WORDS are generated
+    from one data file: the generator run now writes the header the build
+    used, and the Python table has its entries."""
     import subprocess
     import tempfile
     header = os.path.join(REPO, "build", "clients", "wrenchctl", "wc_explain.h")
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "wc_explain.h")
-        r = subprocess.run([sys.executable, os.path.join(REPO, "clients", "wrenchctl",
-                                                         "wc_explain_gen.py"),
-                            os.path.join(REPO, "clients", "python", "wrenchd.py"), out],
+        r = subprocess.run([sys.executable, os.path.join(REPO, "clients", "explain_gen.py"),
+                            os.path.join(REPO, "clients", "explain_words.txt"), "--c", out],
                            capture_output=True, text=True, timeout=60)
         assert r.returncode == 0, r.stderr
         with open(out) as f, open(header) as g:

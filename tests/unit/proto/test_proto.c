@@ -104,6 +104,66 @@ static const char DISC_AGAIN[] =
     "\"friction\":{\"static\":5e-1},\"body\":{\"shape\":{\"radius\":1.0,\"center\":[-0,0],"
     "\"type\":\"circle\"},\"com\":[0,0],\"inertia\":0.50,\"mass\":1.0},\"name\":\"b\"}";
 
+/* The writer keeps the commas and the nesting: the text below, written
+ * value by value, across two buffers (a stream's steps), with a sequence of
+ * values made apart and put in (a chunk), and a string's room. */
+static void the_writer_keeps_commas_and_nesting(void **state)
+{
+    (void)state;
+    wp_buffer first = {0}, second = {0}, chunk = {0};
+    wp_writer w = wp_writer_on(&first);
+    wp_write_object(&w);
+    wp_write_member_number(&w, "n", -0.0);
+    wp_write_member_string(&w, "s", "a\"b\\c\n\x01");
+    wp_write_key(&w, "list");
+    wp_write_array(&w);
+    wp_write_array(&w);
+    wp_write_array_end(&w);
+    wp_write_object(&w);
+    wp_write_object_end(&w);
+    wp_write_numbers(&w, (const double[]){0.1, 1e21, 5}, 3);
+    wp_write_numbers(&w, NULL, 0);
+    w.out = &second; /* the next step's piece */
+    wp_write_bool(&w, true);
+    wp_write_null(&w);
+    wp_writer apart = wp_writer_in_array(&chunk);
+    wp_write_number(&apart, 1);
+    wp_write_object(&apart);
+    wp_write_member_bool(&apart, "b", false);
+    wp_write_object_end(&apart);
+    wp_write_raw(&w, chunk.data, chunk.length);
+    wp_write_raw(&w, "", 0);
+    char *room = wp_write_string_room(&w, 3);
+    assert_non_null(room);
+    memcpy(room, "iob", 3);
+    wp_write_array_end(&w);
+    wp_write_object_end(&w);
+    assert_int_equal(w.depth, 0);
+    char *a = wp_buffer_take(&first), *b = wp_buffer_take(&second), *c = wp_buffer_take(&chunk);
+    assert_string_equal(a, "{\"n\":0,\"s\":\"a\\\"b\\\\c\\n\\u0001\",\"list\":[[],{},[0.1,1e+21,5],[]");
+    assert_string_equal(b, ",true,null,1,{\"b\":false},\"iob\"]}");
+    assert_string_equal(c, "1,{\"b\":false}");
+    /* Whole, it is JSON that reads back to the values written. */
+    char whole[256];
+    snprintf(whole, sizeof whole, "%s%s", a, b);
+    cJSON *json = cJSON_Parse(whole);
+    assert_non_null(json);
+    assert_int_equal(cJSON_GetArraySize(cJSON_GetObjectItem(json, "list")), 9);
+    assert_string_equal(cJSON_GetObjectItem(json, "s")->valuestring, "a\"b\\c\n\x01");
+    cJSON_Delete(json);
+    free(a);
+    free(b);
+    free(c);
+    /* At depth 0, values are separate texts: no comma between them. */
+    wp_buffer lines = {0};
+    wp_writer top = wp_writer_on(&lines);
+    wp_write_number(&top, 1);
+    wp_write_null(&top);
+    char *text = wp_buffer_take(&lines);
+    assert_string_equal(text, "1null");
+    free(text);
+}
+
 static void fixture_id_ignores_order_spelling_and_name(void **state)
 {
     (void)state;
@@ -169,6 +229,28 @@ static void explicit_form_reads_back_to_the_same_fixture(void **state)
         /* no shape: com and inertia given */
         "{\"body\":{\"mass\":3,\"inertia\":0.7,\"com\":[0.1,-0.2]},\"friction\":{\"static\":0.4},"
         "\"fixels\":[{\"at\":[-1,0],\"normal\":[1,0.1]},{\"at\":[0,-1],\"normal\":[0,2]}]}",
+        /* an outline with an arc, units, a friction interval, a name to escape */
+        "{\"name\":\"q\\\"\\u0001\",\"units\":{\"length\":\"mm\",\"force\":\"lbf\"},"
+        "\"body\":{\"mass\":1,\"shape\":{\"type\":\"outline\",\"loops\":"
+        "[[[0,0],[4,0,0.5],[4,2],[0,2]]]}},\"friction\":{\"static\":[0.2,0.4]},"
+        "\"fixels\":[{\"at\":[2,0]},{\"at\":[0,1]},{\"at\":[2,2]}]}",
+        /* a tolerance with an angle; and one of position alone */
+        "{\"tolerance\":{\"angle\":0.01,\"position\":0.05},\"body\":{\"mass\":1,\"shape\":"
+        "{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],[4,2],[0,2]]}},"
+        "\"friction\":{\"static\":0.3},\"fixels\":[{\"at\":[2,0]},{\"at\":[0,1]},{\"at\":[2,2]}]}",
+        "{\"tolerance\":{\"position\":0.05,\"angle\":0},\"body\":{\"mass\":1,\"shape\":"
+        "{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],[4,2],[0,2]]}},"
+        "\"friction\":{\"static\":0.3},\"fixels\":[{\"at\":[2,0]},{\"at\":[0,1]},{\"at\":[2,2]}]}",
+        /* supports with down clamps and a friction interval; and without */
+        "{\"supports\":{\"g\":9.81,\"points\":[[1,1],[3,0.5],[3,1.5]],\"friction\":"
+        "{\"static\":[0.3,0.5],\"kinetic\":0.2},\"down\":[{\"force\":2,\"at\":[2,1]}]},"
+        "\"body\":{\"mass\":1,\"shape\":{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],[4,2],"
+        "[0,2]]}},\"friction\":{\"static\":0.3},\"fixels\":[{\"at\":[2,0]},{\"at\":[0,1]},"
+        "{\"at\":[2,2]}]}",
+        "{\"supports\":{\"points\":[[1,1],[3,0.5],[3,1.5]],\"friction\":0.4,\"g\":9.81},"
+        "\"body\":{\"mass\":1,\"shape\":{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],[4,2],"
+        "[0,2]]}},\"friction\":{\"static\":0.3},\"fixels\":[{\"at\":[2,0]},{\"at\":[0,1]},"
+        "{\"at\":[2,2]}]}",
     };
     for (size_t i = 0; i < sizeof fixtures / sizeof *fixtures; i++) {
         cJSON *given = cJSON_Parse(fixtures[i]);
@@ -183,6 +265,10 @@ static void explicit_form_reads_back_to_the_same_fixture(void **state)
         assert_true(wp_fixture_read(stored, "params.fixture", &again, &error));
         assert_string_equal(first.id, again.id);
         assert_string_equal(first.canonical, again.canonical);
+        /* Canonical: written with every object's keys in sorted order. */
+        char *sorted = wp_canonical(stored, NULL);
+        assert_string_equal(sorted, first.canonical);
+        free(sorted);
         assert_same_fixture(first.fixture, again.fixture);
         for (int k = 0; k < first.fixture->fixel_count; k++)
             for (int j = 0; j < 2; j++)
@@ -1157,6 +1243,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sha256_matches_nist_vectors),
         cmocka_unit_test(numbers_round_trip_shortest),
+        cmocka_unit_test(the_writer_keeps_commas_and_nesting),
         cmocka_unit_test(fixture_id_ignores_order_spelling_and_name),
         cmocka_unit_test(explicit_form_reads_back_to_the_same_fixture),
         cmocka_unit_test(fixture_units_are_in_the_id_only_when_given),
