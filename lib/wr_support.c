@@ -204,7 +204,7 @@ wr_status wr_supports_new(const wr_fixture *fixture, const wr_support_spec *spec
                  "the centre of pressure (%.9g, %.9g) is %.6g outside the supports' polygon: the "
                  "part tips",
                  s->pressure[0], s->pressure[1], d);
-        wr_error_set(error, "points", reason);
+        wr_error_set(error, "points", "%s", reason);
         goto invalid;
     }
     for (int i = 0; i < s->count; i++) {
