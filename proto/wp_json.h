@@ -270,6 +270,12 @@ bool wp_json_member(const char *text, size_t length, size_t object, const char *
  * ends, and where white space from i ends; for a text wp_json_scan passed
  * and cJSON read. */
 size_t wp_json_skip_value(const char *text, size_t i, size_t length);
+/* Is the text one JSON value by RFC 8259 (white space around it allowed),
+ * nested at most 64 deep?  Strict and without a tree: a member cut out of
+ * a line before the line is parsed is checked so, since the parse never
+ * sees it.  False for anything it doubts (the caller then parses the line
+ * as it was written). */
+bool wp_json_valid(const char *text, size_t length);
 size_t wp_json_skip_space(const char *text, size_t i, size_t length);
 /* The same, with only where the value starts: its end is not looked for
  * (a member holding megabytes is not read twice). */

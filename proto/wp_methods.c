@@ -65,7 +65,7 @@ const wp_method wp_methods[] = {
     {.name = "fixture.locating", .handler = wp_handle_fixture_locating, .fields = LOCATING,
      .required = LOCATING_REQUIRED, .flags = WP_FIXTURE | WP_READY, .light = wp_locating_light},
     {.name = "force.range", .handler = wp_handle_force_range, .fields = FORCE_RANGE,
-     .required = FORCE_REQUIRED, .flags = WP_FIXTURE},
+     .required = FORCE_REQUIRED, .flags = WP_FIXTURE, .raw_text = "cases"},
     {.name = "push.force", .handler = wp_handle_push_force, .fields = PUSH_FORCE,
      .required = FORCE_REQUIRED, .flags = WP_FIXTURE},
     {.name = "fixture.design", .stream = &wp_design_stream, .fields = DESIGN,

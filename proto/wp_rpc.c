@@ -593,7 +593,10 @@ static char *prepare(const wp_method *m, const char *line, size_t length,
     if (!wp_json_member_start(line, length, 0, "params", &params_start))
         return NULL;
     if (m->raw_text) {
-        if (!wp_json_member(line, length, params_start, m->raw_text, &start, &end))
+        /* The parse of the line never sees the member: its syntax is
+         * checked here, or the line is read the ordinary way. */
+        if (!wp_json_member(line, length, params_start, m->raw_text, &start, &end) ||
+            !wp_json_valid(line + start, end - start))
             return NULL;
         char *text = malloc(end - start + 1);
         char *copy = text ? cut(line, length, start, end, copy_length) : NULL;

@@ -299,6 +299,112 @@ char *wp_json_id_text(const cJSON *id)
     return wp_canonical(id, NULL);
 }
 
+/* ---- a value's syntax, checked without a tree ---------------------------- */
+
+static bool hex_digit(char c)
+{
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+
+/* The end of the valid value at text[i] (white space skipped before it),
+ * or 0 when it is not one. */
+static size_t valid_value(const char *text, size_t length, size_t i, int depth)
+{
+    i = skip_space(text, i, length);
+    if (i >= length || depth > 64)
+        return 0;
+    char c = text[i];
+    if (c == '"') {
+        for (i++; i < length; i++) {
+            unsigned char u = (unsigned char)text[i];
+            if (u < 0x20)
+                return 0;
+            if (u == '"')
+                return i + 1;
+            if (u != '\\')
+                continue;
+            if (++i >= length || !strchr("\"\\/bfnrtu", text[i]) || !text[i])
+                return 0;
+            if (text[i] == 'u') {
+                for (int k = 0; k < 4; k++)
+                    if (++i >= length || !hex_digit(text[i]))
+                        return 0;
+            }
+        }
+        return 0;
+    }
+    if (c == '[' || c == '{') {
+        char close = c == '[' ? ']' : '}';
+        i = skip_space(text, i + 1, length);
+        if (i < length && text[i] == close)
+            return i + 1;
+        for (;;) {
+            if (close == '}') {
+                if (i >= length || text[i] != '"')
+                    return 0;
+                i = valid_value(text, length, i, depth + 1); /* the key */
+                if (!i)
+                    return 0;
+                i = skip_space(text, i, length);
+                if (i >= length || text[i] != ':')
+                    return 0;
+                i++;
+            }
+            i = valid_value(text, length, i, depth + 1);
+            if (!i)
+                return 0;
+            i = skip_space(text, i, length);
+            if (i >= length)
+                return 0;
+            if (text[i] == close)
+                return i + 1;
+            if (text[i] != ',')
+                return 0;
+            i = skip_space(text, i + 1, length);
+        }
+    }
+    static const char *const LITERALS[] = {"true", "false", "null"};
+    for (int k = 0; k < 3; k++) {
+        size_t n = strlen(LITERALS[k]);
+        if (length - i >= n && memcmp(text + i, LITERALS[k], n) == 0)
+            return i + n;
+    }
+    /* A number: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)? */
+    if (text[i] == '-')
+        i++;
+    if (i >= length || text[i] < '0' || text[i] > '9')
+        return 0;
+    if (text[i] == '0')
+        i++;
+    else
+        while (i < length && text[i] >= '0' && text[i] <= '9')
+            i++;
+    if (i < length && text[i] == '.') {
+        size_t digits = ++i;
+        while (i < length && text[i] >= '0' && text[i] <= '9')
+            i++;
+        if (i == digits)
+            return 0;
+    }
+    if (i < length && (text[i] == 'e' || text[i] == 'E')) {
+        i++;
+        if (i < length && (text[i] == '+' || text[i] == '-'))
+            i++;
+        size_t digits = i;
+        while (i < length && text[i] >= '0' && text[i] <= '9')
+            i++;
+        if (i == digits)
+            return 0;
+    }
+    return i;
+}
+
+bool wp_json_valid(const char *text, size_t length)
+{
+    size_t end = valid_value(text, length, 0, 0);
+    return end && skip_space(text, end, length) == length;
+}
+
 /* ---- reading spans of a text without a tree ------------------------------ */
 
 static size_t span_space(const char *text, size_t length, size_t i)

@@ -1238,6 +1238,33 @@ static void a_failure_is_said_by_a_step_that_shares_nothing(void **state)
     wp_chunks_free(chunks);
 }
 
+/* wp_json_valid against the envelope's own reading (the scan, then
+ * cJSON's parse, which alone takes "01"): the same yes or no on texts
+ * valid and broken each way (structure, strings, escapes, numbers,
+ * literals), so a member cut from a line is refused as the parse would. */
+static void cut_members_checked_as_the_parse_checks(void **state)
+{
+    (void)state;
+    static const char *const TEXTS[] = {
+        "[]", "{}", " [1, 2.5e-3, -0, true, false, null] ", "{\"a\":{\"b\":[\"x\\u00e9\\n\"]}}",
+        "[{\"loads\":[{\"gravity\":{\"g\":9.81,\"direction_deg\":270}}]}]",
+        "[{\"loads\":[{\"gravity\":{\"g\":9.81,\"fixture\"\"direction_deg\":270}}]}]",
+        "[1,]", "[,1]", "{\"a\" 1}", "{\"a\":}", "{1:2}", "[01]", "[1.]", "[.5]", "[1e]",
+        "[-]", "[tru]", "[nul]", "[truex]", "[\"a\\x\"]", "[\"\\u12g4\"]", "[\"open]", "[1] [2]",
+        "[[[]]", "{\"a\":1,}", "[\"tab\there\"]", "",
+    };
+    for (size_t i = 0; i < sizeof TEXTS / sizeof *TEXTS; i++) {
+        size_t n = strlen(TEXTS[i]);
+        wp_json_shape shape = wp_json_scan(TEXTS[i], n, 64);
+        cJSON *tree = cJSON_ParseWithOpts(TEXTS[i], NULL, true);
+        bool parsed = tree != NULL && !shape.control && !shape.nul_escape && !shape.bad_escape &&
+                      !shape.number_problem;
+        cJSON_Delete(tree);
+        if (wp_json_valid(TEXTS[i], n) != parsed)
+            fail_msg("%s: wp_json_valid says %d, cJSON %d", TEXTS[i], !parsed, parsed);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1258,6 +1285,7 @@ int main(void)
         cmocka_unit_test(a_shared_step_never_ends_the_answer),
         cmocka_unit_test(chunks_merge_in_order_within_the_window),
         cmocka_unit_test(a_failure_is_said_by_a_step_that_shares_nothing),
+        cmocka_unit_test(cut_members_checked_as_the_parse_checks),
         cmocka_unit_test_setup_teardown(a_step_after_parallel_does_not_end_the_answer, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(long_numbers_read_as_the_tree_reads_them, setup,
