@@ -55,10 +55,13 @@
 #define LP_BUDGET 4096.0      /* LPs per wrench.classify request */
 #define SWEEP_STEPS 256.0     /* values of mu a friction.sweep samples (wr_sweep.h) */
 
-/* A design of more candidates than max_candidates is refused (as the
- * daemon's --max-candidates refuses it): designs stay fast enough to fuzz. */
-static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 64, .max_batch = 16,
-                                 .max_candidates = 400};
+/* The daemon's limits, small (as its options set them): a design of more
+ * candidates than max_candidates is refused at the field, as
+ * --max-candidates refuses it, and so are more wrenches, batch members or
+ * load cases; every method and field is still reached, and no line costs
+ * more than a few milliseconds under the sanitizers. */
+static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 16, .max_batch = 8,
+                                 .max_candidates = 12, .max_cases = 4};
 
 static wd_cache *cache;
 static wd_stats stats;
@@ -70,8 +73,7 @@ static unsigned long skipped;
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
-    (void)argc;
-    (void)argv;
+    fuzz_full_init(*argc, *argv);
     wd_log_set_level(WD_LOG_ERROR);
     char why[256] = "";
     cache = wd_cache_new(NULL, DERIVED_LIMIT, 10000, why, sizeof why);
@@ -302,11 +304,22 @@ static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edge
     return true;
 }
 
-static bool slow_request(const cJSON *r)
+/* The methods whose answers take milliseconds even with the limits above
+ * (searches, sweeps, samplings): while fuzzing, a line asking one is
+ * answered only when its hash says so (one line in SLOW_SHARE; fuzz_full),
+ * so that the fuzzer spends its time over every method alike. */
+#define SLOW_SHARE 4
+static const char *const SLOW_METHODS[] = {"fixture.design", "friction.sweep", "push.force",
+                                           "force.range", "gravity.sweep"};
+
+static bool slow_request(const cJSON *r, bool answer_slow)
 {
     if (!valid_request(r))
         return false;
     const char *method = method_of(r);
+    for (size_t i = 0; !answer_slow && i < sizeof SLOW_METHODS / sizeof SLOW_METHODS[0]; i++)
+        if (strcmp(method, SLOW_METHODS[i]) == 0)
+            return true;
     double cones, edges;
     if (strcmp(method, "push.regions") == 0) {
         const cJSON *friction = param(r, "finger_friction");
@@ -342,14 +355,14 @@ static bool slow_request(const cJSON *r)
     return false;
 }
 
-static bool too_slow(const cJSON *json)
+static bool too_slow(const cJSON *json, bool answer_slow)
 {
     if (no_skip || !json)
         return false;
     if (!cJSON_IsArray(json))
-        return slow_request(json);
+        return slow_request(json, answer_slow);
     for (const cJSON *r = json->child; r; r = r->next)
-        if (slow_request(r))
+        if (slow_request(r, answer_slow))
             return true;
     return false;
 }
@@ -1019,7 +1032,8 @@ static void answer_line(const uint8_t *data, size_t length)
     bool whole = !wp_utf8_valid(text, length) || shape.depth > LIMITS.max_depth ||
                  shape.nul_escape ||
                  (cJSON_IsArray(json) && (size_t)cJSON_GetArraySize(json) > LIMITS.max_batch);
-    if (!whole && too_slow(json)) {
+    unsigned hash = fuzz_hash(data, length);
+    if (!whole && too_slow(json, fuzz_full || hash % SLOW_SHARE == 0)) {
         skipped++;
         if (verbose)
             fprintf(stderr, "> %s\n(skipped: slow)\n", text);
@@ -1039,8 +1053,10 @@ static void answer_line(const uint8_t *data, size_t length)
     char *answer = wp_answer_line(host, &LIMITS, line, length, &counts);
     clock_gettime(CLOCK_MONOTONIC, &after);
     /* Asked again in pieces, but only when that is cheap: a line that
-     * derives a large fixture's cones would double an input's time. */
-    if ((after.tv_sec - before.tv_sec) * 1000000000L + (after.tv_nsec - before.tv_nsec) < 20000000L)
+     * derives a large fixture's cones would double an input's time; and
+     * while fuzzing, one line in four (by its hash: fuzz_full). */
+    long elapsed = (after.tv_sec - before.tv_sec) * 1000000000L + (after.tv_nsec - before.tv_nsec);
+    if (elapsed < 20000000L && (fuzz_full || hash / SLOW_SHARE % 4 == 0))
         pieces_agree(line, length, answer, text);
     if (verbose)
         fprintf(stderr, "> %s\n< %s", text, answer ? answer : "(no answer)\n");
