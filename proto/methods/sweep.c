@@ -109,11 +109,12 @@ static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_erro
 
 /* The intervals of `list` up to `top` (INFINITY: all): a partial answer
  * says nothing above its stopped_at, so an interval reaching past it is cut
- * there and one beyond it is left out (docs/PROTOCOL.md, deadline_s). */
+ * there and one starting at or past it is left out (docs/PROTOCOL.md,
+ * deadline_s; as the push sweep's own cut). */
 static void write_intervals_below(wp_writer *out, const wr_intervals *list, double top)
 {
     wp_write_array(out);
-    for (int i = 0; i < list->count && list->items[i][0] <= top; i++) {
+    for (int i = 0; i < list->count && list->items[i][0] < top; i++) {
         const double pair[2] = {list->items[i][0] + 0.0, fmin(list->items[i][1], top) + 0.0};
         wp_write_numbers(out, pair, 2);
     }

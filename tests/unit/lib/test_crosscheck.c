@@ -78,6 +78,30 @@ static void compare_sets(const wr_analysis *a, wr_lp_set *goal, wr_lp_set *stron
     }
 }
 
+/* Both methods on `first` (NULL: none), then on `count` random wrenches of
+ * the fixture.  Returns how many verdicts `first` had compared (0..2). */
+static long compare_on(const wr_fixture *f, wr_lp_env *env, test_rng *rng, const double *first,
+                       int count, totals *t)
+{
+    wr_analysis *a = test_analysis_new(f);
+    assert_non_null(a);
+    wr_lp_set *goal, *strong;
+    assert_int_equal(wr_analysis_lp_sets(a, env, &goal, &strong), 0);
+    long before = t->compared;
+    if (first)
+        compare_sets(a, goal, strong, first, t);
+    long first_compared = t->compared - before;
+    for (int w = 0; w < count; w++) {
+        double g[3];
+        random_wrench(rng, f, g);
+        compare_sets(a, goal, strong, g, t);
+    }
+    wr_lp_set_free(goal);
+    wr_lp_set_free(strong);
+    wr_analysis_free(a);
+    return first_compared;
+}
+
 static void auto_and_lp_agree_on_random_fixtures(void **state)
 {
     (void)state;
@@ -92,18 +116,7 @@ static void auto_and_lp_agree_on_random_fixtures(void **state)
         assert_non_null(f);
         discs += disc;
         polygons += !disc;
-        wr_analysis *a = test_analysis_new(f);
-        assert_non_null(a);
-        wr_lp_set *goal, *strong;
-        assert_int_equal(wr_analysis_lp_sets(a, env, &goal, &strong), 0);
-        for (int w = 0; w < WRENCHES; w++) {
-            double g[3];
-            random_wrench(&rng, f, g);
-            compare_sets(a, goal, strong, g, &t);
-        }
-        wr_lp_set_free(goal);
-        wr_lp_set_free(strong);
-        wr_analysis_free(a);
+        compare_on(f, env, &rng, NULL, WRENCHES, &t);
         wr_fixture_free(f);
     }
     wr_lp_env_free(env);
@@ -261,20 +274,8 @@ static void lp_agrees_on_fixels_bunched_far_from_the_centre(void **state)
         wr_error error;
         wr_fixture *f = test_fixture_new(&spec, &error);
         assert_non_null(f);
-        wr_analysis *a = test_analysis_new(f);
-        wr_lp_set *goal, *strong;
-        assert_int_equal(wr_analysis_lp_sets(a, env, &goal, &strong), WR_OK);
-        double g[3] = {-1, -1, 0};
-        long before = t.compared;
-        compare_sets(a, goal, strong, g, &t);
-        assert_int_equal(t.compared, before + 2); /* both margins far from 0 */
-        for (int i = 0; i < 300; i++) {
-            random_wrench(&rng, f, g);
-            compare_sets(a, goal, strong, g, &t);
-        }
-        wr_lp_set_free(goal);
-        wr_lp_set_free(strong);
-        wr_analysis_free(a);
+        const double g[3] = {-1, -1, 0};
+        assert_int_equal(compare_on(f, env, &rng, g, 300, &t), 2); /* both far from 0 */
         wr_fixture_free(f);
     }
     wr_lp_env_free(env);
