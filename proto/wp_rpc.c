@@ -52,21 +52,8 @@ static void write_error(wp_buffer *b, const wp_error *error, const char *id)
 }
 
 /* A response's opening, {"jsonrpc":"2.0","result": -- its result follows. */
-static void write_response_open(wp_writer *w)
-{
-    wp_write_object(w);
-    wp_write_key(w, "jsonrpc");
-    wp_write_string(w, "2.0");
-    wp_write_key(w, "result");
-}
-
-/* A response's closing, after its result: its id (text such as "null"). */
-void wp_call_open_result(wp_call *call, wp_writer *w)
-{
-    (void)call;
-    write_response_open(w);
-}
-
+/* A response's closing, after its result (opened by wp_call_open_result):
+ * its id, text such as "null". */
 static void write_response_close(wp_writer *w, const char *id_text)
 {
     const char *id = id_text ? id_text : "null";
@@ -337,7 +324,7 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             answer->bytes = 4096 + (m->stream->bytes ? m->stream->bytes(stream) : 0);
             answer->response = wp_writer_on(out);
             if (!m->stream->opens_result)
-                write_response_open(&answer->response);
+                wp_call_open_result(&call, &answer->response);
             /* `start` is before the "," or "[": a failure takes it all back. */
             *stream_step = continue_stream(answer, host, out, start, true, used, counts);
         } else {
@@ -352,7 +339,7 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             separate(answer, out);
         size_t opened = out->length;
         wp_writer w = wp_writer_on(out);
-        write_response_open(&w);
+        wp_call_open_result(&call, &w);
         bool ok = m && m->handler(&call, &w);
         if (ok)
             write_response_close(&w, id_text);
