@@ -50,6 +50,8 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
         if (!wp_fixture_read(value, "params.fixture", &doc, error))
             return NULL;
         memcpy(doc.written, written, sizeof doc.written);
+        doc.text = hold->text;
+        doc.text_length = hold->text_length;
         ok = host->fixture_adopt(host->self, &doc, false, &hold->use, &failure);
     } else {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",
