@@ -274,27 +274,42 @@ static bool parse_error_answer(const char *answer)
 /* ---- skipping the requests known to be slow ------------------------------ */
 
 /* The fixture a request names, resolved the way the method would (an id
- * from the store, an inline object adopted into the cache): the excluded
- * cone count of `set` and the edge count.  False when it does not resolve
- * (the request then fails fast). */
-static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edges)
+ * from the store, an inline object adopted into the cache), held in *use
+ * until host->fixture_release.  False when it does not resolve (the
+ * request then fails fast). */
+static bool fixture_resolve(const cJSON *r, wp_fixture_use *use)
 {
     const cJSON *value = param(r, "fixture");
-    wp_fixture_use use;
     wp_error error;
     wp_host_failure failure;
-    bool ok;
-    if (cJSON_IsString(value)) {
-        ok = wp_fixture_id_valid(value->valuestring) &&
-             host->fixture_use(host->self, value->valuestring, &use, &failure);
-    } else if (cJSON_IsObject(value)) {
-        wp_fixture_doc doc;
-        ok = wp_fixture_read(value, "params.fixture", &doc, &error) &&
-             host->fixture_adopt(host->self, &doc, false, &use, &failure);
-    } else {
-        ok = false;
-    }
-    if (!ok)
+    if (cJSON_IsString(value))
+        return wp_fixture_id_valid(value->valuestring) &&
+               host->fixture_use(host->self, value->valuestring, use, &failure);
+    wp_fixture_doc doc;
+    return cJSON_IsObject(value) && wp_fixture_read(value, "params.fixture", &doc, &error) &&
+           host->fixture_adopt(host->self, &doc, false, use, &failure);
+}
+
+/* Whether the fixture a request names rests on supports, and whether it
+ * carries a tolerance (both false when it does not resolve): their
+ * answers differ (docs/PROTOCOL.md, "Supports" and "Tolerance"). */
+static void fixture_traits(const cJSON *r, bool *supports, bool *toleranced)
+{
+    wp_fixture_use use;
+    *supports = *toleranced = false;
+    if (!fixture_resolve(r, &use))
+        return;
+    *supports = use.fixture->supports != NULL;
+    *toleranced = use.fixture->tolerance.given;
+    host->fixture_release(host->self, &use);
+}
+
+/* The excluded cone count of `set` and the edge count of the fixture a
+ * request names; false when it does not resolve. */
+static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edges)
+{
+    wp_fixture_use use;
+    if (!fixture_resolve(r, &use))
         return false;
     const wr_analysis *a = use.analysis;
     *cones = (set != WR_SET_STRONG ? wr_analysis_plan(a)->kept_count : 0) +
@@ -524,6 +539,12 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
     const cJSON *given = param(request, "tolerance");
     double tolerance = cJSON_IsNumber(given) ? given->valuedouble : WR_DEFAULT_TOLERANCE;
     int set_count = sets ? cJSON_GetArraySize(sets) : 2;
+    /* On supports the verdicts are the seating and holding tests', without
+     * margins; with a tolerance they are robust: an outside may name the
+     * perturbed fixture that has it, and a boundary is whatever was not
+     * proved (its margin the least met, of either sign). */
+    bool supports, toleranced;
+    fixture_traits(request, &supports, &toleranced);
     const cJSON *wrench = wrenches->child;
     for (const cJSON *item = results->child; item; item = item->next, wrench = wrench->next) {
         FUZZ_CHECK(cJSON_IsObject(item) && cJSON_GetArraySize(item) == set_count,
@@ -544,9 +565,19 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
             const cJSON *blocking = cJSON_GetObjectItemCaseSensitive(v, "blocking");
             const cJSON *states = cJSON_GetObjectItemCaseSensitive(v, "states");
             const cJSON *witness = cJSON_GetObjectItemCaseSensitive(v, "witness");
+            const cJSON *perturbation = cJSON_GetObjectItemCaseSensitive(v, "perturbation");
+            const cJSON *normals = cJSON_GetObjectItemCaseSensitive(v, "perturbation_normals");
+            int extra = perturbation || normals ? 2 : 0;
             FUZZ_CHECK(cJSON_IsString(verdict) && cJSON_IsBool(inside) && margin && blocking &&
-                           cJSON_IsArray(states) && witness && cJSON_GetArraySize(v) == 6,
+                           cJSON_IsArray(states) && witness &&
+                           cJSON_GetArraySize(v) == 6 + extra,
                        "classify: answer members wrong for %s", line);
+            FUZZ_CHECK(!extra || (toleranced && cJSON_IsArray(perturbation) &&
+                                  cJSON_IsArray(normals) &&
+                                  cJSON_GetArraySize(perturbation) == cJSON_GetArraySize(normals) &&
+                                  strcmp(verdict->valuestring, "outside") == 0),
+                       "classify: a perturbation but not an outside of a fixture with a "
+                       "tolerance for %s", line);
             const char *word = verdict->valuestring;
             bool is_inside = strcmp(word, "inside") == 0;
             bool is_outside = strcmp(word, "outside") == 0;
@@ -561,9 +592,10 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
                        "classify: inside yet blocked for %s", line);
             FUZZ_CHECK(!cJSON_IsNull(blocking) || cJSON_GetArraySize(states) == 0,
                        "classify: states without a blocking cone for %s", line);
-            if (lp) {
+            if (lp || supports) {
                 FUZZ_CHECK(cJSON_IsNull(margin) && !is_boundary,
-                           "classify: the lp method gave a margin or a boundary for %s", line);
+                           "classify: the lp method or supports gave a margin or a boundary "
+                           "for %s", line);
                 continue;
             }
             FUZZ_CHECK(is_number_in(margin, -1, 1), "classify: margin %.17g not in [-1, 1] for %s",
@@ -579,6 +611,10 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
                                   cJSON_GetArrayItem(force, 1)->valuedouble == 0;
             if (zero) {
                 FUZZ_CHECK(m == 0, "classify: the zero wrench has margin %.17g for %s", m, line);
+            } else if (toleranced) {
+                FUZZ_CHECK(is_boundary || (is_inside ? m > tolerance : m < -tolerance),
+                           "classify: robust margin %.17g, tolerance %.17g, verdict \"%s\" for "
+                           "%s", m, tolerance, word, line);
             } else {
                 /* The margin is printed shortest-round-trip: exactly the
                  * double the verdict was decided on. */
