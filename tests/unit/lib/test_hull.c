@@ -277,6 +277,80 @@ static void nnls_matches_known_solutions(void **state)
     assert_true(fabs(residual - 1) < 1e-12);
 }
 
+/* The simplicial cone of w, u and -u + delta e (e perpendicular to u): the
+ * last two are opposite within delta.  Closed form: three facets, the
+ * normals of the pairs, each with the third generator behind it, written
+ * without cancellation: u x (-u + delta e) is delta (u x e), and
+ * w x (-u + delta e) is -(w x u) + delta (w x e).  (The two through w
+ * differ by about delta: at 1e-7 and below the hull keeps one of them, as it
+ * keeps one of any rows closer than 1e-7.)  At delta 5e-9 the hull
+ * lost the facet of the nearly opposite pair to cancellation in their cross
+ * product (a half-space instead; tests/fuzz/README.md, finding 14). */
+static void nearly_opposite_generators_keep_their_facet(void **state)
+{
+    (void)state;
+    double u[3] = {-0.92577566916135423, 0.16323922851277128, -0.3410166633221931};
+    double w[3] = {0.28298703789933838, 0.89732870783002272, -0.33870271106836491};
+    double e[3], side[3] = {0.3, 0.9, -0.3};
+    wr_normalize3(u);
+    wr_cross3(u, side, e);
+    wr_normalize3(e);
+    double wu[3], ue[3], we[3];
+    wr_cross3(w, u, wu);
+    wr_cross3(u, e, ue);
+    wr_cross3(w, e, we);
+    const double deltas[] = {1e-3, 1e-6, 1e-7, 5e-9, 2e-9};
+    for (size_t d = 0; d < sizeof deltas / sizeof deltas[0]; d++) {
+        double delta = deltas[d];
+        double g[3][3];
+        wr_copy3(w, g[0]);
+        wr_copy3(u, g[1]);
+        for (int k = 0; k < 3; k++)
+            g[2][k] = -u[k] + delta * e[k];
+        wr_hrep h;
+        assert_true(wr_hull_from_generators((const double (*)[3])g, 3, &h));
+        assert_int_equal(h.dimension, 3);
+        /* Facets of (w, u), (u, g2), (w, g2), and the generator behind each. */
+        double expected[3][3];
+        for (int k = 0; k < 3; k++) {
+            expected[0][k] = wu[k];
+            expected[1][k] = ue[k];
+            expected[2][k] = -wu[k] + delta * we[k];
+        }
+        const double *behind[3] = {g[2], w, u};
+        for (int f = 0; f < 3; f++) {
+            wr_normalize3(expected[f]);
+            if (wr_dot3(expected[f], behind[f]) > 0)
+                for (int k = 0; k < 3; k++)
+                    expected[f][k] = -expected[f][k];
+        }
+        /* Every facet is one of the three; the pair's own facet is there
+         * (the one lost); the two through w are within 2 delta of each
+         * other, and the hull keeps one facet of rows closer than 1e-7. */
+        bool pair_found = false;
+        for (int i = 0; i < h.facet_count; i++) {
+            int matches = 0;
+            for (int f = 0; f < 3; f++) {
+                double gap = fmax(fabs(h.facets[i][0] - expected[f][0]),
+                                  fmax(fabs(h.facets[i][1] - expected[f][1]),
+                                       fabs(h.facets[i][2] - expected[f][2])));
+                /* The generators come in rounded to 1e-16, so the normal
+                 * of the pair, whose difference is delta, is known to
+                 * about 1e-16 / delta. */
+                double within = 1e-9 + 1e-15 / delta;
+                matches += gap < within;
+                pair_found |= f == 1 && gap < within;
+            }
+            if (matches == 0)
+                fail_msg("delta %g: facet (%.17g, %.17g, %.17g) is none of the cone's", delta,
+                         h.facets[i][0], h.facets[i][1], h.facets[i][2]);
+        }
+        if (!pair_found || h.facet_count < (delta > 1e-7 ? 3 : 2))
+            fail_msg("delta %g: %d facets, the nearly opposite pair's %s", delta, h.facet_count,
+                     pair_found ? "found" : "lost");
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -287,6 +361,7 @@ int main(void)
         cmocka_unit_test(random_projections_satisfy_moreau),
         cmocka_unit_test(distances_to_the_orthant),
         cmocka_unit_test(nnls_matches_known_solutions),
+        cmocka_unit_test(nearly_opposite_generators_keep_their_facet),
     };
     return cmocka_run_group_tests_name("hull", tests, NULL, NULL);
 }
