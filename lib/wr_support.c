@@ -747,6 +747,62 @@ static wr_status complement(wr_forces *excluded, double lo, double hi, wr_forces
     return WR_OK;
 }
 
+/* One cone's magnitudes along a line L + F u (F >= 0, in the units of the
+ * force asked): from outside, a closed interval [out_lo, out_hi] holding
+ * every F with L + F u in C + S; from inside, [in_lo, in_hi], every F of
+ * which is in C + S (none when in_lo > in_hi).  `reached` false: no F
+ * reaches C + S even from outside (the cone is then no constraint). */
+typedef struct cone_span {
+    bool reached;
+    double out_lo, out_hi, in_lo, in_hi;
+} cone_span;
+
+/* The spans of every goal cone (empty cones unreached) along load + F push,
+ * into spans[count of goal cones].  Runs GLPK: call within wr_lp_guarded.
+ * Returns WR_OK or WR_LP_FAILED. */
+static wr_status line_spans(const wr_analysis *analysis, const wr_supports *supports,
+                            const double load[3], const double push[3], cone_span *spans,
+                            int *solves)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    double hu[3], hl[3];
+    double push_length = wr_fixture_scale_wrench(f, push, hu);
+    double scale = fmax(problem_scale(f, supports, load), push_length);
+    model m;
+    model_init(&m, f, supports, scale);
+    wr_fixture_scale_wrench(f, load, hl);
+    for (int k = 0; k < 3; k++) {
+        hl[k] /= scale;
+        hu[k] /= push_length;
+    }
+    /* Magnitudes in the LP: F' = F |h(u)| / scale. */
+    double to_force = scale / push_length;
+    int count = wr_analysis_cone_count(analysis, WR_SET_GOAL);
+    for (int c = 0; c < count; c++) {
+        cone_span *span = &spans[c];
+        span->reached = false;
+        const wr_cone *cone = wr_analysis_cone(analysis, WR_SET_GOAL, c);
+        if (cone->empty)
+            continue;
+        double a_lo, a_hi, b_lo, b_hi;
+        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL,
+                                    &a_lo, &a_hi, solves);
+        if (st != WR_OK)
+            return st;
+        if (a_lo == INFINITY)
+            continue; /* no magnitude reaches this cone */
+        st = cone_bracket(&m, cone, F_MAX, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
+                          solves);
+        if (st != WR_OK)
+            return st;
+        /* Outer: [a_lo, b_hi] holds the cone's magnitudes; inner:
+         * [a_hi, b_lo] is held by them (when not empty). */
+        *span = (cone_span){true, a_lo * to_force, b_hi * to_force, a_hi * to_force,
+                            b_lo * to_force};
+    }
+    return WR_OK;
+}
+
 typedef struct range_call {
     const wr_analysis *analysis;
     const wr_supports *supports;
@@ -758,41 +814,21 @@ typedef struct range_call {
 static wr_status range_body(void *context)
 {
     range_call *call = context;
-    const wr_fixture *f = wr_analysis_fixture(call->analysis);
-    double hu[3], hl[3];
-    double push_length = wr_fixture_scale_wrench(f, call->push, hu);
-    double scale = fmax(problem_scale(f, call->supports, call->load), push_length);
-    model m;
-    model_init(&m, f, call->supports, scale);
-    wr_fixture_scale_wrench(f, call->load, hl);
-    for (int k = 0; k < 3; k++) {
-        hl[k] /= scale;
-        hu[k] /= push_length;
-    }
-    /* Magnitudes in the LP: F' = F |h(u)| / scale. */
-    double to_force = scale / push_length;
-    wr_forces outer_excluded = {0}, inner_excluded = {0};
-    wr_status st = WR_OK;
-    int solves = 0;
     int count = wr_analysis_cone_count(call->analysis, WR_SET_GOAL);
+    cone_span *spans = malloc((size_t)(count ? count : 1) * sizeof *spans);
+    if (!spans)
+        return WR_NO_MEMORY;
+    wr_forces outer_excluded = {0}, inner_excluded = {0};
+    int solves = 0;
+    wr_status st =
+        line_spans(call->analysis, call->supports, call->load, call->push, spans, &solves);
     for (int c = 0; c < count && st == WR_OK; c++) {
-        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_GOAL, c);
-        if (cone->empty)
+        const cone_span *span = &spans[c];
+        if (!span->reached)
             continue;
-        double a_lo, a_hi, b_lo, b_hi;
-        st = cone_bracket(&m, cone, F_MIN, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &a_lo, &a_hi,
-                          &solves);
-        if (st != WR_OK || a_lo == INFINITY)
-            continue; /* no magnitude reaches this cone */
-        st = cone_bracket(&m, cone, F_MAX, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
-                          &solves);
-        if (st != WR_OK)
-            break;
-        /* Outer: [a_lo, b_hi] holds the cone's magnitudes; inner:
-         * [a_hi, b_lo] is held by them (when not empty). */
-        st = forces_append(&outer_excluded, a_lo * to_force, b_hi * to_force);
-        if (st == WR_OK && a_hi <= b_lo)
-            st = forces_append(&inner_excluded, a_hi * to_force, b_lo * to_force);
+        st = forces_append(&outer_excluded, span->out_lo, span->out_hi);
+        if (st == WR_OK && span->in_lo <= span->in_hi)
+            st = forces_append(&inner_excluded, span->in_lo, span->in_hi);
     }
     if (st == WR_OK)
         st = complement(&outer_excluded, call->lo, call->hi, call->outer);
@@ -800,6 +836,7 @@ static wr_status range_body(void *context)
         st = complement(&inner_excluded, call->lo, call->hi, call->inner);
     wr_forces_release(&outer_excluded);
     wr_forces_release(&inner_excluded);
+    free(spans);
     return st;
 }
 
@@ -864,6 +901,299 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
     }
     wr_forces_release(&scratch);
     return st;
+}
+
+/* ---- the least push over the outline ------------------------------------ */
+
+/* A point of an edge where the spans of every case were found: spans[case
+ * * cones + cone].  Shared by the two intervals it ends (refs). */
+typedef struct outline_point {
+    int refs;
+    double t;
+    double upper; /* the least F from outside: pushes just above it seat */
+    cone_span spans[];
+} outline_point;
+
+typedef struct outline_piece {
+    double bound; /* no push on the piece seats below it */
+    int edge;
+    outline_point *p0, *p1;
+} outline_piece;
+
+typedef struct outline_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    const double (*loads)[3];
+    int case_count, cones;
+    const wr_finger *finger;
+    const wr_stop *stop;
+    wr_least_force *out;
+    outline_piece *pieces; /* a min-heap by bound */
+    int count, capacity;
+    int solves;
+} outline_call;
+
+/* The end of the component holding 0 of the union of closed intervals
+ * [lo[i], hi[i]]: 0 when none holds 0; INFINITY when the union from 0 has
+ * no end. */
+static double cover_from_zero(const double *lo, const double *hi, int n)
+{
+    double at = 0;
+    bool covered = false;
+    for (bool moved = true; moved && isfinite(at);) {
+        moved = false;
+        for (int i = 0; i < n; i++)
+            if (lo[i] <= at && hi[i] > at) {
+                at = hi[i];
+                moved = covered = true;
+            } else if (lo[i] <= at && hi[i] >= at) {
+                covered = true;
+            }
+    }
+    return covered ? at : 0;
+}
+
+static void point_release(outline_point *p)
+{
+    if (p && --p->refs == 0)
+        free(p);
+}
+
+/* The spans at t of edge `edge` under every case, and the least force
+ * from outside there (the component from 0 of the outer spans' union). */
+static wr_status point_new(outline_call *c, int edge, double t, outline_point **out)
+{
+    const wr_fixture *f = wr_analysis_fixture(c->analysis);
+    size_t spans = (size_t)c->case_count * (size_t)c->cones;
+    outline_point *p = malloc(sizeof *p + spans * sizeof p->spans[0]);
+    double *lo = malloc((spans ? spans : 1) * 2 * sizeof *lo);
+    if (!p || !lo) {
+        free(p);
+        free(lo);
+        return WR_NO_MEMORY;
+    }
+    p->refs = 1;
+    p->t = t;
+    double push[3];
+    wr_push_wrench(f, edge, t, push);
+    wr_status st = WR_OK;
+    for (int k = 0; k < c->case_count && st == WR_OK; k++)
+        st = line_spans(c->analysis, c->supports, c->loads[k], push, &p->spans[k * c->cones],
+                        &c->solves);
+    int n = 0;
+    double *hi = lo + spans;
+    for (size_t i = 0; st == WR_OK && i < spans; i++)
+        if (p->spans[i].reached) {
+            lo[n] = p->spans[i].out_lo;
+            hi[n++] = p->spans[i].out_hi;
+        }
+    p->upper = cover_from_zero(lo, hi, n);
+    free(lo);
+    c->out->evaluations++;
+    if (st != WR_OK) {
+        free(p);
+        return st;
+    }
+    *out = p;
+    return WR_OK;
+}
+
+/* A lower bound on the least seating force over the piece between a and
+ * b (MODEL.md section 11, "The least push on the plate"): a magnitude in
+ * the inner spans of one cone at both ends is in that cone grown by S at
+ * every point between, since the push's wrench is affine in t on a
+ * straight edge and the set of (F, F t) it maps into C + S is convex. */
+static wr_status piece_bound(const outline_call *c, const outline_point *a,
+                             const outline_point *b, double *bound)
+{
+    size_t spans = (size_t)c->case_count * (size_t)c->cones;
+    double *lo = malloc((spans ? spans : 1) * 2 * sizeof *lo);
+    if (!lo)
+        return WR_NO_MEMORY;
+    double *hi = lo + spans;
+    int n = 0;
+    for (size_t i = 0; i < spans; i++) {
+        const cone_span *x = &a->spans[i], *y = &b->spans[i];
+        if (!x->reached || !y->reached)
+            continue;
+        double l = fmax(x->in_lo, y->in_lo), h = fmin(x->in_hi, y->in_hi);
+        if (l <= h) {
+            lo[n] = l;
+            hi[n++] = h;
+        }
+    }
+    *bound = cover_from_zero(lo, hi, n);
+    free(lo);
+    return WR_OK;
+}
+
+static bool piece_push(outline_call *c, outline_piece piece)
+{
+    if (c->count == c->capacity) {
+        int capacity = c->capacity ? 2 * c->capacity : 64;
+        outline_piece *items = realloc(c->pieces, (size_t)capacity * sizeof *items);
+        if (!items)
+            return false;
+        c->pieces = items;
+        c->capacity = capacity;
+    }
+    int i = c->count++;
+    while (i > 0 && c->pieces[(i - 1) / 2].bound > piece.bound) {
+        c->pieces[i] = c->pieces[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    c->pieces[i] = piece;
+    piece.p0->refs++;
+    piece.p1->refs++;
+    return true;
+}
+
+static outline_piece piece_pop(outline_call *c)
+{
+    outline_piece top = c->pieces[0], last = c->pieces[--c->count];
+    int i = 0;
+    for (;;) {
+        int child = 2 * i + 1;
+        if (child >= c->count)
+            break;
+        if (child + 1 < c->count && c->pieces[child + 1].bound < c->pieces[child].bound)
+            child++;
+        if (c->pieces[child].bound >= last.bound)
+            break;
+        c->pieces[i] = c->pieces[child];
+        i = child;
+    }
+    if (c->count)
+        c->pieces[i] = last;
+    return top;
+}
+
+/* The search's relative tolerance: above the spans' own (WR_FORCE_TOLERANCE
+ * of the LPs' brackets), so that a piece shrunk to a point is decided. */
+#define OUTLINE_TOLERANCE 1e-6
+
+static double outline_enough(double best)
+{
+    return isfinite(best) ? best * (1 - OUTLINE_TOLERANCE) : INFINITY;
+}
+
+static wr_status outline_body(void *context)
+{
+    outline_call *c = context;
+    const wr_fixture *f = wr_analysis_fixture(c->analysis);
+    wr_least_force *out = c->out;
+    double best = INFINITY;
+    wr_status st = WR_OK;
+    /* Each edge pushed on, in 8 pieces to start with. */
+    enum { START = 8 };
+    for (int e = 0; st == WR_OK && e < (int)f->vertex_count; e++) {
+        if (!wr_finger_pushes_on(f, c->finger, e))
+            continue;
+        outline_point *prev = NULL;
+        for (int k = 0; st == WR_OK && k <= START; k++) {
+            outline_point *p;
+            st = point_new(c, e, (double)k / START, &p);
+            if (st != WR_OK)
+                break;
+            if (p->upper < best) {
+                best = p->upper;
+                out->edge = e;
+                out->t = p->t;
+            }
+            if (prev) {
+                double bound;
+                st = piece_bound(c, prev, p, &bound);
+                if (st == WR_OK && !piece_push(c, (outline_piece){bound, e, prev, p}))
+                    st = WR_NO_MEMORY;
+            }
+            point_release(prev);
+            prev = p;
+        }
+        point_release(prev);
+    }
+    bool converged = true;
+    while (st == WR_OK && c->count && c->pieces[0].bound < outline_enough(best)) {
+        if (out->evaluations >= WR_SUPPORT_MAX_POINTS) {
+            converged = false;
+            break;
+        }
+        if (wr_stop_requested(c->stop)) {
+            st = WR_STOPPED;
+            break;
+        }
+        outline_piece piece = piece_pop(c);
+        double mid = (piece.p0->t + piece.p1->t) / 2;
+        outline_point *m = NULL;
+        if (mid > piece.p0->t && mid < piece.p1->t)
+            st = point_new(c, piece.edge, mid, &m);
+        if (st == WR_OK && m) {
+            if (m->upper < best) {
+                best = m->upper;
+                out->edge = piece.edge;
+                out->t = mid;
+            }
+            for (int half = 0; st == WR_OK && half < 2; half++) {
+                outline_point *a = half ? m : piece.p0, *b = half ? piece.p1 : m;
+                double bound;
+                st = piece_bound(c, a, b, &bound);
+                bound = fmax(bound, piece.bound); /* a part's bound is at least its whole's */
+                if (st == WR_OK && bound < outline_enough(best) &&
+                    !piece_push(c, (outline_piece){bound, piece.edge, a, b}))
+                    st = WR_NO_MEMORY;
+            }
+        } else if (st == WR_OK) {
+            converged = false; /* a piece too short to split, still undecided */
+            st = piece_push(c, piece) ? WR_OK : WR_NO_MEMORY;
+            point_release(piece.p0);
+            point_release(piece.p1);
+            break;
+        }
+        point_release(m);
+        point_release(piece.p0);
+        point_release(piece.p1);
+    }
+    if (st == WR_OK) {
+        /* Pieces pruned are certified down to outline_enough(best). */
+        double lower = fmin(best, outline_enough(best));
+        for (int i = 0; i < c->count; i++)
+            lower = fmin(lower, c->pieces[i].bound);
+        out->found = isfinite(best);
+        out->force = best;
+        out->lower = lower;
+        out->converged = converged;
+        if (out->found)
+            wr_boundary_point(f, out->edge, out->t, out->at, out->direction);
+    }
+    for (int i = 0; i < c->count; i++) {
+        point_release(c->pieces[i].p0);
+        point_release(c->pieces[i].p1);
+    }
+    free(c->pieces);
+    return st;
+}
+
+wr_status wr_supports_least_force_find(const wr_analysis *analysis,
+                                       const wr_supports *supports, wr_lp_env *env,
+                                       const double (*loads)[3], int case_count,
+                                       const wr_finger *finger, const wr_stop *stop,
+                                       wr_least_force *out)
+{
+    memset(out, 0, sizeof *out);
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    if (f->shape != WR_SHAPE_POLYGON)
+        return f->shape == WR_SHAPE_NONE ? WR_NO_SHAPE : WR_INVALID;
+    if (case_count < 1 || !finger || finger->radius != 0)
+        return WR_INVALID;
+    for (int c = 0; c < case_count; c++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(loads[c][k]))
+                return WR_INVALID;
+    if (supports->total == 0 || supports->mu_static == 0) /* S = {0}: the cones alone */
+        return wr_least_force_find(analysis, WR_SET_GOAL, loads, case_count, finger, stop, out);
+    outline_call call = {analysis, supports, loads, case_count,
+                         wr_analysis_cone_count(analysis, WR_SET_GOAL), finger, stop, out,
+                         NULL, 0, 0, 0};
+    return wr_lp_guarded(env, outline_body, &call);
 }
 
 /* ---- holding ------------------------------------------------------------- */

@@ -168,6 +168,27 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
                                   wr_lp_env *env, const double (*loads)[3], int case_count,
                                   const double push[3], double *force, double *lower);
 
+/* The point of a polygon's outline where the least push seats the part on
+ * its supports under every case (wr_least_force_find's question on the
+ * plate, G_goal with S), for a point finger (radius 0; its push_on kept).
+ * By branch and bound over pieces of each edge: the bound of a piece is
+ * the component from 0 of the union over cones and cases of the
+ * magnitudes that the inner polygons' spans at both its ends share (the
+ * push's wrench is affine along an edge, so the magnitudes of a cone
+ * grown by S form a convex set in (F, F t): what both ends exclude, every
+ * point between excludes); a point's force is the outer polygons' (a
+ * push just above it seats).  Split until the lowest bound is within
+ * 1e-6 (relative) of the least force found, or WR_SUPPORT_MAX_POINTS
+ * points are evaluated (converged false; `lower` still certified).
+ * WR_OK; WR_NO_SHAPE; WR_INVALID (not a polygon, a finger radius, no
+ * case, a non-finite load); WR_NO_MEMORY; WR_LP_FAILED; WR_STOPPED. */
+#define WR_SUPPORT_MAX_POINTS 4000
+wr_status wr_supports_least_force_find(const wr_analysis *analysis,
+                                       const wr_supports *supports, wr_lp_env *env,
+                                       const double (*loads)[3], int case_count,
+                                       const wr_finger *finger, const wr_stop *stop,
+                                       wr_least_force *out);
+
 /* Push regions on the plate: the open intervals of t on polygon edge
  * `edge` where a frictionless finger pushing with magnitude `force` along
  * the inward normal, plus each case's load, seats the part on its supports
