@@ -125,8 +125,7 @@ def test_zero_load_held(client):
     ("stability.margin", {"bias": [0, -1, 0]}, "params.bias"),
     ("force.range", {"push": {"at": [1 / R2, 1 / R2]}, "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
      "params.sets"),
-    ("push.force", {"set": "goal", "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
-     "params.fixture"),
+    ("push.force", {"cases": [{"loads": [{"wrench": [0, 0, 0]}]}]}, "params.set"),
     ("gravity.sweep", {"set": "goal"}, "params.fixture"),
 ])
 def test_direction_questions_refused(client, method, params, field):
@@ -212,3 +211,56 @@ def test_supports_and_tolerance_not_together(client):
     f["tolerance"] = {"position": 0.01}
     got, reason = error_of(client, "fixture.put", {"fixture": f})
     assert got == "params.fixture.supports" and "tolerance" in reason, (got, reason)
+
+
+def test_push_force_on_the_plate_agrees_with_force_range(client):
+    """The chamfered plate on three buttons: push.force's least push over
+    the outline is force.range's least at the point it names (two
+    methods), no point of force.range's dense sampling of the outline seats
+    with less, and its certified lower bound is below both. Its segments'
+    samples are force.range's least at their points. The floating plate's
+    least is lower: the buttons' friction costs force."""
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    r = client.result("push.force", {"fixture": f, "set": "goal", "cases": none, "samples": 8})
+    least = r["least"]
+    assert least["converged"], least
+    force, lower = least["force"], least["lower_bound"]
+    assert lower <= force <= lower * (1 + 2e-6), least
+
+    def least_at(at, direction):
+        got = client.result("force.range", {"fixture": f, "push": {"at": at, "direction": direction},
+                                             "cases": none,
+                                             "sets": ["goal"]})["all"]["goal"]["least"]
+        return math.inf if got is None else got
+
+    assert abs(least_at(least["at"], least["direction"]) - force) <= 1e-6 * force, least
+    vertices = floating["body"]["shape"]["vertices"]
+
+    def point(e, t):
+        a, b = vertices[e], vertices[(e + 1) % len(vertices)]
+        length = math.hypot(b[0] - a[0], b[1] - a[1])
+        inward = [-(b[1] - a[1]) / length, (b[0] - a[0]) / length]  # counter-clockwise
+        return [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])], inward
+
+    sampled = math.inf
+    for e in range(len(vertices)):
+        for j in range(32):
+            sampled = min(sampled, least_at(*point(e, (j + 0.5) / 32)))
+    assert force <= sampled * (1 + 1e-6), (force, sampled)
+    assert sampled <= force * 1.2, (force, sampled)
+    segment = next(s for s in r["segments"] if s["edge"] == 2)
+    for t, value in zip(segment["t"], segment["force"]):
+        expected = least_at(*point(2, t))
+        assert (value is None) == math.isinf(expected)
+        assert value is None or abs(value - expected) <= 1e-9 * expected
+    plain = client.result("push.force", {"fixture": floating, "set": "goal", "cases": none,
+                                         "samples": 1})["least"]["force"]
+    assert plain < force, (plain, force)
+    # A finger of some size, another set, no outline of straight edges: refused.
+    for extra, field in (({"set": "both"}, "params.set"),
+                         ({"set": "goal", "finger_radius": 0.1}, "params.finger_radius")):
+        got, reason = error_of(client, "push.force", dict(extra, fixture=f, cases=none))
+        assert got == field and "supports" in reason, (got, reason)
