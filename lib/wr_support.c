@@ -479,9 +479,11 @@ static int disc_columns(lp *l, const model *m, int i, const directions *d, bool 
 
 /* ---- seating ------------------------------------------------------------- */
 
-/* What one LP of a cone asks: the least scale rho (RHO), or the least or
- * largest push magnitude (F_MIN, F_MAX). */
-typedef enum question { RHO, F_MIN, F_MAX } question;
+/* What one LP of a cone asks: the least scale rho (RHO), the least or
+ * largest push magnitude (F_MIN, F_MAX), or the largest alpha + beta with
+ * alpha u + beta u2 in C + S, alpha, beta >= 0 (SECTOR: how far the sector
+ * between two pure forces reaches into C + S's slice at zero torque). */
+typedef enum question { RHO, F_MIN, F_MAX, SECTOR } question;
 
 typedef struct cone_lp {
     const model *m;
@@ -489,6 +491,7 @@ typedef struct cone_lp {
     question q;
     double target[3];   /* h(g) / scale, or h(L) / scale */
     double push[3];     /* h(u) / |h(u)| */
+    double second[3];   /* SECTOR's u2, as push */
     bool inner;
     const directions *dirs; /* one per support */
     /* out */
@@ -501,7 +504,7 @@ static void cone_lp_solve(cone_lp *c)
 {
     const model *m = c->m;
     lp l;
-    lp_init(&l, c->q == F_MAX ? GLP_MAX : GLP_MIN);
+    lp_init(&l, c->q == F_MAX || c->q == SECTOR ? GLP_MAX : GLP_MIN);
     int wrench[3];
     for (int k = 0; k < 3; k++)
         wrench[k] = lp_row(&l, GLP_FX, c->target[k], c->target[k]);
@@ -525,6 +528,11 @@ static void cone_lp_solve(cone_lp *c)
         for (int k = 0; k < 3; k++)
             lp_set(&l, wrench[k], magnitude, -c->push[k]);
     }
+    if (c->q == SECTOR) {
+        int beta = lp_col(&l, GLP_LO, 0, 0, 1);
+        for (int k = 0; k < 3; k++)
+            lp_set(&l, wrench[k], beta, -c->second[k]);
+    }
     c->status = lp_solve(&l);
     if (c->status == GLP_OPT) {
         c->value = glp_get_obj_val(l.p);
@@ -545,19 +553,23 @@ static void cone_lp_solve(cone_lp *c)
 typedef bool (*bracket_decided)(double lo, double hi, void *context);
 
 static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, const double target[3],
-                              const double push[3], double tolerance, bracket_decided decided,
+                              const double push[3], const double *second, double tolerance,
+                              bracket_decided decided,
                               void *context, double *lo, double *hi, int *solves)
 {
     directions dirs[WR_MAX_SUPPORTS];
     for (int i = 0; i < m->s->count; i++)
         directions_start(&dirs[i]);
-    double none = q == F_MAX ? -INFINITY : INFINITY;
-    double sign = q == F_MAX ? -1 : 1; /* sign * value: a minimum */
+    bool largest = q == F_MAX || q == SECTOR;
+    double none = largest ? -INFINITY : INFINITY;
+    double sign = largest ? -1 : 1; /* sign * value: a minimum */
     double outer_best = -INFINITY, inner_best = INFINITY; /* of sign * value */
     for (int round = 0; round < 60; round++) {
         cone_lp c = {.m = m, .cone = cone, .q = q, .dirs = dirs};
         memcpy(c.target, target, sizeof c.target);
         memcpy(c.push, push, sizeof c.push);
+        if (second)
+            memcpy(c.second, second, sizeof c.second);
         c.inner = false;
         cone_lp_solve(&c);
         (*solves)++;
@@ -568,8 +580,8 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
             return WR_OK;
         }
         if (c.status == GLP_UNBND) {
-            *lo = *hi = INFINITY; /* only F_MAX can be unbounded from outside */
-            if (q != F_MAX)
+            *lo = *hi = INFINITY; /* only a largest can be unbounded from outside */
+            if (!largest)
                 return WR_LP_FAILED;
             /* Unbounded from inside too?  Any inner solution with a push
              * ray: ask the inner LP. */
@@ -666,7 +678,7 @@ static wr_status goal_body(void *context)
         if (cone->empty)
             continue;
         double lo, hi;
-        wr_status st = cone_bracket(&m, cone, RHO, target, push, call->tolerance, rho_decided,
+        wr_status st = cone_bracket(&m, cone, RHO, target, push, NULL, call->tolerance, rho_decided,
                                     &call->tolerance, &lo, &hi, &out->solves);
         if (st != WR_OK)
             return st;
@@ -785,13 +797,13 @@ static wr_status line_spans(const wr_analysis *analysis, const wr_supports *supp
         if (cone->empty)
             continue;
         double a_lo, a_hi, b_lo, b_hi;
-        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL,
+        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL,
                                     &a_lo, &a_hi, solves);
         if (st != WR_OK)
             return st;
         if (a_lo == INFINITY)
             continue; /* no magnitude reaches this cone */
-        st = cone_bracket(&m, cone, F_MAX, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
+        st = cone_bracket(&m, cone, F_MAX, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
                           solves);
         if (st != WR_OK)
             return st;
@@ -1194,6 +1206,173 @@ wr_status wr_supports_least_force_find(const wr_analysis *analysis,
                          wr_analysis_cone_count(analysis, WR_SET_GOAL), finger, stop, out,
                          NULL, 0, 0, 0};
     return wr_lp_guarded(env, outline_body, &call);
+}
+
+/* ---- the in-plane tilt --------------------------------------------------- */
+
+static wr_status regions_add(wr_regions *regions, int edge, double t0, double t1)
+{
+    /* Joined to the last one when they touch. */
+    if (regions->count && regions->items[regions->count - 1].edge == edge &&
+        regions->items[regions->count - 1].t1 == t0) {
+        regions->items[regions->count - 1].t1 = t1;
+        return WR_OK;
+    }
+    if (regions->count == regions->capacity) {
+        int capacity = regions->capacity ? 2 * regions->capacity : 8;
+        wr_region *items = realloc(regions->items, (size_t)capacity * sizeof *items);
+        if (!items)
+            return WR_NO_MEMORY;
+        regions->items = items;
+        regions->capacity = capacity;
+    }
+    regions->items[regions->count++] = (wr_region){edge, t0, t1};
+    return WR_OK;
+}
+
+typedef struct tilt_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    double weight; /* m times the in-plane gravity (model system) */
+    const wr_stop *stop;
+    model m;
+    double to_force; /* an LP magnitude times this is a force */
+    wr_regions *good, *undecided;
+    int solves;
+    int arcs; /* split so far: past WR_SUPPORT_MAX_CELLS, the rest stays undecided */
+} tilt_call;
+
+typedef struct threshold {
+    double value; /* in LP units */
+} threshold;
+
+static bool threshold_decided(double lo, double hi, void *context)
+{
+    double t = ((const threshold *)context)->value;
+    return hi < t || lo >= t;
+}
+
+/* The scaled unit force along phi degrees. */
+static void tilt_push(const tilt_call *c, double phi, double push[3])
+{
+    double u[3] = {cos(phi * WR_PI / 180), sin(phi * WR_PI / 180), 0};
+    double length = wr_fixture_scale_wrench(c->m.f, u, push);
+    for (int k = 0; k < 3; k++)
+        push[k] /= length;
+}
+
+/* One cone against the arc [phi0, phi1] (under 180 degrees) of the circle
+ * of radius r = weight: *out 1 when every point of the arc is in C + S
+ * (found from inside), -1 when none is (from outside), 0 when neither is
+ * proved.  C + S holds 0 (both hold it), so its slice K at zero torque is
+ * convex and star-shaped from 0, and:
+ * - the arc lies in the quadrilateral of 0, its ends and the crossing of
+ *   their tangents, at r / cos(half) along the middle: in K when those
+ *   three points are (inner magnitudes along the three rays);
+ * - the arc lies in the sector between its ends' rays, beyond the chord,
+ *   where alpha e0 + beta e1 has alpha + beta >= r: K misses it when the
+ *   largest alpha + beta in K is below r (outer). */
+static wr_status arc_against_cone(tilt_call *c, const wr_cone *cone, double phi0, double phi1,
+                                  int *out)
+{
+    static const double zero[3] = {0, 0, 0};
+    double half = (phi1 - phi0) / 2 * WR_PI / 180, mid = (phi0 + phi1) / 2;
+    double r = c->weight / c->to_force, e0[3], e1[3], lo, hi;
+    threshold near = {r};
+    tilt_push(c, phi0, e0);
+    tilt_push(c, phi1, e1);
+    wr_status st = cone_bracket(&c->m, cone, SECTOR, zero, e0, e1, WR_FORCE_TOLERANCE,
+                                threshold_decided, &near, &lo, &hi, &c->solves);
+    if (st != WR_OK)
+        return st;
+    if (hi < near.value) {
+        *out = -1;
+        return WR_OK;
+    }
+    *out = 0;
+    const double rays[3] = {phi0, phi1, mid};
+    for (int k = 0; k < 3; k++) {
+        threshold far = {k < 2 ? r : r / cos(half)};
+        double push[3];
+        tilt_push(c, rays[k], push);
+        st = cone_bracket(&c->m, cone, F_MAX, zero, push, NULL, WR_FORCE_TOLERANCE,
+                          threshold_decided, &far, &lo, &hi, &c->solves);
+        if (st != WR_OK || lo < far.value)
+            return st;
+    }
+    *out = 1;
+    return WR_OK;
+}
+
+/* The arc [phi0, phi1]: good when every cone misses it, excluded when one
+ * cone holds it, else split down to WR_SUPPORT_MIN_ARC degrees, where it is
+ * undecided.  Appended in order of phi. */
+static wr_status tilt_arc(tilt_call *c, double phi0, double phi1)
+{
+    if (wr_stop_requested(c->stop))
+        return WR_STOPPED;
+    int count = wr_analysis_cone_count(c->analysis, WR_SET_GOAL);
+    bool all_miss = true;
+    for (int k = 0; k < count; k++) {
+        const wr_cone *cone = wr_analysis_cone(c->analysis, WR_SET_GOAL, k);
+        if (cone->empty)
+            continue;
+        int side;
+        wr_status st = arc_against_cone(c, cone, phi0, phi1, &side);
+        if (st != WR_OK)
+            return st;
+        if (side > 0)
+            return WR_OK; /* excluded */
+        all_miss &= side < 0;
+    }
+    if (all_miss)
+        return regions_add(c->good, 0, phi0, phi1);
+    if (phi1 - phi0 <= WR_SUPPORT_MIN_ARC || ++c->arcs > WR_SUPPORT_MAX_CELLS)
+        return regions_add(c->undecided, 0, phi0, phi1);
+    double mid = (phi0 + phi1) / 2;
+    wr_status st = tilt_arc(c, phi0, mid);
+    return st == WR_OK ? tilt_arc(c, mid, phi1) : st;
+}
+
+static wr_status tilt_body(void *context)
+{
+    tilt_call *c = context;
+    for (int k = 0; k < 8; k++) {
+        wr_status st = tilt_arc(c, 45.0 * k, 45.0 * (k + 1));
+        if (st != WR_OK)
+            return st;
+    }
+    return WR_OK;
+}
+
+wr_status wr_supports_gravity_sweep(const wr_analysis *analysis, const wr_supports *supports,
+                                    wr_lp_env *env, double in_plane_g, const wr_stop *stop,
+                                    wr_regions *good, wr_regions *undecided)
+{
+    memset(good, 0, sizeof *good);
+    memset(undecided, 0, sizeof *undecided);
+    if (!(in_plane_g > 0) || !isfinite(in_plane_g))
+        return WR_INVALID;
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    wr_status st;
+    if (supports->total == 0 || supports->mu_static == 0) {
+        st = wr_gravity_sweep(analysis, WR_SET_GOAL, good); /* S = {0}: the cones alone */
+    } else {
+        tilt_call call = {.analysis = analysis, .supports = supports,
+                          .weight = f->mass * in_plane_g, .stop = stop, .good = good,
+                          .undecided = undecided};
+        double w[3] = {call.weight, 0, 0}, h[3];
+        double scale = problem_scale(f, supports, w);
+        model_init(&call.m, f, supports, scale);
+        double unit[3] = {1, 0, 0};
+        call.to_force = scale / wr_fixture_scale_wrench(f, unit, h);
+        st = wr_lp_guarded(env, tilt_body, &call);
+    }
+    if (st != WR_OK) {
+        wr_regions_release(good);
+        wr_regions_release(undecided);
+    }
+    return st;
 }
 
 /* ---- holding ------------------------------------------------------------- */
@@ -1843,19 +2022,8 @@ wr_status wr_supports_push_regions(const wr_analysis *analysis, const wr_support
         }
     }
     for (int i = 0; status == WR_OK && i < all.count; i++) {
-        if (!(all.items[i].hi > all.items[i].lo))
-            continue;
-        if (regions->count == regions->capacity) {
-            int capacity = regions->capacity ? 2 * regions->capacity : 8;
-            wr_region *items = realloc(regions->items, (size_t)capacity * sizeof *items);
-            if (!items) {
-                status = WR_NO_MEMORY;
-                break;
-            }
-            regions->items = items;
-            regions->capacity = capacity;
-        }
-        regions->items[regions->count++] = (wr_region){edge, all.items[i].lo, all.items[i].hi};
+        if (all.items[i].hi > all.items[i].lo)
+            status = regions_add(regions, edge, all.items[i].lo, all.items[i].hi);
     }
     wr_forces_release(&all);
     wr_forces_release(&one);

@@ -531,6 +531,62 @@ static void test_outline_least_sampled(void **state)
     wr_lp_env_free(env);
 }
 
+/* The in-plane tilt of the disc in the corner (fixel friction 0.5) on the
+ * three buttons `tri`, W = m g.  As for a push through the centre (MODEL.md
+ * section 11's worked example), every excluded cone holds the torque axis,
+ * so gravity's in-plane pull m a (cos phi, sin phi) seats iff it is farther
+ * than mu_B W from the complement of the goal wedge, whose edges are at
+ * 180 + atan(1/2) and 270 - atan(1/2) degrees: m a sin(delta) > mu_B m g,
+ * delta the angle to the nearer edge.  The arc is (180 + atan(1/2) +
+ * delta*, 270 - atan(1/2) - delta*), sin(delta*) = mu_B g / a, none when
+ * delta* exceeds the wedge's half, 18.435 degrees.  Floating (g = 0) it is
+ * the whole wedge. */
+static void test_tilt_disc(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    wr_fixture *f = test_disc_corner(0.5);
+    wr_analysis *a = test_analysis_new(f);
+    double edge = atan(0.5) * 180 / TEST_PI;
+    const double pulls[3] = {20, 60, 9};
+    for (int k = 0; k < 4; k++) {
+        double mu = 0.3, g = k == 3 ? 0 : G;
+        wr_error error;
+        wr_supports *s = supports_new(f, tri, 3, mu, g, NULL, 0, &error);
+        assert_non_null(s);
+        double pull = k == 3 ? 20 : pulls[k];
+        wr_regions good, undecided;
+        assert_int_equal(wr_supports_gravity_sweep(a, s, env, pull, NULL, &good, &undecided),
+                         WR_OK);
+        double ratio = mu * g / pull;
+        double delta = asin(fmin(1, ratio)) * 180 / TEST_PI;
+        double from = 180 + edge + delta, to = 270 - edge - delta;
+        printf("tilt, pull %g on g %g: %d arcs", pull, g, good.count);
+        for (int i = 0; i < good.count; i++)
+            printf(" (%.9f, %.9f)", good.items[i].t0, good.items[i].t1);
+        printf("; closed form (%.9f, %.9f); %d undecided\n", from, to, undecided.count);
+        if (from < to) {
+            assert_int_equal(good.count, 1);
+            assert_true(fabs(good.items[0].t0 - from) < 1e-5);
+            assert_true(fabs(good.items[0].t1 - to) < 1e-5);
+        } else {
+            assert_int_equal(good.count, 0);
+        }
+        /* Undecided only where the circle meets a boundary. */
+        for (int i = 0; i < undecided.count; i++) {
+            double at = (undecided.items[i].t0 + undecided.items[i].t1) / 2;
+            assert_true(undecided.items[i].t1 - undecided.items[i].t0 <= 1e-5);
+            assert_true(fabs(at - from) < 1e-5 || fabs(at - to) < 1e-5);
+        }
+        wr_regions_release(&good);
+        wr_regions_release(&undecided);
+        wr_supports_free(s);
+    }
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    wr_lp_env_free(env);
+}
+
 /* ---- holding --------------------------------------------------------------- */
 
 /* At zero load nothing moves the part: for every fixture and buttons of
@@ -789,6 +845,7 @@ int main(void)
         cmocka_unit_test(test_disc_least_force),
         cmocka_unit_test(test_polygon_bracket),
         cmocka_unit_test(test_outline_least_sampled),
+        cmocka_unit_test(test_tilt_disc),
         cmocka_unit_test(test_zero_load_held),
         cmocka_unit_test(test_plate_clamp),
         cmocka_unit_test(test_holding_sampled),
