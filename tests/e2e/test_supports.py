@@ -126,7 +126,7 @@ def test_zero_load_held(client):
     ("force.range", {"push": {"at": [1 / R2, 1 / R2]}, "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
      "params.sets"),
     ("push.force", {"cases": [{"loads": [{"wrench": [0, 0, 0]}]}]}, "params.set"),
-    ("gravity.sweep", {"set": "goal"}, "params.fixture"),
+    ("gravity.sweep", {"set": "goal"}, "params.in_plane_g"),
 ])
 def test_direction_questions_refused(client, method, params, field):
     f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
@@ -264,3 +264,30 @@ def test_push_force_on_the_plate_agrees_with_force_range(client):
                          ({"set": "goal", "finger_radius": 0.1}, "params.finger_radius")):
         got, reason = error_of(client, "push.force", dict(extra, fixture=f, cases=none))
         assert got == field and "supports" in reason, (got, reason)
+
+
+def test_tilt_of_the_disc_on_buttons(client):
+    """The disc in the corner on three buttons, tilted: its in-plane pull
+    m a seats iff it is farther than mu_B m g from the complement of the
+    goal wedge (edges at 180 + atan(1/2) and 270 - atan(1/2) degrees), the
+    torque absorbed by the axis every excluded cone holds: the arc is
+    (180 + atan(1/2) + d, 270 - atan(1/2) - d), sin d = mu_B g / a. A pull
+    too weak seats nowhere; the floating disc's arc is the whole wedge."""
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    edge = math.degrees(math.atan(0.5))
+    for pull in (20.0, 60.0):
+        r = client.result("gravity.sweep", {"fixture": f, "set": "goal", "in_plane_g": pull})
+        d = math.degrees(math.asin(0.3 * G / pull))
+        (lo, hi), = r["intervals_deg"]
+        assert abs(lo - (180 + edge + d)) < 1e-5 and abs(hi - (270 - edge - d)) < 1e-5, r
+        for a, b in r["undecided_deg"]:
+            assert b - a <= 1e-5 and min(abs(a - lo), abs(b - hi)) < 1e-5, r
+    weak = client.result("gravity.sweep", {"fixture": f, "set": "goal", "in_plane_g": 9.0})
+    assert weak["intervals_deg"] == [], weak
+    floating = client.result("gravity.sweep", {"fixture": FX.disc_corner(0.5), "set": "goal"})
+    (lo, hi), = floating["intervals_deg"]
+    assert abs(lo - (180 + edge)) < 1e-9 and abs(hi - (270 - edge)) < 1e-9
+    for extra, field in (({"set": "both", "in_plane_g": 20}, "params.set"),
+                         ({"set": "goal", "in_plane_g": -1}, "params.in_plane_g")):
+        got, _ = error_of(client, "gravity.sweep", dict(extra, fixture=f))
+        assert got == field
