@@ -291,3 +291,44 @@ def test_tilt_of_the_disc_on_buttons(client):
                          ({"set": "goal", "in_plane_g": -1}, "params.in_plane_g")):
         got, _ = error_of(client, "gravity.sweep", dict(extra, fixture=f))
         assert got == field
+
+
+def test_wrenchctl_supports_option(daemon, client):
+    """wrenchctl --supports JSON|FILE sends the fixture with that member:
+    push-force --set goal and gravity --in-plane-g answer as the daemon
+    does for the fixture with the member written in."""
+    import subprocess
+    import tempfile
+    wrenchctl = os.path.join(REPO, "build", "wrenchctl")
+    env = dict(os.environ, WRENCHD_SOCKET=daemon.path)
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    supports = {"points": [[1, 0.5], [3, 0.5], [1.5, 1.6]], "friction": 0.1, "g": G}
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    expected = client.result("push.force", {"fixture": dict(floating, supports=supports),
+                                            "set": "goal", "cases": none})
+    with tempfile.TemporaryDirectory() as d:
+        part = os.path.join(d, "part.json")
+        rest = os.path.join(d, "rest.json")
+        with open(part, "w") as fh:
+            json.dump(floating, fh)
+        with open(rest, "w") as fh:
+            json.dump(supports, fh)
+        for given in (json.dumps(supports), rest):
+            out = subprocess.run([wrenchctl, "--json", "push-force", part, "--set", "goal",
+                                  "--case", "wrench=0,0,0", "--supports", given],
+                                 capture_output=True, text=True, env=env, timeout=120)
+            assert out.returncode == 0, out.stderr
+            got = json.loads(out.stdout)["least"]
+            assert abs(got["force"] - expected["least"]["force"]) <= 1e-12 * got["force"]
+        disc = os.path.join(d, "disc.json")
+        with open(disc, "w") as fh:
+            json.dump(FX.disc_corner(0.5), fh)
+        rest = json.dumps({"points": BUTTONS, "friction": 0.3, "g": G})
+        out = subprocess.run([wrenchctl, "gravity", disc, "--supports", rest, "--in-plane-g", "20"],
+                             capture_output=True, text=True, env=env, timeout=120)
+        assert out.returncode == 0, out.stderr
+        assert "215.0268" in out.stdout and "234.9731" in out.stdout, out.stdout
+        bad = subprocess.run([wrenchctl, "gravity", disc, "--supports", "[1]"],
+                             capture_output=True, text=True, env=env, timeout=60)
+        assert bad.returncode != 0 and "--supports" in bad.stderr, bad.stderr
