@@ -149,6 +149,14 @@ def test_python_client_least_force_on_the_plate(daemon):
                           sets=["goal"])
         expected = 0.3 * G * math.sqrt(10)
         assert abs(r["all"]["goal"]["least"] - expected) < 1e-7 * expected
+        # The tilt on the plate: the disc's arc for a pull of 20 (see
+        # test_tilt_of_the_disc_on_buttons for its closed form).
+        d = math.degrees(math.asin(0.3 * G / 20))
+        edge = math.degrees(math.atan(0.5))
+        (lo, hi), = c.gravity_sweep(f, "goal", in_plane_g=20)
+        assert abs(lo - (180 + edge + d)) < 1e-5 and abs(hi - (270 - edge - d)) < 1e-5
+        whole = c.tilt_on_supports(f, 20)
+        assert whole["intervals_deg"] == [[lo, hi]] and len(whole["undecided_deg"]) <= 2
 
 
 def test_units_millimetres_and_newtons(client):
