@@ -416,6 +416,41 @@ static void write_force_or_null(wp_writer *out, const wr_fixture *f, double forc
         wp_write_null(out);
 }
 
+/* On supports (wr_support.h) push.force finds the least push that seats
+ * the part (set "goal") along a polygon's straight edges, for a point
+ * finger: false with the error set otherwise. */
+static bool supports_least_ok(wp_call *call, const wr_fixture *f, wr_set set, double radius)
+{
+    if (!f->supports)
+        return true;
+    const char *why = set != WR_SET_GOAL ? "params.set"
+                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                      : radius > 0 ? "params.finger_radius"
+                                   : NULL;
+    if (!why)
+        return true;
+    wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                 "the fixture rests on supports: push.force finds the least push that seats it "
+                 "(set \"goal\"), along a polygon's straight edges, for a point finger; whether "
+                 "the seated part is held is wrench.classify's \"strong\" with that push");
+    return false;
+}
+
+/* F* at one point of the outline: the floating part's, or on supports
+ * the least from outside (a push just above it seats). */
+static wr_status least_at(const wp_call *call, const wr_analysis *a, wr_set set,
+                          const double (*loads)[3], int case_count, const double push[3],
+                          double *force)
+{
+    const wr_supports *supports = wr_analysis_fixture(a)->supports;
+    if (!supports)
+        return wr_least_force_at(a, set, loads, case_count, push, force);
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    double lower;
+    return env ? wr_supports_least_force(a, supports, env, loads, case_count, push, force, &lower)
+               : WR_LP_FAILED;
+}
+
 /* A stop that the caller's stop or a deadline asks for. */
 typedef struct deadline_stop {
     const wr_stop *caller;
@@ -457,12 +492,9 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return false;
-    if (wp_supports_refuse(call, use->fixture, "params.fixture",
-                           "the push at a point to force.range, whose \"least\" is the least "
-                           "force there on the plate: the least over the outline is found for a "
-                           "part floating in its plane"))
-        return false;
     const wr_fixture *f = use->fixture;
+    if (!supports_least_ok(call, f, set, radius))
+        return false;
     if (f->shape == WR_SHAPE_NONE) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
                      "a push force needs the part's outline: the fixture has no shape");
@@ -497,9 +529,15 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     const wr_stop stop = {deadline_or_caller, &by};
     wr_least_force least = {0};
     bool partial = false;
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
     if (status == WR_OK)
-        status = wr_least_force_find(use->analysis, set, (const double (*)[3])loads, cases.count,
-                                     &finger, &stop, &least);
+        status = f->supports
+                     ? (env ? wr_supports_least_force_find(use->analysis, f->supports, env,
+                                                           (const double (*)[3])loads, cases.count,
+                                                           &finger, &stop, &least)
+                            : WR_LP_FAILED)
+                     : wr_least_force_find(use->analysis, set, (const double (*)[3])loads,
+                                           cases.count, &finger, &stop, &least);
     if (status == WR_STOPPED && !wr_stop_requested(call->host->stop)) {
         status = WR_OK;
         partial = true;
@@ -563,8 +601,8 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
             wr_push_wrench(f, e, t, push);
             values[j] = INFINITY;
             if (reached)
-                status = wr_least_force_at(use->analysis, set, (const double (*)[3])loads,
-                                           cases.count, push, &values[j]);
+                status = least_at(call, use->analysis, set, (const double (*)[3])loads,
+                                  cases.count, push, &values[j]);
         }
         free(blocked);
         if (wr_stop_requested(call->host->stop))
