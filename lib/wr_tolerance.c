@@ -791,25 +791,114 @@ void wr_robust_free(wr_robust *robust)
     free(robust);
 }
 
-/* The signed distance of unit x to constraint c's cone on the fixture at
- * the box's centre (+inf for a cone empty there).  The centre's fixture in
- * *centre_s, *centre_tilt. */
-static wr_status centre_distance(const wr_robust *rb, const wr_constraint *c, const box *b,
-                                 const double x[3], double *s, double *tilt, double *distance)
+/* The signed distance of unit x to constraint c's cone on the fixture of
+ * the set at (s, tilt) (+inf for a cone empty there). */
+static wr_status distance_at(const wr_robust *rb, const wr_constraint *c, const double *s,
+                             const double *tilt, const double x[3], double *distance)
 {
-    const wr_fixture *f = rb->fixture;
-    for (int i = 0; i < f->fixel_count; i++) {
-        s[i] = 0.5 * (b->s[i][0] + b->s[i][1]);
-        tilt[i] = 0.5 * (b->tilt[i][0] + b->tilt[i][1]);
-    }
     wr_fixture moved;
-    wr_tolerance_perturb(f, s, tilt, &moved);
+    wr_tolerance_perturb(rb->fixture, s, tilt, &moved);
     wr_cone cone;
     wr_status status = wr_cone_build(&cone, &moved, c);
     if (status == WR_OK)
         *distance = cone.empty ? INFINITY : wr_cone_signed_distance(&cone, x, NULL);
     wr_cone_release(&cone);
     return status;
+}
+
+/* The same at the box's centre, which goes to *s, *tilt. */
+static wr_status centre_distance(const wr_robust *rb, const wr_constraint *c, const box *b,
+                                 const double x[3], double *s, double *tilt, double *distance)
+{
+    for (int i = 0; i < rb->fixture->fixel_count; i++) {
+        s[i] = 0.5 * (b->s[i][0] + b->s[i][1]);
+        tilt[i] = 0.5 * (b->tilt[i][0] + b->tilt[i][1]);
+    }
+    return distance_at(rb, c, s, tilt, x, distance);
+}
+
+/* The coordinates of the set that move constraint c's rows: each fixel's
+ * position and tilt, where its letter is not u and its range not a point. */
+#define WITNESS_MAX_DIMS 8
+typedef struct coordinate {
+    int fixel;
+    bool tilt;
+    double lo, hi;
+} coordinate;
+
+static int coordinates_of(const wr_robust *rb, const wr_constraint *c, const box *whole,
+                          coordinate *out)
+{
+    int n = 0;
+    for (int i = 0; i < rb->fixture->fixel_count; i++) {
+        if (c->letters[i] == 'u')
+            continue;
+        for (int tilt = 0; tilt < 2; tilt++) {
+            const double *range = tilt ? whole->tilt[i] : whole->s[i];
+            if (range[1] > range[0] && n < WITNESS_MAX_DIMS)
+                out[n++] = (coordinate){i, tilt, range[0], range[1]};
+        }
+    }
+    return n;
+}
+
+/* A deepest point of x in c's cone over the set, searched for where the
+ * boxes' centres reach slowly: worst cases sit at the set's corners (a row
+ * moves monotonically with a coordinate over most of its range), or near
+ * one.  Each corner of the whole set (up to 2^WITNESS_MAX_DIMS), then a
+ * descent from the deepest point found so far (*s, *tilt, *depth on entry
+ * and exit): each coordinate moved by +-h within its range while that
+ * deepens, h halved from half the range down to 1e-13 of it.  This finds
+ * witnesses, it proves nothing: a point it finds is a fixture of the set
+ * whose own answer wr_robust_classify confirms. */
+static wr_status search_witness(const wr_robust *rb, const wr_constraint *c, const double x[3],
+                                double *s, double *tilt, double *depth)
+{
+    box whole;
+    whole_box(rb, &whole);
+    coordinate dims[WITNESS_MAX_DIMS];
+    int nd = coordinates_of(rb, c, &whole, dims);
+    if (nd == 0)
+        return WR_OK;
+    double ts[WR_MAX_FIXELS], tt[WR_MAX_FIXELS], d;
+    for (unsigned corner = 0; corner < 1u << nd; corner++) {
+        memcpy(ts, s, sizeof ts);
+        memcpy(tt, tilt, sizeof tt);
+        for (int k = 0; k < nd; k++)
+            (dims[k].tilt ? tt : ts)[dims[k].fixel] = corner >> k & 1 ? dims[k].hi : dims[k].lo;
+        wr_status status = distance_at(rb, c, ts, tt, x, &d);
+        if (status != WR_OK)
+            return status;
+        if (d < *depth) {
+            *depth = d;
+            memcpy(s, ts, sizeof ts);
+            memcpy(tilt, tt, sizeof tt);
+        }
+    }
+    for (double h = 0.5; h > 1e-13; h *= 0.5) {
+        bool moved = true;
+        while (moved) {
+            moved = false;
+            for (int k = 0; k < nd; k++)
+                for (int sign = -1; sign <= 1; sign += 2) {
+                    memcpy(ts, s, sizeof ts);
+                    memcpy(tt, tilt, sizeof tt);
+                    double *v = &(dims[k].tilt ? tt : ts)[dims[k].fixel];
+                    *v = fmin(dims[k].hi,
+                              fmax(dims[k].lo, *v + sign * h * (dims[k].hi - dims[k].lo)));
+                    wr_status status = distance_at(rb, c, ts, tt, x, &d);
+                    if (status != WR_OK)
+                        return status;
+                    if (d < *depth) {
+                        *depth = d;
+                        memcpy(s, ts, sizeof ts);
+                        memcpy(tilt, tt, sizeof tt);
+                        moved = true;
+                    }
+                }
+        }
+    }
+    return WR_OK;
 }
 
 /* Split b in two along its widest side (positions measured against the
@@ -871,6 +960,8 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
     *least = nominal;
     int result = CONE_CLEAR;
     int examined = 0;
+    /* The deepest box centre met: where the witness search starts. */
+    double deep_s[WR_MAX_FIXELS] = {0}, deep_tilt[WR_MAX_FIXELS] = {0}, deepest = INFINITY;
     while (count > 0) {
         int pick = 0;
         for (int i = 1; i < count; i++)
@@ -902,6 +993,11 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
                 break;
             }
             *least = fmin(*least, d);
+            if (d < deepest) {
+                deepest = d;
+                memcpy(deep_s, cs, sizeof cs);
+                memcpy(deep_tilt, ct, sizeof ct);
+            }
             if (d < -tolerance) {
                 memcpy(s, cs, sizeof cs);
                 memcpy(tilt, ct, sizeof ct);
@@ -922,6 +1018,16 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
         queue[count++] = two;
     }
     free(queue);
+    if (result == CONE_UNDECIDED && point) {
+        if (search_witness(rb, c, point, deep_s, deep_tilt, &deepest) != WR_OK)
+            return CONE_FAILED;
+        *least = fmin(*least, deepest);
+        if (deepest < -tolerance) {
+            memcpy(s, deep_s, sizeof deep_s);
+            memcpy(tilt, deep_tilt, sizeof deep_tilt);
+            result = CONE_WITNESS;
+        }
+    }
     return result;
 }
 

@@ -349,6 +349,70 @@ static void test_force_closed_form(void **state)
     wr_fixture_free(f);
 }
 
+/* The nominal margin of wrench w on the frictionless plate's fixture at
+ * (s, 0), built here. */
+static double plate_margin(const double s[3], const double w[3], wr_set set)
+{
+    wr_fixture *g = plate_sample(0, s, (const double[3]){0, 0, 0});
+    assert_non_null(g);
+    wr_analysis *a = test_analysis_new(g);
+    wr_answer answer;
+    assert_int_equal(wr_classify(a, w, set, WR_DEFAULT_TOLERANCE, &answer), WR_OK);
+    wr_analysis_free(a);
+    wr_fixture_free(g);
+    return answer.margin;
+}
+
+/* Near the robust boundary of the frictionless plate, |tau| = b (1 - T) -
+ * a T (the closed form above).  Just outside it, 1e-8 of torque beyond
+ * (a scaled margin of -4.9e-9), the answer is outside, its witness
+ * confirmed here.  Just inside it the answer is never outside, and where
+ * it is not proved inside its margin is that of a fixture of the set: no
+ * less than the worst over the set's corners (each built here), where the
+ * closed form puts the worst case. */
+static void test_band(void **state)
+{
+    (void)state;
+    const double T = 0.1, fa = 0.5, fb = 1, edge = fb * (1 - T) - fa * T;
+    wr_fixture *f = plate(0, PLATE_AT, NULL);
+    assert_non_null(f);
+    set_tolerance(f, T, 0);
+    wr_analysis *a = test_analysis_new(f);
+    wr_robust *rb;
+    assert_int_equal(wr_robust_new(a, 0, &rb), WR_OK);
+    static const double offsets[] = {1e-8, 1e-7, -1e-8, -1e-6};
+    for (size_t i = 0; i < sizeof offsets / sizeof *offsets; i++)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            double tau = sign * (edge + offsets[i]);
+            double w[3] = {-fa, -fb, tau};
+            wr_robust_answer r;
+            assert_int_equal(wr_robust_classify(rb, w, WR_SET_GOAL, WR_DEFAULT_TOLERANCE, &r),
+                             WR_OK);
+            if (offsets[i] > 0) {
+                assert_int_equal(r.answer.verdict, WR_VERDICT_OUTSIDE);
+                check_witness(0, T, 0, &r, w, WR_SET_GOAL);
+                continue;
+            }
+            assert_int_not_equal(r.answer.verdict, WR_VERDICT_OUTSIDE);
+            double worst = INFINITY;
+            for (int corner = 0; corner < 8; corner++) {
+                double s[3];
+                for (int k = 0; k < 3; k++)
+                    s[k] = corner >> k & 1 ? T : -T;
+                worst = fmin(worst, plate_margin(s, w, WR_SET_GOAL));
+            }
+            assert_true(worst > 0 && worst < 1e-5);
+            if (r.answer.verdict == WR_VERDICT_BOUNDARY)
+                assert_true(r.answer.margin >= worst * (1 - 1e-9) &&
+                            r.answer.margin <= worst * (1 + 1e-6));
+            print_message("tau %.10g: verdict %d, margin %g, worst at the corners %g\n", tau,
+                          r.answer.verdict, r.answer.margin, worst);
+        }
+    wr_robust_free(rb);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+}
+
 static void test_refusals(void **state)
 {
     (void)state;
@@ -386,6 +450,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_closed_form),
+        cmocka_unit_test(test_band),
         cmocka_unit_test(test_sampling_plate),
         cmocka_unit_test(test_regions),
         cmocka_unit_test(test_force_closed_form),
