@@ -13,9 +13,12 @@
  * conditions (y . g <= 0, |y|_1 <= 1, y . x >= t) are bounded over B by
  * interval arithmetic on the rows and edges, which makes them linear in
  * (lambda, mu): an LP whose optimum t > tolerance proves that x is farther
- * than t from G_X(theta) for every theta in B (|y|_2 <= |y|_1).  Boxes
+ * than t from G_X(theta) for every theta in B (|y|_2 <= |y|_1).  A box
+ * the LP does not prove is tried with certificates made of the rows
+ * themselves (certify_turning), which follow them across the box.  Boxes
  * that no certificate covers are split; the centre of each is a fixture
- * of the set, and x deep in its cone is the witness of `outside`. */
+ * of the set, and x deep in its cone is the witness of `outside`, searched
+ * for at the set's corners too (search_witness). */
 #include "wr_tolerance.h"
 
 #include "wr_internal.h"
@@ -442,6 +445,187 @@ static double check_certificate(const system_t *sys, const ivec *x, const certif
         lower -= v[2 * ne + q] * ivec_dot(&sys->inequality[q], x).hi;
     /* Rounding in these sums: a proof must clear it. */
     return norm > 0 && lower > 0 ? lower / norm * (1 - 1e-12) : -1;
+}
+
+static iv det3(const ivec *r0, const ivec *r1, const ivec *r2);
+
+/* ---- certificates that turn with the perturbation -----------------------
+ * A fixed (lambda, mu) loses to first order in the box's width along every
+ * coordinate that moves a row it uses, even where the margin does not
+ * move: near the robust boundary such a coordinate would need boxes as
+ * narrow as the margin.  These certificates are built from the rows
+ * themselves, so that the conditions that hold with equality at the
+ * optimum hold identically over the box.  G_X° = Q_X° ∩ K_X°, with
+ * Q_X° = span(E) + cone(-F) and K_X° = {y : y . g <= 0 for every edge}.
+ * Its extreme rays are
+ *   (a) a generator of Q_X° (+-E_e, -F_q) with y . g <= 0 for every edge;
+ *   (b) in the plane of two generators a, b of Q_X°, orthogonal to an
+ *       edge g_k: y = sigma (g_k x (a x b)) = sigma (a (g_k . b) - b (g_k . a)),
+ *       in Q_X° when the coefficient of each of a, b that is some -F_q is
+ *       >= 0, and y . g_k = 0 identically;
+ *   (c) orthogonal to two edges: y = sigma (g_k x g_m), in Q_X° when it
+ *       is a combination of three independent generators of Q_X° whose
+ *       coefficients (Cramer's rule) have the signs they must.
+ * Each is a function of the rows; over a box its conditions (the sign of
+ * each coefficient that must have one, y . g <= 0 for every other edge)
+ * are checked by interval arithmetic, and a y valid over the box proves
+ * that every x of the family is at least (y . x)_lo / |y|_1,hi from G_X:
+ * the distance is the largest y . x over y in G_X° with |y|_2 <= 1, and
+ * |y|_2 <= |y|_1.  A combination of such y's proves no more than the best
+ * one with this bound on its norm, so the best single ratio is taken.
+ * Built from cross products, such a y involves only the rows of the face
+ * it stands for: a fixel that does not move the face does not enter it. */
+
+static double ivec_norm1_hi(const ivec *y)
+{
+    double n = 0;
+    for (int j = 0; j < 3; j++)
+        n += fmax(fabs(y->v[j].lo), fabs(y->v[j].hi));
+    return n;
+}
+
+static bool ivec_same(const ivec *a, const ivec *b)
+{
+    for (int j = 0; j < 3; j++)
+        if (a->v[j].lo != b->v[j].lo || a->v[j].hi != b->v[j].hi)
+            return false;
+    return true;
+}
+
+static ivec ivec_cross(const ivec *a, const ivec *b)
+{
+    ivec r;
+    r.v[0] = iv_sub(iv_mul(a->v[1], b->v[2]), iv_mul(a->v[2], b->v[1]));
+    r.v[1] = iv_sub(iv_mul(a->v[2], b->v[0]), iv_mul(a->v[0], b->v[2]));
+    r.v[2] = iv_sub(iv_mul(a->v[0], b->v[1]), iv_mul(a->v[1], b->v[0]));
+    return r;
+}
+
+static iv iv_neg(iv a) { return (iv){-a.hi, -a.lo}; }
+
+/* (g . b)(h . c) - (g . c)(h . b): det(g x h, b, c). */
+static iv cross_det(const ivec *g, const ivec *h, const ivec *b, const ivec *c)
+{
+    return iv_sub(iv_mul(ivec_dot(g, b), ivec_dot(h, c)), iv_mul(ivec_dot(g, c), ivec_dot(h, b)));
+}
+
+/* Is sigma (g x h) in Q_X° over the box: a combination of three
+ * generators of Q_X° whose determinant is bounded away from 0, with the
+ * coefficient of each that is some -F_q provably >= 0 (Cramer's rule:
+ * the coefficient of a is det(y, b, c) / det(a, b, c), and so round)? */
+static bool cross_in_polar(const ivec *gen, const bool *free_sign, int n, const ivec *g,
+                           const ivec *h, int sigma)
+{
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++)
+            for (int c = b + 1; c < n; c++) {
+                iv d = det3(&gen[a], &gen[b], &gen[c]);
+                if (!(d.lo > 0 || d.hi < 0))
+                    continue;
+                int order[3][3] = {{a, b, c}, {b, c, a}, {c, a, b}};
+                bool ok = true;
+                for (int r = 0; ok && r < 3; r++) {
+                    if (free_sign[order[r][0]])
+                        continue;
+                    iv num = cross_det(g, h, &gen[order[r][1]], &gen[order[r][2]]);
+                    if (sigma < 0)
+                        num = iv_neg(num);
+                    ok = d.lo > 0 ? num.lo >= 0 : num.hi <= 0;
+                }
+                if (ok)
+                    return true;
+            }
+    return false;
+}
+
+/* The best distance these certificates prove over the box of `sys` for
+ * every x of the family, or -1. */
+static double certify_turning(const system_t *sys, const ivec *x)
+{
+    int ne = sys->equality_count, nf = sys->inequality_count, ng = sys->edge_count;
+    /* Q_X°'s generators: the equality rows (either sign: `free`), minus
+     * the inequality rows. */
+    ivec gen[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1];
+    bool free_sign[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1];
+    int n = 0;
+    for (int e = 0; e < ne; e++) {
+        gen[n] = sys->equality[e];
+        free_sign[n++] = true;
+    }
+    for (int q = 0; q < nf; q++) {
+        gen[n] = ivec_neg(&sys->inequality[q]);
+        free_sign[n++] = false;
+    }
+    double best = -1;
+    /* (a) */
+    for (int a = 0; a < n; a++)
+        for (int sigma = -1; sigma <= 1; sigma += 2) {
+            if (sigma < 0 && !free_sign[a])
+                continue;
+            ivec y = sigma > 0 ? gen[a] : ivec_neg(&gen[a]);
+            bool valid = true;
+            for (int m = 0; valid && m < ng; m++)
+                valid = ivec_dot(&y, &sys->edge[m]).hi <= 0;
+            iv p = ivec_dot(&y, x);
+            double norm = ivec_norm1_hi(&y);
+            if (valid && p.lo > 0 && norm > 0)
+                best = fmax(best, p.lo / norm);
+        }
+    /* (b) */
+    for (int k = 0; k < ng; k++)
+        for (int a = 0; a < n; a++)
+            for (int b = a + 1; b < n; b++) {
+                iv da = ivec_dot(&sys->edge[k], &gen[a]), db = ivec_dot(&sys->edge[k], &gen[b]);
+                for (int sigma = -1; sigma <= 1; sigma += 2) {
+                    iv ca = sigma > 0 ? db : iv_neg(db), cb = sigma > 0 ? iv_neg(da) : da;
+                    if ((!free_sign[a] && ca.lo < 0) || (!free_sign[b] && cb.lo < 0))
+                        continue;
+                    bool valid = true;
+                    for (int m = 0; valid && m < ng; m++) {
+                        if (m == k || ivec_same(&sys->edge[m], &sys->edge[k]))
+                            continue; /* y . g_k = 0 identically */
+                        iv v = iv_add(iv_mul(ca, ivec_dot(&gen[a], &sys->edge[m])),
+                                      iv_mul(cb, ivec_dot(&gen[b], &sys->edge[m])));
+                        valid = v.hi <= 0;
+                    }
+                    if (!valid)
+                        continue;
+                    ivec y;
+                    for (int j = 0; j < 3; j++)
+                        y.v[j] = iv_add(iv_mul(ca, gen[a].v[j]), iv_mul(cb, gen[b].v[j]));
+                    iv p = iv_add(iv_mul(ca, ivec_dot(&gen[a], x)),
+                                  iv_mul(cb, ivec_dot(&gen[b], x)));
+                    double norm = ivec_norm1_hi(&y);
+                    if (p.lo > 0 && norm > 0)
+                        best = fmax(best, p.lo / norm);
+                }
+            }
+    /* (c) */
+    for (int k = 0; k < ng; k++)
+        for (int m = k + 1; m < ng; m++) {
+            if (ivec_same(&sys->edge[m], &sys->edge[k]))
+                continue;
+            for (int sigma = -1; sigma <= 1; sigma += 2) {
+                bool valid = true;
+                for (int o = 0; valid && o < ng; o++) {
+                    if (ivec_same(&sys->edge[o], &sys->edge[k]) ||
+                        ivec_same(&sys->edge[o], &sys->edge[m]))
+                        continue;
+                    iv d = det3(&sys->edge[k], &sys->edge[m], &sys->edge[o]);
+                    valid = (sigma > 0 ? d.hi : -d.lo) <= 0;
+                }
+                if (!valid || !cross_in_polar(gen, free_sign, n, &sys->edge[k], &sys->edge[m],
+                                              sigma))
+                    continue;
+                ivec y = ivec_cross(&sys->edge[k], &sys->edge[m]);
+                iv p = det3(&sys->edge[k], &sys->edge[m], x);
+                p = sigma > 0 ? p : iv_neg(p);
+                double norm = ivec_norm1_hi(&y);
+                if (p.lo > 0 && norm > 0)
+                    best = fmax(best, p.lo / norm);
+            }
+        }
+    return best * (1 - 1e-12);
 }
 
 /* The certificate LP of the file's comment over one box: the largest t
@@ -977,6 +1161,8 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
         double t = cache ? check_certificate(&sys, x, cache) : -1;
         if (!(t > tolerance))
             t = certify(&sys, x, cache);
+        if (!isnan(t) && !(t > tolerance))
+            t = fmax(t, certify_turning(&sys, x));
         if (isnan(t)) {
             result = CONE_FAILED;
             break;

@@ -7,7 +7,8 @@
  * and then tilted by up to A.  A robust answer is `inside` only when the
  * nominal answer's margin exceeds the tolerance for every fixture of the
  * set (proved by a dual certificate per excluded cone over boxes of the
- * set, refined by subdivision), `outside` only with a fixture of the set
+ * set, refined by subdivision; one made of the rows themselves where a
+ * fixed one cannot follow them), `outside` only with a fixture of the set
  * (the witness) whose own answer is `outside`, and `boundary` otherwise.
  *
  * A wr_robust is immutable once built; any number of threads may use it.
