@@ -1613,3 +1613,38 @@ wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3]
     }
     return WR_OK;
 }
+
+wr_status wr_robust_least_force_at(const wr_robust *rb, wr_set set, const double (*loads)[3],
+                                   int case_count, const double push[3], const wr_stop *stop,
+                                   double *force)
+{
+    *force = INFINITY;
+    wr_forces all = {0}, nominal = {0}, robust = {0}, meet = {0};
+    wr_status status = WR_OK;
+    for (int c = 0; status == WR_OK && c < case_count; c++) {
+        status = wr_force_range(rb->analysis, set, loads[c], push, 0, INFINITY, &nominal);
+        if (status == WR_OK)
+            status = wr_robust_forces(rb, set, loads[c], push, &nominal, stop, &robust);
+        if (status != WR_OK)
+            break;
+        if (c > 0) {
+            status = wr_forces_intersect(&all, &robust, &meet);
+            wr_forces swap = all;
+            all = meet;
+            meet = swap;
+        } else {
+            wr_forces swap = all;
+            all = robust;
+            robust = swap;
+        }
+        if (all.count == 0)
+            break; /* no magnitude for the cases so far */
+    }
+    if (status == WR_OK && all.count > 0)
+        *force = all.items[0].lo;
+    wr_forces_release(&all);
+    wr_forces_release(&nominal);
+    wr_forces_release(&robust);
+    wr_forces_release(&meet);
+    return status;
+}

@@ -112,6 +112,18 @@ wr_status wr_robust_forces(const wr_robust *robust, wr_set set, const double loa
                            const double push[3], const wr_forces *nominal, const wr_stop *stop,
                            wr_forces *out);
 
+/* The robust F*(p): the least magnitude of the proved robust ones
+ * (wr_robust_forces of each case's nominal good magnitudes, intersected
+ * over the cases) with which `push` (as wr_least_force_at's) does the
+ * set's job under every case on every fixture of the set; INFINITY when
+ * none is proved.  It is at least the nominal fixture's F*(p), and above
+ * the least robust magnitude by at most the bisection's resolution: a
+ * push of that force works on every fixture of the set.  WR_OK;
+ * WR_INVALID (as wr_force_range); WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY. */
+wr_status wr_robust_least_force_at(const wr_robust *robust, wr_set set,
+                                   const double (*loads)[3], int case_count,
+                                   const double push[3], const wr_stop *stop, double *force);
+
 #ifdef __cplusplus
 }
 #endif
