@@ -556,48 +556,56 @@ static double certify_turning(const system_t *sys, const ivec *x)
         gen[n] = ivec_neg(&sys->inequality[q]);
         free_sign[n++] = false;
     }
+    /* Each candidate's ratio is cheap; its conditions are checked only
+     * when it would beat the best so far. */
+    iv gx[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1];
+    iv ge[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1][2 * WR_MAX_FIXELS];
+    for (int a = 0; a < n; a++) {
+        gx[a] = ivec_dot(&gen[a], x);
+        for (int m = 0; m < ng; m++)
+            ge[a][m] = ivec_dot(&gen[a], &sys->edge[m]);
+    }
     double best = -1;
     /* (a) */
     for (int a = 0; a < n; a++)
         for (int sigma = -1; sigma <= 1; sigma += 2) {
             if (sigma < 0 && !free_sign[a])
                 continue;
-            ivec y = sigma > 0 ? gen[a] : ivec_neg(&gen[a]);
+            iv p = sigma > 0 ? gx[a] : iv_neg(gx[a]);
+            double norm = ivec_norm1_hi(&gen[a]);
+            if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
+                continue;
             bool valid = true;
             for (int m = 0; valid && m < ng; m++)
-                valid = ivec_dot(&y, &sys->edge[m]).hi <= 0;
-            iv p = ivec_dot(&y, x);
-            double norm = ivec_norm1_hi(&y);
-            if (valid && p.lo > 0 && norm > 0)
-                best = fmax(best, p.lo / norm);
+                valid = (sigma > 0 ? ge[a][m].hi : -ge[a][m].lo) <= 0;
+            if (valid)
+                best = p.lo / norm;
         }
     /* (b) */
     for (int k = 0; k < ng; k++)
         for (int a = 0; a < n; a++)
             for (int b = a + 1; b < n; b++) {
-                iv da = ivec_dot(&sys->edge[k], &gen[a]), db = ivec_dot(&sys->edge[k], &gen[b]);
+                iv da = ge[a][k], db = ge[b][k];
                 for (int sigma = -1; sigma <= 1; sigma += 2) {
                     iv ca = sigma > 0 ? db : iv_neg(db), cb = sigma > 0 ? iv_neg(da) : da;
                     if ((!free_sign[a] && ca.lo < 0) || (!free_sign[b] && cb.lo < 0))
+                        continue;
+                    ivec y;
+                    for (int j = 0; j < 3; j++)
+                        y.v[j] = iv_add(iv_mul(ca, gen[a].v[j]), iv_mul(cb, gen[b].v[j]));
+                    iv p = iv_add(iv_mul(ca, gx[a]), iv_mul(cb, gx[b]));
+                    double norm = ivec_norm1_hi(&y);
+                    if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
                         continue;
                     bool valid = true;
                     for (int m = 0; valid && m < ng; m++) {
                         if (m == k || ivec_same(&sys->edge[m], &sys->edge[k]))
                             continue; /* y . g_k = 0 identically */
-                        iv v = iv_add(iv_mul(ca, ivec_dot(&gen[a], &sys->edge[m])),
-                                      iv_mul(cb, ivec_dot(&gen[b], &sys->edge[m])));
+                        iv v = iv_add(iv_mul(ca, ge[a][m]), iv_mul(cb, ge[b][m]));
                         valid = v.hi <= 0;
                     }
-                    if (!valid)
-                        continue;
-                    ivec y;
-                    for (int j = 0; j < 3; j++)
-                        y.v[j] = iv_add(iv_mul(ca, gen[a].v[j]), iv_mul(cb, gen[b].v[j]));
-                    iv p = iv_add(iv_mul(ca, ivec_dot(&gen[a], x)),
-                                  iv_mul(cb, ivec_dot(&gen[b], x)));
-                    double norm = ivec_norm1_hi(&y);
-                    if (p.lo > 0 && norm > 0)
-                        best = fmax(best, p.lo / norm);
+                    if (valid)
+                        best = p.lo / norm;
                 }
             }
     /* (c) */
@@ -605,7 +613,13 @@ static double certify_turning(const system_t *sys, const ivec *x)
         for (int m = k + 1; m < ng; m++) {
             if (ivec_same(&sys->edge[m], &sys->edge[k]))
                 continue;
+            ivec y = ivec_cross(&sys->edge[k], &sys->edge[m]);
+            iv p0 = det3(&sys->edge[k], &sys->edge[m], x);
+            double norm = ivec_norm1_hi(&y);
             for (int sigma = -1; sigma <= 1; sigma += 2) {
+                iv p = sigma > 0 ? p0 : iv_neg(p0);
+                if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
+                    continue;
                 bool valid = true;
                 for (int o = 0; valid && o < ng; o++) {
                     if (ivec_same(&sys->edge[o], &sys->edge[k]) ||
@@ -614,15 +628,9 @@ static double certify_turning(const system_t *sys, const ivec *x)
                     iv d = det3(&sys->edge[k], &sys->edge[m], &sys->edge[o]);
                     valid = (sigma > 0 ? d.hi : -d.lo) <= 0;
                 }
-                if (!valid || !cross_in_polar(gen, free_sign, n, &sys->edge[k], &sys->edge[m],
-                                              sigma))
-                    continue;
-                ivec y = ivec_cross(&sys->edge[k], &sys->edge[m]);
-                iv p = det3(&sys->edge[k], &sys->edge[m], x);
-                p = sigma > 0 ? p : iv_neg(p);
-                double norm = ivec_norm1_hi(&y);
-                if (p.lo > 0 && norm > 0)
-                    best = fmax(best, p.lo / norm);
+                if (valid && cross_in_polar(gen, free_sign, n, &sys->edge[k], &sys->edge[m],
+                                            sigma))
+                    best = p.lo / norm;
             }
         }
     return best * (1 - 1e-12);
@@ -1444,11 +1452,15 @@ static bool append_region(wr_regions *out, int edge, double t0, double t1)
 /* A family of wrenches over a parameter interval, as a box. */
 typedef void (*family_fn)(const void *context, double ta, double tb, double lo[3], double hi[3]);
 
+/* What a sink says of a piece given to it. */
+enum { KEEP_MORE, KEEP_FAILED, KEEP_ENOUGH };
+
 /* The pieces of [t0, t1], bisected down to 2^-WR_ROBUST_DEPTH of it, whose
- * family is proved robustly inside, each passed to `keep` in order. */
+ * family is proved robustly inside, each passed to `keep` in order, until
+ * it says KEEP_ENOUGH (or KEEP_FAILED: no memory). */
 static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, family_fn family,
-                        const void *context, const wr_stop *stop,
-                        bool (*keep)(void *sink, double t0, double t1), void *sink)
+                        const void *context, const wr_stop *stop, int leaf_budget,
+                        int (*keep)(void *sink, double t0, double t1), void *sink)
 {
     struct piece {
         double t0, t1;
@@ -1474,10 +1486,13 @@ static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, f
         /* A piece that one box per cone does not prove is split along the
          * family first: the boxes of the set are split (the whole budget)
          * only for the finest pieces. */
-        int budget = p.depth < WR_ROBUST_DEPTH ? 1 : rb->budget;
+        int budget = p.depth < WR_ROBUST_DEPTH ? 1 : leaf_budget;
         if (box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, caches, budget, &status)) {
-            if (!keep(sink, p.t0, p.t1))
+            int kept = keep(sink, p.t0, p.t1);
+            if (kept == KEEP_FAILED)
                 result = WR_NO_MEMORY;
+            else if (kept == KEEP_ENOUGH)
+                break;
             continue;
         }
         if (status != WR_OK) {
@@ -1512,10 +1527,10 @@ typedef struct region_sink {
     int edge;
 } region_sink;
 
-static bool keep_region(void *sink, double t0, double t1)
+static int keep_region(void *sink, double t0, double t1)
 {
     region_sink *r = sink;
-    return append_region(r->out, r->edge, t0, t1);
+    return append_region(r->out, r->edge, t0, t1) ? KEEP_MORE : KEEP_FAILED;
 }
 
 wr_status wr_robust_regions(const wr_robust *rb, wr_set set, const wr_regions *nominal,
@@ -1528,6 +1543,7 @@ wr_status wr_robust_regions(const wr_robust *rb, wr_set set, const wr_regions *n
         region_family family = {rb->fixture, region->edge, gravity};
         region_sink sink = {out, region->edge};
         wr_status status = bisect(rb, set, region->t0, region->t1, region_box, &family, stop,
+                                  rb->budget,
                                   keep_region, &sink);
         if (status != WR_OK) {
             wr_regions_release(out);
@@ -1560,34 +1576,39 @@ static void force_box(const void *context, double sa, double sb, double lo[3], d
 typedef struct force_sink {
     wr_forces *out;
     double c;
+    bool first_only; /* the least magnitude is all that is asked */
 } force_sink;
 
 static double magnitude(double s, double c) { return s >= 1 ? INFINITY : c * s / (1 - s); }
 
-static bool keep_force(void *sink, double s0, double s1)
+static int keep_force(void *sink, double s0, double s1)
 {
     force_sink *f = sink;
     wr_forces *out = f->out;
     double lo = magnitude(s0, f->c), hi = magnitude(s1, f->c);
     if (out->count > 0 && out->items[out->count - 1].hi == lo) {
         out->items[out->count - 1].hi = hi;
-        return true;
+        return KEEP_MORE;
     }
     if (out->count == out->capacity) {
         int capacity = out->capacity ? 2 * out->capacity : 8;
         wr_force_interval *items = realloc(out->items, sizeof *items * (size_t)capacity);
         if (!items)
-            return false;
+            return KEEP_FAILED;
         out->items = items;
         out->capacity = capacity;
     }
     out->items[out->count++] = (wr_force_interval){lo, hi};
-    return true;
+    return f->first_only ? KEEP_ENOUGH : KEEP_MORE;
 }
 
-wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3],
-                           const double push[3], const wr_forces *nominal, const wr_stop *stop,
-                           wr_forces *out)
+#define LEAST_LEAF_BUDGET 8
+
+/* wr_robust_forces, or with `first_only` its first interval's first
+ * piece alone (its lower end the least robust magnitude proved). */
+static wr_status robust_forces(const wr_robust *rb, wr_set set, const double load[3],
+                               const double push[3], const wr_forces *nominal,
+                               const wr_stop *stop, bool first_only, wr_forces *out)
 {
     out->count = 0;
     const wr_fixture *f = rb->fixture;
@@ -1600,18 +1621,29 @@ wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3]
     family.c = lengths[0] > 0 && lengths[1] > 0 ? lengths[0] / lengths[1] : 1;
     for (int j = 0; j < 3; j++)
         family.push[j] *= family.c;
-    force_sink sink = {out, family.c};
-    for (int i = 0; i < nominal->count; i++) {
+    force_sink sink = {out, family.c, first_only};
+    for (int i = 0; i < nominal->count && !(first_only && out->count > 0); i++) {
         const wr_force_interval *g = &nominal->items[i];
         double s0 = g->lo / (g->lo + family.c);
         double s1 = isinf(g->hi) ? 1 : g->hi / (g->hi + family.c);
-        wr_status status = bisect(rb, set, s0, s1, force_box, &family, stop, keep_force, &sink);
+        /* The least alone: a magnitude no piece proves costs every
+         * finest piece its boxes, so those get a few only (the least is
+         * then proved where fewer boxes suffice, a little higher at most). */
+        wr_status status = bisect(rb, set, s0, s1, force_box, &family, stop,
+                                  first_only ? LEAST_LEAF_BUDGET : rb->budget, keep_force, &sink);
         if (status != WR_OK) {
             out->count = 0;
             return status;
         }
     }
     return WR_OK;
+}
+
+wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3],
+                           const double push[3], const wr_forces *nominal, const wr_stop *stop,
+                           wr_forces *out)
+{
+    return robust_forces(rb, set, load, push, nominal, stop, false, out);
 }
 
 wr_status wr_robust_least_force_at(const wr_robust *rb, wr_set set, const double (*loads)[3],
@@ -1623,8 +1655,11 @@ wr_status wr_robust_least_force_at(const wr_robust *rb, wr_set set, const double
     wr_status status = WR_OK;
     for (int c = 0; status == WR_OK && c < case_count; c++) {
         status = wr_force_range(rb->analysis, set, loads[c], push, 0, INFINITY, &nominal);
+        /* One case: the first piece proved is the least (pieces come in
+         * order); with more, their intersection needs each whole. */
         if (status == WR_OK)
-            status = wr_robust_forces(rb, set, loads[c], push, &nominal, stop, &robust);
+            status = robust_forces(rb, set, loads[c], push, &nominal, stop, case_count == 1,
+                                   &robust);
         if (status != WR_OK)
             break;
         if (c > 0) {

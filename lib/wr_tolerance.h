@@ -116,9 +116,11 @@ wr_status wr_robust_forces(const wr_robust *robust, wr_set set, const double loa
  * (wr_robust_forces of each case's nominal good magnitudes, intersected
  * over the cases) with which `push` (as wr_least_force_at's) does the
  * set's job under every case on every fixture of the set; INFINITY when
- * none is proved.  It is at least the nominal fixture's F*(p), and above
- * the least robust magnitude by at most the bisection's resolution: a
- * push of that force works on every fixture of the set.  WR_OK;
+ * none is proved.  It is at least the nominal fixture's F*(p), and may
+ * lie above the least robust magnitude (the bisection's resolution; with
+ * one case the finest pieces get a few boxes each, so that a push no
+ * magnitude does is found so quickly): a push of that force works on
+ * every fixture of the set.  WR_OK;
  * WR_INVALID (as wr_force_range); WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY. */
 wr_status wr_robust_least_force_at(const wr_robust *robust, wr_set set,
                                    const double (*loads)[3], int case_count,

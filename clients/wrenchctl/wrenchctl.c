@@ -743,8 +743,11 @@ const wc_command wc_commands[] = {
      "seat it against the supports' friction; its least is the least push force on the plate.\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
     {"push-force",
-     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON, 1, 1,
+     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
+     "       [--tolerance T[,A]]",
+     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON |
+         WC_OPT_GEOMETRIC,
+     1, 1,
      "push.force", wc_push_force_request, wc_push_force_answer,
      "the least push force along the outline, and where it is least",
      "F*(p), the least force of a push along the inward normal at p that does the set's job\n"
@@ -755,6 +758,9 @@ const wc_command wc_commands[] = {
      "  --finger-radius R   only where a round finger of radius R fits\n"
      PUSH_ON_HELP("  ")
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
+     GEOMETRIC_HELP("   ")
+     "With --tolerance each F* is robust: a push of that force does the job on every such\n"
+     "fixture, and the least is the least of the samples (and of the nominal least's point).\n"
      "Exit status 0 when some push does the job, 1 when none does."},
     {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]",
      WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC, 1, 1,

@@ -208,3 +208,23 @@ def test_design_objective_force(client):
     assert "minus the least push force (N)" in r.stdout
     r = run("--local", "design", path, "--objective", "force")
     assert r.returncode == 2 and "--case" in r.stderr
+
+
+
+def test_push_force_tolerance(daemon, client, tmp_path):
+    """push-force --tolerance T,A sends the fixture inline with its
+    tolerance: the same answer as push.force asked by hand with it (a
+    small plate: every sample is a robust one)."""
+    plate = {"body": {"mass": 1.0, "shape": {"type": "polygon",
+                                             "vertices": [[0, 0], [4, 0], [4, 2], [0, 2]]}},
+             "friction": {"static": 0.3},
+             "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]}
+    path = tmp_path / "plate.json"
+    path.write_text(json.dumps(plate))
+    r = run("push-force", str(path), "--case", "gravity=9.81@270", "--json",
+            "--tolerance", "0.05,0.5", socket_path=daemon.path)
+    assert r.returncode == 0, r.stderr
+    fixture = dict(plate, tolerance={"position": 0.05, "angle": 0.5})
+    cases = [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]
+    assert same(json.loads(r.stdout), client.result("push.force", {"fixture": fixture,
+                                                                    "cases": cases}))
