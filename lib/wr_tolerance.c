@@ -1683,3 +1683,97 @@ wr_status wr_robust_least_force_at(const wr_robust *rb, wr_set set, const double
     wr_forces_release(&meet);
     return status;
 }
+
+/* ---- friction sweeps --------------------------------------------------- */
+
+/* Is the wrench robustly inside for every mu of [m0, m1]? */
+static wr_status mu_piece_inside(const wr_fixture *fixture, const wr_fixel_spec *fixels,
+                                 double ratio, const double wrench[3], wr_set set, double m0,
+                                 double m1, bool *inside)
+{
+    *inside = false;
+    wr_friction_spec friction = {.given = true, .static_mu = m1, .static_interval = m0 < m1,
+                                 .static_min = m0, .kinetic_given = true,
+                                 .kinetic_mu = ratio * m1, .kinetic_interval = m0 < m1,
+                                 .kinetic_min = ratio * m0};
+    wr_fixture placed;
+    wr_error error;
+    wr_status status = wr_fixture_place(fixture, fixels, (size_t)fixture->fixel_count, &friction,
+                                        &placed, &error);
+    if (status == WR_OK)
+        status = wr_fixture_set_tolerance(&placed, &fixture->tolerance, &error);
+    wr_analysis *analysis = NULL;
+    wr_robust *robust = NULL;
+    if (status == WR_OK)
+        status = wr_analysis_new(&placed, &analysis);
+    if (status == WR_OK)
+        status = wr_robust_new(analysis, 0, &robust);
+    wr_robust_answer answer;
+    if (status == WR_OK)
+        status = wr_robust_classify(robust, wrench, set, WR_DEFAULT_TOLERANCE, &answer);
+    if (status == WR_OK)
+        *inside = answer.answer.verdict == WR_VERDICT_INSIDE;
+    wr_robust_free(robust);
+    wr_analysis_free(analysis);
+    return status;
+}
+
+static bool append_interval(wr_intervals *out, double lo, double hi)
+{
+    if (out->count > 0 && out->items[out->count - 1][1] == lo) {
+        out->items[out->count - 1][1] = hi;
+        return true;
+    }
+    if (out->count == out->capacity) {
+        int capacity = out->capacity ? 2 * out->capacity : 8;
+        double (*items)[2] = realloc(out->items, sizeof *items * (size_t)capacity);
+        if (!items)
+            return false;
+        out->items = items;
+        out->capacity = capacity;
+    }
+    out->items[out->count][0] = lo;
+    out->items[out->count++][1] = hi;
+    return true;
+}
+
+wr_status wr_robust_sweep_wrench(const wr_fixture *fixture, const wr_fixel_spec *fixels,
+                                 double kinetic_ratio, const double wrench[3], wr_set set,
+                                 const wr_intervals *nominal, const wr_stop *stop,
+                                 wr_intervals *out)
+{
+    out->count = 0;
+    wr_status status = WR_OK;
+    for (int i = 0; status == WR_OK && i < nominal->count; i++) {
+        struct piece {
+            double m0, m1;
+            int depth;
+        } stack[2 * WR_ROBUST_DEPTH + 2];
+        int top = 0;
+        stack[top++] = (struct piece){nominal->items[i][0], nominal->items[i][1], 0};
+        while (top > 0 && status == WR_OK) {
+            struct piece p = stack[--top];
+            if (wr_stop_requested(stop)) {
+                status = WR_STOPPED;
+                break;
+            }
+            bool inside;
+            status = mu_piece_inside(fixture, fixels, kinetic_ratio, wrench, set, p.m0, p.m1,
+                                     &inside);
+            if (status != WR_OK)
+                break;
+            if (inside) {
+                if (!append_interval(out, p.m0, p.m1))
+                    status = WR_NO_MEMORY;
+            } else if (p.depth < WR_ROBUST_DEPTH) {
+                /* Left piece on top, so that pieces come out in order. */
+                double mid = 0.5 * (p.m0 + p.m1);
+                stack[top++] = (struct piece){mid, p.m1, p.depth + 1};
+                stack[top++] = (struct piece){p.m0, mid, p.depth + 1};
+            }
+        }
+    }
+    if (status != WR_OK)
+        out->count = 0;
+    return status;
+}

@@ -20,6 +20,7 @@
 #include "wr_classify.h"
 #include "wr_force.h"
 #include "wr_regions.h"
+#include "wr_sweep.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -125,6 +126,23 @@ wr_status wr_robust_forces(const wr_robust *robust, wr_set set, const double loa
 wr_status wr_robust_least_force_at(const wr_robust *robust, wr_set set,
                                    const double (*loads)[3], int case_count,
                                    const double push[3], const wr_stop *stop, double *force);
+
+/* The robust part of a wrench's nominal intervals of mu (wr_sweep_wrench
+ * of the same set on `fixture`, mu_s = mu, mu_k = kinetic_ratio mu), over
+ * `fixture`'s tolerance: each interval bisected down to
+ * 2^-WR_ROBUST_DEPTH of its length, a piece [m0, m1] kept when the wrench
+ * is robustly inside (wr_robust_classify) on the fixture with `fixels`
+ * placed again with the friction intervals mu_s in [m0, m1] and mu_k in
+ * [kinetic_ratio m0, kinetic_ratio m1]: an answer over friction intervals
+ * holds for every coefficient in them, so the piece holds for every mu of
+ * it and every fixture of the set at once.  Contiguous pieces are joined;
+ * `out` (emptied first) lies inside the robust intervals.  WR_OK;
+ * WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY; WR_INVALID (a placement
+ * refused). */
+wr_status wr_robust_sweep_wrench(const wr_fixture *fixture, const wr_fixel_spec *fixels,
+                                 double kinetic_ratio, const double wrench[3], wr_set set,
+                                 const wr_intervals *nominal, const wr_stop *stop,
+                                 wr_intervals *out);
 
 #ifdef __cplusplus
 }

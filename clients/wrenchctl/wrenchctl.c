@@ -789,9 +789,9 @@ const wc_command wc_commands[] = {
      "FIXTURE (--push SET | --gravity SET | --least-force SET --case SPEC... |\n"
      "       --wrench FX,FY,TAU... [--set SET]) [--range LO:HI] [--kinetic-ratio R]\n"
      "       [--finger-friction MU] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
-     "       [--table full|summary]",
+     "       [--table full|summary] [--tolerance T[,A]]",
      WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG |
-         WC_OPT_CASE | WC_OPT_PUSH_ON,
+         WC_OPT_CASE | WC_OPT_PUSH_ON | WC_OPT_GEOMETRIC,
      1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
@@ -817,6 +817,9 @@ const wc_command wc_commands[] = {
      "                      9 evenly spaced mu and those at the intervals' ends)\n"
      "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
+     "  --tolerance T[,A]   with --wrench: the mu where the wrench is inside for every fixture\n"
+     "                      with each contact within T along the outline, each normal tilted\n"
+     "                      by up to A degrees (the other sweeps refuse it)\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu; for the least force: when some push does it at some mu),\n"
      "1 when not."},

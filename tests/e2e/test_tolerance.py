@@ -152,7 +152,7 @@ def test_id_and_refusals(client):
         assert error["code"] == -32602 and error["data"]["field"] == field, error
         assert words in error["data"]["reason"], error
     error = client.error("friction.sweep", {"fixture": with_tolerance(PLATE, 0.01),
-                                            "wrenches": [[0, -1, 0]]})
+                                            "gravity": {"set": "goal"}})
     assert error["data"]["field"] == "params.fixture.tolerance", error
 
 
@@ -248,3 +248,38 @@ def test_push_force_robust_against_sampling(client):
                 verdict = classify(client, g, [wrench], ["both"])[0]["both"]["verdict"]
                 assert verdict == "inside", (seg_r["edge"], t, fr, g["fixels"])
     assert finite >= 3, robust
+
+
+def test_friction_sweep_wrenches_robust_against_sampling(client):
+    """friction.sweep "wrenches" over a tolerance: each robust interval of
+    mu lies inside a nominal one, and at mu sampled in it (its ends
+    included) the wrench is inside on every fixture of the set sampled
+    here, with that friction (mu_s = mu, mu_k = 0.8 mu)."""
+    T, A, ratio = 0.05, 0.5, 0.8
+    fixture = with_tolerance(PLATE, T, A)
+    wrenches = [[-0.5, -1, 0.3], [-0.3, -1, -0.5], [0.2, -1, 0.1]]
+    params = {"wrenches": wrenches, "sets": ["goal", "strong"], "range": [0, 1.5],
+              "kinetic_ratio": ratio}
+    nominal = client.result("friction.sweep", dict(params, fixture=PLATE))["results"]
+    robust = client.result("friction.sweep", dict(params, fixture=fixture))["results"]
+    rng = random.Random(5)
+    perturbations = [([(c >> i & 1) * 2 * T - T for i in range(3)], [0, 0, 0]) for c in range(8)]
+    for _ in range(6):
+        perturbations.append(([rng.uniform(-T, T) for _ in range(3)],
+                              [rng.uniform(-1, 1) * math.radians(A) for _ in range(3)]))
+    kept = 0
+    for w, rn, rr in zip(wrenches, nominal, robust):
+        for set_name in ("goal", "strong"):
+            for lo, hi in rr[set_name]:
+                assert any(a <= lo and hi <= b for a, b in rn[set_name]), (rr, rn)
+                kept += hi - lo
+                for mu in (lo, hi, rng.uniform(lo, hi)):
+                    fixtures = []
+                    for s, tilt in perturbations:
+                        g = moved(PLATE, s, tilt)
+                        g["friction"] = {"static": mu, "kinetic": ratio * mu}
+                        fixtures.append(g)
+                    for g in fixtures:
+                        v = classify(client, g, [w], [set_name])[0][set_name]["verdict"]
+                        assert v == "inside", (w, set_name, mu, g["fixels"])
+    assert kept > 0.5, robust
