@@ -17,7 +17,8 @@
  * of the search). */
 #define PROGRESS_INTERVAL_S 0.25
 
-static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force", "accuracy"};
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force", "accuracy",
+                                         "pareto"};
 
 typedef struct design_state design_state;
 
@@ -255,15 +256,16 @@ static bool read_accuracy(const cJSON *params, design_state *s, wp_error *error)
     wr_design_spec *spec = &s->spec;
     const cJSON *tolerance = cJSON_GetObjectItemCaseSensitive(params, "tolerance");
     const cJSON *features = cJSON_GetObjectItemCaseSensitive(params, "features");
-    if (spec->objective != WR_OBJECTIVE_ACCURACY) {
+    if (spec->objective != WR_OBJECTIVE_ACCURACY && spec->objective != WR_OBJECTIVE_PARETO) {
         if (tolerance || features)
             wp_error_set(error, WP_INVALID_PARAMS, tolerance ? "params.tolerance" : "params.features",
-                         "is for objective \"accuracy\"");
+                         "is for objective \"accuracy\" or \"pareto\"");
         return !(tolerance || features);
     }
     if (!tolerance) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance",
-                     "required with objective \"accuracy\": how far each locator may be off");
+                     "required with objective \"%s\": how far each locator may be off",
+                     OBJECTIVES[spec->objective]);
         return false;
     }
     if (!wp_number(tolerance, "params.tolerance", &spec->tolerance, error))
@@ -332,7 +334,8 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                 found = i;
         if (found < 0) {
             wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
-                         "must be \"margin\", \"region\", \"gravity\", \"force\" or \"accuracy\"");
+                         "must be \"margin\", \"region\", \"gravity\", \"force\", "
+                         "\"accuracy\" or \"pareto\"");
             return false;
         }
         spec->objective = (wr_objective)found;
@@ -504,7 +507,7 @@ static bool start_search(design_state *s, wp_error *error)
         /* Objective accuracy weighs its features by the worst: a copy must
          * map them onto themselves too (the pose's error alone, measured
          * about the centre of mass, every symmetry keeps). */
-        if (s->spec.objective == WR_OBJECTIVE_ACCURACY)
+        if (s->spec.objective == WR_OBJECTIVE_ACCURACY || s->spec.objective == WR_OBJECTIVE_PARETO)
             s->symmetry_count = wr_symmetry_filter_points(s->spec.features,
                                                           s->spec.feature_count, s->body->size,
                                                           s->symmetries, s->symmetry_count);
@@ -846,6 +849,19 @@ static void write_design(design_state *s, wp_writer *out, const wr_design *d, in
                                : d->score);
     if (accuracy) /* the worst locating error, whose negative is the score */
         wp_write_member_number(out, "accuracy", -d->score + 0.0);
+    if (s->spec.objective == WR_OBJECTIVE_PARETO) {
+        /* The three figures the front is made on. */
+        wp_write_key(out, "pareto");
+        wp_write_object(out);
+        wp_write_member_number(out, "margin", d->pareto[0] + 0.0);
+        wp_write_member_number(out, "accuracy", d->pareto[1] + 0.0);
+        wp_write_key(out, "force");
+        if (isfinite(d->pareto[2]))
+            wp_write_number(out, wp_force_out(s->body, d->pareto[2]));
+        else
+            wp_write_null(out);
+        wp_write_object_end(out);
+    }
     wp_write_member_number(out, "copies", d->copies);
     wp_write_object_end(out);
 }

@@ -538,6 +538,50 @@ def test_design_accuracy_against_brute_force(client, features):
         assert d["accuracy"] == pytest.approx(-score, rel=1e-9, abs=1e-15)
 
 
+def test_design_pareto_against_brute_force(client):
+    """fixture.design with objective pareto against the front made here:
+    every candidate's three figures asked of the other objectives (margin,
+    accuracy, force, each listing every candidate it scores), the front the
+    candidates no other beats on all three together, each listed with its
+    figures."""
+    t = 0.01
+    cases = [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]
+    base = {"body": CHAMFERED, "friction": 0.1, "sites": [{"at": s} for s in SITES],
+            "top": 84}
+    figures = {}
+    for objective, extra in (("margin", {}), ("accuracy", {"tolerance": t}),
+                             ("force", {"cases": cases})):
+        answer = client.result("fixture.design", dict(base, objective=objective, **extra))
+        figures[objective] = {d["candidate"]: d for d in answer["designs"]}
+    scored = set(figures["margin"]) & set(figures["accuracy"])
+    three = {}
+    for c in scored:
+        force = figures["force"].get(c)
+        three[c] = (figures["margin"][c]["score"], figures["accuracy"][c]["accuracy"],
+                    -force["score"] if force else math.inf)
+
+    def beats(a, b):
+        return (a[0] >= b[0] and a[1] <= b[1] and a[2] <= b[2]) and a != b
+
+    front = {c for c in three if not any(beats(three[o], three[c]) for o in three)}
+    answer = client.result("fixture.design", dict(base, objective="pareto", tolerance=t,
+                                                  cases=cases))
+    assert answer["objective"] == "pareto"
+    got = {d["candidate"]: d for d in answer["designs"]}
+    assert set(got) == front and 1 < len(front) < len(three), (sorted(got), sorted(front))
+    margins = [d["pareto"]["margin"] for d in answer["designs"]]
+    assert margins == sorted(margins, reverse=True)
+    for c, d in got.items():
+        m, a, f = three[c]
+        assert d["pareto"]["margin"] == pytest.approx(m, rel=1e-12, abs=1e-15)
+        assert d["pareto"]["accuracy"] == pytest.approx(a, rel=1e-12, abs=1e-15)
+        if math.isinf(f):
+            assert d["pareto"]["force"] is None
+        else:
+            assert d["pareto"]["force"] == pytest.approx(f, rel=1e-9)
+        assert d["score"] == d["pareto"]["margin"]
+
+
 def locate_rho_squared(client):
     put = client.result("fixture.put", {"fixture": {"body": CHAMFERED,
                                                     "friction": {"static": 0.1},
