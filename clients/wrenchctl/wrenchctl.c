@@ -278,9 +278,9 @@ static int take_objective(wc_run *run, const char *value)
 {
     if (strcmp(value, "margin") != 0 && strcmp(value, "region") != 0 &&
         strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0 &&
-        strcmp(value, "force") != 0)
-        return wc_usage_error("--objective is margin, region, gravity, force or accuracy, "
-                              "not '%s'",
+        strcmp(value, "force") != 0 && strcmp(value, "pareto") != 0)
+        return wc_usage_error("--objective is margin, region, gravity, force, accuracy or "
+                              "pareto, not '%s'",
                               value);
     run->objective = value;
     return 0;
@@ -843,7 +843,7 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the fixels determine the pose, 1 when they do not."},
     {"design",
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K]\n"
-     "       [--objective margin|region|gravity|force|accuracy] [--top N] [--friction LO:HI]\n"
+     "       [--objective margin|region|gravity|force|accuracy|pareto] [--top N] [--friction LO:HI]\n"
      "       [--finger-radius R] [--finger-friction MU] [--case SPEC...]\n"
      "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
      "       [--corner-clearance C] [--pin-diameter D]\n"
@@ -871,7 +871,8 @@ const wc_command wc_commands[] = {
      "                     push force doing both under every --case, smallest first) or\n"
      "                     accuracy (the smallest worst locating error with --tolerance T and\n"
      "                     the --feature points, as for locate; without features the pose's,\n"
-     "                     scaled)\n"
+     "                     scaled) or pareto (with --tolerance T: the designs no other beats\n"
+     "                     on margin, accuracy and, with --case, least force together)\n"
      "  --case SPEC        a load case, repeated (see 'wrenchctl force --help'): each design\n"
      "                     also reports its least push under them, with any objective; in the\n"
      "                     file's units (its \"units\", else one consistent system)\n"
