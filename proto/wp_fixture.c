@@ -84,9 +84,7 @@ static bool apply_tolerance(wr_fixture *fixture, const wr_tolerance *tolerance,
     wr_error invalid;
     if (wr_fixture_set_tolerance(fixture, tolerance, &invalid) == WR_OK)
         return true;
-    char field[WP_FIELD_MAX];
-    wp_path_key(field, path, invalid.field);
-    wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid.reason);
+    wp_error_refusal(error, WR_INVALID, path, &invalid);
     return false;
 }
 
@@ -440,9 +438,7 @@ static bool read_supports(const cJSON *json, const char *path, wr_fixture *fixtu
     wr_error invalid;
     wr_status status = wr_fixture_set_supports(fixture, &spec, &invalid);
     if (status != WR_OK) {
-        wp_path_key(field, path, invalid.field);
-        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? field : path, "%s", invalid.reason);
+        wp_error_refusal(error, status, path, &invalid);
         return false;
     }
     return true;
@@ -731,10 +727,7 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
         wr_error invalid;
         wr_status status = wr_fixture_new(&spec, &out->fixture, &invalid);
         if (status != WR_OK) {
-            /* Invalid: at the field to blame.  Out of memory: at the fixture. */
-            wp_path_key(field, path, invalid.field);
-            wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                         status == WR_INVALID ? field : path, "%s", invalid.reason);
+            wp_error_refusal(error, status, path, &invalid);
             ok = false;
         }
     }
@@ -800,9 +793,7 @@ bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_e
         wr_error invalid;
         wr_status status = wr_fixture_body_new(&spec, body, &invalid);
         if (status != WR_OK) {
-            wp_path_key(field, path, invalid.field);
-            wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                         status == WR_INVALID ? field : "", "%s", invalid.reason);
+            wp_error_refusal(error, status, path, &invalid);
             ok = false;
         }
     }

@@ -25,6 +25,9 @@ typedef struct wp_fixture_doc {
     wr_fixture *fixture;
     char written[WP_ID_LENGTH + 1]; /* inline: the key of the text as written
                                        (wp_fixture_written_key), "" unknown */
+    const char *text;               /* inline: the object's text as written, */
+    size_t text_length;             /* borrowed for the adoption, or NULL
+                                       (wp_host.h, fixture_use_text) */
 } wp_fixture_doc;
 
 /* The explicit form of a fixture (docs/PROTOCOL.md, "Fixture id"): the

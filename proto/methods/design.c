@@ -457,10 +457,7 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
     wr_error invalid;
     wr_status status = wr_sites_spaced(s->body, &rule, &s->sites, &s->site_count, &invalid);
     if (status != WR_OK) {
-        char field[WP_FIELD_MAX];
-        wp_path_key(field, "params", invalid.field);
-        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? field : "", "%s", invalid.reason);
+        wp_error_refusal(error, status, "params", &invalid);
         return false;
     }
     return true;
@@ -529,10 +526,7 @@ static bool start_search(design_state *s, wp_error *error)
     wr_error invalid;
     wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
     if (status != WR_OK) {
-        char field[WP_FIELD_MAX];
-        wp_path_key(field, "params", invalid.field);
-        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? field : "", "%s", invalid.reason);
+        wp_error_refusal(error, status, "params", &invalid);
         return false;
     }
     /* The job claims WR_DESIGN_CHUNK candidates of this shard at a time:
@@ -944,6 +938,14 @@ static const wr_job_chunks *stage_job(const design_state *s, void **job)
     return s->job ? &wr_design_job_chunks : &wr_lattice_job_chunks;
 }
 
+/* A job's status as the chunk's: a failure names no field of its own. */
+static wr_status job_status(wr_status status, wp_error *error)
+{
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
 static bool job_claim(void *method, size_t index, void *record)
 {
     (void)index;
@@ -969,10 +971,7 @@ static wr_status job_make(void *method, size_t index, void *record, wp_buffer *d
     void *job;
     const wr_job_chunks *ops = stage_job(method, &job);
     job_record *r = record;
-    wr_status status = ops->run(job, &r->claim, host->stop, &r->chunk, used);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
+    return job_status(ops->run(job, &r->claim, host->stop, &r->chunk, used), error);
 }
 
 static wr_status job_merge(void *method, size_t index, void *record, wp_buffer *out,
@@ -982,10 +981,7 @@ static wr_status job_merge(void *method, size_t index, void *record, wp_buffer *
     (void)out;
     void *job;
     const wr_job_chunks *ops = stage_job(method, &job);
-    wr_status status = ops->merge(job, &((job_record *)record)->chunk);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
+    return job_status(ops->merge(job, &((job_record *)record)->chunk), error);
 }
 
 static void job_release(void *record)
@@ -1014,9 +1010,7 @@ static wr_status figure_make(void *method, size_t index, void *record, wp_buffer
     const design_state *s = method;
     wr_status status =
         wr_design_job_figure(s->job, s->figures_first + (int)index, host->stop, used);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
+    return job_status(status, error);
 }
 
 static wr_status figure_merge(void *method, size_t index, void *record, wp_buffer *out,

@@ -952,7 +952,7 @@ static void pieces_agree(const char *line, size_t length, const char *whole, con
          * again, their last bits may differ (load-check drops them too). */
         memmem(line, length, "\"lp\"", 4))
         return;
-    wp_answer *answer = wp_answer_begin(&LIMITS, line, length);
+    wp_answer *answer = wp_answer_begin(&LIMITS, host, line, length);
     FUZZ_CHECK(answer, "wp_answer_begin failed for %s", text);
     wp_answer_pieces(answer, 1, 1);
     wp_buffer joined = {0};
