@@ -5,6 +5,7 @@
 #include "wr_locate.h"
 #include "wr_outline.h"
 #include "wr_symmetry.h"
+#include "wr_tolerance.h"
 
 #include <assert.h>
 #include <math.h>
@@ -1153,6 +1154,10 @@ static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixt
     if (place(job, d->sites, fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
     const wr_design_spec *spec = &job->spec;
+    wr_error refused;
+    /* A position tolerance a fixel's segment cannot hold: no robust region. */
+    bool robust_ok = !spec->fixel_tolerance.given ||
+                     wr_fixture_set_tolerance(fixture, &spec->fixel_tolerance, &refused) == WR_OK;
     wr_analysis *analysis;
     wr_status status = wr_analysis_new(fixture, &analysis);
     if (status != WR_OK)
@@ -1161,6 +1166,21 @@ static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixt
     status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     if (status == WR_OK)
         status = push_regions(job, analysis, WR_SET_BOTH, &both);
+    if (status == WR_OK && spec->fixel_tolerance.given) {
+        /* The both region's robust part, whose best push is then robust. */
+        wr_regions robust = {0};
+        wr_robust *rb = NULL;
+        if (robust_ok)
+            status = wr_robust_new(analysis, 0, &rb);
+        if (status == WR_OK && robust_ok)
+            status = wr_robust_regions(rb, WR_SET_BOTH, &both, false, NULL, &robust);
+        wr_robust_free(rb);
+        *units += 1000000;
+        if (status == WR_OK) {
+            wr_regions_release(&both);
+            both = robust;
+        }
+    }
     if (status == WR_OK)
         status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
     bool below;

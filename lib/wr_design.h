@@ -169,6 +169,13 @@ typedef struct wr_design_spec {
     double tolerance;
     const double (*features)[2];
     int feature_count;
+    /* Given: a geometric tolerance on each design's fixels (wr_tolerance.h):
+     * the figures of every design kept (not the search's scores) are then
+     * robust: its both region the part proved for every fixture of the
+     * set (wr_robust_regions; empty when a fixel's segment cannot hold
+     * the position tolerance), its best push the best of that region.  A
+     * frictionless finger only. */
+    wr_tolerance fixel_tolerance;
 } wr_design_spec;
 
 /* A ranked design. */

@@ -248,6 +248,37 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
     return true;
 }
 
+/* params.fixel_tolerance: a geometric tolerance on every design's fixels
+ * ({"position", "angle"?}, as a fixture's "tolerance"), which makes each
+ * design's both region and best push robust (wr_design_spec).  Its values
+ * are checked on the body (no fixels: a segment's room is each design's
+ * own matter); a finger's friction is refused with it, as push.regions
+ * refuses it with a tolerance. */
+static bool read_fixel_tolerance(const cJSON *params, design_state *s, wp_error *error)
+{
+    wr_design_spec *spec = &s->spec;
+    if (!wp_tolerance_read(cJSON_GetObjectItemCaseSensitive(params, "fixel_tolerance"),
+                           "params.fixel_tolerance", &spec->fixel_tolerance, error))
+        return false;
+    if (!spec->fixel_tolerance.given)
+        return true;
+    wr_fixture body = *s->body;
+    wr_error invalid;
+    if (wr_fixture_set_tolerance(&body, &spec->fixel_tolerance, &invalid) != WR_OK) {
+        char field[WP_FIELD_MAX]; /* tolerance.position -> params.fixel_tolerance.position */
+        snprintf(field, sizeof field, "params.fixel_%s", invalid.field);
+        wp_error_status(error, WR_INVALID, field, "%s", invalid.reason);
+        return false;
+    }
+    if (spec->finger.friction > 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "robust push regions (params.fixel_tolerance) are for a frictionless "
+                     "finger");
+        return false;
+    }
+    return true;
+}
+
 /* params.tolerance and params.features, which objective accuracy needs
  * (and nothing else takes): each locator off by +-tolerance, and the
  * points whose error counts ([{"name"?, "at"}], as fixture.locating's). */
@@ -381,6 +412,8 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                          error))
         return false;
     spec->finger.push_on = s->push_on;
+    if (!read_fixel_tolerance(params, s, error))
+        return false;
     const cJSON *progress = cJSON_GetObjectItemCaseSensitive(params, "progress");
     if (progress && !cJSON_IsBool(progress)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.progress", "must be true or false, not %s",

@@ -222,9 +222,9 @@ def test_push_force_tolerance(daemon, client, tmp_path):
     path = tmp_path / "plate.json"
     path.write_text(json.dumps(plate))
     r = run("push-force", str(path), "--case", "gravity=9.81@270", "--json",
-            "--tolerance", "0.05,0.5", socket_path=daemon.path)
+            "--tolerance", "0.05", socket_path=daemon.path)
     assert r.returncode == 0, r.stderr
-    fixture = dict(plate, tolerance={"position": 0.05, "angle": 0.5})
+    fixture = dict(plate, tolerance={"position": 0.05})
     cases = [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]
     assert same(json.loads(r.stdout), client.result("push.force", {"fixture": fixture,
                                                                     "cases": cases}))
