@@ -1034,6 +1034,23 @@ static int coordinates_of(const wr_robust *rb, const wr_constraint *c, const box
     return n;
 }
 
+/* The fixture (ts, tt) of the set: x's distance there, and when deeper
+ * than *depth, it becomes the deepest point (*s, *tilt, *depth). */
+static wr_status try_point(const wr_robust *rb, const wr_constraint *c, const double x[3],
+                          const double *ts, const double *tt, double *s, double *tilt,
+                          double *depth, bool *deeper)
+{
+    double d;
+    wr_status status = distance_at(rb, c, ts, tt, x, &d);
+    *deeper = status == WR_OK && d < *depth;
+    if (*deeper) {
+        *depth = d;
+        memcpy(s, ts, sizeof(double) * WR_MAX_FIXELS);
+        memcpy(tilt, tt, sizeof(double) * WR_MAX_FIXELS);
+    }
+    return status;
+}
+
 /* A deepest point of x in c's cone over the set, searched for where the
  * boxes' centres reach slowly: worst cases sit at the set's corners (a row
  * moves monotonically with a coordinate over most of its range), or near
@@ -1052,20 +1069,16 @@ static wr_status search_witness(const wr_robust *rb, const wr_constraint *c, con
     int nd = coordinates_of(rb, c, &whole, dims);
     if (nd == 0)
         return WR_OK;
-    double ts[WR_MAX_FIXELS], tt[WR_MAX_FIXELS], d;
+    double ts[WR_MAX_FIXELS], tt[WR_MAX_FIXELS];
     for (unsigned corner = 0; corner < 1u << nd; corner++) {
         memcpy(ts, s, sizeof ts);
         memcpy(tt, tilt, sizeof tt);
         for (int k = 0; k < nd; k++)
             (dims[k].tilt ? tt : ts)[dims[k].fixel] = corner >> k & 1 ? dims[k].hi : dims[k].lo;
-        wr_status status = distance_at(rb, c, ts, tt, x, &d);
+        bool deeper;
+        wr_status status = try_point(rb, c, x, ts, tt, s, tilt, depth, &deeper);
         if (status != WR_OK)
             return status;
-        if (d < *depth) {
-            *depth = d;
-            memcpy(s, ts, sizeof ts);
-            memcpy(tilt, tt, sizeof tt);
-        }
     }
     for (double h = 0.5; h > 1e-13; h *= 0.5) {
         bool moved = true;
@@ -1078,15 +1091,11 @@ static wr_status search_witness(const wr_robust *rb, const wr_constraint *c, con
                     double *v = &(dims[k].tilt ? tt : ts)[dims[k].fixel];
                     *v = fmin(dims[k].hi,
                               fmax(dims[k].lo, *v + sign * h * (dims[k].hi - dims[k].lo)));
-                    wr_status status = distance_at(rb, c, ts, tt, x, &d);
+                    bool deeper;
+                    wr_status status = try_point(rb, c, x, ts, tt, s, tilt, depth, &deeper);
                     if (status != WR_OK)
                         return status;
-                    if (d < *depth) {
-                        *depth = d;
-                        memcpy(s, ts, sizeof ts);
-                        memcpy(tilt, tt, sizeof tt);
-                        moved = true;
-                    }
+                    moved |= deeper;
                 }
         }
     }

@@ -10,6 +10,7 @@ import xml.dom.minidom
 
 import pytest
 
+import fixtures as FX
 from conftest import REPO
 
 WRENCHCTL = os.path.join(REPO, "build", "wrenchctl")
@@ -215,10 +216,7 @@ def test_push_force_tolerance(daemon, client, tmp_path):
     """push-force --tolerance T,A sends the fixture inline with its
     tolerance: the same answer as push.force asked by hand with it (a
     small plate: every sample is a robust one)."""
-    plate = {"body": {"mass": 1.0, "shape": {"type": "polygon",
-                                             "vertices": [[0, 0], [4, 0], [4, 2], [0, 2]]}},
-             "friction": {"static": 0.3},
-             "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]}
+    plate = FX.plate_321()
     path = tmp_path / "plate.json"
     path.write_text(json.dumps(plate))
     r = run("push-force", str(path), "--case", "gravity=9.81@270", "--json",

@@ -468,10 +468,7 @@ def test_sweep_wrench_bands_with_one_set(fake, harness):
 def test_sweep_wrench_tolerance(daemon, client, tmp_path):
     """sweep --wrench --tolerance T,A sends the fixture inline with its
     tolerance: the same intervals as friction.sweep asked by hand."""
-    plate = {"body": {"mass": 1.0, "shape": {"type": "polygon",
-                                             "vertices": [[0, 0], [4, 0], [4, 2], [0, 2]]}},
-             "friction": {"static": 0.3},
-             "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]}
+    plate = FX.plate_321()
     path = tmp_path / "plate.json"
     path.write_text(json.dumps(plate))
     r = run("sweep", str(path), "--wrench", "-0.5,-1,0.3", "--set", "strong", "--json",

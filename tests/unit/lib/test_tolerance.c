@@ -204,18 +204,41 @@ static void test_sampling_plate(void **state)
     assert_true(counts[WR_VERDICT_BOUNDARY] * 10 < counts[0] + counts[1] + counts[2]);
 }
 
+/* The frictionless plate with every contact free to move T along its
+ * edge, its analysis and robust questions. */
+typedef struct robust_plate {
+    wr_fixture *f;
+    wr_analysis *a;
+    wr_robust *rb;
+} robust_plate;
+
+static robust_plate robust_plate_new(double T)
+{
+    robust_plate p;
+    p.f = plate(0, PLATE_AT, NULL);
+    assert_non_null(p.f);
+    set_tolerance(p.f, T, 0);
+    p.a = test_analysis_new(p.f);
+    assert_int_equal(wr_robust_new(p.a, 0, &p.rb), WR_OK);
+    return p;
+}
+
+static void robust_plate_free(robust_plate *p)
+{
+    wr_robust_free(p->rb);
+    wr_analysis_free(p->a);
+    wr_fixture_free(p->f);
+}
+
 /* The frictionless plate: (-a, -b, tau) = (-0.5, -1, tau) seats it robustly
  * for |tau| below b (1 - T) - a T = 0.85 and not above. */
 static void test_closed_form(void **state)
 {
     (void)state;
     const double T = 0.1;
-    wr_fixture *f = plate(0, PLATE_AT, NULL);
-    assert_non_null(f);
-    set_tolerance(f, T, 0);
-    wr_analysis *a = test_analysis_new(f);
-    wr_robust *rb;
-    assert_int_equal(wr_robust_new(a, 0, &rb), WR_OK);
+    robust_plate p = robust_plate_new(T);
+    wr_fixture *f = p.f;
+    wr_robust *rb = p.rb;
     static const double taus[] = {0.3, 0.7, 0.75, 0.95, 0.99};
     const double fa = 0.5, fb = 1;
     for (size_t i = 0; i < sizeof taus / sizeof *taus; i++)
@@ -244,9 +267,7 @@ static void test_closed_form(void **state)
                 check_witness(0, T, 0, &r, w, WR_SET_GOAL);
             }
         }
-    wr_robust_free(rb);
-    wr_analysis_free(a);
-    wr_fixture_free(f);
+    robust_plate_free(&p);
 }
 
 /* Robust push regions on the chamfered plate: inside the nominal ones,
@@ -375,12 +396,8 @@ static void test_band(void **state)
 {
     (void)state;
     const double T = 0.1, fa = 0.5, fb = 1, edge = fb * (1 - T) - fa * T;
-    wr_fixture *f = plate(0, PLATE_AT, NULL);
-    assert_non_null(f);
-    set_tolerance(f, T, 0);
-    wr_analysis *a = test_analysis_new(f);
-    wr_robust *rb;
-    assert_int_equal(wr_robust_new(a, 0, &rb), WR_OK);
+    robust_plate p = robust_plate_new(T);
+    wr_robust *rb = p.rb;
     static const double offsets[] = {1e-8, 2.5e-9, 1e-7, -1e-8, -3.5e-9, -1e-6};
     for (size_t i = 0; i < sizeof offsets / sizeof *offsets; i++)
         for (int sign = -1; sign <= 1; sign += 2) {
@@ -407,9 +424,7 @@ static void test_band(void **state)
             print_message("tau %.10g: verdict %d, margin %g, worst at the corners %g\n", tau,
                           r.answer.verdict, r.answer.margin, worst);
         }
-    wr_robust_free(rb);
-    wr_analysis_free(a);
-    wr_fixture_free(f);
+    robust_plate_free(&p);
 }
 
 static void test_refusals(void **state)
