@@ -60,11 +60,12 @@ static bool read_units(const cJSON *json, const char *path, wr_units *out, wp_er
 
 /* The fixture's geometric tolerance (docs/PROTOCOL.md, "Tolerance"):
  * {"position": T, "angle"?: A}; absent, out->given stays false.  Its
- * values are checked against the fixture by apply_tolerance. */
+ * values are checked against the fixture by apply_tolerance (the contract
+ * is in wp_fixture.h). */
 static const char *const TOLERANCE_FIELDS[] = {"position", "angle", NULL};
 
-static bool read_tolerance(const cJSON *json, const char *path, wr_tolerance *out,
-                           wp_error *error)
+bool wp_tolerance_read(const cJSON *json, const char *path, wr_tolerance *out,
+                       wp_error *error)
 {
     if (!json)
         return true;
@@ -709,8 +710,8 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     wr_tolerance tolerance = {false, 0, 0};
     if (ok) {
         wp_path_key(field, path, "tolerance");
-        ok = read_tolerance(cJSON_GetObjectItemCaseSensitive(json, "tolerance"), field,
-                            &tolerance, error);
+        ok = wp_tolerance_read(cJSON_GetObjectItemCaseSensitive(json, "tolerance"), field,
+                               &tolerance, error);
     }
     if (ok) {
         const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "fixels");

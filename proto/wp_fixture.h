@@ -77,6 +77,12 @@ bool wp_fixture_id_valid(const char *text);
 bool wp_wrench_read(const cJSON *json, const char *path, const wr_fixture *fixture,
                     double wrench[3], wp_error *error);
 
+/* A geometric tolerance at `path`: {"position": T, "angle"?: A}; NULL
+ * json leaves out->given false.  Its shape only: its values are checked
+ * against a fixture by wr_fixture_set_tolerance. */
+bool wp_tolerance_read(const cJSON *json, const char *path, wr_tolerance *out,
+                       wp_error *error);
+
 #ifdef __cplusplus
 }
 #endif

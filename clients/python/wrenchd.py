@@ -458,6 +458,9 @@ class Design:
     # With load cases: the least push doing both under every case ({"at",
     # "direction", "force", "lower_bound", ...}, None when none does).
     least_push: Optional[Dict[str, Any]] = None
+    # Objective pareto: {"margin", "accuracy", "force" (None: no push does
+    # both under the cases, or no cases)}, the figures of the front.
+    pareto: Optional[Dict[str, Any]] = None
 
 
 @dataclass
@@ -1144,11 +1147,25 @@ class _Methods:
             params["samples"] = samples
         return self._invoke("push.force", params, _object_result, True, timeout)
 
-    def gravity_sweep(self, fixture: Any, set: str = "goal", *, timeout: Any = _DEFAULT):
+    def gravity_sweep(self, fixture: Any, set: str = "goal", *,
+                      in_plane_g: Optional[float] = None, timeout: Any = _DEFAULT):
         """gravity.sweep: the arcs [a, b] of tilt (degrees, the direction
-        gravity pulls) under which gravity alone gives a wrench in the set."""
-        return self._invoke("gravity.sweep", {"fixture": _fixture_ref(fixture), "set": set},
-                            _sweep_result, True, timeout)
+        gravity pulls) under which gravity alone gives a wrench in the set.
+        On supports (on_supports) give `in_plane_g`, the pull in the tilted
+        plate's plane (g sin(tilt)): the arcs proved to seat the part
+        against the supports' friction (set "goal"); tilt_on_supports also
+        returns the undecided arcs."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "set": set}
+        if in_plane_g is not None:
+            params["in_plane_g"] = in_plane_g
+        return self._invoke("gravity.sweep", params, _sweep_result, True, timeout)
+
+    def tilt_on_supports(self, fixture: Any, in_plane_g: float, *, timeout: Any = _DEFAULT):
+        """gravity.sweep on supports, whole: {"intervals_deg": arcs proved
+        to seat, "undecided_deg": arcs of at most 1e-6 degrees proved
+        neither way}."""
+        params = {"fixture": _fixture_ref(fixture), "set": "goal", "in_plane_g": in_plane_g}
+        return self._invoke("gravity.sweep", params, lambda r: r, True, timeout)
 
     def stability_margin(self, fixture: Any, bias: Any, *, timeout: Any = _DEFAULT):
         """stability.margin: the disturbance a biasing wrench tolerates
@@ -1235,11 +1252,15 @@ class _Methods:
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
                tolerance: Optional[float] = None, features: Optional[Iterable[Any]] = None,
                cases: Optional[Iterable[Any]] = None, collapse_symmetric: bool = True,
-               units: Optional[Mapping[str, str]] = None, timeout: Any = _DEFAULT):
+               units: Optional[Mapping[str, str]] = None,
+               fixel_tolerance: Optional[Mapping[str, float]] = None, timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
         [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
-        Objective "accuracy" takes `tolerance` and `features` (as locating).
+        Objective "accuracy" takes `tolerance` and `features` (as locating);
+        objective "pareto" takes them too, and `cases`: the designs no other
+        beats on margin, accuracy and least force together, each with its
+        `pareto` figures.
         `progress`, a callable, receives each design.progress notification's
         params ({"id", "stage", "done", "total", "best", "eta_s"}) as it
         arrives (progress_bar() draws them); the timeout is then the longest
@@ -1253,7 +1274,9 @@ class _Methods:
         Objective "force" ranks by the least push doing both under `cases`
         (as force_range's; with any objective each design then has its
         `least_push`); `units` ({"length", "force"}, as a fixture's) are
-        those of the body, the cases and the forces answered."""
+        those of the body, the cases and the forces answered.
+        `fixel_tolerance` ({"position", "angle"?}, a fixture's tolerance):
+        each design's both region and best push robust over it."""
         given = [name for name, value in (("sites", sites), ("spacing", spacing),
                                           ("lattice", lattice)) if value is not None]
         if len(given) != 1:
@@ -1295,6 +1318,8 @@ class _Methods:
             params["cases"] = _cases(cases)
         if units is not None:
             params["units"] = dict(units)
+        if fixel_tolerance is not None:
+            params["fixel_tolerance"] = dict(fixel_tolerance)
         return self._invoke("fixture.design", params, _design_result, True, timeout,
                             notify=progress)
 

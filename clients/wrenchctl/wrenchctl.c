@@ -278,9 +278,9 @@ static int take_objective(wc_run *run, const char *value)
 {
     if (strcmp(value, "margin") != 0 && strcmp(value, "region") != 0 &&
         strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0 &&
-        strcmp(value, "force") != 0)
-        return wc_usage_error("--objective is margin, region, gravity, force or accuracy, "
-                              "not '%s'",
+        strcmp(value, "force") != 0 && strcmp(value, "pareto") != 0)
+        return wc_usage_error("--objective is margin, region, gravity, force, accuracy or "
+                              "pareto, not '%s'",
                               value);
     run->objective = value;
     return 0;
@@ -446,7 +446,25 @@ typedef struct command_option {
     int (*take)(wc_run *run, const char *value); /* 0, or an exit status */
 } command_option;
 
+static int take_supports(wc_run *run, const char *value)
+{
+    run->supports = value;
+    return 0;
+}
+
+static int take_in_plane_g(wc_run *run, const char *value)
+{
+    char *end;
+    run->in_plane_g = strtod(value, &end);
+    if (end == value || *end || !(run->in_plane_g > 0) || !isfinite(run->in_plane_g))
+        return wc_usage_error("--in-plane-g '%s': a number above 0 (length / s^2)", value);
+    run->in_plane_g_given = true;
+    return 0;
+}
+
 static const command_option COMMAND_OPTIONS[] = {
+    {"supports", WC_FIXTURE, take_supports},
+    {"in-plane-g", WC_OPT_TILT, take_in_plane_g},
     {"sets", WC_OPT_SETS, take_sets},
     {"method", WC_OPT_METHOD, take_method},
     {"tolerance", WC_OPT_TOLERANCE, take_tolerance},
@@ -569,6 +587,8 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
             status = wc_fixture_friction(o, &run.fixture, run.friction_low, run.friction_high);
         if (status < 0 && run.geometric_given)
             status = wc_fixture_tolerance(o, &run.fixture, run.geometric[0], run.geometric[1]);
+        if (status < 0 && run.supports)
+            status = wc_fixture_supports(o, &run.fixture, run.supports);
     }
     if (status < 0 && !c->method)
         status = c->request(&run, NULL);
@@ -743,8 +763,11 @@ const wc_command wc_commands[] = {
      "seat it against the supports' friction; its least is the least push force on the plate.\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
     {"push-force",
-     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON, 1, 1,
+     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
+     "       [--tolerance T[,A]]",
+     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON |
+         WC_OPT_GEOMETRIC,
+     1, 1,
      "push.force", wc_push_force_request, wc_push_force_answer,
      "the least push force along the outline, and where it is least",
      "F*(p), the least force of a push along the inward normal at p that does the set's job\n"
@@ -755,9 +778,15 @@ const wc_command wc_commands[] = {
      "  --finger-radius R   only where a round finger of radius R fits\n"
      PUSH_ON_HELP("  ")
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
+     "On supports (--supports, or the fixture's member) with --set goal: the least push that\n"
+     "seats the part against the supports' friction, on a polygon, for a point finger.\n"
+     GEOMETRIC_HELP("   ")
+     "With --tolerance each F* is robust: a push of that force does the job on every such\n"
+     "fixture, and the least is the least of the samples (and of the nominal least's point).\n"
      "Exit status 0 when some push does the job, 1 when none does."},
-    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC, 1, 1,
+    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]\n"
+     "       [--supports FILE|JSON --in-plane-g A]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC | WC_OPT_TILT, 1, 1,
      "gravity.sweep", wc_gravity_request, wc_gravity_answer,
      "the tilts under which gravity seats the part",
      "The arcs of tilt (the direction gravity pulls, degrees, in the part's frame) under which\n"
@@ -765,6 +794,9 @@ const wc_command wc_commands[] = {
      "  --set SET         goal (default), strong or both (goal may leave the part sliding\n"
      "                    on, strong holds it only once seated; both does both)\n"
      "  --svg FILE        also draw the sweep as a dial around the part\n"
+     "  --in-plane-g A    on supports (its \"supports\" member, or --supports): the pull in\n"
+     "                    the tilted plate's plane, g sin(tilt); the tilts whose pull m A\n"
+     "                    seats the part against the supports' friction (set goal)\n"
      FRICTION_HELP("  ")
      GEOMETRIC_HELP(" ")
      "Exit status 0 when there is an arc, 1 when there is none."},
@@ -783,9 +815,9 @@ const wc_command wc_commands[] = {
      "FIXTURE (--push SET | --gravity SET | --least-force SET --case SPEC... |\n"
      "       --wrench FX,FY,TAU... [--set SET]) [--range LO:HI] [--kinetic-ratio R]\n"
      "       [--finger-friction MU] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
-     "       [--table full|summary]",
+     "       [--table full|summary] [--tolerance T[,A]]",
      WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG |
-         WC_OPT_CASE | WC_OPT_PUSH_ON,
+         WC_OPT_CASE | WC_OPT_PUSH_ON | WC_OPT_GEOMETRIC,
      1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
@@ -811,6 +843,9 @@ const wc_command wc_commands[] = {
      "                      9 evenly spaced mu and those at the intervals' ends)\n"
      "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
+     "  --tolerance T[,A]   with --wrench: the mu where the wrench is inside for every fixture\n"
+     "                      with each contact within T along the outline, each normal tilted\n"
+     "                      by up to A degrees (the other sweeps refuse it)\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu; for the least force: when some push does it at some mu),\n"
      "1 when not."},
@@ -834,7 +869,7 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the fixels determine the pose, 1 when they do not."},
     {"design",
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K]\n"
-     "       [--objective margin|region|gravity|force|accuracy] [--top N] [--friction LO:HI]\n"
+     "       [--objective margin|region|gravity|force|accuracy|pareto] [--top N] [--friction LO:HI]\n"
      "       [--finger-radius R] [--finger-friction MU] [--case SPEC...]\n"
      "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
      "       [--corner-clearance C] [--pin-diameter D]\n"
@@ -862,7 +897,8 @@ const wc_command wc_commands[] = {
      "                     push force doing both under every --case, smallest first) or\n"
      "                     accuracy (the smallest worst locating error with --tolerance T and\n"
      "                     the --feature points, as for locate; without features the pose's,\n"
-     "                     scaled)\n"
+     "                     scaled) or pareto (with --tolerance T: the designs no other beats\n"
+     "                     on margin, accuracy and, with --case, least force together)\n"
      "  --case SPEC        a load case, repeated (see 'wrenchctl force --help'): each design\n"
      "                     also reports its least push under them, with any objective; in the\n"
      "                     file's units (its \"units\", else one consistent system)\n"

@@ -273,15 +273,6 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     sweep_state *state = wp_stream_with_fixture(call, sizeof *state, &use);
     if (!state)
         return NULL;
-    if (use->fixture->tolerance.given) {
-        /* The sweep's exact machinery varies mu on the nominal fixels. */
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
-                     "friction.sweep answers the nominal fixture only: sweep the fixture "
-                     "without its tolerance, or ask the robust questions (classify, push, "
-                     "gravity, margin, force) at one friction");
-        sweep_free(state);
-        return NULL;
-    }
     if (wp_supports_refuse(call, use->fixture, "params.fixture",
                            "one fixture per coefficient to wrench.classify or force.range: the "
                            "sweep's answers are those of a part floating in its plane")) {
@@ -291,6 +282,25 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     if (!read_sweep(call, use->fixture, state)) {
         sweep_free(state);
         return NULL;
+    }
+    if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
+        /* The curves' exact machinery varies mu on the nominal fixels. */
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "friction.sweep answers \"wrenches\" robustly over a tolerance; push, "
+                     "gravity and force sweeps answer the nominal fixture only: sweep it "
+                     "without its tolerance, or ask push.regions, gravity.sweep or push.force "
+                     "at one friction");
+        sweep_free(state);
+        return NULL;
+    }
+    if (use->fixture->tolerance.given) {
+        /* Robust wrenches: the fixels as they are, placed again with each
+         * piece of mu (wr_robust_sweep_wrench). */
+        const wr_fixture *f = use->fixture;
+        for (int i = 0; i < f->fixel_count; i++)
+            state->fixels[i] = (wr_fixel_spec){
+                .at = {f->fixels[i].at[0], f->fixels[i].at[1]}, .normal_given = true,
+                .normal = {f->fixels[i].normal[0], f->fixels[i].normal[1]}};
     }
     wr_status status = WR_OK;
     /* Force: the push alone's intervals first (the job), then the samples
@@ -521,7 +531,24 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
         if (state->set == 0)
             wp_write_object(out);
         wp_write_key(out, wp_set_names[r->sets[state->set]]);
-        write_intervals(out, wr_sweep_job_intervals(state->job));
+        const wr_fixture *f = wp_call_fixture(call)->fixture; /* held since begin */
+        if (f->tolerance.given) {
+            /* Over the tolerance: the nominal intervals' robust part. */
+            wr_intervals robust = {0};
+            status = wr_robust_sweep_wrench(f, state->fixels, state->range.kinetic_ratio,
+                                            r->wrenches[state->next], r->sets[state->set],
+                                            wr_sweep_job_intervals(state->job),
+                                            call->host->stop, &robust);
+            if (status != WR_OK) {
+                wr_intervals_release(&robust);
+                wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+                return WP_STEP_FAILED;
+            }
+            write_intervals(out, &robust);
+            wr_intervals_release(&robust);
+        } else {
+            write_intervals(out, wr_sweep_job_intervals(state->job));
+        }
         wr_sweep_job_free(state->job);
         state->job = NULL;
         if (++state->set == r->set_count || stopped) {
