@@ -61,7 +61,7 @@
  * load cases; every method and field is still reached, and no line costs
  * more than a few milliseconds under the sanitizers. */
 static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 16, .max_batch = 8,
-                                 .max_candidates = 12, .max_cases = 4};
+                                 .max_candidates = 24, .max_cases = 4};
 
 static wd_cache *cache;
 static wd_stats stats;

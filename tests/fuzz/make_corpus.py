@@ -245,6 +245,10 @@ def main():
     emit("request", "design-force", request("fixture.design", {
         "body": plate, "friction": 0.3, "spacing": 2, "top": 2, "objective": "force",
         "cases": design_cases, "deadline_s": 2}))
+    emit("request", "design-pareto", request("fixture.design", {
+        "body": plate, "friction": 0.3, "spacing": 2, "top": 3, "objective": "pareto",
+        "tolerance": 0.01, "features": [{"at": [2, 1]}], "cases": design_cases,
+        "deadline_s": 2}))
     emit("request", "design-accuracy-deadline", request("fixture.design", {
         "body": plate, "friction": 0.3, "spacing": 2, "top": 1, "objective": "accuracy",
         "tolerance": 0.01, "features": [{"name": "bore", "at": [2, 1]}], "deadline_s": 0.001}))
@@ -278,6 +282,8 @@ def main():
             "cases": [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]}))
         emit("request", name + "-margin", request("stability.margin", {
             "fixture": f, "bias": [0, -9.81, 0]}))
+        emit("request", name + "-gravity-tilt", request("gravity.sweep", {
+            "fixture": f, "set": "goal", "in_plane_g": 2}))
     for name, f in list(examples.items()) + [("builder-" + n, f) for n, f in builders.items()
                                              if n in ("offset-disc", "triangle", "disc-one",
                                                       "square-form-closure", "disc-8")]:
