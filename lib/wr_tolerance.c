@@ -1186,9 +1186,9 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
          * often proves this one too, without an LP. */
         double t = cache ? check_certificate(&sys, x, cache) : -1;
         if (!(t > tolerance))
-            t = certify(&sys, x, cache);
-        if (!isnan(t) && !(t > tolerance))
             t = fmax(t, certify_turning(&sys, x));
+        if (!(t > tolerance))
+            t = certify(&sys, x, cache);
         if (isnan(t)) {
             result = CONE_FAILED;
             break;
