@@ -471,9 +471,11 @@ static int disc_columns(lp *l, const model *m, int i, const directions *d, bool 
 
 /* ---- seating ------------------------------------------------------------- */
 
-/* What one LP of a cone asks: the least scale rho (RHO), or the least or
- * largest push magnitude (F_MIN, F_MAX). */
-typedef enum question { RHO, F_MIN, F_MAX } question;
+/* What one LP of a cone asks: the least scale rho (RHO), the least or
+ * largest push magnitude (F_MIN, F_MAX), or the largest alpha + beta with
+ * alpha u + beta u2 in C + S, alpha, beta >= 0 (SECTOR: how far the sector
+ * between two pure forces reaches into C + S's slice at zero torque). */
+typedef enum question { RHO, F_MIN, F_MAX, SECTOR } question;
 
 typedef struct cone_lp {
     const model *m;
@@ -481,6 +483,7 @@ typedef struct cone_lp {
     question q;
     double target[3];   /* h(g) / scale, or h(L) / scale */
     double push[3];     /* h(u) / |h(u)| */
+    double second[3];   /* SECTOR's u2, as push */
     bool inner;
     const directions *dirs; /* one per support */
     /* out */
@@ -493,7 +496,7 @@ static void cone_lp_solve(cone_lp *c)
 {
     const model *m = c->m;
     lp l;
-    lp_init(&l, c->q == F_MAX ? GLP_MAX : GLP_MIN);
+    lp_init(&l, c->q == F_MAX || c->q == SECTOR ? GLP_MAX : GLP_MIN);
     int wrench[3];
     for (int k = 0; k < 3; k++)
         wrench[k] = lp_row(&l, GLP_FX, c->target[k], c->target[k]);
@@ -517,6 +520,11 @@ static void cone_lp_solve(cone_lp *c)
         for (int k = 0; k < 3; k++)
             lp_set(&l, wrench[k], magnitude, -c->push[k]);
     }
+    if (c->q == SECTOR) {
+        int beta = lp_col(&l, GLP_LO, 0, 0, 1);
+        for (int k = 0; k < 3; k++)
+            lp_set(&l, wrench[k], beta, -c->second[k]);
+    }
     c->status = lp_solve(&l);
     if (c->status == GLP_OPT) {
         c->value = glp_get_obj_val(l.p);
@@ -537,19 +545,23 @@ static void cone_lp_solve(cone_lp *c)
 typedef bool (*bracket_decided)(double lo, double hi, void *context);
 
 static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, const double target[3],
-                              const double push[3], double tolerance, bracket_decided decided,
+                              const double push[3], const double *second, double tolerance,
+                              bracket_decided decided,
                               void *context, double *lo, double *hi, int *solves)
 {
     directions dirs[WR_MAX_SUPPORTS];
     for (int i = 0; i < m->s->count; i++)
         directions_start(&dirs[i]);
-    double none = q == F_MAX ? -INFINITY : INFINITY;
-    double sign = q == F_MAX ? -1 : 1; /* sign * value: a minimum */
+    bool largest = q == F_MAX || q == SECTOR;
+    double none = largest ? -INFINITY : INFINITY;
+    double sign = largest ? -1 : 1; /* sign * value: a minimum */
     double outer_best = -INFINITY, inner_best = INFINITY; /* of sign * value */
     for (int round = 0; round < 60; round++) {
         cone_lp c = {.m = m, .cone = cone, .q = q, .dirs = dirs};
         memcpy(c.target, target, sizeof c.target);
         memcpy(c.push, push, sizeof c.push);
+        if (second)
+            memcpy(c.second, second, sizeof c.second);
         c.inner = false;
         cone_lp_solve(&c);
         (*solves)++;
@@ -560,8 +572,8 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
             return WR_OK;
         }
         if (c.status == GLP_UNBND) {
-            *lo = *hi = INFINITY; /* only F_MAX can be unbounded from outside */
-            if (q != F_MAX)
+            *lo = *hi = INFINITY; /* only a largest can be unbounded from outside */
+            if (!largest)
                 return WR_LP_FAILED;
             /* Unbounded from inside too?  Any inner solution with a push
              * ray: ask the inner LP. */
@@ -658,7 +670,7 @@ static wr_status goal_body(void *context)
         if (cone->empty)
             continue;
         double lo, hi;
-        wr_status st = cone_bracket(&m, cone, RHO, target, push, call->tolerance, rho_decided,
+        wr_status st = cone_bracket(&m, cone, RHO, target, push, NULL, call->tolerance, rho_decided,
                                     &call->tolerance, &lo, &hi, &out->solves);
         if (st != WR_OK)
             return st;
@@ -739,6 +751,62 @@ static wr_status complement(wr_forces *excluded, double lo, double hi, wr_forces
     return WR_OK;
 }
 
+/* One cone's magnitudes along a line L + F u (F >= 0, in the units of the
+ * force asked): from outside, a closed interval [out_lo, out_hi] holding
+ * every F with L + F u in C + S; from inside, [in_lo, in_hi], every F of
+ * which is in C + S (none when in_lo > in_hi).  `reached` false: no F
+ * reaches C + S even from outside (the cone is then no constraint). */
+typedef struct cone_span {
+    bool reached;
+    double out_lo, out_hi, in_lo, in_hi;
+} cone_span;
+
+/* The spans of every goal cone (empty cones unreached) along load + F push,
+ * into spans[count of goal cones].  Runs GLPK: call within wr_lp_guarded.
+ * Returns WR_OK or WR_LP_FAILED. */
+static wr_status line_spans(const wr_analysis *analysis, const wr_supports *supports,
+                            const double load[3], const double push[3], cone_span *spans,
+                            int *solves)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    double hu[3], hl[3];
+    double push_length = wr_fixture_scale_wrench(f, push, hu);
+    double scale = fmax(problem_scale(f, supports, load), push_length);
+    model m;
+    model_init(&m, f, supports, scale);
+    wr_fixture_scale_wrench(f, load, hl);
+    for (int k = 0; k < 3; k++) {
+        hl[k] /= scale;
+        hu[k] /= push_length;
+    }
+    /* Magnitudes in the LP: F' = F |h(u)| / scale. */
+    double to_force = scale / push_length;
+    int count = wr_analysis_cone_count(analysis, WR_SET_GOAL);
+    for (int c = 0; c < count; c++) {
+        cone_span *span = &spans[c];
+        span->reached = false;
+        const wr_cone *cone = wr_analysis_cone(analysis, WR_SET_GOAL, c);
+        if (cone->empty)
+            continue;
+        double a_lo, a_hi, b_lo, b_hi;
+        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL,
+                                    &a_lo, &a_hi, solves);
+        if (st != WR_OK)
+            return st;
+        if (a_lo == INFINITY)
+            continue; /* no magnitude reaches this cone */
+        st = cone_bracket(&m, cone, F_MAX, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
+                          solves);
+        if (st != WR_OK)
+            return st;
+        /* Outer: [a_lo, b_hi] holds the cone's magnitudes; inner:
+         * [a_hi, b_lo] is held by them (when not empty). */
+        *span = (cone_span){true, a_lo * to_force, b_hi * to_force, a_hi * to_force,
+                            b_lo * to_force};
+    }
+    return WR_OK;
+}
+
 typedef struct range_call {
     const wr_analysis *analysis;
     const wr_supports *supports;
@@ -750,41 +818,21 @@ typedef struct range_call {
 static wr_status range_body(void *context)
 {
     range_call *call = context;
-    const wr_fixture *f = wr_analysis_fixture(call->analysis);
-    double hu[3], hl[3];
-    double push_length = wr_fixture_scale_wrench(f, call->push, hu);
-    double scale = fmax(problem_scale(f, call->supports, call->load), push_length);
-    model m;
-    model_init(&m, f, call->supports, scale);
-    wr_fixture_scale_wrench(f, call->load, hl);
-    for (int k = 0; k < 3; k++) {
-        hl[k] /= scale;
-        hu[k] /= push_length;
-    }
-    /* Magnitudes in the LP: F' = F |h(u)| / scale. */
-    double to_force = scale / push_length;
-    wr_forces outer_excluded = {0}, inner_excluded = {0};
-    wr_status st = WR_OK;
-    int solves = 0;
     int count = wr_analysis_cone_count(call->analysis, WR_SET_GOAL);
+    cone_span *spans = malloc((size_t)(count ? count : 1) * sizeof *spans);
+    if (!spans)
+        return WR_NO_MEMORY;
+    wr_forces outer_excluded = {0}, inner_excluded = {0};
+    int solves = 0;
+    wr_status st =
+        line_spans(call->analysis, call->supports, call->load, call->push, spans, &solves);
     for (int c = 0; c < count && st == WR_OK; c++) {
-        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_GOAL, c);
-        if (cone->empty)
+        const cone_span *span = &spans[c];
+        if (!span->reached)
             continue;
-        double a_lo, a_hi, b_lo, b_hi;
-        st = cone_bracket(&m, cone, F_MIN, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &a_lo, &a_hi,
-                          &solves);
-        if (st != WR_OK || a_lo == INFINITY)
-            continue; /* no magnitude reaches this cone */
-        st = cone_bracket(&m, cone, F_MAX, hl, hu, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
-                          &solves);
-        if (st != WR_OK)
-            break;
-        /* Outer: [a_lo, b_hi] holds the cone's magnitudes; inner:
-         * [a_hi, b_lo] is held by them (when not empty). */
-        st = forces_append(&outer_excluded, a_lo * to_force, b_hi * to_force);
-        if (st == WR_OK && a_hi <= b_lo)
-            st = forces_append(&inner_excluded, a_hi * to_force, b_lo * to_force);
+        st = forces_append(&outer_excluded, span->out_lo, span->out_hi);
+        if (st == WR_OK && span->in_lo <= span->in_hi)
+            st = forces_append(&inner_excluded, span->in_lo, span->in_hi);
     }
     if (st == WR_OK)
         st = complement(&outer_excluded, call->lo, call->hi, call->outer);
@@ -792,6 +840,7 @@ static wr_status range_body(void *context)
         st = complement(&inner_excluded, call->lo, call->hi, call->inner);
     wr_forces_release(&outer_excluded);
     wr_forces_release(&inner_excluded);
+    free(spans);
     return st;
 }
 
@@ -855,6 +904,466 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
         wr_forces_release(&sets[k][1]);
     }
     wr_forces_release(&scratch);
+    return st;
+}
+
+/* ---- the least push over the outline ------------------------------------ */
+
+/* A point of an edge where the spans of every case were found: spans[case
+ * * cones + cone].  Shared by the two intervals it ends (refs). */
+typedef struct outline_point {
+    int refs;
+    double t;
+    double upper; /* the least F from outside: pushes just above it seat */
+    cone_span spans[];
+} outline_point;
+
+typedef struct outline_piece {
+    double bound; /* no push on the piece seats below it */
+    int edge;
+    outline_point *p0, *p1;
+} outline_piece;
+
+typedef struct outline_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    const double (*loads)[3];
+    int case_count, cones;
+    const wr_finger *finger;
+    const wr_stop *stop;
+    wr_least_force *out;
+    outline_piece *pieces; /* a min-heap by bound */
+    int count, capacity;
+    int solves;
+} outline_call;
+
+/* The end of the component holding 0 of the union of closed intervals
+ * [lo[i], hi[i]]: 0 when none holds 0; INFINITY when the union from 0 has
+ * no end. */
+static double cover_from_zero(const double *lo, const double *hi, int n)
+{
+    double at = 0;
+    bool covered = false;
+    for (bool moved = true; moved && isfinite(at);) {
+        moved = false;
+        for (int i = 0; i < n; i++)
+            if (lo[i] <= at && hi[i] > at) {
+                at = hi[i];
+                moved = covered = true;
+            } else if (lo[i] <= at && hi[i] >= at) {
+                covered = true;
+            }
+    }
+    return covered ? at : 0;
+}
+
+static void point_release(outline_point *p)
+{
+    if (p && --p->refs == 0)
+        free(p);
+}
+
+/* The spans at t of edge `edge` under every case, and the least force
+ * from outside there (the component from 0 of the outer spans' union). */
+static wr_status point_new(outline_call *c, int edge, double t, outline_point **out)
+{
+    const wr_fixture *f = wr_analysis_fixture(c->analysis);
+    size_t spans = (size_t)c->case_count * (size_t)c->cones;
+    outline_point *p = malloc(sizeof *p + spans * sizeof p->spans[0]);
+    double *lo = malloc((spans ? spans : 1) * 2 * sizeof *lo);
+    if (!p || !lo) {
+        free(p);
+        free(lo);
+        return WR_NO_MEMORY;
+    }
+    p->refs = 1;
+    p->t = t;
+    double push[3];
+    wr_push_wrench(f, edge, t, push);
+    wr_status st = WR_OK;
+    for (int k = 0; k < c->case_count && st == WR_OK; k++)
+        st = line_spans(c->analysis, c->supports, c->loads[k], push, &p->spans[k * c->cones],
+                        &c->solves);
+    int n = 0;
+    double *hi = lo + spans;
+    for (size_t i = 0; st == WR_OK && i < spans; i++)
+        if (p->spans[i].reached) {
+            lo[n] = p->spans[i].out_lo;
+            hi[n++] = p->spans[i].out_hi;
+        }
+    p->upper = cover_from_zero(lo, hi, n);
+    free(lo);
+    c->out->evaluations++;
+    if (st != WR_OK) {
+        free(p);
+        return st;
+    }
+    *out = p;
+    return WR_OK;
+}
+
+/* A lower bound on the least seating force over the piece between a and
+ * b (MODEL.md section 11, "The least push on the plate"): a magnitude in
+ * the inner spans of one cone at both ends is in that cone grown by S at
+ * every point between, since the push's wrench is affine in t on a
+ * straight edge and the set of (F, F t) it maps into C + S is convex. */
+static wr_status piece_bound(const outline_call *c, const outline_point *a,
+                             const outline_point *b, double *bound)
+{
+    size_t spans = (size_t)c->case_count * (size_t)c->cones;
+    double *lo = malloc((spans ? spans : 1) * 2 * sizeof *lo);
+    if (!lo)
+        return WR_NO_MEMORY;
+    double *hi = lo + spans;
+    int n = 0;
+    for (size_t i = 0; i < spans; i++) {
+        const cone_span *x = &a->spans[i], *y = &b->spans[i];
+        if (!x->reached || !y->reached)
+            continue;
+        double l = fmax(x->in_lo, y->in_lo), h = fmin(x->in_hi, y->in_hi);
+        if (l <= h) {
+            lo[n] = l;
+            hi[n++] = h;
+        }
+    }
+    *bound = cover_from_zero(lo, hi, n);
+    free(lo);
+    return WR_OK;
+}
+
+static bool piece_push(outline_call *c, outline_piece piece)
+{
+    if (c->count == c->capacity) {
+        int capacity = c->capacity ? 2 * c->capacity : 64;
+        outline_piece *items = realloc(c->pieces, (size_t)capacity * sizeof *items);
+        if (!items)
+            return false;
+        c->pieces = items;
+        c->capacity = capacity;
+    }
+    int i = c->count++;
+    while (i > 0 && c->pieces[(i - 1) / 2].bound > piece.bound) {
+        c->pieces[i] = c->pieces[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    c->pieces[i] = piece;
+    piece.p0->refs++;
+    piece.p1->refs++;
+    return true;
+}
+
+static outline_piece piece_pop(outline_call *c)
+{
+    outline_piece top = c->pieces[0], last = c->pieces[--c->count];
+    int i = 0;
+    for (;;) {
+        int child = 2 * i + 1;
+        if (child >= c->count)
+            break;
+        if (child + 1 < c->count && c->pieces[child + 1].bound < c->pieces[child].bound)
+            child++;
+        if (c->pieces[child].bound >= last.bound)
+            break;
+        c->pieces[i] = c->pieces[child];
+        i = child;
+    }
+    if (c->count)
+        c->pieces[i] = last;
+    return top;
+}
+
+/* The search's relative tolerance: above the spans' own (WR_FORCE_TOLERANCE
+ * of the LPs' brackets), so that a piece shrunk to a point is decided. */
+#define OUTLINE_TOLERANCE 1e-6
+
+static double outline_enough(double best)
+{
+    return isfinite(best) ? best * (1 - OUTLINE_TOLERANCE) : INFINITY;
+}
+
+static wr_status outline_body(void *context)
+{
+    outline_call *c = context;
+    const wr_fixture *f = wr_analysis_fixture(c->analysis);
+    wr_least_force *out = c->out;
+    double best = INFINITY;
+    wr_status st = WR_OK;
+    /* Each edge pushed on, in 8 pieces to start with. */
+    enum { START = 8 };
+    for (int e = 0; st == WR_OK && e < (int)f->vertex_count; e++) {
+        if (!wr_finger_pushes_on(f, c->finger, e))
+            continue;
+        outline_point *prev = NULL;
+        for (int k = 0; st == WR_OK && k <= START; k++) {
+            outline_point *p;
+            st = point_new(c, e, (double)k / START, &p);
+            if (st != WR_OK)
+                break;
+            if (p->upper < best) {
+                best = p->upper;
+                out->edge = e;
+                out->t = p->t;
+            }
+            if (prev) {
+                double bound;
+                st = piece_bound(c, prev, p, &bound);
+                if (st == WR_OK && !piece_push(c, (outline_piece){bound, e, prev, p}))
+                    st = WR_NO_MEMORY;
+            }
+            point_release(prev);
+            prev = p;
+        }
+        point_release(prev);
+    }
+    bool converged = true;
+    while (st == WR_OK && c->count && c->pieces[0].bound < outline_enough(best)) {
+        if (out->evaluations >= WR_SUPPORT_MAX_POINTS) {
+            converged = false;
+            break;
+        }
+        if (wr_stop_requested(c->stop)) {
+            st = WR_STOPPED;
+            break;
+        }
+        outline_piece piece = piece_pop(c);
+        double mid = (piece.p0->t + piece.p1->t) / 2;
+        outline_point *m = NULL;
+        if (mid > piece.p0->t && mid < piece.p1->t)
+            st = point_new(c, piece.edge, mid, &m);
+        if (st == WR_OK && m) {
+            if (m->upper < best) {
+                best = m->upper;
+                out->edge = piece.edge;
+                out->t = mid;
+            }
+            for (int half = 0; st == WR_OK && half < 2; half++) {
+                outline_point *a = half ? m : piece.p0, *b = half ? piece.p1 : m;
+                double bound;
+                st = piece_bound(c, a, b, &bound);
+                bound = fmax(bound, piece.bound); /* a part's bound is at least its whole's */
+                if (st == WR_OK && bound < outline_enough(best) &&
+                    !piece_push(c, (outline_piece){bound, piece.edge, a, b}))
+                    st = WR_NO_MEMORY;
+            }
+        } else if (st == WR_OK) {
+            converged = false; /* a piece too short to split, still undecided */
+            st = piece_push(c, piece) ? WR_OK : WR_NO_MEMORY;
+            point_release(piece.p0);
+            point_release(piece.p1);
+            break;
+        }
+        point_release(m);
+        point_release(piece.p0);
+        point_release(piece.p1);
+    }
+    if (st == WR_OK) {
+        /* Pieces pruned are certified down to outline_enough(best). */
+        double lower = fmin(best, outline_enough(best));
+        for (int i = 0; i < c->count; i++)
+            lower = fmin(lower, c->pieces[i].bound);
+        out->found = isfinite(best);
+        out->force = best;
+        out->lower = lower;
+        out->converged = converged;
+        if (out->found)
+            wr_boundary_point(f, out->edge, out->t, out->at, out->direction);
+    }
+    for (int i = 0; i < c->count; i++) {
+        point_release(c->pieces[i].p0);
+        point_release(c->pieces[i].p1);
+    }
+    free(c->pieces);
+    return st;
+}
+
+wr_status wr_supports_least_force_find(const wr_analysis *analysis,
+                                       const wr_supports *supports, wr_lp_env *env,
+                                       const double (*loads)[3], int case_count,
+                                       const wr_finger *finger, const wr_stop *stop,
+                                       wr_least_force *out)
+{
+    memset(out, 0, sizeof *out);
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    if (f->shape != WR_SHAPE_POLYGON)
+        return f->shape == WR_SHAPE_NONE ? WR_NO_SHAPE : WR_INVALID;
+    if (case_count < 1 || !finger || finger->radius != 0)
+        return WR_INVALID;
+    for (int c = 0; c < case_count; c++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(loads[c][k]))
+                return WR_INVALID;
+    if (supports->total == 0 || supports->mu_static == 0) /* S = {0}: the cones alone */
+        return wr_least_force_find(analysis, WR_SET_GOAL, loads, case_count, finger, stop, out);
+    outline_call call = {analysis, supports, loads, case_count,
+                         wr_analysis_cone_count(analysis, WR_SET_GOAL), finger, stop, out,
+                         NULL, 0, 0, 0};
+    return wr_lp_guarded(env, outline_body, &call);
+}
+
+/* ---- the in-plane tilt --------------------------------------------------- */
+
+static wr_status regions_add(wr_regions *regions, int edge, double t0, double t1)
+{
+    /* Joined to the last one when they touch. */
+    if (regions->count && regions->items[regions->count - 1].edge == edge &&
+        regions->items[regions->count - 1].t1 == t0) {
+        regions->items[regions->count - 1].t1 = t1;
+        return WR_OK;
+    }
+    if (regions->count == regions->capacity) {
+        int capacity = regions->capacity ? 2 * regions->capacity : 8;
+        wr_region *items = realloc(regions->items, (size_t)capacity * sizeof *items);
+        if (!items)
+            return WR_NO_MEMORY;
+        regions->items = items;
+        regions->capacity = capacity;
+    }
+    regions->items[regions->count++] = (wr_region){edge, t0, t1};
+    return WR_OK;
+}
+
+typedef struct tilt_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    double weight; /* m times the in-plane gravity (model system) */
+    const wr_stop *stop;
+    model m;
+    double to_force; /* an LP magnitude times this is a force */
+    wr_regions *good, *undecided;
+    int solves;
+    int arcs; /* split so far: past WR_SUPPORT_MAX_CELLS, the rest stays undecided */
+} tilt_call;
+
+typedef struct threshold {
+    double value; /* in LP units */
+} threshold;
+
+static bool threshold_decided(double lo, double hi, void *context)
+{
+    double t = ((const threshold *)context)->value;
+    return hi < t || lo >= t;
+}
+
+/* The scaled unit force along phi degrees. */
+static void tilt_push(const tilt_call *c, double phi, double push[3])
+{
+    double u[3] = {cos(phi * WR_PI / 180), sin(phi * WR_PI / 180), 0};
+    double length = wr_fixture_scale_wrench(c->m.f, u, push);
+    for (int k = 0; k < 3; k++)
+        push[k] /= length;
+}
+
+/* One cone against the arc [phi0, phi1] (under 180 degrees) of the circle
+ * of radius r = weight: *out 1 when every point of the arc is in C + S
+ * (found from inside), -1 when none is (from outside), 0 when neither is
+ * proved.  C + S holds 0 (both hold it), so its slice K at zero torque is
+ * convex and star-shaped from 0, and:
+ * - the arc lies in the quadrilateral of 0, its ends and the crossing of
+ *   their tangents, at r / cos(half) along the middle: in K when those
+ *   three points are (inner magnitudes along the three rays);
+ * - the arc lies in the sector between its ends' rays, beyond the chord,
+ *   where alpha e0 + beta e1 has alpha + beta >= r: K misses it when the
+ *   largest alpha + beta in K is below r (outer). */
+static wr_status arc_against_cone(tilt_call *c, const wr_cone *cone, double phi0, double phi1,
+                                  int *out)
+{
+    static const double zero[3] = {0, 0, 0};
+    double half = (phi1 - phi0) / 2 * WR_PI / 180, mid = (phi0 + phi1) / 2;
+    double r = c->weight / c->to_force, e0[3], e1[3], lo, hi;
+    threshold near = {r};
+    tilt_push(c, phi0, e0);
+    tilt_push(c, phi1, e1);
+    wr_status st = cone_bracket(&c->m, cone, SECTOR, zero, e0, e1, WR_FORCE_TOLERANCE,
+                                threshold_decided, &near, &lo, &hi, &c->solves);
+    if (st != WR_OK)
+        return st;
+    if (hi < near.value) {
+        *out = -1;
+        return WR_OK;
+    }
+    *out = 0;
+    const double rays[3] = {phi0, phi1, mid};
+    for (int k = 0; k < 3; k++) {
+        threshold far = {k < 2 ? r : r / cos(half)};
+        double push[3];
+        tilt_push(c, rays[k], push);
+        st = cone_bracket(&c->m, cone, F_MAX, zero, push, NULL, WR_FORCE_TOLERANCE,
+                          threshold_decided, &far, &lo, &hi, &c->solves);
+        if (st != WR_OK || lo < far.value)
+            return st;
+    }
+    *out = 1;
+    return WR_OK;
+}
+
+/* The arc [phi0, phi1]: good when every cone misses it, excluded when one
+ * cone holds it, else split down to WR_SUPPORT_MIN_ARC degrees, where it is
+ * undecided.  Appended in order of phi. */
+static wr_status tilt_arc(tilt_call *c, double phi0, double phi1)
+{
+    if (wr_stop_requested(c->stop))
+        return WR_STOPPED;
+    int count = wr_analysis_cone_count(c->analysis, WR_SET_GOAL);
+    bool all_miss = true;
+    for (int k = 0; k < count; k++) {
+        const wr_cone *cone = wr_analysis_cone(c->analysis, WR_SET_GOAL, k);
+        if (cone->empty)
+            continue;
+        int side;
+        wr_status st = arc_against_cone(c, cone, phi0, phi1, &side);
+        if (st != WR_OK)
+            return st;
+        if (side > 0)
+            return WR_OK; /* excluded */
+        all_miss &= side < 0;
+    }
+    if (all_miss)
+        return regions_add(c->good, 0, phi0, phi1);
+    if (phi1 - phi0 <= WR_SUPPORT_MIN_ARC || ++c->arcs > WR_SUPPORT_MAX_CELLS)
+        return regions_add(c->undecided, 0, phi0, phi1);
+    double mid = (phi0 + phi1) / 2;
+    wr_status st = tilt_arc(c, phi0, mid);
+    return st == WR_OK ? tilt_arc(c, mid, phi1) : st;
+}
+
+static wr_status tilt_body(void *context)
+{
+    tilt_call *c = context;
+    for (int k = 0; k < 8; k++) {
+        wr_status st = tilt_arc(c, 45.0 * k, 45.0 * (k + 1));
+        if (st != WR_OK)
+            return st;
+    }
+    return WR_OK;
+}
+
+wr_status wr_supports_gravity_sweep(const wr_analysis *analysis, const wr_supports *supports,
+                                    wr_lp_env *env, double in_plane_g, const wr_stop *stop,
+                                    wr_regions *good, wr_regions *undecided)
+{
+    memset(good, 0, sizeof *good);
+    memset(undecided, 0, sizeof *undecided);
+    if (!(in_plane_g > 0) || !isfinite(in_plane_g))
+        return WR_INVALID;
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    wr_status st;
+    if (supports->total == 0 || supports->mu_static == 0) {
+        st = wr_gravity_sweep(analysis, WR_SET_GOAL, good); /* S = {0}: the cones alone */
+    } else {
+        tilt_call call = {.analysis = analysis, .supports = supports,
+                          .weight = f->mass * in_plane_g, .stop = stop, .good = good,
+                          .undecided = undecided};
+        double w[3] = {call.weight, 0, 0}, h[3];
+        double scale = problem_scale(f, supports, w);
+        model_init(&call.m, f, supports, scale);
+        double unit[3] = {1, 0, 0};
+        call.to_force = scale / wr_fixture_scale_wrench(f, unit, h);
+        st = wr_lp_guarded(env, tilt_body, &call);
+    }
+    if (st != WR_OK) {
+        wr_regions_release(good);
+        wr_regions_release(undecided);
+    }
     return st;
 }
 
@@ -1505,19 +2014,8 @@ wr_status wr_supports_push_regions(const wr_analysis *analysis, const wr_support
         }
     }
     for (int i = 0; status == WR_OK && i < all.count; i++) {
-        if (!(all.items[i].hi > all.items[i].lo))
-            continue;
-        if (regions->count == regions->capacity) {
-            int capacity = regions->capacity ? 2 * regions->capacity : 8;
-            wr_region *items = realloc(regions->items, (size_t)capacity * sizeof *items);
-            if (!items) {
-                status = WR_NO_MEMORY;
-                break;
-            }
-            regions->items = items;
-            regions->capacity = capacity;
-        }
-        regions->items[regions->count++] = (wr_region){edge, all.items[i].lo, all.items[i].hi};
+        if (all.items[i].hi > all.items[i].lo)
+            status = regions_add(regions, edge, all.items[i].lo, all.items[i].hi);
     }
     wr_forces_release(&all);
     wr_forces_release(&one);

@@ -169,6 +169,46 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
                                   wr_lp_env *env, const double (*loads)[3], int case_count,
                                   const double push[3], double *force, double *lower);
 
+/* The point of a polygon's outline where the least push seats the part on
+ * its supports under every case (wr_least_force_find's question on the
+ * plate, G_goal with S), for a point finger (radius 0; its push_on kept).
+ * By branch and bound over pieces of each edge: the bound of a piece is
+ * the component from 0 of the union over cones and cases of the
+ * magnitudes that the inner polygons' spans at both its ends share (the
+ * push's wrench is affine along an edge, so the magnitudes of a cone
+ * grown by S form a convex set in (F, F t): what both ends exclude, every
+ * point between excludes); a point's force is the outer polygons' (a
+ * push just above it seats).  Split until the lowest bound is within
+ * 1e-6 (relative) of the least force found, or WR_SUPPORT_MAX_POINTS
+ * points are evaluated (converged false; `lower` still certified).
+ * WR_OK; WR_NO_SHAPE; WR_INVALID (not a polygon, a finger radius, no
+ * case, a non-finite load); WR_NO_MEMORY; WR_LP_FAILED; WR_STOPPED. */
+#define WR_SUPPORT_MAX_POINTS 4000
+wr_status wr_supports_least_force_find(const wr_analysis *analysis,
+                                       const wr_supports *supports, wr_lp_env *env,
+                                       const double (*loads)[3], int case_count,
+                                       const wr_finger *finger, const wr_stop *stop,
+                                       wr_least_force *out);
+
+/* The in-plane tilt on the plate: the tilts phi (degrees, the direction the
+ * in-plane part of gravity pulls, as wr_gravity_sweep's) under which the
+ * wrench m a (cos phi, sin phi, 0), a = in_plane_g (length / s^2, > 0),
+ * seats the part on its supports (G_goal with S; the supports' own g is the
+ * part of gravity into the plate).  `good`: arcs proved to seat, every
+ * point; `undecided`: arcs of at most WR_SUPPORT_MIN_ARC degrees that are
+ * neither proved to seat nor proved not to (where the circle meets some
+ * C + S's boundary); the rest is proved not to seat.  Both in order, split
+ * at 0.  Per arc and cone: C + S's slice at zero torque is convex and holds
+ * 0, so the arc is in it when its ends and its tangents' crossing are
+ * (inner polygons), and misses it when the slice's support function along
+ * the middle is below the chord's distance (outer).  WR_OK, WR_INVALID
+ * (in_plane_g not positive and finite), WR_NO_MEMORY, WR_LP_FAILED,
+ * WR_STOPPED (both empty on failure). */
+#define WR_SUPPORT_MIN_ARC 1e-6
+wr_status wr_supports_gravity_sweep(const wr_analysis *analysis, const wr_supports *supports,
+                                    wr_lp_env *env, double in_plane_g, const wr_stop *stop,
+                                    wr_regions *good, wr_regions *undecided);
+
 /* Push regions on the plate: the open intervals of t on polygon edge
  * `edge` where a frictionless finger pushing with magnitude `force` along
  * the inward normal, plus each case's load, seats the part on its supports

@@ -15,7 +15,7 @@ static const char *const CLASSIFY_REQUIRED[] = {"fixture", "wrenches", NULL};
 static const char *const CONE[] = {"fixture", "constraints", NULL};
 static const char *const PUSH[] = {"fixture", "set", "finger_friction", "finger_radius", "push_on",
                                    "force", "cases", NULL};
-static const char *const SWEEP[] = {"fixture", "set", NULL};
+static const char *const SWEEP[] = {"fixture", "set", "in_plane_g", NULL};
 static const char *const MARGIN[] = {"fixture", "bias", NULL};
 static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spacing", "lattice",
                                      "objective", "top", "finger_radius", "finger_friction",
@@ -58,7 +58,7 @@ const wp_method wp_methods[] = {
     {.name = "push.regions", .stream = &wp_push_stream, .fields = PUSH, .required = FIXTURE,
      .flags = WP_FIXTURE},
     {.name = "gravity.sweep", .handler = wp_handle_gravity_sweep, .fields = SWEEP, .required = FIXTURE,
-     .flags = WP_FIXTURE | WP_READY},
+     .flags = WP_FIXTURE | WP_READY, .light = wp_gravity_light},
     {.name = "stability.margin", .handler = wp_handle_stability_margin, .fields = MARGIN,
      .required = MARGIN, .flags = WP_FIXTURE},
     {.name = "friction.sweep", .stream = &wp_sweep_stream, .fields = FRICTION_SWEEP,

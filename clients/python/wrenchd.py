@@ -1147,11 +1147,25 @@ class _Methods:
             params["samples"] = samples
         return self._invoke("push.force", params, _object_result, True, timeout)
 
-    def gravity_sweep(self, fixture: Any, set: str = "goal", *, timeout: Any = _DEFAULT):
+    def gravity_sweep(self, fixture: Any, set: str = "goal", *,
+                      in_plane_g: Optional[float] = None, timeout: Any = _DEFAULT):
         """gravity.sweep: the arcs [a, b] of tilt (degrees, the direction
-        gravity pulls) under which gravity alone gives a wrench in the set."""
-        return self._invoke("gravity.sweep", {"fixture": _fixture_ref(fixture), "set": set},
-                            _sweep_result, True, timeout)
+        gravity pulls) under which gravity alone gives a wrench in the set.
+        On supports (on_supports) give `in_plane_g`, the pull in the tilted
+        plate's plane (g sin(tilt)): the arcs proved to seat the part
+        against the supports' friction (set "goal"); tilt_on_supports also
+        returns the undecided arcs."""
+        params: Dict[str, Any] = {"fixture": _fixture_ref(fixture), "set": set}
+        if in_plane_g is not None:
+            params["in_plane_g"] = in_plane_g
+        return self._invoke("gravity.sweep", params, _sweep_result, True, timeout)
+
+    def tilt_on_supports(self, fixture: Any, in_plane_g: float, *, timeout: Any = _DEFAULT):
+        """gravity.sweep on supports, whole: {"intervals_deg": arcs proved
+        to seat, "undecided_deg": arcs of at most 1e-6 degrees proved
+        neither way}."""
+        params = {"fixture": _fixture_ref(fixture), "set": "goal", "in_plane_g": in_plane_g}
+        return self._invoke("gravity.sweep", params, lambda r: r, True, timeout)
 
     def stability_margin(self, fixture: Any, bias: Any, *, timeout: Any = _DEFAULT):
         """stability.margin: the disturbance a biasing wrench tolerates

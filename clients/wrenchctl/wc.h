@@ -75,6 +75,7 @@ enum {
     WC_OPT_PUSH_FORCE = 1 << 21, /* push: --force F */
     WC_OPT_GEOMETRIC = 1 << 23, /* --tolerance T[,A] (classify: --fixture-tolerance): the
                                    fixture's geometric tolerance */
+    WC_OPT_TILT = 1 << 24,      /* gravity: --in-plane-g A, the pull in a tilted plate's plane */
     WC_OPT_LOCATE = 1 << 22     /* --tolerance T|T1,T2,T3, --feature [NAME=]X,Y (repeated),
                                    --sigma-ratio R */
 };
@@ -143,6 +144,11 @@ typedef struct wc_run {
     cJSON *force_wrench;    /* force --wrench: [fx, fy, tau] */
     double push_force;      /* push --force */
     bool push_force_given;
+    /* WC_FIXTURE: --supports FILE|JSON, the fixture's "supports" member
+       (sent inline with it); NULL when absent */
+    const char *supports;
+    double in_plane_g;      /* gravity --in-plane-g A (WC_OPT_TILT) */
+    bool in_plane_g_given;
 } wc_run;
 
 /* Adds the command's params to `params` (the fixture is already there for

@@ -252,6 +252,26 @@ int wc_fixture_tolerance(wc_options *o, cJSON **fixture, double position, double
     return -1;
 }
 
+/* A stored fixture fetched (an inline one as it is) and sent inline with
+ * `supports` (a JSON object, or a file holding one) as its member. */
+int wc_fixture_supports(wc_options *o, cJSON **fixture, const char *supports)
+{
+    int status = fixture_inline(o, fixture, "--supports");
+    if (status >= 0)
+        return status;
+    const char *text = supports + strspn(supports, " \t\r\n");
+    cJSON *member = *text == '{' ? cJSON_Parse(text) : wc_fixture_argument(o, supports);
+    if (!cJSON_IsObject(member)) {
+        cJSON_Delete(member);
+        return wc_usage_error("--supports '%s': a JSON object {\"points\", \"friction\", \"g\", "
+                              "\"down\"?}, or a file holding one",
+                              supports);
+    }
+    cJSON_DeleteItemFromObject(*fixture, "supports");
+    cJSON_AddItemToObject(*fixture, "supports", member);
+    return -1;
+}
+
 /* ---- wrenches ---------------------------------------------------------------- */
 
 /* "fx,fy,tau" or "fx,fy@x,y" as a wrench JSON value; NULL if neither. */

@@ -41,6 +41,9 @@ int wc_fixture_friction(wc_options *o, cJSON **fixture, double low, double high)
  * analyses; classify's is --fixture-tolerance, its --tolerance being the
  * verdicts' band) replaced. */
 int wc_fixture_tolerance(wc_options *o, cJSON **fixture, double position, double angle);
+/* --supports FILE|JSON: the fixture inline with that "supports" member
+ * (a stored one fetched first); -1, or an exit status. */
+int wc_fixture_supports(wc_options *o, cJSON **fixture, const char *supports);
 
 /* "fx,fy,tau" or "fx,fy@x,y" as a wrench JSON value; NULL if neither. */
 cJSON *wc_wrench_argument(const char *text);

@@ -390,6 +390,8 @@ int wc_gravity_request(wc_run *run, cJSON *params)
 {
     if (run->set)
         cJSON_AddStringToObject(params, "set", run->set);
+    if (run->in_plane_g_given)
+        cJSON_AddNumberToObject(params, "in_plane_g", run->in_plane_g);
     return -1;
 }
 
@@ -423,6 +425,11 @@ int wc_gravity_answer(wc_run *run, const cJSON *result)
                cJSON_GetArrayItem(arc, 1)->valuedouble - cJSON_GetArrayItem(arc, 0)->valuedouble);
         if (count == 0)
             printf("  none: gravity alone never does it\n");
+        /* On supports: arcs at the crossings proved neither way. */
+        const cJSON *undecided = cJSON_GetObjectItem(result, "undecided_deg");
+        cJSON_ArrayForEach(arc, undecided)
+        printf("  undecided from %.9f to %.9f\n", cJSON_GetArrayItem(arc, 0)->valuedouble,
+               cJSON_GetArrayItem(arc, 1)->valuedouble);
         if (strcmp(set_name(run), "both") != 0)
             printf("%s\n", wc_set_promise(set_name(run)));
     }

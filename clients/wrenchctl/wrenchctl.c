@@ -446,7 +446,25 @@ typedef struct command_option {
     int (*take)(wc_run *run, const char *value); /* 0, or an exit status */
 } command_option;
 
+static int take_supports(wc_run *run, const char *value)
+{
+    run->supports = value;
+    return 0;
+}
+
+static int take_in_plane_g(wc_run *run, const char *value)
+{
+    char *end;
+    run->in_plane_g = strtod(value, &end);
+    if (end == value || *end || !(run->in_plane_g > 0) || !isfinite(run->in_plane_g))
+        return wc_usage_error("--in-plane-g '%s': a number above 0 (length / s^2)", value);
+    run->in_plane_g_given = true;
+    return 0;
+}
+
 static const command_option COMMAND_OPTIONS[] = {
+    {"supports", WC_FIXTURE, take_supports},
+    {"in-plane-g", WC_OPT_TILT, take_in_plane_g},
     {"sets", WC_OPT_SETS, take_sets},
     {"method", WC_OPT_METHOD, take_method},
     {"tolerance", WC_OPT_TOLERANCE, take_tolerance},
@@ -570,6 +588,8 @@ static int run_command(wc_options *o, const wc_command *c, int argc, char **argv
             status = wc_fixture_friction(o, &run.fixture, run.friction_low, run.friction_high);
         if (status < 0 && run.geometric_given)
             status = wc_fixture_tolerance(o, &run.fixture, run.geometric[0], run.geometric[1]);
+        if (status < 0 && run.supports)
+            status = wc_fixture_supports(o, &run.fixture, run.supports);
     }
     if (status < 0 && !c->method)
         status = c->request(&run, NULL);
@@ -759,12 +779,15 @@ const wc_command wc_commands[] = {
      "  --finger-radius R   only where a round finger of radius R fits\n"
      PUSH_ON_HELP("  ")
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
+     "On supports (--supports, or the fixture's member) with --set goal: the least push that\n"
+     "seats the part against the supports' friction, on a polygon, for a point finger.\n"
      GEOMETRIC_HELP("   ")
      "With --tolerance each F* is robust: a push of that force does the job on every such\n"
      "fixture, and the least is the least of the samples (and of the nominal least's point).\n"
      "Exit status 0 when some push does the job, 1 when none does."},
-    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC, 1, 1,
+    {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]\n"
+     "       [--supports FILE|JSON --in-plane-g A]",
+     WC_FIXTURE | WC_OPT_SET | WC_OPT_SVG | WC_OPT_INTERVAL | WC_OPT_GEOMETRIC | WC_OPT_TILT, 1, 1,
      "gravity.sweep", wc_gravity_request, wc_gravity_answer,
      "the tilts under which gravity seats the part",
      "The arcs of tilt (the direction gravity pulls, degrees, in the part's frame) under which\n"
@@ -772,6 +795,9 @@ const wc_command wc_commands[] = {
      "  --set SET         goal (default), strong or both (goal may leave the part sliding\n"
      "                    on, strong holds it only once seated; both does both)\n"
      "  --svg FILE        also draw the sweep as a dial around the part\n"
+     "  --in-plane-g A    on supports (its \"supports\" member, or --supports): the pull in\n"
+     "                    the tilted plate's plane, g sin(tilt); the tilts whose pull m A\n"
+     "                    seats the part against the supports' friction (set goal)\n"
      FRICTION_HELP("  ")
      GEOMETRIC_HELP(" ")
      "Exit status 0 when there is an arc, 1 when there is none."},

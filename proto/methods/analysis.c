@@ -460,6 +460,70 @@ static wr_status robust_part(const wr_analysis *a, wr_set set, bool gravity, con
     return status;
 }
 
+static void write_arcs(wp_writer *out, const char *key, const wr_regions *arcs)
+{
+    wp_write_key(out, key);
+    wp_write_array(out);
+    for (int i = 0; i < arcs->count; i++) {
+        const double arc[2] = {arcs->items[i].t0 + 0.0, arcs->items[i].t1 + 0.0};
+        wp_write_numbers(out, arc, 2);
+    }
+    wp_write_array_end(out);
+}
+
+/* gravity.sweep on supports (wr_supports_gravity_sweep): the tilts whose
+ * in-plane pull m in_plane_g seats the part (set "goal"), the arcs proved
+ * and those left undecided. */
+static bool tilt_on_supports(wp_call *call, wp_fixture_use *use, wr_set set, wp_writer *out)
+{
+    double pull = 0;
+    bool given = false;
+    if (!wp_member_number(call->params, "params", "in_plane_g", false, &pull, &given,
+                          call->error))
+        return false;
+    if (!given)
+        return !wp_supports_refuse(call, use->fixture, "params.in_plane_g",
+                                   "\"in_plane_g\", the part of gravity in the plate's plane "
+                                   "(g sin(tilt), in the fixture's length / s^2): whether a pull "
+                                   "seats the part depends on its size");
+    if (!(pull > 0) || !isfinite(pull)) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.in_plane_g",
+                     "must be above 0 and finite");
+        return false;
+    }
+    if (set != WR_SET_GOAL) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.set",
+                     "the fixture rests on supports: gravity.sweep gives the tilts whose pull "
+                     "seats it (set \"goal\"); whether the seated part is held under that "
+                     "pull is wrench.classify's \"strong\" with it");
+        return false;
+    }
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    wr_regions good, undecided;
+    wr_status status = env ? wr_supports_gravity_sweep(use->analysis, use->fixture->supports, env,
+                                                       pull, call->host->stop, &good, &undecided)
+                           : WR_LP_FAILED;
+    if (status != WR_OK) {
+        wp_error_status(call->error, status, "params.in_plane_g", "%s", wr_strerror(status));
+        return false;
+    }
+    wp_write_object(out);
+    write_arcs(out, "intervals_deg", &good);
+    write_arcs(out, "undecided_deg", &undecided);
+    wp_write_object_end(out);
+    wr_regions_release(&good);
+    wr_regions_release(&undecided);
+    return true;
+}
+
+/* On the event loop only without "in_plane_g" (a floating part's exact
+ * arcs, or a refusal): on supports the sweep solves LPs. */
+bool wp_gravity_light(const cJSON *params, int cones)
+{
+    (void)cones;
+    return !cJSON_GetObjectItemCaseSensitive(params, "in_plane_g");
+}
+
 bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
@@ -470,10 +534,8 @@ bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return false;
-    if (wp_supports_refuse(call, use->fixture, "params.fixture",
-                           "the gravity as a load (wrench.classify, force.range cases): a tilt "
-                           "alone says nothing of the supports' friction"))
-        return false;
+    if (use->fixture->supports)
+        return tilt_on_supports(call, use, set, out);
     wr_regions arcs;
     wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
     if (status == WR_OK && use->fixture->tolerance.given)
@@ -483,13 +545,7 @@ bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out)
         return false;
     }
     wp_write_object(out);
-    wp_write_key(out, "intervals_deg");
-    wp_write_array(out);
-    for (int i = 0; i < arcs.count; i++) {
-        const double arc[2] = {arcs.items[i].t0 + 0.0, arcs.items[i].t1 + 0.0};
-        wp_write_numbers(out, arc, 2);
-    }
-    wp_write_array_end(out);
+    write_arcs(out, "intervals_deg", &arcs);
     wp_write_object_end(out);
     wr_regions_release(&arcs);
     return true;

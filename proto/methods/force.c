@@ -416,6 +416,41 @@ static void write_force_or_null(wp_writer *out, const wr_fixture *f, double forc
         wp_write_null(out);
 }
 
+/* On supports (wr_support.h) push.force finds the least push that seats
+ * the part (set "goal") along a polygon's straight edges, for a point
+ * finger: false with the error set otherwise. */
+static bool supports_least_ok(wp_call *call, const wr_fixture *f, wr_set set, double radius)
+{
+    if (!f->supports)
+        return true;
+    const char *why = set != WR_SET_GOAL ? "params.set"
+                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                      : radius > 0 ? "params.finger_radius"
+                                   : NULL;
+    if (!why)
+        return true;
+    wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                 "the fixture rests on supports: push.force finds the least push that seats it "
+                 "(set \"goal\"), along a polygon's straight edges, for a point finger; whether "
+                 "the seated part is held is wrench.classify's \"strong\" with that push");
+    return false;
+}
+
+/* F* at one point of the outline: the floating part's, or on supports
+ * the least from outside (a push just above it seats). */
+static wr_status least_at(const wp_call *call, const wr_analysis *a, wr_set set,
+                          const double (*loads)[3], int case_count, const double push[3],
+                          double *force)
+{
+    const wr_supports *supports = wr_analysis_fixture(a)->supports;
+    if (!supports)
+        return wr_least_force_at(a, set, loads, case_count, push, force);
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    double lower;
+    return env ? wr_supports_least_force(a, supports, env, loads, case_count, push, force, &lower)
+               : WR_LP_FAILED;
+}
+
 /* A stop that the caller's stop or a deadline asks for. */
 typedef struct deadline_stop {
     const wr_stop *caller;
@@ -430,15 +465,16 @@ static bool deadline_or_caller(void *context)
 
 /* F* at `samples` evenly spaced points of edge e (off its ends) into
  * values (INFINITY where no push is made: a loop push_on leaves out, where
- * the finger does not fit), exact, or with `robust` robust
- * (wr_robust_least_force_at).  *made: the samples made; past the deadline
- * fewer, and *partial set.  WR_OK; WR_STOPPED (the caller's stop);
- * WR_NO_MEMORY; WR_INVALID; WR_LP_FAILED. */
-static wr_status sample_edge(const wr_analysis *a, const wr_robust *robust, wr_set set,
-                             const double (*loads)[3], int case_count, const wr_finger *finger,
-                             int e, int samples, double deadline, const wr_stop *stop,
-                             const wr_stop *caller, double *values, int *made, bool *partial)
+ * the finger does not fit), exact (least_at: on supports too), or with
+ * `robust` robust (wr_robust_least_force_at).  *made: the samples made;
+ * past the deadline fewer, and *partial set.  WR_OK; WR_STOPPED (the
+ * call's stop); WR_NO_MEMORY; WR_INVALID; WR_LP_FAILED. */
+static wr_status sample_edge(const wp_call *call, const wr_analysis *a, const wr_robust *robust,
+                             wr_set set, const double (*loads)[3], int case_count,
+                             const wr_finger *finger, int e, int samples, double deadline,
+                             const wr_stop *stop, double *values, int *made, bool *partial)
 {
+    const wr_stop *caller = call->host->stop;
     const wr_fixture *f = wr_analysis_fixture(a);
     double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
     bool pushed = wr_finger_pushes_on(f, finger, e);
@@ -467,7 +503,7 @@ static wr_status sample_edge(const wr_analysis *a, const wr_robust *robust, wr_s
             status = wr_robust_least_force_at(robust, set, loads, case_count, push, stop,
                                               &values[j]);
         else if (reached)
-            status = wr_least_force_at(a, set, loads, case_count, push, &values[j]);
+            status = least_at(call, a, set, loads, case_count, push, &values[j]);
         if (status == WR_STOPPED && !wr_stop_requested(caller)) {
             status = WR_OK; /* the deadline, inside a robust sample */
             *partial = true;
@@ -511,12 +547,9 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return false;
-    if (wp_supports_refuse(call, use->fixture, "params.fixture",
-                           "the push at a point to force.range, whose \"least\" is the least "
-                           "force there on the plate: the least over the outline is found for a "
-                           "part floating in its plane"))
-        return false;
     const wr_fixture *f = use->fixture;
+    if (!supports_least_ok(call, f, set, radius))
+        return false;
     if (f->shape == WR_SHAPE_NONE) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.body.shape",
                      "a push force needs the part's outline: the fixture has no shape");
@@ -549,9 +582,15 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     const wr_stop stop = {deadline_or_caller, &by};
     wr_least_force least = {0};
     bool partial = false;
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
     if (status == WR_OK)
-        status = wr_least_force_find(use->analysis, set, (const double (*)[3])loads, cases.count,
-                                     &finger, &stop, &least);
+        status = f->supports
+                     ? (env ? wr_supports_least_force_find(use->analysis, f->supports, env,
+                                                           (const double (*)[3])loads, cases.count,
+                                                           &finger, &stop, &least)
+                            : WR_LP_FAILED)
+                     : wr_least_force_find(use->analysis, set, (const double (*)[3])loads,
+                                           cases.count, &finger, &stop, &least);
     /* With a tolerance the samples come first (grid, made[e] per edge),
      * and the least is the least robust F* of the samples and of the
      * nominal search's point. */
@@ -566,9 +605,9 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     }
     int robust_edges = 0; /* edges sampled (the last one cut short by a deadline) */
     for (int e = 0; status == WR_OK && robust && !partial && e < edges; e++, robust_edges++)
-        status = sample_edge(use->analysis, robust, set, loads, cases.count, &finger, e, samples,
-                             deadline, &stop, call->host->stop, grid + (size_t)e * samples,
-                             &made_on[e], &partial);
+        status = sample_edge(call, use->analysis, robust, set, loads, cases.count, &finger, e,
+                             samples, deadline, &stop, grid + (size_t)e * samples, &made_on[e],
+                             &partial);
     if (status == WR_OK && robust && least.found) {
         /* No fixture of the set needs less than the nominal one, so the
          * nominal lower bound stays one. */
@@ -635,9 +674,8 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
             made = made_on[e];
             memcpy(values, grid + (size_t)e * samples, sizeof *values * (size_t)made);
         } else {
-            status = sample_edge(use->analysis, NULL, set, loads, cases.count, &finger, e,
-                                 samples, deadline, &stop, call->host->stop, values, &made,
-                                 &partial);
+            status = sample_edge(call, use->analysis, NULL, set, loads, cases.count, &finger, e,
+                                 samples, deadline, &stop, values, &made, &partial);
         }
         if (status != WR_OK)
             break;

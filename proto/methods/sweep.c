@@ -107,14 +107,23 @@ static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_erro
     return true;
 }
 
-static void write_intervals(wp_writer *out, const wr_intervals *list)
+/* The intervals of `list` up to `top` (INFINITY: all): a partial answer
+ * says nothing above its stopped_at, so an interval reaching past it is cut
+ * there and one starting at or past it is left out (docs/PROTOCOL.md,
+ * deadline_s; as the push sweep's own cut). */
+static void write_intervals_below(wp_writer *out, const wr_intervals *list, double top)
 {
     wp_write_array(out);
-    for (int i = 0; i < list->count; i++) {
-        const double pair[2] = {list->items[i][0] + 0.0, list->items[i][1] + 0.0};
+    for (int i = 0; i < list->count && list->items[i][0] < top; i++) {
+        const double pair[2] = {list->items[i][0] + 0.0, fmin(list->items[i][1], top) + 0.0};
         wp_write_numbers(out, pair, 2);
     }
     wp_write_array_end(out);
+}
+
+static void write_intervals(wp_writer *out, const wr_intervals *list)
+{
+    write_intervals_below(out, list, INFINITY);
 }
 
 static void write_stopped(wp_writer *out, double reached);
@@ -451,8 +460,11 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
             wp_write_numbers(out, state->at[i], 2);
     }
     wp_write_array_end(out);
+    /* The push alone's intervals are known over the whole range; a partial
+     * answer gives them up to where its samples stopped. */
     wp_write_key(out, "intervals");
-    write_intervals(out, &wr_sweep_job_curve(state->job)->intervals);
+    write_intervals_below(out, &wr_sweep_job_curve(state->job)->intervals,
+                          partial ? state->mus[state->sample - 1] : INFINITY);
     wp_write_member_bool(out, "exact", false);
     wp_write_member_number(out, "resolution",
                            (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));

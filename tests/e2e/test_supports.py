@@ -125,9 +125,8 @@ def test_zero_load_held(client):
     ("stability.margin", {"bias": [0, -1, 0]}, "params.bias"),
     ("force.range", {"push": {"at": [1 / R2, 1 / R2]}, "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
      "params.sets"),
-    ("push.force", {"set": "goal", "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
-     "params.fixture"),
-    ("gravity.sweep", {"set": "goal"}, "params.fixture"),
+    ("push.force", {"cases": [{"loads": [{"wrench": [0, 0, 0]}]}]}, "params.set"),
+    ("gravity.sweep", {"set": "goal"}, "params.in_plane_g"),
 ])
 def test_direction_questions_refused(client, method, params, field):
     f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
@@ -150,6 +149,14 @@ def test_python_client_least_force_on_the_plate(daemon):
                           sets=["goal"])
         expected = 0.3 * G * math.sqrt(10)
         assert abs(r["all"]["goal"]["least"] - expected) < 1e-7 * expected
+        # The tilt on the plate: the disc's arc for a pull of 20 (see
+        # test_tilt_of_the_disc_on_buttons for its closed form).
+        d = math.degrees(math.asin(0.3 * G / 20))
+        edge = math.degrees(math.atan(0.5))
+        (lo, hi), = c.gravity_sweep(f, "goal", in_plane_g=20)
+        assert abs(lo - (180 + edge + d)) < 1e-5 and abs(hi - (270 - edge - d)) < 1e-5
+        whole = c.tilt_on_supports(f, 20)
+        assert whole["intervals_deg"] == [[lo, hi]] and len(whole["undecided_deg"]) <= 2
 
 
 def test_units_millimetres_and_newtons(client):
@@ -212,3 +219,124 @@ def test_supports_and_tolerance_not_together(client):
     f["tolerance"] = {"position": 0.01}
     got, reason = error_of(client, "fixture.put", {"fixture": f})
     assert got == "params.fixture.supports" and "tolerance" in reason, (got, reason)
+
+
+def test_push_force_on_the_plate_agrees_with_force_range(client):
+    """The chamfered plate on three buttons: push.force's least push over
+    the outline is force.range's least at the point it names (two
+    methods), no point of force.range's dense sampling of the outline seats
+    with less, and its certified lower bound is below both. Its segments'
+    samples are force.range's least at their points. The floating plate's
+    least is lower: the buttons' friction costs force."""
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    r = client.result("push.force", {"fixture": f, "set": "goal", "cases": none, "samples": 8})
+    least = r["least"]
+    assert least["converged"], least
+    force, lower = least["force"], least["lower_bound"]
+    assert lower <= force <= lower * (1 + 2e-6), least
+
+    def least_at(at, direction):
+        got = client.result("force.range", {"fixture": f, "push": {"at": at, "direction": direction},
+                                             "cases": none,
+                                             "sets": ["goal"]})["all"]["goal"]["least"]
+        return math.inf if got is None else got
+
+    assert abs(least_at(least["at"], least["direction"]) - force) <= 1e-6 * force, least
+    vertices = floating["body"]["shape"]["vertices"]
+
+    def point(e, t):
+        a, b = vertices[e], vertices[(e + 1) % len(vertices)]
+        length = math.hypot(b[0] - a[0], b[1] - a[1])
+        inward = [-(b[1] - a[1]) / length, (b[0] - a[0]) / length]  # counter-clockwise
+        return [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])], inward
+
+    sampled = math.inf
+    for e in range(len(vertices)):
+        for j in range(32):
+            sampled = min(sampled, least_at(*point(e, (j + 0.5) / 32)))
+    assert force <= sampled * (1 + 1e-6), (force, sampled)
+    assert sampled <= force * 1.2, (force, sampled)
+    segment = next(s for s in r["segments"] if s["edge"] == 2)
+    for t, value in zip(segment["t"], segment["force"]):
+        expected = least_at(*point(2, t))
+        assert (value is None) == math.isinf(expected)
+        assert value is None or abs(value - expected) <= 1e-9 * expected
+    plain = client.result("push.force", {"fixture": floating, "set": "goal", "cases": none,
+                                         "samples": 1})["least"]["force"]
+    assert plain < force, (plain, force)
+    # A finger of some size, another set, no outline of straight edges: refused.
+    for extra, field in (({"set": "both"}, "params.set"),
+                         ({"set": "goal", "finger_radius": 0.1}, "params.finger_radius")):
+        got, reason = error_of(client, "push.force", dict(extra, fixture=f, cases=none))
+        assert got == field and "supports" in reason, (got, reason)
+
+
+def test_tilt_of_the_disc_on_buttons(client):
+    """The disc in the corner on three buttons, tilted: its in-plane pull
+    m a seats iff it is farther than mu_B m g from the complement of the
+    goal wedge (edges at 180 + atan(1/2) and 270 - atan(1/2) degrees), the
+    torque absorbed by the axis every excluded cone holds: the arc is
+    (180 + atan(1/2) + d, 270 - atan(1/2) - d), sin d = mu_B g / a. A pull
+    too weak seats nowhere; the floating disc's arc is the whole wedge."""
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    edge = math.degrees(math.atan(0.5))
+    for pull in (20.0, 60.0):
+        r = client.result("gravity.sweep", {"fixture": f, "set": "goal", "in_plane_g": pull})
+        d = math.degrees(math.asin(0.3 * G / pull))
+        (lo, hi), = r["intervals_deg"]
+        assert abs(lo - (180 + edge + d)) < 1e-5 and abs(hi - (270 - edge - d)) < 1e-5, r
+        for a, b in r["undecided_deg"]:
+            assert b - a <= 1e-5 and min(abs(a - lo), abs(b - hi)) < 1e-5, r
+    weak = client.result("gravity.sweep", {"fixture": f, "set": "goal", "in_plane_g": 9.0})
+    assert weak["intervals_deg"] == [], weak
+    floating = client.result("gravity.sweep", {"fixture": FX.disc_corner(0.5), "set": "goal"})
+    (lo, hi), = floating["intervals_deg"]
+    assert abs(lo - (180 + edge)) < 1e-9 and abs(hi - (270 - edge)) < 1e-9
+    for extra, field in (({"set": "both", "in_plane_g": 20}, "params.set"),
+                         ({"set": "goal", "in_plane_g": -1}, "params.in_plane_g")):
+        got, _ = error_of(client, "gravity.sweep", dict(extra, fixture=f))
+        assert got == field
+
+
+def test_wrenchctl_supports_option(daemon, client):
+    """wrenchctl --supports JSON|FILE sends the fixture with that member:
+    push-force --set goal and gravity --in-plane-g answer as the daemon
+    does for the fixture with the member written in."""
+    import subprocess
+    import tempfile
+    wrenchctl = os.path.join(REPO, "build", "wrenchctl")
+    env = dict(os.environ, WRENCHD_SOCKET=daemon.path)
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    supports = {"points": [[1, 0.5], [3, 0.5], [1.5, 1.6]], "friction": 0.1, "g": G}
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    expected = client.result("push.force", {"fixture": dict(floating, supports=supports),
+                                            "set": "goal", "cases": none})
+    with tempfile.TemporaryDirectory() as d:
+        part = os.path.join(d, "part.json")
+        rest = os.path.join(d, "rest.json")
+        with open(part, "w") as fh:
+            json.dump(floating, fh)
+        with open(rest, "w") as fh:
+            json.dump(supports, fh)
+        for given in (json.dumps(supports), rest):
+            out = subprocess.run([wrenchctl, "--json", "push-force", part, "--set", "goal",
+                                  "--case", "wrench=0,0,0", "--supports", given],
+                                 capture_output=True, text=True, env=env, timeout=120)
+            assert out.returncode == 0, out.stderr
+            got = json.loads(out.stdout)["least"]
+            assert abs(got["force"] - expected["least"]["force"]) <= 1e-12 * got["force"]
+        disc = os.path.join(d, "disc.json")
+        with open(disc, "w") as fh:
+            json.dump(FX.disc_corner(0.5), fh)
+        rest = json.dumps({"points": BUTTONS, "friction": 0.3, "g": G})
+        out = subprocess.run([wrenchctl, "gravity", disc, "--supports", rest, "--in-plane-g", "20"],
+                             capture_output=True, text=True, env=env, timeout=120)
+        assert out.returncode == 0, out.stderr
+        assert "215.0268" in out.stdout and "234.9731" in out.stdout, out.stdout
+        bad = subprocess.run([wrenchctl, "gravity", disc, "--supports", "[1]"],
+                             capture_output=True, text=True, env=env, timeout=60)
+        assert bad.returncode != 0 and "--supports" in bad.stderr, bad.stderr

@@ -436,6 +436,157 @@ static void test_polygon_bracket(void **state)
 }
 
 
+/* The least push over the outline on the plate, against brute force: at
+ * points spaced evenly along every edge, the 256-gon LPs' least force
+ * (from inside, a lower bound of that point's F*; from outside, an upper
+ * one).  wrenchd's least force is at most every point's upper value (no
+ * sampled push seating with less), its certified lower bound at most
+ * every sampled upper value, and at its own point its force is at least
+ * the inscribed polygons' there (it is not below that point's F*).  The
+ * chamfered plate (examples/plate-chamfered.json) with no load and under
+ * a load along -y, and random polygons, each on three buttons. */
+static wr_fixture *plate_chamfered(void)
+{
+    static const double vertices[5][2] = {{0, 0}, {4, 0}, {4, 1}, {3, 2}, {0, 2}};
+    wr_fixel_spec fixels[3];
+    memset(fixels, 0, sizeof fixels);
+    fixels[0].at[0] = 1;
+    fixels[1].at[0] = 3;
+    fixels[2].at[1] = 0.5;
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = 2;
+    spec.shape = WR_SHAPE_POLYGON;
+    spec.vertex_count = 5;
+    spec.vertices = vertices;
+    spec.friction.given = true;
+    spec.friction.static_mu = 0.1;
+    spec.fixel_count = 3;
+    spec.fixels = fixels;
+    return test_fixture_new(&spec, NULL);
+}
+
+static void test_outline_least_sampled(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    test_rng rng = {20261129};
+    const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {1.5, 1.6}};
+    int checked = 0;
+    for (int trial = 0; trial < 4; trial++) {
+        wr_fixture *f = trial < 2 ? plate_chamfered() : test_random_fixture(&rng, 2, false);
+        if (!f)
+            continue;
+        wr_analysis *a = test_analysis_new(f);
+        double points[3][2];
+        for (int i = 0; i < 3; i++) {
+            double angle = 2 * TEST_PI * (i + 0.5) / 3;
+            points[i][0] = trial < 2 ? buttons[i][0] : f->com[0] + 0.2 * f->size * cos(angle);
+            points[i][1] = trial < 2 ? buttons[i][1] : f->com[1] + 0.2 * f->size * sin(angle);
+        }
+        wr_error error;
+        wr_supports *s = supports_new(f, (const double (*)[2])points, 3, 0.2, G, NULL, 0, &error);
+        if (!s) {
+            printf("outline trial %d: %s %s\n", trial, error.field, error.reason);
+            wr_analysis_free(a);
+            wr_fixture_free(f);
+            continue;
+        }
+        double load[3] = {0, trial == 1 ? -3.0 : 0, 0};
+        wr_finger finger = {0};
+        wr_least_force least;
+        assert_int_equal(wr_supports_least_force_find(a, s, env, (const double (*)[3])&load, 1,
+                                                      &finger, NULL, &least),
+                         WR_OK);
+        double sampled = INFINITY;
+        enum { PER_EDGE = 24 };
+        for (size_t e = 0; e < f->vertex_count; e++)
+            for (int j = 0; j <= PER_EDGE; j++) {
+                double push[3];
+                wr_push_wrench(f, (int)e, (double)j / PER_EDGE, push);
+                sampled = fmin(sampled, poly_least_force(a, s, load, push, true));
+            }
+        printf("outline trial %d: least %.9g (lower %.9g, %s, %lu points) at edge %d t %.6f; "
+               "sampled %.9g\n",
+               trial, least.force, least.lower, least.converged ? "converged" : "not converged",
+               least.evaluations, least.edge, least.t, sampled);
+        assert_true(least.found == isfinite(sampled));
+        if (least.found) {
+            assert_true(least.converged);
+            assert_true(least.force <= sampled * (1 + 1e-6) + 1e-9);
+            assert_true(least.lower <= sampled + 1e-9);
+            assert_true(least.lower <= least.force &&
+                        least.force - least.lower <= 2e-6 * least.force + 1e-9);
+            double push[3];
+            wr_push_wrench(f, least.edge, least.t, push);
+            double inner = poly_least_force(a, s, load, push, false);
+            assert_true(least.force >= inner * (1 - 1e-7) - 1e-9);
+            checked++;
+        }
+        wr_supports_free(s);
+        wr_analysis_free(a);
+        wr_fixture_free(f);
+    }
+    assert_true(checked >= 3);
+    wr_lp_env_free(env);
+}
+
+/* The in-plane tilt of the disc in the corner (fixel friction 0.5) on the
+ * three buttons `tri`, W = m g.  As for a push through the centre (MODEL.md
+ * section 11's worked example), every excluded cone holds the torque axis,
+ * so gravity's in-plane pull m a (cos phi, sin phi) seats iff it is farther
+ * than mu_B W from the complement of the goal wedge, whose edges are at
+ * 180 + atan(1/2) and 270 - atan(1/2) degrees: m a sin(delta) > mu_B m g,
+ * delta the angle to the nearer edge.  The arc is (180 + atan(1/2) +
+ * delta*, 270 - atan(1/2) - delta*), sin(delta*) = mu_B g / a, none when
+ * delta* exceeds the wedge's half, 18.435 degrees.  Floating (g = 0) it is
+ * the whole wedge. */
+static void test_tilt_disc(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    wr_fixture *f = test_disc_corner(0.5);
+    wr_analysis *a = test_analysis_new(f);
+    double edge = atan(0.5) * 180 / TEST_PI;
+    const double pulls[3] = {20, 60, 9};
+    for (int k = 0; k < 4; k++) {
+        double mu = 0.3, g = k == 3 ? 0 : G;
+        wr_error error;
+        wr_supports *s = supports_new(f, tri, 3, mu, g, NULL, 0, &error);
+        assert_non_null(s);
+        double pull = k == 3 ? 20 : pulls[k];
+        wr_regions good, undecided;
+        assert_int_equal(wr_supports_gravity_sweep(a, s, env, pull, NULL, &good, &undecided),
+                         WR_OK);
+        double ratio = mu * g / pull;
+        double delta = asin(fmin(1, ratio)) * 180 / TEST_PI;
+        double from = 180 + edge + delta, to = 270 - edge - delta;
+        printf("tilt, pull %g on g %g: %d arcs", pull, g, good.count);
+        for (int i = 0; i < good.count; i++)
+            printf(" (%.9f, %.9f)", good.items[i].t0, good.items[i].t1);
+        printf("; closed form (%.9f, %.9f); %d undecided\n", from, to, undecided.count);
+        if (from < to) {
+            assert_int_equal(good.count, 1);
+            assert_true(fabs(good.items[0].t0 - from) < 1e-5);
+            assert_true(fabs(good.items[0].t1 - to) < 1e-5);
+        } else {
+            assert_int_equal(good.count, 0);
+        }
+        /* Undecided only where the circle meets a boundary. */
+        for (int i = 0; i < undecided.count; i++) {
+            double at = (undecided.items[i].t0 + undecided.items[i].t1) / 2;
+            assert_true(undecided.items[i].t1 - undecided.items[i].t0 <= 1e-5);
+            assert_true(fabs(at - from) < 1e-5 || fabs(at - to) < 1e-5);
+        }
+        wr_regions_release(&good);
+        wr_regions_release(&undecided);
+        wr_supports_free(s);
+    }
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    wr_lp_env_free(env);
+}
+
 /* ---- holding --------------------------------------------------------------- */
 
 /* At zero load nothing moves the part: for every fixture and buttons of
@@ -693,6 +844,8 @@ int main(void)
         cmocka_unit_test(test_statics),
         cmocka_unit_test(test_disc_least_force),
         cmocka_unit_test(test_polygon_bracket),
+        cmocka_unit_test(test_outline_least_sampled),
+        cmocka_unit_test(test_tilt_disc),
         cmocka_unit_test(test_zero_load_held),
         cmocka_unit_test(test_plate_clamp),
         cmocka_unit_test(test_holding_sampled),
