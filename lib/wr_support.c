@@ -564,6 +564,7 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
     double none = largest ? -INFINITY : INFINITY;
     double sign = largest ? -1 : 1; /* sign * value: a minimum */
     double outer_best = -INFINITY, inner_best = INFINITY; /* of sign * value */
+    bool retried = false;
     for (int round = 0; round < 60; round++) {
         cone_lp c = {.m = m, .cone = cone, .q = q, .dirs = dirs};
         memcpy(c.target, target, sizeof c.target);
@@ -573,8 +574,20 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
         c.inner = false;
         cone_lp_solve(&c);
         (*solves)++;
+        /* A refinement GLPK cannot solve leaves the bracket of the round
+         * before: still bounds from both sides, only wider. */
+        if (c.status < 0 && round == 0 && !retried) {
+            /* A first polygon GLPK cannot solve (degenerate): once more
+             * with 16 directions a disc, turned half a step. */
+            retried = true;
+            for (int i = 0; i < m->s->count; i++)
+                for (int k = 0; k < 8; k++)
+                    directions_add(&dirs[i], cos((k + 0.5) * (PI / 4)), sin((k + 0.5) * (PI / 4)));
+            round--;
+            continue;
+        }
         if (c.status < 0)
-            return WR_LP_FAILED;
+            return round ? WR_OK : WR_LP_FAILED;
         if (c.status == GLP_NOFEAS) {
             *lo = *hi = none;
             return WR_OK;
@@ -593,7 +606,7 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
         cone_lp_solve(&in);
         (*solves)++;
         if (in.status < 0)
-            return WR_LP_FAILED;
+            return round ? WR_OK : WR_LP_FAILED;
         if (in.status == GLP_UNBND) {
             *lo = *hi = INFINITY;
             return WR_OK;
@@ -715,6 +728,63 @@ wr_status wr_supports_goal(const wr_analysis *analysis, const wr_supports *suppo
     }
     goal_call call = {analysis, supports, wrench, tolerance, out};
     return wr_lp_guarded(env, goal_body, &call);
+}
+
+/* ---- seating against the supports' friction coefficient ------------------ */
+
+typedef struct limit_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports; /* with mu_s = 1 */
+    const double *wrench;
+    double *bracket;
+} limit_call;
+
+static wr_status limit_body(void *context)
+{
+    limit_call *call = context;
+    model m;
+    double target[3], push[3] = {0, 0, 0};
+    model_for(&m, call->analysis, call->supports, call->wrench, target);
+    call->bracket[0] = call->bracket[1] = INFINITY;
+    int count = wr_analysis_cone_count(call->analysis, WR_SET_GOAL), solves = 0;
+    for (int c = 0; c < count; c++) {
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_GOAL, c);
+        if (cone->empty)
+            continue;
+        double lo, hi;
+        wr_status st = cone_bracket(&m, cone, RHO, target, push, NULL, WR_DEFAULT_TOLERANCE, NULL,
+                                    NULL, &lo, &hi, &solves);
+        if (st == WR_LP_FAILED) {
+            /* Unknown for this cone: no coefficient is proved to seat. */
+            lo = 0;
+            hi = INFINITY;
+        } else if (st != WR_OK) {
+            return st;
+        }
+        call->bracket[0] = fmin(call->bracket[0], lo);
+        call->bracket[1] = fmin(call->bracket[1], hi);
+    }
+    return WR_OK;
+}
+
+wr_status wr_supports_friction_limit(const wr_analysis *analysis, const wr_supports *supports,
+                                     wr_lp_env *env, const double wrench[3], double bracket[2])
+{
+    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]))
+        return WR_INVALID;
+    if (supports->total == 0) {
+        /* S = {0} whatever mu_B: the cones alone. */
+        wr_verdict v;
+        wr_status st = wr_classify_verdict(analysis, wrench, WR_SET_GOAL, WR_DEFAULT_TOLERANCE, &v);
+        bracket[0] = bracket[1] = v == WR_VERDICT_INSIDE ? INFINITY : 0;
+        return st;
+    }
+    /* S scales with mu_s: at mu_s = 1 the least scale rho* of S that
+     * reaches a cone is the coefficient where seating ends. */
+    wr_supports unit = *supports; /* shares the distributions */
+    unit.mu_static = unit.mu_static_min = 1;
+    limit_call call = {analysis, &unit, wrench, bracket};
+    return wr_lp_guarded(env, limit_body, &call);
 }
 
 /* ---- magnitudes along a push --------------------------------------------- */

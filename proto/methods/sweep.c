@@ -5,6 +5,7 @@
 #include "methods.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -47,6 +48,9 @@ typedef struct sweep_state {
     /* params.deadline_s: the monotonic second after which the sweep stops
      * where it has got to (0: none; sweep_step). */
     double deadline;
+    /* params.over "supports": the supports' mu_B swept (wrenches, goal;
+     * sweep_supports_step) instead of the fixels' mu */
+    bool over_supports;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -254,6 +258,63 @@ static void sweep_free(void *stream)
     free(stream);
 }
 
+/* params.over: "fixels" (default: a common mu at every fixel) or
+ * "supports" (the supports' mu_B).  On supports only the latter is swept:
+ * the fixels' mu changes the cones, and with them every grown cone. */
+static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
+{
+    const char *over = NULL;
+    if (!wp_member_string(call->params, "params", "over", false, &over, call->error))
+        return false;
+    if (over && strcmp(over, "supports") != 0 && strcmp(over, "fixels") != 0) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
+                     "must be \"fixels\" or \"supports\"");
+        return false;
+    }
+    state->over_supports = over && strcmp(over, "supports") == 0;
+    if (state->over_supports && !f->supports) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
+                     "the fixture has no supports: sweep its fixels' friction (\"fixels\")");
+        return false;
+    }
+    if (!state->over_supports && f->supports) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
+                     "the fixture rests on supports: friction.sweep sweeps their mu_B "
+                     "(\"over\": \"supports\"); for other fixel frictions ask "
+                     "wrench.classify or force.range with one fixture per coefficient");
+        return false;
+    }
+    return true;
+}
+
+/* Over the supports' mu_B: the wrenches' seating (goal), which
+ * wr_supports_friction_limit decides exactly. */
+static bool supports_question(wp_call *call, sweep_state *state)
+{
+    static const char *const NAMES[] = {"wrenches", "push", "gravity", "force"};
+    if (state->what != SWEEP_WRENCHES) {
+        char field[WP_FIELD_MAX];
+        snprintf(field, sizeof field, "params.%s", NAMES[state->what]);
+        wp_error_set(call->error, WP_INVALID_PARAMS, field,
+                     "over the supports' mu_B friction.sweep answers \"wrenches\" (set "
+                     "\"goal\"); a push's least force on the plate is push.force at each "
+                     "mu_B");
+        return false;
+    }
+    wp_classify_request *r = &state->request;
+    if (!cJSON_GetObjectItemCaseSensitive(call->params, "sets")) {
+        r->sets[0] = WR_SET_GOAL;
+        r->set_count = 1;
+    } else if (r->set_count != 1 || r->sets[0] != WR_SET_GOAL) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.sets",
+                     "over the supports' mu_B the sweep gives where each wrench seats the part "
+                     "([\"goal\"]); whether it is held is wrench.classify's \"strong\" at "
+                     "each mu_B");
+        return false;
+    }
+    return true;
+}
+
 /* friction.sweep: one of wrenches, push, gravity, against a common mu.
  * Everything is read and the sweepers made before any answer is written;
  * then each step runs the current job for its budget (wr_sweep.h). */
@@ -273,16 +334,13 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
         sweep_free(state);
         return NULL;
     }
-    if (wp_supports_refuse(call, use->fixture, "params.fixture",
-                           "one fixture per coefficient to wrench.classify or force.range: the "
-                           "sweep's answers are those of a part floating in its plane")) {
+    if (!read_over(call, use->fixture, state) || !read_sweep(call, use->fixture, state) ||
+        (state->over_supports && !supports_question(call, state))) {
         sweep_free(state);
         return NULL;
     }
-    if (!read_sweep(call, use->fixture, state)) {
-        sweep_free(state);
-        return NULL;
-    }
+    if (state->over_supports)
+        return state; /* no sweeper: the supports' friction leaves the cones as they are */
     wr_status status = WR_OK;
     /* Force: the push alone's intervals first (the job), then the samples
      * a mu at a time (sweep_force_step). */
@@ -452,10 +510,64 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* Over the supports' mu_B: {"results": [{"goal": [[low, mu*]] or []}, ...]},
+ * each wrench's interval [low, min(high, mu*)) from
+ * wr_supports_friction_limit (its lower bracket: every mu_B in it seats). */
+#define SUPPORTS_WRENCH_COST 4000
+static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                   unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    if (!use || !env) {
+        wp_error_status(call->error, WR_LP_FAILED, "", "%s", wr_strerror(WR_LP_FAILED));
+        return WP_STEP_FAILED;
+    }
+    if (!state->opened) {
+        state->opened = true;
+        wp_write_object(out);
+        wp_write_key(out, "results");
+        wp_write_array(out);
+    }
+    for (bool first = true; state->next < state->request.wrench_count; first = false) {
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        if (wr_stop_requested(call->host->stop)) {
+            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+            return WP_STEP_FAILED;
+        }
+        double bracket[2];
+        wr_status status = wr_supports_friction_limit(use->analysis, use->fixture->supports, env,
+                                                      state->request.wrenches[state->next],
+                                                      bracket);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params.wrenches", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        *used += SUPPORTS_WRENCH_COST;
+        wp_write_object(out);
+        wp_write_key(out, "goal");
+        wp_write_array(out);
+        double top = fmin(state->range.high, bracket[0]);
+        if (top > state->range.low) {
+            const double pair[2] = {state->range.low, top + 0.0};
+            wp_write_numbers(out, pair, 2);
+        }
+        wp_write_array_end(out);
+        wp_write_object_end(out);
+        state->next++;
+    }
+    wp_write_array_end(out);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
+    if (state->over_supports)
+        return sweep_supports_step(state, call, out, budget, used);
     if (state->what == SWEEP_FORCE)
         return sweep_force_step(state, call, out, budget, used);
     const wp_classify_request *r = &state->request;

@@ -340,3 +340,39 @@ def test_wrenchctl_supports_option(daemon, client):
         bad = subprocess.run([wrenchctl, "gravity", disc, "--supports", "[1]"],
                              capture_output=True, text=True, env=env, timeout=60)
         assert bad.returncode != 0 and "--supports" in bad.stderr, bad.stderr
+
+
+def test_friction_sweep_over_the_supports(client):
+    """friction.sweep "over": "supports": a force of 30 through the disc's
+    centre along 225 degrees seats for mu_B below 30 / (W sqrt 10) (the
+    disc's closed form); wrench.classify agrees at 0.999 and 1.001 times
+    the end for a wrench of the 3-2-1 plate on buttons. Sweeping the
+    fixels' mu on supports, or the supports' on a floating part, is
+    refused at params.over."""
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    w = [-30 / R2, -30 / R2, 0]
+    r = client.result("friction.sweep", {"fixture": f, "over": "supports", "wrenches": [w]})
+    (lo, hi), = r["results"][0]["goal"]
+    assert lo == 0 and abs(hi - 30 / (G * math.sqrt(10))) < 1e-8, r
+    capped = client.result("friction.sweep", {"fixture": f, "over": "supports", "wrenches": [w],
+                                              "range": [0.5, 0.8]})
+    assert capped["results"][0]["goal"] == [[0.5, 0.8]], capped
+    buttons = [[1, 0.5], [3, 0.5], [2, 1.7]]
+    cut = [-4.0, -9.0, 2.0]
+    g = on_buttons(plate(), buttons, 0.2)
+    (_, end), = client.result("friction.sweep", {"fixture": g, "over": "supports",
+                                                 "wrenches": [cut], "sets": ["goal"]})["results"][0]["goal"]
+    verdicts = []
+    for factor in (0.999, 1.001):
+        h = on_buttons(plate(), buttons, end * factor)
+        verdicts.append(client.result("wrench.classify", {"fixture": h, "wrenches": [cut],
+                                                          "sets": ["goal"]})["results"][0]["goal"]["verdict"])
+    assert verdicts == ["inside", "outside"], (end, verdicts)
+    for params, field in (({"fixture": f, "wrenches": [w]}, "params.over"),
+                          ({"fixture": FX.disc_corner(0.5), "over": "supports", "wrenches": [w]},
+                           "params.over"),
+                          ({"fixture": f, "over": "supports", "wrenches": [w], "sets": ["strong"]},
+                           "params.sets"),
+                          ({"fixture": f, "over": "supports", "gravity": {}}, "params.gravity")):
+        got, _ = error_of(client, "friction.sweep", params)
+        assert got == field, (params, got)
