@@ -787,6 +787,12 @@ wr_status wr_supports_friction_limit(const wr_analysis *analysis, const wr_suppo
     return wr_lp_guarded(env, limit_body, &call);
 }
 
+void wr_supports_with_friction(const wr_supports *supports, double mu, wr_supports *out)
+{
+    *out = *supports;
+    out->mu_static = out->mu_static_min = out->mu_kinetic = out->mu_kinetic_min = mu;
+}
+
 /* ---- magnitudes along a push --------------------------------------------- */
 
 static wr_status forces_append(wr_forces *out, double lo, double hi)
@@ -843,8 +849,8 @@ typedef struct cone_span {
  * into spans[count of goal cones].  Runs GLPK: call within wr_lp_guarded.
  * Returns WR_OK or WR_LP_FAILED. */
 static wr_status line_spans(const wr_analysis *analysis, const wr_supports *supports,
-                            const double load[3], const double push[3], cone_span *spans,
-                            int *solves)
+                            const double load[3], const double push[3], double tolerance,
+                            cone_span *spans, int *solves)
 {
     const wr_fixture *f = wr_analysis_fixture(analysis);
     double hu[3], hl[3];
@@ -867,13 +873,13 @@ static wr_status line_spans(const wr_analysis *analysis, const wr_supports *supp
         if (cone->empty)
             continue;
         double a_lo, a_hi, b_lo, b_hi;
-        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL,
+        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, NULL, tolerance, NULL, NULL,
                                     &a_lo, &a_hi, solves);
         if (st != WR_OK)
             return st;
         if (a_lo == INFINITY)
             continue; /* no magnitude reaches this cone */
-        st = cone_bracket(&m, cone, F_MAX, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
+        st = cone_bracket(&m, cone, F_MAX, hl, hu, NULL, tolerance, NULL, NULL, &b_lo, &b_hi,
                           solves);
         if (st != WR_OK)
             return st;
@@ -903,7 +909,8 @@ static wr_status range_body(void *context)
     wr_forces outer_excluded = {0}, inner_excluded = {0};
     int solves = 0;
     wr_status st =
-        line_spans(call->analysis, call->supports, call->load, call->push, spans, &solves);
+        line_spans(call->analysis, call->supports, call->load, call->push, WR_FORCE_TOLERANCE,
+                   spans, &solves);
     for (int c = 0; c < count && st == WR_OK; c++) {
         const cone_span *span = &spans[c];
         if (!span->reached)
@@ -987,6 +994,10 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
 
 /* ---- the least push over the outline ------------------------------------ */
 
+/* The spans' brackets in the search: a tenth of its own tolerance
+ * (OUTLINE_TOLERANCE), so that a piece shrunk to a point is decided. */
+#define OUTLINE_SPAN_TOLERANCE 1e-7
+
 /* A point of an edge where the spans of every case were found: spans[case
  * * cones + cone].  Shared by the two intervals it ends (refs). */
 typedef struct outline_point {
@@ -1060,8 +1071,8 @@ static wr_status point_new(outline_call *c, int edge, double t, outline_point **
     wr_push_wrench(f, edge, t, push);
     wr_status st = WR_OK;
     for (int k = 0; k < c->case_count && st == WR_OK; k++)
-        st = line_spans(c->analysis, c->supports, c->loads[k], push, &p->spans[k * c->cones],
-                        &c->solves);
+        st = line_spans(c->analysis, c->supports, c->loads[k], push, OUTLINE_SPAN_TOLERANCE,
+                        &p->spans[k * c->cones], &c->solves);
     int n = 0;
     double *hi = lo + spans;
     for (size_t i = 0; st == WR_OK && i < spans; i++)
@@ -1150,8 +1161,8 @@ static outline_piece piece_pop(outline_call *c)
     return top;
 }
 
-/* The search's relative tolerance: above the spans' own (WR_FORCE_TOLERANCE
- * of the LPs' brackets), so that a piece shrunk to a point is decided. */
+/* The search's relative tolerance: above the spans' own
+ * (OUTLINE_SPAN_TOLERANCE). */
 #define OUTLINE_TOLERANCE 1e-6
 
 static double outline_enough(double best)

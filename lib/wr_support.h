@@ -150,6 +150,11 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
                              wr_lp_env *env, const double wrench[3], double tolerance,
                              const wr_stop *stop, wr_support_strong *out);
 
+/* The same supports with mu_B = mu (static and kinetic, no interval), into
+ * *out: a shallow copy sharing `supports`' distributions, valid while it
+ * is, never passed to wr_supports_free. */
+void wr_supports_with_friction(const wr_supports *supports, double mu, wr_supports *out);
+
 /* Seating against the supports' static coefficient mu_B (the fixture's own
  * ignored): S grows linearly with mu_B and C + rho S with rho, so the
  * wrench seats for mu_B in [0, mu*) exactly, mu* the least scale of the

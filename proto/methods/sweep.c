@@ -292,13 +292,32 @@ static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
 static bool supports_question(wp_call *call, sweep_state *state)
 {
     static const char *const NAMES[] = {"wrenches", "push", "gravity", "force"};
+    if (state->what == SWEEP_FORCE) {
+        const cJSON *force = cJSON_GetObjectItemCaseSensitive(call->params, "force");
+        const wr_fixture *f = wp_call_fixture(call)->fixture;
+        const char *why = cJSON_GetObjectItemCaseSensitive(force, "set") &&
+                                  state->request.sets[0] != WR_SET_GOAL
+                              ? "params.force.set"
+                          : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                          : state->finger.radius > 0     ? "params.force.finger_radius"
+                                                         : NULL;
+        if (why) {
+            wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                         "over the supports' mu_B the sweep gives the least push that seats the "
+                         "part (set \"goal\"), along a polygon's straight edges, for a point "
+                         "finger");
+            return false;
+        }
+        state->request.sets[0] = WR_SET_GOAL;
+        return true;
+    }
     if (state->what != SWEEP_WRENCHES) {
         char field[WP_FIELD_MAX];
         snprintf(field, sizeof field, "params.%s", NAMES[state->what]);
         wp_error_set(call->error, WP_INVALID_PARAMS, field,
-                     "over the supports' mu_B friction.sweep answers \"wrenches\" (set "
-                     "\"goal\"); a push's least force on the plate is push.force at each "
-                     "mu_B");
+                     "over the supports' mu_B friction.sweep answers \"wrenches\" and "
+                     "\"force\" (set \"goal\"): push regions and tilts on the plate depend "
+                     "on the push's or the pull's size");
         return false;
     }
     wp_classify_request *r = &state->request;
@@ -562,12 +581,91 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* Over the supports' mu_B, "force": {"curve": [[mu, F | null], ...], "at":
+ * [[x, y] | null, ...], "exact": false, "resolution": step}: the least push
+ * on the plate (wr_supports_least_force_find) at SUPPORTS_FORCE_SAMPLES
+ * coefficients evenly over the range, ends included, a sample a step. */
+#define SUPPORTS_FORCE_SAMPLES 17
+static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                         unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    if (!use || !env) {
+        wp_error_status(call->error, WR_LP_FAILED, "", "%s", wr_strerror(WR_LP_FAILED));
+        return WP_STEP_FAILED;
+    }
+    const double step = (state->range.high - state->range.low) / (SUPPORTS_FORCE_SAMPLES - 1);
+    if (!state->at) {
+        state->at = malloc(SUPPORTS_FORCE_SAMPLES * sizeof *state->at);
+        if (!state->at) {
+            wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+            return WP_STEP_FAILED;
+        }
+        wp_write_object(out);
+        wp_write_key(out, "curve");
+        wp_write_array(out);
+    }
+    bool partial = false;
+    for (bool first = true; state->sample < SUPPORTS_FORCE_SAMPLES; first = false) {
+        if (state->sample > 0 && deadline_passed(state)) {
+            partial = true;
+            break;
+        }
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        double mu = state->sample + 1 == SUPPORTS_FORCE_SAMPLES
+                        ? state->range.high
+                        : state->range.low + state->sample * step;
+        wr_supports at_mu;
+        wr_supports_with_friction(use->fixture->supports, mu, &at_mu);
+        wr_least_force least;
+        wr_status status = wr_supports_least_force_find(
+            use->analysis, &at_mu, env, (const double (*)[3])state->loads, state->cases.count,
+            &state->finger, call->host->stop, &least);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        *used += 1000 + least.evaluations * 400 * (unsigned long)state->cases.count;
+        double *point = state->at[state->sample];
+        point[0] = least.found ? least.at[0] + 0.0 : NAN;
+        point[1] = least.found ? least.at[1] + 0.0 : NAN;
+        wp_write_array(out);
+        wp_write_number(out, mu + 0.0);
+        if (least.found)
+            wp_write_number(out, wp_force_out(use->fixture, least.force));
+        else
+            wp_write_null(out);
+        wp_write_array_end(out);
+        state->sample++;
+    }
+    wp_write_array_end(out);
+    wp_write_key(out, "at");
+    wp_write_array(out);
+    for (int i = 0; i < state->sample; i++) {
+        if (isnan(state->at[i][0]))
+            wp_write_null(out);
+        else
+            wp_write_numbers(out, state->at[i], 2);
+    }
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "exact", false);
+    wp_write_member_number(out, "resolution", step);
+    if (partial)
+        write_stopped(out, state->range.low + (state->sample - 1) * step);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
     if (state->over_supports)
-        return sweep_supports_step(state, call, out, budget, used);
+        return state->what == SWEEP_FORCE
+                   ? sweep_supports_force_step(state, call, out, budget, used)
+                   : sweep_supports_step(state, call, out, budget, used);
     if (state->what == SWEEP_FORCE)
         return sweep_force_step(state, call, out, budget, used);
     const wp_classify_request *r = &state->request;

@@ -376,3 +376,32 @@ def test_friction_sweep_over_the_supports(client):
                           ({"fixture": f, "over": "supports", "gravity": {}}, "params.gravity")):
         got, _ = error_of(client, "friction.sweep", params)
         assert got == field, (params, got)
+
+
+def test_friction_sweep_of_the_least_push_over_the_supports(client):
+    """friction.sweep "over": "supports" with "force": the least push on the
+    plate at 17 coefficients mu_B; each sample is push.force's least for the
+    fixture with that mu_B, mu_B = 0 is the floating plate's least seating
+    push, and the curve never falls (the grown cones only grow with mu_B)."""
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    buttons = [[1, 0.5], [3, 0.5], [1.5, 1.6]]
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    f = on_buttons(floating, buttons, 0.1)
+    r = client.result("friction.sweep", {"fixture": f, "over": "supports", "force": {},
+                                         "cases": none, "range": [0, 0.16]})
+    curve = r["curve"]
+    assert len(curve) == 17 and len(r["at"]) == 17 and r["exact"] is False
+    assert abs(r["resolution"] - 0.01) < 1e-15
+    forces = [force for _, force in curve]
+    assert all(b >= a * (1 - 1e-6) for a, b in zip(forces, forces[1:])), forces
+    plain = client.result("push.force", {"fixture": floating, "set": "goal", "cases": none,
+                                         "samples": 1})["least"]["force"]
+    assert abs(forces[0] - plain) <= 1e-6 * plain, (forces[0], plain)
+    for mu, force in (curve[5], curve[16]):
+        at_mu = client.result("push.force", {"fixture": on_buttons(floating, buttons, mu),
+                                             "set": "goal", "cases": none, "samples": 1})
+        assert abs(at_mu["least"]["force"] - force) <= 1e-9 * force, (mu, force, at_mu)
+    got, _ = error_of(client, "friction.sweep", {"fixture": f, "over": "supports", "cases": none,
+                                                 "force": {"set": "both"}})
+    assert got == "params.force.set"
