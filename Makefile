@@ -35,7 +35,7 @@ WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=realloc,--wrap=calloc
 # tests and the fuzzers link it.
 DAEMON_LINK = libwrenchd.a libwrenchproto.a libwrench.a
 
-.PHONY: all check check-tests unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
+.PHONY: layers all check check-tests unit unit-asan e2e e2e-asan check-valgrind deps clean help run demo pictures \
         physics-check validate load-check soak bench install uninstall fuzz fuzz-smoke \
         fuzz-build links check-cluster deps-freecad check-freecad freecad-link freecad-picture FORCE
 
@@ -48,9 +48,10 @@ help:
 	@echo "                classify, stop"
 	@echo "make run        wrenchd in the foreground on ./run/, the examples loaded"
 	@echo "make pictures   redraw docs/pictures (the README's figures)"
-	@echo "make check      install what is missing (deps), then every test: links, unit (plain,"
+	@echo "make check      install what is missing (deps), then every test: links, layers, unit (plain,"
 	@echo "                ASan+UBSan), physics, load, fuzz smoke, end to end (make check-tests: the tests alone)"
 	@echo "make links      every relative link of the Markdown files resolves (also in make check)"
+	@echo "make layers     calls between lib, proto and daemon objects point down, no cycles (also in make check)"
 	@echo "make unit       the unit tests (build/tests/); make unit-asan: under ASan+UBSan (build/asan/tests/)"
 	@echo "make e2e        the end-to-end tests; make e2e-asan: against build/asan/wrenchd"
 	@echo "make check-valgrind  the end-to-end tests with the daemon under valgrind"
@@ -244,12 +245,17 @@ check-valgrind: all $(BUILD)/tests/libfail_storage.so
 links:
 	@$(PYTHON) tests/check-links
 
+# Calls between lib's, proto's and daemon's objects point only downwards,
+# with no cycle inside a layer (docs/ARCHITECTURE.md); read from the build.
+layers: all
+	@$(PYTHON) tests/check-layers $(BUILD)
+
 # make check installs what is missing first (deps), then runs every test;
 # the last line printed is the test runner's closing line (CI reads it).
 check: deps
 	@$(MAKE) --no-print-directory check-tests
 
-check-tests: links unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
+check-tests: links layers unit unit-asan physics-check load-check fuzz-smoke e2e-asan e2e
 
 # A single-node Slurm cluster started by the test itself runs a design as a
 # job array (examples/design-array.sbatch); the merged shards must equal one

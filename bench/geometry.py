@@ -37,8 +37,11 @@ def start(binary, directory, name):
     for _ in range(500):
         if os.path.exists(path):
             sock = socketlib.socket(socketlib.AF_UNIX, socketlib.SOCK_STREAM)
-            sock.connect(path)
-            return daemon, sock
+            try:
+                sock.connect(path)
+                return daemon, sock
+            except ConnectionRefusedError:
+                sock.close()  # bound, not listening yet
         time.sleep(0.02)
     daemon.kill()
     sys.exit("bench/geometry.py: %s did not start" % binary)

@@ -67,6 +67,15 @@ typedef struct entry {
      * the written map, chained by next_written. */
     char written[WP_ID_LENGTH + 1];
     struct entry *next_written;
+    /* An inline text it was adopted from, as written (wp_host.h,
+     * fixture_use_text), or NULL; with it the entry is also in the text
+     * map under text_hash (head_hash), chained by next_text.  Kept only
+     * with the analysis and charged with it (analysis_bytes): it goes when
+     * the analysis is evicted. */
+    char *text;
+    size_t text_length;
+    uint64_t text_hash;
+    struct entry *next_text;
 } entry;
 
 struct wd_cache {
@@ -74,6 +83,7 @@ struct wd_cache {
     pthread_mutex_t store_lock;
     entry **buckets;
     entry **written_buckets;  /* the same count: entries by their written key */
+    entry **text_buckets;     /* the same count: entries by their text's head */
     size_t bucket_count;      /* a power of two */
     size_t count;
     size_t stored_count;      /* entries with `stored`; changes under store_lock */
@@ -110,6 +120,7 @@ static void texts_drop(texts *t)
 
 static void entry_free(entry *e)
 {
+    free(e->text);
     texts_drop(e->texts);
     wr_analysis_free(e->analysis);
     wr_fixture_free(e->fixture);
@@ -162,6 +173,69 @@ static void unlink_written(wd_cache *c, entry *e)
     e->next_written = NULL;
 }
 
+/* The text map's hash: of a text's first TEXT_HEAD bytes (FNV-1a), which
+ * every kept text has.  Texts that share their head (a fixel moved at the
+ * end of the same outline) share a chain, and are told apart by their last
+ * TEXT_TAIL bytes before the whole is compared. */
+#define TEXT_HEAD 256
+#define TEXT_TAIL 64
+_Static_assert(WP_INLINE_TEXT_MIN >= TEXT_HEAD && TEXT_HEAD >= TEXT_TAIL,
+               "a kept text has a head and a tail");
+
+static uint64_t head_hash(const char *text)
+{
+    uint64_t h = 14695981039346656037ULL;
+    for (size_t i = 0; i < TEXT_HEAD; i++)
+        h = (h ^ (unsigned char)text[i]) * 1099511628211ULL;
+    return h;
+}
+
+/* The entry whose text begins text[0, length): at most one, since each
+ * kept text is a whole JSON object (its end is where its brackets close)
+ * and one text validates to one fixture. */
+static entry *find_text(const wd_cache *c, const char *text, size_t length)
+{
+    if (length < WP_INLINE_TEXT_MIN)
+        return NULL;
+    uint64_t h = head_hash(text);
+    for (entry *e = c->text_buckets[h & (c->bucket_count - 1)]; e; e = e->next_text) {
+        size_t n = e->text_length;
+        if (e->text_hash == h && n <= length &&
+            memcmp(e->text + n - TEXT_TAIL, text + n - TEXT_TAIL, TEXT_TAIL) == 0 &&
+            memcmp(e->text, text, n) == 0)
+            return e;
+    }
+    return NULL;
+}
+
+static void link_text(wd_cache *c, entry *e)
+{
+    size_t b = e->text_hash & (c->bucket_count - 1);
+    e->next_text = c->text_buckets[b];
+    c->text_buckets[b] = e;
+}
+
+static void unlink_text(wd_cache *c, entry *e)
+{
+    if (!e->text)
+        return;
+    for (entry **p = &c->text_buckets[e->text_hash & (c->bucket_count - 1)]; *p;
+         p = &(*p)->next_text)
+        if (*p == e) {
+            *p = e->next_text;
+            break;
+        }
+    e->next_text = NULL;
+}
+
+static void drop_text(wd_cache *c, entry *e)
+{
+    unlink_text(c, e);
+    free(e->text);
+    e->text = NULL;
+    e->text_length = 0;
+}
+
 /* Keep e under the written key too (one per entry: the latest). */
 static void set_written(wd_cache *c, entry *e, const char *key)
 {
@@ -183,15 +257,19 @@ static bool insert(wd_cache *c, entry *e)
         size_t n = 2 * c->bucket_count;
         entry **grown = calloc(n, sizeof *grown);
         entry **grown_written = calloc(n, sizeof *grown_written);
-        if (!grown || !grown_written) {
+        entry **grown_text = calloc(n, sizeof *grown_text);
+        if (!grown || !grown_written || !grown_text) {
             free(grown);
             free(grown_written);
+            free(grown_text);
             return false;
         }
         entry **old = c->buckets, **old_written = c->written_buckets;
+        entry **old_text = c->text_buckets;
         size_t old_count = c->bucket_count;
         c->buckets = grown;
         c->written_buckets = grown_written;
+        c->text_buckets = grown_text;
         c->bucket_count = n;
         for (size_t i = 0; i < old_count; i++) {
             for (entry *x = old[i], *next; x; x = next) {
@@ -206,9 +284,14 @@ static bool insert(wd_cache *c, entry *e)
                 x->next_written = c->written_buckets[b];
                 c->written_buckets[b] = x;
             }
+            for (entry *x = old_text[i], *next; x; x = next) {
+                next = x->next_text;
+                link_text(c, x);
+            }
         }
         free(old);
         free(old_written);
+        free(old_text);
     }
     size_t b = bucket_of(c, e->id);
     e->next = c->buckets[b];
@@ -220,6 +303,7 @@ static bool insert(wd_cache *c, entry *e)
 static void unlink_entry(wd_cache *c, entry *e)
 {
     unlink_written(c, e);
+    unlink_text(c, e);
     for (entry **p = &c->buckets[bucket_of(c, e->id)]; *p; p = &(*p)->next)
         if (*p == e) {
             assert(c->count > 0);
@@ -252,6 +336,9 @@ static void check_locked(const wd_cache *c)
             derived += e->analysis_bytes;
             assert(bucket_of(c, e->id) == b && find(c, e->id) == e);
             assert(!e->written[0] || find_written(c, e->written) == e);
+            assert(!e->text || find_text(c, e->text, e->text_length) == e);
+            /* kept with what it is charged to, or about to be derived */
+            assert(!e->text || e->analysis || e->refs > 0);
             assert(e->refs >= 0 && e->texts && e->texts->refs > 0);
             assert(e->analysis || e->analysis_bytes == 0);
             assert(e->last_used <= c->clock && e->serial <= c->serial);
@@ -269,6 +356,7 @@ static void drop_analysis(wd_cache *c, entry *e)
 {
     assert(e->refs == 0); /* an entry in use is never evicted */
     assert(c->derived_bytes >= e->analysis_bytes);
+    drop_text(c, e);
     wr_analysis_free(e->analysis);
     e->analysis = NULL;
     c->derived_bytes -= e->analysis_bytes;
@@ -357,6 +445,8 @@ static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
     if (status != WR_OK) {
         assert(e->refs > 0);
         e->refs--;
+        if (!e->analysis)
+            drop_text(c, e); /* nothing to charge it to */
         texts_drop(t);
         pthread_mutex_unlock(&c->lock);
         fail(failure, WP_HOST_NO_MEMORY, "out of memory deriving the fixture's cones");
@@ -368,7 +458,8 @@ static bool derive_for_use(wd_cache *c, entry *e, texts *t, wp_fixture_use *use,
          * own memory too, so that inline fixtures, however large, stay
          * within the bound.  The charge is fixed here; a later put or
          * delete of the entry does not change it. */
-        e->analysis_bytes = wr_analysis_bytes(a) + (e->stored ? 0 : entry_bytes(e));
+        e->analysis_bytes =
+            wr_analysis_bytes(a) + (e->stored ? 0 : entry_bytes(e)) + e->text_length;
         e->serial = ++c->serial;
         c->derived_bytes += e->analysis_bytes;
         evict_locked(c);
@@ -702,10 +793,11 @@ wd_cache *wd_cache_new(const char *state_dir, size_t derived_limit, size_t max_s
     c->bucket_count = 64;
     c->buckets = calloc(c->bucket_count, sizeof *c->buckets);
     c->written_buckets = calloc(c->bucket_count, sizeof *c->written_buckets);
+    c->text_buckets = calloc(c->bucket_count, sizeof *c->text_buckets);
     c->derived_limit = derived_limit;
     c->max_stored = max_stored;
     c->lock_fd = -1;
-    if (!c->buckets || !c->written_buckets) {
+    if (!c->buckets || !c->written_buckets || !c->text_buckets) {
         snprintf(why, why_size, "out of memory");
         wd_cache_free(c);
         return NULL;
@@ -739,7 +831,7 @@ void wd_cache_free(wd_cache *c)
 {
     if (!c)
         return;
-    if (c->buckets && c->written_buckets)
+    if (c->buckets && c->written_buckets && c->text_buckets)
         check_locked(c);
     for (size_t b = 0; c->buckets && b < c->bucket_count; b++)
         for (entry *e = c->buckets[b], *next; e; e = next) {
@@ -749,6 +841,7 @@ void wd_cache_free(wd_cache *c)
         }
     free(c->buckets);
     free(c->written_buckets);
+    free(c->text_buckets);
     free(c->dir);
     if (c->lock_fd >= 0)
         close(c->lock_fd); /* releases the lock; DIR/lock stays, harmless */
@@ -784,6 +877,25 @@ bool wd_cache_load_file(wd_cache *c, const char *path, size_t limit)
     return true;
 }
 
+/* Keep the inline text an adoption read e from, if e keeps none: charged
+ * with the analysis (now if it is there, else when it is derived).
+ * Without memory for it, it is just not kept. */
+static void keep_text(wd_cache *c, entry *e, const wp_fixture_doc *doc)
+{
+    if (!doc->text || doc->text_length < WP_INLINE_TEXT_MIN || e->text ||
+        !(e->text = malloc(doc->text_length)))
+        return;
+    memcpy(e->text, doc->text, doc->text_length);
+    e->text_length = doc->text_length;
+    e->text_hash = head_hash(e->text);
+    link_text(c, e);
+    if (e->analysis) {
+        e->analysis_bytes += e->text_length;
+        c->derived_bytes += e->text_length;
+        evict_locked(c); /* e is held: others go */
+    }
+}
+
 bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use *use,
                     wp_host_failure *failure)
 {
@@ -816,6 +928,7 @@ bool wd_cache_adopt(wd_cache *c, wp_fixture_doc *doc, bool store, wp_fixture_use
     }
     set_written(c, e, doc->written);
     e->refs++;
+    keep_text(c, e, doc);
     /* A new entry has taken the doc's texts; an existing one may be renamed. */
     bool renamed = doc->name && strcmp(doc->name, e->texts->name) != 0;
     bool write = store && (!e->stored || renamed);
@@ -892,6 +1005,21 @@ bool wd_cache_use_written(wd_cache *c, const char *key, wp_fixture_use *use)
     pthread_mutex_unlock(&c->lock);
     wp_host_failure failure;
     return e && derive_for_use(c, e, NULL, use, &failure);
+}
+
+size_t wd_cache_use_text(wd_cache *c, const char *text, size_t length, wp_fixture_use *use)
+{
+    pthread_mutex_lock(&c->lock);
+    entry *e = find_text(c, text, length);
+    size_t span = e ? e->text_length : 0;
+    if (e)
+        e->refs++;
+    pthread_mutex_unlock(&c->lock);
+    if (!e)
+        return 0;
+    wd_log(WD_LOG_DEBUG, "fixture %s recognised from its inline text (%zu bytes)", e->id, span);
+    wp_host_failure failure;
+    return derive_for_use(c, e, NULL, use, &failure) ? span : 0;
 }
 
 int wd_cache_ready(wd_cache *c, const char *id)

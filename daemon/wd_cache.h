@@ -38,6 +38,9 @@ bool wd_cache_use(wd_cache *cache, const char *id, wp_fixture_use *use,
 /* Hold the fixture adopted from an inline text of written key `key`
  * (stored or only cached), while it is kept: false when it is not. */
 bool wd_cache_use_written(wd_cache *cache, const char *key, wp_fixture_use *use);
+/* Hold the fixture made from an inline text that begins text[0, length),
+ * while it is kept: the kept text's length, or 0 when none is. */
+size_t wd_cache_use_text(wd_cache *cache, const char *text, size_t length, wp_fixture_use *use);
 /* Hold the stored fixture `id` if its derived data is there (so that using
  * it derives nothing): its number of cones (goal + strong), or -1 with
  * nothing held. */

@@ -41,6 +41,11 @@ static bool host_use_written(void *self, const char *key, wp_fixture_use *use)
     return wd_cache_use_written(((wd_thread_host *)self)->cache, key, use);
 }
 
+static size_t host_use_text(void *self, const char *text, size_t length, wp_fixture_use *use)
+{
+    return wd_cache_use_text(((wd_thread_host *)self)->cache, text, length, use);
+}
+
 static void host_release(void *self, wp_fixture_use *use)
 {
     wd_cache_release(((wd_thread_host *)self)->cache, use);
@@ -156,6 +161,7 @@ wd_thread_host *wd_thread_host_new(wd_cache *cache, wd_stats *stats)
                              .fixture_adopt = host_adopt,
                              .fixture_use = host_use,
                              .fixture_use_written = host_use_written,
+                             .fixture_use_text = host_use_text,
                              .fixture_use_ready = host_use_ready,
                              .fixture_release = host_release,
                              .fixture_delete = host_delete,

@@ -486,7 +486,7 @@ static bool answer_light(connection *c, slot *x, wp_answer **parsed)
         return false; /* a long line is parsed by the worker, not here */
     /* Parsed here, once: light or not, the worker gets it parsed (and its
      * fixture held, when the light check looked it up). */
-    wp_answer *answer = wp_answer_begin(&s->limits, x->line, x->length);
+    wp_answer *answer = wp_answer_begin(&s->limits, s->loop_host, x->line, x->length);
     if (!answer)
         return false;
     free(x->line);

@@ -218,7 +218,8 @@ static void run_piece(wd_pool *pool, wd_thread_host *thread, wd_task *task)
     } else {
         wd_thread_host_stop(thread, &(wr_stop){task_cancelled, task});
         if (!task->answer) {
-            task->answer = wp_answer_begin(&pool->limits, task->line, task->length);
+            task->answer = wp_answer_begin(&pool->limits, wd_thread_host_wp(thread), task->line,
+                                           task->length);
             free(task->line); /* parsed: the line is not needed again */
             task->line = NULL;
         }

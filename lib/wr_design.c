@@ -5,6 +5,7 @@
 #include "wr_locate.h"
 #include "wr_outline.h"
 #include "wr_symmetry.h"
+#include "wr_tolerance.h"
 
 #include <assert.h>
 #include <math.h>
@@ -467,11 +468,53 @@ static int why_no_seating_push(const wr_design_job *job, const wr_fixture *fixtu
     return answer.blocking;
 }
 
+/* WR_OBJECTIVE_PARETO's three figures of a placed candidate whose goal
+ * region is not empty (analysis complete): the best push's margin (0
+ * without a `both` region), the worst locating error, the least push
+ * force (INFINITY without cases or where none does `both`). */
+static wr_status pareto_figures(const wr_design_job *job, const wr_fixture *fixture,
+                                const wr_analysis *analysis, outcome *result, double pareto[3],
+                                unsigned long *units)
+{
+    const wr_design_spec *spec = &job->spec;
+    double accuracy;
+    wr_status status = accuracy_score(job, fixture, result, &accuracy);
+    *units += 2000;
+    if (status != WR_OK || *result != OUTCOME_SCORED)
+        return status;
+    pareto[1] = -accuracy;
+    int cones = wr_analysis_cone_count(analysis, WR_SET_GOAL) +
+                wr_analysis_cone_count(analysis, WR_SET_STRONG);
+    wr_regions both = {0};
+    status = push_regions(job, analysis, WR_SET_BOTH, &both);
+    *units += (unsigned long)cones * (unsigned long)wr_push_edge_count(fixture) * 4;
+    pareto[0] = 0;
+    if (status == WR_OK && both.count > 0) {
+        wr_best_push push;
+        bool below;
+        status = wr_best_push_find(analysis, &both, -INFINITY, NULL, &push, &below);
+        *units += push.evaluations * (unsigned long)cones;
+        pareto[0] = push.margin;
+    }
+    wr_regions_release(&both);
+    pareto[2] = INFINITY;
+    if (status == WR_OK && spec->case_count > 0) {
+        wr_least_force least;
+        status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
+                                     &spec->finger, NULL, &least);
+        *units += least.evaluations * (unsigned long)cones * (unsigned long)spec->case_count;
+        if (status == WR_OK && least.found)
+            pareto[2] = least.force;
+    }
+    return status;
+}
+
 /* Score one candidate, giving up (OUTCOME_BOUNDED) once its score is
  * certainly below `threshold`.  *units: about the work done.  Without a
  * seating push, *why says why (why_no_seating_push). */
 static wr_status score_candidate(const wr_design_job *job, const int *sites, double threshold,
-                                 outcome *result, double *score, unsigned long *units, int *why)
+                                 outcome *result, double *score, unsigned long *units, int *why,
+                                 double pareto[3])
 {
     const wr_design_spec *spec = &job->spec;
     wr_fixture fixture;
@@ -512,6 +555,9 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         if (spec->objective == WR_OBJECTIVE_ACCURACY) {
             status = accuracy_score(job, &fixture, result, score);
             *units += 2000;
+        } else if (spec->objective == WR_OBJECTIVE_PARETO) {
+            status = pareto_figures(job, &fixture, analysis, result, pareto, units);
+            *score = pareto[0];
         } else if (spec->objective == WR_OBJECTIVE_FORCE) {
             wr_least_force least;
             status = wr_least_force_find(analysis, WR_SET_BOTH, spec->loads, spec->case_count,
@@ -762,16 +808,17 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
         wr_error_set(error, "finger_radius", "must be a non-negative number");
         return WR_INVALID;
     }
-    if (spec->objective == WR_OBJECTIVE_ACCURACY) {
+    if (spec->objective == WR_OBJECTIVE_ACCURACY || spec->objective == WR_OBJECTIVE_PARETO) {
+        const char *name = spec->objective == WR_OBJECTIVE_ACCURACY ? "accuracy" : "pareto";
         /* A disc's 2 locating fixels leave it free to turn: never pinned. */
         if (spec->body->shape == WR_SHAPE_CIRCLE) {
-            wr_error_set(error, "objective", "accuracy designs 3 fixels on a part with an "
-                         "outline: a disc is located by 2, which never pin it");
+            wr_error_set(error, "objective", "%s designs 3 fixels on a part with an "
+                         "outline: a disc is located by 2, which never pin it", name);
             return WR_INVALID;
         }
         if (spec->fixel_count != 3) {
-            wr_error_set(error, "fixels", "must be 3 for objective accuracy (locating accuracy "
-                         "is answered for 3 fixels), got %d", spec->fixel_count);
+            wr_error_set(error, "fixels", "must be 3 for objective %s (locating accuracy "
+                         "is answered for 3 fixels), got %d", name, spec->fixel_count);
             return WR_INVALID;
         }
         if (!(spec->tolerance >= 0) || !isfinite(spec->tolerance)) {
@@ -913,10 +960,49 @@ static void keep(wr_design *list, int *count, int top, const wr_design *d)
         (*count)++;
 }
 
-/* The score a candidate must beat to be kept: the top-th so far. */
-static double threshold_of(const wr_design *list, int count, int top)
+/* Does a beat b on the Pareto figures: at least as good on each (margin
+ * higher, error and force lower), better on one? */
+static bool dominates(const wr_design *a, const wr_design *b)
 {
-    return count == top ? list[count - 1].score : -INFINITY;
+    const double *x = a->pareto, *y = b->pareto;
+    if (!(x[0] >= y[0] && x[1] <= y[1] && x[2] <= y[2]))
+        return false;
+    return x[0] > y[0] || x[1] < y[1] || x[2] < y[2];
+}
+
+/* Into the Pareto front of a list of at most `top`, best score first: d
+ * unless a design of the list beats it, and the designs d beats out. */
+static void keep_pareto(wr_design *list, int *count, int top, const wr_design *d)
+{
+    for (int i = 0; i < *count; i++)
+        if (dominates(&list[i], d))
+            return;
+    int n = 0;
+    for (int i = 0; i < *count; i++)
+        if (!dominates(d, &list[i]))
+            list[n++] = list[i];
+    *count = n;
+    keep(list, count, top, d);
+}
+
+/* Into a chunk's or the job's list, as the objective keeps designs. */
+static void keep_design(const wr_design_spec *spec, wr_design *list, int *count,
+                        const wr_design *d)
+{
+    if (spec->objective == WR_OBJECTIVE_PARETO)
+        keep_pareto(list, count, spec->top, d);
+    else
+        keep(list, count, spec->top, d);
+}
+
+/* The score a candidate must beat to be kept: the top-th so far (none for
+ * the Pareto front, where a lower margin may be kept for its other
+ * figures). */
+static double threshold_of(const wr_design_spec *spec, const wr_design *list, int count)
+{
+    if (spec->objective == WR_OBJECTIVE_PARETO)
+        return -INFINITY;
+    return count == spec->top ? list[count - 1].score : -INFINITY;
 }
 
 bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
@@ -929,7 +1015,7 @@ bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
     *count = job->candidates - job->next < span ? job->candidates - job->next : span;
     job->next += *count;
     job->outstanding++;
-    *threshold = threshold_of(job->designs, job->design_count, job->spec.top);
+    *threshold = threshold_of(&job->spec, job->designs, job->design_count);
     return true;
 }
 
@@ -992,11 +1078,12 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
             }
             /* The bound is the better of the job's when claimed and this
              * chunk's own: either only ever rises. */
-            double bar = fmax(threshold, threshold_of(out->designs, out->design_count, spec->top));
+            double bar = fmax(threshold, threshold_of(spec, out->designs, out->design_count));
             outcome result;
-            double score = 0;
+            double score = 0, pareto[3] = {0, 0, 0};
             int why = 0;
-            status = score_candidate(job, combination, bar, &result, &score, &spent, &why);
+            status = score_candidate(job, combination, bar, &result, &score, &spent, &why,
+                                     pareto);
             if (status != WR_OK)
                 break;
             out->counts.examined++;
@@ -1016,7 +1103,8 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
                 memcpy(d.sites, combination, (size_t)spec->fixel_count * sizeof *combination);
                 d.score = score;
                 d.copies = copies;
-                keep(out->designs, &out->design_count, spec->top, &d);
+                memcpy(d.pareto, pareto, sizeof d.pareto);
+                keep_design(spec, out->designs, &out->design_count, &d);
                 break;
             }
             }
@@ -1039,7 +1127,7 @@ void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk)
     assert(job->outstanding > 0);
     job->outstanding--;
     for (int i = 0; i < chunk->design_count; i++)
-        keep(job->designs, &job->design_count, job->spec.top, &chunk->designs[i]);
+        keep_design(&job->spec, job->designs, &job->design_count, &chunk->designs[i]);
     job->counts.examined += chunk->counts.examined;
     job->counts.degenerate += chunk->counts.degenerate;
     job->counts.unpinned += chunk->counts.unpinned;
@@ -1066,6 +1154,10 @@ static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixt
     if (place(job, d->sites, fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
     const wr_design_spec *spec = &job->spec;
+    wr_error refused;
+    /* A position tolerance a fixel's segment cannot hold: no robust region. */
+    bool robust_ok = !spec->fixel_tolerance.given ||
+                     wr_fixture_set_tolerance(fixture, &spec->fixel_tolerance, &refused) == WR_OK;
     wr_analysis *analysis;
     wr_status status = wr_analysis_new(fixture, &analysis);
     if (status != WR_OK)
@@ -1074,6 +1166,21 @@ static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixt
     status = push_regions(job, analysis, WR_SET_GOAL, &goal);
     if (status == WR_OK)
         status = push_regions(job, analysis, WR_SET_BOTH, &both);
+    if (status == WR_OK && spec->fixel_tolerance.given) {
+        /* The both region's robust part, whose best push is then robust. */
+        wr_regions robust = {0};
+        wr_robust *rb = NULL;
+        if (robust_ok)
+            status = wr_robust_new(analysis, 0, &rb);
+        if (status == WR_OK && robust_ok)
+            status = wr_robust_regions(rb, WR_SET_BOTH, &both, false, NULL, &robust);
+        wr_robust_free(rb);
+        *units += 1000000;
+        if (status == WR_OK) {
+            wr_regions_release(&both);
+            both = robust;
+        }
+    }
     if (status == WR_OK)
         status = wr_gravity_sweep(analysis, WR_SET_GOAL, &arcs);
     bool below;

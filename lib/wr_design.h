@@ -35,6 +35,18 @@
  *                             exact pose in the scaled metric; a candidate
  *                             whose fixels do not determine the pose is
  *                             unpinned, one wr_locate refuses degenerate.
+ *       WR_OBJECTIVE_PARETO   every candidate scored on all three of the
+ *                             best push's margin (as MARGIN), its worst
+ *                             locating error (as ACCURACY, which it needs)
+ *                             and, with load cases, its least push force
+ *                             (as FORCE; INFINITY where none does `both`):
+ *                             wr_design.pareto.  The designs kept are the
+ *                             Pareto front, those no other candidate beats
+ *                             on all three together (at least as good on
+ *                             each, better on one; equal ones all kept),
+ *                             up to `top` of them; its score is the margin.
+ *                             No candidate is bounded: each needs all
+ *                             three.
  * Designs rank by score, higher first, ties by candidate number, lower
  * first.  A candidate's score depends on nothing but the candidate, so the
  * ranking is the same however the candidates are split (shards, threads).
@@ -89,7 +101,8 @@ typedef enum wr_objective {
     WR_OBJECTIVE_REGION,
     WR_OBJECTIVE_GRAVITY,
     WR_OBJECTIVE_FORCE,
-    WR_OBJECTIVE_ACCURACY
+    WR_OBJECTIVE_ACCURACY,
+    WR_OBJECTIVE_PARETO
 } wr_objective;
 
 /* With WR_OBJECTIVE_ACCURACY, at most this many features. */
@@ -156,6 +169,13 @@ typedef struct wr_design_spec {
     double tolerance;
     const double (*features)[2];
     int feature_count;
+    /* Given: a geometric tolerance on each design's fixels (wr_tolerance.h):
+     * the figures of every design kept (not the search's scores) are then
+     * robust: its both region the part proved for every fixture of the
+     * set (wr_robust_regions; empty when a fixel's segment cannot hold
+     * the position tolerance), its best push the best of that region.  A
+     * frictionless finger only. */
+    wr_tolerance fixel_tolerance;
 } wr_design_spec;
 
 /* A ranked design. */
@@ -174,6 +194,9 @@ typedef struct wr_design {
                                         symmetries (1 without) */
     wr_least_force least_force;      /* with load cases: the least push
                                         doing `both` under all of them */
+    /* WR_OBJECTIVE_PARETO: the best push's margin, the worst locating
+     * error, the least push force (INFINITY without cases or none). */
+    double pareto[3];
 } wr_design;
 
 typedef struct wr_design_counts {

@@ -1015,6 +1015,16 @@ wr_status wr_fixture_place_placed(const wr_fixture *body, const wr_fixel *fixels
     return check_placed_list(out, error) ? WR_OK : WR_INVALID;
 }
 
+/* Here, not in wr_support.c: the fixture owns its supports and frees them,
+ * and the supports' analysis depends on the fixture, not the other way. */
+void wr_supports_free(wr_supports *supports)
+{
+    if (!supports)
+        return;
+    free(supports->distributions);
+    free(supports);
+}
+
 void wr_fixture_free(wr_fixture *fixture)
 {
     if (!fixture)

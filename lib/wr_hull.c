@@ -173,6 +173,14 @@ bool wr_hull_from_generators(const double (*generators)[3], int count, wr_hrep *
     return true;
 }
 
+int wr_hull_null_space(const double (*rows)[3], int count, double basis[3][3])
+{
+    double span[3][3];
+    int rank = span_basis(rows, count, span);
+    complement_basis(span, rank, basis);
+    return 3 - rank;
+}
+
 int wr_hull_generators_of_rows(const double (*inequalities)[3], int inequality_count,
                                const double (*equalities)[3], int equality_count,
                                double (*generators)[3], int max)

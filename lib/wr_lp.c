@@ -1,11 +1,25 @@
 /* wr_lp.c -- GLPK membership LPs (docs/MODEL.md section 2).
  *
- * Variables, in the scaled space of wr_cone.c: q' = m (a_x, a_y, rho alpha)
- * (columns 1..3, free), then (c_in, c_it) per fixel, then the slack t in
- * [0, 1].  Rows: the three wrench rows q' - sum(Wn_i c_in + Wt_i c_it) = h
- * (h the unit scaled wrench; only their bounds change between wrenches), then
- * each letter's rows.  Maximise t: strict rows hold with margin t, so the
- * wrench is in G_X iff the LP is feasible with t above the threshold. */
+ * Variables, in the scaled space of wr_cone.c: the motion y (columns 1..3,
+ * free; those past the motion's dimension d fixed at 0), then (c_in, c_it)
+ * per fixel, then the slack t in [0, 1].  The acceleration is
+ * q' = m (a_x, a_y, rho alpha) = B y, B an orthonormal basis of the null
+ * space of the constraint's equality rows (a_n = 0, a_t = 0; motion_basis),
+ * so those rows hold exactly and are not rows of the LP.  Rows: the three
+ * wrench rows B y - sum(Wn_i c_in + Wt_i c_it) = h (h the unit scaled
+ * wrench; only their bounds change between wrenches), then each letter's
+ * inequality rows.  Maximise t: strict rows hold with margin t, so the
+ * wrench is in G_X iff the LP is feasible with t above the threshold.
+ *
+ * Why y and not q': GLPK meets a row within an absolute tolerance (1e-7).
+ * A row u . q' (u unit) may be tiny on every motion the equalities leave:
+ * on a part whose fixels are close together far from its centre of mass
+ * it is spread / rho of |q'| (1e-4 and less).  Over q', GLPK then took a
+ * motion 1e-4 long going the wrong way as feasible, and called a wrench a
+ * member 1e-4 outside the cone (tests/fuzz/README.md, finding 12).  Over
+ * y each inequality row is scaled to unit length on the motion space itself
+ * (add_row), so its tolerance is relative to the motion, as the explicit
+ * cones judge their rows on unit generators. */
 #include "wr_lp.h"
 #include "wr_internal.h"
 
@@ -110,10 +124,10 @@ void wr_lp_set_free(wr_lp_set *set)
     free(set);
 }
 
-/* Non-zeros: 3 wrench rows of 1 + 2k; per fixel at most two acceleration rows
- * of 4 (q' and t) and two friction rows of 2 (l and r with a kinetic
- * interval have two, as n and m); the pivot row's 2. */
-#define TRIPLETS_MAX (3 * (1 + 2 * WR_MAX_FIXELS) + 12 * WR_MAX_FIXELS + 2)
+/* Non-zeros: 3 wrench rows of 3 + 2k; per fixel at most one acceleration row
+ * of 4 (y and t; at most two were counted) and two friction rows of 2 (l and
+ * r with a kinetic interval have two, as n and m); the pivot row's 4. */
+#define TRIPLETS_MAX (3 * (3 + 2 * WR_MAX_FIXELS) + 12 * WR_MAX_FIXELS + 4)
 
 /* Triplets for glp_load_matrix (1-based). */
 typedef struct triplets {
@@ -133,31 +147,80 @@ static void put(triplets *t, int row, int column, double value)
     t->value[t->count] = value;
 }
 
-/* A row over q' with coefficients `v` (normalised) plus `slack` times t. */
-static int add_row(glp_prob *p, triplets *t, const double v[3], double sign, double slack,
-                   int type, int t_column)
+/* The motion space of a constraint: an orthonormal basis of the null space
+ * of its equality rows (a_n = 0 for l, r, n, m; a_t = 0 for n), as the
+ * cones decide its rank.  Returns its dimension, 0..3. */
+static int motion_basis(const wr_fixture *f, const wr_constraint *c, double basis[3][3])
 {
+    double rows[2 * WR_MAX_FIXELS][3];
+    int count = 0;
+    for (int i = 0; i < f->fixel_count; i++) {
+        const wr_fixel *fixel = &f->fixels[i];
+        if (strchr("lrnm", c->letters[i])) {
+            wr_copy3(fixel->normal_wrench, rows[count]);
+            wr_normalize3(rows[count++]);
+        }
+        if (c->letters[i] == 'n') {
+            wr_copy3(fixel->tangent_wrench, rows[count]);
+            wr_normalize3(rows[count++]);
+        }
+    }
+    return wr_hull_null_space((const double (*)[3])rows, count, basis);
+}
+
+/* A constraint's motion space: q' = sum_j basis[j] y_j. */
+typedef struct motion_space {
+    double basis[3][3]; /* orthonormal rows */
+    int dimension;
+} motion_space;
+
+/* An inequality row sign * (v / |v|) . q' + slack t over the motion y,
+ * scaled so that its part over y is a unit row: its slack t is then
+ * measured on unit motions of the motion space, as the cones measure a
+ * strict row on the unit generators of their motion cone.  (Measuring t in
+ * the row's unscaled units instead would divide t's coefficient by the
+ * row's length, up to 1e9: GLPK then misses rows by that much more than
+ * its tolerance, and loses the best slack.)  A row that vanishes on the
+ * motion space (length below the rank tolerance, as a cone's generator
+ * would find it) keeps only its slack: 0 + slack t. */
+static void add_row(glp_prob *p, triplets *t, const double v[3], double sign, double slack,
+                    int type, int t_column, const motion_space *space)
+{
+    const double (*basis)[3] = space->basis;
+    int dimension = space->dimension;
     int row = glp_add_rows(p, 1);
-    double length = wr_norm3(v);
-    for (int k = 0; k < 3; k++)
-        put(t, row, 1 + k, sign * v[k] / length);
+    double u[3], projected[3] = {0, 0, 0};
+    wr_copy3(v, u);
+    wr_normalize3(u);
+    for (int j = 0; j < dimension; j++)
+        projected[j] = sign * wr_dot3(u, basis[j]);
+    double length = wr_norm3(projected);
+    if (length > WR_RANK_TOLERANCE)
+        for (int j = 0; j < dimension; j++)
+            put(t, row, 1 + j, projected[j] / length);
     put(t, row, t_column, slack);
     glp_set_row_bnds(p, row, type, 0, 0);
-    return row;
 }
 
 /* The membership problem of a constraint, or (`motion`) the problem of its
- * motion alone: q' in the box [-1, 1]^3, the wrench rows free, so that the
+ * motion alone: y in the box [-1, 1]^d, the wrench rows free, so that the
  * best slack is the strict rows' margin relative to the motion's size. */
 static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c, bool motion)
 {
     int k = f->fixel_count;
     int t_column = 4 + 2 * k;
+    motion_space space;
+    space.dimension = motion_basis(f, c, space.basis);
+    const double (*basis)[3] = space.basis;
+    int dimension = space.dimension;
     glp_prob *p = glp_create_prob();
     glp_set_obj_dir(p, GLP_MAX);
     glp_add_cols(p, t_column);
     for (int j = 1; j <= 3; j++)
-        glp_set_col_bnds(p, j, motion ? GLP_DB : GLP_FR, -1, 1);
+        if (j > dimension)
+            glp_set_col_bnds(p, j, GLP_FX, 0, 0);
+        else
+            glp_set_col_bnds(p, j, motion ? GLP_DB : GLP_FR, -1, 1);
     glp_set_col_bnds(p, t_column, GLP_DB, 0, 1);
     glp_set_obj_coef(p, t_column, 1);
 
@@ -166,10 +229,11 @@ static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c, bool
     triplets storage;
     triplets *t = &storage;
     t->count = 0;
-    /* Wrench rows: q'_j - sum_i (Wn_i[j] c_in + Wt_i[j] c_it) = h_j. */
+    /* Wrench rows: (B y)_j - sum_i (Wn_i[j] c_in + Wt_i[j] c_it) = h_j. */
     glp_add_rows(p, 3);
     for (int j = 0; j < 3; j++) {
-        put(t, 1 + j, 1 + j, 1);
+        for (int d = 0; d < dimension; d++)
+            put(t, 1 + j, 1 + d, basis[d][j]);
         for (int i = 0; i < k; i++) {
             put(t, 1 + j, 4 + 2 * i, -f->fixels[i].normal_wrench[j]);
             put(t, 1 + j, 5 + 2 * i, -f->fixels[i].tangent_wrench[j]);
@@ -187,15 +251,14 @@ static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c, bool
         int row;
         switch (letter) {
         case 's': /* a_n >= 0, or a_n >= t strictly separating */
-            add_row(p, t, wn, 1, c->strict_separation ? -1 : 0, GLP_LO, t_column);
+            add_row(p, t, wn, 1, c->strict_separation ? -1 : 0, GLP_LO, t_column, &space);
             break;
         case 'a': /* a_n <= -t */
-            add_row(p, t, wn, 1, 1, GLP_UP, t_column);
+            add_row(p, t, wn, 1, 1, GLP_UP, t_column, &space);
             break;
-        case 'l': /* a_n = 0, a_t >= t, c_t = -mu_k c_n */
+        case 'l': /* a_n = 0 (in the basis), a_t >= t, c_t = -mu_k c_n */
         case 'r': /* a_n = 0, a_t <= -t, c_t = +mu_k c_n */
-            add_row(p, t, wn, 1, 0, GLP_FX, t_column);
-            add_row(p, t, wt, letter == 'l' ? 1 : -1, -1, GLP_LO, t_column);
+            add_row(p, t, wt, letter == 'l' ? 1 : -1, -1, GLP_LO, t_column, &space);
             row = glp_add_rows(p, 1);
             put(t, row, ct, 1);
             put(t, row, cn, letter == 'l' ? fixel->mu_kinetic : -fixel->mu_kinetic);
@@ -211,11 +274,8 @@ static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c, bool
             put(t, row, cn, letter == 'l' ? fixel->mu_kinetic_min : -fixel->mu_kinetic_min);
             glp_set_row_bnds(p, row, letter == 'l' ? GLP_UP : GLP_LO, 0, 0);
             break;
-        case 'n': /* a_n = 0, a_t = 0, |c_t| <= mu_s c_n */
+        case 'n': /* a_n = 0, a_t = 0 (in the basis), |c_t| <= mu_s c_n */
         case 'm': /* a_n = 0, |c_t| <= mu_s c_n */
-            add_row(p, t, wn, 1, 0, GLP_FX, t_column);
-            if (letter == 'n')
-                add_row(p, t, wt, 1, 0, GLP_FX, t_column);
             row = glp_add_rows(p, 1);
             put(t, row, ct, 1);
             put(t, row, cn, -fixel->mu_static);
@@ -231,7 +291,7 @@ static glp_prob *build_problem(const wr_fixture *f, const wr_constraint *c, bool
     }
     if (c->pivot) {
         double e[3] = {0, 0, 1}; /* pivot * alpha >= t */
-        add_row(p, t, e, c->pivot, -1, GLP_LO, t_column);
+        add_row(p, t, e, c->pivot, -1, GLP_LO, t_column, &space);
     }
     glp_load_matrix(p, t->count, t->row, t->column, t->value);
     return p;
@@ -311,9 +371,14 @@ wr_status wr_lp_member(wr_lp_set *set, int index, const double wrench[3], bool *
         memset(witness, 0, sizeof *witness);
         /* The witness of the unit wrench, scaled back (as wr_classify's):
          * overflow only ever reaches the figures beyond a double. */
-        witness->acceleration[0] = glp_get_col_prim(p, 1) / f->mass;
-        witness->acceleration[1] = glp_get_col_prim(p, 2) / f->mass;
-        witness->acceleration[2] = glp_get_col_prim(p, 3) / (f->mass * f->gyration_radius);
+        double basis[3][3], q[3] = {0, 0, 0};
+        int dimension = motion_basis(f, &set->constraints[index], basis);
+        for (int d = 0; d < dimension; d++)
+            for (int j = 0; j < 3; j++)
+                q[j] += basis[d][j] * glp_get_col_prim(p, 1 + d);
+        witness->acceleration[0] = q[0] / f->mass;
+        witness->acceleration[1] = q[1] / f->mass;
+        witness->acceleration[2] = q[2] / (f->mass * f->gyration_radius);
         for (int i = 0; i < f->fixel_count; i++) {
             witness->force[i][0] = glp_get_col_prim(p, 4 + 2 * i);
             witness->force[i][1] = glp_get_col_prim(p, 5 + 2 * i);

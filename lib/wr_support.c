@@ -49,14 +49,6 @@ static bool barycentric(const double a[2], const double b[2], const double d[2],
     return true;
 }
 
-void wr_supports_free(wr_supports *supports)
-{
-    if (!supports)
-        return;
-    free(supports->distributions);
-    free(supports);
-}
-
 /* The vertices of P: a vertex of {N >= 0, A N = b} with three rows has at
  * most three non-zero entries, on points whose triangle holds c; every
  * such triangle (of points not on a line) gives one, and a c on an edge or

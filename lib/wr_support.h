@@ -92,6 +92,7 @@ typedef struct wr_supports {
  * the part ("points", saying how far outside).  WR_NO_MEMORY. */
 wr_status wr_supports_new(const wr_fixture *fixture, const wr_support_spec *spec,
                           wr_supports **out, wr_error *error);
+/* Defined with the fixture that owns supports (wr_fixture.c). */
 void wr_supports_free(wr_supports *supports);
 
 /* wr_supports_new for `fixture`, kept by it (fixture->supports, freed with

@@ -240,10 +240,13 @@ static double bisect(const double *c, int degree, double lo, double hi, double v
 static int poly_roots(const double *coefficients, int degree, double lo, double hi,
                       double *roots)
 {
-    double reach = fmax(1, fmax(fabs(lo), fabs(hi)));
-    double size = 0, power = 1;
-    for (int i = 0; i <= degree; i++, power *= reach)
-        size += fabs(coefficients[i]) * power;
+    double reach = fabs(lo) > fabs(hi) ? fabs(lo) : fabs(hi);
+    reach = reach > 1 ? reach : 1;
+    double size = 0, power[MAX_DEGREE + 1];
+    for (int i = 0; i <= degree; i++) {
+        power[i] = i ? power[i - 1] * reach : 1; /* reach^i, as a product */
+        size += fabs(coefficients[i]) * power[i];
+    }
     if (size == 0 || !isfinite(size))
         return size == 0 ? -1 : 0;
     if (degree >= 2 && clear_of_zero(coefficients, degree, lo, hi, 1e-11 * size))
@@ -252,7 +255,7 @@ static int poly_roots(const double *coefficients, int degree, double lo, double 
      * the polynomial really has there. */
     double c[MAX_DEGREE + 1];
     memcpy(c, coefficients, (size_t)(degree + 1) * sizeof *c);
-    while (degree > 0 && fabs(c[degree]) * pow(reach, degree) <= 1e-15 * size)
+    while (degree > 0 && fabs(c[degree]) * power[degree] <= 1e-15 * size)
         degree--;
     double zero = 1e-13 * size;
     if (degree == 0)

@@ -13,9 +13,12 @@
  * conditions (y . g <= 0, |y|_1 <= 1, y . x >= t) are bounded over B by
  * interval arithmetic on the rows and edges, which makes them linear in
  * (lambda, mu): an LP whose optimum t > tolerance proves that x is farther
- * than t from G_X(theta) for every theta in B (|y|_2 <= |y|_1).  Boxes
+ * than t from G_X(theta) for every theta in B (|y|_2 <= |y|_1).  A box
+ * the LP does not prove is tried with certificates made of the rows
+ * themselves (certify_turning), which follow them across the box.  Boxes
  * that no certificate covers are split; the centre of each is a fixture
- * of the set, and x deep in its cone is the witness of `outside`. */
+ * of the set, and x deep in its cone is the witness of `outside`, searched
+ * for at the set's corners too (search_witness). */
 #include "wr_tolerance.h"
 
 #include "wr_internal.h"
@@ -444,6 +447,195 @@ static double check_certificate(const system_t *sys, const ivec *x, const certif
     return norm > 0 && lower > 0 ? lower / norm * (1 - 1e-12) : -1;
 }
 
+static iv det3(const ivec *r0, const ivec *r1, const ivec *r2);
+
+/* ---- certificates that turn with the perturbation -----------------------
+ * A fixed (lambda, mu) loses to first order in the box's width along every
+ * coordinate that moves a row it uses, even where the margin does not
+ * move: near the robust boundary such a coordinate would need boxes as
+ * narrow as the margin.  These certificates are built from the rows
+ * themselves, so that the conditions that hold with equality at the
+ * optimum hold identically over the box.  G_X° = Q_X° ∩ K_X°, with
+ * Q_X° = span(E) + cone(-F) and K_X° = {y : y . g <= 0 for every edge}.
+ * Its extreme rays are
+ *   (a) a generator of Q_X° (+-E_e, -F_q) with y . g <= 0 for every edge;
+ *   (b) in the plane of two generators a, b of Q_X°, orthogonal to an
+ *       edge g_k: y = sigma (g_k x (a x b)) = sigma (a (g_k . b) - b (g_k . a)),
+ *       in Q_X° when the coefficient of each of a, b that is some -F_q is
+ *       >= 0, and y . g_k = 0 identically;
+ *   (c) orthogonal to two edges: y = sigma (g_k x g_m), in Q_X° when it
+ *       is a combination of three independent generators of Q_X° whose
+ *       coefficients (Cramer's rule) have the signs they must.
+ * Each is a function of the rows; over a box its conditions (the sign of
+ * each coefficient that must have one, y . g <= 0 for every other edge)
+ * are checked by interval arithmetic, and a y valid over the box proves
+ * that every x of the family is at least (y . x)_lo / |y|_1,hi from G_X:
+ * the distance is the largest y . x over y in G_X° with |y|_2 <= 1, and
+ * |y|_2 <= |y|_1.  A combination of such y's proves no more than the best
+ * one with this bound on its norm, so the best single ratio is taken.
+ * Built from cross products, such a y involves only the rows of the face
+ * it stands for: a fixel that does not move the face does not enter it. */
+
+static double ivec_norm1_hi(const ivec *y)
+{
+    double n = 0;
+    for (int j = 0; j < 3; j++)
+        n += fmax(fabs(y->v[j].lo), fabs(y->v[j].hi));
+    return n;
+}
+
+static bool ivec_same(const ivec *a, const ivec *b)
+{
+    for (int j = 0; j < 3; j++)
+        if (a->v[j].lo != b->v[j].lo || a->v[j].hi != b->v[j].hi)
+            return false;
+    return true;
+}
+
+static ivec ivec_cross(const ivec *a, const ivec *b)
+{
+    ivec r;
+    r.v[0] = iv_sub(iv_mul(a->v[1], b->v[2]), iv_mul(a->v[2], b->v[1]));
+    r.v[1] = iv_sub(iv_mul(a->v[2], b->v[0]), iv_mul(a->v[0], b->v[2]));
+    r.v[2] = iv_sub(iv_mul(a->v[0], b->v[1]), iv_mul(a->v[1], b->v[0]));
+    return r;
+}
+
+static iv iv_neg(iv a) { return (iv){-a.hi, -a.lo}; }
+
+/* (g . b)(h . c) - (g . c)(h . b): det(g x h, b, c). */
+static iv cross_det(const ivec *g, const ivec *h, const ivec *b, const ivec *c)
+{
+    return iv_sub(iv_mul(ivec_dot(g, b), ivec_dot(h, c)), iv_mul(ivec_dot(g, c), ivec_dot(h, b)));
+}
+
+/* Is sigma (g x h) in Q_X° over the box: a combination of three
+ * generators of Q_X° whose determinant is bounded away from 0, with the
+ * coefficient of each that is some -F_q provably >= 0 (Cramer's rule:
+ * the coefficient of a is det(y, b, c) / det(a, b, c), and so round)? */
+static bool cross_in_polar(const ivec *gen, const bool *free_sign, int n, const ivec *g,
+                           const ivec *h, int sigma)
+{
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++)
+            for (int c = b + 1; c < n; c++) {
+                iv d = det3(&gen[a], &gen[b], &gen[c]);
+                if (!(d.lo > 0 || d.hi < 0))
+                    continue;
+                int order[3][3] = {{a, b, c}, {b, c, a}, {c, a, b}};
+                bool ok = true;
+                for (int r = 0; ok && r < 3; r++) {
+                    if (free_sign[order[r][0]])
+                        continue;
+                    iv num = cross_det(g, h, &gen[order[r][1]], &gen[order[r][2]]);
+                    if (sigma < 0)
+                        num = iv_neg(num);
+                    ok = d.lo > 0 ? num.lo >= 0 : num.hi <= 0;
+                }
+                if (ok)
+                    return true;
+            }
+    return false;
+}
+
+/* The best distance these certificates prove over the box of `sys` for
+ * every x of the family, or -1. */
+static double certify_turning(const system_t *sys, const ivec *x)
+{
+    int ne = sys->equality_count, nf = sys->inequality_count, ng = sys->edge_count;
+    /* Q_X°'s generators: the equality rows (either sign: `free`), minus
+     * the inequality rows. */
+    ivec gen[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1];
+    bool free_sign[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1];
+    int n = 0;
+    for (int e = 0; e < ne; e++) {
+        gen[n] = sys->equality[e];
+        free_sign[n++] = true;
+    }
+    for (int q = 0; q < nf; q++) {
+        gen[n] = ivec_neg(&sys->inequality[q]);
+        free_sign[n++] = false;
+    }
+    /* Each candidate's ratio is cheap; its conditions are checked only
+     * when it would beat the best so far. */
+    iv gx[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1];
+    iv ge[2 * WR_MAX_FIXELS + WR_MAX_FIXELS + 1][2 * WR_MAX_FIXELS];
+    for (int a = 0; a < n; a++) {
+        gx[a] = ivec_dot(&gen[a], x);
+        for (int m = 0; m < ng; m++)
+            ge[a][m] = ivec_dot(&gen[a], &sys->edge[m]);
+    }
+    double best = -1;
+    /* (a) */
+    for (int a = 0; a < n; a++)
+        for (int sigma = -1; sigma <= 1; sigma += 2) {
+            if (sigma < 0 && !free_sign[a])
+                continue;
+            iv p = sigma > 0 ? gx[a] : iv_neg(gx[a]);
+            double norm = ivec_norm1_hi(&gen[a]);
+            if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
+                continue;
+            bool valid = true;
+            for (int m = 0; valid && m < ng; m++)
+                valid = (sigma > 0 ? ge[a][m].hi : -ge[a][m].lo) <= 0;
+            if (valid)
+                best = p.lo / norm;
+        }
+    /* (b) */
+    for (int k = 0; k < ng; k++)
+        for (int a = 0; a < n; a++)
+            for (int b = a + 1; b < n; b++) {
+                iv da = ge[a][k], db = ge[b][k];
+                for (int sigma = -1; sigma <= 1; sigma += 2) {
+                    iv ca = sigma > 0 ? db : iv_neg(db), cb = sigma > 0 ? iv_neg(da) : da;
+                    if ((!free_sign[a] && ca.lo < 0) || (!free_sign[b] && cb.lo < 0))
+                        continue;
+                    ivec y;
+                    for (int j = 0; j < 3; j++)
+                        y.v[j] = iv_add(iv_mul(ca, gen[a].v[j]), iv_mul(cb, gen[b].v[j]));
+                    iv p = iv_add(iv_mul(ca, gx[a]), iv_mul(cb, gx[b]));
+                    double norm = ivec_norm1_hi(&y);
+                    if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
+                        continue;
+                    bool valid = true;
+                    for (int m = 0; valid && m < ng; m++) {
+                        if (m == k || ivec_same(&sys->edge[m], &sys->edge[k]))
+                            continue; /* y . g_k = 0 identically */
+                        iv v = iv_add(iv_mul(ca, ge[a][m]), iv_mul(cb, ge[b][m]));
+                        valid = v.hi <= 0;
+                    }
+                    if (valid)
+                        best = p.lo / norm;
+                }
+            }
+    /* (c) */
+    for (int k = 0; k < ng; k++)
+        for (int m = k + 1; m < ng; m++) {
+            if (ivec_same(&sys->edge[m], &sys->edge[k]))
+                continue;
+            ivec y = ivec_cross(&sys->edge[k], &sys->edge[m]);
+            iv p0 = det3(&sys->edge[k], &sys->edge[m], x);
+            double norm = ivec_norm1_hi(&y);
+            for (int sigma = -1; sigma <= 1; sigma += 2) {
+                iv p = sigma > 0 ? p0 : iv_neg(p0);
+                if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
+                    continue;
+                bool valid = true;
+                for (int o = 0; valid && o < ng; o++) {
+                    if (ivec_same(&sys->edge[o], &sys->edge[k]) ||
+                        ivec_same(&sys->edge[o], &sys->edge[m]))
+                        continue;
+                    iv d = det3(&sys->edge[k], &sys->edge[m], &sys->edge[o]);
+                    valid = (sigma > 0 ? d.hi : -d.lo) <= 0;
+                }
+                if (valid && cross_in_polar(gen, free_sign, n, &sys->edge[k], &sys->edge[m],
+                                            sigma))
+                    best = p.lo / norm;
+            }
+        }
+    return best * (1 - 1e-12);
+}
+
 /* The certificate LP of the file's comment over one box: the largest t
  * with y(theta) . x >= t for all theta and x of the box.  Returns t (-1 when
  * none is positive), or NAN when GLPK failed; a positive one's multipliers
@@ -791,25 +983,123 @@ void wr_robust_free(wr_robust *robust)
     free(robust);
 }
 
-/* The signed distance of unit x to constraint c's cone on the fixture at
- * the box's centre (+inf for a cone empty there).  The centre's fixture in
- * *centre_s, *centre_tilt. */
-static wr_status centre_distance(const wr_robust *rb, const wr_constraint *c, const box *b,
-                                 const double x[3], double *s, double *tilt, double *distance)
+/* The signed distance of unit x to constraint c's cone on the fixture of
+ * the set at (s, tilt) (+inf for a cone empty there). */
+static wr_status distance_at(const wr_robust *rb, const wr_constraint *c, const double *s,
+                             const double *tilt, const double x[3], double *distance)
 {
-    const wr_fixture *f = rb->fixture;
-    for (int i = 0; i < f->fixel_count; i++) {
-        s[i] = 0.5 * (b->s[i][0] + b->s[i][1]);
-        tilt[i] = 0.5 * (b->tilt[i][0] + b->tilt[i][1]);
-    }
     wr_fixture moved;
-    wr_tolerance_perturb(f, s, tilt, &moved);
+    wr_tolerance_perturb(rb->fixture, s, tilt, &moved);
     wr_cone cone;
     wr_status status = wr_cone_build(&cone, &moved, c);
     if (status == WR_OK)
         *distance = cone.empty ? INFINITY : wr_cone_signed_distance(&cone, x, NULL);
     wr_cone_release(&cone);
     return status;
+}
+
+/* The same at the box's centre, which goes to *s, *tilt. */
+static wr_status centre_distance(const wr_robust *rb, const wr_constraint *c, const box *b,
+                                 const double x[3], double *s, double *tilt, double *distance)
+{
+    for (int i = 0; i < rb->fixture->fixel_count; i++) {
+        s[i] = 0.5 * (b->s[i][0] + b->s[i][1]);
+        tilt[i] = 0.5 * (b->tilt[i][0] + b->tilt[i][1]);
+    }
+    return distance_at(rb, c, s, tilt, x, distance);
+}
+
+/* The coordinates of the set that move constraint c's rows: each fixel's
+ * position and tilt, where its letter is not u and its range not a point. */
+#define WITNESS_MAX_DIMS 8
+typedef struct coordinate {
+    int fixel;
+    bool tilt;
+    double lo, hi;
+} coordinate;
+
+static int coordinates_of(const wr_robust *rb, const wr_constraint *c, const box *whole,
+                          coordinate *out)
+{
+    int n = 0;
+    for (int i = 0; i < rb->fixture->fixel_count; i++) {
+        if (c->letters[i] == 'u')
+            continue;
+        for (int tilt = 0; tilt < 2; tilt++) {
+            const double *range = tilt ? whole->tilt[i] : whole->s[i];
+            if (range[1] > range[0] && n < WITNESS_MAX_DIMS)
+                out[n++] = (coordinate){i, tilt, range[0], range[1]};
+        }
+    }
+    return n;
+}
+
+/* The fixture (ts, tt) of the set: x's distance there, and when deeper
+ * than *depth, it becomes the deepest point (*s, *tilt, *depth). */
+static wr_status try_point(const wr_robust *rb, const wr_constraint *c, const double x[3],
+                          const double *ts, const double *tt, double *s, double *tilt,
+                          double *depth, bool *deeper)
+{
+    double d;
+    wr_status status = distance_at(rb, c, ts, tt, x, &d);
+    *deeper = status == WR_OK && d < *depth;
+    if (*deeper) {
+        *depth = d;
+        memcpy(s, ts, sizeof(double) * WR_MAX_FIXELS);
+        memcpy(tilt, tt, sizeof(double) * WR_MAX_FIXELS);
+    }
+    return status;
+}
+
+/* A deepest point of x in c's cone over the set, searched for where the
+ * boxes' centres reach slowly: worst cases sit at the set's corners (a row
+ * moves monotonically with a coordinate over most of its range), or near
+ * one.  Each corner of the whole set (up to 2^WITNESS_MAX_DIMS), then a
+ * descent from the deepest point found so far (*s, *tilt, *depth on entry
+ * and exit): each coordinate moved by +-h within its range while that
+ * deepens, h halved from half the range down to 1e-13 of it.  This finds
+ * witnesses, it proves nothing: a point it finds is a fixture of the set
+ * whose own answer wr_robust_classify confirms. */
+static wr_status search_witness(const wr_robust *rb, const wr_constraint *c, const double x[3],
+                                double *s, double *tilt, double *depth)
+{
+    box whole;
+    whole_box(rb, &whole);
+    coordinate dims[WITNESS_MAX_DIMS];
+    int nd = coordinates_of(rb, c, &whole, dims);
+    if (nd == 0)
+        return WR_OK;
+    double ts[WR_MAX_FIXELS], tt[WR_MAX_FIXELS];
+    for (unsigned corner = 0; corner < 1u << nd; corner++) {
+        memcpy(ts, s, sizeof ts);
+        memcpy(tt, tilt, sizeof tt);
+        for (int k = 0; k < nd; k++)
+            (dims[k].tilt ? tt : ts)[dims[k].fixel] = corner >> k & 1 ? dims[k].hi : dims[k].lo;
+        bool deeper;
+        wr_status status = try_point(rb, c, x, ts, tt, s, tilt, depth, &deeper);
+        if (status != WR_OK)
+            return status;
+    }
+    for (double h = 0.5; h > 1e-13; h *= 0.5) {
+        bool moved = true;
+        while (moved) {
+            moved = false;
+            for (int k = 0; k < nd; k++)
+                for (int sign = -1; sign <= 1; sign += 2) {
+                    memcpy(ts, s, sizeof ts);
+                    memcpy(tt, tilt, sizeof tt);
+                    double *v = &(dims[k].tilt ? tt : ts)[dims[k].fixel];
+                    *v = fmin(dims[k].hi,
+                              fmax(dims[k].lo, *v + sign * h * (dims[k].hi - dims[k].lo)));
+                    bool deeper;
+                    wr_status status = try_point(rb, c, x, ts, tt, s, tilt, depth, &deeper);
+                    if (status != WR_OK)
+                        return status;
+                    moved |= deeper;
+                }
+        }
+    }
+    return WR_OK;
 }
 
 /* Split b in two along its widest side (positions measured against the
@@ -871,6 +1161,8 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
     *least = nominal;
     int result = CONE_CLEAR;
     int examined = 0;
+    /* The deepest box centre met: where the witness search starts. */
+    double deep_s[WR_MAX_FIXELS] = {0}, deep_tilt[WR_MAX_FIXELS] = {0}, deepest = INFINITY;
     while (count > 0) {
         int pick = 0;
         for (int i = 1; i < count; i++)
@@ -886,6 +1178,8 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
         double t = cache ? check_certificate(&sys, x, cache) : -1;
         if (!(t > tolerance))
             t = certify(&sys, x, cache);
+        if (!isnan(t) && !(t > tolerance))
+            t = fmax(t, certify_turning(&sys, x));
         if (isnan(t)) {
             result = CONE_FAILED;
             break;
@@ -902,6 +1196,11 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
                 break;
             }
             *least = fmin(*least, d);
+            if (d < deepest) {
+                deepest = d;
+                memcpy(deep_s, cs, sizeof cs);
+                memcpy(deep_tilt, ct, sizeof ct);
+            }
             if (d < -tolerance) {
                 memcpy(s, cs, sizeof cs);
                 memcpy(tilt, ct, sizeof ct);
@@ -922,6 +1221,16 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
         queue[count++] = two;
     }
     free(queue);
+    if (result == CONE_UNDECIDED && point) {
+        if (search_witness(rb, c, point, deep_s, deep_tilt, &deepest) != WR_OK)
+            return CONE_FAILED;
+        *least = fmin(*least, deepest);
+        if (deepest < -tolerance) {
+            memcpy(s, deep_s, sizeof deep_s);
+            memcpy(tilt, deep_tilt, sizeof deep_tilt);
+            result = CONE_WITNESS;
+        }
+    }
     return result;
 }
 
@@ -1152,11 +1461,15 @@ static bool append_region(wr_regions *out, int edge, double t0, double t1)
 /* A family of wrenches over a parameter interval, as a box. */
 typedef void (*family_fn)(const void *context, double ta, double tb, double lo[3], double hi[3]);
 
+/* What a sink says of a piece given to it. */
+enum { KEEP_MORE, KEEP_FAILED, KEEP_ENOUGH };
+
 /* The pieces of [t0, t1], bisected down to 2^-WR_ROBUST_DEPTH of it, whose
- * family is proved robustly inside, each passed to `keep` in order. */
+ * family is proved robustly inside, each passed to `keep` in order, until
+ * it says KEEP_ENOUGH (or KEEP_FAILED: no memory). */
 static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, family_fn family,
-                        const void *context, const wr_stop *stop,
-                        bool (*keep)(void *sink, double t0, double t1), void *sink)
+                        const void *context, const wr_stop *stop, int leaf_budget,
+                        int (*keep)(void *sink, double t0, double t1), void *sink)
 {
     struct piece {
         double t0, t1;
@@ -1182,10 +1495,13 @@ static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, f
         /* A piece that one box per cone does not prove is split along the
          * family first: the boxes of the set are split (the whole budget)
          * only for the finest pieces. */
-        int budget = p.depth < WR_ROBUST_DEPTH ? 1 : rb->budget;
+        int budget = p.depth < WR_ROBUST_DEPTH ? 1 : leaf_budget;
         if (box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, caches, budget, &status)) {
-            if (!keep(sink, p.t0, p.t1))
+            int kept = keep(sink, p.t0, p.t1);
+            if (kept == KEEP_FAILED)
                 result = WR_NO_MEMORY;
+            else if (kept == KEEP_ENOUGH)
+                break;
             continue;
         }
         if (status != WR_OK) {
@@ -1220,10 +1536,10 @@ typedef struct region_sink {
     int edge;
 } region_sink;
 
-static bool keep_region(void *sink, double t0, double t1)
+static int keep_region(void *sink, double t0, double t1)
 {
     region_sink *r = sink;
-    return append_region(r->out, r->edge, t0, t1);
+    return append_region(r->out, r->edge, t0, t1) ? KEEP_MORE : KEEP_FAILED;
 }
 
 wr_status wr_robust_regions(const wr_robust *rb, wr_set set, const wr_regions *nominal,
@@ -1236,6 +1552,7 @@ wr_status wr_robust_regions(const wr_robust *rb, wr_set set, const wr_regions *n
         region_family family = {rb->fixture, region->edge, gravity};
         region_sink sink = {out, region->edge};
         wr_status status = bisect(rb, set, region->t0, region->t1, region_box, &family, stop,
+                                  rb->budget,
                                   keep_region, &sink);
         if (status != WR_OK) {
             wr_regions_release(out);
@@ -1268,34 +1585,39 @@ static void force_box(const void *context, double sa, double sb, double lo[3], d
 typedef struct force_sink {
     wr_forces *out;
     double c;
+    bool first_only; /* the least magnitude is all that is asked */
 } force_sink;
 
 static double magnitude(double s, double c) { return s >= 1 ? INFINITY : c * s / (1 - s); }
 
-static bool keep_force(void *sink, double s0, double s1)
+static int keep_force(void *sink, double s0, double s1)
 {
     force_sink *f = sink;
     wr_forces *out = f->out;
     double lo = magnitude(s0, f->c), hi = magnitude(s1, f->c);
     if (out->count > 0 && out->items[out->count - 1].hi == lo) {
         out->items[out->count - 1].hi = hi;
-        return true;
+        return KEEP_MORE;
     }
     if (out->count == out->capacity) {
         int capacity = out->capacity ? 2 * out->capacity : 8;
         wr_force_interval *items = realloc(out->items, sizeof *items * (size_t)capacity);
         if (!items)
-            return false;
+            return KEEP_FAILED;
         out->items = items;
         out->capacity = capacity;
     }
     out->items[out->count++] = (wr_force_interval){lo, hi};
-    return true;
+    return f->first_only ? KEEP_ENOUGH : KEEP_MORE;
 }
 
-wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3],
-                           const double push[3], const wr_forces *nominal, const wr_stop *stop,
-                           wr_forces *out)
+#define LEAST_LEAF_BUDGET 8
+
+/* wr_robust_forces, or with `first_only` its first interval's first
+ * piece alone (its lower end the least robust magnitude proved). */
+static wr_status robust_forces(const wr_robust *rb, wr_set set, const double load[3],
+                               const double push[3], const wr_forces *nominal,
+                               const wr_stop *stop, bool first_only, wr_forces *out)
 {
     out->count = 0;
     const wr_fixture *f = rb->fixture;
@@ -1308,16 +1630,159 @@ wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3]
     family.c = lengths[0] > 0 && lengths[1] > 0 ? lengths[0] / lengths[1] : 1;
     for (int j = 0; j < 3; j++)
         family.push[j] *= family.c;
-    force_sink sink = {out, family.c};
-    for (int i = 0; i < nominal->count; i++) {
+    force_sink sink = {out, family.c, first_only};
+    for (int i = 0; i < nominal->count && !(first_only && out->count > 0); i++) {
         const wr_force_interval *g = &nominal->items[i];
         double s0 = g->lo / (g->lo + family.c);
         double s1 = isinf(g->hi) ? 1 : g->hi / (g->hi + family.c);
-        wr_status status = bisect(rb, set, s0, s1, force_box, &family, stop, keep_force, &sink);
+        /* The least alone: a magnitude no piece proves costs every
+         * finest piece its boxes, so those get a few only (the least is
+         * then proved where fewer boxes suffice, a little higher at most). */
+        wr_status status = bisect(rb, set, s0, s1, force_box, &family, stop,
+                                  first_only ? LEAST_LEAF_BUDGET : rb->budget, keep_force, &sink);
         if (status != WR_OK) {
             out->count = 0;
             return status;
         }
     }
     return WR_OK;
+}
+
+wr_status wr_robust_forces(const wr_robust *rb, wr_set set, const double load[3],
+                           const double push[3], const wr_forces *nominal, const wr_stop *stop,
+                           wr_forces *out)
+{
+    return robust_forces(rb, set, load, push, nominal, stop, false, out);
+}
+
+wr_status wr_robust_least_force_at(const wr_robust *rb, wr_set set, const double (*loads)[3],
+                                   int case_count, const double push[3], const wr_stop *stop,
+                                   double *force)
+{
+    *force = INFINITY;
+    wr_forces all = {0}, nominal = {0}, robust = {0}, meet = {0};
+    wr_status status = WR_OK;
+    for (int c = 0; status == WR_OK && c < case_count; c++) {
+        status = wr_force_range(rb->analysis, set, loads[c], push, 0, INFINITY, &nominal);
+        /* One case: the first piece proved is the least (pieces come in
+         * order); with more, their intersection needs each whole. */
+        if (status == WR_OK)
+            status = robust_forces(rb, set, loads[c], push, &nominal, stop, case_count == 1,
+                                   &robust);
+        if (status != WR_OK)
+            break;
+        if (c > 0) {
+            status = wr_forces_intersect(&all, &robust, &meet);
+            wr_forces swap = all;
+            all = meet;
+            meet = swap;
+        } else {
+            wr_forces swap = all;
+            all = robust;
+            robust = swap;
+        }
+        if (all.count == 0)
+            break; /* no magnitude for the cases so far */
+    }
+    if (status == WR_OK && all.count > 0)
+        *force = all.items[0].lo;
+    wr_forces_release(&all);
+    wr_forces_release(&nominal);
+    wr_forces_release(&robust);
+    wr_forces_release(&meet);
+    return status;
+}
+
+/* ---- friction sweeps --------------------------------------------------- */
+
+/* Is the wrench robustly inside for every mu of [m0, m1]? */
+static wr_status mu_piece_inside(const wr_fixture *fixture, const wr_fixel_spec *fixels,
+                                 double ratio, const double wrench[3], wr_set set, double m0,
+                                 double m1, bool *inside)
+{
+    *inside = false;
+    wr_friction_spec friction = {.given = true, .static_mu = m1, .static_interval = m0 < m1,
+                                 .static_min = m0, .kinetic_given = true,
+                                 .kinetic_mu = ratio * m1, .kinetic_interval = m0 < m1,
+                                 .kinetic_min = ratio * m0};
+    wr_fixture placed;
+    wr_error error;
+    wr_status status = wr_fixture_place(fixture, fixels, (size_t)fixture->fixel_count, &friction,
+                                        &placed, &error);
+    if (status == WR_OK)
+        status = wr_fixture_set_tolerance(&placed, &fixture->tolerance, &error);
+    wr_analysis *analysis = NULL;
+    wr_robust *robust = NULL;
+    if (status == WR_OK)
+        status = wr_analysis_new(&placed, &analysis);
+    if (status == WR_OK)
+        status = wr_robust_new(analysis, 0, &robust);
+    wr_robust_answer answer;
+    if (status == WR_OK)
+        status = wr_robust_classify(robust, wrench, set, WR_DEFAULT_TOLERANCE, &answer);
+    if (status == WR_OK)
+        *inside = answer.answer.verdict == WR_VERDICT_INSIDE;
+    wr_robust_free(robust);
+    wr_analysis_free(analysis);
+    return status;
+}
+
+static bool append_interval(wr_intervals *out, double lo, double hi)
+{
+    if (out->count > 0 && out->items[out->count - 1][1] == lo) {
+        out->items[out->count - 1][1] = hi;
+        return true;
+    }
+    if (out->count == out->capacity) {
+        int capacity = out->capacity ? 2 * out->capacity : 8;
+        double (*items)[2] = realloc(out->items, sizeof *items * (size_t)capacity);
+        if (!items)
+            return false;
+        out->items = items;
+        out->capacity = capacity;
+    }
+    out->items[out->count][0] = lo;
+    out->items[out->count++][1] = hi;
+    return true;
+}
+
+wr_status wr_robust_sweep_wrench(const wr_fixture *fixture, const wr_fixel_spec *fixels,
+                                 double kinetic_ratio, const double wrench[3], wr_set set,
+                                 const wr_intervals *nominal, const wr_stop *stop,
+                                 wr_intervals *out)
+{
+    out->count = 0;
+    wr_status status = WR_OK;
+    for (int i = 0; status == WR_OK && i < nominal->count; i++) {
+        struct piece {
+            double m0, m1;
+            int depth;
+        } stack[2 * WR_ROBUST_DEPTH + 2];
+        int top = 0;
+        stack[top++] = (struct piece){nominal->items[i][0], nominal->items[i][1], 0};
+        while (top > 0 && status == WR_OK) {
+            struct piece p = stack[--top];
+            if (wr_stop_requested(stop)) {
+                status = WR_STOPPED;
+                break;
+            }
+            bool inside;
+            status = mu_piece_inside(fixture, fixels, kinetic_ratio, wrench, set, p.m0, p.m1,
+                                     &inside);
+            if (status != WR_OK)
+                break;
+            if (inside) {
+                if (!append_interval(out, p.m0, p.m1))
+                    status = WR_NO_MEMORY;
+            } else if (p.depth < WR_ROBUST_DEPTH) {
+                /* Left piece on top, so that pieces come out in order. */
+                double mid = 0.5 * (p.m0 + p.m1);
+                stack[top++] = (struct piece){mid, p.m1, p.depth + 1};
+                stack[top++] = (struct piece){p.m0, mid, p.depth + 1};
+            }
+        }
+    }
+    if (status != WR_OK)
+        out->count = 0;
+    return status;
 }

@@ -7,7 +7,8 @@
  * and then tilted by up to A.  A robust answer is `inside` only when the
  * nominal answer's margin exceeds the tolerance for every fixture of the
  * set (proved by a dual certificate per excluded cone over boxes of the
- * set, refined by subdivision), `outside` only with a fixture of the set
+ * set, refined by subdivision; one made of the rows themselves where a
+ * fixed one cannot follow them), `outside` only with a fixture of the set
  * (the witness) whose own answer is `outside`, and `boundary` otherwise.
  *
  * A wr_robust is immutable once built; any number of threads may use it.
@@ -19,6 +20,7 @@
 #include "wr_classify.h"
 #include "wr_force.h"
 #include "wr_regions.h"
+#include "wr_sweep.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -110,6 +112,37 @@ wr_status wr_robust_regions(const wr_robust *robust, wr_set set, const wr_region
 wr_status wr_robust_forces(const wr_robust *robust, wr_set set, const double load[3],
                            const double push[3], const wr_forces *nominal, const wr_stop *stop,
                            wr_forces *out);
+
+/* The robust F*(p): the least magnitude of the proved robust ones
+ * (wr_robust_forces of each case's nominal good magnitudes, intersected
+ * over the cases) with which `push` (as wr_least_force_at's) does the
+ * set's job under every case on every fixture of the set; INFINITY when
+ * none is proved.  It is at least the nominal fixture's F*(p), and may
+ * lie above the least robust magnitude (the bisection's resolution; with
+ * one case the finest pieces get a few boxes each, so that a push no
+ * magnitude does is found so quickly): a push of that force works on
+ * every fixture of the set.  WR_OK;
+ * WR_INVALID (as wr_force_range); WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY. */
+wr_status wr_robust_least_force_at(const wr_robust *robust, wr_set set,
+                                   const double (*loads)[3], int case_count,
+                                   const double push[3], const wr_stop *stop, double *force);
+
+/* The robust part of a wrench's nominal intervals of mu (wr_sweep_wrench
+ * of the same set on `fixture`, mu_s = mu, mu_k = kinetic_ratio mu), over
+ * `fixture`'s tolerance: each interval bisected down to
+ * 2^-WR_ROBUST_DEPTH of its length, a piece [m0, m1] kept when the wrench
+ * is robustly inside (wr_robust_classify) on the fixture with `fixels`
+ * placed again with the friction intervals mu_s in [m0, m1] and mu_k in
+ * [kinetic_ratio m0, kinetic_ratio m1]: an answer over friction intervals
+ * holds for every coefficient in them, so the piece holds for every mu of
+ * it and every fixture of the set at once.  Contiguous pieces are joined;
+ * `out` (emptied first) lies inside the robust intervals.  WR_OK;
+ * WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY; WR_INVALID (a placement
+ * refused). */
+wr_status wr_robust_sweep_wrench(const wr_fixture *fixture, const wr_fixel_spec *fixels,
+                                 double kinetic_ratio, const double wrench[3], wr_set set,
+                                 const wr_intervals *nominal, const wr_stop *stop,
+                                 wr_intervals *out);
 
 #ifdef __cplusplus
 }

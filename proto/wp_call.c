@@ -1,12 +1,23 @@
 /* wp_call.c -- what a method's call offers it (wp_method.h): its fixture,
  * acquired through the host into the envelope's hold, its id, and whether
- * it may send notifications; and the release of a host's listing
- * (wp_host.h). */
+ * it may send notifications, and its response's opening; and the release
+ * of a host's listing (wp_host.h). */
 #include "wp_method.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* A response's opening, up to its result's value: the same for every
+ * call, written by the envelope or by a stream that opens its own. */
+void wp_call_open_result(wp_call *call, wp_writer *w)
+{
+    (void)call;
+    wp_write_object(w);
+    wp_write_key(w, "jsonrpc");
+    wp_write_string(w, "2.0");
+    wp_write_key(w, "result");
+}
 
 /* params.fixture, held for the call: a stored id, or an inline fixture
  * object (validated, then cached under its id). */
@@ -39,6 +50,8 @@ wp_fixture_use *wp_call_fixture(wp_call *call)
         if (!wp_fixture_read(value, "params.fixture", &doc, error))
             return NULL;
         memcpy(doc.written, written, sizeof doc.written);
+        doc.text = hold->text;
+        doc.text_length = hold->text_length;
         ok = host->fixture_adopt(host->self, &doc, false, &hold->use, &failure);
     } else {
         wp_error_set(error, WP_INVALID_PARAMS, "params.fixture",

@@ -43,6 +43,16 @@ void wp_error_status(wp_error *error, wr_status status, const char *field, const
     va_end(args);
 }
 
+void wp_error_refusal(wp_error *error, wr_status status, const char *path, const wr_error *why)
+{
+    char field[WP_FIELD_MAX];
+    if (why->field[0])
+        wp_path_key(field, path, why->field);
+    else
+        snprintf(field, sizeof field, "%s", path);
+    wp_error_status(error, status, field, "%s", why->reason);
+}
+
 void wp_error_host(wp_error *error, const wp_host_failure *failure, const char *field)
 {
     static const int CODES[] = {

@@ -60,11 +60,12 @@ static bool read_units(const cJSON *json, const char *path, wr_units *out, wp_er
 
 /* The fixture's geometric tolerance (docs/PROTOCOL.md, "Tolerance"):
  * {"position": T, "angle"?: A}; absent, out->given stays false.  Its
- * values are checked against the fixture by apply_tolerance. */
+ * values are checked against the fixture by apply_tolerance (the contract
+ * is in wp_fixture.h). */
 static const char *const TOLERANCE_FIELDS[] = {"position", "angle", NULL};
 
-static bool read_tolerance(const cJSON *json, const char *path, wr_tolerance *out,
-                           wp_error *error)
+bool wp_tolerance_read(const cJSON *json, const char *path, wr_tolerance *out,
+                       wp_error *error)
 {
     if (!json)
         return true;
@@ -84,9 +85,7 @@ static bool apply_tolerance(wr_fixture *fixture, const wr_tolerance *tolerance,
     wr_error invalid;
     if (wr_fixture_set_tolerance(fixture, tolerance, &invalid) == WR_OK)
         return true;
-    char field[WP_FIELD_MAX];
-    wp_path_key(field, path, invalid.field);
-    wp_error_set(error, WP_INVALID_PARAMS, field, "%s", invalid.reason);
+    wp_error_refusal(error, WR_INVALID, path, &invalid);
     return false;
 }
 
@@ -440,9 +439,7 @@ static bool read_supports(const cJSON *json, const char *path, wr_fixture *fixtu
     wr_error invalid;
     wr_status status = wr_fixture_set_supports(fixture, &spec, &invalid);
     if (status != WR_OK) {
-        wp_path_key(field, path, invalid.field);
-        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? field : path, "%s", invalid.reason);
+        wp_error_refusal(error, status, path, &invalid);
         return false;
     }
     return true;
@@ -713,8 +710,8 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     wr_tolerance tolerance = {false, 0, 0};
     if (ok) {
         wp_path_key(field, path, "tolerance");
-        ok = read_tolerance(cJSON_GetObjectItemCaseSensitive(json, "tolerance"), field,
-                            &tolerance, error);
+        ok = wp_tolerance_read(cJSON_GetObjectItemCaseSensitive(json, "tolerance"), field,
+                               &tolerance, error);
     }
     if (ok) {
         const cJSON *list = cJSON_GetObjectItemCaseSensitive(json, "fixels");
@@ -731,10 +728,7 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
         wr_error invalid;
         wr_status status = wr_fixture_new(&spec, &out->fixture, &invalid);
         if (status != WR_OK) {
-            /* Invalid: at the field to blame.  Out of memory: at the fixture. */
-            wp_path_key(field, path, invalid.field);
-            wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                         status == WR_INVALID ? field : path, "%s", invalid.reason);
+            wp_error_refusal(error, status, path, &invalid);
             ok = false;
         }
     }
@@ -800,9 +794,7 @@ bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_e
         wr_error invalid;
         wr_status status = wr_fixture_body_new(&spec, body, &invalid);
         if (status != WR_OK) {
-            wp_path_key(field, path, invalid.field);
-            wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                         status == WR_INVALID ? field : "", "%s", invalid.reason);
+            wp_error_refusal(error, status, path, &invalid);
             ok = false;
         }
     }

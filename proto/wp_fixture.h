@@ -25,6 +25,9 @@ typedef struct wp_fixture_doc {
     wr_fixture *fixture;
     char written[WP_ID_LENGTH + 1]; /* inline: the key of the text as written
                                        (wp_fixture_written_key), "" unknown */
+    const char *text;               /* inline: the object's text as written, */
+    size_t text_length;             /* borrowed for the adoption, or NULL
+                                       (wp_host.h, fixture_use_text) */
 } wp_fixture_doc;
 
 /* The explicit form of a fixture (docs/PROTOCOL.md, "Fixture id"): the
@@ -73,6 +76,12 @@ bool wp_fixture_id_valid(const char *text);
  * whose torque about the fixture's centre of mass is (at - com) x force. */
 bool wp_wrench_read(const cJSON *json, const char *path, const wr_fixture *fixture,
                     double wrench[3], wp_error *error);
+
+/* A geometric tolerance at `path`: {"position": T, "angle"?: A}; NULL
+ * json leaves out->given false.  Its shape only: its values are checked
+ * against a fixture by wr_fixture_set_tolerance. */
+bool wp_tolerance_read(const cJSON *json, const char *path, wr_tolerance *out,
+                       wp_error *error);
 
 #ifdef __cplusplus
 }

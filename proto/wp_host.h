@@ -63,6 +63,11 @@ typedef struct wp_server_state {
     unsigned long clients, refused, denied, requests, errors;
 } wp_server_state;
 
+/* An inline fixture's text this long or longer is given to the host to
+ * keep (fixture_use_text): below it, reading the object costs less than
+ * keeping it. */
+#define WP_INLINE_TEXT_MIN 4096
+
 /* The daemon's side of the seam: the fixture store and the solver state a
  * request needs, as data.  One per thread (so `self` may hold that thread's
  * GLPK environment).  The envelope acquires and releases a request's
@@ -79,6 +84,13 @@ typedef struct wp_host {
      * it is still kept: true, held, and the object need not be read again.
      * False: not kept (or out of memory), nothing held.  May be NULL. */
     bool (*fixture_use_written)(void *self, const char *key, wp_fixture_use *use);
+    /* Hold the fixture adopted from an inline object whose text as written
+     * (doc->text at the adoption; only texts of WP_INLINE_TEXT_MIN bytes on
+     * are given) begins text[0, length), if it is still kept: the kept
+     * text's length, held.  0: none kept (or out of memory), nothing held.
+     * The envelope then need not read the object at all (wp_rpc.c,
+     * recognise_fixture, says why that is sound).  May be NULL. */
+    size_t (*fixture_use_text)(void *self, const char *text, size_t length, wp_fixture_use *use);
     /* Hold the stored fixture `id`; WP_HOST_NO_FIXTURE when there is none. */
     bool (*fixture_use)(void *self, const char *id, wp_fixture_use *use,
                         wp_host_failure *failure);

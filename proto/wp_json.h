@@ -56,6 +56,11 @@ void wp_error_set(wp_error *error, int code, const char *field, const char *form
 void wp_error_status(wp_error *error, wr_status status, const char *field, const char *format,
                      ...) __attribute__((format(printf, 4, 5)));
 
+/* wp_error_status for a lib call that refused at `why` (wr_error) what it
+ * was given from `path`: the field is path.why->field, or `path` when the
+ * lib names none. */
+void wp_error_refusal(wp_error *error, wr_status status, const char *path, const wr_error *why);
+
 /* "prefix.key" and "prefix[index]" into a WP_FIELD_MAX buffer. */
 void wp_path_key(char out[WP_FIELD_MAX], const char *prefix, const char *key);
 void wp_path_index(char out[WP_FIELD_MAX], const char *prefix, size_t index);

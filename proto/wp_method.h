@@ -17,6 +17,11 @@ extern "C" {
 typedef struct wp_fixture_hold {
     wp_fixture_use use;
     bool holding;
+    /* params.fixture's text as the line wrote it (not NUL-ended), for the
+     * host to keep at the adoption (wp_host.h, fixture_use_text), or NULL;
+     * owned by the envelope, freed with the hold. */
+    char *text;
+    size_t text_length;
 } wp_fixture_hold;
 
 /* One call of a method: what its handler reads and where it says what

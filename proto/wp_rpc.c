@@ -52,21 +52,8 @@ static void write_error(wp_buffer *b, const wp_error *error, const char *id)
 }
 
 /* A response's opening, {"jsonrpc":"2.0","result": -- its result follows. */
-static void write_response_open(wp_writer *w)
-{
-    wp_write_object(w);
-    wp_write_key(w, "jsonrpc");
-    wp_write_string(w, "2.0");
-    wp_write_key(w, "result");
-}
-
-/* A response's closing, after its result: its id (text such as "null"). */
-void wp_call_open_result(wp_call *call, wp_writer *w)
-{
-    (void)call;
-    write_response_open(w);
-}
-
+/* A response's closing, after its result (opened by wp_call_open_result):
+ * its id, text such as "null". */
 static void write_response_close(wp_writer *w, const char *id_text)
 {
     const char *id = id_text ? id_text : "null";
@@ -127,6 +114,9 @@ static void release_fixture(wp_answer *answer, const wp_host *host)
     if (answer->hold.holding)
         host->fixture_release(host->self, &answer->hold.use);
     answer->hold.holding = false;
+    free(answer->hold.text);
+    answer->hold.text = NULL;
+    answer->hold.text_length = 0;
 }
 
 /* What the envelope of one request says: an error found in it, its id as
@@ -337,7 +327,7 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             answer->bytes = 4096 + (m->stream->bytes ? m->stream->bytes(stream) : 0);
             answer->response = wp_writer_on(out);
             if (!m->stream->opens_result)
-                write_response_open(&answer->response);
+                wp_call_open_result(&call, &answer->response);
             /* `start` is before the "," or "[": a failure takes it all back. */
             *stream_step = continue_stream(answer, host, out, start, true, used, counts);
         } else {
@@ -352,7 +342,7 @@ static bool start_request(wp_answer *answer, const wp_host *host, wp_buffer *out
             separate(answer, out);
         size_t opened = out->length;
         wp_writer w = wp_writer_on(out);
-        write_response_open(&w);
+        wp_call_open_result(&call, &w);
         bool ok = m && m->handler(&call, &w);
         if (ok)
             write_response_close(&w, id_text);
@@ -539,7 +529,8 @@ bool wp_answer_light(wp_answer *answer, const wp_host *host)
     const cJSON *id = cJSON_GetObjectItemCaseSensitive(params, "fixture");
     if (!cJSON_IsString(id) || !wp_fixture_id_valid(id->valuestring))
         return false;
-    assert(!answer->hold.holding);
+    if (answer->hold.holding)
+        return false; /* held since begin: a long line, never light */
     int cones = host->fixture_use_ready(host->self, id->valuestring, &answer->hold.use);
     answer->hold.holding = cones >= 0;
     return cones >= 0 && (!m->light || m->light(params, cones));
@@ -694,14 +685,12 @@ static bool next_member(wp_answer *answer, wp_buffer *out, wp_counts *counts)
     return answer->next != NULL;
 }
 
-wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t length)
+/* The tree of a line: a member of a raw_array or raw_text row read from
+ * the text (prepare), the rest parsed; NULL with answer->refusal set (or
+ * not, out of memory) when the line is refused. */
+static cJSON *read_tree(wp_answer *answer, const wp_limits *limits, const char *line,
+                        size_t length)
 {
-    wp_answer *answer = calloc(1, sizeof *answer);
-    if (!answer)
-        return NULL;
-    answer->limits = *limits;
-    answer->budget = WP_PIECE_BUDGET;
-    answer->piece_bytes = WP_PIECE_BYTES;
     wp_counts counted = {0, 0}; /* a refusal counts when its step writes it */
     size_t short_length = 0;
     char *short_line = NULL;
@@ -730,6 +719,127 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
     }
     if (!json)
         json = parse_line(limits, line, length, &counted, &answer->refusal);
+    return json;
+}
+
+/* The row of the method a line names as written (a name spelt with
+ * escapes is not found: the line is then read the ordinary way). */
+static const wp_method *method_as_written(const char *line, size_t length)
+{
+    size_t start, end;
+    if (!wp_json_member(line, length, 0, "method", &start, &end) || end - start < 2 ||
+        line[start] != '"' || line[end - 1] != '"')
+        return NULL;
+    for (const wp_method *m = wp_methods; m->name; m++)
+        if (strlen(m->name) == end - start - 2 && memcmp(line + start + 1, m->name, end - start - 2) == 0)
+            return m;
+    return NULL;
+}
+
+/* Does the tree read a single request of method `m`? */
+static bool reads_method(const cJSON *json, const wp_method *m)
+{
+    const cJSON *method = cJSON_IsObject(json) ? cJSON_GetObjectItemCaseSensitive(json, "method")
+                                               : NULL;
+    return cJSON_IsString(method) && strcmp(method->valuestring, m->name) == 0;
+}
+
+/* A single request of a WP_FIXTURE method whose params.fixture is an
+ * object the host kept the text of (wp_host.h, fixture_use_text): that
+ * fixture held for the request (answer->hold) and a copy of the line with
+ * [] in the object's place returned, so that neither the scan nor the
+ * parse reads it again; NULL for the ordinary way.
+ *
+ * Why the line need not be read where the kept text stands: the text is a
+ * whole JSON object that a line this daemon parsed held at this same place
+ * (params.fixture of a single request, so at the same depth; the text is
+ * kept by record_fixture_text below).  A value's text ends where its
+ * brackets close, so when the bytes here equal it they are that object,
+ * and a JSON text with one value put for another at a value's place is
+ * valid exactly when it was: the copy is read as the line would have been.
+ * The place is found by spanning the members before it without a scan;
+ * on a line that is not JSON the copy, whose text before the place is the
+ * same, is refused too, and the line is then read and refused as written. */
+static char *recognise_fixture(wp_answer *answer, const wp_host *host, const char *line,
+                               size_t length, const wp_method **m, size_t *copy_length)
+{
+    size_t params_start, fixture_start;
+    size_t i = wp_json_skip_space(line, 0, length);
+    if (i >= length || line[i] != '{')
+        return NULL; /* a batch, or not a request */
+    *m = method_as_written(line, length);
+    if (!*m || !((*m)->flags & WP_FIXTURE) ||
+        !wp_json_member_start(line, length, 0, "params", &params_start) ||
+        !wp_json_member_start(line, length, params_start, "fixture", &fixture_start) ||
+        line[fixture_start] != '{')
+        return NULL;
+    size_t span = host->fixture_use_text(host->self, line + fixture_start,
+                                         length - fixture_start, &answer->hold.use);
+    if (!span)
+        return NULL;
+    answer->hold.holding = true;
+    char *copy = cut(line, length, fixture_start, fixture_start + span, copy_length);
+    if (!copy)
+        release_fixture(answer, host);
+    return copy;
+}
+
+/* For a single request of a WP_FIXTURE method read the ordinary way, with
+ * an inline fixture object of WP_INLINE_TEXT_MIN bytes on: its text as the
+ * line wrote it, for the host to keep at the adoption (wp_call_fixture).
+ * The line has passed the scan and the parse, so its spans are sound. */
+static void record_fixture_text(wp_answer *answer, const cJSON *json, const char *line,
+                                size_t length)
+{
+    const cJSON *method = cJSON_GetObjectItemCaseSensitive(json, "method");
+    const wp_method *m = cJSON_IsString(method) ? wp_method_find(method->valuestring) : NULL;
+    size_t params_start, start, end;
+    if (!m || !(m->flags & WP_FIXTURE) ||
+        !wp_json_member_start(line, length, 0, "params", &params_start) ||
+        !wp_json_member(line, length, params_start, "fixture", &start, &end) ||
+        line[start] != '{' || end - start < WP_INLINE_TEXT_MIN)
+        return;
+    answer->hold.text = malloc(end - start);
+    if (!answer->hold.text)
+        return; /* not kept: nothing else changes */
+    memcpy(answer->hold.text, line + start, end - start);
+    answer->hold.text_length = end - start;
+}
+
+wp_answer *wp_answer_begin(const wp_limits *limits, const wp_host *host, const char *line,
+                           size_t length)
+{
+    wp_answer *answer = calloc(1, sizeof *answer);
+    if (!answer)
+        return NULL;
+    answer->limits = *limits;
+    answer->budget = WP_PIECE_BUDGET;
+    answer->piece_bytes = WP_PIECE_BYTES;
+    cJSON *json = NULL;
+    bool keeps_texts = host && host->fixture_use_text && length >= WP_INLINE_TEXT_MIN;
+    if (keeps_texts) {
+        const wp_method *m = NULL;
+        size_t cut_length = 0;
+        char *cut_line = recognise_fixture(answer, host, line, length, &m, &cut_length);
+        if (cut_line) {
+            json = read_tree(answer, limits, cut_line, cut_length);
+            free(cut_line);
+            if (!reads_method(json, m)) {
+                /* Refused, or not the request found from the text: read as written. */
+                cJSON_Delete(json);
+                json = NULL;
+                free(answer->refusal);
+                answer->refusal = NULL;
+                free(answer->prepared.text);
+                free(answer->prepared.wrenches);
+                memset(&answer->prepared, 0, sizeof answer->prepared);
+                release_fixture(answer, host);
+            }
+            keeps_texts = false; /* kept already */
+        }
+    }
+    if (!json)
+        json = read_tree(answer, limits, line, length);
     if (!json) {
         if (!answer->refusal) {
             free(answer);
@@ -738,6 +848,8 @@ wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t len
         answer->bytes = strlen(answer->refusal);
         return answer;
     }
+    if (keeps_texts && cJSON_IsObject(json))
+        record_fixture_text(answer, json, line, length);
     answer->json = json;
     answer->bytes = length * 4; /* a rough figure for the tree */
     if (cJSON_IsArray(json)) {
@@ -880,7 +992,7 @@ char *wp_answer_whole(wp_answer *answer, const wp_host *host, wp_counts *counts)
 char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *line,
                      size_t length, wp_counts *counts)
 {
-    wp_answer *answer = wp_answer_begin(limits, line, length);
+    wp_answer *answer = wp_answer_begin(limits, host, line, length);
     if (!answer) {
         counts->requests++;
         counts->errors++;

@@ -82,9 +82,13 @@ typedef enum wp_step {
  * unsent output between pieces. */
 #define WP_PIECE_BYTES (256 * 1024)
 
-/* Parse a line (without its "\n").  The line is not kept.  NULL only when
- * out of memory. */
-wp_answer *wp_answer_begin(const wp_limits *limits, const char *line, size_t length);
+/* Parse a line (without its "\n").  The line is not kept.  With a `host`
+ * that keeps inline fixtures' texts (wp_host.h, fixture_use_text), a long
+ * line's inline fixture may be recognised from its text and held from
+ * here: steps and wp_answer_free must then be given the same host.  NULL
+ * only when out of memory. */
+wp_answer *wp_answer_begin(const wp_limits *limits, const wp_host *host, const char *line,
+                           size_t length);
 /* Is the answer light work, to be made on an event loop now (the policy
  * above)?  Ask it only of lines up to WP_LIGHT_LINE: a loop parses no
  * longer ones.  The fixture of a WP_READY request is looked up here, once,

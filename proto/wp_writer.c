@@ -66,15 +66,15 @@ void wp_write_bool(wp_writer *w, bool value)
 {
     bool comma = wp_write_comma_due(w);
     if (value)
-        wp_buffer_append(w->out, ",true" + !comma, 4 + comma);
+        wp_buffer_append(w->out, &",true"[!comma], 4 + comma);
     else
-        wp_buffer_append(w->out, ",false" + !comma, 5 + comma);
+        wp_buffer_append(w->out, &",false"[!comma], 5 + comma);
 }
 
 void wp_write_null(wp_writer *w)
 {
     bool comma = wp_write_comma_due(w);
-    wp_buffer_append(w->out, ",null" + !comma, 4 + comma);
+    wp_buffer_append(w->out, &",null"[!comma], 4 + comma);
 }
 
 void wp_write_raw(wp_writer *w, const char *text, size_t length)

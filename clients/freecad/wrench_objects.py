@@ -350,8 +350,10 @@ class WrenchFixture:
             obj.addProperty("App::PropertyEnumeration", "DesignObjective", "Design",
                             "Design: rank by the margin of the best push in both (margin), the "
                             "length of the both region (region), the gravity arc (gravity), the "
-                            "least push force under Gravity and Loads (force), or the worst "
-                            "locating error with locators off by DesignTolerance (accuracy)")
+                            "least push force under Gravity and Loads (force), the worst "
+                            "locating error with locators off by DesignTolerance (accuracy), or "
+                            "list the designs no other beats on all three of margin, accuracy "
+                            "and least force (pareto)")
             obj.DesignObjective = DESIGN_OBJECTIVES
             obj.DesignObjective = "margin"
         elif list(obj.getEnumerationsOfProperty("DesignObjective")) != DESIGN_OBJECTIVES:
@@ -359,11 +361,12 @@ class WrenchFixture:
             obj.DesignObjective = DESIGN_OBJECTIVES
             obj.DesignObjective = chosen
         _add(obj, "App::PropertyLength", "DesignTolerance", "Design",
-             "Design, objective accuracy: how far each locator may be off along its normal; "
+             "Design, objectives accuracy and pareto: how far each locator may be off along "
+             "its normal; "
              "the worst error is the pose's (scaled), or the farthest DesignFeatures point's",
              0.02)
         _add(obj, "App::PropertyVectorList", "DesignFeatures", "Design",
-             "Design, objective accuracy: points of the part (document) whose worst "
+             "Design, objectives accuracy and pareto: points of the part (document) whose worst "
              "displacement ranks the designs; empty: the pose's error")
         _add(obj, "App::PropertyInteger", "DesignTop", "Design", "Design: designs to list", 5)
         _add(obj, "App::PropertyStringList", "Designs", "Design",
@@ -1498,7 +1501,7 @@ class _Progress:
             self.indicator = None
 
 
-DESIGN_OBJECTIVES = ["margin", "region", "gravity", "force", "accuracy"]
+DESIGN_OBJECTIVES = ["margin", "region", "gravity", "force", "accuracy", "pareto"]
 
 
 def design(fixture, client=None, progress=True, spacing=None, fixels=None, objective=None,
@@ -1534,7 +1537,7 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
         raise WrenchError("%s: DesignObjective force ranks by the least push under the load "
                           "cases: set Gravity or Loads" % fixture.Label, "cases", "required")
     extra = {"cases": cases, "units": {"length": "mm", "force": "N"}} if cases else {}
-    if objective == "accuracy":
+    if objective in ("accuracy", "pareto"):
         extra["tolerance"] = float(fixture.DesignTolerance)
         extra["features"] = [shape.to_2d(p)[:2] for p in fixture.DesignFeatures]
     indicator = _Progress("Designing %s" % fixture.Label) if progress is True else None
@@ -1583,6 +1586,10 @@ def _design_lines(count, shape, result, spacing):
                           "case, smallest first",
                  "accuracy": "the worst locating error (%s) with every locator off by up to "
                              "DesignTolerance" % UNIT,
+                 "pareto": "the Pareto front: the designs no other beats on margin, worst "
+                           "locating error (%s, every locator off by up to DesignTolerance) and "
+                           "least push force (N, under Gravity and Loads) together; score the "
+                           "margin" % UNIT,
                  }.get(result.objective, result.objective), UNIT))
     lines = [head]
     for d in result.designs:
@@ -1603,6 +1610,11 @@ def _design_lines(count, shape, result, spacing):
                 d.least_push["force"], _fmt_point(shape.to_3d(d.least_push["at"])))
         if d.accuracy is not None:
             lines[-1] += "; worst locating error %s %s" % (_fmt(d.accuracy), UNIT)
+        pareto = getattr(d, "pareto", None)
+        if pareto is not None:
+            lines[-1] += "; pareto: margin %.4g, worst locating error %s %s, least push %s" % (
+                pareto["margin"], _fmt(pareto["accuracy"]), UNIT,
+                "none" if pareto["force"] is None else "%.6g N" % pareto["force"])
         if getattr(d, "copies", 1) > 1:
             lines[-1] += "; and %d more like it, turned or mirrored by the part's symmetries" % (
                 d.copies - 1)

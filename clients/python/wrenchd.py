@@ -458,6 +458,9 @@ class Design:
     # With load cases: the least push doing both under every case ({"at",
     # "direction", "force", "lower_bound", ...}, None when none does).
     least_push: Optional[Dict[str, Any]] = None
+    # Objective pareto: {"margin", "accuracy", "force" (None: no push does
+    # both under the cases, or no cases)}, the figures of the front.
+    pareto: Optional[Dict[str, Any]] = None
 
 
 @dataclass
@@ -1249,11 +1252,15 @@ class _Methods:
                progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
                tolerance: Optional[float] = None, features: Optional[Iterable[Any]] = None,
                cases: Optional[Iterable[Any]] = None, collapse_symmetric: bool = True,
-               units: Optional[Mapping[str, str]] = None, timeout: Any = _DEFAULT):
+               units: Optional[Mapping[str, str]] = None,
+               fixel_tolerance: Optional[Mapping[str, float]] = None, timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
         [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
-        Objective "accuracy" takes `tolerance` and `features` (as locating).
+        Objective "accuracy" takes `tolerance` and `features` (as locating);
+        objective "pareto" takes them too, and `cases`: the designs no other
+        beats on margin, accuracy and least force together, each with its
+        `pareto` figures.
         `progress`, a callable, receives each design.progress notification's
         params ({"id", "stage", "done", "total", "best", "eta_s"}) as it
         arrives (progress_bar() draws them); the timeout is then the longest
@@ -1267,7 +1274,9 @@ class _Methods:
         Objective "force" ranks by the least push doing both under `cases`
         (as force_range's; with any objective each design then has its
         `least_push`); `units` ({"length", "force"}, as a fixture's) are
-        those of the body, the cases and the forces answered."""
+        those of the body, the cases and the forces answered.
+        `fixel_tolerance` ({"position", "angle"?}, a fixture's tolerance):
+        each design's both region and best push robust over it."""
         given = [name for name, value in (("sites", sites), ("spacing", spacing),
                                           ("lattice", lattice)) if value is not None]
         if len(given) != 1:
@@ -1309,6 +1318,8 @@ class _Methods:
             params["cases"] = _cases(cases)
         if units is not None:
             params["units"] = dict(units)
+        if fixel_tolerance is not None:
+            params["fixel_tolerance"] = dict(fixel_tolerance)
         return self._invoke("fixture.design", params, _design_result, True, timeout,
                             notify=progress)
 

@@ -517,6 +517,10 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("score: minus the worst locating error, locators off by +-%g (the features' worst "
                "displacement, else the pose's in the scaled metric)\n",
                cJSON_IsNumber(run->locate_tolerance) ? run->locate_tolerance->valuedouble : NAN);
+    if (objective && strcmp(objective, "pareto") == 0)
+        printf("the designs no other beats on the best push's margin, the worst locating error "
+               "(locators off by +-%g) and the least push force together; score: the margin\n",
+               cJSON_IsNumber(run->locate_tolerance) ? run->locate_tolerance->valuedouble : NAN);
     int symmetries = cJSON_GetArraySize(cJSON_GetObjectItem(result, "symmetries"));
     if (symmetries > 1)
         printf("the part has %d symmetries (the identity among them): designs one maps onto "
@@ -566,6 +570,16 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         } else if (least) {
             printf("      least push: none does both under every case\n");
         }
+        const cJSON *pareto = cJSON_GetObjectItem(d, "pareto");
+        if (cJSON_IsObject(pareto)) {
+            const cJSON *force = cJSON_GetObjectItem(pareto, "force");
+            char force_text[64] = "none";
+            if (cJSON_IsNumber(force))
+                snprintf(force_text, sizeof force_text, "%.6g %s", force->valuedouble,
+                         wc_named_force_unit(run->fixture));
+            printf("      pareto: margin %.6g, worst locating error %.6g, least push force %s\n",
+                   number(pareto, "margin"), number(pareto, "accuracy"), force_text);
+        }
         if (number(d, "copies") > 1)
             printf("      and %.0f more: its images under the part's symmetries\n",
                    number(d, "copies") - 1);
@@ -595,6 +609,24 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("Push at the best push and let go: it is in the both region (goal seats the part,\n"
                "strong then holds it); a goal push alone may leave it sliding along its fixels.\n");
     return any_push ? EXIT_INSIDE : EXIT_NOT_INSIDE;
+}
+
+/* Does design a beat b on its "pareto" figures (objective pareto): margin
+ * at least b's, worst error and least force (null: none) at most b's,
+ * one of them strictly?  False for designs without them. */
+static bool pareto_beats(const cJSON *a, const cJSON *b)
+{
+    const cJSON *pa = cJSON_GetObjectItem(a, "pareto"), *pb = cJSON_GetObjectItem(b, "pareto");
+    if (!cJSON_IsObject(pa) || !cJSON_IsObject(pb))
+        return false;
+    const cJSON *fa = cJSON_GetObjectItem(pa, "force"), *fb = cJSON_GetObjectItem(pb, "force");
+    double x[3] = {number(pa, "margin"), number(pa, "accuracy"),
+                   cJSON_IsNumber(fa) ? fa->valuedouble : INFINITY};
+    double y[3] = {number(pb, "margin"), number(pb, "accuracy"),
+                   cJSON_IsNumber(fb) ? fb->valuedouble : INFINITY};
+    if (!(x[0] >= y[0] && x[1] <= y[1] && x[2] <= y[2]))
+        return false;
+    return x[0] > y[0] || x[1] < y[1] || x[2] < y[2];
 }
 
 /* ---- design-merge -------------------------------------------------------------------- */
@@ -789,9 +821,21 @@ int wc_design_merge_request(wc_run *run, cJSON *params)
         int top = (int)number(first, "top");
         cJSON *result = cJSON_CreateObject();
         cJSON *kept = cJSON_AddArrayToObject(result, "designs");
+        /* A Pareto front's shards each hold their own front: a design
+         * another shard's beats is not on the whole front. */
+        for (int a = 0; a < n; a++)
+            for (int b = 0; all[a] && b < n; b++)
+                if (b != a && all[b] && pareto_beats(all[b], all[a])) {
+                    cJSON_Delete(all[a]);
+                    all[a] = NULL;
+                }
+        int listed = 0;
         for (int a = 0; a < n; a++) {
-            if (a < top) {
-                cJSON_ReplaceItemInObject(all[a], "rank", cJSON_CreateNumber(a + 1));
+            if (!all[a])
+                continue;
+            if (listed++ < top) {
+                int a_rank = listed;
+                cJSON_ReplaceItemInObject(all[a], "rank", cJSON_CreateNumber(a_rank));
                 cJSON_AddItemToArray(kept, all[a]);
             } else {
                 cJSON_Delete(all[a]);

@@ -278,9 +278,9 @@ static int take_objective(wc_run *run, const char *value)
 {
     if (strcmp(value, "margin") != 0 && strcmp(value, "region") != 0 &&
         strcmp(value, "gravity") != 0 && strcmp(value, "accuracy") != 0 &&
-        strcmp(value, "force") != 0)
-        return wc_usage_error("--objective is margin, region, gravity, force or accuracy, "
-                              "not '%s'",
+        strcmp(value, "force") != 0 && strcmp(value, "pareto") != 0)
+        return wc_usage_error("--objective is margin, region, gravity, force, accuracy or "
+                              "pareto, not '%s'",
                               value);
     run->objective = value;
     return 0;
@@ -763,8 +763,11 @@ const wc_command wc_commands[] = {
      "seat it against the supports' friction; its least is the least push force on the plate.\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
     {"push-force",
-     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]",
-     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON, 1, 1,
+     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
+     "       [--tolerance T[,A]]",
+     WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON |
+         WC_OPT_GEOMETRIC,
+     1, 1,
      "push.force", wc_push_force_request, wc_push_force_answer,
      "the least push force along the outline, and where it is least",
      "F*(p), the least force of a push along the inward normal at p that does the set's job\n"
@@ -777,6 +780,9 @@ const wc_command wc_commands[] = {
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
      "On supports (--supports, or the fixture's member) with --set goal: the least push that\n"
      "seats the part against the supports' friction, on a polygon, for a point finger.\n"
+     GEOMETRIC_HELP("   ")
+     "With --tolerance each F* is robust: a push of that force does the job on every such\n"
+     "fixture, and the least is the least of the samples (and of the nominal least's point).\n"
      "Exit status 0 when some push does the job, 1 when none does."},
     {"gravity", "FIXTURE [--set SET] [--friction LO:HI] [--tolerance T[,A]] [--svg FILE]\n"
      "       [--supports FILE|JSON --in-plane-g A]",
@@ -809,9 +815,9 @@ const wc_command wc_commands[] = {
      "FIXTURE (--push SET | --gravity SET | --least-force SET --case SPEC... |\n"
      "       --wrench FX,FY,TAU... [--set SET]) [--range LO:HI] [--kinetic-ratio R]\n"
      "       [--finger-friction MU] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
-     "       [--table full|summary]",
+     "       [--table full|summary] [--tolerance T[,A]]",
      WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG |
-         WC_OPT_CASE | WC_OPT_PUSH_ON,
+         WC_OPT_CASE | WC_OPT_PUSH_ON | WC_OPT_GEOMETRIC,
      1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
@@ -837,6 +843,9 @@ const wc_command wc_commands[] = {
      "                      9 evenly spaced mu and those at the intervals' ends)\n"
      "  --svg FILE          also plot the length (or the arcs) against mu, the intervals shaded\n"
      "                      and the critical mu marked; for wrenches a band per wrench and set\n"
+     "  --tolerance T[,A]   with --wrench: the mu where the wrench is inside for every fixture\n"
+     "                      with each contact within T along the outline, each normal tilted\n"
+     "                      by up to A degrees (the other sweeps refuse it)\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu; for the least force: when some push does it at some mu),\n"
      "1 when not."},
@@ -860,7 +869,7 @@ const wc_command wc_commands[] = {
      "Exit status 0 when the fixels determine the pose, 1 when they do not."},
     {"design",
      "BODY [--spacing H | --lattice P,R,NXxNY] [--fixels K]\n"
-     "       [--objective margin|region|gravity|force|accuracy] [--top N] [--friction LO:HI]\n"
+     "       [--objective margin|region|gravity|force|accuracy|pareto] [--top N] [--friction LO:HI]\n"
      "       [--finger-radius R] [--finger-friction MU] [--case SPEC...]\n"
      "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
      "       [--corner-clearance C] [--pin-diameter D]\n"
@@ -888,7 +897,8 @@ const wc_command wc_commands[] = {
      "                     push force doing both under every --case, smallest first) or\n"
      "                     accuracy (the smallest worst locating error with --tolerance T and\n"
      "                     the --feature points, as for locate; without features the pose's,\n"
-     "                     scaled)\n"
+     "                     scaled) or pareto (with --tolerance T: the designs no other beats\n"
+     "                     on margin, accuracy and, with --case, least force together)\n"
      "  --case SPEC        a load case, repeated (see 'wrenchctl force --help'): each design\n"
      "                     also reports its least push under them, with any objective; in the\n"
      "                     file's units (its \"units\", else one consistent system)\n"

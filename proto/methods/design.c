@@ -17,7 +17,8 @@
  * of the search). */
 #define PROGRESS_INTERVAL_S 0.25
 
-static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force", "accuracy"};
+static const char *const OBJECTIVES[] = {"margin", "region", "gravity", "force", "accuracy",
+                                         "pareto"};
 
 typedef struct design_state design_state;
 
@@ -247,6 +248,37 @@ static bool read_lattice(const cJSON *params, const cJSON *json, design_state *s
     return true;
 }
 
+/* params.fixel_tolerance: a geometric tolerance on every design's fixels
+ * ({"position", "angle"?}, as a fixture's "tolerance"), which makes each
+ * design's both region and best push robust (wr_design_spec).  Its values
+ * are checked on the body (no fixels: a segment's room is each design's
+ * own matter); a finger's friction is refused with it, as push.regions
+ * refuses it with a tolerance. */
+static bool read_fixel_tolerance(const cJSON *params, design_state *s, wp_error *error)
+{
+    wr_design_spec *spec = &s->spec;
+    if (!wp_tolerance_read(cJSON_GetObjectItemCaseSensitive(params, "fixel_tolerance"),
+                           "params.fixel_tolerance", &spec->fixel_tolerance, error))
+        return false;
+    if (!spec->fixel_tolerance.given)
+        return true;
+    wr_fixture body = *s->body;
+    wr_error invalid;
+    if (wr_fixture_set_tolerance(&body, &spec->fixel_tolerance, &invalid) != WR_OK) {
+        char field[WP_FIELD_MAX]; /* tolerance.position -> params.fixel_tolerance.position */
+        snprintf(field, sizeof field, "params.fixel_%s", invalid.field);
+        wp_error_status(error, WR_INVALID, field, "%s", invalid.reason);
+        return false;
+    }
+    if (spec->finger.friction > 0) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction",
+                     "robust push regions (params.fixel_tolerance) are for a frictionless "
+                     "finger");
+        return false;
+    }
+    return true;
+}
+
 /* params.tolerance and params.features, which objective accuracy needs
  * (and nothing else takes): each locator off by +-tolerance, and the
  * points whose error counts ([{"name"?, "at"}], as fixture.locating's). */
@@ -255,15 +287,16 @@ static bool read_accuracy(const cJSON *params, design_state *s, wp_error *error)
     wr_design_spec *spec = &s->spec;
     const cJSON *tolerance = cJSON_GetObjectItemCaseSensitive(params, "tolerance");
     const cJSON *features = cJSON_GetObjectItemCaseSensitive(params, "features");
-    if (spec->objective != WR_OBJECTIVE_ACCURACY) {
+    if (spec->objective != WR_OBJECTIVE_ACCURACY && spec->objective != WR_OBJECTIVE_PARETO) {
         if (tolerance || features)
             wp_error_set(error, WP_INVALID_PARAMS, tolerance ? "params.tolerance" : "params.features",
-                         "is for objective \"accuracy\"");
+                         "is for objective \"accuracy\" or \"pareto\"");
         return !(tolerance || features);
     }
     if (!tolerance) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.tolerance",
-                     "required with objective \"accuracy\": how far each locator may be off");
+                     "required with objective \"%s\": how far each locator may be off",
+                     OBJECTIVES[spec->objective]);
         return false;
     }
     if (!wp_number(tolerance, "params.tolerance", &spec->tolerance, error))
@@ -332,7 +365,8 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                 found = i;
         if (found < 0) {
             wp_error_set(error, WP_INVALID_PARAMS, "params.objective",
-                         "must be \"margin\", \"region\", \"gravity\", \"force\" or \"accuracy\"");
+                         "must be \"margin\", \"region\", \"gravity\", \"force\", "
+                         "\"accuracy\" or \"pareto\"");
             return false;
         }
         spec->objective = (wr_objective)found;
@@ -378,6 +412,8 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                          error))
         return false;
     spec->finger.push_on = s->push_on;
+    if (!read_fixel_tolerance(params, s, error))
+        return false;
     const cJSON *progress = cJSON_GetObjectItemCaseSensitive(params, "progress");
     if (progress && !cJSON_IsBool(progress)) {
         wp_error_set(error, WP_INVALID_PARAMS, "params.progress", "must be true or false, not %s",
@@ -454,10 +490,7 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
     wr_error invalid;
     wr_status status = wr_sites_spaced(s->body, &rule, &s->sites, &s->site_count, &invalid);
     if (status != WR_OK) {
-        char field[WP_FIELD_MAX];
-        wp_path_key(field, "params", invalid.field);
-        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? field : "", "%s", invalid.reason);
+        wp_error_refusal(error, status, "params", &invalid);
         return false;
     }
     return true;
@@ -504,7 +537,7 @@ static bool start_search(design_state *s, wp_error *error)
         /* Objective accuracy weighs its features by the worst: a copy must
          * map them onto themselves too (the pose's error alone, measured
          * about the centre of mass, every symmetry keeps). */
-        if (s->spec.objective == WR_OBJECTIVE_ACCURACY)
+        if (s->spec.objective == WR_OBJECTIVE_ACCURACY || s->spec.objective == WR_OBJECTIVE_PARETO)
             s->symmetry_count = wr_symmetry_filter_points(s->spec.features,
                                                           s->spec.feature_count, s->body->size,
                                                           s->symmetries, s->symmetry_count);
@@ -526,10 +559,7 @@ static bool start_search(design_state *s, wp_error *error)
     wr_error invalid;
     wr_status status = wr_design_job_new(&s->spec, &s->job, &invalid);
     if (status != WR_OK) {
-        char field[WP_FIELD_MAX];
-        wp_path_key(field, "params", invalid.field);
-        wp_error_set(error, status == WR_INVALID ? WP_INVALID_PARAMS : WP_INTERNAL,
-                     status == WR_INVALID ? field : "", "%s", invalid.reason);
+        wp_error_refusal(error, status, "params", &invalid);
         return false;
     }
     /* The job claims WR_DESIGN_CHUNK candidates of this shard at a time:
@@ -846,6 +876,19 @@ static void write_design(design_state *s, wp_writer *out, const wr_design *d, in
                                : d->score);
     if (accuracy) /* the worst locating error, whose negative is the score */
         wp_write_member_number(out, "accuracy", -d->score + 0.0);
+    if (s->spec.objective == WR_OBJECTIVE_PARETO) {
+        /* The three figures the front is made on. */
+        wp_write_key(out, "pareto");
+        wp_write_object(out);
+        wp_write_member_number(out, "margin", d->pareto[0] + 0.0);
+        wp_write_member_number(out, "accuracy", d->pareto[1] + 0.0);
+        wp_write_key(out, "force");
+        if (isfinite(d->pareto[2]))
+            wp_write_number(out, wp_force_out(s->body, d->pareto[2]));
+        else
+            wp_write_null(out);
+        wp_write_object_end(out);
+    }
     wp_write_member_number(out, "copies", d->copies);
     wp_write_object_end(out);
 }
@@ -928,6 +971,14 @@ static const wr_job_chunks *stage_job(const design_state *s, void **job)
     return s->job ? &wr_design_job_chunks : &wr_lattice_job_chunks;
 }
 
+/* A job's status as the chunk's: a failure names no field of its own. */
+static wr_status job_status(wr_status status, wp_error *error)
+{
+    if (status != WR_OK)
+        wp_error_status(error, status, "params", "%s", wr_strerror(status));
+    return status;
+}
+
 static bool job_claim(void *method, size_t index, void *record)
 {
     (void)index;
@@ -953,10 +1004,7 @@ static wr_status job_make(void *method, size_t index, void *record, wp_buffer *d
     void *job;
     const wr_job_chunks *ops = stage_job(method, &job);
     job_record *r = record;
-    wr_status status = ops->run(job, &r->claim, host->stop, &r->chunk, used);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
+    return job_status(ops->run(job, &r->claim, host->stop, &r->chunk, used), error);
 }
 
 static wr_status job_merge(void *method, size_t index, void *record, wp_buffer *out,
@@ -966,10 +1014,7 @@ static wr_status job_merge(void *method, size_t index, void *record, wp_buffer *
     (void)out;
     void *job;
     const wr_job_chunks *ops = stage_job(method, &job);
-    wr_status status = ops->merge(job, &((job_record *)record)->chunk);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
+    return job_status(ops->merge(job, &((job_record *)record)->chunk), error);
 }
 
 static void job_release(void *record)
@@ -998,9 +1043,7 @@ static wr_status figure_make(void *method, size_t index, void *record, wp_buffer
     const design_state *s = method;
     wr_status status =
         wr_design_job_figure(s->job, s->figures_first + (int)index, host->stop, used);
-    if (status != WR_OK)
-        wp_error_status(error, status, "params", "%s", wr_strerror(status));
-    return status;
+    return job_status(status, error);
 }
 
 static wr_status figure_merge(void *method, size_t index, void *record, wp_buffer *out,

@@ -463,6 +463,61 @@ static bool deadline_or_caller(void *context)
     return wr_stop_requested(d->caller) || (d->deadline > 0 && wp_now_s() >= d->deadline);
 }
 
+/* F* at `samples` evenly spaced points of edge e (off its ends) into
+ * values (INFINITY where no push is made: a loop push_on leaves out, where
+ * the finger does not fit), exact (least_at: on supports too), or with
+ * `robust` robust (wr_robust_least_force_at).  *made: the samples made;
+ * past the deadline fewer, and *partial set.  WR_OK; WR_STOPPED (the
+ * call's stop); WR_NO_MEMORY; WR_INVALID; WR_LP_FAILED. */
+static wr_status sample_edge(const wp_call *call, const wr_analysis *a, const wr_robust *robust,
+                             wr_set set, const double (*loads)[3], int case_count,
+                             const wr_finger *finger, int e, int samples, double deadline,
+                             const wr_stop *stop, double *values, int *made, bool *partial)
+{
+    const wr_stop *caller = call->host->stop;
+    const wr_fixture *f = wr_analysis_fixture(a);
+    double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
+    bool pushed = wr_finger_pushes_on(f, finger, e);
+    wr_span *blocked = NULL;
+    int blocked_count = 0;
+    wr_status status = WR_OK;
+    *made = 0;
+    if (pushed && finger->radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
+        size_t loop, piece;
+        wr_push_edge_place(f, e, &loop, &piece);
+        status = wr_finger_blocked(f->outline, loop, piece, finger->radius, caller, &blocked,
+                                   &blocked_count);
+    }
+    for (int j = 0; status == WR_OK && j < samples; j++) {
+        if (deadline > 0 && wp_now_s() >= deadline) {
+            *partial = true;
+            break;
+        }
+        double t = top * (j + 0.5) / samples, push[3];
+        bool reached = pushed;
+        for (int b = 0; reached && b < blocked_count; b++)
+            reached = !(t >= blocked[b].lo && t <= blocked[b].hi);
+        wr_push_wrench(f, e, t, push);
+        values[j] = INFINITY;
+        if (reached && robust)
+            status = wr_robust_least_force_at(robust, set, loads, case_count, push, stop,
+                                              &values[j]);
+        else if (reached)
+            status = least_at(call, a, set, loads, case_count, push, &values[j]);
+        if (status == WR_STOPPED && !wr_stop_requested(caller)) {
+            status = WR_OK; /* the deadline, inside a robust sample */
+            *partial = true;
+            break;
+        }
+        if (status == WR_OK)
+            (*made)++;
+    }
+    free(blocked);
+    if (wr_stop_requested(caller))
+        status = WR_STOPPED;
+    return status;
+}
+
 bool wp_handle_push_force(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
@@ -500,13 +555,6 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
                      "a push force needs the part's outline: the fixture has no shape");
         return false;
     }
-    if (f->tolerance.given) {
-        /* The least force is exact on the nominal fixels only. */
-        wp_error_set(error, WP_INVALID_PARAMS, "params.fixture.tolerance",
-                     "push.force answers the nominal fixture only: ask force.range at a point "
-                     "for magnitudes robust over the tolerance");
-        return false;
-    }
     bool *push_on;
     wr_finger finger = {.radius = radius};
     if (!wp_read_push_on(params, "params", f, &push_on, &finger.push_on_count, error))
@@ -521,6 +569,11 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     double (*loads)[3] = malloc((size_t)cases.count * sizeof *loads);
     double *values = malloc((size_t)samples * sizeof *values);
     wr_status status = loads && values ? WR_OK : WR_NO_MEMORY;
+    /* A fixture with a tolerance: every F* robust (wr_robust_least_force_at),
+     * the least's point the nominal search's. */
+    wr_robust *robust = NULL;
+    if (status == WR_OK && f->tolerance.given)
+        status = wr_robust_new(use->analysis, ROBUST_FORCE_BUDGET, &robust);
     for (int c = 0; loads && c < cases.count; c++)
         memcpy(loads[c], cases.items[c].load, sizeof loads[c]);
     /* Past params.deadline_s the search for the least stops: "least" is
@@ -538,6 +591,46 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
                             : WR_LP_FAILED)
                      : wr_least_force_find(use->analysis, set, (const double (*)[3])loads,
                                            cases.count, &finger, &stop, &least);
+    /* With a tolerance the samples come first (grid, made[e] per edge),
+     * and the least is the least robust F* of the samples and of the
+     * nominal search's point. */
+    int edges = wr_push_edge_count(f);
+    double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
+    double *grid = NULL;
+    int *made_on = NULL;
+    if (status == WR_OK && robust) {
+        grid = malloc(sizeof *grid * (size_t)edges * (size_t)samples);
+        made_on = calloc((size_t)edges, sizeof *made_on);
+        status = grid && made_on ? WR_OK : WR_NO_MEMORY;
+    }
+    int robust_edges = 0; /* edges sampled (the last one cut short by a deadline) */
+    for (int e = 0; status == WR_OK && robust && !partial && e < edges; e++, robust_edges++)
+        status = sample_edge(call, use->analysis, robust, set, loads, cases.count, &finger, e,
+                             samples, deadline, &stop, grid + (size_t)e * samples, &made_on[e],
+                             &partial);
+    if (status == WR_OK && robust && least.found) {
+        /* No fixture of the set needs less than the nominal one, so the
+         * nominal lower bound stays one. */
+        double push[3];
+        wr_push_wrench(f, least.edge, least.t, push);
+        status = wr_robust_least_force_at(robust, set, (const double (*)[3])loads, cases.count,
+                                          push, &stop, &least.force);
+        if (status == WR_STOPPED && !wr_stop_requested(call->host->stop)) {
+            status = WR_OK;
+            partial = true;
+            least.force = INFINITY;
+        }
+        for (int e = 0; status == WR_OK && e < edges; e++)
+            for (int j = 0; j < made_on[e]; j++)
+                if (grid[(size_t)e * samples + j] < least.force) {
+                    least.force = grid[(size_t)e * samples + j];
+                    least.edge = e;
+                    least.t = top * (j + 0.5) / samples;
+                    wr_boundary_point(f, e, least.t, least.at, least.direction);
+                }
+        least.found = isfinite(least.force);
+        least.converged = least.force <= least.lower * (1 + 1e-9);
+    }
     if (status == WR_STOPPED && !wr_stop_requested(call->host->stop)) {
         status = WR_OK;
         partial = true;
@@ -574,39 +667,16 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     }
     /* Past params.deadline_s, only the samples made so far (the last
      * edge's cut short, none after a search that stopped), and "partial". */
-    int edges = wr_push_edge_count(f);
-    double top = f->shape == WR_SHAPE_CIRCLE ? 360 : 1;
-    for (int e = 0; status == WR_OK && !partial && e < edges; e++) {
-        /* No push where the finger may not push (a loop push_on leaves out)
-         * or does not fit (its blocked spans): F* null there. */
-        bool pushed = wr_finger_pushes_on(f, &finger, e);
-        wr_span *blocked = NULL;
-        int blocked_count = 0;
-        if (pushed && radius > 0 && f->shape != WR_SHAPE_CIRCLE) {
-            size_t loop, piece;
-            wr_push_edge_place(f, e, &loop, &piece);
-            status = wr_finger_blocked(f->outline, loop, piece, radius, call->host->stop,
-                                       &blocked, &blocked_count);
-        }
+    for (int e = 0; status == WR_OK && (robust ? e < robust_edges : !partial && e < edges);
+         e++) {
         int made = 0;
-        for (int j = 0; status == WR_OK && j < samples; j++, made++) {
-            if (deadline > 0 && wp_now_s() >= deadline) {
-                partial = true;
-                break;
-            }
-            double t = top * (j + 0.5) / samples, push[3];
-            bool reached = pushed;
-            for (int b = 0; reached && b < blocked_count; b++)
-                reached = !(t >= blocked[b].lo && t <= blocked[b].hi);
-            wr_push_wrench(f, e, t, push);
-            values[j] = INFINITY;
-            if (reached)
-                status = least_at(call, use->analysis, set, (const double (*)[3])loads,
-                                  cases.count, push, &values[j]);
+        if (robust) {
+            made = made_on[e];
+            memcpy(values, grid + (size_t)e * samples, sizeof *values * (size_t)made);
+        } else {
+            status = sample_edge(call, use->analysis, NULL, set, loads, cases.count, &finger, e,
+                                 samples, deadline, &stop, values, &made, &partial);
         }
-        free(blocked);
-        if (wr_stop_requested(call->host->stop))
-            status = WR_STOPPED;
         if (status != WR_OK)
             break;
         wp_write_object(out);
@@ -626,6 +696,9 @@ bool wp_handle_push_force(wp_call *call, wp_writer *out)
     free(loads);
     free(push_on);
     free(values);
+    wr_robust_free(robust);
+    free(grid);
+    free(made_on);
     wp_cases_release(&cases);
     if (status != WR_OK) {
         wp_error_status(error, status, "", "%s", wr_strerror(status));

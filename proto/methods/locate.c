@@ -263,9 +263,7 @@ bool wp_handle_fixture_locating(wp_call *call, wp_writer *out)
     wr_error why = {"", ""};
     wr_status status = wr_locate(f, tolerance, sigma_ratio, features, count, &m, &why);
     if (status != WR_OK) {
-        char field[WP_FIELD_MAX];
-        wp_path_key(field, "params", why.field);
-        wp_error_status(error, status, field, "%s", why.reason);
+        wp_error_refusal(error, status, "params", &why);
         goto done;
     }
     write_result(out, &m, features, names, count);

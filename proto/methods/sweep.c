@@ -111,14 +111,23 @@ static bool read_sweep_range(const cJSON *params, wr_sweep_range *range, wp_erro
     return true;
 }
 
-static void write_intervals(wp_writer *out, const wr_intervals *list)
+/* The intervals of `list` up to `top` (INFINITY: all): a partial answer
+ * says nothing above its stopped_at, so an interval reaching past it is cut
+ * there and one starting at or past it is left out (docs/PROTOCOL.md,
+ * deadline_s; as the push sweep's own cut). */
+static void write_intervals_below(wp_writer *out, const wr_intervals *list, double top)
 {
     wp_write_array(out);
-    for (int i = 0; i < list->count; i++) {
-        const double pair[2] = {list->items[i][0] + 0.0, list->items[i][1] + 0.0};
+    for (int i = 0; i < list->count && list->items[i][0] < top; i++) {
+        const double pair[2] = {list->items[i][0] + 0.0, fmin(list->items[i][1], top) + 0.0};
         wp_write_numbers(out, pair, 2);
     }
     wp_write_array_end(out);
+}
+
+static void write_intervals(wp_writer *out, const wr_intervals *list)
+{
+    write_intervals_below(out, list, INFINITY);
 }
 
 static void write_stopped(wp_writer *out, double reached);
@@ -344,15 +353,6 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     sweep_state *state = wp_stream_with_fixture(call, sizeof *state, &use);
     if (!state)
         return NULL;
-    if (use->fixture->tolerance.given) {
-        /* The sweep's exact machinery varies mu on the nominal fixels. */
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
-                     "friction.sweep answers the nominal fixture only: sweep the fixture "
-                     "without its tolerance, or ask the robust questions (classify, push, "
-                     "gravity, margin, force) at one friction");
-        sweep_free(state);
-        return NULL;
-    }
     if (!read_over(call, use->fixture, state) || !read_sweep(call, use->fixture, state) ||
         (state->over_supports && !supports_question(call, state))) {
         sweep_free(state);
@@ -360,6 +360,25 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     }
     if (state->over_supports)
         return state; /* no sweeper: the supports' friction leaves the cones as they are */
+    if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
+        /* The curves' exact machinery varies mu on the nominal fixels. */
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
+                     "friction.sweep answers \"wrenches\" robustly over a tolerance; push, "
+                     "gravity and force sweeps answer the nominal fixture only: sweep it "
+                     "without its tolerance, or ask push.regions, gravity.sweep or push.force "
+                     "at one friction");
+        sweep_free(state);
+        return NULL;
+    }
+    if (use->fixture->tolerance.given) {
+        /* Robust wrenches: the fixels as they are, placed again with each
+         * piece of mu (wr_robust_sweep_wrench). */
+        const wr_fixture *f = use->fixture;
+        for (int i = 0; i < f->fixel_count; i++)
+            state->fixels[i] = (wr_fixel_spec){
+                .at = {f->fixels[i].at[0], f->fixels[i].at[1]}, .normal_given = true,
+                .normal = {f->fixels[i].normal[0], f->fixels[i].normal[1]}};
+    }
     wr_status status = WR_OK;
     /* Force: the push alone's intervals first (the job), then the samples
      * a mu at a time (sweep_force_step). */
@@ -518,8 +537,11 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
             wp_write_numbers(out, state->at[i], 2);
     }
     wp_write_array_end(out);
+    /* The push alone's intervals are known over the whole range; a partial
+     * answer gives them up to where its samples stopped. */
     wp_write_key(out, "intervals");
-    write_intervals(out, &wr_sweep_job_curve(state->job)->intervals);
+    write_intervals_below(out, &wr_sweep_job_curve(state->job)->intervals,
+                          partial ? state->mus[state->sample - 1] : INFINITY);
     wp_write_member_bool(out, "exact", false);
     wp_write_member_number(out, "resolution",
                            (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));
@@ -719,7 +741,24 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
         if (state->set == 0)
             wp_write_object(out);
         wp_write_key(out, wp_set_names[r->sets[state->set]]);
-        write_intervals(out, wr_sweep_job_intervals(state->job));
+        const wr_fixture *f = wp_call_fixture(call)->fixture; /* held since begin */
+        if (f->tolerance.given) {
+            /* Over the tolerance: the nominal intervals' robust part. */
+            wr_intervals robust = {0};
+            status = wr_robust_sweep_wrench(f, state->fixels, state->range.kinetic_ratio,
+                                            r->wrenches[state->next], r->sets[state->set],
+                                            wr_sweep_job_intervals(state->job),
+                                            call->host->stop, &robust);
+            if (status != WR_OK) {
+                wr_intervals_release(&robust);
+                wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+                return WP_STEP_FAILED;
+            }
+            write_intervals(out, &robust);
+            wr_intervals_release(&robust);
+        } else {
+            write_intervals(out, wr_sweep_job_intervals(state->job));
+        }
         wr_sweep_job_free(state->job);
         state->job = NULL;
         if (++state->set == r->set_count || stopped) {

@@ -335,3 +335,12 @@ def moved(fixture, degrees=0.0, shift=(0.0, 0.0), scale=1.0, name=None):
         if "normal" in fx:
             fx["normal"] = turn(fx["normal"])
     return f
+
+
+def plate_321(mu=0.3):
+    """The 3-2-1 plate: a 4 x 2 rectangle, fixels 1 and 2 under it at x = 1
+    and x = 3, fixel 3 against its left side at y = 1."""
+    return {"body": {"mass": 1.0, "shape": {"type": "polygon",
+                                            "vertices": [[0, 0], [4, 0], [4, 2], [0, 2]]}},
+            "friction": {"static": mu},
+            "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]}

@@ -538,6 +538,50 @@ def test_design_accuracy_against_brute_force(client, features):
         assert d["accuracy"] == pytest.approx(-score, rel=1e-9, abs=1e-15)
 
 
+def test_design_pareto_against_brute_force(client):
+    """fixture.design with objective pareto against the front made here:
+    every candidate's three figures asked of the other objectives (margin,
+    accuracy, force, each listing every candidate it scores), the front the
+    candidates no other beats on all three together, each listed with its
+    figures."""
+    t = 0.01
+    cases = [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]
+    base = {"body": CHAMFERED, "friction": 0.1, "sites": [{"at": s} for s in SITES],
+            "top": 84}
+    figures = {}
+    for objective, extra in (("margin", {}), ("accuracy", {"tolerance": t}),
+                             ("force", {"cases": cases})):
+        answer = client.result("fixture.design", dict(base, objective=objective, **extra))
+        figures[objective] = {d["candidate"]: d for d in answer["designs"]}
+    scored = set(figures["margin"]) & set(figures["accuracy"])
+    three = {}
+    for c in scored:
+        force = figures["force"].get(c)
+        three[c] = (figures["margin"][c]["score"], figures["accuracy"][c]["accuracy"],
+                    -force["score"] if force else math.inf)
+
+    def beats(a, b):
+        return (a[0] >= b[0] and a[1] <= b[1] and a[2] <= b[2]) and a != b
+
+    front = {c for c in three if not any(beats(three[o], three[c]) for o in three)}
+    answer = client.result("fixture.design", dict(base, objective="pareto", tolerance=t,
+                                                  cases=cases))
+    assert answer["objective"] == "pareto"
+    got = {d["candidate"]: d for d in answer["designs"]}
+    assert set(got) == front and 1 < len(front) < len(three), (sorted(got), sorted(front))
+    margins = [d["pareto"]["margin"] for d in answer["designs"]]
+    assert margins == sorted(margins, reverse=True)
+    for c, d in got.items():
+        m, a, f = three[c]
+        assert d["pareto"]["margin"] == pytest.approx(m, rel=1e-12, abs=1e-15)
+        assert d["pareto"]["accuracy"] == pytest.approx(a, rel=1e-12, abs=1e-15)
+        if math.isinf(f):
+            assert d["pareto"]["force"] is None
+        else:
+            assert d["pareto"]["force"] == pytest.approx(f, rel=1e-9)
+        assert d["score"] == d["pareto"]["margin"]
+
+
 def locate_rho_squared(client):
     put = client.result("fixture.put", {"fixture": {"body": CHAMFERED,
                                                     "friction": {"static": 0.1},
@@ -604,3 +648,71 @@ def test_python_client_design_accuracy(daemon, client):
                      features=[(2.5, 1.2)], top=2)
     assert [d.accuracy for d in r.designs] == [d["accuracy"] for d in direct["designs"]]
     assert r.designs[0].accuracy == -r.designs[0].score > 0
+    cases = [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]
+    direct = client.result("fixture.design", {
+        "body": CHAMFERED, "friction": 0.1, "sites": [{"at": s} for s in SITES],
+        "objective": "pareto", "tolerance": 0.01, "cases": cases, "top": 100})
+    with wrenchd.Client(daemon.path) as c:
+        r = c.design(CHAMFERED, 0.1, sites=SITES, objective="pareto", tolerance=0.01,
+                     cases=cases, top=100)
+    assert [d.pareto for d in r.designs] == [d["pareto"] for d in direct["designs"]]
+    assert len(r.designs) > 1 and r.objective == "pareto"
+    tolerance = {"position": 0.02, "angle": 0.5}
+    direct = client.result("fixture.design", {
+        "body": CHAMFERED, "friction": 0.1, "sites": [{"at": s} for s in SITES], "top": 2,
+        "fixel_tolerance": tolerance})
+    with wrenchd.Client(daemon.path) as c:
+        r = c.design(CHAMFERED, 0.1, sites=SITES, top=2, fixel_tolerance=tolerance)
+    assert [d.best_push for d in r.designs] == [d["best_push"] for d in direct["designs"]]
+
+
+def test_design_fixel_tolerance_robust_figures(client):
+    """fixture.design with fixel_tolerance: each design's both region lies
+    inside its nominal one, and its best push is inside 'both' on every
+    fixture of the set sampled here (the design's fixels moved along their
+    edges and tilted) and robustly so (wrench.classify with the tolerance)."""
+    import random
+    T, A = 0.02, 0.5
+    base = {"body": CHAMFERED, "friction": 0.3, "sites": [{"at": s} for s in SITES], "top": 3}
+    nominal = client.result("fixture.design", base)["designs"]
+    robust = client.result("fixture.design",
+                           dict(base, fixel_tolerance={"position": T, "angle": A}))["designs"]
+    assert [d["candidate"] for d in robust] == [d["candidate"] for d in nominal]
+    rng = random.Random(3)
+    checked = 0
+    for dn, dr in zip(nominal, robust):
+        assert dr["both_length"] <= dn["both_length"]
+        if dr["best_push"] is None:
+            continue
+        push = dr["best_push"]
+        assert push["margin"] <= dn["best_push"]["margin"] + 1e-12
+        fixture = {"body": CHAMFERED, "friction": {"static": 0.3},
+                   "fixels": [{"at": f["at"]} for f in dr["fixels"]]}
+        put = client.result("fixture.put", {"fixture": fixture})
+        got = client.result("fixture.get", {"id": put["id"]})
+        normals = [f["normal"] for f in got["fixels"]]
+        wrench = {"force": push["direction"], "at": push["at"]}
+        tolerant = dict(fixture, tolerance={"position": T, "angle": A})
+        verdict = client.result("wrench.classify", {"fixture": tolerant, "wrenches": [wrench],
+                                                    "sets": ["both"]})["results"][0]["both"]
+        assert verdict["verdict"] == "inside", verdict
+        for _ in range(12):
+            moved = []
+            for f, n in zip(dr["fixels"], normals):
+                s = rng.uniform(-T, T)
+                a = math.radians(rng.uniform(-A, A))
+                # along the edge: the tangent, the normal turned a quarter
+                at = [f["at"][0] - s * n[1], f["at"][1] + s * n[0]]
+                c, sn = math.cos(a), math.sin(a)
+                moved.append({"at": at, "normal": [c * n[0] - sn * n[1], sn * n[0] + c * n[1]]})
+            g = dict(fixture, fixels=moved)
+            v = client.result("wrench.classify", {"fixture": g, "wrenches": [wrench],
+                                                  "sets": ["both"]})["results"][0]["both"]
+            assert v["verdict"] == "inside", (v, moved)
+        checked += 1
+    assert checked >= 1
+    error = client.error("fixture.design", dict(base, fixel_tolerance={"position": -1}))
+    assert error["data"]["field"] == "params.fixel_tolerance.position", error
+    error = client.error("fixture.design", dict(base, fixel_tolerance={"position": 0.01},
+                                                finger_friction=0.2))
+    assert error["data"]["field"] == "params.finger_friction", error

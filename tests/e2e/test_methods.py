@@ -635,7 +635,7 @@ def test_chamfer_push_seats(client):
             H.check_value(mdl, cl, g, "both", r["both"])
 
 
-# ---- server.status and the methods not served yet ----------------------------------------
+# ---- server.status and unknown methods ------------------------------------------------------
 
 def test_server_status(harness):
     d = harness.start("--threads", "3", "--cache-mb", "7")

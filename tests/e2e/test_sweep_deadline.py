@@ -91,7 +91,7 @@ def test_partial_sweeps_agree_with_the_whole_below_where_they_stopped(harness):
     stopped_at -- wrenches answered whole before the last, the last one's
     sets before its last, that set's intervals cut; a push sweep's intervals
     cut and its curve the whole curve's points up to stopped_at; a force
-    sweep's curve the whole curve's first samples."""
+    sweep's curve the whole curve's first samples, its intervals cut."""
     d = harness.start("--threads", "1")
     c = d.client(timeout=300 * SLOW)
     reached_inside = 0
@@ -130,6 +130,10 @@ def test_partial_sweeps_agree_with_the_whole_below_where_they_stopped(harness):
         assert 1 <= n < len(whole["curve"])
         assert r["curve"] == whole["curve"][:n]
         assert r["stopped_at"] == r["curve"][-1][0]
+        # The push alone's intervals, known over the whole range, cut at
+        # stopped_at as every partial answer's are.
+        mu = r["stopped_at"]
+        assert same_intervals(r["intervals"], below(whole["intervals"], mu)), (mu, r, whole)
         reached_inside += 1
     # The deadlines fell inside the work, not only before its first decision.
     assert reached_inside >= 3, reached_inside

@@ -152,10 +152,7 @@ def test_id_and_refusals(client):
         assert error["code"] == -32602 and error["data"]["field"] == field, error
         assert words in error["data"]["reason"], error
     error = client.error("friction.sweep", {"fixture": with_tolerance(PLATE, 0.01),
-                                            "wrenches": [[0, -1, 0]]})
-    assert error["data"]["field"] == "params.fixture.tolerance", error
-    error = client.error("push.force", {"fixture": with_tolerance(PLATE, 0.01),
-                                        "cases": [{"loads": [{"gravity": 9.81}]}]})
+                                            "gravity": {"set": "goal"}})
     assert error["data"]["field"] == "params.fixture.tolerance", error
 
 
@@ -195,3 +192,94 @@ def test_lean_columns_are_robust(client):
         margins = [m for p in lean["pieces"] for m in p[set_name]["margins"]]
         assert verdicts == "".join(letters[r[set_name]["verdict"]] for r in full)
         assert margins == [r[set_name]["margin"] for r in full]
+
+
+def push_wrench(fixture, edge, t, force):
+    """The physical wrench of a push of `force` along the inward normal at
+    (edge, t) of the plate's polygon, about its centre (2, 1)."""
+    vs = fixture["body"]["shape"]["vertices"]
+    a, b = vs[edge], vs[(edge + 1) % len(vs)]
+    p = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
+    length = math.hypot(b[0] - a[0], b[1] - a[1])
+    n = (-(b[1] - a[1]) / length, (b[0] - a[0]) / length)  # counter-clockwise: left is in
+    return (force * n[0], force * n[1], force * ((p[0] - 2) * n[1] - (p[1] - 1) * n[0]))
+
+
+def test_push_force_robust_against_sampling(client):
+    """push.force over a tolerance: each sample's F* does 'both' under the
+    case on every fixture of the set sampled here (its corners and random
+    points), is no less than the nominal F* there, and the least keeps the
+    nominal search's point and lower bound."""
+    T, A = 0.05, 0.5
+    fixture = with_tolerance(PLATE, T, A)
+    params = {"cases": [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}],
+              "samples": 4}
+    nominal = client.result("push.force", dict(params, fixture=PLATE))
+    robust = client.result("push.force", dict(params, fixture=fixture))
+    least = robust["least"]
+    assert least["lower_bound"] == nominal["least"]["lower_bound"]
+    assert least["force"] >= nominal["least"]["force"] and not least["converged"]
+    # the least is the least of the samples' robust F* (or less, at the
+    # nominal search's point)
+    assert least["force"] <= min(f for seg in robust["segments"] for f in seg["force"]
+                                 if f is not None)
+    rng = random.Random(11)
+    perturbations = [[(c >> i & 1) * 2 * T - T for i in range(3)] for c in range(8)]
+    tilts = [[0, 0, 0]] * 8
+    for _ in range(8):
+        perturbations.append([rng.uniform(-T, T) for _ in range(3)])
+        tilts.append([rng.uniform(-1, 1) * math.radians(A) for _ in range(3)])
+    fixtures = [moved(PLATE, s, tilt) for s, tilt in zip(perturbations, tilts)]
+    finite = 0
+    push = push_wrench(PLATE, least["edge"], least["t"], least["force"])
+    for g in fixtures:
+        wrench = [push[0], push[1] - 9.81, push[2]]
+        assert classify(client, g, [wrench], ["both"])[0]["both"]["verdict"] == "inside"
+    for seg_n, seg_r in zip(nominal["segments"], robust["segments"]):
+        assert seg_n["t"] == seg_r["t"]
+        for t, fn, fr in zip(seg_r["t"], seg_n["force"], seg_r["force"]):
+            if fr is None:
+                continue
+            finite += 1
+            assert fn is not None and fr >= fn * (1 - 1e-12)
+            push = push_wrench(PLATE, seg_r["edge"], t, fr)
+            wrench = [push[0], push[1] - 9.81, push[2]]
+            for g in fixtures:
+                verdict = classify(client, g, [wrench], ["both"])[0]["both"]["verdict"]
+                assert verdict == "inside", (seg_r["edge"], t, fr, g["fixels"])
+    assert finite >= 3, robust
+
+
+def test_friction_sweep_wrenches_robust_against_sampling(client):
+    """friction.sweep "wrenches" over a tolerance: each robust interval of
+    mu lies inside a nominal one, and at mu sampled in it (its ends
+    included) the wrench is inside on every fixture of the set sampled
+    here, with that friction (mu_s = mu, mu_k = 0.8 mu)."""
+    T, A, ratio = 0.05, 0.5, 0.8
+    fixture = with_tolerance(PLATE, T, A)
+    wrenches = [[-0.5, -1, 0.3], [-0.3, -1, -0.5], [0.2, -1, 0.1]]
+    params = {"wrenches": wrenches, "sets": ["goal", "strong"], "range": [0, 1.5],
+              "kinetic_ratio": ratio}
+    nominal = client.result("friction.sweep", dict(params, fixture=PLATE))["results"]
+    robust = client.result("friction.sweep", dict(params, fixture=fixture))["results"]
+    rng = random.Random(5)
+    perturbations = [([(c >> i & 1) * 2 * T - T for i in range(3)], [0, 0, 0]) for c in range(8)]
+    for _ in range(6):
+        perturbations.append(([rng.uniform(-T, T) for _ in range(3)],
+                              [rng.uniform(-1, 1) * math.radians(A) for _ in range(3)]))
+    kept = 0
+    for w, rn, rr in zip(wrenches, nominal, robust):
+        for set_name in ("goal", "strong"):
+            for lo, hi in rr[set_name]:
+                assert any(a <= lo and hi <= b for a, b in rn[set_name]), (rr, rn)
+                kept += hi - lo
+                for mu in (lo, hi, rng.uniform(lo, hi)):
+                    fixtures = []
+                    for s, tilt in perturbations:
+                        g = moved(PLATE, s, tilt)
+                        g["friction"] = {"static": mu, "kinetic": ratio * mu}
+                        fixtures.append(g)
+                    for g in fixtures:
+                        v = classify(client, g, [w], [set_name])[0][set_name]["verdict"]
+                        assert v == "inside", (w, set_name, mu, g["fixels"])
+    assert kept > 0.5, robust

@@ -415,3 +415,25 @@ def test_symmetric_designs_collapsed_and_all(daemon, tmp_path):
     bad = run("design", str(path), "--spacing", "1", "--symmetric", "some",
               socket_path=daemon.path)
     assert bad.returncode != 0 and "--symmetric" in bad.stderr
+
+
+def test_pareto_shards_merged_equal_one_run(tmp_path):
+    """design --objective pareto: each shard holds its own front, and
+    design-merge keeps the designs no other shard's beats: the one run's
+    front, with each design's three figures printed in the table."""
+    args = ["design", BRACKET, "--spacing", "12", "--objective", "pareto", "--tolerance",
+            "0.1", "--case", "gravity=9810@270", "--top", "1000"]
+    whole = json.loads(run("--local", "--json", *args).stdout)
+    assert len(whole["designs"]) > 1
+    files = []
+    for i in range(3):
+        r = run("--local", *args, "--shard", "%d/3" % i)
+        assert r.returncode == 0, r.stderr
+        path = tmp_path / ("shard-%d.jsonl" % i)
+        path.write_text(r.stdout)
+        files.append(str(path))
+    merged = json.loads(run("--json", "design-merge", *files).stdout)
+    assert [d["candidate"] for d in merged["designs"]] == \
+        [d["candidate"] for d in whole["designs"]]
+    table = run("--local", *args).stdout
+    assert table.count("pareto: margin") == len(whole["designs"]), table

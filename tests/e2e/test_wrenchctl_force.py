@@ -10,6 +10,7 @@ import xml.dom.minidom
 
 import pytest
 
+import fixtures as FX
 from conftest import REPO
 
 WRENCHCTL = os.path.join(REPO, "build", "wrenchctl")
@@ -208,3 +209,20 @@ def test_design_objective_force(client):
     assert "minus the least push force (N)" in r.stdout
     r = run("--local", "design", path, "--objective", "force")
     assert r.returncode == 2 and "--case" in r.stderr
+
+
+
+def test_push_force_tolerance(daemon, client, tmp_path):
+    """push-force --tolerance T,A sends the fixture inline with its
+    tolerance: the same answer as push.force asked by hand with it (a
+    small plate: every sample is a robust one)."""
+    plate = FX.plate_321()
+    path = tmp_path / "plate.json"
+    path.write_text(json.dumps(plate))
+    r = run("push-force", str(path), "--case", "gravity=9.81@270", "--json",
+            "--tolerance", "0.05", socket_path=daemon.path)
+    assert r.returncode == 0, r.stderr
+    fixture = dict(plate, tolerance={"position": 0.05})
+    cases = [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]
+    assert same(json.loads(r.stdout), client.result("push.force", {"fixture": fixture,
+                                                                    "cases": cases}))

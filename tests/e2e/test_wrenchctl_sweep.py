@@ -463,3 +463,18 @@ def test_sweep_wrench_bands_with_one_set(fake, harness):
     assert len(elements(svg, "rect", "band")) == 2
     assert len(elements(svg, "rect", "inside")) == 1
     assert any("\u03bc_k = 0.75 \u03bc" in t for t in texts(svg))
+
+
+def test_sweep_wrench_tolerance(daemon, client, tmp_path):
+    """sweep --wrench --tolerance T,A sends the fixture inline with its
+    tolerance: the same intervals as friction.sweep asked by hand."""
+    plate = FX.plate_321()
+    path = tmp_path / "plate.json"
+    path.write_text(json.dumps(plate))
+    r = run("sweep", str(path), "--wrench", "-0.5,-1,0.3", "--set", "strong", "--json",
+            "--tolerance", "0.05,0.5", socket_path=daemon.path)
+    assert r.returncode in (0, 1), r.stderr
+    fixture = dict(plate, tolerance={"position": 0.05, "angle": 0.5})
+    want = client.result("friction.sweep", {"fixture": fixture, "wrenches": [[-0.5, -1, 0.3]],
+                                            "sets": ["strong"]})
+    assert close(json.loads(r.stdout), want), (r.stdout, want)

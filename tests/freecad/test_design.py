@@ -147,3 +147,17 @@ def test_design_objectives_force_and_accuracy(client, doc):
     assert [d.accuracy for d in result.designs] == [d.accuracy for d in direct.designs]
     assert "worst locating error %s mm" % wf._fmt(result.designs[0].accuracy) in \
         fixture.Designs[1]
+    # Pareto: the front under the same cases, each design's three figures
+    # listed in the report.
+    fixture.DesignObjective = "pareto"
+    doc.recompute()
+    result = wf.design(fixture, client, progress=None, spacing=20, top=50, place=False)
+    direct = client.design({"mass": 0.8, "shape": shape}, {"static": 0.25, "kinetic": 0.25},
+                           fixels=3, spacing=20, top=50, objective="pareto", tolerance=0.05,
+                           features=[(110.0, 50.0)], cases=cases,
+                           units={"length": "mm", "force": "N"})
+    assert result.objective == "pareto" and result.designs
+    assert [d.pareto for d in result.designs] == [d.pareto for d in direct.designs]
+    assert "the Pareto front" in fixture.Designs[0]
+    for d, line in zip(result.designs, fixture.Designs[1:]):
+        assert "pareto: margin %.4g" % d.pareto["margin"] in line

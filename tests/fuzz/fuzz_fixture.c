@@ -18,9 +18,11 @@
  *    wrenches, gravity) classified for goal, strong and both: margins in
  *    [-1, 1], the verdict the margin implies, both = min(goal, strong),
  *    witnesses that make g, and for fixtures of at most LP_FIXELS fixels
- *    the LP method agreeing wherever |margin| > 1e-6;
+ *    the LP method agreeing wherever |margin| > 1e-6 (while fuzzing, for
+ *    one of the wrenches, chosen by the input's hash: fuzz_full);
  *  - push regions (frictionless, and with finger friction 0.3 when the
- *    sampled work is small) and gravity sweeps for each set: sorted,
+ *    sampled work is small, for one set while fuzzing) and gravity
+ *    sweeps for each set: sorted,
  *    disjoint, inside (0, 1) per edge or [0, 360]; the middle of each exact
  *    region is not inside an excluded cone (margin >= -1e-7), and the middle
  *    of each gap between regions is not clearly in the set (margin <= 1e-7);
@@ -31,15 +33,15 @@
 #include "wp_fixture.h"
 
 #define LP_FIXELS 4               /* LP cross-checks on fixtures up to this size */
-#define FRICTION_BUDGET 2e6       /* samples x cones for push regions with friction */
+#define FRICTION_BUDGET 2e6       /* samples x cones for push regions with friction
+                                     (a fortieth of it while fuzzing: fuzz_full) */
 #define SEMANTIC_TOLERANCE 1e-7   /* margins at region middles */
 
 static wr_lp_env *env;
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
-    (void)argc;
-    (void)argv;
+    fuzz_full_init(*argc, *argv);
     env = test_lp_env_new();
     if (!env)
         abort();
@@ -262,7 +264,7 @@ static void check_gravity_semantics(const wr_analysis *a, wr_set set, const wr_r
     }
 }
 
-static void check_regions(const wr_analysis *a)
+static void check_regions(const wr_analysis *a, unsigned pick)
 {
     const wr_fixture *f = wr_analysis_fixture(a);
     for (int s = 0; s < 3; s++) {
@@ -287,7 +289,7 @@ static void check_regions(const wr_analysis *a)
         wr_regions_release(&r);
         double cones = (set != WR_SET_STRONG ? wr_analysis_plan(a)->kept_count : 0) +
                        (set != WR_SET_GOAL ? wr_analysis_cone_count(a, WR_SET_STRONG) : 0);
-        if (edges * 2049.0 * cones <= FRICTION_BUDGET) {
+        if ((fuzz_full || s == (int)(pick % 3)) && edges * 2049.0 * cones <= FRICTION_BUDGET / (fuzz_full ? 1 : 40)) {
             FUZZ_CHECK(wr_push_regions(a, set, 0.3, NULL, &r) == 0, "wr_push_regions with friction");
             fuzz_check_regions(&r, edges, 0, high, "push with friction");
             FUZZ_CHECK(r.resolution > 0, "sampled push regions claim exactness");
@@ -298,6 +300,7 @@ static void check_regions(const wr_analysis *a)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    unsigned pick = fuzz_hash(data, size);
     char *text = fuzz_strndup(data, size);
     cJSON *json = cJSON_ParseWithLength(text, size);
     if (!json) {
@@ -348,15 +351,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     wrenches[n++][2] = 0;
     if (f->shape != WR_SHAPE_NONE)
         wr_push_wrench(f, 0, f->shape == WR_SHAPE_CIRCLE ? 45 : 0.5, wrenches[n++]);
+    int lp_wrench = (int)((pick >> 2) % (unsigned)n);
     for (int i = 0; i < n; i++) {
         if (!fuzz_finite3(wrenches[i]))
             continue;
-        fuzz_classify_all(a, wrenches[i], goal, strong, "fixed wrench");
+        bool lp = fuzz_full || i == lp_wrench;
+        fuzz_classify_all(a, wrenches[i], lp ? goal : NULL, lp ? strong : NULL, "fixed wrench");
         check_disturbance(a, wrenches[i]);
     }
     wr_lp_set_free(goal);
     wr_lp_set_free(strong);
-    check_regions(a);
+    check_regions(a, pick);
 
     wr_analysis_free(a);
     wp_fixture_doc_release(&doc);

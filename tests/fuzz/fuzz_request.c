@@ -55,10 +55,13 @@
 #define LP_BUDGET 4096.0      /* LPs per wrench.classify request */
 #define SWEEP_STEPS 256.0     /* values of mu a friction.sweep samples (wr_sweep.h) */
 
-/* A design of more candidates than max_candidates is refused (as the
- * daemon's --max-candidates refuses it): designs stay fast enough to fuzz. */
-static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 64, .max_batch = 16,
-                                 .max_candidates = 400};
+/* The daemon's limits, small (as its options set them): a design of more
+ * candidates than max_candidates is refused at the field, as
+ * --max-candidates refuses it, and so are more wrenches, batch members or
+ * load cases; every method and field is still reached, and no line costs
+ * more than a few milliseconds under the sanitizers. */
+static const wp_limits LIMITS = {.max_depth = 32, .max_wrenches = 16, .max_batch = 8,
+                                 .max_candidates = 12, .max_cases = 4};
 
 static wd_cache *cache;
 static wd_stats stats;
@@ -70,8 +73,7 @@ static unsigned long skipped;
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
-    (void)argc;
-    (void)argv;
+    fuzz_full_init(*argc, *argv);
     wd_log_set_level(WD_LOG_ERROR);
     char why[256] = "";
     cache = wd_cache_new(NULL, DERIVED_LIMIT, 10000, why, sizeof why);
@@ -272,27 +274,42 @@ static bool parse_error_answer(const char *answer)
 /* ---- skipping the requests known to be slow ------------------------------ */
 
 /* The fixture a request names, resolved the way the method would (an id
- * from the store, an inline object adopted into the cache): the excluded
- * cone count of `set` and the edge count.  False when it does not resolve
- * (the request then fails fast). */
-static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edges)
+ * from the store, an inline object adopted into the cache), held in *use
+ * until host->fixture_release.  False when it does not resolve (the
+ * request then fails fast). */
+static bool fixture_resolve(const cJSON *r, wp_fixture_use *use)
 {
     const cJSON *value = param(r, "fixture");
-    wp_fixture_use use;
     wp_error error;
     wp_host_failure failure;
-    bool ok;
-    if (cJSON_IsString(value)) {
-        ok = wp_fixture_id_valid(value->valuestring) &&
-             host->fixture_use(host->self, value->valuestring, &use, &failure);
-    } else if (cJSON_IsObject(value)) {
-        wp_fixture_doc doc;
-        ok = wp_fixture_read(value, "params.fixture", &doc, &error) &&
-             host->fixture_adopt(host->self, &doc, false, &use, &failure);
-    } else {
-        ok = false;
-    }
-    if (!ok)
+    if (cJSON_IsString(value))
+        return wp_fixture_id_valid(value->valuestring) &&
+               host->fixture_use(host->self, value->valuestring, use, &failure);
+    wp_fixture_doc doc;
+    return cJSON_IsObject(value) && wp_fixture_read(value, "params.fixture", &doc, &error) &&
+           host->fixture_adopt(host->self, &doc, false, use, &failure);
+}
+
+/* Whether the fixture a request names rests on supports, and whether it
+ * carries a tolerance (both false when it does not resolve): their
+ * answers differ (docs/PROTOCOL.md, "Supports" and "Tolerance"). */
+static void fixture_traits(const cJSON *r, bool *supports, bool *toleranced)
+{
+    wp_fixture_use use;
+    *supports = *toleranced = false;
+    if (!fixture_resolve(r, &use))
+        return;
+    *supports = use.fixture->supports != NULL;
+    *toleranced = use.fixture->tolerance.given;
+    host->fixture_release(host->self, &use);
+}
+
+/* The excluded cone count of `set` and the edge count of the fixture a
+ * request names; false when it does not resolve. */
+static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edges)
+{
+    wp_fixture_use use;
+    if (!fixture_resolve(r, &use))
         return false;
     const wr_analysis *a = use.analysis;
     *cones = (set != WR_SET_STRONG ? wr_analysis_plan(a)->kept_count : 0) +
@@ -302,11 +319,22 @@ static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edge
     return true;
 }
 
-static bool slow_request(const cJSON *r)
+/* The methods whose answers take milliseconds even with the limits above
+ * (searches, sweeps, samplings): while fuzzing, a line asking one is
+ * answered only when its hash says so (one line in SLOW_SHARE; fuzz_full),
+ * so that the fuzzer spends its time over every method alike. */
+#define SLOW_SHARE 4
+static const char *const SLOW_METHODS[] = {"fixture.design", "friction.sweep", "push.force",
+                                           "force.range", "gravity.sweep"};
+
+static bool slow_request(const cJSON *r, bool answer_slow)
 {
     if (!valid_request(r))
         return false;
     const char *method = method_of(r);
+    for (size_t i = 0; !answer_slow && i < sizeof SLOW_METHODS / sizeof SLOW_METHODS[0]; i++)
+        if (strcmp(method, SLOW_METHODS[i]) == 0)
+            return true;
     double cones, edges;
     if (strcmp(method, "push.regions") == 0) {
         const cJSON *friction = param(r, "finger_friction");
@@ -342,14 +370,14 @@ static bool slow_request(const cJSON *r)
     return false;
 }
 
-static bool too_slow(const cJSON *json)
+static bool too_slow(const cJSON *json, bool answer_slow)
 {
     if (no_skip || !json)
         return false;
     if (!cJSON_IsArray(json))
-        return slow_request(json);
+        return slow_request(json, answer_slow);
     for (const cJSON *r = json->child; r; r = r->next)
-        if (slow_request(r))
+        if (slow_request(r, answer_slow))
             return true;
     return false;
 }
@@ -511,6 +539,12 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
     const cJSON *given = param(request, "tolerance");
     double tolerance = cJSON_IsNumber(given) ? given->valuedouble : WR_DEFAULT_TOLERANCE;
     int set_count = sets ? cJSON_GetArraySize(sets) : 2;
+    /* On supports the verdicts are the seating and holding tests', without
+     * margins; with a tolerance they are robust: an outside may name the
+     * perturbed fixture that has it, and a boundary is whatever was not
+     * proved (its margin the least met, of either sign). */
+    bool supports, toleranced;
+    fixture_traits(request, &supports, &toleranced);
     const cJSON *wrench = wrenches->child;
     for (const cJSON *item = results->child; item; item = item->next, wrench = wrench->next) {
         FUZZ_CHECK(cJSON_IsObject(item) && cJSON_GetArraySize(item) == set_count,
@@ -531,9 +565,19 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
             const cJSON *blocking = cJSON_GetObjectItemCaseSensitive(v, "blocking");
             const cJSON *states = cJSON_GetObjectItemCaseSensitive(v, "states");
             const cJSON *witness = cJSON_GetObjectItemCaseSensitive(v, "witness");
+            const cJSON *perturbation = cJSON_GetObjectItemCaseSensitive(v, "perturbation");
+            const cJSON *normals = cJSON_GetObjectItemCaseSensitive(v, "perturbation_normals");
+            int extra = perturbation || normals ? 2 : 0;
             FUZZ_CHECK(cJSON_IsString(verdict) && cJSON_IsBool(inside) && margin && blocking &&
-                           cJSON_IsArray(states) && witness && cJSON_GetArraySize(v) == 6,
+                           cJSON_IsArray(states) && witness &&
+                           cJSON_GetArraySize(v) == 6 + extra,
                        "classify: answer members wrong for %s", line);
+            FUZZ_CHECK(!extra || (toleranced && cJSON_IsArray(perturbation) &&
+                                  cJSON_IsArray(normals) &&
+                                  cJSON_GetArraySize(perturbation) == cJSON_GetArraySize(normals) &&
+                                  strcmp(verdict->valuestring, "outside") == 0),
+                       "classify: a perturbation but not an outside of a fixture with a "
+                       "tolerance for %s", line);
             const char *word = verdict->valuestring;
             bool is_inside = strcmp(word, "inside") == 0;
             bool is_outside = strcmp(word, "outside") == 0;
@@ -548,9 +592,10 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
                        "classify: inside yet blocked for %s", line);
             FUZZ_CHECK(!cJSON_IsNull(blocking) || cJSON_GetArraySize(states) == 0,
                        "classify: states without a blocking cone for %s", line);
-            if (lp) {
+            if (lp || supports) {
                 FUZZ_CHECK(cJSON_IsNull(margin) && !is_boundary,
-                           "classify: the lp method gave a margin or a boundary for %s", line);
+                           "classify: the lp method or supports gave a margin or a boundary "
+                           "for %s", line);
                 continue;
             }
             FUZZ_CHECK(is_number_in(margin, -1, 1), "classify: margin %.17g not in [-1, 1] for %s",
@@ -566,6 +611,10 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
                                   cJSON_GetArrayItem(force, 1)->valuedouble == 0;
             if (zero) {
                 FUZZ_CHECK(m == 0, "classify: the zero wrench has margin %.17g for %s", m, line);
+            } else if (toleranced) {
+                FUZZ_CHECK(is_boundary || (is_inside ? m > tolerance : m < -tolerance),
+                           "classify: robust margin %.17g, tolerance %.17g, verdict \"%s\" for "
+                           "%s", m, tolerance, word, line);
             } else {
                 /* The margin is printed shortest-round-trip: exactly the
                  * double the verdict was decided on. */
@@ -952,7 +1001,7 @@ static void pieces_agree(const char *line, size_t length, const char *whole, con
          * again, their last bits may differ (load-check drops them too). */
         memmem(line, length, "\"lp\"", 4))
         return;
-    wp_answer *answer = wp_answer_begin(&LIMITS, line, length);
+    wp_answer *answer = wp_answer_begin(&LIMITS, host, line, length);
     FUZZ_CHECK(answer, "wp_answer_begin failed for %s", text);
     wp_answer_pieces(answer, 1, 1);
     wp_buffer joined = {0};
@@ -1019,7 +1068,8 @@ static void answer_line(const uint8_t *data, size_t length)
     bool whole = !wp_utf8_valid(text, length) || shape.depth > LIMITS.max_depth ||
                  shape.nul_escape ||
                  (cJSON_IsArray(json) && (size_t)cJSON_GetArraySize(json) > LIMITS.max_batch);
-    if (!whole && too_slow(json)) {
+    unsigned hash = fuzz_hash(data, length);
+    if (!whole && too_slow(json, fuzz_full || hash % SLOW_SHARE == 0)) {
         skipped++;
         if (verbose)
             fprintf(stderr, "> %s\n(skipped: slow)\n", text);
@@ -1039,8 +1089,10 @@ static void answer_line(const uint8_t *data, size_t length)
     char *answer = wp_answer_line(host, &LIMITS, line, length, &counts);
     clock_gettime(CLOCK_MONOTONIC, &after);
     /* Asked again in pieces, but only when that is cheap: a line that
-     * derives a large fixture's cones would double an input's time. */
-    if ((after.tv_sec - before.tv_sec) * 1000000000L + (after.tv_nsec - before.tv_nsec) < 20000000L)
+     * derives a large fixture's cones would double an input's time; and
+     * while fuzzing, one line in four (by its hash: fuzz_full). */
+    long elapsed = (after.tv_sec - before.tv_sec) * 1000000000L + (after.tv_nsec - before.tv_nsec);
+    if (elapsed < 20000000L && (fuzz_full || hash / SLOW_SHARE % 4 == 0))
         pieces_agree(line, length, answer, text);
     if (verbose)
         fprintf(stderr, "> %s\n< %s", text, answer ? answer : "(no answer)\n");

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "wrench.h"
 #include "../unit/test_util.h"
@@ -67,6 +68,33 @@ static inline bool fuzz_skip_known(const char *name)
         if ((p == list || p[-1] == ',') && (p[n] == 0 || p[n] == ','))
             return true;
     return false;
+}
+
+/* Whether every check runs on every input.  While fuzzing, the targets
+ * spread their costliest checks over the inputs (each input takes one
+ * share, chosen by fuzz_hash); replaying files (make fuzz-smoke, a
+ * regression, a crash) runs them all, as does FUZZ_FULL=1.  Set by
+ * fuzz_full_init from LLVMFuzzerInitialize's arguments: a regular file
+ * among them means a replay. */
+static bool fuzz_full;
+
+static inline void fuzz_full_init(int argc, char **argv)
+{
+    const char *env = getenv("FUZZ_FULL");
+    fuzz_full = env && *env && strcmp(env, "0") != 0;
+    struct stat st;
+    for (int i = 1; i < argc; i++)
+        if (argv[i][0] != '-' && stat(argv[i], &st) == 0 && S_ISREG(st.st_mode))
+            fuzz_full = true;
+}
+
+/* FNV-1a of an input: which share of the costly checks it takes. */
+static inline unsigned fuzz_hash(const uint8_t *data, size_t size)
+{
+    unsigned h = 2166136261u;
+    for (size_t i = 0; i < size; i++)
+        h = (h ^ data[i]) * 16777619u;
+    return h;
 }
 
 static inline bool fuzz_finite3(const double v[3])

@@ -248,6 +248,36 @@ def main():
     emit("request", "design-accuracy-deadline", request("fixture.design", {
         "body": plate, "friction": 0.3, "spacing": 2, "top": 1, "objective": "accuracy",
         "tolerance": 0.01, "features": [{"name": "bore", "at": [2, 1]}], "deadline_s": 0.001}))
+    # A part on a base plate (supports) and a fixture with a geometric
+    # tolerance: the fixtures, and the analyses that answer differently on
+    # them (docs/PROTOCOL.md, "Supports" and "Tolerance").
+    on_plate = dict(FX.rectangle_321(name="plate-on-supports"), supports={
+        "points": [[1, 0.5], [3, 0.5], [2, 1.7]], "friction": 0.2, "g": 9.81,
+        "down": [{"at": [2, 1], "force": 100}]})
+    on_plate_interval = dict(FX.rectangle_321(name="plate-on-buttons"), supports={
+        "points": [[0.5, 0.5], [3.5, 0.5], [3.5, 1.5], [0.5, 1.5]],
+        "friction": {"static": [0.15, 0.25], "kinetic": 0.1}, "g": 9810},
+        units={"length": "mm", "force": "N"})
+    toleranced = dict(FX.chamfered_plate(name="chamfer-toleranced"),
+                      tolerance={"position": 0.01, "angle": 0.5})
+    for name, f in (("supports", on_plate), ("supports-interval", on_plate_interval),
+                    ("tolerance", toleranced)):
+        emit("fixture", name, json.dumps(f))
+        emit("request", name + "-put", request("fixture.put", {"fixture": f}))
+        emit("request", name + "-classify", request("wrench.classify", {
+            "fixture": f, "wrenches": [[0, -9.81, 0], [1, 0, 0.5]],
+            "sets": ["goal", "strong", "both"]}))
+        emit("request", name + "-force-range", request("force.range", {
+            "fixture": f, "sets": ["goal"], "push": {"at": [4, 0.5]},
+            "cases": [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]}))
+        emit("request", name + "-push-least", request("push.force", {
+            "fixture": f, "set": "goal", "samples": 8,
+            "cases": [{"loads": [{"wrench": [0, -1, 0]}]}]}))
+        emit("request", name + "-push-force", request("push.regions", {
+            "fixture": f, "set": "goal", "force": 50,
+            "cases": [{"loads": [{"gravity": {"g": 9.81, "direction_deg": 270}}]}]}))
+        emit("request", name + "-margin", request("stability.margin", {
+            "fixture": f, "bias": [0, -9.81, 0]}))
     for name, f in list(examples.items()) + [("builder-" + n, f) for n, f in builders.items()
                                              if n in ("offset-disc", "triangle", "disc-one",
                                                       "square-form-closure", "disc-8")]:

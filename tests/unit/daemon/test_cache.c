@@ -467,6 +467,106 @@ static void inline_found_by_written_text(void **state)
     wd_cache_free(cache);
 }
 
+/* An inline fixture's text of WP_INLINE_TEXT_MIN bytes on is kept with the
+ * entry it made: a text that begins with it (the rest of a line) finds it,
+ * with the kept length; a text differing in one byte anywhere, one cut
+ * short, or one that only contains it further on does not; a text shorter
+ * than the minimum is not kept; and the text goes with its entry. */
+static void inline_found_by_its_text(void **state)
+{
+    (void)state;
+    /* The fixture's text padded with white space to a long text, as a
+     * long outline makes it: the same object. */
+    size_t pad = WP_INLINE_TEXT_MIN;
+    const char *base = fixture_text(0);
+    size_t n = strlen(base) + pad;
+    char *kept = malloc(n + 64);
+    memcpy(kept, "{ ", 2);
+    memset(kept + 2, ' ', pad - 2);
+    memcpy(kept + pad, base + 1, strlen(base) - 1);
+    kept[n - 1] = 0;
+    size_t kept_length = strlen(kept);
+    char *line = malloc(kept_length + 64);
+    snprintf(line, kept_length + 64, "%s,\"wrenches\":[[0,1,0]]}}", kept);
+
+    char why[256];
+    wd_cache *cache = wd_cache_new(NULL, SIZE_MAX, 100, why, sizeof why);
+    assert_non_null(cache);
+    wp_fixture_use use, again;
+    wp_error error = {0};
+    assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), 0);
+    cJSON *json = cJSON_Parse(kept);
+    assert_non_null(json);
+    wp_fixture_doc doc;
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    doc.text = kept;
+    doc.text_length = kept_length;
+    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    const wr_analysis *analysis = use.analysis;
+    wd_cache_release(cache, &use);
+
+    assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), kept_length);
+    assert_ptr_equal(again.analysis, analysis);
+    wd_cache_release(cache, &again);
+    assert_int_equal(wd_cache_use_text(cache, kept, kept_length, &again), kept_length);
+    wd_cache_release(cache, &again);
+    assert_int_equal(wd_cache_use_text(cache, kept, kept_length - 1, &again), 0);
+    size_t places[] = {0, 1, 100, kept_length / 2, kept_length - 70, kept_length - 2};
+    for (size_t i = 0; i < sizeof places / sizeof *places; i++) {
+        line[places[i]] ^= 1;
+        assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), 0);
+        line[places[i]] ^= 1;
+    }
+    char *further = malloc(strlen(line) + 2);
+    snprintf(further, strlen(line) + 2, " %s", line);
+    assert_int_equal(wd_cache_use_text(cache, further, strlen(further), &again), 0);
+    free(further);
+    wd_cache_free(cache);
+
+    /* A stored fixture asked inline keeps the text too. */
+    cache = wd_cache_new(NULL, SIZE_MAX, 100, why, sizeof why);
+    assert_non_null(cache);
+    put(cache, 0);
+    json = cJSON_Parse(kept);
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    doc.text = kept;
+    doc.text_length = kept_length;
+    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    wd_cache_release(cache, &use);
+    assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), kept_length);
+    assert_int_equal(listed(cache), 1);
+    wd_cache_release(cache, &again);
+    wd_cache_free(cache);
+
+    /* Short texts are not kept; a kept one goes with its entry. */
+    cache = wd_cache_new(NULL, 0, 100, why, sizeof why);
+    assert_non_null(cache);
+    json = cJSON_Parse(base);
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    doc.text = base;
+    doc.text_length = strlen(base);
+    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    assert_int_equal(wd_cache_use_text(cache, base, strlen(base), &again), 0);
+    wd_cache_release(cache, &use);
+    json = cJSON_Parse(kept);
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    doc.text = kept;
+    doc.text_length = kept_length;
+    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), kept_length);
+    wd_cache_release(cache, &again);
+    wd_cache_release(cache, &use); /* no room: the entry goes, and its text */
+    assert_int_equal(stats_of(cache).cached, 0);
+    assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), 0);
+    wd_cache_free(cache);
+    free(line);
+    free(kept);
+}
+
 /* --max-fixtures: a new stored fixture beyond it is refused; storing one
  * already stored, or using a fixture inline, is not. */
 static void max_fixtures_refuses(void **state)
@@ -692,6 +792,7 @@ int main(void)
         cmocka_unit_test(serial_changes_on_rebuild),
         cmocka_unit_test(inline_is_not_stored),
         cmocka_unit_test(inline_found_by_written_text),
+        cmocka_unit_test(inline_found_by_its_text),
         cmocka_unit_test(max_fixtures_refuses),
         cmocka_unit_test(delete_removes_the_file),
         cmocka_unit_test(state_directory_round_trip),

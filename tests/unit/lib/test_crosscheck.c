@@ -78,6 +78,30 @@ static void compare_sets(const wr_analysis *a, wr_lp_set *goal, wr_lp_set *stron
     }
 }
 
+/* Both methods on `first` (NULL: none), then on `count` random wrenches of
+ * the fixture.  Returns how many verdicts `first` had compared (0..2). */
+static long compare_on(const wr_fixture *f, wr_lp_env *env, test_rng *rng, const double *first,
+                       int count, totals *t)
+{
+    wr_analysis *a = test_analysis_new(f);
+    assert_non_null(a);
+    wr_lp_set *goal, *strong;
+    assert_int_equal(wr_analysis_lp_sets(a, env, &goal, &strong), 0);
+    long before = t->compared;
+    if (first)
+        compare_sets(a, goal, strong, first, t);
+    long first_compared = t->compared - before;
+    for (int w = 0; w < count; w++) {
+        double g[3];
+        random_wrench(rng, f, g);
+        compare_sets(a, goal, strong, g, t);
+    }
+    wr_lp_set_free(goal);
+    wr_lp_set_free(strong);
+    wr_analysis_free(a);
+    return first_compared;
+}
+
 static void auto_and_lp_agree_on_random_fixtures(void **state)
 {
     (void)state;
@@ -92,18 +116,7 @@ static void auto_and_lp_agree_on_random_fixtures(void **state)
         assert_non_null(f);
         discs += disc;
         polygons += !disc;
-        wr_analysis *a = test_analysis_new(f);
-        assert_non_null(a);
-        wr_lp_set *goal, *strong;
-        assert_int_equal(wr_analysis_lp_sets(a, env, &goal, &strong), 0);
-        for (int w = 0; w < WRENCHES; w++) {
-            double g[3];
-            random_wrench(&rng, f, g);
-            compare_sets(a, goal, strong, g, &t);
-        }
-        wr_lp_set_free(goal);
-        wr_lp_set_free(strong);
-        wr_analysis_free(a);
+        compare_on(f, env, &rng, NULL, WRENCHES, &t);
         wr_fixture_free(f);
     }
     wr_lp_env_free(env);
@@ -218,11 +231,65 @@ static void every_cone_agrees_with_lp_membership(void **state)
     assert_true(near > 5000);
 }
 
+/* The bracket of examples/ with its right side bulged out (bulge 44201 draws
+ * an arc of radius about 486,000 through the 44-long chord): the centre of
+ * mass (88518, 88458) and the radius of gyration 88,402 are those of a part
+ * a million across, held by three fixels spread over 107.7 at one end,
+ * 1.2e-3 of the radius of gyration.  Every motion that slides at two fixels
+ * turns about a point among them, so its inequality rows are 1e-4 of the
+ * motion: the LP, when it posed them over q', took a motion going the wrong
+ * way (within GLPK's absolute tolerance) and called g = (-1, -1, 0) a member
+ * of G_sll, which the cones put 1.4e-4 outside (tests/fuzz/README.md,
+ * finding 12).  The smaller bulges are the same part less extreme. */
+static void lp_agrees_on_fixels_bunched_far_from_the_centre(void **state)
+{
+    (void)state;
+    const double bulges[] = {44201.1356237309503, 4420.1, 442, 44.2};
+    test_rng rng = {1212};
+    wr_lp_env *env = test_lp_env_new();
+    totals t = {0, 0, 0, 0};
+    for (size_t b = 0; b < sizeof bulges / sizeof bulges[0]; b++) {
+        const double arc = 0.41421356237309503;
+        const double outer[][3] = {{8, 0, 0},  {112, 0, arc},         {120, 8, 0},
+                                   {120, 52, bulges[b]}, {112, 60, 0}, {8, 60, arc},
+                                   {0, 52, 0}, {0, 8, arc}};
+        const double pin[][3] = {{36, 30, 1}, {24, 30, 1}};
+        const double slot[][3] = {{75, 25, 0}, {95, 25, 1}, {95, 35, 0}, {75, 35, 1}};
+        const wr_loop_spec loops[] = {{8, outer}, {2, pin}, {4, slot}};
+        wr_fixel_spec fixels[3];
+        memset(fixels, 0, sizeof fixels);
+        const double at[3][2] = {{25.757359312880716, 34.242640687119284}, {100, 0}, {0, 40}};
+        for (int i = 0; i < 3; i++)
+            memcpy(fixels[i].at, at[i], sizeof at[i]);
+        wr_fixture_spec spec;
+        memset(&spec, 0, sizeof spec);
+        spec.mass = 0.8;
+        spec.shape = WR_SHAPE_OUTLINE;
+        spec.loops = loops;
+        spec.loop_count = 3;
+        spec.friction.given = true;
+        spec.friction.static_mu = 0.25;
+        spec.fixel_count = 3;
+        spec.fixels = fixels;
+        wr_error error;
+        wr_fixture *f = test_fixture_new(&spec, &error);
+        assert_non_null(f);
+        const double g[3] = {-1, -1, 0};
+        assert_int_equal(compare_on(f, env, &rng, g, 300, &t), 2); /* both far from 0 */
+        wr_fixture_free(f);
+    }
+    wr_lp_env_free(env);
+    print_message("crosscheck, bunched fixels: %ld compared (%ld inside), %ld near a boundary, "
+                  "%ld witnesses\n", t.compared, t.inside, t.near_boundary, t.witnesses);
+    assert_true(t.inside > 0 && t.compared - t.inside > 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(auto_and_lp_agree_on_random_fixtures),
         cmocka_unit_test(every_cone_agrees_with_lp_membership),
+        cmocka_unit_test(lp_agrees_on_fixels_bunched_far_from_the_centre),
     };
     return cmocka_run_group_tests_name("crosscheck", tests, NULL, NULL);
 }

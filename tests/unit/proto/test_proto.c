@@ -708,7 +708,7 @@ static void light_lines_answer_as_any_other(void **state)
         }
         wp_counts counts = {0, 0};
         char *light = NULL;
-        wp_answer *answer = wp_answer_begin(&h->limits, line, strlen(line));
+        wp_answer *answer = wp_answer_begin(&h->limits, host, line, strlen(line));
         assert_non_null(answer);
         bool answered = wp_answer_light(answer, host);
         if (answered != cases[i].light)
@@ -746,7 +746,7 @@ static void light_lines_answer_as_any_other(void **state)
 static char *answer_in_pieces(const wp_host *host, const wp_limits *limits, const char *line,
                               bool tiny, int *pieces, wp_counts *counts)
 {
-    wp_answer *answer = wp_answer_begin(limits, line, strlen(line));
+    wp_answer *answer = wp_answer_begin(limits, host, line, strlen(line));
     assert_non_null(answer);
     if (tiny)
         wp_answer_pieces(answer, 1, 1); /* cut wherever it may be cut */
@@ -922,7 +922,7 @@ static void a_step_after_parallel_does_not_end_the_answer(void **state)
     for (int l = 0; l < 2; l++) {
         wp_counts counts = {0, 0};
         char *whole = wp_answer_line(host, &limits, lines[l], strlen(lines[l]), &counts);
-        wp_answer *answer = wp_answer_begin(&limits, lines[l], strlen(lines[l]));
+        wp_answer *answer = wp_answer_begin(&limits, host, lines[l], strlen(lines[l]));
         assert_non_null(answer);
         wp_answer_pieces(answer, 1, 1); /* a chunk a step */
         wp_buffer joined = {0};
@@ -967,7 +967,7 @@ static void a_step_after_parallel_does_not_end_the_answer(void **state)
         "\"friction\":0.3,\"spacing\":0.5,\"top\":3},\"id\":7}";
     wp_counts counts = {0, 0};
     char *whole = wp_answer_line(host, &limits, design, strlen(design), &counts);
-    wp_answer *answer = wp_answer_begin(&limits, design, strlen(design));
+    wp_answer *answer = wp_answer_begin(&limits, host, design, strlen(design));
     assert_non_null(answer);
     wp_answer_pieces(answer, 1, 1);
     wp_buffer joined = {0};
