@@ -478,6 +478,21 @@ static bool force_mus(sweep_state *state, const wr_intervals *alone)
     return true;
 }
 
+/* The least push's point at each sample: [x, y], or null (NAN) where no
+ * push does the job. */
+static void write_points(wp_writer *out, const double (*at)[2], int count)
+{
+    wp_write_key(out, "at");
+    wp_write_array(out);
+    for (int i = 0; i < count; i++) {
+        if (isnan(at[i][0]))
+            wp_write_null(out);
+        else
+            wp_write_numbers(out, at[i], 2);
+    }
+    wp_write_array_end(out);
+}
+
 /* friction.sweep "force": {"curve": [[mu, F], ...], "at": [[x, y] | null,
  * ...], "intervals": [[lo, hi], ...], "exact": false, "resolution": step}:
  * the push alone's intervals (a job), then a sample of mu at a time. */
@@ -528,15 +543,7 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
         state->sample++;
     }
     wp_write_array_end(out);
-    wp_write_key(out, "at");
-    wp_write_array(out);
-    for (int i = 0; i < state->sample; i++) {
-        if (isnan(state->at[i][0]))
-            wp_write_null(out);
-        else
-            wp_write_numbers(out, state->at[i], 2);
-    }
-    wp_write_array_end(out);
+    write_points(out, state->at, state->sample);
     /* The push alone's intervals are known over the whole range; a partial
      * answer gives them up to where its samples stopped. */
     wp_write_key(out, "intervals");
@@ -551,6 +558,19 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* A step over the supports: the fixture held since begin and the thread's
+ * GLPK environment; NULL with the error set when there is none. */
+static wr_lp_env *supports_env(wp_call *call, wp_fixture_use **use)
+{
+    *use = wp_call_fixture(call);
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    if (!*use || !env) {
+        wp_error_status(call->error, WR_LP_FAILED, "", "%s", wr_strerror(WR_LP_FAILED));
+        return NULL;
+    }
+    return env;
+}
+
 /* Over the supports' mu_B: {"results": [{"goal": [[low, mu*]] or []}, ...]},
  * each wrench's interval [low, min(high, mu*)) from
  * wr_supports_friction_limit (its lower bracket: every mu_B in it seats). */
@@ -558,12 +578,10 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
 static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer *out,
                                    unsigned long budget, unsigned long *used)
 {
-    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
-    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
-    if (!use || !env) {
-        wp_error_status(call->error, WR_LP_FAILED, "", "%s", wr_strerror(WR_LP_FAILED));
+    wp_fixture_use *use;
+    wr_lp_env *env = supports_env(call, &use);
+    if (!env)
         return WP_STEP_FAILED;
-    }
     if (!state->opened) {
         state->opened = true;
         wp_write_object(out);
@@ -611,12 +629,10 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
 static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_writer *out,
                                          unsigned long budget, unsigned long *used)
 {
-    wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
-    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
-    if (!use || !env) {
-        wp_error_status(call->error, WR_LP_FAILED, "", "%s", wr_strerror(WR_LP_FAILED));
+    wp_fixture_use *use;
+    wr_lp_env *env = supports_env(call, &use);
+    if (!env)
         return WP_STEP_FAILED;
-    }
     const double step = (state->range.high - state->range.low) / (SUPPORTS_FORCE_SAMPLES - 1);
     if (!state->at) {
         state->at = malloc(SUPPORTS_FORCE_SAMPLES * sizeof *state->at);
@@ -663,15 +679,7 @@ static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_w
         state->sample++;
     }
     wp_write_array_end(out);
-    wp_write_key(out, "at");
-    wp_write_array(out);
-    for (int i = 0; i < state->sample; i++) {
-        if (isnan(state->at[i][0]))
-            wp_write_null(out);
-        else
-            wp_write_numbers(out, state->at[i], 2);
-    }
-    wp_write_array_end(out);
+    write_points(out, state->at, state->sample);
     wp_write_member_bool(out, "exact", false);
     wp_write_member_number(out, "resolution", step);
     if (partial)
