@@ -1169,8 +1169,8 @@ static wr_status outline_body(void *context)
     wr_least_force *out = c->out;
     double best = INFINITY;
     wr_status st = WR_OK;
-    /* Each edge pushed on, in 8 pieces to start with. */
-    enum { START = 8 };
+    /* Each edge pushed on, in 2 pieces to start with. */
+    enum { START = 2 };
     for (int e = 0; st == WR_OK && e < (int)f->vertex_count; e++) {
         if (!wr_finger_pushes_on(f, c->finger, e))
             continue;
