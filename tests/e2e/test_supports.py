@@ -405,3 +405,58 @@ def test_friction_sweep_of_the_least_push_over_the_supports(client):
     got, _ = error_of(client, "friction.sweep", {"fixture": f, "over": "supports", "cases": none,
                                                  "force": {"set": "both"}})
     assert got == "params.force.set"
+
+
+C_ON_THE_PLATE = r'''
+#include "wrenchclient.h"
+#include <stdio.h>
+int main(int argc, char **argv)
+{
+    (void)argc;
+    wrc_client *c = wrc_connect(argv[1], 120000, 0, NULL);
+    const wrc_load none[] = {{.kind = WRC_LOAD_FORCE, .force = {0, 0}, .at = {1, 1}}};
+    wrc_least_push least;
+    if (!c || wrc_push_force(c, argv[2], none, 1, "goal", 0, NULL, &least) != WRC_OK)
+        return 1;
+    printf("least %.17g %.17g %.17g %.17g\n", least.force, least.lower_bound, least.at[0],
+           least.at[1]);
+    wrc_force_sweep_request r = {.set = "goal", .range = {0, 0.08}, .over_supports = 1};
+    static double curve[32][2], at[32][2];
+    wrc_force_curve s;
+    if (wrc_force_sweep(c, argv[2], none, 1, &r, curve, at, 32, &s) != WRC_OK)
+        return 2;
+    for (int i = 0; i < s.sample_count; i++)
+        printf("%.17g %.17g\n", curve[i][0], curve[i][1]);
+    wrc_close(c);
+    return 0;
+}
+'''
+
+
+def test_c_client_on_the_plate(client, tmp_path):
+    """libwrenchclient with a stored fixture on supports: wrc_push_force
+    (set goal) and wrc_force_sweep over the supports' mu_B read what the
+    daemon answers, printed to 17 digits and read back the same doubles."""
+    import subprocess
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    source, program = tmp_path / "plate.c", tmp_path / "plate"
+    source.write_text(C_ON_THE_PLATE)
+    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
+                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
+                   check=True)
+    out = subprocess.run([str(program), client.path, fid], capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out
+    lines = out.stdout.split("\n")
+    none = [{"loads": [{"force": [0, 0], "at": [1, 1]}]}]
+    want = client.result("push.force", {"fixture": fid, "set": "goal", "cases": none,
+                                        "samples": 1})["least"]
+    got = [float(x) for x in lines[0].split()[1:]]
+    assert got == [want["force"], want["lower_bound"]] + want["at"], (got, want)
+    sweep = client.result("friction.sweep", {"fixture": fid, "over": "supports", "range": [0, 0.08],
+                                             "force": {"set": "goal"}, "cases": none})
+    rows = [[float(x) for x in line.split()] for line in lines[1:] if line]
+    assert rows == [[mu, force] for mu, force in sweep["curve"]], (rows, sweep["curve"])
