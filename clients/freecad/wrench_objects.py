@@ -297,14 +297,30 @@ def _friction_values(friction):
                          "\"kinetic\"} of numbers, not %r" % (friction,)) from None
 
 
-class WrenchFixture:
-    """The fixture: a part's face (or a sketch), the fixels, the friction and
-    the mass; its Shape is the outline as wrenchd sees it (the curves
-    approximated by arcs).  Its execute puts the fixture in wrenchd."""
+class _Proxy:
+    """A document object's proxy: it sets up its properties when made and
+    when its document is read again (setup adds only what is missing), and
+    keeps no state of its own in the file (the properties are the state)."""
 
     def __init__(self, obj):
         obj.Proxy = self
         self.setup(obj)
+
+    def onDocumentRestored(self, obj):
+        self.setup(obj)
+        _attach_view(obj)
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+
+class WrenchFixture(_Proxy):
+    """The fixture: a part's face (or a sketch), the fixels, the friction and
+    the mass; its Shape is the outline as wrenchd sees it (the curves
+    approximated by arcs).  Its execute puts the fixture in wrenchd."""
 
     def setup(self, obj):
         _add(obj, "App::PropertyLinkSub", "Source", "Part",
@@ -396,16 +412,6 @@ class WrenchFixture:
              "The fixture as sent to wrenchd (the outline's coordinates)", mode=2)
         _add(obj, "App::PropertyString", "EdgeTable", "Outline",
              "Per loop and segment, the FreeCAD edge it comes from", mode=2)
-
-    def onDocumentRestored(self, obj):
-        self.setup(obj)
-        _attach_view(obj)
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
 
     def outline(self, obj):
         source, sub = _document_source(obj.Source)
@@ -562,25 +568,11 @@ class _Fixture:
         return self.fixture["friction"]
 
 
-class _Dependent:
+class _Dependent(_Proxy):
     """A proxy whose object links a WrenchFixture (its Fixture property)."""
-
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.setup(obj)
 
     def setup(self, obj):
         _add(obj, "App::PropertyLink", "Fixture", "Fixture", "The WrenchFixture shown")
-
-    def onDocumentRestored(self, obj):
-        self.setup(obj)
-        _attach_view(obj)
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
 
     def execute(self, obj):
         try:
