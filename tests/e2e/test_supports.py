@@ -157,6 +157,11 @@ def test_python_client_least_force_on_the_plate(daemon):
         assert abs(lo - (180 + edge + d)) < 1e-5 and abs(hi - (270 - edge - d)) < 1e-5
         whole = c.tilt_on_supports(f, 20)
         assert whole["intervals_deg"] == [[lo, hi]] and len(whole["undecided_deg"]) <= 2
+        # Over the supports' mu_B: the force of 30 along 225 degrees seats
+        # below 30 / (W sqrt 10) (test_friction_sweep_over_the_supports).
+        swept = c.friction_sweep(f, over="supports", wrenches=[[-30 / R2, -30 / R2, 0]])
+        (a, b), = swept.results[0]["goal"]
+        assert a == 0 and abs(b - 30 / (G * math.sqrt(10))) < 1e-8
 
 
 def test_units_millimetres_and_newtons(client):
