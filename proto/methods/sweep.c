@@ -595,10 +595,14 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
             wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
             return WP_STEP_FAILED;
         }
+        /* In the model system, where the supports' friction is (the
+         * wrenches are read in the fixture's force unit). */
+        const double k = wr_fixture_force_factor(use->fixture);
+        const double *given = state->request.wrenches[state->next];
+        const double g[3] = {given[0] * k, given[1] * k, given[2] * k};
         double bracket[2];
-        wr_status status = wr_supports_friction_limit(use->analysis, use->fixture->supports, env,
-                                                      state->request.wrenches[state->next],
-                                                      bracket);
+        wr_status status =
+            wr_supports_friction_limit(use->analysis, use->fixture->supports, env, g, bracket);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params.wrenches", "%s", wr_strerror(status));
             return WP_STEP_FAILED;

@@ -183,6 +183,19 @@ def test_units_millimetres_and_newtons(client):
         expected = mu_b * weight * math.sqrt(10)
         least = r["all"]["goal"]["least"]
         assert abs(least - expected) < 1e-7 * expected, (least, expected)
+        # wrench.classify and the sweep over mu_B read wrenches in N too: a
+        # force 1% above the least seats, 1% below does not, and it seats
+        # for mu_B below 1.01 mu_B.
+        verdicts = []
+        for k in (0.99, 1.01):
+            w = [-k * expected / R2, -k * expected / R2, 0]
+            verdicts.append(client.result("wrench.classify", {
+                "fixture": g, "wrenches": [w], "sets": ["goal"]})["results"][0]["goal"]["verdict"])
+        assert verdicts == ["outside", "inside"], verdicts
+        w = [-expected / R2, -expected / R2, 0]
+        (_, end), = client.result("friction.sweep", {"fixture": g, "over": "supports",
+                                                     "wrenches": [w]})["results"][0]["goal"]
+        assert abs(end - mu_b) < 1e-8, end
 
 
 def test_push_regions_under_a_force_agree_with_force_range(client):
