@@ -519,9 +519,14 @@ static bool cross_in_polar(const ivec *gen, const bool *free_sign, int n, const 
     for (int a = 0; a < n; a++)
         for (int b = a + 1; b < n; b++)
             for (int c = b + 1; c < n; c++) {
+                /* Cheapest first: a triple whose every member is free
+                 * needs no sign, and one member's sign fails most. */
+                bool all_free = free_sign[a] && free_sign[b] && free_sign[c];
                 iv d = det3(&gen[a], &gen[b], &gen[c]);
                 if (!(d.lo > 0 || d.hi < 0))
                     continue;
+                if (all_free)
+                    return true;
                 int order[3][3] = {{a, b, c}, {b, c, a}, {c, a, b}};
                 bool ok = true;
                 for (int r = 0; ok && r < 3; r++) {
@@ -590,10 +595,12 @@ static double certify_turning(const system_t *sys, const ivec *x)
                     iv ca = sigma > 0 ? db : iv_neg(db), cb = sigma > 0 ? iv_neg(da) : da;
                     if ((!free_sign[a] && ca.lo < 0) || (!free_sign[b] && cb.lo < 0))
                         continue;
+                    iv p = iv_add(iv_mul(ca, gx[a]), iv_mul(cb, gx[b]));
+                    if (!(p.lo > 0))
+                        continue;
                     ivec y;
                     for (int j = 0; j < 3; j++)
                         y.v[j] = iv_add(iv_mul(ca, gen[a].v[j]), iv_mul(cb, gen[b].v[j]));
-                    iv p = iv_add(iv_mul(ca, gx[a]), iv_mul(cb, gx[b]));
                     double norm = ivec_norm1_hi(&y);
                     if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
                         continue;
@@ -613,8 +620,10 @@ static double certify_turning(const system_t *sys, const ivec *x)
         for (int m = k + 1; m < ng; m++) {
             if (ivec_same(&sys->edge[m], &sys->edge[k]))
                 continue;
-            ivec y = ivec_cross(&sys->edge[k], &sys->edge[m]);
             iv p0 = det3(&sys->edge[k], &sys->edge[m], x);
+            if (!(p0.lo > 0 || p0.hi < 0))
+                continue;
+            ivec y = ivec_cross(&sys->edge[k], &sys->edge[m]);
             double norm = ivec_norm1_hi(&y);
             for (int sigma = -1; sigma <= 1; sigma += 2) {
                 iv p = sigma > 0 ? p0 : iv_neg(p0);
@@ -1177,9 +1186,9 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
          * often proves this one too, without an LP. */
         double t = cache ? check_certificate(&sys, x, cache) : -1;
         if (!(t > tolerance))
-            t = certify(&sys, x, cache);
-        if (!isnan(t) && !(t > tolerance))
             t = fmax(t, certify_turning(&sys, x));
+        if (!(t > tolerance))
+            t = certify(&sys, x, cache);
         if (isnan(t)) {
             result = CONE_FAILED;
             break;
