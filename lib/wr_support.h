@@ -151,6 +151,24 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
                              wr_lp_env *env, const double wrench[3], double tolerance,
                              const wr_stop *stop, wr_support_strong *out);
 
+/* The same supports with mu_B = mu (static and kinetic, no interval), into
+ * *out: a shallow copy sharing `supports`' distributions, valid while it
+ * is, never passed to wr_supports_free. */
+void wr_supports_with_friction(const wr_supports *supports, double mu, wr_supports *out);
+
+/* Seating against the supports' static coefficient mu_B (the fixture's own
+ * ignored): S grows linearly with mu_B and C + rho S with rho, so the
+ * wrench seats for mu_B in [0, mu*) exactly, mu* the least scale of the
+ * supports' friction at mu_B = 1 at which the wrench reaches a goal cone
+ * (0 when it is in one; INFINITY when no scale reaches one, or nothing
+ * presses the part and the wrench seats).  mu* is bracketed in
+ * [bracket[0], bracket[1]], within WR_DEFAULT_TOLERANCE of max(1, mu*);
+ * a cone whose programme GLPK cannot solve brackets its own limit by
+ * [0, INFINITY] (nothing proved to seat).  WR_OK, WR_INVALID (a non-finite
+ * wrench). */
+wr_status wr_supports_friction_limit(const wr_analysis *analysis, const wr_supports *supports,
+                                     wr_lp_env *env, const double wrench[3], double bracket[2]);
+
 /* The magnitudes F in [lo, hi] with load + F push seating the part on its
  * supports (the good magnitudes of G_goal with S), into `out` as
  * wr_force_range's; per cone the excluded magnitudes are one closed

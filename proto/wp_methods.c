@@ -32,7 +32,8 @@ static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
 static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples", "push_on",
                                          "deadline_s", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
-                                             "push", "gravity", "force", "cases", "deadline_s", NULL};
+                                             "push", "gravity", "force", "cases", "deadline_s", "over",
+                                             NULL};
 
 /* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
  * one piece, and the event loop may answer it.  The rest end their piece
