@@ -213,9 +213,11 @@ wr_status wr_supports_least_force_find(const wr_analysis *analysis,
  * wrench m a (cos phi, sin phi, 0), a = in_plane_g (length / s^2, > 0),
  * seats the part on its supports (G_goal with S; the supports' own g is the
  * part of gravity into the plate).  `good`: arcs proved to seat, every
- * point; `undecided`: arcs of at most WR_SUPPORT_MIN_ARC degrees that are
- * neither proved to seat nor proved not to (where the circle meets some
- * C + S's boundary); the rest is proved not to seat.  Both in order, split
+ * point; `undecided`: arcs neither proved to seat nor proved not to (where
+ * the circle meets some C + S's boundary), each of at most
+ * WR_SUPPORT_MIN_ARC degrees unless WR_SUPPORT_MAX_CELLS splits did not
+ * settle the circle, when the arcs still open are left undecided whole;
+ * the rest is proved not to seat.  Both in order, split
  * at 0.  Per arc and cone: C + S's slice at zero torque is convex and holds
  * 0, so the arc is in it when its ends and its tangents' crossing are
  * (inner polygons), and misses it when the slice's support function along

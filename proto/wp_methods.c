@@ -59,7 +59,7 @@ const wp_method wp_methods[] = {
     {.name = "push.regions", .stream = &wp_push_stream, .fields = PUSH, .required = FIXTURE,
      .flags = WP_FIXTURE},
     {.name = "gravity.sweep", .handler = wp_handle_gravity_sweep, .fields = SWEEP, .required = FIXTURE,
-     .flags = WP_FIXTURE | WP_READY, .light = wp_gravity_light},
+     .flags = WP_FIXTURE | WP_READY},
     {.name = "stability.margin", .handler = wp_handle_stability_margin, .fields = MARGIN,
      .required = MARGIN, .flags = WP_FIXTURE},
     {.name = "friction.sweep", .stream = &wp_sweep_stream, .fields = FRICTION_SWEEP,

@@ -317,6 +317,14 @@ def test_tilt_of_the_disc_on_buttons(client):
                          ({"set": "goal", "in_plane_g": -1}, "params.in_plane_g")):
         got, _ = error_of(client, "gravity.sweep", dict(extra, fixture=f))
         assert got == field
+    # Floating: a pull is checked, then not used.
+    for bad in (-1, 0, "x", [20]):
+        got, _ = error_of(client, "gravity.sweep", {"fixture": FX.disc_corner(0.5), "set": "goal",
+                                                     "in_plane_g": bad})
+        assert got == "params.in_plane_g", bad
+    same = client.result("gravity.sweep", {"fixture": FX.disc_corner(0.5), "set": "goal",
+                                           "in_plane_g": 20})
+    assert same == floating
 
 
 def test_wrenchctl_supports_option(daemon, client):
