@@ -56,17 +56,9 @@ static bool host_delete(void *self, const char *id, wp_host_failure *failure)
     return wd_cache_delete(((wd_thread_host *)self)->cache, id, failure);
 }
 
-/* Work per wrench the light policy counts for a fixture on supports, in
- * cones: each of its answers solves LPs, cone after cone, refining discs
- * (wr_support.h), so no request on it is light. */
-#define SUPPORTS_COST 1000000
-
 static int host_use_ready(void *self, const char *id, wp_fixture_use *use)
 {
-    int cones = wd_cache_use_ready(((wd_thread_host *)self)->cache, id, use);
-    if (cones >= 0 && use->fixture && use->fixture->supports)
-        return SUPPORTS_COST;
-    return cones;
+    return wd_cache_use_ready(((wd_thread_host *)self)->cache, id, use);
 }
 
 static bool host_list(void *self, wp_fixture_listing *listing, wp_host_failure *failure)

@@ -556,6 +556,7 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
     double none = largest ? -INFINITY : INFINITY;
     double sign = largest ? -1 : 1; /* sign * value: a minimum */
     double outer_best = -INFINITY, inner_best = INFINITY; /* of sign * value */
+    bool retried = false;
     for (int round = 0; round < 60; round++) {
         cone_lp c = {.m = m, .cone = cone, .q = q, .dirs = dirs};
         memcpy(c.target, target, sizeof c.target);
@@ -565,8 +566,20 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
         c.inner = false;
         cone_lp_solve(&c);
         (*solves)++;
+        /* A refinement GLPK cannot solve leaves the bracket of the round
+         * before: still bounds from both sides, only wider. */
+        if (c.status < 0 && round == 0 && !retried) {
+            /* A first polygon GLPK cannot solve (degenerate): once more
+             * with 16 directions a disc, turned half a step. */
+            retried = true;
+            for (int i = 0; i < m->s->count; i++)
+                for (int k = 0; k < 8; k++)
+                    directions_add(&dirs[i], cos((k + 0.5) * (PI / 4)), sin((k + 0.5) * (PI / 4)));
+            round--;
+            continue;
+        }
         if (c.status < 0)
-            return WR_LP_FAILED;
+            return round ? WR_OK : WR_LP_FAILED;
         if (c.status == GLP_NOFEAS) {
             *lo = *hi = none;
             return WR_OK;
@@ -585,7 +598,7 @@ static wr_status cone_bracket(const model *m, const wr_cone *cone, question q, c
         cone_lp_solve(&in);
         (*solves)++;
         if (in.status < 0)
-            return WR_LP_FAILED;
+            return round ? WR_OK : WR_LP_FAILED;
         if (in.status == GLP_UNBND) {
             *lo = *hi = INFINITY;
             return WR_OK;
@@ -709,6 +722,69 @@ wr_status wr_supports_goal(const wr_analysis *analysis, const wr_supports *suppo
     return wr_lp_guarded(env, goal_body, &call);
 }
 
+/* ---- seating against the supports' friction coefficient ------------------ */
+
+typedef struct limit_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports; /* with mu_s = 1 */
+    const double *wrench;
+    double *bracket;
+} limit_call;
+
+static wr_status limit_body(void *context)
+{
+    limit_call *call = context;
+    model m;
+    double target[3], push[3] = {0, 0, 0};
+    model_for(&m, call->analysis, call->supports, call->wrench, target);
+    call->bracket[0] = call->bracket[1] = INFINITY;
+    int count = wr_analysis_cone_count(call->analysis, WR_SET_GOAL), solves = 0;
+    for (int c = 0; c < count; c++) {
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_GOAL, c);
+        if (cone->empty)
+            continue;
+        double lo, hi;
+        wr_status st = cone_bracket(&m, cone, RHO, target, push, NULL, WR_DEFAULT_TOLERANCE, NULL,
+                                    NULL, &lo, &hi, &solves);
+        if (st == WR_LP_FAILED) {
+            /* Unknown for this cone: no coefficient is proved to seat. */
+            lo = 0;
+            hi = INFINITY;
+        } else if (st != WR_OK) {
+            return st;
+        }
+        call->bracket[0] = fmin(call->bracket[0], lo);
+        call->bracket[1] = fmin(call->bracket[1], hi);
+    }
+    return WR_OK;
+}
+
+wr_status wr_supports_friction_limit(const wr_analysis *analysis, const wr_supports *supports,
+                                     wr_lp_env *env, const double wrench[3], double bracket[2])
+{
+    if (!isfinite(wrench[0]) || !isfinite(wrench[1]) || !isfinite(wrench[2]))
+        return WR_INVALID;
+    if (supports->total == 0) {
+        /* S = {0} whatever mu_B: the cones alone. */
+        wr_verdict v;
+        wr_status st = wr_classify_verdict(analysis, wrench, WR_SET_GOAL, WR_DEFAULT_TOLERANCE, &v);
+        bracket[0] = bracket[1] = v == WR_VERDICT_INSIDE ? INFINITY : 0;
+        return st;
+    }
+    /* S scales with mu_s: at mu_s = 1 the least scale rho* of S that
+     * reaches a cone is the coefficient where seating ends. */
+    wr_supports unit = *supports; /* shares the distributions */
+    unit.mu_static = unit.mu_static_min = 1;
+    limit_call call = {analysis, &unit, wrench, bracket};
+    return wr_lp_guarded(env, limit_body, &call);
+}
+
+void wr_supports_with_friction(const wr_supports *supports, double mu, wr_supports *out)
+{
+    *out = *supports;
+    out->mu_static = out->mu_static_min = out->mu_kinetic = out->mu_kinetic_min = mu;
+}
+
 /* ---- magnitudes along a push --------------------------------------------- */
 
 static wr_status forces_append(wr_forces *out, double lo, double hi)
@@ -765,8 +841,8 @@ typedef struct cone_span {
  * into spans[count of goal cones].  Runs GLPK: call within wr_lp_guarded.
  * Returns WR_OK or WR_LP_FAILED. */
 static wr_status line_spans(const wr_analysis *analysis, const wr_supports *supports,
-                            const double load[3], const double push[3], cone_span *spans,
-                            int *solves)
+                            const double load[3], const double push[3], double tolerance,
+                            cone_span *spans, int *solves)
 {
     const wr_fixture *f = wr_analysis_fixture(analysis);
     double hu[3], hl[3];
@@ -789,13 +865,13 @@ static wr_status line_spans(const wr_analysis *analysis, const wr_supports *supp
         if (cone->empty)
             continue;
         double a_lo, a_hi, b_lo, b_hi;
-        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL,
+        wr_status st = cone_bracket(&m, cone, F_MIN, hl, hu, NULL, tolerance, NULL, NULL,
                                     &a_lo, &a_hi, solves);
         if (st != WR_OK)
             return st;
         if (a_lo == INFINITY)
             continue; /* no magnitude reaches this cone */
-        st = cone_bracket(&m, cone, F_MAX, hl, hu, NULL, WR_FORCE_TOLERANCE, NULL, NULL, &b_lo, &b_hi,
+        st = cone_bracket(&m, cone, F_MAX, hl, hu, NULL, tolerance, NULL, NULL, &b_lo, &b_hi,
                           solves);
         if (st != WR_OK)
             return st;
@@ -825,7 +901,8 @@ static wr_status range_body(void *context)
     wr_forces outer_excluded = {0}, inner_excluded = {0};
     int solves = 0;
     wr_status st =
-        line_spans(call->analysis, call->supports, call->load, call->push, spans, &solves);
+        line_spans(call->analysis, call->supports, call->load, call->push, WR_FORCE_TOLERANCE,
+                   spans, &solves);
     for (int c = 0; c < count && st == WR_OK; c++) {
         const cone_span *span = &spans[c];
         if (!span->reached)
@@ -909,6 +986,10 @@ wr_status wr_supports_least_force(const wr_analysis *analysis, const wr_supports
 
 /* ---- the least push over the outline ------------------------------------ */
 
+/* The spans' brackets in the search: a tenth of its own tolerance
+ * (OUTLINE_TOLERANCE), so that a piece shrunk to a point is decided. */
+#define OUTLINE_SPAN_TOLERANCE 1e-7
+
 /* A point of an edge where the spans of every case were found: spans[case
  * * cones + cone].  Shared by the two intervals it ends (refs). */
 typedef struct outline_point {
@@ -982,8 +1063,8 @@ static wr_status point_new(outline_call *c, int edge, double t, outline_point **
     wr_push_wrench(f, edge, t, push);
     wr_status st = WR_OK;
     for (int k = 0; k < c->case_count && st == WR_OK; k++)
-        st = line_spans(c->analysis, c->supports, c->loads[k], push, &p->spans[k * c->cones],
-                        &c->solves);
+        st = line_spans(c->analysis, c->supports, c->loads[k], push, OUTLINE_SPAN_TOLERANCE,
+                        &p->spans[k * c->cones], &c->solves);
     int n = 0;
     double *hi = lo + spans;
     for (size_t i = 0; st == WR_OK && i < spans; i++)
@@ -1072,8 +1153,8 @@ static outline_piece piece_pop(outline_call *c)
     return top;
 }
 
-/* The search's relative tolerance: above the spans' own (WR_FORCE_TOLERANCE
- * of the LPs' brackets), so that a piece shrunk to a point is decided. */
+/* The search's relative tolerance: above the spans' own
+ * (OUTLINE_SPAN_TOLERANCE). */
 #define OUTLINE_TOLERANCE 1e-6
 
 static double outline_enough(double best)
@@ -1088,8 +1169,8 @@ static wr_status outline_body(void *context)
     wr_least_force *out = c->out;
     double best = INFINITY;
     wr_status st = WR_OK;
-    /* Each edge pushed on, in 8 pieces to start with. */
-    enum { START = 8 };
+    /* Each edge pushed on, in 2 pieces to start with. */
+    enum { START = 2 };
     for (int e = 0; st == WR_OK && e < (int)f->vertex_count; e++) {
         if (!wr_finger_pushes_on(f, c->finger, e))
             continue;

@@ -151,6 +151,24 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
                              wr_lp_env *env, const double wrench[3], double tolerance,
                              const wr_stop *stop, wr_support_strong *out);
 
+/* The same supports with mu_B = mu (static and kinetic, no interval), into
+ * *out: a shallow copy sharing `supports`' distributions, valid while it
+ * is, never passed to wr_supports_free. */
+void wr_supports_with_friction(const wr_supports *supports, double mu, wr_supports *out);
+
+/* Seating against the supports' static coefficient mu_B (the fixture's own
+ * ignored): S grows linearly with mu_B and C + rho S with rho, so the
+ * wrench seats for mu_B in [0, mu*) exactly, mu* the least scale of the
+ * supports' friction at mu_B = 1 at which the wrench reaches a goal cone
+ * (0 when it is in one; INFINITY when no scale reaches one, or nothing
+ * presses the part and the wrench seats).  mu* is bracketed in
+ * [bracket[0], bracket[1]], within WR_DEFAULT_TOLERANCE of max(1, mu*);
+ * a cone whose programme GLPK cannot solve brackets its own limit by
+ * [0, INFINITY] (nothing proved to seat).  WR_OK, WR_INVALID (a non-finite
+ * wrench). */
+wr_status wr_supports_friction_limit(const wr_analysis *analysis, const wr_supports *supports,
+                                     wr_lp_env *env, const double wrench[3], double bracket[2]);
+
 /* The magnitudes F in [lo, hi] with load + F push seating the part on its
  * supports (the good magnitudes of G_goal with S), into `out` as
  * wr_force_range's; per cone the excluded magnitudes are one closed
@@ -195,9 +213,11 @@ wr_status wr_supports_least_force_find(const wr_analysis *analysis,
  * wrench m a (cos phi, sin phi, 0), a = in_plane_g (length / s^2, > 0),
  * seats the part on its supports (G_goal with S; the supports' own g is the
  * part of gravity into the plate).  `good`: arcs proved to seat, every
- * point; `undecided`: arcs of at most WR_SUPPORT_MIN_ARC degrees that are
- * neither proved to seat nor proved not to (where the circle meets some
- * C + S's boundary); the rest is proved not to seat.  Both in order, split
+ * point; `undecided`: arcs neither proved to seat nor proved not to (where
+ * the circle meets some C + S's boundary), each of at most
+ * WR_SUPPORT_MIN_ARC degrees unless WR_SUPPORT_MAX_CELLS splits did not
+ * settle the circle, when the arcs still open are left undecided whole;
+ * the rest is proved not to seat.  Both in order, split
  * at 0.  Per arc and cone: C + S's slice at zero torque is convex and holds
  * 0, so the arc is in it when its ends and its tangents' crossing are
  * (inner polygons), and misses it when the slice's support function along

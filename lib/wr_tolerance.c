@@ -321,7 +321,13 @@ typedef struct system {
     ivec equality[2 * WR_MAX_FIXELS];
     ivec inequality[WR_MAX_FIXELS + 1];
     ivec edge[2 * WR_MAX_FIXELS];
+    /* Which function of the box each edge is, n_i + kappa t_i: the fixel
+     * and kappa.  Two edges are the same function exactly when both agree
+     * (same_edge); equal enclosures alone would not say so. */
+    int edge_fixel[2 * WR_MAX_FIXELS];
+    double edge_kappa[2 * WR_MAX_FIXELS];
 } system_t;
+
 
 static ivec ivec_neg(const ivec *a)
 {
@@ -339,6 +345,21 @@ static ivec edge_of(const ivec *n, const ivec *t, double kappa)
         r.v[j] = (iv){-e.hi, -e.lo};
     }
     return r;
+}
+
+/* Append edge n + kappa t of fixel i. */
+static void add_edge(system_t *sys, int i, const ivec *n, const ivec *t, double kappa)
+{
+    sys->edge_fixel[sys->edge_count] = i;
+    sys->edge_kappa[sys->edge_count] = kappa;
+    sys->edge[sys->edge_count++] = edge_of(n, t, kappa);
+}
+
+/* Are edges a and b the same function of the box (so that y . g_a = 0
+ * identically wherever y . g_b = 0 does)? */
+static bool same_edge(const system_t *sys, int a, int b)
+{
+    return sys->edge_fixel[a] == sys->edge_fixel[b] && sys->edge_kappa[a] == sys->edge_kappa[b];
 }
 
 /* `whole`: b is the whole set, whose enclosures rb holds. */
@@ -370,19 +391,18 @@ static void build_system(const wr_robust *rb, const wr_constraint *c, const box 
         case 'r':
             sys->equality[sys->equality_count++] = n;
             sys->inequality[sys->inequality_count++] = letter == 'l' ? t : ivec_neg(&t);
-            sys->edge[sys->edge_count++] =
-                edge_of(&n, &t, letter == 'l' ? -fx->mu_kinetic : fx->mu_kinetic);
+            add_edge(sys, i, &n, &t, letter == 'l' ? -fx->mu_kinetic : fx->mu_kinetic);
             if (fx->mu_kinetic_min != fx->mu_kinetic)
-                sys->edge[sys->edge_count++] =
-                    edge_of(&n, &t, letter == 'l' ? -fx->mu_kinetic_min : fx->mu_kinetic_min);
+                add_edge(sys, i, &n, &t,
+                         letter == 'l' ? -fx->mu_kinetic_min : fx->mu_kinetic_min);
             break;
         case 'n':
         case 'm':
             sys->equality[sys->equality_count++] = n;
             if (letter == 'n')
                 sys->equality[sys->equality_count++] = t;
-            sys->edge[sys->edge_count++] = edge_of(&n, &t, fx->mu_static);
-            sys->edge[sys->edge_count++] = edge_of(&n, &t, -fx->mu_static);
+            add_edge(sys, i, &n, &t, fx->mu_static);
+            add_edge(sys, i, &n, &t, -fx->mu_static);
             break;
         default:
             break;
@@ -484,14 +504,6 @@ static double ivec_norm1_hi(const ivec *y)
     return n;
 }
 
-static bool ivec_same(const ivec *a, const ivec *b)
-{
-    for (int j = 0; j < 3; j++)
-        if (a->v[j].lo != b->v[j].lo || a->v[j].hi != b->v[j].hi)
-            return false;
-    return true;
-}
-
 static ivec ivec_cross(const ivec *a, const ivec *b)
 {
     ivec r;
@@ -519,9 +531,14 @@ static bool cross_in_polar(const ivec *gen, const bool *free_sign, int n, const 
     for (int a = 0; a < n; a++)
         for (int b = a + 1; b < n; b++)
             for (int c = b + 1; c < n; c++) {
+                /* Cheapest first: a triple whose every member is free
+                 * needs no sign, and one member's sign fails most. */
+                bool all_free = free_sign[a] && free_sign[b] && free_sign[c];
                 iv d = det3(&gen[a], &gen[b], &gen[c]);
                 if (!(d.lo > 0 || d.hi < 0))
                     continue;
+                if (all_free)
+                    return true;
                 int order[3][3] = {{a, b, c}, {b, c, a}, {c, a, b}};
                 bool ok = true;
                 for (int r = 0; ok && r < 3; r++) {
@@ -590,16 +607,18 @@ static double certify_turning(const system_t *sys, const ivec *x)
                     iv ca = sigma > 0 ? db : iv_neg(db), cb = sigma > 0 ? iv_neg(da) : da;
                     if ((!free_sign[a] && ca.lo < 0) || (!free_sign[b] && cb.lo < 0))
                         continue;
+                    iv p = iv_add(iv_mul(ca, gx[a]), iv_mul(cb, gx[b]));
+                    if (!(p.lo > 0))
+                        continue;
                     ivec y;
                     for (int j = 0; j < 3; j++)
                         y.v[j] = iv_add(iv_mul(ca, gen[a].v[j]), iv_mul(cb, gen[b].v[j]));
-                    iv p = iv_add(iv_mul(ca, gx[a]), iv_mul(cb, gx[b]));
                     double norm = ivec_norm1_hi(&y);
                     if (!(p.lo > 0 && norm > 0 && p.lo / norm > best))
                         continue;
                     bool valid = true;
                     for (int m = 0; valid && m < ng; m++) {
-                        if (m == k || ivec_same(&sys->edge[m], &sys->edge[k]))
+                        if (m == k || same_edge(sys, m, k))
                             continue; /* y . g_k = 0 identically */
                         iv v = iv_add(iv_mul(ca, ge[a][m]), iv_mul(cb, ge[b][m]));
                         valid = v.hi <= 0;
@@ -611,10 +630,12 @@ static double certify_turning(const system_t *sys, const ivec *x)
     /* (c) */
     for (int k = 0; k < ng; k++)
         for (int m = k + 1; m < ng; m++) {
-            if (ivec_same(&sys->edge[m], &sys->edge[k]))
+            if (same_edge(sys, m, k))
+                continue;
+            iv p0 = det3(&sys->edge[k], &sys->edge[m], x);
+            if (!(p0.lo > 0 || p0.hi < 0))
                 continue;
             ivec y = ivec_cross(&sys->edge[k], &sys->edge[m]);
-            iv p0 = det3(&sys->edge[k], &sys->edge[m], x);
             double norm = ivec_norm1_hi(&y);
             for (int sigma = -1; sigma <= 1; sigma += 2) {
                 iv p = sigma > 0 ? p0 : iv_neg(p0);
@@ -622,8 +643,8 @@ static double certify_turning(const system_t *sys, const ivec *x)
                     continue;
                 bool valid = true;
                 for (int o = 0; valid && o < ng; o++) {
-                    if (ivec_same(&sys->edge[o], &sys->edge[k]) ||
-                        ivec_same(&sys->edge[o], &sys->edge[m]))
+                    if (same_edge(sys, o, k) ||
+                        same_edge(sys, o, m))
                         continue;
                     iv d = det3(&sys->edge[k], &sys->edge[m], &sys->edge[o]);
                     valid = (sigma > 0 ? d.hi : -d.lo) <= 0;
@@ -1177,9 +1198,9 @@ static int examine_cone(const wr_robust *rb, const wr_constraint *c, const ivec 
          * often proves this one too, without an LP. */
         double t = cache ? check_certificate(&sys, x, cache) : -1;
         if (!(t > tolerance))
-            t = certify(&sys, x, cache);
-        if (!isnan(t) && !(t > tolerance))
             t = fmax(t, certify_turning(&sys, x));
+        if (!(t > tolerance))
+            t = certify(&sys, x, cache);
         if (isnan(t)) {
             result = CONE_FAILED;
             break;

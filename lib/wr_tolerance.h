@@ -120,7 +120,7 @@ wr_status wr_robust_forces(const wr_robust *robust, wr_set set, const double loa
  * none is proved.  It is at least the nominal fixture's F*(p), and may
  * lie above the least robust magnitude (the bisection's resolution; with
  * one case the finest pieces get a few boxes each, so that a push no
- * magnitude does is found so quickly): a push of that force works on
+ * magnitude does is given up quickly): a push of that force works on
  * every fixture of the set.  WR_OK;
  * WR_INVALID (as wr_force_range); WR_STOPPED; WR_LP_FAILED; WR_NO_MEMORY. */
 wr_status wr_robust_least_force_at(const wr_robust *robust, wr_set set,

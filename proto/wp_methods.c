@@ -32,7 +32,8 @@ static const char *const FORCE_REQUIRED[] = {"fixture", "cases", NULL};
 static const char *const PUSH_FORCE[] = {"fixture", "set", "cases", "finger_radius", "samples", "push_on",
                                          "deadline_s", NULL};
 static const char *const FRICTION_SWEEP[] = {"fixture", "range", "kinetic_ratio", "wrenches", "sets",
-                                             "push", "gravity", "force", "cases", "deadline_s", NULL};
+                                             "push", "gravity", "force", "cases", "deadline_s", "over",
+                                             NULL};
 
 /* WP_CHEAP: no derivation, no solver, no disk: a batch answers several in
  * one piece, and the event loop may answer it.  The rest end their piece
@@ -58,7 +59,7 @@ const wp_method wp_methods[] = {
     {.name = "push.regions", .stream = &wp_push_stream, .fields = PUSH, .required = FIXTURE,
      .flags = WP_FIXTURE},
     {.name = "gravity.sweep", .handler = wp_handle_gravity_sweep, .fields = SWEEP, .required = FIXTURE,
-     .flags = WP_FIXTURE | WP_READY, .light = wp_gravity_light},
+     .flags = WP_FIXTURE | WP_READY},
     {.name = "stability.margin", .handler = wp_handle_stability_margin, .fields = MARGIN,
      .required = MARGIN, .flags = WP_FIXTURE},
     {.name = "friction.sweep", .stream = &wp_sweep_stream, .fields = FRICTION_SWEEP,

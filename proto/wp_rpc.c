@@ -533,7 +533,15 @@ bool wp_answer_light(wp_answer *answer, const wp_host *host)
         return false; /* held since begin: a long line, never light */
     int cones = host->fixture_use_ready(host->self, id->valuestring, &answer->hold.use);
     answer->hold.holding = cones >= 0;
-    return cones >= 0 && (!m->light || m->light(params, cones));
+    if (cones < 0)
+        return false;
+    /* On supports every answer solves LPs, disc by disc; with a tolerance
+     * it searches boxes of the perturbation set: whatever the method,
+     * never light (the hold is the worker's). */
+    const wr_fixture *f = answer->hold.use.fixture;
+    if (f->supports || f->tolerance.given)
+        return false;
+    return !m->light || m->light(params, cones);
 }
 
 
@@ -684,6 +692,10 @@ static bool next_member(wp_answer *answer, wp_buffer *out, wp_counts *counts)
     }
     return answer->next != NULL;
 }
+
+/* A line the loop may parse (WP_LIGHT_LINE) is never one whose fixture is
+ * recognised from its text (recognise_fixture, which may derive cones). */
+_Static_assert(WP_LIGHT_LINE < WP_INLINE_TEXT_MIN, "recognition stays off the event loop");
 
 /* The tree of a line: a member of a raw_array or raw_text row read from
  * the text (prepare), the rest parsed; NULL with answer->refusal set (or

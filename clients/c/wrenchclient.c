@@ -913,6 +913,8 @@ int wrc_force_sweep(wrc_client *c, const char *fixture_id, const wrc_load *loads
     size_t n = 0, size = c->buffer_bytes;
     char *q = c->request;
     put_sweep_head(q, &n, size, fixture_id, r->range, r->kinetic_ratio);
+    if (r->over_supports)
+        PUT(",\"over\":\"supports\"");
     PUT(",\"force\":{\"set\":\"%s\"", r->set);
     if (r->finger_radius != 0)
         PUT(",\"finger_radius\":%.17g", r->finger_radius);
@@ -934,9 +936,13 @@ int wrc_force_sweep(wrc_client *c, const char *fixture_id, const wrc_load *loads
         end = read_pairs(samples, curve, capacity, &sweep->sample_count);
     if (end)
         points = value_of(end, "at");
+    /* Over the supports the answer has no intervals of the push alone. */
     if (!end || !points || !read_pairs(points, at, capacity, &located) ||
-        located != sweep->sample_count || !intervals || !read_intervals(intervals, &alone))
+        located != sweep->sample_count ||
+        (!r->over_supports && (!intervals || !read_intervals(intervals, &alone))))
         return fail(c, WRC_EPROTO, "the answer has no curve, points or intervals");
+    if (r->over_supports)
+        return WRC_OK;
     sweep->interval_count = alone.interval_count;
     memcpy(sweep->intervals, alone.intervals, sizeof sweep->intervals);
     return WRC_OK;

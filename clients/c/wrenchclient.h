@@ -208,6 +208,10 @@ typedef struct wrc_force_sweep_request {
     double kinetic_ratio;   /* in (0, 1]; 0: the default */
     double finger_radius;   /* 0: a point finger */
     const char *push_on;    /* "outer", "all", or NULL: every loop */
+    /* Non-zero: sweep the supports' mu_B of a fixture on a base plate
+     * ("over": "supports"; set "goal", a point finger) instead of the
+     * fixels' mu; the answer then has no intervals (interval_count 0). */
+    int over_supports;
 } wrc_force_sweep_request;
 
 typedef struct wrc_force_curve {

@@ -1202,10 +1202,14 @@ class _Methods:
                        kinetic_ratio: float = 1.0, wrenches: Optional[Iterable[Any]] = None,
                        sets: Optional[Union[str, Sequence[str]]] = None,
                        push: Any = None, gravity: Any = None, force: Any = None,
-                       cases: Optional[Iterable[Any]] = None, timeout: Any = _DEFAULT):
+                       cases: Optional[Iterable[Any]] = None, over: Optional[str] = None,
+                       timeout: Any = _DEFAULT):
         """friction.sweep: how the answers change with the friction, mu_s =
         mu and mu_k = kinetic_ratio * mu at every fixel (the fixture's own
-        friction ignored), mu over `range` (FrictionSweep).  Exactly one of
+        friction ignored), mu over `range` (FrictionSweep).  over="supports"
+        sweeps the supports' mu_B of a fixture on a base plate instead
+        (wrenches: where each seats; force: the least push on the plate;
+        set goal either way).  Exactly one of
         `wrenches` (with `sets`, default the daemon's: goal and strong),
         `push`, `gravity` and `force` (with `cases`, as force_range's: the
         least push force against mu); each of the last three is a set name,
@@ -1225,6 +1229,8 @@ class _Methods:
         params: Dict[str, Any] = {"fixture": _fixture_ref(fixture),
                                   "range": [float(x) for x in range],
                                   "kinetic_ratio": kinetic_ratio}
+        if over is not None:
+            params["over"] = over
         if wrenches is not None:
             params["wrenches"] = [_wrench(w) for w in wrenches]
             if sets is not None:

@@ -181,6 +181,12 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddItemToObject(params, "tolerance", cJSON_Duplicate(run->locate_tolerance, true));
     if (run->features)
         cJSON_AddItemToObject(params, "features", cJSON_Duplicate(run->features, true));
+    if (run->geometric_given) { /* --fixel-tolerance */
+        cJSON *tolerance = cJSON_AddObjectToObject(params, "fixel_tolerance");
+        cJSON_AddNumberToObject(tolerance, "position", run->geometric[0]);
+        if (run->geometric[1] > 0)
+            cJSON_AddNumberToObject(tolerance, "angle", run->geometric[1]);
+    }
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
     if (run->symmetric_all)

@@ -485,6 +485,7 @@ static const command_option COMMAND_OPTIONS[] = {
     {"fixels", WC_OPT_DESIGN, take_fixels},
     {"top", WC_OPT_DESIGN, take_top},
     {"objective", WC_OPT_DESIGN, take_objective},
+    {"fixel-tolerance", WC_OPT_DESIGN, take_geometric},
     {"shard", WC_OPT_DESIGN, take_shard},
     {"tolerance", WC_OPT_LOCATE, take_locate_tolerance},
     {"tolerance", WC_OPT_GEOMETRIC, take_geometric},
@@ -873,7 +874,8 @@ const wc_command wc_commands[] = {
      "       [--finger-radius R] [--finger-friction MU] [--case SPEC...]\n"
      "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
      "       [--corner-clearance C] [--pin-diameter D]\n"
-     "       [--shard I/N] [--symmetric collapse|all] [--svg FILE] [--emit-fixture N FILE]",
+     "       [--shard I/N] [--symmetric collapse|all] [--svg FILE] [--emit-fixture N FILE]\n"
+     "       [--fixel-tolerance T[,A]]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
          WC_OPT_PUSH_ON | WC_OPT_LOCATE | WC_OPT_CASE, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
@@ -903,6 +905,9 @@ const wc_command wc_commands[] = {
      "                     also reports its least push under them, with any objective; in the\n"
      "                     file's units (its \"units\", else one consistent system)\n"
      "  --top N            how many designs (default 10)\n"
+     "  --fixel-tolerance T[,A]  each design's fixels anywhere within T along the outline,\n"
+     "                     each normal tilted by up to A degrees: its both region and best\n"
+     "                     push are those that work for every such fixture\n"
      "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
      "  --finger-radius R, --finger-friction MU\n"
      "                     the finger that pushes, as for push\n"

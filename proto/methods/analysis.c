@@ -474,23 +474,14 @@ static void write_arcs(wp_writer *out, const char *key, const wr_regions *arcs)
 /* gravity.sweep on supports (wr_supports_gravity_sweep): the tilts whose
  * in-plane pull m in_plane_g seats the part (set "goal"), the arcs proved
  * and those left undecided. */
-static bool tilt_on_supports(wp_call *call, wp_fixture_use *use, wr_set set, wp_writer *out)
+static bool tilt_on_supports(wp_call *call, wp_fixture_use *use, wr_set set, double pull,
+                             bool given, wp_writer *out)
 {
-    double pull = 0;
-    bool given = false;
-    if (!wp_member_number(call->params, "params", "in_plane_g", false, &pull, &given,
-                          call->error))
-        return false;
     if (!given)
         return !wp_supports_refuse(call, use->fixture, "params.in_plane_g",
                                    "\"in_plane_g\", the part of gravity in the plate's plane "
                                    "(g sin(tilt), in the fixture's length / s^2): whether a pull "
                                    "seats the part depends on its size");
-    if (!(pull > 0) || !isfinite(pull)) {
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.in_plane_g",
-                     "must be above 0 and finite");
-        return false;
-    }
     if (set != WR_SET_GOAL) {
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.set",
                      "the fixture rests on supports: gravity.sweep gives the tilts whose pull "
@@ -516,14 +507,6 @@ static bool tilt_on_supports(wp_call *call, wp_fixture_use *use, wr_set set, wp_
     return true;
 }
 
-/* On the event loop only without "in_plane_g" (a floating part's exact
- * arcs, or a refusal): on supports the sweep solves LPs. */
-bool wp_gravity_light(const cJSON *params, int cones)
-{
-    (void)cones;
-    return !cJSON_GetObjectItemCaseSensitive(params, "in_plane_g");
-}
-
 bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
@@ -531,11 +514,21 @@ bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out)
     wr_set set;
     if (!read_set(params, &set, error))
         return false;
+    /* Checked whether used or not (a floating part's arcs do not depend on
+     * the pull's size). */
+    double pull = 0;
+    bool given = false;
+    if (!wp_member_number(params, "params", "in_plane_g", false, &pull, &given, error))
+        return false;
+    if (given && (!(pull > 0) || !isfinite(pull))) {
+        wp_error_set(error, WP_INVALID_PARAMS, "params.in_plane_g", "must be above 0 and finite");
+        return false;
+    }
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return false;
     if (use->fixture->supports)
-        return tilt_on_supports(call, use, set, out);
+        return tilt_on_supports(call, use, set, pull, given, out);
     wr_regions arcs;
     wr_status status = wr_gravity_sweep(use->analysis, set, &arcs);
     if (status == WR_OK && use->fixture->tolerance.given)

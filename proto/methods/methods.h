@@ -23,7 +23,6 @@ bool wp_handle_modes_get(wp_call *call, wp_writer *out);
 extern const wp_streamer wp_push_stream;
 bool wp_handle_gravity_sweep(wp_call *call, wp_writer *out);
 /* Is a gravity.sweep light (no "in_plane_g": no LP)? */
-bool wp_gravity_light(const cJSON *params, int cones);
 bool wp_handle_stability_margin(wp_call *call, wp_writer *out);
 
 /* sweep.c */

@@ -12,10 +12,19 @@ wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
     memset(answer, 0, sizeof *answer);
     answer->has_margin = false;
     answer->blocking = -1;
-    const wr_supports *supports = wr_analysis_fixture(analysis)->supports;
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    const wr_supports *supports = f->supports;
     wr_lp_env *env = host->lp_env ? host->lp_env(host->self) : NULL;
     if (!env)
         return WR_LP_FAILED;
+    /* wrench.classify takes wrenches in the fixture's force unit (a cone
+     * is a cone); against the supports' friction, in the model system
+     * (wr_support.h), they count by their size: converted here, and the
+     * witness's forces back, so that the writer's rule holds (forces in
+     * the fixture's unit, the acceleration theirs times the factor). */
+    const double k = wr_fixture_force_factor(f);
+    const double g[3] = {wrench[0] * k, wrench[1] * k, wrench[2] * k};
+    wrench = g;
     wr_verdict goal_verdict = WR_VERDICT_INSIDE;
     if (set != WR_SET_STRONG) {
         wr_support_goal goal;
@@ -38,9 +47,11 @@ wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
         answer->verdict = strong.verdict;
         answer->blocking_set = WR_SET_STRONG;
         answer->blocking = strong.blocking;
-        memcpy(answer->witness.acceleration, strong.acceleration,
-               sizeof answer->witness.acceleration);
-        memcpy(answer->witness.force, strong.force, sizeof answer->witness.force);
+        for (int j = 0; j < 3; j++)
+            answer->witness.acceleration[j] = strong.acceleration[j] / k;
+        for (int i = 0; i < f->fixel_count; i++)
+            for (int j = 0; j < 2; j++)
+                answer->witness.force[i][j] = strong.force[i][j] / k;
     }
     return WR_OK;
 }

@@ -5,6 +5,7 @@
 #include "methods.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -47,6 +48,9 @@ typedef struct sweep_state {
     /* params.deadline_s: the monotonic second after which the sweep stops
      * where it has got to (0: none; sweep_step). */
     double deadline;
+    /* params.over "supports": the supports' mu_B swept (wrenches, goal;
+     * sweep_supports_step) instead of the fixels' mu */
+    bool over_supports;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -263,6 +267,82 @@ static void sweep_free(void *stream)
     free(stream);
 }
 
+/* params.over: "fixels" (default: a common mu at every fixel) or
+ * "supports" (the supports' mu_B).  On supports only the latter is swept:
+ * the fixels' mu changes the cones, and with them every grown cone. */
+static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
+{
+    const char *over = NULL;
+    if (!wp_member_string(call->params, "params", "over", false, &over, call->error))
+        return false;
+    if (over && strcmp(over, "supports") != 0 && strcmp(over, "fixels") != 0) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
+                     "must be \"fixels\" or \"supports\"");
+        return false;
+    }
+    state->over_supports = over && strcmp(over, "supports") == 0;
+    if (state->over_supports && !f->supports) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
+                     "the fixture has no supports: sweep its fixels' friction (\"fixels\")");
+        return false;
+    }
+    if (!state->over_supports && f->supports) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
+                     "the fixture rests on supports: friction.sweep sweeps their mu_B "
+                     "(\"over\": \"supports\"); for other fixel frictions ask "
+                     "wrench.classify or force.range with one fixture per coefficient");
+        return false;
+    }
+    return true;
+}
+
+/* Over the supports' mu_B: the wrenches' seating (goal), which
+ * wr_supports_friction_limit decides exactly. */
+static bool supports_question(wp_call *call, sweep_state *state)
+{
+    static const char *const NAMES[] = {"wrenches", "push", "gravity", "force"};
+    if (state->what == SWEEP_FORCE) {
+        const cJSON *force = cJSON_GetObjectItemCaseSensitive(call->params, "force");
+        const wr_fixture *f = wp_call_fixture(call)->fixture;
+        const char *why = cJSON_GetObjectItemCaseSensitive(force, "set") &&
+                                  state->request.sets[0] != WR_SET_GOAL
+                              ? "params.force.set"
+                          : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                          : state->finger.radius > 0     ? "params.force.finger_radius"
+                                                         : NULL;
+        if (why) {
+            wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                         "over the supports' mu_B the sweep gives the least push that seats the "
+                         "part (set \"goal\"), along a polygon's straight edges, for a point "
+                         "finger");
+            return false;
+        }
+        state->request.sets[0] = WR_SET_GOAL;
+        return true;
+    }
+    if (state->what != SWEEP_WRENCHES) {
+        char field[WP_FIELD_MAX];
+        snprintf(field, sizeof field, "params.%s", NAMES[state->what]);
+        wp_error_set(call->error, WP_INVALID_PARAMS, field,
+                     "over the supports' mu_B friction.sweep answers \"wrenches\" and "
+                     "\"force\" (set \"goal\"): push regions and tilts on the plate depend "
+                     "on the push's or the pull's size");
+        return false;
+    }
+    wp_classify_request *r = &state->request;
+    if (!cJSON_GetObjectItemCaseSensitive(call->params, "sets")) {
+        r->sets[0] = WR_SET_GOAL;
+        r->set_count = 1;
+    } else if (r->set_count != 1 || r->sets[0] != WR_SET_GOAL) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.sets",
+                     "over the supports' mu_B the sweep gives where each wrench seats the part "
+                     "([\"goal\"]); whether it is held is wrench.classify's \"strong\" at "
+                     "each mu_B");
+        return false;
+    }
+    return true;
+}
+
 /* friction.sweep: one of wrenches, push, gravity, against a common mu.
  * Everything is read and the sweepers made before any answer is written;
  * then each step runs the current job for its budget (wr_sweep.h). */
@@ -273,16 +353,13 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     sweep_state *state = wp_stream_with_fixture(call, sizeof *state, &use);
     if (!state)
         return NULL;
-    if (wp_supports_refuse(call, use->fixture, "params.fixture",
-                           "one fixture per coefficient to wrench.classify or force.range: the "
-                           "sweep's answers are those of a part floating in its plane")) {
+    if (!read_over(call, use->fixture, state) || !read_sweep(call, use->fixture, state) ||
+        (state->over_supports && !supports_question(call, state))) {
         sweep_free(state);
         return NULL;
     }
-    if (!read_sweep(call, use->fixture, state)) {
-        sweep_free(state);
-        return NULL;
-    }
+    if (state->over_supports)
+        return state; /* no sweeper: the supports' friction leaves the cones as they are */
     if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
         /* The curves' exact machinery varies mu on the nominal fixels. */
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
@@ -401,6 +478,21 @@ static bool force_mus(sweep_state *state, const wr_intervals *alone)
     return true;
 }
 
+/* The least push's point at each sample: [x, y], or null (NAN) where no
+ * push does the job. */
+static void write_points(wp_writer *out, const double (*at)[2], int count)
+{
+    wp_write_key(out, "at");
+    wp_write_array(out);
+    for (int i = 0; i < count; i++) {
+        if (isnan(at[i][0]))
+            wp_write_null(out);
+        else
+            wp_write_numbers(out, at[i], 2);
+    }
+    wp_write_array_end(out);
+}
+
 /* friction.sweep "force": {"curve": [[mu, F], ...], "at": [[x, y] | null,
  * ...], "intervals": [[lo, hi], ...], "exact": false, "resolution": step}:
  * the push alone's intervals (a job), then a sample of mu at a time. */
@@ -451,15 +543,7 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
         state->sample++;
     }
     wp_write_array_end(out);
-    wp_write_key(out, "at");
-    wp_write_array(out);
-    for (int i = 0; i < state->sample; i++) {
-        if (isnan(state->at[i][0]))
-            wp_write_null(out);
-        else
-            wp_write_numbers(out, state->at[i], 2);
-    }
-    wp_write_array_end(out);
+    write_points(out, state->at, state->sample);
     /* The push alone's intervals are known over the whole range; a partial
      * answer gives them up to where its samples stopped. */
     wp_write_key(out, "intervals");
@@ -474,10 +558,148 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* A step over the supports: the fixture held since begin and the thread's
+ * GLPK environment; NULL with the error set when there is none. */
+static wr_lp_env *supports_env(wp_call *call, wp_fixture_use **use)
+{
+    *use = wp_call_fixture(call);
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    if (!*use || !env) {
+        wp_error_status(call->error, WR_LP_FAILED, "", "%s", wr_strerror(WR_LP_FAILED));
+        return NULL;
+    }
+    return env;
+}
+
+/* Over the supports' mu_B: {"results": [{"goal": [[low, mu*]] or []}, ...]},
+ * each wrench's interval [low, min(high, mu*)) from
+ * wr_supports_friction_limit (its lower bracket: every mu_B in it seats). */
+#define SUPPORTS_WRENCH_COST 4000
+static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                   unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use;
+    wr_lp_env *env = supports_env(call, &use);
+    if (!env)
+        return WP_STEP_FAILED;
+    if (!state->opened) {
+        state->opened = true;
+        wp_write_object(out);
+        wp_write_key(out, "results");
+        wp_write_array(out);
+    }
+    for (bool first = true; state->next < state->request.wrench_count; first = false) {
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        if (wr_stop_requested(call->host->stop)) {
+            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+            return WP_STEP_FAILED;
+        }
+        /* In the model system, where the supports' friction is (the
+         * wrenches are read in the fixture's force unit). */
+        const double k = wr_fixture_force_factor(use->fixture);
+        const double *given = state->request.wrenches[state->next];
+        const double g[3] = {given[0] * k, given[1] * k, given[2] * k};
+        double bracket[2];
+        wr_status status =
+            wr_supports_friction_limit(use->analysis, use->fixture->supports, env, g, bracket);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params.wrenches", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        *used += SUPPORTS_WRENCH_COST;
+        wp_write_object(out);
+        wp_write_key(out, "goal");
+        wp_write_array(out);
+        double top = fmin(state->range.high, bracket[0]);
+        if (top > state->range.low) {
+            const double pair[2] = {state->range.low, top + 0.0};
+            wp_write_numbers(out, pair, 2);
+        }
+        wp_write_array_end(out);
+        wp_write_object_end(out);
+        state->next++;
+    }
+    wp_write_array_end(out);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
+/* Over the supports' mu_B, "force": {"curve": [[mu, F | null], ...], "at":
+ * [[x, y] | null, ...], "exact": false, "resolution": step}: the least push
+ * on the plate (wr_supports_least_force_find) at SUPPORTS_FORCE_SAMPLES
+ * coefficients evenly over the range, ends included, a sample a step. */
+#define SUPPORTS_FORCE_SAMPLES 17
+static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                         unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use;
+    wr_lp_env *env = supports_env(call, &use);
+    if (!env)
+        return WP_STEP_FAILED;
+    const double step = (state->range.high - state->range.low) / (SUPPORTS_FORCE_SAMPLES - 1);
+    if (!state->at) {
+        state->at = malloc(SUPPORTS_FORCE_SAMPLES * sizeof *state->at);
+        if (!state->at) {
+            wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+            return WP_STEP_FAILED;
+        }
+        wp_write_object(out);
+        wp_write_key(out, "curve");
+        wp_write_array(out);
+    }
+    bool partial = false;
+    for (bool first = true; state->sample < SUPPORTS_FORCE_SAMPLES; first = false) {
+        if (state->sample > 0 && deadline_passed(state)) {
+            partial = true;
+            break;
+        }
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        double mu = state->sample + 1 == SUPPORTS_FORCE_SAMPLES
+                        ? state->range.high
+                        : state->range.low + state->sample * step;
+        wr_supports at_mu;
+        wr_supports_with_friction(use->fixture->supports, mu, &at_mu);
+        wr_least_force least;
+        wr_status status = wr_supports_least_force_find(
+            use->analysis, &at_mu, env, (const double (*)[3])state->loads, state->cases.count,
+            &state->finger, call->host->stop, &least);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        *used += 1000 + least.evaluations * 400 * (unsigned long)state->cases.count;
+        double *point = state->at[state->sample];
+        point[0] = least.found ? least.at[0] + 0.0 : NAN;
+        point[1] = least.found ? least.at[1] + 0.0 : NAN;
+        wp_write_array(out);
+        wp_write_number(out, mu + 0.0);
+        if (least.found)
+            wp_write_number(out, wp_force_out(use->fixture, least.force));
+        else
+            wp_write_null(out);
+        wp_write_array_end(out);
+        state->sample++;
+    }
+    wp_write_array_end(out);
+    write_points(out, state->at, state->sample);
+    wp_write_member_bool(out, "exact", false);
+    wp_write_member_number(out, "resolution", step);
+    if (partial)
+        write_stopped(out, state->range.low + (state->sample - 1) * step);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
+    if (state->over_supports)
+        return state->what == SWEEP_FORCE
+                   ? sweep_supports_force_step(state, call, out, budget, used)
+                   : sweep_supports_step(state, call, out, budget, used);
     if (state->what == SWEEP_FORCE)
         return sweep_force_step(state, call, out, budget, used);
     const wp_classify_request *r = &state->request;

@@ -157,6 +157,11 @@ def test_python_client_least_force_on_the_plate(daemon):
         assert abs(lo - (180 + edge + d)) < 1e-5 and abs(hi - (270 - edge - d)) < 1e-5
         whole = c.tilt_on_supports(f, 20)
         assert whole["intervals_deg"] == [[lo, hi]] and len(whole["undecided_deg"]) <= 2
+        # Over the supports' mu_B: the force of 30 along 225 degrees seats
+        # below 30 / (W sqrt 10) (test_friction_sweep_over_the_supports).
+        swept = c.friction_sweep(f, over="supports", wrenches=[[-30 / R2, -30 / R2, 0]])
+        (a, b), = swept.results[0]["goal"]
+        assert a == 0 and abs(b - 30 / (G * math.sqrt(10))) < 1e-8
 
 
 def test_units_millimetres_and_newtons(client):
@@ -178,6 +183,19 @@ def test_units_millimetres_and_newtons(client):
         expected = mu_b * weight * math.sqrt(10)
         least = r["all"]["goal"]["least"]
         assert abs(least - expected) < 1e-7 * expected, (least, expected)
+        # wrench.classify and the sweep over mu_B read wrenches in N too: a
+        # force 1% above the least seats, 1% below does not, and it seats
+        # for mu_B below 1.01 mu_B.
+        verdicts = []
+        for k in (0.99, 1.01):
+            w = [-k * expected / R2, -k * expected / R2, 0]
+            verdicts.append(client.result("wrench.classify", {
+                "fixture": g, "wrenches": [w], "sets": ["goal"]})["results"][0]["goal"]["verdict"])
+        assert verdicts == ["outside", "inside"], verdicts
+        w = [-expected / R2, -expected / R2, 0]
+        (_, end), = client.result("friction.sweep", {"fixture": g, "over": "supports",
+                                                     "wrenches": [w]})["results"][0]["goal"]
+        assert abs(end - mu_b) < 1e-8, end
 
 
 def test_push_regions_under_a_force_agree_with_force_range(client):
@@ -299,6 +317,14 @@ def test_tilt_of_the_disc_on_buttons(client):
                          ({"set": "goal", "in_plane_g": -1}, "params.in_plane_g")):
         got, _ = error_of(client, "gravity.sweep", dict(extra, fixture=f))
         assert got == field
+    # Floating: a pull is checked, then not used.
+    for bad in (-1, 0, "x", [20]):
+        got, _ = error_of(client, "gravity.sweep", {"fixture": FX.disc_corner(0.5), "set": "goal",
+                                                     "in_plane_g": bad})
+        assert got == "params.in_plane_g", bad
+    same = client.result("gravity.sweep", {"fixture": FX.disc_corner(0.5), "set": "goal",
+                                           "in_plane_g": 20})
+    assert same == floating
 
 
 def test_wrenchctl_supports_option(daemon, client):
@@ -340,3 +366,129 @@ def test_wrenchctl_supports_option(daemon, client):
         bad = subprocess.run([wrenchctl, "gravity", disc, "--supports", "[1]"],
                              capture_output=True, text=True, env=env, timeout=60)
         assert bad.returncode != 0 and "--supports" in bad.stderr, bad.stderr
+
+
+def test_friction_sweep_over_the_supports(client):
+    """friction.sweep "over": "supports": a force of 30 through the disc's
+    centre along 225 degrees seats for mu_B below 30 / (W sqrt 10) (the
+    disc's closed form); wrench.classify agrees at 0.999 and 1.001 times
+    the end for a wrench of the 3-2-1 plate on buttons. Sweeping the
+    fixels' mu on supports, or the supports' on a floating part, is
+    refused at params.over."""
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    w = [-30 / R2, -30 / R2, 0]
+    r = client.result("friction.sweep", {"fixture": f, "over": "supports", "wrenches": [w]})
+    (lo, hi), = r["results"][0]["goal"]
+    assert lo == 0 and abs(hi - 30 / (G * math.sqrt(10))) < 1e-8, r
+    capped = client.result("friction.sweep", {"fixture": f, "over": "supports", "wrenches": [w],
+                                              "range": [0.5, 0.8]})
+    assert capped["results"][0]["goal"] == [[0.5, 0.8]], capped
+    buttons = [[1, 0.5], [3, 0.5], [2, 1.7]]
+    cut = [-4.0, -9.0, 2.0]
+    g = on_buttons(plate(), buttons, 0.2)
+    (_, end), = client.result("friction.sweep", {"fixture": g, "over": "supports",
+                                                 "wrenches": [cut], "sets": ["goal"]})["results"][0]["goal"]
+    verdicts = []
+    for factor in (0.999, 1.001):
+        h = on_buttons(plate(), buttons, end * factor)
+        verdicts.append(client.result("wrench.classify", {"fixture": h, "wrenches": [cut],
+                                                          "sets": ["goal"]})["results"][0]["goal"]["verdict"])
+    assert verdicts == ["inside", "outside"], (end, verdicts)
+    for params, field in (({"fixture": f, "wrenches": [w]}, "params.over"),
+                          ({"fixture": FX.disc_corner(0.5), "over": "supports", "wrenches": [w]},
+                           "params.over"),
+                          ({"fixture": f, "over": "supports", "wrenches": [w], "sets": ["strong"]},
+                           "params.sets"),
+                          ({"fixture": f, "over": "supports", "gravity": {}}, "params.gravity")):
+        got, _ = error_of(client, "friction.sweep", params)
+        assert got == field, (params, got)
+
+
+def test_friction_sweep_of_the_least_push_over_the_supports(client):
+    """friction.sweep "over": "supports" with "force": the least push on the
+    plate at 17 coefficients mu_B; each sample is push.force's least for the
+    fixture with that mu_B, mu_B = 0 is the floating plate's least seating
+    push, and the curve never falls (the grown cones only grow with mu_B)."""
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    buttons = [[1, 0.5], [3, 0.5], [1.5, 1.6]]
+    none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    f = on_buttons(floating, buttons, 0.1)
+    # 17 least-push searches on the plate, each a branch and bound of LPs:
+    # longer than one call's usual timeout on a loaded machine or under ASan.
+    request = client.request("friction.sweep", {"fixture": f, "over": "supports", "force": {},
+                                                "cases": none, "range": [0, 0.16]})
+    client.send(request)
+    answer = client.read_json(timeout=600)
+    assert "result" in answer, answer
+    r = answer["result"]
+    curve = r["curve"]
+    assert len(curve) == 17 and len(r["at"]) == 17 and r["exact"] is False
+    assert abs(r["resolution"] - 0.01) < 1e-15
+    forces = [force for _, force in curve]
+    assert all(b >= a * (1 - 1e-6) for a, b in zip(forces, forces[1:])), forces
+    plain = client.result("push.force", {"fixture": floating, "set": "goal", "cases": none,
+                                         "samples": 1})["least"]["force"]
+    assert abs(forces[0] - plain) <= 1e-6 * plain, (forces[0], plain)
+    for mu, force in (curve[5], curve[16]):
+        at_mu = client.result("push.force", {"fixture": on_buttons(floating, buttons, mu),
+                                             "set": "goal", "cases": none, "samples": 1})
+        assert abs(at_mu["least"]["force"] - force) <= 1e-9 * force, (mu, force, at_mu)
+    got, _ = error_of(client, "friction.sweep", {"fixture": f, "over": "supports", "cases": none,
+                                                 "force": {"set": "both"}})
+    assert got == "params.force.set"
+
+
+C_ON_THE_PLATE = r'''
+#include "wrenchclient.h"
+#include <stdio.h>
+int main(int argc, char **argv)
+{
+    (void)argc;
+    wrc_client *c = wrc_connect(argv[1], 120000, 0, NULL);
+    const wrc_load none[] = {{.kind = WRC_LOAD_FORCE, .force = {0, 0}, .at = {1, 1}}};
+    wrc_least_push least;
+    if (!c || wrc_push_force(c, argv[2], none, 1, "goal", 0, NULL, &least) != WRC_OK)
+        return 1;
+    printf("least %.17g %.17g %.17g %.17g\n", least.force, least.lower_bound, least.at[0],
+           least.at[1]);
+    wrc_force_sweep_request r = {.set = "goal", .range = {0, 0.08}, .over_supports = 1};
+    static double curve[32][2], at[32][2];
+    wrc_force_curve s;
+    if (wrc_force_sweep(c, argv[2], none, 1, &r, curve, at, 32, &s) != WRC_OK)
+        return 2;
+    for (int i = 0; i < s.sample_count; i++)
+        printf("%.17g %.17g\n", curve[i][0], curve[i][1]);
+    wrc_close(c);
+    return 0;
+}
+'''
+
+
+def test_c_client_on_the_plate(client, tmp_path):
+    """libwrenchclient with a stored fixture on supports: wrc_push_force
+    (set goal) and wrc_force_sweep over the supports' mu_B read what the
+    daemon answers, printed to 17 digits and read back the same doubles."""
+    import subprocess
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    source, program = tmp_path / "plate.c", tmp_path / "plate"
+    source.write_text(C_ON_THE_PLATE)
+    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
+                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
+                   check=True)
+    out = subprocess.run([str(program), client.path, fid], capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out
+    lines = out.stdout.split("\n")
+    none = [{"loads": [{"force": [0, 0], "at": [1, 1]}]}]
+    want = client.result("push.force", {"fixture": fid, "set": "goal", "cases": none,
+                                        "samples": 1})["least"]
+    got = [float(x) for x in lines[0].split()[1:]]
+    assert got == [want["force"], want["lower_bound"]] + want["at"], (got, want)
+    sweep = client.result("friction.sweep", {"fixture": fid, "over": "supports", "range": [0, 0.08],
+                                             "force": {"set": "goal"}, "cases": none})
+    rows = [[float(x) for x in line.split()] for line in lines[1:] if line]
+    assert rows == [[mu, force] for mu, force in sweep["curve"]], (rows, sweep["curve"])

@@ -283,3 +283,22 @@ def test_friction_sweep_wrenches_robust_against_sampling(client):
                         v = classify(client, g, [w], [set_name])[0][set_name]["verdict"]
                         assert v == "inside", (w, set_name, mu, g["fixels"])
     assert kept > 0.5, robust
+
+
+def test_push_force_robust_deadline(client):
+    """A deadline met while the robust samples are made: the answer is
+    partial, its samples those made (in order, each robust as in a whole
+    answer), its least the least of them or null."""
+    fixture = with_tolerance(PLATE, 0.05, 0.5)
+    params = {"fixture": fixture, "cases": [{"loads": [{"gravity": {"g": 9.81,
+                                                                    "direction_deg": 270}}]}],
+              "samples": 64, "deadline_s": 0.3}
+    cut = client.result("push.force", params)
+    assert cut.get("partial") is True, cut
+    whole = client.result("push.force", dict(params, samples=4, deadline_s=1e9))
+    assert "partial" not in whole
+    made = [f for seg in cut["segments"] for f in seg["force"]]
+    assert len(made) < 4 * 64
+    finite = [f for f in made if f is not None]
+    if cut["least"] is not None:
+        assert finite and cut["least"]["force"] <= min(finite)

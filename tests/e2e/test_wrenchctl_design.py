@@ -437,3 +437,21 @@ def test_pareto_shards_merged_equal_one_run(tmp_path):
         [d["candidate"] for d in whole["designs"]]
     table = run("--local", *args).stdout
     assert table.count("pareto: margin") == len(whole["designs"]), table
+
+
+def test_fixel_tolerance_sent(daemon, client):
+    """design --fixel-tolerance T,A sends params.fixel_tolerance: the same
+    designs, robust both lengths and best pushes, as asked by hand."""
+    r = run("--json", "design", BRACKET, "--spacing", "12", "--top", "2", "--fixel-tolerance",
+            "0.05,0.2", socket_path=daemon.path)
+    assert r.returncode in (0, 1), r.stderr
+    with open(BRACKET) as f:
+        bracket = json.load(f)
+    want = client.result("fixture.design", {
+        "body": bracket["body"], "friction": bracket["friction"]["static"], "spacing": 12,
+        "top": 2, "fixel_tolerance": {"position": 0.05, "angle": 0.2}})
+    got = json.loads(r.stdout)
+    assert [d["best_push"] for d in got["designs"]] == \
+        [d["best_push"] for d in want["designs"]]
+    assert [d["both_length"] for d in got["designs"]] == \
+        [d["both_length"] for d in want["designs"]]

@@ -579,6 +579,36 @@ static const char FORCE_SWEEP[] =
     "[1,null]],\"at\":[null,[4,1.5],[4,0.75],null],\"intervals\":[[0.125,0.625]],"
     "\"exact\":false,\"resolution\":0.0078125},\"id\":%ID%}";
 
+static const char FORCE_SWEEP_SUPPORTS[] =
+    "{\"jsonrpc\":\"2.0\",\"result\":{\"curve\":[[0,3.5],[0.1,null]],\"at\":[[1,2],null],"
+    "\"exact\":false,\"resolution\":0.1},\"id\":%ID%}";
+
+/* friction.sweep's force over the supports' mu_B: "over" sent, an answer
+ * without intervals read (interval_count 0); without over_supports the
+ * same answer is a protocol error. */
+static void force_sweep_over_the_supports(void **state)
+{
+    (void)state;
+    const char *const answers[] = {FORCE_SWEEP_SUPPORTS, FORCE_SWEEP_SUPPORTS, NULL};
+    fake f;
+    start(&f, answers);
+    wrc_client *c = wrc_connect(f.path, 2000, 0, NULL);
+    assert_non_null(c);
+    const wrc_load loads[] = {{.kind = WRC_LOAD_FORCE, .force = {0, 0}, .at = {1, 1}}};
+    wrc_force_sweep_request r = {.set = "goal", .range = {0, 0.1}, .over_supports = 1};
+    double curve[2][2], at[2][2];
+    wrc_force_curve sweep;
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, at, 2, &sweep), WRC_OK);
+    assert_int_equal(sweep.sample_count, 2);
+    assert_int_equal(sweep.interval_count, 0);
+    assert_true(curve[0][1] == 3.5 && at[0][1] == 2 && isnan(curve[1][1]) && isnan(at[1][0]));
+    assert_non_null(strstr(f.last_request, "\"over\":\"supports\",\"force\":{\"set\":\"goal\"}"));
+    r.over_supports = 0;
+    assert_int_equal(wrc_force_sweep(c, ID, loads, 1, &r, curve, at, 2, &sweep), WRC_EPROTO);
+    wrc_close(c);
+    stop(&f);
+}
+
 /* friction.sweep's force: the request as the protocol spells it (defaults
  * left out, the case's loads), each sample's mu and force with null as
  * NAN, the points, the intervals, beyond the capacity only counted, and
@@ -649,6 +679,7 @@ int main(void)
         cmocka_unit_test(locating_reads_the_answer_without_allocating),
         cmocka_unit_test(push_force_reads_the_least_push),
         cmocka_unit_test(force_sweep_reads_the_curve),
+        cmocka_unit_test(force_sweep_over_the_supports),
         cmocka_unit_test(force_range_reads_all_without_allocating),
     };
     return cmocka_run_group_tests_name("client", tests, NULL, NULL);

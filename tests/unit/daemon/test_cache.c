@@ -524,10 +524,13 @@ static void inline_found_by_its_text(void **state)
     free(further);
     wd_cache_free(cache);
 
-    /* A stored fixture asked inline keeps the text too. */
+    /* A stored fixture asked inline keeps the text too, charged to its
+     * derived data: the bytes grow by the text's length. */
     cache = wd_cache_new(NULL, SIZE_MAX, 100, why, sizeof why);
     assert_non_null(cache);
     put(cache, 0);
+    size_t before = stats_of(cache).derived_bytes;
+    assert_true(before > 0);
     json = cJSON_Parse(kept);
     assert_true(wp_fixture_read(json, "", &doc, &error));
     cJSON_Delete(json);
@@ -535,9 +538,30 @@ static void inline_found_by_its_text(void **state)
     doc.text_length = kept_length;
     assert_true(cache_adopt(cache, &doc, false, &use, &error));
     wd_cache_release(cache, &use);
+    assert_int_equal(stats_of(cache).derived_bytes, before + kept_length);
     assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), kept_length);
     assert_int_equal(listed(cache), 1);
     wd_cache_release(cache, &again);
+    wd_cache_free(cache);
+
+    /* A bound that holds the stored fixture's derived data but not the text
+     * too: the text's charge puts it over, the derived data (and the text
+     * with it) go once let go, and the stored fixture stays. */
+    cache = wd_cache_new(NULL, before + kept_length / 2, 100, why, sizeof why);
+    assert_non_null(cache);
+    put(cache, 0);
+    assert_int_equal(stats_of(cache).derived_bytes, before);
+    json = cJSON_Parse(kept);
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    doc.text = kept;
+    doc.text_length = kept_length;
+    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    assert_int_equal(stats_of(cache).derived_bytes, before + kept_length); /* held: stays */
+    wd_cache_release(cache, &use);
+    assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), 0);
+    assert_int_equal(stats_of(cache).derived_bytes, 0);
+    assert_int_equal(listed(cache), 1);
     wd_cache_free(cache);
 
     /* Short texts are not kept; a kept one goes with its entry. */

@@ -587,6 +587,62 @@ static void test_tilt_disc(void **state)
     wr_lp_env_free(env);
 }
 
+/* Seating against mu_B, the disc again: a force F through the centre along
+ * 225 degrees seats iff F sin(delta) > mu_B W, delta = 18.435 degrees
+ * (sin = 1 / sqrt 10), so it seats for mu_B below F / (W sqrt 10): 0.96705
+ * for F = 30, W = 9.81.  And for random wrenches of the 3-2-1 plate on
+ * buttons, wr_supports_goal at 0.999 and 1.001 times the limit (the
+ * fixture placed again with that mu_B) says inside and outside. */
+static void test_friction_limit(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    wr_fixture *f = test_disc_corner(0.5);
+    wr_analysis *a = test_analysis_new(f);
+    wr_error error;
+    wr_supports *s = supports_new(f, tri, 3, 0.3, G, NULL, 0, &error);
+    double g[3] = {-30 / sqrt(2), -30 / sqrt(2), 0}, bracket[2];
+    assert_int_equal(wr_supports_friction_limit(a, s, env, g, bracket), WR_OK);
+    double expected = 30 / (G * sqrt(10));
+    printf("mu_B limit, disc: [%.12g, %.12g], closed form %.12g\n", bracket[0], bracket[1],
+           expected);
+    assert_true(fabs(bracket[0] - expected) < 1e-8 && fabs(bracket[1] - expected) < 1e-8);
+    wr_supports_free(s);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+
+    f = test_plate_321();
+    a = test_analysis_new(f);
+    const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
+    test_rng rng = {20261130};
+    int checked = 0;
+    for (int tries = 0; tries < 400 && checked < 6; tries++) {
+        double w[3];
+        test_sphere(&rng, w);
+        for (int k = 0; k < 3; k++)
+            w[k] *= 20;
+        s = supports_new(f, buttons, 3, 0.2, G, NULL, 0, &error);
+        assert_int_equal(wr_supports_friction_limit(a, s, env, w, bracket), WR_OK);
+        wr_supports_free(s);
+        if (!(bracket[0] > 0.01 && bracket[1] < 5))
+            continue;
+        for (int side = -1; side <= 1; side += 2) {
+            s = supports_new(f, buttons, 3, bracket[side > 0] * (1 + side * 1e-3), G, NULL, 0,
+                             &error);
+            wr_support_goal goal;
+            assert_int_equal(wr_supports_goal(a, s, env, w, WR_DEFAULT_TOLERANCE, &goal), WR_OK);
+            assert_int_equal(goal.verdict, side < 0 ? WR_VERDICT_INSIDE : WR_VERDICT_OUTSIDE);
+            wr_supports_free(s);
+        }
+        checked++;
+    }
+    printf("mu_B limit, 3-2-1 plate: %d wrenches seat below their limit, not above\n", checked);
+    assert_true(checked >= 4);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    wr_lp_env_free(env);
+}
+
 /* ---- holding --------------------------------------------------------------- */
 
 /* At zero load nothing moves the part: for every fixture and buttons of
@@ -846,6 +902,7 @@ int main(void)
         cmocka_unit_test(test_polygon_bracket),
         cmocka_unit_test(test_outline_least_sampled),
         cmocka_unit_test(test_tilt_disc),
+        cmocka_unit_test(test_friction_limit),
         cmocka_unit_test(test_zero_load_held),
         cmocka_unit_test(test_plate_clamp),
         cmocka_unit_test(test_holding_sampled),

@@ -739,6 +739,62 @@ static void light_lines_answer_as_any_other(void **state)
     }
 }
 
+/* A stored fixture on supports, or with a tolerance, is never light work,
+ * whatever the method asks (LPs disc by disc; boxes of the perturbation
+ * set): each such line is left to a worker, and answers as any other. */
+static void robust_and_plate_fixtures_are_not_light(void **state)
+{
+    harness *h = *state;
+    const wp_host *host = wd_thread_host_wp(h->thread);
+    static const char *const fixtures[] = {
+        "{\"body\":{\"mass\":2,\"shape\":{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],"
+        "[4,2],[0,2]]}},\"friction\":{\"static\":0.3},\"fixels\":[{\"at\":[1,0]},{\"at\":[3,0]},"
+        "{\"at\":[0,1]}],\"supports\":{\"points\":[[1,0.5],[3,0.5],[2,1.7]],"
+        "\"friction\":0.15,\"g\":9.81}}",
+        "{\"body\":{\"mass\":2,\"shape\":{\"type\":\"polygon\",\"vertices\":[[0,0],[4,0],"
+        "[4,2],[0,2]]}},\"friction\":{\"static\":0.3},\"fixels\":[{\"at\":[1,0]},{\"at\":[3,0]},"
+        "{\"at\":[0,1]}],\"tolerance\":{\"position\":0.01}}",
+    };
+    static const char *const asks[] = {
+        "{\"jsonrpc\":\"2.0\",\"method\":\"wrench.classify\",\"params\":{\"fixture\":\"%s\","
+        "\"wrenches\":[[0,1,0]]},\"id\":2}",
+        "{\"jsonrpc\":\"2.0\",\"method\":\"gravity.sweep\",\"params\":{\"fixture\":\"%s\"},"
+        "\"id\":3}",
+        "{\"jsonrpc\":\"2.0\",\"method\":\"modes.get\",\"params\":{\"fixture\":\"%s\"},"
+        "\"id\":4}",
+    };
+    for (size_t f = 0; f < sizeof fixtures / sizeof *fixtures; f++) {
+        char line[2048];
+        snprintf(line, sizeof line,
+                 "{\"jsonrpc\":\"2.0\",\"method\":\"fixture.put\",\"params\":{\"fixture\":%s},"
+                 "\"id\":1}",
+                 fixtures[f]);
+        cJSON *put = ask(h, line);
+        const cJSON *result = cJSON_GetObjectItem(put, "result");
+        assert_non_null(result);
+        char id[WP_ID_LENGTH + 1];
+        snprintf(id, sizeof id, "%s", cJSON_GetObjectItem(result, "id")->valuestring);
+        cJSON_Delete(put);
+        for (size_t a = 0; a < sizeof asks / sizeof *asks; a++) {
+            snprintf(line, sizeof line, asks[a], id);
+            /* Once to derive its cones (a ready fixture is what the loop asks
+             * about), then the line the loop would be given. */
+            cJSON_Delete(ask(h, line));
+            wp_answer *answer = wp_answer_begin(&h->limits, host, line, strlen(line));
+            assert_non_null(answer);
+            if (wp_answer_light(answer, host))
+                fail_msg("fixture %zu: light: %s", f, line);
+            wp_counts counts = {0, 0}, again = {0, 0};
+            char *worked = wp_answer_whole(answer, host, &counts);
+            char *full = wp_answer_line(host, &h->limits, line, strlen(line), &again);
+            assert_non_null(worked);
+            assert_string_equal(worked, full);
+            free(worked);
+            free(full);
+        }
+    }
+}
+
 /* ---- answers in pieces ---------------------------------------------------- */
 
 /* The answer to `line` made a piece at a time, as the daemon makes it, the
@@ -1280,6 +1336,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(numbers_outside_the_rfc_are_parse_errors, setup, teardown),
         cmocka_unit_test_setup_teardown(put_get_classify_delete, setup, teardown),
         cmocka_unit_test_setup_teardown(light_lines_answer_as_any_other, setup, teardown),
+        cmocka_unit_test_setup_teardown(robust_and_plate_fixtures_are_not_light, setup, teardown),
         cmocka_unit_test_setup_teardown(pieces_join_to_the_whole_answer, setup, teardown),
         cmocka_unit_test_setup_teardown(a_stop_ends_long_work, setup, teardown),
         cmocka_unit_test(a_shared_step_never_ends_the_answer),
