@@ -284,6 +284,12 @@ def main():
             "fixture": f, "bias": [0, -9.81, 0]}))
         emit("request", name + "-gravity-tilt", request("gravity.sweep", {
             "fixture": f, "set": "goal", "in_plane_g": 2}))
+        emit("request", name + "-sweep-over-supports", request("friction.sweep", {
+            "fixture": f, "over": "supports", "range": [0, 1],
+            "wrenches": [[0, -9.81, 0], [3, 0, 0]]}))
+        emit("request", name + "-sweep-force-over-supports", request("friction.sweep", {
+            "fixture": f, "over": "supports", "range": [0.1, 0.5], "force": {"set": "goal"},
+            "cases": [{"loads": [{"wrench": [0, -1, 0]}]}], "deadline_s": 0.05}))
     for name, f in list(examples.items()) + [("builder-" + n, f) for n, f in builders.items()
                                              if n in ("offset-disc", "triangle", "disc-one",
                                                       "square-form-closure", "disc-8")]:
