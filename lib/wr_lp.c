@@ -3,9 +3,10 @@
  * Variables, in the scaled space of wr_cone.c: the motion y (columns 1..3,
  * free; those past the motion's dimension d fixed at 0), then (c_in, c_it)
  * per fixel, then the slack t in [0, 1].  The acceleration is
- * q' = m (a_x, a_y, rho alpha) = B y, B an orthonormal basis of the null
- * space of the constraint's equality rows (a_n = 0, a_t = 0; motion_basis),
- * so those rows hold exactly and are not rows of the LP.  Rows: the three
+ * q' = m (a_x, a_y, rho alpha) = B y, B an orthonormal basis of the span
+ * of the constraint's motion cone as the cones compute it (motion_basis),
+ * inside the null space of its equality rows (a_n = 0, a_t = 0), so those
+ * rows hold exactly and are not rows of the LP.  Rows: the three
  * wrench rows B y - sum(Wn_i c_in + Wt_i c_it) = h (h the unit scaled
  * wrench; only their bounds change between wrenches), then each letter's
  * inequality rows.  Maximise t: strict rows hold with margin t, so the
@@ -147,25 +148,23 @@ static void put(triplets *t, int row, int column, double value)
     t->value[t->count] = value;
 }
 
-/* The motion space of a constraint: an orthonormal basis of the null space
- * of its equality rows (a_n = 0 for l, r, n, m; a_t = 0 for n), as the
- * cones decide its rank.  Returns its dimension, 0..3. */
+/* The motion space of a constraint: an orthonormal basis of the span of
+ * the cones' own motion generators (wr_cone_acceleration: the closure of
+ * {a_n = 0, a_t = 0 as the letters say, the inequalities}), so that the LP
+ * and the cones decide its rank alike -- four a_n = 0 rows whose lines all
+ * but meet (within 4.6e-9) are rank 2 or 3 by which code asks
+ * (tests/fuzz/README.md, finding 15).  An impossible motion (-1) or the
+ * origin alone: dimension 0.  Returns the dimension, 0..3. */
 static int motion_basis(const wr_fixture *f, const wr_constraint *c, double basis[3][3])
 {
-    double rows[2 * WR_MAX_FIXELS][3];
-    int count = 0;
-    for (int i = 0; i < f->fixel_count; i++) {
-        const wr_fixel *fixel = &f->fixels[i];
-        if (strchr("lrnm", c->letters[i])) {
-            wr_copy3(fixel->normal_wrench, rows[count]);
-            wr_normalize3(rows[count++]);
-        }
-        if (c->letters[i] == 'n') {
-            wr_copy3(fixel->tangent_wrench, rows[count]);
-            wr_normalize3(rows[count++]);
-        }
-    }
-    return wr_hull_null_space((const double (*)[3])rows, count, basis);
+    double generators[WR_HULL_MAX][3];
+    int count = wr_cone_acceleration(f, c, generators);
+    if (count <= 0)
+        return 0;
+    /* The span of the generators: the null space of their null space. */
+    double normal[3][3];
+    int n = wr_hull_null_space((const double (*)[3])generators, count, normal);
+    return wr_hull_null_space((const double (*)[3])normal, n, basis);
 }
 
 /* A constraint's motion space: q' = sum_j basis[j] y_j. */
