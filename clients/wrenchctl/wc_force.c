@@ -305,6 +305,8 @@ int wc_push_force_request(wc_run *run, cJSON *params)
         cJSON_AddStringToObject(params, "set", run->set);
     if (run->radius_given)
         cJSON_AddNumberToObject(params, "finger_radius", run->finger_radius);
+    if (run->samples)
+        cJSON_AddNumberToObject(params, "samples", run->samples);
     return wc_push_on(run,
                       cJSON_IsString(run->fixture) ? run->fixture
                                                    : cJSON_GetObjectItem(run->fixture, "body"),

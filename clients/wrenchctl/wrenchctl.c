@@ -462,9 +462,20 @@ static int take_in_plane_g(wc_run *run, const char *value)
     return 0;
 }
 
+static int take_samples(wc_run *run, const char *value)
+{
+    char *end;
+    long n = strtol(value, &end, 10);
+    if (end == value || *end || n < 1 || n > 4096)
+        return wc_usage_error("--samples '%s': a whole number from 1 to 4096", value);
+    run->samples = (int)n;
+    return 0;
+}
+
 static const command_option COMMAND_OPTIONS[] = {
     {"supports", WC_FIXTURE, take_supports},
     {"in-plane-g", WC_OPT_TILT, take_in_plane_g},
+    {"samples", WC_OPT_SAMPLES, take_samples},
     {"sets", WC_OPT_SETS, take_sets},
     {"method", WC_OPT_METHOD, take_method},
     {"tolerance", WC_OPT_TOLERANCE, take_tolerance},
@@ -764,10 +775,10 @@ const wc_command wc_commands[] = {
      "seat it against the supports' friction; its least is the least push force on the plate.\n"
      "Exit status 0 when one magnitude does 'both' under every case, 1 when none does."},
     {"push-force",
-     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
-     "       [--tolerance T[,A]]",
+     "FIXTURE --case SPEC... [--set SET] [--finger-radius R] [--push-on LOOPS] [--samples N]\n"
+     "       [--svg FILE] [--tolerance T[,A]]",
      WC_FIXTURE | WC_OPT_CASE | WC_OPT_SET | WC_OPT_RADIUS | WC_OPT_SVG | WC_OPT_PUSH_ON |
-         WC_OPT_GEOMETRIC,
+         WC_OPT_GEOMETRIC | WC_OPT_SAMPLES,
      1, 1,
      "push.force", wc_push_force_request, wc_push_force_answer,
      "the least push force along the outline, and where it is least",
@@ -778,6 +789,8 @@ const wc_command wc_commands[] = {
      "  --set SET           goal, strong or both (default)\n"
      "  --finger-radius R   only where a round finger of radius R fits\n"
      PUSH_ON_HELP("  ")
+     "  --samples N         exact samples a segment (1 to 4096, default 64); without\n"
+     "                      --tolerance the least is found by branch and bound whatever N is\n"
      "  --svg FILE          draw F* as a coloured band along the outline, with the least push\n"
      "On supports (--supports, or the fixture's member) with --set goal: the least push that\n"
      "seats the part against the supports' friction, on a polygon, for a point finger.\n"

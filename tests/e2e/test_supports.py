@@ -339,8 +339,10 @@ def test_wrenchctl_supports_option(daemon, client):
         floating = json.load(fh)
     supports = {"points": [[1, 0.5], [3, 0.5], [1.5, 1.6]], "friction": 0.1, "g": G}
     none = [{"loads": [{"wrench": [0, 0, 0]}]}]
+    # Four samples a segment (--samples): the least is the branch and
+    # bound's whatever their number, and the samples are the daemon's.
     expected = client.result("push.force", {"fixture": dict(floating, supports=supports),
-                                            "set": "goal", "cases": none})
+                                            "set": "goal", "cases": none, "samples": 4})
     with tempfile.TemporaryDirectory() as d:
         part = os.path.join(d, "part.json")
         rest = os.path.join(d, "rest.json")
@@ -350,11 +352,14 @@ def test_wrenchctl_supports_option(daemon, client):
             json.dump(supports, fh)
         for given in (json.dumps(supports), rest):
             out = subprocess.run([wrenchctl, "--json", "push-force", part, "--set", "goal",
-                                  "--case", "wrench=0,0,0", "--supports", given],
-                                 capture_output=True, text=True, env=env, timeout=120)
+                                  "--case", "wrench=0,0,0", "--supports", given, "--samples", "4"],
+                                 capture_output=True, text=True, env=env, timeout=300)
             assert out.returncode == 0, out.stderr
-            got = json.loads(out.stdout)["least"]
+            answer = json.loads(out.stdout)
+            got = answer["least"]
             assert abs(got["force"] - expected["least"]["force"]) <= 1e-12 * got["force"]
+            assert answer["segments"] == expected["segments"]
+            assert all(len(s["t"]) == 4 for s in answer["segments"]), answer["segments"]
         disc = os.path.join(d, "disc.json")
         with open(disc, "w") as fh:
             json.dump(FX.disc_corner(0.5), fh)
@@ -488,7 +493,10 @@ def test_c_client_on_the_plate(client, tmp_path):
                                         "samples": 1})["least"]
     got = [float(x) for x in lines[0].split()[1:]]
     assert got == [want["force"], want["lower_bound"]] + want["at"], (got, want)
-    sweep = client.result("friction.sweep", {"fixture": fid, "over": "supports", "range": [0, 0.08],
-                                             "force": {"set": "goal"}, "cases": none})
+    # 17 least-push searches: a longer wait than one call's usual.
+    client.send(client.request("friction.sweep", {"fixture": fid, "over": "supports",
+                                                  "range": [0, 0.08], "force": {"set": "goal"},
+                                                  "cases": none}))
+    sweep = client.read_json(timeout=600)["result"]
     rows = [[float(x) for x in line.split()] for line in lines[1:] if line]
     assert rows == [[mu, force] for mu, force in sweep["curve"]], (rows, sweep["curve"])
