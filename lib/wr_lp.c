@@ -15,8 +15,8 @@
  * Why y and not q': GLPK meets a row within an absolute tolerance (1e-7).
  * A row u . q' (u unit) may be tiny on every motion the equalities leave:
  * on a part whose fixels are close together far from its centre of mass
- * it is spread / rho of |q'| (1e-4 and less).  Over q', GLPK then took a
- * motion 1e-4 long going the wrong way as feasible, and called a wrench a
+ * it is spread / rho of |q'| (1e-4 and less).  Over q', GLPK would take a
+ * motion 1e-4 long going the wrong way as feasible, and call a wrench a
  * member 1e-4 outside the cone (tests/fuzz/README.md, finding 12).  Over
  * y each inequality row is scaled to unit length on the motion space itself
  * (add_row), so its tolerance is relative to the motion, as the explicit

@@ -237,9 +237,9 @@ static void every_cone_agrees_with_lp_membership(void **state)
  * a million across, held by three fixels spread over 107.7 at one end,
  * 1.2e-3 of the radius of gyration.  Every motion that slides at two fixels
  * turns about a point among them, so its inequality rows are 1e-4 of the
- * motion: the LP, when it posed them over q', took a motion going the wrong
- * way (within GLPK's absolute tolerance) and called g = (-1, -1, 0) a member
- * of G_sll, which the cones put 1.4e-4 outside (tests/fuzz/README.md,
+ * motion: an LP posing them over q' takes a motion going the wrong way
+ * (within GLPK's absolute tolerance) and calls g = (-1, -1, 0) a member of
+ * G_sll, which the cones put 1.4e-4 outside (tests/fuzz/README.md,
  * finding 12).  The smaller bulges are the same part less extreme. */
 static void lp_agrees_on_fixels_bunched_far_from_the_centre(void **state)
 {
