@@ -6,21 +6,21 @@
 #include <string.h>
 
 /* Warm LP sets of one fixture's derived data, in one thread. */
-typedef struct lp_slot {
+typedef struct lp_entry {
     uint64_t serial;       /* wd_cache_serial of the analysis they were built on */
     uint64_t last_used;
     wr_lp_set *goal, *strong;
-} lp_slot;
+} lp_entry;
 
 /* A thread keeps warm LPs for this many fixtures, least recently used out. */
-#define LP_SLOTS 16
+#define LP_ENTRIES 16
 
 struct wd_thread_host {
     wp_host host;
     wd_cache *cache;
     wd_stats *stats;
     wr_lp_env *solver;
-    lp_slot slots[LP_SLOTS];
+    lp_entry entries[LP_ENTRIES];
     uint64_t clock;
     wr_stop stop;         /* the task in hand's: host.stop points here */
 };
@@ -94,11 +94,11 @@ static bool host_state(void *self, wp_server_state *state, wp_host_failure *fail
     return true;
 }
 
-static void slot_clear(lp_slot *slot)
+static void entry_clear(lp_entry *entry)
 {
-    wr_lp_set_free(slot->goal);
-    wr_lp_set_free(slot->strong);
-    memset(slot, 0, sizeof *slot);
+    wr_lp_set_free(entry->goal);
+    wr_lp_set_free(entry->strong);
+    memset(entry, 0, sizeof *entry);
 }
 
 static wr_status host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal,
@@ -106,28 +106,28 @@ static wr_status host_lp_sets(void *self, wp_fixture_use *use, wr_lp_set **goal,
 {
     wd_thread_host *thread = self;
     uint64_t serial = wd_cache_serial(use);
-    lp_slot *slot = &thread->slots[0];
-    for (int i = 0; i < LP_SLOTS; i++) {
-        if (thread->slots[i].serial == serial && thread->slots[i].goal) {
-            slot = &thread->slots[i];
+    lp_entry *entry = &thread->entries[0];
+    for (int i = 0; i < LP_ENTRIES; i++) {
+        if (thread->entries[i].serial == serial && thread->entries[i].goal) {
+            entry = &thread->entries[i];
             break;
         }
-        if (thread->slots[i].last_used < slot->last_used)
-            slot = &thread->slots[i];
+        if (thread->entries[i].last_used < entry->last_used)
+            entry = &thread->entries[i];
     }
-    if (slot->serial != serial || !slot->goal) {
-        /* A slot of stale derived data only ever gets freed: its sets are
+    if (entry->serial != serial || !entry->goal) {
+        /* An entry of stale derived data only ever gets freed: its sets are
          * never used again. */
-        slot_clear(slot);
+        entry_clear(entry);
         wr_status status =
-            wr_analysis_lp_sets(use->analysis, thread->solver, &slot->goal, &slot->strong);
+            wr_analysis_lp_sets(use->analysis, thread->solver, &entry->goal, &entry->strong);
         if (status != WR_OK)
             return status;
-        slot->serial = serial;
+        entry->serial = serial;
     }
-    slot->last_used = ++thread->clock;
-    *goal = slot->goal;
-    *strong = slot->strong;
+    entry->last_used = ++thread->clock;
+    *goal = entry->goal;
+    *strong = entry->strong;
     return WR_OK;
 }
 
@@ -180,8 +180,8 @@ void wd_thread_host_free(wd_thread_host *thread)
 {
     if (!thread)
         return;
-    for (int i = 0; i < LP_SLOTS; i++)
-        slot_clear(&thread->slots[i]);
+    for (int i = 0; i < LP_ENTRIES; i++)
+        entry_clear(&thread->entries[i]);
     wr_lp_env_free(thread->solver);
     free(thread);
 }

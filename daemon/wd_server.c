@@ -5,8 +5,8 @@
  * workers call; it only appends to the `done` list under its lock and wakes
  * the loop.  Connections are owned by the loop thread.
  *
- * Order: each line read becomes a slot at the tail of its connection's
- * queue.  A connection has at most one request with the workers at a time,
+ * Order: each line read becomes a queued line at the tail of its
+ * connection's queue.  A connection has at most one request with the workers at a time,
  * taken in queue order, so its requests run as if sent one by one (a put
  * followed by a query of its id works when pipelined); answers are written
  * from the head, in the order asked.  Connections run in parallel.
@@ -80,8 +80,8 @@
 typedef struct wd_server wd_server;
 typedef struct connection connection;
 
-typedef struct slot {
-    struct slot *next;
+typedef struct queued_line {
+    struct queued_line *next;
     connection *connection;
     char *line;           /* the request, until handed to a worker */
     size_t length;
@@ -91,19 +91,19 @@ typedef struct slot {
                              pieces the workers made and were sent) */
     size_t response_length; /* 0: not counted yet */
     wd_task *task;        /* the request with the workers, or parked */
-} slot;
+} queued_line;
 
 struct connection {
     connection *prev, *next;   /* the server's list */
     wd_server *server;
     struct bufferevent *bev;   /* NULL once the socket is closed */
-    slot *head, *tail;
-    size_t pending;            /* slots not yet written (or dropped) */
-    slot *running;             /* the slot being answered by the workers (its
-                                  task with them, or parked), or NULL */
+    queued_line *head, *tail;
+    size_t pending;            /* queued lines not yet written (or dropped) */
+    queued_line *running;      /* the queued line being answered by the workers
+                                  (its task with them, or parked), or NULL */
     bool parked;               /* running's task waits for the client to read */
     size_t held;               /* bytes running's answer holds between pieces */
-    size_t queued_bytes;       /* bytes of request lines waiting in slots */
+    size_t queued_bytes;       /* bytes of request lines waiting in queued lines */
     struct event *request_timer; /* a request begun must arrive whole in time */
     bool discarding;           /* skipping the rest of an over-long line */
     int light_answered;        /* light requests answered in the loop since
@@ -168,7 +168,7 @@ static void free_connection(connection *c)
     s->connection_count--;
     if (c->refusing)
         s->refusing--;
-    for (slot *x = c->head, *next; x; x = next) {
+    for (queued_line *x = c->head, *next; x; x = next) {
         next = x->next;
         assert(!x->task || c->parked || s->stopping); /* none with the workers */
         wd_task_free(x->task, s->loop_host);
@@ -188,7 +188,7 @@ static void free_connection(connection *c)
  * ask the workers to stop the one they have. */
 static void cancel_work(connection *c)
 {
-    for (slot *x = c->head; x; x = x->next) {
+    for (queued_line *x = c->head; x; x = x->next) {
         if (x->done)
             continue;
         if (x->task) {
@@ -317,10 +317,10 @@ static void close_socket(connection *c)
 
 /* Free the connection once nothing more will be read or written: its input
  * ended (or the socket is gone) and every answer has been written out. */
-/* Take the answered slot at the head of the queue off it. */
+/* Take the answered queued line at the head of the queue off it. */
 static void remove_head(connection *c)
 {
-    slot *x = c->head;
+    queued_line *x = c->head;
     assert(x && x->done && !x->task);
     c->head = x->next;
     if (!c->head)
@@ -353,13 +353,13 @@ static void free_response(const void *data, size_t length, void *block)
     free(block);
 }
 
-/* Write a slot's answer.  With nothing queued before it, straight to the
- * socket: a small answer then costs one send(2), not the two epoll_ctl and
+/* Write a queued line's answer.  With nothing queued before it, straight
+ * to the socket: a small answer then costs one send(2), not the two epoll_ctl and
  * the extra epoll_wait of a deferred write.  What the socket does not take
  * is queued; a large remainder is handed over, not copied (the output
  * buffer frees the block once it is written).  Returns whether the answer
  * went out whole, directly. */
-static bool write_response(connection *c, slot *x)
+static bool write_response(connection *c, queued_line *x)
 {
     size_t length = x->response_length ? x->response_length : strlen(x->response);
     struct evbuffer *output = bufferevent_get_output(c->bev);
@@ -437,9 +437,9 @@ static bool output_room(connection *c)
     return unsent == 0 || unsent + c->held < limit;
 }
 
-static slot *add_slot(connection *c)
+static queued_line *add_queued_line(connection *c)
 {
-    slot *x = calloc(1, sizeof *x);
+    queued_line *x = calloc(1, sizeof *x);
     if (!x)
         return NULL;
     x->connection = c;
@@ -455,7 +455,7 @@ static slot *add_slot(connection *c)
 /* An error answer known without a worker, in its place. */
 static void queue_error(connection *c, int code, const char *reason)
 {
-    slot *x = add_slot(c);
+    queued_line *x = add_queued_line(c);
     if (!x)
         return;
     x->response = wp_error_line(code, "", reason);
@@ -478,7 +478,7 @@ static void answer_now(connection *c, int code, const char *reason)
  * writes answers in queue order, so order is kept.  The light check holds
  * the fixture it looked up, so no worker can evict its derived data before
  * it is used. */
-static bool answer_light(connection *c, slot *x, wp_answer **parsed)
+static bool answer_light(connection *c, queued_line *x, wp_answer **parsed)
 {
     wd_server *s = c->server;
     *parsed = NULL;
@@ -509,7 +509,7 @@ static bool answer_light(connection *c, slot *x, wp_answer **parsed)
  * has been sent; light ones are answered on the way. */
 static void dispatch(connection *c)
 {
-    slot *x;
+    queued_line *x;
     wp_answer *parsed = NULL;
     for (;;) {
         if (c->running || !output_room(c))
@@ -556,7 +556,7 @@ static bool too_much_waiting(const connection *c)
 
 static void submit(connection *c, char *line, size_t length)
 {
-    slot *x = add_slot(c);
+    queued_line *x = add_queued_line(c);
     if (!x) {
         free(line);
         return;
@@ -597,7 +597,7 @@ static bool move_to_partial(connection *c, struct evbuffer *input, size_t length
 }
 
 /* A request begun must arrive whole within --request-timeout of its first
- * byte: a client dripping a byte at a time holds no slot for ever. */
+ * byte: a client dripping a byte at a time holds no queued line for ever. */
 static void watch_partial_request(connection *c, bool line_taken)
 {
     if (!c->bev || !c->request_timer)
@@ -1035,14 +1035,14 @@ static void task_done(void *argument, wd_task *task)
     event_active(s->done_event, EV_READ, 0);
 }
 
-/* Send a piece the workers made (taking it): the running slot is at the
- * head of the queue, every answer before it written, so the piece goes
+/* Send a piece the workers made (taking it): the running queued line is at
+ * the head of the queue, every answer before it written, so the piece goes
  * straight out in order. */
 static void send_piece(connection *c, wd_task *task)
 {
     if (!task->piece)
         return;
-    slot piece = {.response = task->piece, .response_length = task->piece_length};
+    queued_line piece = {.response = task->piece, .response_length = task->piece_length};
     task->piece = NULL;
     write_response(c, &piece);
     free(piece.response); /* NULL when the output buffer took it by reference */
@@ -1051,7 +1051,7 @@ static void send_piece(connection *c, wd_task *task)
 /* A piece is back from the workers. */
 static void piece_done(wd_server *s, wd_task *task)
 {
-    slot *x = task->owner;
+    queued_line *x = task->owner;
     connection *c = x->connection;
     assert(c->running == x && x->task == task && !c->parked);
     assert(c->head == x); /* every earlier answer written */
@@ -1247,12 +1247,12 @@ out:
     wd_pool_free(s->pool); /* every task handed back; their pieces are dropped */
     for (wd_task *task = s->done_head, *next; task; task = next) {
         next = task->next;
-        slot *x = task->owner;
+        queued_line *x = task->owner;
         x->task = NULL;
         wd_task_free(task, s->loop_host);
     }
     while (s->connections) {
-        s->connections->parked = true; /* its slots' tasks are the loop's now */
+        s->connections->parked = true; /* its queued lines' tasks are the loop's now */
         close_socket(s->connections);
         free_connection(s->connections);
     }

@@ -29,7 +29,7 @@
  * submission until `done` is called with it. */
 typedef struct wd_task {
     struct wd_task *next;   /* queue link */
-    void *owner;            /* the connection's slot; opaque to workers */
+    void *owner;            /* the connection's queued line; opaque to workers */
     unsigned uid;           /* its client's user: the workers serve users in
                                turn (wd_pool), not connections */
     char *line;             /* malloc'd, without its "\n"; freed once parsed */
