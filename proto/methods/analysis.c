@@ -274,10 +274,7 @@ static bool supports_push_ok(wp_call *call, const wr_fixture *f, wr_set set, dou
         return !wp_supports_refuse(call, f, "params.force",
                                    "\"force\", the push's magnitude: the regions where a push "
                                    "that hard seats the part");
-    const char *why = set != WR_SET_GOAL ? "params.set"
-                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
-                      : radius > 0 ? "params.finger_radius"
-                                   : NULL;
+    const char *why = wp_supports_push_unanswered(f, set, radius);
     if (!why)
         return true;
     wp_error_set(call->error, WP_INVALID_PARAMS, why,

@@ -423,10 +423,7 @@ static bool supports_least_ok(wp_call *call, const wr_fixture *f, wr_set set, do
 {
     if (!f->supports)
         return true;
-    const char *why = set != WR_SET_GOAL ? "params.set"
-                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
-                      : radius > 0 ? "params.finger_radius"
-                                   : NULL;
+    const char *why = wp_supports_push_unanswered(f, set, radius);
     if (!why)
         return true;
     wp_error_set(call->error, WP_INVALID_PARAMS, why,

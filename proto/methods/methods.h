@@ -53,5 +53,9 @@ wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
  * instead) when the fixture has supports, else false. */
 bool wp_supports_refuse(wp_call *call, const wr_fixture *fixture, const char *field,
                         const char *what);
+/* What a push on supports is not answered for (wr_support.h: set "goal",
+ * a polygon's straight edges, a point finger): the field of the first
+ * thing that is not so, or NULL when the push may be answered. */
+const char *wp_supports_push_unanswered(const wr_fixture *fixture, wr_set set, double radius);
 
 #endif

@@ -56,6 +56,14 @@ wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
     return WR_OK;
 }
 
+const char *wp_supports_push_unanswered(const wr_fixture *fixture, wr_set set, double radius)
+{
+    return set != WR_SET_GOAL                      ? "params.set"
+           : fixture->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+           : radius > 0                         ? "params.finger_radius"
+                                                : NULL;
+}
+
 bool wp_supports_refuse(wp_call *call, const wr_fixture *fixture, const char *field,
                         const char *what)
 {
