@@ -529,6 +529,20 @@ static void write_coefficient(wp_writer *w, double lo, double hi)
     }
 }
 
+/* "friction": {"kinetic": ..., "static": ...}, keys in the canonical
+ * order, each coefficient as write_coefficient writes it. */
+static void write_friction(wp_writer *w, double static_min, double mu_static, double kinetic_min,
+                           double mu_kinetic)
+{
+    wp_write_key(w, "friction");
+    wp_write_object(w);
+    wp_write_key(w, "kinetic");
+    write_coefficient(w, kinetic_min, mu_kinetic);
+    wp_write_key(w, "static");
+    write_coefficient(w, static_min, mu_static);
+    wp_write_object_end(w);
+}
+
 /* {"angle": A, "position": T} (keys sorted, as explicit_text writes
  * them), the angle only when not 0 (so that a tolerance written with
  * "angle": 0 and one without share an id). */
@@ -558,13 +572,7 @@ static void write_supports(wp_writer *w, const wr_supports *s)
         }
         wp_write_array_end(w);
     }
-    wp_write_key(w, "friction");
-    wp_write_object(w);
-    wp_write_key(w, "kinetic");
-    write_coefficient(w, s->mu_kinetic_min, s->mu_kinetic);
-    wp_write_key(w, "static");
-    write_coefficient(w, s->mu_static_min, s->mu_static);
-    wp_write_object_end(w);
+    write_friction(w, s->mu_static_min, s->mu_static, s->mu_kinetic_min, s->mu_kinetic);
     wp_write_member_number(w, "g", s->g);
     wp_write_key(w, "points");
     write_pairs(w, s->points, (size_t)s->count);
@@ -576,13 +584,8 @@ static void write_fixel(wp_writer *w, const wr_fixel *fixel)
     wp_write_object(w);
     wp_write_key(w, "at");
     write_pair(w, fixel->at);
-    wp_write_key(w, "friction");
-    wp_write_object(w);
-    wp_write_key(w, "kinetic");
-    write_coefficient(w, fixel->mu_kinetic_min, fixel->mu_kinetic);
-    wp_write_key(w, "static");
-    write_coefficient(w, fixel->mu_static_min, fixel->mu_static);
-    wp_write_object_end(w);
+    write_friction(w, fixel->mu_static_min, fixel->mu_static, fixel->mu_kinetic_min,
+                   fixel->mu_kinetic);
     wp_write_key(w, "normal");
     write_pair(w, fixel->normal);
     wp_write_object_end(w);

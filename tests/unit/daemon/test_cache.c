@@ -467,6 +467,21 @@ static void inline_found_by_written_text(void **state)
     wd_cache_free(cache);
 }
 
+/* Adopt the fixture of `text` inline, as the envelope does with a line's
+ * params.fixture (its text given to keep), and hold it. */
+static void adopt_inline(wd_cache *cache, const char *text, size_t length, wp_fixture_use *use)
+{
+    wp_error error = {0};
+    cJSON *json = cJSON_Parse(text);
+    assert_non_null(json);
+    wp_fixture_doc doc;
+    assert_true(wp_fixture_read(json, "", &doc, &error));
+    cJSON_Delete(json);
+    doc.text = text;
+    doc.text_length = length;
+    assert_true(cache_adopt(cache, &doc, false, use, &error));
+}
+
 /* An inline fixture's text of WP_INLINE_TEXT_MIN bytes on is kept with the
  * entry it made: a text that begins with it (the rest of a line) finds it,
  * with the kept length; a text differing in one byte anywhere, one cut
@@ -493,16 +508,8 @@ static void inline_found_by_its_text(void **state)
     wd_cache *cache = wd_cache_new(NULL, SIZE_MAX, 100, why, sizeof why);
     assert_non_null(cache);
     wp_fixture_use use, again;
-    wp_error error = {0};
     assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), 0);
-    cJSON *json = cJSON_Parse(kept);
-    assert_non_null(json);
-    wp_fixture_doc doc;
-    assert_true(wp_fixture_read(json, "", &doc, &error));
-    cJSON_Delete(json);
-    doc.text = kept;
-    doc.text_length = kept_length;
-    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    adopt_inline(cache, kept, kept_length, &use);
     const wr_analysis *analysis = use.analysis;
     wd_cache_release(cache, &use);
 
@@ -531,12 +538,7 @@ static void inline_found_by_its_text(void **state)
     put(cache, 0);
     size_t before = stats_of(cache).derived_bytes;
     assert_true(before > 0);
-    json = cJSON_Parse(kept);
-    assert_true(wp_fixture_read(json, "", &doc, &error));
-    cJSON_Delete(json);
-    doc.text = kept;
-    doc.text_length = kept_length;
-    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    adopt_inline(cache, kept, kept_length, &use);
     wd_cache_release(cache, &use);
     assert_int_equal(stats_of(cache).derived_bytes, before + kept_length);
     assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), kept_length);
@@ -551,12 +553,7 @@ static void inline_found_by_its_text(void **state)
     assert_non_null(cache);
     put(cache, 0);
     assert_int_equal(stats_of(cache).derived_bytes, before);
-    json = cJSON_Parse(kept);
-    assert_true(wp_fixture_read(json, "", &doc, &error));
-    cJSON_Delete(json);
-    doc.text = kept;
-    doc.text_length = kept_length;
-    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    adopt_inline(cache, kept, kept_length, &use);
     assert_int_equal(stats_of(cache).derived_bytes, before + kept_length); /* held: stays */
     wd_cache_release(cache, &use);
     assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), 0);
@@ -567,20 +564,10 @@ static void inline_found_by_its_text(void **state)
     /* Short texts are not kept; a kept one goes with its entry. */
     cache = wd_cache_new(NULL, 0, 100, why, sizeof why);
     assert_non_null(cache);
-    json = cJSON_Parse(base);
-    assert_true(wp_fixture_read(json, "", &doc, &error));
-    cJSON_Delete(json);
-    doc.text = base;
-    doc.text_length = strlen(base);
-    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    adopt_inline(cache, base, strlen(base), &use);
     assert_int_equal(wd_cache_use_text(cache, base, strlen(base), &again), 0);
     wd_cache_release(cache, &use);
-    json = cJSON_Parse(kept);
-    assert_true(wp_fixture_read(json, "", &doc, &error));
-    cJSON_Delete(json);
-    doc.text = kept;
-    doc.text_length = kept_length;
-    assert_true(cache_adopt(cache, &doc, false, &use, &error));
+    adopt_inline(cache, kept, kept_length, &use);
     assert_int_equal(wd_cache_use_text(cache, line, strlen(line), &again), kept_length);
     wd_cache_release(cache, &again);
     wd_cache_release(cache, &use); /* no room: the entry goes, and its text */
