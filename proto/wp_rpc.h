@@ -38,9 +38,10 @@ char *wp_answer_line(const wp_host *host, const wp_limits *limits, const char *l
  * this policy lives.  Lines up to WP_LIGHT_LINE bytes are parsed there; of
  * them, light are a line refused before any request is read, an invalid
  * request, an unknown method, a method flagged WP_CHEAP, and one flagged
- * WP_READY whose fixture is a stored one with its derived data ready -- a
- * classify only by the "auto" method and with wrenches x cones at most
- * WP_LIGHT_CONE_CHECKS (tens of microseconds).  A loop answers at most
+ * WP_READY whose fixture is a stored one with its derived data ready, not
+ * on supports and without a tolerance -- a classify only by the "auto"
+ * method and with wrenches x cones at most WP_LIGHT_CONE_CHECKS (tens of
+ * microseconds).  A loop answers at most
  * WP_LIGHT_BURST of one connection's light requests per read, so that a
  * client pipelining thousands shares the workers with everyone else rather
  * than holding the loop. */
