@@ -256,9 +256,9 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
     const char *path = push ? "params.push" : "params.gravity";
     const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, push ? "push" : "gravity");
     state->request.set_count = 1;
-    const char *const *fields = state->over_supports ? (push ? PLATE_PUSH_FIELDS : PLATE_GRAVITY_FIELDS)
-                                : push                 ? SWEEP_PUSH_FIELDS
-                                                       : SWEEP_GRAVITY_FIELDS;
+    const char *const *fields = state->over_supports
+                                    ? (push ? PLATE_PUSH_FIELDS : PLATE_GRAVITY_FIELDS)
+                                    : (push ? SWEEP_PUSH_FIELDS : SWEEP_GRAVITY_FIELDS);
     if (!wp_check_object(what, path, fields, error) ||
         !wp_read_set_at(what, path, &state->request.sets[0], error) ||
         (push && !wp_read_finger(what, path, &state->finger, error)))
@@ -989,7 +989,8 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
 {
     sweep_state *state = stream;
     if (state->over_supports)
-        return state->what == SWEEP_FORCE      ? sweep_supports_force_step(state, call, out, budget, used)
+        return state->what == SWEEP_FORCE
+                   ? sweep_supports_force_step(state, call, out, budget, used)
                : state->what == SWEEP_WRENCHES ? sweep_supports_step(state, call, out, budget, used)
                                                : sweep_plate_step(state, call, out, budget, used);
     if (state->what == SWEEP_FORCE)

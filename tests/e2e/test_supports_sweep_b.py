@@ -342,6 +342,7 @@ def test_wrenchctl_and_python_client(daemon):
             assert bad.returncode != 0 and words in bad.stderr, (args, bad.stderr)
     with wrenchd.Client(daemon.path, timeout=600 * SLOW) as c:
         f = on_buttons(octagon(), 0.3)
-        r = c.friction_sweep(f, over="supports", push={"force": 30, "cases": [[{"wrench": [0, 0, 0]}]]})
+        r = c.friction_sweep(f, over="supports",
+                             push={"force": 30, "cases": [[{"wrench": [0, 0, 0]}]]})
         assert abs(r.critical - 30 / (G * math.sqrt(10))) < 1e-8, r
         assert r.intervals == [[0, r.critical]] and r.exact is False
