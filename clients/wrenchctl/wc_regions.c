@@ -587,6 +587,8 @@ static double sweep_high(const wc_run *run)
 
 static double sweep_ratio(const wc_run *run)
 {
+    if (run->over && strcmp(run->over, "supports") == 0)
+        return 0; /* the pictures' word for the supports' mu_B (wc_svg.h) */
     return run->ratio_given ? run->kinetic_ratio : 1;
 }
 

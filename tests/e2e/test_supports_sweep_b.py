@@ -317,12 +317,17 @@ def test_wrenchctl_and_python_client(daemon):
             json.dump(octagon(), fh)
         with open(disc, "w") as fh:
             json.dump(FX.disc_corner(0.5), fh)
+        svg = os.path.join(d, "sweep.svg")
         out = subprocess.run([wrenchctl, "sweep", part, "--over", "supports", "--supports", rest,
-                              "--push", "goal", "--force", "30"],
+                              "--push", "goal", "--force", "30", "--svg", svg],
                              capture_output=True, text=True, env=env, timeout=300 * SLOW)
         assert out.returncode == 0, out.stderr
         assert "critical mu %.6g" % (30 / (G * math.sqrt(10))) in out.stdout, out.stdout
         assert "the supports' mu_B from 0 to 2" in out.stdout, out.stdout
+        with open(svg, encoding="utf-8") as fh:
+            picture = fh.read()
+        # The plot's axis is the supports' friction, not the fixels'.
+        assert "\u03bc_B" in picture and "at every fixel" not in picture
         out = subprocess.run([wrenchctl, "--json", "sweep", disc, "--over", "supports",
                               "--supports", rest, "--gravity", "goal", "--in-plane-g", "20",
                               "--range", "0:1"],
