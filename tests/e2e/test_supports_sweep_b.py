@@ -309,6 +309,9 @@ def test_wrenchctl_and_python_client(daemon):
     wrenchctl = os.path.join(REPO, "build", "wrenchctl")
     env = dict(os.environ, WRENCHD_SOCKET=daemon.path)
     rest = json.dumps({"points": BUTTONS, "friction": 0.3, "g": G})
+    # A tilt sweep solves some 70 circles of tilts: longer than wrenchctl's
+    # default wait on a loaded machine.
+    wait = ["--timeout", str(600 * SLOW)]
     import tempfile
     with tempfile.TemporaryDirectory() as d:
         part = os.path.join(d, "oct.json")
@@ -318,8 +321,9 @@ def test_wrenchctl_and_python_client(daemon):
         with open(disc, "w") as fh:
             json.dump(FX.disc_corner(0.5), fh)
         svg = os.path.join(d, "sweep.svg")
-        out = subprocess.run([wrenchctl, "sweep", part, "--over", "supports", "--supports", rest,
-                              "--push", "goal", "--force", "30", "--svg", svg],
+        out = subprocess.run([wrenchctl] + wait + ["sweep", part, "--over", "supports",
+                                                   "--supports", rest, "--push", "goal",
+                                                   "--force", "30", "--svg", svg],
                              capture_output=True, text=True, env=env, timeout=300 * SLOW)
         assert out.returncode == 0, out.stderr
         assert "critical mu %.6g" % (30 / (G * math.sqrt(10))) in out.stdout, out.stdout
@@ -328,7 +332,7 @@ def test_wrenchctl_and_python_client(daemon):
             picture = fh.read()
         # The plot's axis is the supports' friction, not the fixels'.
         assert "\u03bc_B" in picture and "at every fixel" not in picture
-        out = subprocess.run([wrenchctl, "--json", "sweep", disc, "--over", "supports",
+        out = subprocess.run([wrenchctl, "--json"] + wait + ["sweep", disc, "--over", "supports",
                               "--supports", rest, "--gravity", "goal", "--in-plane-g", "20",
                               "--range", "0:1"],
                              capture_output=True, text=True, env=env, timeout=300 * SLOW)
