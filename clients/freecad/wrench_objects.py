@@ -159,17 +159,28 @@ _INDEXED = re.compile(r"^(fixels|sites)\[(\d+)\](.*)$")
 _LOOP = re.compile(r"^body\.shape\.loops\[(\d+)\](?:\[(\d+)\])?(.*)$")
 
 
-def _refusal(error, what, outline=None, fixels3d=(), properties=None):
+def _supports():
+    """wrench_supports, which imports this module: asked for inside the
+    fixture's functions, long after both are loaded."""
+    import wrench_supports
+    return wrench_supports
+
+
+def _refusal(error, what, outline=None, fixels3d=(), properties=None, fixture_obj=None):
     """A WrenchError naming, in FreeCAD's terms, the field wrenchd refused;
     `properties` names the object's properties some fields come from
-    ({"spacing": "DesignSpacing", ...})."""
+    ({"spacing": "DesignSpacing", ...}); `fixture_obj` the WrenchFixture
+    whose rest buttons a field under supports names."""
     field = error.field or ""
     reason = error.reason or error.message
     rest = _FIELD.match(field)
     rest = rest.group(1) if rest else field
     subject = field or "the request"
     m = _INDEXED.match(rest)
-    if properties and rest.split("[")[0].split(".")[0] in properties:
+    buttons = _supports().refusal_subject(fixture_obj, rest)
+    if buttons is not None:
+        subject = buttons
+    elif properties and rest.split("[")[0].split(".")[0] in properties:
         subject = properties[rest.split("[")[0].split(".")[0]]
     elif m:
         i = int(m.group(2))
@@ -202,7 +213,7 @@ def _refusal(error, what, outline=None, fixels3d=(), properties=None):
                        field, reason)
 
 
-def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
+def _ask(what, path, call, outline=None, fixels3d=(), properties=None, fixture_obj=None):
     """call(), with wrenchd's errors made WrenchErrors in FreeCAD's terms."""
     try:
         return call()
@@ -211,7 +222,7 @@ def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
             raise _busy(error, path) from None
         if isinstance(error, wrenchd.WrenchdUnavailable):
             raise _unreachable(error, path) from None
-        raise _refusal(error, what, outline, fixels3d, properties) from None
+        raise _refusal(error, what, outline, fixels3d, properties, fixture_obj) from None
 
 
 def _report_error(obj, error):
@@ -412,6 +423,7 @@ class WrenchFixture(_Proxy):
              "The fixture as sent to wrenchd (the outline's coordinates)", mode=2)
         _add(obj, "App::PropertyString", "EdgeTable", "Outline",
              "Per loop and segment, the FreeCAD edge it comes from", mode=2)
+        _supports().setup_fixture(obj)
 
     def outline(self, obj):
         source, sub = _document_source(obj.Source)
@@ -477,6 +489,11 @@ class WrenchFixture(_Proxy):
         fixture = {"name": obj.Label, "body": {"mass": obj.Mass, "shape": shape},
                    "friction": {"static": obj.StaticFriction, "kinetic": obj.KineticFriction},
                    "fixels": fixels, "units": dict(UNITS)}
+        buttons = _supports()
+        buttons.clear_loads(obj)
+        supports = buttons.supports_member(obj, shape)
+        if supports is not None:
+            fixture["supports"] = supports
         if obj.Gravity != 0 or list(obj.Loads):
             load_cases(obj, shape)  # refused here, at the property, when malformed
         if not fixels:
@@ -486,13 +503,23 @@ class WrenchFixture(_Proxy):
             return
         path = socket_path(obj.Socket)
         client = client_for(obj.Socket, obj.Timeout)
-        put = _ask(obj.Label, path, lambda: client.put_fixture(fixture), shape, obj.FixelPoints)
+        sent = dict(fixture, body={"mass": obj.Mass, "shape": buttons.wire_shape(fixture, shape)})
+        try:
+            put = _ask(obj.Label, path, lambda: client.put_fixture(sent), shape, obj.FixelPoints,
+                       fixture_obj=obj)
+        except WrenchError as error:
+            if error.field.startswith("params.fixture.supports") or \
+                    error.field.startswith("supports"):
+                buttons.clear_loads(obj, str(error))
+            raise
         obj.FixtureId = put.id
         obj.Area = float(put.area)
         obj.CenterOfMass = shape.to_3d(put.com)
         obj.Inertia = float(put.inertia)
         obj.Pinned = bool(put.pinned)
         obj.FixtureJson = json.dumps(fixture)
+        if supports is not None:
+            buttons.record_loads(obj, shape, put.com)
 
 
 def load_cases(fixture_obj, outline_shape):
@@ -552,7 +579,7 @@ class _Fixture:
         edges = json.loads(fixture_obj.EdgeTable) if fixture_obj.EdgeTable else None
         self.outline = Outline.from_shape(self.fixture["body"]["shape"], fixture_obj.Frame, edges,
                                           fixture_obj.ToleranceUsed, fixture_obj.Deviation)
-        self.fixture["body"]["shape"] = self.outline
+        self.fixture["body"]["shape"] = _supports().wire_shape(self.fixture, self.outline)
         self.path = socket_path(fixture_obj.Socket)
         self.client = client_for(fixture_obj.Socket, fixture_obj.Timeout)
         self.what = what
@@ -562,7 +589,12 @@ class _Fixture:
         return bool(self.fixture["fixels"])
 
     def ask(self, call):
-        return _ask(self.what, self.path, call, self.outline, self.obj.FixelPoints)
+        return _ask(self.what, self.path, call, self.outline, self.obj.FixelPoints,
+                    fixture_obj=self.obj)
+
+    @property
+    def on_supports(self):
+        return "supports" in self.fixture
 
     def friction(self):
         return self.fixture["friction"]
@@ -1152,11 +1184,21 @@ class WrenchBestPush(_Dependent):
                 else "no force does it under every load case"))
 
 
+# A load case of nothing: on rest buttons the least push is asked without
+# loads too (the buttons' friction alone resists it).
+NO_LOAD = {"name": "none", "loads": [{"wrench": [0.0, 0.0, 0.0]}]}
+
+
 class WrenchLeastForce(_Dependent):
     """The least push force F*(p) along the outline under the fixture's
     load cases (push.force, set both): the outline cut into a piece per
     sample, each coloured from blue (the least) to red (the most), grey
-    where no force does the job; and where the smallest push suffices."""
+    where no force does the job; and where the smallest push suffices,
+    as an arrow (its last three edges).  On rest buttons the set is goal
+    (wrenchd answers how hard to push to seat the part against the
+    buttons' friction; whether the seated part is held is a question of
+    its own), asked without loads too, and the same fixture floating is
+    asked beside it (FloatingLeast)."""
 
     def setup(self, obj):
         _Dependent.setup(self, obj)
@@ -1171,13 +1213,25 @@ class WrenchLeastForce(_Dependent):
                  "F* at each piece's sample, in N (-1: no force does the job there)"),
                 ("App::PropertyFloat", "Least", "The least push force over the outline, N (-1: none)"),
                 ("App::PropertyVector", "LeastAt", "Where it is (document)"),
-                ("App::PropertyVector", "LeastDirection", "Along what (the inward normal there)")):
+                ("App::PropertyVector", "LeastDirection", "Along what (the inward normal there)"),
+                ("App::PropertyString", "Set",
+                 "What the force does: both (seats the part and holds it; floating) or goal "
+                 "(seats it against the rest buttons' friction)"),
+                ("App::PropertyFloat", "FloatingLeast",
+                 "On rest buttons: the least push of the same set with the part floating, N "
+                 "(-1: none; -2: not asked, the part floats)"),
+                ("App::PropertyVector", "FloatingLeastAt", "Where it is (document)")):
             _add(obj, kind, name, "Answer", doc, mode=1)
 
     def _execute(self, obj):
         fixture = _Fixture(obj.Fixture, obj.Label)
         outline = fixture.outline
         cases = load_cases(fixture.obj, outline)
+        plate = fixture.on_supports
+        if plate and not cases:
+            cases = [NO_LOAD]
+        obj.Set = "goal" if plate else "both"
+        obj.FloatingLeast = -2.0
         if not cases or not fixture.has_fixels:
             obj.Shape = Part.Shape()
             obj.Forces, obj.Least = [], -1.0
@@ -1190,8 +1244,17 @@ class WrenchLeastForce(_Dependent):
             push_on = push_on_of(obj.PushOn, fixture.fixture["body"], 0.0)
         except OutlineError as e:
             raise WrenchError("%s: %s" % (obj.Label, e))
-        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples,
+        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, set=obj.Set,
+                                                          samples=samples,
                                                           push_on=push_on or "all"))
+        if plate:
+            # The same part floating, for comparison: its least push alone.
+            floating = fixture.ask(lambda: fixture.client.push_force(
+                _supports().floating(fixture.fixture), cases, set=obj.Set, samples=1,
+                push_on=push_on or "all"))["least"]
+            obj.FloatingLeast = -1.0 if floating is None else floating["force"]
+            if floating is not None:
+                obj.FloatingLeastAt = outline.to_3d(floating["at"])
         pieces, forces = [], []
         for seg in r["segments"]:
             segment = outline.segments[seg.get("loop", 0)][seg.get("segment", seg.get("edge", 0))]
@@ -1201,17 +1264,37 @@ class WrenchLeastForce(_Dependent):
                 t1 = 1.0 if j + 1 == len(ts) else (t + ts[j + 1]) / 2
                 pieces.append(outline.edge_3d(segment, t0, t1))
                 forces.append(-1.0 if f is None else f)
-        obj.Shape = Part.Compound(pieces)
         obj.Forces = forces
         least = r["least"]
         obj.Least = -1.0 if least is None else least["force"]
         if least is not None:
             obj.LeastAt = outline.to_3d(least["at"])
             obj.LeastDirection = outline.direction_3d(least["direction"])
-            obj.Label = "Least force: %.4g N at %s" % (obj.Least, _fmt_point(obj.LeastAt))
+            pieces += _push_arrow(outline, least["at"], least["direction"])
+            obj.Label = "Least force%s: %.4g N at %s" % (
+                " on the rest buttons" if plate else "", obj.Least, _fmt_point(obj.LeastAt))
+            if plate:
+                obj.Label += " (floating: %s)" % ("%.4g N" % obj.FloatingLeast
+                                                  if obj.FloatingLeast >= 0 else "none")
         else:
             obj.Label = "Least force: no push does the job under every load case"
+        obj.Shape = Part.Compound(pieces)
         colour_least_force(obj)
+
+
+def _push_arrow(outline, at, direction):
+    """Three edges: a shaft ending at the outline point `at`, along the
+    unit `direction`, and its head."""
+    length = 0.15 * outline.size
+    tip = (at[0], at[1])
+    back = (at[0] - length * direction[0], at[1] - length * direction[1])
+    head = []
+    for s in (-1.0, 1.0):
+        c, d = math.cos(s * 0.4), math.sin(s * 0.4)
+        u = (c * direction[0] - d * direction[1], d * direction[0] + c * direction[1])
+        head.append(outline.to_3d((at[0] - 0.25 * length * u[0], at[1] - 0.25 * length * u[1])))
+    return [Part.LineSegment(outline.to_3d(back), outline.to_3d(tip)).toShape()] + \
+        [Part.LineSegment(h, outline.to_3d(tip)).toShape() for h in head]
 
 
 class WrenchGravityDial(_Dependent):
