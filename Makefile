@@ -453,7 +453,7 @@ FREECAD_MODDIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(FREECAD_SYSTEM_MODD
 PYTHON_MODULES = wrenchd.py wrenchd_dxf.py wrenchd_arcs.py
 WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
 WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_outline.py wrench_objects.py \
-                  wrench_view.py wrench_commands.py \
+                  wrench_view.py wrench_supports.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 # Every lib header but the internal one: wrench.h includes them all, so a
 # header left out of the install breaks every program that uses the lib.

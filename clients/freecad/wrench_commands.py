@@ -14,7 +14,13 @@
                          FreeCAD's progress indicator; the best design placed
     Wrench_LeastForce    with the fixture's Gravity or Loads: the least push
                          force along the outline as coloured pieces, and where
-                         the smallest push suffices
+                         the smallest push suffices (an arrow); on rest
+                         buttons, the least push that seats the part against
+                         their friction, with the floating part's beside it
+    Wrench_RestButtons   select vertices, holes' circular edges (their centre)
+                         or points picked on the part: rest buttons there,
+                         taken into the face's plane, their normal loads shown
+    Wrench_ClearRestButtons  the fixture's rest buttons and down clamps removed
 
 A command works on the WrenchFixture selected (or one of its objects), else
 on the document's only one.  Messages and errors go to the report view.
@@ -321,9 +327,9 @@ class DesignCommand(_Command):
 
 
 def _feature_points():
-    """Features picked for locating: a selected vertex, the centre of a
-    selected circular edge (a hole), or the point picked on another edge or
-    on a face."""
+    """Points picked on the part, for locating features and rest buttons: a
+    selected vertex, the centre of a selected circular edge (a hole), or the
+    point picked on another edge or on a face."""
     out = []
     for s in FreeCADGui.Selection.getSelectionEx():
         if wf._proxy_name(s.Object).startswith("Wrench"):
@@ -372,8 +378,10 @@ class LeastForceCommand(_Command):
         fixture = _fixture_in_selection(doc)
         if fixture is None:
             return
-        if not fixture.Gravity and not list(fixture.Loads):
-            _fail("%s has no Gravity and no Loads: set them (its Loads group) first" % fixture.Label)
+        plate = bool(list(fixture.SupportPoints))
+        if not plate and not fixture.Gravity and not list(fixture.Loads):
+            _fail("%s has no Gravity, no Loads and no rest buttons: set them (its Loads group, "
+                  "Rest buttons) first" % fixture.Label)
             return
         made = _dependents(fixture, "WrenchLeastForce")
         obj = made[0] if made else _run(doc, "Wrench least force",
@@ -381,7 +389,14 @@ class LeastForceCommand(_Command):
         if obj is None or not _recompute(doc, [fixture, obj]):
             return
         wf.colour_least_force(obj)
-        if obj.Least >= 0:
+        if obj.Least >= 0 and plate:
+            _say("least push on the rest buttons %.4g N at %s along %s: it seats the part "
+                 "against their friction%s; the same part floating: %s" % (
+                     obj.Least, wf._fmt_point(obj.LeastAt), wf._fmt_point(obj.LeastDirection),
+                     " under every load case" if fixture.Gravity or list(fixture.Loads) else "",
+                     "%.4g N at %s" % (obj.FloatingLeast, wf._fmt_point(obj.FloatingLeastAt))
+                     if obj.FloatingLeast >= 0 else "no push seats it"))
+        elif obj.Least >= 0:
             _say("least push %.4g N at %s along %s: it seats the part and holds it under every "
                  "load case" % (obj.Least, wf._fmt_point(obj.LeastAt),
                                 wf._fmt_point(obj.LeastDirection)))
@@ -389,8 +404,57 @@ class LeastForceCommand(_Command):
             _say(obj.Label)
 
 
+class RestButtonsCommand(_Command):
+    NAME = "Wrench_RestButtons"
+    ICON = "WrenchFixels"
+    MENU = "Rest buttons"
+    TIP = ("Select vertices, holes' circular edges (their centre) or points on the part: rest "
+           "buttons under it there, taken into the face's plane; their normal loads are shown "
+           "(friction mu_B, gravity into the plate and down clamps in the fixture's Rest "
+           "buttons group)")
+
+    def Activated(self):
+        doc = FreeCAD.ActiveDocument
+        fixture = _fixture_in_selection(doc)
+        if fixture is None:
+            return
+        points = _feature_points()
+        if not points:
+            _fail("Rest buttons: select vertices, holes' circular edges or points on the part")
+            return
+
+        def add():
+            if not wf.supports_of(fixture):
+                wf.make_supports(fixture)
+            return wf.add_supports(fixture, points)
+        if _run(doc, "Wrench rest buttons", add) is None:
+            return
+        if _recompute(doc, [fixture] + wf.supports_of(fixture)):
+            for line in fixture.SupportsReport:
+                _say(line)
+
+
+class ClearRestButtonsCommand(_Command):
+    NAME = "Wrench_ClearRestButtons"
+    ICON = "WrenchClearFixels"
+    MENU = "Clear rest buttons"
+    TIP = "Remove the fixture's rest buttons and down clamps: the part floats in its plane"
+
+    def Activated(self):
+        doc = FreeCAD.ActiveDocument
+        fixture = _fixture_in_selection(doc)
+        if fixture is None:
+            return
+
+        def clear():
+            fixture.SupportPoints, fixture.DownPoints, fixture.DownForces = [], [], []
+            _recompute(doc, [fixture])
+        _run(doc, "Wrench rest buttons cleared", clear)
+
+
 COMMANDS = [FixtureCommand, AddFixelsCommand, ClearFixelsCommand, RegionsCommand,
-            GravityDialCommand, DesignCommand, LeastForceCommand, LocateCommand]
+            GravityDialCommand, DesignCommand, LeastForceCommand, LocateCommand,
+            RestButtonsCommand, ClearRestButtonsCommand]
 for _command in COMMANDS:
     FreeCADGui.addCommand(_command.NAME, _command())
 

@@ -187,6 +187,38 @@ def main():
     fixture.Socket = ""
     doc.recompute()
     result["after_mistakes"] = [o.Label for o in doc.Objects if "Invalid" in o.State]
+
+    # Rest buttons picked on the part: a fillet's circular edge (its centre)
+    # and a vertex on its underside (z = -7), a point picked on its top
+    # face; their loads written beside them in the 3-D view.  (A hole's
+    # centre is refused: a button there is not under the part.)
+    def circle_edge_at(centre):
+        return "Edge%d" % (1 + [i for i, e in enumerate(part.Shape.Edges)
+                                if isinstance(e.Curve, Part.Circle)
+                                and e.Curve.Center.distanceToPoint(centre) < 1e-9][0])
+
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, part.Name, circle_edge_at(V(8, 52, -7)))
+    Gui.Selection.addSelection(doc.Name, part.Name, vertex_at(V(112, 0, -7)))
+    Gui.Selection.addSelection(doc.Name, part.Name, "Face%d" % top, 90, 50, 1)
+    Gui.Selection.addSelection(fixture)
+    report_dock.widget().clear()
+    Gui.runCommand("Wrench_RestButtons")
+    settle()
+    result["button_report"] = report_dock.widget().toPlainText().splitlines()
+    buttons = [o for o in doc.Objects if o.Name.startswith("WrenchSupports")]
+    result["buttons"] = [[p.x, p.y, p.z] for p in fixture.SupportPoints]
+    result["button_loads"] = list(fixture.NormalLoads)
+    result["button_state"] = [list(o.State) for o in buttons]
+    result["button_labels"] = [list(o.LoadLabels) for o in buttons]
+    from pivy import coin
+    search = coin.SoSearchAction()
+    search.setType(coin.SoText2.getClassTypeId())
+    search.setInterest(coin.SoSearchAction.ALL)
+    search.apply(buttons[0].ViewObject.RootNode)
+    paths = search.getPaths()
+    result["button_texts"] = [paths[i].getTail().string.getValues()[0]
+                              for i in range(paths.getLength())]
     del Part
 
 

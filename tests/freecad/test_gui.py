@@ -11,6 +11,7 @@ import subprocess
 import numpy
 import pytest
 
+import parts
 import wrench_freecad as wf
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -124,6 +125,28 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     assert "wrenchd is not reachable at %s" % (tmp_path / "nobody.sock") in mistakes
     assert "Start one: `wrenchd --socket %s`" % (tmp_path / "nobody.sock") in mistakes
     assert result["after_mistakes"] == []
+
+    # rest buttons picked: a fillet's centre and a vertex under the part, a
+    # point on its face, all in the face's plane; their loads are the
+    # barycentric ones of FreeCAD's centre of mass of the face (the default
+    # Mass, 1 kg, under 9810 mm/s^2), written in the 3-D view
+    want = [[8, 52, 1], [90, 50, 1], [112, 0, 1]]
+    order = sorted(range(3), key=lambda i: result["buttons"][i])
+    assert len(result["button_loads"]) == 3, result["button_report"][:2]
+    assert numpy.allclose([result["buttons"][i] for i in order], want, rtol=0, atol=1e-9)
+    com = parts.bracket_face().CenterOfMass
+    loads = {tuple(want[k]): result["button_loads"][i] for k, i in enumerate(order)}
+    (a, b, c) = [p[:2] for p in want]
+
+    def area2(p, q, r):
+        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+    whole, here = area2(a, b, c), (com.x, com.y)
+    for p, lam in ((a, area2(here, b, c) / whole), (b, area2(a, here, c) / whole),
+                   (c, area2(a, b, here) / whole)):
+        assert loads[tuple(p) + (1,)] == pytest.approx(9.81 * lam, rel=1e-9)
+    assert result["button_state"] == [["Up-to-date"]]
+    assert result["button_texts"] == result["button_labels"][0] and \
+        len(result["button_texts"]) == 3
 
     # the 3-D view from the top: its size, and what is drawn in it
     width, height, rows = read_png(tmp_path / "view.png")
