@@ -269,7 +269,7 @@ class RegionsCommand(_Command):
                 _say("best push at %s %s along %s, margin %.4g: push there and let go (it is in "
                      "both)" % (wf._fmt_point(push.At), wf.UNIT, wf._fmt_point(push.Direction),
                                 push.Margin))
-                if fixture.Gravity or list(fixture.Loads):
+                if fixture.Gravity or list(fixture.Loads) or list(fixture.SupportPoints):
                     _say("how hard: %s there under every load case; the least push anywhere is %s"
                          % ("%.4g N" % push.PushForce if push.PushForce >= 0 else "no force does it",
                             "%.4g N at %s" % (push.LeastForce, wf._fmt_point(push.LeastForceAt))

@@ -565,6 +565,23 @@ def load_cases(fixture_obj, outline_shape):
     return cases
 
 
+# A load case of nothing: on rest buttons how hard to push is asked without
+# loads too (the buttons' friction alone resists the push).
+NO_LOAD = {"name": "none", "loads": [{"wrench": [0.0, 0.0, 0.0]}]}
+
+
+def force_question(fixture):
+    """(cases, set) that how hard to push is asked with, for a _Fixture:
+    floating, its load cases (none: nothing to ask) and both; on rest
+    buttons, its load cases or NO_LOAD, and goal (wrenchd answers how hard
+    a push must be to seat the part against the buttons' friction; whether
+    the seated part then holds is a question of its own there)."""
+    cases = load_cases(fixture.obj, fixture.outline)
+    if fixture.on_supports:
+        return cases or [NO_LOAD], "goal"
+    return cases, "both"
+
+
 class _Fixture:
     """What a fixture's dependent objects read of it: the fixture dict, its
     outline (rebuilt from the dict and the frame), the client."""
@@ -1165,28 +1182,35 @@ class WrenchBestPush(_Dependent):
         obj.Loop, obj.Segment, obj.T = push.get("loop", 0), push.get("segment", push.get("edge", 0)), \
             push["t"]
         obj.Label = "Best push (both): margin %.4g, push here and let go" % obj.Margin
-        cases = load_cases(fixture.obj, outline)
+        cases, which = force_question(fixture)
         obj.PushForce = obj.LeastForce = 0.0
         if cases:
             # How hard: this push's least force under every case, and the
             # least push anywhere (force.range, push.force; N).
             fid = fixture.obj.FixtureId
             here = fixture.ask(lambda: fixture.client.force_range(
-                fid, cases, push={"at": at, "direction": direction}, sets=["both"]))
-            least = here["all"]["both"]["least"]
+                fid, cases, push={"at": at, "direction": direction}, sets=[which]))
+            least = here["all"][which]["least"]
             obj.PushForce = -1.0 if least is None else least
-            anywhere = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=1))["least"]
+            anywhere = fixture.ask(lambda: fixture.client.push_force(
+                fid, cases, set=which, samples=1))["least"]
             obj.LeastForce = -1.0 if anywhere is None else anywhere["force"]
             if anywhere is not None:
                 obj.LeastForceAt = outline.to_3d(anywhere["at"])
-            obj.Label = ("Best push (both): margin %.4g, %s" % (
-                obj.Margin, "at least %.4g N under every load case" % least if least is not None
-                else "no force does it under every load case"))
-
-
-# A load case of nothing: on rest buttons the least push is asked without
-# loads too (the buttons' friction alone resists it).
-NO_LOAD = {"name": "none", "loads": [{"wrench": [0.0, 0.0, 0.0]}]}
+            if fixture.on_supports:
+                # The margin and the region are the floating part's (no
+                # direction-only answer holds on the buttons); how hard is
+                # the buttons' own.
+                obj.Meaning = ("both for the part floating; on the rest buttons this push seats "
+                               "it only as hard as PushForce (goal), and whether it then holds "
+                               "is not asked")
+                obj.Label = "Best push (both, floating): margin %.4g; on the rest buttons %s" % (
+                    obj.Margin, "at least %.4g N to seat it" % least if least is not None
+                    else "no force seats it")
+            else:
+                obj.Label = ("Best push (both): margin %.4g, %s" % (
+                    obj.Margin, "at least %.4g N under every load case" % least
+                    if least is not None else "no force does it under every load case"))
 
 
 class WrenchLeastForce(_Dependent):
@@ -1226,11 +1250,8 @@ class WrenchLeastForce(_Dependent):
     def _execute(self, obj):
         fixture = _Fixture(obj.Fixture, obj.Label)
         outline = fixture.outline
-        cases = load_cases(fixture.obj, outline)
+        cases, obj.Set = force_question(fixture)
         plate = fixture.on_supports
-        if plate and not cases:
-            cases = [NO_LOAD]
-        obj.Set = "goal" if plate else "both"
         obj.FloatingLeast = -2.0
         if not cases or not fixture.has_fixels:
             obj.Shape = Part.Shape()
@@ -1327,7 +1348,10 @@ class WrenchGravityDial(_Dependent):
             obj.Arcs, obj.TotalDegrees = [], 0.0
             obj.Label = "Gravity %s (no fixels yet)" % which
             return
-        arcs = fixture.ask(lambda: fixture.client.gravity_sweep(fixture.fixture, which))
+        if fixture.on_supports:
+            arcs = self.on_buttons(obj, fixture)
+        else:
+            arcs = fixture.ask(lambda: fixture.client.gravity_sweep(fixture.fixture, which))
         outline = fixture.outline
         com = outline.to_2d(fixture.obj.CenterOfMass)
         radius = float(obj.Radius) or 1.15 * max(
@@ -1346,6 +1370,25 @@ class WrenchGravityDial(_Dependent):
         obj.Arcs = [x for arc in arcs for x in arc]
         obj.TotalDegrees = sum(b - a for a, b in arcs)
         obj.Label = "Gravity %s: %s degrees of tilt" % (which, _fmt(obj.TotalDegrees))
+        if fixture.on_supports:
+            obj.Label = "Gravity goal on the rest buttons, %s mm/s^2 in the plane: %s degrees" % (
+                _fmt(fixture.obj.Gravity), _fmt(obj.TotalDegrees))
+
+    @staticmethod
+    def on_buttons(obj, fixture):
+        """The tilts on rest buttons: whether the pull seats the part depends
+        on its size, the fixture's Gravity (the part of gravity in the
+        plate's plane), and only goal is answered there."""
+        pull = float(fixture.obj.Gravity)
+        if pull <= 0:
+            raise WrenchError("%s: on rest buttons whether gravity seats the part depends on how "
+                              "hard it pulls in the plate's plane: set %s's Gravity (g sin(tilt), "
+                              "mm/s^2)" % (obj.Label, fixture.obj.Label), "in_plane_g", "required")
+        obj.Meaning = ("goal on the rest buttons: gravity pulling this way with the fixture's "
+                       "Gravity seats the part against their friction; whether it then holds "
+                       "is not asked")
+        return fixture.ask(lambda: fixture.client.tilt_on_supports(
+            fixture.fixture, pull))["intervals_deg"]
 
 
 # ---- making objects ---------------------------------------------------------------

@@ -234,3 +234,35 @@ def test_a_plate_that_tips_is_refused_with_wrenchd_s_reason(client, doc):
     doc.recompute()
     assert "Invalid" not in fixture.State and "Invalid" not in supports.State
     assert len(supports.LoadLabels) == 3
+
+
+def test_the_best_push_and_the_gravity_dial_on_the_buttons(client, doc):
+    given = [V(30, 15, 0), V(90, 15, 0), V(60, 50, 0)]
+    part, fixture, supports = fixture_on(doc, client, given)
+    best = wf.make_best_push(fixture)
+    dial = wf.make_gravity_dial(fixture)
+    doc.recompute()
+    # no in-plane pull: the dial says what to give
+    assert "Invalid" in dial.State and "set WrenchFixture's Gravity" in dial.getStatusString()
+    assert "Invalid" not in best.State, best.getStatusString()
+    # how hard this push must be to seat the part on its buttons: force.range
+    # (goal) at its point, asked directly of the fixture as sent
+    import json
+    sent = json.loads(fixture.FixtureJson)
+    sent["body"]["shape"] = {"type": "polygon", "vertices": [
+        [0, 0], [L, 0], [L, W_ - CHAMFER], [L - CHAMFER, W_], [0, W_]]}
+    at = [best.At.x, best.At.y]
+    direction = [best.Direction.x, best.Direction.y]
+    none = [{"name": "none", "loads": [{"wrench": [0, 0, 0]}]}]
+    want = client.force_range(sent, none, push={"at": at, "direction": direction},
+                              sets=["goal"])["all"]["goal"]["least"]
+    assert want is not None and best.PushForce == pytest.approx(want, rel=1e-9)
+    assert "floating" in best.Label and "on the rest buttons at least" in best.Label
+    # tilted 45 degrees: the in-plane pull, the arcs as gravity.sweep gives them
+    fixture.Gravity = G * math.sin(math.radians(45))
+    doc.recompute()
+    assert "Invalid" not in dial.State, dial.getStatusString()
+    arcs = client.tilt_on_supports(sent, fixture.Gravity)["intervals_deg"]
+    assert list(dial.Arcs) == pytest.approx([x for arc in arcs for x in arc], rel=1e-12)
+    floating = client.gravity_sweep({k: v for k, v in sent.items() if k != "supports"}, "goal")
+    assert 0 < dial.TotalDegrees < sum(b - a for a, b in floating)
