@@ -11,8 +11,9 @@ The document objects
     doc.recompute()
 
 A WrenchFixture links a face (or a sketch, or a shape of one planar face),
-holds the fixels, the friction, the mass and the daemon's socket, and puts
-the fixture in wrenchd; WrenchRegions (one per set: goal, strong, both),
+holds the fixels, the friction, the mass, the rest buttons under the part
+(wrench_supports.py) and the daemon's socket, and puts the fixture in
+wrenchd; WrenchRegions (one per set: goal, strong, both),
 WrenchFixels, WrenchBestPush and WrenchGravityDial show what wrenchd answers
 for it, and recompute when the part, the fixels or the friction change.
 Each region of a WrenchRegions is a WrenchRegion object of its own, with its

@@ -164,8 +164,10 @@ def test_three_buttons_picked_on_the_part_and_the_least_push(client, doc):
     fr = client.force_range(direct, none, push={"at": r["at"], "direction": r["direction"]},
                             sets=["goal"])
     assert fr["all"]["goal"]["least"] == pytest.approx(least.Least, rel=1e-6)
-    # floating, a push along that line of any size seats the plate: 0
+    # floating, a push along that line of any size seats the plate: 0; the
+    # README's figure on the buttons
     assert least.FloatingLeast == 0
+    assert least.Least == pytest.approx(12.0262135, rel=1e-8)
     # drawn: the pieces, then the arrow at the least push (three edges)
     edges = least.Shape.Edges
     assert len(edges) == len(least.Forces) + 3
