@@ -201,11 +201,11 @@ class AddFixelsCommand(_Command):
         _run(doc, "Wrench fixels", lambda: _add_fixels(fixture, picks))
 
 
-class ClearFixelsCommand(_Command):
-    NAME = "Wrench_ClearFixels"
+class _ClearCommand(_Command):
+    """Empties the fixture's list properties CLEARS, in one undo step."""
     ICON = "WrenchClearFixels"
-    MENU = "Clear fixels"
-    TIP = "Remove the fixture's fixels"
+    CLEARS = ()
+    UNDO = ""
 
     def Activated(self):
         doc = FreeCAD.ActiveDocument
@@ -214,9 +214,18 @@ class ClearFixelsCommand(_Command):
             return
 
         def clear():
-            fixture.FixelPoints, fixture.FixelNormals = [], []
+            for name in self.CLEARS:
+                setattr(fixture, name, [])
             _recompute(doc, [fixture])
-        _run(doc, "Wrench fixels cleared", clear)
+        _run(doc, self.UNDO, clear)
+
+
+class ClearFixelsCommand(_ClearCommand):
+    NAME = "Wrench_ClearFixels"
+    MENU = "Clear fixels"
+    TIP = "Remove the fixture's fixels"
+    CLEARS = ("FixelPoints", "FixelNormals")
+    UNDO = "Wrench fixels cleared"
 
 
 def _dependents(fixture, kind):
@@ -434,22 +443,12 @@ class RestButtonsCommand(_Command):
                 _say(line)
 
 
-class ClearRestButtonsCommand(_Command):
+class ClearRestButtonsCommand(_ClearCommand):
     NAME = "Wrench_ClearRestButtons"
-    ICON = "WrenchClearFixels"
     MENU = "Clear rest buttons"
     TIP = "Remove the fixture's rest buttons and down clamps: the part floats in its plane"
-
-    def Activated(self):
-        doc = FreeCAD.ActiveDocument
-        fixture = _fixture_in_selection(doc)
-        if fixture is None:
-            return
-
-        def clear():
-            fixture.SupportPoints, fixture.DownPoints, fixture.DownForces = [], [], []
-            _recompute(doc, [fixture])
-        _run(doc, "Wrench rest buttons cleared", clear)
+    CLEARS = ("SupportPoints", "DownPoints", "DownForces")
+    UNDO = "Wrench rest buttons cleared"
 
 
 COMMANDS = [FixtureCommand, AddFixelsCommand, ClearFixelsCommand, RegionsCommand,

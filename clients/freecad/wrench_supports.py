@@ -57,20 +57,20 @@ _NEWTONS_PER_KG_MM_S2 = 1e-3
 def setup_fixture(obj):
     """The fixture's properties for rest buttons (added when missing)."""
     _add(obj, "App::PropertyVectorList", "SupportPoints", "Rest buttons",
-        "The rest buttons under the part, in the document's coordinates (each taken into the "
-        "face's plane); none: the part floats in its plane")
+         "The rest buttons under the part, in the document's coordinates (each taken into the "
+         "face's plane); none: the part floats in its plane")
     _add(obj, "App::PropertyFloat", "SupportStaticFriction", "Rest buttons",
-        "The rest buttons' static friction mu_B", 0.15)
+         "The rest buttons' static friction mu_B", 0.15)
     _add(obj, "App::PropertyFloat", "SupportKineticFriction", "Rest buttons",
-        "Their kinetic friction, at most the static one", 0.15)
+         "Their kinetic friction, at most the static one", 0.15)
     _add(obj, "App::PropertyFloat", "SupportGravity", "Rest buttons",
-        "Gravity into the plate in mm/s^2 (9810 on earth); the part's weight is Mass times it",
-        9810.0)
+         "Gravity into the plate in mm/s^2 (9810 on earth); the part's weight is Mass times it",
+         9810.0)
     _add(obj, "App::PropertyVectorList", "DownPoints", "Rest buttons",
-        "Down clamps pressing the part onto its buttons: where (document; taken into the "
-        "face's plane)")
+         "Down clamps pressing the part onto its buttons: where (document; taken into the "
+         "face's plane)")
     _add(obj, "App::PropertyFloatList", "DownForces", "Rest buttons",
-        "Each down clamp's force in N, in DownPoints' order")
+         "Each down clamp's force in N, in DownPoints' order")
     for kind, name, doc in (
             ("App::PropertyFloat", "SupportWeight",
              "W: the weight and the down clamps pressing the part onto its buttons, N"),
