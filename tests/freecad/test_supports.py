@@ -268,3 +268,31 @@ def test_the_best_push_and_the_gravity_dial_on_the_buttons(client, doc):
     assert list(dial.Arcs) == pytest.approx([x for arc in arcs for x in arc], rel=1e-12)
     floating = client.gravity_sweep({k: v for k, v in sent.items() if k != "supports"}, "goal")
     assert 0 < dial.TotalDegrees < sum(b - a for a, b in floating)
+
+
+def test_saved_and_opened_again(client, doc, tmp_path):
+    """The buttons are the fixture's, the WrenchSupports an object of its
+    own: saved and opened again, both are there, and moving a button
+    recomputes the loads to the new closed form."""
+    given = [V(30, 15, 0), V(90, 15, 0), V(60, 50, 0)]
+    part, fixture, supports = fixture_on(doc, client, given)
+    labels = list(supports.LoadLabels)
+    name = part.Name
+    path = str(tmp_path / "plate.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    again = FreeCAD.openDocument(path)
+    try:
+        fixture = [o for o in again.Objects if wf._is(o, "WrenchFixture")][0]
+        supports = wf.supports_of(fixture)
+        assert len(supports) == 1 and list(supports[0].LoadLabels) == labels
+        assert [(p.x, p.y, p.z) for p in fixture.SupportPoints] == [(p.x, p.y, p.z) for p in given]
+        moved = given[:2] + [V(40, 45, 0)]
+        fixture.SupportPoints = moved
+        again.recompute()
+        assert all("Invalid" not in o.State for o in again.Objects)
+        want, total = barycentric_loads(moved, again.getObject(name))
+        assert list(fixture.NormalLoads) == pytest.approx(want, rel=1e-9)
+        assert supports[0].LoadLabels[2] == "N3 %.4g N" % want[2]
+    finally:
+        FreeCAD.closeDocument(again.Name)
