@@ -20,6 +20,8 @@
     Wrench_RestButtons   select vertices, holes' circular edges (their centre)
                          or points picked on the part: rest buttons there,
                          taken into the face's plane, their normal loads shown
+    Wrench_DownClamps    the same picks: down clamps pressing the part onto its
+                         buttons (DOWN_FORCE each at first)
     Wrench_ClearRestButtons  the fixture's rest buttons and down clamps removed
 
 A command works on the WrenchFixture selected (or one of its objects), else
@@ -443,6 +445,31 @@ class RestButtonsCommand(_Command):
                 _say(line)
 
 
+class DownClampsCommand(_Command):
+    NAME = "Wrench_DownClamps"
+    ICON = "WrenchFixels"
+    MENU = "Down clamps"
+    TIP = ("Select vertices, circular edges (their centre) or points on the part: down clamps "
+           "pressing it onto its rest buttons there, %s N each at first (the fixture's "
+           "DownForces)" % wf._fmt(wf.DOWN_FORCE))
+
+    def Activated(self):
+        doc = FreeCAD.ActiveDocument
+        fixture = _fixture_in_selection(doc)
+        if fixture is None:
+            return
+        points = _feature_points()
+        if not points:
+            _fail("Down clamps: select vertices, circular edges or points on the part")
+            return
+        if _run(doc, "Wrench down clamps",
+                lambda: wf.add_supports(fixture, points, down=wf.DOWN_FORCE)) is None:
+            return
+        if _recompute(doc, [fixture] + wf.supports_of(fixture)):
+            for line in fixture.SupportsReport:
+                _say(line)
+
+
 class ClearRestButtonsCommand(_ClearCommand):
     NAME = "Wrench_ClearRestButtons"
     MENU = "Clear rest buttons"
@@ -453,7 +480,7 @@ class ClearRestButtonsCommand(_ClearCommand):
 
 COMMANDS = [FixtureCommand, AddFixelsCommand, ClearFixelsCommand, RegionsCommand,
             GravityDialCommand, DesignCommand, LeastForceCommand, LocateCommand,
-            RestButtonsCommand, ClearRestButtonsCommand]
+            RestButtonsCommand, DownClampsCommand, ClearRestButtonsCommand]
 for _command in COMMANDS:
     FreeCADGui.addCommand(_command.NAME, _command())
 

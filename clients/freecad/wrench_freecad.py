@@ -38,7 +38,7 @@ from wrench_objects import (  # noqa: F401
     make_regions, push_on_of, pushed_loops, region_objects, show_regions, socket_path,
     sync_regions, wrenchd)
 from wrench_supports import (  # noqa: F401
-    WrenchSupports, add_supports, make_supports, normal_loads, support_at, supports_of)
+    DOWN_FORCE, WrenchSupports, add_supports, make_supports, normal_loads, support_at, supports_of)
 
 __all__ = [
     "outline", "Outline", "Segment", "OutlineError", "WrenchError",

@@ -29,10 +29,12 @@ pressure outside the buttons' polygon tips the part: wrenchd refuses the
 fixture, and its reason is the fixture's error and the report's.
 
 A WrenchSupports draws each button as a ring in the face's plane with its
-normal load as an arrow from below (longest for the largest load, a range
-drawn at its upper end), each down clamp as an arrow from above, and lists
-the loads in Report and in the report view; the view provider writes them
-beside the buttons in the 3-D view (LoadLabels).
+normal load as an arrow leaving it along the face's normal (the force on
+the part, where it acts; longest for the largest load, a range drawn at its
+upper end), each down clamp as an arrow pressing onto the plane, both on
+the side the face's normal points to, where a view onto the face sees them;
+it lists the loads in Report and in the report view, and the view provider
+writes them at the arrows' far ends in the 3-D view (LoadLabels).
 """
 
 import itertools
@@ -46,6 +48,10 @@ import Part
 from wrench_objects import (OutlineError, WrenchError, _add, _attach_view, _Dependent,
                             _Fixture, _fmt, _fmt_point, _is, _report_error)
 
+
+# A down clamp's force when it is picked, in N: a hand clamp's, to change in
+# DownForces.
+DOWN_FORCE = 100.0
 
 # A kilogram under an acceleration in mm/s^2 weighs a thousandth of a newton:
 # the fixture is sent in mm and N (wrench_objects.UNITS).
@@ -292,8 +298,8 @@ def _arrow(tip, direction, length, width):
 
 class WrenchSupports(_Dependent):
     """The rest buttons of the fixture, with their normal loads: rings in
-    the face's plane, the loads as arrows from below, the down clamps as
-    arrows from above (see the module's docstring)."""
+    the face's plane, the loads as arrows leaving it, the down clamps as
+    arrows pressing onto it (see the module's docstring)."""
 
     def setup(self, obj):
         _Dependent.setup(self, obj)
@@ -340,18 +346,19 @@ class WrenchSupports(_Dependent):
         for i, p in enumerate(member["points"]):
             at = outline.to_3d(p)
             parts.append(Part.makeCircle(1.5 * width, at, up))
-            if largest > 0 and hi[i] > 0:
-                parts.append(_arrow(at, up, max(length * hi[i] / largest, 2 * width), width))
+            reach = max(length * hi[i] / largest, 2 * width) if largest > 0 else 2 * width
+            if hi[i] > 0:
+                parts.append(_arrow(at + up * reach, up, reach, width))
             labels.append("N%d %s N" % (i + 1, "%.4g" % hi[i] if abs(hi[i] - lo[i]) <=
                                         1e-9 * max(hi[i], 1.0) else "%.4g..%.4g" % (lo[i], hi[i])))
-            where.append(at - up * (0.5 * length))
+            where.append(at + up * reach)
         for k, d in enumerate(downs):
             at = outline.to_3d(d["at"])
-            if largest > 0 and d["force"] > 0:
-                parts.append(_arrow(at, up * -1, max(length * d["force"] / largest, 2 * width),
-                                    width))
+            reach = max(length * d["force"] / largest, 2 * width) if largest > 0 else 2 * width
+            if d["force"] > 0:
+                parts.append(_arrow(at, up * -1, reach, width))
             labels.append("D%d %.4g N" % (k + 1, d["force"]))
-            where.append(at + up * (0.5 * length))
+            where.append(at + up * reach)
         obj.Shape = Part.Compound(parts)
         obj.LoadLabels, obj.LabelPoints = labels, where
         obj.Report = list(fixture_obj.SupportsReport)

@@ -219,6 +219,20 @@ def main():
     paths = search.getPaths()
     result["button_texts"] = [paths[i].getTail().string.getValues()[0]
                               for i in range(paths.getLength())]
+    # a down clamp picked on the top face, pressing 100 N at first
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, part.Name, "Face%d" % top, 60, 30, 1)
+    Gui.Selection.addSelection(fixture)
+    Gui.runCommand("Wrench_DownClamps")
+    settle()
+    result["clamps"] = [[p.x, p.y, p.z] for p in fixture.DownPoints]
+    result["clamp_forces"] = list(fixture.DownForces)
+    result["clamp_loads"] = list(fixture.NormalLoads)
+    result["clamp_labels"] = list(buttons[0].LoadLabels)
+    search.apply(buttons[0].ViewObject.RootNode)
+    paths = search.getPaths()
+    result["clamp_texts"] = [paths[i].getTail().string.getValues()[0]
+                             for i in range(paths.getLength())]
     del Part
 
 

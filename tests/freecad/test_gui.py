@@ -78,7 +78,9 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
 
     assert result["started_in"] == result["workbench"] == "WrenchWorkbench"
     assert set(result["commands"]) >= {"Wrench_Fixture", "Wrench_AddFixels", "Wrench_ClearFixels",
-                                       "Wrench_Regions", "Wrench_GravityDial", "Wrench_Design"}
+                                       "Wrench_Regions", "Wrench_GravityDial", "Wrench_Design",
+                                       "Wrench_RestButtons", "Wrench_DownClamps",
+                                       "Wrench_ClearRestButtons", "Wrench_LeastForce"}
     for o in result["objects"]:
         assert o["state"] == ["Up-to-date"], o
         if o["type"].startswith("Wrench"):
@@ -145,6 +147,13 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
                    (c, area2(a, b, here) / whole)):
         assert loads[tuple(p) + (1,)] == pytest.approx(9.81 * lam, rel=1e-9)
     assert result["button_state"] == [["Up-to-date"]]
+    # a down clamp at (60, 30): 100 N more, the loads still balancing it
+    assert result["clamps"] == [[60, 30, 1]] and result["clamp_forces"] == [100.0]
+    assert sum(result["clamp_loads"]) == pytest.approx(109.81, rel=1e-12)
+    assert sum(n * p[0] for n, p in zip(result["clamp_loads"], result["buttons"])) == \
+        pytest.approx(9.81 * com.x + 100 * 60, rel=1e-9)
+    assert result["clamp_texts"] == result["clamp_labels"] and result["clamp_labels"][-1] == \
+        "D1 100 N"
     assert result["button_texts"] == result["button_labels"][0] and \
         len(result["button_texts"]) == 3
 

@@ -106,6 +106,16 @@ def test_three_buttons_given_as_points(client, doc):
     assert list(supports.LoadLabels) == ["N%d %.4g N" % (i + 1, n)
                                          for i, n in enumerate(fixture.NormalLoads)]
     assert len(supports.Shape.Solids) == 3 and len(supports.LabelPoints) == 3
+    # each arrow leaves its button upwards, 15 % of the plate's diagonal
+    # for the largest load and in proportion for the others; its label at its tip
+    reach = 0.15 * math.hypot(L, W_)
+    top = max(fixture.NormalLoads)
+    for solid, n, at, label in zip(supports.Shape.Solids, fixture.NormalLoads,
+                                   fixture.SupportPoints, supports.LabelPoints):
+        box = solid.BoundBox
+        assert (box.ZMin, box.ZMax) == pytest.approx((T, T + reach * n / top), abs=1e-9)
+        assert (box.Center.x, box.Center.y) == pytest.approx((at.x, at.y), abs=1e-9)
+        assert label.distanceToPoint(V(at.x, at.y, T + reach * n / top)) < 1e-9
     assert supports.Report[1].startswith("rest button 1: N = %.6g N" % fixture.NormalLoads[0])
     assert "W = m g + down clamps = %.6g N" % total in supports.Report[0]
     # the id changes with the buttons, and without them it is the floating one's
