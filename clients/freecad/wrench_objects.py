@@ -1266,9 +1266,19 @@ class WrenchLeastForce(_Dependent):
             push_on = push_on_of(obj.PushOn, fixture.fixture["body"], 0.0)
         except OutlineError as e:
             raise WrenchError("%s: %s" % (obj.Label, e))
-        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, set=obj.Set,
-                                                          samples=samples,
-                                                          push_on=push_on or "all"))
+        try:
+            r = fixture.ask(lambda: fixture.client.push_force(fid, cases, set=obj.Set,
+                                                              samples=samples,
+                                                              push_on=push_on or "all"))
+        except WrenchError as error:
+            if plate and error.field.endswith("body.shape"):
+                # what in the face keeps it from being a polygon
+                outline = fixture.outline
+                raise WrenchError("%s; %s has %s, so it is sent as an outline" % (
+                    error, fixture.obj.Label, "holes" if len(outline.segments) > 1 else
+                    "arcs (%s)" % ", ".join(s.edge or "an edge" for s in outline.segments[0]
+                                           if s.is_arc)), error.field, error.reason) from None
+            raise
         if plate:
             # The same part floating, for comparison: its least push alone.
             floating = fixture.ask(lambda: fixture.client.push_force(

@@ -196,7 +196,7 @@ def normal_loads(points, com, mass, g, downs=()):
         return {"weight": 0.0, "pressure": pressure, "min": [0.0] * n, "max": [0.0] * n,
                 "inside": True}
     low, high = [None] * n, [None] * n
-    slack = 1e-12
+    slack = 1e-9        # barycentric coordinates: a centre of pressure on an edge
     for i, j, k in itertools.combinations(range(n), 3):
         lam = _barycentric(points[i], points[j], points[k], pressure)
         if lam is None or min(lam) < -slack:

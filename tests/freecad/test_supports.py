@@ -306,3 +306,22 @@ def test_saved_and_opened_again(client, doc, tmp_path):
         assert supports[0].LoadLabels[2] == "N3 %.4g N" % want[2]
     finally:
         FreeCAD.closeDocument(again.Name)
+
+
+def test_least_force_on_a_face_with_a_hole_is_refused_saying_why(client, doc):
+    """wrenchd finds the least push on the plate along a polygon's edges: a
+    face with a hole goes as an outline, which it refuses, and the
+    workbench says what in the face made it one."""
+    part, fixture, supports = fixture_on(doc, client, [V(30, 15, 0), V(90, 15, 0),
+                                                       V(60, 50, 0)])
+    holed = doc.addObject("Part::Feature", "Holed")
+    holed.Shape = part.Shape.cut(Part.makeCylinder(5, T, V(60, 30, 0)))
+    doc.recompute()
+    fixture.Source = (holed, ["Face%d" % (parts.face_at(holed.Shape, V(0, 0, 1), T) + 1)])
+    least = wf.make_least_force(fixture, samples=2)
+    doc.recompute()
+    assert "Invalid" not in fixture.State, fixture.getStatusString()
+    assert "Invalid" in least.State
+    message = least.getStatusString()
+    assert "[params.fixture.body.shape]" in message and "polygon" in message
+    assert message.endswith("WrenchFixture has holes, so it is sent as an outline")
