@@ -1685,6 +1685,10 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
         if indicator is not None:
             indicator.stop()
     lines = _design_lines(count, shape, result, h)
+    if list(fixture.SupportPoints):
+        lines.insert(1, "the designs are the floating part's: its rest buttons are not among "
+                        "what the design is asked with; Least force then says how hard to push "
+                        "on them")
     fixture.Designs = lines
     for line in lines:
         FreeCAD.Console.PrintMessage("Wrench: %s\n" % line)
