@@ -325,3 +325,15 @@ def test_least_force_on_a_face_with_a_hole_is_refused_saying_why(client, doc):
     message = least.getStatusString()
     assert "[params.fixture.body.shape]" in message and "polygon" in message
     assert message.endswith("WrenchFixture has holes, so it is sent as an outline")
+
+
+def test_a_design_on_rest_buttons_says_it_is_the_floating_part_s(client, doc):
+    part, fixture, supports = fixture_on(doc, client, [V(30, 15, 0), V(90, 15, 0),
+                                                       V(60, 50, 0)])
+    result = wf.design(fixture, progress=False, spacing=30, top=1, place=False)
+    # the same ranking as the part floating asks for
+    floating = client.design({"mass": MASS, "shape": {"type": "polygon", "vertices": [
+        [0, 0], [L, 0], [L, W_ - CHAMFER], [L - CHAMFER, W_], [0, W_]]}},
+        {"static": FIXEL_MU, "kinetic": FIXEL_MU}, fixels=3, spacing=30, top=1)
+    assert result.designs[0].score == pytest.approx(floating.designs[0].score, rel=1e-9)
+    assert fixture.Designs[1].startswith("the designs are the floating part's")
