@@ -233,6 +233,15 @@ def main():
     paths = search.getPaths()
     result["clamp_texts"] = [paths[i].getTail().string.getValues()[0]
                              for i in range(paths.getLength())]
+    # the buttons and the clamp from above at an angle, the regions hidden
+    # (on the buttons they ask for a force)
+    for o in doc.Objects:
+        if o.Name.startswith(("WrenchRegion", "WrenchGravityDial", "WrenchBestPush")):
+            o.ViewObject.Visibility = False
+    Gui.Selection.clearSelection()
+    view.viewIsometric()
+    fit(view)
+    view.saveImage(os.path.join(OUT, "buttons.png"), 1200, 800, "White")
     del Part
 
 

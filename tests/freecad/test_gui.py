@@ -157,6 +157,11 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     assert result["button_texts"] == result["button_labels"][0] and \
         len(result["button_texts"]) == 3
 
+    # the buttons' picture: their arrows drawn
+    width, height, rows = read_png(tmp_path / "buttons.png")
+    assert (width, height) == (1200, 800)
+    assert count_near(rows, wf.SUPPORT_COLOUR, 40) > 500
+
     # the 3-D view from the top: its size, and what is drawn in it
     width, height, rows = read_png(tmp_path / "view.png")
     assert (width, height) == (1200, 800)
@@ -173,3 +178,6 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     keep = os.environ.get("WRENCH_PICTURE")
     if keep:
         shutil.copyfile(tmp_path / "window.png", keep)
+    keep = os.environ.get("WRENCH_PICTURE_BUTTONS")
+    if keep:
+        shutil.copyfile(tmp_path / "buttons.png", keep)
