@@ -185,7 +185,7 @@ def normal_loads(points, com, mass, g, downs=()):
     button's range over the admissible distributions; equal with three),
     "inside" (whether c lies in the buttons' polygon)}."""
     weight = mass * g * _NEWTONS_PER_KG_MM_S2
-    moment = [mass * g * _NEWTONS_PER_KG_MM_S2 * com[0], mass * g * _NEWTONS_PER_KG_MM_S2 * com[1]]
+    moment = [weight * com[0], weight * com[1]]
     for at, force in downs:
         weight += force
         moment[0] += force * at[0]
@@ -239,6 +239,9 @@ def record_loads(obj, shape, com2d):
     for i, (lo, hi) in enumerate(zip(s["min"], s["max"])):
         lines.append("%s at %s" % (_load_words(i, lo, hi, mu),
                                    _fmt_point(shape.to_3d(member["points"][i]))))
+    if not s["inside"]:
+        lines.append("no distribution over the buttons balances W within rounding: the centre "
+                     "of pressure is on their polygon's edge")
     obj.SupportsReport = lines
     for line in lines:
         FreeCAD.Console.PrintMessage("Wrench: %s\n" % line)
@@ -264,10 +267,10 @@ def clear_loads(obj, reason=""):
 def support_at(fixture, point):
     """The document point of a rest button (or a down clamp) picked at
     `point`: taken into the fixture's face plane along its normal (a hole's
-    centre on the other side of the part, a vertex below it)."""
-    if not fixture.FixtureJson:
-        fixture.recompute()
-    shape = _Fixture(fixture, fixture.Label).outline
+    centre on the other side of the part, a vertex below it).  The face's
+    own outline: buttons are picked one at a time, and the fixture is
+    refused until there are three."""
+    shape = fixture.Proxy.outline(fixture)
     x, y, _ = shape.to_2d(point)
     return shape.to_3d((x, y))
 

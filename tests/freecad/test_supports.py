@@ -143,7 +143,12 @@ def test_three_buttons_picked_on_the_part_and_the_least_push(client, doc):
     part, fixture, supports = fixture_on(doc, client, [])
     picked = seat_centres(part)
     assert len(picked) == 3
-    added = wf.add_supports(fixture, picked)
+    # picked one at a time: refused, naming the property, until there are three
+    added = wf.add_supports(fixture, picked[:1])
+    assert "Invalid" in fixture.State
+    assert "wrenchd refused the rest buttons (SupportPoints): at least 3 supports" in \
+        fixture.getStatusString()
+    added += wf.add_supports(fixture, picked[1:])
     # taken into the top face's plane, along its normal
     assert [(p.x, p.y, p.z) for p in added] == [(x, y, T) for x, y in sorted(SEATS)]
     assert "Invalid" not in fixture.State, fixture.getStatusString()
