@@ -154,7 +154,8 @@ class ViewProviderWrench:
         name = {"WrenchFixture": "WrenchFixture", "WrenchRegions": "WrenchRegions",
                 "WrenchRegion": "WrenchRegions", "WrenchFixels": "WrenchFixels",
                 "WrenchBestPush": "WrenchBestPush", "WrenchGravityDial": "WrenchGravityDial",
-                "WrenchLeastForce": "WrenchRegions", "WrenchSupports": "WrenchFixels"}.get(_objects()._proxy_name(obj) if obj is not None else "", "Wrench")
+                "WrenchLeastForce": "WrenchRegions", "WrenchSupports": "WrenchFixels"}.get(
+                    _objects()._proxy_name(obj) if obj is not None else "", "Wrench")
         return icon(name)
 
     def __getstate__(self):
