@@ -123,6 +123,17 @@ def test_three_buttons_given_as_points(client, doc):
     fixture.SupportStaticFriction = fixture.SupportKineticFriction = 0.25
     doc.recompute()
     assert fixture.FixtureId != with_buttons
+    fixture.SupportKineticFriction = 0.2         # mu_B as {static, kinetic}
+    doc.recompute()
+    assert json.loads(fixture.FixtureJson)["supports"]["friction"] == {"static": 0.25,
+                                                                       "kinetic": 0.2}
+    assert client.get_fixture(fixture.FixtureId)["supports"]["friction"] == {
+        "static": 0.25, "kinetic": 0.2}
+    fixture.SupportKineticFriction = 0.3         # above the static: refused, named
+    doc.recompute()
+    assert "wrenchd refused the rest buttons' friction (SupportStaticFriction, " \
+        "SupportKineticFriction)" in fixture.getStatusString()
+    fixture.SupportKineticFriction = 0.25
     fixture.SupportPoints = []
     doc.recompute()
     assert fixture.FixtureId not in ("", with_buttons) and fixture.NormalLoads == []
