@@ -423,6 +423,7 @@ class RestButtonsCommand(_Command):
            "buttons under it there, taken into the face's plane; their normal loads are shown "
            "(friction mu_B, gravity into the plate and down clamps in the fixture's Rest "
            "buttons group)")
+    DOWN = None       # a down clamp's force: picks are down clamps, not buttons
 
     def Activated(self):
         doc = FreeCAD.ActiveDocument
@@ -431,43 +432,27 @@ class RestButtonsCommand(_Command):
             return
         points = _feature_points()
         if not points:
-            _fail("Rest buttons: select vertices, holes' circular edges or points on the part")
+            _fail("%s: select vertices, circular edges or points on the part" % self.MENU)
             return
 
         def add():
             if not wf.supports_of(fixture):
                 wf.make_supports(fixture)
-            return wf.add_supports(fixture, points)
-        if _run(doc, "Wrench rest buttons", add) is None:
+            return wf.add_supports(fixture, points, down=self.DOWN)
+        if _run(doc, "Wrench %s" % self.MENU.lower(), add) is None:
             return
         if _recompute(doc, [fixture] + wf.supports_of(fixture)):
             for line in fixture.SupportsReport:
                 _say(line)
 
 
-class DownClampsCommand(_Command):
+class DownClampsCommand(RestButtonsCommand):
     NAME = "Wrench_DownClamps"
-    ICON = "WrenchFixels"
     MENU = "Down clamps"
     TIP = ("Select vertices, circular edges (their centre) or points on the part: down clamps "
            "pressing it onto its rest buttons there, %s N each at first (the fixture's "
            "DownForces)" % wf._fmt(wf.DOWN_FORCE))
-
-    def Activated(self):
-        doc = FreeCAD.ActiveDocument
-        fixture = _fixture_in_selection(doc)
-        if fixture is None:
-            return
-        points = _feature_points()
-        if not points:
-            _fail("Down clamps: select vertices, circular edges or points on the part")
-            return
-        if _run(doc, "Wrench down clamps",
-                lambda: wf.add_supports(fixture, points, down=wf.DOWN_FORCE)) is None:
-            return
-        if _recompute(doc, [fixture] + wf.supports_of(fixture)):
-            for line in fixture.SupportsReport:
-                _say(line)
+    DOWN = wf.DOWN_FORCE
 
 
 class ClearRestButtonsCommand(_ClearCommand):
