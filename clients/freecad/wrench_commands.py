@@ -235,10 +235,12 @@ def _dependents(fixture, kind):
 
 
 def _views(fixture):
-    """The fixture's regions of goal, strong and both, its fixels and its best
-    push: those it lacks are made."""
+    """The fixture's regions of goal, strong and both (on rest buttons goal
+    alone, the one wrenchd answers there), its fixels and its best push:
+    those it lacks are made."""
     have = {o.Set for o in _dependents(fixture, "WrenchRegions")}
-    made = [wf.make_regions(fixture, which) for which in wf.SETS if which not in have]
+    sets = ("goal",) if list(fixture.SupportPoints) else wf.SETS
+    made = [wf.make_regions(fixture, which) for which in sets if which not in have]
     if not _dependents(fixture, "WrenchFixels"):
         made.append(wf.make_fixels(fixture))
     if not _dependents(fixture, "WrenchBestPush"):

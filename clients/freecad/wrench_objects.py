@@ -725,8 +725,13 @@ class WrenchRegions:
              "boundary only); outer; all; or loop numbers, 0 the outer boundary (0, 2)", "")
         _add(obj, "App::PropertyBool", "SweepFriction", "Regions",
              "Also find the critical friction above which the region is empty "
-             "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8)",
+             "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8; "
+             "not on rest buttons)",
              True)
+        _add(obj, "App::PropertyFloat", "PushForce", "Regions",
+             "On rest buttons (set goal): the push's magnitude in N, the regions where a push "
+             "that hard seats the part against their friction (Least force gives the least); "
+             "0: none asked.  Not used when the part floats", 0.0)
         for kind, name, doc in (
                 ("App::PropertyString", "Meaning", "What a push in this set promises"),
                 ("App::PropertyInteger", "Count", "How many regions"),
@@ -785,8 +790,17 @@ class WrenchRegions:
             return
         radius = float(obj.FingerRadius)
         push_on = push_on_of(obj.PushOn, fixture.fixture["body"], radius)
+        force = {}
+        if fixture.on_supports:
+            if obj.PushForce <= 0:
+                self.failed(obj)
+                obj.Label = "Regions %s (on rest buttons: set PushForce, N)" % which
+                return
+            # how hard matters there: wrenchd answers goal only, and says so
+            cases, _ = force_question(fixture)
+            force = {"force": float(obj.PushForce), "cases": cases}
         answer = fixture.ask(lambda: fixture.client.push_regions(
-            fixture.fixture, which, finger_radius=radius, push_on=push_on))
+            fixture.fixture, which, finger_radius=radius, push_on=push_on, **force))
         obj.PushOnLoops = pushed_loops(push_on, fixture.fixture["body"])
         FreeCAD.Console.PrintMessage("Wrench: regions %s %s\n" % (
             which, describe_push_on(obj.PushOnLoops, fixture.fixture["body"], radius,
@@ -794,10 +808,12 @@ class WrenchRegions:
         outline = fixture.outline
         edges, loops, segs, names, t0, t1, lengths, starts, ends = [], [], [], [], [], [], [], [], []
         for r in answer.regions:
-            segment = outline.segments[r.loop][r.segment]
+            loop = r.loop if r.loop is not None else 0          # a polygon's edge: loop 0's
+            index = r.segment if r.segment is not None else r.edge
+            segment = outline.segments[loop][index]
             edges.append(outline.edge_3d(segment, r.t0, r.t1))
-            loops.append(r.loop)
-            segs.append(r.segment)
+            loops.append(loop)
+            segs.append(index)
             names.append(segment.edge)
             t0.append(r.t0)
             t1.append(r.t1)
@@ -812,7 +828,7 @@ class WrenchRegions:
         obj.TotalLength = answer.total_length
         obj.Fraction = answer.fraction
         obj.CriticalMu = -2.0
-        if obj.SweepFriction:
+        if obj.SweepFriction and not fixture.on_supports:
             friction = fixture.friction()
             ratio = friction["kinetic"] / friction["static"] if friction["static"] > 0 else 1.0
             push = {"set": which}
@@ -823,6 +839,9 @@ class WrenchRegions:
             obj.CriticalMu = -1.0 if sweep.critical is None else float(sweep.critical)
         obj.Label = "Regions %s: %d, %s long (%s)" % (which, obj.Count, _fmt(obj.TotalLength),
                                                        SHORT_MEANING[which])
+        if force:
+            obj.Label = "Regions %s at %s N on the rest buttons: %d, %s long" % (
+                which, _fmt(obj.PushForce), obj.Count, _fmt(obj.TotalLength))
 
 
 class WrenchRegion:

@@ -9,6 +9,7 @@ least push on the plate against push.force and force.range asked directly
 of wrenchd with a fixture written here; a plate that tips against the
 distance of its centre of pressure from the buttons' triangle."""
 
+import json
 import math
 
 import FreeCAD
@@ -98,7 +99,6 @@ def test_three_buttons_given_as_points(client, doc):
     assert list(fixture.NormalLoads) == pytest.approx(want, rel=1e-9)
     assert total == pytest.approx(2 * 9.81, rel=1e-12)
     # the buttons in the face's plane, the supports member in its frame
-    import json
     sent = json.loads(fixture.FixtureJson)["supports"]
     assert sent == {"points": [[30, 15], [90, 15], [60, 50]], "friction": MU_B, "g": G}
     # shown: a label and an arrow a button, and the report
@@ -275,7 +275,6 @@ def test_the_best_push_and_the_gravity_dial_on_the_buttons(client, doc):
     assert "Invalid" not in best.State, best.getStatusString()
     # how hard this push must be to seat the part on its buttons: force.range
     # (goal) at its point, asked directly of the fixture as sent
-    import json
     sent = json.loads(fixture.FixtureJson)
     sent["body"]["shape"] = {"type": "polygon", "vertices": [
         [0, 0], [L, 0], [L, W_ - CHAMFER], [L - CHAMFER, W_], [0, W_]]}
@@ -353,3 +352,37 @@ def test_a_design_on_rest_buttons_says_it_is_the_floating_part_s(client, doc):
         {"static": FIXEL_MU, "kinetic": FIXEL_MU}, fixels=3, spacing=30, top=1)
     assert result.designs[0].score == pytest.approx(floating.designs[0].score, rel=1e-9)
     assert fixture.Designs[1].startswith("the designs are the floating part's")
+
+
+def test_push_regions_under_a_force_on_the_buttons(client, doc):
+    """Regions goal with a PushForce: where a push that hard seats the part
+    on its buttons.  Just above the least push they hold its point; just
+    below it they are empty (no point of the outline does it with less);
+    and they are push.regions' asked directly."""
+    part, fixture, supports = fixture_on(doc, client, [V(30, 15, 0), V(90, 15, 0),
+                                                       V(60, 50, 0)])
+    least = wf.make_least_force(fixture, samples=2)
+    regions = wf.make_regions(fixture, "goal")
+    doc.recompute()
+    assert regions.Count == 0 and "set PushForce" in regions.Label
+    regions.PushForce = 1.05 * least.Least
+    doc.recompute()
+    children = wf.sync_regions(regions)
+    assert "Invalid" not in regions.State, regions.getStatusString()
+    assert regions.Count >= 1 and len(children) == regions.Count
+    assert any(c.Shape.distToShape(Part.Vertex(least.LeastAt))[0] < 1e-9 for c in children)
+    sent = json.loads(fixture.FixtureJson)
+    sent["body"]["shape"] = {"type": "polygon", "vertices": [
+        [0, 0], [L, 0], [L, W_ - CHAMFER], [L - CHAMFER, W_], [0, W_]]}
+    none = [{"name": "none", "loads": [{"wrench": [0, 0, 0]}]}]
+    direct = client.push_regions(sent, "goal", force=regions.PushForce, cases=none)
+    assert list(regions.RegionLengths) == pytest.approx([r.length for r in direct.regions],
+                                                        rel=1e-12)
+    regions.PushForce = 0.95 * least.Least
+    doc.recompute()
+    assert "Invalid" not in regions.State and regions.Count == 0
+    # strong is no question wrenchd answers with a force on the buttons: its words
+    strong = wf.make_regions(fixture, "strong")
+    strong.PushForce = least.Least
+    doc.recompute()
+    assert "Invalid" in strong.State and "[params.set]" in strong.getStatusString()
