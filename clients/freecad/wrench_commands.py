@@ -278,11 +278,18 @@ class RegionsCommand(_Command):
                 ", none above mu %s" % wf._fmt(regions.CriticalMu) if regions.CriticalMu >= 0
                 else ", not empty up to mu 2", regions.Meaning))
         for push in _dependents(fixture, "WrenchBestPush"):
-            if push.Found:
+            if push.Found and list(fixture.SupportPoints):
+                _say("%s: %s at %s %s along %s; the least push on them anywhere is %s" % (
+                    push.Label, push.Meaning, wf._fmt_point(push.At), wf.UNIT,
+                    wf._fmt_point(push.Direction),
+                    "%.4g N at %s" % (push.LeastForce, wf._fmt_point(push.LeastForceAt))
+                    if push.LeastForce >= 0 else "none" if push.LeastForce == -1 else
+                    "Least force's to find (on a face of straight lines alone)"))
+            elif push.Found:
                 _say("best push at %s %s along %s, margin %.4g: push there and let go (it is in "
                      "both)" % (wf._fmt_point(push.At), wf.UNIT, wf._fmt_point(push.Direction),
                                 push.Margin))
-                if fixture.Gravity or list(fixture.Loads) or list(fixture.SupportPoints):
+                if fixture.Gravity or list(fixture.Loads):
                     _say("how hard: %s there under every load case; the least push anywhere is %s"
                          % ("%.4g N" % push.PushForce if push.PushForce >= 0 else "no force does it",
                             "%.4g N at %s" % (push.LeastForce, wf._fmt_point(push.LeastForceAt))

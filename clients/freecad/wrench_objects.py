@@ -1155,7 +1155,8 @@ class WrenchBestPush(_Dependent):
                  "With the fixture's Gravity or Loads: the least force in N of this push that "
                  "seats the part and holds it under every case (-1: none does; 0 without loads)"),
                 ("App::PropertyFloat", "LeastForce",
-                 "With loads: the least push force anywhere on the outline, in N (-1: none)"),
+                 "With loads: the least push force anywhere on the outline, in N (-1: none; "
+                 "-2: not asked: on rest buttons, a face with arcs or holes)"),
                 ("App::PropertyVector", "LeastForceAt", "Where that least push is (document)")):
             _add(obj, kind, name, "Answer", doc, mode=1)
 
@@ -1212,18 +1213,25 @@ class WrenchBestPush(_Dependent):
                 fid, cases, push={"at": at, "direction": direction}, sets=[which]))
             least = here["all"][which]["least"]
             obj.PushForce = -1.0 if least is None else least
-            anywhere = fixture.ask(lambda: fixture.client.push_force(
-                fid, cases, set=which, samples=1))["least"]
-            obj.LeastForce = -1.0 if anywhere is None else anywhere["force"]
+            try:
+                anywhere = fixture.ask(lambda: fixture.client.push_force(
+                    fid, cases, set=which, samples=1))["least"]
+                obj.LeastForce = -1.0 if anywhere is None else anywhere["force"]
+            except WrenchError as error:
+                # on rest buttons the least push anywhere is found on a
+                # polygon only (Least force says why); this push's force stands
+                if not (fixture.on_supports and error.field.endswith("body.shape")):
+                    raise
+                anywhere, obj.LeastForce = None, -2.0
             if anywhere is not None:
                 obj.LeastForceAt = outline.to_3d(anywhere["at"])
             if fixture.on_supports:
                 # The margin and the region are the floating part's (no
                 # direction-only answer holds on the buttons); how hard is
                 # the buttons' own.
-                obj.Meaning = ("both for the part floating; on the rest buttons this push seats "
-                               "it only as hard as PushForce (goal), and whether it then holds "
-                               "is not asked")
+                obj.Meaning = ("both for the part floating; on the rest buttons this push "
+                               "seats it when at least PushForce hard (goal), and whether it "
+                               "then holds is not asked")
                 obj.Label = "Best push (both, floating): margin %.4g; on the rest buttons %s" % (
                     obj.Margin, "at least %.4g N to seat it" % least if least is not None
                     else "no force seats it")

@@ -233,6 +233,15 @@ def main():
     paths = search.getPaths()
     result["clamp_texts"] = [paths[i].getTail().string.getValues()[0]
                              for i in range(paths.getLength())]
+    # Push regions on the buttons: what the report view says of the best push
+    report_dock.widget().clear()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(fixture)
+    Gui.runCommand("Wrench_Regions")
+    settle()
+    result["regions_on_buttons"] = report_dock.widget().toPlainText().splitlines()
+    result["regions_on_buttons_labels"] = sorted(o.Label for o in doc.Objects
+                                                 if o.Name.startswith("WrenchRegions"))
     # the buttons and the clamp from above at an angle, the regions hidden
     # (on the buttons they ask for a force)
     for o in doc.Objects:

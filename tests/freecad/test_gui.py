@@ -157,6 +157,18 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     assert result["button_texts"] == result["button_labels"][0] and \
         len(result["button_texts"]) == 3
 
+    # Push regions on the buttons: the regions ask for a force, the best push
+    # says it is the floating part's and how hard it must be on the buttons
+    assert result["regions_on_buttons_labels"] == [
+        "Regions %s (on rest buttons: set PushForce, N)" % s for s in ("both", "goal", "strong")]
+    said = "\n".join(result["regions_on_buttons"])
+    assert "Wrench: Best push (both, floating): margin " in said
+    assert "; on the rest buttons at least " in said and " N to seat it: both for the part " \
+        "floating" in said
+    # (on the bracket's arcs and holes wrenchd finds no least push on buttons)
+    assert "the least push on them anywhere is Least force's to find (on a face of straight " \
+        "lines alone)" in said
+
     # the buttons' picture: their arrows drawn
     width, height, rows = read_png(tmp_path / "buttons.png")
     assert (width, height) == (1200, 800)
