@@ -509,6 +509,15 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
     return WR_OK;
 }
 
+/* The client has gone (or the daemon stops): true with the error set. */
+static bool stop_requested(wp_call *call)
+{
+    if (!wr_stop_requested(call->host->stop))
+        return false;
+    wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+    return true;
+}
+
 /* params.deadline_s given and passed. */
 static bool deadline_passed(const sweep_state *state)
 {
@@ -606,10 +615,8 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
         }
         if (!first && *used >= budget)
             return WP_STEP_MORE;
-        if (wr_stop_requested(call->host->stop)) {
-            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+        if (stop_requested(call))
             return WP_STEP_FAILED;
-        }
         wr_status status = force_sample(state, use->fixture, state->mus[state->sample], used, out,
                                         state->at[state->sample]);
         if (status != WR_OK) {
@@ -681,10 +688,8 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
         }
         if (!first && *used >= budget)
             return WP_STEP_MORE;
-        if (wr_stop_requested(call->host->stop)) {
-            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+        if (stop_requested(call))
             return WP_STEP_FAILED;
-        }
         /* In the model system, where the supports' friction is (the
          * wrenches are read in the fixture's force unit). */
         const double k = wr_fixture_force_factor(use->fixture);
@@ -900,10 +905,8 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
         }
         if (!first && *used >= budget)
             return WP_STEP_MORE;
-        if (wr_stop_requested(call->host->stop)) {
-            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+        if (stop_requested(call))
             return WP_STEP_FAILED;
-        }
         const double mu = plate_mu(state);
         bool done;
         wr_status status = plate_piece(state, call, use, env, mu, used, &done);

@@ -206,24 +206,32 @@ static inline wr_fixture *test_random_fixture(test_rng *rng, int k, bool disc)
     return test_fixture_new(&spec, &error);
 }
 
-/* The disc in a corner of docs/MODEL.md section 7. */
+/* The disc in a corner of docs/MODEL.md section 7, as a spec whose fixels
+ * are `fixels` (the caller's, two): another outline may replace the
+ * circle. */
+static inline void test_disc_corner_spec(double mu, wr_fixel_spec fixels[2],
+                                         wr_fixture_spec *spec)
+{
+    memset(fixels, 0, 2 * sizeof fixels[0]);
+    fixels[0].at[0] = -1;
+    fixels[1].at[1] = -1;
+    memset(spec, 0, sizeof *spec);
+    spec->mass = 1;
+    spec->inertia_given = true;
+    spec->inertia = 0.5;
+    spec->shape = WR_SHAPE_CIRCLE;
+    spec->radius = 1;
+    spec->friction.given = true;
+    spec->friction.static_mu = mu;
+    spec->fixel_count = 2;
+    spec->fixels = fixels;
+}
+
 static inline wr_fixture *test_disc_corner(double mu)
 {
     wr_fixel_spec fixels[2];
-    memset(fixels, 0, sizeof fixels);
-    fixels[0].at[0] = -1;
-    fixels[1].at[1] = -1;
     wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.inertia_given = true;
-    spec.inertia = 0.5;
-    spec.shape = WR_SHAPE_CIRCLE;
-    spec.radius = 1;
-    spec.friction.given = true;
-    spec.friction.static_mu = mu;
-    spec.fixel_count = 2;
-    spec.fixels = fixels;
+    test_disc_corner_spec(mu, fixels, &spec);
     return test_fixture_new(&spec, NULL);
 }
 

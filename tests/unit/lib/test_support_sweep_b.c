@@ -33,22 +33,12 @@ static wr_fixture *octagon(void)
         vertices[k][1] = r * sin(TEST_PI / 8 + k * TEST_PI / 4);
     }
     wr_fixel_spec fixels[2];
-    memset(fixels, 0, sizeof fixels);
-    fixels[0].at[0] = -1;
-    fixels[1].at[1] = -1;
     wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 1;
-    spec.inertia_given = true;
-    spec.inertia = 0.5;
-    spec.com_given = true;
+    test_disc_corner_spec(0.5, fixels, &spec);
+    spec.com_given = true; /* at the origin, the disc's centre */
     spec.shape = WR_SHAPE_POLYGON;
     spec.vertex_count = 8;
     spec.vertices = (const double (*)[2])vertices;
-    spec.friction.given = true;
-    spec.friction.static_mu = 0.5;
-    spec.fixel_count = 2;
-    spec.fixels = fixels;
     return test_fixture_new(&spec, NULL);
 }
 
