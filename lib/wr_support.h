@@ -47,8 +47,7 @@
 extern "C" {
 #endif
 
-/* At most this many supports and down clamps. */
-#define WR_MAX_SUPPORTS 16
+/* At most this many down clamps (supports: WR_MAX_SUPPORTS, wr_fixture.h). */
 #define WR_MAX_DOWN 16
 
 typedef struct wr_down_spec {

@@ -248,6 +248,11 @@ class Witness:
     # u): with friction intervals, a value in the interval at which the
     # motion is possible.  Left out by daemons before friction intervals.
     friction: Optional[List[Optional[float]]] = None
+    # A fixture on supports: each support's friction force [f_x, f_y] on
+    # the part and its normal force, in the fixture's force unit (None
+    # without supports).
+    support_forces: Optional[List[List[float]]] = None
+    support_normals: Optional[List[float]] = None
 
 
 @dataclass

@@ -1,0 +1,211 @@
+"""On a base plate: the buttons' witness forces on the wire, and
+fixture.design ranked by the least push on the plate (docs/PROTOCOL.md,
+"Supports" and fixture.design; docs/MODEL.md section 11).
+
+The witness is checked by physics computed here: Newton-Euler with the
+fixels' and the supports' forces (M q = g + sum W c + sum (f_i, r_i x f_i)),
+each sliding support's force against its own acceleration with magnitude
+mu_k N_i, each sticking one within mu_s N_i, the normal forces a
+distribution of the weight and the clamps. The design's ranking is
+checked by brute force: every candidate put as a fixture and asked
+push.force on the plate, one by one."""
+
+import copy
+import itertools
+import json
+import math
+import os
+import subprocess
+import sys
+
+import pytest
+
+import fixtures as FX
+import model as M
+from conftest import REPO
+
+G = 9.81
+R2 = math.sqrt(2)
+BUTTONS = [[0, 0.2], [-0.17320508075688773, -0.1], [0.17320508075688773, -0.1]]
+PLATE_BUTTONS = [[1, 0.5], [3, 0.5], [2, 1.7]]
+
+
+def on_buttons(fixture, points, mu, g=G, down=None):
+    f = copy.deepcopy(fixture)
+    f["supports"] = {"points": points, "friction": mu, "g": g}
+    if down is not None:
+        f["supports"]["down"] = down
+    return f
+
+
+def plate(mass=2.0):
+    f = FX.rectangle_321(0.3)
+    f["body"]["mass"] = mass
+    return f
+
+
+def error_of(client, method, params):
+    e = client.error(method, params)
+    assert e["code"] == -32602, e
+    return e["data"]["field"], e["data"]["reason"]
+
+
+# ---- the witness's forces ------------------------------------------------------------------
+
+def check_support_witness(fixture, g, witness, pressing):
+    """The witness of a motion on supports against physics: returns the
+    number of supports found sliding and sticking. `pressing` is the total
+    normal force and its centre (weight and clamps, in the force unit)."""
+    mdl = M.Model(fixture)
+    s = fixture["supports"]
+    fr = s["friction"]
+    mu_s = fr if not isinstance(fr, dict) else fr["static"]
+    mu_k = fr if not isinstance(fr, dict) else fr.get("kinetic", fr["static"])
+    points = s["points"]
+    q = witness["acceleration"]
+    forces = witness["forces"]
+    sf = witness["support_forces"]
+    normals = witness["support_normals"]
+    assert len(sf) == len(points) and len(normals) == len(points), witness
+    # Newton-Euler: M q / k - sum W c - sum (f_i, r_i x f_i) = g.
+    ne = list(mdl.newton_euler(q, forces))
+    for p, f in zip(points, sf):
+        w = mdl.force_wrench(f, p)
+        ne = [a - b for a, b in zip(ne, w)]
+    size = 1 + M.norm(g) + sum(abs(x) for f in sf for x in f) + sum(normals)
+    assert all(abs(a - b) <= 1e-6 * size for a, b in zip(ne, g)), (ne, g, witness)
+    # The distribution: non-negative, the total and the centre of pressure.
+    total, centre = pressing
+    assert all(n >= -1e-9 * total for n in normals), normals
+    assert abs(sum(normals) - total) <= 1e-7 * total, (normals, total)
+    for j in range(2):
+        moment = sum(n * p[j] for n, p in zip(normals, points))
+        assert abs(moment - total * centre[j]) <= 1e-7 * total * (1 + abs(centre[j])), normals
+    # Each support: sliding against its acceleration with mu_k N_i, or
+    # sticking within mu_s N_i. Its acceleration a_i = a + alpha z x r_i
+    # (the part's acceleration in the fixture's length unit per s^2).
+    sliding = sticking = 0
+    speed = max(math.hypot(q[0], q[1]), abs(q[2]) * mdl.rho, 1e-300)
+    for p, f, n in zip(points, sf, normals):
+        r = (p[0] - mdl.com[0], p[1] - mdl.com[1])
+        a = (q[0] - q[2] * r[1], q[1] + q[2] * r[0])
+        if math.hypot(*a) > 1e-9 * speed:
+            sliding += 1
+            u = (a[0] / math.hypot(*a), a[1] / math.hypot(*a))
+            expected = (-mu_k * n * u[0], -mu_k * n * u[1])
+            assert math.hypot(f[0] - expected[0], f[1] - expected[1]) <= 1e-6 * (1 + mu_k * n), (
+                "a sliding support's force %r is not -mu_k N a/|a| = %r" % (f, expected))
+        else:
+            sticking += 1
+            assert math.hypot(*f) <= mu_s * n * (1 + 1e-7) + 1e-9, (f, n)
+    return sliding, sticking
+
+
+def classify_strong(client, fixture, wrenches):
+    r = client.result("wrench.classify", {"fixture": fixture, "wrenches": wrenches,
+                                          "sets": ["strong"]})
+    return [x["strong"] for x in r["results"]]
+
+
+def test_plate_witness_forces_against_a_cutting_force(client):
+    """The 3-2-1 plate on three buttons (m = 2, mu_B = 0.2, a clamp D at the
+    centre of mass) under a cutting force F_c along +x below the least
+    clamp: the witness is the translation a_x = (F_c - mu_B W) / m
+    (docs/MODEL.md section 11), every button sliding against +x with
+    mu_B N_i, the N_i the weight's barycentric shares."""
+    mu_b, cutting = 0.2, 30.0
+    d = 0.9 * (cutting / mu_b - 2 * G)
+    f = on_buttons(plate(), PLATE_BUTTONS, mu_b, down=[{"at": [2, 1], "force": d}])
+    (v,) = classify_strong(client, f, [[cutting, 0, 0]])
+    assert v["verdict"] == "outside", v
+    w = v["witness"]
+    total = 2 * G + d
+    sliding, sticking = check_support_witness(f, [cutting, 0, 0], w, (total, (2, 1)))
+    assert (sliding, sticking) == (3, 0)
+    assert abs(w["acceleration"][0] - (cutting - mu_b * total) / 2) < 1e-6, w
+    # The barycentric shares of (2, 1) in the buttons' triangle: 7/24,
+    # 7/24 and 10/24 of W.
+    for n, share in zip(w["support_normals"], (7 / 24, 7 / 24, 10 / 24)):
+        assert abs(n - share * total) < 1e-7 * total, w["support_normals"]
+    for sfi, n in zip(w["support_forces"], w["support_normals"]):
+        assert abs(sfi[0] + mu_b * n) < 1e-7 * total and abs(sfi[1]) < 1e-7 * total, sfi
+
+
+@pytest.mark.parametrize("buttons,friction", [
+    (PLATE_BUTTONS, 0.2),
+    (PLATE_BUTTONS, {"static": 0.3, "kinetic": 0.2}),
+    # Four buttons: the normal forces are indeterminate; the witness's are
+    # one admissible distribution.
+    ([[0.5, 0.3], [3.5, 0.3], [3.5, 1.7], [0.5, 1.7]], {"static": 0.25, "kinetic": 0.15}),
+])
+def test_witness_forces_by_newton_euler(client, buttons, friction):
+    """Loads that turn and push the plate off its locators: each witness
+    holds Newton-Euler with the supports' forces, and each support slides
+    against its own acceleration or sticks within its disc."""
+    f = on_buttons(plate(), buttons, friction)
+    wrenches = [[30, 0, 0], [0, 0, -40], [-5, 30, 10], [20, 20, -30], [0, 0, 25],
+                [-25, 10, 0], [10, -3, 30]]
+    answers = classify_strong(client, f, wrenches)
+    moved = turned = 0
+    for g, v in zip(wrenches, answers):
+        if v["verdict"] != "outside":
+            assert v["witness"] is None or v["verdict"] == "boundary", v
+            continue
+        moved += 1
+        check_support_witness(f, g, v["witness"], (2 * G, (2, 1)))
+        turned += abs(v["witness"]["acceleration"][2]) > 1e-6
+    assert moved >= 4 and turned >= 2, (moved, turned, answers)
+
+
+def test_witness_forces_in_newtons(client):
+    """The disc in millimetres and newtons on three buttons, pushed off its
+    fixel along +x: the supports' forces and normals in N (the normals sum
+    to m g = 9.81 N, not 9810 kg mm/s^2), Newton-Euler in N."""
+    mu_b = 0.3
+    f = {"name": "disc-mm", "units": {"length": "mm", "force": "N"},
+         "body": {"mass": 1.0, "inertia": 0.5e6, "com": [0, 0],
+                  "shape": {"type": "circle", "center": [0, 0], "radius": 1000.0}},
+         "friction": {"static": 0.5},
+         "fixels": [{"at": [-1000, 0], "normal": [1, 0]}, {"at": [0, -1000], "normal": [0, 1]}]}
+    f = on_buttons(f, [[1000 * x, 1000 * y] for x, y in BUTTONS], mu_b, g=9810)
+    (v,) = classify_strong(client, f, [[10.0, 1.0, 0]])
+    assert v["verdict"] == "outside", v
+    w = v["witness"]
+    check_support_witness(f, [10.0, 1.0, 0], w, (G, (0, 0)))
+    assert abs(sum(w["support_normals"]) - G) < 1e-7
+    assert set(w) >= {"support_forces", "support_normals"}
+
+
+def test_no_support_members_without_supports(client):
+    r = client.result("wrench.classify", {"fixture": plate(), "wrenches": [[30, 0, 0]],
+                                          "sets": ["strong"]})
+    w = r["results"][0]["strong"]["witness"]
+    assert set(w) == {"acceleration", "forces", "wrench", "friction"}, w
+
+
+def test_clients_show_the_witness_forces(daemon, client, tmp_path):
+    """wrenchctl prints the supports' forces under a verdict; the Python
+    client returns them."""
+    mu_b, cutting = 0.2, 30.0
+    f = on_buttons(plate(), PLATE_BUTTONS, mu_b)
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    with wrenchd.Client(daemon.path, timeout=60) as c:
+        (r,) = c.classify(f, [[cutting, 0, 0]], sets=["strong"])
+        w = r["strong"].witness
+        assert len(w.support_forces) == 3 and len(w.support_normals) == 3
+        assert abs(sum(w.support_normals) - 2 * G) < 1e-7
+        assert all(abs(sf[0] + mu_b * n) < 1e-7 for sf, n in zip(w.support_forces,
+                                                                  w.support_normals))
+    path = tmp_path / "plate-on-buttons.json"
+    path.write_text(json.dumps(f))
+    env = dict(os.environ, WRENCHD_SOCKET=daemon.path)
+    run = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "classify", str(path),
+                          "%g,0,0" % cutting, "--sets", "strong"],
+                         capture_output=True, text=True, env=env, timeout=60)
+    assert "the supports' friction" in run.stdout, run.stdout + run.stderr
+    # Each button slides against +x with mu_B N_i: N = 7/24, 7/24, 10/24 of W.
+    for share in (7 / 24, 7 / 24, 10 / 24):
+        n = 2 * G * share
+        assert "(%g, %g) of N = %g" % (-mu_b * n, 0, n) in run.stdout.replace("-0)", "0)"), \
+            run.stdout
