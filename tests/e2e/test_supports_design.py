@@ -209,3 +209,178 @@ def test_clients_show_the_witness_forces(daemon, client, tmp_path):
         n = 2 * G * share
         assert "(%g, %g) of N = %g" % (-mu_b * n, 0, n) in run.stdout.replace("-0)", "0)"), \
             run.stdout
+
+
+# ---- fixture.design on the plate -----------------------------------------------------------
+
+CHAMFER = [[0, 0], [4, 0], [4, 1], [3, 2], [0, 2]]
+CHAMFER_BUTTONS = [[1, 0.5], [3, 0.5], [1.5, 1.6]]
+# Six sites on the chamfered plate (m = 2): two on the bottom, two on the
+# left, one on the top, one on the right: C(6, 3) = 20 candidates, sites
+# 0, 1, 2 the plate's own 3-2-1 fixels (examples/plate-chamfered.json).
+SITES = [{"at": [1, 0], "normal": [0, 1]}, {"at": [3, 0], "normal": [0, 1]},
+         {"at": [0, 0.5], "normal": [1, 0]}, {"at": [0, 1.5], "normal": [1, 0]},
+         {"at": [1.5, 2], "normal": [0, -1]}, {"at": [4, 0.5], "normal": [-1, 0]}]
+# Four of them whose four candidates all seat on the plate.
+FOUR = [SITES[i] for i in (1, 3, 4, 5)]
+NONE = [{"loads": [{"wrench": [0, 0, 0]}]}]
+FRICTION = 0.1
+
+
+def chamfer_body():
+    return {"mass": 2.0, "shape": {"type": "polygon", "vertices": CHAMFER}}
+
+
+def plate_supports(mu_b=0.2, g=G):
+    return {"points": CHAMFER_BUTTONS, "friction": mu_b, "g": g}
+
+
+def design(client, **extra):
+    params = {"body": chamfer_body(), "friction": FRICTION, "sites": SITES, "fixels": 3,
+              "objective": "force", "cases": NONE, "top": 20, "supports": plate_supports()}
+    params.update(extra)
+    return client.result("fixture.design", params)
+
+
+def brute_force(client, supports, cases=NONE):
+    """Every candidate put as a fixture on the supports and asked push.force
+    (set goal): {sites: least force or None}, and the unpinned ones."""
+    least, unpinned = {}, set()
+    for combo in itertools.combinations(range(len(SITES)), 3):
+        fixture = {"name": "candidate", "body": chamfer_body(), "friction": {"static": FRICTION},
+                   "fixels": [SITES[i] for i in combo], "supports": supports}
+        put = client.call("fixture.put", {"fixture": fixture})
+        if "error" in put:
+            assert put["error"]["data"]["field"].startswith("params.fixture.fixels"), put
+            continue  # degenerate
+        if not put["result"]["pinned"]:
+            unpinned.add(combo)
+            continue
+        r = client.result("push.force", {"fixture": put["result"]["id"],
+                                          "set": "goal", "cases": cases, "samples": 1})
+        least[combo] = r["least"]["force"] if r["least"] else None
+    return least, unpinned
+
+
+def test_design_on_the_plate_ranks_by_push_force_as_brute_force(client):
+    """The design's ranking and figures are push.force's on the plate for
+    every candidate, asked one by one: the same candidates scored, in the
+    order of their least seating push, each score minus it."""
+    supports = plate_supports()
+    least, unpinned = brute_force(client, supports)
+    scored = {c: f for c, f in least.items() if f is not None}
+    assert len(scored) >= 5, least
+    # The plate's own fixels: docs/MODEL.md's least push on three buttons,
+    # mu_B = 0.2, checked there against 256-gon LPs: 10.6650.
+    assert abs(scored[(0, 1, 2)] - 10.6650) < 1e-4, scored
+    r = design(client)
+    designs = r["designs"]
+    got = {tuple(d["sites"]): d for d in designs}
+    assert set(got) == set(scored), (sorted(got), sorted(scored))
+    assert r["counts"]["unpinned"] == len(unpinned)
+    assert r["counts"]["no_seating_push"] == sum(1 for f in least.values() if f is None)
+    for combo, force in scored.items():
+        d = got[combo]
+        assert abs(-d["score"] - force) <= 1e-9 * force, (combo, d["score"], force)
+        push = d["least_push"]
+        assert push["set"] == "goal" and abs(push["force"] - force) <= 1e-9 * force
+        assert push["lower_bound"] <= push["force"] * (1 + 1e-12)
+        # The figures of directions are not made on the plate.
+        assert not {"best_push", "goal_length", "both_length", "gravity_goal_deg",
+                    "critical_mu"} & set(d), d
+    order = sorted(scored, key=lambda c: (scored[c], c))
+    ranked = [tuple(d["sites"]) for d in designs]
+    # Ties within the solver's tolerance may order either way.
+    for a, b in zip(ranked, ranked[1:]):
+        assert scored[a] <= scored[b] * (1 + 1e-9), (a, b)
+    assert abs(scored[ranked[0]] - scored[order[0]]) <= 1e-9 * scored[order[0]]
+    assert "symmetries" not in r
+
+
+def test_least_push_on_the_plate_scales_with_the_friction(client):
+    """With no load S grows linearly with mu_B W and the excluded cones are
+    cones, so F u avoids C + k S iff (F / k) u avoids C + S: every least
+    push doubles with mu_B, and again with g (W = m g), and the ranking
+    stays."""
+    base = design(client, sites=FOUR)["designs"]
+    doubled = design(client, sites=FOUR, supports=plate_supports(0.4))["designs"]
+    heavy = design(client, sites=FOUR, supports=plate_supports(0.2, 2 * G))["designs"]
+    assert len(base) == 4
+    assert [d["sites"] for d in base] == [d["sites"] for d in doubled] == \
+        [d["sites"] for d in heavy]
+    for a, b, c in zip(base, doubled, heavy):
+        fa = a["least_push"]["force"]
+        assert abs(b["least_push"]["force"] - 2 * fa) <= 2e-6 * fa, (a, b)
+        assert abs(c["least_push"]["force"] - 2 * fa) <= 2e-6 * fa, (a, c)
+
+
+def test_design_on_the_plate_in_chunks_and_shards(client):
+    """Two shards' designs are together the whole search's."""
+    whole = design(client, sites=FOUR)["designs"]
+    parts = []
+    for i in range(2):
+        parts += design(client, sites=FOUR, shard=[i, 2])["designs"]
+    key = lambda d: (-d["score"], d["candidate"])
+    assert [(d["candidate"], d["score"]) for d in sorted(parts, key=key)] == \
+        [(d["candidate"], d["score"]) for d in whole]
+
+
+def test_accuracy_on_the_plate_reports_the_least_push(client):
+    """Objective accuracy does not depend on magnitudes: the same ranking as
+    the floating part's; each design kept also reports its least push on
+    the plate, push.force's."""
+    params = {"objective": "accuracy", "tolerance": 0.01, "top": 5}
+    floating = client.result("fixture.design", dict(
+        {"body": chamfer_body(), "friction": FRICTION, "sites": SITES, "fixels": 3,
+         "cases": NONE}, **params))["designs"]
+    on_plate = design(client, **params)["designs"]
+    assert [(d["sites"], d["score"]) for d in on_plate] == \
+        [(d["sites"], d["score"]) for d in floating]
+    d = on_plate[0]
+    fixture = {"name": "best", "body": chamfer_body(), "friction": {"static": FRICTION},
+               "fixels": d["fixels"], "supports": plate_supports()}
+    r = client.result("push.force", {"fixture": fixture, "set": "goal", "cases": NONE})
+    if r["least"] is None:
+        assert d["least_push"] is None
+    else:
+        assert abs(d["least_push"]["force"] - r["least"]["force"]) <= 1e-9 * r["least"]["force"]
+
+
+@pytest.mark.parametrize("extra,field,words", [
+    ({"objective": "margin"}, "params.objective", "force"),
+    ({"objective": "region"}, "params.objective", "force"),
+    ({"objective": "gravity"}, "params.objective", "force"),
+    ({"objective": "pareto", "tolerance": 0.01}, "params.objective", "accuracy"),
+    ({"finger_radius": 0.1}, "params.finger_radius", "point finger"),
+    ({"finger_friction": 0.2}, "params.finger_friction", "point finger"),
+    ({"fixel_tolerance": {"position": 0.01}}, "params.fixel_tolerance", "supports"),
+    ({"supports": {"points": CHAMFER_BUTTONS[:2], "friction": 0.2, "g": G}},
+     "params.supports.points", "at least 3"),
+    ({"supports": {"points": CHAMFER_BUTTONS[:2] + [[5, 1]], "friction": 0.2, "g": G}},
+     "params.supports.points[2]", "outside the part"),
+    ({"supports": {"points": CHAMFER_BUTTONS, "friction": -0.2, "g": G}},
+     "params.supports.friction", "negative"),
+    ({"supports": {"points": CHAMFER_BUTTONS, "friction": 0.2, "g": -1}},
+     "params.supports.g", ">= 0"),
+    ({"supports": {"points": CHAMFER_BUTTONS, "friction": 0.2, "g": G,
+                   "down": [{"at": [9, 0], "force": 1}]}},
+     "params.supports.down[0].at", "outside the part"),
+    ({"supports": {"points": CHAMFER_BUTTONS, "friction": 0.2, "g": G, "extra": 1}},
+     "params.supports.extra", ""),
+    ({"supports": [1, 2]}, "params.supports", ""),
+])
+def test_design_on_the_plate_refusals_name_the_field(client, extra, field, words):
+    params = {"body": chamfer_body(), "friction": FRICTION, "sites": SITES, "fixels": 3,
+              "objective": "force", "cases": NONE, "supports": plate_supports()}
+    params.update(extra)
+    got, reason = error_of(client, "fixture.design", params)
+    assert got == field, (got, reason)
+    assert words in reason, reason
+
+
+def test_design_on_a_circle_on_the_plate_refused(client):
+    body = {"mass": 1.0, "shape": {"type": "circle", "center": [0, 0], "radius": 1.0}}
+    got, reason = error_of(client, "fixture.design", {
+        "body": body, "friction": 0.5, "spacing": 1.0, "fixels": 2, "objective": "force",
+        "cases": NONE, "supports": {"points": BUTTONS, "friction": 0.3, "g": G}})
+    assert got == "params.body.shape" and "polygon" in reason, (got, reason)

@@ -67,7 +67,7 @@ static inline wr_status test_design_run(const wr_design_spec *spec, wr_design_jo
     wr_error error;
     wr_status status = wr_design_job_new(spec, out, &error);
     for (bool done = false; status == WR_OK && !done;)
-        status = wr_design_job_run(*out, 1000000, NULL, NULL, &done);
+        status = wr_design_job_run(*out, 1000000, NULL, NULL, NULL, &done);
     return status;
 }
 
