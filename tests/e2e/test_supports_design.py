@@ -384,3 +384,44 @@ def test_design_on_a_circle_on_the_plate_refused(client):
         "body": body, "friction": 0.5, "spacing": 1.0, "fixels": 2, "objective": "force",
         "cases": NONE, "supports": {"points": BUTTONS, "friction": 0.3, "g": G}})
     assert got == "params.body.shape" and "polygon" in reason, (got, reason)
+
+
+def test_clients_design_on_the_plate(daemon, client, tmp_path):
+    """wrenchctl design --supports and the Python client's design(supports=)
+    send the plate: the same designs and least pushes as the daemon's
+    answer; the table says a seating push is ranked; the fixture emitted
+    stands on the plate."""
+    expected = design(client, sites=FOUR)["designs"]
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    with wrenchd.Client(daemon.path, timeout=300) as c:
+        got = c.design(chamfer_body(), FRICTION, sites=FOUR, objective="force", cases=NONE,
+                       top=20, supports=plate_supports())
+        assert [(d.sites, d.score) for d in got.designs] == \
+            [(d["sites"], d["score"]) for d in expected]
+        assert got.designs[0].best_push is None and got.designs[0].least_push["set"] == "goal"
+    part = tmp_path / "part.json"
+    part.write_text(json.dumps({"name": "chamfer", "body": chamfer_body(),
+                                "friction": {"static": FRICTION},
+                                "fixels": [{"at": s["at"], "normal": s["normal"]} for s in FOUR]}))
+    emitted = tmp_path / "best.json"
+    env = dict(os.environ, WRENCHD_SOCKET=daemon.path)
+    run = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "design", str(part),
+                          "--objective", "force", "--case", "wrench=0,0,0",
+                          "--supports", json.dumps(plate_supports()),
+                          "--emit-fixture", "1", str(emitted)],
+                         capture_output=True, text=True, env=env, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "seats the part on its supports" in run.stdout, run.stdout
+    for d in expected:
+        assert "least push on the plate %.9g" % d["least_push"]["force"] in run.stdout, run.stdout
+    best = json.loads(emitted.read_text())
+    assert best["supports"]["points"] == CHAMFER_BUTTONS
+    r = client.result("push.force", {"fixture": best, "set": "goal", "cases": NONE,
+                                     "samples": 1})
+    assert abs(r["least"]["force"] - expected[0]["least_push"]["force"]) <= \
+        1e-9 * r["least"]["force"]
+    bad = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "design", str(part),
+                          "--objective", "force", "--case", "wrench=0,0,0", "--supports", "[1]"],
+                         capture_output=True, text=True, env=env, timeout=60)
+    assert bad.returncode != 0 and "--supports" in bad.stderr, bad.stderr
