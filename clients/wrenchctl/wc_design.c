@@ -541,7 +541,7 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf(", %.0f with two fixels in one hole", number(counts, "shared_hole"));
     printf("; ranked by %s\n", objective ? objective : "margin");
     if (objective && strcmp(objective, "force") == 0 && plate)
-        printf("score: minus the least push force (%s) that seats the part on its supports "
+        printf("score: minus the least push force, in %s, that seats the part on its supports "
                "under every case (goal: it reaches every fixel, not that the part then rests)\n",
                wc_named_force_unit(run->fixture));
     else if (objective && strcmp(objective, "force") == 0)
