@@ -10,7 +10,6 @@ distribution of the weight and the clamps. The design's ranking is
 checked by brute force: every candidate put as a fixture and asked
 push.force on the plate, one by one."""
 
-import copy
 import itertools
 import json
 import math
@@ -20,34 +19,12 @@ import sys
 
 import pytest
 
-import fixtures as FX
 import model as M
 from conftest import REPO
 
-G = 9.81
-R2 = math.sqrt(2)
-BUTTONS = [[0, 0.2], [-0.17320508075688773, -0.1], [0.17320508075688773, -0.1]]
+from test_supports import BUTTONS, G, error_of, on_buttons, plate
+
 PLATE_BUTTONS = [[1, 0.5], [3, 0.5], [2, 1.7]]
-
-
-def on_buttons(fixture, points, mu, g=G, down=None):
-    f = copy.deepcopy(fixture)
-    f["supports"] = {"points": points, "friction": mu, "g": g}
-    if down is not None:
-        f["supports"]["down"] = down
-    return f
-
-
-def plate(mass=2.0):
-    f = FX.rectangle_321(0.3)
-    f["body"]["mass"] = mass
-    return f
-
-
-def error_of(client, method, params):
-    e = client.error(method, params)
-    assert e["code"] == -32602, e
-    return e["data"]["field"], e["data"]["reason"]
 
 
 # ---- the witness's forces ------------------------------------------------------------------
@@ -239,7 +216,17 @@ def design(client, **extra):
     params = {"body": chamfer_body(), "friction": FRICTION, "sites": SITES, "fixels": 3,
               "objective": "force", "cases": NONE, "top": 20, "supports": plate_supports()}
     params.update(extra)
-    return client.result("fixture.design", params)
+    return long_result(client, "fixture.design", params)
+
+
+def long_result(client, method, params):
+    """A call whose answer may take longer than the harness's read timeout
+    (each candidate's least push on the plate is thousands of LPs)."""
+    req = client.request(method, params)
+    client.send(req)
+    resp = client.read_json(timeout=900)
+    assert resp.get("id") == req["id"] and "result" in resp, resp
+    return resp["result"]
 
 
 def brute_force(client, supports, cases=NONE):
@@ -330,7 +317,7 @@ def test_accuracy_on_the_plate_reports_the_least_push(client):
     the floating part's; each design kept also reports its least push on
     the plate, push.force's."""
     params = {"objective": "accuracy", "tolerance": 0.01, "top": 5}
-    floating = client.result("fixture.design", dict(
+    floating = long_result(client, "fixture.design", dict(
         {"body": chamfer_body(), "friction": FRICTION, "sites": SITES, "fixels": 3,
          "cases": NONE}, **params))["designs"]
     on_plate = design(client, **params)["designs"]
