@@ -169,7 +169,9 @@ static void print_verdicts(const cJSON *wrenches, const cJSON *results)
                    cJSON_GetStringValue(cJSON_GetObjectItem(v, "verdict")), margin_text,
                    blocking ? blocking : "", why);
             print_perturbation(cJSON_GetObjectItem(v, "perturbation"));
-            print_support_witness(cJSON_GetObjectItem(v, "witness"));
+            const char *verdict = cJSON_GetStringValue(cJSON_GetObjectItem(v, "verdict"));
+            if (verdict && strcmp(verdict, "outside") == 0) /* a motion found */
+                print_support_witness(cJSON_GetObjectItem(v, "witness"));
             first = false;
         }
         index++;
