@@ -20,6 +20,7 @@ import sys
 import pytest
 
 import model as M
+import fixtures as FX
 from conftest import REPO
 
 from test_supports import BUTTONS, G, error_of, on_buttons, plate
@@ -139,11 +140,7 @@ def test_witness_forces_in_newtons(client):
     fixel along +x: the supports' forces and normals in N (the normals sum
     to m g = 9.81 N, not 9810 kg mm/s^2), Newton-Euler in N."""
     mu_b = 0.3
-    f = {"name": "disc-mm", "units": {"length": "mm", "force": "N"},
-         "body": {"mass": 1.0, "inertia": 0.5e6, "com": [0, 0],
-                  "shape": {"type": "circle", "center": [0, 0], "radius": 1000.0}},
-         "friction": {"static": 0.5},
-         "fixels": [{"at": [-1000, 0], "normal": [1, 0]}, {"at": [0, -1000], "normal": [0, 1]}]}
+    f = FX.disc_corner_mm()
     f = on_buttons(f, [[1000 * x, 1000 * y] for x, y in BUTTONS], mu_b, g=9810)
     (v,) = classify_strong(client, f, [[10.0, 1.0, 0]])
     assert v["verdict"] == "outside", v
