@@ -356,9 +356,12 @@ static int design_pictures(const wc_run *run, const cJSON *result)
         wr_analysis *analysis;
         wr_finger finger = {.friction = run->friction_given ? run->finger_friction : 0,
                             .radius = run->radius_given ? run->finger_radius : 0};
+        /* On supports no both region is drawn: the push is the least one
+         * that seats the part there (a region of directions is no answer). */
+        bool plate = fixtures[count]->supports != NULL;
         if (wr_analysis_new(fixtures[count], &analysis) != WR_OK ||
-            wr_push_regions_finger(analysis, WR_SET_BOTH, &finger, NULL, &regions[count]) !=
-                WR_OK) {
+            (!plate && wr_push_regions_finger(analysis, WR_SET_BOTH, &finger, NULL,
+                                              &regions[count]) != WR_OK)) {
             wr_fixture_free(fixtures[count]);
             status = wc_usage_error("design: out of memory drawing");
             break;
@@ -379,7 +382,9 @@ static int design_pictures(const wc_run *run, const cJSON *result)
                 p->pin_diameter[fixel] = number(pin, "diameter");
         }
         p->score = number(d, "score");
-        const cJSON *push = cJSON_GetObjectItem(d, "best_push");
+        p->plate = plate;
+        const cJSON *push = cJSON_GetObjectItem(d, plate ? "least_push" : "best_push");
+        p->force = plate && cJSON_IsObject(push) ? number(push, "force") : 0;
         if (cJSON_IsObject(push)) {
             p->has_push = true;
             for (int k = 0; k < 2; k++) {

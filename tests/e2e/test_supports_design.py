@@ -393,12 +393,16 @@ def test_clients_design_on_the_plate(daemon, client, tmp_path):
     run = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "design", str(part),
                           "--objective", "force", "--case", "wrench=0,0,0",
                           "--supports", json.dumps(plate_supports()),
-                          "--emit-fixture", "1", str(emitted)],
+                          "--emit-fixture", "1", str(emitted), "--svg", str(tmp_path / "d.svg")],
                          capture_output=True, text=True, env=env, timeout=300)
     assert run.returncode == 0, run.stdout + run.stderr
     assert "seats the part on its supports" in run.stdout, run.stdout
     for d in expected:
         assert "least push on the plate %.9g" % d["least_push"]["force"] in run.stdout, run.stdout
+    # The picture draws each least push on the plate, not a both region.
+    svg = (tmp_path / "d.svg").read_text()
+    assert "seats the part on its supports" in svg and 'class="region"' not in svg, svg[:2000]
+    assert "least push %.6g on the plate" % expected[0]["least_push"]["force"] in svg
     best = json.loads(emitted.read_text())
     assert best["supports"]["points"] == CHAMFER_BUTTONS
     r = client.result("push.force", {"fixture": best, "set": "goal", "cases": NONE,
