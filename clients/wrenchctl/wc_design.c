@@ -506,8 +506,11 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     const cJSON *designs = cJSON_GetObjectItem(result, "designs");
     const cJSON *counts = cJSON_GetObjectItem(result, "counts");
     /* On supports a design's push is its least push on the plate (the
-     * figures of directions are not made). */
-    bool plate = run->fixture && cJSON_IsObject(cJSON_GetObjectItem(run->fixture, "supports"));
+     * figures of directions are not made: design-merge, which has no
+     * fixture, sees it by their absence). */
+    const cJSON *first = cJSON_GetArrayItem(designs, 0);
+    bool plate = (run->fixture && cJSON_IsObject(cJSON_GetObjectItem(run->fixture, "supports"))) ||
+                 (first && !cJSON_GetObjectItem(first, "goal_length"));
     bool any_push = false;
     const cJSON *d;
     cJSON_ArrayForEach(d, designs)

@@ -409,6 +409,22 @@ def test_clients_design_on_the_plate(daemon, client, tmp_path):
                                      "samples": 1})
     assert abs(r["least"]["force"] - expected[0]["least_push"]["force"]) <= \
         1e-9 * r["least"]["force"]
+    # Shards merged by design-merge print the same least pushes on the plate.
+    lines = []
+    for i in range(2):
+        shard = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "design", str(part),
+                                "--objective", "force", "--case", "wrench=0,0,0",
+                                "--supports", json.dumps(plate_supports()),
+                                "--shard", "%d/2" % i],
+                               capture_output=True, text=True, env=env, timeout=300)
+        assert shard.returncode == 0, shard.stderr
+        lines.append(tmp_path / ("shard%d.jsonl" % i))
+        lines[-1].write_text(shard.stdout)
+    merged = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "design-merge"] +
+                            [str(p) for p in lines], capture_output=True, text=True, timeout=60)
+    assert "seats the part on its supports" in merged.stdout, merged.stdout + merged.stderr
+    for d in expected:
+        assert "least push on the plate %.9g" % d["least_push"]["force"] in merged.stdout
     bad = subprocess.run([os.path.join(REPO, "build", "wrenchctl"), "design", str(part),
                           "--objective", "force", "--case", "wrench=0,0,0", "--supports", "[1]"],
                          capture_output=True, text=True, env=env, timeout=60)
