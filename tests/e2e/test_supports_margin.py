@@ -9,7 +9,6 @@ first by turning, at 0.2 sqrt(2) mu_B W; the 3-2-1 plate with frictionless
 fixels, pressed down by P and cut along +x by F_c, moves first along +x,
 at mu_B W - F_c (and past it is mu_B W - F_c < 0 deep)."""
 
-import copy
 import json
 import math
 import os
@@ -20,17 +19,9 @@ import pytest
 import fixtures as FX
 from conftest import REPO
 
-G = 9.81
-BUTTONS = [[0, 0.2], [-0.17320508075688773, -0.1], [0.17320508075688773, -0.1]]
+from test_supports import BUTTONS, G, on_buttons
+
 PLATE_BUTTONS = [[1, 0.5], [3, 0.5], [2, 1.7]]
-
-
-def on_buttons(fixture, points, mu, g=G, down=None):
-    f = copy.deepcopy(fixture)
-    f["supports"] = {"points": points, "friction": mu, "g": g}
-    if down is not None:
-        f["supports"]["down"] = down
-    return f
 
 
 def plate(scale=1.0):

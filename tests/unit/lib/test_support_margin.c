@@ -31,35 +31,37 @@ static wr_supports *supports_new(const wr_fixture *f, const double (*points)[2],
     return s;
 }
 
-/* The 3-2-1 plate of docs/MODEL.md section 7.2 (test_plate_321) with
- * fixels of friction `mu`. */
-static wr_fixture *plate(double mu)
-{
-    static const double vertices[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
-    wr_fixel_spec fixels[3];
-    memset(fixels, 0, sizeof fixels);
-    fixels[0].at[0] = 1;
-    fixels[1].at[0] = 3;
-    fixels[2].at[1] = 1;
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = 2;
-    spec.shape = WR_SHAPE_POLYGON;
-    spec.vertex_count = 4;
-    spec.vertices = vertices;
-    spec.friction.given = true;
-    spec.friction.static_mu = mu;
-    spec.fixel_count = 3;
-    spec.fixels = fixels;
-    return test_fixture_new(&spec, NULL);
-}
-
 static const double tri[3][2] = {{0, 0.2}, {-0.17320508075688773, -0.1}, {0.17320508075688773, -0.1}};
 static const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
 
 static double scaled_length(const wr_fixture *f, const double w[3])
 {
     return hypot(hypot(w[0], w[1]), w[2] / f->gyration_radius);
+}
+
+/* A closed form's check: the bias held (expected > 0) or moving, the
+ * bracket holding `expected` and converged onto it within 1e-6, the worst
+ * direction along `worst` (a unit scaled wrench; either sign when
+ * `either`). */
+static void check_closed_form(const char *what, const wr_analysis *a, const wr_supports *s,
+                              wr_lp_env *env, const double bias[3], double expected,
+                              const double worst[3], bool either)
+{
+    wr_support_margin m;
+    assert_int_equal(wr_supports_margin(a, s, env, bias, NULL, &m), WR_OK);
+    printf("%s: margin %.9f [%.9f, %.9f] (closed form %.9f), %s, %d cells, %d LPs, "
+           "worst (%.6f, %.6f, %.6f)\n",
+           what, m.margin, m.bracket[0], m.bracket[1], expected,
+           m.converged ? "converged" : "not converged", m.cells, m.solves, m.worst_direction[0],
+           m.worst_direction[1], m.worst_direction[2]);
+    assert_true(m.bounded && m.converged);
+    assert_true(expected > 0 ? m.held && !m.moves : m.moves && !m.held);
+    double slack = 1e-9 * fabs(expected);
+    assert_true(m.bracket[0] <= expected + slack && m.bracket[1] >= expected - slack);
+    assert_true(fabs(m.margin - expected) < 1e-6 * fabs(expected));
+    for (int k = 0; k < 3; k++)
+        assert_true(fabs(m.worst_direction[k] - worst[k]) < 1e-4 ||
+                    (either && fabs(m.worst_direction[k] + worst[k]) < 1e-4));
 }
 
 static bool held(const wr_analysis *a, const wr_supports *s, wr_lp_env *env, const double g[3])
@@ -109,21 +111,13 @@ static void test_disc_rotation(void **state)
     wr_supports *s = supports_new(f, tri, mu_b, NULL, 0);
     double expected = 0.2 * sqrt(2) * mu_b * G;
     const double forces[2] = {1, 5};
+    /* Along the torque axis: (0, 0, rho) has unit scaled length. */
+    const double worst[3] = {0, 0, sqrt(0.5)};
     for (int k = 0; k < 2; k++) {
         double bias[3] = {-forces[k], -forces[k], 0};
-        wr_support_margin m;
-        assert_int_equal(wr_supports_margin(a, s, env, bias, NULL, &m), WR_OK);
-        printf("disc, bias -%g (1, 1): margin %.9f [%.9f, %.9f] (closed form %.9f), %s, "
-               "%d cells, %d LPs, worst (%.6f, %.6f, %.6f)\n",
-               forces[k], m.margin, m.bracket[0], m.bracket[1], expected,
-               m.converged ? "converged" : "not converged", m.cells, m.solves,
-               m.worst_direction[0], m.worst_direction[1], m.worst_direction[2]);
-        assert_true(m.bounded && m.held && !m.moves && m.converged);
-        assert_true(m.bracket[0] <= expected * (1 + 1e-9) && m.bracket[1] >= expected * (1 - 1e-9));
-        assert_true(fabs(m.margin - expected) < 1e-6 * expected);
-        /* Along the torque axis: (0, 0, +-rho) has unit scaled length. */
-        assert_true(fabs(m.worst_direction[0]) < 1e-4 && fabs(m.worst_direction[1]) < 1e-4);
-        assert_true(fabs(fabs(m.worst_direction[2]) - sqrt(0.5)) < 1e-4);
+        char what[64];
+        snprintf(what, sizeof what, "disc, bias -%g (1, 1)", forces[k]);
+        check_closed_form(what, a, s, env, bias, expected, worst, true);
     }
     wr_supports_free(s);
     wr_analysis_free(a);
@@ -158,7 +152,7 @@ static void test_plate_cutting(void **state)
 {
     (void)state;
     wr_lp_env *env = test_lp_env_new();
-    wr_fixture *f = plate(0);
+    wr_fixture *f = test_plate_321_friction(0, 0);
     wr_analysis *a = test_analysis_new(f);
     double mu_b = 0.2;
     wr_down_spec down = {{2, 1}, 20};
@@ -168,20 +162,10 @@ static void test_plate_cutting(void **state)
     for (int k = 0; k < 3; k++) {
         double bias[3] = {cutting[k], -20, 0};
         double expected = capacity - cutting[k];
-        wr_support_margin m;
-        assert_int_equal(wr_supports_margin(a, s, env, bias, NULL, &m), WR_OK);
-        printf("3-2-1 plate, cutting %g: margin %.9f [%.9f, %.9f] (closed form %.9f), %s, "
-               "%d cells, %d LPs, worst (%.6f, %.6f, %.6f)\n",
-               cutting[k], m.margin, m.bracket[0], m.bracket[1], expected,
-               m.converged ? "converged" : "not converged", m.cells, m.solves,
-               m.worst_direction[0], m.worst_direction[1], m.worst_direction[2]);
-        assert_true(m.bounded && m.converged);
-        assert_true(expected > 0 ? m.held && !m.moves : m.moves && !m.held);
-        assert_true(m.bracket[0] <= expected + 1e-9 && m.bracket[1] >= expected - 1e-9);
-        assert_true(fabs(m.margin - expected) < 1e-6 * fabs(expected));
-        double sign = expected > 0 ? 1 : -1;
-        assert_true(fabs(m.worst_direction[0] - sign) < 1e-4);
-        assert_true(fabs(m.worst_direction[1]) < 1e-4 && fabs(m.worst_direction[2]) < 1e-4);
+        const double worst[3] = {expected > 0 ? 1 : -1, 0, 0};
+        char what[64];
+        snprintf(what, sizeof what, "3-2-1 plate, cutting %g", cutting[k]);
+        check_closed_form(what, a, s, env, bias, expected, worst, false);
     }
     wr_supports_free(s);
     wr_analysis_free(a);
