@@ -2406,7 +2406,11 @@ static wr_status margin_body(void *context)
             lo = 0;
         out->moves = call->hi <= 1e-10;
         out->held = !out->moves && lo > 0;
-        out->blocking = call->hi_mode;
+        /* Some mode's cell is always bounded from above before the search
+         * ends; the heap's least cell's mode should none be. */
+        out->blocking = call->hi_mode >= 0 ? call->hi_mode
+                        : heap.count > 0   ? heap.cells[0].mode
+                                           : -1;
         out->bracket[0] = out->margin = lo * scale;
         out->bracket[1] = call->hi * scale;
         out->converged = lo >= call->hi * (1 - WR_SUPPORT_MARGIN_TOLERANCE);
@@ -2564,12 +2568,17 @@ static wr_status margin_moving(const wr_analysis *analysis, const wr_supports *s
             wr_copy3(toward, direction);
         }
     }
-    out->bracket[0] = out->margin = -best;
+    /* The margin is the attained end, or the certified one when no held
+     * wrench was found (holding undecided even at zero). */
+    out->bracket[0] = -best;
     out->bracket[1] = -lower;
+    out->margin = isfinite(best) ? -best : -lower;
     out->converged = lower >= best * (1 - WR_SUPPORT_MARGIN_TOLERANCE);
     memset(out->worst_direction, 0, sizeof out->worst_direction);
-    if (isfinite(best))
-        wr_fixture_unscale_wrench(f, direction, out->worst_direction);
+    if (!isfinite(best) && length > 0)
+        for (int k = 0; k < 3; k++)
+            direction[k] = -hb[k] / length;
+    wr_fixture_unscale_wrench(f, direction, out->worst_direction);
     return WR_OK;
 }
 

@@ -174,7 +174,8 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
  * worst_direction; bracket[1] = -lo, lo b's depth in the convex set of the
  * witness's direction alone (its friction fixed, its cone of motion and
  * contact forces), a lower bound: every wrench nearer is still in it.  hi
- * is INFINITY when no held wrench is found.
+ * is INFINITY when no held wrench is found (bracket[0] -INFINITY), and
+ * the margin is then bracket[1].
  *
  * bounded false (the rest zero): no moving mode, nothing moves the part.
  * WR_OK, WR_INVALID (a bias not finite), WR_LP_FAILED, WR_NO_MEMORY,
