@@ -1560,6 +1560,9 @@ typedef struct hold_lp {
     bool distance;
     double seed[3];      /* a unit row to begin with (zero: none): the
                             direction of a solution nearby */
+    double prune;        /* > 0: refine only while r < prune <= |e| (past
+                            it the cell is dropped; below it, kept whatever
+                            the exact distance: either way decided) */
     double error[3];     /* out: e of the last solution (|e| attained) */
     /* out */
     double residual;     /* L1, or r in the distance form */
@@ -1721,7 +1724,8 @@ static int hold_lp_solve(hold_lp *h)
             for (int k = 0; k < 3; k++)
                 h->error[k] = glp_get_col_prim(l.p, error + k);
             double n = wr_norm3(h->error);
-            if (n > h->residual * (1 + 1e-9) + 1e-15 && norm_count < NORM_MAX) {
+            bool decided = h->prune > 0 && (h->residual >= h->prune || n < h->prune);
+            if (!decided && n > h->residual * (1 + 1e-9) + 1e-15 && norm_count < NORM_MAX) {
                 for (int k = 0; k < 3; k++)
                     norm[norm_count][k] = h->error[k] / n;
                 norm_count++;
@@ -2190,13 +2194,15 @@ typedef struct margin_call {
 /* The distance LP over cell `c` of mode `cone` (its bound is h->residual),
  * its norm begun with `seed`; -1 when GLPK fails. */
 static int margin_cell_solve(const model *m, const wr_cone *cone, const double target[3],
-                             const cell *c, const double seed[3], hold_lp *h, int *solves)
+                             const cell *c, const double seed[3], double prune, hold_lp *h,
+                             int *solves)
 {
     memset(h, 0, sizeof *h);
     h->m = m;
     h->cone = cone;
     h->c = c;
     h->distance = true;
+    h->prune = prune;
     wr_copy3(target, h->target);
     if (seed)
         wr_copy3(seed, h->seed);
@@ -2229,7 +2235,7 @@ static int margin_exact(margin_call *call, const model *m, const double target[3
     cell single = {.count = 1};
     wr_copy3(direction, single.ray[0]);
     hold_lp h;
-    if (margin_cell_solve(m, cone, target, &single, seed, &h, &call->out->solves) < 0)
+    if (margin_cell_solve(m, cone, target, &single, seed, 0, &h, &call->out->solves) < 0)
         return -1;
     double d = wr_norm3(h.error);
     if (d < call->hi) {
@@ -2329,7 +2335,7 @@ static wr_status margin_body(void *context)
         for (int i = 0; i < cells; i++) {
             hold_lp h;
             out->cells++;
-            if (margin_cell_solve(&m, cone, target, &start[i], NULL, &h, &out->solves) < 0) {
+            if (margin_cell_solve(&m, cone, target, &start[i], NULL, 0, &h, &out->solves) < 0) {
                 status = WR_LP_FAILED;
                 break;
             }
@@ -2385,8 +2391,11 @@ static wr_status margin_body(void *context)
         for (int k = 0; k < 2 && status == WR_OK; k++) {
             hold_lp h;
             out->cells++;
-            if (margin_cell_solve(&m, cone, target, &halves[k].c, top.near, &h,
-                                  &out->solves) < 0) {
+            /* Its bound needs refining only while it may decide whether the
+             * half is dropped. */
+            double prune = call->hi * (1 - WR_SUPPORT_MARGIN_TOLERANCE);
+            if (margin_cell_solve(&m, cone, target, &halves[k].c, top.near,
+                                  isfinite(prune) ? prune : 0, &h, &out->solves) < 0) {
                 status = WR_LP_FAILED;
                 break;
             }
