@@ -69,6 +69,27 @@ def test_plate_against_a_cutting_force(client, cutting):
     assert abs(wx - math.copysign(1, expected)) < 1e-4 and abs(wy) < 1e-4 and abs(wt) < 1e-4, r
 
 
+def test_pull_without_a_clamp_bracketed(client):
+    """examples/plate-3-2-1-buttons.json (fixel friction 0.3, mu_B = 0.15,
+    W = m g = 19.62) pulled along +x by F = 10 through the centre of mass:
+    it slides off fixel 3. Every (F', 0, 0) with F' < mu_B W is held (a
+    motion needs F' a_x >= mu_B W |a|, the power argument), so a change of
+    F - mu_B W = 7.057 along -x holds it: the margin. Nothing presses the
+    plate onto fixels 1 and 2, so the bias lies where sliding on them and
+    lifting off meet, and the depth is not proved above 0: the bracket
+    says so and is not converged."""
+    with open(os.path.join(REPO, "examples", "plate-3-2-1-buttons.json")) as fh:
+        f = json.load(fh)
+    r = client.result("stability.margin", {"fixture": f, "bias": [10, 0, 0]})
+    check_shape(r)
+    expected = -(10 - 0.15 * 2 * G)
+    assert abs(r["margin"] - expected) < 1e-6 * abs(expected), r
+    assert r["bracket"][0] == r["margin"] and -1e-9 <= -r["bracket"][1] < abs(expected), r
+    assert r["converged"] is False, r
+    wx, wy, wt = r["worst_direction"]
+    assert abs(wx + 1) < 1e-6 and abs(wy) < 1e-6 and abs(wt) < 1e-6, r
+
+
 def test_units_millimetres_and_newtons(client):
     """The same plate in millimetres (g = 9810 mm/s^2), the clamps and the
     bias in N, its torque in N mm: the same margin in N; in mN, 1000 times
