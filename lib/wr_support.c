@@ -1905,25 +1905,34 @@ static void witness_fill(const model *m, const wr_cone *cone, const hold_lp *h,
  * that one direction decides it instead.  1 with the witness in *out when
  * a pivot of the mode (among its directions `q`) is consistent; 0 when
  * none is; -1 when GLPK failed. */
+/* The pivot on support i of sense `sign` (+-1), a unit scaled direction
+ * into d; whether it is among a mode's directions `q`. */
+static bool pivot_direction(const model *m, const wr_hrep *q, int i, int sign, double d[3])
+{
+    /* a_i = a_com + alpha x r_i = 0: a_com = alpha (r_y, -r_x), so
+     * q' = m (a_x, a_y, rho alpha) is along (r_y, -r_x, rho) alpha. */
+    double r[2];
+    arm(m->f, m->s, i, r);
+    d[0] = sign * r[1];
+    d[1] = -sign * r[0];
+    d[2] = sign * m->f->gyration_radius;
+    wr_normalize3(d);
+    bool among = true;
+    for (int k = 0; k < q->facet_count; k++)
+        among &= wr_dot3(q->facets[k], d) <= 1e-12;
+    for (int k = 0; k < q->equality_count; k++)
+        among &= fabs(wr_dot3(q->equalities[k], d)) <= 1e-12;
+    return among;
+}
+
 static int pivot_witness(const model *m, const wr_cone *cone, const wr_hrep *q,
                          const hold_lp *base, int *solves, wr_support_strong *out)
 {
-    const wr_fixture *f = m->f;
     int result = 0;
     for (int i = 0; i < m->s->count && result == 0; i++) {
-        /* a_i = a_com + alpha x r_i = 0: a_com = alpha (r_y, -r_x), so
-         * q' = m (a_x, a_y, rho alpha) is along (r_y, -r_x, rho) alpha. */
-        double r[2];
-        arm(f, m->s, i, r);
         for (int sign = -1; sign <= 1 && result == 0; sign += 2) {
-            double d[3] = {sign * r[1], -sign * r[0], sign * f->gyration_radius};
-            wr_normalize3(d);
-            bool among = true;
-            for (int k = 0; k < q->facet_count; k++)
-                among &= wr_dot3(q->facets[k], d) <= 1e-12;
-            for (int k = 0; k < q->equality_count; k++)
-                among &= fabs(wr_dot3(q->equalities[k], d)) <= 1e-12;
-            if (!among)
+            double d[3];
+            if (!pivot_direction(m, q, i, sign, d))
                 continue;
             cell at = {.count = 1};
             wr_copy3(d, at.ray[0]);
@@ -2314,11 +2323,11 @@ static int margin_upper(margin_call *call, const model *m, const double target[3
     return margin_exact(call, m, target, mc->mode, direction, mc->near);
 }
 
-/* The exact LPs at the rotations about each support (both senses) that
- * are directions of `mode`: there that support sticks, its friction
- * anywhere in its disc, which no direction nearby gives (it slides there,
- * its friction on the disc's rim), so the search's upper bounds, taken at
- * other directions, would never reach such a nearest motion. */
+/* The exact LPs at the pivots on each support (both senses) that are
+ * directions of `mode`: there that support sticks, its friction anywhere
+ * in its disc, which no direction nearby gives (pivot_witness says why),
+ * so the search's upper bounds, taken at other directions, would never
+ * reach such a nearest motion. */
 static int margin_still(margin_call *call, const model *m, const double target[3], int mode)
 {
     const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_STRONG, mode);
@@ -2330,21 +2339,11 @@ static int margin_still(margin_call *call, const model *m, const double target[3
     wr_hrep q;
     if (n == 0 || !wr_hull_from_generators((const double (*)[3])accel, n, &q))
         return 0;
-    const wr_fixture *f = m->f;
     for (int i = 0; i < m->s->count; i++)
-        for (int sense = -1; sense <= 1; sense += 2) {
-            /* alpha about p_i: the centre of mass accelerates by
-             * alpha z x (com - p_i) = alpha (r_y, -r_x). */
-            double r[2];
-            arm(f, m->s, i, r);
-            double direction[3] = {sense * r[1], -sense * r[0], sense * f->gyration_radius};
-            wr_normalize3(direction);
-            bool among = true;
-            for (int k = 0; k < q.facet_count; k++)
-                among &= wr_dot3(q.facets[k], direction) <= 1e-12;
-            for (int k = 0; k < q.equality_count; k++)
-                among &= fabs(wr_dot3(q.equalities[k], direction)) <= 1e-12;
-            if (among && margin_exact(call, m, target, mode, direction, NULL) < 0)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            double d[3];
+            if (pivot_direction(m, &q, i, sign, d) &&
+                margin_exact(call, m, target, mode, d, NULL) < 0)
                 return -1;
         }
     return 0;
