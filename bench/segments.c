@@ -141,7 +141,7 @@ static int search(const wr_fixture *body, const wr_site *sites, bool exhaustive,
     /* The search alone: chunks claimed and merged as a worker would. */
     while (wr_design_job_claim(job, &first, &count, &threshold)) {
         wr_design_chunk chunk;
-        if (wr_design_chunk_run(job, first, count, threshold, NULL, &chunk, NULL) != WR_OK) {
+        if (wr_design_chunk_run(job, first, count, threshold, NULL, NULL, &chunk, NULL) != WR_OK) {
             wr_design_job_free(job);
             return -1;
         }

@@ -96,6 +96,13 @@ typedef struct wr_witness {
      * resp. c_t / c_n, clamped into the interval; its lower bound when
      * c_n = 0); NAN for s, a and u, which use none. */
     double friction[WR_MAX_FIXELS];
+    /* On supports (wr_support.h), a motion's witness: each support's
+     * friction force on the part (f_x, f_y) and its normal force N_i in the
+     * witness's distribution, physical, and `wrench` then subtracts the
+     * supports' wrenches too.  support_count is 0 otherwise. */
+    int support_count;
+    double support_force[WR_MAX_SUPPORTS][2];
+    double support_normal[WR_MAX_SUPPORTS];
 } wr_witness;
 
 /* Fill in witness->friction from its forces and the constraint's letters. */

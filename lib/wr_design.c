@@ -4,6 +4,7 @@
 #include "wr_internal.h"
 #include "wr_locate.h"
 #include "wr_outline.h"
+#include "wr_support.h"
 #include "wr_symmetry.h"
 #include "wr_tolerance.h"
 
@@ -509,12 +510,63 @@ static wr_status pareto_figures(const wr_design_job *job, const wr_fixture *fixt
     return status;
 }
 
+/* The least push on the plate (wr_supports_least_force_find) of a
+ * placed candidate on the job's supports under every load case: found
+ * false when no push seats it.  Only G_goal is made (seating is all that
+ * is asked).  *units: about the work done (each point's forces are
+ * second-order cone programmes, solved as LPs refined until they meet). */
+static wr_status plate_least_push(const wr_design_job *job, const wr_fixture *fixture,
+                                  const wr_stop *stop, wr_lp_env *env, wr_least_force *least,
+                                  unsigned long *units)
+{
+    const wr_design_spec *spec = &job->spec;
+    memset(least, 0, sizeof *least);
+    if (!env)
+        return WR_LP_FAILED;
+    wr_analysis *analysis;
+    wr_status status = wr_analysis_goal_new(fixture, job->plan, &analysis);
+    if (status != WR_OK)
+        return status;
+    status = wr_supports_least_force_find(analysis, spec->supports, env, spec->loads,
+                                          spec->case_count, &spec->finger, stop, least);
+    *units += (least->evaluations + 1) * 400UL *
+              (unsigned long)wr_analysis_cone_count(analysis, WR_SET_GOAL) *
+              (unsigned long)spec->case_count;
+    wr_analysis_free(analysis);
+    return status;
+}
+
+/* WR_OBJECTIVE_FORCE on the plate: minus the least push that seats the
+ * placed candidate on its supports, or no seating push (with *why). */
+static wr_status plate_force_score(const wr_design_job *job, const wr_fixture *fixture,
+                                   const wr_stop *stop, wr_lp_env *env, outcome *result,
+                                   double *score, unsigned long *units, int *why)
+{
+    wr_least_force least;
+    wr_status status = plate_least_push(job, fixture, stop, env, &least, units);
+    if (status != WR_OK)
+        return status;
+    *result = least.found ? OUTCOME_SCORED : OUTCOME_NO_SEATING_PUSH;
+    if (least.found) {
+        *score = -least.force;
+        return WR_OK;
+    }
+    /* Why, asked of the floating part: a cone that blocks the push there
+     * blocks it on the plate too (C lies in C + S). */
+    wr_analysis *analysis;
+    status = wr_analysis_goal_new(fixture, job->plan, &analysis);
+    if (status == WR_OK)
+        *why = why_no_seating_push(job, fixture, analysis, units);
+    wr_analysis_free(analysis);
+    return status;
+}
+
 /* Score one candidate, giving up (OUTCOME_BOUNDED) once its score is
  * certainly below `threshold`.  *units: about the work done.  Without a
  * seating push, *why says why (why_no_seating_push). */
 static wr_status score_candidate(const wr_design_job *job, const int *sites, double threshold,
-                                 outcome *result, double *score, unsigned long *units, int *why,
-                                 double pareto[3])
+                                 const wr_stop *stop, wr_lp_env *env, outcome *result,
+                                 double *score, unsigned long *units, int *why, double pareto[3])
 {
     const wr_design_spec *spec = &job->spec;
     wr_fixture fixture;
@@ -531,6 +583,8 @@ static wr_status score_candidate(const wr_design_job *job, const int *sites, dou
         *result = OUTCOME_UNPINNED;
         return WR_OK;
     }
+    if (spec->supports && spec->objective == WR_OBJECTIVE_FORCE)
+        return plate_force_score(job, &fixture, stop, env, result, score, units, why);
     /* G_goal first: most candidates have no seating push, and need no
      * modes nor G_strong. */
     wr_analysis *analysis;
@@ -777,6 +831,36 @@ static void why_point(const wr_design_spec *spec, int *edge, double *t)
 
 /* ---- the job --------------------------------------------------------------------------- */
 
+bool wr_design_supports_asked(const wr_design_spec *spec, wr_error *error)
+{
+    if (spec->objective != WR_OBJECTIVE_FORCE && spec->objective != WR_OBJECTIVE_ACCURACY) {
+        wr_error_set(error, "objective", "on supports, whose friction depends on how hard "
+                     "the part is pushed, this objective ranks directions alone: give \"force\" "
+                     "(the least seating push, with cases) or \"accuracy\"");
+        return false;
+    }
+    if (spec->fixel_tolerance.given) {
+        wr_error_set(error, "fixel_tolerance", "a design on supports takes no fixel tolerance "
+                     "(the robust answers are those of a part floating in its plane)");
+        return false;
+    }
+    if (spec->objective != WR_OBJECTIVE_FORCE && spec->case_count == 0)
+        return true; /* no push is asked */
+    /* The least push on the plate (wr_supports_least_force_find). */
+    if (spec->body->shape != WR_SHAPE_POLYGON) {
+        wr_error_set(error, "body.shape", "the least push on supports is found along a "
+                     "polygon's straight edges: give the part as a polygon");
+        return false;
+    }
+    if (spec->finger.radius > 0 || spec->finger.friction > 0) {
+        wr_error_set(error, spec->finger.radius > 0 ? "finger_radius" : "finger_friction",
+                     "the least push on supports is found for a point finger without "
+                     "friction: leave it out");
+        return false;
+    }
+    return true;
+}
+
 wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_error *error)
 {
     *out = NULL;
@@ -843,6 +927,8 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
             }
         }
     }
+    if (spec->supports && !wr_design_supports_asked(spec, error))
+        return WR_INVALID;
     if (spec->case_count < 0 || (spec->case_count > 0 && !spec->loads) ||
         (spec->objective == WR_OBJECTIVE_FORCE && spec->case_count == 0)) {
         wr_error_set(error, "cases", "required with the objective force");
@@ -880,7 +966,11 @@ wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_
         wr_error_set(error, "", "out of memory");
         return WR_NO_MEMORY;
     }
-    if (spec->symmetries && spec->symmetry_count > 0 && symmetric_setup(job) != WR_OK) {
+    if (spec->supports) { /* a copy would have to map the supports too */
+        job->spec.symmetries = NULL;
+        job->spec.symmetry_count = 0;
+    }
+    if (job->spec.symmetries && job->spec.symmetry_count > 0 && symmetric_setup(job) != WR_OK) {
         wr_design_job_free(job);
         wr_error_set(error, "", "out of memory");
         return WR_NO_MEMORY;
@@ -1039,8 +1129,8 @@ void wr_design_chunk_release(wr_design_chunk *chunk)
 }
 
 wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t count,
-                              double threshold, const wr_stop *stop, wr_design_chunk *out,
-                              unsigned long *used)
+                              double threshold, const wr_stop *stop, wr_lp_env *env,
+                              wr_design_chunk *out, unsigned long *used)
 {
     const wr_design_spec *spec = &job->spec;
     memset(out, 0, sizeof *out);
@@ -1082,8 +1172,8 @@ wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t
             outcome result;
             double score = 0, pareto[3] = {0, 0, 0};
             int why = 0;
-            status = score_candidate(job, combination, bar, &result, &score, &spent, &why,
-                                     pareto);
+            status = score_candidate(job, combination, bar, stop, env, &result, &score, &spent,
+                                     &why, pareto);
             if (status != WR_OK)
                 break;
             out->counts.examined++;
@@ -1147,13 +1237,18 @@ void wr_design_job_abandon(wr_design_job *job)
 }
 
 /* One design's figures but its critical mu (which the sweep job finds),
- * placed into *fixture.  Reads the job, writes *d. */
+ * placed into *fixture.  Reads the job, writes *d.  On supports its least
+ * push on the plate alone (wr_design.h). */
 static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixture,
-                        unsigned long *units)
+                        const wr_stop *stop, wr_lp_env *env, unsigned long *units)
 {
     if (place(job, d->sites, fixture) != WR_OK)
         return WR_NO_MEMORY; /* it was placed once: only memory can fail */
     const wr_design_spec *spec = &job->spec;
+    if (spec->supports)
+        return spec->case_count > 0
+                   ? plate_least_push(job, fixture, stop, env, &d->least_force, units)
+                   : WR_OK;
     wr_error refused;
     /* A position tolerance a fixel's segment cannot hold: no robust region. */
     bool robust_ok = !spec->fixel_tolerance.given ||
@@ -1208,7 +1303,7 @@ static wr_status detail(const wr_design_job *job, wr_design *d, wr_fixture *fixt
 }
 
 wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned long *used,
-                            const wr_stop *stop, bool *done)
+                            const wr_stop *stop, wr_lp_env *env, bool *done)
 {
     *done = false;
     if (job->failed)
@@ -1222,7 +1317,7 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
     while (status == WR_OK && (spent == 0 || spent < budget) &&
            wr_design_job_claim(job, &first, &count, &threshold)) {
         wr_design_chunk chunk;
-        status = wr_design_chunk_run(job, first, count, threshold, stop, &chunk, &spent);
+        status = wr_design_chunk_run(job, first, count, threshold, stop, env, &chunk, &spent);
         if (status != WR_OK) {
             wr_design_job_abandon(job);
             break;
@@ -1239,9 +1334,13 @@ wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned l
         }
         wr_design *d = &job->designs[job->detailing];
         if (!job->sweep) {
-            status = detail(job, d, &job->detail_fixture, &spent);
+            status = detail(job, d, &job->detail_fixture, stop, env, &spent);
             if (status != WR_OK)
                 break;
+            if (spec->supports) { /* no critical mu on the plate */
+                job->detailing++;
+                continue;
+            }
             wr_sweep_range range = {0, WR_DESIGN_SWEEP_HIGH, 1};
             status = wr_sweeper_new(&job->detail_fixture, WR_SET_GOAL, &range, &job->sweeper);
             if (status == WR_OK)
@@ -1288,7 +1387,7 @@ int wr_design_job_figures_left(const wr_design_job *job)
 }
 
 wr_status wr_design_job_figure(const wr_design_job *job, int index, const wr_stop *stop,
-                               unsigned long *used)
+                               wr_lp_env *env, unsigned long *used)
 {
     /* Not job->detailing: merges change it while other designs' figures
      * are made. */
@@ -1298,7 +1397,12 @@ wr_status wr_design_job_figure(const wr_design_job *job, int index, const wr_sto
     wr_design *d = (wr_design *)&job->designs[index];
     wr_fixture fixture;
     unsigned long spent = 0;
-    wr_status status = detail(job, d, &fixture, &spent);
+    wr_status status = detail(job, d, &fixture, stop, env, &spent);
+    if (job->spec.supports) { /* no critical mu on the plate */
+        if (used)
+            *used += spent;
+        return status;
+    }
     wr_sweeper *sweeper = NULL;
     wr_sweep_job *sweep = NULL;
     wr_sweep_range range = {0, WR_DESIGN_SWEEP_HIGH, 1};

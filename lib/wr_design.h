@@ -47,6 +47,28 @@
  *                             up to `top` of them; its score is the margin.
  *                             No candidate is bounded: each needs all
  *                             three.
+ * On a base plate (spec.supports, wr_support.h) the answers depend on
+ * magnitudes, and only two objectives are asked (others are refused,
+ * WR_INVALID at "objective"):
+ *       WR_OBJECTIVE_FORCE    minus the least force of a push (a point
+ *                             finger without friction, on a polygon) that
+ *                             seats the part on its supports under every
+ *                             load case: wr_supports_least_force_find, G_goal
+ *                             grown by the supports' friction (a seating
+ *                             push: every fixel reached, not that the part
+ *                             then rests, which wrench.classify's strong
+ *                             answers for the push with the load); none:
+ *                             no seating push.
+ *       WR_OBJECTIVE_ACCURACY as without supports: locating does not
+ *                             depend on magnitudes, and a candidate has a
+ *                             push of some size that seats it on the plate
+ *                             iff the floating part has a seating push
+ *                             (S is bounded, so F u + s tends to F u's
+ *                             direction as F grows; and S holds 0).
+ *   A kept design's figures are then its least push on the plate (with
+ *   load cases) alone: best push, regions, tilts and critical mu are
+ *   questions of directions, not made.  Symmetries are not used (a copy
+ *   would have to map the supports and their loads too).
  * Designs rank by score, higher first, ties by candidate number, lower
  * first.  A candidate's score depends on nothing but the candidate, so the
  * ranking is the same however the candidates are split (shards, threads).
@@ -81,6 +103,8 @@
 #include "wr_sweep.h"
 
 #include <stdint.h>
+
+struct wr_supports;
 
 #ifdef __cplusplus
 extern "C" {
@@ -176,6 +200,10 @@ typedef struct wr_design_spec {
      * the position tolerance), its best push the best of that region.  A
      * frictionless finger only. */
     wr_tolerance fixel_tolerance;
+    /* The base plate under every candidate (wr_supports_new on the body;
+     * borrowed), or NULL.  With it, the runs below need a GLPK environment
+     * of the calling thread (wr_lp.h), and fixel_tolerance is refused. */
+    const struct wr_supports *supports;
 } wr_design_spec;
 
 /* A ranked design. */
@@ -193,7 +221,8 @@ typedef struct wr_design {
                                         included: its images under the
                                         symmetries (1 without) */
     wr_least_force least_force;      /* with load cases: the least push
-                                        doing `both` under all of them */
+                                        doing `both` under all of them (on
+                                        supports: seating on the plate) */
     /* WR_OBJECTIVE_PARETO: the best push's margin, the worst locating
      * error, the least push force (INFINITY without cases or none). */
     double pareto[3];
@@ -213,6 +242,11 @@ typedef struct wr_design_counts {
                                         order of work; not part of the answer) */
 } wr_design_counts;
 
+/* Is the spec's question one a design on supports answers (the objective,
+ * the finger, the shape: wr_design.h's rules; wr_design_job_new asks it
+ * too)?  False with `error` set at the field that asks otherwise. */
+bool wr_design_supports_asked(const wr_design_spec *spec, wr_error *error);
+
 /* The number of candidates, C(site_count, fixel_count); UINT64_MAX when
  * it does not fit. */
 uint64_t wr_design_candidates(int site_count, int fixel_count);
@@ -224,12 +258,14 @@ uint64_t wr_design_candidates(int site_count, int fixel_count);
  * (may be NULL).  First the candidates of the shard, then for each design
  * kept the rest of its figures (best push, lengths, gravity, critical mu).
  * WR_OK; WR_INVALID for a spec out of bounds (with `error`); WR_NO_MEMORY;
- * WR_STOPPED when `stop` asks.  The spec's memory must outlive the job. */
+ * WR_STOPPED when `stop` asks; WR_LP_FAILED (on supports: GLPK, or no
+ * `env`).  `env`: the calling thread's GLPK environment, used only on
+ * supports (may be NULL without).  The spec's memory must outlive the job. */
 typedef struct wr_design_job wr_design_job;
 
 wr_status wr_design_job_new(const wr_design_spec *spec, wr_design_job **out, wr_error *error);
 wr_status wr_design_job_run(wr_design_job *job, unsigned long budget, unsigned long *used,
-                            const wr_stop *stop, bool *done);
+                            const wr_stop *stop, wr_lp_env *env, bool *done);
 /* The same in chunks that several threads may evaluate at once, for a
  * server that spreads one search over its workers: a chunk is a range of
  * candidate numbers holding at most WR_DESIGN_CHUNK of the shard's.  Claim
@@ -251,10 +287,11 @@ typedef struct wr_design_chunk {
 /* False when no candidate is left to claim (or the job failed). */
 bool wr_design_job_claim(wr_design_job *job, uint64_t *first, uint64_t *count,
                          double *threshold);
-/* WR_OK; WR_NO_MEMORY; WR_STOPPED (`out` empty unless WR_OK). */
+/* WR_OK; WR_NO_MEMORY; WR_STOPPED; WR_LP_FAILED (`out` empty unless
+ * WR_OK).  `env` as wr_design_job_run's. */
 wr_status wr_design_chunk_run(const wr_design_job *job, uint64_t first, uint64_t count,
-                              double threshold, const wr_stop *stop, wr_design_chunk *out,
-                              unsigned long *used);
+                              double threshold, const wr_stop *stop, wr_lp_env *env,
+                              wr_design_chunk *out, unsigned long *used);
 void wr_design_job_merge(wr_design_job *job, const wr_design_chunk *chunk);
 /* Is a chunk left to claim? */
 bool wr_design_job_claimable(const wr_design_job *job);
@@ -276,11 +313,12 @@ void wr_design_chunk_release(wr_design_chunk *chunk);
  * designs.  wr_design_job_figure_merged then counts the next design in
  * order as done (under the caller's lock, serialised with
  * wr_design_job_run): the same figures, bit for bit, as wr_design_job_run
- * makes one at a time.  WR_OK; WR_NO_MEMORY; WR_STOPPED. */
+ * makes one at a time.  WR_OK; WR_NO_MEMORY; WR_STOPPED; WR_LP_FAILED
+ * (`env` as wr_design_job_run's). */
 bool wr_design_job_searched(const wr_design_job *job);
 int wr_design_job_figures_left(const wr_design_job *job);
 wr_status wr_design_job_figure(const wr_design_job *job, int index, const wr_stop *stop,
-                               unsigned long *used);
+                               wr_lp_env *env, unsigned long *used);
 void wr_design_job_figure_merged(wr_design_job *job);
 
 /* Progress: candidates of the shard looked at, of how many, and the best

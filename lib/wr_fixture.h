@@ -23,6 +23,8 @@ extern "C" {
 
 /* At most 8 fixels: G_goal has k * 2^(k-1) cones (1024 at k = 8). */
 #define WR_MAX_FIXELS 8
+/* At most this many supports under the part (wr_support.h). */
+#define WR_MAX_SUPPORTS 16
 /* A polygon outline has at most this many vertices (the simplicity check is
  * quadratic in it). */
 #define WR_MAX_VERTICES 4096

@@ -10,10 +10,10 @@ static bool design_claim(void *job, wr_job_claim *claim)
 }
 
 static wr_status design_run(const void *job, const wr_job_claim *claim, const wr_stop *stop,
-                            void *chunk, unsigned long *used)
+                            wr_lp_env *env, void *chunk, unsigned long *used)
 {
-    return wr_design_chunk_run(job, claim->first, claim->count, claim->threshold, stop, chunk,
-                               used);
+    return wr_design_chunk_run(job, claim->first, claim->count, claim->threshold, stop, env,
+                               chunk, used);
 }
 
 static wr_status design_merge(void *job, void *chunk)
@@ -38,8 +38,9 @@ static bool lattice_claim(void *job, wr_job_claim *claim)
 }
 
 static wr_status lattice_run(const void *job, const wr_job_claim *claim, const wr_stop *stop,
-                             void *chunk, unsigned long *used)
+                             wr_lp_env *env, void *chunk, unsigned long *used)
 {
+    (void)env; /* the poses solve no LP */
     return wr_lattice_chunk_run(job, (size_t)claim->first, (size_t)claim->count, stop, chunk,
                                 used);
 }

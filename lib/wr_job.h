@@ -22,6 +22,8 @@
 extern "C" {
 #endif
 
+struct wr_lp_env;
+
 /* A chunk as claimed: which of the job's units, and what the claim fixed
  * for them (the design search's threshold, the top-th score merged when
  * the chunk was claimed; 0 for the lattice). */
@@ -34,9 +36,12 @@ typedef struct wr_job_chunks {
     size_t chunk_size; /* bytes of a chunk (zeroed before its first run) */
     /* False when nothing is left to claim (or the job failed). */
     bool (*claim)(void *job, wr_job_claim *claim);
-    /* WR_OK; WR_NO_MEMORY; WR_STOPPED (the chunk empty unless WR_OK). */
+    /* WR_OK; WR_NO_MEMORY; WR_STOPPED; WR_LP_FAILED (the chunk empty
+     * unless WR_OK).  `env`: the running thread's GLPK environment
+     * (wr_lp.h), for a job whose LPs need one (a design on supports);
+     * NULL where none is. */
     wr_status (*run)(const void *job, const wr_job_claim *claim, const wr_stop *stop,
-                     void *chunk, unsigned long *used);
+                     struct wr_lp_env *env, void *chunk, unsigned long *used);
     wr_status (*merge)(void *job, void *chunk);
     void (*release)(void *chunk);
 } wr_job_chunks;

@@ -383,10 +383,8 @@ static bool read_fixels(const cJSON *json, const char *path, wr_fixel_spec **fix
 static const char *const SUPPORTS_FIELDS[] = {"points", "friction", "g", "down", NULL};
 static const char *const DOWN_FIELDS[] = {"at", "force", NULL};
 
-/* "supports" at `path` (present), for the validated `fixture`: read, then
- * checked and kept by wr_fixture_set_supports, its faults at path.field. */
-static bool read_supports(const cJSON *json, const char *path, wr_fixture *fixture,
-                          wp_error *error)
+bool wp_supports_read(const cJSON *json, const char *path, wr_fixture *fixture,
+                      wp_error *error)
 {
     if (!wp_check_object(json, path, SUPPORTS_FIELDS, error))
         return false;
@@ -754,7 +752,7 @@ bool wp_fixture_read(const cJSON *json, const char *path, wp_fixture_doc *out, w
     }
     if (ok && supports) {
         wp_path_key(field, path, "supports");
-        ok = read_supports(supports, field, out->fixture, error);
+        ok = wp_supports_read(supports, field, out->fixture, error);
         if (!ok) {
             wr_fixture_free(out->fixture);
             out->fixture = NULL;

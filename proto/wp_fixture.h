@@ -49,6 +49,11 @@ void wp_fixture_doc_release(wp_fixture_doc *doc);
  * the units at path.units (optional, as a fixture's "units").  False on
  * error, with nothing allocated. */
 bool wp_body_read(const cJSON *params, const char *path, wr_fixture **body, wp_error *error);
+/* A fixture's "supports" at `path` (present; docs/PROTOCOL.md, Supports),
+ * for the validated `fixture` (a body too): read, then checked and kept by
+ * wr_fixture_set_supports, its faults at path.field. */
+bool wp_supports_read(const cJSON *json, const char *path, wr_fixture *fixture,
+                      wp_error *error);
 /* Friction at `path` (present): a number (static), an interval [lo, hi]
  * (static) or a fixture's {"static", "kinetic"}, checked. */
 bool wp_friction_read(const cJSON *json, const char *path, wr_friction_spec *out,

@@ -22,7 +22,7 @@ static const char *const DESIGN[] = {"body", "friction", "fixels", "sites", "spa
                                      "progress", "shard", "push_on", "corner_clearance",
                                      "pin_diameter", "cases", "collapse_symmetric", "deadline_s",
                                      "tolerance", "features", "units", "fixel_tolerance",
-                                     NULL};
+                                     "supports", NULL};
 static const char *const DESIGN_REQUIRED[] = {"body", "friction", NULL};
 static const char *const LOCATING[] = {"fixture", "tolerance", "features", "sigma_ratio", NULL};
 static const char *const LOCATING_REQUIRED[] = {"fixture", "tolerance", NULL};

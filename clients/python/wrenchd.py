@@ -249,6 +249,11 @@ class Witness:
     # u): with friction intervals, a value in the interval at which the
     # motion is possible.  Left out by daemons before friction intervals.
     friction: Optional[List[Optional[float]]] = None
+    # A fixture on supports: each support's friction force [f_x, f_y] on
+    # the part and its normal force, in the fixture's force unit (None
+    # without supports).
+    support_forces: Optional[List[List[float]]] = None
+    support_normals: Optional[List[float]] = None
 
 
 @dataclass
@@ -385,6 +390,10 @@ class Disturbance:
     robust: Optional[str] = None
     perturbation: Optional[List[List[float]]] = None
     perturbation_normals: Optional[List[List[float]]] = None
+    # A fixture on supports: [lo, hi] holding the exact margin (an end None
+    # when nothing bounds it), and whether they met within 1e-6.
+    bracket: Optional[List[Optional[float]]] = None
+    converged: Optional[bool] = None
 
 
 @dataclass
@@ -441,16 +450,19 @@ class Design:
     candidate sites chosen, the best push ({"at", "direction", "margin",
     ...}, None without a both region: push there and let go), the push
     regions' lengths, the longest goal arc of gravity tilts in degrees, the
-    goal region's critical mu (None: not empty at mu = 2) and the score."""
+    goal region's critical mu (None: not empty at mu = 2) and the score.
+    On supports the figures of directions (best push, lengths, gravity,
+    critical mu) are not made: None, and the score is minus the least
+    push that seats the part on the plate (least_push, its "set" "goal")."""
     rank: int
     candidate: int
     fixels: List[Dict[str, List[float]]]
-    best_push: Optional[Dict[str, Any]]
-    goal_length: float
-    both_length: float
-    gravity_goal_deg: float
-    critical_mu: Optional[float]
     score: float
+    best_push: Optional[Dict[str, Any]] = None
+    goal_length: Optional[float] = None
+    both_length: Optional[float] = None
+    gravity_goal_deg: Optional[float] = None
+    critical_mu: Optional[float] = None
     sites: Optional[List[int]] = None          # the sites chosen (not on a lattice)
     pegs: Optional[List[List[int]]] = None     # a lattice: the pegs' holes
     # The fixels on holes: pins, [{"fixel", "hole", "diameter"}] (not on a lattice)
@@ -1267,7 +1279,8 @@ class _Methods:
                tolerance: Optional[float] = None, features: Optional[Iterable[Any]] = None,
                cases: Optional[Iterable[Any]] = None, collapse_symmetric: bool = True,
                units: Optional[Mapping[str, str]] = None,
-               fixel_tolerance: Optional[Mapping[str, float]] = None, timeout: Any = _DEFAULT):
+               fixel_tolerance: Optional[Mapping[str, float]] = None,
+               supports: Optional[Mapping[str, Any]] = None, timeout: Any = _DEFAULT):
         """fixture.design: where to put `fixels` fixels among candidate
         sites (exactly one of `sites`, a list of {"at", "normal"?} or of
         [x, y]; `spacing`; `lattice`), ranked by `objective` (DesignResult).
@@ -1290,7 +1303,11 @@ class _Methods:
         `least_push`); `units` ({"length", "force"}, as a fixture's) are
         those of the body, the cases and the forces answered.
         `fixel_tolerance` ({"position", "angle"?}, a fixture's tolerance):
-        each design's both region and best push robust over it."""
+        each design's both region and best push robust over it.
+        `supports` ({"points", "friction", "g", "down"?}, a fixture's): the
+        base plate under every candidate; objective "force" then ranks by
+        the least push that seats the part on it (each design's least_push,
+        set "goal"), "accuracy" as floating, the others are refused."""
         given = [name for name, value in (("sites", sites), ("spacing", spacing),
                                           ("lattice", lattice)) if value is not None]
         if len(given) != 1:
@@ -1334,6 +1351,8 @@ class _Methods:
             params["units"] = dict(units)
         if fixel_tolerance is not None:
             params["fixel_tolerance"] = dict(fixel_tolerance)
+        if supports is not None:
+            params["supports"] = dict(supports)
         return self._invoke("fixture.design", params, _design_result, True, timeout,
                             notify=progress)
 

@@ -111,6 +111,30 @@ static void print_perturbation(const cJSON *points)
     printf("\n");
 }
 
+/* A motion's witness on supports: each support's friction force on the
+ * part and its normal force in the witness's distribution. */
+static void print_support_witness(const cJSON *witness)
+{
+    const cJSON *forces = cJSON_GetObjectItem(witness, "support_forces");
+    const cJSON *normals = cJSON_GetObjectItem(witness, "support_normals");
+    if (!cJSON_IsArray(forces) || !cJSON_IsArray(normals))
+        return;
+    const cJSON *a = cJSON_GetObjectItem(witness, "acceleration");
+    printf("      moves with acceleration (%g, %g, %g); the supports' friction:",
+           cJSON_GetArrayItem(a, 0)->valuedouble, cJSON_GetArrayItem(a, 1)->valuedouble,
+           cJSON_GetArrayItem(a, 2)->valuedouble);
+    int i = 0;
+    const cJSON *f;
+    cJSON_ArrayForEach(f, forces)
+    {
+        printf(" (%g, %g) of N = %g", cJSON_GetArrayItem(f, 0)->valuedouble,
+               cJSON_GetArrayItem(f, 1)->valuedouble,
+               cJSON_GetArrayItem(normals, i)->valuedouble);
+        i++;
+    }
+    printf("\n");
+}
+
 static void print_verdicts(const cJSON *wrenches, const cJSON *results)
 {
     int width = 6;
@@ -145,6 +169,9 @@ static void print_verdicts(const cJSON *wrenches, const cJSON *results)
                    cJSON_GetStringValue(cJSON_GetObjectItem(v, "verdict")), margin_text,
                    blocking ? blocking : "", why);
             print_perturbation(cJSON_GetObjectItem(v, "perturbation"));
+            const char *verdict = cJSON_GetStringValue(cJSON_GetObjectItem(v, "verdict"));
+            if (verdict && strcmp(verdict, "outside") == 0) /* a motion found */
+                print_support_witness(cJSON_GetObjectItem(v, "witness"));
             first = false;
         }
         index++;

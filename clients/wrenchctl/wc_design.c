@@ -157,7 +157,23 @@ int wc_design_request(wc_run *run, cJSON *params)
         cJSON_AddItemToObject(params, "units",
                               cJSON_Duplicate(cJSON_GetObjectItem(json, "units"), true));
     }
+    /* The base plate: --supports, else the fixture file's own; the
+     * designs drawn and written stand on it too. */
+    cJSON *plate = body ? cJSON_DetachItemFromObject(json, "supports") : NULL;
     cJSON_Delete(json);
+    if (run->supports) {
+        cJSON *holder = cJSON_CreateObject();
+        int status = wc_fixture_supports(run->o, &holder, run->supports);
+        cJSON_Delete(plate);
+        plate = cJSON_DetachItemFromObject(holder, "supports");
+        cJSON_Delete(holder);
+        if (status >= 0)
+            return status;
+    }
+    if (plate) {
+        cJSON_AddItemToObject(params, "supports", cJSON_Duplicate(plate, true));
+        cJSON_AddItemToObject(run->fixture, "supports", plate);
+    }
     cJSON_AddItemToObject(run->fixture, "body",
                           cJSON_Duplicate(cJSON_GetObjectItem(params, "body"), true));
     cJSON_AddItemToObject(run->fixture, "friction",
@@ -253,6 +269,9 @@ static cJSON *design_fixture_json(const wc_run *run, const cJSON *design)
     if (cJSON_GetObjectItem(run->fixture, "units"))
         cJSON_AddItemToObject(json, "units",
                               cJSON_Duplicate(cJSON_GetObjectItem(run->fixture, "units"), true));
+    if (cJSON_GetObjectItem(run->fixture, "supports"))
+        cJSON_AddItemToObject(json, "supports",
+                              cJSON_Duplicate(cJSON_GetObjectItem(run->fixture, "supports"), true));
     return json;
 }
 
@@ -272,9 +291,10 @@ static int emit_fixture(const wc_run *run, const cJSON *result)
     snprintf(name, sizeof name, "%s, design %d",
              cJSON_GetStringValue(cJSON_GetObjectItem(run->fixture, "name")), run->emit_design);
     cJSON_AddStringToObject(json, "name", name);
-    const char *keys[] = {"body", "friction", "fixels"};
-    for (int k = 0; k < 3; k++)
-        cJSON_AddItemToObject(json, keys[k], cJSON_DetachItemFromObject(body, keys[k]));
+    const char *keys[] = {"body", "friction", "fixels", "supports"};
+    for (int k = 0; k < 4; k++)
+        if (cJSON_GetObjectItem(body, keys[k]))
+            cJSON_AddItemToObject(json, keys[k], cJSON_DetachItemFromObject(body, keys[k]));
     cJSON_Delete(body);
     const cJSON *units = cJSON_GetObjectItem(run->fixture, "units");
     if (units)
@@ -336,9 +356,12 @@ static int design_pictures(const wc_run *run, const cJSON *result)
         wr_analysis *analysis;
         wr_finger finger = {.friction = run->friction_given ? run->finger_friction : 0,
                             .radius = run->radius_given ? run->finger_radius : 0};
+        /* On supports no both region is drawn: the push is the least one
+         * that seats the part there (a region of directions is no answer). */
+        bool plate = fixtures[count]->supports != NULL;
         if (wr_analysis_new(fixtures[count], &analysis) != WR_OK ||
-            wr_push_regions_finger(analysis, WR_SET_BOTH, &finger, NULL, &regions[count]) !=
-                WR_OK) {
+            (!plate && wr_push_regions_finger(analysis, WR_SET_BOTH, &finger, NULL,
+                                              &regions[count]) != WR_OK)) {
             wr_fixture_free(fixtures[count]);
             status = wc_usage_error("design: out of memory drawing");
             break;
@@ -359,7 +382,9 @@ static int design_pictures(const wc_run *run, const cJSON *result)
                 p->pin_diameter[fixel] = number(pin, "diameter");
         }
         p->score = number(d, "score");
-        const cJSON *push = cJSON_GetObjectItem(d, "best_push");
+        p->plate = plate;
+        const cJSON *push = cJSON_GetObjectItem(d, plate ? "least_push" : "best_push");
+        p->force = plate && cJSON_IsObject(push) ? number(push, "force") : 0;
         if (cJSON_IsObject(push)) {
             p->has_push = true;
             for (int k = 0; k < 2; k++) {
@@ -480,11 +505,18 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     }
     const cJSON *designs = cJSON_GetObjectItem(result, "designs");
     const cJSON *counts = cJSON_GetObjectItem(result, "counts");
+    /* On supports a design's push is its least push on the plate (the
+     * figures of directions are not made: design-merge, which has no
+     * fixture, sees it by their absence). */
+    const cJSON *first = cJSON_GetArrayItem(designs, 0);
+    bool plate = (run->fixture && cJSON_IsObject(cJSON_GetObjectItem(run->fixture, "supports"))) ||
+                 (first && !cJSON_GetObjectItem(first, "goal_length"));
     bool any_push = false;
     const cJSON *d;
     cJSON_ArrayForEach(d, designs)
     {
-        any_push = any_push || cJSON_IsObject(cJSON_GetObjectItem(d, "best_push"));
+        any_push = any_push ||
+                   cJSON_IsObject(cJSON_GetObjectItem(d, plate ? "least_push" : "best_push"));
     }
     if (run->emit_design) {
         int status = emit_fixture(run, result);
@@ -516,7 +548,11 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     if (number(counts, "shared_hole") > 0)
         printf(", %.0f with two fixels in one hole", number(counts, "shared_hole"));
     printf("; ranked by %s\n", objective ? objective : "margin");
-    if (objective && strcmp(objective, "force") == 0)
+    if (objective && strcmp(objective, "force") == 0 && plate)
+        printf("score: minus the least push force, in %s, that seats the part on its supports "
+               "under every case (goal: it reaches every fixel, not that the part then rests)\n",
+               wc_named_force_unit(run->fixture));
+    else if (objective && strcmp(objective, "force") == 0)
         printf("score: minus the least push force (%s) that does both under every case\n",
                wc_named_force_unit(run->fixture));
     if (objective && strcmp(objective, "accuracy") == 0)
@@ -532,7 +568,9 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         printf("the part has %d symmetries (the identity among them): designs one maps onto "
                "another are listed once, with how many more it stands for\n",
                symmetries);
-    if (cJSON_GetArraySize(designs) > 0)
+    if (cJSON_GetArraySize(designs) > 0 && plate)
+        printf("%-4s  %-10s  %s\n", "rank", "score", "fixels at");
+    else if (cJSON_GetArraySize(designs) > 0)
         printf("%-4s  %-10s  %-34s  %-30s  %-9s  %-9s  %-7s  %s\n", "rank", "score", "fixels at",
            "best push at -> direction", "goal len", "both len", "gravity", "critical mu");
     /* Points to the drawing's precision (wc_drawing_decimals). */
@@ -562,19 +600,24 @@ int wc_design_answer(wc_run *run, const cJSON *result)
         char critical_text[32] = "none below 2";
         if (cJSON_IsNumber(critical))
             snprintf(critical_text, sizeof critical_text, "%.6g", critical->valuedouble);
-        printf("%-4.0f  %-10.6g  %-34s  %-30s  %-9.4g  %-9.4g  %-7.3g  %s\n", number(d, "rank"),
-               number(d, "score"), fixels, push, number(d, "goal_length"),
-               number(d, "both_length"), number(d, "gravity_goal_deg"), critical_text);
+        if (plate)
+            printf("%-4.0f  %-10.6g  %s\n", number(d, "rank"), number(d, "score"), fixels);
+        else
+            printf("%-4.0f  %-10.6g  %-34s  %-30s  %-9.4g  %-9.4g  %-7.3g  %s\n",
+                   number(d, "rank"), number(d, "score"), fixels, push, number(d, "goal_length"),
+                   number(d, "both_length"), number(d, "gravity_goal_deg"), critical_text);
         const cJSON *least = cJSON_GetObjectItem(d, "least_push");
         if (cJSON_IsObject(least)) {
             const cJSON *direction = cJSON_GetObjectItem(least, "direction");
             wc_point_text(cJSON_GetObjectItem(least, "at"), decimals, cell, sizeof cell);
-            printf("      least push %.9g %s at %s -> (%.3f, %.3f)\n", number(least, "force"),
+            printf("      least push%s %.9g %s at %s -> (%.3f, %.3f)\n",
+                   plate ? " on the plate" : "", number(least, "force"),
                    wc_named_force_unit(run->fixture), cell,
                    cJSON_GetArrayItem(direction, 0)->valuedouble + 0.0,
                    cJSON_GetArrayItem(direction, 1)->valuedouble + 0.0);
         } else if (least) {
-            printf("      least push: none does both under every case\n");
+            printf("      least push: none %s under every case\n",
+                   plate ? "seats the part on its supports" : "does both");
         }
         const cJSON *pareto = cJSON_GetObjectItem(d, "pareto");
         if (cJSON_IsObject(pareto)) {
@@ -611,6 +654,9 @@ int wc_design_answer(wc_run *run, const cJSON *result)
     }
     if (cJSON_GetArraySize(designs) == 0)
         explain_no_design(result);
+    else if (plate)
+        printf("Each least push on the plate seats the part (goal: every fixel reached); whether\n"
+               "it then rests under a load is wrench.classify --sets strong with push and load.\n");
     else
         printf("Push at the best push and let go: it is in the both region (goal seats the part,\n"
                "strong then holds it); a goal push alone may leave it sliding along its fixels.\n");

@@ -822,8 +822,13 @@ void wc_svg_designs(FILE *out, const char *name, const char *objective,
     snprintf(text, sizeof text, "%s: the best %d design%s by %s, best first", name, count,
              count == 1 ? "" : "s", objective);
     legend(out, 0, text);
-    legend(out, 1, "thick black: the both region; red arrow: the best push (largest margin) -");
-    legend(out, 2, "push there and let go: goal seats the part, strong then holds it");
+    if (count > 0 && panels[0].plate) {
+        legend(out, 1, "red arrow: the least push that seats the part on its supports (goal) -");
+        legend(out, 2, "it reaches every fixel; whether the part then rests is classify's strong");
+    } else {
+        legend(out, 1, "thick black: the both region; red arrow: the best push (largest margin) -");
+        legend(out, 2, "push there and let go: goal seats the part, strong then holds it");
+    }
     for (int i = 0; i < count; i++) {
         const wc_design_panel *p = &panels[i];
         frame f = frame_for(p->fixture, 0.35, 2);
@@ -835,7 +840,13 @@ void wc_svg_designs(FILE *out, const char *name, const char *objective,
                 "stroke=\"#ddd\" stroke-width=\"2\"/>\n",
                 WIDTH - 8, tallest / scale - 8);
         design_panel(out, &f, p);
-        if (p->has_push)
+        if (p->plate && p->has_push)
+            snprintf(text, sizeof text, "#%d  score %.6g  least push %.6g on the plate", p->rank,
+                     p->score, p->force);
+        else if (p->plate)
+            snprintf(text, sizeof text, "#%d  score %.6g  no push seats it on the plate",
+                     p->rank, p->score);
+        else if (p->has_push)
             snprintf(text, sizeof text, "#%d  score %.6g  best push margin %.4g", p->rank,
                      p->score, p->margin);
         else

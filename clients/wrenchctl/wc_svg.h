@@ -119,13 +119,17 @@ typedef struct wc_design_panel {
     int holes[3][2];
     double peg_radius;
     double pin_diameter[WR_MAX_FIXELS]; /* a pin's (the design's "pins"); -1 elsewhere */
+    /* On supports: the push drawn is the least push that seats the part on
+     * them (its force), and there is no both region. */
+    bool plate;
+    double force;
 } wc_design_panel;
 
 /* The best designs side by side, three to a row: each part with its
  * fixels (and pegs, <circle class="peg">), its both region (<path
  * class="region">) and its best push as an arrow into the part (<line
  * class="best-push">), its rank and score; the legend says why the push
- * is both's. */
+ * is both's (on supports: the least push that seats it, goal's). */
 void wc_svg_designs(FILE *out, const char *name, const char *objective,
                     const wc_design_panel *panels, int count);
 

@@ -483,7 +483,7 @@ static int take_over(wc_run *run, const char *value)
 
 static const command_option COMMAND_OPTIONS[] = {
     {"over", WC_OPT_OVER, take_over},
-    {"supports", WC_FIXTURE, take_supports},
+    {"supports", WC_FIXTURE | WC_OPT_DESIGN, take_supports},
     {"in-plane-g", WC_OPT_TILT, take_in_plane_g},
     {"samples", WC_OPT_SAMPLES, take_samples},
     {"sets", WC_OPT_SETS, take_sets},
@@ -906,7 +906,7 @@ const wc_command wc_commands[] = {
      "       [--tolerance T [--feature NAME=X,Y]...] [--push-on LOOPS]\n"
      "       [--corner-clearance C] [--pin-diameter D]\n"
      "       [--shard I/N] [--symmetric collapse|all] [--svg FILE] [--emit-fixture N FILE]\n"
-     "       [--fixel-tolerance T[,A]]",
+     "       [--fixel-tolerance T[,A]] [--supports FILE|JSON]",
      WC_OPT_DESIGN | WC_OPT_INTERVAL | WC_OPT_RADIUS | WC_OPT_FRICTION | WC_OPT_SVG |
          WC_OPT_PUSH_ON | WC_OPT_LOCATE | WC_OPT_CASE, 1, 1,
      "fixture.design", wc_design_request, wc_design_answer,
@@ -939,6 +939,9 @@ const wc_command wc_commands[] = {
      "  --fixel-tolerance T[,A]  each design's fixels anywhere within T along the outline,\n"
      "                     each normal tilted by up to A degrees: its both region and best\n"
      "                     push are those that work for every such fixture\n"
+     "  --supports FILE|JSON  the base plate under every candidate (a fixture's \"supports\",\n"
+     "                     else the file's own): --objective force ranks by the least push\n"
+     "                     that seats the part on it (accuracy as floating; others refused)\n"
      "  --friction LO:HI   the friction on every fixel (or MU); default the file's\n"
      "  --finger-radius R, --finger-friction MU\n"
      "                     the finger that pushes, as for push\n"

@@ -187,6 +187,15 @@ static void write_witness(wp_writer *w, const wr_analysis *a, const wr_answer *a
             wp_write_number(w, witness->friction[i]);
     }
     wp_write_array_end(w);
+    if (f->supports) {
+        wp_write_key(w, "support_forces");
+        wp_write_array(w);
+        for (int i = 0; i < witness->support_count; i++)
+            wp_write_numbers(w, witness->support_force[i], 2);
+        wp_write_array_end(w);
+        wp_write_key(w, "support_normals");
+        wp_write_numbers(w, witness->support_normal, (size_t)witness->support_count);
+    }
     wp_write_object_end(w);
 }
 

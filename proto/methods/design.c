@@ -279,6 +279,25 @@ static bool read_fixel_tolerance(const cJSON *params, design_state *s, wp_error 
     return true;
 }
 
+/* params.supports: the base plate under every candidate, read as a
+ * fixture's (on the body), and what a design on it answers
+ * (wr_design_supports_asked), refused here before any work. */
+static bool read_plate(const cJSON *params, design_state *s, wp_error *error)
+{
+    const cJSON *supports = cJSON_GetObjectItemCaseSensitive(params, "supports");
+    if (!supports)
+        return true;
+    if (!wp_supports_read(supports, "params.supports", s->body, error))
+        return false;
+    s->spec.supports = s->body->supports;
+    wr_error invalid;
+    if (!wr_design_supports_asked(&s->spec, &invalid)) {
+        wp_error_refusal(error, WR_INVALID, "params", &invalid);
+        return false;
+    }
+    return true;
+}
+
 /* params.tolerance and params.features, which objective accuracy needs
  * (and nothing else takes): each locator off by +-tolerance, and the
  * points whose error counts ([{"name"?, "at"}], as fixture.locating's). */
@@ -412,7 +431,7 @@ static bool read_params(const cJSON *params, design_state *s, wp_error *error)
                          error))
         return false;
     spec->finger.push_on = s->push_on;
-    if (!read_fixel_tolerance(params, s, error))
+    if (!read_fixel_tolerance(params, s, error) || !read_plate(params, s, error))
         return false;
     const cJSON *progress = cJSON_GetObjectItemCaseSensitive(params, "progress");
     if (progress && !cJSON_IsBool(progress)) {
@@ -523,7 +542,9 @@ static bool start_search(design_state *s, wp_error *error)
     }
     s->spec.sites = s->sites;
     s->spec.site_count = s->site_count;
-    if (s->collapse) {
+    /* On supports no symmetry is used: a copy would have to map the
+     * supports and their loads too (wr_design.h). */
+    if (s->collapse && !s->spec.supports) {
         if (wr_symmetry_find(s->body, s->sites, s->site_count, &s->symmetries,
                              &s->symmetry_count) != WR_OK) {
             wp_error_set(error, WP_INTERNAL, "", "out of memory");
@@ -827,9 +848,13 @@ static void write_design(design_state *s, wp_writer *out, const wr_design *d, in
         wp_write_key(out, "pose");
         wp_write_numbers(out, placed, 3);
     }
-    wp_write_key(out, "best_push");
+    /* On supports the figures of directions are not made (wr_design.h). */
+    bool plate = s->spec.supports != NULL;
     const wr_best_push *push = &d->best_push;
-    if (push->found) {
+    if (!plate)
+        wp_write_key(out, "best_push");
+    if (plate) {
+    } else if (push->found) {
         wp_write_object(out);
         wp_write_key(out, "at");
         write_pair(out, push->at);
@@ -843,11 +868,13 @@ static void write_design(design_state *s, wp_writer *out, const wr_design *d, in
         wp_write_null(out);
     }
     if (s->spec.case_count > 0) {
-        /* The least push doing both under every case (wr_force.h). */
+        /* The least push doing both under every case (wr_force.h), or on
+         * supports seating the part on them. */
         const wr_least_force *least = &d->least_force;
         wp_write_key(out, "least_push");
         if (least->found) {
             wp_write_object(out);
+            wp_write_member_string(out, "set", plate ? "goal" : "both");
             wp_write_key(out, "at");
             write_pair(out, least->at);
             wp_write_key(out, "direction");
@@ -861,14 +888,16 @@ static void write_design(design_state *s, wp_writer *out, const wr_design *d, in
             wp_write_null(out);
         }
     }
-    wp_write_member_number(out, "goal_length", d->goal_length);
-    wp_write_member_number(out, "both_length", d->both_length);
-    wp_write_member_number(out, "gravity_goal_deg", d->gravity_goal_deg);
-    wp_write_key(out, "critical_mu");
-    if (d->has_critical)
-        wp_write_number(out, d->critical_mu);
-    else
-        wp_write_null(out);
+    if (!plate) {
+        wp_write_member_number(out, "goal_length", d->goal_length);
+        wp_write_member_number(out, "both_length", d->both_length);
+        wp_write_member_number(out, "gravity_goal_deg", d->gravity_goal_deg);
+        wp_write_key(out, "critical_mu");
+        if (d->has_critical)
+            wp_write_number(out, d->critical_mu);
+        else
+            wp_write_null(out);
+    }
     /* Objective force: minus a force, in the body's force unit. */
     wp_write_member_number(out, "score",
                            s->spec.objective == WR_OBJECTIVE_FORCE
@@ -971,6 +1000,14 @@ static const wr_job_chunks *stage_job(const design_state *s, void **job)
     return s->job ? &wr_design_job_chunks : &wr_lattice_job_chunks;
 }
 
+/* The GLPK environment of the thread making a chunk (each worker has its
+ * own, through the host), for a design on supports, whose LPs the lib
+ * builds itself (wr_support.h); NULL without supports, which need none. */
+static wr_lp_env *plate_env(const design_state *s, const wp_host *host)
+{
+    return s->spec.supports && host->lp_env ? host->lp_env(host->self) : NULL;
+}
+
 /* A job's status as the chunk's: a failure names no field of its own. */
 static wr_status job_status(wr_status status, wp_error *error)
 {
@@ -1004,7 +1041,9 @@ static wr_status job_make(void *method, size_t index, void *record, wp_buffer *d
     void *job;
     const wr_job_chunks *ops = stage_job(method, &job);
     job_record *r = record;
-    return job_status(ops->run(job, &r->claim, host->stop, &r->chunk, used), error);
+    return job_status(ops->run(job, &r->claim, host->stop, plate_env(method, host), &r->chunk,
+                               used),
+                      error);
 }
 
 static wr_status job_merge(void *method, size_t index, void *record, wp_buffer *out,
@@ -1041,8 +1080,8 @@ static wr_status figure_make(void *method, size_t index, void *record, wp_buffer
     (void)record;
     (void)direct;
     const design_state *s = method;
-    wr_status status =
-        wr_design_job_figure(s->job, s->figures_first + (int)index, host->stop, used);
+    wr_status status = wr_design_job_figure(s->job, s->figures_first + (int)index, host->stop,
+                                            plate_env(s, host), used);
     return job_status(status, error);
 }
 
@@ -1150,7 +1189,7 @@ static wp_step design_step(void *stream, wp_call *call, wp_writer *out, unsigned
     bool done = false;
     if (step == WP_STEP_DONE && *used - start < budget) {
         wr_status status = wr_design_job_run(s->job, budget - (*used - start), used,
-                                             call->host->stop, &done);
+                                             call->host->stop, plate_env(s, call->host), &done);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;

@@ -5,6 +5,50 @@
 
 #include <string.h>
 
+/* A motion's witness on supports in the fixture's force unit (divided by
+ * k, the force factor; the acceleration as it is, the writer's rule):
+ * the fixels' forces, the supports' friction and normal forces, the
+ * friction each fixel's letter uses, and the wrench they all make by
+ * Newton-Euler, M q - sum(W_n c_n + W_t c_t) - sum (f_i, (p_i - com) x f_i),
+ * which is the wrench classified (to the tolerance). */
+static void witness_on_supports(const wr_analysis *analysis, const wr_support_strong *strong,
+                                double k, wr_witness *w)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    const wr_supports *supports = f->supports;
+    for (int j = 0; j < 3; j++)
+        w->acceleration[j] = strong->acceleration[j] / k;
+    /* The scaled contact wrenches' torque is divided by rho (wr_fixel). */
+    const double m = f->mass, rho = f->gyration_radius;
+    double made[3] = {m * strong->acceleration[0], m * strong->acceleration[1],
+                      f->inertia * strong->acceleration[2]};
+    for (int i = 0; i < f->fixel_count; i++) {
+        const wr_fixel *x = &f->fixels[i];
+        for (int j = 0; j < 2; j++)
+            w->force[i][j] = strong->force[i][j] / k;
+        for (int j = 0; j < 3; j++)
+            made[j] -= (strong->force[i][0] * x->normal_wrench[j] +
+                        strong->force[i][1] * x->tangent_wrench[j]) *
+                       (j == 2 ? rho : 1);
+    }
+    w->support_count = supports->count;
+    for (int i = 0; i < supports->count; i++) {
+        const double *s = strong->support_force[i];
+        const double r[2] = {supports->points[i][0] - f->com[0],
+                             supports->points[i][1] - f->com[1]};
+        made[0] -= s[0];
+        made[1] -= s[1];
+        made[2] -= r[0] * s[1] - r[1] * s[0];
+        w->support_force[i][0] = s[0] / k;
+        w->support_force[i][1] = s[1] / k;
+        w->support_normal[i] = strong->normal[i] / k;
+    }
+    for (int j = 0; j < 3; j++)
+        w->wrench[j] = made[j] / k;
+    wr_witness_friction(f, &wr_analysis_cone(analysis, WR_SET_STRONG, strong->blocking)->constraint,
+                        w);
+}
+
 wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
                              const double wrench[3], wr_set set, double tolerance,
                              wr_answer *answer)
@@ -49,9 +93,8 @@ wr_status wp_supports_answer(const wr_analysis *analysis, const wp_host *host,
         answer->blocking = strong.blocking;
         for (int j = 0; j < 3; j++)
             answer->witness.acceleration[j] = strong.acceleration[j] / k;
-        for (int i = 0; i < f->fixel_count; i++)
-            for (int j = 0; j < 2; j++)
-                answer->witness.force[i][j] = strong.force[i][j] / k;
+        if (strong.blocking >= 0)
+            witness_on_supports(analysis, &strong, k, &answer->witness);
     }
     return WR_OK;
 }

@@ -344,3 +344,14 @@ def plate_321(mu=0.3):
                                             "vertices": [[0, 0], [4, 0], [4, 2], [0, 2]]}},
             "friction": {"static": mu},
             "fixels": [{"at": [1, 0]}, {"at": [3, 0]}, {"at": [0, 1]}]}
+
+
+def disc_corner_mm():
+    """disc_corner(0.5) in millimetres and newtons: radius 1000 mm, 1 kg,
+    inertia 0.5e6 kg mm^2."""
+    return {"name": "disc-mm", "units": {"length": "mm", "force": "N"},
+            "body": {"mass": 1.0, "inertia": 0.5e6, "com": [0, 0],
+                     "shape": {"type": "circle", "center": [0, 0], "radius": 1000.0}},
+            "friction": {"static": 0.5},
+            "fixels": [{"at": [-1000, 0], "normal": [1, 0]},
+                       {"at": [0, -1000], "normal": [0, 1]}]}

@@ -122,7 +122,6 @@ def test_zero_load_held(client):
 
 
 @pytest.mark.parametrize("method,params,field", [
-    ("stability.margin", {"bias": [0, -1, 0]}, "params.bias"),
     ("force.range", {"push": {"at": [1 / R2, 1 / R2]}, "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
      "params.sets"),
     ("push.force", {"cases": [{"loads": [{"wrench": [0, 0, 0]}]}]}, "params.set"),
@@ -169,11 +168,7 @@ def test_units_millimetres_and_newtons(client):
     N): the same least force in N as in metres, and a clamp of 1 N adds
     mu_B sqrt(10) N to it."""
     mu_b = 0.3
-    f = {"name": "disc-mm", "units": {"length": "mm", "force": "N"},
-         "body": {"mass": 1.0, "inertia": 0.5e6, "com": [0, 0],
-                  "shape": {"type": "circle", "center": [0, 0], "radius": 1000.0}},
-         "friction": {"static": 0.5},
-         "fixels": [{"at": [-1000, 0], "normal": [1, 0]}, {"at": [0, -1000], "normal": [0, 1]}]}
+    f = FX.disc_corner_mm()
     mm = [[1000 * x, 1000 * y] for x, y in BUTTONS]
     for down, weight in ((None, G), ([{"at": [0, 0], "force": 1.0}], G + 1)):
         g = on_buttons(f, mm, mu_b, g=9810, down=down)

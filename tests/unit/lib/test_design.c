@@ -291,7 +291,7 @@ static void run_job(const wr_design_spec *spec, wr_design_job **out)
     bool done = false;
     int runs = 0;
     while (!done) {
-        assert_int_equal(wr_design_job_run(*out, 20000, NULL, NULL, &done), WR_OK);
+        assert_int_equal(wr_design_job_run(*out, 20000, NULL, NULL, NULL, &done), WR_OK);
         runs++;
     }
     assert_true(runs > 1);
@@ -463,7 +463,7 @@ static void chunks_in_any_order(void **state)
                                    WR_DESIGN_CHUNK));
     for (int i = chunks - 1; i >= 0; i--) {
         wr_design_chunk chunk;
-        assert_int_equal(wr_design_chunk_run(parts, first[i], span[i], -INFINITY, NULL, &chunk,
+        assert_int_equal(wr_design_chunk_run(parts, first[i], span[i], -INFINITY, NULL, NULL, &chunk,
                                              NULL),
                          WR_OK);
         wr_design_job_merge(parts, &chunk);
@@ -475,14 +475,14 @@ static void chunks_in_any_order(void **state)
     assert_int_equal(left, 5);
     unsigned long units = 0;
     for (int i = left - 1; i >= 0; i--)
-        assert_int_equal(wr_design_job_figure(parts, i, NULL, &units), WR_OK);
+        assert_int_equal(wr_design_job_figure(parts, i, NULL, NULL, &units), WR_OK);
     assert_true(units > 0);
     for (int i = 0; i < left; i++)
         wr_design_job_figure_merged(parts);
     assert_int_equal(wr_design_job_figures_left(parts), 0);
     bool done = false;
     while (!done)
-        assert_int_equal(wr_design_job_run(parts, 1 << 20, NULL, NULL, &done), WR_OK);
+        assert_int_equal(wr_design_job_run(parts, 1 << 20, NULL, NULL, NULL, &done), WR_OK);
     int n, m;
     const wr_design *a = wr_design_job_designs(whole, &n), *b = wr_design_job_designs(parts, &m);
     assert_int_equal(n, m);
