@@ -51,6 +51,12 @@ typedef struct sweep_state {
     /* params.over "supports": the supports' mu_B swept (wrenches, goal;
      * sweep_supports_step) instead of the fixels' mu */
     bool over_supports;
+    /* A fixture on supports swept over its fixels' mu (wrenches: a
+     * wr_support_sweep job per wrench and set, sweep_plate_step; force:
+     * the least push on the plate at each mu, sweep_supports_force_step) */
+    bool plate;
+    wr_support_sweep *plate_job;
+    bool plate_sampled;         /* the current result holds a sampled set */
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -256,6 +262,7 @@ static void sweep_free(void *stream)
         return;
     sweep_state *state = stream;
     wr_sweep_job_free(state->job);
+    wr_support_sweep_free(state->plate_job);
     for (int s = 0; s < 3; s++)
         wr_sweeper_free(state->sweepers[s]);
     free(state->request.wrenches);
@@ -268,8 +275,7 @@ static void sweep_free(void *stream)
 }
 
 /* params.over: "fixels" (default: a common mu at every fixel) or
- * "supports" (the supports' mu_B).  On supports only the latter is swept:
- * the fixels' mu changes the cones, and with them every grown cone. */
+ * "supports" (the supports' mu_B, which a fixture on supports alone has). */
 static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
 {
     const char *over = NULL;
@@ -281,19 +287,54 @@ static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
         return false;
     }
     state->over_supports = over && strcmp(over, "supports") == 0;
+    state->plate = !state->over_supports && f->supports;
     if (state->over_supports && !f->supports) {
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
                      "the fixture has no supports: sweep its fixels' friction (\"fixels\")");
         return false;
     }
-    if (!state->over_supports && f->supports) {
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
-                     "the fixture rests on supports: friction.sweep sweeps their mu_B "
-                     "(\"over\": \"supports\"); for other fixel frictions ask "
-                     "wrench.classify or force.range with one fixture per coefficient");
+    return true;
+}
+
+/* "force" on supports, over `over`: push.force's least push on the plate
+ * (set goal, a polygon, a point finger). */
+static bool supports_force_question(wp_call *call, sweep_state *state, const char *over)
+{
+    const cJSON *force = cJSON_GetObjectItemCaseSensitive(call->params, "force");
+    const wr_fixture *f = wp_call_fixture(call)->fixture;
+    const char *why = cJSON_GetObjectItemCaseSensitive(force, "set") &&
+                              state->request.sets[0] != WR_SET_GOAL
+                          ? "params.force.set"
+                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                      : state->finger.radius > 0     ? "params.force.finger_radius"
+                                                     : NULL;
+    if (why) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                     "over %s the sweep gives the least push that seats the part on its "
+                     "supports (set \"goal\"), along a polygon's straight edges, for a point "
+                     "finger",
+                     over);
         return false;
     }
+    state->request.sets[0] = WR_SET_GOAL;
     return true;
+}
+
+/* Over the fixels' mu on supports: the wrenches' sets (wr_support_sweep)
+ * and the least push on the plate. */
+static bool plate_question(wp_call *call, sweep_state *state)
+{
+    if (state->what == SWEEP_FORCE)
+        return supports_force_question(call, state, "the fixels' mu on a fixture with supports");
+    if (state->what == SWEEP_WRENCHES)
+        return true;
+    wp_error_set(call->error, WP_INVALID_PARAMS,
+                 state->what == SWEEP_PUSH ? "params.push" : "params.gravity",
+                 "over the fixels' mu on a fixture with supports friction.sweep answers "
+                 "\"wrenches\" and \"force\": push regions and tilts on the plate depend on "
+                 "the push's or the pull's size; ask push.regions with \"force\" or "
+                 "gravity.sweep with \"in_plane_g\" at each mu");
+    return false;
 }
 
 /* Over the supports' mu_B: the wrenches' seating (goal), which
@@ -301,25 +342,8 @@ static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
 static bool supports_question(wp_call *call, sweep_state *state)
 {
     static const char *const NAMES[] = {"wrenches", "push", "gravity", "force"};
-    if (state->what == SWEEP_FORCE) {
-        const cJSON *force = cJSON_GetObjectItemCaseSensitive(call->params, "force");
-        const wr_fixture *f = wp_call_fixture(call)->fixture;
-        const char *why = cJSON_GetObjectItemCaseSensitive(force, "set") &&
-                                  state->request.sets[0] != WR_SET_GOAL
-                              ? "params.force.set"
-                          : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
-                          : state->finger.radius > 0     ? "params.force.finger_radius"
-                                                         : NULL;
-        if (why) {
-            wp_error_set(call->error, WP_INVALID_PARAMS, why,
-                         "over the supports' mu_B the sweep gives the least push that seats the "
-                         "part (set \"goal\"), along a polygon's straight edges, for a point "
-                         "finger");
-            return false;
-        }
-        state->request.sets[0] = WR_SET_GOAL;
-        return true;
-    }
+    if (state->what == SWEEP_FORCE)
+        return supports_force_question(call, state, "the supports' mu_B");
     if (state->what != SWEEP_WRENCHES) {
         char field[WP_FIELD_MAX];
         snprintf(field, sizeof field, "params.%s", NAMES[state->what]);
@@ -354,12 +378,15 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     if (!state)
         return NULL;
     if (!read_over(call, use->fixture, state) || !read_sweep(call, use->fixture, state) ||
-        (state->over_supports && !supports_question(call, state))) {
+        (state->over_supports && !supports_question(call, state)) ||
+        (state->plate && !plate_question(call, state))) {
         sweep_free(state);
         return NULL;
     }
     if (state->over_supports)
         return state; /* no sweeper: the supports' friction leaves the cones as they are */
+    if (state->plate)
+        return state; /* no sweeper: each answer is a point answer at its mu */
     if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
         /* The curves' exact machinery varies mu on the nominal fixels. */
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
@@ -625,7 +652,34 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
-/* Over the supports' mu_B, "force": {"curve": [[mu, F | null], ...], "at":
+/* The least push on the plate (wr_supports_least_force_find) at mu: the
+ * supports' mu_B = mu (over the supports), or the fixture placed again
+ * with mu on every fixel (over the fixels, the plate sweep). */
+static wr_status supports_least_at(const sweep_state *state, const wp_fixture_use *use,
+                                   wr_lp_env *env, double mu, const wr_stop *stop,
+                                   wr_least_force *least)
+{
+    const double (*loads)[3] = (const double (*)[3])state->loads;
+    if (!state->plate) {
+        wr_supports at_mu;
+        wr_supports_with_friction(use->fixture->supports, mu, &at_mu);
+        return wr_supports_least_force_find(use->analysis, &at_mu, env, loads,
+                                            state->cases.count, &state->finger, stop, least);
+    }
+    wr_fixture at;
+    wr_fixture_at_friction(use->fixture, mu, state->range.kinetic_ratio, &at);
+    wr_analysis *analysis;
+    wr_status status = wr_analysis_new(&at, &analysis);
+    if (status != WR_OK)
+        return status;
+    status = wr_supports_least_force_find(analysis, at.supports, env, loads, state->cases.count,
+                                          &state->finger, stop, least);
+    wr_analysis_free(analysis);
+    return status;
+}
+
+/* Over the supports' mu_B (or the fixels' mu on supports), "force":
+ * {"curve": [[mu, F | null], ...], "at":
  * [[x, y] | null, ...], "exact": false, "resolution": step}: the least push
  * on the plate (wr_supports_least_force_find) at SUPPORTS_FORCE_SAMPLES
  * coefficients evenly over the range, ends included, a sample a step. */
@@ -659,12 +713,8 @@ static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_w
         double mu = state->sample + 1 == SUPPORTS_FORCE_SAMPLES
                         ? state->range.high
                         : state->range.low + state->sample * step;
-        wr_supports at_mu;
-        wr_supports_with_friction(use->fixture->supports, mu, &at_mu);
         wr_least_force least;
-        wr_status status = wr_supports_least_force_find(
-            use->analysis, &at_mu, env, (const double (*)[3])state->loads, state->cases.count,
-            &state->finger, call->host->stop, &least);
+        wr_status status = supports_least_at(state, use, env, mu, call->host->stop, &least);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
@@ -692,11 +742,94 @@ static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_w
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* Over the fixels' mu on supports, "wrenches": {"results": [{"goal":
+ * [...], "strong": [...], "exact"?, "resolution"?}, ...]}, a
+ * wr_support_sweep job per wrench and set; a result holding a sampled set
+ * (strong, both) says so with "exact": false and the grid's step. */
+static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use;
+    wr_lp_env *env = supports_env(call, &use);
+    if (!env)
+        return WP_STEP_FAILED;
+    const wp_classify_request *r = &state->request;
+    if (!state->opened) {
+        state->opened = true;
+        wp_write_object(out);
+        wp_write_key(out, "results");
+        wp_write_array(out);
+    }
+    for (bool first = true; state->next < r->wrench_count && !out->out->failed; first = false) {
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        if (!state->plate_job) {
+            /* In the model system, where the supports' friction is. */
+            const double k = wr_fixture_force_factor(use->fixture);
+            const double *given = r->wrenches[state->next];
+            const double g[3] = {given[0] * k, given[1] * k, given[2] * k};
+            wr_status status = wr_support_sweep_new(use->fixture, g, r->sets[state->set],
+                                                    &state->range, &state->plate_job);
+            if (status != WR_OK) {
+                wp_error_status(call->error, status, "params.wrenches", "%s",
+                                wr_strerror(status));
+                return WP_STEP_FAILED;
+            }
+        }
+        /* Past the deadline: the job ends where it has got to (as the
+         * floating sweep's, below). */
+        bool done = false, stopped = deadline_passed(state);
+        double reached = 0;
+        wr_status status =
+            stopped ? wr_support_sweep_stop(state->plate_job, &reached)
+                    : wr_support_sweep_run(state->plate_job, env,
+                                           budget > *used ? budget - *used : 1, used,
+                                           call->host->stop, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        if (!done && !stopped)
+            continue;
+        if (state->set == 0) {
+            wp_write_object(out);
+            state->plate_sampled = false;
+        }
+        wp_write_key(out, wp_set_names[r->sets[state->set]]);
+        write_intervals(out, wr_support_sweep_intervals(state->plate_job));
+        if (!wr_support_sweep_exact(state->plate_job))
+            state->plate_sampled = true;
+        double resolution = wr_support_sweep_resolution(state->plate_job);
+        wr_support_sweep_free(state->plate_job);
+        state->plate_job = NULL;
+        if (++state->set == r->set_count || stopped) {
+            if (state->plate_sampled) {
+                wp_write_member_bool(out, "exact", false);
+                wp_write_member_number(out, "resolution", resolution);
+            }
+            wp_write_object_end(out);
+            state->set = 0;
+            state->next++;
+        }
+        if (stopped) {
+            wp_write_array_end(out);
+            write_stopped(out, reached);
+            wp_write_object_end(out);
+            return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+        }
+    }
+    wp_write_array_end(out);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
-    if (state->over_supports)
+    if (state->plate && state->what == SWEEP_WRENCHES)
+        return sweep_plate_step(state, call, out, budget, used);
+    if (state->over_supports || state->plate)
         return state->what == SWEEP_FORCE
                    ? sweep_supports_force_step(state, call, out, budget, used)
                    : sweep_supports_step(state, call, out, budget, used);
