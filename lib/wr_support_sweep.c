@@ -24,14 +24,22 @@ struct wr_support_sweep {
      * prev), and where the interval still open began (when prev). */
     double step, top, pos, a, b, start;
     bool prev, bisecting;
+    /* Holding found at grid points and bisected ends, to certify: pieces
+     * of mu, the lowest on top; each is certified held whole by the
+     * relaxation, dropped when narrower than WR_SUPPORT_SWEEP_STEP, or
+     * halved (certify_unit).  Every point below the lowest is decided. */
+    wr_intervals pending;
+    int certifications;         /* relaxed answers spent on the current candidate */
     wr_intervals intervals;
 };
 
-/* Appends [lo, hi] (hi > lo) to the sorted list; NO_MEMORY. */
-static wr_status add(wr_intervals *list, double lo, double hi)
+/* The relaxed answers one candidate interval of holding may spend; what
+ * is left uncertified then is dropped (never claimed held). */
+#define CERTIFY_MAX 400
+
+/* Appends [lo, hi] to the list.  WR_NO_MEMORY. */
+static wr_status append(wr_intervals *list, double lo, double hi)
 {
-    if (!(hi > lo))
-        return WR_OK;
     if (list->count == list->capacity) {
         int capacity = list->capacity ? 2 * list->capacity : 8;
         double (*items)[2] = realloc(list->items, (size_t)capacity * sizeof *items);
@@ -44,6 +52,19 @@ static wr_status add(wr_intervals *list, double lo, double hi)
     list->items[list->count][1] = hi;
     list->count++;
     return WR_OK;
+}
+
+/* Adds [lo, hi] (nothing unless hi > lo) to the sorted answer, one
+ * interval with the last when they touch (certified pieces).  WR_NO_MEMORY. */
+static wr_status add(wr_intervals *list, double lo, double hi)
+{
+    if (!(hi > lo))
+        return WR_OK;
+    if (list->count > 0 && list->items[list->count - 1][1] == lo) {
+        list->items[list->count - 1][1] = hi;
+        return WR_OK;
+    }
+    return append(list, lo, hi);
 }
 
 wr_status wr_support_sweep_new(const wr_fixture *fixture, const double wrench[3], wr_set set,
@@ -75,16 +96,25 @@ void wr_support_sweep_free(wr_support_sweep *job)
     if (!job)
         return;
     wr_intervals_release(&job->intervals);
+    wr_intervals_release(&job->pending);
     free(job);
 }
 
-/* The point answer at mu for `which` (goal or strong): the fixture placed
- * again with mu on every fixel, its analysis, the supports' test. */
-static wr_status inside_at(const wr_support_sweep *job, wr_lp_env *env, double mu, wr_set which,
-                           const wr_stop *stop, bool *inside, unsigned long *cost)
+/* The answer for `which` (goal or strong) with every fixel's friction in
+ * [lo, hi] (static, and ratio times that kinetic; a point when lo == hi:
+ * wr_fixture_at_friction): the fixture placed again so, its analysis, the
+ * supports' test.  Over an interval each cone is the union of the cones of
+ * the friction box (docs/MODEL.md section 2, friction intervals), so
+ * "inside" for strong there is held at every mu of [lo, hi]. */
+static wr_status inside_at(const wr_support_sweep *job, wr_lp_env *env, double lo, double hi,
+                           wr_set which, const wr_stop *stop, bool *inside, unsigned long *cost)
 {
     wr_fixture at;
-    wr_fixture_at_friction(job->fixture, mu, job->range.kinetic_ratio, &at);
+    wr_fixture_at_friction(job->fixture, hi, job->range.kinetic_ratio, &at);
+    for (int i = 0; i < at.fixel_count; i++) {
+        at.fixels[i].mu_static_min = lo;
+        at.fixels[i].mu_kinetic_min = job->range.kinetic_ratio * lo;
+    }
     wr_analysis *analysis;
     wr_status status = wr_analysis_new(&at, &analysis);
     if (status != WR_OK)
@@ -106,6 +136,43 @@ static wr_status inside_at(const wr_support_sweep *job, wr_lp_env *env, double m
     wr_analysis_free(analysis);
     *cost += 1000 + 400 * (unsigned long)(solves > 0 ? solves : 0);
     return status;
+}
+
+/* A candidate interval of holding [lo, hi] (its ends held at their
+ * points), to certify before the grid goes on. */
+static wr_status candidate(wr_support_sweep *job, double lo, double hi)
+{
+    if (!(hi > lo))
+        return WR_OK;
+    job->certifications = 0;
+    job->pending.count = 0;
+    return append(&job->pending, lo, hi);
+}
+
+/* One relaxed answer: the lowest pending piece held whole (certified), or
+ * halved (the lower half on top), or dropped when too narrow or the
+ * candidate's answers are spent. */
+static wr_status certify_unit(wr_support_sweep *job, wr_lp_env *env, const wr_stop *stop,
+                              unsigned long *cost)
+{
+    wr_intervals *p = &job->pending;
+    double lo = p->items[p->count - 1][0], hi = p->items[p->count - 1][1];
+    bool held;
+    wr_status status = inside_at(job, env, lo, hi, WR_SET_STRONG, stop, &held, cost);
+    if (status != WR_OK)
+        return status;
+    job->certifications++;
+    p->count--;
+    if (held)
+        return add(&job->intervals, lo, hi);
+    if (hi - lo <= WR_SUPPORT_SWEEP_STEP || job->certifications >= CERTIFY_MAX) {
+        if (job->certifications >= CERTIFY_MAX)
+            p->count = 0; /* the rest of the candidate left uncertified */
+        return WR_OK;
+    }
+    double middle = lo + (hi - lo) / 2;
+    status = append(p, middle, hi);
+    return status == WR_OK ? append(p, lo, middle) : status;
 }
 
 /* The goal's end found: a goal job is done with [low, end], a both job
@@ -131,7 +198,7 @@ static wr_status goal_unit(wr_support_sweep *job, wr_lp_env *env, const wr_stop 
                 : job->phase == PHASE_GOAL_HIGH ? job->range.high
                                                 : job->lo + (job->hi - job->lo) / 2;
     bool inside;
-    wr_status status = inside_at(job, env, mu, WR_SET_GOAL, stop, &inside, cost);
+    wr_status status = inside_at(job, env, mu, mu, WR_SET_GOAL, stop, &inside, cost);
     if (status != WR_OK)
         return status;
     if (job->phase == PHASE_GOAL_LOW) {
@@ -167,7 +234,7 @@ static wr_status grid_unit(wr_support_sweep *job, wr_lp_env *env, const wr_stop 
         mu = k >= WR_SUPPORT_SWEEP_GRID ? job->top : fmin(low + k * job->step, job->top);
     }
     bool inside;
-    wr_status status = inside_at(job, env, mu, WR_SET_STRONG, stop, &inside, cost);
+    wr_status status = inside_at(job, env, mu, mu, WR_SET_STRONG, stop, &inside, cost);
     if (status != WR_OK)
         return status;
     if (job->bisecting) {
@@ -180,7 +247,7 @@ static wr_status grid_unit(wr_support_sweep *job, wr_lp_env *env, const wr_stop 
         /* The change lies in (a, b]: an interval ends at a or begins at b. */
         job->bisecting = false;
         if (job->prev) {
-            status = add(&job->intervals, job->start, job->a);
+            status = candidate(job, job->start, job->a);
         } else {
             job->start = job->b;
         }
@@ -198,7 +265,7 @@ static wr_status grid_unit(wr_support_sweep *job, wr_lp_env *env, const wr_stop 
             return WR_OK;
         job->bisecting = false;
         if (job->prev)
-            status = add(&job->intervals, job->start, job->a);
+            status = candidate(job, job->start, job->a);
         else
             job->start = mu;
         job->prev = inside;
@@ -208,7 +275,7 @@ static wr_status grid_unit(wr_support_sweep *job, wr_lp_env *env, const wr_stop 
     if (status == WR_OK && !job->bisecting && job->pos >= job->top) {
         job->phase = PHASE_DONE;
         if (job->prev)
-            status = add(&job->intervals, job->start, job->top);
+            status = candidate(job, job->start, job->top);
     }
     return status;
 }
@@ -218,15 +285,17 @@ wr_status wr_support_sweep_run(wr_support_sweep *job, wr_lp_env *env, unsigned l
 {
     unsigned long spent = 0;
     wr_status status = WR_OK;
-    while (status == WR_OK && job->phase != PHASE_DONE && (spent == 0 || spent < budget)) {
+    while (status == WR_OK && (job->phase != PHASE_DONE || job->pending.count > 0) &&
+           (spent == 0 || spent < budget)) {
         if (wr_stop_requested(stop))
             return WR_STOPPED;
-        status = job->phase == PHASE_GRID ? grid_unit(job, env, stop, &spent)
-                                          : goal_unit(job, env, stop, &spent);
+        status = job->pending.count > 0   ? certify_unit(job, env, stop, &spent)
+                 : job->phase == PHASE_GRID ? grid_unit(job, env, stop, &spent)
+                                            : goal_unit(job, env, stop, &spent);
     }
     if (used)
         *used += spent;
-    *done = job->phase == PHASE_DONE;
+    *done = job->phase == PHASE_DONE && job->pending.count == 0;
     return status;
 }
 
@@ -234,18 +303,23 @@ wr_status wr_support_sweep_stop(wr_support_sweep *job, double *reached)
 {
     wr_status status = WR_OK;
     *reached = job->range.high;
-    if (job->phase == PHASE_GOAL_LOW || job->phase == PHASE_GOAL_HIGH ||
-        job->phase == PHASE_GOAL_BISECT) {
+    if (job->pending.count > 0) {
+        /* Certifying: decided up to the lowest piece left. */
+        *reached = job->pending.items[job->pending.count - 1][0];
+        job->pending.count = 0;
+    } else if (job->phase == PHASE_GRID) {
+        /* Holding is claimed only where certified: an interval still open
+         * is not, and nothing from its start on is decided. */
+        *reached = job->bisecting ? job->a : isnan(job->pos) ? job->range.low : job->pos;
+        if (!isnan(job->pos) && job->prev)
+            *reached = job->start;
+    } else if (job->phase != PHASE_DONE) {
         /* Seating is decided up to lo once low seats; both's holding not
          * at all yet. */
         bool seated = job->phase != PHASE_GOAL_LOW && job->set == WR_SET_GOAL;
         *reached = seated ? job->lo : job->range.low;
         if (seated)
             status = add(&job->intervals, job->range.low, job->lo);
-    } else if (job->phase == PHASE_GRID) {
-        *reached = job->bisecting ? job->a : isnan(job->pos) ? job->range.low : job->pos;
-        if (!isnan(job->pos) && job->prev)
-            status = add(&job->intervals, job->start, *reached);
     }
     job->phase = PHASE_DONE;
     return status;
