@@ -860,6 +860,9 @@ const wc_command wc_commands[] = {
      "  --tolerance T[,A]   with --wrench: the mu where the wrench is inside for every fixture\n"
      "                      with each contact within T along the outline, each normal tilted\n"
      "                      by up to A degrees (the other sweeps refuse it)\n"
+     "On supports (--supports, or the fixture's member) the buttons' friction is kept: for\n"
+     "--wrench goal is exact, strong and both are sampled (every mu given proved held);\n"
+     "--least-force wants goal; --push and --gravity are refused.\n"
      "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu; for the least force: when some push does it at some mu),\n"
      "1 when not."},

@@ -56,7 +56,6 @@ typedef struct sweep_state {
      * the least push on the plate at each mu, sweep_supports_force_step) */
     bool plate;
     wr_support_sweep *plate_job;
-    bool plate_sampled;         /* the current result holds a sampled set */
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -742,10 +741,23 @@ static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_w
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* "exact": false and the grid's step when a set asked is sampled (strong,
+ * both: wr_support_sweep.h); nothing when only goal is asked. */
+static void write_plate_exactness(const sweep_state *state, wp_writer *out)
+{
+    const wp_classify_request *r = &state->request;
+    for (int s = 0; s < r->set_count; s++)
+        if (r->sets[s] != WR_SET_GOAL) {
+            wp_write_member_bool(out, "exact", false);
+            wp_write_member_number(out, "resolution", (state->range.high - state->range.low) /
+                                                          WR_SUPPORT_SWEEP_GRID);
+            return;
+        }
+}
+
 /* Over the fixels' mu on supports, "wrenches": {"results": [{"goal":
- * [...], "strong": [...], "exact"?, "resolution"?}, ...]}, a
- * wr_support_sweep job per wrench and set; a result holding a sampled set
- * (strong, both) says so with "exact": false and the grid's step. */
+ * [...], "strong": [...]}, ...], "exact"?, "resolution"?}, a
+ * wr_support_sweep job per wrench and set. */
 static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *out,
                                 unsigned long budget, unsigned long *used)
 {
@@ -760,7 +772,10 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
         wp_write_key(out, "results");
         wp_write_array(out);
     }
-    for (bool first = true; state->next < r->wrench_count && !out->out->failed; first = false) {
+    bool stopped = false;
+    double reached = 0;
+    for (bool first = true; state->next < r->wrench_count && !out->out->failed && !stopped;
+         first = false) {
         if (!first && *used >= budget)
             return WP_STEP_MORE;
         if (!state->plate_job) {
@@ -778,8 +793,8 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
         }
         /* Past the deadline: the job ends where it has got to (as the
          * floating sweep's, below). */
-        bool done = false, stopped = deadline_passed(state);
-        double reached = 0;
+        bool done = false;
+        stopped = deadline_passed(state);
         wr_status status =
             stopped ? wr_support_sweep_stop(state->plate_job, &reached)
                     : wr_support_sweep_run(state->plate_job, env,
@@ -791,34 +806,22 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
         }
         if (!done && !stopped)
             continue;
-        if (state->set == 0) {
+        if (state->set == 0)
             wp_write_object(out);
-            state->plate_sampled = false;
-        }
         wp_write_key(out, wp_set_names[r->sets[state->set]]);
         write_intervals(out, wr_support_sweep_intervals(state->plate_job));
-        if (!wr_support_sweep_exact(state->plate_job))
-            state->plate_sampled = true;
-        double resolution = wr_support_sweep_resolution(state->plate_job);
         wr_support_sweep_free(state->plate_job);
         state->plate_job = NULL;
         if (++state->set == r->set_count || stopped) {
-            if (state->plate_sampled) {
-                wp_write_member_bool(out, "exact", false);
-                wp_write_member_number(out, "resolution", resolution);
-            }
             wp_write_object_end(out);
             state->set = 0;
             state->next++;
         }
-        if (stopped) {
-            wp_write_array_end(out);
-            write_stopped(out, reached);
-            wp_write_object_end(out);
-            return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
-        }
     }
     wp_write_array_end(out);
+    write_plate_exactness(state, out);
+    if (stopped)
+        write_stopped(out, reached);
     wp_write_object_end(out);
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }

@@ -92,13 +92,13 @@ def test_disc_seating_end_closed_form(client):
     assert lo == 0 and abs(hi - expected) < 1e-8, (result, expected)
     assert result["strong"] == [[0, 2]], result
     assert result["both"] == result["goal"], result
-    assert result["exact"] is False and result["resolution"] == 2 / 64
+    assert r["exact"] is False and r["resolution"] == 2 / 64
     checked = sum(cross_check(client, f, w, s, result[s], 0, 2, n=8)
                   for s in ("goal", "strong", "both"))
     assert checked > 30
     # Seating alone is exact: no "exact" member.
     goal = client.result("friction.sweep", {"fixture": f, "wrenches": [w], "sets": ["goal"]})
-    assert goal["results"][0] == {"goal": result["goal"]}, goal
+    assert goal == {"results": [{"goal": result["goal"]}]}, goal
     # Too weak to beat the buttons at any mu: F sin 45 deg <= mu_B W.
     weak = [-4 / R2, -4 / R2, 0]
     assert client.result("friction.sweep", {"fixture": f, "wrenches": [weak],
