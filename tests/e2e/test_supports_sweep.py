@@ -200,3 +200,53 @@ def test_refusals_name_the_field(client):
         params = dict(params, fixture=f)
         e = client.error("friction.sweep", params)
         assert e["code"] == -32602 and e["data"]["field"] == field, (params, e)
+
+
+C_FIXELS_ON_THE_PLATE = r'''
+#include "wrenchclient.h"
+#include <stdio.h>
+int main(int argc, char **argv)
+{
+    (void)argc;
+    wrc_client *c = wrc_connect(argv[1], 300000, 0, NULL);
+    const wrc_load none[] = {{.kind = WRC_LOAD_FORCE, .force = {0, 0}, .at = {1, 1}}};
+    wrc_force_sweep_request r = {.set = "goal", .range = {0, 0.16}};
+    static double curve[32][2], at[32][2];
+    wrc_force_curve s;
+    if (!c || wrc_force_sweep(c, argv[2], none, 1, &r, curve, at, 32, &s) != WRC_OK)
+        return 2;
+    printf("%d\n", s.interval_count);
+    for (int i = 0; i < s.sample_count; i++)
+        printf("%.17g %.17g\n", curve[i][0], curve[i][1]);
+    wrc_close(c);
+    return 0;
+}
+'''
+
+
+def test_c_client_sweeps_the_fixels_on_the_plate(client, tmp_path):
+    """wrc_force_sweep over the fixels' mu of a fixture on supports reads
+    the answer, which has no intervals of the push alone: the daemon's
+    curve, to the last digit."""
+    import subprocess
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    fid = client.result("fixture.put", {"fixture": f})["id"]
+    source, program = tmp_path / "fixels.c", tmp_path / "fixels"
+    source.write_text(C_FIXELS_ON_THE_PLATE)
+    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
+                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
+                   check=True)
+    out = subprocess.run([str(program), client.path, fid], capture_output=True, text=True,
+                         timeout=600)
+    assert out.returncode == 0, out
+    lines = [line for line in out.stdout.split("\n") if line]
+    assert lines[0] == "0"
+    none = [{"loads": [{"force": [0, 0], "at": [1, 1]}]}]
+    client.send(client.request("friction.sweep", {"fixture": fid, "range": [0, 0.16],
+                                                  "force": {"set": "goal"}, "cases": none}))
+    sweep = client.read_json(timeout=600)["result"]
+    assert "intervals" not in sweep
+    rows = [[float(x) for x in line.split()] for line in lines[1:]]
+    assert rows == [[mu, force] for mu, force in sweep["curve"]], (rows, sweep["curve"])
