@@ -28,6 +28,16 @@ static void rest_on(wr_fixture *f, const double (*points)[2], double mu_b)
     assert_int_equal(wr_fixture_set_supports(f, &spec, &error), WR_OK);
 }
 
+/* The 3-2-1 plate of docs/MODEL.md section 7.2 (m = 2) on buttons (1, 0.5),
+ * (3, 0.5), (2, 1.7) with mu_B. */
+static wr_fixture *plate_on_buttons(double mu_b)
+{
+    static const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
+    wr_fixture *f = test_plate_321();
+    rest_on(f, buttons, mu_b);
+    return f;
+}
+
 /* Runs a job to the end in small budgets (every run does some work). */
 static wr_support_sweep *sweep(const wr_fixture *f, wr_lp_env *env, const double w[3], wr_set set,
                                double low, double high, double ratio)
@@ -178,9 +188,7 @@ static void test_plate_strong(void **state)
 {
     (void)state;
     wr_lp_env *env = test_lp_env_new();
-    wr_fixture *f = test_plate_321();
-    static const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
-    rest_on(f, buttons, 0.2);
+    wr_fixture *f = plate_on_buttons(0.2);
     const double w[3] = {8, -10, 0};
     int checked = 0;
     for (int r = 0; r < 2; r++) {
@@ -215,9 +223,7 @@ static void test_plate_both(void **state)
 {
     (void)state;
     wr_lp_env *env = test_lp_env_new();
-    wr_fixture *f = test_plate_321();
-    static const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
-    rest_on(f, buttons, 0.05);
+    wr_fixture *f = plate_on_buttons(0.05);
     const double wrenches[][3] = {{-3, -10, 0.5}, {-10, -4, 1}, {-10, -10, -4}, {2, -10, 3}};
     int checked = 0;
     for (int i = 0; i < 4; i++) {
@@ -249,9 +255,7 @@ static void test_stopped(void **state)
 {
     (void)state;
     wr_lp_env *env = test_lp_env_new();
-    wr_fixture *f = test_plate_321();
-    static const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
-    rest_on(f, buttons, 0.2);
+    wr_fixture *f = plate_on_buttons(0.2);
     const double w[3] = {8, -10, 0};
     wr_sweep_range range = {0.25, 2, 1};
     for (int set = WR_SET_GOAL; set <= WR_SET_BOTH; set++) {
