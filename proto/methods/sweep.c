@@ -52,10 +52,10 @@ typedef struct sweep_state {
      * sweep_supports_step) instead of the fixels' mu */
     bool over_supports;
     /* A fixture on supports swept over its fixels' mu (wrenches: a
-     * wr_support_sweep job per wrench and set, sweep_plate_step; force:
+     * wr_support_sweep job per wrench and set, sweep_fixels_step; force:
      * the least push on the plate at each mu, sweep_supports_force_step) */
-    bool plate;
-    wr_support_sweep *plate_job;
+    bool fixels_on_supports;
+    wr_support_sweep *fixels_job;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -261,7 +261,7 @@ static void sweep_free(void *stream)
         return;
     sweep_state *state = stream;
     wr_sweep_job_free(state->job);
-    wr_support_sweep_free(state->plate_job);
+    wr_support_sweep_free(state->fixels_job);
     for (int s = 0; s < 3; s++)
         wr_sweeper_free(state->sweepers[s]);
     free(state->request.wrenches);
@@ -286,7 +286,7 @@ static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
         return false;
     }
     state->over_supports = over && strcmp(over, "supports") == 0;
-    state->plate = !state->over_supports && f->supports;
+    state->fixels_on_supports = !state->over_supports && f->supports;
     if (state->over_supports && !f->supports) {
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
                      "the fixture has no supports: sweep its fixels' friction (\"fixels\")");
@@ -321,7 +321,7 @@ static bool supports_force_question(wp_call *call, sweep_state *state, const cha
 
 /* Over the fixels' mu on supports: the wrenches' sets (wr_support_sweep)
  * and the least push on the plate. */
-static bool plate_question(wp_call *call, sweep_state *state)
+static bool fixels_question(wp_call *call, sweep_state *state)
 {
     if (state->what == SWEEP_FORCE)
         return supports_force_question(call, state, "the fixels' mu on a fixture with supports");
@@ -378,13 +378,13 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
         return NULL;
     if (!read_over(call, use->fixture, state) || !read_sweep(call, use->fixture, state) ||
         (state->over_supports && !supports_question(call, state)) ||
-        (state->plate && !plate_question(call, state))) {
+        (state->fixels_on_supports && !fixels_question(call, state))) {
         sweep_free(state);
         return NULL;
     }
     if (state->over_supports)
         return state; /* no sweeper: the supports' friction leaves the cones as they are */
-    if (state->plate)
+    if (state->fixels_on_supports)
         return state; /* no sweeper: each answer is a point answer at its mu */
     if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
         /* The curves' exact machinery varies mu on the nominal fixels. */
@@ -653,13 +653,13 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
 
 /* The least push on the plate (wr_supports_least_force_find) at mu: the
  * supports' mu_B = mu (over the supports), or the fixture placed again
- * with mu on every fixel (over the fixels, the plate sweep). */
+ * with mu on every fixel (over the fixels). */
 static wr_status supports_least_at(const sweep_state *state, const wp_fixture_use *use,
                                    wr_lp_env *env, double mu, const wr_stop *stop,
                                    wr_least_force *least)
 {
     const double (*loads)[3] = (const double (*)[3])state->loads;
-    if (!state->plate) {
+    if (!state->fixels_on_supports) {
         wr_supports at_mu;
         wr_supports_with_friction(use->fixture->supports, mu, &at_mu);
         return wr_supports_least_force_find(use->analysis, &at_mu, env, loads,
@@ -743,7 +743,7 @@ static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_w
 
 /* "exact": false and the grid's step when a set asked is sampled (strong,
  * both: wr_support_sweep.h); nothing when only goal is asked. */
-static void write_plate_exactness(const sweep_state *state, wp_writer *out)
+static void write_fixels_exactness(const sweep_state *state, wp_writer *out)
 {
     const wp_classify_request *r = &state->request;
     for (int s = 0; s < r->set_count; s++)
@@ -758,7 +758,7 @@ static void write_plate_exactness(const sweep_state *state, wp_writer *out)
 /* Over the fixels' mu on supports, "wrenches": {"results": [{"goal":
  * [...], "strong": [...]}, ...], "exact"?, "resolution"?}, a
  * wr_support_sweep job per wrench and set. */
-static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *out,
+static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *out,
                                 unsigned long budget, unsigned long *used)
 {
     wp_fixture_use *use;
@@ -778,13 +778,13 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
          first = false) {
         if (!first && *used >= budget)
             return WP_STEP_MORE;
-        if (!state->plate_job) {
+        if (!state->fixels_job) {
             /* In the model system, where the supports' friction is. */
             const double k = wr_fixture_force_factor(use->fixture);
             const double *given = r->wrenches[state->next];
             const double g[3] = {given[0] * k, given[1] * k, given[2] * k};
             wr_status status = wr_support_sweep_new(use->fixture, g, r->sets[state->set],
-                                                    &state->range, &state->plate_job);
+                                                    &state->range, &state->fixels_job);
             if (status != WR_OK) {
                 wp_error_status(call->error, status, "params.wrenches", "%s",
                                 wr_strerror(status));
@@ -796,8 +796,8 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
         bool done = false;
         stopped = deadline_passed(state);
         wr_status status =
-            stopped ? wr_support_sweep_stop(state->plate_job, &reached)
-                    : wr_support_sweep_run(state->plate_job, env,
+            stopped ? wr_support_sweep_stop(state->fixels_job, &reached)
+                    : wr_support_sweep_run(state->fixels_job, env,
                                            budget > *used ? budget - *used : 1, used,
                                            call->host->stop, &done);
         if (status != WR_OK) {
@@ -809,9 +809,9 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
         if (state->set == 0)
             wp_write_object(out);
         wp_write_key(out, wp_set_names[r->sets[state->set]]);
-        write_intervals(out, wr_support_sweep_intervals(state->plate_job));
-        wr_support_sweep_free(state->plate_job);
-        state->plate_job = NULL;
+        write_intervals(out, wr_support_sweep_intervals(state->fixels_job));
+        wr_support_sweep_free(state->fixels_job);
+        state->fixels_job = NULL;
         if (++state->set == r->set_count || stopped) {
             wp_write_object_end(out);
             state->set = 0;
@@ -819,7 +819,7 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
         }
     }
     wp_write_array_end(out);
-    write_plate_exactness(state, out);
+    write_fixels_exactness(state, out);
     if (stopped)
         write_stopped(out, reached);
     wp_write_object_end(out);
@@ -830,9 +830,9 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
                           unsigned long *used)
 {
     sweep_state *state = stream;
-    if (state->plate && state->what == SWEEP_WRENCHES)
-        return sweep_plate_step(state, call, out, budget, used);
-    if (state->over_supports || state->plate)
+    if (state->fixels_on_supports && state->what == SWEEP_WRENCHES)
+        return sweep_fixels_step(state, call, out, budget, used);
+    if (state->over_supports || state->fixels_on_supports)
         return state->what == SWEEP_FORCE
                    ? sweep_supports_force_step(state, call, out, budget, used)
                    : sweep_supports_step(state, call, out, budget, used);
