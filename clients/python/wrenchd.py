@@ -31,7 +31,8 @@ Methods of Client (and of Batch, see below):
     locating(fixture, tolerance, features=None, sigma_ratio=None)
                                            -> Locating    fixture.locating
     friction_sweep(fixture, range=(0, 2), kinetic_ratio=1.0, wrenches=None, sets=None,
-                   push=None, gravity=None) -> FrictionSweep  friction.sweep
+                   push=None, gravity=None, force=None, cases=None, over=None)
+                                           -> FrictionSweep  friction.sweep
     status()                               -> Status      server.status
     call(method, params=None, readonly=False) -> the raw "result" (any method)
 
@@ -417,7 +418,10 @@ class FrictionSweep:
     the push alone has a region (exact), `exact` False and `resolution` the
     grid's step.  For wrenches:
     `results`, one {set name: [[lo, hi], ...]} per wrench, the mu where it
-    is inside; the other fields are then empty."""
+    is inside; the other fields are then empty.  Over the supports' mu_B
+    (over="supports"), push and gravity: one interval [low, critical], the
+    curve's points each exact at its mu_B on a grid (`resolution` its step,
+    `exact` False) and at `critical`, bisected to 1e-9."""
     intervals: List[List[float]] = dataclasses_field(default_factory=list)
     critical: Optional[float] = None
     curve: List[List[float]] = dataclasses_field(default_factory=list)
@@ -1209,7 +1213,9 @@ class _Methods:
         friction ignored), mu over `range` (FrictionSweep).  over="supports"
         sweeps the supports' mu_B of a fixture on a base plate instead
         (wrenches: where each seats; force: the least push on the plate;
-        set goal either way).  Exactly one of
+        push: {"force": F, "cases"?, "push_on"?}, where a push that hard
+        seats it; gravity: {"in_plane_g": A}, the tilts whose pull seats
+        it; set goal throughout).  Exactly one of
         `wrenches` (with `sets`, default the daemon's: goal and strong),
         `push`, `gravity` and `force` (with `cases`, as force_range's: the
         least push force against mu); each of the last three is a set name,
@@ -1237,6 +1243,8 @@ class _Methods:
                 params["sets"] = [sets] if isinstance(sets, str) else list(sets)
         elif push is not None:
             params["push"] = _sweep_part(push, "push")
+            if "cases" in params["push"]:
+                params["push"]["cases"] = _cases(params["push"]["cases"])
         elif force is not None:
             part = _sweep_part(force, "force")
             push_on = self._push_on(params["fixture"], part.get("push_on"),

@@ -77,6 +77,7 @@ enum {
                                    fixture's geometric tolerance */
     WC_OPT_TILT = 1 << 24,      /* gravity: --in-plane-g A, the pull in a tilted plate's plane */
     WC_OPT_SAMPLES = 1 << 25,   /* push-force: --samples N, exact samples a segment */
+    WC_OPT_OVER = 1 << 26,      /* sweep: --over fixels|supports, whose friction is swept */
     WC_OPT_LOCATE = 1 << 22     /* --tolerance T|T1,T2,T3, --feature [NAME=]X,Y (repeated),
                                    --sigma-ratio R */
 };
@@ -151,6 +152,7 @@ typedef struct wc_run {
     double in_plane_g;      /* gravity --in-plane-g A (WC_OPT_TILT) */
     bool in_plane_g_given;
     int samples;            /* push-force --samples N (WC_OPT_SAMPLES); 0: the daemon's default */
+    const char *over;       /* sweep --over fixels|supports (WC_OPT_OVER); NULL: not given */
 } wc_run;
 
 /* Adds the command's params to `params` (the fixture is already there for

@@ -515,6 +515,16 @@ int wc_sweep_request(wc_run *run, cJSON *params)
     bool wrenches = strcmp(run->sweep_kind, "wrenches") == 0;
     bool push = strcmp(run->sweep_kind, "push") == 0;
     bool force = strcmp(run->sweep_kind, "force") == 0;
+    /* Over the supports a push has push.regions' force, cases and push_on,
+     * a tilt its pull. */
+    bool plate = run->over && strcmp(run->over, "supports") == 0;
+    bool plate_push = plate && push;
+    if (run->push_force_given && !plate_push)
+        return wc_usage_error("sweep: --force is for --push with --over supports");
+    if (run->in_plane_g_given && !(plate && strcmp(run->sweep_kind, "gravity") == 0))
+        return wc_usage_error("sweep: --in-plane-g is for --gravity with --over supports");
+    if (run->over)
+        cJSON_AddStringToObject(params, "over", run->over);
     if (run->set && !wrenches)
         return wc_usage_error("sweep: --set is for --wrench; --%s SET names the set",
                               force ? "least-force" : run->sweep_kind);
@@ -522,11 +532,14 @@ int wc_sweep_request(wc_run *run, cJSON *params)
         return wc_usage_error("sweep: --finger-friction is for --push");
     if (run->radius_given && !push && !force)
         return wc_usage_error("sweep: --finger-radius is for --push and --least-force");
-    if ((run->cases != NULL) != force)
-        return wc_usage_error(force ? "sweep --least-force wants at least one --case"
-                                    : "sweep: --case is for --least-force");
-    if (run->push_on && !force)
-        return wc_usage_error("sweep: --push-on is for --least-force");
+    if (force && !run->cases)
+        return wc_usage_error("sweep --least-force wants at least one --case");
+    if (run->cases && !force && !plate_push)
+        return wc_usage_error("sweep: --case is for --least-force (or --push with --over "
+                              "supports)");
+    if (run->push_on && !force && !plate_push)
+        return wc_usage_error("sweep: --push-on is for --least-force (or --push with --over "
+                              "supports)");
     if (run->range_given)
         cJSON_AddItemToObject(params, "range", cJSON_CreateDoubleArray(run->range, 2));
     if (run->ratio_given)
@@ -545,6 +558,13 @@ int wc_sweep_request(wc_run *run, cJSON *params)
         cJSON_AddNumberToObject(what, "finger_friction", run->finger_friction);
     if (run->radius_given)
         cJSON_AddNumberToObject(what, "finger_radius", run->finger_radius);
+    if (run->in_plane_g_given)
+        cJSON_AddNumberToObject(what, "in_plane_g", run->in_plane_g);
+    if (plate_push) {
+        if (run->push_on)
+            cJSON_AddItemToObject(what, "push_on", cJSON_Duplicate(run->push_on, true));
+        return wc_push_loads(run, what);
+    }
     if (!force)
         return -1;
     cJSON_AddItemToObject(params, "cases", cJSON_Duplicate(run->cases, true));
@@ -567,12 +587,20 @@ static double sweep_high(const wc_run *run)
 
 static double sweep_ratio(const wc_run *run)
 {
+    if (run->over && strcmp(run->over, "supports") == 0)
+        return 0; /* the pictures' word for the supports' mu_B (wc_svg.h) */
     return run->ratio_given ? run->kinetic_ratio : 1;
 }
 
 /* The first line: what was swept, and how. */
 static void print_sweep_header(const wc_run *run, const char *what)
 {
+    if (run->over && strcmp(run->over, "supports") == 0) {
+        printf("friction sweep of %s: the supports' mu_B from %g to %g (the fixels' friction as "
+               "the fixture gives it)\n",
+               what, sweep_low(run), sweep_high(run));
+        return;
+    }
     printf("friction sweep of %s: mu_s = mu, mu_k = %g mu at every fixel, mu from %g to %g\n",
            what, sweep_ratio(run), sweep_low(run), sweep_high(run));
 }
@@ -659,7 +687,11 @@ static void print_region_sweep(const wc_run *run, const cJSON *result)
         printf("critical mu %g: empty throughout the range\n", critical->valuedouble);
     else
         printf("critical mu %g: empty above it\n", critical->valuedouble);
-    if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
+    if (run->over && strcmp(run->over, "supports") == 0)
+        printf("each point exact at its mu_B, every %g; seating only gets harder as mu_B grows, "
+               "so the critical mu_B is bisected on those answers (to 1e-9)\n",
+               cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+    else if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
         printf("sampled: resolution %g\n",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
     printf("%12s  %14s\n", "mu", push ? "length" : "arc (degrees)");

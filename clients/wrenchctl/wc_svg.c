@@ -904,7 +904,9 @@ static void mu_axis(FILE *out, const axis *x, double bottom, double kinetic_rati
                 px, bottom, px, bottom + 5, px, bottom + 19, value);
     }
     char title[128];
-    if (kinetic_ratio == 1)
+    if (kinetic_ratio == 0)
+        snprintf(title, sizeof title, "\xce\xbc_B  (the supports' friction)");
+    else if (kinetic_ratio == 1)
         snprintf(title, sizeof title, "\xce\xbc  (\xce\xbc_s = \xce\xbc_k = \xce\xbc at every fixel)");
     else
         snprintf(title, sizeof title,

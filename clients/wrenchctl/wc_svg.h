@@ -65,7 +65,8 @@ typedef struct wc_interval {
 } wc_interval;
 
 /* A friction sweep of a push region or of the gravity arcs (friction.sweep):
- * mu_s = mu and mu_k = kinetic_ratio * mu at every fixel. */
+ * mu_s = mu and mu_k = kinetic_ratio * mu at every fixel, or (kinetic_ratio
+ * 0, also in wc_svg_sweep_bands) the supports' mu_B. */
 typedef struct wc_sweep_plot {
     const char *name;      /* the fixture's */
     const char *what;      /* "push" (length, the fixture's units), "gravity" (degrees) or
@@ -73,7 +74,7 @@ typedef struct wc_sweep_plot {
     const char *force_unit; /* with "force": the unit of the forces */
     const char *set;
     double range[2];       /* of mu, the plot's horizontal axis */
-    double kinetic_ratio;
+    double kinetic_ratio;  /* 0: the supports' mu_B is swept instead */
     const wc_interval *intervals; /* where the region is not empty */
     int interval_count;
     double critical;       /* the mu above which it is empty; NAN: none */

@@ -472,7 +472,17 @@ static int take_samples(wc_run *run, const char *value)
     return 0;
 }
 
+/* sweep --over: the fixels' friction (the default) or the supports' mu_B. */
+static int take_over(wc_run *run, const char *value)
+{
+    if (strcmp(value, "fixels") != 0 && strcmp(value, "supports") != 0)
+        return wc_usage_error("--over is fixels or supports, not '%s'", value);
+    run->over = value;
+    return 0;
+}
+
 static const command_option COMMAND_OPTIONS[] = {
+    {"over", WC_OPT_OVER, take_over},
     {"supports", WC_FIXTURE, take_supports},
     {"in-plane-g", WC_OPT_TILT, take_in_plane_g},
     {"samples", WC_OPT_SAMPLES, take_samples},
@@ -829,9 +839,11 @@ const wc_command wc_commands[] = {
      "FIXTURE (--push SET | --gravity SET | --least-force SET --case SPEC... |\n"
      "       --wrench FX,FY,TAU... [--set SET]) [--range LO:HI] [--kinetic-ratio R]\n"
      "       [--finger-friction MU] [--finger-radius R] [--push-on LOOPS] [--svg FILE]\n"
-     "       [--table full|summary] [--tolerance T[,A]]",
+     "       [--table full|summary] [--tolerance T[,A]]\n"
+     "       [--over supports [--supports FILE|JSON] [--force F] [--in-plane-g A]]",
      WC_FIXTURE | WC_OPT_SWEEP | WC_OPT_SET | WC_OPT_FRICTION | WC_OPT_RADIUS | WC_OPT_SVG |
-         WC_OPT_CASE | WC_OPT_PUSH_ON | WC_OPT_GEOMETRIC,
+         WC_OPT_CASE | WC_OPT_PUSH_ON | WC_OPT_GEOMETRIC | WC_OPT_OVER | WC_OPT_PUSH_FORCE |
+         WC_OPT_TILT,
      1, 1,
      "friction.sweep", wc_sweep_request, wc_sweep_answer,
      "how the answers change with the friction",
@@ -860,10 +872,15 @@ const wc_command wc_commands[] = {
      "  --tolerance T[,A]   with --wrench: the mu where the wrench is inside for every fixture\n"
      "                      with each contact within T along the outline, each normal tilted\n"
      "                      by up to A degrees (the other sweeps refuse it)\n"
-     "On supports (--supports, or the fixture's member) the buttons' friction is kept: for\n"
-     "--wrench goal is exact, strong and both are sampled (every mu given proved held);\n"
-     "--least-force wants goal; --push and --gravity are refused.\n"
-     "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
+     "  --over supports     a fixture on a base plate (its \"supports\", or --supports): sweep\n"
+     "                      the supports' mu_B instead (set goal: what seats the part);\n"
+     "                      --push goal with --force F (and --case, --push-on): where a push\n"
+     "                      that hard seats it; --gravity goal with --in-plane-g A: the tilts\n"
+     "                      whose pull seats it; both shrink as mu_B grows, and the critical\n"
+     "                      mu_B is bisected to 1e-9\n"
+     "On supports without --over: the fixels' mu swept, the buttons' friction kept: for\n"
+     "--wrench goal is exact, strong and both sampled (every mu given proved held);\n"
+     "--least-force, --push and --gravity as with --over supports.\n"     "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu; for the least force: when some push does it at some mu),\n"
      "1 when not."},
     {"locate", "FIXTURE --tolerance T[,T2,T3] [--feature [NAME=]X,Y]... [--sigma-ratio R]\n"

@@ -339,37 +339,49 @@ bool wp_handle_force_range(wp_call *call, wp_writer *out)
 bool wp_push_load_read(const cJSON *params, const wr_fixture *f, double finger_friction,
                        int most_cases, wp_push_load *out, wp_error *error)
 {
+    return wp_push_load_read_at(params, "params", f, finger_friction, most_cases, out, error);
+}
+
+bool wp_push_load_read_at(const cJSON *params, const char *path, const wr_fixture *f,
+                          double finger_friction, int most_cases, wp_push_load *out,
+                          wp_error *error)
+{
     memset(out, 0, sizeof *out);
+    char field_force[WP_FIELD_MAX], field_cases[WP_FIELD_MAX];
+    wp_path_key(field_force, path, "force");
+    wp_path_key(field_cases, path, "cases");
     const cJSON *cases_json = cJSON_GetObjectItemCaseSensitive(params, "cases");
     double force;
-    if (!wp_member_number(params, "params", "force", false, &force, &out->given, error))
+    if (!wp_member_number(params, path, "force", false, &force, &out->given, error))
         return false;
     if (!out->given) {
         if (cases_json) {
-            wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+            wp_error_set(error, WP_INVALID_PARAMS, field_force,
                          "required with \"cases\": the push's magnitude");
             return false;
         }
         return true;
     }
     if (!(force > 0)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.force",
+        wp_error_set(error, WP_INVALID_PARAMS, field_force,
                      "must be positive (a push's magnitude), got %g", force);
         return false;
     }
     if (finger_friction > 0) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.finger_friction",
+        char field[WP_FIELD_MAX];
+        wp_path_key(field, path, "finger_friction");
+        wp_error_set(error, WP_INVALID_PARAMS, field,
                      "not with \"force\": regions under a force are exact, for a frictionless "
                      "finger");
         return false;
     }
     out->force = force * wr_fixture_force_factor(f);
     if (!isfinite(out->force)) {
-        wp_error_set(error, WP_INVALID_PARAMS, "params.force", "too large to compute with");
+        wp_error_set(error, WP_INVALID_PARAMS, field_force, "too large to compute with");
         return false;
     }
     wp_cases cases = {0};
-    if (cases_json && !wp_cases_read(cases_json, "params.cases", f, most_cases, &cases, error))
+    if (cases_json && !wp_cases_read(cases_json, field_cases, f, most_cases, &cases, error))
         return false;
     out->count = cases_json ? cases.count : 1;
     out->loads = calloc((size_t)out->count, sizeof *out->loads);

@@ -90,6 +90,11 @@ typedef struct wp_push_load {
  * False with nothing allocated on error. */
 bool wp_push_load_read(const cJSON *params, const wr_fixture *fixture, double finger_friction,
                        int most_cases, wp_push_load *out, wp_error *error);
+/* The same members of the object at `path` (friction.sweep's "push"):
+ * path.force, path.cases, path.finger_friction. */
+bool wp_push_load_read_at(const cJSON *params, const char *path, const wr_fixture *fixture,
+                          double finger_friction, int most_cases, wp_push_load *out,
+                          wp_error *error);
 void wp_push_load_release(wp_push_load *load);
 
 #ifdef __cplusplus

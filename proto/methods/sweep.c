@@ -56,11 +56,34 @@ typedef struct sweep_state {
      * the least push on the plate at each mu, sweep_supports_force_step) */
     bool fixels_on_supports;
     wr_support_sweep *fixels_job;
+    /* push and gravity over the fixels' mu (plate_piece): the fixture at
+     * fixels_mu and its analysis, made again when mu changes */
+    wr_fixture fixels_at;
+    wr_analysis *fixels_analysis;
+    double fixels_mu;
+    /* Over the supports, "push" or "gravity" (sweep_plate_step): the push's
+     * force and cases or the pull, and the curve made so far -- the grid's
+     * points (PLATE_GRID steps), then the critical mu_B bisected in
+     * [lo, hi] (lo's region non-empty, of length lo_length; hi's empty).
+     * At the mu under way: the next edge and the length of the edges so far. */
+    wp_push_load push_load;
+    double pull;
+    double (*points)[2];        /* [mu, length], PLATE_GRID + 1 of them */
+    int point_count;
+    bool bisecting;
+    double lo, hi, lo_length;
+    int edge;
+    double length;
+    bool nonempty;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
 static const char *const SWEEP_GRAVITY_FIELDS[] = {"set", NULL};
 static const char *const SWEEP_FORCE_FIELDS[] = {"set", "finger_radius", "push_on", NULL};
+/* On supports the push takes push.regions' members there, the tilt its pull. */
+static const char *const PLATE_PUSH_FIELDS[] = {"set", "force", "cases", "push_on",
+                                                "finger_friction", "finger_radius", NULL};
+static const char *const PLATE_GRAVITY_FIELDS[] = {"set", "in_plane_g", NULL};
 
 /* params.range: [low, high], 0 <= low < high <= WR_MAX_FRICTION (default
  * [0, 2]); params.kinetic_ratio in (0, 1] (default 1). */
@@ -243,7 +266,10 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
     const char *path = push ? "params.push" : "params.gravity";
     const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, push ? "push" : "gravity");
     state->request.set_count = 1;
-    if (!wp_check_object(what, path, push ? SWEEP_PUSH_FIELDS : SWEEP_GRAVITY_FIELDS, error) ||
+    const char *const *fields = state->over_supports || state->fixels_on_supports
+                                    ? (push ? PLATE_PUSH_FIELDS : PLATE_GRAVITY_FIELDS)
+                                    : (push ? SWEEP_PUSH_FIELDS : SWEEP_GRAVITY_FIELDS);
+    if (!wp_check_object(what, path, fields, error) ||
         !wp_read_set_at(what, path, &state->request.sets[0], error) ||
         (push && !wp_read_finger(what, path, &state->finger, error)))
         return false;
@@ -262,6 +288,7 @@ static void sweep_free(void *stream)
     sweep_state *state = stream;
     wr_sweep_job_free(state->job);
     wr_support_sweep_free(state->fixels_job);
+    wr_analysis_free(state->fixels_analysis);
     for (int s = 0; s < 3; s++)
         wr_sweeper_free(state->sweepers[s]);
     free(state->request.wrenches);
@@ -270,6 +297,8 @@ static void sweep_free(void *stream)
     free(state->at);
     free(state->push_on);
     wp_cases_release(&state->cases);
+    wp_push_load_release(&state->push_load);
+    free(state->points);
     free(stream);
 }
 
@@ -319,39 +348,87 @@ static bool supports_force_question(wp_call *call, sweep_state *state, const cha
     return true;
 }
 
-/* Over the fixels' mu on supports: the wrenches' sets (wr_support_sweep)
- * and the least push on the plate. */
+/* Over the supports' mu_B, "push" or "gravity" on the plate: the push's
+ * "force" (with "cases" and "push_on") as push.regions reads them on
+ * supports, or the pull "in_plane_g" as gravity.sweep does; set "goal",
+ * what seating decides (sweep_plate_step). */
+static bool plate_question(wp_call *call, sweep_state *state, const char *over)
+{
+    const wr_fixture *f = wp_call_fixture(call)->fixture; /* held since begin */
+    const bool push = state->what == SWEEP_PUSH;
+    const char *path = push ? "params.push" : "params.gravity";
+    const cJSON *what = cJSON_GetObjectItemCaseSensitive(call->params, push ? "push" : "gravity");
+    char field[WP_FIELD_MAX];
+    if (!push) {
+        bool given;
+        wp_path_key(field, path, "in_plane_g");
+        if (!wp_member_number(what, path, "in_plane_g", false, &state->pull, &given, call->error))
+            return false;
+        if (!given)
+            return !wp_supports_refuse(call, f, field,
+                                       "\"in_plane_g\", the part of gravity in the plate's plane "
+                                       "(g sin(tilt), in the fixture's length / s^2): whether a "
+                                       "pull seats the part depends on its size");
+        if (!(state->pull > 0) || !isfinite(state->pull)) {
+            wp_error_set(call->error, WP_INVALID_PARAMS, field, "must be above 0 and finite");
+            return false;
+        }
+        if (state->request.sets[0] == WR_SET_GOAL)
+            return true;
+        wp_path_key(field, path, "set");
+        wp_error_set(call->error, WP_INVALID_PARAMS, field,
+                     "over %s the sweep gives the tilts whose pull seats the part (set "
+                     "\"goal\"); whether it is held is wrench.classify's \"strong\" at each "
+                     "coefficient",
+                     over);
+        return false;
+    }
+    if (!wp_push_load_read_at(what, path, f, state->finger.friction, wp_case_limit(call->limits),
+                              &state->push_load, call->error) ||
+        !wp_read_push_on(what, path, f, &state->push_on, &state->finger.push_on_count,
+                         call->error))
+        return false;
+    state->finger.push_on = state->push_on;
+    if (!state->push_load.given) {
+        wp_path_key(field, path, "force");
+        return !wp_supports_refuse(call, f, field,
+                                   "\"force\", the push's magnitude: the regions where a push "
+                                   "that hard seats the part");
+    }
+    const char *why = wp_supports_push_unanswered(f, state->request.sets[0], state->finger.radius);
+    if (!why)
+        return true;
+    if (strcmp(why, "params.fixture.body.shape") != 0) {
+        /* push.regions' own member, here inside "push" */
+        wp_path_key(field, path, why + strlen("params."));
+        why = field;
+    }
+    wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                 "over %s the sweep gives where a push of the given force seats the part (set "
+                 "\"goal\"), along a polygon's straight edges, for a point finger",
+                 over);
+    return false;
+}
+
+/* Over the fixels' mu on supports: the wrenches' sets (wr_support_sweep),
+ * and as over the supports' mu_B the least push, the push regions under a
+ * force and the tilts under a pull. */
 static bool fixels_question(wp_call *call, sweep_state *state)
 {
+    static const char over[] = "the fixels' mu on a fixture with supports";
     if (state->what == SWEEP_FORCE)
-        return supports_force_question(call, state, "the fixels' mu on a fixture with supports");
-    if (state->what == SWEEP_WRENCHES)
-        return true;
-    wp_error_set(call->error, WP_INVALID_PARAMS,
-                 state->what == SWEEP_PUSH ? "params.push" : "params.gravity",
-                 "over the fixels' mu on a fixture with supports friction.sweep answers "
-                 "\"wrenches\" and \"force\": push regions and tilts on the plate depend on "
-                 "the push's or the pull's size; ask push.regions with \"force\" or "
-                 "gravity.sweep with \"in_plane_g\" at each mu");
-    return false;
+        return supports_force_question(call, state, over);
+    return state->what == SWEEP_WRENCHES || plate_question(call, state, over);
 }
 
 /* Over the supports' mu_B: the wrenches' seating (goal), which
  * wr_supports_friction_limit decides exactly. */
 static bool supports_question(wp_call *call, sweep_state *state)
 {
-    static const char *const NAMES[] = {"wrenches", "push", "gravity", "force"};
     if (state->what == SWEEP_FORCE)
         return supports_force_question(call, state, "the supports' mu_B");
-    if (state->what != SWEEP_WRENCHES) {
-        char field[WP_FIELD_MAX];
-        snprintf(field, sizeof field, "params.%s", NAMES[state->what]);
-        wp_error_set(call->error, WP_INVALID_PARAMS, field,
-                     "over the supports' mu_B friction.sweep answers \"wrenches\" and "
-                     "\"force\" (set \"goal\"): push regions and tilts on the plate depend "
-                     "on the push's or the pull's size");
-        return false;
-    }
+    if (state->what != SWEEP_WRENCHES)
+        return plate_question(call, state, "the supports' mu_B");
     wp_classify_request *r = &state->request;
     if (!cJSON_GetObjectItemCaseSensitive(call->params, "sets")) {
         r->sets[0] = WR_SET_GOAL;
@@ -615,6 +692,20 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
         wp_write_array(out);
     }
     for (bool first = true; state->next < state->request.wrench_count; first = false) {
+        if (deadline_passed(state)) {
+            /* Each wrench is answered over the whole range at once: the
+             * one under way is decided nowhere yet, cut at the range's
+             * bottom (docs/PROTOCOL.md, deadline_s). */
+            wp_write_object(out);
+            wp_write_key(out, "goal");
+            wp_write_array(out);
+            wp_write_array_end(out);
+            wp_write_object_end(out);
+            wp_write_array_end(out);
+            write_stopped(out, state->range.low);
+            wp_write_object_end(out);
+            return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+        }
         if (!first && *used >= budget)
             return WP_STEP_MORE;
         if (wr_stop_requested(call->host->stop)) {
@@ -648,6 +739,228 @@ static wp_step sweep_supports_step(sweep_state *state, wp_call *call, wp_writer 
     }
     wp_write_array_end(out);
     wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
+/* Over the supports' mu_B, "push" and "gravity" (docs/MODEL.md section 11,
+ * "Against mu_B"): seating only gets harder as mu_B grows (S(mu) = mu S(1)
+ * and C + rho S grows with rho), so the region under the push's force and
+ * the arcs under the pull shrink, and each is non-empty exactly on
+ * [low, mu_c).  The curve is the point answer (wr_supports_push_regions an
+ * edge a piece, or wr_supports_gravity_sweep whole, with the supports at
+ * that mu_B) at PLATE_GRID steps over the range; once one is empty every
+ * later one is, without solving.  mu_c is then bisected on the point
+ * answers between the last non-empty point and the first empty one, to
+ * PLATE_CRITICAL_TOLERANCE: nothing can hide between points, the
+ * predicate being monotone.  The critical is the bisection's lower end
+ * (its region non-empty), which the curve also holds. */
+#define PLATE_GRID 64
+#define PLATE_CRITICAL_TOLERANCE 1e-9
+#define PLATE_EDGE_COST 8000
+#define PLATE_TILT_COST WP_PIECE_BUDGET
+
+static double plate_grid_mu(const sweep_state *state, int i)
+{
+    const wr_sweep_range *r = &state->range;
+    return i == PLATE_GRID ? r->high : r->low + (r->high - r->low) * i / PLATE_GRID;
+}
+
+/* The mu_B under way: the grid's next point or the bracket's middle. */
+static double plate_mu(const sweep_state *state)
+{
+    return state->bisecting ? 0.5 * (state->lo + state->hi)
+                            : plate_grid_mu(state, state->point_count);
+}
+
+static bool plate_done(const sweep_state *state)
+{
+    if (!state->bisecting)
+        return state->point_count == PLATE_GRID + 1;
+    double mid = plate_mu(state);
+    return state->hi - state->lo <= PLATE_CRITICAL_TOLERANCE || mid <= state->lo ||
+           mid >= state->hi;
+}
+
+/* One piece at mu: an edge's regions (push; *done after the last edge) or
+ * the circle of tilts (gravity), added to state->length. */
+static wr_status plate_piece(sweep_state *state, wp_call *call, wp_fixture_use *use,
+                             wr_lp_env *env, double mu, unsigned long *used, bool *done)
+{
+    const wr_fixture *f = use->fixture;
+    /* The supports at mu_B = mu with the fixture's analysis, or (over the
+     * fixels) the fixture placed again with mu on every fixel and its
+     * supports as they are. */
+    wr_supports at_mu;
+    const wr_supports *supports = &at_mu;
+    const wr_analysis *analysis = use->analysis;
+    wr_status status = WR_OK;
+    if (!state->fixels_on_supports) {
+        wr_supports_with_friction(f->supports, mu, &at_mu);
+    } else {
+        if (!state->fixels_analysis || state->fixels_mu != mu) {
+            wr_analysis_free(state->fixels_analysis);
+            state->fixels_analysis = NULL;
+            wr_fixture_at_friction(f, mu, state->range.kinetic_ratio, &state->fixels_at);
+            status = wr_analysis_new(&state->fixels_at, &state->fixels_analysis);
+            if (status != WR_OK)
+                return status;
+            state->fixels_mu = mu;
+        }
+        analysis = state->fixels_analysis;
+        supports = f->supports;
+    }
+    wr_regions found = {0}, undecided = {0};
+    if (state->what == SWEEP_GRAVITY) {
+        /* The arcs proved to seat; the undecided ones (each under
+         * WR_SUPPORT_MIN_ARC degrees) are not counted. */
+        status = wr_supports_gravity_sweep(analysis, supports, env, state->pull,
+                                           call->host->stop, &found, &undecided);
+        *used += PLATE_TILT_COST;
+        *done = true;
+    } else {
+        const wp_push_load *load = &state->push_load;
+        if (wr_finger_pushes_on(f, &state->finger, state->edge))
+            status = wr_supports_push_regions(analysis, supports, env, load->force,
+                                              (const double (*)[3])load->loads, load->count,
+                                              state->edge, &found);
+        *used += PLATE_EDGE_COST;
+        *done = ++state->edge == wr_push_edge_count(f);
+    }
+    for (int i = 0; status == WR_OK && i < found.count; i++) {
+        state->length += state->what == SWEEP_GRAVITY ? found.items[i].t1 - found.items[i].t0
+                                                      : wr_region_length(f, &found.items[i]);
+        state->nonempty = true;
+    }
+    wr_regions_release(&found);
+    wr_regions_release(&undecided);
+    return status;
+}
+
+/* The answer at mu is complete: a grid point (and, when it is the first
+ * empty one, the rest of the grid, empty too, and the bracket), or the
+ * bracket narrowed. */
+static void plate_record(sweep_state *state, double mu)
+{
+    const bool nonempty = state->nonempty;
+    const double length = nonempty ? state->length : 0;
+    state->edge = 0;
+    state->length = 0;
+    state->nonempty = false;
+    if (state->bisecting) {
+        if (nonempty) {
+            state->lo = mu;
+            state->lo_length = length;
+        } else {
+            state->hi = mu;
+        }
+        return;
+    }
+    int n = state->point_count;
+    state->points[n][0] = mu;
+    state->points[n][1] = length;
+    state->point_count++;
+    if (nonempty)
+        return;
+    if (n > 0) {
+        state->bisecting = true;
+        state->lo = state->points[n - 1][0];
+        state->lo_length = state->points[n - 1][1];
+        state->hi = mu;
+    }
+    for (int i = n + 1; i <= PLATE_GRID; i++) {
+        state->points[i][0] = plate_grid_mu(state, i);
+        state->points[i][1] = 0;
+    }
+    state->point_count = PLATE_GRID + 1;
+}
+
+/* {"intervals", "critical", "curve", "exact": false, "resolution": the
+ * grid's step}, and when the deadline stopped it, "partial" and
+ * "stopped_at": the bracket's lower end, or the last grid point made (all
+ * non-empty: the grid ends at its first empty point). */
+static void plate_write(wp_writer *out, const sweep_state *state, bool partial)
+{
+    const wr_sweep_range *r = &state->range;
+    const double top = !partial           ? r->high
+                       : state->bisecting ? state->lo
+                       : state->point_count ? state->points[state->point_count - 1][0]
+                                            : r->low;
+    /* Non-empty from the bottom of the range up to `end`, if at all. */
+    const bool empty_at_low = !partial && !state->bisecting && state->points[0][1] == 0;
+    const bool any = partial ? state->bisecting || state->point_count > 0 : !empty_at_low;
+    const double end = state->bisecting ? state->lo : top;
+    wp_write_object(out);
+    wp_write_key(out, "intervals");
+    wp_write_array(out);
+    if (any) {
+        const double pair[2] = {r->low, end + 0.0};
+        wp_write_numbers(out, pair, 2);
+    }
+    wp_write_array_end(out);
+    wp_write_key(out, "critical");
+    if (partial || (!state->bisecting && !empty_at_low))
+        wp_write_null(out); /* not known, or non-empty at the top */
+    else
+        wp_write_number(out, empty_at_low ? r->low : state->lo);
+    wp_write_key(out, "curve");
+    wp_write_array(out);
+    bool placed = !state->bisecting; /* the bracket's lower end, in order */
+    for (int i = 0; i < state->point_count && state->points[i][0] <= top; i++) {
+        if (!placed && state->lo <= state->points[i][0]) {
+            placed = true;
+            if (state->lo < state->points[i][0]) {
+                const double point[2] = {state->lo, state->lo_length};
+                wp_write_numbers(out, point, 2);
+            }
+        }
+        const double point[2] = {state->points[i][0], state->points[i][1] + 0.0};
+        wp_write_numbers(out, point, 2);
+    }
+    if (!placed) {
+        const double point[2] = {state->lo, state->lo_length};
+        wp_write_numbers(out, point, 2);
+    }
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "exact", false);
+    wp_write_member_number(out, "resolution", (r->high - r->low) / PLATE_GRID);
+    if (partial)
+        write_stopped(out, top);
+    wp_write_object_end(out);
+}
+
+static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use;
+    wr_lp_env *env = supports_env(call, &use);
+    if (!env)
+        return WP_STEP_FAILED;
+    if (!state->points && !(state->points = malloc((PLATE_GRID + 1) * sizeof *state->points))) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return WP_STEP_FAILED;
+    }
+    for (bool first = true; !plate_done(state); first = false) {
+        if (deadline_passed(state)) {
+            plate_write(out, state, true);
+            return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+        }
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        if (wr_stop_requested(call->host->stop)) {
+            wp_error_status(call->error, WR_STOPPED, "", "%s", wr_strerror(WR_STOPPED));
+            return WP_STEP_FAILED;
+        }
+        const double mu = plate_mu(state);
+        bool done;
+        wr_status status = plate_piece(state, call, use, env, mu, used, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        if (done)
+            plate_record(state, mu);
+    }
+    plate_write(out, state, false);
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
@@ -811,6 +1124,7 @@ static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *o
         wp_write_key(out, wp_set_names[r->sets[state->set]]);
         write_intervals(out, wr_support_sweep_intervals(state->fixels_job));
         wr_support_sweep_free(state->fixels_job);
+    wr_analysis_free(state->fixels_analysis);
         state->fixels_job = NULL;
         if (++state->set == r->set_count || stopped) {
             wp_write_object_end(out);
@@ -835,7 +1149,8 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
     if (state->over_supports || state->fixels_on_supports)
         return state->what == SWEEP_FORCE
                    ? sweep_supports_force_step(state, call, out, budget, used)
-                   : sweep_supports_step(state, call, out, budget, used);
+               : state->what == SWEEP_WRENCHES ? sweep_supports_step(state, call, out, budget, used)
+                                               : sweep_plate_step(state, call, out, budget, used);
     if (state->what == SWEEP_FORCE)
         return sweep_force_step(state, call, out, budget, used);
     const wp_classify_request *r = &state->request;

@@ -444,12 +444,24 @@ static void check_error(const cJSON *error, const char *line)
                "error %d names field \"%s\" for %s", code->valueint, f, line);
 }
 
+/* Whether a request's wrench is the zero wrench: [0, 0, 0], or a zero
+ * force anywhere (docs/MODEL.md section 5 gives it margin 0). */
+static bool wrench_is_zero(const cJSON *wrench)
+{
+    const cJSON *force = cJSON_IsArray(wrench) ? wrench
+                                               : cJSON_GetObjectItemCaseSensitive(wrench, "force");
+    return cJSON_GetArrayItem(force, 0)->valuedouble == 0 &&
+           cJSON_GetArrayItem(force, 1)->valuedouble == 0 &&
+           (!cJSON_IsArray(wrench) || cJSON_GetArrayItem(wrench, 2)->valuedouble == 0);
+}
+
 /* wrench.classify with "fields", by column (docs/PROTOCOL.md, Lean
  * answers): "count" the wrenches, pieces whose counts add up to it, in
  * each one object per set asked, in order, holding only the columns asked,
  * each with one entry per wrench of the piece; verdict letters of "iob"
  * and, with margins (method "auto"), the letter the margin implies under
- * the tolerance asked (the zero wrench's margin 0 aside). */
+ * the tolerance asked; the zero wrench has margin 0 and is outside, or
+ * inside G_strong when no moving mode admits it (docs/MODEL.md section 5). */
 static void check_classify_columns(const cJSON *request, const cJSON *result, const char *line)
 {
     static const char *const COLUMNS[][2] = {{"verdict", "verdicts"}, {"margin", "margins"},
@@ -507,8 +519,15 @@ static void check_classify_columns(const cJSON *request, const cJSON *result, co
                 char expected = x->valuedouble > tolerance    ? 'i'
                                 : x->valuedouble < -tolerance ? 'o'
                                                               : 'b';
-                FUZZ_CHECK(verdicts->valuestring[k] == expected ||
-                               (x->valuedouble == 0 && verdicts->valuestring[k] == 'o'),
+                if (wrench_is_zero(cJSON_GetArrayItem(wrenches, total - m + k))) {
+                    FUZZ_CHECK(x->valuedouble == 0,
+                               "classify by columns: the zero wrench has margin %.17g for %s",
+                               x->valuedouble, line);
+                    expected = strcmp(name, "strong") == 0 && verdicts->valuestring[k] == 'i'
+                                   ? 'i'
+                                   : 'o';
+                }
+                FUZZ_CHECK(verdicts->valuestring[k] == expected,
                            "classify by columns: margin %.17g, verdict %c for %s",
                            x->valuedouble, verdicts->valuestring[k], line);
             }
@@ -601,15 +620,7 @@ static void check_classify(const cJSON *request, const cJSON *result, const char
             FUZZ_CHECK(is_number_in(margin, -1, 1), "classify: margin %.17g not in [-1, 1] for %s",
                        cJSON_IsNumber(margin) ? margin->valuedouble : NAN, line);
             double m = margin->valuedouble;
-            /* The zero wrench: [0, 0, 0], or a zero force anywhere. */
-            const cJSON *force = cJSON_GetObjectItemCaseSensitive(wrench, "force");
-            bool zero = cJSON_IsArray(wrench)
-                            ? cJSON_GetArrayItem(wrench, 0)->valuedouble == 0 &&
-                                  cJSON_GetArrayItem(wrench, 1)->valuedouble == 0 &&
-                                  cJSON_GetArrayItem(wrench, 2)->valuedouble == 0
-                            : cJSON_GetArrayItem(force, 0)->valuedouble == 0 &&
-                                  cJSON_GetArrayItem(force, 1)->valuedouble == 0;
-            if (zero) {
+            if (wrench_is_zero(wrench)) {
                 FUZZ_CHECK(m == 0, "classify: the zero wrench has margin %.17g for %s", m, line);
             } else if (toleranced) {
                 FUZZ_CHECK(is_boundary || (is_inside ? m > tolerance : m < -tolerance),
