@@ -177,6 +177,61 @@ def test_least_push_curve_against_push_force(client):
             assert abs(got - force) <= 1e-9 * force, (mu, force, at_mu)
 
 
+def test_tilt_arcs_closed_form(client):
+    """"gravity" over the fixels' mu on the plate: the disc in the corner
+    on three buttons (mu_B = 0.3) tilted so that its pull is m a, a = 20.
+    As for a push, the pull seats iff m a sin(delta) > mu_B m g, delta its
+    angle to the nearer edge of the goal wedge (180 + atan mu, 270 - atan
+    mu): the arc is (180 + atan mu + delta*, 270 - atan mu - delta*) with
+    sin delta* = mu_B g / a, 90 - 2 atan mu - 2 delta* degrees long, gone
+    at mu_c = tan(45 deg - delta*) = 0.7409933. Arcs narrower than 1e-6
+    degrees at its ends are undecided and not counted (docs/MODEL.md
+    section 11), so each length is within 2e-6 degrees and mu_c within
+    1e-7 (the arc shrinks by about 70 degrees per unit of mu there)."""
+    f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
+    client.send(client.request("friction.sweep", {"fixture": f, "range": [0, 1],
+                                                  "gravity": {"in_plane_g": 20}}))
+    answer = client.read_json(timeout=600)
+    assert "result" in answer, answer
+    r = answer["result"]
+    delta = math.degrees(math.asin(0.3 * G / 20))
+    mu_c = math.tan(math.radians(45 - delta))
+    (lo, hi), = r["intervals"]
+    assert lo == 0 and abs(hi - mu_c) < 1e-7 and r["critical"] == hi, r
+    assert r["exact"] is False and r["resolution"] == 1 / 64
+    for mu, length in r["curve"]:
+        expected = max(0.0, 90 - 2 * math.degrees(math.atan(mu)) - 2 * delta)
+        assert abs(length - expected) < 2e-6 or (mu > mu_c - 1e-7 and length < 2e-6), \
+            (mu, length, expected)
+
+
+def test_push_regions_against_push_regions(client):
+    """"push" with a force over the fixels' mu on the plate: each point of
+    the curve is push.regions' total_length for the fixture with that
+    friction under the same force; the region only shrinks as mu grows (the
+    grown goal cones are nested), and at the critical mu it is still there
+    while 1e-6 above it push.regions finds none."""
+    with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+        floating = json.load(fh)
+    f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+    client.send(client.request("friction.sweep", {"fixture": f, "range": [0, 1],
+                                                  "push": {"force": 20}}))
+    answer = client.read_json(timeout=600)
+    assert "result" in answer, answer
+    r = answer["result"]
+    (lo, critical), = r["intervals"]
+    assert lo == 0 and r["critical"] == critical and 0 < critical < 1, r
+    lengths = [length for _, length in r["curve"]]
+    assert all(b <= a + 1e-9 for a, b in zip(lengths, lengths[1:])), lengths
+
+    def regions(mu):
+        return client.result("push.regions", {"fixture": with_friction(f, mu), "set": "goal",
+                                              "force": 20})["total_length"]
+    for mu, length in (r["curve"][0], r["curve"][10], r["curve"][-1]):
+        assert abs(regions(mu) - length) <= 1e-9 * max(1, length), (mu, length)
+    assert regions(critical) > 0 and regions(critical + 1e-6) == 0, critical
+
+
 def test_deadline_partial(client):
     """Past deadline_s the sweep answers what it has decided: the wrench
     under way cut at stopped_at."""
@@ -192,8 +247,9 @@ def test_deadline_partial(client):
 def test_refusals_name_the_field(client):
     f = on_buttons(plate(), PLATE_BUTTONS, 0.2)
     none = [{"loads": [{"wrench": [0, 0, 0]}]}]
-    for params, field in (({"push": {}}, "params.push"),
-                          ({"gravity": {}}, "params.gravity"),
+    for params, field in (({"push": {}}, "params.push.force"),
+                          ({"gravity": {}}, "params.gravity.in_plane_g"),
+                          ({"push": {"force": 20, "set": "both"}}, "params.push.set"),
                           ({"force": {"set": "both"}, "cases": none}, "params.force.set"),
                           ({"force": {"finger_radius": 0.1}, "cases": none},
                            "params.force.finger_radius")):
