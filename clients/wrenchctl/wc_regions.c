@@ -518,11 +518,13 @@ int wc_sweep_request(wc_run *run, cJSON *params)
     /* Over the supports a push has push.regions' force, cases and push_on,
      * a tilt its pull. */
     bool plate = run->over && strcmp(run->over, "supports") == 0;
-    bool plate_push = plate && push;
-    if (run->push_force_given && !plate_push)
-        return wc_usage_error("sweep: --force is for --push with --over supports");
-    if (run->in_plane_g_given && !(plate && strcmp(run->sweep_kind, "gravity") == 0))
-        return wc_usage_error("sweep: --in-plane-g is for --gravity with --over supports");
+    /* Over the fixels' mu of a fixture on supports too: the daemon refuses
+     * a force or a pull for a floating part, naming the member. */
+    bool plate_push = push && (plate || run->push_force_given);
+    if (run->push_force_given && !push)
+        return wc_usage_error("sweep: --force is for --push on supports");
+    if (run->in_plane_g_given && strcmp(run->sweep_kind, "gravity") != 0)
+        return wc_usage_error("sweep: --in-plane-g is for --gravity on supports");
     if (run->over)
         cJSON_AddStringToObject(params, "over", run->over);
     if (run->set && !wrenches)
