@@ -306,3 +306,41 @@ def test_c_client_sweeps_the_fixels_on_the_plate(client, tmp_path):
     assert "intervals" not in sweep
     rows = [[float(x) for x in line.split()] for line in lines[1:]]
     assert rows == [[mu, force] for mu, force in sweep["curve"]], (rows, sweep["curve"])
+
+
+def test_wrenchctl_sweeps_the_fixels_on_the_plate(client):
+    """wrenchctl sweep of a fixture on supports without --over: the fixels'
+    mu, the push region under --force and the wrenches' sets as the daemon
+    gives them."""
+    import subprocess
+    import tempfile
+    wrenchctl = os.path.join(REPO, "build", "wrenchctl")
+    env = dict(os.environ, WRENCHD_SOCKET=client.path)
+    rest = json.dumps({"points": [[1, 0.5], [3, 0.5], [1.5, 1.6]], "friction": 0.1, "g": G})
+    with tempfile.TemporaryDirectory() as d:
+        part = os.path.join(d, "plate.json")
+        with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
+            floating = json.load(fh)
+        with open(part, "w") as fh:
+            json.dump(floating, fh)
+        out = subprocess.run([wrenchctl, "--json", "--timeout", "600", "sweep", part,
+                              "--supports", rest, "--push", "goal", "--force", "20",
+                              "--range", "0:1"],
+                             capture_output=True, text=True, env=env, timeout=600)
+        assert out.returncode == 0, out.stderr
+        swept = json.loads(out.stdout)
+        f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
+        client.send(client.request("friction.sweep", {"fixture": f, "range": [0, 1],
+                                                      "push": {"force": 20}}))
+        want = client.read_json(timeout=600)["result"]
+        # wrenchctl --json writes 15 significant digits.
+        assert swept["intervals"] == want["intervals"] and swept["exact"] is False
+        assert len(swept["curve"]) == len(want["curve"])
+        for a, b in zip(swept["curve"], want["curve"]):
+            assert a[0] == b[0] and abs(a[1] - b[1]) <= 1e-12, (a, b)
+        out = subprocess.run([wrenchctl, "sweep", part, "--supports", rest,
+                              "--wrench", "-4,-9,2"],
+                             capture_output=True, text=True, env=env, timeout=600)
+        assert out.returncode == 0, out.stderr
+        assert "mu_s = mu, mu_k = 1 mu at every fixel" in out.stdout, out.stdout
+        assert "strong and both sampled: grid step 0.03125" in out.stdout, out.stdout
