@@ -811,7 +811,8 @@ static int interval_order(const void *a, const void *b)
  * (sorted here), as open intervals, into `good`. */
 static wr_status complement(wr_forces *excluded, double lo, double hi, wr_forces *good)
 {
-    qsort(excluded->items, (size_t)excluded->count, sizeof excluded->items[0], interval_order);
+    if (excluded->count > 0) /* none: items may be NULL, which qsort may not take */
+        qsort(excluded->items, (size_t)excluded->count, sizeof excluded->items[0], interval_order);
     good->count = 0;
     double at = lo;
     for (int i = 0; i < excluded->count && at < hi; i++) {

@@ -209,7 +209,8 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
     const cJSON *cases = cJSON_GetObjectItemCaseSensitive(params, "cases");
     if ((cases != NULL) != (state->what == SWEEP_FORCE)) {
         wp_error_set(error, WP_INVALID_PARAMS, cases ? "params.cases" : "params.cases",
-                     cases ? "only with \"force\": the loads a push works against"
+                     cases ? "only with \"force\": the loads a push works against (a push "
+                             "on the plate takes its cases inside \"push\")"
                            : "required with \"force\": the loads a push works against");
         return false;
     }
