@@ -344,3 +344,17 @@ def test_wrenchctl_sweeps_the_fixels_on_the_plate(client):
         assert out.returncode == 0, out.stderr
         assert "mu_s = mu, mu_k = 1 mu at every fixel" in out.stdout, out.stdout
         assert "strong and both sampled: grid step 0.03125" in out.stdout, out.stdout
+
+
+def test_python_client_reads_the_sampled_sets(client):
+    """The Python client's friction_sweep on the plate over the fixels' mu:
+    the results, and exact False with the grid's step."""
+    import sys
+    sys.path.insert(0, os.path.join(REPO, "clients", "python"))
+    import wrenchd
+    f = on_buttons(plate(), PLATE_BUTTONS, 0.2)
+    with wrenchd.Client(client.path, timeout=600) as c:
+        swept = c.friction_sweep(f, wrenches=[[8, -10, 0]], sets=["goal", "strong"])
+    (lo, hi), = swept.results[0]["strong"]
+    assert swept.results[0]["goal"] == [] and abs(lo - 0.4076) < 1e-7 and hi == 2
+    assert swept.exact is False and swept.resolution == 2 / 64
