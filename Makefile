@@ -68,7 +68,8 @@ help:
 	@echo "                workbench in FREECAD_MODDIR/Wrench (default FreeCAD's own Mod directory;"
 	@echo "                for a PREFIX other than /usr and /usr/local, PREFIX/share/FreeCAD/Mod)"
 	@echo "make freecad-link    the checkout's workbench linked into FreeCAD's user Mod directory"
-	@echo "make freecad-picture redraw docs/pictures/freecad-workbench.png (FreeCAD under Xvfb)"
+	@echo "make freecad-picture redraw docs/pictures/freecad-workbench.png and"
+	@echo "                freecad-rest-buttons.png (FreeCAD under Xvfb)"
 	@echo "make uninstall  remove what make install installed"
 	@echo "make deps       install the Debian packages the project needs (demo and check do it first)"
 	@echo "make deps-freecad    and those of check-freecad: FreeCAD (no recommends), Xvfb"
@@ -274,9 +275,10 @@ check-freecad: $(BUILD)/wrenchd
 	    echo "make check-freecad: no $(FREECADCMD): make deps-freecad installs FreeCAD"; exit 2; }
 	$(FREECADCMD) tests/freecad/run.py
 
-# The README's screenshot of the workbench, from the GUI test.
+# The README's screenshots of the workbench, from the GUI test.
 freecad-picture: $(BUILD)/wrenchd
-	WRENCH_PICTURE=$(CURDIR)/docs/pictures/freecad-workbench.png WRENCH_PYTEST_ARGS="-k gui" \
+	WRENCH_PICTURE=$(CURDIR)/docs/pictures/freecad-workbench.png \
+	    WRENCH_PICTURE_BUTTONS=$(CURDIR)/docs/pictures/freecad-rest-buttons.png WRENCH_PYTEST_ARGS="-k gui" \
 	    $(FREECADCMD) tests/freecad/run.py
 
 # The checkout's workbench in FreeCAD's user Mod directory (FreeCAD 0.20:
@@ -453,7 +455,7 @@ FREECAD_MODDIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(FREECAD_SYSTEM_MODD
 PYTHON_MODULES = wrenchd.py wrenchd_dxf.py wrenchd_arcs.py
 WORKBENCH_CLIENT = wrenchd.py wrenchd_arcs.py
 WORKBENCH_FILES = Init.py InitGui.py wrench_freecad.py wrench_outline.py wrench_objects.py \
-                  wrench_view.py wrench_commands.py \
+                  wrench_view.py wrench_supports.py wrench_commands.py \
                   $(patsubst clients/freecad/%,%,$(wildcard clients/freecad/Resources/icons/*.svg))
 # Every lib header but the internal one: wrench.h includes them all, so a
 # header left out of the install breaks every program that uses the lib.

@@ -1837,6 +1837,53 @@ static void witness_fill(const model *m, const wr_cone *cone, const hold_lp *h,
     }
 }
 
+/* A motion about a support point: the part pivots on that button, which
+ * sticks (its friction anywhere in its disc) while the others slide.  It
+ * is one direction of each sign, where the button's sliding direction is
+ * undefined, so no cell around it can be dropped and the sequential LP,
+ * which linearises every sliding direction, cannot reach it: the cells
+ * shrink onto it until they are too small to decide.  The exact LP at
+ * that one direction decides it instead.  1 with the witness in *out when
+ * a pivot of the mode (among its directions `q`) is consistent; 0 when
+ * none is; -1 when GLPK failed. */
+static int pivot_witness(const model *m, const wr_cone *cone, const wr_hrep *q,
+                         const hold_lp *base, int *solves, wr_support_strong *out)
+{
+    const wr_fixture *f = m->f;
+    int result = 0;
+    for (int i = 0; i < m->s->count && result == 0; i++) {
+        /* a_i = a_com + alpha x r_i = 0: a_com = alpha (r_y, -r_x), so
+         * q' = m (a_x, a_y, rho alpha) is along (r_y, -r_x, rho) alpha. */
+        double r[2];
+        arm(f, m->s, i, r);
+        for (int sign = -1; sign <= 1 && result == 0; sign += 2) {
+            double d[3] = {sign * r[1], -sign * r[0], sign * f->gyration_radius};
+            wr_normalize3(d);
+            bool among = true;
+            for (int k = 0; k < q->facet_count; k++)
+                among &= wr_dot3(q->facets[k], d) <= 1e-12;
+            for (int k = 0; k < q->equality_count; k++)
+                among &= fabs(wr_dot3(q->equalities[k], d)) <= 1e-12;
+            if (!among)
+                continue;
+            cell at = {.count = 1};
+            wr_copy3(d, at.ray[0]);
+            hold_lp w = *base;
+            w.c = &at;
+            w.tangent_count = 0;
+            w.solves = 0;
+            if (hold_lp_solve(&w) < 0)
+                return -1;
+            *solves += w.solves;
+            if (w.residual <= 1e-10) {
+                witness_fill(m, cone, &w, d, w.lambda[0], out);
+                result = 1;
+            }
+        }
+    }
+    return result;
+}
+
 /* Branch and bound over one mode's cells: 1 a witness (out filled), 0 no
  * direction consistent by the margin, 2 undecided (a cell whose LP GLPK
  * could not solve included), -2 stopped, -3 out of memory. */
@@ -2001,6 +2048,14 @@ static int mode_search(const model *m, const wr_cone *cone, const double target[
         wr_copy3(mid, right.ray[b]);
         stack[top++] = left;
         stack[top++] = right;
+    }
+    /* Cells left undecided: a pivot on a button is what they shrink onto
+     * when the wrench turns the part about one (pivot_witness says why
+     * the search above cannot find it). */
+    if (result == 2) {
+        int r = pivot_witness(m, cone, &q, &h, &h.solves, out);
+        if (r == 1)
+            result = 1;
     }
     out->solves += h.solves;
     free(stack);

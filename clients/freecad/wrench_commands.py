@@ -14,7 +14,15 @@
                          FreeCAD's progress indicator; the best design placed
     Wrench_LeastForce    with the fixture's Gravity or Loads: the least push
                          force along the outline as coloured pieces, and where
-                         the smallest push suffices
+                         the smallest push suffices (an arrow); on rest
+                         buttons, the least push that seats the part against
+                         their friction, with the floating part's beside it
+    Wrench_RestButtons   select vertices, holes' circular edges (their centre)
+                         or points picked on the part: rest buttons there,
+                         taken into the face's plane, their normal loads shown
+    Wrench_DownClamps    the same picks: down clamps pressing the part onto its
+                         buttons (DOWN_FORCE each at first)
+    Wrench_ClearRestButtons  the fixture's rest buttons and down clamps removed
 
 A command works on the WrenchFixture selected (or one of its objects), else
 on the document's only one.  Messages and errors go to the report view.
@@ -195,11 +203,11 @@ class AddFixelsCommand(_Command):
         _run(doc, "Wrench fixels", lambda: _add_fixels(fixture, picks))
 
 
-class ClearFixelsCommand(_Command):
-    NAME = "Wrench_ClearFixels"
+class _ClearCommand(_Command):
+    """Empties the fixture's list properties CLEARS, in one undo step."""
     ICON = "WrenchClearFixels"
-    MENU = "Clear fixels"
-    TIP = "Remove the fixture's fixels"
+    CLEARS = ()
+    UNDO = ""
 
     def Activated(self):
         doc = FreeCAD.ActiveDocument
@@ -208,9 +216,18 @@ class ClearFixelsCommand(_Command):
             return
 
         def clear():
-            fixture.FixelPoints, fixture.FixelNormals = [], []
+            for name in self.CLEARS:
+                setattr(fixture, name, [])
             _recompute(doc, [fixture])
-        _run(doc, "Wrench fixels cleared", clear)
+        _run(doc, self.UNDO, clear)
+
+
+class ClearFixelsCommand(_ClearCommand):
+    NAME = "Wrench_ClearFixels"
+    MENU = "Clear fixels"
+    TIP = "Remove the fixture's fixels"
+    CLEARS = ("FixelPoints", "FixelNormals")
+    UNDO = "Wrench fixels cleared"
 
 
 def _dependents(fixture, kind):
@@ -218,10 +235,12 @@ def _dependents(fixture, kind):
 
 
 def _views(fixture):
-    """The fixture's regions of goal, strong and both, its fixels and its best
-    push: those it lacks are made."""
+    """The fixture's regions of goal, strong and both (on rest buttons goal
+    alone, the one wrenchd answers there), its fixels and its best push:
+    those it lacks are made."""
     have = {o.Set for o in _dependents(fixture, "WrenchRegions")}
-    made = [wf.make_regions(fixture, which) for which in wf.SETS if which not in have]
+    sets = ("goal",) if list(fixture.SupportPoints) else wf.SETS
+    made = [wf.make_regions(fixture, which) for which in sets if which not in have]
     if not _dependents(fixture, "WrenchFixels"):
         made.append(wf.make_fixels(fixture))
     if not _dependents(fixture, "WrenchBestPush"):
@@ -259,7 +278,14 @@ class RegionsCommand(_Command):
                 ", none above mu %s" % wf._fmt(regions.CriticalMu) if regions.CriticalMu >= 0
                 else ", not empty up to mu 2", regions.Meaning))
         for push in _dependents(fixture, "WrenchBestPush"):
-            if push.Found:
+            if push.Found and list(fixture.SupportPoints):
+                _say("%s: %s at %s %s along %s; the least push on them anywhere is %s" % (
+                    push.Label, push.Meaning, wf._fmt_point(push.At), wf.UNIT,
+                    wf._fmt_point(push.Direction),
+                    "%.4g N at %s" % (push.LeastForce, wf._fmt_point(push.LeastForceAt))
+                    if push.LeastForce >= 0 else "none" if push.LeastForce == -1 else
+                    "Least force's to find (on a face of straight lines alone)"))
+            elif push.Found:
                 _say("best push at %s %s along %s, margin %.4g: push there and let go (it is in "
                      "both)" % (wf._fmt_point(push.At), wf.UNIT, wf._fmt_point(push.Direction),
                                 push.Margin))
@@ -321,9 +347,9 @@ class DesignCommand(_Command):
 
 
 def _feature_points():
-    """Features picked for locating: a selected vertex, the centre of a
-    selected circular edge (a hole), or the point picked on another edge or
-    on a face."""
+    """Points picked on the part, for locating features and rest buttons: a
+    selected vertex, the centre of a selected circular edge (a hole), or the
+    point picked on another edge or on a face."""
     out = []
     for s in FreeCADGui.Selection.getSelectionEx():
         if wf._proxy_name(s.Object).startswith("Wrench"):
@@ -372,8 +398,10 @@ class LeastForceCommand(_Command):
         fixture = _fixture_in_selection(doc)
         if fixture is None:
             return
-        if not fixture.Gravity and not list(fixture.Loads):
-            _fail("%s has no Gravity and no Loads: set them (its Loads group) first" % fixture.Label)
+        plate = bool(list(fixture.SupportPoints))
+        if not plate and not fixture.Gravity and not list(fixture.Loads):
+            _fail("%s has no Gravity, no Loads and no rest buttons: set them (its Loads group, "
+                  "Rest buttons) first" % fixture.Label)
             return
         made = _dependents(fixture, "WrenchLeastForce")
         obj = made[0] if made else _run(doc, "Wrench least force",
@@ -381,7 +409,14 @@ class LeastForceCommand(_Command):
         if obj is None or not _recompute(doc, [fixture, obj]):
             return
         wf.colour_least_force(obj)
-        if obj.Least >= 0:
+        if obj.Least >= 0 and plate:
+            _say("least push on the rest buttons %.4g N at %s along %s: it seats the part "
+                 "against their friction%s; the same part floating: %s" % (
+                     obj.Least, wf._fmt_point(obj.LeastAt), wf._fmt_point(obj.LeastDirection),
+                     " under every load case" if fixture.Gravity or list(fixture.Loads) else "",
+                     "%.4g N at %s" % (obj.FloatingLeast, wf._fmt_point(obj.FloatingLeastAt))
+                     if obj.FloatingLeast >= 0 else "no push seats it"))
+        elif obj.Least >= 0:
             _say("least push %.4g N at %s along %s: it seats the part and holds it under every "
                  "load case" % (obj.Least, wf._fmt_point(obj.LeastAt),
                                 wf._fmt_point(obj.LeastDirection)))
@@ -389,8 +424,57 @@ class LeastForceCommand(_Command):
             _say(obj.Label)
 
 
+class RestButtonsCommand(_Command):
+    NAME = "Wrench_RestButtons"
+    ICON = "WrenchFixels"
+    MENU = "Rest buttons"
+    TIP = ("Select vertices, holes' circular edges (their centre) or points on the part: rest "
+           "buttons under it there, taken into the face's plane; their normal loads are shown "
+           "(friction mu_B, gravity into the plate and down clamps in the fixture's Rest "
+           "buttons group)")
+    DOWN = None       # a down clamp's force: picks are down clamps, not buttons
+
+    def Activated(self):
+        doc = FreeCAD.ActiveDocument
+        fixture = _fixture_in_selection(doc)
+        if fixture is None:
+            return
+        points = _feature_points()
+        if not points:
+            _fail("%s: select vertices, circular edges or points on the part" % self.MENU)
+            return
+
+        def add():
+            if not wf.supports_of(fixture):
+                wf.make_supports(fixture)
+            return wf.add_supports(fixture, points, down=self.DOWN)
+        if _run(doc, "Wrench %s" % self.MENU.lower(), add) is None:
+            return
+        if _recompute(doc, [fixture] + wf.supports_of(fixture)):
+            for line in fixture.SupportsReport:
+                _say(line)
+
+
+class DownClampsCommand(RestButtonsCommand):
+    NAME = "Wrench_DownClamps"
+    MENU = "Down clamps"
+    TIP = ("Select vertices, circular edges (their centre) or points on the part: down clamps "
+           "pressing it onto its rest buttons there, %s N each at first (the fixture's "
+           "DownForces)" % wf._fmt(wf.DOWN_FORCE))
+    DOWN = wf.DOWN_FORCE
+
+
+class ClearRestButtonsCommand(_ClearCommand):
+    NAME = "Wrench_ClearRestButtons"
+    MENU = "Clear rest buttons"
+    TIP = "Remove the fixture's rest buttons and down clamps: the part floats in its plane"
+    CLEARS = ("SupportPoints", "DownPoints", "DownForces")
+    UNDO = "Wrench rest buttons cleared"
+
+
 COMMANDS = [FixtureCommand, AddFixelsCommand, ClearFixelsCommand, RegionsCommand,
-            GravityDialCommand, DesignCommand, LeastForceCommand, LocateCommand]
+            GravityDialCommand, DesignCommand, LeastForceCommand, LocateCommand,
+            RestButtonsCommand, DownClampsCommand, ClearRestButtonsCommand]
 for _command in COMMANDS:
     FreeCADGui.addCommand(_command.NAME, _command())
 

@@ -11,8 +11,9 @@ The document objects
     doc.recompute()
 
 A WrenchFixture links a face (or a sketch, or a shape of one planar face),
-holds the fixels, the friction, the mass and the daemon's socket, and puts
-the fixture in wrenchd; WrenchRegions (one per set: goal, strong, both),
+holds the fixels, the friction, the mass, the rest buttons under the part
+(wrench_supports.py) and the daemon's socket, and puts the fixture in
+wrenchd; WrenchRegions (one per set: goal, strong, both),
 WrenchFixels, WrenchBestPush and WrenchGravityDial show what wrenchd answers
 for it, and recompute when the part, the fixels or the friction change.
 Each region of a WrenchRegions is a WrenchRegion object of its own, with its
@@ -159,17 +160,28 @@ _INDEXED = re.compile(r"^(fixels|sites)\[(\d+)\](.*)$")
 _LOOP = re.compile(r"^body\.shape\.loops\[(\d+)\](?:\[(\d+)\])?(.*)$")
 
 
-def _refusal(error, what, outline=None, fixels3d=(), properties=None):
+def _supports():
+    """wrench_supports, which imports this module: asked for inside the
+    fixture's functions, long after both are loaded."""
+    import wrench_supports
+    return wrench_supports
+
+
+def _refusal(error, what, outline=None, fixels3d=(), properties=None, fixture_obj=None):
     """A WrenchError naming, in FreeCAD's terms, the field wrenchd refused;
     `properties` names the object's properties some fields come from
-    ({"spacing": "DesignSpacing", ...})."""
+    ({"spacing": "DesignSpacing", ...}); `fixture_obj` the WrenchFixture
+    whose rest buttons a field under supports names."""
     field = error.field or ""
     reason = error.reason or error.message
     rest = _FIELD.match(field)
     rest = rest.group(1) if rest else field
     subject = field or "the request"
     m = _INDEXED.match(rest)
-    if properties and rest.split("[")[0].split(".")[0] in properties:
+    buttons = _supports().refusal_subject(fixture_obj, rest)
+    if buttons is not None:
+        subject = buttons
+    elif properties and rest.split("[")[0].split(".")[0] in properties:
         subject = properties[rest.split("[")[0].split(".")[0]]
     elif m:
         i = int(m.group(2))
@@ -202,7 +214,7 @@ def _refusal(error, what, outline=None, fixels3d=(), properties=None):
                        field, reason)
 
 
-def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
+def _ask(what, path, call, outline=None, fixels3d=(), properties=None, fixture_obj=None):
     """call(), with wrenchd's errors made WrenchErrors in FreeCAD's terms."""
     try:
         return call()
@@ -211,7 +223,7 @@ def _ask(what, path, call, outline=None, fixels3d=(), properties=None):
             raise _busy(error, path) from None
         if isinstance(error, wrenchd.WrenchdUnavailable):
             raise _unreachable(error, path) from None
-        raise _refusal(error, what, outline, fixels3d, properties) from None
+        raise _refusal(error, what, outline, fixels3d, properties, fixture_obj) from None
 
 
 def _report_error(obj, error):
@@ -412,6 +424,7 @@ class WrenchFixture(_Proxy):
              "The fixture as sent to wrenchd (the outline's coordinates)", mode=2)
         _add(obj, "App::PropertyString", "EdgeTable", "Outline",
              "Per loop and segment, the FreeCAD edge it comes from", mode=2)
+        _supports().setup_fixture(obj)
 
     def outline(self, obj):
         source, sub = _document_source(obj.Source)
@@ -477,6 +490,11 @@ class WrenchFixture(_Proxy):
         fixture = {"name": obj.Label, "body": {"mass": obj.Mass, "shape": shape},
                    "friction": {"static": obj.StaticFriction, "kinetic": obj.KineticFriction},
                    "fixels": fixels, "units": dict(UNITS)}
+        buttons = _supports()
+        buttons.clear_loads(obj)
+        supports = buttons.supports_member(obj, shape)
+        if supports is not None:
+            fixture["supports"] = supports
         if obj.Gravity != 0 or list(obj.Loads):
             load_cases(obj, shape)  # refused here, at the property, when malformed
         if not fixels:
@@ -486,13 +504,23 @@ class WrenchFixture(_Proxy):
             return
         path = socket_path(obj.Socket)
         client = client_for(obj.Socket, obj.Timeout)
-        put = _ask(obj.Label, path, lambda: client.put_fixture(fixture), shape, obj.FixelPoints)
+        sent = dict(fixture, body={"mass": obj.Mass, "shape": buttons.wire_shape(fixture, shape)})
+        try:
+            put = _ask(obj.Label, path, lambda: client.put_fixture(sent), shape, obj.FixelPoints,
+                       fixture_obj=obj)
+        except WrenchError as error:
+            if error.field.startswith("params.fixture.supports") or \
+                    error.field.startswith("supports"):
+                buttons.clear_loads(obj, str(error))
+            raise
         obj.FixtureId = put.id
         obj.Area = float(put.area)
         obj.CenterOfMass = shape.to_3d(put.com)
         obj.Inertia = float(put.inertia)
         obj.Pinned = bool(put.pinned)
         obj.FixtureJson = json.dumps(fixture)
+        if supports is not None:
+            buttons.record_loads(obj, shape, put.com)
 
 
 def load_cases(fixture_obj, outline_shape):
@@ -538,6 +566,23 @@ def load_cases(fixture_obj, outline_shape):
     return cases
 
 
+# A load case of nothing: on rest buttons how hard to push is asked without
+# loads too (the buttons' friction alone resists the push).
+NO_LOAD = {"name": "none", "loads": [{"wrench": [0.0, 0.0, 0.0]}]}
+
+
+def force_question(fixture):
+    """(cases, set) that how hard to push is asked with, for a _Fixture:
+    floating, its load cases (none: nothing to ask) and both; on rest
+    buttons, its load cases or NO_LOAD, and goal (wrenchd answers how hard
+    a push must be to seat the part against the buttons' friction; whether
+    the seated part then holds is a question of its own there)."""
+    cases = load_cases(fixture.obj, fixture.outline)
+    if fixture.on_supports:
+        return cases or [NO_LOAD], "goal"
+    return cases, "both"
+
+
 class _Fixture:
     """What a fixture's dependent objects read of it: the fixture dict, its
     outline (rebuilt from the dict and the frame), the client."""
@@ -552,7 +597,7 @@ class _Fixture:
         edges = json.loads(fixture_obj.EdgeTable) if fixture_obj.EdgeTable else None
         self.outline = Outline.from_shape(self.fixture["body"]["shape"], fixture_obj.Frame, edges,
                                           fixture_obj.ToleranceUsed, fixture_obj.Deviation)
-        self.fixture["body"]["shape"] = self.outline
+        self.fixture["body"]["shape"] = _supports().wire_shape(self.fixture, self.outline)
         self.path = socket_path(fixture_obj.Socket)
         self.client = client_for(fixture_obj.Socket, fixture_obj.Timeout)
         self.what = what
@@ -562,7 +607,12 @@ class _Fixture:
         return bool(self.fixture["fixels"])
 
     def ask(self, call):
-        return _ask(self.what, self.path, call, self.outline, self.obj.FixelPoints)
+        return _ask(self.what, self.path, call, self.outline, self.obj.FixelPoints,
+                    fixture_obj=self.obj)
+
+    @property
+    def on_supports(self):
+        return "supports" in self.fixture
 
     def friction(self):
         return self.fixture["friction"]
@@ -675,8 +725,13 @@ class WrenchRegions:
              "boundary only); outer; all; or loop numbers, 0 the outer boundary (0, 2)", "")
         _add(obj, "App::PropertyBool", "SweepFriction", "Regions",
              "Also find the critical friction above which the region is empty "
-             "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8)",
+             "(friction.sweep over mu in [0, 2]: 0.01 to 0.2 s with 3 fixels, 27 s with 8; "
+             "not on rest buttons)",
              True)
+        _add(obj, "App::PropertyFloat", "PushForce", "Regions",
+             "On rest buttons (set goal): the push's magnitude in N, the regions where a push "
+             "that hard seats the part against their friction (Least force gives the least); "
+             "0: none asked.  Not used when the part floats", 0.0)
         for kind, name, doc in (
                 ("App::PropertyString", "Meaning", "What a push in this set promises"),
                 ("App::PropertyInteger", "Count", "How many regions"),
@@ -735,8 +790,17 @@ class WrenchRegions:
             return
         radius = float(obj.FingerRadius)
         push_on = push_on_of(obj.PushOn, fixture.fixture["body"], radius)
+        force = {}
+        if fixture.on_supports:
+            if obj.PushForce <= 0:
+                self.failed(obj)
+                obj.Label = "Regions %s (on rest buttons: set PushForce, N)" % which
+                return
+            # how hard matters there: wrenchd answers goal only, and says so
+            cases, _ = force_question(fixture)
+            force = {"force": float(obj.PushForce), "cases": cases}
         answer = fixture.ask(lambda: fixture.client.push_regions(
-            fixture.fixture, which, finger_radius=radius, push_on=push_on))
+            fixture.fixture, which, finger_radius=radius, push_on=push_on, **force))
         obj.PushOnLoops = pushed_loops(push_on, fixture.fixture["body"])
         FreeCAD.Console.PrintMessage("Wrench: regions %s %s\n" % (
             which, describe_push_on(obj.PushOnLoops, fixture.fixture["body"], radius,
@@ -744,10 +808,12 @@ class WrenchRegions:
         outline = fixture.outline
         edges, loops, segs, names, t0, t1, lengths, starts, ends = [], [], [], [], [], [], [], [], []
         for r in answer.regions:
-            segment = outline.segments[r.loop][r.segment]
+            loop = r.loop if r.loop is not None else 0          # a polygon's edge: loop 0's
+            index = r.segment if r.segment is not None else r.edge
+            segment = outline.segments[loop][index]
             edges.append(outline.edge_3d(segment, r.t0, r.t1))
-            loops.append(r.loop)
-            segs.append(r.segment)
+            loops.append(loop)
+            segs.append(index)
             names.append(segment.edge)
             t0.append(r.t0)
             t1.append(r.t1)
@@ -762,7 +828,7 @@ class WrenchRegions:
         obj.TotalLength = answer.total_length
         obj.Fraction = answer.fraction
         obj.CriticalMu = -2.0
-        if obj.SweepFriction:
+        if obj.SweepFriction and not fixture.on_supports:
             friction = fixture.friction()
             ratio = friction["kinetic"] / friction["static"] if friction["static"] > 0 else 1.0
             push = {"set": which}
@@ -773,6 +839,9 @@ class WrenchRegions:
             obj.CriticalMu = -1.0 if sweep.critical is None else float(sweep.critical)
         obj.Label = "Regions %s: %d, %s long (%s)" % (which, obj.Count, _fmt(obj.TotalLength),
                                                        SHORT_MEANING[which])
+        if force:
+            obj.Label = "Regions %s at %s N on the rest buttons: %d, %s long" % (
+                which, _fmt(obj.PushForce), obj.Count, _fmt(obj.TotalLength))
 
 
 class WrenchRegion:
@@ -1086,7 +1155,8 @@ class WrenchBestPush(_Dependent):
                  "With the fixture's Gravity or Loads: the least force in N of this push that "
                  "seats the part and holds it under every case (-1: none does; 0 without loads)"),
                 ("App::PropertyFloat", "LeastForce",
-                 "With loads: the least push force anywhere on the outline, in N (-1: none)"),
+                 "With loads: the least push force anywhere on the outline, in N (-1: none; "
+                 "-2: not asked: on rest buttons, a face with arcs or holes)"),
                 ("App::PropertyVector", "LeastForceAt", "Where that least push is (document)")):
             _add(obj, kind, name, "Answer", doc, mode=1)
 
@@ -1133,30 +1203,54 @@ class WrenchBestPush(_Dependent):
         obj.Loop, obj.Segment, obj.T = push.get("loop", 0), push.get("segment", push.get("edge", 0)), \
             push["t"]
         obj.Label = "Best push (both): margin %.4g, push here and let go" % obj.Margin
-        cases = load_cases(fixture.obj, outline)
+        cases, which = force_question(fixture)
         obj.PushForce = obj.LeastForce = 0.0
         if cases:
             # How hard: this push's least force under every case, and the
             # least push anywhere (force.range, push.force; N).
             fid = fixture.obj.FixtureId
             here = fixture.ask(lambda: fixture.client.force_range(
-                fid, cases, push={"at": at, "direction": direction}, sets=["both"]))
-            least = here["all"]["both"]["least"]
+                fid, cases, push={"at": at, "direction": direction}, sets=[which]))
+            least = here["all"][which]["least"]
             obj.PushForce = -1.0 if least is None else least
-            anywhere = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=1))["least"]
-            obj.LeastForce = -1.0 if anywhere is None else anywhere["force"]
+            try:
+                anywhere = fixture.ask(lambda: fixture.client.push_force(
+                    fid, cases, set=which, samples=1))["least"]
+                obj.LeastForce = -1.0 if anywhere is None else anywhere["force"]
+            except WrenchError as error:
+                # on rest buttons the least push anywhere is found on a
+                # polygon only (Least force says why); this push's force stands
+                if not (fixture.on_supports and error.field.endswith("body.shape")):
+                    raise
+                anywhere, obj.LeastForce = None, -2.0
             if anywhere is not None:
                 obj.LeastForceAt = outline.to_3d(anywhere["at"])
-            obj.Label = ("Best push (both): margin %.4g, %s" % (
-                obj.Margin, "at least %.4g N under every load case" % least if least is not None
-                else "no force does it under every load case"))
+            if fixture.on_supports:
+                # The margin and the region are the floating part's (no
+                # direction-only answer holds on the buttons); how hard is
+                # the buttons' own.
+                obj.Meaning = ("both for the part floating; on the rest buttons this push "
+                               "seats it when at least PushForce hard (goal), and whether it "
+                               "then holds is not asked")
+                obj.Label = "Best push (both, floating): margin %.4g; on the rest buttons %s" % (
+                    obj.Margin, "at least %.4g N to seat it" % least if least is not None
+                    else "no force seats it")
+            else:
+                obj.Label = ("Best push (both): margin %.4g, %s" % (
+                    obj.Margin, "at least %.4g N under every load case" % least
+                    if least is not None else "no force does it under every load case"))
 
 
 class WrenchLeastForce(_Dependent):
     """The least push force F*(p) along the outline under the fixture's
     load cases (push.force, set both): the outline cut into a piece per
     sample, each coloured from blue (the least) to red (the most), grey
-    where no force does the job; and where the smallest push suffices."""
+    where no force does the job; and where the smallest push suffices,
+    as an arrow (its last three edges).  On rest buttons the set is goal
+    (wrenchd answers how hard to push to seat the part against the
+    buttons' friction; whether the seated part is held is a question of
+    its own), asked without loads too, and the same fixture floating is
+    asked beside it (FloatingLeast)."""
 
     def setup(self, obj):
         _Dependent.setup(self, obj)
@@ -1171,13 +1265,22 @@ class WrenchLeastForce(_Dependent):
                  "F* at each piece's sample, in N (-1: no force does the job there)"),
                 ("App::PropertyFloat", "Least", "The least push force over the outline, N (-1: none)"),
                 ("App::PropertyVector", "LeastAt", "Where it is (document)"),
-                ("App::PropertyVector", "LeastDirection", "Along what (the inward normal there)")):
+                ("App::PropertyVector", "LeastDirection", "Along what (the inward normal there)"),
+                ("App::PropertyString", "Set",
+                 "What the force does: both (seats the part and holds it; floating) or goal "
+                 "(seats it against the rest buttons' friction)"),
+                ("App::PropertyFloat", "FloatingLeast",
+                 "On rest buttons: the least push of the same set with the part floating, N "
+                 "(-1: none; -2: not asked, the part floats)"),
+                ("App::PropertyVector", "FloatingLeastAt", "Where it is (document)")):
             _add(obj, kind, name, "Answer", doc, mode=1)
 
     def _execute(self, obj):
         fixture = _Fixture(obj.Fixture, obj.Label)
         outline = fixture.outline
-        cases = load_cases(fixture.obj, outline)
+        cases, obj.Set = force_question(fixture)
+        plate = fixture.on_supports
+        obj.FloatingLeast = -2.0
         if not cases or not fixture.has_fixels:
             obj.Shape = Part.Shape()
             obj.Forces, obj.Least = [], -1.0
@@ -1190,8 +1293,27 @@ class WrenchLeastForce(_Dependent):
             push_on = push_on_of(obj.PushOn, fixture.fixture["body"], 0.0)
         except OutlineError as e:
             raise WrenchError("%s: %s" % (obj.Label, e))
-        r = fixture.ask(lambda: fixture.client.push_force(fid, cases, samples=samples,
-                                                          push_on=push_on or "all"))
+        try:
+            r = fixture.ask(lambda: fixture.client.push_force(fid, cases, set=obj.Set,
+                                                              samples=samples,
+                                                              push_on=push_on or "all"))
+        except WrenchError as error:
+            if plate and error.field.endswith("body.shape"):
+                # what in the face keeps it from being a polygon
+                outline = fixture.outline
+                raise WrenchError("%s; %s has %s, so it is sent as an outline" % (
+                    error, fixture.obj.Label, "holes" if len(outline.segments) > 1 else
+                    "arcs (%s)" % ", ".join(s.edge or "an edge" for s in outline.segments[0]
+                                           if s.is_arc)), error.field, error.reason) from None
+            raise
+        if plate:
+            # The same part floating, for comparison: its least push alone.
+            floating = fixture.ask(lambda: fixture.client.push_force(
+                _supports().floating(fixture.fixture), cases, set=obj.Set, samples=1,
+                push_on=push_on or "all"))["least"]
+            obj.FloatingLeast = -1.0 if floating is None else floating["force"]
+            if floating is not None:
+                obj.FloatingLeastAt = outline.to_3d(floating["at"])
         pieces, forces = [], []
         for seg in r["segments"]:
             segment = outline.segments[seg.get("loop", 0)][seg.get("segment", seg.get("edge", 0))]
@@ -1201,17 +1323,37 @@ class WrenchLeastForce(_Dependent):
                 t1 = 1.0 if j + 1 == len(ts) else (t + ts[j + 1]) / 2
                 pieces.append(outline.edge_3d(segment, t0, t1))
                 forces.append(-1.0 if f is None else f)
-        obj.Shape = Part.Compound(pieces)
         obj.Forces = forces
         least = r["least"]
         obj.Least = -1.0 if least is None else least["force"]
         if least is not None:
             obj.LeastAt = outline.to_3d(least["at"])
             obj.LeastDirection = outline.direction_3d(least["direction"])
-            obj.Label = "Least force: %.4g N at %s" % (obj.Least, _fmt_point(obj.LeastAt))
+            pieces += _push_arrow(outline, least["at"], least["direction"])
+            obj.Label = "Least force%s: %.4g N at %s" % (
+                " on the rest buttons" if plate else "", obj.Least, _fmt_point(obj.LeastAt))
+            if plate:
+                obj.Label += " (floating: %s)" % ("%.4g N" % obj.FloatingLeast
+                                                  if obj.FloatingLeast >= 0 else "none")
         else:
             obj.Label = "Least force: no push does the job under every load case"
+        obj.Shape = Part.Compound(pieces)
         colour_least_force(obj)
+
+
+def _push_arrow(outline, at, direction):
+    """Three edges: a shaft ending at the outline point `at`, along the
+    unit `direction`, and its head."""
+    length = 0.15 * outline.size
+    tip = (at[0], at[1])
+    back = (at[0] - length * direction[0], at[1] - length * direction[1])
+    head = []
+    for s in (-1.0, 1.0):
+        c, d = math.cos(s * 0.4), math.sin(s * 0.4)
+        u = (c * direction[0] - d * direction[1], d * direction[0] + c * direction[1])
+        head.append(outline.to_3d((at[0] - 0.25 * length * u[0], at[1] - 0.25 * length * u[1])))
+    return [Part.LineSegment(outline.to_3d(back), outline.to_3d(tip)).toShape()] + \
+        [Part.LineSegment(h, outline.to_3d(tip)).toShape() for h in head]
 
 
 class WrenchGravityDial(_Dependent):
@@ -1244,7 +1386,10 @@ class WrenchGravityDial(_Dependent):
             obj.Arcs, obj.TotalDegrees = [], 0.0
             obj.Label = "Gravity %s (no fixels yet)" % which
             return
-        arcs = fixture.ask(lambda: fixture.client.gravity_sweep(fixture.fixture, which))
+        if fixture.on_supports:
+            arcs = self.on_buttons(obj, fixture)
+        else:
+            arcs = fixture.ask(lambda: fixture.client.gravity_sweep(fixture.fixture, which))
         outline = fixture.outline
         com = outline.to_2d(fixture.obj.CenterOfMass)
         radius = float(obj.Radius) or 1.15 * max(
@@ -1263,6 +1408,25 @@ class WrenchGravityDial(_Dependent):
         obj.Arcs = [x for arc in arcs for x in arc]
         obj.TotalDegrees = sum(b - a for a, b in arcs)
         obj.Label = "Gravity %s: %s degrees of tilt" % (which, _fmt(obj.TotalDegrees))
+        if fixture.on_supports:
+            obj.Label = "Gravity goal on the rest buttons, %s mm/s^2 in the plane: %s degrees" % (
+                _fmt(fixture.obj.Gravity), _fmt(obj.TotalDegrees))
+
+    @staticmethod
+    def on_buttons(obj, fixture):
+        """The tilts on rest buttons: whether the pull seats the part depends
+        on its size, the fixture's Gravity (the part of gravity in the
+        plate's plane), and only goal is answered there."""
+        pull = float(fixture.obj.Gravity)
+        if pull <= 0:
+            raise WrenchError("%s: on rest buttons whether gravity seats the part depends on how "
+                              "hard it pulls in the plate's plane: set %s's Gravity (g sin(tilt), "
+                              "mm/s^2)" % (obj.Label, fixture.obj.Label), "in_plane_g", "required")
+        obj.Meaning = ("goal on the rest buttons: gravity pulling this way with the fixture's "
+                       "Gravity seats the part against their friction; whether it then holds "
+                       "is not asked")
+        return fixture.ask(lambda: fixture.client.tilt_on_supports(
+            fixture.fixture, pull))["intervals_deg"]
 
 
 # ---- making objects ---------------------------------------------------------------
@@ -1548,6 +1712,10 @@ def design(fixture, client=None, progress=True, spacing=None, fixels=None, objec
         if indicator is not None:
             indicator.stop()
     lines = _design_lines(count, shape, result, h)
+    if list(fixture.SupportPoints):
+        lines.insert(1, "the designs are the floating part's: its rest buttons are not among "
+                        "what the design is asked with; Least force then says how hard to push "
+                        "on them")
     fixture.Designs = lines
     for line in lines:
         FreeCAD.Console.PrintMessage("Wrench: %s\n" % line)

@@ -19,6 +19,8 @@ def _objects():
 # on one another: both, what to push with, is drawn the widest and on top.
 COLOURS = {"goal": (0.15, 0.40, 0.95), "strong": (1.00, 0.55, 0.00), "both": (0.00, 0.72, 0.20)}
 LINE_WIDTHS = {"goal": 5.0, "strong": 5.0, "both": 10.0}
+# The rest buttons, their loads' arrows and labels.
+SUPPORT_COLOUR = (0.55, 0.25, 0.05)
 
 
 def least_force_colours(forces):
@@ -35,12 +37,17 @@ def least_force_colours(forces):
     return out
 
 
+# The least push's arrow (a WrenchLeastForce's last edges), as the best push's.
+ARROW_COLOUR = (0.85, 0.0, 0.55)
+
+
 def colour_least_force(obj):
-    """The pieces' colours, when the GUI shows the object."""
+    """The pieces' colours, and the arrow's, when the GUI shows the object."""
     vobj = getattr(obj, "ViewObject", None)
     if FreeCAD.GuiUp and vobj is not None and hasattr(vobj, "LineColorArray"):
         vobj.LineWidth = 6.0
-        vobj.LineColorArray = least_force_colours(list(obj.Forces))
+        colours = least_force_colours(list(obj.Forces))
+        vobj.LineColorArray = colours + [ARROW_COLOUR] * (len(obj.Shape.Edges) - len(colours))
 
 
 # ---- view providers ---------------------------------------------------------------
@@ -86,15 +93,48 @@ class ViewProviderWrench:
             vobj.LineWidth = 2.0
             vobj.PointSize = 1.0
         elif kind == "WrenchBestPush":
-            vobj.ShapeColor = (0.85, 0.0, 0.55)
+            vobj.ShapeColor = ARROW_COLOUR
             vobj.LineColor = (0.5, 0.0, 0.3)
+        elif kind == "WrenchSupports":
+            vobj.ShapeColor = SUPPORT_COLOUR
+            vobj.LineColor = SUPPORT_COLOUR
+            vobj.LineWidth = 3.0
+            vobj.PointSize = 1.0
 
     def attach(self, vobj):
         self.Object = vobj.Object
+        self.labels = None
 
     def updateData(self, obj, prop):
         if prop == "Set" and getattr(obj, "ViewObject", None) is not None:
             self.style(obj.ViewObject)
+        if prop in ("LoadLabels", "LabelPoints") and getattr(obj, "ViewObject", None) is not None:
+            self.write_labels(obj.ViewObject)
+
+    def write_labels(self, vobj):
+        """A WrenchSupports' LoadLabels written in the 3-D view at its
+        LabelPoints (a Coin text node each, under one separator)."""
+        from pivy import coin
+        obj = vobj.Object
+        root = vobj.RootNode
+        old = getattr(self, "labels", None)
+        if old is not None and root.findChild(old) >= 0:
+            root.removeChild(old)
+        self.labels = coin.SoSeparator()
+        self.labels.setName("WrenchLoadLabels")
+        colour = coin.SoBaseColor()
+        colour.rgb = SUPPORT_COLOUR
+        self.labels.addChild(colour)
+        for text, at in zip(obj.LoadLabels, obj.LabelPoints):
+            node = coin.SoSeparator()
+            move = coin.SoTranslation()
+            move.translation = (at.x, at.y, at.z)
+            label = coin.SoText2()
+            label.string = text
+            node.addChild(move)
+            node.addChild(label)
+            self.labels.addChild(node)
+        root.addChild(self.labels)
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)
@@ -114,7 +154,8 @@ class ViewProviderWrench:
         name = {"WrenchFixture": "WrenchFixture", "WrenchRegions": "WrenchRegions",
                 "WrenchRegion": "WrenchRegions", "WrenchFixels": "WrenchFixels",
                 "WrenchBestPush": "WrenchBestPush", "WrenchGravityDial": "WrenchGravityDial",
-                "WrenchLeastForce": "WrenchRegions"}.get(_objects()._proxy_name(obj) if obj is not None else "", "Wrench")
+                "WrenchLeastForce": "WrenchRegions", "WrenchSupports": "WrenchFixels"}.get(
+                    _objects()._proxy_name(obj) if obj is not None else "", "Wrench")
         return icon(name)
 
     def __getstate__(self):

@@ -187,6 +187,70 @@ def main():
     fixture.Socket = ""
     doc.recompute()
     result["after_mistakes"] = [o.Label for o in doc.Objects if "Invalid" in o.State]
+
+    # Rest buttons picked on the part: a fillet's circular edge (its centre)
+    # and a vertex on its underside (z = -7), a point picked on its top
+    # face; their loads written beside them in the 3-D view.  (A hole's
+    # centre is refused: a button there is not under the part.)
+    def circle_edge_at(centre):
+        return "Edge%d" % (1 + [i for i, e in enumerate(part.Shape.Edges)
+                                if isinstance(e.Curve, Part.Circle)
+                                and e.Curve.Center.distanceToPoint(centre) < 1e-9][0])
+
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, part.Name, circle_edge_at(V(8, 52, -7)))
+    Gui.Selection.addSelection(doc.Name, part.Name, vertex_at(V(112, 0, -7)))
+    Gui.Selection.addSelection(doc.Name, part.Name, "Face%d" % top, 90, 50, 1)
+    Gui.Selection.addSelection(fixture)
+    report_dock.widget().clear()
+    Gui.runCommand("Wrench_RestButtons")
+    settle()
+    result["button_report"] = report_dock.widget().toPlainText().splitlines()
+    buttons = [o for o in doc.Objects if o.Name.startswith("WrenchSupports")]
+    result["buttons"] = [[p.x, p.y, p.z] for p in fixture.SupportPoints]
+    result["button_loads"] = list(fixture.NormalLoads)
+    result["button_state"] = [list(o.State) for o in buttons]
+    result["button_labels"] = [list(o.LoadLabels) for o in buttons]
+    from pivy import coin
+    search = coin.SoSearchAction()
+    search.setType(coin.SoText2.getClassTypeId())
+    search.setInterest(coin.SoSearchAction.ALL)
+    search.apply(buttons[0].ViewObject.RootNode)
+    paths = search.getPaths()
+    result["button_texts"] = [paths[i].getTail().string.getValues()[0]
+                              for i in range(paths.getLength())]
+    # a down clamp picked on the top face, pressing 100 N at first
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, part.Name, "Face%d" % top, 60, 30, 1)
+    Gui.Selection.addSelection(fixture)
+    Gui.runCommand("Wrench_DownClamps")
+    settle()
+    result["clamps"] = [[p.x, p.y, p.z] for p in fixture.DownPoints]
+    result["clamp_forces"] = list(fixture.DownForces)
+    result["clamp_loads"] = list(fixture.NormalLoads)
+    result["clamp_labels"] = list(buttons[0].LoadLabels)
+    search.apply(buttons[0].ViewObject.RootNode)
+    paths = search.getPaths()
+    result["clamp_texts"] = [paths[i].getTail().string.getValues()[0]
+                             for i in range(paths.getLength())]
+    # Push regions on the buttons: what the report view says of the best push
+    report_dock.widget().clear()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(fixture)
+    Gui.runCommand("Wrench_Regions")
+    settle()
+    result["regions_on_buttons"] = report_dock.widget().toPlainText().splitlines()
+    result["regions_on_buttons_labels"] = sorted(o.Label for o in doc.Objects
+                                                 if o.Name.startswith("WrenchRegions"))
+    # the buttons and the clamp from above at an angle, the regions hidden
+    # (on the buttons they ask for a force)
+    for o in doc.Objects:
+        if o.Name.startswith(("WrenchRegion", "WrenchGravityDial", "WrenchBestPush")):
+            o.ViewObject.Visibility = False
+    Gui.Selection.clearSelection()
+    view.viewIsometric()
+    fit(view)
+    view.saveImage(os.path.join(OUT, "buttons.png"), 1200, 800, "White")
     del Part
 
 

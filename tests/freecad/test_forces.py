@@ -71,9 +71,11 @@ def test_least_force_and_the_best_push_force(client, doc):
     holes = sum(len(loop) for loop in wf._Fixture(fixture, "t").outline.segments[1:])
     assert sum(1 for f in least.Forces if f < 0) >= 16 * holes  # no push on the holes
     doc.removeObject(anywhere.Name)
-    # A piece per sample of every segment, coloured from its F*.
+    # A piece per sample of every segment, coloured from its F*, and the
+    # least push's arrow ending where it pushes.
     segments = sum(len(loop) for loop in wf._Fixture(fixture, "t").outline.segments)
-    assert len(least.Forces) == 16 * segments == len(least.Shape.Edges)
+    assert len(least.Forces) == 16 * segments == len(least.Shape.Edges) - 3
+    assert least.Shape.Edges[-1].Vertexes[-1].Point.distanceToPoint(least.LeastAt) < 1e-9
     assert min(f for f in least.Forces if f >= 0) >= least.Least * (1 - 1e-9)
     colours = wf.least_force_colours(list(least.Forces))
     lowest = min(range(len(least.Forces)), key=lambda i: least.Forces[i] if least.Forces[i] >= 0

@@ -11,6 +11,7 @@ import subprocess
 import numpy
 import pytest
 
+import parts
 import wrench_freecad as wf
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -77,7 +78,9 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
 
     assert result["started_in"] == result["workbench"] == "WrenchWorkbench"
     assert set(result["commands"]) >= {"Wrench_Fixture", "Wrench_AddFixels", "Wrench_ClearFixels",
-                                       "Wrench_Regions", "Wrench_GravityDial", "Wrench_Design"}
+                                       "Wrench_Regions", "Wrench_GravityDial", "Wrench_Design",
+                                       "Wrench_RestButtons", "Wrench_DownClamps",
+                                       "Wrench_ClearRestButtons", "Wrench_LeastForce"}
     for o in result["objects"]:
         assert o["state"] == ["Up-to-date"], o
         if o["type"].startswith("Wrench"):
@@ -125,6 +128,52 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     assert "Start one: `wrenchd --socket %s`" % (tmp_path / "nobody.sock") in mistakes
     assert result["after_mistakes"] == []
 
+    # rest buttons picked: a fillet's centre and a vertex under the part, a
+    # point on its face, all in the face's plane; their loads are the
+    # barycentric ones of FreeCAD's centre of mass of the face (the default
+    # Mass, 1 kg, under 9810 mm/s^2), written in the 3-D view
+    want = [[8, 52, 1], [90, 50, 1], [112, 0, 1]]
+    order = sorted(range(3), key=lambda i: result["buttons"][i])
+    assert len(result["button_loads"]) == 3, result["button_report"][:2]
+    assert numpy.allclose([result["buttons"][i] for i in order], want, rtol=0, atol=1e-9)
+    com = parts.bracket_face().CenterOfMass
+    loads = {tuple(want[k]): result["button_loads"][i] for k, i in enumerate(order)}
+    (a, b, c) = [p[:2] for p in want]
+
+    def area2(p, q, r):
+        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+    whole, here = area2(a, b, c), (com.x, com.y)
+    for p, lam in ((a, area2(here, b, c) / whole), (b, area2(a, here, c) / whole),
+                   (c, area2(a, b, here) / whole)):
+        assert loads[tuple(p) + (1,)] == pytest.approx(9.81 * lam, rel=1e-9)
+    assert result["button_state"] == [["Up-to-date"]]
+    # a down clamp at (60, 30): 100 N more, the loads still balancing it
+    assert result["clamps"] == [[60, 30, 1]] and result["clamp_forces"] == [100.0]
+    assert sum(result["clamp_loads"]) == pytest.approx(109.81, rel=1e-12)
+    assert sum(n * p[0] for n, p in zip(result["clamp_loads"], result["buttons"])) == \
+        pytest.approx(9.81 * com.x + 100 * 60, rel=1e-9)
+    assert result["clamp_texts"] == result["clamp_labels"] and result["clamp_labels"][-1] == \
+        "D1 100 N"
+    assert result["button_texts"] == result["button_labels"][0] and \
+        len(result["button_texts"]) == 3
+
+    # Push regions on the buttons: the regions ask for a force, the best push
+    # says it is the floating part's and how hard it must be on the buttons
+    assert result["regions_on_buttons_labels"] == [
+        "Regions %s (on rest buttons: set PushForce, N)" % s for s in ("both", "goal", "strong")]
+    said = "\n".join(result["regions_on_buttons"])
+    assert "Wrench: Best push (both, floating): margin " in said
+    assert "; on the rest buttons at least " in said and " N to seat it: both for the part " \
+        "floating" in said
+    # (on the bracket's arcs and holes wrenchd finds no least push on buttons)
+    assert "the least push on them anywhere is Least force's to find (on a face of straight " \
+        "lines alone)" in said
+
+    # the buttons' picture: their arrows drawn
+    width, height, rows = read_png(tmp_path / "buttons.png")
+    assert (width, height) == (1200, 800)
+    assert count_near(rows, wf.SUPPORT_COLOUR, 40) > 500
+
     # the 3-D view from the top: its size, and what is drawn in it
     width, height, rows = read_png(tmp_path / "view.png")
     assert (width, height) == (1200, 800)
@@ -141,3 +190,6 @@ def test_the_workbench_in_freecad_gui(daemon, tmp_path):
     keep = os.environ.get("WRENCH_PICTURE")
     if keep:
         shutil.copyfile(tmp_path / "window.png", keep)
+    keep = os.environ.get("WRENCH_PICTURE_BUTTONS")
+    if keep:
+        shutil.copyfile(tmp_path / "buttons.png", keep)

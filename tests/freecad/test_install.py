@@ -47,7 +47,7 @@ def test_make_install_and_uninstall(tmp_path):
                    for f in os.listdir(os.path.join(REPO, "clients", "freecad", "Resources", "icons")))
     assert names == sorted(["Init.py", "InitGui.py", "wrench_commands.py", "wrench_freecad.py",
                             "wrench_outline.py", "wrench_objects.py", "wrench_view.py",
-                            "wrenchd.py", "wrenchd_arcs.py"] + icons)
+                            "wrench_supports.py", "wrenchd.py", "wrenchd_arcs.py"] + icons)
     # the same files as the checkout's
     for name in names:
         client_side = name in ("wrenchd.py", "wrenchd_arcs.py")

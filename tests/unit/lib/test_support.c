@@ -730,13 +730,153 @@ static void test_plate_clamp(void **state)
     wr_lp_env_free(env);
 }
 
+/* A pivot on a button.  The trapezoid (0,0) (4,0) (5,2) (0,2), m = 2, on
+ * buttons p1 = (0, 0.5), p2 = (3, 0.5), p3 = (2, 1.7), mu_B = 0.15, its
+ * three fixels (1,0), (3,0) below and (0,1) on the left, pulled by a force
+ * (0, s) at its corner (0, 0).  The part can turn clockwise about p2 while
+ * leaving every fixel: p2 sticks (its force anywhere in |f2| <= mu N2),
+ * p1 and p3 slide against their accelerations.  With the direction fixed,
+ * Newton-Euler is linear in (f2, t), t >= 0 the size of the motion:
+ *
+ *     g(s) + f1 + f3 (with their moments) + (f2, r2 x f2) = t M q,
+ *
+ * three equations in three unknowns, and t is affine in s: the part
+ * moves for s above the root s* of t(s) = 0 (here, where |f2| is well
+ * inside its disc).  That motion is one direction, at which p2's sliding
+ * direction is undefined: wrenchd must find it as the witness above s*,
+ * and hold the part below.  Everything here is computed from the
+ * geometry: centre of mass and inertia by the polygon's integrals,
+ * normal forces by barycentric coordinates. */
+static double pivot_t(double s, const double com[2], double m, double inertia,
+                      const double (*p)[2], const double *n, double mu, double *f2)
+{
+    double r2[2] = {p[1][0] - com[0], p[1][1] - com[1]};
+    /* Clockwise about p2: a_com = -(-r2y, r2x), alpha = -1. */
+    double q[3] = {-r2[1], r2[0], -1};
+    double rhs[3] = {0, s, (0 - com[0]) * s - (0 - com[1]) * 0};
+    for (int j = 0; j < 3; j += 2) {
+        double r[2] = {p[j][0] - com[0], p[j][1] - com[1]};
+        double a[2] = {q[0] - q[2] * r[1], q[1] + q[2] * r[0]};
+        double len = hypot(a[0], a[1]);
+        double f[2] = {-mu * n[j] * a[0] / len, -mu * n[j] * a[1] / len};
+        rhs[0] += f[0];
+        rhs[1] += f[1];
+        rhs[2] += r[0] * f[1] - r[1] * f[0];
+    }
+    /* [1 0 -m qx; 0 1 -m qy; -r2y r2x -I alpha] (f2x, f2y, t) = -rhs. */
+    double A[3][3] = {{1, 0, -m * q[0]}, {0, 1, -m * q[1]}, {-r2[1], r2[0], -inertia * q[2]}};
+    double b[3] = {-rhs[0], -rhs[1], -rhs[2]};
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                 A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    double x[3];
+    for (int k = 0; k < 3; k++) { /* Cramer */
+        double B[3][3];
+        memcpy(B, A, sizeof B);
+        for (int r = 0; r < 3; r++)
+            B[r][k] = b[r];
+        x[k] = (B[0][0] * (B[1][1] * B[2][2] - B[1][2] * B[2][1]) -
+                B[0][1] * (B[1][0] * B[2][2] - B[1][2] * B[2][0]) +
+                B[0][2] * (B[1][0] * B[2][1] - B[1][1] * B[2][0])) /
+               det;
+    }
+    *f2 = hypot(x[0], x[1]);
+    return x[2];
+}
+
+static void test_pivot_on_button(void **state)
+{
+    (void)state;
+    static const double v[4][2] = {{0, 0}, {4, 0}, {5, 2}, {0, 2}};
+    const double buttons[3][2] = {{0, 0.5}, {3, 0.5}, {2, 1.7}};
+    const double mu = 0.15, m = 2;
+    wr_fixel_spec fixels[3];
+    memset(fixels, 0, sizeof fixels);
+    fixels[0].at[0] = 1;
+    fixels[1].at[0] = 3;
+    fixels[2].at[1] = 1;
+    wr_fixture_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.mass = m;
+    spec.shape = WR_SHAPE_POLYGON;
+    spec.vertex_count = 4;
+    spec.vertices = v;
+    spec.friction.given = true;
+    spec.friction.static_mu = 0.3;
+    spec.friction.kinetic_given = true;
+    spec.friction.kinetic_mu = 0.25;
+    spec.fixel_count = 3;
+    spec.fixels = fixels;
+    wr_fixture *f = test_fixture_new(&spec, NULL);
+    assert_non_null(f);
+    /* The polygon's area, centroid and polar moment about the origin. */
+    double area = 0, cx = 0, cy = 0, j0 = 0;
+    for (int k = 0; k < 4; k++) {
+        const double *a = v[k], *b = v[(k + 1) % 4];
+        double cr = a[0] * b[1] - b[0] * a[1];
+        area += cr / 2;
+        cx += (a[0] + b[0]) * cr / 6;
+        cy += (a[1] + b[1]) * cr / 6;
+        j0 += (a[0] * a[0] + a[0] * b[0] + b[0] * b[0] + a[1] * a[1] + a[1] * b[1] + b[1] * b[1]) *
+              cr / 12;
+    }
+    double com[2] = {cx / area, cy / area};
+    double inertia = m * j0 / area - m * (com[0] * com[0] + com[1] * com[1]);
+    /* N_i = W times the barycentric coordinates of the centre of mass. */
+    const double (*p)[2] = buttons;
+    double w = m * G, n[3];
+    double d = (p[1][1] - p[2][1]) * (p[0][0] - p[2][0]) + (p[2][0] - p[1][0]) * (p[0][1] - p[2][1]);
+    n[0] = w * ((p[1][1] - p[2][1]) * (com[0] - p[2][0]) + (p[2][0] - p[1][0]) * (com[1] - p[2][1])) / d;
+    n[1] = w * ((p[2][1] - p[0][1]) * (com[0] - p[2][0]) + (p[0][0] - p[2][0]) * (com[1] - p[2][1])) / d;
+    n[2] = w - n[0] - n[1];
+    double f2, t0 = pivot_t(0, com, m, inertia, p, n, mu, &f2);
+    double t1 = pivot_t(1, com, m, inertia, p, n, mu, &f2) - t0;
+    double star = -t0 / t1;
+    pivot_t(star, com, m, inertia, p, n, mu, &f2);
+    assert_true(f2 < 0.9 * mu * n[1]); /* p2 sticks, well inside its disc */
+    wr_lp_env *env = test_lp_env_new();
+    wr_analysis *a = test_analysis_new(f);
+    wr_error error;
+    wr_supports *s = supports_new(f, buttons, 3, mu, G, NULL, 0, &error);
+    assert_non_null(s);
+    for (int side = -1; side <= 1; side += 2) {
+        double size = star * (1 + side * 1e-6);
+        double g[3] = {0, size, (0 - com[0]) * size};
+        wr_support_strong strong;
+        assert_int_equal(wr_supports_strong(a, s, env, g, WR_DEFAULT_TOLERANCE, NULL, &strong),
+                         WR_OK);
+        printf("pivot on a button: s* = %.9f, at %+.0e: %s\n", star, side * 1e-6,
+               strong.verdict == WR_VERDICT_INSIDE    ? "held"
+               : strong.verdict == WR_VERDICT_OUTSIDE ? "moves"
+                                                      : "boundary");
+        if (side < 0) {
+            assert_int_equal(strong.verdict, WR_VERDICT_INSIDE);
+            continue;
+        }
+        assert_int_equal(strong.verdict, WR_VERDICT_OUTSIDE);
+        /* The witness turns clockwise about p2: that point stands still. */
+        double r2[2] = {p[1][0] - com[0], p[1][1] - com[1]};
+        const double *q = strong.acceleration;
+        assert_true(q[2] < 0);
+        assert_true(hypot(q[0] - q[2] * r2[1], q[1] + q[2] * r2[0]) < 1e-6 * fabs(q[2]));
+        assert_true(hypot(strong.support_force[1][0], strong.support_force[1][1]) <=
+                    mu * strong.normal[1] * (1 + 1e-9));
+    }
+    wr_supports_free(s);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    wr_lp_env_free(env);
+}
+
 /* Is the motion along the scaled acceleration direction q' of mode `cone`
  * consistent with g?  This file's own LP: g = t q' + sum kappa_j G_j (the
  * mode's contact generators) + sum_i m_i W(a_i / |a_i|) at p_i, t >= 0,
  * mu_k_min N_i <= m_i <= mu_k N_i, N >= 0 with the statics rows (not
  * wrenchd's distributions); returns the least L1 residual in the scaled
- * metric.  A point whose acceleration vanishes (a measure-zero set of
- * directions, never sampled) is not handled. */
+ * metric.  A point whose acceleration vanishes (the part pivots on it: a
+ * measure-zero set of directions, never sampled, but a witness may be
+ * one) sticks: its friction is any force of an inscribed 256-gon of its
+ * disc |f| <= mu_s N_i, so a residual of 0 still proves the motion. */
 static double motion_residual(const wr_fixture *f, const wr_supports *s, const wr_cone *cone,
                               const double g[3], const double q[3])
 {
@@ -755,8 +895,10 @@ static double motion_residual(const wr_fixture *f, const wr_supports *s, const w
         glp_set_row_bnds(p, 7 + 2 * i, GLP_UP, 0, 0); /* m_i - mu_k N_i <= 0 */
         glp_set_row_bnds(p, 8 + 2 * i, GLP_LO, 0, 0); /* m_i - mu_k_min N_i >= 0 */
     }
-    int ia[1024], ja[1024];
-    double ar[1024];
+    enum { ENTRIES = 8192 };
+    int *ia = malloc(ENTRIES * sizeof *ia), *ja = malloc(ENTRIES * sizeof *ja);
+    double *ar = malloc(ENTRIES * sizeof *ar);
+    assert_true(ia && ja && ar);
     int count = 0;
 #define SET(r, c, v) (count++, ia[count] = (r), ja[count] = (c), ar[count] = (v))
     int t = glp_add_cols(p, 1);
@@ -777,14 +919,32 @@ static double motion_residual(const wr_fixture *f, const wr_supports *s, const w
         double rx = s->points[i][0] - f->com[0], ry = s->points[i][1] - f->com[1];
         double a[2] = {ax - alpha * ry, ay + alpha * rx};
         double norm = hypot(a[0], a[1]);
-        a[0] /= norm;
-        a[1] /= norm;
         int N = glp_add_cols(p, 2);
         glp_set_col_bnds(p, N, GLP_LO, 0, 0);
         glp_set_col_bnds(p, N + 1, GLP_LO, 0, 0);
         SET(4, N, 1);
         SET(5, N, s->points[i][0]);
         SET(6, N, s->points[i][1]);
+        if (!(norm > 1e-9 * (fabs(ax) + fabs(ay) + fabs(alpha) * f->size))) {
+            /* Sticking: sum lambda_k <= mu_s N_i over the 256-gon's
+             * vertices (its sliding rows stay empty, its size column 0). */
+            glp_set_col_bnds(p, N + 1, GLP_FX, 0, 0);
+            int row = glp_add_rows(p, 1);
+            glp_set_row_bnds(p, row, GLP_UP, 0, 0);
+            SET(row, N, -s->mu_static);
+            int first = glp_add_cols(p, 256);
+            for (int k = 0; k < 256; k++) {
+                double u[2] = {cos(2 * acos(-1.0) * k / 256), sin(2 * acos(-1.0) * k / 256)};
+                glp_set_col_bnds(p, first + k, GLP_LO, 0, 0);
+                SET(row, first + k, 1);
+                SET(1, first + k, u[0]);
+                SET(2, first + k, u[1]);
+                SET(3, first + k, (rx * u[1] - ry * u[0]) / rho);
+            }
+            continue;
+        }
+        a[0] /= norm;
+        a[1] /= norm;
         SET(7 + 2 * i, N, -s->mu_kinetic);
         SET(8 + 2 * i, N, -s->mu_kinetic_min);
         int m = N + 1; /* the friction's size, along a_i (it opposes the motion: -f = m a) */
@@ -804,6 +964,9 @@ static double motion_residual(const wr_fixture *f, const wr_supports *s, const w
     assert_int_equal(glp_get_status(p), GLP_OPT);
     double residual = glp_get_obj_val(p);
     glp_delete_prob(p);
+    free(ia);
+    free(ja);
+    free(ar);
     return residual;
 }
 
@@ -905,6 +1068,7 @@ int main(void)
         cmocka_unit_test(test_friction_limit),
         cmocka_unit_test(test_zero_load_held),
         cmocka_unit_test(test_plate_clamp),
+        cmocka_unit_test(test_pivot_on_button),
         cmocka_unit_test(test_holding_sampled),
     };
     if (getenv("TEST_FILTER")) /* one test by name, while working on it */
