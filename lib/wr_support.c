@@ -1553,8 +1553,20 @@ typedef struct hold_lp {
     double tangent[2][3];
     double trust, t0, m0[WR_MAX_SUPPORTS];
     double delta[2];
+    /* The distance form (the disturbance margin): the residual e = target -
+     * h(g) is free and the objective is a polyhedral norm r >= n_k . e over
+     * unit rows n_k whose unit ball holds the Euclidean ball (r <= |e|, so
+     * r bounds the distance from below); a row along e is added while |e|
+     * exceeds r, so that the two meet. */
+    bool distance;
+    double seed[3];      /* a unit row to begin with (zero: none): the
+                            direction of a solution nearby */
+    double prune;        /* > 0: refine only while r < prune <= |e| (past
+                            it the cell is dropped; below it, kept whatever
+                            the exact distance: either way decided) */
+    double error[3];     /* out: e of the last solution (|e| attained) */
     /* out */
-    double residual;
+    double residual;     /* L1, or r in the distance form */
     double lambda[3];
     double kappa[WR_HULL_MAX];
     double theta[WR_MAX_SUPPORTS * WR_MAX_SUPPORTS * WR_MAX_SUPPORTS / 6 + 1];
@@ -1574,17 +1586,50 @@ static int hold_lp_solve(hold_lp *h)
         disc[i] = !arc_hull(m, i, h->c, points[i], &point_count[i]);
         directions_start(&dirs[i]);
     }
-    for (int round = 0; round < 40; round++) {
+    /* The distance form's norm: the cube's and the octahedron's faces to
+     * begin with (each unit ball holds the Euclidean one). */
+    enum { NORM_MAX = 96 };
+    double norm[NORM_MAX][3];
+    int norm_count = 0;
+    if (h->distance)
+        for (int k = 0; k < 27; k++) {
+            double n[3] = {k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1};
+            int nonzero = (n[0] != 0) + (n[1] != 0) + (n[2] != 0);
+            if (nonzero == 1 || nonzero == 3) {
+                wr_normalize3(n);
+                wr_copy3(n, norm[norm_count++]);
+            }
+        }
+    if (h->distance && wr_norm3(h->seed) > 0)
+        wr_copy3(h->seed, norm[norm_count++]);
+    for (int round = 0; round < (h->distance ? 80 : 40); round++) {
         lp l;
         lp_init(&l, GLP_MIN);
         int wrench[3];
         for (int k = 0; k < 3; k++)
             wrench[k] = lp_row(&l, GLP_FX, h->target[k], h->target[k]);
-        for (int k = 0; k < 3; k++) {
-            int e = lp_col(&l, GLP_LO, 0, 0, 1);
-            lp_set(&l, wrench[k], e, 1);
-            e = lp_col(&l, GLP_LO, 0, 0, 1);
-            lp_set(&l, wrench[k], e, -1);
+        int error = 0;
+        if (h->distance) {
+            for (int k = 0; k < 3; k++) {
+                int e = lp_col(&l, GLP_FR, 0, 0, 0);
+                if (k == 0)
+                    error = e;
+                lp_set(&l, wrench[k], e, 1);
+            }
+            int r = lp_col(&l, GLP_LO, 0, 0, 1);
+            for (int k = 0; k < norm_count; k++) {
+                int row = lp_row(&l, GLP_LO, 0, 0);
+                lp_set(&l, row, r, 1);
+                for (int j = 0; j < 3; j++)
+                    lp_set(&l, row, error + j, -norm[k][j]);
+            }
+        } else {
+            for (int k = 0; k < 3; k++) {
+                int e = lp_col(&l, GLP_LO, 0, 0, 1);
+                lp_set(&l, wrench[k], e, 1);
+                e = lp_col(&l, GLP_LO, 0, 0, 1);
+                lp_set(&l, wrench[k], e, -1);
+            }
         }
         int lambda = 0;
         for (int j = 0; j < h->c->count; j++) {
@@ -1659,7 +1704,10 @@ static int hold_lp_solve(hold_lp *h)
             h->delta[k] = glp_get_col_prim(l.p, delta + k);
         if (status != GLP_OPT) {
             lp_release(&l);
-            return -1; /* the residual columns make every LP feasible and bounded */
+            /* The residual columns make every LP feasible and bounded; a
+             * refinement GLPK cannot solve leaves the last solution, whose
+             * bound holds (its sets held the true ones too). */
+            return h->distance && round > 0 ? 0 : -1;
         }
         h->residual = glp_get_obj_val(l.p);
         for (int j = 0; j < h->c->count; j++)
@@ -1673,6 +1721,18 @@ static int hold_lp_solve(hold_lp *h)
                 normal[i] += h->theta[v] * s->distributions[v][i] / m->scale;
         }
         bool cut = false;
+        if (h->distance) {
+            for (int k = 0; k < 3; k++)
+                h->error[k] = glp_get_col_prim(l.p, error + k);
+            double n = wr_norm3(h->error);
+            bool decided = h->prune > 0 && (h->residual >= h->prune || n < h->prune);
+            if (!decided && n > h->residual * (1 + 1e-9) + 1e-15 && norm_count < NORM_MAX) {
+                for (int k = 0; k < 3; k++)
+                    norm[norm_count][k] = h->error[k] / n;
+                norm_count++;
+                cut = true;
+            }
+        }
         for (int i = 0; i < s->count; i++) {
             if (disc[i]) {
                 h->phi[i][0] = glp_get_col_prim(l.p, first[i]);
@@ -1846,25 +1906,34 @@ static void witness_fill(const model *m, const wr_cone *cone, const hold_lp *h,
  * that one direction decides it instead.  1 with the witness in *out when
  * a pivot of the mode (among its directions `q`) is consistent; 0 when
  * none is; -1 when GLPK failed. */
+/* The pivot on support i of sense `sign` (+-1), a unit scaled direction
+ * into d; whether it is among a mode's directions `q`. */
+static bool pivot_direction(const model *m, const wr_hrep *q, int i, int sign, double d[3])
+{
+    /* a_i = a_com + alpha x r_i = 0: a_com = alpha (r_y, -r_x), so
+     * q' = m (a_x, a_y, rho alpha) is along (r_y, -r_x, rho) alpha. */
+    double r[2];
+    arm(m->f, m->s, i, r);
+    d[0] = sign * r[1];
+    d[1] = -sign * r[0];
+    d[2] = sign * m->f->gyration_radius;
+    wr_normalize3(d);
+    bool among = true;
+    for (int k = 0; k < q->facet_count; k++)
+        among &= wr_dot3(q->facets[k], d) <= 1e-12;
+    for (int k = 0; k < q->equality_count; k++)
+        among &= fabs(wr_dot3(q->equalities[k], d)) <= 1e-12;
+    return among;
+}
+
 static int pivot_witness(const model *m, const wr_cone *cone, const wr_hrep *q,
                          const hold_lp *base, int *solves, wr_support_strong *out)
 {
-    const wr_fixture *f = m->f;
     int result = 0;
     for (int i = 0; i < m->s->count && result == 0; i++) {
-        /* a_i = a_com + alpha x r_i = 0: a_com = alpha (r_y, -r_x), so
-         * q' = m (a_x, a_y, rho alpha) is along (r_y, -r_x, rho) alpha. */
-        double r[2];
-        arm(f, m->s, i, r);
         for (int sign = -1; sign <= 1 && result == 0; sign += 2) {
-            double d[3] = {sign * r[1], -sign * r[0], sign * f->gyration_radius};
-            wr_normalize3(d);
-            bool among = true;
-            for (int k = 0; k < q->facet_count; k++)
-                among &= wr_dot3(q->facets[k], d) <= 1e-12;
-            for (int k = 0; k < q->equality_count; k++)
-                among &= fabs(wr_dot3(q->equalities[k], d)) <= 1e-12;
-            if (!among)
+            double d[3];
+            if (!pivot_direction(m, q, i, sign, d))
                 continue;
             cell at = {.count = 1};
             wr_copy3(d, at.ray[0]);
@@ -2117,6 +2186,480 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
     }
     strong_call call = {analysis, supports, wrench, tolerance, stop, out};
     return wr_lp_guarded(env, strong_body, &call);
+}
+
+/* ---- the disturbance margin on the plate ---------------------------------- */
+
+/* A cell of one mode in the margin's search, with the lower bound of its
+ * LP on the distance from the bias to its consistent wrenches. */
+typedef struct margin_cell {
+    cell c;
+    int mode;
+    double lower;
+    double direction[3]; /* the LP's own direction of motion (zero: none) */
+    double near[3];      /* the unit direction of its nearest wrench */
+} margin_cell;
+
+typedef struct margin_heap {
+    margin_cell *cells; /* a binary heap, least lower bound first */
+    int count, capacity;
+} margin_heap;
+
+static bool heap_push(margin_heap *h, const margin_cell *c)
+{
+    if (h->count == h->capacity) {
+        int capacity = h->capacity ? 2 * h->capacity : 256;
+        margin_cell *cells = realloc(h->cells, (size_t)capacity * sizeof *cells);
+        if (!cells)
+            return false;
+        h->cells = cells;
+        h->capacity = capacity;
+    }
+    int i = h->count++;
+    while (i > 0 && h->cells[(i - 1) / 2].lower > c->lower) {
+        h->cells[i] = h->cells[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    h->cells[i] = *c;
+    return true;
+}
+
+static margin_cell heap_pop(margin_heap *h)
+{
+    margin_cell top = h->cells[0], last = h->cells[--h->count];
+    int i = 0;
+    for (;;) {
+        int child = 2 * i + 1;
+        if (child >= h->count)
+            break;
+        if (child + 1 < h->count && h->cells[child + 1].lower < h->cells[child].lower)
+            child++;
+        if (!(h->cells[child].lower < last.lower))
+            break;
+        h->cells[i] = h->cells[child];
+        i = child;
+    }
+    if (h->count)
+        h->cells[i] = last;
+    return top;
+}
+
+typedef struct margin_call {
+    const wr_analysis *analysis;
+    const wr_supports *supports;
+    const double *bias;
+    const wr_stop *stop;
+    wr_support_margin *out;
+    /* The nearest consistent wrench found: its distance (in the model's
+     * units, divided by the scale) and e = target - h(g). */
+    double hi, error[3];
+    int hi_mode;
+} margin_call;
+
+/* The distance LP over cell `c` of mode `cone` (its bound is h->residual),
+ * its norm begun with `seed`; -1 when GLPK fails. */
+static int margin_cell_solve(const model *m, const wr_cone *cone, const double target[3],
+                             const cell *c, const double seed[3], double prune, hold_lp *h,
+                             int *solves)
+{
+    memset(h, 0, sizeof *h);
+    h->m = m;
+    h->cone = cone;
+    h->c = c;
+    h->distance = true;
+    h->prune = prune;
+    wr_copy3(target, h->target);
+    if (seed)
+        wr_copy3(seed, h->seed);
+    int rc = hold_lp_solve(h);
+    *solves += h->solves;
+    return rc;
+}
+
+/* A cell's entry in the search from its LP's solution. */
+static void margin_cell_fill(margin_cell *mc, const hold_lp *h)
+{
+    memset(mc->direction, 0, sizeof mc->direction);
+    for (int j = 0; j < mc->c.count; j++)
+        for (int k = 0; k < 3; k++)
+            mc->direction[k] += h->lambda[j] * mc->c.ray[j][k];
+    if (!(wr_norm3(mc->direction) > 1e-9))
+        memset(mc->direction, 0, sizeof mc->direction);
+    wr_copy3(h->error, mc->near);
+    if (!(wr_fixture_unit_direction(mc->near) > 0))
+        memset(mc->near, 0, sizeof mc->near);
+}
+
+/* The exact LP at one direction of cell `c` (the relaxation's own, else
+ * the cell's centre): a consistent wrench, whose distance bounds the
+ * margin from above. */
+static int margin_exact(margin_call *call, const model *m, const double target[3], int mode,
+                        const double direction[3], const double seed[3])
+{
+    const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_STRONG, mode);
+    cell single = {.count = 1};
+    wr_copy3(direction, single.ray[0]);
+    hold_lp h;
+    if (margin_cell_solve(m, cone, target, &single, seed, 0, &h, &call->out->solves) < 0)
+        return -1;
+    double d = wr_norm3(h.error);
+    if (d < call->hi) {
+        call->hi = d;
+        wr_copy3(h.error, call->error);
+        call->hi_mode = mode;
+    }
+    return 0;
+}
+
+static int margin_upper(margin_call *call, const model *m, const double target[3],
+                        const margin_cell *mc)
+{
+    double direction[3];
+    wr_copy3(mc->direction, direction);
+    if (!(wr_norm3(direction) > 0))
+        for (int j = 0; j < mc->c.count; j++)
+            for (int k = 0; k < 3; k++)
+                direction[k] += mc->c.ray[j][k];
+    wr_normalize3(direction);
+    return margin_exact(call, m, target, mc->mode, direction, mc->near);
+}
+
+/* The exact LPs at the pivots on each support (both senses) that are
+ * directions of `mode`: there that support sticks, its friction anywhere
+ * in its disc, which no direction nearby gives (pivot_witness says why),
+ * so the search's upper bounds, taken at other directions, would never
+ * reach such a nearest motion. */
+static int margin_still(margin_call *call, const model *m, const double target[3], int mode)
+{
+    const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_STRONG, mode);
+    double accel[WR_HULL_MAX][3];
+    int n = 0;
+    for (int j = 0; j < cone->generator_count; j++)
+        if (cone->origins[j].fixel < 0)
+            wr_copy3(cone->generators[j], accel[n++]);
+    wr_hrep q;
+    if (n == 0 || !wr_hull_from_generators((const double (*)[3])accel, n, &q))
+        return 0;
+    for (int i = 0; i < m->s->count; i++)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            double d[3];
+            if (pivot_direction(m, &q, i, sign, d) &&
+                margin_exact(call, m, target, mode, d, NULL) < 0)
+                return -1;
+        }
+    return 0;
+}
+
+/* Best first over every mode's cells: the cell of least lower bound is
+ * bounded from above at one direction and split, until that bound reaches
+ * the best upper one (within the tolerance) or the budget is spent.  The
+ * cells left (and those too narrow to split) keep their lower bounds, so
+ * the least of them is a certified lower bound on the distance. */
+static wr_status margin_body(void *context)
+{
+    margin_call *call = context;
+    wr_support_margin *out = call->out;
+    const wr_fixture *f = wr_analysis_fixture(call->analysis);
+    model m;
+    double target[3];
+    double n = wr_fixture_scale_wrench(f, call->bias, target);
+    double scale = fmax(n, call->supports->mu_static * call->supports->total);
+    if (!(scale > 0))
+        scale = 1; /* the zero bias and nothing pressing: any unit */
+    model_init(&m, f, call->supports, scale);
+    for (int k = 0; k < 3; k++)
+        target[k] /= scale;
+    margin_heap heap = {0};
+    wr_status status = WR_OK;
+    double floor = INFINITY;
+    int count = wr_analysis_cone_count(call->analysis, WR_SET_STRONG);
+    call->hi = INFINITY;
+    call->hi_mode = -1;
+    cell *start = malloc(64 * sizeof *start);
+    if (!start)
+        return WR_NO_MEMORY;
+    for (int mode = 0; mode < count && status == WR_OK; mode++) {
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_STRONG, mode);
+        if (cone->empty)
+            continue;
+        if (margin_still(call, &m, target, mode) < 0) {
+            status = WR_LP_FAILED;
+            break;
+        }
+        int cells = mode_cells(cone, start, 64);
+        for (int i = 0; i < cells; i++) {
+            hold_lp h;
+            out->cells++;
+            if (margin_cell_solve(&m, cone, target, &start[i], NULL, 0, &h, &out->solves) < 0) {
+                status = WR_LP_FAILED;
+                break;
+            }
+            margin_cell mc = {.c = start[i], .mode = mode, .lower = h.residual};
+            margin_cell_fill(&mc, &h);
+            if (!heap_push(&heap, &mc)) {
+                status = WR_NO_MEMORY;
+                break;
+            }
+        }
+    }
+    free(start);
+    out->bounded = heap.count > 0;
+    double lo = 0;
+    while (status == WR_OK && heap.count > 0) {
+        if (wr_stop_requested(call->stop)) {
+            status = WR_STOPPED;
+            break;
+        }
+        if (heap.cells[0].lower >= call->hi * (1 - WR_SUPPORT_MARGIN_TOLERANCE) ||
+            out->cells >= WR_SUPPORT_MARGIN_CELLS)
+            break;
+        margin_cell top = heap_pop(&heap);
+        const wr_cone *cone = wr_analysis_cone(call->analysis, WR_SET_STRONG, top.mode);
+        if (margin_upper(call, &m, target, &top) < 0) {
+            status = WR_LP_FAILED;
+            break;
+        }
+        if (call->hi <= 1e-10)
+            break; /* a motion consistent with the bias itself */
+        int a = 0, b = 1;
+        double longest = -1;
+        for (int i = 0; i < top.c.count; i++)
+            for (int j = i + 1; j < top.c.count; j++) {
+                double angle = angle_between(top.c.ray[i], top.c.ray[j]);
+                if (angle > longest) {
+                    longest = angle;
+                    a = i;
+                    b = j;
+                }
+            }
+        if (top.c.count == 1 || longest < WR_SUPPORT_MIN_CELL) {
+            floor = fmin(floor, top.lower); /* nothing more to split */
+            continue;
+        }
+        double mid[3];
+        for (int k = 0; k < 3; k++)
+            mid[k] = top.c.ray[a][k] + top.c.ray[b][k];
+        wr_normalize3(mid);
+        margin_cell halves[2] = {top, top};
+        wr_copy3(mid, halves[0].c.ray[a]);
+        wr_copy3(mid, halves[1].c.ray[b]);
+        for (int k = 0; k < 2 && status == WR_OK; k++) {
+            hold_lp h;
+            out->cells++;
+            /* Its bound needs refining only while it may decide whether the
+             * half is dropped. */
+            double prune = call->hi * (1 - WR_SUPPORT_MARGIN_TOLERANCE);
+            if (margin_cell_solve(&m, cone, target, &halves[k].c, top.near,
+                                  isfinite(prune) ? prune : 0, &h, &out->solves) < 0) {
+                status = WR_LP_FAILED;
+                break;
+            }
+            /* A half's set is in its parent's: its bound is at least the
+             * parent's. */
+            halves[k].lower = fmax(top.lower, h.residual);
+            margin_cell_fill(&halves[k], &h);
+            if (status == WR_OK && !heap_push(&heap, &halves[k]))
+                status = WR_NO_MEMORY;
+        }
+    }
+    if (status == WR_OK && out->bounded) {
+        lo = fmin(floor, call->hi);
+        if (heap.count > 0)
+            lo = fmin(lo, heap.cells[0].lower);
+        if (call->hi <= 1e-10)
+            lo = 0;
+        out->moves = call->hi <= 1e-10;
+        out->held = !out->moves && lo > 0;
+        /* Some mode's cell is always bounded from above before the search
+         * ends; the heap's least cell's mode should none be. */
+        out->blocking = call->hi_mode >= 0 ? call->hi_mode
+                        : heap.count > 0   ? heap.cells[0].mode
+                                           : -1;
+        out->bracket[0] = out->margin = lo * scale;
+        out->bracket[1] = call->hi * scale;
+        out->converged = lo >= call->hi * (1 - WR_SUPPORT_MARGIN_TOLERANCE);
+        /* The worst direction: from the bias to the nearest consistent
+         * wrench found, -e, a unit scaled wrench back in physical units. */
+        double d[3] = {-call->error[0], -call->error[1], -call->error[2]};
+        if (wr_fixture_unit_direction(d) > 0)
+            wr_fixture_unscale_wrench(f, d, out->worst_direction);
+    }
+    free(heap.cells);
+    return status;
+}
+
+/* Is the scaled wrench h proved held? */
+static wr_status held_at(const wr_analysis *analysis, const wr_supports *supports, wr_lp_env *env,
+                         const double h[3], const wr_stop *stop, bool *held, int *solves)
+{
+    double g[3];
+    wr_fixture_unscale_wrench(wr_analysis_fixture(analysis), h, g);
+    wr_support_strong strong;
+    wr_status status =
+        wr_supports_strong(analysis, supports, env, g, WR_DEFAULT_TOLERANCE, stop, &strong);
+    *held = status == WR_OK && strong.verdict == WR_VERDICT_INSIDE;
+    *solves += strong.solves;
+    return status;
+}
+
+/* The least s found with h(b) + s u proved held, u a unit scaled
+ * direction, s in (from, to]: the first held point of the probes just past
+ * `from`, then from + (to - from) 2^-k for k = 10 .. 0, bisected against
+ * the last moving one to a tenth of the margin's tolerance.  INFINITY when
+ * none is held. */
+static wr_status held_along(const wr_analysis *analysis, const wr_supports *supports,
+                            wr_lp_env *env, const double h[3], const double u[3], double from,
+                            double to, const wr_stop *stop, double *found, int *solves)
+{
+    *found = INFINITY;
+    double moving = from, s = from;
+    bool held = false;
+    for (int k = -1; k <= 10 && !held; k++) {
+        s = k < 0 ? from * (1 + WR_SUPPORT_MARGIN_TOLERANCE / 10) + 1e-12 * to
+                  : from + (to - from) * ldexp(1, k - 10);
+        if (!(s > moving) && k >= 0)
+            continue;
+        double p[3];
+        for (int j = 0; j < 3; j++)
+            p[j] = h[j] + s * u[j];
+        wr_status status = held_at(analysis, supports, env, p, stop, &held, solves);
+        if (status != WR_OK)
+            return status;
+        if (!held)
+            moving = s;
+    }
+    if (!held)
+        return WR_OK;
+    for (int k = 0; k < 40 && s - moving > WR_SUPPORT_MARGIN_TOLERANCE / 10 * s; k++) {
+        double mid = (s + moving) / 2, p[3];
+        for (int j = 0; j < 3; j++)
+            p[j] = h[j] + mid * u[j];
+        bool mid_held;
+        wr_status status = held_at(analysis, supports, env, p, stop, &mid_held, solves);
+        if (status != WR_OK)
+            return status;
+        if (mid_held)
+            s = mid;
+        else
+            moving = mid;
+    }
+    *found = s;
+    return WR_OK;
+}
+
+/* A bias that moves the part: its depth bracketed (wr_supports_margin). */
+static wr_status margin_moving(const wr_analysis *analysis, const wr_supports *supports,
+                               wr_lp_env *env, const double bias[3], const wr_stop *stop,
+                               wr_support_margin *out)
+{
+    const wr_fixture *f = wr_analysis_fixture(analysis);
+    double hb[3];
+    double length = wr_fixture_scale_wrench(f, bias, hb);
+    wr_support_strong strong;
+    wr_status status =
+        wr_supports_strong(analysis, supports, env, bias, WR_DEFAULT_TOLERANCE, stop, &strong);
+    if (status != WR_OK)
+        return status;
+    out->solves += strong.solves;
+    /* The lower bound: b's depth in p + K, the witness's set with its
+     * friction fixed (p, the supports' share of the witness) and K the
+     * cone of its direction and the mode's contact generators.  p + K is
+     * in U, so a wrench nearer b than the depth is in U too. */
+    double lower = 0, face[3] = {0, 0, 0};
+    if (strong.verdict == WR_VERDICT_OUTSIDE) {
+        const wr_cone *cone = wr_analysis_cone(analysis, WR_SET_STRONG, strong.blocking);
+        double generators[WR_HULL_MAX][3], p[3] = {0, 0, 0}, rest[3];
+        int n = 0;
+        double q[3] = {strong.acceleration[0] * f->mass, strong.acceleration[1] * f->mass,
+                       strong.acceleration[2] * f->mass * f->gyration_radius};
+        if (wr_fixture_unit_direction(q) > 0)
+            wr_copy3(q, generators[n++]);
+        for (int j = 0; j < cone->generator_count && n < WR_HULL_MAX; j++)
+            if (cone->origins[j].fixel >= 0)
+                wr_copy3(cone->generators[j], generators[n++]);
+        for (int i = 0; i < supports->count; i++) {
+            /* -f_i as a wrench about the centre of mass, scaled. */
+            double r[2], w[3];
+            arm(f, supports, i, r);
+            double fx = -strong.support_force[i][0], fy = -strong.support_force[i][1];
+            w[0] = fx;
+            w[1] = fy;
+            w[2] = (r[0] * fy - r[1] * fx) / f->gyration_radius;
+            for (int k = 0; k < 3; k++)
+                p[k] += w[k];
+        }
+        for (int k = 0; k < 3; k++)
+            rest[k] = hb[k] - p[k];
+        wr_hrep k;
+        if (n > 0 && wr_hull_from_generators((const double (*)[3])generators, n, &k) &&
+            k.dimension == 3) {
+            lower = INFINITY;
+            for (int i = 0; i < k.facet_count; i++) {
+                double depth = -wr_dot3(k.facets[i], rest);
+                if (depth < lower) {
+                    lower = depth;
+                    wr_copy3(k.facets[i], face);
+                }
+            }
+            if (!(lower > 0) || !isfinite(lower))
+                lower = 0;
+        }
+        out->blocking = strong.blocking;
+    }
+    /* The upper bound: a held wrench, along the nearest face's normal,
+     * then towards the zero wrench (held at zero load: MODEL.md). */
+    double best = INFINITY, direction[3] = {0, 0, 0};
+    if (wr_norm3(face) > 0) {
+        double s;
+        status = held_along(analysis, supports, env, hb, face, lower, lower + 2 * length + 1e-9,
+                            stop, &s, &out->solves);
+        if (status != WR_OK)
+            return status;
+        if (s < best) {
+            best = s;
+            wr_copy3(face, direction);
+        }
+    }
+    if (length > 0) {
+        double toward[3] = {-hb[0] / length, -hb[1] / length, -hb[2] / length};
+        double s;
+        status = held_along(analysis, supports, env, hb, toward, lower,
+                            fmin(length, best), stop, &s, &out->solves);
+        if (status != WR_OK)
+            return status;
+        if (s < best) {
+            best = s;
+            wr_copy3(toward, direction);
+        }
+    }
+    /* The margin is the attained end, or the certified one when no held
+     * wrench was found (holding undecided even at zero). */
+    out->bracket[0] = -best;
+    out->bracket[1] = -lower;
+    out->margin = isfinite(best) ? -best : -lower;
+    out->converged = lower >= best * (1 - WR_SUPPORT_MARGIN_TOLERANCE);
+    memset(out->worst_direction, 0, sizeof out->worst_direction);
+    if (!isfinite(best) && length > 0)
+        for (int k = 0; k < 3; k++)
+            direction[k] = -hb[k] / length;
+    wr_fixture_unscale_wrench(f, direction, out->worst_direction);
+    return WR_OK;
+}
+
+wr_status wr_supports_margin(const wr_analysis *analysis, const wr_supports *supports,
+                             wr_lp_env *env, const double bias[3], const wr_stop *stop,
+                             wr_support_margin *out)
+{
+    memset(out, 0, sizeof *out);
+    out->blocking = -1;
+    if (!isfinite(bias[0]) || !isfinite(bias[1]) || !isfinite(bias[2]))
+        return WR_INVALID;
+    margin_call call = {.analysis = analysis, .supports = supports, .bias = bias, .stop = stop,
+                        .out = out};
+    wr_status status = wr_lp_guarded(env, margin_body, &call);
+    if (status != WR_OK || !out->moves)
+        return status;
+    return margin_moving(analysis, supports, env, bias, stop, out);
 }
 
 /* ---- push regions on the plate -------------------------------------------- */

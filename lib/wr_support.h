@@ -151,6 +151,54 @@ wr_status wr_supports_strong(const wr_analysis *analysis, const wr_supports *sup
                              wr_lp_env *env, const double wrench[3], double tolerance,
                              const wr_stop *stop, wr_support_strong *out);
 
+/* The disturbance margin on the plate (docs/MODEL.md section 11, "The
+ * disturbance margin"): in the scaled metric of the floating one, not
+ * normalised (model-system force units), the distance from the bias b to
+ * the closed set U of wrenches under which the seated part is not held --
+ * the union over moving modes and their directions q of the wrenches a
+ * consistent motion makes (wr_supports_strong's model).
+ *
+ * b held: margin = lo > 0 and bracket [lo, hi]: lo certified (the least
+ * lower bound over a branch and bound on the cells of directions, each an
+ * LP whose set holds every consistent wrench of its cell, its distance
+ * measured in a polyhedral norm no larger than the Euclidean one), hi
+ * attained (b + hi * worst_direction is a consistent wrench of mode
+ * `blocking`, found by the exact LP at one direction).  Cells are split
+ * until lo is within WR_SUPPORT_MARGIN_TOLERANCE of hi (converged) or
+ * WR_SUPPORT_MARGIN_CELLS cells are solved (the bracket as it stands).
+ *
+ * b moves the part: the margin is minus the distance from b to the held
+ * set, bracketed: margin = bracket[0] = -hi, hi the distance to a wrench
+ * proved held (wr_supports_strong inside: along the nearest face's normal
+ * of the witness's set, else towards the zero wrench), which is b + hi *
+ * worst_direction; bracket[1] = -lo, lo b's depth in the convex set of the
+ * witness's direction alone (its friction fixed, its cone of motion and
+ * contact forces), a lower bound: every wrench nearer is still in it.  hi
+ * is INFINITY when no held wrench is found (bracket[0] -INFINITY), and
+ * the margin is then bracket[1].
+ *
+ * bounded false (the rest zero): no moving mode, nothing moves the part.
+ * WR_OK, WR_INVALID (a bias not finite), WR_LP_FAILED, WR_NO_MEMORY,
+ * WR_STOPPED. */
+#define WR_SUPPORT_MARGIN_TOLERANCE 1e-6
+#define WR_SUPPORT_MARGIN_CELLS 4000
+typedef struct wr_support_margin {
+    bool bounded;
+    bool held;               /* b proved held (margin > 0) */
+    bool moves;              /* b moves the part (a consistent motion found) */
+    double margin;
+    double bracket[2];       /* the signed margin lies in it */
+    bool converged;          /* bracket within the tolerance (relative) */
+    int blocking;            /* the strong cone (mode) of the nearest motion,
+                                or of the witness when b moves */
+    double worst_direction[3]; /* a physical wrench of unit scaled length */
+    int cells, solves;
+} wr_support_margin;
+
+wr_status wr_supports_margin(const wr_analysis *analysis, const wr_supports *supports,
+                             wr_lp_env *env, const double bias[3], const wr_stop *stop,
+                             wr_support_margin *out);
+
 /* The same supports with mu_B = mu (static and kinetic, no interval), into
  * *out: a shallow copy sharing `supports`' distributions, valid while it
  * is, never passed to wr_supports_free. */

@@ -385,6 +385,10 @@ class Disturbance:
     robust: Optional[str] = None
     perturbation: Optional[List[List[float]]] = None
     perturbation_normals: Optional[List[List[float]]] = None
+    # A fixture on supports: [lo, hi] holding the exact margin (an end None
+    # when nothing bounds it), and whether they met within 1e-6.
+    bracket: Optional[List[Optional[float]]] = None
+    converged: Optional[bool] = None
 
 
 @dataclass

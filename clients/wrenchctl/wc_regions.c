@@ -461,9 +461,28 @@ static void print_margin(const cJSON *result, bool held)
     }
     char why[512];
     wc_explain_strong(blocking, why, sizeof why);
-    printf("margin    %+.9g  (%s)\n", margin->valuedouble,
-           held ? "any smaller disturbance is held, in the scaled metric"
-                : "not held: the bias itself is inside G_strong's excluded cones");
+    /* On supports the answer is bracketed (its ends null when unbounded). */
+    const cJSON *bracket = cJSON_GetObjectItem(result, "bracket");
+    const char *moving = bracket ? "not held: the bias itself moves the part on its supports"
+                                 : "not held: the bias itself is inside G_strong's excluded cones";
+    if (cJSON_IsNumber(margin))
+        printf("margin    %+.9g  (%s)\n", margin->valuedouble,
+               held ? "any smaller disturbance is held, in the scaled metric" : moving);
+    else
+        printf("margin    unknown  (%s; no held wrench found)\n", moving);
+    if (cJSON_IsArray(bracket)) {
+        printf("bracket  ");
+        for (int k = 0; k < 2; k++) {
+            const cJSON *end = cJSON_GetArrayItem(bracket, k);
+            if (cJSON_IsNumber(end))
+                printf(" %+.9g", end->valuedouble);
+            else
+                printf(" null");
+        }
+        printf("  (%s)\n", cJSON_IsTrue(cJSON_GetObjectItem(result, "converged"))
+                               ? "converged"
+                               : "not converged: the exact margin lies between");
+    }
     printf("blocking  %s: %s\n", blocking, why);
     printf("worst     (%.6g, %.6g, %.6g)\n", cJSON_GetArrayItem(worst, 0)->valuedouble,
            cJSON_GetArrayItem(worst, 1)->valuedouble, cJSON_GetArrayItem(worst, 2)->valuedouble);

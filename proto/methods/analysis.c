@@ -573,6 +573,76 @@ static void write_robust_verdict(wp_writer *out, const wr_fixture *f, const wr_r
     wp_write_perturbation(out, f, r);
 }
 
+/* A bracket's end: null when no wrench bounds it (no held wrench found). */
+static void write_bound(wp_writer *out, double value)
+{
+    if (isfinite(value))
+        wp_write_number(out, value + 0.0);
+    else
+        wp_write_null(out);
+}
+
+/* stability.margin on supports (wr_supports_margin): the distance from the
+ * bias to the wrenches that move the seated part, in the fixture's force
+ * unit, with the bracket proved around it. */
+static bool margin_on_supports(wp_call *call, wp_fixture_use *use, wp_writer *out)
+{
+    const wr_fixture *f = use->fixture;
+    double bias[3];
+    if (!wp_wrench_read(cJSON_GetObjectItemCaseSensitive(call->params, "bias"), "params.bias", f,
+                        bias, call->error))
+        return false;
+    /* The bias is read in the fixture's force unit; the supports' friction
+     * counts in the model system (wr_support.h): converted there and back,
+     * as wp_supports_answer does. */
+    const double k = wr_fixture_force_factor(f);
+    for (int j = 0; j < 3; j++)
+        bias[j] *= k;
+    wr_lp_env *env = call->host->lp_env ? call->host->lp_env(call->host->self) : NULL;
+    wr_support_margin m;
+    wr_status status = env ? wr_supports_margin(use->analysis, f->supports, env, bias,
+                                                call->host->stop, &m)
+                           : WR_LP_FAILED;
+    if (status != WR_OK) {
+        wp_error_status(call->error, status, status == WR_INVALID ? "params.bias" : "", "%s",
+                        status == WR_INVALID ? "not finite in the model's units"
+                                             : wr_strerror(status));
+        return false;
+    }
+    wp_write_object(out);
+    if (!m.bounded) {
+        /* No moving mode at all: no disturbance moves the part. */
+        static const char *const keys[] = {"margin", "blocking", "worst_direction", "bracket"};
+        for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+            wp_write_key(out, keys[i]);
+            wp_write_null(out);
+        }
+        wp_write_object_end(out);
+        return true;
+    }
+    wp_write_key(out, "margin");
+    write_bound(out, m.margin / k);
+    wp_write_key(out, "blocking");
+    if (m.blocking >= 0) {
+        char text[WR_CONSTRAINT_TEXT];
+        wr_constraint_format(&wr_analysis_constraints(use->analysis, WR_SET_STRONG)[m.blocking],
+                             text);
+        wp_write_string(out, text);
+    } else {
+        wp_write_null(out);
+    }
+    wp_write_key(out, "worst_direction");
+    write_vector3(out, m.worst_direction);
+    wp_write_key(out, "bracket");
+    wp_write_array(out);
+    write_bound(out, m.bracket[0] / k);
+    write_bound(out, m.bracket[1] / k);
+    wp_write_array_end(out);
+    wp_write_member_bool(out, "converged", m.converged);
+    wp_write_object_end(out);
+    return true;
+}
+
 bool wp_handle_stability_margin(wp_call *call, wp_writer *out)
 {
     const cJSON *params = call->params;
@@ -580,10 +650,8 @@ bool wp_handle_stability_margin(wp_call *call, wp_writer *out)
     wp_fixture_use *use = wp_call_fixture(call);
     if (!use)
         return false;
-    if (wp_supports_refuse(call, use->fixture, "params.bias",
-                           "the biasing wrench with its disturbances to wrench.classify: the "
-                           "disturbance margin is a distance between directions"))
-        return false;
+    if (use->fixture->supports)
+        return margin_on_supports(call, use, out);
     double bias[3];
     wr_disturbance d;
     bool read = wp_wrench_read(cJSON_GetObjectItemCaseSensitive(params, "bias"), "params.bias",

@@ -122,7 +122,6 @@ def test_zero_load_held(client):
 
 
 @pytest.mark.parametrize("method,params,field", [
-    ("stability.margin", {"bias": [0, -1, 0]}, "params.bias"),
     ("force.range", {"push": {"at": [1 / R2, 1 / R2]}, "cases": [{"loads": [{"wrench": [0, 0, 0]}]}]},
      "params.sets"),
     ("push.force", {"cases": [{"loads": [{"wrench": [0, 0, 0]}]}]}, "params.set"),

@@ -325,7 +325,7 @@ static bool fixture_work(const cJSON *r, wr_set set, double *cones, double *edge
  * so that the fuzzer spends its time over every method alike. */
 #define SLOW_SHARE 4
 static const char *const SLOW_METHODS[] = {"fixture.design", "friction.sweep", "push.force",
-                                           "force.range", "gravity.sweep"};
+                                           "force.range", "gravity.sweep", "stability.margin"};
 
 static bool slow_request(const cJSON *r, bool answer_slow)
 {

@@ -227,9 +227,9 @@ static inline wr_fixture *test_disc_corner(double mu)
     return test_fixture_new(&spec, NULL);
 }
 
-/* The 3-2-1 plate of docs/MODEL.md section 7.2: 4 by 2, m = 2, fixels
- * at (1, 0), (3, 0) and (0, 1), mu_s 0.3, mu_k 0.25. */
-static inline wr_fixture *test_plate_321(void)
+/* The 3-2-1 plate of docs/MODEL.md section 7.2 (4 by 2, m = 2, fixels at
+ * (1, 0), (3, 0) and (0, 1)) with fixels of friction mu_s, mu_k. */
+static inline wr_fixture *test_plate_321_friction(double mu_s, double mu_k)
 {
     static const double vertices[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
     wr_fixel_spec fixels[3];
@@ -244,12 +244,18 @@ static inline wr_fixture *test_plate_321(void)
     spec.vertex_count = 4;
     spec.vertices = vertices;
     spec.friction.given = true;
-    spec.friction.static_mu = 0.3;
+    spec.friction.static_mu = mu_s;
     spec.friction.kinetic_given = true;
-    spec.friction.kinetic_mu = 0.25;
+    spec.friction.kinetic_mu = mu_k;
     spec.fixel_count = 3;
     spec.fixels = fixels;
     return test_fixture_new(&spec, NULL);
+}
+
+/* The 3-2-1 plate with its own friction: mu_s 0.3, mu_k 0.25. */
+static inline wr_fixture *test_plate_321(void)
+{
+    return test_plate_321_friction(0.3, 0.25);
 }
 
 /* Does (q, c) of a witness satisfy the closure of the constraint's rows
