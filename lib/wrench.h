@@ -42,6 +42,7 @@
 #include "wr_status.h"
 #include "wr_tolerance.h"
 #include "wr_support.h"
+#include "wr_support_sweep.h"
 #include "wr_sweep.h"
 #include "wr_symmetry.h"
 

@@ -936,12 +936,13 @@ int wrc_force_sweep(wrc_client *c, const char *fixture_id, const wrc_load *loads
         end = read_pairs(samples, curve, capacity, &sweep->sample_count);
     if (end)
         points = value_of(end, "at");
-    /* Over the supports the answer has no intervals of the push alone. */
+    /* On supports (over either friction) the answer has no intervals of
+     * the push alone. */
     if (!end || !points || !read_pairs(points, at, capacity, &located) ||
         located != sweep->sample_count ||
-        (!r->over_supports && (!intervals || !read_intervals(intervals, &alone))))
-        return fail(c, WRC_EPROTO, "the answer has no curve, points or intervals");
-    if (r->over_supports)
+        (intervals && !read_intervals(intervals, &alone)))
+        return fail(c, WRC_EPROTO, "the answer has no curve or points, or bad intervals");
+    if (!intervals)
         return WRC_OK;
     sweep->interval_count = alone.interval_count;
     memcpy(sweep->intervals, alone.intervals, sizeof sweep->intervals);

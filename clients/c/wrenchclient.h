@@ -210,7 +210,8 @@ typedef struct wrc_force_sweep_request {
     const char *push_on;    /* "outer", "all", or NULL: every loop */
     /* Non-zero: sweep the supports' mu_B of a fixture on a base plate
      * ("over": "supports"; set "goal", a point finger) instead of the
-     * fixels' mu; the answer then has no intervals (interval_count 0). */
+     * fixels' mu; the answer then has no intervals (interval_count 0), as
+     * for any fixture on supports. */
     int over_supports;
 } wrc_force_sweep_request;
 

@@ -1227,7 +1227,10 @@ class _Methods:
         (wrenches: where each seats; force: the least push on the plate;
         push: {"force": F, "cases"?, "push_on"?}, where a push that hard
         seats it; gravity: {"in_plane_g": A}, the tilts whose pull seats
-        it; set goal throughout).  Exactly one of
+        it; set goal throughout).  Without it a fixture on a base plate
+        sweeps its fixels' mu with the supports kept: the same questions,
+        and wrenches with every set (strong and both sampled: `exact`
+        False, every mu given proved held).  Exactly one of
         `wrenches` (with `sets`, default the daemon's: goal and strong),
         `push`, `gravity` and `force` (with `cases`, as force_range's: the
         least push force against mu); each of the last three is a set name,

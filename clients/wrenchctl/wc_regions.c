@@ -537,11 +537,13 @@ int wc_sweep_request(wc_run *run, cJSON *params)
     /* Over the supports a push has push.regions' force, cases and push_on,
      * a tilt its pull. */
     bool plate = run->over && strcmp(run->over, "supports") == 0;
-    bool plate_push = plate && push;
-    if (run->push_force_given && !plate_push)
-        return wc_usage_error("sweep: --force is for --push with --over supports");
-    if (run->in_plane_g_given && !(plate && strcmp(run->sweep_kind, "gravity") == 0))
-        return wc_usage_error("sweep: --in-plane-g is for --gravity with --over supports");
+    /* Over the fixels' mu of a fixture on supports too: the daemon refuses
+     * a force or a pull for a floating part, naming the member. */
+    bool plate_push = push && (plate || run->push_force_given);
+    if (run->push_force_given && !push)
+        return wc_usage_error("sweep: --force is for --push on supports");
+    if (run->in_plane_g_given && strcmp(run->sweep_kind, "gravity") != 0)
+        return wc_usage_error("sweep: --in-plane-g is for --gravity on supports");
     if (run->over)
         cJSON_AddStringToObject(params, "over", run->over);
     if (run->set && !wrenches)
@@ -656,11 +658,16 @@ static void print_force_sweep(const wc_run *run, const cJSON *result)
     char what[96];
     snprintf(what, sizeof what, "the least push force, set %s", run->sweep_set);
     print_sweep_header(run, what);
-    printf("the push alone has a region (a large enough push does it whatever the loads) for "
-           "mu in ");
-    print_intervals(cJSON_GetObjectItem(result, "intervals"));
-    printf("sampled: each value exact at its mu; grid step %g, and every interval end\n",
-           cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+    /* On a base plate the answer has no intervals of the push alone. */
+    const cJSON *intervals = cJSON_GetObjectItem(result, "intervals");
+    if (intervals) {
+        printf("the push alone has a region (a large enough push does it whatever the loads) "
+               "for mu in ");
+        print_intervals(intervals);
+    }
+    printf("sampled: each value exact at its mu; grid step %g%s\n",
+           cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")),
+           intervals ? ", and every interval end" : "");
     printf("%12s  %16s  %s\n", "mu", "least force", "at");
     const cJSON *curve = cJSON_GetObjectItem(result, "curve"), *at = cJSON_GetObjectItem(result, "at");
     int n = cJSON_GetArraySize(curve), every = run->table_full || n <= 24 ? 1 : n / 12, shown = 0;
@@ -831,6 +838,11 @@ static void print_wrench_sweep(const wc_run *run, const cJSON *result)
         }
         index++;
     }
+    if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
+        printf("on the plate, strong and both sampled: grid step %g, each change bisected; "
+               "every mu given is proved held, an interval narrower than the step may be "
+               "missed\n",
+               cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
     const char *sets[3];
     int set_count = sweep_sets(results, sets);
     for (int i = 0; i < set_count; i++)

@@ -878,7 +878,9 @@ const wc_command wc_commands[] = {
      "                      that hard seats it; --gravity goal with --in-plane-g A: the tilts\n"
      "                      whose pull seats it; both shrink as mu_B grows, and the critical\n"
      "                      mu_B is bisected to 1e-9\n"
-     "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
+     "On supports without --over: the fixels' mu swept, the buttons' friction kept: for\n"
+     "--wrench goal is exact, strong and both sampled (every mu given proved held);\n"
+     "--least-force, --push and --gravity as with --over supports.\n"     "Exit status 0 when the region is not empty for some mu (for wrenches: when each wrench is\n"
      "inside each set for some mu; for the least force: when some push does it at some mu),\n"
      "1 when not."},
     {"locate", "FIXTURE --tolerance T[,T2,T3] [--feature [NAME=]X,Y]... [--sigma-ratio R]\n"

@@ -51,6 +51,16 @@ typedef struct sweep_state {
     /* params.over "supports": the supports' mu_B swept (wrenches, goal;
      * sweep_supports_step) instead of the fixels' mu */
     bool over_supports;
+    /* A fixture on supports swept over its fixels' mu (wrenches: a
+     * wr_support_sweep job per wrench and set, sweep_fixels_step; force:
+     * the least push on the plate at each mu, sweep_supports_force_step) */
+    bool fixels_on_supports;
+    wr_support_sweep *fixels_job;
+    /* push and gravity over the fixels' mu (plate_piece): the fixture at
+     * fixels_mu and its analysis, made again when mu changes */
+    wr_fixture fixels_at;
+    wr_analysis *fixels_analysis;
+    double fixels_mu;
     /* Over the supports, "push" or "gravity" (sweep_plate_step): the push's
      * force and cases or the pull, and the curve made so far -- the grid's
      * points (PLATE_GRID steps), then the critical mu_B bisected in
@@ -257,7 +267,7 @@ static bool read_sweep(wp_call *call, const wr_fixture *fixture, sweep_state *st
     const char *path = push ? "params.push" : "params.gravity";
     const cJSON *what = cJSON_GetObjectItemCaseSensitive(params, push ? "push" : "gravity");
     state->request.set_count = 1;
-    const char *const *fields = state->over_supports
+    const char *const *fields = state->over_supports || state->fixels_on_supports
                                     ? (push ? PLATE_PUSH_FIELDS : PLATE_GRAVITY_FIELDS)
                                     : (push ? SWEEP_PUSH_FIELDS : SWEEP_GRAVITY_FIELDS);
     if (!wp_check_object(what, path, fields, error) ||
@@ -278,6 +288,8 @@ static void sweep_free(void *stream)
         return;
     sweep_state *state = stream;
     wr_sweep_job_free(state->job);
+    wr_support_sweep_free(state->fixels_job);
+    wr_analysis_free(state->fixels_analysis);
     for (int s = 0; s < 3; s++)
         wr_sweeper_free(state->sweepers[s]);
     free(state->request.wrenches);
@@ -292,8 +304,7 @@ static void sweep_free(void *stream)
 }
 
 /* params.over: "fixels" (default: a common mu at every fixel) or
- * "supports" (the supports' mu_B).  On supports only the latter is swept:
- * the fixels' mu changes the cones, and with them every grown cone. */
+ * "supports" (the supports' mu_B, which a fixture on supports alone has). */
 static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
 {
     const char *over = NULL;
@@ -305,18 +316,36 @@ static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
         return false;
     }
     state->over_supports = over && strcmp(over, "supports") == 0;
+    state->fixels_on_supports = !state->over_supports && f->supports;
     if (state->over_supports && !f->supports) {
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
                      "the fixture has no supports: sweep its fixels' friction (\"fixels\")");
         return false;
     }
-    if (!state->over_supports && f->supports) {
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.over",
-                     "the fixture rests on supports: friction.sweep sweeps their mu_B "
-                     "(\"over\": \"supports\"); for other fixel frictions ask "
-                     "wrench.classify or force.range with one fixture per coefficient");
+    return true;
+}
+
+/* "force" on supports, over `over`: push.force's least push on the plate
+ * (set goal, a polygon, a point finger). */
+static bool supports_force_question(wp_call *call, sweep_state *state, const char *over)
+{
+    const cJSON *force = cJSON_GetObjectItemCaseSensitive(call->params, "force");
+    const wr_fixture *f = wp_call_fixture(call)->fixture;
+    const char *why = cJSON_GetObjectItemCaseSensitive(force, "set") &&
+                              state->request.sets[0] != WR_SET_GOAL
+                          ? "params.force.set"
+                      : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
+                      : state->finger.radius > 0     ? "params.force.finger_radius"
+                                                     : NULL;
+    if (why) {
+        wp_error_set(call->error, WP_INVALID_PARAMS, why,
+                     "over %s the sweep gives the least push that seats the part on its "
+                     "supports (set \"goal\"), along a polygon's straight edges, for a point "
+                     "finger",
+                     over);
         return false;
     }
+    state->request.sets[0] = WR_SET_GOAL;
     return true;
 }
 
@@ -324,7 +353,7 @@ static bool read_over(wp_call *call, const wr_fixture *f, sweep_state *state)
  * "force" (with "cases" and "push_on") as push.regions reads them on
  * supports, or the pull "in_plane_g" as gravity.sweep does; set "goal",
  * what seating decides (sweep_plate_step). */
-static bool plate_question(wp_call *call, sweep_state *state)
+static bool plate_question(wp_call *call, sweep_state *state, const char *over)
 {
     const wr_fixture *f = wp_call_fixture(call)->fixture; /* held since begin */
     const bool push = state->what == SWEEP_PUSH;
@@ -349,9 +378,10 @@ static bool plate_question(wp_call *call, sweep_state *state)
             return true;
         wp_path_key(field, path, "set");
         wp_error_set(call->error, WP_INVALID_PARAMS, field,
-                     "over the supports' mu_B the sweep gives the tilts whose pull seats the part "
-                     "(set \"goal\"); whether it is held is wrench.classify's \"strong\" at each "
-                     "mu_B");
+                     "over %s the sweep gives the tilts whose pull seats the part (set "
+                     "\"goal\"); whether it is held is wrench.classify's \"strong\" at each "
+                     "coefficient",
+                     over);
         return false;
     }
     if (!wp_push_load_read_at(what, path, f, state->finger.friction, wp_case_limit(call->limits),
@@ -375,36 +405,31 @@ static bool plate_question(wp_call *call, sweep_state *state)
         why = field;
     }
     wp_error_set(call->error, WP_INVALID_PARAMS, why,
-                 "over the supports' mu_B the sweep gives where a push of the given force seats "
-                 "the part (set \"goal\"), along a polygon's straight edges, for a point finger");
+                 "over %s the sweep gives where a push of the given force seats the part (set "
+                 "\"goal\"), along a polygon's straight edges, for a point finger",
+                 over);
     return false;
+}
+
+/* Over the fixels' mu on supports: the wrenches' sets (wr_support_sweep),
+ * and as over the supports' mu_B the least push, the push regions under a
+ * force and the tilts under a pull. */
+static bool fixels_question(wp_call *call, sweep_state *state)
+{
+    static const char over[] = "the fixels' mu on a fixture with supports";
+    if (state->what == SWEEP_FORCE)
+        return supports_force_question(call, state, over);
+    return state->what == SWEEP_WRENCHES || plate_question(call, state, over);
 }
 
 /* Over the supports' mu_B: the wrenches' seating (goal), which
  * wr_supports_friction_limit decides exactly. */
 static bool supports_question(wp_call *call, sweep_state *state)
 {
-    if (state->what == SWEEP_FORCE) {
-        const cJSON *force = cJSON_GetObjectItemCaseSensitive(call->params, "force");
-        const wr_fixture *f = wp_call_fixture(call)->fixture;
-        const char *why = cJSON_GetObjectItemCaseSensitive(force, "set") &&
-                                  state->request.sets[0] != WR_SET_GOAL
-                              ? "params.force.set"
-                          : f->shape != WR_SHAPE_POLYGON ? "params.fixture.body.shape"
-                          : state->finger.radius > 0     ? "params.force.finger_radius"
-                                                         : NULL;
-        if (why) {
-            wp_error_set(call->error, WP_INVALID_PARAMS, why,
-                         "over the supports' mu_B the sweep gives the least push that seats the "
-                         "part (set \"goal\"), along a polygon's straight edges, for a point "
-                         "finger");
-            return false;
-        }
-        state->request.sets[0] = WR_SET_GOAL;
-        return true;
-    }
+    if (state->what == SWEEP_FORCE)
+        return supports_force_question(call, state, "the supports' mu_B");
     if (state->what != SWEEP_WRENCHES)
-        return plate_question(call, state);
+        return plate_question(call, state, "the supports' mu_B");
     wp_classify_request *r = &state->request;
     if (!cJSON_GetObjectItemCaseSensitive(call->params, "sets")) {
         r->sets[0] = WR_SET_GOAL;
@@ -430,12 +455,15 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
     if (!state)
         return NULL;
     if (!read_over(call, use->fixture, state) || !read_sweep(call, use->fixture, state) ||
-        (state->over_supports && !supports_question(call, state))) {
+        (state->over_supports && !supports_question(call, state)) ||
+        (state->fixels_on_supports && !fixels_question(call, state))) {
         sweep_free(state);
         return NULL;
     }
     if (state->over_supports)
         return state; /* no sweeper: the supports' friction leaves the cones as they are */
+    if (state->fixels_on_supports)
+        return state; /* no sweeper: each answer is a point answer at its mu */
     if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
         /* The curves' exact machinery varies mu on the nominal fixels. */
         wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
@@ -765,21 +793,40 @@ static wr_status plate_piece(sweep_state *state, wp_call *call, wp_fixture_use *
                              wr_lp_env *env, double mu, unsigned long *used, bool *done)
 {
     const wr_fixture *f = use->fixture;
+    /* The supports at mu_B = mu with the fixture's analysis, or (over the
+     * fixels) the fixture placed again with mu on every fixel and its
+     * supports as they are. */
     wr_supports at_mu;
-    wr_supports_with_friction(f->supports, mu, &at_mu);
-    wr_regions found = {0}, undecided = {0};
+    const wr_supports *supports = &at_mu;
+    const wr_analysis *analysis = use->analysis;
     wr_status status = WR_OK;
+    if (!state->fixels_on_supports) {
+        wr_supports_with_friction(f->supports, mu, &at_mu);
+    } else {
+        if (!state->fixels_analysis || state->fixels_mu != mu) {
+            wr_analysis_free(state->fixels_analysis);
+            state->fixels_analysis = NULL;
+            wr_fixture_at_friction(f, mu, state->range.kinetic_ratio, &state->fixels_at);
+            status = wr_analysis_new(&state->fixels_at, &state->fixels_analysis);
+            if (status != WR_OK)
+                return status;
+            state->fixels_mu = mu;
+        }
+        analysis = state->fixels_analysis;
+        supports = f->supports;
+    }
+    wr_regions found = {0}, undecided = {0};
     if (state->what == SWEEP_GRAVITY) {
         /* The arcs proved to seat; the undecided ones (each under
          * WR_SUPPORT_MIN_ARC degrees) are not counted. */
-        status = wr_supports_gravity_sweep(use->analysis, &at_mu, env, state->pull,
+        status = wr_supports_gravity_sweep(analysis, supports, env, state->pull,
                                            call->host->stop, &found, &undecided);
         *used += PLATE_TILT_COST;
         *done = true;
     } else {
         const wp_push_load *load = &state->push_load;
         if (wr_finger_pushes_on(f, &state->finger, state->edge))
-            status = wr_supports_push_regions(use->analysis, &at_mu, env, load->force,
+            status = wr_supports_push_regions(analysis, supports, env, load->force,
                                               (const double (*)[3])load->loads, load->count,
                                               state->edge, &found);
         *used += PLATE_EDGE_COST;
@@ -921,7 +968,34 @@ static wp_step sweep_plate_step(sweep_state *state, wp_call *call, wp_writer *ou
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
-/* Over the supports' mu_B, "force": {"curve": [[mu, F | null], ...], "at":
+/* The least push on the plate (wr_supports_least_force_find) at mu: the
+ * supports' mu_B = mu (over the supports), or the fixture placed again
+ * with mu on every fixel (over the fixels). */
+static wr_status supports_least_at(const sweep_state *state, const wp_fixture_use *use,
+                                   wr_lp_env *env, double mu, const wr_stop *stop,
+                                   wr_least_force *least)
+{
+    const double (*loads)[3] = (const double (*)[3])state->loads;
+    if (!state->fixels_on_supports) {
+        wr_supports at_mu;
+        wr_supports_with_friction(use->fixture->supports, mu, &at_mu);
+        return wr_supports_least_force_find(use->analysis, &at_mu, env, loads,
+                                            state->cases.count, &state->finger, stop, least);
+    }
+    wr_fixture at;
+    wr_fixture_at_friction(use->fixture, mu, state->range.kinetic_ratio, &at);
+    wr_analysis *analysis;
+    wr_status status = wr_analysis_new(&at, &analysis);
+    if (status != WR_OK)
+        return status;
+    status = wr_supports_least_force_find(analysis, at.supports, env, loads, state->cases.count,
+                                          &state->finger, stop, least);
+    wr_analysis_free(analysis);
+    return status;
+}
+
+/* Over the supports' mu_B (or the fixels' mu on supports), "force":
+ * {"curve": [[mu, F | null], ...], "at":
  * [[x, y] | null, ...], "exact": false, "resolution": step}: the least push
  * on the plate (wr_supports_least_force_find) at SUPPORTS_FORCE_SAMPLES
  * coefficients evenly over the range, ends included, a sample a step. */
@@ -955,12 +1029,8 @@ static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_w
         double mu = state->sample + 1 == SUPPORTS_FORCE_SAMPLES
                         ? state->range.high
                         : state->range.low + state->sample * step;
-        wr_supports at_mu;
-        wr_supports_with_friction(use->fixture->supports, mu, &at_mu);
         wr_least_force least;
-        wr_status status = wr_supports_least_force_find(
-            use->analysis, &at_mu, env, (const double (*)[3])state->loads, state->cases.count,
-            &state->finger, call->host->stop, &least);
+        wr_status status = supports_least_at(state, use, env, mu, call->host->stop, &least);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
@@ -988,11 +1058,99 @@ static wp_step sweep_supports_force_step(sweep_state *state, wp_call *call, wp_w
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* "exact": false and the grid's step when a set asked is sampled (strong,
+ * both: wr_support_sweep.h); nothing when only goal is asked. */
+static void write_fixels_exactness(const sweep_state *state, wp_writer *out)
+{
+    const wp_classify_request *r = &state->request;
+    for (int s = 0; s < r->set_count; s++)
+        if (r->sets[s] != WR_SET_GOAL) {
+            wp_write_member_bool(out, "exact", false);
+            wp_write_member_number(out, "resolution", (state->range.high - state->range.low) /
+                                                          WR_SUPPORT_SWEEP_GRID);
+            return;
+        }
+}
+
+/* Over the fixels' mu on supports, "wrenches": {"results": [{"goal":
+ * [...], "strong": [...]}, ...], "exact"?, "resolution"?}, a
+ * wr_support_sweep job per wrench and set. */
+static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                unsigned long budget, unsigned long *used)
+{
+    wp_fixture_use *use;
+    wr_lp_env *env = supports_env(call, &use);
+    if (!env)
+        return WP_STEP_FAILED;
+    const wp_classify_request *r = &state->request;
+    if (!state->opened) {
+        state->opened = true;
+        wp_write_object(out);
+        wp_write_key(out, "results");
+        wp_write_array(out);
+    }
+    bool stopped = false;
+    double reached = 0;
+    for (bool first = true; state->next < r->wrench_count && !out->out->failed && !stopped;
+         first = false) {
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        if (!state->fixels_job) {
+            /* In the model system, where the supports' friction is. */
+            const double k = wr_fixture_force_factor(use->fixture);
+            const double *given = r->wrenches[state->next];
+            const double g[3] = {given[0] * k, given[1] * k, given[2] * k};
+            wr_status status = wr_support_sweep_new(use->fixture, g, r->sets[state->set],
+                                                    &state->range, &state->fixels_job);
+            if (status != WR_OK) {
+                wp_error_status(call->error, status, "params.wrenches", "%s",
+                                wr_strerror(status));
+                return WP_STEP_FAILED;
+            }
+        }
+        /* Past the deadline: the job ends where it has got to (as the
+         * floating sweep's, below). */
+        bool done = false;
+        stopped = deadline_passed(state);
+        wr_status status =
+            stopped ? wr_support_sweep_stop(state->fixels_job, &reached)
+                    : wr_support_sweep_run(state->fixels_job, env,
+                                           budget > *used ? budget - *used : 1, used,
+                                           call->host->stop, &done);
+        if (status != WR_OK) {
+            wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+            return WP_STEP_FAILED;
+        }
+        if (!done && !stopped)
+            continue;
+        if (state->set == 0)
+            wp_write_object(out);
+        wp_write_key(out, wp_set_names[r->sets[state->set]]);
+        write_intervals(out, wr_support_sweep_intervals(state->fixels_job));
+        wr_support_sweep_free(state->fixels_job);
+    wr_analysis_free(state->fixels_analysis);
+        state->fixels_job = NULL;
+        if (++state->set == r->set_count || stopped) {
+            wp_write_object_end(out);
+            state->set = 0;
+            state->next++;
+        }
+    }
+    wp_write_array_end(out);
+    write_fixels_exactness(state, out);
+    if (stopped)
+        write_stopped(out, reached);
+    wp_write_object_end(out);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
     sweep_state *state = stream;
-    if (state->over_supports)
+    if (state->fixels_on_supports && state->what == SWEEP_WRENCHES)
+        return sweep_fixels_step(state, call, out, budget, used);
+    if (state->over_supports || state->fixels_on_supports)
         return state->what == SWEEP_FORCE
                    ? sweep_supports_force_step(state, call, out, budget, used)
                : state->what == SWEEP_WRENCHES ? sweep_supports_step(state, call, out, budget, used)
