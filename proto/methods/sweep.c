@@ -1128,7 +1128,6 @@ static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *o
         wp_write_key(out, wp_set_names[r->sets[state->set]]);
         write_intervals(out, wr_support_sweep_intervals(state->fixels_job));
         wr_support_sweep_free(state->fixels_job);
-    wr_analysis_free(state->fixels_analysis);
         state->fixels_job = NULL;
         if (++state->set == r->set_count || stopped) {
             wp_write_object_end(out);
