@@ -1565,6 +1565,12 @@ typedef struct hold_lp {
                             it the cell is dropped; below it, kept whatever
                             the exact distance: either way decided) */
     double error[3];     /* out: e of the last solution (|e| attained) */
+    /* The caller reads the residual as a lower bound only (a cell dropped
+     * when it exceeds the margin), as the distance form does: a refinement
+     * GLPK cannot solve then leaves the last solution, whose discs held the
+     * true ones, instead of failing the cell.  Never for a witness, whose
+     * forces must lie in their discs. */
+    bool bound_only;
     /* out */
     double residual;     /* L1, or r in the distance form */
     double lambda[3];
@@ -1707,7 +1713,7 @@ static int hold_lp_solve(hold_lp *h)
             /* The residual columns make every LP feasible and bounded; a
              * refinement GLPK cannot solve leaves the last solution, whose
              * bound holds (its sets held the true ones too). */
-            return h->distance && round > 0 ? 0 : -1;
+            return (h->distance || h->bound_only) && round > 0 ? 0 : -1;
         }
         h->residual = glp_get_obj_val(l.p);
         for (int j = 0; j < h->c->count; j++)
@@ -1938,6 +1944,7 @@ static int pivot_witness(const model *m, const wr_cone *cone, const wr_hrep *q,
             cell at = {.count = 1};
             wr_copy3(d, at.ray[0]);
             hold_lp w = *base;
+            w.bound_only = false;
             w.c = &at;
             w.tangent_count = 0;
             w.solves = 0;
@@ -1973,7 +1980,7 @@ static int mode_search(const model *m, const wr_cone *cone, const double target[
     wr_hrep q;
     wr_hull_from_generators((const double (*)[3])accel, accel_count, &q);
     int result = 0, looked = 0;
-    hold_lp h = {.m = m, .cone = cone};
+    hold_lp h = {.m = m, .cone = cone, .bound_only = true};
     memcpy(h.target, target, sizeof h.target);
     while (top > 0) {
         if (wr_stop_requested(stop)) {
@@ -2009,6 +2016,7 @@ static int mode_search(const model *m, const wr_cone *cone, const double target[
         cell single = {.count = 1};
         wr_copy3(direction, single.ray[0]);
         hold_lp w = h;
+        w.bound_only = false;
         w.c = &single;
         w.solves = 0;
         if (hold_lp_solve(&w) < 0) {
@@ -2064,6 +2072,7 @@ static int mode_search(const model *m, const wr_cone *cone, const double target[
             if (!among)
                 break;
             hold_lp v = h;
+            v.bound_only = false;
             cell at = {.count = 1};
             wr_copy3(next, at.ray[0]);
             v.c = &at;

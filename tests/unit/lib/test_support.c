@@ -730,6 +730,47 @@ static void test_plate_clamp(void **state)
     wr_lp_env_free(env);
 }
 
+/* The 3-2-1 plate cut by F_c = 3 along +x through its centre of mass, no
+ * clamp, on the buttons above: by test_plate_clamp's power argument held
+ * exactly for mu_B >= F_c / W (0.1529; W = m g), moved below by the
+ * translation along +x.  Every mu_B of a fine grid either side must say
+ * so, not boundary: a refinement of a cell's discs that GLPK cannot solve
+ * leaves the cell's last bound, which still drops it (it failed at about
+ * one mu_B in four between 0.48 and 0.49). */
+static void test_plate_held_every_mu(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    wr_fixture *f = test_plate_321();
+    wr_analysis *a = test_analysis_new(f);
+    const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
+    const double cutting = 3, threshold = cutting / (2 * G);
+    const double load[3] = {cutting, 0, 0};
+    int held = 0, moved = 0;
+    for (int k = 0; k <= 160; k++) {
+        double mu = k < 16 ? threshold * (0.2 + 0.05 * k) : threshold * 1.001 + 0.005 * (k - 16);
+        wr_error error;
+        wr_supports *s = supports_new(f, buttons, 3, mu, G, NULL, 0, &error);
+        assert_non_null(s);
+        wr_support_strong strong;
+        assert_int_equal(
+            wr_supports_strong(a, s, env, load, WR_DEFAULT_TOLERANCE, NULL, &strong), WR_OK);
+        if (mu > threshold) {
+            assert_int_equal(strong.verdict, WR_VERDICT_INSIDE);
+            held++;
+        } else {
+            assert_int_equal(strong.verdict, WR_VERDICT_OUTSIDE);
+            moved++;
+        }
+        wr_supports_free(s);
+    }
+    printf("plate cut by %g: held at %d mu_B above %.6f, moves at %d below\n", cutting, held,
+           threshold, moved);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    wr_lp_env_free(env);
+}
+
 /* A pivot on a button.  The trapezoid (0,0) (4,0) (5,2) (0,2), m = 2, on
  * buttons p1 = (0, 0.5), p2 = (3, 0.5), p3 = (2, 1.7), mu_B = 0.15, its
  * three fixels (1,0), (3,0) below and (0,1) on the left, pulled by a force
@@ -1069,6 +1110,7 @@ int main(void)
         cmocka_unit_test(test_zero_load_held),
         cmocka_unit_test(test_plate_clamp),
         cmocka_unit_test(test_pivot_on_button),
+        cmocka_unit_test(test_plate_held_every_mu),
         cmocka_unit_test(test_holding_sampled),
     };
     if (getenv("TEST_FILTER")) /* one test by name, while working on it */
