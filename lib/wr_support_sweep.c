@@ -12,6 +12,8 @@ enum { PHASE_GOAL_LOW, PHASE_GOAL_HIGH, PHASE_GOAL_BISECT, PHASE_GRID, PHASE_DON
 
 struct wr_support_sweep {
     const wr_fixture *fixture; /* borrowed, with supports */
+    wr_support_sweep_over over;
+    wr_analysis *analysis;     /* over mu_B: the fixture's, made at the first answer */
     double wrench[3];          /* model system */
     wr_set set;
     wr_sweep_range range;
@@ -68,7 +70,8 @@ static wr_status add(wr_intervals *list, double lo, double hi)
 }
 
 wr_status wr_support_sweep_new(const wr_fixture *fixture, const double wrench[3], wr_set set,
-                               const wr_sweep_range *range, wr_support_sweep **out)
+                               const wr_sweep_range *range, wr_support_sweep_over over,
+                               wr_support_sweep **out)
 {
     *out = NULL;
     if (!fixture->supports || !isfinite(wrench[0]) || !isfinite(wrench[1]) ||
@@ -80,6 +83,7 @@ wr_status wr_support_sweep_new(const wr_fixture *fixture, const double wrench[3]
     if (!job)
         return WR_NO_MEMORY;
     job->fixture = fixture;
+    job->over = over;
     memcpy(job->wrench, wrench, sizeof job->wrench);
     job->set = set;
     job->range = *range;
@@ -97,6 +101,7 @@ void wr_support_sweep_free(wr_support_sweep *job)
         return;
     wr_intervals_release(&job->intervals);
     wr_intervals_release(&job->pending);
+    wr_analysis_free(job->analysis);
     free(job);
 }
 
@@ -106,9 +111,53 @@ void wr_support_sweep_free(wr_support_sweep *job)
  * supports' test.  Over an interval each cone is the union of the cones of
  * the friction box (docs/MODEL.md section 2, friction intervals), so
  * "inside" for strong there is held at every mu of [lo, hi]. */
-static wr_status inside_at(const wr_support_sweep *job, wr_lp_env *env, double lo, double hi,
+static wr_status answer_with(const wr_support_sweep *job, const wr_analysis *analysis,
+                             const wr_supports *supports, wr_lp_env *env, wr_set which,
+                             const wr_stop *stop, bool *inside, unsigned long *cost)
+{
+    wr_status status;
+    int solves = 0;
+    if (which == WR_SET_GOAL) {
+        wr_support_goal goal;
+        status = wr_supports_goal(analysis, supports, env, job->wrench, WR_DEFAULT_TOLERANCE,
+                                  &goal);
+        *inside = goal.verdict == WR_VERDICT_INSIDE;
+        solves = goal.solves;
+    } else {
+        wr_support_strong strong;
+        status = wr_supports_strong(analysis, supports, env, job->wrench, WR_DEFAULT_TOLERANCE,
+                                    stop, &strong);
+        *inside = strong.verdict == WR_VERDICT_INSIDE;
+        solves = strong.solves;
+    }
+    *cost += 1000 + 400 * (unsigned long)(solves > 0 ? solves : 0);
+    return status;
+}
+
+/* Over mu_B: the fixture's own analysis (made once) and its supports with
+ * mu_s in [lo, hi] and mu_k in ratio times that. */
+static wr_status inside_over_supports(wr_support_sweep *job, wr_lp_env *env, double lo,
+                                      double hi, wr_set which, const wr_stop *stop,
+                                      bool *inside, unsigned long *cost)
+{
+    if (!job->analysis) {
+        wr_status status = wr_analysis_new(job->fixture, &job->analysis);
+        if (status != WR_OK)
+            return status;
+    }
+    wr_supports at;
+    wr_supports_with_friction(job->fixture->supports, hi, &at);
+    at.mu_static_min = lo;
+    at.mu_kinetic = job->range.kinetic_ratio * hi;
+    at.mu_kinetic_min = job->range.kinetic_ratio * lo;
+    return answer_with(job, job->analysis, &at, env, which, stop, inside, cost);
+}
+
+static wr_status inside_at(wr_support_sweep *job, wr_lp_env *env, double lo, double hi,
                            wr_set which, const wr_stop *stop, bool *inside, unsigned long *cost)
 {
+    if (job->over == WR_SUPPORT_SWEEP_SUPPORTS)
+        return inside_over_supports(job, env, lo, hi, which, stop, inside, cost);
     wr_fixture at;
     wr_fixture_at_friction(job->fixture, hi, job->range.kinetic_ratio, &at);
     for (int i = 0; i < at.fixel_count; i++) {
@@ -119,22 +168,8 @@ static wr_status inside_at(const wr_support_sweep *job, wr_lp_env *env, double l
     wr_status status = wr_analysis_new(&at, &analysis);
     if (status != WR_OK)
         return status;
-    int solves = 0;
-    if (which == WR_SET_GOAL) {
-        wr_support_goal goal;
-        status = wr_supports_goal(analysis, at.supports, env, job->wrench, WR_DEFAULT_TOLERANCE,
-                                  &goal);
-        *inside = goal.verdict == WR_VERDICT_INSIDE;
-        solves = goal.solves;
-    } else {
-        wr_support_strong strong;
-        status = wr_supports_strong(analysis, at.supports, env, job->wrench, WR_DEFAULT_TOLERANCE,
-                                    stop, &strong);
-        *inside = strong.verdict == WR_VERDICT_INSIDE;
-        solves = strong.solves;
-    }
+    status = answer_with(job, analysis, at.supports, env, which, stop, inside, cost);
     wr_analysis_free(analysis);
-    *cost += 1000 + 400 * (unsigned long)(solves > 0 ? solves : 0);
     return status;
 }
 

@@ -1,6 +1,7 @@
 /* wr_support_sweep.h -- a wrench's answer on a base plate against the
- * fixels' common coefficient of friction (docs/MODEL.md section 11,
- * "Against the fixels' mu"; docs/PROTOCOL.md, friction.sweep).
+ * fixels' common coefficient of friction, or the supports' (docs/MODEL.md
+ * section 11, "Against the fixels' mu" and "Against mu_B";
+ * docs/PROTOCOL.md, friction.sweep).
  *
  * On every fixel mu_s = mu and mu_k = ratio * mu, mu over [low, high]
  * (wr_sweep.h's range; the fixture's own fixel friction is ignored, the
@@ -42,12 +43,25 @@ extern "C" {
 
 typedef struct wr_support_sweep wr_support_sweep;
 
+/* Whose coefficient a job sweeps: every fixel's (the supports' kept), or
+ * the supports' mu_B (mu_s = mu, mu_k = ratio * mu; the fixels' kept).
+ * Over mu_B the cones stay as they are and S(mu) = mu S(1) grows with mu,
+ * so seating is monotone as over the fixels' (docs/MODEL.md section 11,
+ * "Against mu_B"); an answer over an interval of mu_B is the holding test
+ * with the supports' friction that interval, held at every mu_B of it (a
+ * motion consistent at one of them is a solution of its LPs). */
+typedef enum wr_support_sweep_over {
+    WR_SUPPORT_SWEEP_FIXELS,
+    WR_SUPPORT_SWEEP_SUPPORTS
+} wr_support_sweep_over;
+
 /* A job for `fixture` (borrowed, with supports; it must outlive the job),
- * the wrench in the model system (wr_support.h), `set` and `range`.
- * WR_OK; WR_INVALID (no supports, a wrench not finite, a range or ratio
- * out of bounds); WR_NO_MEMORY. */
+ * the wrench in the model system (wr_support.h), `set`, `range` and whose
+ * coefficient it sweeps.  WR_OK; WR_INVALID (no supports, a wrench not
+ * finite, a range or ratio out of bounds); WR_NO_MEMORY. */
 wr_status wr_support_sweep_new(const wr_fixture *fixture, const double wrench[3], wr_set set,
-                               const wr_sweep_range *range, wr_support_sweep **out);
+                               const wr_sweep_range *range, wr_support_sweep_over over,
+                               wr_support_sweep **out);
 void wr_support_sweep_free(wr_support_sweep *job);
 
 /* Point answers until about `budget` work units are spent (at least one),

@@ -51,6 +51,9 @@ typedef struct sweep_state {
     /* params.over "supports": the supports' mu_B swept (wrenches, goal;
      * sweep_supports_step) instead of the fixels' mu */
     bool over_supports;
+    /* Over mu_B with holding asked: the wrenches' sets by wr_support_sweep
+     * jobs (sweep_fixels_step) rather than seating's limit alone. */
+    bool supports_jobs;
     /* A fixture on supports swept over its fixels' mu (wrenches: a
      * wr_support_sweep job per wrench and set, sweep_fixels_step; force:
      * the least push on the plate at each mu, sweep_supports_force_step) */
@@ -422,8 +425,9 @@ static bool fixels_question(wp_call *call, sweep_state *state)
     return state->what == SWEEP_WRENCHES || plate_question(call, state, over);
 }
 
-/* Over the supports' mu_B: the wrenches' seating (goal), which
- * wr_supports_friction_limit decides exactly. */
+/* Over the supports' mu_B: the wrenches' seating (goal, the default),
+ * which wr_supports_friction_limit decides exactly, or with holding asked
+ * every set by wr_support_sweep jobs. */
 static bool supports_question(wp_call *call, sweep_state *state)
 {
     if (state->what == SWEEP_FORCE)
@@ -434,12 +438,11 @@ static bool supports_question(wp_call *call, sweep_state *state)
     if (!cJSON_GetObjectItemCaseSensitive(call->params, "sets")) {
         r->sets[0] = WR_SET_GOAL;
         r->set_count = 1;
-    } else if (r->set_count != 1 || r->sets[0] != WR_SET_GOAL) {
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.sets",
-                     "over the supports' mu_B the sweep gives where each wrench seats the part "
-                     "([\"goal\"]); whether it is held is wrench.classify's \"strong\" at "
-                     "each mu_B");
-        return false;
+    } else {
+        /* Holding asked: every set by a wr_support_sweep job, as over the
+         * fixels' mu (seating by bisection, exact as the limit below). */
+        for (int s = 0; s < r->set_count; s++)
+            state->supports_jobs |= r->sets[s] != WR_SET_GOAL;
     }
     return true;
 }
@@ -1072,7 +1075,8 @@ static void write_fixels_exactness(const sweep_state *state, wp_writer *out)
         }
 }
 
-/* Over the fixels' mu on supports, "wrenches": {"results": [{"goal":
+/* Over the fixels' mu on supports, or over mu_B with holding asked,
+ * "wrenches": {"results": [{"goal":
  * [...], "strong": [...]}, ...], "exact"?, "resolution"?}, a
  * wr_support_sweep job per wrench and set. */
 static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *out,
@@ -1100,8 +1104,10 @@ static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *o
             const double k = wr_fixture_force_factor(use->fixture);
             const double *given = r->wrenches[state->next];
             const double g[3] = {given[0] * k, given[1] * k, given[2] * k};
-            wr_status status = wr_support_sweep_new(use->fixture, g, r->sets[state->set],
-                                                    &state->range, &state->fixels_job);
+            wr_status status = wr_support_sweep_new(
+                use->fixture, g, r->sets[state->set], &state->range,
+                state->over_supports ? WR_SUPPORT_SWEEP_SUPPORTS : WR_SUPPORT_SWEEP_FIXELS,
+                &state->fixels_job);
             if (status != WR_OK) {
                 wp_error_status(call->error, status, "params.wrenches", "%s",
                                 wr_strerror(status));
@@ -1147,7 +1153,7 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
                           unsigned long *used)
 {
     sweep_state *state = stream;
-    if (state->fixels_on_supports && state->what == SWEEP_WRENCHES)
+    if ((state->fixels_on_supports || state->supports_jobs) && state->what == SWEEP_WRENCHES)
         return sweep_fixels_step(state, call, out, budget, used);
     if (state->over_supports || state->fixels_on_supports)
         return state->what == SWEEP_FORCE

@@ -372,7 +372,8 @@ def test_friction_sweep_over_the_supports(client):
     """friction.sweep "over": "supports": a force of 30 through the disc's
     centre along 225 degrees seats for mu_B below 30 / (W sqrt 10) (the
     disc's closed form); wrench.classify agrees at 0.999 and 1.001 times
-    the end for a wrench of the 3-2-1 plate on buttons. Sweeping the
+    the end for a wrench of the 3-2-1 plate on buttons; holding against
+    mu_B of the plate cut along +x begins at F_c / W. Sweeping the
     supports' mu_B of a floating part is refused at params.over."""
     f = on_buttons(FX.disc_corner(0.5), BUTTONS, 0.3)
     w = [-30 / R2, -30 / R2, 0]
@@ -393,10 +394,22 @@ def test_friction_sweep_over_the_supports(client):
         verdicts.append(client.result("wrench.classify", {"fixture": h, "wrenches": [cut],
                                                           "sets": ["goal"]})["results"][0]["goal"]["verdict"])
     assert verdicts == ["inside", "outside"], (end, verdicts)
+    # Holding against mu_B: the plate cut by 3 along +x through its centre
+    # of mass is held exactly from mu_B = F_c / W (MODEL.md's power
+    # argument), on a grid, each interval proved; classify agrees either
+    # side of the end.
+    r = client.result("friction.sweep", {"fixture": g, "over": "supports", "range": [0, 1],
+                                         "wrenches": [[3, 0, 0]], "sets": ["strong", "both"]})
+    assert r["exact"] is False and r["resolution"] == 1 / 64, r
+    (lo, hi), = r["results"][0]["strong"]
+    assert abs(lo - 3 / (2 * G)) < 1e-7 and hi == 1 and r["results"][0]["both"] == [], r
+    for factor, word in ((0.999, "outside"), (1.001, "inside")):
+        h = on_buttons(plate(), buttons, lo * factor)
+        got = client.result("wrench.classify", {"fixture": h, "wrenches": [[3, 0, 0]],
+                                                "sets": ["strong"]})["results"][0]["strong"]
+        assert got["verdict"] == word, (factor, got)
     for params, field in (({"fixture": FX.disc_corner(0.5), "over": "supports", "wrenches": [w]},
                            "params.over"),
-                          ({"fixture": f, "over": "supports", "wrenches": [w], "sets": ["strong"]},
-                           "params.sets"),
                           # A tilt on the plate needs its pull.
                           ({"fixture": f, "over": "supports", "gravity": {}},
                            "params.gravity.in_plane_g")):

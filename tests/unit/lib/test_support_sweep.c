@@ -1,5 +1,6 @@
 /* test_support_sweep.c -- a wrench on a base plate against the fixels'
- * common mu (lib/wr_support_sweep.h): seating's end against a closed form
+ * common mu, and against the buttons' mu_B (lib/wr_support_sweep.h):
+ * seating's end against a closed form
  * on the disc in the corner, holding's against the 3-2-1 plate's sliding
  * translation, every answer against the point answers at many mu in and
  * around its intervals, and a job stopped part way. */
@@ -38,13 +39,15 @@ static wr_fixture *plate_on_buttons(double mu_b)
     return f;
 }
 
-/* Runs a job to the end in small budgets (every run does some work). */
-static wr_support_sweep *sweep(const wr_fixture *f, wr_lp_env *env, const double w[3], wr_set set,
-                               double low, double high, double ratio)
+/* Runs a job over `over`'s coefficient to the end in small budgets (every
+ * run does some work). */
+static wr_support_sweep *sweep_over(const wr_fixture *f, wr_lp_env *env, const double w[3],
+                                    wr_set set, double low, double high, double ratio,
+                                    wr_support_sweep_over over)
 {
     wr_sweep_range range = {low, high, ratio};
     wr_support_sweep *job;
-    assert_int_equal(wr_support_sweep_new(f, w, set, &range, &job), WR_OK);
+    assert_int_equal(wr_support_sweep_new(f, w, set, &range, over, &job), WR_OK);
     bool done = false;
     unsigned long used = 0;
     int runs = 0;
@@ -54,6 +57,13 @@ static wr_support_sweep *sweep(const wr_fixture *f, wr_lp_env *env, const double
     }
     assert_true(used > 0);
     return job;
+}
+
+/* Over the fixels' mu. */
+static wr_support_sweep *sweep(const wr_fixture *f, wr_lp_env *env, const double w[3], wr_set set,
+                               double low, double high, double ratio)
+{
+    return sweep_over(f, env, w, set, low, high, ratio, WR_SUPPORT_SWEEP_FIXELS);
 }
 
 /* The point answer at mu, as wrench.classify gives it for the fixture
@@ -216,6 +226,82 @@ static void test_plate_strong(void **state)
     wr_lp_env_free(env);
 }
 
+/* Over the buttons' mu_B.  Holding: the plate cut by F_c along +x
+ * through its centre of mass (no clamp, W = m g).  Any motion needs
+ * F_c a_x >= mu_B sum N_i |a_i| >= mu_B W |a_com| (the power argument of
+ * docs/MODEL.md section 11), so it is held for mu_B above F_c / W, and
+ * below it the translation along +x (fixels 1 and 2 sliding unloaded,
+ * fixel 3 leaving) is consistent: held exactly on [F_c / W, high].
+ * Seating: the job's end against wr_supports_friction_limit, which decides
+ * it as the least scale of S(1) (another computation).  Each holding
+ * answer also against point answers either side of its end and across. */
+static bool held_at(const wr_analysis *a, const wr_supports *s, wr_lp_env *env,
+                    const double w[3], double mu)
+{
+    wr_supports at;
+    wr_supports_with_friction(s, mu, &at);
+    wr_support_strong strong;
+    assert_int_equal(wr_supports_strong(a, &at, env, w, WR_DEFAULT_TOLERANCE, NULL, &strong),
+                     WR_OK);
+    return strong.verdict == WR_VERDICT_INSIDE;
+}
+
+static void test_over_supports(void **state)
+{
+    (void)state;
+    wr_lp_env *env = test_lp_env_new();
+    wr_fixture *f = plate_on_buttons(0.2); /* its own mu_B is not used */
+    wr_analysis *a = test_analysis_new(f);
+    for (int k = 0; k < 2; k++) {
+        double cutting = k ? 6 : 3, expected = cutting / (2 * G);
+        const double w[3] = {cutting, 0, 0};
+        wr_support_sweep *job = sweep_over(f, env, w, WR_SET_STRONG, 0, 1, 1,
+                                           WR_SUPPORT_SWEEP_SUPPORTS);
+        const wr_intervals *got = wr_support_sweep_intervals(job);
+        assert_false(wr_support_sweep_exact(job));
+        assert_int_equal(got->count, 1);
+        printf("plate cut by %g: held from mu_B = %.10f (closed form F_c / W = %.10f)\n",
+               cutting, got->items[0][0], expected);
+        assert_true(fabs(got->items[0][0] - expected) < 1e-7 && got->items[0][1] == 1);
+        assert_true(held_at(a, f->supports, env, w, expected * (1 + 1e-6)));
+        assert_false(held_at(a, f->supports, env, w, expected * (1 - 1e-6)));
+        for (int j = 1; j < 16; j++)
+            assert_true(held_at(a, f->supports, env, w,
+                                got->items[0][0] + (1 - got->items[0][0]) * j / 16));
+        wr_support_sweep_free(job);
+    }
+    /* Pushes into the corner: seating's end by the job's bisection and by
+     * the least scale of S(1). */
+    const double pushes[4][3] = {{-10, -17.3205, 4}, {-12.1752, -15.8671, 4},
+                                 {-7.65367, -18.4776, 0}, {-8, -10, 0}};
+    for (int k = 0; k < 4; k++) {
+        wr_support_sweep *job = sweep_over(f, env, pushes[k], WR_SET_GOAL, 0, 1, 1,
+                                           WR_SUPPORT_SWEEP_SUPPORTS);
+        const wr_intervals *got = wr_support_sweep_intervals(job);
+        double bracket[2];
+        assert_int_equal(wr_supports_friction_limit(a, f->supports, env, pushes[k], bracket),
+                         WR_OK);
+        assert_true(wr_support_sweep_exact(job));
+        printf("push (%g, %g, %g): seats below mu_B = %.10f (limit [%.10f, %.10f])\n",
+               pushes[k][0], pushes[k][1], pushes[k][2],
+               got->count ? got->items[0][1] : 0.0, bracket[0], bracket[1]);
+        if (bracket[0] >= 1) {
+            assert_true(got->count == 1 && got->items[0][1] == 1);
+        } else if (bracket[1] <= 0) {
+            assert_int_equal(got->count, 0);
+        } else {
+            assert_int_equal(got->count, 1);
+            assert_true(got->items[0][0] == 0);
+            assert_true(got->items[0][1] >= bracket[0] - 2e-9 &&
+                        got->items[0][1] <= bracket[1] + 2e-9);
+        }
+        wr_support_sweep_free(job);
+    }
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+    wr_lp_env_free(env);
+}
+
 /* Seating and holding together on the plate: both is goal's interval
  * within strong's, each cross-checked at points; wrenches pushing into the
  * corner with torques either way. */
@@ -261,7 +347,7 @@ static void test_stopped(void **state)
     for (int set = WR_SET_GOAL; set <= WR_SET_BOTH; set++) {
         for (int runs = 0; runs < 70; runs += 23) {
             wr_support_sweep *job;
-            assert_int_equal(wr_support_sweep_new(f, w, (wr_set)set, &range, &job), WR_OK);
+            assert_int_equal(wr_support_sweep_new(f, w, (wr_set)set, &range, WR_SUPPORT_SWEEP_FIXELS, &job), WR_OK);
             bool done = false;
             for (int k = 0; k < runs && !done; k++)
                 assert_int_equal(wr_support_sweep_run(job, env, 1, NULL, NULL, &done), WR_OK);
@@ -290,12 +376,12 @@ static void test_refused(void **state)
     const double w[3] = {1, 0, 0}, bad[3] = {NAN, 0, 0};
     wr_sweep_range range = {0, 2, 1};
     wr_support_sweep *job = NULL;
-    assert_int_equal(wr_support_sweep_new(f, w, WR_SET_GOAL, &range, &job), WR_INVALID);
+    assert_int_equal(wr_support_sweep_new(f, w, WR_SET_GOAL, &range, WR_SUPPORT_SWEEP_FIXELS, &job), WR_INVALID);
     static const double buttons[3][2] = {{1, 0.5}, {3, 0.5}, {2, 1.7}};
     rest_on(f, buttons, 0.2);
-    assert_int_equal(wr_support_sweep_new(f, bad, WR_SET_GOAL, &range, &job), WR_INVALID);
+    assert_int_equal(wr_support_sweep_new(f, bad, WR_SET_GOAL, &range, WR_SUPPORT_SWEEP_FIXELS, &job), WR_INVALID);
     wr_sweep_range upside = {1, 0.5, 1};
-    assert_int_equal(wr_support_sweep_new(f, w, WR_SET_GOAL, &upside, &job), WR_INVALID);
+    assert_int_equal(wr_support_sweep_new(f, w, WR_SET_GOAL, &upside, WR_SUPPORT_SWEEP_FIXELS, &job), WR_INVALID);
     assert_null(job);
     wr_fixture_free(f);
 }
@@ -307,6 +393,7 @@ int main(void)
         cmocka_unit_test(test_plate_strong),
         cmocka_unit_test(test_plate_both),
         cmocka_unit_test(test_stopped),
+        cmocka_unit_test(test_over_supports),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
