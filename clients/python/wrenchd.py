@@ -1224,10 +1224,11 @@ class _Methods:
         mu and mu_k = kinetic_ratio * mu at every fixel (the fixture's own
         friction ignored), mu over `range` (FrictionSweep).  over="supports"
         sweeps the supports' mu_B of a fixture on a base plate instead
-        (wrenches: where each seats; force: the least push on the plate;
-        push: {"force": F, "cases"?, "push_on"?}, where a push that hard
-        seats it; gravity: {"in_plane_g": A}, the tilts whose pull seats
-        it; set goal throughout).  Without it a fixture on a base plate
+        (wrenches: where each seats, and with `sets` asking it where it is
+        held, sampled as below; force: the least push on the plate; push:
+        {"force": F, "cases"?, "push_on"?}, where a push that hard seats
+        it; gravity: {"in_plane_g": A}, the tilts whose pull seats it; set
+        goal for these).  Without it a fixture on a base plate
         sweeps its fixels' mu with the supports kept: the same questions,
         and wrenches with every set (strong and both sampled: `exact`
         False, every mu given proved held).  Exactly one of
