@@ -1566,7 +1566,7 @@ typedef struct hold_lp {
                             the exact distance: either way decided) */
     double error[3];     /* out: e of the last solution (|e| attained) */
     /* The caller reads the residual as a lower bound only (a cell dropped
-     * when it exceeds the margin), as the distance form does: a refinement
+     * when it exceeds the margin; the distance form, always): a refinement
      * GLPK cannot solve then leaves the last solution, whose discs held the
      * true ones, instead of failing the cell.  Never for a witness, whose
      * forces must lie in their discs. */
@@ -1713,7 +1713,7 @@ static int hold_lp_solve(hold_lp *h)
             /* The residual columns make every LP feasible and bounded; a
              * refinement GLPK cannot solve leaves the last solution, whose
              * bound holds (its sets held the true ones too). */
-            return (h->distance || h->bound_only) && round > 0 ? 0 : -1;
+            return h->bound_only && round > 0 ? 0 : -1;
         }
         h->residual = glp_get_obj_val(l.p);
         for (int j = 0; j < h->c->count; j++)
@@ -2276,6 +2276,7 @@ static int margin_cell_solve(const model *m, const wr_cone *cone, const double t
     h->cone = cone;
     h->c = c;
     h->distance = true;
+    h->bound_only = true;
     h->prune = prune;
     wr_copy3(target, h->target);
     if (seed)
