@@ -235,11 +235,10 @@ static inline wr_fixture *test_disc_corner(double mu)
     return test_fixture_new(&spec, NULL);
 }
 
-/* The 3-2-1 plate of docs/MODEL.md section 7.2 (4 by 2, m = 2, fixels at
- * (1, 0), (3, 0) and (0, 1)) with fixels of friction mu_s, mu_k. */
-static inline wr_fixture *test_plate_321_friction(double mu_s, double mu_k)
+/* A quadrilateral of mass 2 with the 3-2-1 plate's fixels at (1, 0),
+ * (3, 0) and (0, 1), friction mu_s, mu_k. */
+static inline wr_fixture *test_quad_321(const double (*vertices)[2], double mu_s, double mu_k)
 {
-    static const double vertices[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
     wr_fixel_spec fixels[3];
     memset(fixels, 0, sizeof fixels);
     fixels[0].at[0] = 1;
@@ -258,6 +257,14 @@ static inline wr_fixture *test_plate_321_friction(double mu_s, double mu_k)
     spec.fixel_count = 3;
     spec.fixels = fixels;
     return test_fixture_new(&spec, NULL);
+}
+
+/* The 3-2-1 plate of docs/MODEL.md section 7.2 (4 by 2, m = 2, fixels at
+ * (1, 0), (3, 0) and (0, 1)) with fixels of friction mu_s, mu_k. */
+static inline wr_fixture *test_plate_321_friction(double mu_s, double mu_k)
+{
+    static const double vertices[4][2] = {{0, 0}, {4, 0}, {4, 2}, {0, 2}};
+    return test_quad_321(vertices, mu_s, mu_k);
 }
 
 /* The 3-2-1 plate with its own friction: mu_s 0.3, mu_k 0.25. */

@@ -831,24 +831,7 @@ static void test_pivot_on_button(void **state)
     static const double v[4][2] = {{0, 0}, {4, 0}, {5, 2}, {0, 2}};
     const double buttons[3][2] = {{0, 0.5}, {3, 0.5}, {2, 1.7}};
     const double mu = 0.15, m = 2;
-    wr_fixel_spec fixels[3];
-    memset(fixels, 0, sizeof fixels);
-    fixels[0].at[0] = 1;
-    fixels[1].at[0] = 3;
-    fixels[2].at[1] = 1;
-    wr_fixture_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.mass = m;
-    spec.shape = WR_SHAPE_POLYGON;
-    spec.vertex_count = 4;
-    spec.vertices = v;
-    spec.friction.given = true;
-    spec.friction.static_mu = 0.3;
-    spec.friction.kinetic_given = true;
-    spec.friction.kinetic_mu = 0.25;
-    spec.fixel_count = 3;
-    spec.fixels = fixels;
-    wr_fixture *f = test_fixture_new(&spec, NULL);
+    wr_fixture *f = test_quad_321(v, 0.3, 0.25);
     assert_non_null(f);
     /* The polygon's area, centroid and polar moment about the origin. */
     double area = 0, cx = 0, cy = 0, j0 = 0;
