@@ -2,7 +2,9 @@
 checked against the independent model (model.py)."""
 
 import math
+import os
 import random
+import subprocess
 
 import model as M
 
@@ -155,3 +157,16 @@ def away_from_boundary(classifier, wrenches, sets=("goal", "strong"), gap=1e-4):
 
 def angle_deg(x, y):
     return math.degrees(math.atan2(y, x)) % 360.0
+
+
+def run_client_program(tmp_path, name, source_text, *args, timeout=300):
+    """A C program written against libwrenchclient (clients/c), compiled in
+    tmp_path and run with args: its finished process (output as text)."""
+    from conftest import REPO
+    source, program = tmp_path / (name + ".c"), tmp_path / name
+    source.write_text(source_text)
+    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
+                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
+                   check=True)
+    return subprocess.run([str(program)] + [str(a) for a in args], capture_output=True,
+                          text=True, timeout=timeout)

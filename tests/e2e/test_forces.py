@@ -10,12 +10,12 @@ units giving the same answers converted."""
 import json
 import math
 import os
-import subprocess
 
 import pytest
 
 import fixtures as FX
 from conftest import REPO
+from helpers import run_client_program
 
 G = 9.81
 R2 = math.sqrt(2)
@@ -903,14 +903,9 @@ def test_c_client_force_sweep_reads_what_the_daemon_answers(client, tmp_path):
     fixture = json.load(open(os.path.join(REPO, "examples", "plate-3-2-1.json")))
     fixture = fixture.get("fixture", fixture)
     fid = client.result("fixture.put", {"fixture": fixture})["id"]
-    program = tmp_path / "force_sweep"
-    source = tmp_path / "force_sweep.c"
-    source.write_text(C_FORCE_SWEEP)
-    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
-                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
-                   check=True)
-    out = subprocess.run([str(program), client.path, fid], check=True, capture_output=True,
-                         text=True).stdout.split("\n")
+    run = run_client_program(tmp_path, "force_sweep", C_FORCE_SWEEP, client.path, fid)
+    assert run.returncode == 0, run
+    out = run.stdout.split("\n")
     want = client.result("friction.sweep", {
         "fixture": fid, "range": [0, 0.5], "force": {"set": "both", "push_on": "all"},
         "cases": [case(gravity(), {"force": [-1, -2], "at": [1, 2]})]})

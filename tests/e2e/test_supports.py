@@ -16,6 +16,7 @@ import pytest
 
 import fixtures as FX
 from conftest import REPO
+from helpers import run_client_program
 
 G = 9.81
 R2 = math.sqrt(2)
@@ -482,18 +483,11 @@ def test_c_client_on_the_plate(client, tmp_path):
     """libwrenchclient with a stored fixture on supports: wrc_push_force
     (set goal) and wrc_force_sweep over the supports' mu_B read what the
     daemon answers, printed to 17 digits and read back the same doubles."""
-    import subprocess
     with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
         floating = json.load(fh)
     f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
     fid = client.result("fixture.put", {"fixture": f})["id"]
-    source, program = tmp_path / "plate.c", tmp_path / "plate"
-    source.write_text(C_ON_THE_PLATE)
-    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
-                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
-                   check=True)
-    out = subprocess.run([str(program), client.path, fid], capture_output=True, text=True,
-                         timeout=300)
+    out = run_client_program(tmp_path, "plate", C_ON_THE_PLATE, client.path, fid)
     assert out.returncode == 0, out
     lines = out.stdout.split("\n")
     none = [{"loads": [{"force": [0, 0], "at": [1, 1]}]}]

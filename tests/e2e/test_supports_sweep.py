@@ -16,6 +16,7 @@ import os
 
 import fixtures as FX
 from conftest import REPO
+from helpers import run_client_program
 
 G = 9.81
 R2 = math.sqrt(2)
@@ -284,18 +285,12 @@ def test_c_client_sweeps_the_fixels_on_the_plate(client, tmp_path):
     """wrc_force_sweep over the fixels' mu of a fixture on supports reads
     the answer, which has no intervals of the push alone: the daemon's
     curve, to the last digit."""
-    import subprocess
     with open(os.path.join(REPO, "examples", "plate-chamfered.json")) as fh:
         floating = json.load(fh)
     f = on_buttons(floating, [[1, 0.5], [3, 0.5], [1.5, 1.6]], 0.1)
     fid = client.result("fixture.put", {"fixture": f})["id"]
-    source, program = tmp_path / "fixels.c", tmp_path / "fixels"
-    source.write_text(C_FIXELS_ON_THE_PLATE)
-    subprocess.run(["cc", "-std=c11", "-I", os.path.join(REPO, "clients", "c"), str(source),
-                    os.path.join(REPO, "build", "libwrenchclient.a"), "-lm", "-o", str(program)],
-                   check=True)
-    out = subprocess.run([str(program), client.path, fid], capture_output=True, text=True,
-                         timeout=600)
+    out = run_client_program(tmp_path, "fixels", C_FIXELS_ON_THE_PLATE, client.path, fid,
+                             timeout=600)
     assert out.returncode == 0, out
     lines = [line for line in out.stdout.split("\n") if line]
     assert lines[0] == "0"
