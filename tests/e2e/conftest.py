@@ -337,8 +337,9 @@ class Harness:
     def path(self, name):
         return os.path.join(self.dir, name)
 
-    def start(self, *args, state_dir=None, socket_path=None, wait=True):
+    def start(self, *args, state_dir=None, socket_path=None, wait=True, env=None):
         d = Daemon(self.dir, args, state_dir, socket_path, tag="d%d" % len(self.daemons))
+        d.env = env
         self.daemons.append(d)
         return d.start(wait)
 
