@@ -78,6 +78,11 @@ typedef struct sweep_state {
     int edge;
     double length;
     bool nonempty;
+    /* A fixture with a tolerance, "push", "gravity" or "force": the
+     * nominal job's intervals made robust (sweep_robust_run), and the mu
+     * below which its answer is decided (the range's top when done). */
+    wr_robust_sweep *robust;
+    double robust_top;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -291,6 +296,7 @@ static void sweep_free(void *stream)
         return;
     sweep_state *state = stream;
     wr_sweep_job_free(state->job);
+    wr_robust_sweep_free(state->robust);
     wr_support_sweep_free(state->fixels_job);
     wr_analysis_free(state->fixels_analysis);
     for (int s = 0; s < 3; s++)
@@ -467,13 +473,13 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
         return state; /* no sweeper: the supports' friction leaves the cones as they are */
     if (state->fixels_on_supports)
         return state; /* no sweeper: each answer is a point answer at its mu */
-    if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
-        /* The curves' exact machinery varies mu on the nominal fixels. */
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
-                     "friction.sweep answers \"wrenches\" robustly over a tolerance; push, "
-                     "gravity and force sweeps answer the nominal fixture only: sweep it "
-                     "without its tolerance, or ask push.regions, gravity.sweep or push.force "
-                     "at one friction");
+    if (use->fixture->tolerance.given && state->what == SWEEP_PUSH &&
+        state->finger.friction > 0) {
+        /* As push.regions over a tolerance (its robust regions are a
+         * frictionless finger's). */
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.push.finger_friction",
+                     "a fixture with a tolerance has robust regions for a frictionless "
+                     "finger only");
         sweep_free(state);
         return NULL;
     }
@@ -1149,6 +1155,65 @@ static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *o
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* Over a tolerance, "push" or "gravity" (and "force"'s intervals): the
+ * nominal job's intervals made robust (wr_robust_sweep.h) a unit at a
+ * time, from the nominal job done (or stopped: then nothing robust is
+ * decided).  WP_STEP_MORE while the budget is spent; WP_STEP_DONE with
+ * state->robust_top the mu below which its answer holds (below the range's
+ * top when the deadline stopped it). */
+static wp_step sweep_robust_run(sweep_state *state, wp_call *call, unsigned long budget,
+                                unsigned long *used, bool stopped)
+{
+    const wr_fixture *f = wp_call_fixture(call)->fixture; /* held since begin */
+    wr_status status = WR_OK;
+    if (!state->robust)
+        status = wr_robust_sweep_new(f, state->request.sets[0], &state->range,
+                                     state->what == SWEEP_GRAVITY, &state->finger,
+                                     &wr_sweep_job_curve(state->job)->intervals, &state->robust);
+    if (status == WR_OK && stopped) {
+        state->robust_top = state->range.low;
+        return WP_STEP_DONE;
+    }
+    for (bool first = true; status == WR_OK; first = false) {
+        if (deadline_passed(state)) {
+            state->robust_top = wr_robust_sweep_reached(state->robust);
+            return WP_STEP_DONE;
+        }
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        unsigned long before = wr_robust_sweep_work(state->robust);
+        bool done;
+        status = wr_robust_sweep_run(state->robust, call->host->stop, &done);
+        *used += 1 + wr_robust_sweep_work(state->robust) - before;
+        if (status == WR_OK && done) {
+            state->robust_top = state->range.high;
+            return WP_STEP_DONE;
+        }
+    }
+    wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+    return WP_STEP_FAILED;
+}
+
+/* Over a tolerance, "push" or "gravity": the robust curve, written when
+ * done or stopped (write_curve's members, the critical and the curve of
+ * the robust regions). */
+static wp_step sweep_robust_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                 unsigned long budget, unsigned long *used, bool stopped)
+{
+    wp_step step = sweep_robust_run(state, call, budget, used, stopped);
+    if (step != WP_STEP_DONE)
+        return step;
+    wr_sweep_curve curve;
+    const bool partial = state->robust_top < state->range.high;
+    if (wr_robust_sweep_curve(state->robust, state->robust_top, &curve) != WR_OK) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return WP_STEP_FAILED;
+    }
+    write_curve(out, &curve, partial, state->robust_top);
+    wr_sweep_curve_release(&curve);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
@@ -1162,6 +1227,8 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
                                                : sweep_plate_step(state, call, out, budget, used);
     if (state->what == SWEEP_FORCE)
         return sweep_force_step(state, call, out, budget, used);
+    if (state->robust)
+        return sweep_robust_step(state, call, out, budget, used, false);
     const wp_classify_request *r = &state->request;
     const wr_stop *stop = call->host->stop;
     size_t start = out->out->length;
@@ -1206,6 +1273,8 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
         if (!done)
             continue;
         if (state->what != SWEEP_WRENCHES) {
+            if (wp_call_fixture(call)->fixture->tolerance.given)
+                return sweep_robust_step(state, call, out, budget, used, stopped);
             write_curve(out, wr_sweep_job_curve(state->job), stopped, reached);
             return WP_STEP_DONE;
         }
