@@ -417,9 +417,11 @@ wr_status wr_robust_least_force_at_mu(const wr_fixture *fixture, double mu, doub
     if (status == WR_OK && nominal.found)
         status = try_least(robust, &at, set, loads, case_count, nominal.edge, nominal.t, stop,
                            out);
-    /* The samples: where the finger reaches on each edge it pushes on. */
+    /* The samples: where the finger reaches on each edge it pushes on;
+     * none when no point has a nominal F*, since no fixture of the set
+     * needs less than the nominal one. */
     const double top = at.shape == WR_SHAPE_CIRCLE ? 360 : 1;
-    for (int e = 0; status == WR_OK && e < wr_push_edge_count(&at); e++) {
+    for (int e = 0; status == WR_OK && nominal.found && e < wr_push_edge_count(&at); e++) {
         if (!wr_finger_pushes_on(&at, finger, e))
             continue;
         wr_span *blocked = NULL;

@@ -25,6 +25,14 @@ enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY, SWEEP_FORCE };
  * F* is finite on them whatever the cases, and their ends are where it may
  * jump to null. */
 #define FORCE_SAMPLES 128
+/* Over a tolerance each sample is push.force's robust least at its mu
+ * (wr_robust_least_force_at_mu: the nominal least's point and
+ * ROBUST_FORCE_EDGE_SAMPLES points of each edge, each a robust F*), at
+ * ROBUST_FORCE_SAMPLES coefficients evenly and the ends of the robust push
+ * sweep's intervals (where a large enough push is proved to do the set's
+ * job on every fixture of the set). */
+#define ROBUST_FORCE_SAMPLES 17
+#define ROBUST_FORCE_EDGE_SAMPLES 4
 typedef struct sweep_state {
     int what;                   /* SWEEP_* */
     wr_sweep_range range;
@@ -83,6 +91,9 @@ typedef struct sweep_state {
      * below which its answer is decided (the range's top when done). */
     wr_robust_sweep *robust;
     double robust_top;
+    /* "force" over a tolerance: the robust push sweep's answer (its
+     * intervals given, their ends sampled). */
+    wr_sweep_curve robust_curve;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -167,6 +178,8 @@ static void write_intervals(wp_writer *out, const wr_intervals *list)
 }
 
 static void write_stopped(wp_writer *out, double reached);
+static wp_step sweep_robust_run(sweep_state *state, wp_call *call, unsigned long budget,
+                                unsigned long *used, bool stopped);
 
 /* {"intervals", "critical", "curve", "exact", "resolution"}, and when the
  * deadline stopped it, "partial" and "stopped_at": `reached`. */
@@ -297,6 +310,7 @@ static void sweep_free(void *stream)
     sweep_state *state = stream;
     wr_sweep_job_free(state->job);
     wr_robust_sweep_free(state->robust);
+    wr_sweep_curve_release(&state->robust_curve);
     wr_support_sweep_free(state->fixels_job);
     wr_analysis_free(state->fixels_analysis);
     for (int s = 0; s < 3; s++)
@@ -514,23 +528,35 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
  * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
  * point [mu, F] (F null when no push does the job) is written. */
 static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
-                              unsigned long *used, wp_writer *out, double at[2])
+                              const wr_stop *stop, unsigned long *used, wp_writer *out,
+                              double at[2])
 {
-    wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
-                                 .kinetic_mu = mu * state->range.kinetic_ratio};
-    wr_fixture placed;
-    wr_error invalid;
-    wr_status status = wr_fixture_place(f, state->fixels, (size_t)f->fixel_count, &friction,
-                                        &placed, &invalid);
-    wr_analysis *analysis = NULL;
-    if (status == WR_OK)
-        status = wr_analysis_new(&placed, &analysis);
     wr_least_force least = {0};
-    if (status == WR_OK)
-        status = wr_least_force_find(analysis, state->request.sets[0],
-                                     (const double (*)[3])state->loads, state->cases.count,
-                                     &state->finger, NULL, &least);
-    wr_analysis_free(analysis);
+    wr_status status;
+    if (f->tolerance.given) {
+        /* push.force's least over a tolerance at this mu (wr_robust_sweep.h). */
+        status = wr_robust_least_force_at_mu(f, mu, state->range.kinetic_ratio,
+                                             state->request.sets[0],
+                                             (const double (*)[3])state->loads,
+                                             state->cases.count, &state->finger,
+                                             ROBUST_FORCE_EDGE_SAMPLES, stop, &least);
+        *used += least.evaluations * 4000 * (unsigned long)state->cases.count;
+    } else {
+        wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
+                                     .kinetic_mu = mu * state->range.kinetic_ratio};
+        wr_fixture placed;
+        wr_error invalid;
+        status = wr_fixture_place(f, state->fixels, (size_t)f->fixel_count, &friction, &placed,
+                                  &invalid);
+        wr_analysis *analysis = NULL;
+        if (status == WR_OK)
+            status = wr_analysis_new(&placed, &analysis);
+        if (status == WR_OK)
+            status = wr_least_force_find(analysis, state->request.sets[0],
+                                         (const double (*)[3])state->loads, state->cases.count,
+                                         &state->finger, NULL, &least);
+        wr_analysis_free(analysis);
+    }
     if (status != WR_OK)
         return status;
     at[0] = least.found ? least.at[0] + 0.0 : NAN;
@@ -575,19 +601,19 @@ static int compare_mus(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The coefficients to sample (FORCE_SAMPLES evenly, ends included, and
- * the ends of the push alone's intervals), increasing, without repeats. */
-static bool force_mus(sweep_state *state, const wr_intervals *alone)
+/* The coefficients to sample (`samples` evenly, ends included, and the
+ * ends of the push alone's intervals), increasing, without repeats. */
+static bool force_mus(sweep_state *state, const wr_intervals *alone, int samples)
 {
-    int most = FORCE_SAMPLES + 2 * alone->count;
+    int most = samples + 2 * alone->count;
     state->mus = malloc((size_t)most * sizeof *state->mus);
     state->at = malloc((size_t)most * sizeof *state->at);
     if (!state->mus || !state->at)
         return false;
-    const double step = (state->range.high - state->range.low) / (FORCE_SAMPLES - 1);
+    const double step = (state->range.high - state->range.low) / (samples - 1);
     int n = 0;
-    for (int i = 0; i < FORCE_SAMPLES; i++)
-        state->mus[n++] = i + 1 == FORCE_SAMPLES ? state->range.high : state->range.low + i * step;
+    for (int i = 0; i < samples; i++)
+        state->mus[n++] = i + 1 == samples ? state->range.high : state->range.low + i * step;
     for (int i = 0; i < alone->count; i++)
         for (int k = 0; k < 2; k++)
             state->mus[n++] = alone->items[i][k];
@@ -624,11 +650,26 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
     wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
     if (!use)
         return WP_STEP_FAILED;
+    const bool robust = use->fixture->tolerance.given;
+    const wr_intervals *alone = robust ? &state->robust_curve.intervals
+                                       : &wr_sweep_job_curve(state->job)->intervals;
     if (!state->mus) {
-        bool done;
-        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1,
-                                            used, call->host->stop, &done);
-        if (status == WR_OK && done && !force_mus(state, &wr_sweep_job_curve(state->job)->intervals))
+        /* The push alone's intervals: the nominal job's, over a tolerance
+         * then made robust (sweep_robust_run) before any sample. */
+        bool done = state->robust != NULL;
+        wr_status status = WR_OK;
+        if (!done)
+            status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1, used,
+                                      call->host->stop, &done);
+        if (status == WR_OK && done && robust) {
+            wp_step step = sweep_robust_run(state, call, budget, used, false);
+            if (step != WP_STEP_DONE)
+                return step;
+            status = wr_robust_sweep_curve(state->robust, state->robust_top,
+                                           &state->robust_curve);
+        }
+        if (status == WR_OK && done &&
+            !force_mus(state, alone, robust ? ROBUST_FORCE_SAMPLES : FORCE_SAMPLES))
             status = WR_NO_MEMORY;
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
@@ -654,8 +695,8 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
             return WP_STEP_MORE;
         if (stop_requested(call))
             return WP_STEP_FAILED;
-        wr_status status = force_sample(state, use->fixture, state->mus[state->sample], used, out,
-                                        state->at[state->sample]);
+        wr_status status = force_sample(state, use->fixture, state->mus[state->sample],
+                                        call->host->stop, used, out, state->at[state->sample]);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
@@ -667,11 +708,11 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
     /* The push alone's intervals are known over the whole range; a partial
      * answer gives them up to where its samples stopped. */
     wp_write_key(out, "intervals");
-    write_intervals_below(out, &wr_sweep_job_curve(state->job)->intervals,
-                          partial ? state->mus[state->sample - 1] : INFINITY);
+    write_intervals_below(out, alone, partial ? state->mus[state->sample - 1] : INFINITY);
     wp_write_member_bool(out, "exact", false);
     wp_write_member_number(out, "resolution",
-                           (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));
+                           (state->range.high - state->range.low) /
+                               ((robust ? ROBUST_FORCE_SAMPLES : FORCE_SAMPLES) - 1));
     if (partial)
         write_stopped(out, state->mus[state->sample - 1]);
     wp_write_object_end(out);
