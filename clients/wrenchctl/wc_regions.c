@@ -712,6 +712,12 @@ static void print_region_sweep(const wc_run *run, const cJSON *result)
         printf("each point exact at its mu_B, every %g; seating only gets harder as mu_B grows, "
                "so the critical mu_B is bisected on those answers (to 1e-9)\n",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+    else if (run->geometric_given)
+        printf("robust over the tolerance: each interval proved for every mu in it and every "
+               "fixture of the set; an interval narrower than %g may be missed; the curve is "
+               "the robust %s at each mu\n",
+               cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")),
+               push ? "region's length" : "arcs' total");
     else if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
         printf("sampled: resolution %g\n",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));

@@ -12,6 +12,7 @@ that mu, its push inside by force.range over the tolerance and on sampled
 fixtures; a deadline's partial answer; and the refusals at their fields."""
 
 import copy
+import json
 import math
 import random
 
@@ -99,10 +100,20 @@ def within(inner, outer):
     return all(any(a <= lo and hi <= b for a, b in outer) for lo, hi in inner)
 
 
+# Answers already had (each test has its own daemon; the answers are the
+# same), so that one sweep asked by two tests is made once.
+KNOWN = {}
+
+
 def sweep(client, fixture, what, body, **extra):
     params = {"fixture": fixture, what: body, "range": [0, 2], "kinetic_ratio": RATIO}
     params.update(extra)
-    return client.result("friction.sweep", params)
+    key = json.dumps(params, sort_keys=True)
+    if "deadline_s" in params:
+        return client.result("friction.sweep", params)
+    if key not in KNOWN:
+        KNOWN[key] = client.result("friction.sweep", params)
+    return KNOWN[key]
 
 
 def test_push_sweep_robust_against_sampling(client):
@@ -242,6 +253,6 @@ def test_refusals(client):
     error = client.error("push.regions", {"fixture": fixture, "finger_friction": 0.3})
     assert error["data"]["field"] == "params.finger_friction"
     # a finger's radius is answered, as push.regions answers it
-    answer = sweep(client, fixture, "push", {"set": "goal", "finger_radius": 0.05},
-                   range=[0, 0.5])
-    assert answer["exact"] is False and within(answer["intervals"], [[0, 0.5]])
+    answer = sweep(client, fixture, "push", {"set": "goal", "finger_radius": 0.05})
+    nominal = sweep(client, PLATE, "push", {"set": "goal", "finger_radius": 0.05})
+    assert answer["exact"] is False and within(answer["intervals"], nominal["intervals"])
