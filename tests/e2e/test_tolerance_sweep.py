@@ -18,6 +18,8 @@ import random
 
 import pytest
 
+from test_tolerance import with_tolerance
+
 # The chamfered 3-2-1 plate: [0, 4] x [0, 2] with the corner (4, 2) cut
 # from (4, 1) to (3, 2); locators under it at x = 1 and 3, one on its left
 # side at y = 0.5.
@@ -31,14 +33,6 @@ RUN = [(1, 0), (1, 0), (0, -1)]
 NORMAL = [(0, 1), (0, 1), (1, 0)]
 T, A, RATIO = 0.02, 0.5, 0.8
 G = 9.81
-
-
-def with_tolerance(fixture, position, angle=None):
-    f = copy.deepcopy(fixture)
-    f["tolerance"] = {"position": position}
-    if angle is not None:
-        f["tolerance"]["angle"] = angle
-    return f
 
 
 def at_mu(fixture, mu):
