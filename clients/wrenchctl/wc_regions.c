@@ -662,10 +662,14 @@ static void print_force_sweep(const wc_run *run, const cJSON *result)
     const cJSON *intervals = cJSON_GetObjectItem(result, "intervals");
     if (intervals) {
         printf("the push alone has a region (a large enough push does it whatever the loads) "
-               "for mu in ");
+               "%sfor mu in ",
+               run->geometric_given ? "on every fixture of the tolerance's set " : "");
         print_intervals(intervals);
     }
-    printf("sampled: each value exact at its mu; grid step %g%s\n",
+    printf("sampled: each value %s at its mu; grid step %g%s\n",
+           run->geometric_given
+               ? "push-force's robust least (the nominal least's point and 4 points an edge)"
+               : "exact",
            cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")),
            intervals ? ", and every interval end" : "");
     printf("%12s  %16s  %s\n", "mu", "least force", "at");
