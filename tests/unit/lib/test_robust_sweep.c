@@ -382,9 +382,70 @@ static void test_least_force(void **state)
     wr_fixture_free(f);
 }
 
+/* wr_robust_regions_meet: found on the nominal regions when their robust
+ * part is not empty; never on pushes nominally outside (the nominal
+ * fixture is one of the set), checked here by classifying them; a depth
+ * out of bounds refused. */
+static void test_meet(void **state)
+{
+    (void)state;
+    wr_fixture *f = toleranced(0.1, 1, 0.01, 0.5);
+    wr_analysis *a = test_analysis_new(f);
+    wr_robust *rb;
+    assert_int_equal(wr_robust_new(a, WR_ROBUST_SWEEP_BUDGET, &rb), WR_OK);
+    wr_regions nominal, robust;
+    assert_int_equal(wr_push_regions(a, WR_SET_BOTH, 0, NULL, &nominal), WR_OK);
+    assert_int_equal(wr_robust_regions(rb, WR_SET_BOTH, &nominal, false, NULL, &robust), WR_OK);
+    assert_true(robust.count > 0);
+    bool found;
+    assert_int_equal(wr_robust_regions_meet(rb, WR_SET_BOTH, &nominal, false, 6, NULL, &found),
+                     WR_OK);
+    assert_true(found);
+    /* Every edge's stretch outside the nominal regions, as candidates:
+     * each push there is nominally outside, so none can be proved. */
+    wr_regions outside = {0};
+    wr_region items[16];
+    for (int e = 0; e < 5; e++) {
+        double from = 0;
+        for (int i = 0; i <= nominal.count; i++) {
+            bool last = i == nominal.count;
+            if (!last && nominal.items[i].edge != e)
+                continue;
+            double to = last ? 1 : nominal.items[i].t0;
+            /* a margin off the region's ends, where the verdict is boundary */
+            if (to - from > 2e-6 && outside.count < 16)
+                items[outside.count++] = (wr_region){e, from + 1e-6, to - 1e-6};
+            from = last ? 1 : nominal.items[i].t1;
+        }
+    }
+    outside.items = items;
+    assert_true(outside.count >= 5);
+    for (int i = 0; i < outside.count; i++)
+        for (int k = 0; k <= 8; k++) {
+            double t = items[i].t0 + (items[i].t1 - items[i].t0) * k / 8, w[3];
+            wr_push_wrench(f, items[i].edge, t, w);
+            wr_answer answer;
+            assert_int_equal(wr_classify(a, w, WR_SET_BOTH, WR_DEFAULT_TOLERANCE, &answer),
+                             WR_OK);
+            assert_int_not_equal(answer.verdict, WR_VERDICT_INSIDE);
+        }
+    assert_int_equal(wr_robust_regions_meet(rb, WR_SET_BOTH, &outside, false, 6, NULL, &found),
+                     WR_OK);
+    assert_false(found);
+    assert_int_equal(wr_robust_regions_meet(rb, WR_SET_BOTH, &nominal, false,
+                                            WR_ROBUST_DEPTH + 1, NULL, &found),
+                     WR_INVALID);
+    wr_regions_release(&nominal);
+    wr_regions_release(&robust);
+    wr_robust_free(rb);
+    wr_analysis_free(a);
+    wr_fixture_free(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_meet),
         cmocka_unit_test(test_stop),
         cmocka_unit_test(test_tiny_tolerance),
         cmocka_unit_test(test_least_force),
