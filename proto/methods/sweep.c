@@ -525,8 +525,9 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
 }
 
 /* The least push force at one mu: the fixture's fixels placed again with
- * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
- * point [mu, F] (F null when no push does the job) is written. */
+ * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find (over a
+ * tolerance the robust least, wr_robust_least_force_at_mu).  Its point
+ * [mu, F] (F null when no push does the job) is written. */
 static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
                               const wr_stop *stop, unsigned long *used, wp_writer *out,
                               double at[2])
