@@ -69,6 +69,25 @@ void wr_intervals_release(wr_intervals *intervals)
     memset(intervals, 0, sizeof *intervals);
 }
 
+bool wr_intervals_append(wr_intervals *out, double lo, double hi)
+{
+    if (out->count > 0 && out->items[out->count - 1][1] == lo) {
+        out->items[out->count - 1][1] = hi;
+        return true;
+    }
+    if (out->count == out->capacity) {
+        int capacity = out->capacity ? 2 * out->capacity : 8;
+        double (*items)[2] = realloc(out->items, sizeof *items * (size_t)capacity);
+        if (!items)
+            return false;
+        out->items = items;
+        out->capacity = capacity;
+    }
+    out->items[out->count][0] = lo;
+    out->items[out->count++][1] = hi;
+    return true;
+}
+
 void wr_sweep_curve_release(wr_sweep_curve *curve)
 {
     wr_intervals_release(&curve->intervals);

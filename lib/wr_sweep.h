@@ -60,6 +60,9 @@ typedef struct wr_intervals {
 } wr_intervals;
 
 void wr_intervals_release(wr_intervals *intervals);
+/* [lo, hi] after the last interval (lo not below its end), joined to it
+ * when it ends at lo.  false: no memory (the list as it was). */
+bool wr_intervals_append(wr_intervals *intervals, double lo, double hi);
 
 /* A push region's total length (or a gravity arc's, in degrees) against mu. */
 typedef struct wr_sweep_curve {

@@ -25,6 +25,7 @@
 #include "wr_outline.h"
 #include "wr_plan.h"
 
+#include <assert.h>
 #include <glpk.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1485,13 +1486,14 @@ typedef void (*family_fn)(const void *context, double ta, double tb, double lo[3
 /* What a sink says of a piece given to it. */
 enum { KEEP_MORE, KEEP_FAILED, KEEP_ENOUGH };
 
-/* The pieces of [t0, t1], bisected down to 2^-WR_ROBUST_DEPTH of it, whose
- * family is proved robustly inside, each passed to `keep` in order, until
- * it says KEEP_ENOUGH (or KEEP_FAILED: no memory). */
+/* The pieces of [t0, t1], bisected down to 2^-depth of it (depth at most
+ * WR_ROBUST_DEPTH), whose family is proved robustly inside, each passed to
+ * `keep` in order, until it says KEEP_ENOUGH (or KEEP_FAILED: no memory). */
 static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, family_fn family,
-                        const void *context, const wr_stop *stop, int leaf_budget,
+                        const void *context, const wr_stop *stop, int depth, int leaf_budget,
                         int (*keep)(void *sink, double t0, double t1), void *sink)
 {
+    assert(depth >= 0 && depth <= WR_ROBUST_DEPTH);
     struct piece {
         double t0, t1;
         int depth;
@@ -1516,7 +1518,7 @@ static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, f
         /* A piece that one box per cone does not prove is split along the
          * family first: the boxes of the set are split (the whole budget)
          * only for the finest pieces. */
-        int budget = p.depth < WR_ROBUST_DEPTH ? 1 : leaf_budget;
+        int budget = p.depth < depth ? 1 : leaf_budget;
         if (box_inside(rb, lo, hi, set, WR_DEFAULT_TOLERANCE, caches, budget, &status)) {
             int kept = keep(sink, p.t0, p.t1);
             if (kept == KEEP_FAILED)
@@ -1529,7 +1531,7 @@ static wr_status bisect(const wr_robust *rb, wr_set set, double t0, double t1, f
             result = status;
             break;
         }
-        if (p.depth < WR_ROBUST_DEPTH) {
+        if (p.depth < depth) {
             /* Left piece on top, so that pieces come out in order. */
             double mid = 0.5 * (p.t0 + p.t1);
             stack[top++] = (struct piece){mid, p.t1, p.depth + 1};
@@ -1573,10 +1575,36 @@ wr_status wr_robust_regions(const wr_robust *rb, wr_set set, const wr_regions *n
         region_family family = {rb->fixture, region->edge, gravity};
         region_sink sink = {out, region->edge};
         wr_status status = bisect(rb, set, region->t0, region->t1, region_box, &family, stop,
-                                  rb->budget,
-                                  keep_region, &sink);
+                                  WR_ROBUST_DEPTH, rb->budget, keep_region, &sink);
         if (status != WR_OK) {
             wr_regions_release(out);
+            return status;
+        }
+    }
+    return WR_OK;
+}
+
+static int keep_first(void *sink, double t0, double t1)
+{
+    (void)t0;
+    (void)t1;
+    *(bool *)sink = true;
+    return KEEP_ENOUGH;
+}
+
+wr_status wr_robust_regions_meet(const wr_robust *rb, wr_set set, const wr_regions *candidates,
+                                 bool gravity, int depth, const wr_stop *stop, bool *found)
+{
+    *found = false;
+    if (depth < 0 || depth > WR_ROBUST_DEPTH)
+        return WR_INVALID;
+    for (int r = 0; r < candidates->count && !*found; r++) {
+        const wr_region *region = &candidates->items[r];
+        region_family family = {rb->fixture, region->edge, gravity};
+        wr_status status = bisect(rb, set, region->t0, region->t1, region_box, &family, stop,
+                                  depth, rb->budget, keep_first, found);
+        if (status != WR_OK) {
+            *found = false;
             return status;
         }
     }
@@ -1659,7 +1687,7 @@ static wr_status robust_forces(const wr_robust *rb, wr_set set, const double loa
         /* The least alone: a magnitude no piece proves costs every
          * finest piece its boxes, so those get a few only (the least is
          * then proved where fewer boxes suffice, a little higher at most). */
-        wr_status status = bisect(rb, set, s0, s1, force_box, &family, stop,
+        wr_status status = bisect(rb, set, s0, s1, force_box, &family, stop, WR_ROBUST_DEPTH,
                                   first_only ? LEAST_LEAF_BUDGET : rb->budget, keep_force, &sink);
         if (status != WR_OK) {
             out->count = 0;
@@ -1748,25 +1776,6 @@ static wr_status mu_piece_inside(const wr_fixture *fixture, const wr_fixel_spec 
     return status;
 }
 
-static bool append_interval(wr_intervals *out, double lo, double hi)
-{
-    if (out->count > 0 && out->items[out->count - 1][1] == lo) {
-        out->items[out->count - 1][1] = hi;
-        return true;
-    }
-    if (out->count == out->capacity) {
-        int capacity = out->capacity ? 2 * out->capacity : 8;
-        double (*items)[2] = realloc(out->items, sizeof *items * (size_t)capacity);
-        if (!items)
-            return false;
-        out->items = items;
-        out->capacity = capacity;
-    }
-    out->items[out->count][0] = lo;
-    out->items[out->count++][1] = hi;
-    return true;
-}
-
 wr_status wr_robust_sweep_wrench(const wr_fixture *fixture, const wr_fixel_spec *fixels,
                                  double kinetic_ratio, const double wrench[3], wr_set set,
                                  const wr_intervals *nominal, const wr_stop *stop,
@@ -1793,7 +1802,7 @@ wr_status wr_robust_sweep_wrench(const wr_fixture *fixture, const wr_fixel_spec 
             if (status != WR_OK)
                 break;
             if (inside) {
-                if (!append_interval(out, p.m0, p.m1))
+                if (!wr_intervals_append(out, p.m0, p.m1))
                     status = WR_NO_MEMORY;
             } else if (p.depth < WR_ROBUST_DEPTH) {
                 /* Left piece on top, so that pieces come out in order. */

@@ -103,6 +103,17 @@ bool wr_robust_box_inside(const wr_robust *robust, const double lo[3], const dou
 wr_status wr_robust_regions(const wr_robust *robust, wr_set set, const wr_regions *nominal,
                             bool gravity, const wr_stop *stop, wr_regions *out);
 
+/* Is some piece of `candidates` (regions or arcs of the fixture, as
+ * wr_robust_regions takes them) robustly inside?  Each is bisected down to
+ * 2^-depth of its length (0 <= depth <= WR_ROBUST_DEPTH) as
+ * wr_robust_regions does, and the search ends at the first piece proved:
+ * *found then says that some push (some tilt) is inside on every fixture of
+ * the set.  WR_OK; WR_INVALID (a depth out of bounds); WR_STOPPED;
+ * WR_LP_FAILED; WR_NO_MEMORY (*found false unless WR_OK). */
+wr_status wr_robust_regions_meet(const wr_robust *robust, wr_set set,
+                                 const wr_regions *candidates, bool gravity, int depth,
+                                 const wr_stop *stop, bool *found);
+
 /* The robust part of nominal good magnitudes (wr_force_range of the same
  * set, load and push, both physical wrenches of the model system): each
  * nominal interval bisected as wr_robust_regions does, on the parameter

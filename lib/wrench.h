@@ -14,6 +14,7 @@
  *   wr_design.h    fixture design: sites, the best push, the search
  *   wr_lattice.h   designs on a modular fixture plate: pegs and poses
  *   wr_tolerance.h robust answers over a fixture's geometric tolerance
+ *   wr_robust_sweep.h  robust push regions, arcs and least forces against mu
  *
  * Pure computation: no I/O, no global state; every function is re-entrant.
  * Objects are created by wr_status *_new(..., T **out) and released by
@@ -41,6 +42,7 @@
 #include "wr_regions.h"
 #include "wr_status.h"
 #include "wr_tolerance.h"
+#include "wr_robust_sweep.h"
 #include "wr_support.h"
 #include "wr_support_sweep.h"
 #include "wr_sweep.h"

@@ -1237,7 +1237,11 @@ class _Methods:
         least push force against mu); each of the last three is a set name,
         True (set goal; both for force) or a dict ({"set", "finger_friction",
         "finger_radius"} for push, {"set", "finger_radius", "push_on"} for
-        force, whose push_on defaults to default_push_on of the body)."""
+        force, whose push_on defaults to default_push_on of the body).  A
+        fixture with a tolerance (with_tolerance) is answered robustly: the
+        mu where the wrench, or the region, is proved for every fixture of
+        its set, the curve the robust length (or least push) at each mu,
+        `exact` False (a frictionless finger: finger_friction is refused)."""
         given = [name for name, value in (("wrenches", wrenches), ("push", push),
                                           ("gravity", gravity), ("force", force))
                  if value is not None]

@@ -662,10 +662,14 @@ static void print_force_sweep(const wc_run *run, const cJSON *result)
     const cJSON *intervals = cJSON_GetObjectItem(result, "intervals");
     if (intervals) {
         printf("the push alone has a region (a large enough push does it whatever the loads) "
-               "for mu in ");
+               "%sfor mu in ",
+               run->geometric_given ? "on every fixture of the tolerance's set " : "");
         print_intervals(intervals);
     }
-    printf("sampled: each value exact at its mu; grid step %g%s\n",
+    printf("sampled: each value %s at its mu; grid step %g%s\n",
+           run->geometric_given
+               ? "push-force's robust least (the nominal least's point and 4 points an edge)"
+               : "exact",
            cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")),
            intervals ? ", and every interval end" : "");
     printf("%12s  %16s  %s\n", "mu", "least force", "at");
@@ -712,6 +716,12 @@ static void print_region_sweep(const wc_run *run, const cJSON *result)
         printf("each point exact at its mu_B, every %g; seating only gets harder as mu_B grows, "
                "so the critical mu_B is bisected on those answers (to 1e-9)\n",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));
+    else if (run->geometric_given)
+        printf("robust over the tolerance: each interval proved for every mu in it and every "
+               "fixture of the set; an interval narrower than %g may be missed; the curve is "
+               "the robust %s at each mu\n",
+               cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")),
+               push ? "region's length" : "arcs' total");
     else if (cJSON_IsFalse(cJSON_GetObjectItem(result, "exact")))
         printf("sampled: resolution %g\n",
                cJSON_GetNumberValue(cJSON_GetObjectItem(result, "resolution")));

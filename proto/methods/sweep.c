@@ -25,6 +25,14 @@ enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY, SWEEP_FORCE };
  * F* is finite on them whatever the cases, and their ends are where it may
  * jump to null. */
 #define FORCE_SAMPLES 128
+/* Over a tolerance each sample is push.force's robust least at its mu
+ * (wr_robust_least_force_at_mu: the nominal least's point and
+ * ROBUST_FORCE_EDGE_SAMPLES points of each edge, each a robust F*), at
+ * ROBUST_FORCE_SAMPLES coefficients evenly and the ends of the robust push
+ * sweep's intervals (where a large enough push is proved to do the set's
+ * job on every fixture of the set). */
+#define ROBUST_FORCE_SAMPLES 17
+#define ROBUST_FORCE_EDGE_SAMPLES 4
 typedef struct sweep_state {
     int what;                   /* SWEEP_* */
     wr_sweep_range range;
@@ -78,6 +86,14 @@ typedef struct sweep_state {
     int edge;
     double length;
     bool nonempty;
+    /* A fixture with a tolerance, "push", "gravity" or "force": the
+     * nominal job's intervals made robust (sweep_robust_run), and the mu
+     * below which its answer is decided (the range's top when done). */
+    wr_robust_sweep *robust;
+    double robust_top;
+    /* "force" over a tolerance: the robust push sweep's answer (its
+     * intervals given, their ends sampled). */
+    wr_sweep_curve robust_curve;
 } sweep_state;
 
 static const char *const SWEEP_PUSH_FIELDS[] = {"set", "finger_friction", "finger_radius", NULL};
@@ -162,6 +178,8 @@ static void write_intervals(wp_writer *out, const wr_intervals *list)
 }
 
 static void write_stopped(wp_writer *out, double reached);
+static wp_step sweep_robust_run(sweep_state *state, wp_call *call, unsigned long budget,
+                                unsigned long *used, bool stopped);
 
 /* {"intervals", "critical", "curve", "exact", "resolution"}, and when the
  * deadline stopped it, "partial" and "stopped_at": `reached`. */
@@ -291,6 +309,8 @@ static void sweep_free(void *stream)
         return;
     sweep_state *state = stream;
     wr_sweep_job_free(state->job);
+    wr_robust_sweep_free(state->robust);
+    wr_sweep_curve_release(&state->robust_curve);
     wr_support_sweep_free(state->fixels_job);
     wr_analysis_free(state->fixels_analysis);
     for (int s = 0; s < 3; s++)
@@ -467,13 +487,13 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
         return state; /* no sweeper: the supports' friction leaves the cones as they are */
     if (state->fixels_on_supports)
         return state; /* no sweeper: each answer is a point answer at its mu */
-    if (use->fixture->tolerance.given && state->what != SWEEP_WRENCHES) {
-        /* The curves' exact machinery varies mu on the nominal fixels. */
-        wp_error_set(call->error, WP_INVALID_PARAMS, "params.fixture.tolerance",
-                     "friction.sweep answers \"wrenches\" robustly over a tolerance; push, "
-                     "gravity and force sweeps answer the nominal fixture only: sweep it "
-                     "without its tolerance, or ask push.regions, gravity.sweep or push.force "
-                     "at one friction");
+    if (use->fixture->tolerance.given && state->what == SWEEP_PUSH &&
+        state->finger.friction > 0) {
+        /* As push.regions over a tolerance (its robust regions are a
+         * frictionless finger's). */
+        wp_error_set(call->error, WP_INVALID_PARAMS, "params.push.finger_friction",
+                     "a fixture with a tolerance has robust regions for a frictionless "
+                     "finger only");
         sweep_free(state);
         return NULL;
     }
@@ -505,26 +525,39 @@ static void *sweep_begin(wp_call *call, wp_prepared *prepared)
 }
 
 /* The least push force at one mu: the fixture's fixels placed again with
- * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find.  Its
- * point [mu, F] (F null when no push does the job) is written. */
+ * mu_s = mu and mu_k = ratio mu, its analysis, wr_least_force_find (over a
+ * tolerance the robust least, wr_robust_least_force_at_mu).  Its point
+ * [mu, F] (F null when no push does the job) is written. */
 static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu,
-                              unsigned long *used, wp_writer *out, double at[2])
+                              const wr_stop *stop, unsigned long *used, wp_writer *out,
+                              double at[2])
 {
-    wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
-                                 .kinetic_mu = mu * state->range.kinetic_ratio};
-    wr_fixture placed;
-    wr_error invalid;
-    wr_status status = wr_fixture_place(f, state->fixels, (size_t)f->fixel_count, &friction,
-                                        &placed, &invalid);
-    wr_analysis *analysis = NULL;
-    if (status == WR_OK)
-        status = wr_analysis_new(&placed, &analysis);
     wr_least_force least = {0};
-    if (status == WR_OK)
-        status = wr_least_force_find(analysis, state->request.sets[0],
-                                     (const double (*)[3])state->loads, state->cases.count,
-                                     &state->finger, NULL, &least);
-    wr_analysis_free(analysis);
+    wr_status status;
+    if (f->tolerance.given) {
+        /* push.force's least over a tolerance at this mu (wr_robust_sweep.h). */
+        status = wr_robust_least_force_at_mu(f, mu, state->range.kinetic_ratio,
+                                             state->request.sets[0],
+                                             (const double (*)[3])state->loads,
+                                             state->cases.count, &state->finger,
+                                             ROBUST_FORCE_EDGE_SAMPLES, stop, &least);
+        *used += least.evaluations * 4000 * (unsigned long)state->cases.count;
+    } else {
+        wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
+                                     .kinetic_mu = mu * state->range.kinetic_ratio};
+        wr_fixture placed;
+        wr_error invalid;
+        status = wr_fixture_place(f, state->fixels, (size_t)f->fixel_count, &friction, &placed,
+                                  &invalid);
+        wr_analysis *analysis = NULL;
+        if (status == WR_OK)
+            status = wr_analysis_new(&placed, &analysis);
+        if (status == WR_OK)
+            status = wr_least_force_find(analysis, state->request.sets[0],
+                                         (const double (*)[3])state->loads, state->cases.count,
+                                         &state->finger, NULL, &least);
+        wr_analysis_free(analysis);
+    }
     if (status != WR_OK)
         return status;
     at[0] = least.found ? least.at[0] + 0.0 : NAN;
@@ -569,19 +602,19 @@ static int compare_mus(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The coefficients to sample (FORCE_SAMPLES evenly, ends included, and
- * the ends of the push alone's intervals), increasing, without repeats. */
-static bool force_mus(sweep_state *state, const wr_intervals *alone)
+/* The coefficients to sample (`samples` evenly, ends included, and the
+ * ends of the push alone's intervals), increasing, without repeats. */
+static bool force_mus(sweep_state *state, const wr_intervals *alone, int samples)
 {
-    int most = FORCE_SAMPLES + 2 * alone->count;
+    int most = samples + 2 * alone->count;
     state->mus = malloc((size_t)most * sizeof *state->mus);
     state->at = malloc((size_t)most * sizeof *state->at);
     if (!state->mus || !state->at)
         return false;
-    const double step = (state->range.high - state->range.low) / (FORCE_SAMPLES - 1);
+    const double step = (state->range.high - state->range.low) / (samples - 1);
     int n = 0;
-    for (int i = 0; i < FORCE_SAMPLES; i++)
-        state->mus[n++] = i + 1 == FORCE_SAMPLES ? state->range.high : state->range.low + i * step;
+    for (int i = 0; i < samples; i++)
+        state->mus[n++] = i + 1 == samples ? state->range.high : state->range.low + i * step;
     for (int i = 0; i < alone->count; i++)
         for (int k = 0; k < 2; k++)
             state->mus[n++] = alone->items[i][k];
@@ -618,11 +651,26 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
     wp_fixture_use *use = wp_call_fixture(call); /* held since begin */
     if (!use)
         return WP_STEP_FAILED;
+    const bool robust = use->fixture->tolerance.given;
+    const wr_intervals *alone = robust ? &state->robust_curve.intervals
+                                       : &wr_sweep_job_curve(state->job)->intervals;
     if (!state->mus) {
-        bool done;
-        wr_status status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1,
-                                            used, call->host->stop, &done);
-        if (status == WR_OK && done && !force_mus(state, &wr_sweep_job_curve(state->job)->intervals))
+        /* The push alone's intervals: the nominal job's, over a tolerance
+         * then made robust (sweep_robust_run) before any sample. */
+        bool done = state->robust != NULL;
+        wr_status status = WR_OK;
+        if (!done)
+            status = wr_sweep_job_run(state->job, budget > *used ? budget - *used : 1, used,
+                                      call->host->stop, &done);
+        if (status == WR_OK && done && robust) {
+            wp_step step = sweep_robust_run(state, call, budget, used, false);
+            if (step != WP_STEP_DONE)
+                return step;
+            status = wr_robust_sweep_curve(state->robust, state->robust_top,
+                                           &state->robust_curve);
+        }
+        if (status == WR_OK && done &&
+            !force_mus(state, alone, robust ? ROBUST_FORCE_SAMPLES : FORCE_SAMPLES))
             status = WR_NO_MEMORY;
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
@@ -648,8 +696,8 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
             return WP_STEP_MORE;
         if (stop_requested(call))
             return WP_STEP_FAILED;
-        wr_status status = force_sample(state, use->fixture, state->mus[state->sample], used, out,
-                                        state->at[state->sample]);
+        wr_status status = force_sample(state, use->fixture, state->mus[state->sample],
+                                        call->host->stop, used, out, state->at[state->sample]);
         if (status != WR_OK) {
             wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
             return WP_STEP_FAILED;
@@ -661,11 +709,11 @@ static wp_step sweep_force_step(sweep_state *state, wp_call *call, wp_writer *ou
     /* The push alone's intervals are known over the whole range; a partial
      * answer gives them up to where its samples stopped. */
     wp_write_key(out, "intervals");
-    write_intervals_below(out, &wr_sweep_job_curve(state->job)->intervals,
-                          partial ? state->mus[state->sample - 1] : INFINITY);
+    write_intervals_below(out, alone, partial ? state->mus[state->sample - 1] : INFINITY);
     wp_write_member_bool(out, "exact", false);
     wp_write_member_number(out, "resolution",
-                           (state->range.high - state->range.low) / (FORCE_SAMPLES - 1));
+                           (state->range.high - state->range.low) /
+                               ((robust ? ROBUST_FORCE_SAMPLES : FORCE_SAMPLES) - 1));
     if (partial)
         write_stopped(out, state->mus[state->sample - 1]);
     wp_write_object_end(out);
@@ -1149,6 +1197,65 @@ static wp_step sweep_fixels_step(sweep_state *state, wp_call *call, wp_writer *o
     return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
 }
 
+/* Over a tolerance, "push" or "gravity" (and "force"'s intervals): the
+ * nominal job's intervals made robust (wr_robust_sweep.h) a unit at a
+ * time, from the nominal job done (or stopped: then nothing robust is
+ * decided).  WP_STEP_MORE while the budget is spent; WP_STEP_DONE with
+ * state->robust_top the mu below which its answer holds (below the range's
+ * top when the deadline stopped it). */
+static wp_step sweep_robust_run(sweep_state *state, wp_call *call, unsigned long budget,
+                                unsigned long *used, bool stopped)
+{
+    const wr_fixture *f = wp_call_fixture(call)->fixture; /* held since begin */
+    wr_status status = WR_OK;
+    if (!state->robust)
+        status = wr_robust_sweep_new(f, state->request.sets[0], &state->range,
+                                     state->what == SWEEP_GRAVITY, &state->finger,
+                                     &wr_sweep_job_curve(state->job)->intervals, &state->robust);
+    if (status == WR_OK && stopped) {
+        state->robust_top = state->range.low;
+        return WP_STEP_DONE;
+    }
+    for (bool first = true; status == WR_OK; first = false) {
+        if (deadline_passed(state)) {
+            state->robust_top = wr_robust_sweep_reached(state->robust);
+            return WP_STEP_DONE;
+        }
+        if (!first && *used >= budget)
+            return WP_STEP_MORE;
+        unsigned long before = wr_robust_sweep_work(state->robust);
+        bool done;
+        status = wr_robust_sweep_run(state->robust, call->host->stop, &done);
+        *used += 1 + wr_robust_sweep_work(state->robust) - before;
+        if (status == WR_OK && done) {
+            state->robust_top = state->range.high;
+            return WP_STEP_DONE;
+        }
+    }
+    wp_error_status(call->error, status, "params", "%s", wr_strerror(status));
+    return WP_STEP_FAILED;
+}
+
+/* Over a tolerance, "push" or "gravity": the robust curve, written when
+ * done or stopped (write_curve's members, the critical and the curve of
+ * the robust regions). */
+static wp_step sweep_robust_step(sweep_state *state, wp_call *call, wp_writer *out,
+                                 unsigned long budget, unsigned long *used, bool stopped)
+{
+    wp_step step = sweep_robust_run(state, call, budget, used, stopped);
+    if (step != WP_STEP_DONE)
+        return step;
+    wr_sweep_curve curve;
+    const bool partial = state->robust_top < state->range.high;
+    if (wr_robust_sweep_curve(state->robust, state->robust_top, &curve) != WR_OK) {
+        wp_error_set(call->error, WP_INTERNAL, "", "out of memory");
+        return WP_STEP_FAILED;
+    }
+    write_curve(out, &curve, partial, state->robust_top);
+    wr_sweep_curve_release(&curve);
+    return out->out->failed ? WP_STEP_FAILED : WP_STEP_DONE;
+}
+
 static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned long budget,
                           unsigned long *used)
 {
@@ -1162,6 +1269,8 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
                                                : sweep_plate_step(state, call, out, budget, used);
     if (state->what == SWEEP_FORCE)
         return sweep_force_step(state, call, out, budget, used);
+    if (state->robust)
+        return sweep_robust_step(state, call, out, budget, used, false);
     const wp_classify_request *r = &state->request;
     const wr_stop *stop = call->host->stop;
     size_t start = out->out->length;
@@ -1206,6 +1315,8 @@ static wp_step sweep_step(void *stream, wp_call *call, wp_writer *out, unsigned 
         if (!done)
             continue;
         if (state->what != SWEEP_WRENCHES) {
+            if (wp_call_fixture(call)->fixture->tolerance.given)
+                return sweep_robust_step(state, call, out, budget, used, stopped);
             write_curve(out, wr_sweep_job_curve(state->job), stopped, reached);
             return WP_STEP_DONE;
         }

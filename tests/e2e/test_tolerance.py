@@ -152,8 +152,8 @@ def test_id_and_refusals(client):
         assert error["code"] == -32602 and error["data"]["field"] == field, error
         assert words in error["data"]["reason"], error
     error = client.error("friction.sweep", {"fixture": with_tolerance(PLATE, 0.01),
-                                            "gravity": {"set": "goal"}})
-    assert error["data"]["field"] == "params.fixture.tolerance", error
+                                            "push": {"set": "goal", "finger_friction": 0.2}})
+    assert error["data"]["field"] == "params.push.finger_friction", error
 
 
 def test_python_client(daemon):
