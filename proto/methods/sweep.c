@@ -33,6 +33,10 @@ enum { SWEEP_WRENCHES, SWEEP_PUSH, SWEEP_GRAVITY, SWEEP_FORCE };
  * job on every fixture of the set). */
 #define ROBUST_FORCE_SAMPLES 17
 #define ROBUST_FORCE_EDGE_SAMPLES 4
+/* The work units (a wrench against a cone) charged per case for one robust
+ * F* evaluation: a hundred times a nominal one's 40 (force_sample), since
+ * it bisects the magnitudes with boxes of the tolerance's set. */
+#define ROBUST_EVALUATION_COST 4000
 typedef struct sweep_state {
     int what;                   /* SWEEP_* */
     wr_sweep_range range;
@@ -541,7 +545,7 @@ static wr_status force_sample(sweep_state *state, const wr_fixture *f, double mu
                                              (const double (*)[3])state->loads,
                                              state->cases.count, &state->finger,
                                              ROBUST_FORCE_EDGE_SAMPLES, stop, &least);
-        *used += least.evaluations * 4000 * (unsigned long)state->cases.count;
+        *used += least.evaluations * ROBUST_EVALUATION_COST * (unsigned long)state->cases.count;
     } else {
         wr_friction_spec friction = {.given = true, .static_mu = mu, .kinetic_given = true,
                                      .kinetic_mu = mu * state->range.kinetic_ratio};
